@@ -1,0 +1,144 @@
+"""Stability atlases: spectra over parameter grids as CF-annotated xarray datasets.
+
+Every parameter given as a 1-D array becomes a dimension (in the canonical order q, fr_inv,
+sigma, alpha_v, mu) with a coordinate of the same name; a scalar becomes a scalar coordinate.
+Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; ``growth_rate = Re s``
+and ``frequency = Im s`` in units of the spin rate.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime, timezone
+from importlib.metadata import PackageNotFoundError, version
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .io import PRODUCT_ATTR
+from .models import get_model
+from .parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
+from .spectra import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+
+__all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE", "package_version"]
+
+TIME_CONVENTION = ("x ~ exp(s t), t in units of 1/Omega, components in the non-rotating frame; "
+                   "growth_rate = Re s, frequency = Im s, in units of the spin rate Omega")
+MARGINAL_RULE = ("a mode is neutral if Re s = 0 by structure (exact zero root, or real root nu of a "
+                 "conservative p(i nu)) or |Re s| <= 4 e + 16 u max|s| (e: the root's error bound, "
+                 "u = 2^-53); unstable if a mode grows beyond that, stable if all decay beyond it")
+
+
+def package_version() -> str:
+    """Installed version of tippe-stability."""
+    try:
+        return version("tippe-stability")
+    except PackageNotFoundError:  # pragma: no cover - source tree without install
+        return "unknown"
+
+
+def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU,
+          mask_unphysical: bool = False, method: str = "polynomial") -> xr.Dataset:
+    """Spectra of a linear model over a grid of parameters, as an xarray Dataset.
+
+    Parameters
+    ----------
+    model : {"fixed_pivot", "rolling", "sliding"}
+        Eqs. (8)-(9) or eq. (11).
+    q, fr_inv, sigma, alpha_v, mu : float or 1-D array_like
+        Scalars become scalar coordinates, 1-D arrays dimensions. ``alpha_v`` only for
+        ``"sliding"``.
+    mask_unphysical : bool, default False
+        If False, any grid point outside the physical domain refuses the whole request
+        (:class:`~stability.parameters.DomainError`, no partial dataset). If True, those
+        points get NaN and ``physical = 0``.
+    method : {"polynomial", "lapack"}
+        Eigenvalue method (:data:`stability.spectra.METHODS`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``growth_rate`` and ``frequency`` (grid + ``mode``), ``eigenvalue_error_bound``
+        (grid + ``mode``), ``max_growth_rate``, ``stability`` (flag: -1 outside the domain,
+        0 stable, 1 marginal, 2 unstable) and ``physical`` (flag), with CF attributes.
+
+    Examples
+    --------
+    >>> import numpy as np, stability
+    >>> ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 81), fr_inv=[0, 0.1, 0.3],
+    ...                      sigma=1.0, alpha_v=0.5)
+    >>> ds.growth_rate.dims
+    ('q', 'fr_inv', 'mode')
+    """
+    m = get_model(model)
+    given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+    values = {k: as_parameter(k, v) for k, v in given.items()}
+    for k, v in values.items():
+        if v.ndim > 1:
+            raise TypeError(f"{k} must be a scalar or a 1-D array for an atlas, got shape {v.shape}")
+    dims = [k for k in PARAMETERS if k in values and values[k].ndim == 1]
+    grid = {}
+    for k, v in values.items():
+        if v.ndim == 1:
+            shape = [1] * len(dims)
+            shape[dims.index(k)] = v.size
+            grid[k] = v.reshape(shape)
+        else:
+            grid[k] = v
+    sp = spectrum(m, mask_unphysical=mask_unphysical, method=method, **grid)
+    full = tuple(values[d].size for d in dims)
+    ev = np.broadcast_to(sp.eigenvalues, full + (m.n_modes,))
+    bound = np.broadcast_to(sp.error_bound, full + (m.n_modes,))
+    stab = np.broadcast_to(sp.stability, full)
+    inside = np.broadcast_to(sp.inside, full)
+
+    mdims = (*dims, "mode")
+    unit = {"units": "1"}
+    coords: dict[str, Any] = {}
+    for k in PARAMETERS:
+        if k in values:
+            attrs = {"long_name": LONG_NAMES[k], **unit}
+            coords[k] = (k, values[k], attrs) if values[k].ndim == 1 else ((), float(values[k]), attrs)
+    coords["mode"] = ("mode", np.arange(m.n_modes),
+                      {"long_name": "mode index, modes sorted by decreasing growth rate", **unit})
+    data_vars = {
+        "growth_rate": (mdims, ev.real.copy(),
+                        {"long_name": "growth rate Re s of each mode, in units of the spin rate", **unit}),
+        "frequency": (mdims, ev.imag.copy(),
+                      {"long_name": "frequency Im s of each mode, fixed frame, in units of the spin rate",
+                       **unit}),
+        "eigenvalue_error_bound": (mdims, bound.copy(),
+                                   {"long_name": "absolute error bound of each eigenvalue s", **unit}),
+        "max_growth_rate": (tuple(dims), ev[..., 0].real.copy(),
+                            {"long_name": "largest growth rate max Re s", **unit}),
+        "stability": (tuple(dims), stab.astype(np.int8),
+                      {"long_name": "linear stability of the upright spin",
+                       "flag_values": np.array([-1, STABLE, MARGINAL, UNSTABLE], dtype=np.int8),
+                       "flag_meanings": "outside_domain " + FLAG_MEANINGS,
+                       "comment": MARGINAL_RULE}),
+        "physical": (tuple(dims), inside.astype(np.int8),
+                     {"long_name": "point lies in the physical domain",
+                      "flag_values": np.array([0, 1], dtype=np.int8),
+                      "flag_meanings": "outside_domain inside_domain",
+                      "comment": "1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0"}),
+    }
+    attrs: dict[str, Any] = {
+        "Conventions": "CF-1.10",
+        "title": f"Linear stability atlas of the Tippe top: {m.name} model",
+        PRODUCT_ATTR: "atlas",
+        "model": m.name,
+        "model_equations": m.equations,
+        "model_description": m.description,
+        "time_convention": TIME_CONVENTION,
+        "marginal_rule": MARGINAL_RULE,
+        "eigenvalue_method": method,
+        "mask_unphysical": int(mask_unphysical),
+        "source": f"tippe-stability {package_version()}",
+        "history": f"{datetime.now(timezone.utc).isoformat(timespec='seconds')} stability.atlas",
+        "parameters": " ".join(values),
+        "grid_dimensions": " ".join(dims),
+    }
+    for k, v in values.items():
+        if v.ndim == 0:
+            attrs[k] = float(v)
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)

@@ -1,0 +1,98 @@
+"""Line plots of an atlas: growth rate (or frequency) of the leading mode against one parameter."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import xarray as xr
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from ..io import atomic_output
+from ..parameters import SYMBOLS
+
+__all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
+
+STYLE_FILE = Path(__file__).with_name("tippe.mplstyle")
+
+QUANTITIES = {
+    "growth_rate": ("growth rate Re $s$ / $\\Omega$", lambda ds: ds["max_growth_rate"]),
+    "frequency": ("frequency Im $s$ / $\\Omega$ (fixed frame)",
+                  lambda ds: ds["frequency"].isel(mode=0, drop=True)),
+}
+
+
+@contextlib.contextmanager
+def style() -> Iterator[None]:
+    """Context manager applying the package's figure style."""
+    import matplotlib.pyplot as plt
+
+    with plt.style.context(str(STYLE_FILE)):
+        yield
+
+
+def _fmt(v: float) -> str:
+    return f"{v:g}"
+
+
+def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_rate",
+                     ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """Plot the leading mode's growth rate (or frequency) against ``x``, one line per family.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An atlas (:func:`stability.atlas`) with ``x`` as a dimension and at most one other
+        grid dimension (the family, one line per value, named in the legend).
+    x : str, default "q"
+        The abscissa (a grid dimension).
+    quantity : {"growth_rate", "frequency"}
+        Leading growth rate ``max Re s`` or the frequency ``Im s`` of the leading mode.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; a new figure is made if omitted.
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    if quantity not in QUANTITIES:
+        raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
+    grid = [d for d in ds["max_growth_rate"].dims]
+    if x not in grid:
+        raise ValueError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
+    others = [d for d in grid if d != x]
+    if len(others) > 1:
+        raise ValueError(f"the atlas has grid dimensions {', '.join(grid)}; select all but {x!r} and one family first")
+    if ax is None:
+        fig = Figure()
+        ax = fig.add_subplot()
+    fig = ax.figure
+    label, get = QUANTITIES[quantity]
+    da = get(ds)
+    if others:
+        fam = others[0]
+        for v in ds[fam].values:
+            line = da.sel({fam: v})
+            ax.plot(ds[x].values, line.values, label=f"{SYMBOLS.get(fam, fam)} = {_fmt(v)}")
+    else:
+        ax.plot(ds[x].values, da.values, label=ds.attrs.get("model", ""))
+    if quantity == "growth_rate":
+        ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
+    ax.set_xlabel(SYMBOLS.get(x, x))
+    ax.set_ylabel(label)
+    fixed = [f"{SYMBOLS.get(k, k)} = {_fmt(float(ds[k]))}" for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")
+             if k in ds.coords and ds[k].ndim == 0]
+    ax.set_title(f"{ds.attrs.get('model', '')} model, eq. {ds.attrs.get('model_equations', '')}: "
+                 + ", ".join(fixed), fontsize=9)
+    ax.legend()
+    return fig, ax
+
+
+def save_figure(fig: Figure, path: str | os.PathLike, *, overwrite: bool = True) -> Path:
+    """Save ``fig`` to ``path`` atomically (no partial file); the format comes from the suffix."""
+    with atomic_output(path, overwrite=overwrite) as tmp:
+        fig.savefig(tmp)
+    return Path(path)

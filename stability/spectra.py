@@ -1,0 +1,207 @@
+"""Spectra of the linear models over parameter grids, and the stability decision.
+
+Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
+``Re s``, frequency ``Im s`` in units of the spin rate. Modes are sorted by decreasing real
+part (ties by decreasing imaginary part).
+
+How *marginal* is decided (docs/conventions.md):
+
+* a mode whose real part is zero by structure (an exactly zero root of ``det(s M - A)``, or a
+  neutral root of a conservative polynomial, see :mod:`stability.roots`) is neutral;
+* otherwise a mode is neutral when ``|Re s| <= 4 e + 16 u max|s|``, with ``e`` the root's own
+  error bound and ``u = 2**-53`` (the second term is a floor relative to the spectrum's scale);
+* a point is *unstable* if any mode has ``Re s`` above that tolerance, *stable* if every mode is
+  below minus it, and *marginal* otherwise.
+
+So the sliding model's zero eigenvalue at ``fr_inv = 0`` is exactly zero and the point is
+marginal (if no other mode grows), never unstable by a round-off sign.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .models import LinearModel, get_model
+from .parameters import DEFAULT_MU, check_domain
+from .roots import UNIT_ROUNDOFF, polynomial_roots
+
+__all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS"]
+
+STABLE, MARGINAL, UNSTABLE = 0, 1, 2
+FLAG_MEANINGS = "stable marginal unstable"
+
+#: eigenvalue methods: "polynomial" (default: structured roots of det(sM - A), polished) and
+#: "lapack" (batched numpy.linalg.eigvals of solve(M, A); a cross-check)
+METHODS = ("polynomial", "lapack")
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """Eigenvalues of a model over a broadcast parameter grid.
+
+    Attributes
+    ----------
+    model : LinearModel
+    params : dict of numpy.ndarray
+        Parameters used, broadcast to the grid shape.
+    eigenvalues : numpy.ndarray of complex, shape grid + (n_modes,)
+        Sorted by decreasing real part; NaN at masked (unphysical) points.
+    error_bound : numpy.ndarray of float, shape grid + (n_modes,)
+        Absolute error bound of each eigenvalue.
+    neutral : numpy.ndarray of bool, shape grid + (n_modes,)
+        Mode decided neutral (``Re s = 0`` within its tolerance, or exactly by structure).
+    stability : numpy.ndarray of int8, shape grid
+        ``STABLE`` (0), ``MARGINAL`` (1), ``UNSTABLE`` (2); -1 at masked points.
+    inside : numpy.ndarray of bool, shape grid
+        True where the point lies in the physical domain.
+    """
+
+    model: LinearModel
+    params: dict[str, np.ndarray]
+    eigenvalues: np.ndarray
+    error_bound: np.ndarray
+    neutral: np.ndarray
+    stability: np.ndarray
+    inside: np.ndarray
+
+    @property
+    def growth_rate(self) -> np.ndarray:
+        """``Re s`` of each mode."""
+        return self.eigenvalues.real
+
+    @property
+    def frequency(self) -> np.ndarray:
+        """``Im s`` of each mode (fixed frame, units of the spin rate)."""
+        return self.eigenvalues.imag
+
+    @property
+    def max_growth_rate(self) -> np.ndarray:
+        """Leading growth rate (of mode 0)."""
+        return self.eigenvalues[..., 0].real
+
+
+def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any]:
+    """Select the parameters a model takes, refusing missing or foreign ones."""
+    out = {}
+    for name, value in given.items():
+        if name in model.parameters:
+            if value is None:
+                raise TypeError(f"{name} is required for model {model.name!r}")
+            out[name] = value
+        elif value is not None:
+            raise TypeError(f"model {model.name!r} takes no parameter {name} "
+                            f"(it takes {', '.join(model.parameters)})")
+    for name in model.parameters:
+        if name not in out:
+            raise TypeError(f"{name} is required for model {model.name!r}")
+    return out
+
+
+def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
+    M, A = model.matrices(**p)
+    ev = np.linalg.eigvals(np.linalg.solve(M, A))
+    scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
+    bound = 8 * model.n_modes * UNIT_ROUNDOFF * scale[..., None] * np.ones(ev.shape)
+    return ev, bound, np.zeros(ev.shape, dtype=bool)
+
+
+def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
+    scale = np.max(np.abs(ev), axis=-1, keepdims=True)
+    tol = 4.0 * bound + 16.0 * UNIT_ROUNDOFF * scale
+    re = ev.real
+    neutral = (exact & (re == 0)) | (np.abs(re) <= tol)
+    grows = (re > tol) & ~neutral
+    stab = np.where(grows.any(axis=-1), UNSTABLE, np.where(neutral.any(axis=-1), MARGINAL, STABLE))
+    return neutral, stab.astype(np.int8)
+
+
+def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
+             alpha_v: Any = None, mu: Any = DEFAULT_MU, mask_unphysical: bool = False,
+             method: str = "polynomial") -> Spectrum:
+    """Eigenvalues, error bounds and the stability decision over a parameter grid.
+
+    Parameters
+    ----------
+    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+        Eqs. (8)-(9) for the first two, eq. (11) for ``"sliding"``.
+    q, fr_inv, sigma, alpha_v, mu : float or array_like
+        Parameters (broadcast together); ``alpha_v`` only for ``"sliding"``.
+    mask_unphysical : bool, default False
+        If False, a point outside the physical domain refuses the whole request
+        (:class:`~stability.parameters.DomainError`); if True, such points get NaN.
+    method : {"polynomial", "lapack"}
+        Root finder (see :data:`METHODS`).
+
+    Returns
+    -------
+    Spectrum
+    """
+    m = get_model(model)
+    if method not in METHODS:
+        raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
+    given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+    p, inside = check_domain(mask=mask_unphysical, **given)
+    shape = inside.shape
+    n = m.n_modes
+    ev = np.full(shape + (n,), complex(np.nan, np.nan))
+    bound = np.full(shape + (n,), np.nan)
+    neutral = np.zeros(shape + (n,), dtype=bool)
+    stab = np.full(shape, -1, dtype=np.int8)
+    if inside.any():
+        sub = {k: v[inside] for k, v in p.items()}
+        if method == "polynomial":
+            r = polynomial_roots(m.coefficients(**sub))
+            e, b, x = r.roots, r.error_bound, r.exact_real
+        else:
+            e, b, x = _lapack(m, sub)
+        order = np.lexsort((-e.imag, -e.real), axis=-1)
+        e = np.take_along_axis(e, order, -1)
+        b = np.take_along_axis(b, order, -1)
+        x = np.take_along_axis(x, order, -1)
+        nt, st = _classify(e, b, x)
+        ev[inside], bound[inside], neutral[inside], stab[inside] = e, b, nt, st
+    return Spectrum(m, p, ev, bound, neutral, stab, inside)
+
+
+def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
+                alpha_v: Any = None, mu: Any = DEFAULT_MU, method: str = "polynomial") -> np.ndarray:
+    """Eigenvalues ``s`` of a linear model, ``x ~ exp(s t)``.
+
+    Parameters
+    ----------
+    model : {"fixed_pivot", "rolling", "sliding"}
+        Eqs. (8)-(9) (two modes) or eq. (11) (three modes).
+    q, fr_inv, sigma : float or array_like
+        Centre-of-mass offset, inverse Froude number, inertia ratio (broadcast together).
+    alpha_v : float or array_like, optional
+        Viscous friction parameter; required for ``"sliding"``, refused otherwise.
+    mu : float or array_like, default 2.28
+        Scaled mass.
+    method : {"polynomial", "lapack"}
+        Root finder.
+
+    Returns
+    -------
+    numpy.ndarray of complex, shape broadcast(parameters) + (n_modes,)
+        Sorted by decreasing real part. Growth rate ``Re s``, frequency ``Im s`` (fixed
+        frame, units of the spin rate, time in ``1/Omega``).
+
+    Raises
+    ------
+    DomainError
+        A point outside the physical domain (the message names parameter, value and bound).
+    TypeError
+        A missing, foreign or non-real parameter.
+
+    Examples
+    --------
+    >>> import stability
+    >>> s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
+    >>> s.shape
+    (3,)
+    """
+    return spectrum(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu,
+                    method=method).eigenvalues
