@@ -31,6 +31,8 @@ from typing import Any
 
 import numpy as np
 
+from .inertia import transverse_inertia_g
+
 __all__ = [
     "PARAMETERS",
     "DEFAULT_MU",
@@ -123,13 +125,15 @@ def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[str, np.ndarray, str]
     for name in ("fr_inv", "alpha_v", "alpha_k"):
         if name in p:
             out.append((name, p[name] < 0, f"{name} >= 0"))
-    if "q" in p and mu is not None:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            out.append(("q", ~(1.0 - mu * p["q"] ** 2 > 0), "1 - mu q^2 > 0, i.e. |q| < 1/sqrt(mu)"))
+    a_g = transverse_inertia_g(p["q"], mu) if "q" in p and mu is not None else None
+    if a_g is not None:
+        out.append(("q", ~(a_g > 0), "1 - mu q^2 > 0, i.e. |q| < 1/sqrt(mu)"))
     if "sigma" in p:
         out.append(("sigma", p["sigma"] <= 0, "sigma > 0"))
-        if "q" in p and mu is not None:
-            out.append(("sigma", p["sigma"] > 2.0 * (1.0 - mu * p["q"] ** 2), "sigma <= 2 (1 - mu q^2)"))
+        if a_g is not None:
+            # equality (a flat disc) is allowed; a few units of round-off in the caller's own
+            # evaluation of the bound are not a physical violation
+            out.append(("sigma", p["sigma"] > 2.0 * a_g * (1.0 + 8 * 2.0**-53), "sigma <= 2 (1 - mu q^2)"))
     return out
 
 
@@ -142,7 +146,7 @@ def _describe(name: str, p: Mapping[str, np.ndarray], where: tuple, bound: str) 
         msg += f" = {1 / math.sqrt(mu):.6g} (mu = {mu:.6g})"
     if name == "sigma" and bound.startswith("sigma <= 2") and mu is not None:
         qv = float(p["q"][where])
-        msg += f" = {2 * (1 - mu * qv * qv):.6g} at q = {qv:.6g}, mu = {mu:.6g}"
+        msg += f" = {2 * float(transverse_inertia_g(qv, mu)):.6g} at q = {qv:.6g}, mu = {mu:.6g}"
     return msg
 
 

@@ -25,19 +25,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..inertia import transverse_inertia_contact
 from .base import LinearModel
 
 __all__ = ["SecondOrderTop", "contact_transverse_inertia"]
 
 
-def contact_transverse_inertia(q: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """Transverse moment of inertia about the contact point, ``A_C = 1 + mu (1 + 2 q)``.
-
-    Derivation: ``A_G = A0 - M R^2 q^2`` (parallel axes from O to G), then from G to the
-    contact point at distance ``(1 + q) R`` below G: ``A_C = A_G + M R^2 (1 + q)^2``;
-    in units of ``A0``: ``1 - mu q^2 + mu (1 + q)^2 = 1 + mu (1 + 2 q)``.
-    """
-    return 1.0 + mu * (1.0 + 2.0 * q)
+#: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.inertia)
+contact_transverse_inertia = transverse_inertia_contact
 
 
 class SecondOrderTop(LinearModel):

@@ -53,7 +53,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import LinearModel
-from .second_order import contact_transverse_inertia
+from ..inertia import transverse_inertia_contact, transverse_inertia_g
 
 __all__ = ["Sliding"]
 
@@ -97,8 +97,8 @@ class Sliding(LinearModel):
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
             *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu)))
         c = np.empty(q.shape + (4,), dtype=complex)
-        c[..., 0] = mu * (1.0 - mu * q * q)
-        c[..., 1] = alpha_v * contact_transverse_inertia(q, mu) - 1j * mu * sigma
+        c[..., 0] = mu * transverse_inertia_g(q, mu)
+        c[..., 1] = alpha_v * transverse_inertia_contact(q, mu) - 1j * mu * sigma
         c[..., 2] = -mu * mu * q * fr_inv - 1j * alpha_v * (sigma + mu * (1.0 + q))
         c[..., 3] = -mu * alpha_v * q * fr_inv
         return c
