@@ -1,4 +1,4 @@
-"""Line plots of an atlas: growth rate (or frequency) of the leading mode against one parameter."""
+"""Line plots of an atlas: growth rate (or frequency) of a mode against one parameter."""
 
 from __future__ import annotations
 
@@ -7,11 +7,13 @@ import os
 from collections.abc import Iterator
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..io import atomic_output
+from ..modes import principal_mode
 from ..parameters import SYMBOLS
 
 __all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
@@ -19,10 +21,19 @@ __all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
 STYLE_FILE = Path(__file__).with_name("tippe.mplstyle")
 
 QUANTITIES = {
-    "growth_rate": ("growth rate Re $s$ / $\\Omega$", lambda ds: ds["max_growth_rate"]),
-    "frequency": ("frequency Im $s$ / $\\Omega$ (fixed frame)",
-                  lambda ds: ds["frequency"].isel(mode=0, drop=True)),
+    "growth_rate": "growth rate Re $s$ / $\\Omega$",
+    "frequency": "frequency Im $s$ / $\\Omega$ (fixed frame)",
 }
+MODES = ("principal", "leading")
+
+
+def _line(da_s: np.ndarray, quantity: str, mode: str) -> np.ndarray:
+    """Values along one line: ``da_s`` is (m, n_modes) complex."""
+    if mode == "principal":
+        s = principal_mode(da_s)
+    else:
+        s = da_s[:, 0]
+    return s.real if quantity == "growth_rate" else s.imag
 
 
 @contextlib.contextmanager
@@ -39,8 +50,8 @@ def _fmt(v: float) -> str:
 
 
 def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_rate",
-                     ax: Axes | None = None) -> tuple[Figure, Axes]:
-    """Plot the leading mode's growth rate (or frequency) against ``x``, one line per family.
+                     mode: str = "principal", ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """Plot a mode's growth rate (or frequency) against ``x``, one line per family.
 
     Parameters
     ----------
@@ -50,7 +61,12 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     x : str, default "q"
         The abscissa (a grid dimension).
     quantity : {"growth_rate", "frequency"}
-        Leading growth rate ``max Re s`` or the frequency ``Im s`` of the leading mode.
+        ``Re s`` or ``Im s`` of the mode drawn.
+    mode : {"principal", "leading"}
+        ``"principal"``: the mode followed continuously along ``x``
+        (:func:`stability.modes.track_modes`) that reaches the largest growth rate; its growth
+        rate and frequency are smooth curves. ``"leading"``: the largest growth rate at each
+        point (``max_growth_rate``), whose frequency jumps where the leading mode changes.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; a new figure is made if omitted.
 
@@ -60,6 +76,8 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     """
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
+    if mode not in MODES:
+        raise ValueError(f"mode = {mode!r} is not known; choose one of {', '.join(MODES)}")
     grid = [d for d in ds["max_growth_rate"].dims]
     if x not in grid:
         raise ValueError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
@@ -70,15 +88,16 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
         fig = Figure()
         ax = fig.add_subplot()
     fig = ax.figure
-    label, get = QUANTITIES[quantity]
-    da = get(ds)
+    label = QUANTITIES[quantity]
+    s = ds["growth_rate"] + 1j * ds["frequency"]
     if others:
         fam = others[0]
         for v in ds[fam].values:
-            line = da.sel({fam: v})
-            ax.plot(ds[x].values, line.values, label=f"{SYMBOLS.get(fam, fam)} = {_fmt(v)}")
+            line = s.sel({fam: v}).transpose(x, "mode").values
+            ax.plot(ds[x].values, _line(line, quantity, mode), label=f"{SYMBOLS.get(fam, fam)} = {_fmt(v)}")
     else:
-        ax.plot(ds[x].values, da.values, label=ds.attrs.get("model", ""))
+        ax.plot(ds[x].values, _line(s.transpose(x, "mode").values, quantity, mode),
+                label=ds.attrs.get("model", ""))
     if quantity == "growth_rate":
         ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
     ax.set_xlabel(SYMBOLS.get(x, x))

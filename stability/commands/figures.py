@@ -1,0 +1,45 @@
+"""``tippe figures``: run atlas recipes (atlases/*.toml): compute what is missing, then draw."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..recipes import find_recipes, load_recipe, compute
+
+__all__ = ["register", "run"]
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``figures`` subcommand."""
+    p = sub.add_parser("figures", help="compute and draw atlas recipes (atlases/*.toml)",
+                       description="Run atlas recipes: compute the datasets that are missing or out of date "
+                                   "(netCDF beside each recipe) and draw their figures (PNG).")
+    p.add_argument("recipes", nargs="*", help="recipe files or directories (default: atlases/)")
+    p.add_argument("--force", action="store_true", help="recompute even when a matching dataset exists")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``tippe figures``."""
+    from ..plotting import save_figure, style
+    from ..plotting.recipe_figures import recipe_figure
+
+    targets = args.recipes or ["atlases"]
+    recipes = []
+    for t in targets:
+        path = Path(t)
+        if path.is_dir():
+            found = find_recipes(path)
+            if not found:
+                raise ValueError(f"no recipes (*.toml) in {str(path)!r}")
+            recipes.extend(found)
+        else:
+            recipes.append(load_recipe(path))
+    for recipe in recipes:
+        datasets = compute(recipe, force=args.force)
+        with style():
+            fig = recipe_figure(recipe, datasets)
+            save_figure(fig, recipe.figure_path)
+        print(f"{recipe.name}: wrote {recipe.figure_path}")
+    return 0

@@ -1,0 +1,54 @@
+"""Draw the figure a recipe asks for (stability.recipes), from its computed datasets."""
+
+from __future__ import annotations
+
+import xarray as xr
+from matplotlib.figure import Figure
+
+from ..recipes import Recipe
+from .atlas_plots import plot_growth_rate
+from .maps import growth_norm, plot_stability_map
+
+__all__ = ["recipe_figure"]
+
+
+def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
+    """The figure of ``recipe`` drawn from ``datasets`` (model name -> atlas).
+
+    Parameters
+    ----------
+    recipe : Recipe
+    datasets : dict
+        As returned by :func:`stability.recipes.compute`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if recipe.kind == "lines":
+        n = len(recipe.quantities)
+        fig = Figure(figsize=(6.4, 3.4 * n), layout="constrained")
+        axes = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
+        ds = datasets[recipe.model]
+        for k, (ax, quantity) in enumerate(zip(axes, recipe.quantities)):
+            plot_growth_rate(ds, recipe.x, quantity=quantity, ax=ax)
+            if k:
+                ax.set_title("")
+                ax.get_legend().remove()
+            if k < n - 1:
+                ax.set_xlabel("")
+    elif recipe.kind == "map":
+        fig = Figure(figsize=(6.4, 4.8), layout="constrained")
+        ax = fig.add_subplot()
+        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=ax)
+    else:  # models side by side
+        names = list(datasets)
+        fig = Figure(figsize=(4.2 * len(names), 4.0), layout="constrained")
+        axes = fig.subplots(1, len(names), sharey=True)
+        norm = growth_norm(*(d["max_growth_rate"].values for d in datasets.values()))
+        for ax, name in zip(axes, names):
+            plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm)
+            if name != names[0]:
+                ax.set_ylabel("")
+    fig.suptitle(recipe.title, fontsize=10)
+    return fig

@@ -1,0 +1,206 @@
+"""Atlas recipes: one small TOML file per atlas under ``atlases/``, read and run here.
+
+Why TOML: a recipe is data (a model, a grid, what to draw, where to write), not a program; TOML
+is in the standard library (``tomllib``), reads like the paper's parameter lists, and cannot run
+code. A recipe looks like::
+
+    title = "Fig. 4: growth rate against q for several alpha_v"
+    kind = "lines"                  # lines | map | models  (what is drawn)
+    model = "sliding"
+    x = "q"                         # abscissa (lines, maps)
+    family = "alpha_v"              # one line per value (lines)
+    y = "sigma"                     # ordinate (map, models)
+    quantities = ["growth_rate"]    # lines: growth_rate and/or frequency panels
+    mask_unphysical = true
+
+    [grid]                          # numbers, lists, or "start:stop:num" strings
+    q = "-0.45:0.45:361"
+    fr_inv = 0.0
+    sigma = 1.0
+    alpha_v = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
+
+The outputs are ``<name>.nc`` (regenerated, not committed) and ``<name>.png`` (committed when the
+README shows it) beside the recipe, ``<name>`` being the recipe's file stem. A dataset already on
+disk is reused when its ``recipe_digest`` attribute matches the recipe's contents.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .atlas import atlas
+from .io import AtlasFileError, open_atlas, write_dataset
+from .models import MODELS
+from .parameters import PARAMETERS
+
+__all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "KINDS"]
+
+#: what a recipe can draw
+KINDS = ("lines", "map", "models")
+QUANTITIES = ("growth_rate", "frequency")
+_KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption"}
+
+
+class RecipeError(ValueError):
+    """A recipe file is malformed; the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class Recipe:
+    """A parsed atlas recipe (see the module docstring for the file format)."""
+
+    path: Path
+    title: str
+    kind: str
+    model: str
+    grid: dict[str, Any]
+    x: str = "q"
+    y: str | None = None
+    family: str | None = None
+    quantities: tuple[str, ...] = ("growth_rate",)
+    mask_unphysical: bool = True
+    caption: str = ""
+    digest: str = field(default="", compare=False)
+
+    @property
+    def name(self) -> str:
+        """The recipe's file stem, used for its outputs."""
+        return self.path.stem
+
+    @property
+    def dataset_path(self) -> Path:
+        """Where the computed dataset is written."""
+        return self.path.with_suffix(".nc")
+
+    @property
+    def figure_path(self) -> Path:
+        """Where the figure is written."""
+        return self.path.with_suffix(".png")
+
+    def models(self) -> tuple[str, ...]:
+        """The models the recipe computes (all three for kind "models")."""
+        return tuple(MODELS) if self.kind == "models" else (self.model,)
+
+
+def _grid_value(path: Path, key: str, value: Any) -> float | np.ndarray:
+    from .commands._args import parse_values
+
+    if isinstance(value, bool):
+        raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, list):
+        try:
+            return np.array([float(v) for v in value])
+        except (TypeError, ValueError):
+            raise RecipeError(f"{path}: grid.{key} = {value!r} is not a list of numbers") from None
+    if isinstance(value, str):
+        try:
+            return parse_values(value, name=f"grid.{key}")
+        except ValueError as exc:
+            raise RecipeError(f"{path}: {exc}") from None
+    raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
+
+
+def load_recipe(path: str | Path) -> Recipe:
+    """Read and check a recipe file.
+
+    Raises
+    ------
+    RecipeError
+        Missing file, bad TOML, unknown keys, or values outside their choices; the message
+        names the file and the key.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise RecipeError(f"recipe {str(p)!r} does not exist")
+    raw_bytes = p.read_bytes()
+    try:
+        raw = tomllib.loads(raw_bytes.decode())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise RecipeError(f"{p}: not valid TOML ({exc})") from None
+    unknown = set(raw) - _KEYS
+    if unknown:
+        raise RecipeError(f"{p}: unknown keys {', '.join(sorted(unknown))} (allowed: {', '.join(sorted(_KEYS))})")
+    for key in ("title", "kind", "grid"):
+        if key not in raw:
+            raise RecipeError(f"{p}: the key {key!r} is required")
+    kind = raw["kind"]
+    if kind not in KINDS:
+        raise RecipeError(f"{p}: kind = {kind!r} is not one of {', '.join(KINDS)}")
+    model = raw.get("model", "sliding")
+    if model not in MODELS:
+        raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}")
+    grid_raw = raw["grid"]
+    if not isinstance(grid_raw, dict):
+        raise RecipeError(f"{p}: [grid] must be a table of parameter values")
+    bad = set(grid_raw) - set(PARAMETERS)
+    if bad:
+        raise RecipeError(f"{p}: grid has unknown parameters {', '.join(sorted(bad))} (allowed: {', '.join(PARAMETERS)})")
+    grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
+    quantities = tuple(raw.get("quantities", ["growth_rate"]))
+    for qn in quantities:
+        if qn not in QUANTITIES:
+            raise RecipeError(f"{p}: quantities has {qn!r}, not one of {', '.join(QUANTITIES)}")
+    arrays = [k for k, v in grid.items() if np.ndim(v) == 1]
+    x, y, family = raw.get("x", "q"), raw.get("y"), raw.get("family")
+    wanted = {"lines": [x] + ([family] if family else []), "map": [x, y], "models": [x, y]}[kind]
+    for name in wanted:
+        if name is None:
+            raise RecipeError(f"{p}: kind = {kind!r} needs the key 'y'")
+        if name not in arrays:
+            raise RecipeError(f"{p}: {name!r} must be a 1-D grid (a list or 'start:stop:num') for kind = {kind!r}")
+    if sorted(arrays) != sorted(wanted):
+        raise RecipeError(f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws "
+                          f"({', '.join(wanted)})")
+    return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x, y=y, family=family,
+                  quantities=quantities, mask_unphysical=bool(raw.get("mask_unphysical", True)),
+                  caption=str(raw.get("caption", "")),
+                  digest=hashlib.sha256(raw_bytes).hexdigest()[:16])
+
+
+def find_recipes(directory: str | Path) -> list[Recipe]:
+    """All recipes (``*.toml``) in ``directory``, sorted by name."""
+    return [load_recipe(p) for p in sorted(Path(directory).glob("*.toml"))]
+
+
+def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
+    takes = MODELS[model].parameters
+    return {k: v for k, v in grid.items() if k in takes}
+
+
+def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
+    """Compute (or reuse from disk) the recipe's datasets, one per model.
+
+    A dataset on disk is reused when its ``recipe_digest`` attribute equals the recipe's;
+    otherwise it is recomputed and written atomically.
+
+    Returns
+    -------
+    dict
+        model name -> atlas dataset.
+    """
+    out: dict[str, xr.Dataset] = {}
+    for model in recipe.models():
+        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+        if path.exists() and not force:
+            try:
+                ds = open_atlas(path)
+                if ds.attrs.get("recipe_digest") == recipe.digest:
+                    out[model] = ds
+                    continue
+            except AtlasFileError:
+                pass
+        ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+        ds.attrs["recipe"] = recipe.path.name
+        ds.attrs["recipe_digest"] = recipe.digest
+        write_dataset(ds, path, overwrite=True)
+        out[model] = ds
+    return out

@@ -1,0 +1,110 @@
+"""Recipes and figures: artists are inspected, not pixels.
+
+References: the lines drawn must carry the data of the dataset they were drawn from, mode by
+mode as tracked by stability.modes (checked against a closed form below); labels name the
+parameters; recipes refuse malformed files with the file and key named.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import stability
+from stability.modes import principal_mode, track_modes
+from stability.plotting import plot_growth_rate, style
+from stability.plotting.maps import plot_stability_map
+from stability.plotting.recipe_figures import recipe_figure
+from stability.recipes import RecipeError, compute, find_recipes, load_recipe
+
+ATLASES = Path(__file__).resolve().parents[1] / "atlases"
+
+
+def test_track_modes_follows_crossing_branches():
+    """Two straight branches s = t and s = 1 - t cross at t = 1/2; sorting by real part swaps
+    them there, tracking must not (closed form: each column stays linear in t)."""
+    t = np.linspace(0, 1, 21)
+    a, b = t + 0.1j, (1 - t) - 0.1j
+    sorted_rows = np.sort_complex(np.stack([a, b], axis=1))[:, ::-1]
+    tr = track_modes(sorted_rows)
+    col = 0 if tr[0, 0] == a[0] else 1
+    assert np.allclose(tr[:, col], a) and np.allclose(tr[:, 1 - col], b)
+
+
+def test_principal_mode_closed_form_at_zero_gravity():
+    """fr_inv = 0, alpha_v = 0 (free top): s = 0 and A_G s^2 - i sigma s = 0, so the non-zero
+    neutral mode is i sigma / A_G; the principal (tracked) branch's frequency must be it."""
+    q = np.linspace(-0.3, 0.3, 31)
+    ev = stability.eigenvalues("sliding", q=q, fr_inv=0.0, sigma=1.0, alpha_v=0.0)
+    s = principal_mode(ev)
+    nonzero = np.abs(s) > 0
+    assert np.allclose(s[nonzero], 1j / (1 - 2.28 * q[nonzero] ** 2), rtol=1e-13)
+
+
+def test_lines_carry_the_data():
+    ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 41), fr_inv=[0.0, 1.0], sigma=1.0, alpha_v=0.5)
+    fig, ax = plot_growth_rate(ds, "q", mode="leading")
+    lines = ax.get_lines()[:2]
+    assert [ln.get_label() for ln in lines] == ["Fr$^{-1}$ = 0", "Fr$^{-1}$ = 1"]
+    for ln, f in zip(lines, (0.0, 1.0)):
+        assert np.array_equal(ln.get_xdata(), ds.q.values)
+        assert np.array_equal(ln.get_ydata(), ds.max_growth_rate.sel(fr_inv=f).values)
+    assert "growth rate" in ax.get_ylabel() and ax.get_xlabel() == "q"
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["Fr$^{-1}$ = 0", "Fr$^{-1}$ = 1"]
+
+
+def test_map_draws_the_neutral_contour():
+    ds = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 61), fr_inv=0.0,
+                         sigma=np.linspace(0.05, 1.9, 38), alpha_v=0.5, mask_unphysical=True)
+    fig, ax = plot_stability_map(ds, "q", "sigma")
+    assert ax.get_xlabel() == "q" and ax.get_ylabel() == r"$\sigma$"
+    # the neutral contour approximates sigma = (1 - mu q^2)/(1 + q) (closed form, docs/models.md)
+    cs = [c for c in ax.collections if c.__class__.__name__ in ("QuadContourSet", "ContourSet")]
+    assert cs, "no neutral contour drawn"
+    verts = np.concatenate([p.vertices for p in cs[0].get_paths() if len(p.vertices)])
+    qq, ss = verts[:, 0], verts[:, 1]
+    closed = (1 - 2.28 * qq**2) / (1 + qq)
+    inside = ss < 2 * (1 - 2.28 * qq**2) - 0.05  # away from the masked domain edge
+    # the contour of the grid's linear interpolant lies within one cell of the true zero set
+    # where the growth rate is monotone across the cell: one sigma spacing, 0.05
+    assert np.max(np.abs(ss[inside] - closed[inside])) < 0.05
+
+
+def test_all_recipes_load():
+    recipes = find_recipes(ATLASES)
+    assert {r.name for r in recipes} >= {"fig3ab", "fig3cd", "fig4", "map_q_sigma", "map_q_fr_inv",
+                                         "map_sigma_fr_inv", "models_q_fr_inv"}
+
+
+def test_recipe_compute_reuse_and_draw(tmp_path):
+    src = (ATLASES / "fig4.toml").read_text().replace('q = "-0.46:0.46:369"', 'q = "-0.4:0.4:21"')
+    path = tmp_path / "fig4.toml"
+    path.write_text(src)
+    r = load_recipe(path)
+    ds = compute(r)["sliding"]
+    assert r.dataset_path.exists() and ds.attrs["recipe_digest"] == r.digest
+    mtime = r.dataset_path.stat().st_mtime_ns
+    compute(r)  # up to date: reused, not rewritten
+    assert r.dataset_path.stat().st_mtime_ns == mtime
+    with style():
+        fig = recipe_figure(r, {"sliding": ds})
+    ax = fig.axes[0]
+    assert len(ax.get_legend().get_texts()) == 6  # alpha_v = 0.1 ... 5
+
+
+@pytest.mark.parametrize("text,msg", [
+    ('title = "x"\nkind = "pie"\n[grid]\nq = 0.1', "kind = 'pie' is not one of"),
+    ('title = "x"\nkind = "lines"\n[grid]\nq = 0.1\nfr_inv = 0.0\nsigma = 1.0\nalpha_v = 0.5',
+     "'q' must be a 1-D grid"),
+    ('title = "x"\nkind = "lines"\ncolour = 1\n[grid]\nq = "0:1:3"', "unknown keys colour"),
+    ('kind = "lines"\n[grid]\nq = "0:1:3"', "the key 'title' is required"),
+    ('title = "x"\nkind = "lines"\n[grid]\nq = "0:1"', "grid.q = '0:1'"),
+    ('title = "x" kind', "not valid TOML"),
+])
+def test_bad_recipes(tmp_path, text, msg):
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(RecipeError, match=msg):
+        load_recipe(p)
