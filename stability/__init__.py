@@ -14,10 +14,13 @@ from .io import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS, LinearModel, get_model
 from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
 from .spectra import eigenvalues, spectrum
+from .simulate import simulate
+from .jacobian import jacobian_eigenvalues
+from .validate import validate
 from .top import Top
 
 __all__ = [
     "AtlasFileError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
-    "spectrum", "state_space", "write_dataset",
+    "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate",
 ]

@@ -5,12 +5,14 @@ from __future__ import annotations
 from .base import LinearModel
 from .fixed_pivot import FixedPivot
 from .rolling import Rolling
+from .rolling_first_principles import RollingFirstPrinciples
 from .sliding import Sliding
 
 __all__ = ["LinearModel", "MODELS", "get_model"]
 
 #: name -> model instance
-MODELS: dict[str, LinearModel] = {m.name: m for m in (FixedPivot(), Rolling(), Sliding())}
+MODELS: dict[str, LinearModel] = {m.name: m for m in (FixedPivot(), Rolling(), Sliding(),
+                                                   RollingFirstPrinciples())}
 
 
 def get_model(model: str | LinearModel) -> LinearModel:

@@ -1,0 +1,70 @@
+"""Rolling top from first principles: the linearised rolling sphere.
+
+Linearising eqs. (1), (2), (4) with the rolling constraint ``V_c = 0`` (eq. 5) about the
+upright spin ``omega = k = K`` (spin +1) gives, with ``Phi = l + i m``
+(derivation in docs/nonlinear.md)::
+
+    A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0,   A_C = 1 + mu (1 + 2 q).
+
+Sketch: the constraint ties the centre's velocity to the rotation, ``V = -i omega``
+(``V0 = -K x omega``), and makes the traction ``f = mu (V' + q Phi'')`` from (1); inserted
+in the transverse part of (2) with ``Phi' = i Phi - i omega`` (eq. 11, second line) the
+``mu (1 + q)`` terms that are not moments of inertia add to the gyroscopic coefficient.
+
+It differs from eq. (8) as printed (model ``"rolling"``, ``sigma_hat = sigma / A_C``) by the
+gyroscopic term ``mu (1 + q) Phi'``; it is the ``alpha_v -> infinity`` limit of the sliding
+polynomial (eq. 11 divided by ``alpha_v``) and the linearisation of the nonlinear rolling
+model (:func:`stability.jacobian_eigenvalues`). Monic state form, ``x = (Phi, Phi')``::
+
+    x' = [[0, 1], [kappa, i gamma]] x,  gamma = (sigma + mu (1 + q)) / A_C,
+    kappa = mu fr_inv q / A_C,  det(s 1 - A) = s^2 - i gamma s - kappa.
+
+Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
+``Re s``, frequency ``Im s`` in units of the spin rate.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .base import LinearModel
+from .second_order import contact_transverse_inertia
+
+__all__ = ["RollingFirstPrinciples"]
+
+
+class RollingFirstPrinciples(LinearModel):
+    """Linearised rolling sphere: ``A_C Phi'' - i (sigma + mu (1+q)) Phi' - mu fr_inv q Phi = 0``."""
+
+    name = "rolling_first_principles"
+    equations = "(1), (2), (4), (5) linearised"
+    parameters = ("q", "fr_inv", "sigma", "mu")
+    state = ("Phi", "dPhi_dt")
+    n_modes = 2
+    description = "top rolling on its sphere, linearised from the vector equations (1), (2), (4), (5)"
+
+    def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
+        """``A_C``, the gyroscopic coefficient ``gamma`` and the stiffness ``kappa``."""
+        q, fr_inv, sigma, mu = np.broadcast_arrays(
+            *(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
+        a_c = contact_transverse_inertia(q, mu)
+        return {"A_C": a_c, "gamma": (sigma + mu * (1.0 + q)) / a_c, "kappa": mu * fr_inv * q / a_c}
+
+    def matrices(self, *, q, fr_inv, sigma, mu):
+        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]``."""
+        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        A = np.zeros(d["kappa"].shape + (2, 2), dtype=complex)
+        A[..., 0, 1] = 1.0
+        A[..., 1, 0] = d["kappa"]
+        A[..., 1, 1] = 1j * d["gamma"]
+        M = np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy()
+        return M, A
+
+    def coefficients(self, *, q, fr_inv, sigma, mu):
+        """``s^2 - i gamma s - kappa``, highest power first."""
+        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        c = np.empty(d["kappa"].shape + (3,), dtype=complex)
+        c[..., 0] = 1.0
+        c[..., 1] = -1j * d["gamma"]
+        c[..., 2] = -d["kappa"]
+        return c

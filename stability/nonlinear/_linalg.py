@@ -1,0 +1,72 @@
+"""Small dense linear algebra for the compiled right-hand sides.
+
+The accelerations of the sliding and rolling spheres solve a 6 x 6 linear system at every
+evaluation (three angular accelerations, two horizontal unknowns, the normal force). LAPACK
+calls from numba carry an overhead comparable to the work at this size, so the system is
+solved here by Gaussian elimination with partial pivoting, written with scalar loops.
+
+The functions are generic in the dtype: called with complex arrays they are compiled for
+complex128, which is what the complex-step Jacobian of :mod:`stability.jacobian` uses (the
+pivot choice uses ``abs`` and does not break analyticity).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+__all__ = ["solve_dense", "cross"]
+
+
+@njit(cache=True)
+def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Solve ``a x = b`` in place by Gaussian elimination with partial pivoting.
+
+    Parameters
+    ----------
+    a : numpy.ndarray, shape (n, n)
+        Matrix; overwritten.
+    b : numpy.ndarray, shape (n,)
+        Right-hand side; overwritten with the solution, which is also returned.
+
+    Returns
+    -------
+    numpy.ndarray
+        The solution ``x`` (the array ``b``).
+    """
+    n = b.shape[0]
+    for c in range(n):
+        piv = c
+        big = abs(a[c, c])
+        for r in range(c + 1, n):
+            v = abs(a[r, c])
+            if v > big:
+                big = v
+                piv = r
+        if piv != c:
+            for j in range(n):
+                tmp = a[c, j]
+                a[c, j] = a[piv, j]
+                a[piv, j] = tmp
+            tmp = b[c]
+            b[c] = b[piv]
+            b[piv] = tmp
+        inv = 1.0 / a[c, c]
+        for r in range(c + 1, n):
+            m = a[r, c] * inv
+            if m != 0:
+                for j in range(c + 1, n):
+                    a[r, j] -= m * a[c, j]
+                b[r] -= m * b[c]
+    for c in range(n - 1, -1, -1):
+        s = b[c]
+        for j in range(c + 1, n):
+            s -= a[c, j] * b[j]
+        b[c] = s / a[c, c]
+    return b
+
+
+@njit(cache=True)
+def cross(u0, u1, u2, v0, v1, v2):
+    """Components of ``u x v`` (scalars in, a 3-tuple out)."""
+    return u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0

@@ -1,0 +1,344 @@
+"""Integrators for the nonlinear models: compiled Dormand-Prince, fixed-step RK4, and scipy.
+
+* ``"dopri5"`` (default for non-stiff runs): the Dormand-Prince 5(4) pair with its free
+  fourth-order continuous extension (the coefficients of scipy's ``RK45``), compiled with
+  numba together with the right-hand side; error norm and step control as in Hairer, Norsett
+  and Wanner, *Solving ODEs I*, Sec. II.4 (RMS norm of ``err / (atol + rtol max(|y|, |y_new|))``,
+  safety 0.9, factor limits 0.2 and 10, no growth right after a rejection).
+* ``"rk4"``: the classical fixed-step fourth-order Runge-Kutta the paper used (Sec. 3(ii)),
+  compiled; output between steps by cubic Hermite interpolation (fourth-order accurate).
+* scipy's ``solve_ivp`` methods (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``,
+  ``"LSODA"``) with the compiled right-hand side: the reference path, and the implicit path for
+  stiff runs (large ``alpha_v``: a fast slip mode with rate about
+  ``alpha_v A_C / (mu A_G)``).
+
+Every integrator returns the states at the requested times and the work counters.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+from scipy.integrate import solve_ivp
+
+from .kernels import CODES, rhs as _model_rhs
+
+__all__ = ["Solution", "integrate", "dopri5", "rk4", "COMPILED_METHODS", "SCIPY_METHODS"]
+
+COMPILED_METHODS = ("dopri5", "rk4")
+SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+
+# Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
+_C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
+_A = np.array([
+    [0, 0, 0, 0, 0],
+    [1 / 5, 0, 0, 0, 0],
+    [3 / 40, 9 / 40, 0, 0, 0],
+    [44 / 45, -56 / 15, 32 / 9, 0, 0],
+    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
+    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+_E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
+_P = np.array([
+    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+    [0, 0, 0, 0],
+    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+
+#: status codes of the compiled integrators
+SUCCESS, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE = 0, -1, -2, -3
+STATUS_MESSAGES = {SUCCESS: "success", MAX_STEPS: "maximum number of steps reached",
+                   STEP_TOO_SMALL: "step size fell below the round-off level",
+                   NOT_FINITE: "the solution became non-finite"}
+
+
+@dataclass(frozen=True)
+class Solution:
+    """States at the requested times and the work done.
+
+    Attributes
+    ----------
+    t : numpy.ndarray, shape (m,)
+    y : numpy.ndarray, shape (m, n)
+        States; rows after a failure are NaN.
+    nfev, naccept, nreject : int
+        Right-hand-side evaluations, accepted and rejected steps.
+    status : int
+        0 on success, negative on failure (see ``message``).
+    method : str
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    nfev: int
+    naccept: int
+    nreject: int
+    status: int
+    method: str
+
+    @property
+    def message(self) -> str:
+        """Text of the status code."""
+        return STATUS_MESSAGES.get(self.status, "scipy: failed")
+
+
+@njit(cache=True)
+def _rms(e, y, yn, rtol, atol):
+    s = 0.0
+    for i in range(e.shape[0]):
+        sc = atol + rtol * max(abs(y[i]), abs(yn[i]))
+        s += (e[i] / sc) ** 2
+    return np.sqrt(s / e.shape[0])
+
+
+@njit(cache=True)
+def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps):
+    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval`` (compiled).
+
+    Parameters
+    ----------
+    code : int
+        Model code (:data:`stability.nonlinear.kernels.CODES`).
+    y0 : numpy.ndarray, shape (n,)
+        State at ``t_eval[0]``.
+    t_eval : numpy.ndarray, shape (m,)
+        Increasing output times.
+    p : numpy.ndarray
+        Parameter vector passed to ``rhs``.
+    rtol, atol : float
+        Tolerances.
+    h_init : float
+        First step; 0 for the automatic choice of Hairer et al. (II.4).
+    max_steps : int
+        Limit on attempted steps.
+
+    Returns
+    -------
+    tuple
+        ``(y_out, nfev, naccept, nreject, status)``.
+    """
+    n = y0.shape[0]
+    m = t_eval.shape[0]
+    out = np.full((m, n), np.nan)
+    k = np.empty((7, n))
+    y = y0.copy()
+    ys = np.empty(n)
+    yn = np.empty(n)
+    err = np.empty(n)
+    t = t_eval[0]
+    t_end = t_eval[m - 1]
+    out[0] = y
+    j = 1
+    k[0] = _model_rhs(code, t, y, p)
+    nfev = 1
+    naccept = 0
+    nreject = 0
+    status = 0
+    h = h_init
+    if h <= 0.0:
+        # Hairer, Norsett & Wanner II.4: starting step size
+        d0 = 0.0
+        d1 = 0.0
+        for i in range(n):
+            sc = atol + rtol * abs(y[i])
+            d0 += (y[i] / sc) ** 2
+            d1 += (k[0, i] / sc) ** 2
+        d0 = np.sqrt(d0 / n)
+        d1 = np.sqrt(d1 / n)
+        h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+        for i in range(n):
+            ys[i] = y[i] + h0 * k[0, i]
+        f1 = _model_rhs(code, t + h0, ys, p)
+        nfev += 1
+        d2 = 0.0
+        for i in range(n):
+            sc = atol + rtol * abs(y[i])
+            d2 += ((f1[i] - k[0, i]) / sc) ** 2
+        d2 = np.sqrt(d2 / n) / h0
+        dm = max(d1, d2)
+        h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
+        h = min(100.0 * h0, h1)
+    h = min(h, t_end - t)
+    rejected = False
+    steps = 0
+    while j < m:
+        if steps >= max_steps:
+            status = -1
+            break
+        steps += 1
+        last = False
+        if t + h >= t_end or t + 1.0000001 * h >= t_end:
+            h = t_end - t
+            last = True
+        if h <= 1e-14 * max(1.0, abs(t)):
+            status = -2
+            break
+        for s in range(1, 6):
+            for i in range(n):
+                acc = 0.0
+                for r in range(s):
+                    acc += _A[s, r] * k[r, i]
+                ys[i] = y[i] + h * acc
+            k[s] = _model_rhs(code, t + _C[s] * h, ys, p)
+        for i in range(n):
+            acc = 0.0
+            for r in range(6):
+                acc += _B[r] * k[r, i]
+            yn[i] = y[i] + h * acc
+        k[6] = _model_rhs(code, t + h, yn, p)
+        nfev += 6
+        for i in range(n):
+            acc = 0.0
+            for r in range(7):
+                acc += _E[r] * k[r, i]
+            err[i] = h * acc
+        en = _rms(err, y, yn, rtol, atol)
+        if not np.isfinite(en):
+            if h < 1e-12:
+                status = -3
+                break
+            h *= 0.2
+            nreject += 1
+            rejected = True
+            continue
+        if en <= 1.0:
+            t_new = t_end if last else t + h
+            while j < m and t_eval[j] <= t_new:
+                th = (t_eval[j] - t) / h
+                for i in range(n):
+                    acc = 0.0
+                    for r in range(7):
+                        pr = _P[r]
+                        acc += k[r, i] * th * (pr[0] + th * (pr[1] + th * (pr[2] + th * pr[3])))
+                    out[j, i] = y[i] + h * acc
+                j += 1
+            t = t_new
+            y[:] = yn
+            k[0] = k[6]
+            naccept += 1
+            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en ** -0.2))
+            if rejected:
+                fac = min(1.0, fac)
+            rejected = False
+            h *= fac
+        else:
+            nreject += 1
+            rejected = True
+            h *= max(0.2, 0.9 * en ** -0.2)
+    return out, nfev, naccept, nreject, status
+
+
+@njit(cache=True)
+def rk4(code, y0, t_eval, p, h):
+    """Classical fixed-step fourth-order Runge-Kutta (the paper's scheme), compiled.
+
+    Steps of size ``h`` (the last one shortened to end at ``t_eval[-1]``); outputs by cubic
+    Hermite interpolation between steps. Returns ``(y_out, nfev, nsteps, 0, status)``.
+    """
+    n = y0.shape[0]
+    m = t_eval.shape[0]
+    out = np.full((m, n), np.nan)
+    y = y0.copy()
+    t = t_eval[0]
+    t_end = t_eval[m - 1]
+    out[0] = y
+    j = 1
+    f0 = _model_rhs(code, t, y, p)
+    nfev = 1
+    steps = 0
+    ys = np.empty(n)
+    yn = np.empty(n)
+    status = 0
+    while j < m:
+        hh = min(h, t_end - t)
+        last = t + 1.0000001 * hh >= t_end
+        k1 = f0
+        for i in range(n):
+            ys[i] = y[i] + 0.5 * hh * k1[i]
+        k2 = _model_rhs(code, t + 0.5 * hh, ys, p)
+        for i in range(n):
+            ys[i] = y[i] + 0.5 * hh * k2[i]
+        k3 = _model_rhs(code, t + 0.5 * hh, ys, p)
+        for i in range(n):
+            ys[i] = y[i] + hh * k3[i]
+        k4 = _model_rhs(code, t + hh, ys, p)
+        for i in range(n):
+            yn[i] = y[i] + hh / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+        f1 = _model_rhs(code, t + hh, yn, p)
+        nfev += 4
+        steps += 1
+        t_new = t_end if last else t + hh
+        while j < m and t_eval[j] <= t_new:
+            th = (t_eval[j] - t) / hh
+            h00 = (1 + 2 * th) * (1 - th) ** 2
+            h10 = th * (1 - th) ** 2
+            h01 = th * th * (3 - 2 * th)
+            h11 = th * th * (th - 1)
+            for i in range(n):
+                out[j, i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
+            j += 1
+        y[:] = yn
+        f0 = f1
+        t = t_new
+        if not np.isfinite(y).all():
+            status = -3
+            break
+    return out, nfev, steps, 0, status
+
+
+def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
+              method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
+              step: float | None = None, max_steps: int = 10_000_000) -> Solution:
+    """Integrate a nonlinear model and return its states at ``t_eval``.
+
+    Parameters
+    ----------
+    model : {"sliding", "rolling", "fixed_pivot"}
+        The model (its compiled right-hand side, :mod:`stability.nonlinear.kernels`).
+    y0 : numpy.ndarray
+        Initial state.
+    t_eval : numpy.ndarray
+        Increasing output times, the first one the initial time.
+    p : numpy.ndarray
+        Parameter vector (:func:`stability.nonlinear.parameters.pack`).
+    method : str
+        One of :data:`COMPILED_METHODS` or :data:`SCIPY_METHODS`.
+    rtol, atol : float
+        Tolerances (ignored by ``"rk4"``).
+    step : float, optional
+        Step size of ``"rk4"`` (required there); initial step of the adaptive methods.
+    max_steps : int
+        Step limit of ``"dopri5"``.
+
+    Returns
+    -------
+    Solution
+    """
+    code = CODES[model]
+    y0 = np.ascontiguousarray(y0, dtype=np.float64)
+    t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
+    if method == "dopri5":
+        y, nfev, na, nr, st = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
+                                     float(step or 0.0), int(max_steps))
+    elif method == "rk4":
+        if step is None or not step > 0:
+            raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
+        y, nfev, na, nr, st = rk4(code, y0, t_eval, p, float(step))
+    elif method in SCIPY_METHODS:
+        def fun(t, yy):
+            return _model_rhs(code, t, yy, p)
+        kw = {"first_step": step} if step else {}
+        r = solve_ivp(fun, (t_eval[0], t_eval[-1]), y0, method=method, t_eval=t_eval,
+                      rtol=rtol, atol=atol, **kw)
+        y = np.full((t_eval.size, y0.size), np.nan)
+        y[: r.y.shape[1]] = r.y.T
+        nfev, na, nr, st = int(r.nfev), int(r.t.size), 0, int(r.status)
+    else:
+        raise ValueError(f"method = {method!r} is not known; choose one of "
+                         f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
+    return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)

@@ -1,0 +1,114 @@
+"""Rolling sphere: eqs. (1), (2), (4) with the rolling constraint (5), ``V_c = 0``.
+
+The centre's velocity is tied to the rotation, ``V0 = -K x omega = (omega2, -omega1, 0)``
+(eq. 5), so ``V0' = -K x omega'``; the traction ``f`` is a constraint force and, with ``N``,
+an unknown. With ``x = (omega'_1, omega'_2, omega'_3, f_1, f_2, N)`` eqs. (2) and (1) form a
+6 x 6 linear system at each evaluation::
+
+    I0 omega' + mu q (K x omega') x k + K x f = -(sigma-1)(k.omega)(omega x k) - mu q fr_inv k x K
+    mu (-K x omega' + q omega' x k) - f - N K = -mu q omega x (omega x k) - mu fr_inv K
+
+State vector (8 reals): ``omega (3), k (3), X0 horizontal (2)``.
+
+Integrals (paper, Sec. 3(i)): the energy (the contact point does not move, so neither the
+traction nor ``N`` does work) and ``h_cg`` of eq. (10), the angular momentum about G projected
+on ``r_cg = q k + K`` (``h_cg = r_cg . I_G omega`` since the ``mu`` term of eq. 10 is normal to
+``r_cg``).
+
+First-principles linearisation about ``omega = k = K`` (derived in docs/nonlinear.md)::
+
+    A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0,   A_C = 1 + mu (1 + 2 q),
+
+which is the model ``"rolling_first_principles"``; eq. (8) as printed (model ``"rolling"``)
+has the gyroscopic coefficient ``sigma`` instead of ``sigma + mu (1 + q)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._linalg import cross, solve_dense
+from .parameters import FR_INV, MU, Q, SIGMA
+
+__all__ = ["STATE", "rhs", "contact_forces"]
+
+#: names of the state components
+STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
+
+
+@njit(cache=True)
+def _solve(y, p):
+    """``x = (omega', f_1, f_2, N)`` from the 6 x 6 system of the module docstring."""
+    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
+    w0, w1, w2 = y[0], y[1], y[2]
+    k0, k1, k2 = y[3], y[4], y[5]
+    kw = k0 * w0 + k1 * w1 + k2 * w2
+    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)
+    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)
+    a = np.zeros((6, 6), y.dtype)
+    b = np.zeros(6, y.dtype)
+    s1 = sg - 1.0
+    kk = (k0, k1, k2)
+    for i in range(3):
+        a[i, i] = 1.0
+        for j in range(3):
+            a[i, j] += s1 * kk[i] * kk[j]
+    mq = mu * q
+    # - mu q V0' x k with V0' = (a1, -a0, 0): V0' x k = (-a0 k2, -a1 k2, a0 k0 + a1 k1)
+    a[0, 0] += mq * k2
+    a[1, 1] += mq * k2
+    a[2, 0] -= mq * k0
+    a[2, 1] -= mq * k1
+    # + K x f = (-f2, f1, 0)
+    a[0, 4] = -1.0
+    a[1, 3] = 1.0
+    b[0] = -s1 * kw * c0 - mq * fr * k1
+    b[1] = -s1 * kw * c1 + mq * fr * k0
+    b[2] = -s1 * kw * c2
+    # (1) horizontal: mu V0'_h + mu q (omega' x k)_h - f_h = -mu q (omega x (omega x k))_h
+    a[3, 1] = mu + mq * k2
+    a[3, 2] = -mq * k1
+    a[3, 3] = -1.0
+    a[4, 0] = -mu - mq * k2
+    a[4, 2] = mq * k0
+    a[4, 4] = -1.0
+    b[3] = -mq * d0
+    b[4] = -mq * d1
+    # (1) vertical
+    a[5, 0] = mq * k1
+    a[5, 1] = -mq * k0
+    a[5, 5] = -1.0
+    b[5] = -mq * d2 - mu * fr
+    return solve_dense(a, b)
+
+
+@njit(cache=True)
+def rhs(t, y, p):
+    """Right-hand side ``y'`` of the rolling sphere (state layout in :data:`STATE`).
+
+    Parameters
+    ----------
+    t : float
+        Time (autonomous system).
+    y : numpy.ndarray, shape (8,)
+        State, float or complex.
+    p : numpy.ndarray
+        Parameter vector (:func:`stability.nonlinear.parameters.pack`).
+    """
+    x = _solve(y, p)
+    dy = np.empty_like(y)
+    dy[0], dy[1], dy[2] = x[0], x[1], x[2]
+    dy[3], dy[4], dy[5] = cross(y[0], y[1], y[2], y[3], y[4], y[5])
+    dy[6], dy[7] = y[1], -y[0]
+    return dy
+
+
+@njit(cache=True)
+def contact_forces(states, p):
+    """``(f1, f2, N)`` along a trajectory (the traction needed to keep rolling), shape (n, 3)."""
+    out = np.empty((states.shape[0], 3))
+    for i in range(states.shape[0]):
+        x = _solve(states[i], p)
+        out[i, 0], out[i, 1], out[i, 2] = x[3], x[4], x[5]
+    return out

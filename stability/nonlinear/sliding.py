@@ -1,0 +1,148 @@
+"""Sliding sphere: the vector equations (1), (2), (4) with the contact constraint and friction (7).
+
+Nondimensional (length R, time 1/Omega, inertia A0), fixed frame ``F_a`` with ``K`` up::
+
+    mu (V0' + q k'') = N K + f - mu fr_inv K                                    (1)
+    d/dt (I0 omega)  = mu q V0' x k - mu q fr_inv k x K - K x (N K + f)         (2)
+    k'               = omega x k                                                (4)
+    X0'              = V0
+
+with ``I0 = 1 + (sigma - 1) k k^T``, hence ``d/dt (I0 omega) = I0 omega'
++ (sigma - 1)(k . omega)(omega x k)``, and ``k'' = omega' x k + omega x (omega x k)``.
+Contact constraint: the centre O stays at height R, so ``V0 . K = 0`` and ``V0' . K = 0``;
+the normal force ``N`` follows from the vertical component of (1). Slip velocity (5):
+``V_c = V0 + K x omega = (V1 - omega2, V2 + omega1, 0)``; friction ``f`` from eq. (7) (see
+:mod:`stability.nonlinear.friction`). Not the appendix's scalar equations (12)-(14), which
+drop products of small quantities.
+
+At every evaluation the unknowns ``x = (omega'_1, omega'_2, omega'_3, V0'_1, V0'_2, N)``
+solve the 6 x 6 linear system made of (2) and the three components of (1); with friction
+proportional to ``N(t)`` the friction columns enter the same system, so no iteration is
+needed.
+
+State vector (10 reals): ``omega (3), k (3), V0 horizontal (2), X0 horizontal (2)``.
+
+Linearisation about ``omega = k = K`` (spin +1) is eq. (11) (``stability.models.sliding``);
+:func:`stability.jacobian_eigenvalues` checks it from this right-hand side.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._linalg import cross, solve_dense
+from .friction import traction
+from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q, SIGMA
+
+__all__ = ["STATE", "rhs", "contact_forces"]
+
+#: names of the state components
+STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_1", "X_2")
+
+
+@njit(cache=True)
+def _solve(y, p):
+    """Accelerations, normal force and friction: ``(x, f1, f2)``, ``x`` as in the docstring."""
+    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
+    w0, w1, w2 = y[0], y[1], y[2]
+    k0, k1, k2 = y[3], y[4], y[5]
+    v0, v1 = y[6], y[7]
+    kw = k0 * w0 + k1 * w1 + k2 * w2
+    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)                 # omega x k = k'
+    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)                 # omega x (omega x k)
+    g1, g2 = traction(v0 - w1, v1 + w0, p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
+    a = np.zeros((6, 6), y.dtype)
+    b = np.zeros(6, y.dtype)
+    s1 = sg - 1.0
+    kk = (k0, k1, k2)
+    for i in range(3):                                         # I0 omega'
+        a[i, i] = 1.0
+        for j in range(3):
+            a[i, j] += s1 * kk[i] * kk[j]
+    mq = mu * q
+    # - mu q V0' x k,  V0' = (b1, b2, 0): V0' x k = (b2 k3, -b1 k3, b1 k2 - b2 k1)
+    a[0, 4] = -mq * k2
+    a[1, 3] = mq * k2
+    a[2, 3] = -mq * k1
+    a[2, 4] = mq * k0
+    # right-hand side of (2): -(sigma-1)(k.omega)(omega x k) - mu q fr_inv k x K, k x K = (k2, -k1, 0)
+    b[0] = -s1 * kw * c0 - mq * fr * k1
+    b[1] = -s1 * kw * c1 + mq * fr * k0
+    b[2] = -s1 * kw * c2
+    # (1), horizontal: mu V0' + mu q (omega' x k)_h - f_h = -mu q (omega x (omega x k))_h
+    a[3, 3] = mu
+    a[4, 4] = mu
+    a[3, 1] = mq * k2
+    a[3, 2] = -mq * k1
+    a[4, 2] = mq * k0
+    a[4, 0] = -mq * k2
+    b[3] = -mq * d0
+    b[4] = -mq * d1
+    # (1), vertical: mu q (omega' x k)_3 - N = -mu q (omega x (omega x k))_3 - mu fr_inv
+    a[5, 0] = mq * k1
+    a[5, 1] = -mq * k0
+    a[5, 5] = -1.0
+    b[5] = -mq * d2 - mu * fr
+    if p[NORMAL] == 0.0:
+        # f = g known: K x f = (-g2, g1, 0) moves to the right of (2); f_h to the right of (1)
+        b[0] += g2
+        b[1] -= g1
+        b[3] += g1
+        b[4] += g2
+    else:
+        # f = N g / (mu fr_inv): columns of N
+        r = 1.0 / (mu * fr)
+        a[0, 5] = -g2 * r
+        a[1, 5] = g1 * r
+        a[3, 5] = -g1 * r
+        a[4, 5] = -g2 * r
+    x = solve_dense(a, b)
+    if p[NORMAL] == 0.0:
+        return x, g1, g2
+    r = x[5] / (mu * fr)
+    return x, g1 * r, g2 * r
+
+
+@njit(cache=True)
+def rhs(t, y, p):
+    """Right-hand side ``y'`` of the sliding sphere (state layout in :data:`STATE`).
+
+    Parameters
+    ----------
+    t : float
+        Time (the system is autonomous).
+    y : numpy.ndarray, shape (10,)
+        State; float or complex (complex for the complex-step Jacobian).
+    p : numpy.ndarray
+        Parameter vector (:func:`stability.nonlinear.parameters.pack`).
+    """
+    x, f1, f2 = _solve(y, p)
+    dy = np.empty_like(y)
+    dy[0], dy[1], dy[2] = x[0], x[1], x[2]
+    dy[3], dy[4], dy[5] = cross(y[0], y[1], y[2], y[3], y[4], y[5])
+    dy[6], dy[7] = x[3], x[4]
+    dy[8], dy[9] = y[6], y[7]
+    return dy
+
+
+@njit(cache=True)
+def contact_forces(states, p):
+    """Normal force and friction along a trajectory.
+
+    Parameters
+    ----------
+    states : numpy.ndarray, shape (n, 10)
+    p : numpy.ndarray
+        Parameter vector.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3)
+        ``(f1, f2, N)`` at each sample.
+    """
+    out = np.empty((states.shape[0], 3))
+    for i in range(states.shape[0]):
+        x, f1, f2 = _solve(states[i], p)
+        out[i, 0], out[i, 1], out[i, 2] = f1, f2, x[5]
+    return out

@@ -1,0 +1,333 @@
+"""Nonlinear runs of the Tippe top: :func:`simulate` returns an xarray Dataset.
+
+Models (:mod:`stability.nonlinear`): ``"sliding"`` (eqs. 1, 2, 4 with the contact constraint
+and the friction law 7 or 16), ``"rolling"`` (``V_c = 0``, eq. 5) and ``"fixed_pivot"``.
+Units: length R, time ``1/Omega`` (one spin period is ``2 pi``), energy ``A0 Omega^2``;
+components in the fixed frame ``F_a`` (``K`` up).
+
+Integrator choice (``method="auto"``): the compiled Dormand-Prince 5(4) unless the sliding
+model is stiff, when scipy's ``LSODA`` (switching to BDF when stiffness is detected) is used:
+the fast slip mode decays at about ``alpha_v A_C / (mu A_G)``, above :data:`STIFF_RATE`; and
+with Coulomb friction (``alpha_k > 0``) the regularised law acts at sticking as a viscous one of
+coefficient ``alpha_k / slip_scale``; see
+``benchmarks/work_precision.py`` and docs/nonlinear.md for where explicit methods fail.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .nonlinear import get_nonlinear_model
+from .nonlinear.friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
+from .nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
+from .nonlinear.parameters import pack
+from .nonlinear.quantities import energy_parts, h_cg
+from .parameters import DEFAULT_MU, LONG_NAMES, check_domain
+
+__all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector"]
+
+#: decay rate of the fast slip mode above which "auto" picks LSODA
+STIFF_RATE: float = 40.0
+
+_ONE = "1"
+
+
+def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a vector of {' or '.join(map(str, n))} real numbers, "
+                        f"got {value!r}") from None
+    if arr.ndim != 1 or arr.size not in n:
+        raise ValueError(f"{name} = {value!r} must be a vector of {' or '.join(map(str, n))} "
+                         "components (fixed frame I, J, K)")
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} = {value!r} has a non-finite component")
+    return arr
+
+
+def model_parameter_vector(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
+                           alpha_k: Any = 0.0, mu: Any = DEFAULT_MU, friction: str = "isotropic",
+                           normal: str = "equilibrium",
+                           slip_scale: float = DEFAULT_SLIP_SCALE) -> tuple[dict[str, float], np.ndarray]:
+    """Check the physical parameters of a nonlinear model and pack them for the kernels.
+
+    Returns
+    -------
+    params : dict of float
+        The checked parameters the model takes.
+    p : numpy.ndarray
+        Parameter vector (:func:`stability.nonlinear.parameters.pack`).
+
+    Raises
+    ------
+    TypeError
+        A missing or non-real parameter, or one the model does not take.
+    ValueError
+        A value outside the physical domain or an unknown option.
+    """
+    m = get_nonlinear_model(model)
+    given = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    if m.name == "sliding":
+        if alpha_v is None:
+            raise TypeError("alpha_v is required for model 'sliding' (alpha_v >= 0)")
+        given.update(alpha_v=alpha_v, alpha_k=alpha_k)
+    else:
+        if alpha_v is not None:
+            raise TypeError(f"model {m.name!r} takes no parameter alpha_v (no friction law)")
+        if alpha_k not in (None, 0, 0.0):
+            raise TypeError(f"model {m.name!r} takes no parameter alpha_k (no friction law)")
+    p, _ = check_domain(**given)
+    for name, v in p.items():
+        if v.size != 1:
+            raise ValueError(f"{name} must be a single value for a simulation, got {v.size} values")
+    params = {name: float(v) for name, v in p.items()}
+    if friction not in FRICTION_LAWS:
+        raise ValueError(f"friction = {friction!r} is not known; choose one of {', '.join(FRICTION_LAWS)}")
+    if normal not in NORMAL_FORCE:
+        raise ValueError(f"normal = {normal!r} is not known; choose one of {', '.join(NORMAL_FORCE)}")
+    if normal == "actual" and params["fr_inv"] == 0.0:
+        raise ValueError("normal = 'actual' needs fr_inv > 0 (friction proportional to "
+                         "N(t) / (mu fr_inv)); got fr_inv = 0")
+    if not (isinstance(slip_scale, (int, float)) and np.isfinite(slip_scale) and slip_scale > 0):
+        raise ValueError(f"slip_scale = {slip_scale!r} must be a finite number > 0")
+    vec = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"],
+               alpha_v=params.get("alpha_v", 0.0), alpha_k=params.get("alpha_k", 0.0),
+               epsilon=float(slip_scale), law=FRICTION_LAWS[friction], normal=NORMAL_FORCE[normal])
+    return params, vec
+
+
+def initial_state(model: str, omega: Any, k: Any, velocity: Any = None,
+                  position: Any = None) -> np.ndarray:
+    """Initial state vector of a model from ``omega``, ``k`` and (sliding) the centre velocity.
+
+    ``k`` is normalised (the paper's printed initial conditions have ``|k|`` off 1 in the
+    fifth digit); a ``k`` further than 1 % from unit length is refused. The centre velocity of
+    the sliding model defaults to zero; it must be horizontal (the centre stays at height R).
+    The rolling and fixed-pivot models determine the velocity and refuse one.
+    """
+    m = get_nonlinear_model(model)
+    w = _vector("omega", omega, (3,))
+    kv = _vector("k", k, (3,))
+    nk = float(np.linalg.norm(kv))
+    if abs(nk - 1.0) > 1e-2:
+        raise ValueError(f"k = {k!r} has length {nk:.6g}; k is the unit symmetry axis "
+                         "(|k| must be within 1 % of 1)")
+    kv = kv / nk
+    parts = [w, kv]
+    if m.name == "sliding":
+        v = np.zeros(2) if velocity is None else _vector("velocity", velocity, (2, 3))
+        if v.size == 3:
+            if abs(v[2]) > 1e-12:
+                raise ValueError(f"velocity = {velocity!r}: the vertical component must be 0 "
+                                 "(the centre stays at height R)")
+            v = v[:2]
+        parts.append(v)
+    elif velocity is not None:
+        raise ValueError(f"velocity = {velocity!r}: model {m.name!r} determines the centre's "
+                         "velocity from the rotation; give none")
+    if m.has_translation:
+        parts.append(np.zeros(2) if position is None else _vector("position", position, (2,)))
+    return np.concatenate(parts)
+
+
+def _auto_method(model: str, params: dict[str, float]) -> str:
+    if model != "sliding":
+        return "dopri5"
+    mu, q = params["mu"], params["q"]
+    rate = params["alpha_v"] * (1 + mu * (1 + 2 * q)) / (mu * (1 - mu * q * q))
+    return "LSODA" if (rate > STIFF_RATE or params["alpha_k"] > 0) else "dopri5"
+
+
+def _attrs(long_name: str, units: str = _ONE, **extra: str) -> dict[str, str]:
+    return {"long_name": long_name, "units": units, **extra}
+
+
+def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = None,
+             q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, alpha_k: Any = 0.0,
+             mu: Any = DEFAULT_MU, friction: str = "isotropic", normal: str = "equilibrium",
+             slip_scale: float = DEFAULT_SLIP_SCALE, method: str = "auto", rtol: float = 1e-9,
+             atol: float = 1e-12, dt: float = 0.1, t_eval: Any = None, step: float | None = None,
+             max_steps: int = 50_000_000) -> xr.Dataset:
+    """Integrate a nonlinear model of the top from a given state.
+
+    Parameters
+    ----------
+    model : {"sliding", "rolling", "fixed_pivot"}
+        Sliding sphere (eqs. 1, 2, 4, 5, 7), rolling sphere (``V_c = 0``) or heavy top on a
+        fixed pivot at the sphere's bottom point.
+    t_end : float
+        Final time, in units of ``1/Omega`` (one spin period is ``2 pi``).
+    omega, k : array_like, shape (3,)
+        Initial angular velocity and symmetry axis (fixed frame; ``k`` is normalised).
+    velocity : array_like, shape (2,) or (3,), optional
+        Initial velocity of the sphere's centre O (sliding only; default zero).
+    q, fr_inv, sigma, alpha_v, alpha_k, mu : float
+        Parameters (docs/conventions.md); ``alpha_v`` (required) and ``alpha_k`` for
+        ``"sliding"`` only.
+    friction : {"isotropic", "componentwise"}
+        Coulomb term along the slip (eq. 7, default) or per component (eq. 16).
+    normal : {"equilibrium", "actual"}
+        Friction proportional to the equilibrium normal force (the paper's law, default) or to
+        ``N(t)``.
+    slip_scale : float, default 1e-4
+        Regularisation scale of the Coulomb term (:mod:`stability.nonlinear.friction`).
+    method : str, default "auto"
+        ``"dopri5"`` (compiled Dormand-Prince 5(4)), ``"rk4"`` (fixed step ``step``), or a
+        scipy method (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``);
+        ``"auto"`` picks ``dopri5`` or, when stiff (large ``alpha_v``, or ``alpha_k > 0``),
+        ``LSODA``.
+    rtol, atol : float
+        Integrator tolerances.
+    dt : float, default 0.1
+        Output interval (ignored if ``t_eval`` is given).
+    t_eval : array_like, optional
+        Output times, increasing, from 0 to ``t_end``.
+    step : float, optional
+        Step of ``"rk4"``; first step of the adaptive methods.
+    max_steps : int
+        Step limit of ``"dopri5"``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Along ``time``: ``omega``, ``k`` (and ``velocity``, ``position``, ``momentum`` of the
+        centre for sliding and rolling) on an ``axis`` dimension, ``polar_angle`` (degrees),
+        ``spin`` (``omega . k``), ``transverse_rate`` (``|omega_1 + i omega_2|``), the energy
+        and its parts, ``h_cg`` (eq. 10; sliding and rolling), ``slip_speed``, ``friction``,
+        ``friction_magnitude`` and ``normal_force``; CF attributes. A failed integration
+        leaves NaN after the failure, ``attrs["status"] < 0`` and a ``RuntimeWarning``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For bad input; the message names the parameter, its value and the allowed range.
+
+    Examples
+    --------
+    >>> import stability
+    >>> ds = stability.simulate("sliding", t_end=10.0, omega=[0.02, 0.0, 1.0], k=[0.05, 0.0, 1.0],
+    ...                         q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
+    >>> float(ds.polar_angle[0]) > 0
+    True
+    """
+    m = get_nonlinear_model(model)
+    params, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v,
+                                       alpha_k=alpha_k, mu=mu, friction=friction, normal=normal,
+                                       slip_scale=slip_scale)
+    if not (isinstance(t_end, (int, float, np.floating)) and np.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end = {t_end!r} must be a finite time > 0 (units of 1/Omega)")
+    for name, tol in (("rtol", rtol), ("atol", atol)):
+        if not (isinstance(tol, (int, float)) and 0 < tol < 1):
+            raise ValueError(f"{name} = {tol!r} must lie in (0, 1)")
+    if t_eval is None:
+        if not (isinstance(dt, (int, float)) and dt > 0):
+            raise ValueError(f"dt = {dt!r} must be > 0")
+        n = int(np.ceil(t_end / dt - 1e-9))
+        t_eval = np.linspace(0.0, float(t_end), n + 1)
+    else:
+        t_eval = np.asarray(t_eval, dtype=float)
+        if (t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0 or np.any(np.diff(t_eval) <= 0)
+                or not np.isclose(t_eval[-1], t_end)):
+            raise ValueError("t_eval must increase strictly from 0 to t_end")
+    if method == "auto":
+        method = _auto_method(m.name, params)
+    elif method not in COMPILED_METHODS + SCIPY_METHODS:
+        raise ValueError(f"method = {method!r} is not known; choose auto or one of "
+                         f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
+    y0 = initial_state(m.name, omega, k, velocity)
+    sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
+                    max_steps=max_steps)
+    if sol.status < 0:
+        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
+                      stacklevel=2)
+    ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept,
+                    nreject=sol.nreject, status=sol.status, message=sol.message,
+                    friction_law=friction if m.name == "sliding" else "none (constraint force)",
+                    normal_force_scaling=normal, slip_scale=float(slip_scale))
+    return ds
+
+
+def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[str, float],
+                       p: np.ndarray) -> xr.Dataset:
+    """Build the output Dataset of :func:`simulate` from the states of a run."""
+    m = get_nonlinear_model(model)
+    q, fr_inv, sigma, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
+    omega = y[:, 0:3]
+    k = y[:, 3:6]
+    n = t.size
+    good = np.isfinite(y).all(axis=1)
+    forces = np.full((n, 3), np.nan)
+    if good.any():
+        forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
+    comp = {"long_name": "component", "units": _ONE,
+            "comment": "component along I, J, K of the fixed frame F_a (K up)"}
+    coords = {"time": ("time", t, _attrs("time", _ONE, standard_name="time",
+                                          comment="in units of 1/Omega; one spin period is 2 pi")),
+              "axis": ("axis", np.array([1, 2, 3]), comp)}
+    data: dict[str, tuple] = {
+        "omega": (("time", "axis"), omega, _attrs("angular velocity", _ONE)),
+        "k": (("time", "axis"), k, _attrs("unit vector along the symmetry axis", _ONE)),
+    }
+    wk = np.einsum("ij,ij->i", omega, k)
+    kn = np.linalg.norm(k, axis=1)
+    with np.errstate(invalid="ignore"):
+        polar = np.degrees(np.arccos(np.clip(k[:, 2] / kn, -1.0, 1.0)))
+    data["polar_angle"] = ("time", polar, _attrs("polar angle of k from the upward vertical",
+                                                 "degree"))
+    data["spin"] = ("time", wk, _attrs("spin, omega . k", _ONE))
+    data["transverse_rate"] = ("time", np.hypot(omega[:, 0], omega[:, 1]),
+                               _attrs("transverse angular rate |omega_1 + i omega_2| (fixed frame)", _ONE))
+    if m.has_translation:
+        if m.name == "sliding":
+            v0 = np.column_stack([y[:, 6], y[:, 7], np.zeros(n)])
+            x0 = np.column_stack([y[:, 8], y[:, 9], np.ones(n)])
+        else:
+            v0 = np.column_stack([omega[:, 1], -omega[:, 0], np.zeros(n)])
+            x0 = np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
+        v_g = v0 + q * np.cross(omega, k)
+        z_g = 1.0 + q * k[:, 2]
+        data["velocity"] = (("time", "axis"), v0, _attrs("velocity of the sphere's centre O", _ONE))
+        data["position"] = (("time", "axis"), x0, _attrs("position of the sphere's centre O", _ONE,
+                                                         comment="the plane is at height 0"))
+        data["momentum"] = (("time", "axis"), mu * v_g, _attrs("linear momentum mu V_G", _ONE))
+        data["h_cg"] = ("time", h_cg(omega, k, q=q, sigma=sigma, mu=mu),
+                        _attrs("angular momentum about G along r_cg = q k + K, eq. (10)", _ONE))
+        slip = np.column_stack([v0[:, 0] - omega[:, 1], v0[:, 1] + omega[:, 0], np.zeros(n)])
+        data["slip_speed"] = ("time", np.linalg.norm(slip, axis=1),
+                              _attrs("speed of the contact point |V_c|, eq. (5)", _ONE))
+        f = np.column_stack([forces[:, 0], forces[:, 1], np.zeros(n)])
+        data["friction"] = (("time", "axis"), f, _attrs(
+            "tangential contact force" + (" (friction law)" if m.name == "sliding"
+                                          else " needed to keep rolling"), _ONE))
+        data["friction_magnitude"] = ("time", np.hypot(f[:, 0], f[:, 1]),
+                                      _attrs("magnitude of the tangential contact force", _ONE))
+        data["normal_force"] = ("time", forces[:, 2], _attrs("normal contact force N", _ONE,
+                                                             comment="equilibrium value mu fr_inv"))
+    else:
+        v_g = (1.0 + q) * np.cross(omega, k)
+        z_g = (1.0 + q) * k[:, 2]
+        data["reaction"] = (("time", "axis"), forces, _attrs("force of the pivot on the top", _ONE))
+        a_c = 1.0 + mu * (1.0 + 2.0 * q)
+        l_p = a_c * omega + (sigma - a_c) * wk[:, None] * k
+        data["angular_momentum_vertical"] = ("time", l_p[:, 2], _attrs(
+            "vertical angular momentum about the pivot", _ONE))
+    names = {"kinetic_translational": "kinetic energy of translation of G",
+             "kinetic_spin": "rotational kinetic energy of the spin about G",
+             "kinetic_transverse": "rotational kinetic energy of the transverse rotation about G",
+             "potential": "potential energy mu fr_inv z_G", "energy": "total energy"}
+    for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma,
+                                  mu=mu).items():
+        data[name] = ("time", val, _attrs(names[name], _ONE, comment="in units of A0 Omega^2"))
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(Conventions="CF-1.8", title=f"Tippe top, nonlinear {m.name} model",
+                    source="stability.simulate", model=m.name, equations=m.equations)
+    for name, val in params.items():
+        ds.attrs[name] = val
+        ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]
+    return ds
