@@ -5,7 +5,7 @@ is in the standard library (``tomllib``), reads like the paper's parameter lists
 code. A recipe looks like::
 
     title = "Fig. 4: growth rate against q for several alpha_v"
-    kind = "lines"                  # lines | map | models  (what is drawn)
+    kind = "lines"                  # lines | map | models | scene  (what is drawn)
     model = "sliding"
     x = "q"                         # abscissa (lines, maps)
     family = "alpha_v"              # one line per value (lines)
@@ -19,6 +19,10 @@ code. A recipe looks like::
     sigma = 1.0
     alpha_v = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 
+A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
+``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.scene`);
+it has no grid.
+
 The outputs are ``<name>.nc`` (regenerated, not committed) and ``<name>.png`` (committed when the
 README shows it) beside the recipe, ``<name>`` being the recipe's file stem. A dataset already on
 disk is reused when its ``recipe_digest`` attribute matches the recipe's contents.
@@ -28,6 +32,7 @@ from __future__ import annotations
 
 import hashlib
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -43,9 +48,12 @@ from .parameters import PARAMETERS
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "KINDS"]
 
 #: what a recipe can draw
-KINDS = ("lines", "map", "models")
+KINDS = ("lines", "map", "models", "scene")
+#: the paper's nonlinear figures a scene recipe can draw
+SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
-_KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption"}
+_KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
+         "figure"}
 
 
 class RecipeError(ValueError):
@@ -67,6 +75,7 @@ class Recipe:
     quantities: tuple[str, ...] = ("growth_rate",)
     mask_unphysical: bool = True
     caption: str = ""
+    figure: str | None = None
     digest: str = field(default="", compare=False)
 
     @property
@@ -129,12 +138,23 @@ def load_recipe(path: str | Path) -> Recipe:
     unknown = set(raw) - _KEYS
     if unknown:
         raise RecipeError(f"{p}: unknown keys {', '.join(sorted(unknown))} (allowed: {', '.join(sorted(_KEYS))})")
-    for key in ("title", "kind", "grid"):
+    for key in ("title", "kind"):
         if key not in raw:
             raise RecipeError(f"{p}: the key {key!r} is required")
     kind = raw["kind"]
     if kind not in KINDS:
         raise RecipeError(f"{p}: kind = {kind!r} is not one of {', '.join(KINDS)}")
+    digest = hashlib.sha256(raw_bytes).hexdigest()[:16]
+    if kind == "scene":
+        figure = raw.get("figure")
+        if figure not in SCENE_FIGURES:
+            raise RecipeError(f"{p}: figure = {figure!r} is not one of {', '.join(SCENE_FIGURES)}")
+        if "grid" in raw:
+            raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
+        return Recipe(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid={},
+                      caption=str(raw.get("caption", "")), figure=figure, digest=digest)
+    if "grid" not in raw:
+        raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
     if model not in MODELS:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}")
@@ -162,8 +182,7 @@ def load_recipe(path: str | Path) -> Recipe:
                           f"({', '.join(wanted)})")
     return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x, y=y, family=family,
                   quantities=quantities, mask_unphysical=bool(raw.get("mask_unphysical", True)),
-                  caption=str(raw.get("caption", "")),
-                  digest=hashlib.sha256(raw_bytes).hexdigest()[:16])
+                  caption=str(raw.get("caption", "")), digest=digest)
 
 
 def find_recipes(directory: str | Path) -> list[Recipe]:
@@ -176,8 +195,50 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in grid.items() if k in takes}
 
 
+def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: bool,
+            reader: Callable[[Path], xr.Dataset]) -> xr.Dataset:
+    """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it."""
+    if path.exists() and not force:
+        try:
+            ds = reader(path)
+            if ds.attrs.get("recipe_digest") == digest:
+                return ds
+        except (AtlasFileError, OSError, ValueError):
+            pass
+    ds = make()
+    ds.attrs["recipe_digest"] = digest
+    write_dataset(ds, path, overwrite=True)
+    return ds
+
+
+def _read(path: Path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
+    """The runs a scene figure needs: key -> (label, function making the run)."""
+    from . import scene
+
+    paper = dict(method="rk4", step=0.1, friction="componentwise", slip_scale=1e-12)
+    runs: dict[str, tuple[str, Callable[[], xr.Dataset]]] = {
+        "fr_inv_0.3": ("Fr$^{-1}$ = 0.3", lambda: scene.run(0.3)),
+    }
+    if figure == "fig5":
+        runs["fr_inv_0.1"] = ("Fr$^{-1}$ = 0.1", lambda: scene.run(0.1))
+    if figure == "fig9":
+        runs["rolling"] = ("rolling", lambda: scene.run(0.3, model="rolling"))
+        for j, (ak, av) in enumerate(scene.FRICTION_CASES, start=1):
+            label = f"({j}) $\\alpha_K$ = {ak:g}, $\\alpha_v$ = {av:g}"
+            runs[f"case{j}"] = (label, lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av,
+                                                                      t_end=1500.0, dt=0.5))
+            runs[f"case{j}_paper_scheme"] = (label, lambda ak=ak, av=av: scene.run(
+                0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5, **paper))
+    return runs
+
+
 def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
-    """Compute (or reuse from disk) the recipe's datasets, one per model.
+    """Compute (or reuse from disk) the recipe's datasets.
 
     A dataset on disk is reused when its ``recipe_digest`` attribute equals the recipe's;
     otherwise it is recomputed and written atomically.
@@ -185,22 +246,25 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
     Returns
     -------
     dict
-        model name -> atlas dataset.
+        model name -> atlas dataset, or (scene recipes) run key -> simulate() dataset with the
+        run's label in its ``label`` attribute.
     """
     out: dict[str, xr.Dataset] = {}
+    if recipe.kind == "scene":
+        for key, (label, make) in scene_runs(recipe.figure or "").items():
+            def made(make=make, label=label) -> xr.Dataset:
+                ds = make()
+                ds.attrs["label"] = label
+                return ds
+            out[key] = _cached(recipe.path.with_name(f"{recipe.name}_{key}.nc"), recipe.digest, made,
+                               force=force, reader=_read)
+        return out
     for model in recipe.models():
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
-        if path.exists() and not force:
-            try:
-                ds = open_atlas(path)
-                if ds.attrs.get("recipe_digest") == recipe.digest:
-                    out[model] = ds
-                    continue
-            except AtlasFileError:
-                pass
-        ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
-        ds.attrs["recipe"] = recipe.path.name
-        ds.attrs["recipe_digest"] = recipe.digest
-        write_dataset(ds, path, overwrite=True)
-        out[model] = ds
+
+        def make(model=model) -> xr.Dataset:
+            ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+            ds.attrs["recipe"] = recipe.path.name
+            return ds
+        out[model] = _cached(path, recipe.digest, make, force=force, reader=open_atlas)
     return out

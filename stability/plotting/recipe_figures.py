@@ -7,6 +7,7 @@ from matplotlib.figure import Figure
 
 from ..recipes import Recipe
 from .atlas_plots import plot_growth_rate
+from . import scene_plots
 from .maps import growth_norm, plot_stability_map
 
 __all__ = ["recipe_figure"]
@@ -25,7 +26,9 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    if recipe.kind == "lines":
+    if recipe.kind == "scene":
+        fig = _scene_figure(recipe.figure, datasets)
+    elif recipe.kind == "lines":
         n = len(recipe.quantities)
         fig = Figure(figsize=(6.4, 3.4 * n), layout="constrained")
         axes = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
@@ -52,3 +55,19 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
                 ax.set_ylabel("")
     fig.suptitle(recipe.title, fontsize=10)
     return fig
+
+
+def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset]) -> Figure:
+    """One of Figs. 5-9 from the runs of :func:`stability.recipes.scene_runs`."""
+    main = runs["fr_inv_0.3"]
+    if figure == "fig5":
+        return scene_plots.fig5({runs[k].attrs["label"]: runs[k] for k in ("fr_inv_0.3", "fr_inv_0.1")})
+    if figure == "fig6":
+        return scene_plots.fig6(main)
+    if figure == "fig7":
+        return scene_plots.fig7(main)
+    if figure == "fig8":
+        return scene_plots.fig8(main)
+    cases = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.startswith("case") and "paper" not in k}
+    paper = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.endswith("_paper_scheme")}
+    return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1])

@@ -1,0 +1,157 @@
+"""Figures of the tumbling runs of Sec. 3(ii): Figs. 5-9, drawn from simulate() datasets.
+
+Time axes are in spin periods (``t / 2 pi``, one period being ``2 pi / Omega``), as in the paper.
+Every function takes datasets and returns the Figure; none computes a run.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+
+__all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "SCENE_FIGURES"]
+
+TWO_PI = 2.0 * np.pi
+
+
+def _periods(ds: xr.Dataset) -> np.ndarray:
+    return ds.time.values / TWO_PI
+
+
+def fig5(runs: dict[str, xr.Dataset]) -> Figure:
+    """Fig. 5: (a) spin, (b) transverse angular rate, (c) polar angle against time.
+
+    Parameters
+    ----------
+    runs : dict
+        Label -> sliding run (one line per run, e.g. ``Fr^-1 = 0.3`` and ``0.1``).
+    """
+    fig = Figure(figsize=(6.4, 7.6), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
+    for label, ds in runs.items():
+        t = _periods(ds)
+        axes[0].plot(t, ds.spin.values, label=label)
+        axes[1].plot(t, ds.transverse_rate.values, label=label)
+        axes[2].plot(t, ds.polar_angle.values, label=label)
+    axes[0].set_ylabel(r"spin $\omega\cdot k$ / $\Omega$")
+    axes[1].set_ylabel(r"transverse rate $|\omega_\perp|$ / $\Omega$")
+    axes[2].set_ylabel(r"polar angle of $k$ (deg)")
+    axes[2].axhline(90.0, color="0.3", linewidth=0.8, zorder=0)
+    axes[2].set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    axes[0].legend()
+    for ax, tag in zip(axes, "abc"):
+        ax.set_title(f"({tag})", loc="left", fontsize=9)
+    return fig
+
+
+def fig6(run: xr.Dataset) -> Figure:
+    """Fig. 6: the energy components against time (energy in units of ``A0 Omega^2``)."""
+    fig = Figure(figsize=(6.4, 4.2), layout="constrained")
+    ax = fig.add_subplot()
+    t = _periods(run)
+    parts = [("energy", "total"), ("kinetic_spin", "spin (about G)"),
+             ("kinetic_transverse", "transverse rotation"), ("kinetic_translational", "translation of G"),
+             ("potential", "potential")]
+    for name, label in parts:
+        ax.plot(t, run[name].values, label=label)
+    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    ax.set_ylabel(r"energy / $A_0 \Omega^2$")
+    ax.legend(ncols=2)
+    return fig
+
+
+def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0) -> Figure:
+    """Fig. 7: the locus of the sphere's centre, (a) whole and (b) magnified start.
+
+    Arrows show the centre's velocity every ``arrow_every`` time units (the paper's
+    ``5 / (2 pi)`` spin periods) in (a) and every time unit in (b).
+    """
+    fig = Figure(figsize=(9.6, 4.4), layout="constrained")
+    ax1, ax2 = fig.subplots(1, 2)
+    x, y = run.position.sel(axis=1).values, run.position.sel(axis=2).values
+    vx, vy = run.velocity.sel(axis=1).values, run.velocity.sel(axis=2).values
+    t = run.time.values
+    dt = float(t[1] - t[0])
+    for ax, every, tmax in ((ax1, arrow_every, t[-1]), (ax2, 1.0, zoom_periods * TWO_PI)):
+        sel = t <= tmax
+        ax.plot(x[sel], y[sel], color="C0", linewidth=1.0)
+        step = max(1, int(round(every / dt)))
+        idx = np.arange(0, int(sel.sum()), step)
+        ax.quiver(x[idx], y[idx], vx[idx], vy[idx], color="C1", angles="xy", width=0.003)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel(r"$X_0 / R$")
+        ax.set_ylabel(r"$Y_0 / R$")
+    ax1.set_title("(a) whole run", loc="left", fontsize=9)
+    ax2.set_title(f"(b) first {zoom_periods:g} spin periods", loc="left", fontsize=9)
+    return fig
+
+
+def fig8(run: xr.Dataset, *, every: float = 1.0, until_angle: float = 150.0) -> Figure:
+    """Fig. 8: the axis ``k`` on the unit sphere, marked every ``every`` time units.
+
+    Drawn from the start until the polar angle first reaches ``until_angle`` degrees (the
+    flip; afterwards the axis circles the lower pole for the rest of the run).
+    """
+    fig = Figure(figsize=(5.6, 5.6), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
+    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.88", linewidth=0.3)
+    pol = run.polar_angle.values
+    past = np.nonzero(pol >= until_angle)[0]
+    end = int(past[0]) + 1 if past.size else pol.size
+    k = run.k.values[:end]
+    t = run.time.values[:end]
+    step = max(1, int(round(every / float(t[1] - t[0]))))
+    ax.plot(k[:, 0], k[:, 1], k[:, 2], color="C0", linewidth=0.35)
+    ax.scatter(k[::step, 0], k[::step, 1], k[::step, 2], marker="x", s=2, linewidths=0.6, color="C1", depthshade=True)
+    ax.set_xlabel("$K_1$")
+    ax.set_ylabel("$K_2$")
+    ax.set_zlabel("$K_3$")
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_title(f"from the start until the polar angle reaches {until_angle:g} deg", fontsize=9)
+    return fig
+
+
+def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
+         paper_scheme: dict[str, xr.Dataset], slip_case: str) -> Figure:
+    """Fig. 9: (a) friction, sliding vs rolling; (b) polar angle for the friction cases;
+    (c) sliding speed of one case.
+
+    Parameters
+    ----------
+    sliding, rolling : xarray.Dataset
+        Runs of the sliding and rolling spheres from the same initial conditions.
+    cases : dict
+        Label -> run of each friction case, integrated to tolerance (solid lines).
+    paper_scheme : dict
+        Label -> the same cases with the paper's fixed-step RK4 and sign law (16) (dotted).
+    slip_case : str
+        Label of the case whose sliding speed is drawn in (c) (from ``paper_scheme`` and
+        ``cases``).
+    """
+    fig = Figure(figsize=(6.4, 9.0), layout="constrained")
+    ax1, ax2, ax3 = fig.subplots(3, 1)
+    ax1.plot(_periods(sliding), sliding.friction_magnitude.values, label="sliding model")
+    ax1.plot(_periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
+    ax1.set_ylabel(r"$|f|$ / $A_0\Omega^2 R^{-1}$")
+    ax1.legend()
+    for j, (label, ds) in enumerate(cases.items()):
+        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle="-", label=label)
+    for j, (label, ds) in enumerate(paper_scheme.items()):
+        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle=":", linewidth=1.0,
+                 label=f"{label}, paper's scheme")
+    ax2.set_ylabel("polar angle of $k$ (deg)")
+    ax2.legend(fontsize=7, ncols=2)
+    for ds, style, label in ((cases[slip_case], "-", "integrated to tolerance"),
+                             (paper_scheme[slip_case], ":", "paper's scheme (RK4, sign law)")):
+        ax3.semilogy(_periods(ds), np.maximum(ds.slip_speed.values, 1e-12), linestyle=style, label=label)
+    ax3.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
+    ax3.legend(fontsize=8)
+    for ax, tag in zip((ax1, ax2, ax3), ("(a)", "(b)", f"(c) case {slip_case}")):
+        ax.set_title(tag, loc="left", fontsize=9)
+        ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    return fig
+
+
+SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
