@@ -18,9 +18,11 @@ from .simulate import simulate
 from .jacobian import jacobian_eigenvalues
 from .validate import validate
 from .top import Top
+from .thresholds import critical_spin, threshold, thresholds
 
 __all__ = [
     "AtlasFileError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate",
+    "threshold", "thresholds", "critical_spin",
 ]

@@ -1,0 +1,31 @@
+"""Numerical continuation of curves ``F(u) = 0`` and the neutral curves of the linear models.
+
+The engine (:mod:`continuation.engine`, :mod:`continuation.events`,
+:mod:`continuation.problem`) is generic and knows nothing about tops. The neutral-curve problem
+of the linear models (:mod:`continuation.neutral`) is one of its clients; it is imported on
+first use so that the engine can be used without :mod:`stability`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .engine import Branch, ConvergenceError, correct, project, tangent, trace, trace_both
+from .events import fold_test, locate
+from .problem import ContinuationProblem, finite_difference_jacobian
+
+__all__ = [
+    "Branch", "ConvergenceError", "ContinuationProblem", "correct", "finite_difference_jacobian",
+    "fold_test", "locate", "project", "tangent", "trace", "trace_both",
+    "neutral_curve", "fold_curve", "NeutralProblem",
+]
+
+_LAZY = {"neutral_curve", "fold_curve", "NeutralProblem"}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        from . import neutral
+
+        return getattr(neutral, name)
+    raise AttributeError(f"module 'continuation' has no attribute {name!r}")

@@ -1,0 +1,502 @@
+"""Pseudo-arclength continuation of a curve ``F(u) = 0``, ``u`` in ``R^(n+1)``.
+
+Algorithm (Keller's pseudo-arclength; e.g. Allgower & Georg, *Introduction to Numerical
+Continuation Methods*, ch. 2 and 6):
+
+1. tangent ``t``: the unit null vector of ``J = dF/du``, from the bordered system
+   ``[J; t_prev^T] t = [0; 1]`` (so consecutive tangents keep their orientation);
+2. predictor ``u_p = u + h t``;
+3. corrector: Newton's method on ``[F(u); t . (u - u_k) - h] = 0``, i.e. on the hyperplane
+   through ``u_p`` orthogonal to ``t``, until ``||F(u)||_2 <= tol``;
+4. step control: a step is rejected and halved if Newton fails or the tangent turns by more
+   than ``max_angle``; it grows by ``grow`` after an easy step; ``min_step <= h <= max_step``;
+5. between two accepted points the engine looks for sign changes of the fold tests (tangent
+   components), of the problem's test functions, of the branch-point test ``det [J; t^T]``
+   and of its constraints, and locates each one exactly (:func:`continuation.events.locate`);
+   a constraint reaching zero ends the branch there (the other special points are looked for
+   only up to it); a branch that comes back to its start is closed.
+
+All lengths are measured in scaled variables ``v = u / scale`` so that unknowns of different
+magnitudes weigh alike. The engine knows nothing about the problem beyond
+:mod:`continuation.problem`. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .events import locate
+from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
+
+__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "ConvergenceError"]
+
+EPS = float(np.finfo(float).eps)
+
+
+class ConvergenceError(ValueError):
+    """Newton's method did not reach the requested residual."""
+
+
+@dataclass
+class Branch:
+    """One traced branch of a curve ``F(u) = 0``.
+
+    Attributes
+    ----------
+    points : numpy.ndarray, shape (m, n+1)
+        Accepted points in the problem's own variables, in order along the branch.
+    tangents : numpy.ndarray, shape (m, n+1)
+        Unit tangents in the problem's variables (same orientation along the branch).
+    arclength : numpy.ndarray, shape (m,)
+        Cumulative chord length in scaled variables.
+    kinds : list of str
+        ``"regular"``, ``"fold"`` (turning point of a component), ``"test"`` (a zero of a test
+        function), ``"branch_point"`` (two curves cross), ``"boundary"`` (a constraint reached zero; the branch ends there),
+        ``"start"`` for the start point.
+    details : list of str
+        For special points: which component folds, which test function or constraint.
+    closed : bool
+        True if the branch came back to its start (the last point repeats the first).
+    end_reasons : list of str
+        Why each end of the branch stopped: ``"boundary"``, ``"closed"``, ``"max_points"``,
+        ``"step_failure"``, ``"max_arclength"`` or ``"callback"``.
+    n_newton, n_residual, n_jacobian : int
+        Work counters (Newton iterations, residual and Jacobian evaluations).
+    """
+
+    points: np.ndarray
+    tangents: np.ndarray
+    arclength: np.ndarray
+    kinds: list[str]
+    details: list[str]
+    closed: bool = False
+    end_reasons: list[str] = field(default_factory=list)
+    n_newton: int = 0
+    n_residual: int = 0
+    n_jacobian: int = 0
+
+
+class _Scaled:
+    """The problem in scaled variables ``v = u / scale`` (with work counters)."""
+
+    def __init__(self, problem: ContinuationProblem, scale: np.ndarray):
+        self.p = problem
+        self.scale = scale
+        self.n_residual = 0
+        self.n_jacobian = 0
+        self.test_names: tuple[str, ...] = tuple(getattr(problem, "test_function_names", ()))
+        self.constraint_names: tuple[str, ...] = tuple(getattr(problem, "constraint_names", ()))
+
+    def residual(self, v: np.ndarray) -> np.ndarray:
+        self.n_residual += 1
+        return np.asarray(self.p.residual(v * self.scale), dtype=float)
+
+    def jacobian(self, v: np.ndarray) -> np.ndarray:
+        self.n_jacobian += 1
+        u = v * self.scale
+        if hasattr(self.p, "jacobian"):
+            J = np.asarray(self.p.jacobian(u), dtype=float)
+        else:
+            J = finite_difference_jacobian(self.p.residual, u)
+        return J * self.scale[None, :]
+
+    def residual_and_jacobian(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        u = v * self.scale
+        if hasattr(self.p, "residual_and_jacobian"):
+            self.n_residual += 1
+            self.n_jacobian += 1
+            f, J = self.p.residual_and_jacobian(u)
+            return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale[None, :]
+        return self.residual(v), self.jacobian(v)
+
+    def unscaled_tangent(self, t: np.ndarray) -> np.ndarray:
+        tu = t * self.scale
+        return tu / np.linalg.norm(tu)
+
+    def tests(self, v: np.ndarray, t: np.ndarray) -> np.ndarray:
+        if not self.test_names:
+            return np.zeros(0)
+        return np.asarray(self.p.test_functions(v * self.scale, self.unscaled_tangent(t)), float)
+
+    def constraints(self, v: np.ndarray) -> np.ndarray:
+        if not self.constraint_names:
+            return np.zeros(0)
+        return np.asarray(self.p.constraints(v * self.scale), dtype=float)
+
+
+def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
+    """Unit null vector of ``J`` (n, n+1), oriented so that ``t . t_ref > 0``.
+
+    Parameters
+    ----------
+    J : numpy.ndarray, shape (n, n+1)
+        Jacobian of full rank ``n``.
+    t_ref : numpy.ndarray, optional
+        Previous tangent; without it the sign is the one of the SVD.
+    """
+    if t_ref is None:
+        _, _, vh = np.linalg.svd(J)
+        return vh[-1] / np.linalg.norm(vh[-1])
+    B = np.vstack([J, t_ref[None, :]])
+    rhs = np.zeros(J.shape[1])
+    rhs[-1] = 1.0
+    try:
+        t = np.linalg.solve(B, rhs)
+    except np.linalg.LinAlgError:
+        _, _, vh = np.linalg.svd(J)
+        t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
+    return t / np.linalg.norm(t)
+
+
+def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
+            h: float, tol: float, max_iter: int, max_move: float, polish: bool = True
+            ) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
+    """Newton on ``[F; t_plane . (v - anchor) - h]`` (minimum-norm Newton if ``t_plane`` is None).
+
+    Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``), so points
+    sit at the rounding floor rather than just below ``tol``. Returns the point, success, the
+    number of iterations and the Jacobian at (or next to) the point.
+    """
+    start = v.copy()
+    J = None
+    for it in range(max_iter + 1):
+        f, J = sp.residual_and_jacobian(v)
+        if not np.all(np.isfinite(f)):
+            return v, False, it, None
+        fn = float(np.linalg.norm(f))
+        plane = 0.0 if t_plane is None else float(t_plane @ (v - anchor) - h)
+        converged = fn <= tol and abs(plane) <= 1e3 * EPS * (1.0 + abs(h))
+        if it == max_iter and not converged:
+            break
+        try:
+            if t_plane is None:
+                dv = -np.linalg.lstsq(J, f, rcond=None)[0]
+            else:
+                G = np.vstack([J, t_plane[None, :]])
+                dv = -np.linalg.solve(G, np.concatenate([f, [plane]]))
+        except np.linalg.LinAlgError:
+            return v, converged, it, J
+        if converged:
+            if polish and np.all(np.isfinite(dv)):
+                v2 = v + dv
+                f2 = sp.residual(v2)
+                if np.linalg.norm(f2) < fn:
+                    return v2, True, it + 1, J
+            return v, True, it, J
+        v = v + dv
+        if not np.all(np.isfinite(v)) or np.linalg.norm(v - start) > max_move:
+            return v, False, it + 1, None
+    return v, False, max_iter, None
+
+
+def correct(problem: ContinuationProblem, u_pred: np.ndarray, t: np.ndarray, anchor: np.ndarray,
+            h: float, *, tol: float = 1e-13, max_iter: int = 12,
+            scale: Sequence[float] | None = None) -> np.ndarray:
+    """Pseudo-arclength corrector: solve ``F(u) = 0``, ``t . (u - anchor) = h`` from ``u_pred``.
+
+    Raises
+    ------
+    ConvergenceError
+        If Newton's method does not reach ``||F|| <= tol``.
+    """
+    sc = np.ones(len(u_pred)) if scale is None else np.asarray(scale, float)
+    sp = _Scaled(problem, sc)
+    v, ok, _, _ = _newton(sp, np.asarray(u_pred, float) / sc, np.asarray(t, float),
+                          np.asarray(anchor, float) / sc, h, tol, max_iter, np.inf)
+    if not ok:
+        raise ConvergenceError(f"the corrector did not converge to ||F|| <= {tol:g}")
+    return v * sc
+
+
+def project(problem: ContinuationProblem, u0: np.ndarray, *, tol: float = 1e-13, max_iter: int = 30,
+            scale: Sequence[float] | None = None, max_move: float = np.inf) -> np.ndarray:
+    """Nearest point of the curve by minimum-norm (Gauss-)Newton steps from ``u0``.
+
+    Raises
+    ------
+    ConvergenceError
+        If ``||F|| <= tol`` is not reached within ``max_iter`` steps (or the iterate moves
+        farther than ``max_move`` in scaled variables).
+    """
+    u0 = np.asarray(u0, float)
+    sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
+    sp = _Scaled(problem, sc)
+    problem_dimension(problem, u0)
+    v, ok, _, _ = _newton(sp, u0 / sc, None, None, 0.0, tol, max_iter, max_move)
+    if not ok:
+        raise ConvergenceError(f"no point of the curve with ||F|| <= {tol:g} found near {u0}")
+    return v * sc
+
+
+def _bordered_det(J: np.ndarray, t: np.ndarray) -> float:
+    """``det [J; t^T]``: changes sign at a simple branch point (Allgower & Georg, ch. 8)."""
+    return float(np.linalg.det(np.vstack([J, t[None, :]])))
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
+    """Distance from ``p`` to segment ``[a, b]`` and the segment parameter of the foot."""
+    d = b - a
+    L2 = float(d @ d)
+    lam = 0.0 if L2 == 0 else float(np.clip((p - a) @ d / L2, 0.0, 1.0))
+    return float(np.linalg.norm(p - (a + lam * d))), lam
+
+
+def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int = 1,
+          tangent0: Sequence[float] | None = None, step: float = 0.02, min_step: float = 1e-9,
+          max_step: float = 0.1, max_points: int = 2000, max_arclength: float = np.inf,
+          tol: float = 1e-13, max_iter: int = 8, max_angle: float = 0.15, grow: float = 1.6,
+          fold_components: Sequence[int] = (), scale: Sequence[float] | None = None,
+          callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
+          detect_closed: bool = True, detect_branch_points: bool = True,
+          event_floor: float = 1e-9, project_start: bool = True) -> Branch:
+    """Trace one direction of the curve through ``u0``.
+
+    Parameters
+    ----------
+    problem : ContinuationProblem
+        See :mod:`continuation.problem`.
+    u0 : sequence of float
+        Start point (projected onto the curve first if ``project_start``).
+    direction : {1, -1}
+        Follow the initial tangent or its opposite.
+    tangent0 : sequence of float, optional
+        Initial tangent (problem variables); default: the null vector of ``J(u0)``.
+    step, min_step, max_step : float
+        Initial, smallest and largest step (scaled arclength).
+    max_points : int
+        Largest number of accepted points.
+    max_arclength : float
+        Stop after this scaled arclength.
+    tol : float, default 1e-13
+        Accept a point when ``||F(u)||_2 <= tol``.
+    max_iter : int
+        Newton iterations per corrector.
+    max_angle : float, default 0.15
+        Largest angle (radians) between consecutive tangents; bounds the chord error of the
+        polyline by about ``max_angle * h / 8``.
+    grow : float
+        Step growth factor after an easy step.
+    fold_components : sequence of int
+        Components ``i`` of ``u`` whose turning points (``t_i = 0``) are located and marked
+        ``"fold"``.
+    scale : sequence of float, optional
+        Typical magnitude of each unknown (default all 1).
+    callback : callable, optional
+        ``callback(u, t, kind)`` after each accepted point; returning False stops the branch.
+    detect_closed : bool
+        Stop when the branch returns to ``u0``.
+    detect_branch_points : bool
+        Locate sign changes of ``det [J; t^T]`` (a simple branch point, where two curves of
+        solutions cross and ``J`` loses rank; the engine continues on the same branch).
+    event_floor : float
+        Sign changes of a test function (or tangent component) whose values at both ends are
+        below this in magnitude are rounding noise (e.g. ``t_i`` along a curve on which ``u_i``
+        is constant) and are ignored.
+    project_start : bool
+        Project ``u0`` onto the curve first.
+
+    Returns
+    -------
+    Branch
+    """
+    if direction not in (1, -1):
+        raise ValueError(f"direction = {direction!r}; use 1 or -1")
+    if not (0 < min_step <= step <= max_step):
+        raise ValueError(f"steps must satisfy 0 < min_step <= step <= max_step, got "
+                         f"{min_step}, {step}, {max_step}")
+    u0 = np.asarray(u0, dtype=float)
+    problem_dimension(problem, u0)
+    sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
+    if sc.shape != u0.shape or np.any(sc <= 0):
+        raise ValueError(f"scale must be {u0.size} positive numbers, got {scale!r}")
+    sp = _Scaled(problem, sc)
+    v = u0 / sc
+    n_newton = 0
+    if project_start:
+        v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
+        n_newton += it
+        if not ok:
+            raise ConvergenceError(f"the start point {u0} is not on the curve (||F|| > {tol:g} "
+                                   "after 30 Newton steps)")
+    g0 = sp.constraints(v)
+    if np.any(g0 < 0):
+        j = int(np.argmin(g0))
+        raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} "
+                         f"(value {g0[j]:.3g} < 0)")
+    if tangent0 is None:
+        t = tangent(sp.jacobian(v))
+    else:
+        t0 = np.asarray(tangent0, float) / sc
+        t = tangent(sp.jacobian(v), t0 / np.linalg.norm(t0))
+    t = direction * t
+    fold_components = tuple(int(i) for i in fold_components)
+
+    pts, tans, kinds, details, arc = [v.copy()], [t.copy()], ["start"], [""], [0.0]
+    v_start, t_start = v.copy(), t.copy()
+    tests = sp.tests(v, t)
+    bp = _bordered_det(sp.jacobian(v), t)
+    g = g0
+    h = step
+    end = "max_points"
+    closed = False
+    if callback is not None and callback(v * sc, sp.unscaled_tangent(t), "start") is False:
+        end = "callback"
+        max_points = 0
+
+    def corrected(h_: float) -> tuple[np.ndarray, np.ndarray]:
+        vv, ok_, _, JJ = _newton(sp, v + h_ * t, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
+        if not ok_:
+            raise ConvergenceError("corrector failed while locating a special point")
+        return vv, tangent(JJ, t)
+
+    while len(pts) < max_points:
+        if arc[-1] >= max_arclength:
+            end = "max_arclength"
+            break
+        v_new, ok, it, J_new = _newton(sp, v + h * t, t, v, h, tol, max_iter, 2.0 * h + 1e-12)
+        n_newton += it
+        angle = 0.0
+        if ok:
+            t_new = tangent(J_new, t)
+            angle = float(np.arccos(np.clip(t @ t_new, -1.0, 1.0)))
+            ok = angle <= max_angle or h <= min_step
+        if not ok:
+            if h <= min_step:
+                end = "step_failure"
+                break
+            h = max(h / 2.0, min_step)
+            continue
+
+        # --- special points between v (h = 0) and v_new (h) -----------------------------
+        events: list[tuple[float, str, str, np.ndarray, np.ndarray]] = []
+        g_new = sp.constraints(v_new)
+        stop_event = None
+        crossed = [j for j in np.nonzero(g_new < 0)[0] if g[j] >= 0]
+        # the earliest crossing by linear interpolation first; the others only if they are
+        # already violated at the located point (ties go to the constraint listed first)
+        crossed.sort(key=lambda j: (g[j] / (g[j] - g_new[j]), j))
+        h_b, at_b, g_b = h, (v_new, t_new), g_new
+        while crossed:
+            j = crossed.pop(0)
+            try:
+                hs, vs, ts = locate(corrected, lambda vv, tt, j=j: sp.constraints(vv)[j], 0.0, h_b,
+                                    float(g[j]), float(g_b[j]), (v, t), at_b)
+            except (ConvergenceError, ValueError):
+                hs, vs, ts = h_b, at_b[0], at_b[1]
+            if stop_event is None or hs < stop_event[0] - 1e-9 * h:
+                stop_event = (hs, "boundary", sp.constraint_names[j], vs, ts)
+                g_s = sp.constraints(vs)
+                crossed = [k for k in crossed if g_s[k] < 0]
+                h_b, at_b, g_b = hs, (vs, ts), g_s
+        # other special points are looked for up to the boundary only
+        v_b, t_b = at_b
+        candidates: list[tuple[str, str, Callable, float, float]] = []
+        for i in fold_components:
+            candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], float(t[i]), float(t_b[i])))
+        tests_new = sp.tests(v_new, t_new)
+        tests_b = tests_new if stop_event is None else sp.tests(v_b, t_b)
+        for k in range(tests.size):
+            candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
+                               float(tests[k]), float(tests_b[k])))
+        bp_new = _bordered_det(J_new, t_new)
+        if detect_branch_points:
+            bp_b = bp_new if stop_event is None else _bordered_det(sp.jacobian(v_b), t_b)
+            candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
+                               bp, bp_b))
+        for kind, name, phi, pa, pb in candidates:
+            if np.sign(pa) * np.sign(pb) < 0 and max(abs(pa), abs(pb)) > event_floor:
+                try:
+                    hs, vs, ts = locate(corrected, phi, 0.0, h_b, pa, pb, (v, t), at_b)
+                except (ConvergenceError, ValueError):
+                    continue  # a special point that cannot be located is not reported
+                # a special point at the end of the branch (within 1e-6 of the last step) is
+                # not reported separately from the end point
+                if stop_event is None or hs < stop_event[0] - 1e-6 * h:
+                    events.append((hs, kind, name, vs, ts))
+        h_stop = stop_event[0] if stop_event is not None else h
+        close_at = None
+        if detect_closed and len(pts) >= 4 and arc[-1] > 3.0 * h:
+            dist, lam = _segment_distance(v_start, v, v_new)
+            seg = float(np.linalg.norm(v_new - v))
+            if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (v_new - v) @ t_start > 0:
+                close_at = lam * h
+        events.sort(key=lambda e: e[0])
+        limit = min(h_stop if stop_event is not None else np.inf, close_at if close_at is not None else np.inf)
+        for hs, kind, name, vs, ts in events:
+            if hs < limit:
+                pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
+                arc.append(arc[-1] + float(np.linalg.norm(vs - pts[-2])))
+                if callback is not None and callback(vs * sc, sp.unscaled_tangent(ts), kind) is False:
+                    end = "callback"
+        if end == "callback":
+            break
+        if close_at is not None and (stop_event is None or close_at <= h_stop):
+            pts.append(v_start.copy()); tans.append(t_start.copy()); kinds.append("closed"); details.append("")
+            arc.append(arc[-1] + float(np.linalg.norm(v_start - pts[-2])))
+            closed, end = True, "closed"
+            break
+        if stop_event is not None:
+            hs, kind, name, vs, ts = stop_event
+            if hs <= 1e-12 * h and len(events) == 0:  # the boundary is the current point itself
+                kinds[-1], details[-1] = kind, name
+                end = "boundary"
+                break
+            pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
+            arc.append(arc[-1] + float(np.linalg.norm(vs - pts[-2])))
+            if callback is not None:
+                callback(vs * sc, sp.unscaled_tangent(ts), kind)
+            end = "boundary"
+            break
+        pts.append(v_new); tans.append(t_new); kinds.append("regular"); details.append("")
+        arc.append(arc[-1] + float(np.linalg.norm(v_new - v)))
+        if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), "regular") is False:
+            end = "callback"
+            break
+        v, t, g, tests, bp = v_new, t_new, g_new, tests_new, bp_new
+        # --- step control --------------------------------------------------------------
+        factor = grow if it <= 3 else (1.0 if it <= 5 else 0.7)
+        if angle > 0:
+            factor = min(factor, 0.9 * max_angle / angle)
+        h = float(np.clip(h * factor, min_step, max_step))
+
+    P = np.array(pts) * sc
+    T = np.array([sp.unscaled_tangent(x) for x in tans])
+    return Branch(P, T, np.array(arc), kinds, details, closed, [end], n_newton,
+                  sp.n_residual, sp.n_jacobian)
+
+
+def trace_both(problem: ContinuationProblem, u0: Sequence[float], **options) -> Branch:
+    """Trace the curve through ``u0`` in both directions and join the two halves.
+
+    Parameters
+    ----------
+    problem : ContinuationProblem
+    u0 : sequence of float
+    **options
+        Passed to :func:`trace` (not ``direction``).
+
+    Returns
+    -------
+    Branch
+        Ordered from the end reached backwards to the end reached forwards; the start point
+        keeps kind ``"start"``. A closed curve is traced once.
+    """
+    options.pop("direction", None)
+    fwd = trace(problem, u0, direction=1, **options)
+    if fwd.closed:
+        return fwd
+    options["project_start"] = False
+    options["tangent0"] = -fwd.tangents[0]
+    bwd = trace(problem, fwd.points[0], direction=1, **options)
+    pts = np.concatenate([bwd.points[::-1], fwd.points[1:]])
+    tans = np.concatenate([-bwd.tangents[::-1], fwd.tangents[1:]])
+    arc_b = bwd.arclength[-1] - bwd.arclength[::-1]
+    arc = np.concatenate([arc_b, arc_b[-1] + fwd.arclength[1:]])
+    kinds = bwd.kinds[::-1] + fwd.kinds[1:]
+    details = bwd.details[::-1] + fwd.details[1:]
+    return Branch(pts, tans, arc, kinds, details, False, [bwd.end_reasons[0], fwd.end_reasons[0]],
+                  fwd.n_newton + bwd.n_newton, fwd.n_residual + bwd.n_residual,
+                  fwd.n_jacobian + bwd.n_jacobian)

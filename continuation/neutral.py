@@ -1,0 +1,637 @@
+"""Neutral curves of the linear models and their folds: a client of the continuation engine.
+
+A mode is neutral where ``det(i w M - A) = 0`` with ``w`` real (:mod:`stability.neutrality`):
+two real equations in three unknowns ``u = (x, y, w)``, ``x`` and ``y`` two parameters of
+``{q, fr_inv, sigma, alpha_v, mu}`` and ``w`` the neutral mode's frequency (``Im s``, fixed
+frame, units of the spin rate). :func:`neutral_curve` follows that mode by pseudo-arclength
+continuation (:func:`continuation.trace_both`), not the non-smooth maximum over modes, and marks
+
+``fold``
+    a turning point of ``x`` or ``y`` along the curve (an extremum of a threshold; at
+    ``fr_inv = 0`` the fold in ``sigma`` of the ``(q, sigma)`` curve is the paper's
+    "sigma ~ 1.14");
+``zero_frequency``
+    ``w`` changes sign: a root crosses the imaginary axis at ``s = 0`` (Bogdanov-Takens type);
+``double_crossing``
+    another mode is neutral at the same point (the leading mode changes there; the data
+    variable ``leading`` says on which parts the traced mode is the leading one, i.e. where the
+    curve is the stability boundary);
+``domain_edge``
+    the curve leaves the physical domain (:mod:`stability.parameters`; strict bounds are
+    applied with a margin ``edge_margin``);
+``endpoint``
+    the requested range ends, or continuation stopped (``detail`` says why).
+
+Conservative models (fixed_pivot and rolling, eqs. 8-9, and the sliding model at
+``alpha_v = 0``) have every real root of ``p(i w)`` neutral, so the set ``p(i w) = 0`` is a
+region, not a curve. For them the traced curve is the boundary of that region: the collision of
+two neutral modes, ``P(w) = P'(w) = 0`` (for eq. 8 the discriminant ``sigma_hat^2 = 4 kappa``,
+``w = sigma_hat / 2``); the dataset's attribute ``form`` says ``"collision"``.
+
+Start points come from a coarse atlas of the model (:func:`stability.spectrum`): on every grid
+edge where the number of growing modes changes, the mode that crossed gives a guess that
+minimum-norm Newton projects onto the curve. Each start point not already on a traced branch
+starts a new branch, traced in both directions. A curve that never changes the number of
+growing modes across the coarse grid (a closed curve inside one cell, or a curve along which a
+mode touches the axis without crossing) is not found from the atlas; pass ``start=`` then.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from stability.models import LinearModel, get_model
+from stability.neutrality import NeutralCondition
+from stability.parameters import DEFAULT_MU, LONG_NAMES, check_domain
+from stability.spectra import spectrum
+
+from .engine import Branch, ConvergenceError, project, trace_both
+
+__all__ = ["neutral_curve", "fold_curve", "NeutralProblem", "FoldProblem", "DEFAULT_RANGES"]
+
+#: default ranges of the parameters that have no finite physical bound (q and sigma are bounded
+#: by the domain: |q| < 1/sqrt(mu), 0 < sigma <= 2 (1 - mu q^2) <= 2)
+DEFAULT_RANGES: dict[str, tuple[float, float]] = {
+    "fr_inv": (0.0, 10.0), "alpha_v": (0.0, 10.0), "mu": (0.0, 10.0), "sigma": (0.0, 2.0)}
+
+_KIND_DETAIL = {
+    "branch_point": ("branch_point", "two neutral curves cross here (the Jacobian loses rank)"),
+    "frequency": ("zero_frequency", "the frequency changes sign: a root crosses the axis at s = 0"),
+    "other_modes": ("double_crossing", "a second mode is neutral here"),
+}
+
+
+def _check_name(name: str, what: str, model: LinearModel) -> str:
+    if not isinstance(name, str) or name not in model.parameters:
+        raise ValueError(f"{what} = {name!r} is not a parameter of model {model.name!r}; "
+                         f"choose one of {', '.join(model.parameters)}")
+    return name
+
+
+def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
+    """Validate the fixed parameters (all the model's others; mu defaults to 2.28)."""
+    if not isinstance(fixed, Mapping):
+        raise TypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
+    out = dict(fixed)
+    if "mu" not in free and "mu" not in out:
+        out["mu"] = DEFAULT_MU
+    for name in out:
+        if name in free:
+            raise ValueError(f"{name} is traced (x or y) and cannot also be fixed")
+        if name not in model.parameters:
+            raise TypeError(f"model {model.name!r} takes no parameter {name} "
+                            f"(it takes {', '.join(model.parameters)})")
+    missing = [n for n in model.parameters if n not in free and n not in out]
+    if missing:
+        raise TypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
+    p, _ = check_domain(**out)
+    for k, v in p.items():
+        if v.ndim:
+            raise TypeError(f"fixed {k} must be a scalar, got shape {v.shape}")
+    return {k: float(v) for k, v in p.items()}
+
+
+def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]:
+    if name == "q":
+        mu = fixed.get("mu")
+        b = 1.0 / math.sqrt(mu) if mu is not None else 1.0
+        return (-b, b)
+    return DEFAULT_RANGES[name]
+
+
+def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
+    if rng is None:
+        return _default_range(name, fixed)
+    try:
+        lo, hi = (float(v) for v in rng)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}_range must be a pair (lo, hi) of real numbers, got {rng!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"{name}_range = ({lo}, {hi}) must be finite with lo < hi")
+    return lo, hi
+
+
+#: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter)
+Constraint = tuple[str, str, Callable[[Mapping[str, float]], float], tuple[str, float] | None]
+
+
+def _constraints(free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
+                 margin: float) -> list[Constraint]:
+    """Domain bounds involving a free parameter, then the requested ranges."""
+    f = set(free)
+    out: list[Constraint] = []
+    if f & {"q", "mu"}:
+        out.append(("1 - mu q^2 > 0", "domain_edge", lambda p: 1.0 - p["mu"] * p["q"] ** 2 - margin, None))
+    if "sigma" in f:
+        out.append(("sigma > 0", "domain_edge", lambda p: p["sigma"] - margin, ("sigma", margin)))
+    if f & {"sigma", "q", "mu"}:
+        out.append(("sigma <= 2 (1 - mu q^2)", "domain_edge",
+                    lambda p: 2.0 * (1.0 - p["mu"] * p["q"] ** 2) - p["sigma"], None))
+    for name in ("fr_inv", "alpha_v"):
+        if name in f:
+            out.append((f"{name} >= 0", "domain_edge", lambda p, n=name: p[n], (name, 0.0)))
+    if "mu" in f:
+        out.append(("mu > 0", "domain_edge", lambda p: p["mu"] - margin, ("mu", margin)))
+    for name, (lo, hi) in ranges.items():
+        out.append((f"{name} >= {lo:g} (end of {name}_range)", "endpoint",
+                    lambda p, n=name, a=lo: p[n] - a, (name, lo)))
+        out.append((f"{name} <= {hi:g} (end of {name}_range)", "endpoint",
+                    lambda p, n=name, b=hi: b - p[n], (name, hi)))
+    return out
+
+
+class NeutralProblem:
+    """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.neutrality`.
+
+    Parameters
+    ----------
+    model : str or LinearModel
+    x, y : str
+        The two traced parameters.
+    fixed : mapping
+        All other parameters (validated).
+    ranges : mapping
+        ``{x: (lo, hi), y: (lo, hi)}``.
+    edge_margin : float
+        Margin of the strict domain bounds.
+    samples : numpy.ndarray, optional
+        ``(m, 2)`` points used to decide the form and structural deflation.
+    form : {"crossing", "collision"}, optional
+    """
+
+    test_function_names = ("frequency", "other_modes")
+
+    def __init__(self, model: str | LinearModel, x: str, y: str, fixed: Mapping[str, float],
+                 ranges: Mapping[str, tuple[float, float]], edge_margin: float = 1e-9,
+                 samples: np.ndarray | None = None, form: str | None = None):
+        self.model = get_model(model)
+        self.names = (x, y)
+        self.fixed = dict(fixed)
+        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
+        self._constraints = _constraints(self.names, ranges, edge_margin)
+        self.constraint_names = tuple(c[0] for c in self._constraints)
+        self.constraint_kinds = tuple(c[1] for c in self._constraints)
+        self.constraint_bounds = tuple(c[3] for c in self._constraints)
+
+    def params(self, u: np.ndarray) -> dict[str, float]:
+        """All parameters at ``u``."""
+        p = dict(self.fixed)
+        p.update(zip(self.names, (float(u[0]), float(u[1]))))
+        return p
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        """``F(x, y, w)`` (2,)."""
+        return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian=False)[0]
+
+    def jacobian(self, u: np.ndarray) -> np.ndarray:
+        """``dF/d(x, y, w)`` (2, 3)."""
+        return self.cond.residual_and_jacobian(u[:2], float(u[2]))[1]
+
+    def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``F`` and ``dF/du`` from one batched evaluation of the coefficients."""
+        return self.cond.residual_and_jacobian(u[:2], float(u[2]))
+
+    def other_growth(self, u: np.ndarray) -> float:
+        """Largest growth rate among the other modes (-inf if there is none)."""
+        r = self.cond.other_modes(u[:2], float(u[2]))
+        return float(np.max(r.real)) if r.size else -np.inf
+
+    def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """``[w, max Re(other modes)]``."""
+        g = self.other_growth(u)
+        return np.array([u[2], g if np.isfinite(g) else -1.0])
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        """Domain and range bounds, ``>= 0`` inside."""
+        p = self.params(u)
+        return np.array([c[2](p) for c in self._constraints])
+
+
+class FoldProblem:
+    """Continuation of a fold of a neutral curve in a third parameter: ``u = (x, y, w, z)``.
+
+    Equations: the neutral condition ``F(x, y, w; z) = 0`` (two) and the fold condition
+    ``det [dF/d other, dF/d w] = 0`` (the tangent of the ``(x, y)`` curve has no component in
+    ``fold_in``, ``other`` being the plane's other parameter). The engine uses central
+    differences for the Jacobian (:func:`continuation.finite_difference_jacobian`).
+    """
+
+    test_function_names: tuple[str, ...] = ()
+
+    def __init__(self, model: str | LinearModel, x: str, y: str, z: str, fold_in: str,
+                 fixed: Mapping[str, float], ranges: Mapping[str, tuple[float, float]],
+                 edge_margin: float = 1e-9, samples: np.ndarray | None = None, form: str | None = None):
+        self.model = get_model(model)
+        self.names = (x, y, z)
+        self.fixed = dict(fixed)
+        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
+        self.other = 1 if fold_in == x else 0
+        self._constraints = _constraints(self.names, ranges, edge_margin)
+        self.constraint_names = tuple(c[0] for c in self._constraints)
+        self.constraint_kinds = tuple(c[1] for c in self._constraints)
+        self.constraint_bounds = tuple(c[3] for c in self._constraints)
+
+    def params(self, u: np.ndarray) -> dict[str, float]:
+        p = dict(self.fixed)
+        p.update(zip(self.names, (float(u[0]), float(u[1]), float(u[3]))))
+        return p
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        """``[F1, F2, det]`` at ``u = (x, y, w, z)``."""
+        vals = np.array([u[0], u[1], u[3]])
+        F, J = self.cond.residual_and_jacobian(vals, float(u[2]))
+        B = J[:, [self.other, 3]]
+        return np.array([F[0], F[1], B[0, 0] * B[1, 1] - B[0, 1] * B[1, 0]])
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        p = self.params(u)
+        return np.array([c[2](p) for c in self._constraints])
+
+
+# ------------------------------------------------------------------------------------------
+# start points
+# ------------------------------------------------------------------------------------------
+def _grid_params(x: str, y: str, fixed: Mapping[str, float], X: np.ndarray, Y: np.ndarray) -> dict:
+    p: dict[str, Any] = dict(fixed)
+    p[x], p[y] = X, Y
+    return p
+
+
+def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float],
+                   ranges: Mapping[str, tuple[float, float]], grid: tuple[int, int]) -> list[np.ndarray]:
+    """Guesses ``(x, y, w)`` on grid edges where the number of growing modes changes."""
+    xs = np.linspace(*ranges[x], grid[0])
+    ys = np.linspace(*ranges[y], grid[1])
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    sp = spectrum(model, mask_unphysical=True, **_grid_params(x, y, fixed, X, Y))
+    ev = sp.eigenvalues
+    grows = (ev.real > 0) & ~sp.neutral
+    count = np.where(sp.inside, grows.sum(axis=-1), -1)
+    guesses = []
+    for axis in (0, 1):
+        a = [slice(None, -1), slice(None)] if axis == 0 else [slice(None), slice(None, -1)]
+        b = [slice(1, None), slice(None)] if axis == 0 else [slice(None), slice(1, None)]
+        ca, cb = count[tuple(a)], count[tuple(b)]
+        idx = np.argwhere((ca >= 0) & (cb >= 0) & (ca != cb))
+        for i, j in idx:
+            pa = (i, j)
+            pb = (i + 1, j) if axis == 0 else (i, j + 1)
+            if count[pa] < count[pb]:
+                pa, pb = pb, pa
+            ea, eb = ev[pa], ev[pb]
+            up = np.nonzero(grows[pa])[0]
+            ra = ea[up[np.argmin(ea[up].real)]]
+            rb = eb[np.argmin(np.abs(eb - ra))]
+            t = ra.real / (ra.real - rb.real) if rb.real < ra.real else 0.5
+            t = float(np.clip(t, 0.0, 1.0))
+            ua = np.array([X[pa], Y[pa], ra.imag])
+            ub = np.array([X[pb], Y[pb], rb.imag])
+            guesses.append(ua + t * (ub - ua))
+    return guesses
+
+
+def _on_branch(v: np.ndarray, pts: np.ndarray) -> bool:
+    """Whether scaled point ``v`` lies on the scaled polyline ``pts`` (within its chord error)."""
+    if len(pts) == 1:
+        return bool(np.linalg.norm(v - pts[0]) < 1e-7)
+    a, b = pts[:-1], pts[1:]
+    d = b - a
+    L2 = np.einsum("ij,ij->i", d, d)
+    lam = np.clip(np.einsum("ij,ij->i", v - a, d) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
+    dist = np.linalg.norm(v - (a + lam[:, None] * d), axis=1)
+    return bool(np.any(dist <= 0.05 * np.sqrt(L2) + 1e-7))
+
+
+def _near_branch(g: np.ndarray, pts: np.ndarray, cell: float) -> bool:
+    """Whether a scaled guess ``(x, y, w)`` lies within ``cell`` of a scaled branch in ``(x, y)``."""
+    a, b = pts[:-1], pts[1:]
+    if len(pts) < 2:
+        return False
+    d = b - a
+    L2 = np.einsum("ij,ij->i", d[:, :2], d[:, :2])
+    lam = np.clip(np.einsum("ij,ij->i", g[None, :2] - a[:, :2], d[:, :2]) / np.where(L2 > 0, L2, 1.0), 0, 1)
+    foot = a + lam[:, None] * d
+    near = (np.linalg.norm(g[:2] - foot[:, :2], axis=1) <= cell) & (np.abs(g[2] - foot[:, 2]) <= 0.1)
+    return bool(near.any())
+
+
+# ------------------------------------------------------------------------------------------
+# the dataset
+# ------------------------------------------------------------------------------------------
+def _var_attrs(name: str) -> dict[str, str]:
+    return {"long_name": LONG_NAMES.get(name, name), "units": "1"}
+
+
+def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> dict[str, list]:
+    """Per-point kinds and details of one branch."""
+    kinds, details = [], []
+    m = len(br.points)
+    for k, (kind, det) in enumerate(zip(br.kinds, br.details)):
+        if kind == "fold":
+            kinds.append("fold")
+            details.append(f"fold in {names[int(det)] if int(det) < ncols else det}")
+        elif kind in ("test", "branch_point"):
+            kd, text = _KIND_DETAIL[det or kind]
+            kinds.append(kd)
+            details.append(text)
+        elif kind == "boundary":
+            j = prob.constraint_names.index(det)
+            kinds.append(prob.constraint_kinds[j])
+            details.append(det)
+            bound = prob.constraint_bounds[j]
+            if bound is not None:
+                # put the point exactly on a simple bound (it is within ~1e-16 of it) unless
+                # that would spoil the residual (near a corner where everything is tiny)
+                col = {n: i for i, n in enumerate(names)}[bound[0]]
+                moved = br.points[k].copy()
+                moved[col] = bound[1]
+                if np.linalg.norm(prob.residual(moved)) <= max(1e-13, np.linalg.norm(prob.residual(br.points[k]))):
+                    br.points[k] = moved
+        elif kind == "closed":
+            kinds.append("regular")
+            details.append("closes the curve (repeats the branch's first point)")
+        else:
+            kinds.append("regular")
+            details.append("")
+    for end, k in zip(br.end_reasons if len(br.end_reasons) == 2 else [None] + br.end_reasons,
+                      (0, m - 1)):
+        if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
+            kinds[k] = "endpoint"
+            details[k] = f"continuation stopped: {end.replace('_', ' ')}"
+    return {"kind": kinds, "detail": details}
+
+
+def _check_points(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
+                  cols: Sequence[np.ndarray], w: np.ndarray) -> np.ndarray:
+    """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``."""
+    p: dict[str, Any] = dict(fixed)
+    for n, c in zip(names, cols):
+        p[n] = c
+    sp = spectrum(model, mask_unphysical=True, method="lapack", **p)
+    ev = sp.eigenvalues
+    k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
+    return np.take_along_axis(ev, k[:, None], -1)[:, 0].real
+
+
+def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
+             points: np.ndarray, freq_col: int, branch: np.ndarray, kinds: list[str],
+             details: list[str], residual: np.ndarray, leading: np.ndarray | None,
+             attrs: Mapping[str, Any]) -> xr.Dataset:
+    data: dict[str, Any] = {}
+    cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
+    for n, c in zip(names, cols):
+        data[n] = ("point", c, _var_attrs(n))
+    w = points[:, freq_col] if len(points) else np.zeros(0)
+    data["frequency"] = ("point", w, {
+        "long_name": "frequency Im s of the neutral mode (fixed frame, units of the spin rate)",
+        "units": "1"})
+    data["branch"] = ("point", branch.astype(np.int32), {"long_name": "index of the traced branch"})
+    data["kind"] = ("point", np.array(kinds, dtype=object), {
+        "long_name": "kind of point: regular, fold, zero_frequency, double_crossing, "
+                     "domain_edge or endpoint"})
+    data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
+    data["residual"] = ("point", residual, {
+        "long_name": "normwise relative backward error |p(i w)| / (||c||_1 max(1, |w|)^n) of the "
+                     "neutral condition",
+        "units": "1"})
+    if leading is not None:
+        data["leading"] = ("point", leading, {
+            "long_name": "the traced mode is the leading one (the curve is the stability boundary)"})
+    if len(points):
+        check = _check_points(model, names, fixed, cols, w)
+    else:
+        check = np.zeros(0)
+    data["check_growth_rate"] = ("point", check, {
+        "long_name": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
+                     "(about 1e-8 at a collision, where two eigenvalues coincide)",
+        "units": "1"})
+    ds = xr.Dataset(data, coords={"point": np.arange(len(points))})
+    ds["point"].attrs["long_name"] = "index of the point along the traced branches"
+    ds.attrs.update({"Conventions": "CF-1.8", "model": model.name, "equations": model.equations})
+    ds.attrs.update({k: float(v) for k, v in fixed.items()})
+    ds.attrs["fixed"] = ", ".join(sorted(fixed))
+    ds.attrs.update(attrs)
+    return ds
+
+
+# ------------------------------------------------------------------------------------------
+# public functions
+# ------------------------------------------------------------------------------------------
+def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[str, Any],
+                  x_range: Sequence[float] | None = None, y_range: Sequence[float] | None = None,
+                  start: Sequence[Sequence[float]] | None = None, grid: tuple[int, int] = (25, 25),
+                  step: float = 0.01, max_step: float = 0.05, max_angle: float = 0.1,
+                  max_points: int = 4000, tol: float = 1e-13, edge_margin: float = 1e-9,
+                  form: str | None = None) -> xr.Dataset:
+    """Trace the neutral curves of a linear model in the plane of two parameters.
+
+    Parameters
+    ----------
+    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+        Eqs. (8)-(9) or eq. (11).
+    x, y : str
+        The two traced parameters, from the model's ``q, fr_inv, sigma, alpha_v, mu``.
+    fixed : mapping
+        Values of the model's other parameters (``mu`` defaults to 2.28).
+    x_range, y_range : pair of float, optional
+        Ranges to trace in (default: the physical domain for ``q`` and ``sigma``,
+        :data:`DEFAULT_RANGES` otherwise); the curves end where the ranges or the physical
+        domain end.
+    start : sequence of points, optional
+        Start points ``(x, y)`` or ``(x, y, w)`` (projected onto the curve; without ``w`` the
+        mode of smallest ``|Re s|`` gives it); default: from a coarse atlas.
+    grid : pair of int
+        Size of the coarse atlas for start points.
+    step, max_step : float
+        Initial and largest continuation step (arclength in the ranges scaled to 1).
+    max_angle : float
+        Largest turn of the tangent per step (radians): the chord error of the polyline is
+        about ``max_angle * step / 8`` of the range.
+    max_points : int
+        Largest number of points per direction of a branch.
+    tol : float
+        Points satisfy the neutral condition to a relative backward error ``<= tol``.
+    edge_margin : float
+        Strict domain bounds (``1 - mu q^2 > 0``, ``sigma > 0``, ``mu > 0``) are applied as
+        ``>= edge_margin``.
+    form : {"crossing", "collision"}, optional
+        Force the form (see :mod:`stability.neutrality`); default from the model.
+
+    Returns
+    -------
+    xarray.Dataset
+        Along dimension ``point``: ``x`` and ``y`` (named after the parameters), ``frequency``,
+        ``branch``, ``kind``, ``detail``, ``residual``, ``leading`` and ``check_growth_rate``;
+        CF attributes, the fixed parameters as attributes. Empty (no points) if no curve
+        crosses the ranges.
+
+    Raises
+    ------
+    ValueError, TypeError
+        Unknown model or parameter, ``x == y``, bad range, fixed values outside the domain.
+
+    Examples
+    --------
+    >>> import continuation
+    >>> ds = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
+    >>> float(ds.sigma[ds.kind == "fold"].max())  # doctest: +ELLIPSIS
+    1.1433...
+    """
+    m = get_model(model)
+    x = _check_name(x, "x", m)
+    y = _check_name(y, "y", m)
+    if x == y:
+        raise ValueError(f"x and y must be two different parameters, got {x!r} twice")
+    fixed = _fixed_parameters(m, (x, y), fixed)
+    ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
+    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
+    lo = np.array([ranges[x][0], ranges[y][0]])
+    rng = np.random.default_rng(12345)
+    samples = lo + rng.random((8, 2)) * scale[:2]
+    prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form)
+
+    if start is None:
+        guesses = _atlas_guesses(m, x, y, fixed, ranges, grid)
+    else:
+        guesses = []
+        for s in start:
+            s = [float(v) for v in s]
+            if len(s) == 2:
+                p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
+                ev = spectrum(m, mask_unphysical=True, **p).eigenvalues
+                if np.isnan(ev).all():
+                    raise ValueError(f"start point {x} = {s[0]:g}, {y} = {s[1]:g} is outside the physical domain")
+                s.append(float(ev[np.nanargmin(np.abs(ev.real))].imag))
+            if len(s) != 3:
+                raise ValueError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
+            guesses.append(np.array(s))
+    branches: list[Branch] = []
+    cell = 1.5 / (min(grid) - 1)
+    for g in guesses:
+        # an atlas guess lies within a grid cell of its curve: skip it if a traced branch passes
+        # that close (with a frequency within 0.1); the projection would only find it again
+        if start is None and any(_near_branch(g / scale, b.points / scale, cell) for b in branches):
+            continue
+        try:
+            u = project(prob, g, scale=scale, max_move=0.25 if start is None else np.inf, tol=tol)
+        except ConvergenceError:
+            continue
+        if not np.all(prob.constraints(u) >= 0):
+            continue
+        if any(_on_branch(u / scale, b.points / scale) for b in branches):
+            continue
+        br = trace_both(prob, u, fold_components=(0, 1), scale=scale, step=step, max_step=max_step,
+                        max_angle=max_angle, max_points=max_points, tol=tol)
+        branches.append(br)
+    return _assemble(m, (x, y), fixed, prob, branches, 2, {
+        "x": x, "y": y, "form": prob.cond.form, "deflated_zero_roots": prob.cond.deflate,
+        f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]),
+        "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane"})
+
+
+def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], prob: Any,
+              branches: list[Branch], freq_col: int, attrs: Mapping[str, Any]) -> xr.Dataset:
+    pts, bidx, kinds, details, resid, leading = [], [], [], [], [], []
+    for b, br in enumerate(branches):
+        rec = _branch_records(br, prob, [*names[:freq_col], "frequency", *names[freq_col:]], len(names) + 1)
+        pts.append(br.points)
+        bidx.append(np.full(len(br.points), b))
+        kinds += rec["kind"]
+        details += rec["detail"]
+        for u in br.points:
+            vals = np.delete(u, freq_col)
+            resid.append(prob.cond.backward_error(vals, float(u[freq_col])))
+            if isinstance(prob, NeutralProblem):
+                leading.append(prob.other_growth(u) <= 0)
+    P = np.concatenate(pts) if pts else np.zeros((0, len(names) + 1))
+    B = np.concatenate(bidx) if bidx else np.zeros(0, int)
+    # the double crossings where the leading mode changes
+    if leading:
+        for k, kd in enumerate(kinds):
+            if kd == "double_crossing":
+                details[k] += "; the leading mode changes"
+    lead = np.array(leading, dtype=bool) if isinstance(prob, NeutralProblem) else None
+    return _dataset(m, names, fixed, P, freq_col, B, kinds, details, np.array(resid, dtype=float),
+                    lead, attrs)
+
+
+def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str,
+               fixed: Mapping[str, Any], x_range: Sequence[float] | None = None,
+               y_range: Sequence[float] | None = None, z_range: Sequence[float] | None = None,
+               step: float = 0.01, max_step: float = 0.05, max_angle: float = 0.1,
+               max_points: int = 4000, tol: float = 1e-12, edge_margin: float = 1e-9) -> xr.Dataset:
+    """Follow the folds of the ``(x, y)`` neutral curves as a third parameter ``z`` varies.
+
+    The folds of the curve at ``z = fixed[z]`` (extrema of ``fold_in``, one of ``x`` and
+    ``y``) are found by :func:`neutral_curve` and each is continued in ``(x, y, w, z)`` with the
+    equations of :class:`FoldProblem`. Example: the largest unstable ``sigma`` as a function of
+    ``fr_inv`` is ``fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma", ...)``.
+
+    Parameters
+    ----------
+    model : str or LinearModel
+    x, y : str
+        The plane of the neutral curve.
+    z : str
+        The third parameter; ``fixed[z]`` is where the folds are first found.
+    fold_in : str
+        ``x`` or ``y``: the parameter whose extremum is followed.
+    fixed : mapping
+        All the model's other parameters, including the start value of ``z``.
+    x_range, y_range, z_range : pair of float, optional
+        Ranges (defaults as in :func:`neutral_curve`).
+    step, max_step, max_angle, max_points, edge_margin
+        As in :func:`neutral_curve`.
+    tol : float
+        Residual tolerance of the three equations.
+
+    Returns
+    -------
+    xarray.Dataset
+        Along ``point``: ``x``, ``y``, ``z``, ``frequency``, ``branch``, ``kind`` (``fold``
+        marks an extremum of ``z`` along the fold curve), ``detail``, ``residual`` (backward
+        error of the neutral condition) and ``check_growth_rate``.
+    """
+    m = get_model(model)
+    x, y, z = (_check_name(n, w_, m) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
+    if len({x, y, z}) != 3:
+        raise ValueError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
+    if fold_in not in (x, y):
+        raise ValueError(f"fold_in = {fold_in!r} must be x ({x!r}) or y ({y!r})")
+    if not isinstance(fixed, Mapping) or z not in fixed:
+        raise TypeError(f"fixed must give the start value of z = {z!r}")
+    fx = dict(fixed)
+    z0 = fx.pop(z)
+    full = _fixed_parameters(m, (x, y), {**fx, z: z0})
+    plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, step=step,
+                          max_step=max_step, max_angle=max_angle, max_points=max_points,
+                          edge_margin=edge_margin)
+    rest = {k: v for k, v in full.items() if k != z}
+    ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full),
+              z: _check_range(z, z_range, full)}
+    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0,
+                      ranges[z][1] - ranges[z][0]])
+    rng = np.random.default_rng(12345)
+    lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
+    samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
+    prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
+    folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
+    branches: list[Branch] = []
+    for k in range(folds.sizes["point"]):
+        u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
+        if any(_on_branch(u / scale, b.points / scale) for b in branches):
+            continue
+        br = trace_both(prob, u, fold_components=(3,), scale=scale, step=step, max_step=max_step,
+                        max_angle=max_angle, max_points=max_points, tol=tol)
+        branches.append(br)
+    # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
+    return _assemble(m, (x, y, z), rest, prob, branches, 2, {
+        "x": x, "y": y, "z": z, "fold_in": fold_in, "form": prob.cond.form,
+        f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]), f"{z}_range": list(ranges[z]),
+        "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model "
+                 f"as {z} varies"})

@@ -1,0 +1,82 @@
+"""The problem protocol of the continuation engine.
+
+A *continuation problem* is a smooth map ``F: R^(n+1) -> R^n`` whose zero set near a regular
+point is a curve. The engine (:mod:`continuation.engine`) needs only:
+
+``residual(u) -> ndarray (n,)``
+    ``F(u)``. Its size defines the accuracy of the traced points: the corrector iterates until
+    ``||F(u)||_2 <= tol``, so a client should scale ``F`` to be ``O(1)`` (for instance a
+    relative backward error).
+``jacobian(u) -> ndarray (n, n+1)`` (optional)
+    ``dF/du``. Accuracy of the Jacobian only affects the convergence rate of Newton's method
+    and the tangent (hence where folds are located, see :mod:`continuation.events`); without
+    it the engine uses central differences (:func:`finite_difference_jacobian`).
+
+and, optionally,
+
+``test_function_names`` and ``test_functions(u, tangent) -> ndarray``
+    Scalars whose sign changes along the curve mark special points; the engine locates each
+    change exactly (:mod:`continuation.events`). Folds (turning points of a component of
+    ``u``) need no test function: ask for them with ``fold_components``.
+``constraint_names`` and ``constraints(u) -> ndarray``
+    Values ``g_j(u)`` that must stay ``>= 0``; the branch ends exactly where the first one
+    reaches zero (bounds of a box, edges of a physical domain).
+
+The engine knows nothing else about the problem.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["ContinuationProblem", "finite_difference_jacobian", "problem_dimension"]
+
+
+@runtime_checkable
+class ContinuationProblem(Protocol):
+    """Minimal protocol: a residual ``F: R^(n+1) -> R^n`` (see the module docstring)."""
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        """Return ``F(u)``, shape ``(n,)``."""
+
+
+def finite_difference_jacobian(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray,
+                               f0: np.ndarray | None = None, rel_step: float = 6e-6) -> np.ndarray:
+    """Central-difference Jacobian of ``residual`` at ``u``.
+
+    Parameters
+    ----------
+    residual : callable
+        ``F(u) -> ndarray (n,)``.
+    u : numpy.ndarray, shape (n+1,)
+        Point.
+    f0 : numpy.ndarray, optional
+        Unused (kept so callers can pass ``F(u)`` when they have it).
+    rel_step : float, default 6e-6
+        Step ``h_i = rel_step * max(1, |u_i|)``; about ``u**(1/3)`` balances truncation
+        (``O(h^2)``) and rounding (``O(u / h)``), relative error ``~1e-10``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n+1)
+    """
+    u = np.asarray(u, dtype=float)
+    cols = []
+    for i in range(u.size):
+        h = rel_step * max(1.0, abs(u[i]))
+        e = np.zeros_like(u)
+        e[i] = h
+        cols.append((np.asarray(residual(u + e)) - np.asarray(residual(u - e))) / (2.0 * h))
+    return np.stack(cols, axis=-1)
+
+
+def problem_dimension(problem: ContinuationProblem, u: np.ndarray) -> int:
+    """Number of equations ``n`` of ``problem`` (checked against ``u``, which has ``n + 1``)."""
+    f = np.asarray(problem.residual(np.asarray(u, dtype=float)))
+    if f.ndim != 1 or f.size + 1 != np.size(u):
+        raise ValueError(f"the residual at a point of {np.size(u)} unknowns has shape {f.shape}; "
+                         f"a curve needs {np.size(u) - 1} equations")
+    return f.size

@@ -1,0 +1,76 @@
+"""``tippe neutral``: trace the neutral curves of a linear model in a parameter plane."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..io import check_output_path, write_dataset
+from ..models import MODELS
+from ._args import FLAGS
+
+__all__ = ["register", "run"]
+
+
+def _pair(text: str, name: str) -> tuple[float, float]:
+    try:
+        lo, hi = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise ValueError(f"{name} = {text!r} must be lo:hi (two numbers)") from None
+    return lo, hi
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``neutral`` subcommand."""
+    p = sub.add_parser(
+        "neutral", help="neutral curves of a linear model in a parameter plane -> netCDF",
+        description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
+                    "(Re s = 0) in the plane of two parameters, print the special points (folds, "
+                    "zero-frequency and double crossings, domain edges) and write the curves.")
+    p.add_argument("--model", choices=list(MODELS), default="sliding")
+    p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter")
+    p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter")
+    for name, flag in FLAGS.items():
+        p.add_argument(flag, dest=name, type=float, default=None, metavar="VALUE",
+                       help=f"fixed value of {name}" + (" (default 2.28)" if name == "mu" else ""))
+    p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
+    p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
+    p.add_argument("-o", "--output", help="netCDF file to write")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``tippe neutral``."""
+    from continuation.neutral import neutral_curve
+
+    out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
+    model = MODELS[args.model]
+    fixed = {}
+    for name in model.parameters:
+        v = getattr(args, name)
+        if name in (args.x, args.y):
+            if v is not None:
+                raise ValueError(f"{FLAGS[name]} is traced (--x/--y) and cannot also be fixed")
+            continue
+        if v is not None:
+            fixed[name] = v
+    for name in FLAGS:
+        if name not in model.parameters and getattr(args, name) is not None:
+            raise ValueError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")
+    xr_ = _pair(args.x_range, "--x-range") if args.x_range else None
+    yr_ = _pair(args.y_range, "--y-range") if args.y_range else None
+    ds = neutral_curve(model, args.x, args.y, fixed=fixed, x_range=xr_, y_range=yr_)
+    special = ds.where(ds.kind != "regular", drop=True) if ds.sizes["point"] else ds
+    print(f"{model.name}: {ds.sizes['point']} points on {len(set(ds.branch.values.tolist()))} "
+          f"branch(es) in the ({args.x}, {args.y}) plane; form {ds.attrs['form']}; "
+          f"largest residual {float(ds.residual.max()) if ds.sizes['point'] else 0:.1e}")
+    if special.sizes["point"]:
+        print(f"{'branch':>6}  {'kind':<16} {args.x:>18} {args.y:>18} {'frequency':>18}  detail")
+        for k in range(special.sizes["point"]):
+            print(f"{int(special.branch[k]):>6}  {str(special.kind.values[k]):<16} "
+                  f"{float(special[args.x][k]):>18.12g} {float(special[args.y][k]):>18.12g} "
+                  f"{float(special.frequency[k]):>18.12g}  {special.detail.values[k]}")
+    if out is not None:
+        write_dataset(ds, out, overwrite=args.overwrite)
+        print(f"wrote {out}")
+    return 0

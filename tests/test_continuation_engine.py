@@ -1,0 +1,149 @@
+"""The continuation engine on problems with exact answers (it knows nothing about tops).
+
+References are closed forms: a circle, the cubic x = y^3 - y with folds at y = +-1/sqrt(3), a
+2x2 Hopf normal form whose neutral curve is the unit circle with frequency sqrt(2 + x), and two
+crossing lines (a branch point at the origin). Tolerances: points are accepted at
+||F|| <= 1e-13, and F is O(1) with O(1) derivatives here, so coordinates are right to about
+1e-13; folds and branch points are located by Brent's method to 1e-14 of a step, with a tangent
+from an exact Jacobian, so 1e-12 leaves a margin of ten.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from continuation import ConvergenceError, project, trace, trace_both
+
+
+class Circle:
+    """x^2 + y^2 = 1 (analytic Jacobian)."""
+
+    def residual(self, u):
+        return np.array([u[0] ** 2 + u[1] ** 2 - 1.0])
+
+    def jacobian(self, u):
+        return np.array([[2 * u[0], 2 * u[1]]])
+
+
+class Cubic:
+    """x = y^3 - y on |y| <= 2 (no Jacobian: the engine's finite differences)."""
+
+    constraint_names = ("y >= -2", "y <= 2")
+
+    def residual(self, u):
+        return np.array([u[0] - (u[1] ** 3 - u[1])])
+
+    def constraints(self, u):
+        return np.array([u[1] + 2.0, 2.0 - u[1]])
+
+
+class HopfNormalForm:
+    """Neutral curve of A(x, y) = [[a, -(2 + x)], [1, a]], a = (x^2 + y^2 - 1)/2.
+
+    ``det(s - A) = s^2 - 2 a s + a^2 + 2 + x``; at ``s = i w``: ``Re = -w^2 + a^2 + 2 + x``,
+    ``Im = -2 a w``. With ``w > 0``, the neutral curve is ``a = 0`` (the unit circle) with
+    ``w = sqrt(2 + x)``.
+    """
+
+    def residual(self, u):
+        x, y, w = u
+        a = (x * x + y * y - 1) / 2
+        return np.array([-w * w + a * a + 2 + x, -2 * a * w])
+
+    def jacobian(self, u):
+        x, y, w = u
+        a = (x * x + y * y - 1) / 2
+        return np.array([[2 * a * x + 1, 2 * a * y, -2 * w], [-2 * x * w, -2 * y * w, -2 * a]])
+
+
+class CrossingLines:
+    """x^2 - y^2 = 0: the lines y = x and y = -x cross at the origin (a branch point)."""
+
+    def residual(self, u):
+        return np.array([u[0] ** 2 - u[1] ** 2])
+
+    def jacobian(self, u):
+        return np.array([[2 * u[0], -2 * u[1]]])
+
+
+def test_circle_closes_with_four_exact_folds():
+    u0 = [np.cos(0.3), np.sin(0.3)]
+    br = trace(Circle(), u0, fold_components=(0, 1), max_angle=0.15, max_step=0.3)
+    assert br.closed and br.end_reasons == ["closed"]
+    assert np.allclose(br.points[-1], br.points[0], atol=1e-15)
+    r = np.hypot(br.points[:, 0], br.points[:, 1])
+    assert np.max(np.abs(r - 1)) <= 1e-13
+    folds = br.points[[k == "fold" for k in br.kinds]]
+    comps = [int(d) for k, d in zip(br.kinds, br.details) if k == "fold"]
+    assert sorted(comps) == [0, 0, 1, 1]
+    # folds in x at (+-1, 0), in y at (0, +-1)
+    for p, c in zip(folds, comps):
+        assert abs(p[1 - c]) <= 1e-12 and abs(abs(p[c]) - 1) <= 1e-13
+    # angle control: consecutive tangents turn by <= 0.15 rad, so a full turn needs >= 2 pi / 0.15
+    n_regular = sum(k in ("regular", "start") for k in br.kinds)
+    assert 2 * np.pi / 0.15 <= n_regular <= 3 * 2 * np.pi / 0.15
+    assert br.n_residual > 0 and br.n_jacobian > 0
+
+
+def test_cubic_folds_and_bounds_with_finite_difference_jacobian():
+    br = trace_both(Cubic(), [0.0, 0.0], fold_components=(0,), max_step=0.1)
+    ys = br.points[:, 1]
+    assert br.end_reasons == ["boundary", "boundary"]
+    ends = sorted([ys[0], ys[-1]])
+    assert abs(ends[0] + 2) <= 1e-13 and abs(ends[1] - 2) <= 1e-13
+    folds = br.points[[k == "fold" for k in br.kinds]]
+    assert len(folds) == 2
+    y_fold = np.sort(folds[:, 1])
+    # closed form: dx/dy = 3 y^2 - 1 = 0 -> y = -+1/sqrt(3), x = +-2/(3 sqrt 3);
+    # the tangent comes from a central-difference Jacobian (relative error ~1e-10), so y is
+    # located to ~1e-10 and x (extremal there, error quadratic in dy) far better
+    assert np.allclose(y_fold, [-1 / np.sqrt(3), 1 / np.sqrt(3)], atol=1e-9)
+    x_ref = -(y_fold**3 - y_fold)
+    assert np.allclose(-folds[np.argsort(folds[:, 1]), 0], x_ref, atol=1e-13)
+    assert np.max(np.abs(br.points[:, 0] - (ys**3 - ys))) <= 1e-13
+
+
+def test_hopf_normal_form_neutral_curve_is_the_unit_circle():
+    prob = HopfNormalForm()
+    u0 = project(prob, [1.1, 0.1, 1.6])
+    br = trace(prob, u0, fold_components=(0, 1))
+    assert br.closed
+    x, y, w = br.points.T
+    assert np.max(np.abs(x * x + y * y - 1)) <= 1e-13
+    assert np.max(np.abs(w - np.sqrt(2 + x))) <= 1e-13
+    assert sum(k == "fold" for k in br.kinds) == 4
+
+
+def test_branch_point_of_two_crossing_lines():
+    br = trace(CrossingLines(), [-1.0, -1.0], max_points=200, max_arclength=2.5)
+    bp = br.points[[k == "branch_point" for k in br.kinds]]
+    assert len(bp) == 1
+    # det [J; t] = 2 (x t_2 + y t_1) is linear in arclength through the origin
+    assert np.max(np.abs(bp)) <= 1e-12
+    # the engine continued on the same line beyond the branch point
+    assert np.allclose(br.points[:, 0], br.points[:, 1], atol=1e-12) and br.points[-1, 0] > 0.5
+
+
+def test_callback_sees_every_point_and_can_stop():
+    seen = []
+
+    def cb(u, t, kind):
+        seen.append(kind)
+        return len(seen) < 5
+
+    br = trace(Circle(), [1.0, 0.0], callback=cb)
+    assert br.end_reasons == ["callback"] and len(seen) == 5 and len(br.points) == 5
+
+
+def test_errors():
+    with pytest.raises(ValueError, match="direction"):
+        trace(Circle(), [1.0, 0.0], direction=2)
+    with pytest.raises(ValueError, match="min_step"):
+        trace(Circle(), [1.0, 0.0], step=1.0, max_step=0.1)
+    with pytest.raises(ValueError, match="equations"):
+        trace(Circle(), [1.0, 0.0, 0.0])
+    with pytest.raises(ConvergenceError):
+        project(Circle(), [0.0, 0.0], max_iter=5)
+    with pytest.raises(ValueError, match="violates constraint 'y <= 2'"):
+        trace(Cubic(), [24.0, 3.0])  # on the curve, outside |y| <= 2
