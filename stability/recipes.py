@@ -12,6 +12,7 @@ code. A recipe looks like::
     y = "sigma"                     # ordinate (map, models)
     quantities = ["growth_rate"]    # lines: growth_rate and/or frequency panels
     mask_unphysical = true
+    neutral = true                  # map, models: continue the neutral curves and draw them
 
     [grid]                          # numbers, lists, or "start:stop:num" strings
     q = "-0.45:0.45:361"
@@ -53,7 +54,7 @@ KINDS = ("lines", "map", "models", "scene")
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
 _KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
-         "figure"}
+         "figure", "neutral"}
 
 
 class RecipeError(ValueError):
@@ -76,6 +77,7 @@ class Recipe:
     mask_unphysical: bool = True
     caption: str = ""
     figure: str | None = None
+    neutral: bool = False
     digest: str = field(default="", compare=False)
 
     @property
@@ -182,7 +184,7 @@ def load_recipe(path: str | Path) -> Recipe:
                           f"({', '.join(wanted)})")
     return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x, y=y, family=family,
                   quantities=quantities, mask_unphysical=bool(raw.get("mask_unphysical", True)),
-                  caption=str(raw.get("caption", "")), digest=digest)
+                  caption=str(raw.get("caption", "")), neutral=bool(raw.get("neutral", False)), digest=digest)
 
 
 def find_recipes(directory: str | Path) -> list[Recipe]:
@@ -267,4 +269,22 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
             ds.attrs["recipe"] = recipe.path.name
             return ds
         out[model] = _cached(path, recipe.digest, make, force=force, reader=open_atlas)
+        if recipe.neutral:
+            out[f"{model}_neutral"] = _cached(path.with_name(path.stem + "_neutral.nc"), recipe.digest,
+                                              lambda model=model: _neutral(recipe, model), force=force, reader=_read)
     return out
+
+
+def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
+    """Continued neutral curves of ``model`` over the recipe's (x, y) ranges."""
+    from continuation import neutral_curve
+
+    grid = _grid_for(model, recipe.grid)
+    fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}
+    xs, ys = np.asarray(grid[recipe.x]), np.asarray(grid[recipe.y or ""])
+    ds = neutral_curve(model, recipe.x, recipe.y, fixed=fixed,
+                       x_range=(float(xs.min()), float(xs.max())), y_range=(float(ys.min()), float(ys.max())))
+    for name in ("kind", "detail"):
+        if name in ds:
+            ds[name] = ds[name].astype(str)
+    return ds

@@ -108,3 +108,23 @@ def test_bad_recipes(tmp_path, text, msg):
     p.write_text(text)
     with pytest.raises(RecipeError, match=msg):
         load_recipe(p)
+
+
+def test_neutral_curve_overlay_and_fold_marker():
+    """The continued curve drawn on a map passes through the closed-form fold
+    (q*, sigma*) = (-1 + sqrt(1 - 1/mu), 2 (mu - sqrt(mu (mu - 1)))) (docs/models.md), marked."""
+    import continuation
+
+    mu = 2.28
+    curve = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=mu))
+    ds = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 25), fr_inv=0.0, sigma=np.linspace(0.05, 1.9, 20),
+                         alpha_v=0.5, mask_unphysical=True)
+    fig, ax = plot_stability_map(ds, "q", "sigma", curve=curve)
+    folds = [ln for ln in ax.get_lines() if ln.get_label() == "fold"]
+    assert len(folds) == 1
+    qf, sf = folds[0].get_xdata()[0], folds[0].get_ydata()[0]
+    # the fold is located by continuation to ~1e-14 (docs/continuation.md); 1e-10 leaves margin
+    assert abs(qf - (-1 + np.sqrt(1 - 1 / mu))) < 1e-10
+    assert abs(sf - 2 * (mu - np.sqrt(mu * (mu - 1)))) < 1e-10
+    curve_line = [ln for ln in ax.get_lines() if ln.get_label() == "neutral curve (continued)"][0]
+    assert np.array_equal(curve_line.get_xdata(), curve.q.values[curve.branch.values == curve.branch.values[0]])

@@ -10,7 +10,7 @@ from matplotlib.figure import Figure
 
 from ..parameters import SYMBOLS
 
-__all__ = ["plot_stability_map", "growth_norm", "NEUTRAL_STYLE"]
+__all__ = ["plot_stability_map", "plot_neutral_curve", "growth_norm", "NEUTRAL_STYLE"]
 
 #: the neutral curve's line: contrasting with the cividis colour map, also in grey
 NEUTRAL_STYLE = dict(colors="#D55E00", linewidths=2.0)
@@ -32,7 +32,8 @@ def growth_norm(*growth_rates: np.ndarray) -> TwoSlopeNorm:
 
 
 def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None,
-                       colorbar: bool = True, norm: TwoSlopeNorm | None = None) -> tuple[Figure, Axes]:
+                       colorbar: bool = True, norm: TwoSlopeNorm | None = None,
+                       curve: xr.Dataset | None = None) -> tuple[Figure, Axes]:
     """Colour the leading growth rate over the (x, y) plane and draw where it is zero.
 
     Parameters
@@ -46,6 +47,9 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
         Add a colour bar labelled with the quantity and its units.
     norm : matplotlib.colors.TwoSlopeNorm, optional
         Shared colour normalisation (:func:`growth_norm`); by default from this atlas alone.
+    curve : xarray.Dataset, optional
+        Continued neutral curves of the same plane (``continuation.neutral_curve``); drawn
+        with their special points instead of the grid's contour.
 
     Returns
     -------
@@ -71,7 +75,9 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     has_both_signs = (finite < 0).any() and (finite > 0).any()
     mesh = ax.pcolormesh(ds[x].values, ds[y].values, z, cmap="cividis", norm=norm, shading="auto",
                          rasterized=True)
-    if has_both_signs:
+    if curve is not None:
+        plot_neutral_curve(curve, ax)
+    elif has_both_signs:
         ax.contour(ds[x].values, ds[y].values, z, levels=[0.0], **NEUTRAL_STYLE)
     else:
         # conservative models: the stable side is neutral (Re s = 0 exactly), so there is no
@@ -90,3 +96,48 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
         cb.set_ticklabels([f"{v:.2g}" for v in (lo, lo / 2, 0.0, hi / 2, hi)])
         cb.set_label("leading growth rate Re $s$ / $\\Omega$")
     return fig, ax
+
+
+#: marker of each special-point kind of a continued neutral curve
+SPECIAL_MARKERS = {"fold": ("^", "fold"), "zero_frequency": ("D", "w = 0"),
+                   "double_crossing": ("o", "double crossing"), "branch_point": ("s", "branch point")}
+
+
+def plot_neutral_curve(curve: xr.Dataset, ax: Axes, *, label: str = "neutral curve (continued)") -> Axes:
+    """Draw a continued neutral curve (continuation.neutral_curve) and its special points.
+
+    Parameters
+    ----------
+    curve : xarray.Dataset
+        Along ``point``, with the variables named by its ``x`` and ``y`` attributes, ``branch``
+        and ``kind`` (and ``leading``: parts where the traced mode is not the leading one are
+        dashed, since there the curve is not the stability boundary).
+    ax : matplotlib.axes.Axes
+    label : str
+        Legend label of the curve.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    x, y = curve.attrs["x"], curve.attrs["y"]
+    first = True
+    for b in np.unique(curve["branch"].values):
+        sel = curve["branch"].values == b
+        xs, ys = curve[x].values[sel], curve[y].values[sel]
+        lead = curve["leading"].values[sel] if "leading" in curve else np.ones(sel.sum(), bool)
+        solid = np.where(lead, ys, np.nan)
+        dashed = np.where(lead, np.nan, ys)
+        ax.plot(xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, label=label if first else None)
+        if np.isfinite(dashed).any():
+            ax.plot(xs, dashed, color=NEUTRAL_STYLE["colors"], linewidth=1.2, linestyle="--",
+                    label="neutral, not the leading mode" if first else None)
+        first = False
+    kinds = curve["kind"].values.astype(str)
+    for kind, (marker, text) in SPECIAL_MARKERS.items():
+        sel = kinds == kind
+        if sel.any():
+            ax.plot(curve[x].values[sel], curve[y].values[sel], linestyle="none", marker=marker,
+                    markersize=7, markerfacecolor="white", markeredgecolor="black", label=text)
+    ax.legend(loc="best", fontsize=8)
+    return ax

@@ -43,14 +43,16 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
     elif recipe.kind == "map":
         fig = Figure(figsize=(6.4, 4.8), layout="constrained")
         ax = fig.add_subplot()
-        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=ax)
+        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=ax,
+                           curve=datasets.get(f"{recipe.model}_neutral"))
     else:  # models side by side
-        names = list(datasets)
+        names = [k for k in datasets if not k.endswith("_neutral")]
         fig = Figure(figsize=(4.2 * len(names), 4.0), layout="constrained")
         axes = fig.subplots(1, len(names), sharey=True)
-        norm = growth_norm(*(d["max_growth_rate"].values for d in datasets.values()))
+        norm = growth_norm(*(datasets[k]["max_growth_rate"].values for k in names))
         for ax, name in zip(axes, names):
-            plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm)
+            plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm,
+                               curve=datasets.get(f"{name}_neutral"))
             if name != names[0]:
                 ax.set_ylabel("")
     fig.suptitle(recipe.title, fontsize=10)
