@@ -20,6 +20,11 @@ code. A recipe looks like::
     sigma = 1.0
     alpha_v = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 
+A ``kind = "critical_spin"`` recipe draws the critical spin rate (rpm) of a real top
+(``preset = "table1"``, :class:`stability.Top`) against one nondimensional parameter of its
+``[grid]`` (``q`` or ``sigma``), the others kept at the preset's values; see
+:func:`stability.critical_spin`.
+
 A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
 ``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.scene`);
 it has no grid.
@@ -44,17 +49,17 @@ import xarray as xr
 from .atlas import atlas
 from .io import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS
-from .parameters import PARAMETERS
+from .parameters import LONG_NAMES, PARAMETERS
 
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "KINDS"]
 
 #: what a recipe can draw
-KINDS = ("lines", "map", "models", "scene")
+KINDS = ("lines", "map", "models", "scene", "critical_spin")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
 _KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
-         "figure", "neutral"}
+         "figure", "neutral", "preset"}
 
 
 class RecipeError(ValueError):
@@ -160,6 +165,18 @@ def load_recipe(path: str | Path) -> Recipe:
     model = raw.get("model", "sliding")
     if model not in MODELS:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}")
+    if kind == "critical_spin":
+        preset = raw.get("preset", "table1")
+        if preset not in PRESETS:
+            raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
+        x = raw.get("x", "q")
+        if x not in ("q", "sigma") or set(raw["grid"]) != {x}:
+            raise RecipeError(f"{p}: a critical_spin recipe varies one of q, sigma: [grid] must hold only x = {x!r}")
+        grid = {x: _grid_value(p, x, raw["grid"][x])}
+        if np.ndim(grid[x]) != 1:
+            raise RecipeError(f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
+        return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x,
+                      caption=str(raw.get("caption", "")), figure=preset, digest=digest)
     grid_raw = raw["grid"]
     if not isinstance(grid_raw, dict):
         raise RecipeError(f"{p}: [grid] must be a table of parameter values")
@@ -252,6 +269,10 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
         run's label in its ``label`` attribute.
     """
     out: dict[str, xr.Dataset] = {}
+    if recipe.kind == "critical_spin":
+        out[recipe.model] = _cached(recipe.dataset_path, recipe.digest, lambda: critical_spin_dataset(recipe),
+                                    force=force, reader=_read)
+        return out
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
             def made(make=make, label=label) -> xr.Dataset:
@@ -273,6 +294,42 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
             out[f"{model}_neutral"] = _cached(path.with_name(path.stem + "_neutral.nc"), recipe.digest,
                                               lambda model=model: _neutral(recipe, model), force=force, reader=_read)
     return out
+
+
+#: real tops a critical_spin recipe can name
+PRESETS = ("table1", "table1_measured")
+
+
+def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
+    """Critical spin rates (rpm) of the preset top against the recipe's grid parameter.
+
+    For every value, a :class:`stability.Top` with the preset's mass and radius and the
+    nondimensional set changed in that one parameter (:meth:`stability.Top.from_nondimensional`)
+    is handed to :func:`stability.critical_spin`, upright and inverted; NaN where there is no
+    transition in the range searched.
+    """
+    from .thresholds import critical_spin
+    from .top import Top
+
+    base = getattr(Top, recipe.figure or "table1")()
+    x = recipe.x
+    values = np.asarray(recipe.grid[x], dtype=float)
+    out = {"upright": np.full(values.size, np.nan), "inverted": np.full(values.size, np.nan)}
+    for j, v in enumerate(values):
+        nd = {"q": base.q, "mu": base.mu, "sigma": base.sigma, x: float(v)}
+        top = Top.from_nondimensional(mass=base.mass, radius=base.radius, **nd)
+        for orientation in out:
+            try:
+                out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
+            except ValueError:
+                pass
+    unit = {"units": "min-1"}
+    return xr.Dataset(
+        {"critical_spin_upright": (x, out["upright"], {"long_name": "spin rate above which the upright top is unstable", **unit}),
+         "critical_spin_inverted": (x, out["inverted"], {"long_name": "spin rate above which the inverted top is stable", **unit})},
+        coords={x: (x, values, {"long_name": LONG_NAMES[x], "units": "1"})},
+        attrs={"Conventions": "CF-1.10", "title": recipe.title, "model": recipe.model, "preset": recipe.figure,
+               "mass_kg": base.mass, "radius_m": base.radius, "q": base.q, "mu": base.mu, "sigma": base.sigma})
 
 
 def _neutral(recipe: Recipe, model: str) -> xr.Dataset:

@@ -9,6 +9,7 @@ from ..recipes import Recipe
 from .atlas_plots import plot_growth_rate
 from . import scene_plots
 from .maps import growth_norm, plot_stability_map
+from .spin_plots import plot_critical_spin
 
 __all__ = ["recipe_figure"]
 
@@ -28,6 +29,10 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
     """
     if recipe.kind == "scene":
         fig = _scene_figure(recipe.figure, datasets)
+    elif recipe.kind == "critical_spin":
+        fig = Figure(figsize=(6.4, 4.2), layout="constrained")
+        ax = fig.add_subplot()
+        plot_critical_spin(datasets[recipe.model], ax=ax)
     elif recipe.kind == "lines":
         n = len(recipe.quantities)
         fig = Figure(figsize=(6.4, 3.4 * n), layout="constrained")
