@@ -6,8 +6,11 @@ Every function takes datasets and returns the Figure; none computes a run.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import xarray as xr
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 __all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "SCENE_FIGURES"]
@@ -19,16 +22,27 @@ def _periods(ds: xr.Dataset) -> np.ndarray:
     return ds.time.values / TWO_PI
 
 
-def fig5(runs: dict[str, xr.Dataset]) -> Figure:
+def _axes(axes: Sequence[Axes] | None, n: int, figsize: tuple[float, float], **kw) -> tuple[Figure, Sequence[Axes]]:
+    """The axes to draw into: the caller's, or a new figure's column (row with ``ncols``)."""
+    if axes is not None:
+        if len(axes) != n:
+            raise ValueError(f"axes has {len(axes)} Axes; this figure draws {n} panels")
+        return axes[0].figure, axes
+    fig = Figure(figsize=figsize, layout="constrained")
+    return fig, fig.subplots(kw.pop("nrows", n), kw.pop("ncols", 1), **kw)
+
+
+def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> Figure:
     """Fig. 5: (a) spin, (b) transverse angular rate, (c) polar angle against time.
 
     Parameters
     ----------
     runs : dict
         Label -> sliding run (one line per run, e.g. ``Fr^-1 = 0.3`` and ``0.1``).
+    axes : sequence of 3 Axes, optional
+        Where to draw; a new figure by default.
     """
-    fig = Figure(figsize=(6.4, 7.6), layout="constrained")
-    axes = fig.subplots(3, 1, sharex=True)
+    fig, axes = _axes(axes, 3, (6.4, 7.6), sharex=True)
     for label, ds in runs.items():
         t = _periods(ds)
         axes[0].plot(t, ds.spin.values, label=label)
@@ -45,10 +59,11 @@ def fig5(runs: dict[str, xr.Dataset]) -> Figure:
     return fig
 
 
-def fig6(run: xr.Dataset) -> Figure:
+def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> Figure:
     """Fig. 6: the energy components against time (energy in units of ``A0 Omega^2``)."""
-    fig = Figure(figsize=(6.4, 4.2), layout="constrained")
-    ax = fig.add_subplot()
+    if ax is None:
+        ax = Figure(figsize=(6.4, 4.2), layout="constrained").add_subplot()
+    fig = ax.figure
     t = _periods(run)
     parts = [("energy", "total"), ("kinetic_spin", "spin (about G)"),
              ("kinetic_transverse", "transverse rotation"), ("kinetic_translational", "translation of G"),
@@ -61,14 +76,14 @@ def fig6(run: xr.Dataset) -> Figure:
     return fig
 
 
-def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0) -> Figure:
+def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0,
+         axes: Sequence[Axes] | None = None) -> Figure:
     """Fig. 7: the locus of the sphere's centre, (a) whole and (b) magnified start.
 
     Arrows show the centre's velocity every ``arrow_every`` time units (the paper's
     ``5 / (2 pi)`` spin periods) in (a) and every time unit in (b).
     """
-    fig = Figure(figsize=(9.6, 4.4), layout="constrained")
-    ax1, ax2 = fig.subplots(1, 2)
+    fig, (ax1, ax2) = _axes(axes, 2, (9.6, 4.4), nrows=1, ncols=2)
     x, y = run.position.sel(axis=1).values, run.position.sel(axis=2).values
     vx, vy = run.velocity.sel(axis=1).values, run.velocity.sel(axis=2).values
     t = run.time.values
@@ -114,7 +129,8 @@ def fig8(run: xr.Dataset, *, every: float = 1.0, until_angle: float = 150.0) -> 
 
 
 def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
-         paper_scheme: dict[str, xr.Dataset], slip_case: str) -> Figure:
+         paper_scheme: dict[str, xr.Dataset], slip_case: str, *,
+         axes: Sequence[Axes] | None = None) -> Figure:
     """Fig. 9: (a) friction, sliding vs rolling; (b) polar angle for the friction cases;
     (c) sliding speed of one case.
 
@@ -130,8 +146,7 @@ def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
         Label of the case whose sliding speed is drawn in (c) (from ``paper_scheme`` and
         ``cases``).
     """
-    fig = Figure(figsize=(6.4, 9.0), layout="constrained")
-    ax1, ax2, ax3 = fig.subplots(3, 1)
+    fig, (ax1, ax2, ax3) = _axes(axes, 3, (6.4, 9.0))
     ax1.plot(_periods(sliding), sliding.friction_magnitude.values, label="sliding model")
     ax1.plot(_periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
     ax1.set_ylabel(r"$|f|$ / $A_0\Omega^2 R^{-1}$")
