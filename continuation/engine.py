@@ -12,7 +12,9 @@ Continuation Methods*, ch. 2 and 6):
    than ``max_angle``; it grows by ``grow`` after an easy step; ``min_step <= h <= max_step``;
 5. between two accepted points the engine looks for sign changes of the fold tests (tangent
    components), of the problem's test functions, of the branch-point test ``det [J; t^T]``
-   and of its constraints, and locates each one exactly (:func:`continuation.events.locate`);
+   and of its constraints, and locates each one exactly (:func:`continuation.events.locate`:
+   Brent on the pseudo-arclength, each evaluation a corrector solve predicted by the cubic
+   Hermite curve of the step; a constraint by Newton's method on ``[F; g_j] = 0`` first);
    a constraint reaching zero ends the branch there (the other special points are looked for
    only up to it); a branch that comes back to its start is closed.
 
@@ -26,14 +28,19 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
+import math
+
 import numpy as np
 
 from .events import locate
 from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
 
-__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "ConvergenceError"]
+__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite",
+           "ConvergenceError"]
 
 EPS = float(np.finfo(float).eps)
+#: a residual this small is at the rounding floor: no polishing step
+_FLOOR = 4.0 * EPS
 
 
 class ConvergenceError(ValueError):
@@ -89,6 +96,8 @@ class _Scaled:
         self.n_jacobian = 0
         self.test_names: tuple[str, ...] = tuple(getattr(problem, "test_function_names", ()))
         self.constraint_names: tuple[str, ...] = tuple(getattr(problem, "constraint_names", ()))
+        self._has_jac = hasattr(problem, "jacobian")
+        self._has_rj = hasattr(problem, "residual_and_jacobian")
 
     def residual(self, v: np.ndarray) -> np.ndarray:
         self.n_residual += 1
@@ -97,34 +106,140 @@ class _Scaled:
     def jacobian(self, v: np.ndarray) -> np.ndarray:
         self.n_jacobian += 1
         u = v * self.scale
-        if hasattr(self.p, "jacobian"):
+        if self._has_jac:
             J = np.asarray(self.p.jacobian(u), dtype=float)
         else:
             J = finite_difference_jacobian(self.p.residual, u)
-        return J * self.scale[None, :]
+        return J * self.scale
 
     def residual_and_jacobian(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        u = v * self.scale
-        if hasattr(self.p, "residual_and_jacobian"):
+        if self._has_rj:
             self.n_residual += 1
             self.n_jacobian += 1
-            f, J = self.p.residual_and_jacobian(u)
-            return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale[None, :]
+            f, J = self.p.residual_and_jacobian(v * self.scale)
+            return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale
         return self.residual(v), self.jacobian(v)
 
     def unscaled_tangent(self, t: np.ndarray) -> np.ndarray:
         tu = t * self.scale
-        return tu / np.linalg.norm(tu)
+        return tu / _norm(tu)
 
     def tests(self, v: np.ndarray, t: np.ndarray) -> np.ndarray:
         if not self.test_names:
-            return np.zeros(0)
+            return _EMPTY
         return np.asarray(self.p.test_functions(v * self.scale, self.unscaled_tangent(t)), float)
 
     def constraints(self, v: np.ndarray) -> np.ndarray:
         if not self.constraint_names:
-            return np.zeros(0)
+            return _EMPTY
         return np.asarray(self.p.constraints(v * self.scale), dtype=float)
+
+
+_EMPTY = np.zeros(0)
+
+
+def _norm(x: np.ndarray) -> float:
+    """Euclidean norm of a short vector (cheaper than ``numpy.linalg.norm`` for a few entries)."""
+    return math.sqrt(float(x @ x))
+
+
+def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Solve ``G x = b``; Gaussian elimination with partial pivoting in Python for sizes <= 4.
+
+    The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n``, where the call
+    overhead of LAPACK dominates. Raises ``numpy.linalg.LinAlgError`` on an exact zero pivot.
+    """
+    m = b.shape[0]
+    if m > 4:
+        return np.linalg.solve(G, b)
+    A = G.tolist()
+    x = b.tolist()
+    for k in range(m):
+        p = k
+        big = abs(A[k][k])
+        for i in range(k + 1, m):
+            if abs(A[i][k]) > big:
+                p, big = i, abs(A[i][k])
+        if big == 0.0 or big != big:
+            raise np.linalg.LinAlgError("singular matrix")
+        if p != k:
+            A[k], A[p] = A[p], A[k]
+            x[k], x[p] = x[p], x[k]
+        Ak = A[k]
+        piv = Ak[k]
+        for i in range(k + 1, m):
+            Ai = A[i]
+            f = Ai[k] / piv
+            if f != 0.0:
+                for j in range(k + 1, m):
+                    Ai[j] -= f * Ak[j]
+                x[i] -= f * x[k]
+    for k in range(m - 1, -1, -1):
+        Ak = A[k]
+        acc = x[k]
+        for j in range(k + 1, m):
+            acc -= Ak[j] * x[j]
+        x[k] = acc / Ak[k]
+    return np.array(x)
+
+
+def _det(G: np.ndarray) -> float:
+    """Determinant of a small square matrix (Python LU for sizes <= 4)."""
+    m = G.shape[0]
+    if m > 4:
+        return float(np.linalg.det(G))
+    A = G.tolist()
+    d = 1.0
+    for k in range(m):
+        p = max(range(k, m), key=lambda i: abs(A[i][k]))
+        if A[p][k] == 0.0:
+            return 0.0
+        if p != k:
+            A[k], A[p] = A[p], A[k]
+            d = -d
+        Ak = A[k]
+        d *= Ak[k]
+        for i in range(k + 1, m):
+            Ai = A[i]
+            f = Ai[k] / Ak[k]
+            for j in range(k + 1, m):
+                Ai[j] -= f * Ak[j]
+    return d
+
+
+def _bordered(J: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``[J; t^T]``."""
+    G = np.empty((J.shape[0] + 1, J.shape[1]))
+    G[:-1] = J
+    G[-1] = t
+    return G
+
+
+def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
+            tau: np.ndarray | float) -> np.ndarray:
+    """Cubic Hermite curve through ``p0`` (unit tangent ``t0``) and ``p1`` (``t1``).
+
+    Parametrised by ``tau`` in [0, 1] (values outside extrapolate) with the chord length
+    ``d = |p1 - p0|`` as the length of the arc: ``H(tau) = h00 p0 + h10 d t0 + h01 p1 +
+    h11 d t1``. Its distance from a smooth curve through the two points with those tangents is
+    ``O(d^4)`` (the chord-length parametrisation moves points along the curve by ``O(d^3)``,
+    off it only by ``O(d^4)``).
+
+    Parameters
+    ----------
+    p0, t0, p1, t1 : numpy.ndarray, shape (dim,)
+    tau : float or numpy.ndarray, shape (k,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (dim,) or (k, dim)
+    """
+    d = _norm(p1 - p0)
+    tau = np.asarray(tau, dtype=float)
+    tt = tau[..., None]
+    t2, t3 = tt * tt, tt * tt * tt
+    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + tt) * (d * t0)
+            + (3 * t2 - 2 * t3) * p1 + (t3 - t2) * (d * t1))
 
 
 def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
@@ -140,15 +255,16 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     if t_ref is None:
         _, _, vh = np.linalg.svd(J)
         return vh[-1] / np.linalg.norm(vh[-1])
-    B = np.vstack([J, t_ref[None, :]])
     rhs = np.zeros(J.shape[1])
     rhs[-1] = 1.0
     try:
-        t = np.linalg.solve(B, rhs)
+        t = _solve(_bordered(J, t_ref), rhs)
+        if not np.all(np.isfinite(t)):
+            raise np.linalg.LinAlgError("singular matrix")
     except np.linalg.LinAlgError:
         _, _, vh = np.linalg.svd(J)
         t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
-    return t / np.linalg.norm(t)
+    return t / _norm(t)
 
 
 def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
@@ -156,17 +272,18 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
             ) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
     """Newton on ``[F; t_plane . (v - anchor) - h]`` (minimum-norm Newton if ``t_plane`` is None).
 
-    Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``), so points
-    sit at the rounding floor rather than just below ``tol``. Returns the point, success, the
+    Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``; skipped when
+    ``||F|| <= 4 eps`` already), so points sit at the rounding floor rather than just below
+    ``tol``. Returns the point, success, the
     number of iterations and the Jacobian at (or next to) the point.
     """
-    start = v.copy()
+    start = v
     J = None
     for it in range(max_iter + 1):
         f, J = sp.residual_and_jacobian(v)
-        if not np.all(np.isfinite(f)):
+        fn = _norm(f)
+        if not math.isfinite(fn):
             return v, False, it, None
-        fn = float(np.linalg.norm(f))
         plane = 0.0 if t_plane is None else float(t_plane @ (v - anchor) - h)
         converged = fn <= tol and abs(plane) <= 1e3 * EPS * (1.0 + abs(h))
         if it == max_iter and not converged:
@@ -175,19 +292,21 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
             if t_plane is None:
                 dv = -np.linalg.lstsq(J, f, rcond=None)[0]
             else:
-                G = np.vstack([J, t_plane[None, :]])
-                dv = -np.linalg.solve(G, np.concatenate([f, [plane]]))
+                rhs = np.empty(f.size + 1)
+                rhs[:-1] = f
+                rhs[-1] = plane
+                dv = -_solve(_bordered(J, t_plane), rhs)
         except np.linalg.LinAlgError:
             return v, converged, it, J
         if converged:
-            if polish and np.all(np.isfinite(dv)):
+            if polish and fn > _FLOOR and math.isfinite(_norm(dv)):
                 v2 = v + dv
                 f2 = sp.residual(v2)
-                if np.linalg.norm(f2) < fn:
+                if _norm(f2) < fn:
                     return v2, True, it + 1, J
             return v, True, it, J
         v = v + dv
-        if not np.all(np.isfinite(v)) or np.linalg.norm(v - start) > max_move:
+        if not math.isfinite(_norm(v)) or _norm(v - start) > max_move:
             return v, False, it + 1, None
     return v, False, max_iter, None
 
@@ -233,7 +352,7 @@ def project(problem: ContinuationProblem, u0: np.ndarray, *, tol: float = 1e-13,
 
 def _bordered_det(J: np.ndarray, t: np.ndarray) -> float:
     """``det [J; t^T]``: changes sign at a simple branch point (Allgower & Georg, ch. 8)."""
-    return float(np.linalg.det(np.vstack([J, t[None, :]])))
+    return _det(_bordered(J, t))
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
@@ -241,7 +360,7 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[floa
     d = b - a
     L2 = float(d @ d)
     lam = 0.0 if L2 == 0 else float(np.clip((p - a) @ d / L2, 0.0, 1.0))
-    return float(np.linalg.norm(p - (a + lam * d))), lam
+    return _norm(p - (a + lam * d)), lam
 
 
 def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int = 1,
@@ -251,7 +370,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
           fold_components: Sequence[int] = (), scale: Sequence[float] | None = None,
           callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
           detect_closed: bool = True, detect_branch_points: bool = True,
-          event_floor: float = 1e-9, project_start: bool = True) -> Branch:
+          event_floor: float = 1e-9, project_start: bool = True,
+          start_slack: float = 1e-12) -> Branch:
     """Trace one direction of the curve through ``u0``.
 
     Parameters
@@ -297,6 +417,9 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         is constant) and are ignored.
     project_start : bool
         Project ``u0`` onto the curve first.
+    start_slack : float, default 1e-12
+        A start point violating a constraint by at most this much (rounding errors of the
+        projection onto a curve that starts on a bound) counts as lying on it.
 
     Returns
     -------
@@ -322,6 +445,9 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             raise ConvergenceError(f"the start point {u0} is not on the curve (||F|| > {tol:g} "
                                    "after 30 Newton steps)")
     g0 = sp.constraints(v)
+    # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
+    # errors) may sit a few ulp outside it: that is "on the boundary"
+    g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
     if np.any(g0 < 0):
         j = int(np.argmin(g0))
         raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} "
@@ -346,31 +472,104 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         end = "callback"
         max_points = 0
 
+    # points of the current step already corrected, (h, v, t) sorted by h: the predictor of a
+    # new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
+    # Brent's iterates close in on a special point one Newton step (or none) suffices
+    known: list[tuple[float, np.ndarray, np.ndarray]] = []
+
     def corrected(h_: float) -> tuple[np.ndarray, np.ndarray]:
-        vv, ok_, _, JJ = _newton(sp, v + h_ * t, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
+        k = 1
+        while k < len(known) - 1 and known[k][0] < h_:
+            k += 1
+        (ha, va, ta), (hb, vb, tb) = known[k - 1], known[k]
+        if hb > ha:
+            guess = hermite(va, ta, vb, tb, (h_ - ha) / (hb - ha))
+            guess = guess + (h_ - float(t @ (guess - v))) * t  # onto the plane exactly
+        else:
+            guess = v + h_ * t
+        vv, ok_, _, JJ = _newton(sp, guess, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
+        if not ok_:
+            vv, ok_, _, JJ = _newton(sp, v + h_ * t, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
         if not ok_:
             raise ConvergenceError("corrector failed while locating a special point")
-        return vv, tangent(JJ, t)
+        tt = tangent(JJ, t)
+        if ha < h_ < hb:
+            known.insert(k, (h_, vv, tt))
+        return vv, tt
 
+    def boundary_point(j: int, h_b: float, ga: float, gb: float
+                       ) -> tuple[float, np.ndarray, np.ndarray] | None:
+        """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
+        the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
+        for the linear and quadratic bounds of a box or a domain) from the Hermite point at the
+        linear interpolate of ``g_j``; None if it does not converge inside the step (the caller
+        then brackets with :func:`continuation.events.locate`)."""
+        if not (ga > 0 > gb):
+            return None
+        h0 = h_b * ga / (ga - gb)
+        uu = hermite(v, t, v_new, t_new, h0 / h) if h > 0 else v + h0 * t
+        gscale = max(1.0, abs(ga), abs(gb))
+        delta = 1e-6
+        eye = np.eye(uu.size) * delta
+        for _ in range(8):
+            f, JJ = sp.residual_and_jacobian(uu)
+            gj = float(sp.constraints(uu)[j])
+            fn = _norm(f)
+            if not math.isfinite(fn) or not math.isfinite(gj):
+                return None
+            converged = fn <= tol and abs(gj) <= 8 * EPS * gscale
+            grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
+                             for e in eye])
+            rhs = np.empty(f.size + 1)
+            rhs[:-1] = f
+            rhs[-1] = gj
+            try:
+                du = _solve(_bordered(JJ, grad), rhs)
+            except np.linalg.LinAlgError:
+                return None
+            if converged:
+                if fn > _FLOOR:  # polish, as the corrector does
+                    u2 = uu - du
+                    if _norm(sp.residual(u2)) < fn and abs(float(sp.constraints(u2)[j])) <= 8 * EPS * gscale:
+                        uu = u2
+                hs = float(t @ (uu - v))
+                if not (-1e-12 * h <= hs <= h_b * (1 + 1e-12)):
+                    return None
+                return min(max(hs, 0.0), h_b), uu, tangent(JJ, t)
+            uu = uu - du
+        return None
+
+    prev: tuple[np.ndarray, np.ndarray] | None = None  # the accepted point before v
+    use_hermite = True
     while len(pts) < max_points:
         if arc[-1] >= max_arclength:
             end = "max_arclength"
             break
-        v_new, ok, it, J_new = _newton(sp, v + h * t, t, v, h, tol, max_iter, 2.0 * h + 1e-12)
+        # predictor: extrapolate the cubic Hermite curve of the last step (error O(h^3) to
+        # O(h^4) instead of the tangent's O(h^2)); the plain tangent after a failure
+        if prev is not None and use_hermite:
+            d = _norm(v - prev[0])
+            guess = hermite(prev[0], prev[1], v, t, 1.0 + h / d) if d > 0 else v + h * t
+        else:
+            guess = v + h * t
+        v_new, ok, it, J_new = _newton(sp, guess, t, v, h, tol, max_iter, 2.0 * h + 1e-12)
         n_newton += it
         angle = 0.0
         if ok:
             t_new = tangent(J_new, t)
-            angle = float(np.arccos(np.clip(t @ t_new, -1.0, 1.0)))
+            angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
             ok = angle <= max_angle or h <= min_step
         if not ok:
             if h <= min_step:
                 end = "step_failure"
                 break
             h = max(h / 2.0, min_step)
+            use_hermite = False
             continue
+        use_hermite = True
 
         # --- special points between v (h = 0) and v_new (h) -----------------------------
+        known[:] = [(0.0, v, t), (h, v_new, t_new)]
         events: list[tuple[float, str, str, np.ndarray, np.ndarray]] = []
         g_new = sp.constraints(v_new)
         stop_event = None
@@ -381,12 +580,17 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         h_b, at_b, g_b = h, (v_new, t_new), g_new
         while crossed:
             j = crossed.pop(0)
-            try:
-                hs, vs, ts = locate(corrected, lambda vv, tt, j=j: sp.constraints(vv)[j], 0.0, h_b,
-                                    float(g[j]), float(g_b[j]), (v, t), at_b)
-            except (ConvergenceError, ValueError):
-                hs, vs, ts = h_b, at_b[0], at_b[1]
-            if stop_event is None or hs < stop_event[0] - 1e-9 * h:
+            found = boundary_point(j, h_b, float(g[j]), float(g_b[j]))
+            if found is not None:
+                hs, vs, ts = found
+            else:
+                try:
+                    hs, vs, ts = locate(corrected, lambda vv, tt, j=j: sp.constraints(vv)[j], 0.0, h_b,
+                                        float(g[j]), float(g_b[j]), (v, t), at_b)
+                except (ConvergenceError, ValueError):
+                    hs, vs, ts = h_b, at_b[0], at_b[1]
+            # j is violated at the current stop point, so its zero comes first (ties included)
+            if stop_event is None or hs <= stop_event[0] + 1e-9 * h:
                 stop_event = (hs, "boundary", sp.constraint_names[j], vs, ts)
                 g_s = sp.constraints(vs)
                 crossed = [k for k in crossed if g_s[k] < 0]
@@ -420,7 +624,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         close_at = None
         if detect_closed and len(pts) >= 4 and arc[-1] > 3.0 * h:
             dist, lam = _segment_distance(v_start, v, v_new)
-            seg = float(np.linalg.norm(v_new - v))
+            seg = _norm(v_new - v)
             if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (v_new - v) @ t_start > 0:
                 close_at = lam * h
         events.sort(key=lambda e: e[0])
@@ -428,14 +632,14 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         for hs, kind, name, vs, ts in events:
             if hs < limit:
                 pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
-                arc.append(arc[-1] + float(np.linalg.norm(vs - pts[-2])))
+                arc.append(arc[-1] + _norm(vs - pts[-2]))
                 if callback is not None and callback(vs * sc, sp.unscaled_tangent(ts), kind) is False:
                     end = "callback"
         if end == "callback":
             break
         if close_at is not None and (stop_event is None or close_at <= h_stop):
             pts.append(v_start.copy()); tans.append(t_start.copy()); kinds.append("closed"); details.append("")
-            arc.append(arc[-1] + float(np.linalg.norm(v_start - pts[-2])))
+            arc.append(arc[-1] + _norm(v_start - pts[-2]))
             closed, end = True, "closed"
             break
         if stop_event is not None:
@@ -445,16 +649,17 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                 end = "boundary"
                 break
             pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
-            arc.append(arc[-1] + float(np.linalg.norm(vs - pts[-2])))
+            arc.append(arc[-1] + _norm(vs - pts[-2]))
             if callback is not None:
                 callback(vs * sc, sp.unscaled_tangent(ts), kind)
             end = "boundary"
             break
         pts.append(v_new); tans.append(t_new); kinds.append("regular"); details.append("")
-        arc.append(arc[-1] + float(np.linalg.norm(v_new - v)))
+        arc.append(arc[-1] + _norm(v_new - v))
         if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), "regular") is False:
             end = "callback"
             break
+        prev = (v, t)
         v, t, g, tests, bp = v_new, t_new, g_new, tests_new, bp_new
         # --- step control --------------------------------------------------------------
         factor = grow if it <= 3 else (1.0 if it <= 5 else 0.7)

@@ -26,13 +26,20 @@ when ``fr_inv``, ``q`` or ``alpha_v`` is held at 0) are deflated when the traili
 is exactly zero at every sample point: ``p(s) / s`` is then used, so the structural mode does
 not make every point neutral.
 
-Derivatives with respect to the parameters use the fourth-order central stencil
+Derivatives with respect to the parameters. For the sliding model (eq. 11) the coefficients
+are low-degree polynomials in the parameters and both they and their derivatives are written
+out here (:func:`sliding_coefficients`, scalar Python arithmetic, the same operations as
+:meth:`stability.models.sliding.Sliding.coefficients` so the values agree bit for bit, including
+the compensated ``A_G = 1 - mu q^2``). Any other model uses the fourth-order central stencil
 ``(f(x-2h) - 8 f(x-h) + 8 f(x+h) - f(x+2h)) / 12h`` with ``h = 1e-3 max(1, |x|)`` on the
 coefficients (all in one batched call of the model): exact for coefficients polynomial of degree
-<= 4 in the parameter (true for eq. 11), truncation ``O(h^4) ~ 1e-12`` otherwise (the rational
-``kappa``, ``sigma_hat`` of eq. 8), rounding about ``1e-13`` relative. The derivative in ``w`` is
-analytic. Accuracy of points depends only on the residual; the Jacobian's accuracy sets
-Newton's rate and the tangent.
+<= 4 in the parameter, truncation ``O(h^4) ~ 1e-12`` otherwise (the rational ``kappa``,
+``sigma_hat`` of eq. 8), rounding about ``1e-13`` relative. The derivative in ``w`` is analytic
+(Horner's scheme with its derivative). Accuracy of points depends only on the residual; the
+Jacobian's accuracy sets Newton's rate and the tangent.
+
+Evaluation at one point (:meth:`NeutralCondition.residual_and_jacobian`, the continuation's inner
+loop) is scalar: Python floats and complex numbers, no batched numpy call on one-element arrays.
 """
 
 from __future__ import annotations
@@ -43,12 +50,14 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from .models import LinearModel, get_model
+from .models.sliding import Sliding
 
-__all__ = ["NeutralCondition", "conservative_phase", "other_roots"]
+__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "sliding_coefficients"]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
 _WEIGHTS = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0
 _REL_H = 1e-3
+_IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 
 
 def _i_power(k: np.ndarray) -> np.ndarray:
@@ -73,6 +82,87 @@ def conservative_phase(c: np.ndarray) -> int | None:
     if np.all(d.real == 0):
         return 1
     return None
+
+
+_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.inertia
+
+
+def _two_product(a: float, b: float) -> tuple[float, float]:
+    """``a b = p + e`` exactly (Dekker), scalar twin of :func:`stability.inertia._two_product`."""
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+def _inertia_g(q: float, mu: float) -> float:
+    """``A_G = 1 - mu q^2`` compensated: the operations of :func:`stability.inertia.transverse_inertia_g`."""
+    t, te = _two_product(q, q)
+    u, ue = _two_product(mu, t)
+    ue = ue + mu * te
+    s = 1.0 + -u
+    bb = s - 1.0
+    se = (1.0 - (s - bb)) + (-u - bb)
+    return s + (se - ue)
+
+
+#: parameters of eq. (11) in the order of the derivative table
+_SLIDING_PARAMS = ("q", "fr_inv", "sigma", "alpha_v", "mu")
+
+
+def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float,
+                         derivatives: bool = True) -> tuple[list[complex], dict[str, list[complex]] | None]:
+    """Coefficients of eq. (11), ``mu det(s M - A)``, and their exact parameter derivatives.
+
+    ``c3 = mu A_G``, ``c2 = alpha_v A_C - i mu sigma``,
+    ``c1 = -mu^2 q fr_inv - i alpha_v (sigma + mu (1 + q))``, ``c0 = -mu alpha_v q fr_inv`` with
+    ``A_G = 1 - mu q^2`` (compensated) and ``A_C = A_G + mu (1 + q)^2 = 1 + mu (1 + 2 q)``.
+
+    Parameters
+    ----------
+    q, fr_inv, sigma, alpha_v, mu : float
+        One point (scalars).
+    derivatives : bool
+        Also return ``dc/dparameter``.
+
+    Returns
+    -------
+    c : list of complex
+        ``[c3, c2, c1, c0]``, the same values as
+        :meth:`stability.models.sliding.Sliding.coefficients` (same operations).
+    dc : dict of str to list of complex, or None
+        ``{name: [dc3, dc2, dc1, dc0]}`` for each of the five parameters.
+    """
+    a_g = _inertia_g(q, mu)
+    a_c = a_g + mu * (1.0 + q) ** 2
+    c = [complex(mu * a_g, 0.0), complex(alpha_v * a_c, -(mu * sigma)),
+         complex(-mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q)))),
+         complex(-mu * alpha_v * q * fr_inv, 0.0)]
+    if not derivatives:
+        return c, None
+    dc = {
+        "q": [complex(-2.0 * mu * mu * q), complex(2.0 * mu * alpha_v),
+              complex(-mu * mu * fr_inv, -alpha_v * mu), complex(-mu * alpha_v * fr_inv)],
+        "fr_inv": [0j, 0j, complex(-mu * mu * q), complex(-mu * alpha_v * q)],
+        "sigma": [0j, complex(0.0, -mu), complex(0.0, -alpha_v), 0j],
+        "alpha_v": [0j, complex(a_c), complex(0.0, -(sigma + mu * (1.0 + q))), complex(-mu * q * fr_inv)],
+        "mu": [complex(1.0 - 2.0 * mu * q * q), complex(alpha_v * (1.0 + 2.0 * q), -sigma),
+               complex(-2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q)), complex(-alpha_v * q * fr_inv)],
+    }
+    return c, dc
+
+
+def _horner(c: Sequence[complex], z: complex) -> tuple[complex, complex]:
+    """``p(z)`` and ``p'(z)`` of ``c`` (highest first)."""
+    p, dp = 0j, 0j
+    for ck in c:
+        dp = dp * z + p
+        p = p * z + ck
+    return p, dp
 
 
 def _divide_root(c: list[complex], r: complex) -> list[complex]:
@@ -158,6 +248,25 @@ class NeutralCondition:
                              "the collision form needs p(i w) = e^(i theta) P(w) with P real")
         self.form = form
         self.degree = n - self.deflate
+        # scalar analytic path (exact derivatives) for the sliding model itself
+        self._analytic = type(self.model) is Sliding
+        self._ncoef = self.degree + 1
+
+    def _scalar(self, values: Sequence[float], derivatives: bool
+                ) -> tuple[list[complex], list[list[complex]] | None]:
+        """Deflated coefficients at one point (list) and ``dc/d free`` (one list per free)."""
+        if self._analytic:
+            p = dict(self.fixed)
+            for name, v in zip(self.free, values):
+                p[name] = float(v)
+            c, dc = sliding_coefficients(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"],
+                                         derivatives)
+            m = self._ncoef
+            return c[:m], None if dc is None else [dc[name][:m] for name in self.free]
+        if derivatives:
+            c, dc = self.coefficients_and_derivatives(np.asarray(values, dtype=float))
+            return c.tolist(), [row.tolist() for row in dc]
+        return self.coefficients(np.asarray(values, dtype=float)[None, :])[0].tolist(), None
 
     # -- coefficients ---------------------------------------------------------------------
     def _raw(self, values: np.ndarray) -> np.ndarray:
@@ -204,44 +313,48 @@ class NeutralCondition:
     def residual_and_jacobian(self, values: np.ndarray, w: float, jacobian: bool = True
                               ) -> tuple[np.ndarray, np.ndarray | None]:
         """``F`` (2,) and ``dF/d(free..., w)`` (2, len(free)+1) at one point."""
-        values = np.asarray(values, dtype=float)
-        if jacobian:
-            c, dc = self.coefficients_and_derivatives(values)
-        else:
-            c, dc = self.coefficients(values[None, :])[0], None
-        n = c.size - 1
-        powers = np.arange(n, -1, -1)
+        c, dc = self._scalar(values, jacobian)
+        w = float(w)
+        n = len(c) - 1
         if self.form == "crossing":
-            z = (1j * w) ** powers
-            p = c @ z
-            S = float(np.sum(np.abs(c))) * max(1.0, abs(w)) ** n or 1.0
-            F = np.array([p.real, p.imag]) / S
+            p, dpz = _horner(c, 1j * w)
+            S = sum(abs(ck) for ck in c) * max(1.0, abs(w)) ** n or 1.0
+            F = np.array([p.real / S, p.imag / S])
             if not jacobian:
                 return F, None
-            dp = dc @ z
-            dz = np.where(powers > 0, powers * (1j * w) ** np.maximum(powers - 1, 0), 0.0)
-            dpw = 1j * (c @ dz)
-            J = np.empty((2, values.size + 1))
-            J[0, :-1], J[1, :-1] = dp.real, dp.imag
-            J[0, -1], J[1, -1] = dpw.real, dpw.imag
-            return F, J / S
-        a = self._real_poly(c)
-        P = np.polynomial.polynomial
-        ar = a[::-1]  # lowest first
-        d1 = P.polyder(ar)
-        d2 = P.polyder(d1) if d1.size > 1 else np.zeros(1)
-        S0 = float(np.sum(np.abs(ar))) * max(1.0, abs(w)) ** n or 1.0
-        S1 = n * float(np.sum(np.abs(ar))) * max(1.0, abs(w)) ** max(n - 1, 0) or 1.0
-        F = np.array([P.polyval(w, ar) / S0, P.polyval(w, d1) / S1])
+            J = np.empty((2, len(dc) + 1))
+            for i, row in enumerate(dc):
+                d = _horner(row, 1j * w)[0]
+                J[0, i], J[1, i] = d.real / S, d.imag / S
+            dpw = 1j * dpz
+            J[0, -1], J[1, -1] = dpw.real / S, dpw.imag / S
+            return F, J
+        a = self._real_poly_list(c)
+        norm = sum(abs(x) for x in a)
+        S0 = norm * max(1.0, abs(w)) ** n or 1.0
+        S1 = n * norm * max(1.0, abs(w)) ** max(n - 1, 0) or 1.0
+        P, dP = _horner(a, w)
+        F = np.array([P.real / S0, dP.real / S1])
         if not jacobian:
             return F, None
-        da = np.array([self._real_poly(x)[::-1] for x in dc])  # (k, n+1) lowest first
-        J = np.empty((2, values.size + 1))
-        J[0, :-1] = [P.polyval(w, x) / S0 for x in da]
-        J[1, :-1] = [P.polyval(w, P.polyder(x)) / S1 for x in da]
-        J[0, -1] = P.polyval(w, d1) / S0
-        J[1, -1] = P.polyval(w, d2) / S1
+        d1 = [x * (n - k) for k, x in enumerate(a[:-1])]  # P' (highest first)
+        J = np.empty((2, len(dc) + 1))
+        for i, row in enumerate(dc):
+            da = self._real_poly_list(row)
+            v, dv = _horner(da, w)
+            J[0, i], J[1, i] = v.real / S0, dv.real / S1
+        J[0, -1] = dP.real / S0
+        J[1, -1] = _horner(d1, w)[1].real / S1 if d1 else 0.0
         return F, J
+
+    def _real_poly_list(self, c: Sequence[complex]) -> list[complex]:
+        """``a_k`` of ``P(w) = e^{-i theta} p(i w)`` (highest first), as complex with zero imag."""
+        n = len(c) - 1
+        out = []
+        for k, ck in enumerate(c):
+            d = ck * _IPOW[(n - k) % 4]
+            out.append(complex(d.real if self.phase == 0 else d.imag))
+        return out
 
     def backward_error(self, values: np.ndarray, w: float) -> float:
         """``||F||``: ``|p(i w)| / (||c||_1 max(1, |w|)^n)`` (with ``P'`` in the collision form)."""
@@ -250,5 +363,5 @@ class NeutralCondition:
 
     def other_modes(self, values: np.ndarray, w: float) -> np.ndarray:
         """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros excluded)."""
-        c = self.coefficients(np.asarray(values, float)[None, :])[0]
+        c, _ = self._scalar(np.asarray(values, float).tolist(), False)
         return other_roots(c, w, 1 if self.form == "crossing" else 2)

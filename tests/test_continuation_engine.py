@@ -147,3 +147,45 @@ def test_errors():
         project(Circle(), [0.0, 0.0], max_iter=5)
     with pytest.raises(ValueError, match="violates constraint 'y <= 2'"):
         trace(Cubic(), [24.0, 3.0])  # on the curve, outside |y| <= 2
+
+
+def test_dense_output_of_a_circle_is_fourth_order():
+    """Cubic Hermite between points of the unit circle, against the exact circle.
+
+    Reference (derived here): for an arc of angle theta = 2a between points with exact unit
+    tangents, the chord-length Hermite curve's midpoint is ``(p0 + p1)/2 + d (t0 - t1)/8`` with
+    ``d = 2 sin a``, at radius ``cos a + sin(a)^2 / 2 = 1 - a^4/8 + O(a^6)``: a radial error
+    ``theta^4 / 128``. The traced arcs turn by at most ``max_angle``, so the error is bounded by
+    ``max_angle^4 / 128`` (plus rounding), and halving ``max_angle`` divides it by about 16.
+    """
+    from continuation import dense, hermite_samples
+
+    errs = []
+    for max_angle in (0.4, 0.2):
+        br = trace(Circle(), [1.0, 0.0], max_angle=max_angle, max_step=1.0, step=0.1)
+        assert br.closed
+        d = dense(br, 64)
+        # the samples include the traced points themselves
+        assert np.array_equal(d[::64], br.points)
+        r = np.hypot(d[:, 0], d[:, 1])
+        err = float(np.max(np.abs(r - 1)))
+        assert err <= max_angle**4 / 128 * 1.05 + 1e-15
+        errs.append(err)
+    assert 12 <= errs[0] / errs[1] <= 20
+    # one arc, exact tangents: the midpoint radius is cos a + sin(a)^2 / 2 exactly
+    a = 0.3
+    p0, p1 = np.array([np.cos(a), -np.sin(a)]), np.array([np.cos(a), np.sin(a)])
+    t0, t1 = np.array([np.sin(a), np.cos(a)]), np.array([-np.sin(a), np.cos(a)])
+    mid = hermite_samples(np.array([p0, p1]), np.array([t0, t1]), 2)[1]
+    assert abs(mid[0] - (np.cos(a) + np.sin(a) ** 2 / 2)) <= 1e-15 and mid[1] == 0
+
+
+def test_dense_errors():
+    from continuation import dense, hermite_samples
+
+    with pytest.raises(ValueError, match="same shape"):
+        hermite_samples(np.zeros((3, 2)), np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="n >= 1"):
+        hermite_samples(np.zeros((3, 2)), np.ones((3, 2)), 0)
+    with pytest.raises(TypeError, match="Branch"):
+        dense([1, 2, 3])

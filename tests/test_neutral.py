@@ -31,8 +31,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from continuation import fold_curve, neutral_curve
+from continuation import dense, fold_curve, neutral_curve
+from stability.models import get_model
 from stability.models.base import LinearModel
+from stability.neutrality import sliding_coefficients
 
 MU = 2.28
 
@@ -75,6 +77,50 @@ def test_fold_is_the_papers_sigma_114(curve_fr0):
     assert abs(float(fold.q[0]) - q_star) <= 1e-12
     assert abs(float(fold.sigma[0]) - s_star) <= 1e-14
     assert round(s_star, 2) == 1.14
+
+
+def test_dense_output_against_the_closed_form(curve_fr0):
+    """``continuation.dense`` (cubic Hermite with the stored tangents) between the traced points
+    of the fr_inv = 0 curve, against ``sigma = (1 - mu q^2)/(1 + q)`` and ``w = 1/(1 + q)``.
+
+    Tolerance: the Hermite error is ``O(h^4)``; at the default steps (``max_step = 0.05``,
+    ``max_angle = 0.1``) it was measured at 5.6e-7 in sigma (largest near q = -1/2, where the
+    fourth derivative ``24 (1 - mu)/(1 + q)^5`` of the closed form is largest), so 2e-6 leaves a
+    margin of ~3.5; the polyline's chord error there is ~5e-4. Doubling both step limits must
+    multiply the error by about 2^4 = 16 (we accept 8 to 32).
+    """
+    d = dense(curve_fr0, 32)
+    q, s, w = d.q.values, d.sigma.values, d.frequency.values
+    assert d.sizes["sample"] == 32 * (curve_fr0.sizes["point"] - 1) + 1
+    assert np.array_equal(q[::32], curve_fr0.q.values)  # through the traced points
+    e_fine = np.max(np.abs(s - sigma_closed(q, 0.0)))
+    assert e_fine <= 2e-6
+    assert np.max(np.abs(w - 1 / (1 + q))) <= 2e-6
+    coarse = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
+                           max_step=0.1, max_angle=0.2)
+    dc = dense(coarse, 32)
+    e_coarse = np.max(np.abs(dc.sigma.values - sigma_closed(dc.q.values, 0.0)))
+    assert 8 <= e_coarse / e_fine <= 32
+
+
+def test_sliding_analytic_coefficients_match_the_model():
+    """The scalar fast path of the neutral condition (stability.neutrality.sliding_coefficients)
+    against the model's batched coefficients (the same operations: bit for bit) and its
+    derivatives against the 4th-order central stencil on the model (the coefficients are
+    polynomials of degree <= 2 in each parameter, so the stencil is exact up to rounding,
+    ~1e-13 relative at h = 1e-3; 1e-10 leaves a wide margin)."""
+    model = get_model("sliding")
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        p = dict(q=rng.uniform(-0.6, 0.6), fr_inv=rng.uniform(0, 3), sigma=rng.uniform(0, 2),
+                 alpha_v=rng.uniform(0, 3), mu=MU)
+        c, dc = sliding_coefficients(**p)
+        assert np.array_equal(np.array(c), model.coefficients(**p))
+        for name in p:
+            h = 1e-3
+            f = [model.coefficients(**{**p, name: p[name] + k * h}) for k in (-2, -1, 1, 2)]
+            num = (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
+            assert np.allclose(dc[name], num, rtol=1e-10, atol=1e-10)
 
 
 @pytest.mark.parametrize("alpha_v", [1e-3, 0.5, 1e3])
@@ -152,6 +198,13 @@ def test_curve_that_turns_back():
     bp = ds.where(ds.kind == "branch_point", drop=True)
     assert bp.sizes["point"] >= 1
     assert np.min(np.abs(bp.fr_inv.values - 1 / MU)) <= 1e-10
+    # On the line q = 0 (sigma = 1, A_G = 1): p(i w) = (w - w^2)(alpha_v (1 + mu) + i mu w), so
+    # the modes are the traced s = i, a structurally neutral s = 0 and s = -alpha_v (1+mu)/mu.
+    # No other mode grows: the line is a stability boundary and must be marked leading, even
+    # though the computed zero root comes out as +-1e-17.
+    line = ds.where((np.abs(ds.q) < 1e-12) & (ds.kind == "regular"), drop=True)
+    assert line.sizes["point"] > 3
+    assert bool(line.leading.all())
 
 
 class TwoModes(LinearModel):
