@@ -18,7 +18,7 @@ import xarray as xr
 from .io import PRODUCT_ATTR
 from .models import get_model
 from .parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
-from .spectra import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+from .spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 
 __all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE", "package_version"]
 
@@ -38,7 +38,8 @@ def package_version() -> str:
 
 
 def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU,
-          mask_unphysical: bool = False, method: str = "polynomial") -> xr.Dataset:
+          mask_unphysical: bool = False, method: str = DEFAULT_METHOD,
+          chunks: int | dict[str, int] | None = None) -> xr.Dataset:
     """Spectra of a linear model over a grid of parameters, as an xarray Dataset.
 
     Parameters
@@ -52,8 +53,14 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         If False, any grid point outside the physical domain refuses the whole request
         (:class:`~stability.parameters.DomainError`, no partial dataset). If True, those
         points get NaN and ``physical = 0``.
-    method : {"polynomial", "lapack"}
+    method : {"kernel", "polynomial", "lapack"}
         Eigenvalue method (:data:`stability.spectra.METHODS`).
+    chunks : int or dict of str to int, optional
+        If given, the dataset is lazy and dask-backed (:mod:`stability.distributed`): chunk
+        sizes along the grid dimensions (an int: the same along each; a dict: by dimension,
+        the others whole). Nothing is computed until the values are used; the domain is
+        checked at once. Write it chunk by chunk with
+        :func:`stability.distributed.write_atlas` (or ``write_dataset``).
 
     Returns
     -------
@@ -85,12 +92,19 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
             grid[k] = v.reshape(shape)
         else:
             grid[k] = v
-    sp = spectrum(m, mask_unphysical=mask_unphysical, method=method, **grid)
-    full = tuple(values[d].size for d in dims)
-    ev = np.broadcast_to(sp.eigenvalues, full + (m.n_modes,))
-    bound = np.broadcast_to(sp.error_bound, full + (m.n_modes,))
-    stab = np.broadcast_to(sp.stability, full)
-    inside = np.broadcast_to(sp.inside, full)
+    if chunks is not None:
+        from .distributed import lazy_spectra
+
+        growth, freq, bound, stab, inside = lazy_spectra(m, values, dims, chunks, mask_unphysical=mask_unphysical,
+                                                         method=method)
+    else:
+        sp = spectrum(m, mask_unphysical=mask_unphysical, method=method, **grid)
+        full = tuple(values[d].size for d in dims)
+        ev = np.broadcast_to(sp.eigenvalues, full + (m.n_modes,))
+        growth, freq = ev.real.copy(), ev.imag.copy()
+        bound = np.broadcast_to(sp.error_bound, full + (m.n_modes,)).copy()
+        stab = np.broadcast_to(sp.stability, full).astype(np.int8)
+        inside = np.broadcast_to(sp.inside, full).astype(np.int8)
 
     mdims = (*dims, "mode")
     unit = {"units": "1"}
@@ -102,21 +116,21 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
     coords["mode"] = ("mode", np.arange(m.n_modes),
                       {"long_name": "mode index, modes sorted by decreasing growth rate", **unit})
     data_vars = {
-        "growth_rate": (mdims, ev.real.copy(),
+        "growth_rate": (mdims, growth,
                         {"long_name": "growth rate Re s of each mode, in units of the spin rate", **unit}),
-        "frequency": (mdims, ev.imag.copy(),
+        "frequency": (mdims, freq,
                       {"long_name": "frequency Im s of each mode, fixed frame, in units of the spin rate",
                        **unit}),
-        "eigenvalue_error_bound": (mdims, bound.copy(),
+        "eigenvalue_error_bound": (mdims, bound,
                                    {"long_name": "absolute error bound of each eigenvalue s", **unit}),
-        "max_growth_rate": (tuple(dims), ev[..., 0].real.copy(),
+        "max_growth_rate": (tuple(dims), growth[..., 0].copy(),
                             {"long_name": "largest growth rate max Re s", **unit}),
-        "stability": (tuple(dims), stab.astype(np.int8),
+        "stability": (tuple(dims), stab,
                       {"long_name": "linear stability of the upright spin",
                        "flag_values": np.array([-1, STABLE, MARGINAL, UNSTABLE], dtype=np.int8),
                        "flag_meanings": "outside_domain " + FLAG_MEANINGS,
                        "comment": MARGINAL_RULE}),
-        "physical": (tuple(dims), inside.astype(np.int8),
+        "physical": (tuple(dims), inside,
                      {"long_name": "point lies in the physical domain",
                       "flag_values": np.array([0, 1], dtype=np.int8),
                       "flag_meanings": "outside_domain inside_domain",

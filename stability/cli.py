@@ -17,7 +17,7 @@ from collections.abc import Sequence
 __all__ = ["main", "COMMANDS"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
-COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold")
+COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "bench")
 
 _NEGATIVE_VALUE = re.compile(r"^-[\d.]")
 

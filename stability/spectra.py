@@ -28,14 +28,20 @@ from .models import LinearModel, get_model
 from .parameters import DEFAULT_MU, check_domain
 from .roots import UNIT_ROUNDOFF, polynomial_roots
 
-__all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS"]
+__all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
+           "DEFAULT_METHOD"]
 
 STABLE, MARGINAL, UNSTABLE = 0, 1, 2
 FLAG_MEANINGS = "stable marginal unstable"
 
-#: eigenvalue methods: "polynomial" (default: structured roots of det(sM - A), polished) and
-#: "lapack" (batched numpy.linalg.eigvals of solve(M, A); a cross-check)
-METHODS = ("polynomial", "lapack")
+#: eigenvalue methods: "kernel" (default: the compiled one-pass kernel of stability.kernel,
+#: Cardano + Weierstrass polishing, the fastest at full accuracy, docs/performance.md),
+#: "polynomial" (structured roots of det(sM - A) by batched companion eigenvalues + Newton) and
+#: "lapack" (batched numpy.linalg.eigvals of solve(M, A)); the last two are cross-checks
+METHODS = ("kernel", "polynomial", "lapack")
+
+#: the default eigenvalue method
+DEFAULT_METHOD = "kernel"
 
 
 @dataclass(frozen=True)
@@ -108,6 +114,26 @@ def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
     return ev, bound, np.zeros(ev.shape, dtype=bool)
 
 
+def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray):
+    """The compiled kernel over the whole grid (outside points: NaN, flag -1), or None if the
+    model's degree is beyond it."""
+    from . import kernel
+    from .models.sliding import Sliding
+
+    if isinstance(m, Sliding):
+        return kernel.sliding_spectrum(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"], inside)
+    if m.n_modes > kernel.MAX_DEGREE:
+        return None
+    shape = inside.shape
+    c = np.zeros(shape + (m.n_modes + 1,), dtype=complex)
+    c[..., 0] = 1.0  # placeholder leading coefficient at points outside the domain
+    if inside.all():
+        c = m.coefficients(**p)
+    elif inside.any():
+        c[inside] = m.coefficients(**{k: v[inside] for k, v in p.items()})
+    return kernel.coefficient_spectrum(c, inside)
+
+
 def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
     tol = 4.0 * bound + 16.0 * UNIT_ROUNDOFF * scale
@@ -120,7 +146,7 @@ def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
 
 def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
              alpha_v: Any = None, mu: Any = DEFAULT_MU, mask_unphysical: bool = False,
-             method: str = "polynomial") -> Spectrum:
+             method: str = DEFAULT_METHOD) -> Spectrum:
     """Eigenvalues, error bounds and the stability decision over a parameter grid.
 
     Parameters
@@ -132,8 +158,10 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     mask_unphysical : bool, default False
         If False, a point outside the physical domain refuses the whole request
         (:class:`~stability.parameters.DomainError`); if True, such points get NaN.
-    method : {"polynomial", "lapack"}
-        Root finder (see :data:`METHODS`).
+    method : {"kernel", "polynomial", "lapack"}
+        Root finder (see :data:`METHODS`); the default, ``"kernel"``, is the compiled kernel
+        of :mod:`stability.kernel` (models of degree <= 3; others fall back to
+        ``"polynomial"``).
 
     Returns
     -------
@@ -150,6 +178,12 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     bound = np.full(shape + (n,), np.nan)
     neutral = np.zeros(shape + (n,), dtype=bool)
     stab = np.full(shape, -1, dtype=np.int8)
+    if method == "kernel":
+        out = _kernel(m, p, inside)
+        if out is not None:
+            ev, bound, neutral, stab = out
+            return Spectrum(m, p, ev, bound, neutral, stab, inside)
+        method = "polynomial"
     if inside.any():
         sub = {k: v[inside] for k, v in p.items()}
         if method == "polynomial":
@@ -167,7 +201,7 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
 
 
 def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
-                alpha_v: Any = None, mu: Any = DEFAULT_MU, method: str = "polynomial") -> np.ndarray:
+                alpha_v: Any = None, mu: Any = DEFAULT_MU, method: str = DEFAULT_METHOD) -> np.ndarray:
     """Eigenvalues ``s`` of a linear model, ``x ~ exp(s t)``.
 
     Parameters
@@ -180,8 +214,8 @@ def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
         Viscous friction parameter; required for ``"sliding"``, refused otherwise.
     mu : float or array_like, default 2.28
         Scaled mass.
-    method : {"polynomial", "lapack"}
-        Root finder.
+    method : {"kernel", "polynomial", "lapack"}
+        Root finder (see :data:`METHODS`).
 
     Returns
     -------

@@ -1,13 +1,20 @@
-"""``tippe atlas``: spectra of a linear model over a parameter grid, written to netCDF."""
+"""``tippe atlas``: spectra of a linear model over a parameter grid, written to netCDF.
+
+With ``--chunks`` the grid is computed and written chunk by chunk (memory stays at a few
+chunks), in this process or on a dask.distributed cluster (``--workers N``: a local one;
+``--scheduler``: an existing one), with a progress bar; ``--resume`` keeps finished chunks so
+that an interrupted run can be continued (stability.distributed).
+"""
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..atlas import atlas
 from ..io import check_output_path, write_dataset
 from ..models import MODELS
-from ..spectra import METHODS
+from ..spectra import DEFAULT_METHOD, METHODS
 from ._args import add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
@@ -25,10 +32,77 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
     p.add_argument("--mask-unphysical", action="store_true",
                    help="mask grid points outside the physical domain (NaN) instead of refusing the grid")
-    p.add_argument("--method", choices=list(METHODS), default="polynomial")
+    p.add_argument("--method", choices=list(METHODS), default=DEFAULT_METHOD)
     p.add_argument("--plot", metavar="PNG", help="also draw the leading growth rate and frequency against --x")
     p.add_argument("--x", default="q", help="abscissa of the plot (a grid dimension)")
+    g = p.add_argument_group("large grids (dask)")
+    g.add_argument("--chunks", metavar="SIZES",
+                   help="compute and write chunk by chunk: one size for every grid dimension (e.g. 100) "
+                        "or sizes by dimension (e.g. q=100,sigma=50; the others whole)")
+    g.add_argument("--workers", type=int, metavar="N", help="run the chunks on a local dask cluster of N processes")
+    g.add_argument("--scheduler", metavar="ADDRESS|FILE",
+                   help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file")
+    g.add_argument("--resume", action="store_true",
+                   help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run")
+    g.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
+
+
+def parse_chunks(text: str) -> int | dict[str, int]:
+    """``"100"`` -> 100; ``"q=100,sigma=50"`` -> ``{"q": 100, "sigma": 50}``.
+
+    Raises
+    ------
+    ValueError
+        With the offending text.
+    """
+    t = text.strip()
+    try:
+        if "=" not in t:
+            return int(t)
+        out = {}
+        for part in t.split(","):
+            k, v = part.split("=")
+            out[k.strip().replace("-", "_")] = int(v)
+        return out
+    except ValueError:
+        raise ValueError(f"--chunks = {text!r} is not a size or a list dim=size,...") from None
+
+
+def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
+    """``tippe atlas --chunks``: lazy atlas, written chunk by chunk."""
+    from ..distributed import dask_client, parts_directory, write_atlas
+
+    if args.plot:
+        raise ValueError("--plot is not available with --chunks (the grid may not fit in memory); "
+                         "plot a slice of the written file instead")
+    ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
+               chunks=parse_chunks(args.chunks), **values)
+    store = parts_directory(out)
+    if args.resume and store.is_dir():
+        print(f"resuming from the chunks in {store}", file=sys.stderr)
+    try:
+        with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
+            write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
+                        progress=not args.no_progress)
+    except KeyboardInterrupt:
+        if args.resume:
+            print(f"tippe atlas: finished chunks are kept in {store}; rerun the same command to continue",
+                  file=sys.stderr)
+        else:
+            print("tippe atlas: no chunks were kept (run with --resume to keep them across an interruption)",
+                  file=sys.stderr)
+        raise
+    import xarray as xr
+
+    with xr.open_dataset(out) as f:
+        flags = f["stability"].values
+    counts = {name: int((flags == flag).sum()) for name, flag in
+              (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
+    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
+    print(f"wrote {out}: {args.model} model, grid {grid} in chunks; "
+          + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
+    return 0
 
 
 def run(args: argparse.Namespace) -> int:
@@ -37,6 +111,10 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         check_output_path(args.plot, overwrite=True)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
+    if args.chunks is not None:
+        return _run_chunked(args, out, values)
+    if args.workers is not None or args.scheduler is not None or args.resume:
+        raise ValueError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values)
     if args.plot:
         from ..plotting.figures import atlas_figure

@@ -1,0 +1,524 @@
+"""A fast spectral kernel: roots of the characteristic polynomials, compiled with numba.
+
+One pass per grid point, in parallel over the points (``numba.njit(parallel=True)``,
+``fastmath=False``: IEEE arithmetic, no reassociation, so the error-free transformations and
+the exact structural tests below mean what they say). Per point:
+
+1. *Coefficients.* For the sliding model (eq. 11) they are formed inside the kernel from the
+   parameters, with the same floating-point operations as
+   :meth:`stability.models.sliding.Sliding.coefficients` (``A_G`` by Dekker's product and
+   Knuth's sum as in :mod:`stability.inertia`); ``tests/test_kernel.py`` checks that the two
+   agree bit for bit. Any other model of degree <= 3 goes through
+   :func:`coefficient_spectrum`, on the coefficients the model returns.
+2. *Structural zeros.* Exactly zero trailing coefficients (the sliding model's
+   ``c0 = -mu alpha_v q fr_inv`` at ``fr_inv = 0``, ``q = 0`` or ``alpha_v = 0``) give exactly
+   zero roots with error bound 0; the polynomial is deflated exactly.
+3. *Quadratics* (the deflated cubic, and the fixed-pivot and rolling models, eq. 8) as in
+   :mod:`stability.roots`: conservative ones (``p(i nu)`` real) in real arithmetic, so that a
+   neutral mode has ``Re s = 0`` exactly; others by the cancellation-free formula; one Newton
+   step.
+4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates. Where the scales
+   are widely separated (smallest estimate below 1e-4 x the largest), Cardano's small roots
+   carry an absolute error ``~u |largest|``: the largest root (which Cardano gets to full
+   relative accuracy) is Newton-polished and divided out by backward deflation (stable for the
+   largest root), and the remaining quadratic is solved by the cancellation-free formula. All
+   three roots are then polished on the *undeflated* polynomial by Weierstrass (Durand-Kerner)
+   sweeps, ``step = p(r) / (c3 prod_j (r - r_j))`` (Newton's step with the other roots divided
+   out, which keeps nearly colliding roots apart), until every relative step is below 1e-8
+   (the error left, ``step^2 / separation``, is then under the error bound), at most
+   ``polish`` sweeps.
+5. *Error bound*, the one of :mod:`stability.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
+   ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots).
+6. *Sorting and the decision* of :mod:`stability.spectra`: modes by decreasing ``Re s`` (ties
+   by decreasing ``Im s``); a mode is neutral if ``Re s = 0`` by structure or
+   ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
+
+Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
+``Re s``, frequency ``Im s`` in units of the spin rate.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+__all__ = ["sliding_spectrum", "coefficient_spectrum", "KernelSpectrum", "MAX_DEGREE"]
+
+#: highest polynomial degree the kernel solves
+MAX_DEGREE = 3
+
+_U = 2.0**-53
+_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.inertia
+_STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
+_OMEGA = complex(-0.5, math.sqrt(3.0) / 2.0)  # primitive cube root of unity
+_OMEGA2 = complex(-0.5, -math.sqrt(3.0) / 2.0)
+
+_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+
+
+class KernelSpectrum(tuple):
+    """``(eigenvalues, error_bound, neutral, stability)`` as returned by the kernel drivers.
+
+    eigenvalues : complex (N, n), sorted; error_bound : float (N, n); neutral : bool (N, n);
+    stability : int8 (N,) (-1 where the point was marked outside the domain).
+    """
+
+
+# --- scalar helpers (inlined by LLVM) ---------------------------------------------------------
+
+@njit(**_JIT)
+def _mod(z):
+    """``|z|``: ``sqrt(re^2 + im^2)`` (within an ulp of ``hypot``, and much faster) unless the
+    squares would underflow or overflow, then ``hypot``."""
+    s = z.real * z.real + z.imag * z.imag
+    if 1e-290 < s < 1e290:
+        return math.sqrt(s)
+    return math.hypot(z.real, z.imag)
+
+
+@njit(**_JIT)
+def _horner(c3, c2, c1, c0, s):
+    """``p, p', p''`` at ``s`` (Horner, as stability.roots.horner with leading zeros)."""
+    p = c3
+    d1 = 0j
+    d2 = 0j
+    for ck in (c2, c1, c0):
+        d2 = d2 * s + 2.0 * d1
+        d1 = d1 * s + p
+        p = p * s + ck
+    return p, d1, d2
+
+
+@njit(**_JIT)
+def _value(c3, c2, c1, c0, s):
+    """``p(s)`` only."""
+    return ((c3 * s + c2) * s + c1) * s + c0
+
+
+@njit(**_JIT)
+def _bound(c3, c2, c1, c0, deg, r):
+    """Absolute error bound of a root ``r`` (stability.roots, module docstring)."""
+    a = _mod(r)
+    scale = ((_mod(c3) * a + _mod(c2)) * a + _mod(c1)) * a + _mod(c0)
+    dp = (deg + 4) * _U * scale
+    _, d1, d2 = _horner(c3, c2, c1, c0, r)
+    m1 = _mod(d1)
+    m2 = _mod(d2)
+    first = dp / m1 if m1 > 0 else np.inf
+    second = math.sqrt(2.0 * dp / m2) if m2 > 0 else np.inf
+    return min(first, second)
+
+
+@njit(**_JIT)
+def _mod2(z):
+    """``|z|^2`` (for comparisons)."""
+    return z.real * z.real + z.imag * z.imag
+
+
+@njit(**_JIT)
+def _pd(c3, c2, c1, c0, s):
+    """``p, p'`` at ``s``."""
+    p = c3 * s + c2
+    d1 = c3 * s + p
+    p = p * s + c1
+    d1 = d1 * s + p
+    p = p * s + c0
+    return p, d1
+
+
+@njit(**_JIT)
+def _newton(c3, c2, c1, c0, r, iterations):
+    """Newton steps on ``p``, each kept only if ``|p|`` drops."""
+    p, d1 = _pd(c3, c2, c1, c0, r)
+    for _ in range(iterations):
+        if d1 == 0:
+            break
+        trial = r - p / d1
+        pt, dt = _pd(c3, c2, c1, c0, trial)
+        if not _mod2(pt) < _mod2(p):
+            break
+        r, p, d1 = trial, pt, dt
+    return r
+
+
+@njit(**_JIT)
+def _quadratic(a, b, k):
+    """Roots of ``a s^2 + b s + k`` and whether their real part is exactly zero (stability.roots)."""
+    if a.imag == 0 and b.real == 0 and k.imag == 0:
+        # conservative: p(i nu) = -a nu^2 - b.imag nu + k is real
+        A, B, C = -a.real, -b.imag, k.real
+        disc = B * B - 4.0 * A * C
+        sq = math.sqrt(abs(disc))
+        sgn = 1.0 if B >= 0 else -1.0
+        if disc >= 0:
+            big = -(B + sgn * sq) / 2.0
+            nu1 = big / A if big != 0 else 0.0
+            nu2 = C / big if big != 0 else 0.0
+            return complex(0.0, nu1), complex(0.0, nu2), True
+        nu1 = complex(-B / (2 * A), sq / (2 * abs(A)))
+        nu2 = complex(-B / (2 * A), -sq / (2 * abs(A)))
+        return 1j * nu1, 1j * nu2, False
+    sq = _csqrt(b * b - 4.0 * a * k)
+    sgn = 1.0 if (b.conjugate() * sq).real >= 0 else -1.0
+    big = -(b + sgn * sq) / 2.0
+    if big != 0:
+        return big / a, k / big, False
+    return 0j, 0j, False
+
+
+@njit(**_JIT)
+def _csqrt(z):
+    """Principal complex square root, without cancellation (a few ulp; faster than
+    ``numpy.sqrt``, which calls ``hypot``)."""
+    x, y = z.real, z.imag
+    if x == 0 and y == 0:
+        return complex(0.0, y)
+    t = math.sqrt(0.5 * (abs(x) + _mod(z)))
+    if x >= 0:
+        return complex(t, y / (2.0 * t))
+    return complex(abs(y) / (2.0 * t), math.copysign(t, y))
+
+
+@njit(**_JIT)
+def _cbrt(w):
+    """Principal complex cube root."""
+    r = _mod(w)
+    if r == 0:
+        return 0j
+    th = math.atan2(w.imag, w.real) / 3.0
+    m = np.cbrt(r)
+    return complex(m * math.cos(th), m * math.sin(th))
+
+
+@njit(**_JIT)
+def _cardano(c3, c2, c1, c0):
+    """Cardano's three roots of a cubic, in complex arithmetic."""
+    inv = 1.0 / c3
+    a = c2 * inv
+    b = c1 * inv
+    c = c0 * inv
+    a3 = a / 3.0
+    P3 = (b - a * a3) / 3.0
+    Q2 = 0.5 * (c - a3 * b) + a3 * a3 * a3
+    sd = _csqrt(Q2 * Q2 + P3 * P3 * P3)
+    w1 = -Q2 + sd
+    w2 = -Q2 - sd
+    w = w1 if _mod2(w1) >= _mod2(w2) else w2
+    u = _cbrt(w)
+    v = -P3 / u if u != 0 else 0j
+    return u + v - a3, _OMEGA * u + _OMEGA2 * v - a3, _OMEGA2 * u + _OMEGA * v - a3
+
+
+@njit(**_JIT)
+def _weierstrass(c3, c2, c1, c0, r, o1, o2):
+    """One Weierstrass (Durand-Kerner) step for root ``r``: ``p(r) / (c3 (r - o1)(r - o2))``,
+    Newton's step on ``p`` with the other roots divided out (so nearly colliding roots stay
+    apart). Returns the new root and ``|step|^2 - 1e-16 |r|^2`` (> 0: a relative step above
+    1e-8)."""
+    p = _value(c3, c2, c1, c0, r)
+    den = c3 * (r - o1) * (r - o2)
+    n2 = _mod2(den)
+    if n2 == 0 or not np.isfinite(n2):
+        return r, 0.0
+    step = p * den.conjugate() * (1.0 / n2)
+    return r - step, _mod2(step) - 1e-16 * _mod2(r)
+
+
+@njit(**_JIT)
+def _cubic(c3, c2, c1, c0, polish):
+    """Three roots of a cubic with ``c0 != 0`` (module docstring, step 4)."""
+    r0, r1, r2 = _cardano(c3, c2, c1, c0)
+    sweeps = polish
+    n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
+    if min(n0, n1, n2) < 1e-8 * max(n0, n1, n2):
+        # widely separated scales: Cardano's small roots carry an absolute error ~u |largest|;
+        # take the largest root (accurate), divide it out by backward deflation, stable for
+        # the largest root, p(s) = (s - r0)(b2 s^2 + b1 s + b0), and solve the quadratic
+        if n1 > n0 and n1 >= n2:
+            r0 = r1
+        elif n2 > n0:
+            r0 = r2
+        if polish > 0:
+            r0 = _newton(c3, c2, c1, c0, r0, 2)
+        ib = 1.0 / r0
+        b0 = -c0 * ib
+        b1 = (b0 - c1) * ib
+        b2 = (b1 - c2) * ib
+        r1, r2, _ = _quadratic(b2, b1, b0)
+    if not (np.isfinite(r0) and np.isfinite(r1) and np.isfinite(r2)):
+        # Cardano overflowed (|c2/c3| beyond ~1e100): start on a circle enclosing the roots
+        rho = 2.0 * max(_mod(c2 / c3), math.sqrt(_mod(c1 / c3)), np.cbrt(_mod(c0 / c3)))
+        r0, r1, r2 = rho * complex(0.6, 0.8), rho * _OMEGA * complex(0.6, 0.8), rho * _OMEGA2 * complex(0.6, 0.8)
+        sweeps = 100 * polish
+    for _ in range(sweeps):
+        # a relative step above 1e-8 may leave an error (step^2 / separation) above round-off:
+        # sweep again; below it the remaining error is under the error bound
+        r0, e0 = _weierstrass(c3, c2, c1, c0, r0, r1, r2)
+        r1, e1 = _weierstrass(c3, c2, c1, c0, r1, r0, r2)
+        r2, e2 = _weierstrass(c3, c2, c1, c0, r2, r0, r1)
+        if e0 <= 0 and e1 <= 0 and e2 <= 0:
+            break
+    return r0, r1, r2
+
+
+@njit(**_JIT)
+def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
+    """:func:`_bound` with the coefficient moduli ``m_k = |c_k|`` given (one square root
+    fewer per comparison; the same value up to rounding)."""
+    a = _mod(r)
+    dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
+    _, d1, d2 = _horner(c3, c2, c1, c0, r)
+    n1 = _mod2(d1)
+    n2 = _mod2(d2)
+    # min(dp / |p'|, sqrt(2 dp / |p''|)): the second is smaller iff 4 |p'|^4 < dp^2 |p''|^2
+    if 4.0 * n1 * n1 < dp * dp * n2 or n1 == 0:
+        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else np.inf
+    return dp / math.sqrt(n1)
+
+
+@njit(**_JIT)
+def _before(a, b):
+    """Mode ``a`` sorts before ``b``: larger real part, then larger imaginary part."""
+    return a.real > b.real or (a.real == b.real and a.imag > b.imag)
+
+
+@njit(**_JIT)
+def _solve(c3, c2, c1, c0, deg, polish):
+    """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
+    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
+    if deg == 2:
+        c3, c2, c1, c0 = 0j, c3, c2, c1
+    nz = 0
+    if c0 == 0:
+        nz = 1
+        if c1 == 0:
+            nz = 2
+            if deg == 3 and c2 == 0:
+                nz = 3
+    m = deg - nz  # degree after exact deflation
+    # deflated coefficients, right-aligned with leading zeros
+    if nz == 0:
+        d3, d2, d1, d0 = c3, c2, c1, c0
+    elif nz == 1:
+        d3, d2, d1, d0 = 0j, c3, c2, c1
+    elif nz == 2:
+        d3, d2, d1, d0 = 0j, 0j, c3, c2
+    else:
+        d3, d2, d1, d0 = 0j, 0j, 0j, c3
+    r0 = r1 = r2 = 0j
+    x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
+    e0 = e1 = e2 = 0.0
+    if m == 3:
+        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish)
+        x0 = x1 = x2 = False
+    elif m == 2:
+        r0, r1, ex = _quadratic(d2, d1, d0)
+        if not ex and polish > 0:
+            r0 = _newton(d3, d2, d1, d0, r0, 1)
+            r1 = _newton(d3, d2, d1, d0, r1, 1)
+        x0 = x1 = ex
+    elif m == 1:
+        r0 = -d0 / d1
+        x0 = False
+    if m > 0:
+        m3, m2, m1, m0 = _mod(d3), _mod(d2), _mod(d1), _mod(d0)
+        e0 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r0)
+        if m > 1:
+            e1 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r1)
+        if m > 2:
+            e2 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r2)
+    return r0, r1, r2, e0, e1, e2, x0, x1, x2
+
+
+@njit(**_JIT)
+def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
+    """Sort the ``n`` modes (stable, by decreasing Re s then Im s), write them to ``ev``,
+    ``bd``, ``neutral``; return the stability flag (module docstring, step 6)."""
+    if n >= 2 and _before(r1, r0):
+        r0, r1, e0, e1, x0, x1 = r1, r0, e1, e0, x1, x0
+    if n == 3:
+        if _before(r2, r1):
+            r1, r2, e1, e2, x1, x2 = r2, r1, e2, e1, x2, x1
+        if _before(r1, r0):
+            r0, r1, e0, e1, x0, x1 = r1, r0, e1, e0, x1, x0
+    scale2 = _mod2(r0)
+    if n >= 2:
+        scale2 = max(scale2, _mod2(r1))
+    if n == 3:
+        scale2 = max(scale2, _mod2(r2))
+    floor = 16.0 * _U * math.sqrt(scale2)
+    grows = False
+    anyneutral = False
+    for j in range(n):
+        if j == 0:
+            r, e, x = r0, e0, x0
+        elif j == 1:
+            r, e, x = r1, e1, x1
+        else:
+            r, e, x = r2, e2, x2
+        tol = 4.0 * e + floor
+        nt = (x and r.real == 0) or abs(r.real) <= tol
+        ev[j] = r
+        bd[j] = e
+        neutral[j] = nt
+        anyneutral = anyneutral or nt
+        grows = grows or (r.real > tol and not nt)
+    if grows:
+        return _UNSTABLE
+    return _MARGINAL if anyneutral else _STABLE
+
+
+@njit(**_JIT)
+def _mark_outside(n, ev, bd, neutral):
+    for j in range(n):
+        ev[j] = complex(np.nan, np.nan)
+        bd[j] = np.nan
+        neutral[j] = False
+
+
+# --- the sliding model, coefficients formed in the kernel -------------------------------------
+
+@njit(**_JIT)
+def _two_product(a, b):
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+@njit(**_JIT)
+def sliding_coefficients(q, fr_inv, sigma, alpha_v, mu):
+    """``mu det(s M - A)`` of eq. (11) for one point, as Sliding.coefficients computes it."""
+    t, te = _two_product(q, q)
+    u, ue = _two_product(mu, t)
+    ue = ue + mu * te
+    s = 1.0 + (-u)
+    bb = s - 1.0
+    se = (1.0 - (s - bb)) + (-u - bb)
+    a_g = s + (se - ue)
+    a_c = a_g + mu * (1.0 + q) ** 2
+    c3 = complex(mu * a_g, 0.0)
+    c2 = complex(alpha_v * a_c, -(mu * sigma))
+    c1 = complex(-mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q))))
+    c0 = complex(-mu * alpha_v * q * fr_inv, 0.0)
+    return c3, c2, c1, c0
+
+
+@njit(parallel=True, **_JIT)
+def _sliding_kernel(q, fr_inv, sigma, alpha_v, mu, inside, polish, ev, bd, neutral, stab):
+    for i in prange(q.shape[0]):
+        if not inside[i]:
+            _mark_outside(3, ev[i], bd[i], neutral[i])
+            stab[i] = _OUTSIDE
+            continue
+        c3, c2, c1, c0 = sliding_coefficients(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i])
+        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, polish)
+        stab[i] = _decide(3, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+
+
+@njit(parallel=True, **_JIT)
+def _coefficient_kernel(c, inside, polish, ev, bd, neutral, stab):
+    n = c.shape[1] - 1
+    for i in prange(c.shape[0]):
+        if not inside[i]:
+            _mark_outside(n, ev[i], bd[i], neutral[i])
+            stab[i] = _OUTSIDE
+            continue
+        if n == 3:
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], c[i, 3], 3, polish)
+        elif n == 2:
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], 0j, 2, polish)
+        else:
+            r0 = -c[i, 1] / c[i, 0]
+            x0 = c[i, 1] == 0
+            e0 = 0.0 if x0 else _bound(0j, 0j, c[i, 0], c[i, 1], 1, r0)
+            r1 = r2 = 0j
+            e1 = e2 = 0.0
+            x1 = x2 = False
+        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+
+
+# --- drivers ----------------------------------------------------------------------------------
+
+def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    return (np.empty((npts, n), dtype=np.complex128), np.empty((npts, n)),
+            np.empty((npts, n), dtype=np.bool_), np.empty(npts, dtype=np.int8))
+
+
+def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
+    """A C-contiguous 1-D array that owns its data (views from ``numpy.broadcast_arrays`` are
+    copied: numba would otherwise warn about their write flag)."""
+    y = np.asarray(x, dtype=dtype)
+    if y.shape == shape and y.flags.c_contiguous and y.base is None:
+        return y.reshape(-1)
+    return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
+
+
+def sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
+                     mu: np.ndarray, inside: np.ndarray | None = None, *,
+                     polish: int = 3) -> KernelSpectrum:
+    """Sorted eigenvalues, error bounds and the stability decision of the sliding model.
+
+    Parameters
+    ----------
+    q, fr_inv, sigma, alpha_v, mu : numpy.ndarray
+        Parameters of eq. (11), broadcast together; not checked against the physical domain
+        (:func:`stability.spectrum` does that).
+    inside : numpy.ndarray of bool, optional
+        Points to compute (the others get NaN and flag -1); default all.
+    polish : int, default 3
+        Largest number of polishing sweeps; 0 gives Cardano's roots with deflation only.
+
+    Returns
+    -------
+    KernelSpectrum
+        ``(eigenvalues, error_bound, neutral, stability)``, shape ``broadcast + (3,)`` (and
+        ``broadcast`` for the flag).
+    """
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (q, fr_inv, sigma, alpha_v, mu)))
+    args = [_flat(v, shape) for v in (q, fr_inv, sigma, alpha_v, mu)]
+    npts = args[0].size
+    ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
+    ev, bd, nt, st = _outputs(npts, 3)
+    _sliding_kernel(*args, ins, int(polish), ev, bd, nt, st)
+    return KernelSpectrum((ev.reshape(shape + (3,)), bd.reshape(shape + (3,)),
+                           nt.reshape(shape + (3,)), st.reshape(shape)))
+
+
+def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
+                         polish: int = 3) -> KernelSpectrum:
+    """The kernel on given coefficients ``c`` (..., n+1), highest power first, ``1 <= n <= 3``.
+
+    Parameters
+    ----------
+    c : numpy.ndarray of complex
+        Characteristic polynomials (leading coefficient nonzero).
+    inside : numpy.ndarray of bool, optional
+        Points to compute (the others get NaN and flag -1); default all.
+    polish : int, default 3
+        Largest number of polishing sweeps.
+
+    Returns
+    -------
+    KernelSpectrum
+        As :func:`sliding_spectrum`, with ``n`` modes.
+    """
+    c = np.asarray(c, dtype=np.complex128)
+    n = c.shape[-1] - 1
+    if not 1 <= n <= MAX_DEGREE:
+        raise ValueError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
+    if np.any(c[..., 0] == 0):
+        raise ValueError("leading coefficient is zero (singular mass matrix)")
+    shape = c.shape[:-1]
+    flat = np.ascontiguousarray(c.reshape(-1, n + 1))
+    ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
+    ev, bd, nt, st = _outputs(flat.shape[0], n)
+    _coefficient_kernel(flat, ins, int(polish), ev, bd, nt, st)
+    return KernelSpectrum((ev.reshape(shape + (n,)), bd.reshape(shape + (n,)),
+                           nt.reshape(shape + (n,)), st.reshape(shape)))
