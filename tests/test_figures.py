@@ -94,6 +94,25 @@ def test_recipe_compute_reuse_and_draw(tmp_path):
     assert len(ax.get_legend().get_texts()) == 6  # alpha_v = 0.1 ... 5
 
 
+def test_recipe_cache_invalidated_by_other_code(tmp_path, monkeypatch):
+    """A dataset computed by other code (another version, a local edit) is recomputed: the
+    digest covers the package source as well as the recipe."""
+    import stability.recipes as recipes
+
+    src = (ATLASES / "fig4.toml").read_text().replace('q = "-0.46:0.46:369"', 'q = "-0.4:0.4:5"')
+    path = tmp_path / "fig4.toml"
+    path.write_text(src)
+    r = load_recipe(path)
+    compute(r)
+    mtime = r.dataset_path.stat().st_mtime_ns
+    monkeypatch.setattr(recipes, "code_fingerprint", lambda: "other code")
+    r2 = load_recipe(path)
+    assert r2.digest != r.digest
+    ds = compute(r2)["sliding"]
+    assert ds.attrs["recipe_digest"] == r2.digest
+    assert r.dataset_path.stat().st_mtime_ns != mtime
+
+
 @pytest.mark.parametrize("text,msg", [
     ('title = "x"\nkind = "pie"\n[grid]\nq = 0.1', "kind = 'pie' is not one of"),
     ('title = "x"\nkind = "lines"\n[grid]\nq = 0.1\nfr_inv = 0.0\nsigma = 1.0\nalpha_v = 0.5',
@@ -128,3 +147,22 @@ def test_neutral_curve_overlay_and_fold_marker():
     assert abs(sf - 2 * (mu - np.sqrt(mu * (mu - 1)))) < 1e-10
     curve_line = [ln for ln in ax.get_lines() if ln.get_label() == "neutral curve (continued)"][0]
     assert np.array_equal(curve_line.get_xdata(), curve.q.values[curve.branch.values == curve.branch.values[0]])
+
+
+def test_every_branch_of_a_leading_neutral_curve_is_solid():
+    """In the (q, fr_inv) plane at sigma = 1 both branches (the curve through the fold and the
+    line q = 0, where p(i w) = (w - w^2)(alpha_v (1 + mu) + i mu w): no other mode grows) are
+    stability boundaries and must be drawn solid; the style sheet cycles line styles, so a
+    second branch drawn without an explicit style came out dashed, like a non-leading part."""
+    import continuation
+
+    curve = continuation.neutral_curve("sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5),
+                                       x_range=(-0.4, 0.4), y_range=(0.0, 1.0))
+    assert len(np.unique(curve.branch.values)) == 2 and bool(curve.leading.all())
+    ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 9), fr_inv=np.linspace(0, 1, 5), sigma=1.0,
+                         alpha_v=0.5)
+    with style():
+        fig, ax = plot_stability_map(ds, "q", "fr_inv", curve=curve)
+    drawn = [ln for ln in ax.get_lines() if ln.get_linestyle() != "None"]  # markers have none
+    assert len(drawn) == 2
+    assert all(ln.get_linestyle() == "-" for ln in drawn)

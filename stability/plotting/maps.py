@@ -128,7 +128,8 @@ def plot_neutral_curve(curve: xr.Dataset, ax: Axes, *, label: str = "neutral cur
         lead = curve["leading"].values[sel] if "leading" in curve else np.ones(sel.sum(), bool)
         solid = np.where(lead, ys, np.nan)
         dashed = np.where(lead, np.nan, ys)
-        ax.plot(xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, label=label if first else None)
+        ax.plot(xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, linestyle="-",
+                label=label if first else None)  # explicit: the style cycles line styles
         if np.isfinite(dashed).any():
             ax.plot(xs, dashed, color=NEUTRAL_STYLE["colors"], linewidth=1.2, linestyle="--",
                     label="neutral, not the leading mode" if first else None)
