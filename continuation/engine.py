@@ -149,11 +149,52 @@ def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
     The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n``, where the call
     overhead of LAPACK dominates. Raises ``numpy.linalg.LinAlgError`` on an exact zero pivot.
     """
+    return _solve_det(G, b)[0]
+
+
+def _solve3(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
+    """:func:`_solve_det` for 3 x 3 (a curve in R^3, e.g. a neutral curve in ``(x, y, w)``):
+    the same partial pivoting, unrolled."""
+    r0, r1, r2 = G.tolist()
+    b0, b1, b2 = b.tolist()
+    det = 1.0
+    # column 0: the largest of |a00|, |a10|, |a20| (first one on ties, as the loop)
+    p0, p1, p2 = abs(r0[0]), abs(r1[0]), abs(r2[0])
+    if p1 > p0 and p1 >= p2:
+        r0, r1, b0, b1, det = r1, r0, b1, b0, -det
+    elif p2 > p0 and p2 > p1:
+        r0, r2, b0, b2, det = r2, r0, b2, b0, -det
+    a00, a01, a02 = r0
+    if a00 == 0.0 or a00 != a00:
+        raise np.linalg.LinAlgError("singular matrix")
+    f1, f2 = r1[0] / a00, r2[0] / a00
+    a11, a12, c1 = r1[1] - f1 * a01, r1[2] - f1 * a02, b1 - f1 * b0
+    a21, a22, c2 = r2[1] - f2 * a01, r2[2] - f2 * a02, b2 - f2 * b0
+    if abs(a21) > abs(a11):
+        a11, a12, c1, a21, a22, c2, det = a21, a22, c2, a11, a12, c1, -det
+    if a11 == 0.0 or a11 != a11:
+        raise np.linalg.LinAlgError("singular matrix")
+    f = a21 / a11
+    a22 = a22 - f * a12
+    c2 = c2 - f * c1
+    if a22 == 0.0 or a22 != a22:
+        raise np.linalg.LinAlgError("singular matrix")
+    x2 = c2 / a22
+    x1 = (c1 - a12 * x2) / a11
+    x0 = (b0 - a01 * x1 - a02 * x2) / a00
+    return np.array([x0, x1, x2]), det * a00 * a11 * a22
+
+
+def _solve_det(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
+    """:func:`_solve` that also returns ``det G`` (the product of the pivots, for free)."""
     m = b.shape[0]
+    if m == 3:
+        return _solve3(G, b)
     if m > 4:
-        return np.linalg.solve(G, b)
+        return np.linalg.solve(G, b), float(np.linalg.det(G))
     A = G.tolist()
     x = b.tolist()
+    det = 1.0
     for k in range(m):
         p = k
         big = abs(A[k][k])
@@ -165,8 +206,10 @@ def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
         if p != k:
             A[k], A[p] = A[p], A[k]
             x[k], x[p] = x[p], x[k]
+            det = -det
         Ak = A[k]
         piv = Ak[k]
+        det *= piv
         for i in range(k + 1, m):
             Ai = A[i]
             f = Ai[k] / piv
@@ -180,7 +223,7 @@ def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
         for j in range(k + 1, m):
             acc -= Ak[j] * x[j]
         x[k] = acc / Ak[k]
-    return np.array(x)
+    return np.array(x), det
 
 
 def _det(G: np.ndarray) -> float:
@@ -235,6 +278,11 @@ def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
     numpy.ndarray, shape (dim,) or (k, dim)
     """
     d = _norm(p1 - p0)
+    if isinstance(tau, float):  # one point: the basis in Python floats (4 vector operations)
+        t2 = tau * tau
+        t3 = t2 * tau
+        return ((2 * t3 - 3 * t2 + 1) * p0 + ((t3 - 2 * t2 + tau) * d) * t0
+                + (3 * t2 - 2 * t3) * p1 + ((t3 - t2) * d) * t1)
     tau = np.asarray(tau, dtype=float)
     tt = tau[..., None]
     t2, t3 = tt * tt, tt * tt * tt
@@ -255,16 +303,30 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     if t_ref is None:
         _, _, vh = np.linalg.svd(J)
         return vh[-1] / np.linalg.norm(vh[-1])
+    return _tangent_det(J, t_ref)[0]
+
+
+def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
+    """:func:`tangent` oriented by ``t_ref``, and the branch-point test ``det [J; t^T]``.
+
+    ``det [J; c^T]`` is linear in ``c``, ``c . g`` with ``g`` the vector of cofactors, and
+    ``J g = 0`` (a repeated row), so ``g = det [J; t^T] t`` for the unit null vector ``t``.
+    The bordered solve ``[J; t_ref^T] y = e_(n+1)`` gives ``t = y / |y|`` and, from its
+    pivots, ``det [J; t_ref^T] = t_ref . g = det [J; t^T] / |y|``: the test costs nothing more.
+    """
     rhs = np.zeros(J.shape[1])
     rhs[-1] = 1.0
     try:
-        t = _solve(_bordered(J, t_ref), rhs)
-        if not np.all(np.isfinite(t)):
+        y, det_ref = _solve_det(_bordered(J, t_ref), rhs)
+        ny = _norm(y)
+        if not math.isfinite(ny) or ny == 0.0:
             raise np.linalg.LinAlgError("singular matrix")
+        return y / ny, det_ref * ny
     except np.linalg.LinAlgError:
         _, _, vh = np.linalg.svd(J)
         t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
-    return t / _norm(t)
+        t = t / _norm(t)
+        return t, _bordered_det(J, t)
 
 
 def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
@@ -288,6 +350,8 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
         converged = fn <= tol and abs(plane) <= 1e3 * EPS * (1.0 + abs(h))
         if it == max_iter and not converged:
             break
+        if converged and not (polish and fn > _FLOOR):
+            return v, True, it, J  # at the rounding floor: no Newton step to take
         try:
             if t_plane is None:
                 dv = -np.linalg.lstsq(J, f, rcond=None)[0]
@@ -299,14 +363,15 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
         except np.linalg.LinAlgError:
             return v, converged, it, J
         if converged:
-            if polish and fn > _FLOOR and math.isfinite(_norm(dv)):
+            if math.isfinite(_norm(dv)):
                 v2 = v + dv
                 f2 = sp.residual(v2)
                 if _norm(f2) < fn:
                     return v2, True, it + 1, J
             return v, True, it, J
         v = v + dv
-        if not math.isfinite(_norm(v)) or _norm(v - start) > max_move:
+        moved = _norm(v - start)
+        if not math.isfinite(moved) or moved > max_move:
             return v, False, it + 1, None
     return v, False, max_iter, None
 
@@ -359,7 +424,7 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[floa
     """Distance from ``p`` to segment ``[a, b]`` and the segment parameter of the foot."""
     d = b - a
     L2 = float(d @ d)
-    lam = 0.0 if L2 == 0 else float(np.clip((p - a) @ d / L2, 0.0, 1.0))
+    lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((p - a) @ d) / L2))
     return _norm(p - (a + lam * d)), lam
 
 
@@ -511,6 +576,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         gscale = max(1.0, abs(ga), abs(gb))
         delta = 1e-6
         eye = np.eye(uu.size) * delta
+        grad = None
         for _ in range(8):
             f, JJ = sp.residual_and_jacobian(uu)
             gj = float(sp.constraints(uu)[j])
@@ -518,8 +584,12 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             if not math.isfinite(fn) or not math.isfinite(gj):
                 return None
             converged = fn <= tol and abs(gj) <= 8 * EPS * gscale
-            grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
-                             for e in eye])
+            if grad is None:
+                # once: the bounds are linear or quadratic and the start is within O(h^4) of the
+                # point, so a fixed gradient converges as fast (the accuracy is set by the
+                # residual tests above, not by the gradient)
+                grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
+                                 for e in eye])
             rhs = np.empty(f.size + 1)
             rhs[:-1] = f
             rhs[-1] = gj
@@ -556,7 +626,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         n_newton += it
         angle = 0.0
         if ok:
-            t_new = tangent(J_new, t)
+            t_new, bp_new = _tangent_det(J_new, t)
             angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
             ok = angle <= max_angle or h <= min_step
         if not ok:
@@ -597,21 +667,34 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                 h_b, at_b, g_b = hs, (vs, ts), g_s
         # other special points are looked for up to the boundary only
         v_b, t_b = at_b
+        # candidates: only the test functions that change sign over the step
         candidates: list[tuple[str, str, Callable, float, float]] = []
+        # a start point exactly at a special point (its test is 0.0 there, e.g. a start at a
+        # fold, where the tangent's component vanishes): no sign change to bracket, the start
+        # point itself is the special point
+        at_start = len(pts) == 1 and kinds[0] == "start"
         for i in fold_components:
-            candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], float(t[i]), float(t_b[i])))
+            pa, pb = float(t[i]), float(t_b[i])
+            if pa * pb < 0:
+                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
+            elif at_start and pa == 0.0 and abs(pb) > event_floor:
+                kinds[0], details[0] = "fold", str(i)
         tests_new = sp.tests(v_new, t_new)
         tests_b = tests_new if stop_event is None else sp.tests(v_b, t_b)
         for k in range(tests.size):
-            candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
-                               float(tests[k]), float(tests_b[k])))
-        bp_new = _bordered_det(J_new, t_new)
+            pa, pb = float(tests[k]), float(tests_b[k])
+            if pa * pb < 0:
+                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
+                                   pa, pb))
+            elif at_start and pa == 0.0 and abs(pb) > event_floor:
+                kinds[0], details[0] = "test", sp.test_names[k]
         if detect_branch_points:
             bp_b = bp_new if stop_event is None else _bordered_det(sp.jacobian(v_b), t_b)
-            candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
-                               bp, bp_b))
+            if bp * bp_b < 0:
+                candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
+                                   bp, bp_b))
         for kind, name, phi, pa, pb in candidates:
-            if np.sign(pa) * np.sign(pb) < 0 and max(abs(pa), abs(pb)) > event_floor:
+            if max(abs(pa), abs(pb)) > event_floor:
                 try:
                     hs, vs, ts = locate(corrected, phi, 0.0, h_b, pa, pb, (v, t), at_b)
                 except (ConvergenceError, ValueError):
@@ -623,8 +706,10 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         h_stop = stop_event[0] if stop_event is not None else h
         close_at = None
         if detect_closed and len(pts) >= 4 and arc[-1] > 3.0 * h:
-            dist, lam = _segment_distance(v_start, v, v_new)
             seg = _norm(v_new - v)
+            # the distance to the segment is at least |v_start - v| - seg: most steps stop here
+            dist, lam = ((np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9
+                         else _segment_distance(v_start, v, v_new))
             if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (v_new - v) @ t_start > 0:
                 close_at = lam * h
         events.sort(key=lambda e: e[0])
@@ -665,7 +750,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         factor = grow if it <= 3 else (1.0 if it <= 5 else 0.7)
         if angle > 0:
             factor = min(factor, 0.9 * max_angle / angle)
-        h = float(np.clip(h * factor, min_step, max_step))
+        h = min(max(h * factor, min_step), max_step)
 
     P = np.array(pts) * sc
     T = np.array([sp.unscaled_tangent(x) for x in tans])
@@ -702,6 +787,8 @@ def trace_both(problem: ContinuationProblem, u0: Sequence[float], **options) -> 
     arc = np.concatenate([arc_b, arc_b[-1] + fwd.arclength[1:]])
     kinds = bwd.kinds[::-1] + fwd.kinds[1:]
     details = bwd.details[::-1] + fwd.details[1:]
+    if bwd.kinds[0] == "start" and fwd.kinds[0] != "start":  # the start is a special point
+        kinds[len(bwd.kinds) - 1], details[len(bwd.kinds) - 1] = fwd.kinds[0], fwd.details[0]
     return Branch(pts, tans, arc, kinds, details, False, [bwd.end_reasons[0], fwd.end_reasons[0]],
                   fwd.n_newton + bwd.n_newton, fwd.n_residual + bwd.n_residual,
                   fwd.n_jacobian + bwd.n_jacobian)

@@ -198,8 +198,8 @@ class NeutralProblem:
 
     def other_growth(self, u: np.ndarray) -> float:
         """Largest growth rate among the other modes (-inf if there is none)."""
-        r = self.cond.other_modes(u[:2], float(u[2]))
-        return float(np.max(r.real)) if r.size else -np.inf
+        r = self.cond.other_modes_list(u[:2], float(u[2]))
+        return max(z.real for z in r) if r else -np.inf
 
     def traced_mode_leads(self, u: np.ndarray) -> bool:
         """Whether no other mode grows at ``u``, so that the curve is the stability boundary.
@@ -215,10 +215,21 @@ class NeutralProblem:
         tol = 1e-12 * max(1.0, float(np.max(np.abs(r))), abs(float(u[2])))
         return bool(np.max(r.real) <= tol)
 
+    def traced_modes_lead(self, U: np.ndarray) -> np.ndarray:
+        """:meth:`traced_mode_leads` at many points ``U`` (m, 3) at once (same tolerance)."""
+        U = np.asarray(U, dtype=float).reshape(-1, 3)
+        if len(U) == 0:
+            return np.zeros(0, dtype=bool)
+        r = self.cond.other_modes_many(U[:, :2], U[:, 2])
+        if r.shape[1] == 0:
+            return np.ones(len(U), dtype=bool)
+        tol = 1e-12 * np.maximum(np.maximum(1.0, np.abs(r).max(axis=1)), np.abs(U[:, 2]))
+        return r.real.max(axis=1) <= tol
+
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
         """``[w, max Re(other modes)]``."""
         g = self.other_growth(u)
-        return np.array([u[2], g if np.isfinite(g) else -1.0])
+        return np.array([u[2], g if math.isfinite(g) else -1.0])
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
@@ -284,32 +295,42 @@ def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float
     xs = np.linspace(*ranges[x], grid[0])
     ys = np.linspace(*ranges[y], grid[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
-    # the polynomial root finder: one batched call, cheapest for a coarse grid
+    # the polynomial root finder: one batched call in this thread (the compiled default kernel
+    # runs on a thread pool, whose start-up and contention on a busy machine cost more than the
+    # 625 points of a coarse grid)
     sp = spectrum(model, mask_unphysical=True, method="polynomial", **_grid_params(x, y, fixed, X, Y))
     ev = sp.eigenvalues
     grows = (ev.real > 0) & ~sp.neutral
     count = np.where(sp.inside, grows.sum(axis=-1), -1)
-    guesses = []
-    for axis in (0, 1):
-        a = [slice(None, -1), slice(None)] if axis == 0 else [slice(None), slice(None, -1)]
-        b = [slice(1, None), slice(None)] if axis == 0 else [slice(None), slice(1, None)]
-        ca, cb = count[tuple(a)], count[tuple(b)]
-        idx = np.argwhere((ca >= 0) & (cb >= 0) & (ca != cb))
-        for i, j in idx:
-            pa = (i, j)
-            pb = (i + 1, j) if axis == 0 else (i, j + 1)
-            if count[pa] < count[pb]:
-                pa, pb = pb, pa
-            ea, eb = ev[pa], ev[pb]
-            up = np.nonzero(grows[pa])[0]
-            ra = ea[up[np.argmin(ea[up].real)]]
-            rb = eb[np.argmin(np.abs(eb - ra))]
-            t = ra.real / (ra.real - rb.real) if rb.real < ra.real else 0.5
-            t = float(np.clip(t, 0.0, 1.0))
-            ua = np.array([X[pa], Y[pa], ra.imag])
-            ub = np.array([X[pb], Y[pb], rb.imag])
-            guesses.append(ua + t * (ub - ua))
-    return guesses
+    # grid edges (a, b) on which the number of growing modes changes: axis 0 first, then
+    # axis 1, each in row-major order
+    nx, ny = count.shape
+    flat = np.arange(nx * ny).reshape(nx, ny)
+    pa_list, pb_list = [], []
+    for a, b in ((flat[:-1, :], flat[1:, :]), (flat[:, :-1], flat[:, 1:])):
+        ca, cb = count.flat[a], count.flat[b]
+        sel = (ca >= 0) & (cb >= 0) & (ca != cb)
+        pa_list.append(a[sel])
+        pb_list.append(b[sel])
+    PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
+    if PA.size == 0:
+        return []
+    # a: the end with more growing modes
+    swap = count.flat[PA] < count.flat[PB]
+    PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
+    EV = ev.reshape(nx * ny, -1)
+    ea, eb = EV[PA], EV[PB]
+    k = np.arange(len(PA))
+    # the mode that crossed: the least growing of the growing modes at a, and the eigenvalue
+    # nearest to it at b; linear interpolation of its growth rate to zero along the edge
+    ra = ea[k, np.argmin(np.where(grows.reshape(nx * ny, -1)[PA], ea.real, np.inf), axis=-1)]
+    rb = eb[k, np.argmin(np.abs(eb - ra[:, None]), axis=-1)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(rb.real < ra.real, ra.real / (ra.real - rb.real), 0.5)
+    t = np.clip(t, 0.0, 1.0)
+    ua = np.stack([X.flat[PA], Y.flat[PA], ra.imag], axis=-1)
+    ub = np.stack([X.flat[PB], Y.flat[PB], rb.imag], axis=-1)
+    return list(ua + t[:, None] * (ub - ua))
 
 
 def _on_branch(v: np.ndarray, pts: np.ndarray) -> bool:
@@ -403,12 +424,21 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> 
 
 def _check_points(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
                   cols: Sequence[np.ndarray], w: np.ndarray) -> np.ndarray:
-    """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``."""
+    """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``.
+
+    The model's matrices (eq. 8 or 11), not its characteristic polynomial, and LAPACK's
+    ``geev`` on ``M^-1 A`` for all points in one call; the traced points lie inside the domain
+    (``det M = A_G > 0``). Should ``M`` be singular at some point, :func:`stability.spectrum`
+    (method ``"lapack"``, points outside the domain masked) is used instead.
+    """
     p: dict[str, Any] = dict(fixed)
     for n, c in zip(names, cols):
         p[n] = c
-    sp = spectrum(model, mask_unphysical=True, method="lapack", **p)
-    ev = sp.eigenvalues
+    try:
+        M, A = model.matrices(**p)
+        ev = np.linalg.eigvals(np.linalg.solve(M, A))
+    except np.linalg.LinAlgError:
+        ev = spectrum(model, mask_unphysical=True, method="lapack", **p).eigenvalues
     k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
     return np.take_along_axis(ev, k[:, None], -1)[:, 0].real
 
@@ -453,8 +483,11 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
         "long_name": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
                      "(about 1e-8 at a collision, where two eigenvalues coincide)",
         "units": "1"})
-    ds = xr.Dataset(data, coords={"point": np.arange(len(points))})
-    ds["point"].attrs["long_name"] = "index of the point along the traced branches"
+    # Variables from plain numpy arrays (fastpath: no conversion), one Dataset call
+    variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
+    ds = xr.Dataset(variables, coords={"point": xr.IndexVariable(
+        ("point",), np.arange(len(points)),
+        {"long_name": "index of the point along the traced branches"})})
     ds.attrs.update({"Conventions": "CF-1.8", "model": model.name, "equations": model.equations})
     ds.attrs.update({k: float(v) for k, v in fixed.items()})
     ds.attrs["fixed"] = ", ".join(sorted(fixed))
@@ -571,9 +604,21 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         try:
             u = project(prob, g, scale=scale, max_move=0.25 if start is None else np.inf, tol=tol)
         except ConvergenceError:
-            continue
+            if start is None:
+                continue
+            raise ConvergenceError(
+                f"start point ({x}, {y}, w) = ({g[0]:g}, {g[1]:g}, {g[2]:g}): Newton's method did not "
+                f"reach a neutral point (backward error <= {tol:g}) from there; give a start closer "
+                "to the curve (or without w, which then comes from the mode of smallest |Re s|)"
+            ) from None
         if not np.all(prob.constraints(u) >= 0):
-            continue
+            if start is None:
+                continue
+            bad = [n for n, gv in zip(prob.constraint_names, prob.constraints(u)) if gv < 0]
+            raise ValueError(
+                f"start point ({x}, {y}, w) = ({g[0]:g}, {g[1]:g}, {g[2]:g}) converged to the neutral "
+                f"point ({u[0]:.6g}, {u[1]:.6g}, {u[2]:.6g}), outside the ranges or the physical "
+                f"domain ({'; '.join(bad)})")
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
         br = trace_both(prob, u, fold_components=(0, 1), scale=scale, step=step, max_step=max_step,
@@ -597,22 +642,19 @@ def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], 
         bidx.append(np.full(len(br.points), b))
         kinds += rec["kind"]
         details += rec["detail"]
-        for u in br.points:
-            vals = np.delete(u, freq_col)
-            resid.append(prob.cond.backward_error(vals, float(u[freq_col])))
-            if isinstance(prob, NeutralProblem):
-                leading.append(prob.traced_mode_leads(u))
     P = np.concatenate(pts) if pts else np.zeros((0, len(names) + 1))
     T = np.concatenate(tans) if tans else np.zeros((0, len(names) + 1))
     B = np.concatenate(bidx) if bidx else np.zeros(0, int)
+    # per-point checks after tracing, all points at once (one batched call of the model)
+    vals = np.delete(P, freq_col, axis=1)
+    resid = prob.cond.backward_errors(vals, P[:, freq_col])
+    lead = prob.traced_modes_lead(P) if isinstance(prob, NeutralProblem) else None
     # the double crossings where the leading mode changes
-    if leading:
+    if lead is not None:
         for k, kd in enumerate(kinds):
             if kd == "double_crossing":
                 details[k] += "; the leading mode changes"
-    lead = np.array(leading, dtype=bool) if isinstance(prob, NeutralProblem) else None
-    return _dataset(m, names, fixed, P, freq_col, B, kinds, details, np.array(resid, dtype=float),
-                    lead, attrs, T)
+    return _dataset(m, names, fixed, P, freq_col, B, kinds, details, resid, lead, attrs, T)
 
 
 def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str,

@@ -115,7 +115,8 @@ _SLIDING_PARAMS = ("q", "fr_inv", "sigma", "alpha_v", "mu")
 
 
 def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float,
-                         derivatives: bool = True) -> tuple[list[complex], dict[str, list[complex]] | None]:
+                         derivatives: bool = True, which: Sequence[str] | None = None
+                         ) -> tuple[list[complex], dict[str, list[complex]] | None]:
     """Coefficients of eq. (11), ``mu det(s M - A)``, and their exact parameter derivatives.
 
     ``c3 = mu A_G``, ``c2 = alpha_v A_C - i mu sigma``,
@@ -128,6 +129,9 @@ def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, 
         One point (scalars).
     derivatives : bool
         Also return ``dc/dparameter``.
+    which : sequence of str, optional
+        The parameters to differentiate by (default all five); the continuation's inner loop
+        asks only for the two it traces.
 
     Returns
     -------
@@ -135,7 +139,7 @@ def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, 
         ``[c3, c2, c1, c0]``, the same values as
         :meth:`stability.models.sliding.Sliding.coefficients` (same operations).
     dc : dict of str to list of complex, or None
-        ``{name: [dc3, dc2, dc1, dc0]}`` for each of the five parameters.
+        ``{name: [dc3, dc2, dc1, dc0]}`` for each parameter of ``which``.
     """
     a_g = _inertia_g(q, mu)
     a_c = a_g + mu * (1.0 + q) ** 2
@@ -144,15 +148,22 @@ def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, 
          complex(-mu * alpha_v * q * fr_inv, 0.0)]
     if not derivatives:
         return c, None
-    dc = {
-        "q": [complex(-2.0 * mu * mu * q), complex(2.0 * mu * alpha_v),
-              complex(-mu * mu * fr_inv, -alpha_v * mu), complex(-mu * alpha_v * fr_inv)],
-        "fr_inv": [0j, 0j, complex(-mu * mu * q), complex(-mu * alpha_v * q)],
-        "sigma": [0j, complex(0.0, -mu), complex(0.0, -alpha_v), 0j],
-        "alpha_v": [0j, complex(a_c), complex(0.0, -(sigma + mu * (1.0 + q))), complex(-mu * q * fr_inv)],
-        "mu": [complex(1.0 - 2.0 * mu * q * q), complex(alpha_v * (1.0 + 2.0 * q), -sigma),
-               complex(-2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q)), complex(-alpha_v * q * fr_inv)],
-    }
+    dc: dict[str, list[complex]] = {}
+    for name in _SLIDING_PARAMS if which is None else which:
+        if name == "q":
+            dc[name] = [complex(-2.0 * mu * mu * q), complex(2.0 * mu * alpha_v),
+                        complex(-mu * mu * fr_inv, -alpha_v * mu), complex(-mu * alpha_v * fr_inv)]
+        elif name == "fr_inv":
+            dc[name] = [0j, 0j, complex(-mu * mu * q), complex(-mu * alpha_v * q)]
+        elif name == "sigma":
+            dc[name] = [0j, complex(0.0, -mu), complex(0.0, -alpha_v), 0j]
+        elif name == "alpha_v":
+            dc[name] = [0j, complex(a_c), complex(0.0, -(sigma + mu * (1.0 + q))), complex(-mu * q * fr_inv)]
+        elif name == "mu":
+            dc[name] = [complex(1.0 - 2.0 * mu * q * q), complex(alpha_v * (1.0 + 2.0 * q), -sigma),
+                        complex(-2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q)), complex(-alpha_v * q * fr_inv)]
+        else:
+            raise ValueError(f"{name!r} is not a parameter of eq. (11); use {', '.join(_SLIDING_PARAMS)}")
     return c, dc
 
 
@@ -175,22 +186,27 @@ def _divide_root(c: list[complex], r: complex) -> list[complex]:
 
 def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.ndarray:
     """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one)."""
+    return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
+
+
+def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
+    """:func:`other_roots` as a list (closed forms up to degree 2, ``numpy.roots`` beyond)."""
     q = [complex(x) for x in c]
     for _ in range(multiplicity):
         q = _divide_root(q, 1j * w)
     m = len(q) - 1
     if m <= 0:
-        return np.zeros(0, dtype=complex)
+        return []
     if m == 1:
-        return np.array([-q[1] / q[0]])
+        return [-q[1] / q[0]]
     if m == 2:
         a, b, k = q
         sq = cmath.sqrt(b * b - 4 * a * k)
         big = -(b + sq) / 2 if (b.conjugate() * sq).real >= 0 else -(b - sq) / 2
         if big == 0:
-            return np.array([0j, 0j])
-        return np.array([big / a, k / big])
-    return np.roots(q)
+            return [0j, 0j]
+        return [big / a, k / big]
+    return [complex(r) for r in np.roots(q)]
 
 
 class NeutralCondition:
@@ -251,17 +267,22 @@ class NeutralCondition:
         # scalar analytic path (exact derivatives) for the sliding model itself
         self._analytic = type(self.model) is Sliding
         self._ncoef = self.degree + 1
+        if self._analytic:
+            # the parameters of eq. (11) in the order of sliding_coefficients, free ones at 0
+            self._point = [self.fixed.get(name, 0.0) for name in _SLIDING_PARAMS]
+            self._free_index = [_SLIDING_PARAMS.index(name) for name in self.free]
 
     def _scalar(self, values: Sequence[float], derivatives: bool
                 ) -> tuple[list[complex], list[list[complex]] | None]:
         """Deflated coefficients at one point (list) and ``dc/d free`` (one list per free)."""
         if self._analytic:
-            p = dict(self.fixed)
-            for name, v in zip(self.free, values):
-                p[name] = float(v)
-            c, dc = sliding_coefficients(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"],
-                                         derivatives)
+            p = self._point.copy()
+            for i, v in zip(self._free_index, values):
+                p[i] = float(v)
+            c, dc = sliding_coefficients(*p, derivatives, self.free)
             m = self._ncoef
+            if m == 4:
+                return c, None if dc is None else [dc[name] for name in self.free]
             return c[:m], None if dc is None else [dc[name][:m] for name in self.free]
         if derivatives:
             c, dc = self.coefficients_and_derivatives(np.asarray(values, dtype=float))
@@ -317,18 +338,23 @@ class NeutralCondition:
         w = float(w)
         n = len(c) - 1
         if self.form == "crossing":
-            p, dpz = _horner(c, 1j * w)
+            z = 1j * w
+            p, dpz = _horner(c, z)
             S = sum(abs(ck) for ck in c) * max(1.0, abs(w)) ** n or 1.0
             F = np.array([p.real / S, p.imag / S])
             if not jacobian:
                 return F, None
-            J = np.empty((2, len(dc) + 1))
-            for i, row in enumerate(dc):
-                d = _horner(row, 1j * w)[0]
-                J[0, i], J[1, i] = d.real / S, d.imag / S
+            re, im = [], []
+            for row in dc:
+                d = 0j
+                for ck in row:  # Horner, value only
+                    d = d * z + ck
+                re.append(d.real / S)
+                im.append(d.imag / S)
             dpw = 1j * dpz
-            J[0, -1], J[1, -1] = dpw.real / S, dpw.imag / S
-            return F, J
+            re.append(dpw.real / S)
+            im.append(dpw.imag / S)
+            return F, np.array([re, im])
         a = self._real_poly_list(c)
         norm = sum(abs(x) for x in a)
         S0 = norm * max(1.0, abs(w)) ** n or 1.0
@@ -361,7 +387,88 @@ class NeutralCondition:
         F, _ = self.residual_and_jacobian(values, w, jacobian=False)
         return float(np.linalg.norm(F))
 
+    def residuals(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """``F`` at many points at once: the batched twin of :meth:`residual_and_jacobian`.
+
+        One call of the model's batched coefficients (the same values as the scalar path) and
+        Horner's scheme on arrays; used after tracing, for the backward error of every point.
+
+        Parameters
+        ----------
+        values : numpy.ndarray, shape (m, len(free))
+        w : numpy.ndarray, shape (m,)
+
+        Returns
+        -------
+        numpy.ndarray, shape (m, 2)
+        """
+        values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
+        w = np.asarray(w, dtype=float).reshape(-1)
+        if len(w) == 0:
+            return np.zeros((0, 2))
+        c = self.coefficients(values)
+        n = c.shape[-1] - 1
+        big = np.maximum(1.0, np.abs(w))
+        if self.form == "crossing":
+            z = 1j * w
+            p = np.zeros(len(w), dtype=complex)
+            for k in range(n + 1):
+                p = p * z + c[:, k]
+            S = np.abs(c).sum(axis=-1) * big**n
+            S = np.where(S == 0, 1.0, S)
+            return np.stack([p.real / S, p.imag / S], axis=-1)
+        a = self._real_poly(c)
+        norm = np.abs(a).sum(axis=-1)
+        S0 = norm * big**n
+        S1 = n * norm * big ** max(n - 1, 0)
+        P = np.zeros(len(w))
+        dP = np.zeros(len(w))
+        for k in range(n + 1):
+            dP = dP * w + P
+            P = P * w + a[:, k]
+        return np.stack([P / np.where(S0 == 0, 1.0, S0), dP / np.where(S1 == 0, 1.0, S1)], axis=-1)
+
+    def backward_errors(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """:meth:`backward_error` at many points at once, shape ``(m,)``."""
+        return np.linalg.norm(self.residuals(values, w), axis=-1)
+
+    def other_modes_many(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """:meth:`other_modes` at many points at once, shape ``(m, k)``.
+
+        The neutral root(s) ``i w`` are divided out by synthetic division on arrays; the
+        quotient's roots are the closed forms for degree 1 and 2 (the stable quadratic formula
+        of :func:`other_roots`) and LAPACK on the companion matrices otherwise.
+        """
+        values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
+        w = np.asarray(w, dtype=float).reshape(-1)
+        c = self.coefficients(values).astype(complex)
+        r = 1j * w
+        for _ in range(1 if self.form == "crossing" else 2):
+            out = [c[:, 0]]
+            for k in range(1, c.shape[1] - 1):
+                out.append(c[:, k] + r * out[-1])
+            c = np.stack(out, axis=-1)
+        m = c.shape[1] - 1
+        if m <= 0:
+            return np.zeros((len(w), 0), dtype=complex)
+        if m == 1:
+            return (-c[:, 1] / c[:, 0])[:, None]
+        if m == 2:
+            a, b, k = c[:, 0], c[:, 1], c[:, 2]
+            sq = np.sqrt(b * b - 4 * a * k)
+            big = np.where((b.conj() * sq).real >= 0, -(b + sq) / 2, -(b - sq) / 2)
+            safe = np.where(big == 0, 1.0, big)
+            return np.stack([np.where(big == 0, 0j, big / a), np.where(big == 0, 0j, k / safe)], axis=-1)
+        comp = np.zeros((len(w), m, m), dtype=complex)
+        comp[:, 0, :] = -c[:, 1:] / c[:, :1]
+        comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
+        return np.linalg.eigvals(comp)
+
     def other_modes(self, values: np.ndarray, w: float) -> np.ndarray:
         """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros excluded)."""
-        c, _ = self._scalar(np.asarray(values, float).tolist(), False)
-        return other_roots(c, w, 1 if self.form == "crossing" else 2)
+        return np.array(self.other_modes_list(values, w), dtype=complex)
+
+    def other_modes_list(self, values: Sequence[float], w: float) -> list[complex]:
+        """:meth:`other_modes` as a list of Python complex numbers (the scalar inner loop)."""
+        c, _ = self._scalar(values, False)
+        return _other_roots_list(c, float(w), 1 if self.form == "crossing" else 2)

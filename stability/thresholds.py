@@ -12,8 +12,13 @@ Method (for :func:`thresholds`):
    ``1e-16``: the root of the smooth mode-wise ``Re s``, not an interpolation. If Newton leaves
    the bracket, bisection continues to the last bit instead.
 
-Two crossings closer than the sampling step are missed (the sign of the leading growth rate
-does not change between samples); give a narrower ``bracket`` or more ``samples``.
+Two crossings closer than the sampling step (a neutral curve folding back between two
+samples) do not change the stability decision from sample to sample. They are looked for where
+the growth rate of the stable samples has a local maximum close to zero (compared with its
+variation between samples): the maximum is refined by bounded Brent, and if it is positive the
+two crossings on either side are polished as above. A crossing that only touches zero (the
+growth rate's maximum at zero to rounding, exactly at a fold) is not a change of stability and
+is not reported.
 
 :func:`critical_spin` answers the physical question for a real top (:class:`stability.Top`):
 the spin rate above which the upright state is unstable, or the inverted one stable.
@@ -209,6 +214,46 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
     return found if return_details else np.array([t.value for t in found])
 
 
+def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) -> np.ndarray:
+    """Largest growth rate over the modes that are not flagged neutral (structural zeros)."""
+    sp = spectrum(m, mask_unphysical=True, **{**fx, param: x})
+    ev = np.where(sp.neutral, complex(-np.inf, 0.0), sp.eigenvalues)
+    return np.max(ev.real, axis=-1)
+
+
+def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray,
+                  u: np.ndarray) -> list[tuple[float, float, float]]:
+    """Pairs of crossings between two samples (a neutral curve folding back there).
+
+    Where the growth rate ``g`` of the stable samples has a local maximum whose parabola
+    through the three samples comes within its own variation of zero, the maximum is refined
+    (bounded Brent, :func:`scipy.optimize.minimize_scalar`, to ``1e-13`` relative). Returns
+    ``(a, x_max, b)`` for each refined maximum with ``g > 0``: the window ``(a, b)`` holds two
+    thresholds, one on each side of ``x_max``.
+    """
+    from scipy.optimize import minimize_scalar
+
+    if len(x) < 3:
+        return []
+    g = _growth(m, fx, param, x)
+    out = []
+    for k in range(1, len(x) - 1):
+        if u[k - 1] or u[k] or u[k + 1] or not (g[k] >= g[k - 1] and g[k] >= g[k + 1]):
+            continue
+        if not np.all(np.isfinite(g[k - 1:k + 2])) or g[k] >= 0:
+            continue
+        rise = max(g[k] - g[k - 1], g[k] - g[k + 1])
+        if -g[k] > 4.0 * rise:  # far below zero for its curvature: no crossing nearby
+            continue
+        a, b = float(x[k - 1]), float(x[k + 1])
+        res = minimize_scalar(lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
+                              bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))})
+        if -res.fun > 0:
+            out.append((a, float(res.x), b))
+    return out
+
+
 def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: float, n: int):
     x = _samples(lo, hi, n)
     u, inside, _ = _unstable(m, fx, param, x)
@@ -216,6 +261,12 @@ def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: 
     found = []
     for k in np.nonzero(u[1:] != u[:-1])[0]:
         found.append(_polish(m, fx, param, float(x[k]), float(x[k + 1]), bool(u[k])))
+    # two crossings between neighbouring samples (near a fold of the neutral curve): the
+    # stability decision does not change from sample to sample, the growth rate's maximum does
+    for a, xm, b in _hidden_pairs(m, fx, param, x, u):
+        if _unstable(m, fx, param, np.array([xm]))[0][0]:
+            found.append(_polish(m, fx, param, a, xm, False))
+            found.append(_polish(m, fx, param, b, xm, False))
     found.sort(key=lambda t: t.value)
     return found, u
 
