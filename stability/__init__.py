@@ -10,6 +10,7 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 """
 from .atlas import atlas
 from .control_forms import friction_loop, state_space
+from .distributed import ChunkError
 from .io import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS, LinearModel, get_model
 from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
@@ -21,7 +22,7 @@ from .top import Top
 from .thresholds import critical_spin, threshold, thresholds
 
 __all__ = [
-    "AtlasFileError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
+    "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate",
     "threshold", "thresholds", "critical_spin",

@@ -1,25 +1,52 @@
 """The ``tippe`` command line (also ``python -m stability``).
 
 Each subcommand lives in a module of :mod:`stability.commands` that exposes
-``register(subparsers)`` (adds its parser and sets ``func``) ; :data:`COMMANDS` lists them.
-Errors in the user's input end the program with one line on stderr and exit status 2,
-never a traceback.
+``register(subparsers)`` (adds its parser and sets ``func``); :data:`COMMANDS` lists them.
+
+Errors end the program with exactly one line on stderr and no traceback
+(docs/input_checks.md):
+
+* a mistake in the command line or its values (argparse's own errors, :class:`ValueError`,
+  :class:`TypeError`, including every :class:`~stability.parameters.DomainError`) and a file
+  that cannot be read or written (:class:`OSError`): ``tippe CMD: error: ...``, exit status 2;
+* a chunk of a chunked atlas that failed (:class:`~stability.distributed.ChunkError`):
+  exit status 1, the line says what was kept;
+* an interruption (Ctrl-C): exit status 130, no partial output file is left;
+* anything else is a bug of the program: one line ``tippe CMD: internal error: ...``, exit
+  status 1. With ``--debug`` (anywhere on the command line) or the environment variable
+  ``TIPPE_DEBUG=1`` the full traceback is shown instead, for every kind of error.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import re
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
-__all__ = ["main", "COMMANDS"]
+__all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
 COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "bench")
 
+#: exit statuses: bad input or file (2), a failed computation or a bug (1), interrupted (130)
+EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130
+
 _NEGATIVE_VALUE = re.compile(r"^-[\d.]")
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with errors on one line (``prog: error: message``), without the usage block."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split()) or "(no message)"
 
 
 def _join_negative_values(argv: list[str]) -> list[str]:
@@ -46,29 +73,61 @@ def build_parser() -> argparse.ArgumentParser:
         ver = version("tippe-stability")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
         ver = "unknown"
-    parser = argparse.ArgumentParser(
-        prog="tippe", description="Linear stability and bifurcation analysis of the Tippe top.")
+    parser = _Parser(
+        prog="tippe", description="Linear stability and bifurcation analysis of the Tippe top.",
+        epilog="Errors are reported on one line; add --debug (or set TIPPE_DEBUG=1) for a traceback.")
     parser.add_argument("--version", action="version", version=f"tippe-stability {ver}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of any error")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     for name in COMMANDS:
         importlib.import_module(f"stability.commands.{name}").register(sub)
     return parser
 
 
+def _debug_env() -> bool:
+    return os.environ.get("TIPPE_DEBUG", "").strip().lower() not in ("", "0", "no", "false")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status."""
-    args_list = _join_negative_values(list(sys.argv[1:] if argv is None else argv))
+    from .commands._args import Interrupted
+    from .distributed import ChunkError
+
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in args_list or _debug_env()
+    args_list = _join_negative_values([a for a in args_list if a != "--debug"])
     parser = build_parser()
     args = parser.parse_args(args_list)
+    prog = f"tippe {args.command}"
     try:
         return int(args.func(args) or 0)
-    except (ValueError, TypeError, OSError) as exc:
-        print(f"tippe {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+    except Interrupted as exc:
+        if debug:
+            raise
+        print(f"{prog}: interrupted; {_one_line(exc)}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except KeyboardInterrupt:
-        print(f"tippe {args.command}: interrupted; no output file was left behind", file=sys.stderr)
-        return 130
+        if debug:
+            raise
+        print(f"{prog}: interrupted; no output file was left behind", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except ChunkError as exc:
+        if debug:
+            raise
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
+    except (ValueError, TypeError, OSError) as exc:
+        if debug:
+            raise
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # a bug: still one line unless asked
+        if debug:
+            raise
+        print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+              "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)", file=sys.stderr)
+        return EXIT_FAILURE
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -41,9 +41,10 @@ import xarray as xr
 
 from .io import atomic_output, check_output_path
 from .models import LinearModel
-from .parameters import check_domain
+from .parameters import check_domain, check_flag, check_integer
 
-__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "dask_client", "ResumeError", "parts_directory"]
+__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "dask_client", "ResumeError", "ChunkError",
+           "parts_directory"]
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
 _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
@@ -51,6 +52,15 @@ _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stabi
 
 class ResumeError(ValueError):
     """The sidecar chunk store cannot be used for this atlas (the message says why)."""
+
+
+class ChunkError(RuntimeError):
+    """Computing one chunk of a chunked atlas failed (an exception in it, or its worker died).
+
+    The message names the chunk and its slice of the grid, the cause, and what was kept: with
+    ``resume=True`` the chunks finished before the failure stay in ``<output>.parts/`` and a
+    rerun computes only the others. The original exception is the ``__cause__``.
+    """
 
 
 def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[str, int]) -> dict[str, int]:
@@ -77,14 +87,13 @@ def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[
     if isinstance(chunks, dict):
         unknown = [k for k in chunks if k not in dims]
         if unknown:
-            raise ValueError(f"chunks name {', '.join(unknown)}, not grid dimensions "
+            raise ValueError(f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
                              f"(the grid has {', '.join(dims) or 'none'})")
-        out = {d: int(chunks.get(d, sizes[d])) for d in dims}
+        out = {d: check_integer(f"chunks[{d!r}]", chunks[d], minimum=1) if d in chunks else sizes[d]
+               for d in dims}
     else:
-        out = {d: int(chunks) for d in dims}
-    bad = {k: v for k, v in out.items() if v < 1}
-    if bad:
-        raise ValueError(f"chunk sizes must be >= 1, got {bad}")
+        size = check_integer("chunks", chunks, minimum=1)
+        out = {d: size for d in dims}
     return {d: min(v, sizes[d]) for d, v in out.items()}
 
 
@@ -235,7 +244,13 @@ def _open_store(store: Path, ident: dict[str, Any]) -> set[str]:
         if not manifest.is_file():
             raise ResumeError(f"cannot resume: {str(store)!r} exists but has no manifest.json "
                               "(not a chunk store of this package); remove it or choose another output")
-        old = json.loads(manifest.read_text())
+        try:
+            old = json.loads(manifest.read_text())
+            if not isinstance(old, dict):
+                raise ValueError
+        except (ValueError, UnicodeDecodeError, OSError):
+            raise ResumeError(f"cannot resume: {str(manifest)!r} is not a readable manifest; remove "
+                              f"{str(store)!r} to start afresh") from None
         diff = [k for k in ident if old.get(k) != ident[k]]
         if diff:
             raise ResumeError(f"cannot resume from {str(store)!r}: it was written for a different atlas "
@@ -252,6 +267,15 @@ def _save_chunk(store: Path, name: str, block: dict[str, np.ndarray]) -> None:
     tmp = store / f".{name}.tmp.npz"
     np.savez(tmp, **block)
     os.replace(tmp, store / f"{name}.npz")
+
+
+def _load_chunk(store: Path, name: str) -> dict[str, np.ndarray] | None:
+    """A kept chunk, or None (to recompute it) if its file cannot be read."""
+    try:
+        with np.load(store / f"{name}.npz") as z:
+            return {k: np.asarray(z[k]) for k in _BLOCK_VARIABLES}
+    except Exception:  # unreadable or incomplete: computed again
+        return None
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -329,6 +353,12 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     ResumeError
         ``resume=True`` and ``<output>.parts/`` belongs to another atlas.
     """
+    overwrite = check_flag("overwrite", overwrite)
+    resume = check_flag("resume", resume)
+    if window is not None:
+        window = check_integer("window", window, minimum=1)
+    if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
+        raise TypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
     target = check_output_path(path, overwrite=overwrite)
     dims = [d for d in ds["stability"].dims]
     chunk_shape = {}
@@ -341,44 +371,75 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     if resume:
         done = _open_store(store, _identity(ds, chunk_shape))
     report = _progress(progress, len(blocks))
-    with atomic_output(target, overwrite=overwrite) as tmp:
-        _create_skeleton(ds, tmp, chunk_shape)
-        import netCDF4
+    try:
+        with atomic_output(target, overwrite=overwrite) as tmp:
+            _create_skeleton(ds, tmp, chunk_shape)
+            import netCDF4
 
-        with netCDF4.Dataset(tmp, "a") as nc:
-            nc.set_auto_mask(False)
+            with netCDF4.Dataset(tmp, "a") as nc:
+                nc.set_auto_mask(False)
 
-            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
-                if resume and fresh:
-                    _save_chunk(store, name, block)
-                idx = tuple(sl[d] for d in dims)
-                for k, v in block.items():
-                    nc.variables[k][idx] = v
-                nc.variables["max_growth_rate"][idx] = block["growth_rate"][..., 0]
-                report()
+                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
+                    if resume and fresh:
+                        _save_chunk(store, name, block)
+                    idx = tuple(sl[d] for d in dims)
+                    for k, v in block.items():
+                        nc.variables[k][idx] = v
+                    nc.variables["max_growth_rate"][idx] = block["growth_rate"][..., 0]
+                    report()
 
-            todo = []
-            for name, sl in blocks:
-                if name in done:
-                    with np.load(store / f"{name}.npz") as z:
-                        put(name, sl, {k: z[k] for k in _BLOCK_VARIABLES}, False)
+                todo = []
+                for name, sl in blocks:
+                    kept = _load_chunk(store, name) if name in done else None
+                    if kept is not None:
+                        put(name, sl, kept, False)
+                    else:
+                        todo.append((name, sl))
+                lazy = bool(ds.chunks)
+                spec = _spec(ds, dims)
+                failed = _Failure(store if resume else None, len(blocks))
+                if client is None or not lazy:
+                    for name, sl in todo:
+                        try:
+                            block = _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+                        except Exception as exc:
+                            raise failed(name, sl, exc, report.done) from exc
+                        put(name, sl, block, True)
                 else:
-                    todo.append((name, sl))
-            lazy = bool(ds.chunks)
-            spec = _spec(ds, dims)
-            if client is None or not lazy:
-                for name, sl in todo:
-                    put(name, sl, _compute_block(spec, sl) if lazy else _slice_block(ds, sl), True)
-            else:
-                _run_on_cluster(client, spec, todo, put, window)
+                    _run_on_cluster(client, spec, todo, put, window, failed, report)
+    finally:
         report(close=True)
     if resume and store.exists():
         shutil.rmtree(store)
     return target
 
 
-def _run_on_cluster(client: Any, spec: dict[str, Any], todo: list, put: Callable, window: int | None) -> None:
-    """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands."""
+class _Failure:
+    """Builds the :class:`ChunkError` of a failed chunk (what failed, what was kept)."""
+
+    def __init__(self, store: Path | None, total: int) -> None:
+        self.store, self.total = store, total
+
+    def __call__(self, name: str, sl: dict[str, slice], exc: BaseException, done: int) -> ChunkError:
+        where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
+        cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
+        if self.store is not None:
+            kept = (f"{done} of {self.total} chunks are kept in {self.store}; rerun the same command "
+                    "(resume=True, --resume) to compute only the others")
+        else:
+            kept = (f"no chunks were kept ({done} of {self.total} had been computed); use "
+                    "resume=True (--resume) to keep finished chunks across a failure")
+        return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {kept}")
+
+
+def _run_on_cluster(client: Any, spec: dict[str, Any], todo: list, put: Callable, window: int | None,
+                    failed: _Failure, report: "_progress") -> None:
+    """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
+
+    A chunk whose task raises (or whose worker died more often than the scheduler's
+    ``allowed-failures``, dask's ``KilledWorker``) ends the run with a :class:`ChunkError`; the
+    chunks still in flight are cancelled. A worker dying once is retried by dask elsewhere.
+    """
     from distributed import as_completed
 
     if window is None:
@@ -386,21 +447,29 @@ def _run_on_cluster(client: Any, spec: dict[str, Any], todo: list, put: Callable
     pending = iter(todo)
     names = {}
     ac = as_completed()
-    for name, sl in pending:
-        fut = client.submit(_compute_block, spec, sl, pure=False)
-        names[fut.key] = (name, sl)
-        ac.add(fut)
-        if len(names) >= window:
-            break
-    for fut in ac:
-        name, sl = names.pop(fut.key)
-        put(name, sl, fut.result(), True)
-        fut.release()
-        nxt = next(pending, None)
-        if nxt is not None:
-            f2 = client.submit(_compute_block, spec, nxt[1], pure=False)
-            names[f2.key] = nxt
-            ac.add(f2)
+    try:
+        for name, sl in pending:
+            fut = client.submit(_compute_block, spec, sl, pure=False)
+            names[fut.key] = (name, sl, fut)
+            ac.add(fut)
+            if len(names) >= window:
+                break
+        for fut in ac:
+            name, sl, _ = names.pop(fut.key)
+            try:
+                block = fut.result()
+            except Exception as exc:
+                raise failed(name, sl, exc, report.done) from exc
+            put(name, sl, block, True)
+            fut.release()
+            nxt = next(pending, None)
+            if nxt is not None:
+                f2 = client.submit(_compute_block, spec, nxt[1], pure=False)
+                names[f2.key] = (*nxt, f2)
+                ac.add(f2)
+    finally:
+        if names:
+            client.cancel([f for _, _, f in names.values()])
 
 
 class _progress:
@@ -419,6 +488,7 @@ class _progress:
         if close:
             if self.bar is not None:
                 self.bar.close()
+                self.bar = None
             return
         self.done += 1
         if self.bar is not None:
@@ -450,22 +520,47 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
     if workers is None and scheduler is None:
         yield None
         return
+    if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
+        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a "
+                        "scheduler file")
     from distributed import Client, LocalCluster
 
     if workers is not None:
-        if workers < 1:
-            raise ValueError(f"workers = {workers}: need at least 1")
+        workers = check_integer("workers", workers, minimum=1)
+        if workers > 1024:
+            raise ValueError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
                           dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
                 Client(cluster) as client:
             yield client
         return
+    scheduler = str(scheduler)
     if "://" in scheduler:
-        with Client(scheduler, timeout="20s") as client:
-            yield client
-        return
-    if not Path(scheduler).is_file():
-        raise FileNotFoundError(f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor a "
-                                "scheduler file")
-    with Client(scheduler_file=scheduler, timeout="20s") as client:
+        client = _connect(scheduler, address=scheduler)
+    else:
+        path = Path(scheduler)
+        if not path.is_file():
+            raise FileNotFoundError(f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an "
+                                    "existing scheduler file")
+        try:
+            info = json.loads(path.read_text())
+            address = info["address"]
+        except (ValueError, KeyError, TypeError, UnicodeDecodeError):
+            raise ValueError(f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
+                             "'address', as written by `dask scheduler --scheduler-file`)") from None
+        client = _connect(scheduler, scheduler_file=str(path), address=address)
+    with client:
         yield client
+
+
+def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
+    """A distributed Client, or an OSError naming the scheduler if it cannot be reached."""
+    from distributed import Client
+
+    try:
+        if "scheduler_file" in kwargs:
+            return Client(timeout="20s", **kwargs)
+        return Client(address, timeout="20s")
+    except (OSError, TimeoutError) as exc:
+        raise ConnectionError(f"cannot reach the dask scheduler {what!r} (address {address}): "
+                              f"{type(exc).__name__}: {exc}") from None

@@ -37,17 +37,28 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     FileNotFoundError, PermissionError
         The directory does not exist or is not writable.
     """
-    p = Path(path)
+    p = _as_path("output path", path)
+    if not isinstance(overwrite, bool):
+        raise TypeError(f"overwrite = {overwrite!r} must be True or False")
     if p.is_dir():
         raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
-    if p.exists() and not overwrite:
+    if (p.exists() or p.is_symlink()) and not overwrite:
         raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True (--overwrite) to replace it")
     parent = p.parent if str(p.parent) else Path(".")
+    if not parent.exists():
+        raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
     if not parent.is_dir():
-        raise FileNotFoundError(f"output directory {str(parent)!r} does not exist")
-    if not os.access(parent, os.W_OK):
-        raise PermissionError(f"output directory {str(parent)!r} is not writable")
+        raise NotADirectoryError(f"output directory {str(parent)!r} of {str(p)!r} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable")
     return p
+
+
+def _as_path(what: str, path: object) -> Path:
+    """A non-empty path-like as a Path, or a TypeError naming ``what``."""
+    if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+        raise TypeError(f"{what} = {path!r} must be a file name (a non-empty str or path-like)")
+    return Path(path)
 
 
 @contextlib.contextmanager
@@ -88,6 +99,8 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     pathlib.Path
         The written path.
     """
+    if not isinstance(ds, xr.Dataset):
+        raise TypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
     with atomic_output(path, overwrite=overwrite) as tmp:
         ds.to_netcdf(tmp, format="NETCDF4")
     return Path(path)
@@ -111,18 +124,32 @@ def open_atlas(path: str | os.PathLike) -> xr.Dataset:
         The file is missing, unreadable (truncated, not netCDF) or not an atlas of this
         package; the message names the file.
     """
-    p = Path(path)
+    p = _as_path("atlas path", path)
+    if p.is_dir():
+        raise AtlasFileError(f"atlas file {str(p)!r} is a directory, not a netCDF file")
     if not p.is_file():
         raise AtlasFileError(f"atlas file {str(p)!r} does not exist")
+    if not os.access(p, os.R_OK):
+        raise AtlasFileError(f"atlas file {str(p)!r} is not readable (permission denied)")
+    if p.stat().st_size == 0:
+        raise AtlasFileError(f"atlas file {str(p)!r} is empty (0 bytes), not a netCDF file")
     try:
         with xr.open_dataset(p) as ds:
             ds = ds.load()
     except Exception as exc:  # netCDF4/h5 raise OSError, ValueError or their own types
-        raise AtlasFileError(f"{str(p)!r} is not a readable netCDF file ({type(exc).__name__}: {exc})") from None
+        with open(p, "rb") as f:
+            head = f.read(8)
+        if head.startswith((b"\x89HDF", b"CDF")):
+            raise AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to "
+                                 f"the end (truncated or damaged: {type(exc).__name__}: "
+                                 f"{' '.join(str(exc).split())[:120]})") from None
+        raise AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file (it does not start "
+                             "with a netCDF or HDF5 signature)") from None
     if ds.attrs.get(PRODUCT_ATTR) != "atlas":
-        raise AtlasFileError(f"{str(p)!r} is not an atlas of tippe-stability "
-                             f"(its global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r})")
+        raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: a netCDF file "
+                             f"whose global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r}, "
+                             "not 'atlas'")
     missing = [v for v in ATLAS_VARIABLES if v not in ds]
     if missing:
-        raise AtlasFileError(f"{str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}")
+        raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}")
     return ds

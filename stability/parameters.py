@@ -18,15 +18,23 @@ Why these bounds: the transverse moment about G is ``A_G = A0 - M R^2 q^2``, pos
 ``1 - mu q^2 > 0`` (at equality the mass matrix of eq. 11 is singular); the principal moments
 about G obey the triangle inequality ``C <= 2 A_G``, i.e. ``sigma <= 2 (1 - mu q^2)``.
 
+Besides the physical domain, every parameter must lie in the *computable range*
+:data:`COMPUTABLE_RANGE` (``|x| <= 1e30``, and ``mu >= 1e-30``): beyond it the coefficients of the
+characteristic polynomials overflow double precision and the eigenvalues would come out as
+NaN or inf. A value outside it is refused whatever ``mask`` says.
+
 Every check raises :class:`DomainError` (a :class:`ValueError`) or :class:`TypeError` whose
-message names the parameter, its offending value and the bound.
+message names the parameter, its offending value and the bound. The helpers below
+(:func:`as_scalar`, :func:`check_positive`, :func:`check_flag`, :func:`check_integer`,
+:func:`check_choice`, :func:`check_interval`) produce the messages of every other argument check
+of the package, so that they read the same everywhere (docs/input_checks.md lists them).
 """
 
 from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import numpy as np
@@ -37,9 +45,16 @@ __all__ = [
     "PARAMETERS",
     "DEFAULT_MU",
     "LONG_NAMES",
+    "COMPUTABLE_RANGE",
     "DomainError",
     "as_parameter",
+    "as_scalar",
     "check_domain",
+    "check_positive",
+    "check_flag",
+    "check_integer",
+    "check_choice",
+    "check_interval",
     "domain_mask",
 ]
 
@@ -68,8 +83,21 @@ SYMBOLS: dict[str, str] = {
 }
 
 
+#: name -> (smallest, largest) magnitude accepted (the computable range, module docstring)
+COMPUTABLE_RANGE: dict[str, tuple[float, float]] = {
+    "q": (0.0, 1e30), "fr_inv": (0.0, 1e30), "sigma": (0.0, 1e30), "alpha_v": (0.0, 1e30),
+    "alpha_k": (0.0, 1e30), "mu": (1e-30, 1e30),
+}
+
+
 class DomainError(ValueError):
     """A parameter lies outside the physical domain (or is not finite, or is empty)."""
+
+
+def _show(value: Any, width: int = 60) -> str:
+    """A short ``repr`` of a user's value for a message."""
+    text = repr(value)
+    return text if len(text) <= width else text[:width - 3] + "..."
 
 
 def as_parameter(name: str, value: Any) -> np.ndarray:
@@ -97,15 +125,18 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
     if value is None:
         raise TypeError(f"{name} is required (got None); give a real number or an array of reals")
     if isinstance(value, (str, bytes, bool, np.bool_)):
-        raise TypeError(f"{name} must be a real number or an array of reals, got {type(value).__name__} {value!r}")
+        raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; "
+                        f"{name} must be a real number or an array of reals")
     if isinstance(value, numbers.Number) and not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be real, got {type(value).__name__} {value!r}")
+        raise TypeError(f"{name} = {_show(value)} is {type(value).__name__}; {name} must be real")
     try:
         arr = np.asarray(value)
-    except Exception as exc:  # ragged lists and the like
-        raise TypeError(f"{name} must be a real number or an array of reals: {exc}") from None
+    except Exception:  # ragged lists and the like
+        raise TypeError(f"{name} = {_show(value)} is not a rectangular array; "
+                        f"{name} must be a real number or an array of reals") from None
     if arr.dtype.kind not in "iuf":
-        raise TypeError(f"{name} must be a real number or an array of reals, got dtype {arr.dtype} ({value!r:.60})")
+        what = "holds complex numbers" if arr.dtype.kind == "c" else f"has dtype {arr.dtype}"
+        raise TypeError(f"{name} = {_show(value)} {what}; {name} must be a real number or an array of reals")
     arr = arr.astype(np.float64)
     if arr.size == 0:
         raise DomainError(f"{name} is empty; give at least one value")
@@ -172,7 +203,104 @@ def domain_mask(**params: Any) -> np.ndarray:
     return ok
 
 
-def check_domain(*, mask: bool = False, **params: Any) -> tuple[dict[str, np.ndarray], np.ndarray]:
+def _check_computable(p: Mapping[str, np.ndarray]) -> None:
+    """Refuse magnitudes outside :data:`COMPUTABLE_RANGE` (always, whatever the mask)."""
+    for name, v in p.items():
+        if name not in COMPUTABLE_RANGE:
+            continue
+        lo, hi = COMPUTABLE_RANGE[name]
+        mag = np.abs(v)
+        bad = (mag > hi) | ((mag < lo) & (v > 0))
+        if bad.any():
+            val = float(v[bad].flat[0])
+            rng = f"|{name}| <= {hi:g}" if lo == 0 else f"{lo:g} <= {name} <= {hi:g}"
+            raise DomainError(f"{name} = {val:.6g} is outside the computable range: {rng} "
+                              "(beyond it the eigenvalues overflow double precision)")
+
+
+def as_scalar(name: str, value: Any) -> float:
+    """One real, finite number (a 0-d or one-element array is accepted).
+
+    Raises
+    ------
+    TypeError
+        Not a real number, or an array of several values (the message gives its shape).
+    DomainError
+        NaN, inf or empty.
+    """
+    arr = as_parameter(name, value)
+    if arr.size != 1:
+        raise TypeError(f"{name} must be a single number here, got an array of shape {arr.shape}")
+    return float(arr.reshape(()))
+
+
+def check_positive(name: str, value: Any, *, strict: bool = True, unit: str = "") -> float:
+    """A single finite number ``> 0`` (``strict``) or ``>= 0``; the message names the bound.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the message.
+    value : float
+    strict : bool, default True
+        ``> 0`` if True, ``>= 0`` otherwise.
+    unit : str, optional
+        Unit shown after the value in the message.
+
+    Returns
+    -------
+    float
+    """
+    v = as_scalar(name, value)
+    if (v <= 0) if strict else (v < 0):
+        u = f" {unit}" if unit else ""
+        raise DomainError(f"{name} = {v:.6g}{u} is outside the allowed range: {name} {'>' if strict else '>='} 0")
+    return v
+
+
+def check_interval(name: str, value: Any, lo: float, hi: float, *, closed: str = "neither") -> float:
+    """A single finite number inside ``(lo, hi)``; ``closed`` in {"neither", "left", "right", "both"}."""
+    v = as_scalar(name, value)
+    left_ok = v >= lo if closed in ("left", "both") else v > lo
+    right_ok = v <= hi if closed in ("right", "both") else v < hi
+    if not (left_ok and right_ok):
+        lb = "<=" if closed in ("left", "both") else "<"
+        rb = "<=" if closed in ("right", "both") else "<"
+        raise DomainError(f"{name} = {v:.6g} is outside the allowed range: {lo:g} {lb} {name} {rb} {hi:g}")
+    return v
+
+
+def check_flag(name: str, value: Any) -> bool:
+    """``True`` or ``False`` (also numpy booleans); anything else is a :class:`TypeError`."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be True or False")
+
+
+def check_integer(name: str, value: Any, *, minimum: int | None = None) -> int:
+    """An integer (Python or numpy, not bool), at least ``minimum``; the message names the bound."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
+        if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+            value = int(value)
+        else:
+            raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be an integer"
+                            + (f" >= {minimum}" if minimum is not None else ""))
+    v = int(value)
+    if minimum is not None and v < minimum:
+        raise DomainError(f"{name} = {v} is outside the allowed range: {name} >= {minimum}")
+    return v
+
+
+def check_choice(name: str, value: Any, choices: Iterable[str]) -> str:
+    """One of ``choices`` (strings); the message lists them."""
+    options = list(choices)
+    if not isinstance(value, str) or value not in options:
+        raise ValueError(f"{name} = {_show(value)} is not known; choose one of {', '.join(options)}")
+    return value
+
+
+def check_domain(*, mask: bool = False, scalar: bool = False,
+                 **params: Any) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """Validate parameters against the physical domain.
 
     Parameters
@@ -180,6 +308,8 @@ def check_domain(*, mask: bool = False, **params: Any) -> tuple[dict[str, np.nda
     mask : bool, default False
         If False, any point outside the domain refuses the whole request. If True,
         unphysical points are only reported in the returned mask.
+    scalar : bool, default False
+        Require every parameter to be a single number (the message names the one that is not).
     **params
         Parameter values (scalars or arrays, broadcast together).
 
@@ -193,12 +323,19 @@ def check_domain(*, mask: bool = False, **params: Any) -> tuple[dict[str, np.nda
     Raises
     ------
     TypeError
-        For a value that is not real.
+        For a value that is not real, or (``scalar=True``) not a single number; for a ``mask``
+        that is not a bool.
     DomainError
-        For an empty or non-finite value, incompatible shapes, or (``mask=False``) a point
-        outside the domain; the message names the parameter, its value and the bound.
+        For an empty or non-finite value, a value outside the computable range
+        (:data:`COMPUTABLE_RANGE`), incompatible shapes, or (``mask=False``) a point outside
+        the domain; the message names the parameter, its value and the bound.
     """
-    p = {k: as_parameter(k, v) for k, v in params.items()}
+    mask = check_flag("mask_unphysical", mask)
+    if scalar:
+        p = {k: np.asarray(as_scalar(k, v)) for k, v in params.items()}
+    else:
+        p = {k: as_parameter(k, v) for k, v in params.items()}
+    _check_computable(p)
     try:
         b = np.broadcast_arrays(*p.values())
     except ValueError:

@@ -51,11 +51,12 @@ import numpy as np
 import xarray as xr
 
 from .atlas import atlas
-from .io import AtlasFileError, open_atlas, write_dataset
+from .io import AtlasFileError, check_output_path, open_atlas, write_dataset
 from .models import MODELS
 from .parameters import LONG_NAMES, PARAMETERS
 
-__all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "KINDS"]
+__all__ = ["Recipe", "RecipeError", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
+           "KINDS"]
 
 #: what a recipe can draw
 KINDS = ("lines", "map", "models", "scene", "critical_spin")
@@ -237,18 +238,53 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
 
 def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: bool,
             reader: Callable[[Path], xr.Dataset]) -> xr.Dataset:
-    """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it."""
+    """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
+
+    A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
+    docstring)."""
     if path.exists() and not force:
         try:
             ds = reader(path)
-            if ds.attrs.get("recipe_digest") == digest:
-                return ds
-        except (AtlasFileError, OSError, ValueError):
-            pass
+        except (AtlasFileError, OSError, ValueError) as exc:
+            raise RecipeError(f"{path} exists and was not written by a recipe ({exc}); remove it or "
+                              "pass force=True (tippe figures --force) to replace it") from None
+        if ds.attrs.get("recipe_digest") == digest:
+            return ds
+        if "recipe_digest" not in ds.attrs:
+            raise RecipeError(f"{path} exists and was not written by a recipe (it has no recipe_digest "
+                              "attribute); remove it or pass force=True (tippe figures --force) to replace it")
     ds = make()
     ds.attrs["recipe_digest"] = digest
     write_dataset(ds, path, overwrite=True)
     return ds
+
+
+def output_paths(recipe: Recipe) -> list[Path]:
+    """Every file :func:`compute` and ``tippe figures`` may write for ``recipe``."""
+    paths = [recipe.figure_path]
+    if recipe.kind == "scene":
+        return paths + [recipe.path.with_name(f"{recipe.name}_{k}.nc") for k in scene_runs(recipe.figure or "")]
+    if recipe.kind == "critical_spin":
+        return paths + [recipe.dataset_path]
+    for model in recipe.models():
+        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+        paths.append(path)
+        if recipe.neutral:
+            paths.append(path.with_name(path.stem + "_neutral.nc"))
+    return paths
+
+
+def check_outputs(recipe: Recipe) -> None:
+    """Fail before computing if an output of ``recipe`` cannot be written (its own files may be
+    replaced; see the module docstring).
+
+    Raises
+    ------
+    OSError
+        The directory is missing or not writable, or an output path is a directory.
+    """
+    for path in output_paths(recipe):
+        check_output_path(path, overwrite=True)
 
 
 def _read(path: Path) -> xr.Dataset:

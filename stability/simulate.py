@@ -26,7 +26,8 @@ from .nonlinear.friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .nonlinear.parameters import pack
 from .nonlinear.quantities import energy_parts, h_cg
-from .parameters import DEFAULT_MU, LONG_NAMES, check_domain
+from .parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
+                         check_integer, check_interval, check_positive)
 
 __all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector"]
 
@@ -37,16 +38,13 @@ _ONE = "1"
 
 
 def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a vector of {' or '.join(map(str, n))} real numbers, "
-                        f"got {value!r}") from None
+    sizes = " or ".join(map(str, n))
+    arr = as_parameter(name, value)  # type, emptiness and finiteness, with the standard messages
     if arr.ndim != 1 or arr.size not in n:
-        raise ValueError(f"{name} = {value!r} must be a vector of {' or '.join(map(str, n))} "
-                         "components (fixed frame I, J, K)")
-    if not np.isfinite(arr).all():
-        raise ValueError(f"{name} = {value!r} has a non-finite component")
+        raise ValueError(f"{name} = {value!r:.60} has shape {arr.shape}; {name} must be a vector of "
+                         f"{sizes} components (fixed frame I, J, K)")
+    if np.max(np.abs(arr)) > 1e30:
+        raise ValueError(f"{name} = {value!r:.60} is outside the computable range: every |component| <= 1e30")
     return arr
 
 
@@ -79,22 +77,16 @@ def model_parameter_vector(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha
     else:
         if alpha_v is not None:
             raise TypeError(f"model {m.name!r} takes no parameter alpha_v (no friction law)")
-        if alpha_k not in (None, 0, 0.0):
+        if alpha_k is not None and np.any(as_parameter("alpha_k", alpha_k) != 0):
             raise TypeError(f"model {m.name!r} takes no parameter alpha_k (no friction law)")
-    p, _ = check_domain(**given)
-    for name, v in p.items():
-        if v.size != 1:
-            raise ValueError(f"{name} must be a single value for a simulation, got {v.size} values")
+    p, _ = check_domain(scalar=True, **given)
     params = {name: float(v) for name, v in p.items()}
-    if friction not in FRICTION_LAWS:
-        raise ValueError(f"friction = {friction!r} is not known; choose one of {', '.join(FRICTION_LAWS)}")
-    if normal not in NORMAL_FORCE:
-        raise ValueError(f"normal = {normal!r} is not known; choose one of {', '.join(NORMAL_FORCE)}")
+    check_choice("friction", friction, FRICTION_LAWS)
+    check_choice("normal", normal, NORMAL_FORCE)
     if normal == "actual" and params["fr_inv"] == 0.0:
         raise ValueError("normal = 'actual' needs fr_inv > 0 (friction proportional to "
                          "N(t) / (mu fr_inv)); got fr_inv = 0")
-    if not (isinstance(slip_scale, (int, float)) and np.isfinite(slip_scale) and slip_scale > 0):
-        raise ValueError(f"slip_scale = {slip_scale!r} must be a finite number > 0")
+    slip_scale = check_positive("slip_scale", slip_scale)
     vec = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"],
                alpha_v=params.get("alpha_v", 0.0), alpha_k=params.get("alpha_k", 0.0),
                epsilon=float(slip_scale), law=FRICTION_LAWS[friction], normal=NORMAL_FORCE[normal])
@@ -219,26 +211,27 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     params, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v,
                                        alpha_k=alpha_k, mu=mu, friction=friction, normal=normal,
                                        slip_scale=slip_scale)
-    if not (isinstance(t_end, (int, float, np.floating)) and np.isfinite(t_end) and t_end > 0):
-        raise ValueError(f"t_end = {t_end!r} must be a finite time > 0 (units of 1/Omega)")
-    for name, tol in (("rtol", rtol), ("atol", atol)):
-        if not (isinstance(tol, (int, float)) and 0 < tol < 1):
-            raise ValueError(f"{name} = {tol!r} must lie in (0, 1)")
+    t_end = check_positive("t_end", t_end)
+    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    atol = check_interval("atol", atol, 0.0, 1.0)
+    max_steps = check_integer("max_steps", max_steps, minimum=1)
+    if step is not None:
+        step = check_positive("step", step)
     if t_eval is None:
-        if not (isinstance(dt, (int, float)) and dt > 0):
-            raise ValueError(f"dt = {dt!r} must be > 0")
+        dt = check_positive("dt", dt)
         n = int(np.ceil(t_end / dt - 1e-9))
+        if n > 10**8:
+            raise ValueError(f"dt = {dt:.6g} gives {n} output times up to t_end = {t_end:.6g}; "
+                             "the allowed range is t_end / dt <= 1e8")
         t_eval = np.linspace(0.0, float(t_end), n + 1)
     else:
-        t_eval = np.asarray(t_eval, dtype=float)
+        t_eval = as_parameter("t_eval", t_eval)
         if (t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0 or np.any(np.diff(t_eval) <= 0)
                 or not np.isclose(t_eval[-1], t_end)):
-            raise ValueError("t_eval must increase strictly from 0 to t_end")
+            raise ValueError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
+    method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = _auto_method(m.name, params)
-    elif method not in COMPILED_METHODS + SCIPY_METHODS:
-        raise ValueError(f"method = {method!r} is not known; choose auto or one of "
-                         f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
     y0 = initial_state(m.name, omega, k, velocity)
     sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
                     max_steps=max_steps)

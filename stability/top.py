@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from .parameters import as_parameter, check_domain
+from .parameters import DomainError, as_parameter, as_scalar, check_choice, check_domain, check_positive
 
 __all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH"]
 
@@ -45,18 +45,20 @@ SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/
 
 
 def _unit(unit: str) -> float:
-    if unit not in SPIN_UNITS:
-        raise ValueError(f"unit = {unit!r} is not a spin-rate unit; choose one of {', '.join(SPIN_UNITS)}")
-    return SPIN_UNITS[unit]
+    return SPIN_UNITS[check_choice("unit", unit, SPIN_UNITS)]
 
 
 def _positive(name: str, value: Any) -> float:
-    v = as_parameter(name, value)
-    if v.ndim:
-        raise TypeError(f"{name} must be a scalar, got an array of shape {v.shape}")
-    if not v > 0:
-        raise ValueError(f"{name} = {float(v):.6g} is outside the allowed range: {name} > 0")
-    return float(v)
+    return check_positive(name, value)
+
+
+def _spin(spin: Any, unit: str) -> np.ndarray:
+    """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
+    factor = _unit(unit)
+    w = as_parameter("spin", spin)
+    if np.any(w <= 0):
+        raise DomainError(f"spin = {float(np.min(w)):.6g} {unit} is outside the allowed range: spin > 0")
+    return w * factor
 
 
 @dataclass(frozen=True)
@@ -96,19 +98,23 @@ class Top:
     def __post_init__(self) -> None:
         for name in ("mass", "radius", "inertia_transverse", "inertia_axial", "g"):
             object.__setattr__(self, name, _positive(name, getattr(self, name)))
-        d = as_parameter("com_offset", self.com_offset)
-        if d.ndim:
-            raise TypeError(f"com_offset must be a scalar, got an array of shape {d.shape}")
-        object.__setattr__(self, "com_offset", float(d))
+        object.__setattr__(self, "com_offset", as_scalar("com_offset", self.com_offset))
         for name in ("mu_k", "mu_v"):
             v = getattr(self, name)
             if v is not None:
-                v = float(as_parameter(name, v))
-                if v < 0:
-                    raise ValueError(f"{name} = {v:.6g} is outside the allowed range: {name} >= 0")
-                object.__setattr__(self, name, v)
-        # the nondimensional set must lie in the physical domain (names q, sigma, mu)
-        check_domain(q=self.q, sigma=self.sigma, mu=self.mu)
+                object.__setattr__(self, name, check_positive(name, v, strict=False))
+        # the nondimensional set must be representable and lie in the physical domain
+        with np.errstate(all="ignore"):
+            try:
+                nd = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
+            except (OverflowError, ZeroDivisionError):
+                nd = {"q": math.nan}
+        if not all(math.isfinite(v) for v in nd.values()):
+            raise DomainError(f"the nondimensional parameters of this top are not finite numbers "
+                              f"(mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = "
+                              f"{self.com_offset:g} m, inertias {self.inertia_transverse:g}, "
+                              f"{self.inertia_axial:g} kg m^2); give SI values of a real top")
+        check_domain(**nd)
 
     # -- spin-independent nondimensional parameters (eq. 3) --------------------------------
     @property
@@ -134,9 +140,7 @@ class Top:
     # -- spin-dependent ones ---------------------------------------------------------------
     def fr_inv(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Inverse Froude number ``g / (Omega^2 R)`` at spin rate ``spin`` (in ``unit``)."""
-        w = as_parameter("spin", spin) * _unit(unit)
-        if np.any(w <= 0):
-            raise ValueError(f"spin = {float(np.min(w / _unit(unit))):.6g} {unit} is outside the allowed range: spin > 0")
+        w = _spin(spin, unit)
         out = self.g / (w**2 * self.radius)
         return float(out) if out.ndim == 0 else out
 
@@ -144,7 +148,7 @@ class Top:
         """Spin rate (in ``unit``) at which the inverse Froude number is ``fr_inv`` (> 0)."""
         f = as_parameter("fr_inv", fr_inv)
         if np.any(f <= 0):
-            raise ValueError(f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
+            raise DomainError(f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
                              "(fr_inv = 0 is an infinite spin)")
         out = np.sqrt(self.g / (f * self.radius)) / _unit(unit)
         return float(out) if out.ndim == 0 else out
@@ -153,7 +157,7 @@ class Top:
         """Viscous friction parameter ``mu mu_v g / Omega`` (eq. 7); needs ``mu_v``."""
         if self.mu_v is None:
             raise ValueError("mu_v is not set on this Top; give mu_v (s/m) to compute alpha_v")
-        w = as_parameter("spin", spin) * _unit(unit)
+        w = _spin(spin, unit)
         out = self.mu * self.mu_v * self.g / w
         return float(out) if out.ndim == 0 else out
 
@@ -184,11 +188,16 @@ class Top:
     def from_nondimensional(cls, *, mass: float, radius: float, q: float, mu: float, sigma: float,
                             **kwargs: Any) -> "Top":
         """Build a top from its mass and radius and the nondimensional q, mu, sigma (eq. 3)."""
-        check_domain(q=q, sigma=sigma, mu=mu)
-        a0 = mass * radius**2 / mu
-        return cls(mass=mass, radius=radius, com_offset=q * radius,
-                   inertia_transverse=a0 - mass * (q * radius) ** 2,
-                   inertia_axial=sigma * a0, **kwargs)
+        mass, radius = check_positive("mass", mass), check_positive("radius", radius)
+        p, _ = check_domain(scalar=True, q=q, sigma=sigma, mu=mu)
+        q, sigma, mu = (float(p[k]) for k in ("q", "sigma", "mu"))
+        with np.errstate(all="ignore"):
+            m_, r_ = np.float64(mass), np.float64(radius)
+            a0 = m_ * r_**2 / mu
+            d = q * r_
+            a_g = a0 - m_ * d**2
+        return cls(mass=mass, radius=radius, com_offset=float(d), inertia_transverse=float(a_g),
+                   inertia_axial=float(sigma * a0), **kwargs)
 
     @classmethod
     def table1(cls, **kwargs: Any) -> "Top":

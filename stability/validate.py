@@ -39,7 +39,7 @@ import xarray as xr
 
 from .jacobian import transverse_jacobian, upright_state
 from .nonlinear import get_nonlinear_model
-from .parameters import DEFAULT_MU, LONG_NAMES, as_parameter
+from .parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
 from .simulate import simulate
 from .spectra import eigenvalues
 
@@ -191,14 +191,18 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         given["alpha_v"] = alpha_v
     elif alpha_v is not None:
         raise TypeError(f"model {m.name!r} takes no parameter alpha_v")
-    arrays = {k: as_parameter(k, v) for k, v in given.items()}
-    b = np.broadcast_arrays(*arrays.values())
-    flat = {k: np.ravel(v) for k, v in zip(arrays, b)}
+    arrays, _ = check_domain(**given)
+    flat = {k: np.ravel(v) for k, v in arrays.items()}
     if m.name == "sliding" and np.any(flat["alpha_v"] == 0):
         raise ValueError("alpha_v = 0 has no exponential mode to validate (frictionless, or "
-                         "Coulomb only); use alpha_v > 0, or coulomb_growth for alpha_k > 0")
-    if not (0 < amplitude < 0.1):
-        raise ValueError(f"amplitude = {amplitude!r} must lie in (0, 0.1) to stay linear")
+                         "Coulomb only); the allowed range here is alpha_v > 0 (coulomb_growth "
+                         "handles alpha_k > 0)")
+    amplitude = check_interval("amplitude", amplitude, 0.0, 0.1)
+    n_efold = check_positive("n_efold", n_efold)
+    n_periods = check_positive("n_periods", n_periods)
+    max_time = check_positive("max_time", max_time)
+    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    atol = check_interval("atol", atol, 0.0, 1.0)
     rows = []
     for j in range(flat["q"].size):
         pt = {k: float(v[j]) for k, v in flat.items()}
@@ -250,10 +254,10 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
         ``exponential_rate``, ``algebraic_slope``, ``median_slip_speed``,
         ``sticking_growth_rate`` (eq. 11 at ``alpha_v = alpha_k / slip_scale``).
     """
-    if not (isinstance(alpha_k, (int, float)) and alpha_k > 0):
-        raise ValueError(f"alpha_k = {alpha_k!r} must be > 0 for Coulomb friction")
-    if scheme not in ("adaptive", "fixed_step"):
-        raise ValueError(f"scheme = {scheme!r} is not known; choose adaptive or fixed_step")
+    alpha_k = check_positive("alpha_k", alpha_k)
+    check_choice("scheme", scheme, ("adaptive", "fixed_step"))
+    amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
+    t_end = check_positive("t_end", t_end)
     A, _ = transverse_jacobian("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k, mu=mu)
     ev, vec = np.linalg.eig(A)
     i = leading_mode(ev)

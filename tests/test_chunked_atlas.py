@@ -113,10 +113,20 @@ def test_cli_chunks_and_errors(tmp_path, capsys, reference):
     assert rc == 2 and "not grid dimensions" in capsys.readouterr().err
 
 
+def _write_scheduler_file(path: str, dask_scheduler=None) -> None:
+    """Runs on the scheduler: write its scheduler file as ``dask scheduler --scheduler-file``
+    does when it starts (``json.dump(scheduler.identity())``, before any worker has joined)."""
+    import json
+
+    with open(path, "w") as f:
+        json.dump(dask_scheduler.identity(n_workers=0), f, indent=2)
+
+
 def test_two_worker_local_cluster(tmp_path, reference):
     """A real LocalCluster: two worker processes on 127.0.0.1; the file written from their
-    chunks (through the cluster's client, and through a second client connected by address),
-    and the lazy dataset computed on them, equal the in-process atlas."""
+    chunks (through the cluster's client, through a second client connected by address, and
+    through ``tippe atlas --scheduler FILE`` connected by a scheduler file), and the lazy dataset
+    computed on them, equal the in-process atlas."""
     ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
     with dask_client(workers=2) as client:
         assert len(client.scheduler_info()["workers"]) == 2
@@ -126,6 +136,33 @@ def test_two_worker_local_cluster(tmp_path, reference):
         # the same cluster reached as an existing one, by its address (--scheduler tcp://...)
         with dask_client(scheduler=client.scheduler.address) as other:
             write_atlas(ds, tmp_path / "b.nc", client=other, window=1)
+        # ... and by a scheduler file, as dask writes it (`dask scheduler --scheduler-file`),
+        # through the command line (--scheduler path/to/scheduler.json)
+        sched = tmp_path / "scheduler.json"
+        client.run_on_scheduler(_write_scheduler_file, path=str(sched))
+        with dask_client(scheduler=str(sched)) as other:
+            assert other.scheduler.address == client.scheduler.address
+        assert main(["atlas", "--q", "-0.6:0.6:31", "--fr-inv", "0,0.1,0.3,1", "--sigma", "0.2:1.2:5",
+                     "--alpha-v", "0.5", "--mask-unphysical", "--chunks", "q=8,sigma=2", "--no-progress",
+                     "--scheduler", str(sched), "-o", str(tmp_path / "c.nc")]) == 0
     _same(stability.open_atlas(tmp_path / "a.nc"), reference)
     _same(stability.open_atlas(tmp_path / "b.nc"), reference)
+    _same(stability.open_atlas(tmp_path / "c.nc"), reference)
     _same(on_cluster, reference)
+
+
+def test_scheduler_errors(tmp_path, capsys):
+    """A scheduler file that is missing or not JSON, and --workers 0, are refused before computing."""
+    base = ["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "--chunks", "1"]
+    rc = main([*base, "--scheduler", str(tmp_path / "nope.json"), "-o", str(tmp_path / "a.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "nope.json' is neither an address (tcp://host:port) nor an existing scheduler file" in err
+    bad = tmp_path / "bad.json"
+    bad.write_text("not json")
+    rc = main([*base, "--scheduler", str(bad), "-o", str(tmp_path / "a.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "bad.json' is not a dask scheduler file" in err
+    rc = main([*base, "--workers", "0", "-o", str(tmp_path / "a.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "workers = 0 is outside the allowed range: workers >= 1" in err
+    assert not (tmp_path / "a.nc").exists()

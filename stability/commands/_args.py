@@ -8,7 +8,11 @@ import numpy as np
 
 from ..parameters import DEFAULT_MU
 
-__all__ = ["parse_values", "add_parameter_flags", "parameter_values", "FLAGS"]
+__all__ = ["parse_values", "add_parameter_flags", "parameter_values", "FLAGS", "Interrupted"]
+
+
+class Interrupted(Exception):
+    """Raised by a command instead of ``KeyboardInterrupt`` to say what was kept (exit 130)."""
 
 #: parameter name -> CLI flag
 FLAGS = {"q": "--q", "fr_inv": "--fr-inv", "sigma": "--sigma", "alpha_v": "--alpha-v", "mu": "--mu"}
@@ -20,29 +24,40 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
     Raises
     ------
     ValueError
-        With the flag name and the offending text.
+        With the flag name, the offending text and the accepted forms.
     """
-    t = text.strip()
-    try:
-        if ":" in t:
-            parts = t.split(":")
-            if len(parts) != 3:
-                raise ValueError
-            start, stop = float(parts[0]), float(parts[1])
+    forms = "a number, a comma list (0,0.1,0.3) or start:stop:num (-0.6:0.6:241, num >= 1)"
+    t = str(text).strip()
+    if not t:
+        raise ValueError(f"{name} = {text!r} is empty; give {forms}")
+
+    def number(part: str) -> float:
+        try:
+            return float(part)
+        except ValueError:
+            raise ValueError(f"{name} = {text!r}: {part.strip()!r} is not a number; give {forms}") from None
+
+    if ":" in t:
+        parts = t.split(":")
+        if len(parts) != 3:
+            raise ValueError(f"{name} = {text!r} has {len(parts)} fields; give {forms}")
+        start, stop = number(parts[0]), number(parts[1])
+        try:
             num = int(parts[2])
-            if num < 1:
-                raise ValueError(f"{name} = {text!r}: the number of points must be >= 1")
-            return np.linspace(start, stop, num)
-        if "," in t:
-            vals = [float(v) for v in t.split(",") if v.strip()]
-            if not vals:
-                raise ValueError(f"{name} = {text!r} is empty")
-            return np.array(vals)
-        return float(t)
-    except ValueError as exc:
-        if str(exc):
-            raise
-        raise ValueError(f"{name} = {text!r} is not a number, a comma list or start:stop:num") from None
+        except ValueError:
+            raise ValueError(f"{name} = {text!r}: the number of points {parts[2].strip()!r} is not an "
+                             "integer; give start:stop:num with num >= 1") from None
+        if num < 1:
+            raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num >= 1")
+        if num > 10**9:
+            raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num <= 1e9")
+        return np.linspace(start, stop, num)
+    if "," in t:
+        vals = [number(v) for v in t.split(",") if v.strip()]
+        if not vals:
+            raise ValueError(f"{name} = {text!r} is empty; give {forms}")
+        return np.array(vals)
+    return number(t)
 
 
 def add_parameter_flags(p: argparse.ArgumentParser, names: tuple[str, ...], *, required: tuple[str, ...]) -> None:

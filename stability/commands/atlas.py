@@ -15,7 +15,7 @@ from ..atlas import atlas
 from ..io import check_output_path, write_dataset
 from ..models import MODELS
 from ..spectra import DEFAULT_METHOD, METHODS
-from ._args import add_parameter_flags, parameter_values
+from ._args import Interrupted, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", choices=list(MODELS), default="sliding")
     add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"))
     p.add_argument("-o", "--output", required=True, help="netCDF file to write (atomically)")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
     p.add_argument("--mask-unphysical", action="store_true",
                    help="mask grid points outside the physical domain (NaN) instead of refusing the grid")
     p.add_argument("--method", choices=list(METHODS), default=DEFAULT_METHOD)
@@ -66,7 +66,8 @@ def parse_chunks(text: str) -> int | dict[str, int]:
             out[k.strip().replace("-", "_")] = int(v)
         return out
     except ValueError:
-        raise ValueError(f"--chunks = {text!r} is not a size or a list dim=size,...") from None
+        raise ValueError(f"--chunks = {text!r} is not a size or a list dim=size,... (sizes are integers "
+                         ">= 1, e.g. 100 or q=100,sigma=50)") from None
 
 
 def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
@@ -87,12 +88,10 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
                         progress=not args.no_progress)
     except KeyboardInterrupt:
         if args.resume:
-            print(f"tippe atlas: finished chunks are kept in {store}; rerun the same command to continue",
-                  file=sys.stderr)
-        else:
-            print("tippe atlas: no chunks were kept (run with --resume to keep them across an interruption)",
-                  file=sys.stderr)
-        raise
+            raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "
+                              "rerun the same command to continue") from None
+        raise Interrupted("no output file was written and no chunks were kept (run with --resume to "
+                          "keep them across an interruption)") from None
     import xarray as xr
 
     with xr.open_dataset(out) as f:
@@ -109,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     out = check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
-        check_output_path(args.plot, overwrite=True)
+        check_output_path(args.plot, overwrite=args.overwrite)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     if args.chunks is not None:
         return _run_chunked(args, out, values)
@@ -130,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"wrote {out}: {args.model} model, grid {grid}; "
           + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
     if args.plot:
-        save_figure(fig, args.plot)
+        save_figure(fig, args.plot, overwrite=args.overwrite)
         print(f"wrote {args.plot}")
     return 0
 

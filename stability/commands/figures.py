@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..recipes import find_recipes, load_recipe, compute
+from ..recipes import check_outputs, compute, find_recipes, load_recipe
 
 __all__ = ["register", "run"]
 
@@ -14,9 +14,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``figures`` subcommand."""
     p = sub.add_parser("figures", help="compute and draw atlas recipes (atlases/*.toml)",
                        description="Run atlas recipes: compute the datasets that are missing or out of date "
-                                   "(netCDF beside each recipe) and draw their figures (PNG).")
+                                   "(netCDF beside each recipe) and draw their figures (PNG). A recipe's own outputs "
+                                   "(<name>.png, <name>*.nc beside it) are replaced; a file there that no "
+                                   "recipe wrote is refused unless --force.")
     p.add_argument("recipes", nargs="*", help="recipe files or directories (default: atlases/)")
-    p.add_argument("--force", action="store_true", help="recompute even when a matching dataset exists")
+    p.add_argument("--force", action="store_true",
+                   help="recompute even when a matching dataset exists, and replace a file at a recipe's "
+                        "output path that was not written by a recipe")
     p.set_defaults(func=run)
 
 
@@ -29,6 +33,8 @@ def run(args: argparse.Namespace) -> int:
     recipes = []
     for t in targets:
         path = Path(t)
+        if not path.exists():
+            raise FileNotFoundError(f"recipe {t!r} does not exist (give recipe files or directories)")
         if path.is_dir():
             found = find_recipes(path)
             if not found:
@@ -36,6 +42,8 @@ def run(args: argparse.Namespace) -> int:
             recipes.extend(found)
         else:
             recipes.append(load_recipe(path))
+    for recipe in recipes:  # every output writable before anything is computed
+        check_outputs(recipe)
     for recipe in recipes:
         datasets = compute(recipe, force=args.force)
         with style():

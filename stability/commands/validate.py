@@ -23,6 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"))
     p.add_argument("--amplitude", type=float, default=1e-4, help="initial tilt |Phi|")
     p.add_argument("-o", "--output", default=None, help="also write the Dataset as netCDF")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
     p.set_defaults(func=run)
 
 
@@ -31,10 +32,10 @@ def run(args: argparse.Namespace) -> int:
     from ..io import check_output_path, write_dataset
     from ..validate import validate
 
-    out = check_output_path(args.output) if args.output else None
+    out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     ds = validate(args.model, amplitude=args.amplitude, **values)
     print(ds[list(_COLUMNS)].to_dataframe().to_string(float_format=lambda v: f"{v:.6g}"))
     if out is not None:
-        write_dataset(ds, out)
+        write_dataset(ds, out, overwrite=args.overwrite)
     return 0

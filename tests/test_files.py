@@ -1,0 +1,164 @@
+"""Files: atlases that are missing, truncated, foreign or not netCDF; output paths checked before
+any computation; no partial files; existing files kept unless asked; recipes regenerate their own.
+
+Reference: docs/input_checks.md (file behaviour) and stability.io's contract.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import stability
+from stability.cli import main
+from stability.io import AtlasFileError
+
+ATLAS = ["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5"]
+
+
+@pytest.fixture(scope="module")
+def atlas_file(tmp_path_factory) -> Path:
+    ds = stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 40), fr_inv=[0.0, 0.1], sigma=1.0, alpha_v=0.5)
+    return stability.write_dataset(ds, tmp_path_factory.mktemp("a") / "atlas.nc")
+
+
+@pytest.mark.parametrize("make,fragment", [
+    (lambda p, good: None, "does not exist"),
+    (lambda p, good: p.write_bytes(good.read_bytes()[: good.stat().st_size // 2]),
+     "is not a readable netCDF file: it cannot be read to the end (truncated or damaged"),
+    (lambda p, good: xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(p),
+     "is not an atlas of tippe-stability: a netCDF file whose global attribute 'tippe_stability_product' is None"),
+    (lambda p, good: p.write_text("plain text"), "is not a readable netCDF file (it does not start with a netCDF"),
+    (lambda p, good: p.write_bytes(b""), "is empty (0 bytes)"),
+    (lambda p, good: stability.write_dataset(stability.open_atlas(good).drop_vars("frequency"), p),
+     "is not a complete atlas: missing variables frequency"),
+])
+def test_open_atlas_bad_files(tmp_path, atlas_file, make, fragment):
+    p = tmp_path / "x.nc"
+    make(p, atlas_file)
+    with pytest.raises(AtlasFileError) as err:
+        stability.open_atlas(p)
+    assert f"atlas file '{p}'" in str(err.value) and fragment in str(err.value)
+
+
+def test_open_atlas_wrong_path_type():
+    with pytest.raises(TypeError, match="atlas path = None must be a file name"):
+        stability.open_atlas(None)
+
+
+def _never(*args, **kwargs):
+    raise AssertionError("the computation must not start")
+
+
+@pytest.mark.parametrize("command,module,func,argv", [
+    ("atlas", "stability.commands.atlas", "atlas", ATLAS),
+    ("atlas --chunks", "stability.commands.atlas", "atlas", [*ATLAS, "--chunks", "1"]),
+    ("simulate", "stability.simulate", "simulate",
+     ["simulate", "--t-end", "1", "--omega", "0,0,1", "--k", "0,0,1", "--q", "-0.1", "--fr-inv", "0.3",
+      "--sigma", "1", "--alpha-v", "0.5"]),
+    ("validate", "stability.validate", "validate",
+     ["validate", "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"]),
+    ("neutral", "continuation.neutral", "neutral_curve",
+     ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"]),
+])
+@pytest.mark.parametrize("problem", ["missing directory", "unwritable directory", "existing file"])
+def test_outputs_checked_before_computing(tmp_path, monkeypatch, capsys, command, module, func, argv, problem):
+    import importlib
+
+    monkeypatch.setattr(importlib.import_module(module), func, _never)
+    if problem == "missing directory":
+        out, fragment = tmp_path / "no" / "such" / "a.nc", "does not exist"
+    elif problem == "unwritable directory":
+        if os.geteuid() == 0:
+            pytest.skip("root can write anywhere")
+        d = tmp_path / "ro"
+        d.mkdir()
+        d.chmod(0o500)
+        out, fragment = d / "a.nc", "is not writable"
+    else:
+        out = tmp_path / "a.nc"
+        out.write_text("keep me")
+        fragment = "exists; pass overwrite=True (--overwrite) to replace it"
+    rc = main([*argv, "-o", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and fragment in err and str(out) in err
+    if problem == "existing file":
+        assert out.read_text() == "keep me"
+
+
+def test_unwritable_directory_api(tmp_path):
+    d = tmp_path / "file-not-dir"
+    d.write_text("")
+    ds = stability.atlas("fixed_pivot", q=0.1, fr_inv=0.1, sigma=1.0)
+    with pytest.raises(NotADirectoryError, match="is not a directory"):
+        stability.write_dataset(ds, d / "a.nc")
+    with pytest.raises(IsADirectoryError, match="is a directory; give a file name"):
+        stability.write_dataset(ds, tmp_path)
+
+
+def test_overwrite_only_when_asked(tmp_path, capsys):
+    out = tmp_path / "a.nc"
+    assert main([*ATLAS, "-o", str(out)]) == 0
+    first = out.read_bytes()
+    assert main([*ATLAS[:2], "0.3,0.4", *ATLAS[3:], "-o", str(out)]) == 2
+    assert "exists; pass overwrite=True (--overwrite)" in capsys.readouterr().err
+    assert out.read_bytes() == first
+    assert main([*ATLAS[:2], "0.3,0.4", *ATLAS[3:], "-o", str(out), "--overwrite"]) == 0
+    assert list(stability.open_atlas(out).q.values) == [0.3, 0.4]
+    ds = stability.atlas("fixed_pivot", q=0.1, fr_inv=0.1, sigma=1.0)
+    with pytest.raises(FileExistsError, match="exists; pass overwrite=True"):
+        stability.write_dataset(ds, out)
+    stability.write_dataset(ds, out, overwrite=True)
+    assert stability.open_atlas(out).attrs["model"] == "fixed_pivot"
+
+
+def test_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
+    ds = stability.atlas("fixed_pivot", q=[0.1, 0.2], fr_inv=0.1, sigma=1.0)
+
+    def broken(self, path, *args, **kwargs):
+        Path(path).write_bytes(b"CDF\x01 half written")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    with pytest.raises(OSError, match="disk full"):
+        stability.write_dataset(ds, tmp_path / "a.nc")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_recipes_regenerate_their_own_outputs_and_refuse_foreign_files(tmp_path, capsys):
+    recipe = tmp_path / "tiny.toml"
+    recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
+                      '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
+    assert main(["figures", str(recipe)]) == 0           # fresh
+    png, nc = tmp_path / "tiny.png", tmp_path / "tiny.nc"
+    assert png.is_file() and nc.is_file()
+    assert main(["figures", str(recipe)]) == 0           # second run: reuses the dataset, redraws the PNG
+    recipe.write_text(recipe.read_text().replace("0.2:5", "0.2:7"))
+    assert main(["figures", str(recipe)]) == 0           # stale dataset: replaced (it is the recipe's own)
+    assert stability.open_atlas(nc).sizes["q"] == 7
+    capsys.readouterr()
+    nc.unlink()
+    xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(nc)  # a file no recipe wrote
+    assert main(["figures", str(recipe)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "was not written by a recipe" in err and "--force" in err
+    assert "x" in xr.open_dataset(nc).load()
+    assert main(["figures", "--force", str(recipe)]) == 0
+    assert stability.open_atlas(nc).sizes["q"] == 7
+
+
+def test_figures_output_directory_checked_before_computing(tmp_path, monkeypatch, capsys):
+    import stability.commands.figures as fig
+
+    recipe = tmp_path / "tiny.toml"
+    recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
+                      '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
+    (tmp_path / "tiny.png").mkdir()  # the output path is taken by a directory
+    monkeypatch.setattr(fig, "compute", _never)
+    assert main(["figures", str(recipe)]) == 2
+    assert "tiny.png' is a directory" in capsys.readouterr().err
