@@ -51,6 +51,15 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
         raise NotADirectoryError(f"output directory {str(parent)!r} of {str(p)!r} is not a directory")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable")
+    # permission bits do not tell everything (root, read-only mounts, pseudo file systems):
+    # create and remove a probe file, which is what writing will need
+    try:
+        fd, probe = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".probe", dir=parent)
+    except OSError as exc:
+        raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable "
+                              f"({exc.strerror})") from None
+    os.close(fd)
+    os.unlink(probe)
     return p
 
 

@@ -55,6 +55,25 @@ def _never(*args, **kwargs):
     raise AssertionError("the computation must not start")
 
 
+def _unwritable_directory(tmp_path):
+    """A directory this process cannot create files in: a read-only one, or, as root (who
+    ignores permission bits), the kernel's /sys, where creating a file fails."""
+    if os.geteuid() != 0:
+        d = tmp_path / "ro"
+        d.mkdir()
+        d.chmod(0o500)
+        return d
+    import tempfile
+
+    try:
+        fd, probe = tempfile.mkstemp(dir="/sys")
+    except OSError:
+        return Path("/sys")
+    os.close(fd)
+    os.unlink(probe)
+    pytest.skip("no unwritable directory available to root on this machine")
+
+
 @pytest.mark.parametrize("command,module,func,argv", [
     ("atlas", "stability.commands.atlas", "atlas", ATLAS),
     ("atlas --chunks", "stability.commands.atlas", "atlas", [*ATLAS, "--chunks", "1"]),
@@ -74,12 +93,7 @@ def test_outputs_checked_before_computing(tmp_path, monkeypatch, capsys, command
     if problem == "missing directory":
         out, fragment = tmp_path / "no" / "such" / "a.nc", "does not exist"
     elif problem == "unwritable directory":
-        if os.geteuid() == 0:
-            pytest.skip("root can write anywhere")
-        d = tmp_path / "ro"
-        d.mkdir()
-        d.chmod(0o500)
-        out, fragment = d / "a.nc", "is not writable"
+        out, fragment = _unwritable_directory(tmp_path) / "a.nc", "is not writable"
     else:
         out = tmp_path / "a.nc"
         out.write_text("keep me")
