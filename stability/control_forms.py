@@ -38,10 +38,7 @@ def real_form(a: np.ndarray) -> np.ndarray:
 
 
 def _scalar_params(model, given: dict[str, Any]) -> dict[str, float]:
-    p, _ = check_domain(**model_parameters(model, given))
-    for k, v in p.items():
-        if v.ndim:
-            raise TypeError(f"{k} must be a scalar for a state-space system, got shape {v.shape}")
+    p, _ = check_domain(scalar=True, **model_parameters(model, given))
     return {k: float(v) for k, v in p.items()}
 
 

@@ -35,7 +35,8 @@ import numpy as np
 
 from .models import LinearModel, get_model
 from .neutrality import NeutralCondition
-from .parameters import DEFAULT_MU, DomainError, as_parameter, check_domain
+from .parameters import (DEFAULT_MU, DomainError, as_parameter, as_scalar, check_choice, check_domain, check_flag,
+                         check_integer)
 from .spectra import UNSTABLE, spectrum
 
 __all__ = ["Threshold", "threshold", "thresholds", "critical_spin", "CriticalSpin", "default_bracket",
@@ -90,10 +91,7 @@ def _setup(param: str, model: str | LinearModel, bracket: Sequence[float] | None
     missing = [k for k in m.parameters if k != param and k not in fx]
     if missing:
         raise TypeError(f"{', '.join(missing)} required for a threshold in {param} of model {m.name!r}")
-    p, _ = check_domain(**fx)
-    for k, v in p.items():
-        if v.ndim:
-            raise TypeError(f"{k} must be a scalar for a threshold query, got shape {v.shape}")
+    p, _ = check_domain(scalar=True, **fx)
     fx = {k: float(v) for k, v in p.items()}
     if bracket is None:
         lo, hi = default_bracket(param, fx)
@@ -207,10 +205,10 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
         Unknown model or parameter, missing or extra parameters, bad bracket, values outside the
         physical domain (naming the parameter, its value and the bound).
     """
-    if not isinstance(samples, (int, np.integer)) or samples < 3:
-        raise ValueError(f"samples = {samples!r} must be an integer >= 3")
+    samples = check_integer("samples", samples, minimum=3)
+    return_details = check_flag("return_details", return_details)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found = _search(m, fx, param, lo, hi, int(samples))[0]
+    found = _search(m, fx, param, lo, hi, samples)[0]
     return found if return_details else np.array([t.value for t in found])
 
 
@@ -306,10 +304,9 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     >>> round(stability.threshold("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5), 12)  # (1 - mu q^2)/(1 + q)
     1.085777777778
     """
-    if not isinstance(samples, (int, np.integer)) or samples < 3:
-        raise ValueError(f"samples = {samples!r} must be an integer >= 3")
+    samples = check_integer("samples", samples, minimum=3)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found, u = _search(m, fx, param, lo, hi, int(samples))
+    found, u = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
         sp = spectrum(m, mask_unphysical=True, **{**fx, param: _samples(lo, hi, int(samples))})
@@ -442,11 +439,13 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
 
     if not isinstance(top, Top):
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
-    if orientation not in ("upright", "inverted"):
-        raise ValueError(f"orientation = {orientation!r}; choose 'upright' or 'inverted'")
-    lo, hi = (float(v) for v in fr_inv_range)
+    check_choice("orientation", orientation, ("upright", "inverted"))
+    samples = check_integer("samples", samples, minimum=3)
+    if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
+        raise TypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
+    lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)
     if not 0 < lo < hi:
-        raise ValueError(f"fr_inv_range = ({lo:g}, {hi:g}) must satisfy 0 < lo < hi")
+        raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")
     t = top.inverted() if orientation == "inverted" else top
     base = get_model(model)
     fixed: dict[str, float] = {"q": t.q, "sigma": t.sigma, "mu": t.mu}

@@ -170,3 +170,31 @@ def test_cli_internal_error_is_one_line_unless_debug(monkeypatch, capsys, tmp_pa
     monkeypatch.setenv("TIPPE_DEBUG", "1")
     with pytest.raises(ZeroDivisionError):
         main(argv)
+
+
+def test_threshold_and_state_space_name_the_array_parameter():
+    """A single value is required; the message names the parameter given as an array (the
+    broadcast used to make every parameter an array, and the first one, q, was blamed)."""
+    with pytest.raises(TypeError, match=r"^fr_inv must be a single number here, got an array of shape \(2,\)"):
+        stability.threshold("sigma", q=-0.1, fr_inv=[0.1, 0.2], alpha_v=0.5)
+    with pytest.raises(TypeError, match=r"^alpha_v must be a single number here"):
+        stability.state_space("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=np.array([0.5, 1.0]))
+
+
+@pytest.mark.parametrize("kw,exc,fragment", [
+    (dict(samples=float("inf")), TypeError, "samples = inf is a float; samples must be an integer >= 3"),
+    (dict(samples=2), DomainError, "samples = 2 is outside the allowed range: samples >= 3"),
+    (dict(samples=True), TypeError, "samples = True is a bool; samples must be an integer >= 3"),
+    (dict(fr_inv_range=(0.0, 1.0)), DomainError, r"fr_inv_range = \(0, 1\) is outside the allowed range: 0 < lo < hi"),
+    (dict(fr_inv_range=(1e-6, float("nan"))), DomainError, "^fr_inv_range = nan"),
+    (dict(fr_inv_range=0.3), TypeError, "fr_inv_range = 0.3 must be a pair"),
+    (dict(orientation="sideways"), ValueError, "orientation = 'sideways' is not known; choose one of upright, inverted"),
+])
+def test_critical_spin_arguments(kw, exc, fragment):
+    with pytest.raises(exc, match=fragment):
+        stability.critical_spin(stability.Top.table1(), **kw)
+
+
+def test_thresholds_flags():
+    with pytest.raises(TypeError, match="return_details = 'yes' is a str; return_details must be True or False"):
+        stability.thresholds("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5, return_details="yes")

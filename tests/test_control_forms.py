@@ -65,5 +65,5 @@ def test_second_order_state_space(model):
 
 
 def test_state_space_refuses_arrays():
-    with pytest.raises(TypeError, match="q must be a scalar"):
+    with pytest.raises(TypeError, match=r"^q must be a single number here, got an array of shape \(2,\)"):
         stability.state_space("rolling", q=[0.1, 0.2], fr_inv=0.3, sigma=1.0)
