@@ -182,7 +182,9 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     step : float, optional
         Step of ``"rk4"``; first step of the adaptive methods.
     max_steps : int
-        Step limit of ``"dopri5"``.
+        Step limit of every method (the compiled ``"dopri5"`` and scipy's, which are stepped
+        one by one for this): a run that hits it stops with a warning and ``status = -1``
+        instead of running for hours (stiff friction with an explicit method).
 
     Returns
     -------

@@ -26,7 +26,7 @@ import numpy as np
 
 from .models import LinearModel, get_model
 from .parameters import DEFAULT_MU, check_domain
-from .roots import UNIT_ROUNDOFF, polynomial_roots
+from .roots import UNIT_ROUNDOFF, inclusion_radius, polynomial_roots
 
 __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
            "DEFAULT_METHOD"]
@@ -111,6 +111,10 @@ def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
     ev = np.linalg.eigvals(np.linalg.solve(M, A))
     scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
     bound = 8 * model.n_modes * UNIT_ROUNDOFF * scale[..., None] * np.ones(ev.shape)
+    # the backward-error bound above ignores the conditioning of each eigenvalue (colliding
+    # modes, near-singular M): take the rigorous inclusion radius of the computed roots of
+    # det(sM - A) as well (docs/hard_cases.md)
+    bound = np.maximum(bound, inclusion_radius(model.coefficients(**p), ev))
     return ev, bound, np.zeros(ev.shape, dtype=bool)
 
 

@@ -54,3 +54,24 @@ def test_fixed_pivot_threshold_sign():
     f_c = sg**2 / (4 * mu * (1 + q) * a_c)
     sp = stability.spectrum("fixed_pivot", q=q, fr_inv=np.array([0.9, 0.999, 1.001, 1.1]) * f_c, sigma=sg)
     assert list(sp.stability) == [MARGINAL, MARGINAL, UNSTABLE, UNSTABLE]
+
+
+def test_neutral_line_at_zero_gravity_right_or_flagged():
+    """On the sliding top's neutral line at fr_inv = 0, sigma = (1 - mu q^2)/(1 + q) (README),
+    the gyroscopic mode is neutral in exact arithmetic; with sigma rounded its true growth rate
+    is O(u). Every method must give that mode's sign as the mpmath reference (60 digits, on
+    the polynomial typed in test_hard_spectra) or flag it neutral, and the point must not be
+    called unstable unless the reference grows. Measured: all three methods flag it (|Re s| <=
+    1.4e-16 kernel/polynomial, 8.9e-16 LAPACK; bounds >= 1.5e-15 and 4.2e-15)."""
+    from test_hard_spectra import _poly_reference, assert_right_or_flagged
+
+    mu = 2.28
+    for q in np.linspace(-0.4, 0.4, 9):
+        sg = (1 - mu * q * q) / (1 + q)
+        ref = _poly_reference(q, 0.0, sg, 0.5, mu)
+        for method in ("kernel", "polynomial", "lapack"):
+            sp = stability.spectrum("sliding", q=q, fr_inv=0.0, sigma=sg, alpha_v=0.5, mu=mu,
+                                    method=method)
+            assert_right_or_flagged(sp, ref)
+            near = np.argsort(np.abs(sp.eigenvalues.real))[1]   # [0] is the structural zero
+            assert sp.neutral[near] or abs(sp.eigenvalues[near].real) > sp.error_bound[near]

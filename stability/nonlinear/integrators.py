@@ -10,7 +10,9 @@
 * scipy's ``solve_ivp`` methods (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``,
   ``"LSODA"``) with the compiled right-hand side: the reference path, and the implicit path for
   stiff runs (large ``alpha_v``: a fast slip mode with rate about
-  ``alpha_v A_C / (mu A_G)``).
+  ``alpha_v A_C / (mu A_G)``). Their solver objects are stepped as ``solve_ivp`` does (same
+  steps, same dense output) but with the step limit ``max_steps``, so that an explicit method
+  on a stiff run stops and reports instead of running for hours (docs/hard_cases.md).
 
 Every integrator returns the states at the requested times and the work counters.
 """
@@ -21,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy.integrate import solve_ivp
+from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 
 from .kernels import CODES, rhs as _model_rhs
 
@@ -29,6 +31,7 @@ __all__ = ["Solution", "integrate", "dopri5", "rk4", "COMPILED_METHODS", "SCIPY_
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+METHODS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
@@ -291,6 +294,39 @@ def rk4(code, y0, t_eval, p, h):
     return out, nfev, steps, 0, status
 
 
+def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps):
+    """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
+    ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``."""
+    def fun(t, yy):
+        return _model_rhs(code, t, yy, p)
+
+    kw = {"first_step": step} if step else {}
+    solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
+    y = np.full((t_eval.size, y0.size), np.nan)
+    y[0] = y0
+    j, steps, status = 1, 0, SUCCESS
+    while j < t_eval.size:
+        if steps >= max_steps:
+            status = MAX_STEPS
+            break
+        message = solver.step()
+        steps += 1
+        if solver.status == "failed":
+            status = STEP_TOO_SMALL if message and "step size" in message else NOT_FINITE
+            break
+        t_new = solver.t
+        k = j
+        while k < t_eval.size and t_eval[k] <= t_new:
+            k += 1
+        if k > j:
+            y[j:k] = solver.dense_output()(t_eval[j:k]).T
+            j = k
+        if solver.status == "finished" and j < t_eval.size:
+            y[j:] = solver.y
+            j = t_eval.size
+    return y, int(solver.nfev), steps, 0, status
+
+
 def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
               method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
               step: float | None = None, max_steps: int = 10_000_000) -> Solution:
@@ -313,7 +349,10 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
     step : float, optional
         Step size of ``"rk4"`` (required there); initial step of the adaptive methods.
     max_steps : int
-        Step limit of ``"dopri5"``.
+        Step limit of ``"dopri5"`` and of the scipy methods (attempted steps of the compiled
+        integrator, accepted steps of scipy's): an explicit method on a stiff run (large
+        ``alpha_v``, or Coulomb friction at sticking) stops there with status -1
+        (``MAX_STEPS``) and the states computed so far, instead of running for hours.
 
     Returns
     -------
@@ -330,14 +369,7 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
             raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
         y, nfev, na, nr, st = rk4(code, y0, t_eval, p, float(step))
     elif method in SCIPY_METHODS:
-        def fun(t, yy):
-            return _model_rhs(code, t, yy, p)
-        kw = {"first_step": step} if step else {}
-        r = solve_ivp(fun, (t_eval[0], t_eval[-1]), y0, method=method, t_eval=t_eval,
-                      rtol=rtol, atol=atol, **kw)
-        y = np.full((t_eval.size, y0.size), np.nan)
-        y[: r.y.shape[1]] = r.y.T
-        nfev, na, nr, st = int(r.nfev), int(r.t.size), 0, int(r.status)
+        y, nfev, na, nr, st = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps)
     else:
         raise ValueError(f"method = {method!r} is not known; choose one of "
                          f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
