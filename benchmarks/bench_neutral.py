@@ -8,7 +8,10 @@ sigma = (1 - mu q^2)/(1 + q), fold at q* = -1 + sqrt(1 - 1/mu), sigma* = 2 (mu -
   both directions, fold and domain edges located exactly, the xarray dataset and the LAPACK
   check of every point included), at several step settings (``max_step``, ``max_angle``); the
   curve between points is its dense output ``continuation.dense`` (cubic Hermite with the
-  stored tangents);
+  stored tangents). The corrector is the compiled one (numba, continuation.neutral_compiled;
+  compiled once per machine and cached on disk, loaded by the warm-up call below, so neither
+  compiling nor loading is timed); the engine's Python path (``compiled=False``) is timed too
+  at the default steps, for reference;
 * columns: for N columns q_j, ``scipy.optimize.brentq`` in sigma on [1e-9, 2 (1 - mu q_j^2)] on
   the leading growth rate (the largest Re s over the modes that are not structurally zero),
   with xtol = 1e-14 (the same pointwise accuracy as the continuation's points); the curve
@@ -26,9 +29,10 @@ sigma = (1 - mu q^2)/(1 + q), fold at q* = -1 + sqrt(1 - 1/mu), sigma* = 2 (mu -
   where a column crosses the curve twice the leading growth rate has the same sign at both
   ends and the column finds nothing.
 
-Timings: every configuration is run in the same process, interleaved (continuation ``REPEAT``
-times, columns 5 times), and the median is reported (the machine is shared; medians are
-steadier than single runs). The column time is linear in N; the ratio is also given with the
+Timings: CPU time of the process (``time.process_time``: on the shared machine wall-clock
+times vary by 2-3x with the other jobs' load, CPU time far less); every configuration is run in
+the same process, interleaved (continuation ``REPEAT`` times, columns 5 times), after a warm-up
+call of each, and the median is reported. The column time is linear in N; the ratio is also given with the
 least-squares line through all the column medians (``fit``), which a single noisy median
 cannot move much.
 
@@ -66,10 +70,10 @@ def _fastest_method() -> str:
     best = None
     for method in ("kernel", "polynomial", "lapack"):
         spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V, mu=MU, method=method)
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         for _ in range(50):
             spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V, mu=MU, method=method)
-        t = (time.perf_counter() - t0) / 50
+        t = (time.process_time() - t0) / 50
         if best is None or t < best[1]:
             best = (method, t)
     return best[0]
@@ -123,14 +127,17 @@ def columns_in_q(n: int):
 
 
 def timed(fn):
-    t0 = time.perf_counter()
+    """``(CPU seconds of the process, result)``: ``time.process_time`` counts every thread of
+    the process (nothing run on a thread pool is hidden) and, unlike the wall clock, not the
+    time the process waits for the shared machine's other jobs."""
+    t0 = time.process_time()
     res = fn()
-    return time.perf_counter() - t0, res
+    return time.process_time() - t0, res
 
 
-def trace(max_step: float, max_angle: float):
+def trace(max_step: float, max_angle: float, compiled: bool = True):
     return continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
-                                      max_step=max_step, max_angle=max_angle)
+                                      max_step=max_step, max_angle=max_angle, compiled=compiled)
 
 
 def continuation_errors(ds) -> dict[str, float]:
@@ -165,11 +172,13 @@ def column_errors(pts: np.ndarray) -> dict[str, float]:
 
 
 def main() -> None:
-    print(f"sliding model, (q, sigma) plane, fr_inv = 0, alpha_v = {ALPHA_V}, mu = {MU}; "
-          f"median of {REPEAT} runs; columns' leading growth rate: stability.spectrum(method="
+    print(f"sliding model, (q, sigma) plane, fr_inv = 0, alpha_v = {ALPHA_V}, mu = {MU}; CPU time "
+          f"(process_time), median of {REPEAT} runs; columns' leading growth rate: stability.spectrum(method="
           f"{METHOD!r}) [A] or numpy.roots [B]")
-    trace(*SETTINGS[0])  # warm-up (imports)
+    trace(*SETTINGS[0])  # warm-up (imports; numba's compiled code, from its cache or compiled)
+    trace(*SETTINGS[0], compiled=False)
     columns_in_sigma(5, leading_spectrum)
+    columns_in_sigma(5, leading_roots)
     times: dict = {}
     results: dict = {}
     for rep in range(REPEAT):
@@ -177,6 +186,9 @@ def main() -> None:
             t, ds = timed(lambda: trace(*st))
             times.setdefault(("cont", st), []).append(t)
             results[("cont", st)] = ds
+        t, ds = timed(lambda: trace(*SETTINGS[0], compiled=False))
+        times.setdefault(("python", SETTINGS[0]), []).append(t)
+        results[("python", SETTINGS[0])] = ds
         if rep < 5:  # the columns are slow: 5 runs
             for n in COLUMNS:
                 for name, fn in (("A", leading_spectrum), ("B", leading_roots)):
@@ -194,6 +206,11 @@ def main() -> None:
         cont[st] = e
         print(f"{st[0]:>8} {st[1]:>9} {e['points']:>6} {med[('cont', st)] * 1e3:>8.1f} {e['point']:>9.1e} "
               f"{e['fold']:>9.1e} {e['polyline']:>9.1e} {e['dense']:>9.1e} {e['check']:>8.1e}")
+    st = SETTINGS[0]
+    e = continuation_errors(results[("python", st)])
+    print(f"{st[0]:>8} {st[1]:>9} {e['points']:>6} {med[('python', st)] * 1e3:>8.1f} {e['point']:>9.1e} "
+          f"{e['fold']:>9.1e} {e['polyline']:>9.1e} {e['dense']:>9.1e} {e['check']:>8.1e}  "
+          "(Python path, compiled=False)")
 
     print("\ncolumns (brentq per column, xtol = 1e-14)")
     print(f"{'N':>5} {'found':>5} {'A ms':>8} {'B ms':>8} {'point err':>9} {'fold err':>9} "

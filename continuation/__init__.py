@@ -3,7 +3,9 @@
 The engine (:mod:`continuation.engine`, :mod:`continuation.events`,
 :mod:`continuation.problem`, and the dense output :mod:`continuation.dense`) is generic and knows nothing about tops. The neutral-curve problem
 of the linear models (:mod:`continuation.neutral`) is one of its clients; it is imported on
-first use so that the engine can be used without :mod:`stability`.
+first use so that the engine can be used without :mod:`stability`. A problem may bring its own
+compiled corrector (the ``compiled_step`` hook of :mod:`continuation.problem`, built from
+:mod:`continuation.compiled`; :mod:`continuation.neutral_compiled` for the sliding model).
 """
 
 from __future__ import annotations

@@ -20,7 +20,11 @@ Continuation Methods*, ch. 2 and 6):
 
 All lengths are measured in scaled variables ``v = u / scale`` so that unknowns of different
 magnitudes weigh alike. The engine knows nothing about the problem beyond
-:mod:`continuation.problem`. Nothing here prints.
+:mod:`continuation.problem`. A problem may provide ``compiled_step``, steps 2 and 3 and the
+tangent of step 1 in one compiled call (:mod:`continuation.problem`,
+:mod:`continuation.compiled`); the engine then uses it (with the predictor compiled too) for
+every step and every corrector solve of step 5, and its Python path otherwise
+(``trace(..., compiled=False)`` forces the Python path). Nothing here prints.
 """
 
 from __future__ import annotations
@@ -436,7 +440,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
           callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
           detect_closed: bool = True, detect_branch_points: bool = True,
           event_floor: float = 1e-9, project_start: bool = True,
-          start_slack: float = 1e-12) -> Branch:
+          start_slack: float = 1e-12, compiled: bool = True) -> Branch:
     """Trace one direction of the curve through ``u0``.
 
     Parameters
@@ -485,6 +489,10 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     start_slack : float, default 1e-12
         A start point violating a constraint by at most this much (rounding errors of the
         projection onto a curve that starts on a bound) counts as lying on it.
+    compiled : bool, default True
+        Use the problem's ``compiled_step`` (:mod:`continuation.problem`) for the corrector
+        and the tangent, if it has one; False forces the Python path (the same points to
+        rounding).
 
     Returns
     -------
@@ -501,6 +509,10 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     if sc.shape != u0.shape or np.any(sc <= 0):
         raise ValueError(f"scale must be {u0.size} positive numbers, got {scale!r}")
     sp = _Scaled(problem, sc)
+    # the problem's compiled corrector (continuation.problem), if it has one and may use it
+    cstep = getattr(problem, "compiled_step", None) if compiled else None
+    if cstep is not None:
+        from . import compiled as _compiled
     v = u0 / sc
     n_newton = 0
     if project_start:
@@ -542,6 +554,26 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     # Brent's iterates close in on a special point one Newton step (or none) suffices
     known: list[tuple[float, np.ndarray, np.ndarray]] = []
 
+    def corrector(guess: np.ndarray, h_: float, max_it: int, max_move: float
+                  ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float]:
+        """Corrector from ``guess`` on the plane ``t . (v - v_k) = h_``, then the tangent and
+        ``det [J; t^T]`` at the solution: the problem's compiled step if it has one, else
+        :func:`_newton` and :func:`_tangent_det`. Returns ``(v, ok, iterations, t, det)``."""
+        if cstep is not None:
+            ok_, it_, n_rj, n_r, vv, JJ, t_ok, tt, det = cstep(guess, t, v, h_, sc, tol, max_it, max_move)
+            sp.n_residual += n_rj + n_r
+            sp.n_jacobian += n_rj
+            if not ok_:
+                return vv, False, it_, None, 0.0
+            if not t_ok:  # singular bordered matrix: the SVD fallback
+                tt, det = _tangent_det(JJ, t)
+            return vv, True, it_, tt, det
+        vv, ok_, it_, JJ = _newton(sp, guess, t, v, h_, tol, max_it, max_move)
+        if not ok_:
+            return vv, False, it_, None, 0.0
+        tt, det = _tangent_det(JJ, t)
+        return vv, True, it_, tt, det
+
     def corrected(h_: float) -> tuple[np.ndarray, np.ndarray]:
         k = 1
         while k < len(known) - 1 and known[k][0] < h_:
@@ -552,12 +584,11 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             guess = guess + (h_ - float(t @ (guess - v))) * t  # onto the plane exactly
         else:
             guess = v + h_ * t
-        vv, ok_, _, JJ = _newton(sp, guess, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
+        vv, ok_, _, tt, _ = corrector(guess, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
         if not ok_:
-            vv, ok_, _, JJ = _newton(sp, v + h_ * t, t, v, h_, tol, max_iter + 4, 4 * abs(h_) + 1e-12)
+            vv, ok_, _, tt, _ = corrector(v + h_ * t, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
         if not ok_:
             raise ConvergenceError("corrector failed while locating a special point")
-        tt = tangent(JJ, t)
         if ha < h_ < hb:
             known.insert(k, (h_, vv, tt))
         return vv, tt
@@ -617,16 +648,18 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             break
         # predictor: extrapolate the cubic Hermite curve of the last step (error O(h^3) to
         # O(h^4) instead of the tangent's O(h^2)); the plain tangent after a failure
-        if prev is not None and use_hermite:
+        if cstep is not None:  # the same predictor, compiled
+            guess = _compiled.predict(v, t, *(prev if prev is not None else (v, t)),
+                                      prev is not None and use_hermite, h)
+        elif prev is not None and use_hermite:
             d = _norm(v - prev[0])
             guess = hermite(prev[0], prev[1], v, t, 1.0 + h / d) if d > 0 else v + h * t
         else:
             guess = v + h * t
-        v_new, ok, it, J_new = _newton(sp, guess, t, v, h, tol, max_iter, 2.0 * h + 1e-12)
+        v_new, ok, it, t_new, bp_new = corrector(guess, h, max_iter, 2.0 * h + 1e-12)
         n_newton += it
         angle = 0.0
         if ok:
-            t_new, bp_new = _tangent_det(J_new, t)
             angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
             ok = angle <= max_angle or h <= min_step
         if not ok:
@@ -753,7 +786,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         h = min(max(h * factor, min_step), max_step)
 
     P = np.array(pts) * sc
-    T = np.array([sp.unscaled_tangent(x) for x in tans])
+    T = np.array(tans) * sc  # the unscaled unit tangents, all at once
+    T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
     return Branch(P, T, np.array(arc), kinds, details, closed, [end], n_newton,
                   sp.n_residual, sp.n_jacobian)
 

@@ -42,6 +42,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+import numba
 import numpy as np
 import xarray as xr
 
@@ -116,8 +117,10 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     return lo, hi
 
 
-#: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter)
-Constraint = tuple[str, str, Callable[[Mapping[str, float]], float], tuple[str, float] | None]
+#: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter,
+#: (code, parameter, a) the same g for the compiled twin, continuation.neutral_compiled)
+Constraint = tuple[str, str, Callable[[Mapping[str, float]], float], tuple[str, float] | None,
+                   tuple[str, str, float]]
 
 
 def _constraints(free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
@@ -126,22 +129,27 @@ def _constraints(free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
     f = set(free)
     out: list[Constraint] = []
     if f & {"q", "mu"}:
-        out.append(("1 - mu q^2 > 0", "domain_edge", lambda p: 1.0 - p["mu"] * p["q"] ** 2 - margin, None))
+        out.append(("1 - mu q^2 > 0", "domain_edge", lambda p: 1.0 - p["mu"] * p["q"] ** 2 - margin, None,
+                    ("inside", "q", margin)))
     if "sigma" in f:
-        out.append(("sigma > 0", "domain_edge", lambda p: p["sigma"] - margin, ("sigma", margin)))
+        out.append(("sigma > 0", "domain_edge", lambda p: p["sigma"] - margin, ("sigma", margin),
+                    ("lower", "sigma", margin)))
     if f & {"sigma", "q", "mu"}:
         out.append(("sigma <= 2 (1 - mu q^2)", "domain_edge",
-                    lambda p: 2.0 * (1.0 - p["mu"] * p["q"] ** 2) - p["sigma"], None))
+                    lambda p: 2.0 * (1.0 - p["mu"] * p["q"] ** 2) - p["sigma"], None,
+                    ("sigma_max", "sigma", 0.0)))
     for name in ("fr_inv", "alpha_v"):
         if name in f:
-            out.append((f"{name} >= 0", "domain_edge", lambda p, n=name: p[n], (name, 0.0)))
+            out.append((f"{name} >= 0", "domain_edge", lambda p, n=name: p[n], (name, 0.0),
+                        ("lower", name, 0.0)))
     if "mu" in f:
-        out.append(("mu > 0", "domain_edge", lambda p: p["mu"] - margin, ("mu", margin)))
+        out.append(("mu > 0", "domain_edge", lambda p: p["mu"] - margin, ("mu", margin),
+                    ("lower", "mu", margin)))
     for name, (lo, hi) in ranges.items():
         out.append((f"{name} >= {lo:g} (end of {name}_range)", "endpoint",
-                    lambda p, n=name, a=lo: p[n] - a, (name, lo)))
+                    lambda p, n=name, a=lo: p[n] - a, (name, lo), ("lower", name, lo)))
         out.append((f"{name} <= {hi:g} (end of {name}_range)", "endpoint",
-                    lambda p, n=name, b=hi: b - p[n], (name, hi)))
+                    lambda p, n=name, b=hi: b - p[n], (name, hi), ("upper", name, hi)))
     return out
 
 
@@ -162,21 +170,55 @@ class NeutralProblem:
     samples : numpy.ndarray, optional
         ``(m, 2)`` points used to decide the form and structural deflation.
     form : {"crossing", "collision"}, optional
+    compiled : bool, default True
+        Offer the engine the compiled step (:mod:`continuation.neutral_compiled`) and evaluate
+        constraints and test functions by their compiled twins, where they exist (the sliding
+        model's crossing form); False keeps everything in Python.
+
+    Attributes
+    ----------
+    compiled_step : callable or None
+        The engine's hook (:mod:`continuation.problem`); None without a compiled path.
     """
 
     test_function_names = ("frequency", "other_modes")
+    compiled_step: Callable[..., tuple] | None = None
 
     def __init__(self, model: str | LinearModel, x: str, y: str, fixed: Mapping[str, float],
                  ranges: Mapping[str, tuple[float, float]], edge_margin: float = 1e-9,
-                 samples: np.ndarray | None = None, form: str | None = None):
+                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool = True):
         self.model = get_model(model)
         self.names = (x, y)
         self.fixed = dict(fixed)
-        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
+        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
         self._constraints = _constraints(self.names, ranges, edge_margin)
         self.constraint_names = tuple(c[0] for c in self._constraints)
         self.constraint_kinds = tuple(c[1] for c in self._constraints)
         self.constraint_bounds = tuple(c[3] for c in self._constraints)
+        self._compiled = None
+        if self.cond._compiled is not None:  # the sliding model's crossing form, compiled
+            from . import neutral_compiled as nc
+            from stability.neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
+
+            codes = [c[4] for c in self._constraints]
+            self._compiled = (
+                *self.cond._compiled,
+                np.array([nc.CONSTRAINT_CODES[c[0]] for c in codes], dtype=np.int64),
+                np.array([_SLIDING_PARAMS.index(c[1]) for c in codes], dtype=np.int64),
+                np.array([c[2] for c in codes], dtype=float))
+            self._step_kernel = nc.sliding_step
+            self._rj_kernel = nc.residual_and_jacobian
+            self._constraint_kernel = nc.constraint_values
+            self._growth_kernel = sliding_crossing_other_growth
+            self.compiled_step = self._compiled_step
+
+    def _compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
+                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
+        """The engine's hook (:mod:`continuation.problem`):
+        :func:`continuation.neutral_compiled.sliding_step`."""
+        point, free, ncoef = self._compiled[:3]
+        return self._step_kernel(point, free, ncoef, guess, t_plane, anchor, float(h), scale,
+                                 float(tol), int(max_iter), float(max_move))
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         """All parameters at ``u``."""
@@ -186,18 +228,27 @@ class NeutralProblem:
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
+        if self._compiled is not None:
+            point, free, ncoef = self._compiled[:3]
+            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), False)[0]
         return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian=False)[0]
 
     def jacobian(self, u: np.ndarray) -> np.ndarray:
         """``dF/d(x, y, w)`` (2, 3)."""
-        return self.cond.residual_and_jacobian(u[:2], float(u[2]))[1]
+        return self.residual_and_jacobian(u)[1]
 
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``F`` and ``dF/du`` from one batched evaluation of the coefficients."""
+        """``F`` and ``dF/du`` from one evaluation of the coefficients (compiled twin if any)."""
+        if self._compiled is not None:
+            point, free, ncoef = self._compiled[:3]
+            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), True)
         return self.cond.residual_and_jacobian(u[:2], float(u[2]))
 
     def other_growth(self, u: np.ndarray) -> float:
         """Largest growth rate among the other modes (-inf if there is none)."""
+        if self._compiled is not None:
+            point, free, ncoef = self._compiled[:3]
+            return self._growth_kernel(point, free, ncoef, np.asarray(u, dtype=float))
         r = self.cond.other_modes_list(u[:2], float(u[2]))
         return max(z.real for z in r) if r else -np.inf
 
@@ -233,6 +284,9 @@ class NeutralProblem:
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
+        if self._compiled is not None:
+            point, free, _, codes, index, a = self._compiled
+            return self._constraint_kernel(point, free, np.asarray(u, dtype=float), codes, index, a)
         p = self.fixed.copy()
         p[self.names[0]] = float(u[0])
         p[self.names[1]] = float(u[1])
@@ -295,10 +349,15 @@ def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float
     xs = np.linspace(*ranges[x], grid[0])
     ys = np.linspace(*ranges[y], grid[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
-    # the polynomial root finder: one batched call in this thread (the compiled default kernel
-    # runs on a thread pool, whose start-up and contention on a busy machine cost more than the
-    # 625 points of a coarse grid)
-    sp = spectrum(model, mask_unphysical=True, method="polynomial", **_grid_params(x, y, fixed, X, Y))
+    # the compiled kernel (stability.kernel), in this thread only: on a thread pool, start-up
+    # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
+    # it is ~5x faster than the batched polynomial root finder, the cross-check method)
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        sp = spectrum(model, mask_unphysical=True, method="kernel", **_grid_params(x, y, fixed, X, Y))
+    finally:
+        numba.set_num_threads(threads)
     ev = sp.eigenvalues
     grows = (ev.real > 0) & ~sp.neutral
     count = np.where(sp.inside, grows.sum(axis=-1), -1)
@@ -503,7 +562,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
                   start: Sequence[Sequence[float]] | None = None, grid: tuple[int, int] = (25, 25),
                   step: float | None = None, max_step: float = 0.05, max_angle: float = 0.1,
                   max_points: int = 4000, tol: float = 1e-13, edge_margin: float = 1e-9,
-                  form: str | None = None) -> xr.Dataset:
+                  form: str | None = None, compiled: bool = True) -> xr.Dataset:
     """Trace the neutral curves of a linear model in the plane of two parameters.
 
     Parameters
@@ -540,6 +599,10 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         ``>= edge_margin``.
     form : {"crossing", "collision"}, optional
         Force the form (see :mod:`stability.neutrality`); default from the model.
+    compiled : bool, default True
+        Use the compiled corrector of :mod:`continuation.neutral_compiled` where there is one
+        (the sliding model's crossing form; numba, compiled on first use and cached on disk);
+        False forces the engine's Python path. The two give the same points to rounding.
 
     Returns
     -------
@@ -575,7 +638,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     lo = np.array([ranges[x][0], ranges[y][0]])
     rng = np.random.default_rng(12345)
     samples = lo + rng.random((8, 2)) * scale[:2]
-    prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form)
+    prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form, compiled)
 
     if start is None:
         guesses = _atlas_guesses(m, x, y, fixed, ranges, grid)

@@ -21,6 +21,36 @@ and, optionally,
 ``constraint_names`` and ``constraints(u) -> ndarray``
     Values ``g_j(u)`` that must stay ``>= 0``; the branch ends exactly where the first one
     reaches zero (bounds of a box, edges of a physical domain).
+``residual_and_jacobian(u) -> (ndarray (n,), ndarray (n, n+1))``
+    Both at once, when that is cheaper than two calls.
+``compiled_step(guess, t_plane, anchor, h, scale, tol, max_iter, max_move) -> tuple``
+    A compiled corrector (numba), used by :func:`continuation.trace` for every step and for
+    every corrector solve while locating special points; absent or None: the engine's Python
+    path. In the engine's scaled variables ``v = u / scale`` (all arrays float64, shape
+    ``(n+1,)``), it must do what the Python path does:
+
+    1. Newton's method on ``[F(v * scale); t_plane . (v - anchor) - h] = 0`` from ``guess``
+       (the bordered system ``[J; t_plane^T] dv = -[F; plane]``, ``J = dF/du * scale``);
+       converged when ``||F||_2 <= tol`` and ``|t_plane . (v - anchor) - h| <= 1e3 eps (1 +
+       |h|)``; then one more Newton step, kept if it lowers ``||F||`` (skipped when
+       ``||F|| <= 4 eps``); failed after ``max_iter`` iterations, on a value that is not finite,
+       on a singular bordered matrix before convergence, or when an iterate moves farther than
+       ``max_move`` from ``guess``;
+    2. at the point: the unit tangent ``t`` from ``[J; t_plane^T] y = e_(n+1)``, ``t = y /
+       |y|`` (so ``t . t_plane > 0``), and the branch-point test ``det [J; t^T] = det [J;
+       t_plane^T] |y|``.
+
+    Returns ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t,
+    det)``: the work counts feed :class:`continuation.Branch`; ``J`` is the scaled Jacobian
+    the tangent came from (the one of the last Newton step if the polishing step was kept);
+    ``tangent_ok`` False (singular bordered matrix) makes the engine take the tangent from
+    the SVD of ``J``. It must solve the same equations as ``residual`` (which the engine
+    still uses to project the start point and to end a branch on a constraint). Compiled
+    building blocks with the Python path's operations are in :mod:`continuation.compiled`;
+    :mod:`continuation.neutral_compiled` is an example. The engine cannot take a problem's
+    compiled residual and run a generic compiled loop on it: numba does not cache a function
+    that receives another compiled function as an argument, and the dispatch costs
+    microseconds per call; so the problem owns its loop.
 
 The engine knows nothing else about the problem.
 """

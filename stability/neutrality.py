@@ -45,14 +45,18 @@ loop) is scalar: Python floats and complex numbers, no batched numpy call on one
 from __future__ import annotations
 
 import cmath
+import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+from numba import njit
 
 from .models import LinearModel, get_model
 from .models.sliding import Sliding
 
-__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "sliding_coefficients"]
+__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "sliding_coefficients",
+           "sliding_crossing_residual", "sliding_crossing_residuals", "sliding_crossing_other_growth",
+           "sliding_crossing_other_modes"]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
 _WEIGHTS = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0
@@ -224,6 +228,9 @@ class NeutralCondition:
         Points used to decide the form and the deflation (default: the centre of a unit box).
     form : {"crossing", "collision"}, optional
         Force the form (default: decided from the samples, see the module docstring).
+    compiled : bool, default True
+        Evaluate :meth:`residuals` and :meth:`other_modes_many` (many points at once) by their
+        compiled twins where they exist (the sliding model's crossing form); False keeps numpy.
 
     Attributes
     ----------
@@ -235,7 +242,7 @@ class NeutralCondition:
     """
 
     def __init__(self, model: str | LinearModel, free: Sequence[str], fixed: Mapping[str, float],
-                 samples: np.ndarray | None = None, form: str | None = None):
+                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool = True):
         self.model = get_model(model)
         self.free = tuple(free)
         self.fixed = {k: float(v) for k, v in fixed.items()}
@@ -253,8 +260,13 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        phases = {conservative_phase(ci) for ci in c}
-        self.phase = phases.pop() if len(phases) == 1 else None
+        # the common phase of all samples (None as soon as one has none or two differ)
+        self.phase = conservative_phase(c[0])
+        for ci in c[1:]:
+            if self.phase is None:
+                break
+            if conservative_phase(ci) != self.phase:
+                self.phase = None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
         if form not in ("crossing", "collision"):
@@ -267,10 +279,15 @@ class NeutralCondition:
         # scalar analytic path (exact derivatives) for the sliding model itself
         self._analytic = type(self.model) is Sliding
         self._ncoef = self.degree + 1
+        #: (point, free_index, ncoef) of the compiled twins (sliding model, crossing form), or None
+        self._compiled: tuple[np.ndarray, np.ndarray, int] | None = None
         if self._analytic:
             # the parameters of eq. (11) in the order of sliding_coefficients, free ones at 0
             self._point = [self.fixed.get(name, 0.0) for name in _SLIDING_PARAMS]
             self._free_index = [_SLIDING_PARAMS.index(name) for name in self.free]
+            if self.form == "crossing" and compiled:
+                self._compiled = (np.array(self._point, dtype=float),
+                                  np.array(self._free_index, dtype=np.int64), int(self._ncoef))
 
     def _scalar(self, values: Sequence[float], derivatives: bool
                 ) -> tuple[list[complex], list[list[complex]] | None]:
@@ -406,6 +423,8 @@ class NeutralCondition:
         w = np.asarray(w, dtype=float).reshape(-1)
         if len(w) == 0:
             return np.zeros((0, 2))
+        if self._compiled is not None:
+            return sliding_crossing_residuals(*self._compiled, values, w)
         c = self.coefficients(values)
         n = c.shape[-1] - 1
         big = np.maximum(1.0, np.abs(w))
@@ -441,6 +460,8 @@ class NeutralCondition:
         """
         values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
         w = np.asarray(w, dtype=float).reshape(-1)
+        if self._compiled is not None:
+            return sliding_crossing_other_modes(*self._compiled, values, w)
         c = self.coefficients(values).astype(complex)
         r = 1j * w
         for _ in range(1 if self.form == "crossing" else 2):
@@ -472,3 +493,229 @@ class NeutralCondition:
         """:meth:`other_modes` as a list of Python complex numbers (the scalar inner loop)."""
         c, _ = self._scalar(values, False)
         return _other_roots_list(c, float(w), 1 if self.form == "crossing" else 2)
+
+
+# ------------------------------------------------------------------------------------------
+# compiled twins (numba) of the sliding model's crossing form, for the continuation's
+# compiled corrector (continuation.neutral_compiled)
+# ------------------------------------------------------------------------------------------
+#: numba options: IEEE arithmetic (no fastmath: no reassociation or contraction, so the
+#: compiled twins do the same floating-point operations as the scalar Python code above)
+_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+
+
+@njit(**_JIT)
+def _two_product_c(a: float, b: float) -> tuple[float, float]:
+    """:func:`_two_product`, compiled."""
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+@njit(**_JIT)
+def _inertia_g_c(q: float, mu: float) -> float:
+    """:func:`_inertia_g`, compiled (the same operations)."""
+    t, te = _two_product_c(q, q)
+    u, ue = _two_product_c(mu, t)
+    ue = ue + mu * te
+    s = 1.0 + -u
+    bb = s - 1.0
+    se = (1.0 - (s - bb)) + (-u - bb)
+    return s + (se - ue)
+
+
+@njit(**_JIT)
+def _sliding_coefficients_c(point: np.ndarray, c: np.ndarray) -> float:
+    """Eq. (11)'s ``[c3, c2, c1, c0]`` at ``point = (q, fr_inv, sigma, alpha_v, mu)`` into ``c``
+    (the operations of :func:`sliding_coefficients`); returns ``A_C``."""
+    q, fr_inv, sigma, alpha_v, mu = point[0], point[1], point[2], point[3], point[4]
+    a_g = _inertia_g_c(q, mu)
+    a_c = a_g + mu * ((1.0 + q) * (1.0 + q))
+    c[0] = complex(mu * a_g, 0.0)
+    c[1] = complex(alpha_v * a_c, -(mu * sigma))
+    c[2] = complex(-mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q))))
+    c[3] = complex(-mu * alpha_v * q * fr_inv, 0.0)
+    return a_c
+
+
+@njit(**_JIT)
+def _sliding_derivative_c(point: np.ndarray, a_c: float, k: int, d: np.ndarray) -> None:
+    """``dc/d parameter k`` (k indexes ``(q, fr_inv, sigma, alpha_v, mu)``) into ``d``, as
+    :func:`sliding_coefficients`."""
+    q, fr_inv, sigma, alpha_v, mu = point[0], point[1], point[2], point[3], point[4]
+    if k == 0:
+        d[0] = complex(-2.0 * mu * mu * q, 0.0)
+        d[1] = complex(2.0 * mu * alpha_v, 0.0)
+        d[2] = complex(-mu * mu * fr_inv, -alpha_v * mu)
+        d[3] = complex(-mu * alpha_v * fr_inv, 0.0)
+    elif k == 1:
+        d[0] = 0j
+        d[1] = 0j
+        d[2] = complex(-mu * mu * q, 0.0)
+        d[3] = complex(-mu * alpha_v * q, 0.0)
+    elif k == 2:
+        d[0] = 0j
+        d[1] = complex(0.0, -mu)
+        d[2] = complex(0.0, -alpha_v)
+        d[3] = 0j
+    elif k == 3:
+        d[0] = 0j
+        d[1] = complex(a_c, 0.0)
+        d[2] = complex(0.0, -(sigma + mu * (1.0 + q)))
+        d[3] = complex(-mu * q * fr_inv, 0.0)
+    else:
+        d[0] = complex(1.0 - 2.0 * mu * q * q, 0.0)
+        d[1] = complex(alpha_v * (1.0 + 2.0 * q), -sigma)
+        d[2] = complex(-2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q))
+        d[3] = complex(-alpha_v * q * fr_inv, 0.0)
+
+
+@njit(**_JIT)
+def sliding_crossing_residual(point: np.ndarray, free_index: np.ndarray, ncoef: int, u: np.ndarray,
+                              jacobian: bool, F: np.ndarray, J: np.ndarray) -> None:
+    """Crossing form of eq. (11) at one point, compiled: the twin of
+    :meth:`NeutralCondition.residual_and_jacobian` for the sliding model (same operations).
+
+    Parameters
+    ----------
+    point : numpy.ndarray, shape (5,)
+        ``(q, fr_inv, sigma, alpha_v, mu)``; the entries ``free_index`` are replaced by ``u``
+        (a copy is made, ``point`` is not changed).
+    free_index : numpy.ndarray of int, shape (k,)
+        Positions of the free parameters in ``point``.
+    ncoef : int
+        Number of coefficients kept (4, or fewer after deflating structural zero roots).
+    u : numpy.ndarray, shape (k + 1,)
+        The free parameters, then the frequency ``w``.
+    jacobian : bool
+        Also fill ``J``.
+    F : numpy.ndarray, shape (2,)
+        Output ``[Re p(i w), Im p(i w)] / S``.
+    J : numpy.ndarray, shape (2, k + 1)
+        Output ``dF/du`` (with ``S`` held fixed, as the Python path).
+    """
+    k = free_index.shape[0]
+    p = point.copy()
+    for i in range(k):
+        p[free_index[i]] = u[i]
+    w = u[k]
+    c = np.empty(4, dtype=np.complex128)
+    a_c = _sliding_coefficients_c(p, c)
+    n = ncoef - 1
+    z = complex(0.0, w)
+    val = 0j
+    dpz = 0j
+    norm = 0.0
+    for j in range(ncoef):
+        dpz = dpz * z + val
+        val = val * z + c[j]
+        norm += abs(c[j])
+    S = norm * math.pow(max(1.0, abs(w)), float(n))
+    if S == 0.0:
+        S = 1.0
+    F[0] = val.real / S
+    F[1] = val.imag / S
+    if not jacobian:
+        return
+    d = np.empty(4, dtype=np.complex128)
+    for i in range(k):
+        _sliding_derivative_c(p, a_c, free_index[i], d)
+        acc = 0j
+        for j in range(ncoef):
+            acc = acc * z + d[j]
+        J[0, i] = acc.real / S
+        J[1, i] = acc.imag / S
+    J[0, k] = -dpz.imag / S
+    J[1, k] = dpz.real / S
+
+
+@njit(**_JIT)
+def sliding_crossing_other_growth(point: np.ndarray, free_index: np.ndarray, ncoef: int,
+                                  u: np.ndarray) -> float:
+    """Largest growth rate of the modes other than ``i w`` (-inf if none), compiled: the twin
+    of :func:`other_roots` (multiplicity 1) for the sliding model, whose quotient has degree
+    <= 2 (closed forms: the same stable quadratic formula).
+    """
+    k = free_index.shape[0]
+    p = point.copy()
+    for i in range(k):
+        p[free_index[i]] = u[i]
+    c = np.empty(4, dtype=np.complex128)
+    _sliding_coefficients_c(p, c)
+    r = np.empty(2, dtype=np.complex128)
+    _other_roots_c(c, ncoef, u[k], r)
+    g = -np.inf
+    for j in range(ncoef - 2):
+        g = max(g, r[j].real)
+    return g
+
+
+@njit(**_JIT)
+def _other_roots_c(c: np.ndarray, ncoef: int, w: float, out: np.ndarray) -> None:
+    """Roots of ``p(s) / (s - i w)`` for ``ncoef <= 4`` coefficients into ``out``
+    (``ncoef - 2`` of them): :func:`other_roots` with multiplicity 1, compiled."""
+    r = complex(0.0, w)
+    m = ncoef - 2
+    qq = np.empty(3, dtype=np.complex128)
+    qq[0] = c[0]
+    for j in range(1, ncoef - 1):
+        qq[j] = c[j] + r * qq[j - 1]
+    if m <= 0:
+        return
+    if m == 1:
+        out[0] = -qq[1] / qq[0]
+        return
+    a, b, kk = qq[0], qq[1], qq[2]
+    sq = cmath.sqrt(b * b - 4 * a * kk)
+    if (b.conjugate() * sq).real >= 0:
+        big = -(b + sq) / 2
+    else:
+        big = -(b - sq) / 2
+    if big == 0:
+        out[0] = 0j
+        out[1] = 0j
+        return
+    out[0] = big / a
+    out[1] = kk / big
+
+
+@njit(**_JIT)
+def sliding_crossing_residuals(point: np.ndarray, free_index: np.ndarray, ncoef: int,
+                               values: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """:meth:`NeutralCondition.residuals` of the sliding model's crossing form, compiled:
+    ``F`` (m, 2) at the points ``values`` (m, k), ``w`` (m,)."""
+    m, k = values.shape
+    out = np.empty((m, 2))
+    u = np.empty(k + 1)
+    F = np.empty(2)
+    J = np.empty((2, k + 1))
+    for i in range(m):
+        for j in range(k):
+            u[j] = values[i, j]
+        u[k] = w[i]
+        sliding_crossing_residual(point, free_index, ncoef, u, False, F, J)
+        out[i, 0] = F[0]
+        out[i, 1] = F[1]
+    return out
+
+
+@njit(**_JIT)
+def sliding_crossing_other_modes(point: np.ndarray, free_index: np.ndarray, ncoef: int,
+                                 values: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """:meth:`NeutralCondition.other_modes_many` of the sliding model's crossing form,
+    compiled: the roots other than ``i w``, (m, ncoef - 2)."""
+    m, k = values.shape
+    out = np.zeros((m, max(ncoef - 2, 0)), dtype=np.complex128)
+    p = point.copy()
+    c = np.empty(4, dtype=np.complex128)
+    for i in range(m):
+        for j in range(k):
+            p[free_index[j]] = values[i, j]
+        _sliding_coefficients_c(p, c)
+        _other_roots_c(c, ncoef, w[i], out[i])
+    return out

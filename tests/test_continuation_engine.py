@@ -189,3 +189,77 @@ def test_dense_errors():
         hermite_samples(np.zeros((3, 2)), np.ones((3, 2)), 0)
     with pytest.raises(TypeError, match="Branch"):
         dense([1, 2, 3])
+
+
+def test_compiled_building_blocks_match_the_python_twins():
+    """continuation.compiled against the engine's Python code (the same operations: the solve
+    and its determinant agree bit for bit; the tangent and the Hermite predictor to rounding,
+    their norms being summed in another order)."""
+    from continuation import compiled
+    from continuation.engine import _solve_det, _tangent_det, hermite
+
+    rng = np.random.default_rng(11)
+    for m in (2, 3, 4):
+        for _ in range(50):
+            G, b = rng.normal(size=(m, m)), rng.normal(size=m)
+            x, det = _solve_det(G, b)
+            ok, xc, detc = compiled.solve_det(G, b)
+            assert ok and np.array_equal(x, xc) and det == detc
+            J, t_ref = rng.normal(size=(m - 1, m)), rng.normal(size=m)
+            t, d = _tangent_det(J, t_ref)
+            ok, tc, dc = compiled.tangent_det(J, t_ref)
+            assert ok and np.allclose(tc, t, rtol=0, atol=1e-14) and abs(dc - d) <= 1e-13 * abs(d)
+    assert not compiled.solve_det(np.zeros((3, 3)), np.ones(3))[0]
+    p0, t0, p1, t1 = (rng.normal(size=3) for _ in range(4))
+    h = 0.3
+    ref = hermite(p0, t0, p1, t1, 1.0 + h / np.linalg.norm(p1 - p0))
+    assert np.allclose(compiled.predict(p1, t1, p0, t0, True, h), ref, rtol=0, atol=1e-14)
+    assert np.array_equal(compiled.predict(p1, t1, p0, t0, False, h), p1 + h * t1)
+
+
+class HopfWithHook(HopfNormalForm):
+    """The Hopf normal form with a ``compiled_step`` hook (continuation.problem), written in
+    Python from the compiled building blocks: the engine must give the branch of its Python
+    path, and count the work the hook reports."""
+
+    calls = 0
+
+    def compiled_step(self, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
+        from continuation import compiled as c
+
+        type(self).calls += 1
+        v = guess.copy()
+        n_rj = n_r = 0
+        for it in range(max_iter + 1):
+            u = v * scale
+            f, J = self.residual(u), self.jacobian(u) * scale
+            n_rj += 1
+            action, dv, fn = c.corrector_update(it, max_iter, v, guess, f, J, t_plane, anchor, h, tol, True)
+            if action == c.FAILED:
+                return False, it, n_rj, n_r, v, J, False, t_plane, 0.0
+            if action == c.POLISH:
+                n_r += 1
+                if np.linalg.norm(self.residual((v + dv) * scale)) < fn:
+                    v, it = v + dv, it + 1
+            if action in (c.POLISH, c.CONVERGED):
+                ok, t, det = c.tangent_det(J, t_plane)
+                return True, it, n_rj, n_r, v, J, ok, t, det
+            v = v + dv
+            if not np.linalg.norm(v - guess) <= max_move:
+                return False, it + 1, n_rj, n_r, v, J, False, t_plane, 0.0
+        return False, max_iter, n_rj, n_r, v, J, False, t_plane, 0.0
+
+
+def test_compiled_step_hook_gives_the_python_branch():
+    prob = HopfWithHook()
+    u0 = project(prob, [1.1, 0.1, 1.6])
+    HopfWithHook.calls = 0
+    hooked = trace(prob, u0, fold_components=(0, 1))
+    assert HopfWithHook.calls > len(hooked.points)  # every step, and the fold searches
+    python = trace(prob, u0, fold_components=(0, 1), compiled=False)
+    assert hooked.closed and python.closed
+    assert hooked.kinds == python.kinds and hooked.points.shape == python.points.shape
+    assert np.max(np.abs(hooked.points - python.points)) <= 1e-14
+    assert np.max(np.abs(hooked.tangents - python.tangents)) <= 1e-13
+    # the work the hook reports is counted as the Python path counts its own
+    assert (hooked.n_residual, hooked.n_jacobian) == (python.n_residual, python.n_jacobian)

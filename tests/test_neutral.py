@@ -301,3 +301,60 @@ def test_errors():
         neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=-1.0, alpha_v=0.5))
     with pytest.raises(ValueError, match="lo < hi"):
         neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), x_range=(0.5, 0.1))
+
+
+def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
+    """The compiled neutral condition (stability.neutrality.sliding_crossing_residual, used by
+    the compiled corrector) and the second test function against the scalar Python path: the
+    same floating-point operations, so the same bits, at random points (both derivatives'
+    parameters, structural zero root deflated or not, |w| below and above 1)."""
+    from stability.neutrality import (NeutralCondition, _other_roots_list,
+                                      sliding_crossing_other_growth, sliding_crossing_residual)
+
+    rng = np.random.default_rng(5)
+    planes = [("q", "sigma"), ("q", "fr_inv"), ("sigma", "alpha_v"), ("q", "mu"), ("fr_inv", "sigma")]
+    for k in range(200):
+        free = planes[k % 5]
+        p = dict(q=rng.uniform(-0.6, 0.6), fr_inv=rng.uniform(0, 3) if k % 3 else 0.0,
+                 sigma=rng.uniform(0, 2), alpha_v=rng.uniform(0.1, 3), mu=rng.uniform(1, 3))
+        cond = NeutralCondition("sliding", free, {n: v for n, v in p.items() if n not in free})
+        assert cond._compiled is not None
+        vals, w = np.array([p[n] for n in free]), rng.uniform(-3, 3)
+        F, J = cond.residual_and_jacobian(vals, w)
+        Fc, Jc = np.empty(2), np.empty((2, 3))
+        sliding_crossing_residual(*cond._compiled, np.array([*vals, w]), True, Fc, Jc)
+        np.testing.assert_array_equal(Fc, F)
+        np.testing.assert_array_equal(Jc, J)
+        r = _other_roots_list(cond._scalar(vals, False)[0], w, 1)
+        assert sliding_crossing_other_growth(*cond._compiled, np.array([*vals, w])) == max(z.real for z in r)
+
+
+@pytest.mark.parametrize("x, y, fixed", [
+    ("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5)),
+    ("q", "sigma", dict(fr_inv=0.3, alpha_v=0.5)),
+    ("q", "sigma", dict(fr_inv=0.3, alpha_v=1e3)),
+    ("sigma", "alpha_v", dict(q=-0.1, fr_inv=0.3)),
+])
+def test_compiled_path_gives_the_python_curve(x, y, fixed):
+    """The compiled corrector (continuation.neutral_compiled) against the engine's Python path
+    on the same problem: a second implementation of the same equations, so the same points,
+    special points and flags, coordinates and tangents to rounding (observed <= 3e-15; both
+    at the rounding floor of a problem whose points have condition ~1). The closed forms above
+    remain the reference. (At a branch point, where the Jacobian loses rank, the two agree
+    only to the conditioning of the point, ~1e-7: not compared here.)"""
+    from continuation.neutral import NeutralProblem
+
+    fast = neutral_curve("sliding", x, y, fixed=fixed)
+    slow = neutral_curve("sliding", x, y, fixed=fixed, compiled=False)
+    assert fast.sizes == slow.sizes and fast.sizes["point"] > 10
+    for v in ("kind", "detail", "branch", "leading"):
+        assert fast[v].values.tolist() == slow[v].values.tolist()
+    for v in (x, y, "frequency", f"tangent_{x}", f"tangent_{y}", "tangent_frequency"):
+        np.testing.assert_allclose(fast[v].values, slow[v].values, rtol=0, atol=2e-14)
+    assert float(fast.residual.max()) <= 1e-14
+    # the compiled path exists for the sliding model's crossing form only
+    rng = {x: (0.0, 1.0), y: (0.0, 1.0)}
+    assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng).compiled_step is not None
+    assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=False).compiled_step is None
+    assert NeutralProblem("rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)}
+                          ).compiled_step is None
