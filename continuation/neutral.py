@@ -48,7 +48,8 @@ import xarray as xr
 
 from stability.models import LinearModel, get_model
 from stability.neutrality import NeutralCondition
-from stability.parameters import DEFAULT_MU, LONG_NAMES, check_domain
+from stability.parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
+                                  check_integer, check_positive)
 from stability.spectra import spectrum
 
 from .engine import Branch, ConvergenceError, project, trace_both
@@ -90,10 +91,7 @@ def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[st
     missing = [n for n in model.parameters if n not in free and n not in out]
     if missing:
         raise TypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
-    p, _ = check_domain(**out)
-    for k, v in p.items():
-        if v.ndim:
-            raise TypeError(f"fixed {k} must be a scalar, got shape {v.shape}")
+    p, _ = check_domain(scalar=True, **out)
     return {k: float(v) for k, v in p.items()}
 
 
@@ -108,12 +106,11 @@ def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
     if rng is None:
         return _default_range(name, fixed)
-    try:
-        lo, hi = (float(v) for v in rng)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}_range must be a pair (lo, hi) of real numbers, got {rng!r}") from None
-    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-        raise ValueError(f"{name}_range = ({lo}, {hi}) must be finite with lo < hi")
+    if isinstance(rng, (str, bytes)) or not hasattr(rng, "__len__") or len(rng) != 2:
+        raise TypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
+    lo, hi = (as_scalar(f"{name}_range", v) for v in rng)  # finite reals, or a named error
+    if not lo < hi:
+        raise ValueError(f"{name}_range = ({lo:g}, {hi:g}) is outside the allowed range: lo < hi")
     return lo, hi
 
 
@@ -632,7 +629,18 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     if x == y:
         raise ValueError(f"x and y must be two different parameters, got {x!r} twice")
     fixed = _fixed_parameters(m, (x, y), fixed)
-    step = max_step if step is None else step
+    max_step = check_positive("max_step", max_step)
+    step = max_step if step is None else check_positive("step", step)
+    max_angle = check_positive("max_angle", max_angle)
+    tol = check_positive("tol", tol)
+    edge_margin = check_positive("edge_margin", edge_margin)
+    max_points = check_integer("max_points", max_points, minimum=2)
+    compiled = check_flag("compiled", compiled)
+    if form is not None:
+        form = check_choice("form", form, ("crossing", "collision"))
+    if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):
+        raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
+    grid = tuple(check_integer("grid", g, minimum=2) for g in grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
     lo = np.array([ranges[x][0], ranges[y][0]])
@@ -644,8 +652,12 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         guesses = _atlas_guesses(m, x, y, fixed, ranges, grid)
     else:
         guesses = []
+        if isinstance(start, (str, bytes)) or not hasattr(start, "__iter__"):
+            raise TypeError(f"start = {start!r} must be a sequence of points (x, y) or (x, y, w)")
         for s in start:
-            s = [float(v) for v in s]
+            if isinstance(s, (str, bytes)) or not hasattr(s, "__len__") or len(s) not in (2, 3):
+                raise ValueError(f"start point {s!r}: a start point has 2 or 3 values (x, y[, w])")
+            s = [as_scalar("start", v) for v in s]
             if len(s) == 2:
                 p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
                 ev = spectrum(m, mask_unphysical=True, **p).eigenvalues
@@ -655,6 +667,8 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
             if len(s) != 3:
                 raise ValueError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))
+        if not guesses:
+            raise ValueError("start = [] is empty: give at least one point, or None for starts from an atlas")
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
@@ -761,8 +775,7 @@ def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str
     x, y, z = (_check_name(n, w_, m) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
     if len({x, y, z}) != 3:
         raise ValueError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
-    if fold_in not in (x, y):
-        raise ValueError(f"fold_in = {fold_in!r} must be x ({x!r}) or y ({y!r})")
+    check_choice("fold_in", fold_in, (x, y))
     if not isinstance(fixed, Mapping) or z not in fixed:
         raise TypeError(f"fixed must give the start value of z = {z!r}")
     fx = dict(fixed)

@@ -198,3 +198,37 @@ def test_critical_spin_arguments(kw, exc, fragment):
 def test_thresholds_flags():
     with pytest.raises(TypeError, match="return_details = 'yes' is a str; return_details must be True or False"):
         stability.thresholds("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5, return_details="yes")
+
+
+NEUTRAL = dict(fixed=dict(fr_inv=0.0, alpha_v=0.5))
+
+
+@pytest.mark.parametrize("kw,exc,fragment", [
+    (dict(x_range=(0.2, -0.2)), ValueError, r"q_range = \(0.2, -0.2\) is outside the allowed range: lo < hi"),
+    (dict(x_range=(0.0, float("nan"))), DomainError, "^q_range = nan"),
+    (dict(x_range=0.3), TypeError, "q_range = 0.3 must be a pair"),
+    (dict(max_step=0.0), DomainError, "max_step = 0 is outside the allowed range: max_step > 0"),
+    (dict(step=-1.0), DomainError, "step = -1 is outside the allowed range: step > 0"),
+    (dict(tol=float("inf")), DomainError, "^tol = inf"),
+    (dict(max_points=1), DomainError, "max_points = 1 is outside the allowed range: max_points >= 2"),
+    (dict(max_points=2.5), TypeError, "max_points = 2.5 is a float; max_points must be an integer >= 2"),
+    (dict(form="other"), ValueError, "form = 'other' is not known; choose one of crossing, collision"),
+    (dict(grid=(25,)), TypeError, r"grid = \(25,\) must be a pair of integers >= 2"),
+    (dict(start=[]), ValueError, r"start = \[\] is empty"),
+    (dict(start=[(0.1,)]), ValueError, r"start point \(0.1,\): a start point has 2 or 3 values"),
+    (dict(start=[(0.1, "x")]), TypeError, "start = 'x' is a str"),
+    (dict(fixed=dict(fr_inv=[0.0, 0.1], alpha_v=0.5)), TypeError, "^fr_inv must be a single number here"),
+])
+def test_neutral_curve_arguments(kw, exc, fragment):
+    import continuation
+
+    with pytest.raises(exc, match=fragment):
+        continuation.neutral_curve("sliding", "q", "sigma", **{**NEUTRAL, **kw})
+
+
+def test_fold_curve_fold_in():
+    import continuation
+
+    with pytest.raises(ValueError, match="fold_in = 'mu' is not known; choose one of q, sigma"):
+        continuation.fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="mu",
+                                fixed=dict(fr_inv=0.0, alpha_v=0.5))
