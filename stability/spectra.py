@@ -138,6 +138,48 @@ def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray):
     return kernel.coefficient_spectrum(c, inside)
 
 
+def _plain_float(value: Any) -> np.ndarray | None:
+    """``value`` as a float64 array without a copy if it plainly is one (a non-empty float64
+    array, or a Python or numpy real scalar that is not a bool); None for anything else (which
+    then goes through :func:`~stability.parameters.as_parameter` and its messages)."""
+    if isinstance(value, np.ndarray):
+        return value if value.dtype == np.float64 and value.size > 0 else None
+    if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
+        return np.asarray(value, dtype=np.float64)
+    return None
+
+
+def _fused_sliding(m: LinearModel, given: dict[str, Any], mask_unphysical: bool) -> Spectrum | None:
+    """The default path for the sliding model: one kernel pass that also tests the domain
+    (:func:`stability.kernel.checked_sliding_spectrum`). Where a point is outside and the
+    request is not masked, or a parameter is not finite, :func:`check_domain` is called to raise
+    its error (the messages live there only). None if the fused path does not apply (another
+    model, input that is not plain float64, shapes that do not broadcast): the caller then
+    takes the general path, which reports such input."""
+    from . import kernel
+    from .models.sliding import Sliding
+
+    if not isinstance(m, Sliding) or not isinstance(mask_unphysical, (bool, np.bool_)):
+        return None
+    arrays = {k: _plain_float(v) for k, v in given.items()}
+    if any(v is None for v in arrays.values()):
+        return None
+    try:
+        shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
+    except ValueError:
+        return None
+    out = kernel.checked_sliding_spectrum(arrays["q"], arrays["fr_inv"], arrays["sigma"], arrays["alpha_v"],
+                                          arrays["mu"])
+    if out.n_not_finite or (out.n_outside and not mask_unphysical):
+        # a parameter not finite or beyond the computable range, or an unmasked point outside:
+        # check_domain raises the canonical DomainError
+        check_domain(mask=mask_unphysical, **given)
+        return None  # not reached while the two tests agree (tests/test_kernel.py)
+    p = {k: np.broadcast_to(v, shape) for k, v in arrays.items()}
+    ev, bound, neutral, stab = out.spectrum
+    return Spectrum(m, p, ev, bound, neutral, stab, out.inside)
+
+
 def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
     tol = 4.0 * bound + 16.0 * UNIT_ROUNDOFF * scale
@@ -175,6 +217,10 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
     given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+    if method == "kernel":
+        fused = _fused_sliding(m, given, mask_unphysical)
+        if fused is not None:
+            return fused
     p, inside = check_domain(mask=mask_unphysical, **given)
     shape = inside.shape
     n = m.n_modes

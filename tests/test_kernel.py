@@ -239,7 +239,7 @@ def test_bench_command_writes_chart_and_summary(tmp_path, capsys):
     from stability.performance import WorkPrecision
     from stability.plotting.work_precision import work_precision_figure
 
-    rc = main(["bench", "--points", "3000", "--reference-points", "30", "--loop-points", "50", "--repeat", "1",
+    rc = main(["bench", "--suite", "eigen", "--points", "3000", "--reference-points", "30", "--loop-points", "50", "--repeat", "1",
                "--out-dir", str(tmp_path)])
     assert rc == 0
     assert "x scipy loop" in capsys.readouterr().out
@@ -251,3 +251,111 @@ def test_bench_command_writes_chart_and_summary(tmp_path, capsys):
     fig, ax = work_precision_figure([WorkPrecision(**r) for r in info["results"]], target=RTOL)
     assert len(ax.lines) == len(info["results"]) + 1  # one marker each and the target line
     plt.close(fig)
+
+
+def _ulps(x: float, k: int) -> list[float]:
+    """``x`` and its neighbours up to ``k`` ulps away on each side."""
+    out = [x]
+    up = down = x
+    for _ in range(k):
+        up, down = np.nextafter(up, np.inf), np.nextafter(down, -np.inf)
+        out += [up, down]
+    return out
+
+
+def _bound_points() -> dict[str, np.ndarray]:
+    """Points exactly on and within 12 ulps of every bound of the domain: mu = 0, fr_inv = 0,
+    alpha_v = 0, sigma = 0, A_G = 1 - mu q^2 = 0 (q = +-1/sqrt(mu) and its neighbours, in
+    several mu) and sigma = 2 A_G (1 + 8 u) (the bound and its neighbours, so the 8-ulp slack
+    of check_domain is crossed both ways), then NaN and +-inf in each parameter."""
+    base = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
+    rows = []
+    for name in ("mu", "fr_inv", "alpha_v", "sigma"):
+        for x in _ulps(0.0, 12) + [-0.0, 5e-324, -5e-324]:
+            rows.append({**base, name: x})
+    for mu in (0.5, 1.0, 2.28, 3.0, 6.0, 1e-300, 1e300):
+        for q in _ulps(1.0 / np.sqrt(mu), 12):
+            for sign in (1.0, -1.0):
+                rows.append({**base, "mu": mu, "q": sign * q, "sigma": 1e-3})
+    for mu, q in ((2.28, -0.1), (2.28, 0.6), (0.5, 1.3), (6.0, 0.4), (4.0, 0.5 - 1e-9), (1.0, 0.0)):
+        a_g = float(stability.inertia.transverse_inertia_g(q, mu))
+        for bound in (2 * a_g, 2 * a_g * (1.0 + 8 * 2.0**-53), 2 * (1 - mu * q * q)):
+            for s in _ulps(bound, 12):
+                rows.append({**base, "mu": mu, "q": q, "sigma": s})
+    for name in NAMES:
+        for x in (np.nan, np.inf, -np.inf):
+            rows.append({**base, name: x})
+    # the computable range of check_domain (stability.parameters.COMPUTABLE_RANGE, if defined:
+    # magnitudes above 1e30, positive mu below 1e-30, refused even when masked)
+    for name in NAMES:
+        for x in _ulps(1e30, 3) + [-1e30, -np.nextafter(1e30, np.inf), 1e300, -1e300]:
+            rows.append({**base, name: x})
+    for x in _ulps(1e-30, 3) + [1e-300, 5e-324]:
+        rows.append({**base, "mu": x})
+    return {k: np.array([r[k] for r in rows]) for k in NAMES}
+
+
+def test_fused_domain_test_agrees_with_check_domain():
+    """The kernel's domain test (fused into the default path) against the package's canonical
+    one, stability.parameters.check_domain, point by point: exact agreement is required (no
+    tolerance: both must evaluate the same A_G bit for bit and the same comparisons, including
+    the 8-ulp slack of sigma <= 2 A_G and the compensated 1 - mu q^2). Points: on and a few
+    ulps around every bound (and the computable range's), NaN and inf in each parameter, and
+    20,000 random points of a box four times wider than the domain. Code 2 (refused even
+    masked) must be exactly where check_domain(mask=True) raises."""
+    from stability.parameters import DomainError, check_domain
+
+    rng = np.random.default_rng(30)
+    n = 20000
+    mu = rng.uniform(-1.0, 6.0, n)
+    box = {"q": rng.uniform(-1.5, 1.5, n), "fr_inv": rng.uniform(-0.5, 3.0, n), "sigma": rng.uniform(-0.5, 2.5, n),
+           "alpha_v": rng.uniform(-0.5, 10.0, n), "mu": mu}
+    edge = _bound_points()
+    m = edge["q"].size
+    p = {k: np.concatenate([edge[k], box[k]]) for k in NAMES}
+    code = kernel.sliding_domain(*(p[k] for k in NAMES))
+    refused = np.zeros(code.size, dtype=bool)
+    for j in range(m):  # the random box holds no refused values: check the edge points one by one
+        try:
+            check_domain(mask=True, **{k: v[j] for k, v in p.items()})
+        except DomainError:
+            refused[j] = True
+    assert np.array_equal(code == 2, refused)
+    assert refused[:m].sum() >= 15  # NaN, inf in each parameter (and the computable range if defined)
+    ok = ~refused
+    _, inside = check_domain(mask=True, **{k: v[ok] for k, v in p.items()})
+    assert np.array_equal(code[ok] == 0, inside)
+    k = int(ok[:m].sum())
+    assert 0.1 < inside[:k].mean() < 0.9 and 0.1 < inside[k:].mean() < 0.9  # both kinds well represented
+    # through the public path: the same mask, and the canonical errors
+    sp = stability.spectrum("sliding", mask_unphysical=True, **{k: v[ok] for k, v in p.items()})
+    assert np.array_equal(sp.inside, inside)
+    assert np.array_equal(sp.stability == -1, ~inside)
+    outside = np.nonzero(~inside)[0][0]
+    point = {k: v[ok][outside] for k, v in p.items()}
+    with pytest.raises(DomainError) as fused:
+        stability.spectrum("sliding", **point)
+    with pytest.raises(DomainError) as canonical:
+        check_domain(**point)
+    assert str(fused.value) == str(canonical.value)
+    with pytest.raises(DomainError, match="q = nan is not finite"):
+        stability.spectrum("sliding", mask_unphysical=True, **{**point, "q": np.array([0.1, np.nan])})
+
+
+def test_fused_path_equals_general_path():
+    """The fused default path (scalars read in place, no broadcast copies) returns what the
+    kernel returns on explicitly broadcast, checked parameters: identical arrays (same
+    arithmetic, so no tolerance), on a broadcast grid with a masked region."""
+    from stability.parameters import check_domain
+
+    q = np.linspace(-0.8, 0.8, 41).reshape(-1, 1, 1)
+    fr_inv = np.array([0.0, 0.1, 0.3]).reshape(1, -1, 1)
+    sigma = np.linspace(0.1, 2.0, 7).reshape(1, 1, -1)
+    sp = stability.spectrum("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=0.5, mu=2.28, mask_unphysical=True)
+    p, inside = check_domain(mask=True, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=0.5, mu=2.28)
+    ref = kernel.sliding_spectrum(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"], inside)
+    assert sp.eigenvalues.shape == (41, 3, 7, 3) and not inside.all() and inside.any()
+    assert np.array_equal(sp.inside, inside)
+    for ours, theirs in zip((sp.eigenvalues, sp.error_bound, sp.neutral, sp.stability), ref):
+        assert np.array_equal(ours, theirs, equal_nan=ours.dtype.kind in "fc")
+    assert all(v.shape == inside.shape for v in sp.params.values())

@@ -1,49 +1,166 @@
-"""``tippe bench``: work-precision benchmarks, written as charts (PNG) and a JSON summary."""
+"""``tippe bench``: work-precision benchmarks, written as charts (PNG) and JSON summaries.
+
+``tippe bench`` (or ``--suite all``) runs the three suites of
+:data:`stability.performance.SUITES` in turn: ``eigen`` (eigenvalue methods, 10^6 points),
+``continuation`` (step settings against the exact fold) and ``integrators`` (the nonlinear
+runs); ``--suite NAME`` runs one. Each writes ``OUT_DIR/work_precision_NAME.png`` and
+``.json`` (atomically) and prints one line per measurement with its ratio to the baselines.
+``--quick`` runs smaller configurations (seconds, not minutes).
+"""
 
 from __future__ import annotations
 
 import argparse
+import inspect
 import json
 import os
 import platform
 from pathlib import Path
+from typing import Any
 
 from ..io import atomic_output, check_output_path
-from ..performance import SUITES, WorkPrecision, peak_memory_mb
+from ..performance import EIGEN_TARGET, SUITES, WorkPrecision, peak_memory_mb
 
-__all__ = ["register", "run", "summary_lines"]
+__all__ = ["register", "run", "run_suite", "summary_lines", "EIGEN_TARGET", "QUICK"]
 
-#: required accuracy of the spectra (issue: largest relative error per eigenvalue)
-EIGEN_TARGET = 1e-13
+#: the eigen suite's configuration under --quick (the other suites take quick=True)
+QUICK = {"points": 100_000, "reference_points": 200, "loop_points": 2000, "repeat": 1}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``bench`` subcommand."""
     p = sub.add_parser(
         "bench", help="work-precision benchmarks -> charts under atlases/",
-        description="Time the eigenvalue methods on a large batch of points spread over the physical "
-                    "domain and measure their error against mpmath at 50 digits; write a work-precision "
-                    "chart (PNG) and a JSON summary, and print the speed ratios against the baselines.")
-    p.add_argument("--suite", choices=list(SUITES), default="eigen")
-    p.add_argument("--points", type=float, default=1e6, help="batch size for the timings (default 1e6)")
-    p.add_argument("--reference-points", type=int, default=1000, help="mpmath sample size (default 1000)")
-    p.add_argument("--loop-points", type=int, default=20000, help="points timed for the per-point loop")
-    p.add_argument("--repeat", type=int, default=3, help="timed repeats, best kept (default 3)")
-    p.add_argument("--out-dir", default="atlases", help="directory for the chart and the summary")
+        description="Work-precision benchmarks: the eigenvalue methods on a large batch of points over the "
+                    "physical domain against mpmath at 50 digits (eigen), the continuation's step settings "
+                    "against the exact fold of the neutral curve (continuation), the integrators of the "
+                    "nonlinear runs against a tight DOP853 reference (integrators). Writes a chart (PNG) and "
+                    "a JSON summary per suite and prints the speed ratios against the baselines.")
+    p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
+                   help="suite to run (default: all three)")
+    p.add_argument("--quick", action="store_true", help="small configurations (eigen: 1e5 points, "
+                   "200 reference points, one repeat; the others: fewer settings)")
+    p.add_argument("--points", type=float, default=None, help="eigen: batch size for the timings (default 1e6)")
+    p.add_argument("--reference-points", type=int, default=None, help="eigen: mpmath sample size (default 1000)")
+    p.add_argument("--loop-points", type=int, default=None, help="eigen: points timed for the per-point loop "
+                   "(default 20000)")
+    p.add_argument("--repeat", type=int, default=None, help="timed repeats, the best kept (eigen 5, "
+                   "continuation 5, integrators 3)")
+    p.add_argument("--out-dir", default="atlases", help="directory for the charts and the summaries")
     p.set_defaults(func=run)
 
 
-def summary_lines(results: list[WorkPrecision]) -> list[str]:
-    """One line per method: time per point, error, and ratios against each baseline."""
-    baselines = [r for r in results if r.baseline]
+def _error(r: WorkPrecision, key: str) -> float:
+    return r.error if key == "error" else float(r.extra.get(key, float("inf")))
+
+
+def summary_lines(results: list[WorkPrecision], unit: str = "point",
+                  compare_at: tuple[str, ...] = ()) -> list[str]:
+    """One line per measurement: time per unit of work, error, and speed ratios against the
+    baselines of the same panel.
+
+    Parameters
+    ----------
+    results : list of WorkPrecision
+    unit : str
+        Unit of work ("point", "curve", "run").
+    compare_at : tuple of str
+        Empty: the ratio against each baseline point. Otherwise, for each error named
+        (``"error"`` or a key of ``extra``), the ratio at equal accuracy: against the fastest
+        setting of each baseline series whose error is at most this point's ("none as
+        accurate" if no setting is).
+
+    Returns
+    -------
+    list of str
+    """
     lines = []
     for r in results:
-        ratios = ", ".join(f"{b.seconds_per_point / r.seconds_per_point:.1f}x {b.method}" for b in baselines
-                           if b is not r)
+        series = {}
+        for b in results:
+            if b.baseline and b.panel == r.panel and (b.series or b.method) != (r.series or r.method):
+                series.setdefault(b.series or b.method, []).append(b)
+        parts = []
+        for name, bs in series.items():
+            if not compare_at:
+                parts += [f"{b.seconds_per_point / r.seconds_per_point:.1f}x {name}" for b in bs]
+                continue
+            for key in compare_at:
+                ok = [b for b in bs if _error(b, key) <= _error(r, key)]
+                what = "" if key == "error" else f" ({key.replace('_', ' ')})"
+                if ok:
+                    b = min(ok, key=lambda b: b.seconds_per_point)
+                    parts.append(f"{b.seconds_per_point / r.seconds_per_point:.1f}x {name} {b.setting}{what}")
+                else:
+                    parts.append(f"no {name} setting as accurate{what}")
         flag = " [default]" if r.default else ""
-        lines.append(f"{r.method:<24s} {r.seconds_per_point * 1e9:10.1f} ns/point  error {r.error:8.1e}"
-                     f"  {ratios}{flag}")
+        t = r.seconds_per_point
+        shown = f"{t * 1e9:10.1f} ns/{unit}" if t < 1e-3 else f"{t * 1e3:10.2f} ms/{unit}"
+        label = f"{r.method} {r.setting}".strip()
+        lines.append(f"{label:<44s} {shown}  error {r.error:8.1e}  {'; '.join(parts)}{flag}")
     return lines
+
+
+def _options(args: argparse.Namespace, name: str) -> dict[str, Any]:
+    """Keyword arguments for a suite's run function: the ones it names, from the flags."""
+    given = {"points": None if args.points is None else int(args.points),
+             "reference_points": args.reference_points, "loop_points": args.loop_points, "repeat": args.repeat}
+    if args.quick and name == "eigen":
+        given = {k: QUICK[k] if v is None else v for k, v in given.items()}
+    given["quick"] = bool(args.quick) if name != "eigen" else None
+    accepted = inspect.signature(SUITES[name].run).parameters
+    # every option the suite takes, with its default where no flag gave one (so that the chart
+    # and the JSON record the configuration actually run)
+    return {k: given[k] if given.get(k) is not None else p.default for k, p in accepted.items()
+            if k in given and (given.get(k) is not None or p.default is not inspect.Parameter.empty)}
+
+
+def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPrecision]:
+    """Run one suite, write its chart and JSON summary (atomically), print its lines.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`stability.performance.SUITES`.
+    out_dir : pathlib.Path
+        Existing directory for ``work_precision_NAME.png`` and ``.json``.
+    options : dict
+        Keyword arguments for the suite's run function.
+
+    Returns
+    -------
+    list of WorkPrecision
+    """
+    if name not in SUITES:
+        raise ValueError(f"suite = {name!r} is not known; choose one of {', '.join(SUITES)}")
+    suite = SUITES[name]
+    png = check_output_path(out_dir / f"work_precision_{name}.png", overwrite=True)
+    js = check_output_path(out_dir / f"work_precision_{name}.json", overwrite=True)
+    results = suite.run(**options)
+    peak = peak_memory_mb()
+    from ..plotting import save_figure, style
+    from ..plotting.work_precision import suite_figure, verdict
+
+    cond = ", ".join(f"{k.replace('_', ' ')} {v:g}" if not isinstance(v, bool) else k
+                     for k, v in options.items() if v is not False)
+    subtitle = f"{cond + '; ' if cond else ''}{os.cpu_count()} cores; peak memory {peak:.0f} MB"
+    with style():
+        fig, _ = suite_figure(suite, results, subtitle=subtitle)
+    save_figure(fig, png)
+    info = {"suite": name, **options, "cores": os.cpu_count(), "machine": platform.machine(),
+            "python": platform.python_version(), "peak_memory_mb": peak,
+            "verdict": [verdict([r for r in results if r.panel == p.select], p.target)
+                        for p in suite.panels if p.target is not None],
+            "results": [r.as_dict() for r in results]}
+    with atomic_output(js, overwrite=True) as tmp:
+        Path(tmp).write_text(json.dumps(info, indent=1))
+    print(f"== {name}: {suite.title}")
+    for line in summary_lines(results, suite.unit, suite.compare_at):
+        print(line)
+    for v in info["verdict"]:
+        print(v)
+    print(f"peak memory {peak:.0f} MB; wrote {png} and {js}")
+    return results
 
 
 def run(args: argparse.Namespace) -> int:
@@ -51,30 +168,9 @@ def run(args: argparse.Namespace) -> int:
     out_dir = Path(args.out_dir)
     if not out_dir.is_dir():
         raise FileNotFoundError(f"output directory {str(out_dir)!r} does not exist")
-    png = check_output_path(out_dir / f"work_precision_{args.suite}.png", overwrite=True)
-    js = check_output_path(out_dir / f"work_precision_{args.suite}.json", overwrite=True)
-    points = int(args.points)
-    results = SUITES[args.suite](points=points, reference_points=args.reference_points,
-                                 loop_points=args.loop_points, repeat=args.repeat)
-    peak = peak_memory_mb()
-    lines = summary_lines(results)
-    from ..plotting import save_figure, style
-    from ..plotting.work_precision import work_precision_figure
-
-    with style():
-        fig, _ = work_precision_figure(
-            results, target=EIGEN_TARGET,
-            xlabel=f"largest relative error per eigenvalue vs mpmath, 50 digits ({args.reference_points} points)",
-            title=f"sliding model, {points:.0e} points over the physical domain, {os.cpu_count()} cores; "
-                  f"peak memory {peak:.0f} MB")
-    save_figure(fig, png)
-    info = {"suite": args.suite, "points": points, "reference_points": args.reference_points,
-            "loop_points": args.loop_points, "repeat": args.repeat, "cores": os.cpu_count(),
-            "machine": platform.machine(), "python": platform.python_version(),
-            "peak_memory_mb": peak, "results": [r.as_dict() for r in results]}
-    with atomic_output(js, overwrite=True) as tmp:
-        Path(tmp).write_text(json.dumps(info, indent=1))
-    for line in lines:
-        print(line)
-    print(f"peak memory {peak:.0f} MB; wrote {png} and {js}")
+    if args.repeat is not None and args.repeat < 1:
+        raise ValueError(f"--repeat = {args.repeat} must be >= 1")
+    names = list(SUITES) if args.suite == "all" else [args.suite]
+    for name in names:
+        run_suite(name, out_dir, _options(args, name))
     return 0
