@@ -28,3 +28,17 @@ def random_domain_points(n: int, seed: int, *, alpha_v: bool = True) -> dict[str
 def domain_points():
     """Factory fixture for :func:`random_domain_points`."""
     return random_domain_points
+
+
+def mp_polyroots(coeffs, **kwargs):
+    """``mpmath.polyroots`` of coefficients in descending powers, on any mpmath version.
+
+    mpmath 1.4 deprecates the descending order and takes ``asc=True`` for ascending
+    coefficients; mpmath 1.3 has no ``asc`` keyword (it raises TypeError).
+    """
+    import mpmath
+
+    try:
+        return mpmath.polyroots(list(coeffs)[::-1], asc=True, **kwargs)
+    except TypeError:
+        return mpmath.polyroots(list(coeffs), **kwargs)

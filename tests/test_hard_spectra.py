@@ -25,6 +25,7 @@ from stability.inertia import transverse_inertia_g
 from stability.modes import ambiguous_steps, track_modes
 from stability.roots import inclusion_radius
 from test_spectra_reference import _match, _sliding_reference
+from conftest import mp_polyroots
 
 MU = 2.28
 CASES = []
@@ -98,7 +99,7 @@ def _poly_reference(q, fr_inv, sigma, alpha_v, mu=MU) -> list:
     i = mp.mpc(0, 1)
     a_g, a_c = 1 - m * q * q, 1 + m * (1 + 2 * q)
     c = [m * a_g, a * a_c - i * m * sg, -m * m * q * f - i * a * (sg + m * (1 + q)), -m * a * q * f]
-    return [mp.mpc(r) for r in mp.polyroots(c, maxsteps=800, extraprec=600)]
+    return [mp.mpc(r) for r in mp_polyroots(c, maxsteps=800, extraprec=600)]
 
 
 def assert_right_or_flagged(sp, ref: list) -> None:
