@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import LinearModel
-from .second_order import contact_transverse_inertia
+from .second_order import contact_transverse_inertia, gyroscopic_coefficients, gyroscopic_state_form
 
 __all__ = ["RollingFirstPrinciples"]
 
@@ -53,18 +53,9 @@ class RollingFirstPrinciples(LinearModel):
     def matrices(self, *, q, fr_inv, sigma, mu):
         """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]``."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        A = np.zeros(d["kappa"].shape + (2, 2), dtype=complex)
-        A[..., 0, 1] = 1.0
-        A[..., 1, 0] = d["kappa"]
-        A[..., 1, 1] = 1j * d["gamma"]
-        M = np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy()
-        return M, A
+        return gyroscopic_state_form(d["gamma"], d["kappa"])
 
     def coefficients(self, *, q, fr_inv, sigma, mu):
         """``s^2 - i gamma s - kappa``, highest power first."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        c = np.empty(d["kappa"].shape + (3,), dtype=complex)
-        c[..., 0] = 1.0
-        c[..., 1] = -1j * d["gamma"]
-        c[..., 2] = -d["kappa"]
-        return c
+        return gyroscopic_coefficients(d["gamma"], d["kappa"])

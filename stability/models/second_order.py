@@ -28,11 +28,36 @@ import numpy as np
 from ..inertia import transverse_inertia_contact
 from .base import LinearModel
 
-__all__ = ["SecondOrderTop", "contact_transverse_inertia"]
+__all__ = ["SecondOrderTop", "contact_transverse_inertia", "gyroscopic_state_form", "gyroscopic_coefficients"]
 
 
 #: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.inertia)
 contact_transverse_inertia = transverse_inertia_contact
+
+
+def gyroscopic_state_form(gamma: np.ndarray, kappa: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """State form of ``Phi'' - i gamma Phi' - kappa Phi = 0`` with ``x = (Phi, Phi')``.
+
+    Returns ``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (complex, batched over the shape of
+    ``gamma`` and ``kappa`` broadcast together).
+    """
+    gamma, kappa = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(kappa, float))
+    A = np.zeros(kappa.shape + (2, 2), dtype=complex)
+    A[..., 0, 1] = 1.0
+    A[..., 1, 0] = kappa
+    A[..., 1, 1] = 1j * gamma
+    M = np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy()
+    return M, A
+
+
+def gyroscopic_coefficients(gamma: np.ndarray, kappa: np.ndarray) -> np.ndarray:
+    """``det(s 1 - A) = s^2 - i gamma s - kappa`` of :func:`gyroscopic_state_form`, highest power first."""
+    gamma, kappa = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(kappa, float))
+    c = np.empty(kappa.shape + (3,), dtype=complex)
+    c[..., 0] = 1.0
+    c[..., 1] = -1j * gamma
+    c[..., 2] = -kappa
+    return c
 
 
 class SecondOrderTop(LinearModel):
@@ -55,20 +80,9 @@ class SecondOrderTop(LinearModel):
     def matrices(self, *, q, fr_inv, sigma, mu):
         """``M = 1`` and ``A = [[0, 1], [kappa, i sigma_hat]]`` (state form of eq. 8)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        shape = np.shape(d["kappa"])
-        A = np.zeros(shape + (2, 2), dtype=complex)
-        A[..., 0, 1] = 1.0
-        A[..., 1, 0] = d["kappa"]
-        A[..., 1, 1] = 1j * d["sigma_hat"]
-        M = np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy()
-        return M, A
+        return gyroscopic_state_form(d["sigma_hat"], d["kappa"])
 
     def coefficients(self, *, q, fr_inv, sigma, mu):
         """``s^2 - i sigma_hat s - kappa``."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        k = np.asarray(d["kappa"], dtype=float)
-        c = np.empty(k.shape + (3,), dtype=complex)
-        c[..., 0] = 1.0
-        c[..., 1] = -1j * d["sigma_hat"]
-        c[..., 2] = -k
-        return c
+        return gyroscopic_coefficients(d["sigma_hat"], d["kappa"])
