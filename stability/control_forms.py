@@ -18,15 +18,17 @@ omega`` as output; the viscous law ``f = -alpha_v V_c`` is negative feedback wit
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import control
 import numpy as np
 
 from .models import get_model
 from .parameters import DEFAULT_MU
 from .spectra import model_parameters
 from .parameters import check_domain
+
+if TYPE_CHECKING:  # python-control takes ~1 s to import: loaded on first use
+    import control
 
 __all__ = ["real_form", "state_space", "friction_loop"]
 
@@ -68,6 +70,8 @@ def state_space(model: str, *, q: float, fr_inv: float, sigma: float, alpha_v: f
     a = real_form(np.linalg.solve(M, A))
     n2 = a.shape[0]
     names = _state_names(m.state)
+    import control
+
     return control.ss(a, np.zeros((n2, 0)), np.eye(n2), np.zeros((n2, 0)),
                       states=names, outputs=names, name=m.name)
 
@@ -95,6 +99,8 @@ def friction_loop(*, q: float, fr_inv: float, sigma: float, alpha_v: float,
     m = get_model("sliding")
     p = _scalar_params(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     M, A0, B, C = m.friction_plant(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
+    import control
+
     plant = control.ss(real_form(np.linalg.solve(M, A0)), real_form(np.linalg.solve(M, B)),
                        real_form(C), np.zeros((2, 2)), states=_state_names(m.state),
                        inputs=["f_1", "f_2"], outputs=["V_c1", "V_c2"], name="frictionless_sliding")
