@@ -30,6 +30,8 @@ import math
 import numpy as np
 from numba import njit
 
+from stability.nonlinear._linalg import back_substitute, swap_rows
+
 __all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "EPS", "FLOOR",
            "CONTINUE", "CONVERGED", "POLISH", "FAILED"]
 
@@ -73,13 +75,7 @@ def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
         if big == 0.0 or big != big:
             return False, x, 0.0
         if p != k:
-            for j in range(m):
-                tmp = A[k, j]
-                A[k, j] = A[p, j]
-                A[p, j] = tmp
-            tmp = x[k]
-            x[k] = x[p]
-            x[p] = tmp
+            swap_rows(A, x, k, p)
             det = -det
         piv = A[k, k]
         det *= piv
@@ -89,12 +85,7 @@ def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
                 for j in range(k + 1, m):
                     A[i, j] -= f * A[k, j]
                 x[i] -= f * x[k]
-    for k in range(m - 1, -1, -1):
-        acc = x[k]
-        for j in range(k + 1, m):
-            acc -= A[k, j] * x[j]
-        x[k] = acc / A[k, k]
-    return True, x, det
+    return True, back_substitute(A, x), det
 
 
 @njit(**_JIT)

@@ -555,24 +555,28 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     known: list[tuple[float, np.ndarray, np.ndarray]] = []
 
     def corrector(guess: np.ndarray, h_: float, max_it: int, max_move: float
-                  ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float]:
+                  ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
         """Corrector from ``guess`` on the plane ``t . (v - v_k) = h_``, then the tangent and
         ``det [J; t^T]`` at the solution: the problem's compiled step if it has one, else
-        :func:`_newton` and :func:`_tangent_det`. Returns ``(v, ok, iterations, t, det)``."""
+        :func:`_newton` and :func:`_tangent_det`. Returns ``(v, ok, iterations, t, det,
+        extra)``; ``extra``: the constraints and test functions at ``v`` if the compiled step
+        gave them (and its tangent is the one used), else None."""
         if cstep is not None:
-            ok_, it_, n_rj, n_r, vv, JJ, t_ok, tt, det = cstep(guess, t, v, h_, sc, tol, max_it, max_move)
+            res = cstep(guess, t, v, h_, sc, tol, max_it, max_move)
+            ok_, it_, n_rj, n_r, vv, JJ, t_ok, tt, det = res[:9]
             sp.n_residual += n_rj + n_r
             sp.n_jacobian += n_rj
             if not ok_:
-                return vv, False, it_, None, 0.0
+                return vv, False, it_, None, 0.0, None
             if not t_ok:  # singular bordered matrix: the SVD fallback
                 tt, det = _tangent_det(JJ, t)
-            return vv, True, it_, tt, det
+                return vv, True, it_, tt, det, None
+            return vv, True, it_, tt, det, (res[9], res[10]) if len(res) == 11 else None
         vv, ok_, it_, JJ = _newton(sp, guess, t, v, h_, tol, max_it, max_move)
         if not ok_:
-            return vv, False, it_, None, 0.0
+            return vv, False, it_, None, 0.0, None
         tt, det = _tangent_det(JJ, t)
-        return vv, True, it_, tt, det
+        return vv, True, it_, tt, det, None
 
     def corrected(h_: float) -> tuple[np.ndarray, np.ndarray]:
         k = 1
@@ -584,9 +588,9 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             guess = guess + (h_ - float(t @ (guess - v))) * t  # onto the plane exactly
         else:
             guess = v + h_ * t
-        vv, ok_, _, tt, _ = corrector(guess, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
+        vv, ok_, _, tt, _, _ = corrector(guess, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
         if not ok_:
-            vv, ok_, _, tt, _ = corrector(v + h_ * t, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
+            vv, ok_, _, tt, _, _ = corrector(v + h_ * t, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
         if not ok_:
             raise ConvergenceError("corrector failed while locating a special point")
         if ha < h_ < hb:
@@ -656,7 +660,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             guess = hermite(prev[0], prev[1], v, t, 1.0 + h / d) if d > 0 else v + h * t
         else:
             guess = v + h * t
-        v_new, ok, it, t_new, bp_new = corrector(guess, h, max_iter, 2.0 * h + 1e-12)
+        v_new, ok, it, t_new, bp_new, extra = corrector(guess, h, max_iter, 2.0 * h + 1e-12)
         n_newton += it
         angle = 0.0
         if ok:
@@ -674,7 +678,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         # --- special points between v (h = 0) and v_new (h) -----------------------------
         known[:] = [(0.0, v, t), (h, v_new, t_new)]
         events: list[tuple[float, str, str, np.ndarray, np.ndarray]] = []
-        g_new = sp.constraints(v_new)
+        # the constraints and test functions at v_new: from the compiled step if it gave them
+        g_new = extra[0] if extra is not None and sp.constraint_names else sp.constraints(v_new)
         stop_event = None
         crossed = [j for j in np.nonzero(g_new < 0)[0] if g[j] >= 0]
         # the earliest crossing by linear interpolation first; the others only if they are
@@ -712,7 +717,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                 candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
             elif at_start and pa == 0.0 and abs(pb) > event_floor:
                 kinds[0], details[0] = "fold", str(i)
-        tests_new = sp.tests(v_new, t_new)
+        tests_new = extra[1] if extra is not None and sp.test_names else sp.tests(v_new, t_new)
         tests_b = tests_new if stop_event is None else sp.tests(v_b, t_b)
         for k in range(tests.size):
             pa, pb = float(tests[k]), float(tests_b[k])
@@ -738,8 +743,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                     events.append((hs, kind, name, vs, ts))
         h_stop = stop_event[0] if stop_event is not None else h
         close_at = None
+        seg = _norm(v_new - v)  # the step's chord (also the arclength increment below)
         if detect_closed and len(pts) >= 4 and arc[-1] > 3.0 * h:
-            seg = _norm(v_new - v)
             # the distance to the segment is at least |v_start - v| - seg: most steps stop here
             dist, lam = ((np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9
                          else _segment_distance(v_start, v, v_new))
@@ -773,7 +778,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             end = "boundary"
             break
         pts.append(v_new); tans.append(t_new); kinds.append("regular"); details.append("")
-        arc.append(arc[-1] + _norm(v_new - v))
+        arc.append(arc[-1] + seg)
         if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), "regular") is False:
             end = "callback"
             break

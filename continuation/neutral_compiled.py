@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.neutrality import sliding_crossing_residual
+from stability.neutrality import sliding_crossing_other_growth, sliding_crossing_residual
 
 from .compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 
@@ -61,17 +61,20 @@ def residual_and_jacobian(point: np.ndarray, free_index: np.ndarray, ncoef: int,
 
 
 @njit(**_JIT)
-def sliding_step(point: np.ndarray, free_index: np.ndarray, ncoef: int, guess: np.ndarray,
-                 t_plane: np.ndarray, anchor: np.ndarray, h: float, scale: np.ndarray, tol: float,
-                 max_iter: int, max_move: float
-                 ) -> tuple[bool, int, int, int, np.ndarray, np.ndarray, bool, np.ndarray, float]:
+def sliding_step(point: np.ndarray, free_index: np.ndarray, ncoef: int, codes: np.ndarray,
+                 index: np.ndarray, a: np.ndarray, guess: np.ndarray, t_plane: np.ndarray,
+                 anchor: np.ndarray, h: float, scale: np.ndarray, tol: float, max_iter: int,
+                 max_move: float) -> tuple:
     """Corrector and tangent of one continuation step (the engine's ``_newton`` with polishing,
-    then ``_tangent_det``), compiled.
+    then ``_tangent_det``), compiled, and the problem's constraints and test functions at the
+    new point (so that the engine's loop makes no further call for them).
 
     Parameters
     ----------
     point, free_index, ncoef
         The neutral condition (:func:`stability.neutrality.sliding_crossing_residual`).
+    codes, index, a
+        The constraint rows (:func:`constraint_values`).
     guess : numpy.ndarray, shape (m,)
         Predicted point (scaled variables).
     t_plane, anchor : numpy.ndarray, shape (m,)
@@ -90,10 +93,13 @@ def sliding_step(point: np.ndarray, free_index: np.ndarray, ncoef: int, guess: n
     Returns
     -------
     tuple
-        ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t, det)``:
-        the point, the scaled Jacobian there (the one of the last Newton step when the polish
-        step was kept, as the Python path), and if ``tangent_ok`` the unit tangent oriented
-        by ``t_plane`` and ``det [J; t^T]``.
+        ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t, det,
+        g, tests)``: the point, the scaled Jacobian there (the one of the last Newton step when
+        the polish step was kept, as the Python path), and if ``tangent_ok`` the unit tangent
+        oriented by ``t_plane`` and ``det [J; t^T]``; if ``ok``, the constraints ``g`` and the
+        test functions ``[w, max Re(other modes)]`` (``-1`` if there is no other mode) at
+        ``u = v * scale``, the operations of ``NeutralProblem.constraints`` and
+        ``NeutralProblem.test_functions`` (which the engine would call with the same ``u``).
     """
     m = guess.shape[0]
     n = m - 1
@@ -134,10 +140,16 @@ def sliding_step(point: np.ndarray, free_index: np.ndarray, ncoef: int, guess: n
         if not math.isfinite(moved) or moved > max_move:
             iterations = it + 1
             break
+    tests = np.empty(2)
     if not ok:
-        return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0
+        return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests
     t_ok, t_new, det = tangent_det(J, t_plane)
-    return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det
+    u = v * scale
+    g = constraint_values(point, free_index, u, codes, index, a)
+    tests[0] = u[m - 1]
+    growth = sliding_crossing_other_growth(point, free_index, ncoef, u)
+    tests[1] = growth if math.isfinite(growth) else -1.0
+    return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests
 
 
 @njit(**_JIT)

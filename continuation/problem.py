@@ -44,7 +44,9 @@ and, optionally,
     det)``: the work counts feed :class:`continuation.Branch`; ``J`` is the scaled Jacobian
     the tangent came from (the one of the last Newton step if the polishing step was kept);
     ``tangent_ok`` False (singular bordered matrix) makes the engine take the tangent from
-    the SVD of ``J``. It must solve the same equations as ``residual`` (which the engine
+    the SVD of ``J``. Optionally two more values, ``(..., det, g, tests)``: the problem's
+    ``constraints(u)`` and ``test_functions(u, t)`` at ``u = v * scale`` (when ``ok``; the
+    same numbers the methods give), which the engine then does not ask for separately. It must solve the same equations as ``residual`` (which the engine
     still uses to project the start point and to end a branch on a constraint). Compiled
     building blocks with the Python path's operations are in :mod:`continuation.compiled`;
     :mod:`continuation.neutral_compiled` is an example. The engine cannot take a problem's

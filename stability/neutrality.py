@@ -53,6 +53,7 @@ from numba import njit
 
 from .models import LinearModel, get_model
 from .models.sliding import Sliding
+from .kernel import _transverse_inertia_g
 
 __all__ = ["NeutralCondition", "conservative_phase", "other_roots", "sliding_coefficients",
            "sliding_crossing_residual", "sliding_crossing_residuals", "sliding_crossing_other_growth",
@@ -88,30 +89,11 @@ def conservative_phase(c: np.ndarray) -> int | None:
     return None
 
 
-_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.inertia
-
-
-def _two_product(a: float, b: float) -> tuple[float, float]:
-    """``a b = p + e`` exactly (Dekker), scalar twin of :func:`stability.inertia._two_product`."""
-    p = a * b
-    c = _SPLITTER * a
-    ah = c - (c - a)
-    al = a - ah
-    c = _SPLITTER * b
-    bh = c - (c - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
 def _inertia_g(q: float, mu: float) -> float:
-    """``A_G = 1 - mu q^2`` compensated: the operations of :func:`stability.inertia.transverse_inertia_g`."""
-    t, te = _two_product(q, q)
-    u, ue = _two_product(mu, t)
-    ue = ue + mu * te
-    s = 1.0 + -u
-    bb = s - 1.0
-    se = (1.0 - (s - bb)) + (-u - bb)
-    return s + (se - ue)
+    """``A_G = 1 - mu q^2`` compensated (Dekker's product, Knuth's sum): the compiled helper of
+    the spectral kernel, :func:`stability.kernel._transverse_inertia_g` (the operations of
+    :func:`stability.inertia.transverse_inertia_g`, bit for bit), called with floats."""
+    return _transverse_inertia_g(float(q), float(mu))
 
 
 #: parameters of eq. (11) in the order of the derivative table
@@ -505,36 +487,11 @@ _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 
 
 @njit(**_JIT)
-def _two_product_c(a: float, b: float) -> tuple[float, float]:
-    """:func:`_two_product`, compiled."""
-    p = a * b
-    c = _SPLITTER * a
-    ah = c - (c - a)
-    al = a - ah
-    c = _SPLITTER * b
-    bh = c - (c - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
-@njit(**_JIT)
-def _inertia_g_c(q: float, mu: float) -> float:
-    """:func:`_inertia_g`, compiled (the same operations)."""
-    t, te = _two_product_c(q, q)
-    u, ue = _two_product_c(mu, t)
-    ue = ue + mu * te
-    s = 1.0 + -u
-    bb = s - 1.0
-    se = (1.0 - (s - bb)) + (-u - bb)
-    return s + (se - ue)
-
-
-@njit(**_JIT)
 def _sliding_coefficients_c(point: np.ndarray, c: np.ndarray) -> float:
     """Eq. (11)'s ``[c3, c2, c1, c0]`` at ``point = (q, fr_inv, sigma, alpha_v, mu)`` into ``c``
     (the operations of :func:`sliding_coefficients`); returns ``A_C``."""
     q, fr_inv, sigma, alpha_v, mu = point[0], point[1], point[2], point[3], point[4]
-    a_g = _inertia_g_c(q, mu)
+    a_g = _transverse_inertia_g(q, mu)
     a_c = a_g + mu * ((1.0 + q) * (1.0 + q))
     c[0] = complex(mu * a_g, 0.0)
     c[1] = complex(alpha_v * a_c, -(mu * sigma))

@@ -358,3 +358,38 @@ def test_compiled_path_gives_the_python_curve(x, y, fixed):
     assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=False).compiled_step is None
     assert NeutralProblem("rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)}
                           ).compiled_step is None
+
+
+def test_compiled_step_returns_the_problems_constraints_and_test_functions():
+    """The compiled step also returns the constraints and test functions at the corrected
+    point (continuation.problem: the optional two trailing values), which the engine then does
+    not ask for: they must be the numbers the problem's own methods give there, exactly."""
+    from continuation.neutral import NeutralProblem
+
+    fixed = dict(fr_inv=0.0, alpha_v=0.5, mu=MU)
+    rng = {"q": (-1 / np.sqrt(MU), 1 / np.sqrt(MU)), "sigma": (0.0, 2.0)}
+    prob = NeutralProblem("sliding", "q", "sigma", fixed, rng)
+    scale = np.array([2 / np.sqrt(MU), 2.0, 1.0])
+    for q in (-0.3, 0.0, 0.2, 0.6):
+        u = np.array([q, (1 - MU * q * q) / (1 + q), 1 / (1 + q)])
+        t = np.array([1.0, 0.0, 0.0])
+        res = prob.compiled_step(u / scale, t, u / scale, 0.0, scale, 1e-13, 8, 1.0)
+        assert len(res) == 11 and res[0]
+        v = res[4]
+        np.testing.assert_array_equal(res[9], prob.constraints(v * scale))
+        np.testing.assert_array_equal(res[10], prob.test_functions(v * scale, res[7]))
+
+
+def test_dataset_assembled_directly_is_identical_to_the_constructors():
+    """continuation.neutral builds its Dataset from prepared parts (xarray's direct
+    constructor, a fast path); it must be identical (values, attributes, index) to what the
+    public constructor gives, for a curve and for an empty result."""
+    from continuation.neutral import _point_dataset
+
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=MU))
+    for n, variables in ((ds.sizes["point"], {k: ds[k].variable for k in ds.data_vars}), (0, {})):
+        fast = _point_dataset(variables, n, dict(ds.attrs))
+        slow = _point_dataset(variables, n, dict(ds.attrs), direct=False)
+        xr.testing.assert_identical(fast, slow)
+        assert type(fast.indexes["point"]) is type(slow.indexes["point"])
+    assert ds.where(ds.kind == "fold", drop=True).sizes["point"] == 1

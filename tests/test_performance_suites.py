@@ -49,7 +49,8 @@ def test_continuation_suite_errors_against_the_closed_form():
     O(step^4): at max_step 0.2 it is ~1e-4 (docs/continuation.md), asserted below 1e-3. The
     columns' spline fold is limited by the column spacing (~3e-6 at N = 25): asserted between
     1e-8 and 1e-3, i.e. worse than the continuation's fold by orders of magnitude, as measured."""
-    res = pc.continuation_work_precision(repeat=1, settings=((0.2, 0.3),), columns=(10, 25))
+    res = pc.continuation_work_precision(repeat=1, settings=((0.2, 0.3),), columns=(10, 25), min_time=0.0,
+                                         equal_accuracy=False)
     assert [r.series for r in res] == ["continuation", "brentq per column", "brentq per column"]
     cont, c10, c25 = res
     assert cont.error <= 1e-13 < FOLD_TARGET
@@ -62,6 +63,61 @@ def test_continuation_suite_errors_against_the_closed_form():
         pc.trace(2, 0.1)
     with pytest.raises(ValueError, match="n = 3 columns"):
         pc.columns_in_sigma(3)
+
+
+def test_neutral_benchmark_tiny_against_the_closed_form():
+    """The benchmark script's measurement (benchmarks/bench_neutral.py prints it), in a tiny
+    configuration: one coarse setting, two column counts, the equal-accuracy search and the
+    turning-back count. Checked against the closed form, not timed.
+
+    * the continuation's points and fold at the rounding floor (<= 1e-13, the issue asks 1e-10
+      of the fold), its LAPACK check too; its dense output O(step^4) (~1e-4 at max_step 0.2);
+    * equal accuracy: N is the smallest column count whose spline error is <= the
+      continuation's dense error: N qualifies and N - 1 does not (spline errors recomputed
+      here with the closed-form roots, which the brentq roots match to ~1e-15);
+    * turning back: columns at fixed sigma cross the curve twice for 0.86 < sigma < sigma*, and
+      those are missed (crossings - found = 2 x the number of such columns), while the
+      continuation has points there."""
+    b = pc.neutral_benchmark(repeat=1, settings=((0.2, 0.3),), columns=(10, 25), python_path=False,
+                             turning_back=40, method="kernel", min_time=0.0)
+    (c,) = b["continuation"].values()
+    assert c["point"] <= 1e-13 and c["fold"] <= 1e-13 < FOLD_TARGET and c["check"] <= 1e-12
+    assert 1e-6 < c["dense"] < 1e-3 and c["upper"] >= 3
+    (eq,) = b["equal"].values()
+    n = eq["N"]
+    assert eq["cubic"] <= c["dense"]
+    b_ = 1.0 / math.sqrt(pc.MU)
+
+    def spline_error(m):
+        q = np.linspace(-b_, b_, m + 2)[1:-1]
+        q = q[q > -0.5]  # the columns whose bracket changes sign (sigma_ref < 2 A_G iff q > -1/2)
+        return pc.column_errors(np.stack([q, pc.sigma_ref(q)], axis=1))["cubic"]
+
+    assert spline_error(n) <= c["dense"] < spline_error(n - 1)
+    assert abs(eq["found"] - np.count_nonzero(np.linspace(-b_, b_, n + 2)[1:-1] > -0.5)) == 0
+    crossings, found = b["turning_back"]
+    sig = np.linspace(0.05, 1.95, 40)
+    twice = int(np.count_nonzero((sig > 0.86) & (sig < pc.SIGMA_STAR)))
+    assert twice > 0 and crossings - found == 2 * twice
+    text = pc.format_tables(b)
+    assert "equal accuracy" in text and "turning back" in text and f"{n:>5}" in text
+
+
+def test_best_times_takes_the_minimum_and_checks_arguments():
+    """The timing rule: ``repeat`` rounds of (warm-up call, timed calls), the minimum kept, the
+    last result returned."""
+    calls = []
+
+    def fn():
+        calls.append(1)
+        return len(calls)
+
+    best, out = pc.best_times({"f": fn}, 3, 0.0)
+    assert len(calls) == 6 and out["f"] == 6 and 0 <= best["f"] < 1  # 3 rounds: a warm-up + 1 timed
+    with pytest.raises(ValueError, match="repeat"):
+        pc.best_times({"f": fn}, 0)
+    with pytest.raises(ValueError, match="min_time"):
+        pc.best_times({"f": fn}, 1, -1.0)
 
 
 def test_integrator_errors_against_dop853_reference():
@@ -139,7 +195,7 @@ def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(pc, "SETTINGS", ((0.05, 0.1),))
     monkeypatch.setattr(pc, "COLUMNS", (10, 25))
     monkeypatch.setattr(pc.continuation_work_precision, "__defaults__",
-                        (5, False, ((0.05, 0.1),), (10, 25)))
+                        (5, False, ((0.05, 0.1),), (10, 25), 0.0, False))
     assert main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)]) == 0
     js = tmp_path / "work_precision_continuation.json"
     info = json.loads(js.read_text())

@@ -15,7 +15,33 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["solve_dense", "cross"]
+__all__ = ["solve_dense", "swap_rows", "back_substitute", "cross"]
+
+
+@njit(cache=True)
+def swap_rows(a: np.ndarray, b: np.ndarray, i: int, j: int) -> None:
+    """Exchange rows ``i`` and ``j`` of the system ``a x = b`` in place (a pivoting step; also
+    used by :func:`continuation.compiled.solve_det`)."""
+    for k in range(a.shape[1]):
+        tmp = a[i, k]
+        a[i, k] = a[j, k]
+        a[j, k] = tmp
+    tmp = b[i]
+    b[i] = b[j]
+    b[j] = tmp
+
+
+@njit(cache=True)
+def back_substitute(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Solve the upper-triangular system left in ``a`` by elimination, in place in ``b``
+    (returned); also used by :func:`continuation.compiled.solve_det`."""
+    n = b.shape[0]
+    for c in range(n - 1, -1, -1):
+        s = b[c]
+        for j in range(c + 1, n):
+            s -= a[c, j] * b[j]
+        b[c] = s / a[c, c]
+    return b
 
 
 @njit(cache=True)
@@ -44,13 +70,7 @@ def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                 big = v
                 piv = r
         if piv != c:
-            for j in range(n):
-                tmp = a[c, j]
-                a[c, j] = a[piv, j]
-                a[piv, j] = tmp
-            tmp = b[c]
-            b[c] = b[piv]
-            b[piv] = tmp
+            swap_rows(a, b, c, piv)
         inv = 1.0 / a[c, c]
         for r in range(c + 1, n):
             m = a[r, c] * inv
@@ -58,12 +78,7 @@ def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                 for j in range(c + 1, n):
                     a[r, j] -= m * a[c, j]
                 b[r] -= m * b[c]
-    for c in range(n - 1, -1, -1):
-        s = b[c]
-        for j in range(c + 1, n):
-            s -= a[c, j] * b[j]
-        b[c] = s / a[c, c]
-    return b
+    return back_substitute(a, b)
 
 
 @njit(cache=True)
