@@ -23,7 +23,9 @@ the exact structural tests below mean what they say). Per point:
    :mod:`stability.roots`: conservative ones (``p(i nu)`` real) in real arithmetic, so that a
    neutral mode has ``Re s = 0`` exactly; others by the cancellation-free formula; one Newton
    step.
-4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates. Where the scales
+4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates (a real leading
+   coefficient divided out in real arithmetic; the cube root without trigonometric functions,
+   :func:`_cbrt`: a polynomial start and one Halley step, a few ulp). Where the scales
    are widely separated (smallest estimate below 1e-4 x the largest), Cardano's small roots
    carry an absolute error ``~u |largest|``: the largest root (which Cardano gets to full
    relative accuracy) is Newton-polished and divided out by backward deflation (stable for the
@@ -32,12 +34,15 @@ the exact structural tests below mean what they say). Per point:
    sweeps, ``step = p(r) / (c3 prod_j (r - r_j))`` (Newton's step with the other roots divided
    out, which keeps nearly colliding roots apart), until every relative step is below 1e-8
    (the error left, ``step^2 / separation``, is then under the error bound), at most
-   ``polish`` sweeps.
+   ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
+   Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
+   benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
 5. *Error bound*, the one of :mod:`stability.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
-   ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots).
+   ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
+   and ``p''`` evaluated at the final roots.
 6. *Sorting and the decision* of :mod:`stability.spectra`: modes by decreasing ``Re s`` (ties
-   by decreasing ``Im s``); a mode is neutral if ``Re s = 0`` by structure or
-   ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
+   by decreasing ``Im s``; compare-exchanges by selects); a mode is neutral if ``Re s = 0`` by
+   structure or ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
 
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
 ``Re s``, frequency ``Im s`` in units of the spin rate.
@@ -65,6 +70,12 @@ _INSIDE, _OUTSIDE_DOMAIN, _NOT_FINITE = 0, 1, 2  # codes of _domain_code
 _SIGMA_SLACK = 1.0 + 8 * 2.0**-53
 _OMEGA = complex(-0.5, math.sqrt(3.0) / 2.0)  # primitive cube root of unity
 _OMEGA2 = complex(-0.5, -math.sqrt(3.0) / 2.0)
+_CBRT_I = complex(math.sqrt(3.0) / 2.0, 0.5)  # exp(i pi / 6), a cube root of i
+_THIRD = 1.0 / 3.0
+#: sin(asin(s) / 3) ~ s (_CB0 + _CB1 s^2 + _CB2 s^4 + _CB3 s^6) for |s| <= 1/sqrt(2) (least
+#: squares in Chebyshev form; largest error 1.1e-5, removed by the Halley step of _cbrt)
+_CB0, _CB1 = 0.3333211994662179, 0.05011247842998644
+_CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 
@@ -193,32 +204,82 @@ def _csqrt(z):
 
 
 @njit(**_JIT)
+def _scale(z, t):
+    """``z t`` for a real ``t``, componentwise (numba would multiply by ``complex(t, 0)``)."""
+    return complex(z.real * t, z.imag * t)
+
+
+@njit(**_JIT)
 def _cbrt(w):
-    """Principal complex cube root."""
+    """A cube root of ``w`` (not always the principal one: Cardano's formula takes any), to a
+    few ulp, without trigonometric functions.
+
+    ``w`` is turned by an exact quarter or half turn into ``W`` with ``|arg W| <= pi/4``; the
+    direction of ``W^(1/3)``, ``exp(i asin(s) / 3)`` with ``s = Im W / |W|``, is taken from an
+    odd polynomial in ``s`` (relative error 1.1e-5) and corrected by one Halley step on
+    ``z^3 = W / |W|`` (cubic convergence: ~1e-15); the modulus is ``cbrt(|W|)``, and the turn
+    is undone by a cube root of it (``+-1``, ``exp(+-i pi/6)``). ``cbrt(|w|) exp(i atan2(Im w,
+    Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one thread); this
+    takes ~35."""
+    x, y = w.real, w.imag
     r = _mod(w)
-    if r == 0:
-        return 0j
-    th = math.atan2(w.imag, w.real) / 3.0
+    if not 0.0 < r < np.inf:
+        return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
+    # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
+    # w = i sy W (|x| < |y|), with sx, sy the signs of x and y
+    sx = math.copysign(1.0, x)
+    sy = math.copysign(1.0, y)
+    flat = abs(y) <= abs(x)
+    X = abs(x) if flat else abs(y)
+    Y = sx * y if flat else -sy * x
+    ir = 1.0 / r
+    c = X * ir
+    s = Y * ir
+    s2 = s * s
+    sp = s * (_CB0 + s2 * (_CB1 + s2 * (_CB2 + s2 * _CB3)))  # ~ sin(asin(s) / 3)
+    cp = math.sqrt(1.0 - sp * sp)
+    # Halley on z^3 = c + i s: z <- z + z (W - z^3) / (2 z^3 + W), all of modulus ~1
+    a2r = cp * cp - sp * sp
+    a2i = 2.0 * cp * sp
+    z3r = a2r * cp - a2i * sp
+    z3i = a2r * sp + a2i * cp
+    dr, di = c - z3r, s - z3i
+    er, ei = 2.0 * z3r + c, 2.0 * z3i + s
+    inv = 1.0 / (er * er + ei * ei)
+    qr = (dr * er + di * ei) * inv
+    qi = (di * er - dr * ei) * inv
     m = np.cbrt(r)
-    return complex(m * math.cos(th), m * math.sin(th))
+    zr = m * (cp + (cp * qr - sp * qi))
+    zi = m * (sp + (cp * qi + sp * qr))
+    # undo the turn: times a cube root of sx (sx itself) or of i sy (exp(i sy pi/6))
+    tr = sx if flat else _CBRT_I.real
+    ti = 0.0 if flat else sy * _CBRT_I.imag
+    return complex(zr * tr - zi * ti, zr * ti + zi * tr)
 
 
 @njit(**_JIT)
 def _cardano(c3, c2, c1, c0):
-    """Cardano's three roots of a cubic, in complex arithmetic."""
-    inv = 1.0 / c3
-    a = c2 * inv
-    b = c1 * inv
-    c = c0 * inv
-    a3 = a / 3.0
-    P3 = (b - a * a3) / 3.0
-    Q2 = 0.5 * (c - a3 * b) + a3 * a3 * a3
+    """Cardano's three roots of a cubic, in complex arithmetic (a real leading coefficient, as
+    the sliding model's, is divided out in real arithmetic)."""
+    if c3.imag == 0:
+        inv = 1.0 / c3.real
+        a, b, c = _scale(c2, inv), _scale(c1, inv), _scale(c0, inv)
+    else:
+        inv = 1.0 / c3
+        a, b, c = c2 * inv, c1 * inv, c0 * inv
+    a3 = _scale(a, _THIRD)
+    P3 = _scale(b - a * a3, _THIRD)
+    Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
     sd = _csqrt(Q2 * Q2 + P3 * P3 * P3)
     w1 = -Q2 + sd
     w2 = -Q2 - sd
     w = w1 if _mod2(w1) >= _mod2(w2) else w2
     u = _cbrt(w)
-    v = -P3 / u if u != 0 else 0j
+    n2 = _mod2(u)
+    if 1e-290 < n2 < 1e290:
+        v = -P3 * u.conjugate() * (1.0 / n2)
+    else:
+        v = -P3 / u if u != 0 else 0j
     return u + v - a3, _OMEGA * u + _OMEGA2 * v - a3, _OMEGA2 * u + _OMEGA * v - a3
 
 
@@ -280,7 +341,10 @@ def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     fewer per comparison; the same value up to rounding)."""
     a = _mod(r)
     dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
-    _, d1, d2 = _horner(c3, c2, c1, c0, r)
+    # p' and p'' directly (Horner's scheme would form p as well)
+    t = _scale(c3, 3.0) * r + _scale(c2, 2.0)
+    d1 = t * r + c1
+    d2 = _scale(c3, 6.0) * r + _scale(c2, 2.0)
     n1 = _mod2(d1)
     n2 = _mod2(d2)
     # min(dp / |p'|, sqrt(2 dp / |p''|)): the second is smaller iff 4 |p'|^4 < dp^2 |p''|^2
@@ -344,38 +408,58 @@ def _solve(c3, c2, c1, c0, deg, polish):
 
 
 @njit(**_JIT)
+def _swap(s, a, b):
+    """``(b, a)`` if ``s`` else ``(a, b)`` (a select, not a branch)."""
+    return (b, a) if s else (a, b)
+
+
+@njit(**_JIT)
+def _mode(r, e, x, floor):
+    """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
+    whether it grows (module docstring, step 6)."""
+    tol = 4.0 * e + floor
+    nt = (x & (r.real == 0)) | (abs(r.real) <= tol)
+    return nt, (r.real > tol) & (not nt)
+
+
+@njit(**_JIT)
 def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
-    """Sort the ``n`` modes (stable, by decreasing Re s then Im s), write them to ``ev``,
-    ``bd``, ``neutral``; return the stability flag (module docstring, step 6)."""
-    if n >= 2 and _before(r1, r0):
-        r0, r1, e0, e1, x0, x1 = r1, r0, e1, e0, x1, x0
+    """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
+    compare-exchanges by selects, no data-dependent branches), write them to ``ev``, ``bd``,
+    ``neutral``; return the stability flag (module docstring, step 6)."""
+    if n >= 2:
+        s = _before(r1, r0)
+        r0, r1 = _swap(s, r0, r1)
+        e0, e1 = _swap(s, e0, e1)
+        x0, x1 = _swap(s, x0, x1)
     if n == 3:
-        if _before(r2, r1):
-            r1, r2, e1, e2, x1, x2 = r2, r1, e2, e1, x2, x1
-        if _before(r1, r0):
-            r0, r1, e0, e1, x0, x1 = r1, r0, e1, e0, x1, x0
+        s = _before(r2, r1)
+        r1, r2 = _swap(s, r1, r2)
+        e1, e2 = _swap(s, e1, e2)
+        x1, x2 = _swap(s, x1, x2)
+        s = _before(r1, r0)
+        r0, r1 = _swap(s, r0, r1)
+        e0, e1 = _swap(s, e0, e1)
+        x0, x1 = _swap(s, x0, x1)
     scale2 = _mod2(r0)
     if n >= 2:
         scale2 = max(scale2, _mod2(r1))
     if n == 3:
         scale2 = max(scale2, _mod2(r2))
     floor = 16.0 * _U * math.sqrt(scale2)
-    grows = False
-    anyneutral = False
-    for j in range(n):
-        if j == 0:
-            r, e, x = r0, e0, x0
-        elif j == 1:
-            r, e, x = r1, e1, x1
-        else:
-            r, e, x = r2, e2, x2
-        tol = 4.0 * e + floor
-        nt = (x and r.real == 0) or abs(r.real) <= tol
-        ev[j] = r
-        bd[j] = e
-        neutral[j] = nt
-        anyneutral = anyneutral or nt
-        grows = grows or (r.real > tol and not nt)
+    nt, grows = _mode(r0, e0, x0, floor)
+    ev[0], bd[0], neutral[0] = r0, e0, nt
+    anyneutral = nt
+    if n >= 2:
+        nt, g = _mode(r1, e1, x1, floor)
+        ev[1], bd[1], neutral[1] = r1, e1, nt
+        anyneutral |= nt
+        grows |= g
+    if n == 3:
+        nt, g = _mode(r2, e2, x2, floor)
+        ev[2], bd[2], neutral[2] = r2, e2, nt
+        anyneutral |= nt
+        grows |= g
     if grows:
         return _UNSTABLE
     return _MARGINAL if anyneutral else _STABLE
@@ -419,26 +503,27 @@ def _transverse_inertia_g(q, mu):
 @njit(**_JIT)
 def _refused(x, lo, hi):
     """``x`` is not finite or outside the computable range ``lo <= |x| <= hi`` (``|x| < lo``
-    counts only for ``x > 0``), as :func:`stability.parameters.check_domain` refuses it."""
+    counts only for ``x > 0``), as :func:`stability.parameters.check_domain` refuses it.
+    ``hi`` is finite (:func:`_computable_limits` puts the largest float for no bound), so
+    ``not |x| <= hi`` also refuses NaN and inf; no branches (``&``, ``|``, not ``and``, ``or``)."""
     m = abs(x)
-    return not math.isfinite(x) or m > hi or (m < lo and x > 0)
+    return (not m <= hi) | ((m < lo) & (x > 0))
 
 
 @njit(**_JIT)
 def _domain_code(q, fr_inv, sigma, alpha_v, mu, a_g, lim):
     """Where a sliding point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound violated) or
     ``_NOT_FINITE`` (a parameter not finite or outside the computable range ``lim``, the pairs
-    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, an array of 10 floats: refused whatever the
-    mask). The bounds of
+    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, an array of 10 floats, ``hi`` finite: refused
+    whatever the mask). The bounds of
     :func:`stability.parameters.check_domain`, with its comparisons as written there
-    (``A_G > 0``; ``sigma <= 2 A_G (1 + 8 u)``; NaN fails)."""
-    if (_refused(q, lim[0], lim[1]) or _refused(fr_inv, lim[2], lim[3]) or _refused(sigma, lim[4], lim[5])
-            or _refused(alpha_v, lim[6], lim[7]) or _refused(mu, lim[8], lim[9])):
-        return _NOT_FINITE
-    if (mu <= 0.0 or fr_inv < 0.0 or alpha_v < 0.0 or not a_g > 0.0 or sigma <= 0.0
-            or sigma > 2.0 * a_g * _SIGMA_SLACK):
-        return _OUTSIDE_DOMAIN
-    return _INSIDE
+    (``A_G > 0``; ``sigma <= 2 A_G (1 + 8 u)``; NaN fails). Every test is evaluated (``|``, no
+    short circuit): the point is inside nearly always, and the branches cost more."""
+    bad = (_refused(q, lim[0], lim[1]) | _refused(fr_inv, lim[2], lim[3]) | _refused(sigma, lim[4], lim[5])
+           | _refused(alpha_v, lim[6], lim[7]) | _refused(mu, lim[8], lim[9]))
+    out = ((mu <= 0.0) | (fr_inv < 0.0) | (alpha_v < 0.0) | (not a_g > 0.0) | (sigma <= 0.0)
+           | (sigma > 2.0 * a_g * _SIGMA_SLACK))
+    return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
 
 
 @njit(**_JIT)
@@ -615,11 +700,14 @@ class CheckedSpectrum(NamedTuple):
 def _computable_limits() -> np.ndarray:
     """``lo, hi`` magnitudes accepted for q, fr_inv, sigma, alpha_v, mu (10 floats), read from
     :data:`stability.parameters.COMPUTABLE_RANGE` at each call (passed to the kernel as data, so
-    a change there is never hidden by numba's cache); ``0, inf`` where it names none."""
+    a change there is never hidden by numba's cache); ``0`` and the largest float where it names
+    none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
     from . import parameters
 
     rng = getattr(parameters, "COMPUTABLE_RANGE", {})
-    return np.array([float(x) for k in ("q", "fr_inv", "sigma", "alpha_v", "mu") for x in rng.get(k, (0.0, math.inf))])
+    lim = np.array([float(x) for k in ("q", "fr_inv", "sigma", "alpha_v", "mu") for x in rng.get(k, (0.0, math.inf))])
+    lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
+    return lim
 
 
 def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:

@@ -222,18 +222,18 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
         if fused is not None:
             return fused
     p, inside = check_domain(mask=mask_unphysical, **given)
+    if method == "kernel":
+        out = _kernel(m, p, inside)  # the kernel writes every point (NaN, flag -1 outside)
+        if out is not None:
+            ev, bound, neutral, stab = out
+            return Spectrum(m, p, ev, bound, neutral, stab, inside)
+        method = "polynomial"
     shape = inside.shape
     n = m.n_modes
     ev = np.full(shape + (n,), complex(np.nan, np.nan))
     bound = np.full(shape + (n,), np.nan)
     neutral = np.zeros(shape + (n,), dtype=bool)
     stab = np.full(shape, -1, dtype=np.int8)
-    if method == "kernel":
-        out = _kernel(m, p, inside)
-        if out is not None:
-            ev, bound, neutral, stab = out
-            return Spectrum(m, p, ev, bound, neutral, stab, inside)
-        method = "polynomial"
     if inside.any():
         sub = {k: v[inside] for k, v in p.items()}
         if method == "polynomial":

@@ -30,6 +30,7 @@ import mpmath
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import mp_polyroots
 
 from continuation import dense, fold_curve, neutral_curve
 from stability.models import get_model
@@ -149,7 +150,7 @@ def test_sliding_against_mpmath_bisection():
         q, s, mu = mp.mpf(q), mp.mpf(s), mp.mpf(MU)
         c = [mu * (1 - mu * q * q), a * (1 + mu * (1 + 2 * q)) - 1j * mu * s,
              -mu * mu * q * f - 1j * a * (s + mu * (1 + q)), -mu * a * q * f]
-        return max(mp.re(r) for r in mp.polyroots(c, maxsteps=200, extraprec=60))
+        return max(mp.re(r) for r in mp_polyroots(c, maxsteps=200, extraprec=60))
 
     idx = np.linspace(3, ds.sizes["point"] - 4, 4).astype(int)
     for k in idx:
