@@ -107,18 +107,35 @@ def test_coulomb_at_zero_slip_is_the_regularised_stick(law, rolling_reference):
 
 
 def test_stiff_viscous_friction_default_copes(rolling_reference):
-    """alpha_v = 1e2, 1e4, 1e6: the slip mode decays at alpha_v A_C / (mu A_G) (up to 1.3e6),
-    the automatic method switches to LSODA and each run takes ~3e3 evaluations. Sliding
-    follows rolling to first order in 1/alpha_v (docs/nonlinear.md): measured |k - k_rolling|
-    = 6.48e-4, 6.48e-6 (so 0.0648 / alpha_v) and 7.2e-8 at 1e6, where the integrator's own
-    error (~T rtol = 2e-9 .. 1e-8) and the 1/alpha_v term are comparable."""
-    for a in (1e2, 1e4, 1e6):
+    """alpha_v = 1e3, 1e4, 1e6: the slip mode decays at alpha_v A_C / (mu A_G) (1.3e3 to
+    1.3e6, above STIFF_RATE = 400), the automatic method switches to LSODA and each run takes
+    ~3e3 evaluations. Sliding follows rolling to first order in 1/alpha_v (docs/nonlinear.md):
+    measured |k - k_rolling| = 6.48e-5, 6.48e-6 (so 0.0648 / alpha_v) and 7.2e-8 at 1e6, where
+    the integrator's own error (~T rtol = 2e-9 .. 1e-8) and the 1/alpha_v term are comparable."""
+    for a in (1e3, 1e4, 1e6):
         ds = simulate("sliding", t_end=20.0, dt=0.05, **TILTED, **ROLLING_START, **PAR, alpha_v=a,
                       rtol=1e-10, atol=1e-13)
         assert ds.attrs["status"] == 0 and ds.attrs["method"] == "LSODA"
         assert ds.attrs["nfev"] < 20_000
         dev = float(np.max(np.abs(ds.k.values - rolling_reference.k.values)))
         assert dev * a == pytest.approx(0.0648, rel=0.1) if a < 1e6 else dev < 2e-7
+
+
+def test_moderately_stiff_run_keeps_the_explicit_method_and_its_accuracy():
+    """alpha_v = 100 (slip-mode rate 127, below STIFF_RATE = 400): "auto" keeps the compiled
+    dopri5, whose step is then partly held by stability, because there it is both cheaper and
+    more accurate than LSODA (stability.simulate.STIFF_RATE has the measurements). Reference:
+    DOP853 at rtol 1e-13 (a different method; it agrees with Radau at rtol 1e-12 to 8e-15).
+    Linear regime, tilt 1e-3, 50 time units: measured relative error of the final tilt 3e-10
+    for "auto" at the default rtol 1e-9 (LSODA at the same rtol: 8.5e-7); the bound 1e-8
+    leaves 30x for platform differences and fails for LSODA."""
+    run = dict(t_end=50.0, dt=1.0, omega=[0.0, 0.0, 1.0], k=[1e-3, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.0,
+               alpha_v=100.0)
+    ref = simulate("sliding", **run, method="DOP853", rtol=1e-13, atol=1e-17)
+    ds = simulate("sliding", **run)
+    assert ds.attrs["method"] == "dopri5" and ds.attrs["status"] == 0
+    tilt = np.hypot(*ds.k.values[-1, :2]) / np.hypot(*ref.k.values[-1, :2])
+    assert abs(tilt - 1) < 1e-8
 
 
 @pytest.mark.parametrize("method", ["dopri5", "RK45"])
