@@ -738,7 +738,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
 
 def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], prob: Any,
               branches: list[Branch], freq_col: int, attrs: Mapping[str, Any]) -> xr.Dataset:
-    pts, tans, bidx, kinds, details, resid, leading = [], [], [], [], [], [], []
+    pts, tans, bidx, kinds, details, resid = [], [], [], [], [], []
     for b, br in enumerate(branches):
         rec = _branch_records(br, prob, [*names[:freq_col], "frequency", *names[freq_col:]], len(names) + 1)
         pts.append(br.points)

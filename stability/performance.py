@@ -244,7 +244,7 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
         "kernel alone, no polishing": (lambda: kernel.sliding_spectrum(*args, polish=0), points),
     }
     best = _interleaved_best(group, repeat)
-    del M, A, group
+    M = A = group = None  # free the baselines' matrices before the cross-checks
     best.update(_interleaved_best({f"spectrum({m})": (lambda m=m: spectrum("sliding", method=m, **big), points)
                                    for m in ("lapack", "polynomial")}, repeat))
     errors = {

@@ -17,17 +17,12 @@ import stability
 from stability.cli import main
 from stability.distributed import ResumeError, dask_client, parts_directory, write_atlas
 from stability.parameters import DomainError
+from conftest import assert_resume_completes, assert_same_atlas
 
 GRID = dict(q=np.linspace(-0.6, 0.6, 31), fr_inv=[0.0, 0.1, 0.3, 1.0], sigma=np.linspace(0.2, 1.2, 5),
             alpha_v=0.5, mask_unphysical=True)
 CHUNKS = {"q": 8, "sigma": 2}  # 4 x 1 x 3 = 12 chunks, ragged at the ends
 
-
-def _same(a: xr.Dataset, b: xr.Dataset) -> None:
-    a, b = a.copy(), b.copy()
-    a.attrs.pop("history", None)
-    b.attrs.pop("history", None)
-    xr.testing.assert_identical(a, b)
 
 
 @pytest.fixture(scope="module")
@@ -39,7 +34,7 @@ def test_lazy_atlas_is_dask_backed_and_equal(reference):
     ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
     assert ds.growth_rate.chunks is not None
     assert ds.growth_rate.data.numblocks == (4, 1, 3, 1)
-    _same(ds.compute(), reference)
+    assert_same_atlas(ds.compute(), reference)
 
 
 def test_lazy_atlas_refuses_unphysical_grid_at_once():
@@ -52,10 +47,10 @@ def test_chunk_wise_file_equals_in_memory(tmp_path, reference):
     seen = []
     write_atlas(ds, tmp_path / "a.nc", progress=lambda done, total: seen.append((done, total)))
     assert seen[-1] == (12, 12)
-    _same(stability.open_atlas(tmp_path / "a.nc"), reference)
+    assert_same_atlas(stability.open_atlas(tmp_path / "a.nc"), reference)
     # xarray's own streaming writer (dask, in this process) gives the same file contents
     stability.write_dataset(ds, tmp_path / "b.nc")
-    _same(stability.open_atlas(tmp_path / "b.nc"), reference)
+    assert_same_atlas(stability.open_atlas(tmp_path / "b.nc"), reference)
 
 
 def test_interrupted_run_leaves_no_file_and_resumes(tmp_path, reference, monkeypatch):
@@ -79,12 +74,7 @@ def test_interrupted_run_leaves_no_file_and_resumes(tmp_path, reference, monkeyp
     assert [p.name for p in tmp_path.iterdir()] == [parts_directory(out).name]  # no temporary file either
     assert len(list(parts_directory(out).glob("chunk-*.npz"))) == 5
 
-    calls.clear()
-    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: calls.append(sl) or real(spec, sl))
-    write_atlas(ds, out, resume=True)
-    assert len(calls) == 7  # only the chunks not kept
-    assert not parts_directory(out).exists()
-    _same(stability.open_atlas(out), reference)
+    assert_resume_completes(ds, out, reference, monkeypatch, missing=7)
 
 
 def test_resume_refuses_a_store_of_another_atlas(tmp_path, monkeypatch):
@@ -104,7 +94,7 @@ def test_cli_chunks_and_errors(tmp_path, capsys, reference):
     rc = main(["atlas", "--q", "-0.6:0.6:31", "--fr-inv", "0,0.1,0.3,1", "--sigma", "0.2:1.2:5", "--alpha-v", "0.5",
                "--mask-unphysical", "--chunks", "q=8,sigma=2", "--resume", "-o", str(out)])
     assert rc == 0 and "in chunks" in capsys.readouterr().out
-    _same(stability.open_atlas(out), reference)
+    assert_same_atlas(stability.open_atlas(out), reference)
     rc = main(["atlas", "--q", "0.1", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "--workers", "2",
                "-o", str(tmp_path / "b.nc")])
     assert rc == 2 and "give --chunks too" in capsys.readouterr().err
@@ -145,10 +135,10 @@ def test_two_worker_local_cluster(tmp_path, reference):
         assert main(["atlas", "--q", "-0.6:0.6:31", "--fr-inv", "0,0.1,0.3,1", "--sigma", "0.2:1.2:5",
                      "--alpha-v", "0.5", "--mask-unphysical", "--chunks", "q=8,sigma=2", "--no-progress",
                      "--scheduler", str(sched), "-o", str(tmp_path / "c.nc")]) == 0
-    _same(stability.open_atlas(tmp_path / "a.nc"), reference)
-    _same(stability.open_atlas(tmp_path / "b.nc"), reference)
-    _same(stability.open_atlas(tmp_path / "c.nc"), reference)
-    _same(on_cluster, reference)
+    assert_same_atlas(stability.open_atlas(tmp_path / "a.nc"), reference)
+    assert_same_atlas(stability.open_atlas(tmp_path / "b.nc"), reference)
+    assert_same_atlas(stability.open_atlas(tmp_path / "c.nc"), reference)
+    assert_same_atlas(on_cluster, reference)
 
 
 def test_scheduler_errors(tmp_path, capsys):

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import stability
-from test_spectra_reference import _sliding_reference
+from conftest import mp_sliding_eigenvalues
 
 
 def _same_set(a, b, tol):
@@ -31,7 +31,7 @@ POINTS = [(-0.1, 0.3, 1.0, 0.5, 2.28), (0.2, 1.0, 0.8, 2.0, 2.28), (-0.3, 0.0, 1
 
 @pytest.mark.parametrize("q,fr_inv,sigma,alpha_v,mu", POINTS)
 def test_real_state_space_and_friction_loop(q, fr_inv, sigma, alpha_v, mu):
-    ref = [complex(r) for r in _sliding_reference(q, fr_inv, sigma, alpha_v, mu)]
+    ref = [complex(r) for r in mp_sliding_eigenvalues(q, fr_inv, sigma, alpha_v, mu)]
     expected = ref + [np.conj(r) for r in ref]
     tol = 1e-10 * max(1.0, max(abs(r) for r in ref))
     sys = stability.state_space("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)

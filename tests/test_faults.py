@@ -19,6 +19,7 @@ import stability
 import stability.distributed as dist
 from stability.cli import main
 from stability.distributed import ChunkError, dask_client, parts_directory, write_atlas
+from conftest import assert_resume_completes, assert_same_atlas
 
 GRID = dict(q=np.linspace(-0.5, 0.5, 12), fr_inv=[0.0, 0.3], sigma=np.linspace(0.4, 1.2, 4), alpha_v=0.5,
             mask_unphysical=True)
@@ -26,12 +27,6 @@ CHUNKS = {"q": 4, "sigma": 2}  # 3 x 1 x 2 = 6 chunks
 ARGS = ["atlas", "--q", "-0.5:0.5:12", "--fr-inv", "0,0.3", "--sigma", "0.4:1.2:4", "--alpha-v", "0.5",
         "--mask-unphysical", "--chunks", "q=4,sigma=2", "--no-progress"]
 
-
-def _same(a: xr.Dataset, b: xr.Dataset) -> None:
-    a, b = a.copy(), b.copy()
-    a.attrs.pop("history", None)
-    b.attrs.pop("history", None)
-    xr.testing.assert_identical(a, b)
 
 
 @pytest.fixture(scope="module")
@@ -68,14 +63,7 @@ def test_exception_in_one_chunk_names_it_keeps_the_others_and_resume_completes(t
     assert sorted(p.name for p in tmp_path.iterdir()) == [parts_directory(out).name]  # no temporary file
     assert len(list(parts_directory(out).glob("chunk-*.npz"))) == 3
 
-    monkeypatch.undo()
-    calls = []
-    original = dist._compute_block
-    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: calls.append(sl) or original(spec, sl))
-    write_atlas(ds, out, resume=True)
-    assert len(calls) == 3  # only the chunks not kept
-    assert not parts_directory(out).exists()
-    _same(stability.open_atlas(out), reference)
+    assert_resume_completes(ds, out, reference, monkeypatch, missing=3)
 
 
 def test_exception_without_resume_says_nothing_was_kept(tmp_path, monkeypatch):
@@ -100,7 +88,7 @@ def test_cli_chunk_fault_one_line_exit_1_then_resume(tmp_path, monkeypatch, caps
     assert f"2 of 6 chunks are kept in {parts_directory(out)}" in err
     monkeypatch.undo()
     assert main([*ARGS, "--resume", "-o", str(out)]) == 0
-    _same(stability.open_atlas(out), reference)
+    assert_same_atlas(stability.open_atlas(out), reference)
 
 
 def test_cli_interrupt_exit_130_one_line_no_partial_file(tmp_path, monkeypatch, capsys):
@@ -161,7 +149,7 @@ def test_cluster_exception_in_one_chunk(tmp_path, monkeypatch, cluster_client, r
     assert not out.exists() and len(list(parts_directory(out).glob("chunk-*.npz"))) == 3
     monkeypatch.undo()
     write_atlas(ds, out, client=cluster_client, resume=True)
-    _same(stability.open_atlas(out), reference)
+    assert_same_atlas(stability.open_atlas(out), reference)
 
 
 def test_cluster_killed_worker_is_retried_and_nothing_is_lost(tmp_path, monkeypatch, cluster_client, reference):
@@ -170,5 +158,5 @@ def test_cluster_killed_worker_is_retried_and_nothing_is_lost(tmp_path, monkeypa
     out = tmp_path / "a.nc"
     write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, client=cluster_client, resume=True)
     assert marker.exists()  # a worker did die
-    _same(stability.open_atlas(out), reference)
+    assert_same_atlas(stability.open_atlas(out), reference)
     assert not parts_directory(out).exists()

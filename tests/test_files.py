@@ -7,7 +7,6 @@ Reference: docs/input_checks.md (file behaviour) and stability.io's contract.
 from __future__ import annotations
 
 import os
-import shutil
 from pathlib import Path
 
 import numpy as np

@@ -11,7 +11,6 @@ mpmath at 40 digits.
 
 from __future__ import annotations
 
-import math
 
 import mpmath
 import numpy as np

@@ -7,7 +7,7 @@
   beside slow modes whose growth rates are ~1e-8 but whose signs matter), fr_inv up to 1e3.
 * Tiny structural-looking roots: q = 1e-9 makes c0 tiny (not zero).
 
-Reference: eigenvalues of M^-1 A from eq. (11) typed in test_spectra_reference, 50 digits.
+Reference: eigenvalues of M^-1 A from eq. (11) typed in tests/conftest.py, 50 digits.
 Tolerance: 1e-14 relative per eigenvalue — the polynomial method is backward stable in the
 coefficients and these roots are simple and well separated (condition numbers < 10), so
 anything above a few units of round-off would be a defect, not noise. The sign of every
@@ -24,8 +24,8 @@ import stability
 from stability.inertia import transverse_inertia_g
 from stability.modes import ambiguous_steps, track_modes
 from stability.roots import inclusion_radius
-from test_spectra_reference import _match, _sliding_reference
-from conftest import mp_polyroots
+from conftest import mp_polyroots, mp_sliding_eigenvalues
+from test_spectra_reference import _match
 
 MU = 2.28
 CASES = []
@@ -42,7 +42,7 @@ CASES.append(dict(q=1e-9, fr_inv=0.3, sigma=1.0, alpha_v=0.5))
 @pytest.mark.parametrize("case", CASES, ids=lambda c: ",".join(f"{k}={v:.3g}" for k, v in c.items()))
 def test_hard_case_against_mpmath(case):
     sp = stability.spectrum("sliding", mu=MU, **case)
-    ref = _sliding_reference(case["q"], case["fr_inv"], case["sigma"], case["alpha_v"], MU)
+    ref = mp_sliding_eigenvalues(case["q"], case["fr_inv"], case["sigma"], case["alpha_v"], MU)
     assert _match(sp.eigenvalues, ref) <= 1e-14
     ref_max = max(float(mp.re(r)) for r in ref)
     assert np.sign(sp.max_growth_rate) == np.sign(ref_max)

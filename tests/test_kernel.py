@@ -31,25 +31,12 @@ import stability
 from stability import kernel
 from stability.spectra import MARGINAL, STABLE, UNSTABLE
 
-from conftest import random_domain_points
+from conftest import mp_sliding_eigenvalues, random_domain_points
 
 mp.mp.dps = 50
 RTOL = 1e-13
 NAMES = ("q", "fr_inv", "sigma", "alpha_v", "mu")
 N_COLLISION = 66  # the last rows of the sample: near collisions
-
-
-def _reference(q, fr_inv, sigma, alpha_v, mu) -> list:
-    """Eigenvalues of eq. (11), ``M x' = A x``, at 50 digits (matrices typed from the paper)."""
-    q, F, sg, a, m = (mp.mpf(float(v)) for v in (q, fr_inv, sigma, alpha_v, mu))
-    i = mp.mpc(0, 1)
-    M = mp.matrix([[1, 0, i * m * q], [0, 1, 0], [-i * q, 0, 1]])
-    A = mp.matrix([
-        [-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a],
-        [-i, i, 0],
-        [-(q + i * a / m), q, -a / m],
-    ])
-    return list(mp.eig(M**-1 * A, left=False, right=False))
 
 
 def _hard_points() -> dict[str, np.ndarray]:
@@ -101,7 +88,7 @@ def _sample() -> tuple[dict[str, np.ndarray], int]:
 def reference():
     p, n_random = _sample()
     assert p["q"].size == 1000
-    ref = [_reference(*(p[k][j] for k in NAMES)) for j in range(p["q"].size)]
+    ref = [mp_sliding_eigenvalues(*(p[k][j] for k in NAMES)) for j in range(p["q"].size)]
     return p, n_random, ref
 
 

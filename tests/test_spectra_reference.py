@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import stability
+from conftest import mp_sliding_eigenvalues
 
 mp.mp.dps = 50
 RTOL = 1e-12
@@ -41,26 +42,12 @@ def _match(ours: np.ndarray, ref: list) -> float:
     return worst
 
 
-def _sliding_reference(q, fr_inv, sigma, alpha_v, mu) -> list:
-    """Eigenvalues of eq. (11) at 50 digits: M x' = A x, typed from the paper."""
-    q, F, sg, a, m = (mp.mpf(float(v)) for v in (q, fr_inv, sigma, alpha_v, mu))
-    i = mp.mpc(0, 1)
-    M = mp.matrix([[1, 0, i * m * q], [0, 1, 0], [-i * q, 0, 1]])
-    A = mp.matrix([
-        [-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a],
-        [-i, i, 0],
-        [-(q + i * a / m), q, -a / m],
-    ])
-    ev = mp.eig(M**-1 * A, left=False, right=False)
-    return list(ev)
-
-
 def test_sliding_against_mpmath(domain_points):
     p = domain_points(300, seed=11)
     s = stability.eigenvalues("sliding", **p)
     worst = 0.0
     for j in range(300):
-        ref = _sliding_reference(*(p[k][j] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")))
+        ref = mp_sliding_eigenvalues(*(p[k][j] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")))
         worst = max(worst, _match(s[j], ref))
     assert worst <= RTOL, worst
 
@@ -70,7 +57,7 @@ def test_lapack_method_against_mpmath(domain_points):
     p = domain_points(100, seed=12)
     s = stability.eigenvalues("sliding", method="lapack", **p)
     for j in range(100):
-        ref = _sliding_reference(*(p[k][j] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")))
+        ref = mp_sliding_eigenvalues(*(p[k][j] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")))
         scale = max(float(abs(r)) for r in ref)
         for r in ref:
             err = min(abs(complex(r) - x) for x in s[j])
