@@ -711,12 +711,18 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         # fold, where the tangent's component vanishes): no sign change to bracket, the start
         # point itself is the special point
         at_start = len(pts) == 1 and kinds[0] == "start"
+        # a test exactly 0.0 at the new point (and not at the current one): the new point is
+        # the special point (the next step then starts from 0.0 and brackets nothing, so it is
+        # reported once); only when the step is not cut short by a boundary
+        at_new: list[tuple[str, str]] = []
         for i in fold_components:
             pa, pb = float(t[i]), float(t_b[i])
             if pa * pb < 0:
                 candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
             elif at_start and pa == 0.0 and abs(pb) > event_floor:
                 kinds[0], details[0] = "fold", str(i)
+            elif pb == 0.0 and abs(pa) > event_floor and stop_event is None:
+                at_new.append(("fold", str(i)))
         tests_new = extra[1] if extra is not None and sp.test_names else sp.tests(v_new, t_new)
         tests_b = tests_new if stop_event is None else sp.tests(v_b, t_b)
         for k in range(tests.size):
@@ -726,11 +732,15 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                                    pa, pb))
             elif at_start and pa == 0.0 and abs(pb) > event_floor:
                 kinds[0], details[0] = "test", sp.test_names[k]
+            elif pb == 0.0 and abs(pa) > event_floor and stop_event is None:
+                at_new.append(("test", sp.test_names[k]))
         if detect_branch_points:
             bp_b = bp_new if stop_event is None else _bordered_det(sp.jacobian(v_b), t_b)
             if bp * bp_b < 0:
                 candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
                                    bp, bp_b))
+            elif bp_b == 0.0 and abs(bp) > event_floor and stop_event is None:
+                at_new.append(("branch_point", ""))
         for kind, name, phi, pa, pb in candidates:
             if max(abs(pa), abs(pb)) > event_floor:
                 try:
@@ -777,9 +787,10 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                 callback(vs * sc, sp.unscaled_tangent(ts), kind)
             end = "boundary"
             break
-        pts.append(v_new); tans.append(t_new); kinds.append("regular"); details.append("")
+        kind_new, detail_new = at_new[0] if at_new else ("regular", "")
+        pts.append(v_new); tans.append(t_new); kinds.append(kind_new); details.append(detail_new)
         arc.append(arc[-1] + seg)
-        if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), "regular") is False:
+        if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), kind_new) is False:
             end = "callback"
             break
         prev = (v, t)

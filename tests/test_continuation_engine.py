@@ -263,3 +263,41 @@ def test_compiled_step_hook_gives_the_python_branch():
     assert np.max(np.abs(hooked.tangents - python.tangents)) <= 1e-13
     # the work the hook reports is counted as the Python path counts its own
     assert (hooked.n_residual, hooked.n_jacobian) == (python.n_residual, python.n_jacobian)
+
+
+class LineWithTest:
+    """The line y = x / 2 on x <= 2 with the test function x - x_event."""
+
+    test_function_names = ("x - x_event",)
+    constraint_names = ("x <= 2",)
+
+    def __init__(self, x_event: float):
+        self.x_event = x_event
+
+    def residual(self, u):
+        return np.array([u[1] - 0.5 * u[0]])
+
+    def jacobian(self, u):
+        return np.array([[-0.5, 1.0]])
+
+    def constraints(self, u):
+        return np.array([2.0 - u[0]])
+
+    def test_functions(self, u, t):
+        return np.array([u[0] - self.x_event])
+
+
+def test_special_point_exactly_on_an_accepted_point_is_reported_once():
+    """A test function that is exactly 0.0 at an accepted point (no sign change to bracket on
+    either step: the product of its values is 0) is reported at that point, once. Reference: a
+    first run without the event (its point 3, where the second run's test is x_3 - x_3 = 0.0
+    exactly: the engine is deterministic and the test does not steer the steps); before this
+    was handled, the event went unreported."""
+    first = trace(LineWithTest(10.0), [0.0, 0.0], max_step=0.3)
+    assert "test" not in first.kinds
+    x3 = float(first.points[3, 0])
+    seen = []
+    br = trace(LineWithTest(x3), [0.0, 0.0], max_step=0.3, callback=lambda u, t, kind: seen.append(kind))
+    np.testing.assert_array_equal(br.points, first.points)  # the same steps
+    assert br.kinds.count("test") == 1 and br.kinds[3] == "test" and br.details[3] == "x - x_event"
+    assert seen.count("test") == 1
