@@ -1,7 +1,7 @@
 """The compiled spectral kernel (stability/kernel.py) against independent references.
 
 Reference: the eigenvalues of ``M^-1 A`` computed by mpmath at 50 digits, with ``M`` and ``A``
-typed in here from eq. (11) of the paper (not taken from the package), at the same
+typed in from eq. (11) of the paper in tests/conftest.py (not taken from the package), at the same
 floating-point parameters.
 
 Sample: 1,000 points, 700 spread over the physical domain (tests/conftest.py) and 300 at the

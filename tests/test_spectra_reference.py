@@ -3,7 +3,7 @@
 References:
 
 * sliding: the eigenvalues of ``M^-1 A`` computed by mpmath at 50 digits, with ``M`` and ``A``
-  typed in here again from eq. (11) of the paper (not taken from the package);
+  typed in again from eq. (11) of the paper in tests/conftest.py (not taken from the package);
 * fixed_pivot and rolling: eq. (8) itself, ``lambda = (sigma_hat/2 - 1) +- (sigma_hat^2/4 -
   mu_hat fr_inv h)^(1/2)`` in mpmath, converted with ``s = i (lambda + 1)`` (the paper's
   ``exp(i lambda t)`` is measured in the frame turning with the spin; docs/conventions.md);
