@@ -1,6 +1,6 @@
 """Work-precision of the integrators of the nonlinear runs (:func:`stability.simulate`).
 
-Two problems, both the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``sigma = 1``,
+Three problems, all the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``sigma = 1``,
 ``mu = 2.28``, ``alpha_k = 0``:
 
 * *the paper's run* (Sec. 3(ii), ``fr_inv = 0.3``, ``alpha_v = 0.5``, the printed initial
@@ -18,7 +18,14 @@ Two problems, both the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``sig
   to steps of ``~3 / rate`` by stability, not accuracy, so their cost grows like ``alpha_v``;
   implicit ones (Radau, BDF, LSODA's stiff mode) do not. Measured at ``rtol = 1e-6``: wall time
   and evaluations against ``alpha_v``; error: relative error of the final tilt against Radau
-  at ``rtol = 1e-10``.
+  at ``rtol = 1e-10``;
+* *the fitted growth rate* of a validation run (:func:`stability.validate` at ``fr_inv = 0.3``,
+  ``alpha_v = 0.5``: a tilt of 1e-4 along the leading eigenvector, 4 e-folding times = 628
+  time units, ``log|Phi|`` fitted by least squares): relative error of the fitted growth rate
+  against the same fit of a DOP853 run at ``rtol = 1e-13`` (which agrees with Radau at
+  ``rtol = 1e-12`` to 2e-13), ``atol = 1e-4 rtol`` (the perturbation is 1e-4). The star is
+  ``validate()``'s default (dopri5, ``rtol = 1e-11``); the baseline scipy's RK45 (what
+  ``solve_ivp`` does unless told otherwise). Required: :data:`GROWTH_TARGET`.
 
 Times are the best of ``repeat`` runs after one warm-up run per method (numba's compilation and
 caches). This is the measuring code of ``benchmarks/work_precision.py`` (a thin wrapper now).
@@ -32,10 +39,10 @@ from typing import Any
 
 import numpy as np
 
-from .performance import CROSSING_TARGET, INTEGRATOR_TITLE, WorkPrecision
+from .performance import CROSSING_TARGET, GROWTH_TARGET, INTEGRATOR_TITLE, WorkPrecision
 
-__all__ = ["FR_INV", "T_END", "crossing_run", "numpy_rhs_crossing_run", "stiff_run", "integrator_work_precision",
-           "CROSSING_TARGET", "INTEGRATOR_TITLE", "TOLERANCES", "RK4_STEPS", "STIFF_ALPHA_V"]
+__all__ = ["FR_INV", "T_END", "crossing_run", "numpy_rhs_crossing_run", "stiff_run", "growth_run",
+           "integrator_work_precision", "CROSSING_TARGET", "GROWTH_TARGET", "INTEGRATOR_TITLE", "TOLERANCES", "RK4_STEPS", "STIFF_ALPHA_V"]
 
 #: the paper's run: fr_inv, alpha_v, final time (the crossing is at ~500), output interval
 FR_INV, ALPHA_V, T_END, DT = 0.3, 0.5, 650.0, 0.05
@@ -63,6 +70,18 @@ QUICK_STIFF_ALPHA_V: tuple[float, ...] = (5.0, 500.0)
 STIFF_EXPLICIT_SCIPY_MAX = 500.0
 #: the package's default (simulate's defaults)
 DEFAULT_RTOL, DEFAULT_ATOL = 1e-9, 1e-12
+#: the fitted-growth-rate problem: rtol settings per method (atol = 1e-4 rtol), quick subset,
+#: validate()'s default tolerance
+GROWTH_TOLERANCES: dict[str, tuple[float, ...]] = {
+    "dopri5": (1e-5, 1e-7, 1e-8, 1e-9, 1e-11),
+    "RK45": (1e-5, 1e-7, 1e-9),
+    "DOP853": (1e-5, 1e-7, 1e-9, 1e-11),
+    "LSODA": (1e-5, 1e-7, 1e-9),
+    "Radau": (1e-4, 1e-6, 1e-8),
+    "BDF": (1e-4, 1e-6, 1e-8),
+}
+QUICK_GROWTH_TOLERANCES: dict[str, tuple[float, ...]] = {"dopri5": (1e-7, 1e-9), "RK45": (1e-7,), "LSODA": (1e-7,)}
+VALIDATE_RTOL = 1e-11
 
 _LABEL = {"dopri5": "dopri5 (compiled)", "RK45": "scipy RK45", "DOP853": "scipy DOP853", "LSODA": "scipy LSODA",
           "Radau": "scipy Radau", "BDF": "scipy BDF", "rk4": "RK4 fixed step (paper)",
@@ -152,6 +171,30 @@ def stiff_run(method: str, alpha_v: float, rtol: float = 1e-6) -> tuple[float, i
     return float(np.hypot(*ds.k.values[-1, :2])), int(ds.attrs["nfev"]), int(ds.attrs["status"])
 
 
+def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
+    """Growth rate fitted to a validation run at the paper's ``fr_inv = 0.3``, ``alpha_v = 0.5``.
+
+    Parameters
+    ----------
+    method : str
+        ``"dopri5"`` or a scipy method (:func:`stability.validate`).
+    rtol : float
+        Relative tolerance, in (0, 1); ``atol = 1e-4 rtol`` (the initial tilt is 1e-4).
+
+    Returns
+    -------
+    float
+        The fitted growth rate ``measured_growth_rate`` (units of the spin rate).
+    """
+    from .scene import PAPER
+    from .validate import validate
+
+    _check_tol(rtol)
+    ds = validate("sliding", q=PAPER["q"], fr_inv=FR_INV, sigma=PAPER["sigma"], mu=PAPER["mu"], alpha_v=ALPHA_V,
+                  method=method, rtol=rtol, atol=rtol * 1e-4)
+    return float(ds.measured_growth_rate[0])
+
+
 def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
     """Best wall time of ``repeat`` calls (no warm-up: each method is warmed up once at the start)."""
     best, out = np.inf, None
@@ -177,7 +220,7 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
     list of WorkPrecision
         Panel ``""``: the crossing-time error (``error``, time units) of the paper's run;
         panel ``"stiff"``: the stiff problem, ``extra["alpha_v"]``, error the final tilt's
-        relative error.
+        relative error; panel ``"growth"``: the fitted growth rate's relative error.
     """
     if not (isinstance(repeat, int) and repeat >= 1):
         raise ValueError(f"repeat = {repeat!r} must be an integer >= 1")
@@ -229,4 +272,22 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
                 default=method == "auto", series=_LABEL[method], setting=f"alpha_v {a:g}", panel="stiff",
                 note="linear-regime run, 200 time units, rtol 1e-6; error: final tilt vs Radau rtol 1e-10",
                 extra={"alpha_v": a, "nfev": nfev, "status": status}))
+
+    g_ref = growth_run("DOP853", 1e-13)
+    for method, tols in (QUICK_GROWTH_TOLERANCES if quick else GROWTH_TOLERANCES).items():
+        for rtol in tols:
+            t, g = _timed(lambda: growth_run(method, rtol), 1)
+            if reps(t) > 1:
+                t, g = _timed(lambda: growth_run(method, rtol), reps(t))
+            results.append(WorkPrecision(
+                _LABEL[method], t, abs(g - g_ref) / abs(g_ref), 1, series=_LABEL[method], setting=f"rtol {rtol:g}",
+                panel="growth", baseline=method == "RK45",
+                note="validate(method=...), atol = 1e-4 rtol; error: fitted growth rate vs DOP853 rtol 1e-13",
+                extra={"growth_rate": g, "reference": g_ref}))
+    t, g = _timed(lambda: growth_run("dopri5", VALIDATE_RTOL), repeat)
+    results.append(WorkPrecision(
+        _LABEL["dopri5"], t, abs(g - g_ref) / abs(g_ref), 1, series=_LABEL["dopri5"],
+        setting="validate() defaults, rtol 1e-11", panel="growth", default=True,
+        note="validate() with its defaults (dopri5, rtol 1e-11, atol 1e-15)",
+        extra={"growth_rate": g, "reference": g_ref}))
     return results

@@ -39,6 +39,7 @@ import xarray as xr
 
 from .jacobian import transverse_jacobian, upright_state
 from .nonlinear import get_nonlinear_model
+from .nonlinear.integrators import SCIPY_METHODS
 from .parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
 from .simulate import simulate
 from .spectra import eigenvalues
@@ -79,7 +80,8 @@ def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float]:
 
 
 def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: float,
-               n_periods: float, max_time: float, rtol: float, atol: float) -> dict[str, float]:
+               n_periods: float, max_time: float, rtol: float, atol: float,
+               method: str = "dopri5") -> dict[str, float]:
     m = get_nonlinear_model(model)
     lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
     A, _ = transverse_jacobian(model, **lin)
@@ -102,7 +104,7 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     ds = simulate(model, t_end=t_end, t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3],
-                  k=y[3:6], velocity=velocity, rtol=rtol, atol=atol, method="dopri5",
+                  k=y[3:6], velocity=velocity, rtol=rtol, atol=atol, method=method,
                   **{k: v for k, v in params.items() if k != "alpha_k"})
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w = _fit(ds.time.values, phi)
@@ -149,7 +151,7 @@ _VAR_ATTRS = {
 def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
              mu: Any = DEFAULT_MU, amplitude: float = 1e-4, n_efold: float = 4.0,
              n_periods: float = 10.0, max_time: float = 3000.0, rtol: float = 1e-11,
-             atol: float = 1e-15) -> xr.Dataset:
+             atol: float = 1e-15, method: str = "dopri5") -> xr.Dataset:
     """Compare linear growth rates and frequencies with short nonlinear runs.
 
     Parameters
@@ -167,7 +169,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     max_time : float
         Cap on the length of a run.
     rtol, atol : float
-        Tolerances of the compiled Dormand-Prince integrator.
+        Tolerances of the integrator.
+    method : str, default "dopri5"
+        Integrator of the runs: the compiled Dormand-Prince 5(4), or a scipy method
+        (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``); the integrator
+        benchmark (``tippe bench --suite integrators``) compares them on the fitted growth rate.
 
     Returns
     -------
@@ -203,10 +209,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     max_time = check_positive("max_time", max_time)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     atol = check_interval("atol", atol, 0.0, 1.0)
+    method = check_choice("method", method, ("dopri5",) + tuple(SCIPY_METHODS))
     rows = []
     for j in range(flat["q"].size):
         pt = {k: float(v[j]) for k, v in flat.items()}
-        rows.append(_one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol))
+        rows.append(_one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol, method))
     data = {}
     for name in rows[0]:
         vals = np.array([r[name] for r in rows])
@@ -217,7 +224,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     ds.attrs.update(Conventions="CF-1.8", title=f"validation of the linear {m.name} model by nonlinear runs",
                     source="stability.validate", model=m.name, linear_model=m.name,
                     jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
-                    n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol,
+                    n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
                     convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega")
     return ds
 

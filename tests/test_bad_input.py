@@ -91,6 +91,8 @@ def test_validate_arguments():
         stability.validate("sliding", **v, amplitude=0.5)
     with pytest.raises(DomainError, match="max_time = 0 is outside the allowed range: max_time > 0"):
         stability.validate("sliding", **v, max_time=0.0)
+    with pytest.raises(ValueError, match="method = 'rk4'.*dopri5"):
+        stability.validate("sliding", **v, method="rk4")
     with pytest.raises(DomainError, match="sigma = 3 is outside the physical domain: sigma <= 2"):
         stability.validate("sliding", **{**v, "sigma": 3.0})
 
