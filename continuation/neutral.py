@@ -48,6 +48,7 @@ import pandas as pd
 import xarray as xr
 
 from stability.models import LinearModel, get_model
+from stability.modes import structural_zeros
 from stability.neutrality import NeutralCondition
 from stability.parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
                                   check_integer, check_positive)
@@ -687,10 +688,15 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
             s = [as_scalar("start", v) for v in s]
             if len(s) == 2:
                 p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
-                ev = spectrum(m, mask_unphysical=True, **p).eigenvalues
+                sp0 = spectrum(m, mask_unphysical=True, **p)
+                ev = sp0.eigenvalues
                 if np.isnan(ev).all():
                     raise ValueError(f"start point {x} = {s[0]:g}, {y} = {s[1]:g} is outside the physical domain")
-                s.append(float(ev[np.nanargmin(np.abs(ev.real))].imag))
+                # the mode nearest the axis, structural zeros (s = 0 exactly, bound 0: the
+                # sliding top's zero root at fr_inv = 0) excepted: they are neutral everywhere
+                dist = np.where(structural_zeros(ev.real, ev.imag, sp0.error_bound), np.inf, np.abs(ev.real))
+                s.append(float(ev[int(np.nanargmin(dist))].imag) if np.isfinite(dist).any()
+                         else float(ev[np.nanargmin(np.abs(ev.real))].imag))
             if len(s) != 3:
                 raise ValueError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))

@@ -24,11 +24,14 @@ arbitrary by nature; the bisection stops at ``max_depth`` and keeps the best mat
 from __future__ import annotations
 
 from itertools import permutations
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-__all__ = ["track_modes", "principal_mode", "ambiguous_steps"]
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["track_modes", "principal_mode", "ambiguous_steps", "structural_zeros", "leading_growth_rate"]
 
 
 def _match(pred: np.ndarray, cur: np.ndarray, perms: list[list[int]]) -> tuple[np.ndarray, bool]:
@@ -122,6 +125,11 @@ def track_modes(eigenvalues: np.ndarray, *, path: np.ndarray | None = None,
 def principal_mode(eigenvalues: np.ndarray) -> np.ndarray:
     """The tracked branch that reaches the largest growth rate along the path.
 
+    A branch that is exactly zero wherever it is defined is a structural zero mode (the sliding
+    top's ``s = 0`` at ``fr_inv = 0``, eq. 11): neutral by structure, it would otherwise be
+    "largest" wherever every other mode decays, and a figure of the principal mode would show a
+    flat zero instead of the decaying gyroscopic mode. It is skipped unless every branch is one.
+
     Parameters
     ----------
     eigenvalues : numpy.ndarray of complex, shape (m, n)
@@ -129,8 +137,61 @@ def principal_mode(eigenvalues: np.ndarray) -> np.ndarray:
     Returns
     -------
     numpy.ndarray of complex, shape (m,)
+        NaN where the path is (all NaN: outside the domain).
     """
-    tracked = track_modes(eigenvalues)
+    ev = np.asarray(eigenvalues)
+    if ev.ndim != 2 or ev.shape[1] < 1:
+        raise ValueError(f"eigenvalues has shape {ev.shape}; it must be (points, modes), complex")
+    tracked = track_modes(ev)
+    defined = ~np.isnan(tracked)
+    if not defined.any():
+        return tracked[:, 0]
     with np.errstate(invalid="ignore"):
-        best = np.nanargmax(np.nanmax(tracked.real, axis=0))
-    return tracked[:, best]
+        top = np.nanmax(np.where(defined, tracked.real, -np.inf), axis=0)
+    structural = np.all((tracked == 0) | ~defined, axis=0) & defined.any(axis=0)
+    if not structural.all():
+        top = np.where(structural, -np.inf, top)
+    return tracked[:, int(np.argmax(top))]
+
+
+def structural_zeros(growth_rate: np.ndarray, frequency: np.ndarray,
+                     error_bound: np.ndarray | None = None) -> np.ndarray:
+    """Modes that are structurally zero: ``s = 0`` exactly (and an error bound of exactly 0,
+    which the spectra give only to roots known by structure), e.g. the sliding top's zero root
+    at ``fr_inv = 0`` (eq. 11)."""
+    zero = (np.asarray(growth_rate) == 0) & (np.asarray(frequency) == 0)
+    if error_bound is not None:
+        zero &= np.asarray(error_bound) == 0
+    return zero
+
+
+def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
+    """Largest growth rate over the modes of an atlas that are not structurally zero.
+
+    ``max_growth_rate`` includes the structural zero mode, so at ``fr_inv = 0`` it is 0 on the
+    whole stable side of the sliding top (marginal by structure: the ``stability`` flag says
+    so); this is the growth rate of the least stable of the other modes, what a stability map
+    colours. Where every mode is structurally zero it equals ``max_growth_rate``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An atlas (``growth_rate``, ``frequency`` along ``mode``; ``eigenvalue_error_bound`` if
+        present; ``max_growth_rate``).
+
+    Returns
+    -------
+    xarray.DataArray
+        Over the grid; NaN outside the domain.
+    """
+    missing = [v for v in ("growth_rate", "frequency", "max_growth_rate") if v not in ds]
+    if missing:
+        raise ValueError(f"the dataset has no {', '.join(missing)}: leading_growth_rate needs an atlas "
+                         "(stability.atlas or open_atlas)")
+    g = ds["growth_rate"]
+    bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
+    zero = structural_zeros(g.values, ds["frequency"].values, None if bound is None else bound.values)
+    out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
+    out.attrs = {"long_name": "largest growth rate over the modes that are not structurally zero",
+                 "units": "1"}
+    return out.rename("leading_growth_rate")

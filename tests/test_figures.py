@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import stability
-from stability.modes import principal_mode, track_modes
+from stability.modes import leading_growth_rate, principal_mode, track_modes
 from stability.plotting import plot_growth_rate, style
 from stability.plotting.maps import plot_stability_map
 from stability.plotting.recipe_figures import recipe_figure
@@ -41,6 +41,37 @@ def test_principal_mode_closed_form_at_zero_gravity():
     s = principal_mode(ev)
     nonzero = np.abs(s) > 0
     assert np.allclose(s[nonzero], 1j / (1 - 2.28 * q[nonzero] ** 2), rtol=1e-13)
+
+
+def _quadratic_roots_at_zero_gravity(q, sigma, alpha_v, mu=2.28):
+    """fr_inv = 0: eq. (11)'s characteristic cubic is s times the quadratic
+    mu A_G s^2 + (alpha_v A_C - i mu sigma) s - i alpha_v (sigma + mu (1 + q)) = 0
+    (A_G = 1 - mu q^2, A_C = 1 + mu (1 + 2q); tests/test_neutral.py), solved by the formula."""
+    a = mu * (1 - mu * q * q)
+    b = alpha_v * (1 + mu * (1 + 2 * q)) - 1j * mu * sigma
+    c = -1j * alpha_v * (sigma + mu * (1 + q))
+    d = np.sqrt(b * b - 4 * a * c + 0j)
+    return (-b + d) / (2 * a), (-b - d) / (2 * a)
+
+
+def test_principal_mode_and_map_colour_skip_the_structural_zero():
+    """Fig. 3(c)-(d) at sigma = 1.2 (stable for every q): the structural zero root s = 0 is
+    neutral everywhere, so it used to be the "principal" (largest growth) mode, and the figure
+    showed a flat zero. The principal mode must be a root of the quadratic factor (closed form
+    above; relative 1e-12: the kernel's roots are good to ~1e-15, the formula to ~1e-14 here)
+    and decay; the maps' colour (leading_growth_rate) is the larger real part of the two
+    quadratic roots, while max_growth_rate stays 0 and the flag marginal (by structure)."""
+    q = np.linspace(-0.4, 0.4, 41)
+    ds = stability.atlas("sliding", q=q, fr_inv=0.0, sigma=1.2, alpha_v=0.5)
+    s = principal_mode((ds.growth_rate + 1j * ds.frequency).transpose("q", "mode").values)
+    r1, r2 = _quadratic_roots_at_zero_gravity(q, 1.2, 0.5)
+    near = np.minimum(np.abs(s - r1) / np.abs(r1), np.abs(s - r2) / np.abs(r2))
+    assert np.all(near < 1e-12) and np.all(s.real < 0)
+    lead = leading_growth_rate(ds).values
+    np.testing.assert_allclose(lead, np.maximum(r1.real, r2.real), rtol=1e-11)
+    assert np.all(ds.max_growth_rate.values == 0) and np.all(ds.stability.values == 1)
+    fig, ax = plot_growth_rate(ds, "q", mode="principal")
+    assert np.array_equal(ax.get_lines()[0].get_ydata(), s.real)
 
 
 def test_lines_carry_the_data():

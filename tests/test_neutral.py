@@ -394,3 +394,18 @@ def test_dataset_assembled_directly_is_identical_to_the_constructors():
         xr.testing.assert_identical(fast, slow)
         assert type(fast.indexes["point"]) is type(slow.indexes["point"])
     assert ds.where(ds.kind == "fold", drop=True).sizes["point"] == 1
+
+
+def test_start_from_a_threshold_query_without_frequency():
+    """A threshold answer as a start point (x, y) at fr_inv = 0: the frequency guess must come
+    from the gyroscopic mode, not the structural zero root (s = 0 exactly, neutral everywhere:
+    it used to send Newton to another curve and raise). Reference: the closed forms
+    sigma = (1 - mu q^2)/(1 + q) at q = -0.2 (1.136) and the fold sigma* = 2 (mu - sqrt(mu (mu - 1)))."""
+    import stability
+
+    v = stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)
+    assert v == pytest.approx((1 - MU * 0.04) / 0.8, rel=1e-14)
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), start=[(-0.2, v)])
+    fold = ds.where(ds.kind == "fold", drop=True)
+    assert fold.sizes["point"] == 1
+    assert float(fold.sigma[0]) == pytest.approx(2 * (MU - np.sqrt(MU * (MU - 1))), rel=1e-14)

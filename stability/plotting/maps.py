@@ -8,6 +8,7 @@ from matplotlib.axes import Axes
 from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
+from ..modes import leading_growth_rate
 from ..parameters import SYMBOLS
 
 __all__ = ["plot_stability_map", "plot_neutral_curve", "growth_norm", "NEUTRAL_STYLE"]
@@ -57,12 +58,15 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
 
     Notes
     -----
+    The colour is :func:`stability.modes.leading_growth_rate`: the structural zero mode (the
+    sliding top's ``s = 0`` at ``fr_inv = 0``, marginal by structure) is left out, so the stable
+    side shows how fast the other modes decay instead of a flat zero.
     The line drawn here is the zero contour of the leading growth rate interpolated on the grid
     (for the conservative models, whose stable side is exactly neutral, the boundary of the
     unstable region); continued neutral curves (``continuation``), exact to
     round-off, are drawn on top by :func:`plot_neutral_curve` where available.
     """
-    g = ds["max_growth_rate"]
+    g = leading_growth_rate(ds)
     if set(g.dims) != {x, y}:
         raise ValueError(f"the atlas has grid dimensions {', '.join(g.dims)}; a map needs exactly {x!r} and {y!r}")
     if ax is None:

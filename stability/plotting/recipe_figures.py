@@ -5,6 +5,7 @@ from __future__ import annotations
 import xarray as xr
 from matplotlib.figure import Figure
 
+from ..modes import leading_growth_rate
 from ..recipes import Recipe
 from .atlas_plots import plot_growth_rate
 from . import scene_plots
@@ -54,7 +55,7 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
         names = [k for k in datasets if not k.endswith("_neutral")]
         fig = Figure(figsize=(4.2 * len(names), 4.0), layout="constrained")
         axes = fig.subplots(1, len(names), sharey=True)
-        norm = growth_norm(*(datasets[k]["max_growth_rate"].values for k in names))
+        norm = growth_norm(*(leading_growth_rate(datasets[k]).values for k in names))
         for ax, name in zip(axes, names):
             plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm,
                                curve=datasets.get(f"{name}_neutral"))
