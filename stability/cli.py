@@ -23,7 +23,9 @@ import argparse
 import importlib
 import os
 import re
+import signal
 import sys
+import threading
 from collections.abc import Sequence
 from typing import NoReturn
 
@@ -100,6 +102,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(args_list)
     prog = f"tippe {args.command}"
+    previous = _terminate_as_interrupt()
     try:
         return int(args.func(args) or 0)
     except Interrupted as exc:
@@ -128,6 +131,29 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
               "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)", file=sys.stderr)
         return EXIT_FAILURE
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _raise_interrupt(signum: int, frame: object) -> None:
+    raise KeyboardInterrupt(f"{signal.Signals(signum).name} received")
+
+
+def _terminate_as_interrupt() -> dict[int, object]:
+    """Make SIGTERM and SIGHUP (``kill``, ``timeout``, a batch scheduler, a closed terminal)
+    interrupt a command as Ctrl-C does, so that its clean-up runs: no partial output file, the
+    finished chunks kept with ``--resume``. Python's default for them ends the process at once.
+    Returns the previous handlers (restored after the command); nothing is changed outside the
+    main thread, where handlers cannot be set."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    previous = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        signum = getattr(signal, name, None)
+        if signum is not None:
+            previous[signum] = signal.signal(signum, _raise_interrupt)
+    return previous
 
 
 if __name__ == "__main__":  # pragma: no cover
