@@ -102,7 +102,11 @@ def _setup(param: str, model: str | LinearModel, bracket: Sequence[float] | None
             raise TypeError(f"bracket must be a pair (lo, hi) of real numbers, got {bracket!r}") from exc
         if not lo < hi:
             raise ValueError(f"bracket = ({lo:g}, {hi:g}) must have lo < hi")
-        check_domain(**{**fx, param: np.array([lo, hi])})
+        for end in (lo, hi):  # each end on its own: a grid's hint (mask_unphysical) does not apply
+            try:
+                check_domain(scalar=True, **{**fx, param: end})
+            except DomainError as exc:
+                raise DomainError(f"bracket = ({lo:g}, {hi:g}) leaves the physical domain: {exc}") from None
     return m, fx, (lo, hi)
 
 
@@ -171,6 +175,13 @@ def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: fl
             else:
                 b = c
         value, w = 0.5 * (a + b), w0
+    # a change of stability at the domain's edge (e.g. alpha_v = 0: every friction destabilises)
+    # is polished by Newton to a rounding error on either side of it (alpha_v = -2e-27): the
+    # threshold is the edge itself, never a value outside the physical domain
+    _, inside = check_domain(mask=True, **{**fx, param: np.array([value])})
+    if not inside[0]:
+        edge_lo, edge_hi = default_bracket(param, fx)
+        value = edge_lo if abs(value - edge_lo) <= abs(value - edge_hi) else edge_hi
     side = "below" if (unstable_a and a < b) or (not unstable_a and b < a) else "above"
     return Threshold(float(value), float(w), side)
 

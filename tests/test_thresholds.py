@@ -18,6 +18,7 @@ import pytest
 import stability
 from stability import critical_spin, threshold, thresholds
 from stability.cli import main
+from stability.parameters import DomainError
 
 mp = mpmath.mp
 MU = mpmath.mpf("2.28")
@@ -152,3 +153,23 @@ def test_cli_neutral(tmp_path, capsys):
     assert "fold" in text and "1.1433349593" in text and out.exists()
     assert main(["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0"]) == 2
     assert "alpha_v" in capsys.readouterr().err
+
+
+def test_threshold_at_the_domain_edge_is_the_edge():
+    """q = -0.1, fr_inv = 0.3, sigma = 1: the frictionless top (alpha_v = 0) is marginal (its
+    spectrum lies on the imaginary axis: eq. 11 without friction is conservative) and any
+    viscous friction destabilises it (growth rate ~1.7e-2 alpha_v for small alpha_v, docs/
+    hard_cases.md: 1.686e-8 at 1e-6). The stability change is at the edge alpha_v = 0 itself;
+    Newton used to land a rounding error outside it (alpha_v = -2.2e-27). The answer must be
+    exactly 0, inside the domain."""
+    sp0 = stability.spectrum("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.0)
+    assert int(sp0.stability) == 1
+    for a in (1e-12, 1e-6, 1e-2):
+        assert int(stability.spectrum("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=a).stability) == 2
+    assert stability.threshold("alpha_v", q=-0.1, fr_inv=0.3, sigma=1.0) == 0.0
+
+
+def test_bracket_outside_the_domain_names_the_end_not_a_grid_option():
+    with pytest.raises(DomainError, match=r"bracket = \(0.5, 2.5\) leaves the physical domain: sigma = 2.5") as exc:
+        stability.threshold("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5, bracket=(0.5, 2.5))
+    assert "mask_unphysical" not in str(exc.value)
