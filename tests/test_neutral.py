@@ -409,3 +409,14 @@ def test_start_from_a_threshold_query_without_frequency():
     fold = ds.where(ds.kind == "fold", drop=True)
     assert fold.sizes["point"] == 1
     assert float(fold.sigma[0]) == pytest.approx(2 * (MU - np.sqrt(MU * (MU - 1))), rel=1e-14)
+
+
+@pytest.mark.parametrize("ranges", [dict(x_range=(5.0, 6.0)), dict(y_range=(-5.0, -1.0))])
+def test_ranges_outside_the_domain_are_an_error_not_an_empty_curve(ranges):
+    """q in (5, 6) has mu q^2 > 1 everywhere; sigma in (-5, -1) is negative: no point of either
+    rectangle is physical (the domain's inequalities, docs/conventions.md). Before, the call
+    returned an empty dataset (and `tippe neutral` wrote it), indistinguishable from "no curve"."""
+    from stability.parameters import DomainError
+
+    with pytest.raises(DomainError, match=r"lie outside the physical domain at fr_inv = 0, alpha_v = 0.5"):
+        neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), **ranges)

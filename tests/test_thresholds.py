@@ -173,3 +173,19 @@ def test_bracket_outside_the_domain_names_the_end_not_a_grid_option():
     with pytest.raises(DomainError, match=r"bracket = \(0.5, 2.5\) leaves the physical domain: sigma = 2.5") as exc:
         stability.threshold("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5, bracket=(0.5, 2.5))
     assert "mask_unphysical" not in str(exc.value)
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["spin", "--preset", "table1", "--mass", "5", "--radius", "1"], "--preset table1 and --mass, --radius conflict"),
+    (["spin", "--preset", "table1", "--q", "0.3", "--sigma", "1.5"], "--q, --sigma: not used by 'tippe threshold spin'"),
+    (["spin", "--preset", "table1", "--bracket", "0:1"], "--bracket: not used"),
+    (["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--mass", "3"], "--mass: only used with PARAM = spin"),
+    (["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--orientation", "upright"],
+     "--orientation: only used with PARAM = spin"),
+])
+def test_threshold_cli_refuses_options_it_would_ignore(argv, names, capsys):
+    """An option the chosen PARAM does not use is an error (exit 2, one line naming it): before,
+    `--preset table1 --mass 5` printed the preset's critical spin as if --mass were not there."""
+    assert main(["threshold", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and names in err

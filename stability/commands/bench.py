@@ -13,8 +13,11 @@ from __future__ import annotations
 import argparse
 import inspect
 import json
+import math
 import os
 import platform
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -168,9 +171,38 @@ def run(args: argparse.Namespace) -> int:
     out_dir = Path(args.out_dir)
     if not out_dir.is_dir():
         raise FileNotFoundError(f"output directory {str(out_dir)!r} does not exist")
-    if args.repeat is not None and args.repeat < 1:
-        raise ValueError(f"--repeat = {args.repeat} must be >= 1")
+    _check_sizes(args)
     names = list(SUITES) if args.suite == "all" else [args.suite]
+    if len(names) == 1:
+        run_suite(names[0], out_dir, _options(args, names[0]))
+        return 0
+    # one process per suite: the peak memory a chart reports (ru_maxrss, which never decreases)
+    # is then that suite's own, not the largest of the suites run before it in the same process
     for name in names:
-        run_suite(name, out_dir, _options(args, name))
+        cmd = [sys.executable, "-m", "stability", "bench", "--suite", name, "--out-dir", str(out_dir)]
+        cmd += ["--quick"] * bool(args.quick)
+        for flag in ("points", "reference_points", "loop_points", "repeat"):
+            if getattr(args, flag) is not None:
+                cmd += ["--" + flag.replace("_", "-"), repr(getattr(args, flag))]
+        done = subprocess.run(cmd)
+        if done.returncode != 0:
+            print(f"tippe bench: suite {name} failed (exit {done.returncode}); the suites before it are written",
+                  file=sys.stderr)
+            return done.returncode
     return 0
+
+
+#: the sizes a flag may take (eigen: the batch must fit in memory, ~1.3 kB per point at 1e6)
+SIZE_LIMITS = {"points": (100, 10**8), "reference_points": (10, 10**5), "loop_points": (10, 10**7), "repeat": (1, 1000)}
+
+
+def _check_sizes(args: argparse.Namespace) -> None:
+    """Each size flag is an integer in :data:`SIZE_LIMITS` (named with its value and range)."""
+    for name, (lo, hi) in SIZE_LIMITS.items():
+        value = getattr(args, name)
+        if value is None:
+            continue
+        flag = "--" + name.replace("_", "-")
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and float(value).is_integer()
+                and lo <= value <= hi):
+            raise ValueError(f"{flag} = {value!r} is outside the allowed range: an integer in [{lo}, {hi:g}]")

@@ -32,11 +32,36 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--preset", choices=["table1", "table1_measured"], help="the paper's toy top")
     for name in _TOP_FLAGS:
         g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE")
-    g.add_argument("--g", dest="gravity", type=float, default=9.80665, metavar="M/S2")
+    g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2",
+                   help="gravity (default 9.80665)")
     g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
                    help="viscous friction coefficient (alpha_v then scales as 1/spin)")
-    g.add_argument("--orientation", choices=["upright", "inverted", "both"], default="both")
+    g.add_argument("--orientation", choices=["upright", "inverted", "both"], default=None,
+                   help="default: both")
     p.set_defaults(func=run)
+
+
+def _refuse_unused(args: argparse.Namespace) -> None:
+    """Options that the chosen PARAM does not use are errors, not silently ignored."""
+    def flag(name: str) -> str:
+        return FLAGS.get(name, "--" + name.replace("_", "-"))
+
+    top_given = [n for n in (*_TOP_FLAGS, "gravity") if getattr(args, n) is not None]
+    if args.param == "spin":
+        unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
+        unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
+        if unused:
+            raise ValueError(f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
+                             "mu come from --preset or its SI data; the spin rate is what is searched)")
+        if args.preset and top_given:
+            raise ValueError(f"--preset {args.preset} and {', '.join('--g' if n == 'gravity' else flag(n) for n in top_given)} "
+                             "conflict: give a preset or the top's SI data, not both")
+        return
+    unused = [("--g" if n == "gravity" else flag(n)) for n in top_given]
+    unused += [f"--{n.replace('_', '-')}" for n in ("preset", "mu_v", "orientation") if getattr(args, n) is not None]
+    if unused:
+        raise ValueError(f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
+                         f"'tippe threshold {args.param}' takes the nondimensional parameters")
 
 
 def _top(args: argparse.Namespace) -> Top:
@@ -46,16 +71,18 @@ def _top(args: argparse.Namespace) -> Top:
     if missing:
         raise ValueError("tippe threshold spin needs --preset or " + ", ".join(
             "--" + n.replace("_", "-") for n in missing))
-    return Top(*(getattr(args, n) for n in _TOP_FLAGS), g=args.gravity, mu_v=args.mu_v)
+    return Top(*(getattr(args, n) for n in _TOP_FLAGS), g=9.80665 if args.gravity is None else args.gravity,
+               mu_v=args.mu_v)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
     from ..thresholds import critical_spin, threshold, thresholds
 
+    _refuse_unused(args)
     if args.param == "spin":
         top = _top(args)
-        orient = ["upright", "inverted"] if args.orientation == "both" else [args.orientation]
+        orient = ["upright", "inverted"] if args.orientation in (None, "both") else [args.orientation]
         print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
         for o in orient:
             alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
