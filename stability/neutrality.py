@@ -163,21 +163,39 @@ def _horner(c: Sequence[complex], z: complex) -> tuple[complex, complex]:
 
 
 def _divide_root(c: list[complex], r: complex) -> list[complex]:
-    """Synthetic division of ``c`` (highest first) by ``(s - r)``; the remainder is dropped."""
+    """Synthetic division of ``c`` (highest first) by ``(s - r)``; the remainder is dropped.
+
+    Composite deflation: the coefficients from the top (forward), except the last, which is
+    taken from the bottom, ``-c_n / r`` (backward; ``c_n = -r q_last`` exactly when ``r`` is a
+    root). Forward division gives that coefficient an absolute error ``~u max|c_k r^k|``; when
+    the quotient has a root much smaller than ``r`` (the sliding top's ``~ i c fr_inv`` as
+    ``fr_inv -> 0``, whose real part is ``O(fr_inv^2)``) that error decides the root's sign
+    (measured: ``+3.8e-15`` for a true ``-3e-34``, a false double crossing). From the bottom it
+    is relative, ``u``."""
     out = [c[0]]
     for ck in c[1:-1]:
         out.append(ck + r * out[-1])
+    if r != 0 and len(out) >= 2:
+        out[-1] = -c[-1] / r
     return out
 
 
 def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.ndarray:
-    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one)."""
+    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one).
+
+    Exact zero roots (trailing coefficients exactly 0, e.g. the sliding top's ``s = 0`` where
+    ``fr_inv = 0`` or ``q = 0``: ``c0 = -mu alpha_v q fr_inv``) are removed first when ``w != 0``:
+    they are neutral by structure at that point, not modes that cross the axis, and the
+    synthetic division would otherwise turn them into a root of size ``u |s|`` with a random
+    sign (a false double crossing at a domain edge ``fr_inv = 0``)."""
     return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
 def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
     """:func:`other_roots` as a list (closed forms up to degree 2, ``numpy.roots`` beyond)."""
     q = [complex(x) for x in c]
+    while w != 0 and len(q) > 1 + multiplicity and q[-1] == 0:  # exact zero roots (docstring above)
+        q = q[:-1]
     for _ in range(multiplicity):
         q = _divide_root(q, 1j * w)
     m = len(q) - 1
@@ -604,6 +622,9 @@ def sliding_crossing_other_growth(point: np.ndarray, free_index: np.ndarray, nco
         p[free_index[i]] = u[i]
     c = np.empty(4, dtype=np.complex128)
     _sliding_coefficients_c(p, c)
+    # exact zero roots removed first (other_roots' docstring): the trailing coefficient exactly 0
+    while u[k] != 0.0 and ncoef > 2 and c[ncoef - 1] == 0:
+        ncoef -= 1
     r = np.empty(2, dtype=np.complex128)
     _other_roots_c(c, ncoef, u[k], r)
     g = -np.inf
@@ -622,6 +643,8 @@ def _other_roots_c(c: np.ndarray, ncoef: int, w: float, out: np.ndarray) -> None
     qq[0] = c[0]
     for j in range(1, ncoef - 1):
         qq[j] = c[j] + r * qq[j - 1]
+    if w != 0.0 and ncoef - 1 >= 2:  # composite deflation: the last from the bottom (_divide_root)
+        qq[ncoef - 2] = -c[ncoef - 1] / r
     if m <= 0:
         return
     if m == 1:

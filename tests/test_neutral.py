@@ -420,3 +420,36 @@ def test_ranges_outside_the_domain_are_an_error_not_an_empty_curve(ranges):
 
     with pytest.raises(DomainError, match=r"lie outside the physical domain at fr_inv = 0, alpha_v = 0.5"):
         neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), **ranges)
+
+
+def test_no_false_double_crossing_as_fr_inv_goes_to_zero():
+    """(sigma, fr_inv) plane at q = -0.1, alpha_v = 0.5: as fr_inv -> 0 a small root
+    s ~ -i 0.073 fr_inv has real part -1.57e-2 fr_inv^2 (< 0: mpmath at 50 digits below), so no
+    second mode crosses. Forward synthetic division gave the quotient's last coefficient an
+    absolute error ~u, which decided that root's sign (+3.8e-15 for a true -3e-34 next to the
+    edge) and produced a "double_crossing" at fr_inv = 5e-7; with composite deflation (the last
+    coefficient -c0/r) the small root is right to relative rounding."""
+    from stability.neutrality import other_roots, sliding_coefficients
+
+    ds = neutral_curve("sliding", "sigma", "fr_inv", fixed=dict(q=-0.1, alpha_v=0.5))
+    assert "double_crossing" not in set(ds.kind.values)
+    for compiled in (True, False):
+        ds2 = neutral_curve("sliding", "sigma", "mu", fixed=dict(q=-0.1, fr_inv=0.3, alpha_v=0.5), compiled=compiled)
+        assert "double_crossing" not in set(ds2.kind.values)
+    # the small root at the regular point nearest fr_inv = 0 on the curve: other_roots vs mpmath
+    regular = np.flatnonzero(ds.kind.values == "regular")
+    k = regular[np.argmin(ds.fr_inv.values[regular])]
+    f, sigma, w = float(ds.fr_inv[k]), float(ds.sigma[k]), float(ds.frequency[k])
+    mp = mpmath.mp
+    mp.dps = 50
+    c = [MU * (1 - MU * 0.01), 0.5 * (1 + MU * 0.8) - 1j * MU * sigma,
+         -MU * MU * (-0.1) * f - 0.5j * (sigma + MU * 0.9), -MU * 0.5 * (-0.1) * f]
+    ref = [r for r in mp_polyroots([mp.mpc(z) for z in c], maxsteps=200, extraprec=200) if abs(r - 1j * w) > 1e-3]
+    assert all(mp.re(r) < 0 for r in ref)
+    coeffs, _ = sliding_coefficients(q=-0.1, fr_inv=f, sigma=sigma, alpha_v=0.5, mu=MU)
+    ours = other_roots(np.asarray(coeffs).ravel(), w)
+    small = ours[np.argmin(np.abs(ours))]
+    # relative 1e-8: the root has modulus ~3e-3 and real part ~3.6e-5 here, so its real part
+    # carries ~u |s| / |Re s| ~ 1e-14 relative error from the quotient, times the point's own
+    # residual (the curve point is a root of p to ~1e-16)
+    assert abs(small.real / float(mp.re(min(ref, key=abs))) - 1) < 1e-8
