@@ -17,13 +17,13 @@ from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
 from .spectra import eigenvalues, spectrum
 from .simulate import simulate
 from .jacobian import jacobian_eigenvalues
-from .validate import validate
+from .validate import coulomb_growth, validate
 from .top import Top
 from .thresholds import critical_spin, threshold, thresholds
 
 __all__ = [
     "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
-    "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate",
+    "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "critical_spin",
 ]

@@ -271,7 +271,9 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
         forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
     comp = {"long_name": "component", "units": _ONE,
             "comment": "component along I, J, K of the fixed frame F_a (K up)"}
-    coords = {"time": ("time", t, _attrs("time", _ONE, standard_name="time",
+    # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
+    # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
+    coords = {"time": ("time", t, _attrs("time", _ONE, axis="T",
                                           comment="in units of 1/Omega; one spin period is 2 pi")),
               "axis": ("axis", np.array([1, 2, 3]), comp)}
     data: dict[str, tuple] = {
