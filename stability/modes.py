@@ -171,7 +171,11 @@ def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
     ``max_growth_rate`` includes the structural zero mode, so at ``fr_inv = 0`` it is 0 on the
     whole stable side of the sliding top (marginal by structure: the ``stability`` flag says
     so); this is the growth rate of the least stable of the other modes, what a stability map
-    colours. Where every mode is structurally zero it equals ``max_growth_rate``.
+    colours. The zero mode is left out only when every point of the atlas has one (a plane at
+    ``fr_inv = 0``): an atlas that crosses ``fr_inv = 0`` keeps it on that line, because there it
+    is the end of the small mode ``s ~ -i c fr_inv`` (real part ``-O(fr_inv^2)``), and leaving
+    it out on one line only would draw a discontinuity that is not in the physics. Where it is
+    not left out this equals ``max_growth_rate``.
 
     Parameters
     ----------
@@ -188,10 +192,16 @@ def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
     if missing:
         raise ValueError(f"the dataset has no {', '.join(missing)}: leading_growth_rate needs an atlas "
                          "(stability.atlas or open_atlas)")
-    g = ds["growth_rate"]
-    bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
-    zero = structural_zeros(g.values, ds["frequency"].values, None if bound is None else bound.values)
-    out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
+    g = ds["growth_rate"].transpose(..., "mode")
+    bound = ds["eigenvalue_error_bound"].transpose(..., "mode") if "eigenvalue_error_bound" in ds else None
+    zero = structural_zeros(g.values, ds["frequency"].transpose(..., "mode").values,
+                            None if bound is None else bound.values)
+    inside = np.isfinite(ds["max_growth_rate"].transpose(*g.dims[:-1]).values) if g.ndim > 1 else None
+    has = zero.any(axis=-1)
+    if inside is None or not inside.any() or not has[inside].all():
+        out = ds["max_growth_rate"].copy()
+    else:
+        out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
     out.attrs = {"long_name": "largest growth rate over the modes that are not structurally zero",
                  "units": "1"}
     return out.rename("leading_growth_rate")

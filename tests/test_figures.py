@@ -72,6 +72,11 @@ def test_principal_mode_and_map_colour_skip_the_structural_zero():
     assert np.all(ds.max_growth_rate.values == 0) and np.all(ds.stability.values == 1)
     fig, ax = plot_growth_rate(ds, "q", mode="principal")
     assert np.array_equal(ax.get_lines()[0].get_ydata(), s.real)
+    # an atlas that crosses fr_inv = 0 keeps the zero mode on that line (it continues into the
+    # small mode of real part -1.57e-2 fr_inv^2 at q = -0.1: a colour jump there would be false)
+    cross = stability.atlas("sliding", q=-0.1, fr_inv=np.linspace(0, 0.2, 5), sigma=np.linspace(1.1, 1.9, 5),
+                            alpha_v=0.5)
+    assert np.array_equal(leading_growth_rate(cross).values, cross.max_growth_rate.values)
 
 
 def test_lines_carry_the_data():
