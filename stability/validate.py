@@ -159,9 +159,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     model : {"sliding", "rolling", "fixed_pivot"}
         Nonlinear model; its predictions come from the linear model of the same name and from
         its Jacobian (:func:`stability.jacobian_eigenvalues`).
-    q, fr_inv, sigma, alpha_v, mu : float or array_like
+    q, fr_inv, sigma, alpha_v, mu : float, array_like or xarray.DataArray
         Parameters, broadcast together to a list of points (``alpha_v`` for ``"sliding"`` only).
-        An atlas subset can be passed as its coordinate arrays (flattened).
+        An atlas subset is passed as its coordinates (``q=sub.q, fr_inv=sub.fr_inv, ...``):
+        DataArrays broadcast by their dimension names, so coordinates along different
+        dimensions make the whole grid of the subset (numpy arrays broadcast by position).
     amplitude : float, default 1e-4
         Initial tilt ``|Phi|`` along the leading eigenvector.
     n_efold, n_periods : float
@@ -187,6 +189,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     >>> ds = stability.validate("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
     >>> bool(ds.growth_rate_error.max() < 0.01)
     True
+    >>> sub = stability.atlas("sliding", q=[-0.1, 0.1], fr_inv=[0.3, 1.0], sigma=1.0, alpha_v=0.5)
+    >>> validate_grid = stability.validate("sliding", q=sub.q, fr_inv=sub.fr_inv, sigma=sub.sigma,
+    ...                                    alpha_v=sub.alpha_v, n_efold=1.0)
+    >>> validate_grid.sizes["point"]
+    4
     """
     m = get_nonlinear_model(model)
     given = {"q": q, "fr_inv": fr_inv, "sigma": sigma, "mu": mu}
@@ -197,6 +204,10 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         given["alpha_v"] = alpha_v
     elif alpha_v is not None:
         raise TypeError(f"model {m.name!r} takes no parameter alpha_v")
+    named = {k: v for k, v in given.items() if isinstance(v, xr.DataArray)}
+    if named:  # an atlas subset: broadcast by dimension name (the grid of the subset)
+        for k, v in zip(named, xr.broadcast(*named.values())):
+            given[k] = v.values
     arrays, _ = check_domain(**given)
     flat = {k: np.ravel(v) for k, v in arrays.items()}
     if m.name == "sliding" and np.any(flat["alpha_v"] == 0):
