@@ -15,7 +15,8 @@ from pathlib import Path
 
 import xarray as xr
 
-__all__ = ["AtlasFileError", "atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR"]
+__all__ = ["AtlasFileError", "atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
+           "require_atlas"]
 
 #: global attribute naming which product of this package a dataset is
 PRODUCT_ATTR = "tippe_stability_product"
@@ -25,6 +26,19 @@ ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
 
 class AtlasFileError(ValueError):
     """A file given where an atlas is expected is missing, unreadable or not an atlas."""
+
+
+def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
+    """``ds`` itself if it is an atlas dataset (the variables of :data:`ATLAS_VARIABLES`);
+    otherwise a ``TypeError`` (not a Dataset) or ``ValueError`` (which variables are missing)."""
+    if not isinstance(ds, xr.Dataset):
+        raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
+                        "stability.atlas or stability.open_atlas")
+    missing = [v for v in ATLAS_VARIABLES if v not in ds]
+    if missing:
+        raise ValueError(f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
+                         f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)")
+    return ds
 
 
 def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Path:

@@ -95,6 +95,9 @@ def track_modes(eigenvalues: np.ndarray, *, path: np.ndarray | None = None,
         The same eigenvalues, columns following branches.
     """
     ev = np.array(eigenvalues, dtype=complex, copy=True)
+    if ev.ndim != 2 or ev.shape[1] < 1:
+        raise ValueError(f"eigenvalues has shape {ev.shape}; it must be (points, modes): one row of "
+                         "eigenvalues per point of the path")
     m, n = ev.shape
     if solve is not None and path is None:
         raise ValueError("track_modes: solve needs the path parameter values (path=)")
@@ -188,10 +191,9 @@ def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
     xarray.DataArray
         Over the grid; NaN outside the domain.
     """
-    missing = [v for v in ("growth_rate", "frequency", "max_growth_rate") if v not in ds]
-    if missing:
-        raise ValueError(f"the dataset has no {', '.join(missing)}: leading_growth_rate needs an atlas "
-                         "(stability.atlas or open_atlas)")
+    from .io import require_atlas
+
+    require_atlas(ds)
     g = ds["growth_rate"].transpose(..., "mode")
     bound = ds["eigenvalue_error_bound"].transpose(..., "mode") if "eigenvalue_error_bound" in ds else None
     zero = structural_zeros(g.values, ds["frequency"].transpose(..., "mode").values,

@@ -234,3 +234,24 @@ def test_fold_curve_fold_in():
     with pytest.raises(ValueError, match="fold_in = 'mu' is not known; choose one of q, sigma"):
         continuation.fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="mu",
                                 fixed=dict(fr_inv=0.0, alpha_v=0.5))
+
+
+def test_plotting_and_mode_functions_name_what_they_need():
+    """Public plotting and mode functions: a wrong object is a TypeError/ValueError that says
+    what is expected (they used to fail with "'NoneType' object is not subscriptable",
+    KeyError 'max_growth_rate' or an unpacking error)."""
+    from stability.modes import principal_mode, track_modes
+    from stability.plotting import plot_growth_rate
+    from stability.plotting.maps import plot_stability_map
+
+    with pytest.raises(TypeError, match="ds is a NoneType; it must be an atlas"):
+        plot_growth_rate(None)
+    run = stability.simulate("sliding", t_end=1.0, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1, fr_inv=0.3,
+                             sigma=1.0, alpha_v=0.5)
+    with pytest.raises(ValueError, match="ds has no growth_rate, frequency, max_growth_rate, stability"):
+        plot_growth_rate(run)
+    with pytest.raises(ValueError, match="it is not an atlas"):
+        plot_stability_map(run, "q", "sigma")
+    with pytest.raises(ValueError, match=r"eigenvalues has shape \(3,\); it must be \(points, modes\)"):
+        track_modes(np.array([1, 2, 3]))
+    assert np.isnan(principal_mode(np.full((3, 3), np.nan + 0j))).all()  # outside the domain: NaN, no warning

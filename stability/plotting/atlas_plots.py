@@ -13,6 +13,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..io import atomic_output
+from ..io import require_atlas
 from ..modes import principal_mode
 from ..parameters import SYMBOLS
 
@@ -74,6 +75,7 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     -------
     (Figure, Axes)
     """
+    require_atlas(ds)
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
     if mode not in MODES:
