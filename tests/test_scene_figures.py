@@ -45,3 +45,52 @@ def test_scene_recipe_checks(tmp_path):
     p.write_text('title = "x"\nkind = "scene"\nfigure = "fig5"\n[grid]\nq = 0.1\n')
     with pytest.raises(RecipeError, match="has no \\[grid\\]"):
         load_recipe(p)
+
+
+def _scene(name: str, tmp_path):
+    path = tmp_path / f"{name}.toml"
+    path.write_text((ATLASES / f"{name}.toml").read_text())
+    r = load_recipe(path)
+    runs = compute(r)
+    with style():
+        return recipe_figure(r, runs), runs
+
+
+def test_fig8_path_coloured_by_time_until_the_flip(tmp_path):
+    """Fig. 8: the drawn path is the run's k from the start to the first sample at 150 degrees
+    (segments joining consecutive samples), coloured by time in spin periods (the colour
+    bar's quantity), on the unit sphere."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    fig, runs = _scene("fig8", tmp_path)
+    ds = runs["fr_inv_0.3"]
+    ax = fig.axes[0]
+    (path,) = [c for c in ax.collections if isinstance(c, Line3DCollection) and c.get_array() is not None]
+    end = int(np.nonzero(ds.polar_angle.values >= 150.0)[0][0]) + 1
+    periods = ds.time.values[:end] / (2 * np.pi)
+    np.testing.assert_allclose(path.get_array(), 0.5 * (periods[:-1] + periods[1:]), rtol=0, atol=1e-12)
+    assert path.get_array().min() >= 0 and ds.polar_angle.values[end - 2] < 150.0
+    assert "spin periods" in fig.axes[1].get_ylabel()  # the colour bar
+    assert ax.get_xlim() == (-1.0, 1.0) and ax.get_zlabel() == "$K_3$"
+
+
+def test_fig9_panels_carry_the_cases_and_clip_the_transient(tmp_path):
+    """Fig. 9: (a) friction of the sliding and rolling runs, scaled to the run after two
+    periods with the off-scale initial peak named; (b) the polar angle of every case, solid
+    (integrated to tolerance, with a marker each, since the sticking cases coincide) and dotted
+    (the paper's scheme), the legend naming all eight; (c) the slip speed of case 4."""
+    fig, runs = _scene("fig9", tmp_path)
+    ax_a, ax_b, ax_c = fig.axes[:3]
+    sliding = runs["fr_inv_0.3"]
+    peak = float(sliding.friction_magnitude.max())
+    assert ax_a.get_ylim()[1] < peak and any(f"{peak:.3g}" in t.get_text() for t in ax_a.texts)
+    assert np.array_equal(ax_a.get_lines()[0].get_ydata(), sliding.friction_magnitude.values)
+    lines = ax_b.get_lines()
+    assert len(lines) == 8 and [ln.get_linestyle() for ln in lines] == ["-"] * 4 + [":"] * 4
+    assert all(ln.get_marker() not in ("None", "", None) for ln in lines[:4])
+    for k, ln in enumerate(lines[:4], start=1):
+        assert np.array_equal(ln.get_ydata(), runs[f"case{k}"].polar_angle.values)
+    for k, ln in enumerate(lines[4:], start=1):
+        assert np.array_equal(ln.get_ydata(), runs[f"case{k}_paper_scheme"].polar_angle.values)
+    assert len(ax_b.get_legend().get_texts()) == 8
+    assert ax_c.get_yscale() == "log"

@@ -102,27 +102,53 @@ def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.
     return fig
 
 
-def fig8(run: xr.Dataset, *, every: float = 1.0, until_angle: float = 150.0) -> Figure:
-    """Fig. 8: the axis ``k`` on the unit sphere, marked every ``every`` time units.
+def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None) -> Figure:
+    """Fig. 8: the axis ``k`` on the unit sphere, coloured by time.
 
     Drawn from the start until the polar angle first reaches ``until_angle`` degrees (the
-    flip; afterwards the axis circles the lower pole for the rest of the run).
+    flip; afterwards the axis circles the lower pole for the rest of the run). The path winds
+    round the vertical once per precession period (~165 times at Fr^-1 = 0.3), so a single
+    colour would fill the sphere; the colour (time in spin periods, colour bar) shows the
+    drift from the north pole to the south. Seen from slightly above the equator, back half
+    included (the wireframe is light).
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        A :func:`stability.simulate` run with ``k`` and ``polar_angle``.
+    until_angle : float
+        Polar angle (degrees) at which the path stops.
+    ax : mpl_toolkits.mplot3d.Axes3D, optional
+        A 3-D Axes to draw into; a new figure is made if omitted.
     """
-    fig = Figure(figsize=(5.6, 5.6), layout="constrained")
-    ax = fig.add_subplot(projection="3d")
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    if ax is None:
+        fig = Figure(figsize=(5.6, 5.2), layout="constrained")
+        ax = fig.add_subplot(projection="3d")
+    elif getattr(ax, "name", "") != "3d":
+        raise ValueError("ax must be a 3-D Axes (projection='3d') for Fig. 8")
+    fig = ax.figure
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
-    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.88", linewidth=0.3)
+    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.25)
     pol = run.polar_angle.values
     past = np.nonzero(pol >= until_angle)[0]
     end = int(past[0]) + 1 if past.size else pol.size
     k = run.k.values[:end]
-    t = run.time.values[:end]
-    step = max(1, int(round(every / float(t[1] - t[0]))))
-    ax.plot(k[:, 0], k[:, 1], k[:, 2], color="C0", linewidth=0.35)
-    ax.scatter(k[::step, 0], k[::step, 1], k[::step, 2], marker="x", s=2, linewidths=0.6, color="C1", depthshade=True)
+    periods = _periods(run)[:end]
+    pts = k.reshape(-1, 1, 3)
+    lines = Line3DCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", linewidths=0.45)
+    lines.set_array(0.5 * (periods[:-1] + periods[1:]))
+    ax.add_collection3d(lines)
+    fig.colorbar(lines, ax=ax, shrink=0.6, pad=0.08, label="time (spin periods $2\\pi/\\Omega$)")
+    for lim in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
+        lim(-1.0, 1.0)
+    for ticks in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
+        ticks([-1.0, 0.0, 1.0])
     ax.set_xlabel("$K_1$")
     ax.set_ylabel("$K_2$")
     ax.set_zlabel("$K_3$")
+    ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
     ax.set_title(f"from the start until the polar angle reaches {until_angle:g} deg", fontsize=9)
     return fig
@@ -150,14 +176,28 @@ def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
     ax1.plot(_periods(sliding), sliding.friction_magnitude.values, label="sliding model")
     ax1.plot(_periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
     ax1.set_ylabel(r"$|f|$ / $A_0\Omega^2 R^{-1}$")
-    ax1.legend()
+    # the start from rest in the contact (a slip impulse) peaks far above the rest of the run:
+    # the axis is scaled to the run after the first two periods and the peak is named
+    later = _periods(sliding) > 2.0
+    peak = float(np.nanmax(sliding.friction_magnitude.values))
+    top = 1.25 * float(np.nanmax(np.concatenate([sliding.friction_magnitude.values[later],
+                                                  rolling.friction_magnitude.values])))
+    if peak > top:
+        ax1.set_ylim(0.0, top)
+        ax1.annotate(f"initial slip transient, peak {peak:.3g} (off scale)", xy=(0.0, top), xytext=(0.06, 0.93),
+                     textcoords="axes fraction", fontsize=7, va="top")
+    ax1.legend(loc="upper right")
+    markers = ("o", "s", "^", "D", "v", "P")
     for j, (label, ds) in enumerate(cases.items()):
-        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle="-", label=label)
+        # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
+        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle="-", linewidth=0.8,
+                 marker=markers[j % len(markers)], markevery=(0.03 * (j + 1), 0.12), markersize=4,
+                 label=label)
     for j, (label, ds) in enumerate(paper_scheme.items()):
         ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle=":", linewidth=1.0,
                  label=f"{label}, paper's scheme")
     ax2.set_ylabel("polar angle of $k$ (deg)")
-    ax2.legend(fontsize=7, ncols=2)
+    ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
     for ds, style, label in ((cases[slip_case], "-", "integrated to tolerance"),
                              (paper_scheme[slip_case], ":", "paper's scheme (RK4, sign law)")):
         ax3.semilogy(_periods(ds), np.maximum(ds.slip_speed.values, 1e-12), linestyle=style, label=label)
