@@ -559,7 +559,10 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
         "units": "1"})
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
-    ds_attrs = {"Conventions": "CF-1.8", "model": model.name, "equations": model.equations}
+    from stability.atlas import package_version
+
+    ds_attrs = {"Conventions": "CF-1.10", "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
+                "model": model.name, "equations": model.equations}
     ds_attrs.update({k: float(v) for k, v in fixed.items()})
     ds_attrs["fixed"] = ", ".join(sorted(fixed))
     ds_attrs.update(attrs)

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from .atlas import package_version
 from .nonlinear import get_nonlinear_model
 from .nonlinear.friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
@@ -331,8 +332,9 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
                                   mu=mu).items():
         data[name] = ("time", val, _attrs(names[name], _ONE, comment="in units of A0 Omega^2"))
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(Conventions="CF-1.8", title=f"Tippe top, nonlinear {m.name} model",
-                    source="stability.simulate", model=m.name, equations=m.equations)
+    ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model",
+                    source=f"stability.simulate (tippe-stability {package_version()})", model=m.name,
+                    equations=m.equations)
     for name, val in params.items():
         ds.attrs[name] = val
         ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]

@@ -232,7 +232,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
                                       "units": "1" if name != "duration" else "1"})
     coords = {k: ("point", v, {"long_name": LONG_NAMES[k], "units": "1"}) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(Conventions="CF-1.8", title=f"validation of the linear {m.name} model by nonlinear runs",
+    ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
                     source="stability.validate", model=m.name, linear_model=m.name,
                     jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
                     n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
@@ -301,7 +301,7 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
          "slip_speed": ds.slip_speed},
         coords={"time": ds.time})
     out.attrs.update(
-        Conventions="CF-1.8", title="Coulomb friction alone: growth of the tilt",
+        Conventions="CF-1.10", title="Coulomb friction alone: growth of the tilt",
         source="stability.validate.coulomb_growth", q=q, fr_inv=fr_inv, sigma=sigma, mu=mu,
         alpha_k=alpha_k, alpha_v=0.0, friction=friction, amplitude=amplitude, scheme=scheme,
         step=step if scheme == "fixed_step" else 0.0, slip_scale=slip_scale,

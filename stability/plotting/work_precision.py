@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
@@ -69,7 +68,10 @@ def verdict(results: Sequence[WorkPrecision], target: float | None) -> str:
     if best is default or (default is not None and (best.series or best.method) == (default.series or default.method)
                            and best.seconds_per_point >= 0.8 * default.seconds_per_point):
         # a setting of the default's own method within timing noise of it counts as the default
-        return text + f"; fastest at error <= {target:g}: the default"
+        if best is default:
+            return text + f"; fastest at error <= {target:g}: the default"
+        return text + (f"; fastest at error <= {target:g}: the default's method, {best.setting} "
+                       f"({default.seconds_per_point / best.seconds_per_point:.2f}x: within timing noise)")
     return text + f"; fastest at error <= {target:g}: {best.method} {best.setting}".rstrip()
 
 
@@ -100,7 +102,8 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
     (Figure, Axes)
     """
     if ax is None:
-        fig, ax = plt.subplots(figsize=(7.0, 4.6))
+        fig = Figure(figsize=(7.0, 4.6))
+        ax = fig.add_subplot()
     else:
         fig = ax.figure
     series: dict[str, list[WorkPrecision]] = {}
@@ -172,7 +175,8 @@ def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: st
     (Figure, list of Axes)
     """
     n = len(suite.panels)
-    fig, axes = plt.subplots(1, n, figsize=(7.4 * n, 5.2), squeeze=False)
+    fig = Figure(figsize=(7.4 * n, 5.2))
+    axes = fig.subplots(1, n, squeeze=False)
     lines = [suite.title]
     for panel, ax in zip(suite.panels, axes[0]):
         rs = [r for r in results if r.panel == panel.select]
