@@ -94,3 +94,55 @@ def test_fig9_panels_carry_the_cases_and_clip_the_transient(tmp_path):
         assert np.array_equal(ln.get_ydata(), runs[f"case{k}_paper_scheme"].polar_angle.values)
     assert len(ax_b.get_legend().get_texts()) == 8
     assert ax_c.get_yscale() == "log"
+
+
+def test_fig6_energy_lines_carry_the_parts_and_add_up(tmp_path):
+    """Fig. 6: one line per energy part, the run's values; independent check of the data
+    drawn: the total is the sum of the four parts (kinetic energy of spin, transverse rotation
+    and translation, and potential energy, eqs. 1-2: they are computed separately in
+    stability.nonlinear.quantities), to rounding relative to the total."""
+    fig, runs = _scene("fig6", tmp_path)
+    ds = runs["fr_inv_0.3"]
+    ax = fig.axes[0]
+    names = ["energy", "kinetic_spin", "kinetic_transverse", "kinetic_translational", "potential"]
+    lines = ax.get_lines()
+    assert len(lines) == len(names) and len(ax.get_legend().get_texts()) == len(names)
+    for ln, name in zip(lines, names):
+        assert np.array_equal(ln.get_ydata(), ds[name].values)
+    parts = sum(ds[n].values for n in names[1:])
+    assert np.max(np.abs(parts - ds.energy.values)) <= 1e-13 * np.max(np.abs(ds.energy.values))
+
+
+def test_fig7_locus_is_the_centre_position(tmp_path):
+    """Fig. 7: (a) the whole locus of the centre (X0, Y0), (b) its first ten spin periods, with
+    velocity arrows; equal aspect so that the locus is not distorted."""
+    fig, runs = _scene("fig7", tmp_path)
+    ds = runs["fr_inv_0.3"]
+    ax_a, ax_b = fig.axes[:2]
+    x, y = ds.position.sel(axis=1).values, ds.position.sel(axis=2).values
+    assert np.array_equal(ax_a.get_lines()[0].get_xdata(), x) and np.array_equal(ax_a.get_lines()[0].get_ydata(), y)
+    first = ds.time.values <= 10 * 2 * np.pi
+    assert np.array_equal(ax_b.get_lines()[0].get_xdata(), x[first])
+    assert ax_a.get_aspect() == 1.0 and len(ax_a.collections) == 1  # the quiver
+
+
+def test_models_figure_one_panel_per_model_on_one_colour_scale(tmp_path):
+    """The models side by side: one map per linear model, all on the same colour normalisation
+    (so colours compare across panels), each coloured by its atlas's leading growth rate, the
+    continued neutral curve on top, one colour bar."""
+    from stability.modes import leading_growth_rate
+
+    fig, data = _scene("models_q_fr_inv", tmp_path)
+    names = [k for k in data if not k.endswith("_neutral")]
+    assert names == ["fixed_pivot", "rolling", "sliding", "rolling_first_principles"]
+    maps = [ax for ax in fig.axes if ax.collections and ax.get_label() != "<colorbar>"][:4]
+    assert len(maps) == 4
+    norms = {(m.collections[0].norm.vmin, m.collections[0].norm.vmax) for m in maps}
+    assert len(norms) == 1
+    for ax, name in zip(maps, names):
+        assert name in ax.get_title()
+        mesh = ax.collections[0]
+        z = leading_growth_rate(data[name]).transpose("fr_inv", "q").values
+        assert np.array_equal(np.ma.filled(mesh.get_array(), np.nan).ravel(), z.ravel(), equal_nan=True)
+        assert any(ln.get_label() == "neutral curve (continued)" for ln in ax.get_lines())
+    assert sum(ax.get_label() == "<colorbar>" for ax in fig.axes) == 1
