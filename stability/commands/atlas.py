@@ -81,7 +81,7 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
                chunks=parse_chunks(args.chunks), **values)
     store = parts_directory(out)
     if args.resume and store.is_dir():
-        print(f"resuming from the chunks in {store}", file=sys.stderr)
+        print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
@@ -94,10 +94,16 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
                           "keep them across an interruption)") from None
     import xarray as xr
 
-    with xr.open_dataset(out) as f:
-        flags = f["stability"].values
-    counts = {name: int((flags == flag).sum()) for name, flag in
-              (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
+    kinds = (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
+    counts = dict.fromkeys((name for name, _ in kinds), 0)
+    with xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
+        var = f["stability"]
+        n0 = var.shape[0] if var.ndim else 1
+        step = max(1, int(2e7 // max(1, var.size // n0)))
+        for i in range(0, n0, step):
+            flags = var[i:i + step].values if var.ndim else var.values
+            for name, flag in kinds:
+                counts[name] += int((flags == flag).sum())
     grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
     print(f"wrote {out}: {args.model} model, grid {grid} in chunks; "
           + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
