@@ -183,19 +183,17 @@ def _divide_root(c: list[complex], r: complex) -> list[complex]:
 def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.ndarray:
     """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one).
 
-    Exact zero roots (trailing coefficients exactly 0, e.g. the sliding top's ``s = 0`` where
-    ``fr_inv = 0`` or ``q = 0``: ``c0 = -mu alpha_v q fr_inv``) are removed first when ``w != 0``:
-    they are neutral by structure at that point, not modes that cross the axis, and the
-    synthetic division would otherwise turn them into a root of size ``u |s|`` with a random
-    sign (a false double crossing at a domain edge ``fr_inv = 0``)."""
+    The division is composite (:func:`_divide_root`), so a root much smaller than ``i w`` keeps
+    its relative accuracy, and an exact zero root (``c0 = -mu alpha_v q fr_inv = 0`` at
+    ``fr_inv = 0`` or ``q = 0``) comes out exactly zero: ``Re s = 0``, which brackets no sign
+    change of the double-crossing test (removing it instead made that test jump at ``c0 = 0``
+    from ~0 to the next mode's growth rate, and the jump was reported as a double crossing)."""
     return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
 def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
     """:func:`other_roots` as a list (closed forms up to degree 2, ``numpy.roots`` beyond)."""
     q = [complex(x) for x in c]
-    while w != 0 and len(q) > 1 + multiplicity and q[-1] == 0:  # exact zero roots (docstring above)
-        q = q[:-1]
     for _ in range(multiplicity):
         q = _divide_root(q, 1j * w)
     m = len(q) - 1
@@ -622,9 +620,6 @@ def sliding_crossing_other_growth(point: np.ndarray, free_index: np.ndarray, nco
         p[free_index[i]] = u[i]
     c = np.empty(4, dtype=np.complex128)
     _sliding_coefficients_c(p, c)
-    # exact zero roots removed first (other_roots' docstring): the trailing coefficient exactly 0
-    while u[k] != 0.0 and ncoef > 2 and c[ncoef - 1] == 0:
-        ncoef -= 1
     r = np.empty(2, dtype=np.complex128)
     _other_roots_c(c, ncoef, u[k], r)
     g = -np.inf
