@@ -116,20 +116,15 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     return lo, hi
 
 
-def _require_domain_overlap(x: str, y: str, ranges: Mapping[str, tuple[float, float]],
-                            fixed: Mapping[str, float], grid: tuple[int, int]) -> None:
-    """Refuse ranges that miss the physical domain (no point of the ``grid`` over them, the start
-    atlas's grid, lies inside): tracing there finds nothing, and an empty dataset would look
-    like "no neutral curve" rather than the input error it is."""
-    gx = np.linspace(*ranges[x], max(grid[0], 65))
-    gy = np.linspace(*ranges[y], max(grid[1], 65))
-    X, Y = np.meshgrid(gx, gy, indexing="ij")
-    _, inside = check_domain(mask=True, **{**fixed, x: X, y: Y})
-    if not inside.any():
-        fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
-        raise DomainError(f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
-                          f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
-                          "(1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0)")
+def _outside_domain_error(x: str, y: str, ranges: Mapping[str, tuple[float, float]],
+                          fixed: Mapping[str, float]) -> DomainError:
+    """Ranges that miss the physical domain (no point of the start atlas's grid over them lies
+    inside): tracing there finds nothing, and an empty dataset would look like "no neutral
+    curve" rather than the input error it is."""
+    fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
+    return DomainError(f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
+                       f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
+                       "(1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0)")
 
 
 #: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter,
@@ -373,6 +368,8 @@ def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float
         sp = spectrum(model, mask_unphysical=True, method="kernel", **_grid_params(x, y, fixed, X, Y))
     finally:
         numba.set_num_threads(threads)
+    if not sp.inside.any():
+        raise _outside_domain_error(x, y, ranges, fixed)
     ev = sp.eigenvalues
     grows = (ev.real > 0) & ~sp.neutral
     count = np.where(sp.inside, grows.sum(axis=-1), -1)
@@ -689,7 +686,6 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2) for g in grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
-    _require_domain_overlap(x, y, ranges, fixed, grid)
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
     lo = np.array([ranges[x][0], ranges[y][0]])
     rng = np.random.default_rng(12345)
