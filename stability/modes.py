@@ -142,16 +142,13 @@ def principal_mode(eigenvalues: np.ndarray) -> np.ndarray:
     numpy.ndarray of complex, shape (m,)
         NaN where the path is (all NaN: outside the domain).
     """
-    ev = np.asarray(eigenvalues)
-    if ev.ndim != 2 or ev.shape[1] < 1:
-        raise ValueError(f"eigenvalues has shape {ev.shape}; it must be (points, modes), complex")
-    tracked = track_modes(ev)
+    tracked = track_modes(eigenvalues)  # checks the shape
     defined = ~np.isnan(tracked)
     if not defined.any():
         return tracked[:, 0]
     with np.errstate(invalid="ignore"):
         top = np.nanmax(np.where(defined, tracked.real, -np.inf), axis=0)
-    structural = np.all((tracked == 0) | ~defined, axis=0) & defined.any(axis=0)
+    structural = np.all(structural_zeros(tracked.real, tracked.imag) | ~defined, axis=0) & defined.any(axis=0)
     if not structural.all():
         top = np.where(structural, -np.inf, top)
     return tracked[:, int(np.argmax(top))]

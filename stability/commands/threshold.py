@@ -44,7 +44,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
     def flag(name: str) -> str:
-        return FLAGS.get(name, "--" + name.replace("_", "-"))
+        return "--g" if name == "gravity" else FLAGS.get(name, "--" + name.replace("_", "-"))
 
     top_given = [n for n in (*_TOP_FLAGS, "gravity") if getattr(args, n) is not None]
     if args.param == "spin":
@@ -54,10 +54,10 @@ def _refuse_unused(args: argparse.Namespace) -> None:
             raise ValueError(f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
                              "mu come from --preset or its SI data; the spin rate is what is searched)")
         if args.preset and top_given:
-            raise ValueError(f"--preset {args.preset} and {', '.join('--g' if n == 'gravity' else flag(n) for n in top_given)} "
+            raise ValueError(f"--preset {args.preset} and {', '.join(flag(n) for n in top_given)} "
                              "conflict: give a preset or the top's SI data, not both")
         return
-    unused = [("--g" if n == "gravity" else flag(n)) for n in top_given]
+    unused = [flag(n) for n in top_given]
     unused += [f"--{n.replace('_', '-')}" for n in ("preset", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
         raise ValueError(f"{', '.join(unused)}: only used with PARAM = spin (a real top); "

@@ -8,7 +8,6 @@ from matplotlib.axes import Axes
 from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
-from ..io import require_atlas
 from ..modes import leading_growth_rate
 from ..parameters import SYMBOLS
 
@@ -67,7 +66,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     unstable region); continued neutral curves (``continuation``), exact to
     round-off, are drawn on top by :func:`plot_neutral_curve` where available.
     """
-    g = leading_growth_rate(require_atlas(ds))
+    g = leading_growth_rate(ds)  # checks that ds is an atlas
     if set(g.dims) != {x, y}:
         raise ValueError(f"the atlas has grid dimensions {', '.join(g.dims)}; a map needs exactly {x!r} and {y!r}")
     if ax is None:
