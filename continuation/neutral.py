@@ -1,6 +1,6 @@
 """Neutral curves of the linear models and their folds: a client of the continuation engine.
 
-A mode is neutral where ``det(i w M - A) = 0`` with ``w`` real (:mod:`stability.neutrality`):
+A mode is neutral where ``det(i w M - A) = 0`` with ``w`` real (:mod:`stability.linear.neutrality`):
 two real equations in three unknowns ``u = (x, y, w)``, ``x`` and ``y`` two parameters of
 ``{q, fr_inv, sigma, alpha_v, mu}`` and ``w`` the neutral mode's frequency (``Im s``, fixed
 frame, units of the spin rate). :func:`neutral_curve` follows that mode by pseudo-arclength
@@ -48,11 +48,11 @@ import pandas as pd
 import xarray as xr
 
 from stability.models import LinearModel, get_model
-from stability.modes import structural_zeros
-from stability.neutrality import NeutralCondition
+from stability.linear.modes import structural_zeros
+from stability.linear.neutrality import NeutralCondition
 from stability.parameters import (DEFAULT_MU, LONG_NAMES, DomainError, as_scalar, check_choice, check_domain, check_flag,
                                   check_integer, check_positive)
-from stability.spectra import spectrum
+from stability.linear.spectra import spectrum
 
 from .engine import Branch, ConvergenceError, project, trace_both
 
@@ -164,7 +164,7 @@ def _constraints(free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
 
 
 class NeutralProblem:
-    """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.neutrality`.
+    """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.linear.neutrality`.
 
     Parameters
     ----------
@@ -208,7 +208,7 @@ class NeutralProblem:
         self._compiled = None
         if self.cond._compiled is not None:  # the sliding model's crossing form, compiled
             from . import neutral_compiled as nc
-            from stability.neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
+            from stability.linear.neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
 
             codes = [c[4] for c in self._constraints]
             self._compiled = (
@@ -359,7 +359,7 @@ def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float
     xs = np.linspace(*ranges[x], grid[0])
     ys = np.linspace(*ranges[y], grid[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
-    # the compiled kernel (stability.kernel), in this thread only: on a thread pool, start-up
+    # the compiled kernel (stability.linear.kernel), in this thread only: on a thread pool, start-up
     # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
     threads = numba.get_num_threads()
@@ -639,7 +639,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         Strict domain bounds (``1 - mu q^2 > 0``, ``sigma > 0``, ``mu > 0``) are applied as
         ``>= edge_margin``.
     form : {"crossing", "collision"}, optional
-        Force the form (see :mod:`stability.neutrality`); default from the model.
+        Force the form (see :mod:`stability.linear.neutrality`); default from the model.
     compiled : bool, default True
         Use the compiled corrector of :mod:`continuation.neutral_compiled` where there is one
         (the sliding model's crossing form; numba, compiled on first use and cached on disk);

@@ -3,7 +3,7 @@
 :class:`continuation.neutral.NeutralProblem` offers the engine this ``compiled_step``
 (:mod:`continuation.problem`) when its neutral condition is the crossing form of the sliding
 model, whose coefficients and exact parameter derivatives have compiled twins in
-:mod:`stability.neutrality` (:func:`~stability.neutrality.sliding_crossing_residual`). One call
+:mod:`stability.linear.neutrality` (:func:`~stability.linear.neutrality.sliding_crossing_residual`). One call
 does what the engine's Python path does per step: Newton's method on the bordered system
 ``[F(v); t . (v - v_k) - h] = 0`` from the predicted point (polished to the rounding floor,
 :func:`continuation.compiled.corrector_update`), then the unit tangent oriented by ``t`` and
@@ -12,7 +12,7 @@ engine's scaled variables ``v = u / scale``.
 
 The constraints and the second test function of the problem (the largest growth rate of the
 other modes) have compiled twins here too (:func:`constraint_values`,
-:func:`~stability.neutrality.sliding_crossing_other_growth`).
+:func:`~stability.linear.neutrality.sliding_crossing_other_growth`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.neutrality import sliding_crossing_other_growth, sliding_crossing_residual
+from stability.linear.neutrality import sliding_crossing_other_growth, sliding_crossing_residual
 
 from .compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 
@@ -51,7 +51,7 @@ def _scaled_residual(point: np.ndarray, free_index: np.ndarray, ncoef: int, v: n
 def residual_and_jacobian(point: np.ndarray, free_index: np.ndarray, ncoef: int, u: np.ndarray,
                           jacobian: bool) -> tuple[np.ndarray, np.ndarray]:
     """``F`` (2,) and ``dF/du`` (2, k + 1) at ``u`` (problem variables), as new arrays
-    (:func:`stability.neutrality.sliding_crossing_residual`; ``J`` is not filled unless
+    (:func:`stability.linear.neutrality.sliding_crossing_residual`; ``J`` is not filled unless
     ``jacobian``)."""
     m = u.shape[0]
     F = np.empty(2)
@@ -72,7 +72,7 @@ def sliding_step(point: np.ndarray, free_index: np.ndarray, ncoef: int, codes: n
     Parameters
     ----------
     point, free_index, ncoef
-        The neutral condition (:func:`stability.neutrality.sliding_crossing_residual`).
+        The neutral condition (:func:`stability.linear.neutrality.sliding_crossing_residual`).
     codes, index, a
         The constraint rows (:func:`constraint_values`).
     guess : numpy.ndarray, shape (m,)

@@ -9,17 +9,17 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`state_space`, :func:`friction_loop` - python-control forms of the operators.
 """
 from .atlas import atlas
-from .control_forms import friction_loop, state_space
+from .linear.control_forms import friction_loop, state_space
 from .distributed import ChunkError
 from .io import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS, LinearModel, get_model
 from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
-from .spectra import eigenvalues, spectrum
+from .linear.spectra import eigenvalues, spectrum
 from .simulate import simulate
 from .jacobian import jacobian_eigenvalues
 from .validate import coulomb_growth, validate
 from .top import Top
-from .thresholds import critical_spin, threshold, thresholds
+from .linear.critical import critical_spin, threshold, thresholds
 
 __all__ = [
     "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",

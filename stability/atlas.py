@@ -19,7 +19,7 @@ import xarray as xr
 from .io import PRODUCT_ATTR
 from .models import get_model
 from .parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
-from .spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+from .linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 
 __all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE", "package_version"]
 
@@ -56,7 +56,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         (:class:`~stability.parameters.DomainError`, no partial dataset). If True, those
         points get NaN and ``physical = 0``.
     method : {"kernel", "polynomial", "lapack"}
-        Eigenvalue method (:data:`stability.spectra.METHODS`).
+        Eigenvalue method (:data:`stability.linear.spectra.METHODS`).
     chunks : int or dict of str to int, optional
         If given, the dataset is lazy and dask-backed (:mod:`stability.distributed`): chunk
         sizes along the grid dimensions (an int: the same along each; a dict: by dimension,

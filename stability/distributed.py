@@ -122,7 +122,7 @@ def _check_grid_domain(values: dict[str, np.ndarray], dims: list[str], mask: boo
 def _block_spectra(*args: np.ndarray, model: LinearModel, names: tuple[str, ...], mask: bool,
                    method: str) -> tuple[np.ndarray, ...]:
     """Spectra of one chunk: growth rate, frequency, bound, flag, physical."""
-    from .spectra import spectrum
+    from .linear.spectra import spectrum
 
     p = dict(zip(names, args))
     shape = np.broadcast_shapes(*(np.shape(a) for a in args))
@@ -159,7 +159,7 @@ def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[s
         growth rate, frequency, error bound (grid + mode), stability flag and physical flag
         (grid).
     """
-    from .spectra import METHODS
+    from .linear.spectra import METHODS
 
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")

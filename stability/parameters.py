@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from .inertia import transverse_inertia_g
+from .models.inertia import transverse_inertia_g
 
 __all__ = [
     "PARAMETERS",

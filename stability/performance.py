@@ -18,7 +18,7 @@ Suites:
   ``numpy.linalg.eigvals(numpy.linalg.solve(M, A))`` on the whole batch (baseline), the
   package's paths ``spectrum(method=...)`` for ``"lapack"``, ``"polynomial"`` and ``"kernel"``
   (the default: domain check, error bounds and stability decision included), and the bare
-  kernel (:func:`stability.kernel.sliding_spectrum`, no domain check) with and without
+  kernel (:func:`stability.linear.kernel.sliding_spectrum`, no domain check) with and without
   polishing. The baselines start from prebuilt ``M`` and ``A`` (their construction is not
   timed); the package's paths start from the parameters.
 * ``"continuation"`` (:mod:`stability.performance_continuation`): the continuation's step
@@ -217,8 +217,8 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
     """
     import scipy.linalg
 
-    from . import kernel
-    from .spectra import DEFAULT_METHOD, spectrum
+    from .linear import kernel
+    from .linear.spectra import DEFAULT_METHOD, spectrum
 
     model = get_model("sliding")
     big = domain_sample(points, seed)

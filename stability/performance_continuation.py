@@ -23,7 +23,7 @@ neutral condition has a closed form (tests/test_neutral.py): the curve is
   column interval, over the columns' span only, which favours the columns), the fold the
   spline's maximum. Leading growth rate [A]: :func:`stability.spectrum` with its fastest method
   for one point (picked by timing, :func:`fastest_method`; a one-point call runs the compiled
-  kernel serially, ``stability.kernel.SERIAL_BELOW``); [B]: ``numpy.roots`` on the model's
+  kernel serially, ``stability.linear.kernel.SERIAL_BELOW``); [B]: ``numpy.roots`` on the model's
   coefficients (a hand-written shortcut);
 * equal accuracy: the smallest column count whose spline error is at most the continuation's
   dense error (:func:`columns_for_accuracy`, searched over every ``N``, not a list), timed;
@@ -155,7 +155,7 @@ def _one_point_time(fn: Callable[[], Any], calls: int = 50) -> float:
 def fastest_method() -> str:
     """The fastest :func:`stability.spectrum` method for one point of the problem, by timing
     (the baseline [A] gets the best the package offers)."""
-    from .spectra import spectrum
+    from .linear.spectra import spectrum
 
     times = {m: _one_point_time(lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
                                                      mu=MU, method=m))
@@ -167,7 +167,7 @@ def leading_growth_rate(q: float, sigma: float, method: str = "kernel") -> float
     """[A]: the largest ``Re s`` of the sliding model at ``fr_inv = 0`` over the modes that are
     not structurally zero, from :func:`stability.spectrum` (the structural zero eigenvalue,
     exactly 0 from the kernel or ~1e-17 from LAPACK, is the one of smallest modulus: dropped)."""
-    from .spectra import spectrum
+    from .linear.spectra import spectrum
 
     ev = spectrum("sliding", q=q, fr_inv=0.0, sigma=sigma, alpha_v=ALPHA_V, mu=MU, method=method).eigenvalues
     return float(np.delete(ev, np.argmin(np.abs(ev))).real.max())

@@ -365,7 +365,7 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
     is handed to :func:`stability.critical_spin`, upright and inverted; NaN where there is no
     transition in the range searched.
     """
-    from .thresholds import critical_spin
+    from .linear.critical import critical_spin
     from .top import Top
 
     base = getattr(Top, recipe.figure or "table1")()

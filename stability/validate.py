@@ -42,7 +42,7 @@ from .nonlinear import get_nonlinear_model
 from .nonlinear.integrators import SCIPY_METHODS
 from .parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
 from .simulate import simulate
-from .spectra import eigenvalues
+from .linear.spectra import eigenvalues
 
 __all__ = ["validate", "coulomb_growth", "leading_mode", "RESOLVED"]
 

@@ -240,7 +240,7 @@ def test_plotting_and_mode_functions_name_what_they_need():
     """Public plotting and mode functions: a wrong object is a TypeError/ValueError that says
     what is expected (they used to fail with "'NoneType' object is not subscriptable",
     KeyError 'max_growth_rate' or an unpacking error)."""
-    from stability.modes import principal_mode, track_modes
+    from stability.linear.modes import principal_mode, track_modes
     from stability.plotting import plot_growth_rate
     from stability.plotting.maps import plot_stability_map
 

@@ -1,7 +1,7 @@
 """Recipes and figures: artists are inspected, not pixels.
 
 References: the lines drawn must carry the data of the dataset they were drawn from, mode by
-mode as tracked by stability.modes (checked against a closed form below); labels name the
+mode as tracked by stability.linear.modes (checked against a closed form below); labels name the
 parameters; recipes refuse malformed files with the file and key named.
 """
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import stability
-from stability.modes import leading_growth_rate, principal_mode, track_modes
+from stability.linear.modes import leading_growth_rate, principal_mode, track_modes
 from stability.plotting import plot_growth_rate, style
 from stability.plotting.maps import plot_stability_map
 from stability.plotting.recipe_figures import recipe_figure

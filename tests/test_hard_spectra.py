@@ -2,7 +2,7 @@
 
 * Near-singular mass matrix, 1 - mu q^2 -> 0 (det M = A_G): a naive ``1 - mu*q*q`` loses
   ``log10(1/A_G)`` digits to cancellation; the package evaluates A_G with error-free
-  transformations (stability/inertia.py).
+  transformations (stability/models/inertia.py).
 * Widely separated scales: alpha_v from 1e-6 to 1e6 (a fast slip mode ~ -alpha_v A_C/(mu A_G)
   beside slow modes whose growth rates are ~1e-8 but whose signs matter), fr_inv up to 1e3.
 * Tiny structural-looking roots: q = 1e-9 makes c0 tiny (not zero).
@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 
 import stability
-from stability.inertia import transverse_inertia_g
-from stability.modes import ambiguous_steps, track_modes
-from stability.roots import inclusion_radius
+from stability.models.inertia import transverse_inertia_g
+from stability.linear.modes import ambiguous_steps, track_modes
+from stability.linear.roots import inclusion_radius
 from conftest import mp_polyroots, mp_sliding_eigenvalues
 from test_spectra_reference import _match
 
@@ -152,7 +152,7 @@ def test_exact_collision_is_marginal_not_a_sign():
         for fac in (1 - 4e-16, 1.0, 1 + 4e-16):
             sp = stability.spectrum("sliding", q=Q_C, fr_inv=FR_C * fac, sigma=SIGMA_C, alpha_v=0.0,
                                     mu=MU, method=method)
-            assert sp.stability == stability.spectra.MARGINAL
+            assert sp.stability == stability.linear.spectra.MARGINAL
             assert sp.neutral.all()
 
 

@@ -1,4 +1,4 @@
-"""The compiled spectral kernel (stability/kernel.py) against independent references.
+"""The compiled spectral kernel (stability/linear/kernel.py) against independent references.
 
 Reference: the eigenvalues of ``M^-1 A`` computed by mpmath at 50 digits, with ``M`` and ``A``
 typed in from eq. (11) of the paper in tests/conftest.py (not taken from the package), at the same
@@ -13,7 +13,7 @@ top's double root, ``sigma^2 = 4 A_G mu q fr_inv`` at ``alpha_v = 0``, approache
 ``alpha_v`` down to 1e-12).
 
 Tolerance: relative error per eigenvalue ``<= 1e-13`` (the issue's target) wherever the root
-is well conditioned, i.e. wherever its own error bound ``e`` (stability/roots.py: coefficient
+is well conditioned, i.e. wherever its own error bound ``e`` (stability/linear/roots.py: coefficient
 errors of ``(deg + 4) u`` relative, first order ``dp/|p'|`` or second order
 ``sqrt(2 dp/|p''|)`` near a collision) is below ``1e-13 |s|``; where the problem itself is ill
 conditioned (a near collision: two roots ``d`` apart move by ``~u |s|^2 / d``), the error must
@@ -28,8 +28,8 @@ import numpy as np
 import pytest
 
 import stability
-from stability import kernel
-from stability.spectra import MARGINAL, STABLE, UNSTABLE
+from stability.linear import kernel
+from stability.linear.spectra import MARGINAL, STABLE, UNSTABLE
 
 from conftest import mp_sliding_eigenvalues, random_domain_points
 
@@ -265,7 +265,7 @@ def _bound_points() -> dict[str, np.ndarray]:
             for sign in (1.0, -1.0):
                 rows.append({**base, "mu": mu, "q": sign * q, "sigma": 1e-3})
     for mu, q in ((2.28, -0.1), (2.28, 0.6), (0.5, 1.3), (6.0, 0.4), (4.0, 0.5 - 1e-9), (1.0, 0.0)):
-        a_g = float(stability.inertia.transverse_inertia_g(q, mu))
+        a_g = float(stability.models.inertia.transverse_inertia_g(q, mu))
         for bound in (2 * a_g, 2 * a_g * (1.0 + 8 * 2.0**-53), 2 * (1 - mu * q * q)):
             for s in _ulps(bound, 12):
                 rows.append({**base, "mu": mu, "q": q, "sigma": s})

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 import stability
-from stability.spectra import MARGINAL, STABLE, UNSTABLE
+from stability.linear.spectra import MARGINAL, STABLE, UNSTABLE
 
 
 def test_zero_eigenvalue_at_zero_gravity_is_exact_and_marginal():

@@ -26,7 +26,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import stability
-from stability.inertia import transverse_inertia_g
+from stability.models.inertia import transverse_inertia_g
 
 
 @st.composite

@@ -1,6 +1,6 @@
 """Threshold queries and the critical spin against closed forms evaluated with mpmath.
 
-References (derived in tests/test_neutral.py's docstring and stability/thresholds.py):
+References (derived in tests/test_neutral.py's docstring and stability/linear/critical.py):
 sliding model, ``sigma_n = (1 - mu q^2)/(1 + q) + mu q (1 + q) fr_inv`` for any alpha_v > 0;
 eq. (8), ``sigma_c^2 = 4 A_C mu fr_inv h``. Each is evaluated at 40 digits. Tolerance: the
 threshold is the root of the neutral condition at a relative backward error ~1e-16; with O(1)

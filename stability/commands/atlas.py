@@ -14,7 +14,7 @@ import sys
 from ..atlas import atlas
 from ..io import check_output_path, write_dataset
 from ..models import MODELS
-from ..spectra import DEFAULT_METHOD, METHODS
+from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ._args import Interrupted, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]

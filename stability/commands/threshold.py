@@ -77,7 +77,7 @@ def _top(args: argparse.Namespace) -> Top:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
-    from ..thresholds import critical_spin, threshold, thresholds
+    from ..linear.critical import critical_spin, threshold, thresholds
 
     _refuse_unused(args)
     if args.param == "spin":

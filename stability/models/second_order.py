@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..inertia import transverse_inertia_contact
+from .inertia import transverse_inertia_contact
 from .base import LinearModel
 
 __all__ = ["SecondOrderTop", "contact_transverse_inertia", "gyroscopic_state_form", "gyroscopic_coefficients"]
 
 
-#: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.inertia)
+#: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.models.inertia)
 contact_transverse_inertia = transverse_inertia_contact
 
 

@@ -53,7 +53,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import LinearModel
-from ..inertia import transverse_inertia_contact, transverse_inertia_g
+from .inertia import transverse_inertia_contact, transverse_inertia_g
 
 __all__ = ["Sliding"]
 

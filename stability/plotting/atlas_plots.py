@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 
 from ..io import atomic_output
 from ..io import require_atlas
-from ..modes import principal_mode
+from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
 
 __all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
@@ -65,7 +65,7 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
         ``Re s`` or ``Im s`` of the mode drawn.
     mode : {"principal", "leading"}
         ``"principal"``: the mode followed continuously along ``x``
-        (:func:`stability.modes.track_modes`) that reaches the largest growth rate; its growth
+        (:func:`stability.linear.modes.track_modes`) that reaches the largest growth rate; its growth
         rate and frequency are smooth curves. ``"leading"``: the largest growth rate at each
         point (``max_growth_rate``), whose frequency jumps where the leading mode changes.
     ax : matplotlib.axes.Axes, optional

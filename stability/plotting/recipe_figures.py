@@ -5,7 +5,7 @@ from __future__ import annotations
 import xarray as xr
 from matplotlib.figure import Figure
 
-from ..modes import leading_growth_rate
+from ..linear.modes import leading_growth_rate
 from ..recipes import Recipe
 from .atlas_plots import plot_growth_rate
 from . import scene_plots

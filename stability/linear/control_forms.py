@@ -22,10 +22,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .models import get_model
-from .parameters import DEFAULT_MU
+from ..models import get_model
+from ..parameters import DEFAULT_MU
 from .spectra import model_parameters
-from .parameters import check_domain
+from ..parameters import check_domain
 
 if TYPE_CHECKING:  # python-control takes ~1 s to import: loaded on first use
     import control

@@ -6,7 +6,7 @@ Method (for :func:`thresholds`):
    each) and decide the stability of each sample (:func:`stability.spectrum`);
 2. each pair of neighbouring samples on which "unstable" changes brackets a threshold;
    bisection on the stability decision narrows it to ``1e-7`` of the bracket;
-3. Newton's method on the neutral condition of the crossing mode (:mod:`stability.neutrality`:
+3. Newton's method on the neutral condition of the crossing mode (:mod:`stability.linear.neutrality`:
    ``Re p(i w) = Im p(i w) = 0`` in the unknowns (parameter, ``w``); for a conservative model
    the collision ``P(w) = P'(w) = 0``) polishes it to a relative backward error of about
    ``1e-16``: the root of the smooth mode-wise ``Re s``, not an interpolation. If Newton leaves
@@ -33,9 +33,9 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .models import LinearModel, get_model
+from ..models import LinearModel, get_model
 from .neutrality import NeutralCondition
-from .parameters import (DEFAULT_MU, DomainError, as_parameter, as_scalar, check_choice, check_domain, check_flag,
+from ..parameters import (DEFAULT_MU, DomainError, as_parameter, as_scalar, check_choice, check_domain, check_flag,
                          check_integer)
 from .spectra import UNSTABLE, spectrum
 
@@ -446,7 +446,7 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
     TypeError
         If ``top`` is not a :class:`stability.Top`.
     """
-    from .top import Top
+    from ..top import Top
 
     if not isinstance(top, Top):
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")

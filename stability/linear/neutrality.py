@@ -51,8 +51,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numba import njit
 
-from .models import LinearModel, get_model
-from .models.sliding import Sliding
+from ..models import LinearModel, get_model
+from ..models.sliding import Sliding
 from .kernel import _transverse_inertia_g
 
 __all__ = ["NeutralCondition", "conservative_phase", "other_roots", "sliding_coefficients",
@@ -91,8 +91,8 @@ def conservative_phase(c: np.ndarray) -> int | None:
 
 def _inertia_g(q: float, mu: float) -> float:
     """``A_G = 1 - mu q^2`` compensated (Dekker's product, Knuth's sum): the compiled helper of
-    the spectral kernel, :func:`stability.kernel._transverse_inertia_g` (the operations of
-    :func:`stability.inertia.transverse_inertia_g`, bit for bit), called with floats."""
+    the spectral kernel, :func:`stability.linear.kernel._transverse_inertia_g` (the operations of
+    :func:`stability.models.inertia.transverse_inertia_g`, bit for bit), called with floats."""
     return _transverse_inertia_g(float(q), float(mu))
 
 

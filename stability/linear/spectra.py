@@ -7,7 +7,7 @@ part (ties by decreasing imaginary part).
 How *marginal* is decided (docs/conventions.md):
 
 * a mode whose real part is zero by structure (an exactly zero root of ``det(s M - A)``, or a
-  neutral root of a conservative polynomial, see :mod:`stability.roots`) is neutral;
+  neutral root of a conservative polynomial, see :mod:`stability.linear.roots`) is neutral;
 * otherwise a mode is neutral when ``|Re s| <= 4 e + 16 u max|s|``, with ``e`` the root's own
   error bound and ``u = 2**-53`` (the second term is a floor relative to the spectrum's scale);
 * a point is *unstable* if any mode has ``Re s`` above that tolerance, *stable* if every mode is
@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from .models import LinearModel, get_model
-from .parameters import DEFAULT_MU, check_domain
+from ..models import LinearModel, get_model
+from ..parameters import DEFAULT_MU, check_domain
 from .roots import UNIT_ROUNDOFF, inclusion_radius, polynomial_roots
 
 __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
@@ -34,7 +34,7 @@ __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABL
 STABLE, MARGINAL, UNSTABLE = 0, 1, 2
 FLAG_MEANINGS = "stable marginal unstable"
 
-#: eigenvalue methods: "kernel" (default: the compiled one-pass kernel of stability.kernel,
+#: eigenvalue methods: "kernel" (default: the compiled one-pass kernel of stability.linear.kernel,
 #: Cardano + Weierstrass polishing, the fastest at full accuracy, docs/performance.md),
 #: "polynomial" (structured roots of det(sM - A) by batched companion eigenvalues + Newton) and
 #: "lapack" (batched numpy.linalg.eigvals of solve(M, A)); the last two are cross-checks
@@ -122,7 +122,7 @@ def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray):
     """The compiled kernel over the whole grid (outside points: NaN, flag -1), or None if the
     model's degree is beyond it."""
     from . import kernel
-    from .models.sliding import Sliding
+    from ..models.sliding import Sliding
 
     if isinstance(m, Sliding):
         return kernel.sliding_spectrum(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"], inside)
@@ -151,13 +151,13 @@ def _plain_float(value: Any) -> np.ndarray | None:
 
 def _fused_sliding(m: LinearModel, given: dict[str, Any], mask_unphysical: bool) -> Spectrum | None:
     """The default path for the sliding model: one kernel pass that also tests the domain
-    (:func:`stability.kernel.checked_sliding_spectrum`). Where a point is outside and the
+    (:func:`stability.linear.kernel.checked_sliding_spectrum`). Where a point is outside and the
     request is not masked, or a parameter is not finite, :func:`check_domain` is called to raise
     its error (the messages live there only). None if the fused path does not apply (another
     model, input that is not plain float64, shapes that do not broadcast): the caller then
     takes the general path, which reports such input."""
     from . import kernel
-    from .models.sliding import Sliding
+    from ..models.sliding import Sliding
 
     if not isinstance(m, Sliding) or not isinstance(mask_unphysical, (bool, np.bool_)):
         return None
@@ -206,7 +206,7 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
         (:class:`~stability.parameters.DomainError`); if True, such points get NaN.
     method : {"kernel", "polynomial", "lapack"}
         Root finder (see :data:`METHODS`); the default, ``"kernel"``, is the compiled kernel
-        of :mod:`stability.kernel` (models of degree <= 3; others fall back to
+        of :mod:`stability.linear.kernel` (models of degree <= 3; others fall back to
         ``"polynomial"``).
 
     Returns

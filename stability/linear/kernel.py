@@ -13,14 +13,14 @@ the exact structural tests below mean what they say). Per point:
 1. *Coefficients.* For the sliding model (eq. 11) they are formed inside the kernel from the
    parameters, with the same floating-point operations as
    :meth:`stability.models.sliding.Sliding.coefficients` (``A_G`` by Dekker's product and
-   Knuth's sum as in :mod:`stability.inertia`); ``tests/test_kernel.py`` checks that the two
+   Knuth's sum as in :mod:`stability.models.inertia`); ``tests/test_kernel.py`` checks that the two
    agree bit for bit. Any other model of degree <= 3 goes through
    :func:`coefficient_spectrum`, on the coefficients the model returns.
 2. *Structural zeros.* Exactly zero trailing coefficients (the sliding model's
    ``c0 = -mu alpha_v q fr_inv`` at ``fr_inv = 0``, ``q = 0`` or ``alpha_v = 0``) give exactly
    zero roots with error bound 0; the polynomial is deflated exactly.
 3. *Quadratics* (the deflated cubic, and the fixed-pivot and rolling models, eq. 8) as in
-   :mod:`stability.roots`: conservative ones (``p(i nu)`` real) in real arithmetic, so that a
+   :mod:`stability.linear.roots`: conservative ones (``p(i nu)`` real) in real arithmetic, so that a
    neutral mode has ``Re s = 0`` exactly; others by the cancellation-free formula; one Newton
    step.
 4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates (a real leading
@@ -37,10 +37,10 @@ the exact structural tests below mean what they say). Per point:
    ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
    Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
    benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
-5. *Error bound*, the one of :mod:`stability.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
+5. *Error bound*, the one of :mod:`stability.linear.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
    ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
    and ``p''`` evaluated at the final roots.
-6. *Sorting and the decision* of :mod:`stability.spectra`: modes by decreasing ``Re s`` (ties
+6. *Sorting and the decision* of :mod:`stability.linear.spectra`: modes by decreasing ``Re s`` (ties
    by decreasing ``Im s``; compare-exchanges by selects); a mode is neutral if ``Re s = 0`` by
    structure or ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
 
@@ -63,7 +63,7 @@ __all__ = ["sliding_spectrum", "checked_sliding_spectrum", "sliding_domain", "co
 MAX_DEGREE = 3
 
 _U = 2.0**-53
-_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.inertia
+_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.models.inertia
 _STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
 _INSIDE, _OUTSIDE_DOMAIN, _NOT_FINITE = 0, 1, 2  # codes of _domain_code
 #: slack of the bound sigma <= 2 A_G, as in stability.parameters (round-off in the caller's bound)
@@ -102,7 +102,7 @@ def _mod(z):
 
 @njit(**_JIT)
 def _horner(c3, c2, c1, c0, s):
-    """``p, p', p''`` at ``s`` (Horner, as stability.roots.horner with leading zeros)."""
+    """``p, p', p''`` at ``s`` (Horner, as stability.linear.roots.horner with leading zeros)."""
     p = c3
     d1 = 0j
     d2 = 0j
@@ -121,7 +121,7 @@ def _value(c3, c2, c1, c0, s):
 
 @njit(**_JIT)
 def _bound(c3, c2, c1, c0, deg, r):
-    """Absolute error bound of a root ``r`` (stability.roots, module docstring)."""
+    """Absolute error bound of a root ``r`` (stability.linear.roots, module docstring)."""
     a = _mod(r)
     scale = ((_mod(c3) * a + _mod(c2)) * a + _mod(c1)) * a + _mod(c0)
     dp = (deg + 4) * _U * scale
@@ -167,7 +167,7 @@ def _newton(c3, c2, c1, c0, r, iterations):
 
 @njit(**_JIT)
 def _quadratic(a, b, k):
-    """Roots of ``a s^2 + b s + k`` and whether their real part is exactly zero (stability.roots)."""
+    """Roots of ``a s^2 + b s + k`` and whether their real part is exactly zero (stability.linear.roots)."""
     if a.imag == 0 and b.real == 0 and k.imag == 0:
         # conservative: p(i nu) = -a nu^2 - b.imag nu + k is real
         A, B, C = -a.real, -b.imag, k.real
@@ -489,7 +489,7 @@ def _two_product(a, b):
 
 @njit(**_JIT)
 def _transverse_inertia_g(q, mu):
-    """``A_G = 1 - mu q^2`` with the operations of :func:`stability.inertia.transverse_inertia_g`
+    """``A_G = 1 - mu q^2`` with the operations of :func:`stability.models.inertia.transverse_inertia_g`
     (Dekker's product, Knuth's sum), so the two agree bit for bit."""
     t, te = _two_product(q, q)
     u, ue = _two_product(mu, t)
@@ -702,7 +702,7 @@ def _computable_limits() -> np.ndarray:
     :data:`stability.parameters.COMPUTABLE_RANGE` at each call (passed to the kernel as data, so
     a change there is never hidden by numba's cache); ``0`` and the largest float where it names
     none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
-    from . import parameters
+    from .. import parameters
 
     rng = getattr(parameters, "COMPUTABLE_RANGE", {})
     lim = np.array([float(x) for k in ("q", "fr_inv", "sigma", "alpha_v", "mu") for x in rng.get(k, (0.0, math.inf))])

@@ -1,0 +1,15 @@
+"""Linear stability of the upright spin: spectra of the linear models and what is built on them.
+
+Layer 2 (docs/architecture.md): imports :mod:`stability.models`, :mod:`stability.parameters`
+never the grids, the nonlinear runs, the figures or
+the command line.
+
+* :mod:`~stability.linear.roots` - structured polynomial roots and their error bounds;
+* :mod:`~stability.linear.kernel` - the compiled default eigenvalue method;
+* :mod:`~stability.linear.spectra` - :func:`~stability.linear.spectra.eigenvalues`,
+  :func:`~stability.linear.spectra.spectrum` and the marginal decision;
+* :mod:`~stability.linear.modes` - mode tracking along a path;
+* :mod:`~stability.linear.neutrality` - the neutral condition ``p(i w) = 0``;
+* :mod:`~stability.linear.critical` - thresholds and the critical spin of a real top;
+* :mod:`~stability.linear.control_forms` - python-control forms of the operators.
+"""
