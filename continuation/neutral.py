@@ -556,7 +556,7 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
         "units": "1"})
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
-    from stability.atlas import package_version
+    from stability._version import package_version
 
     ds_attrs = {"Conventions": "CF-1.10", "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
                 "model": model.name, "equations": model.equations}

@@ -8,35 +8,25 @@ and ``frequency = Im s`` in units of the spin rate.
 
 from __future__ import annotations
 
-import functools
 from datetime import datetime, timezone
-from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
+from ._version import package_version
 from .io import PRODUCT_ATTR
 from .models import get_model
 from .parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
 from .linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 
-__all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE", "package_version"]
+__all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE"]
 
 TIME_CONVENTION = ("x ~ exp(s t), t in units of 1/Omega, components in the non-rotating frame; "
                    "growth_rate = Re s, frequency = Im s, in units of the spin rate Omega")
 MARGINAL_RULE = ("a mode is neutral if Re s = 0 by structure (exact zero root, or real root nu of a "
                  "conservative p(i nu)) or |Re s| <= 4 e + 16 u max|s| (e: the root's error bound, "
                  "u = 2^-53); unstable if a mode grows beyond that, stable if all decay beyond it")
-
-
-@functools.lru_cache(maxsize=1)
-def package_version() -> str:
-    """Installed version of tippe-stability (read once: importlib.metadata takes ~0.2 ms)."""
-    try:
-        return version("tippe-stability")
-    except PackageNotFoundError:  # pragma: no cover - source tree without install
-        return "unknown"
 
 
 def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU,

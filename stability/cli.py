@@ -69,12 +69,9 @@ def _join_negative_values(argv: list[str]) -> list[str]:
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``tippe`` parser with every registered subcommand."""
-    from importlib.metadata import PackageNotFoundError, version
+    from ._version import package_version
 
-    try:
-        ver = version("tippe-stability")
-    except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        ver = "unknown"
+    ver = package_version()
     parser = _Parser(
         prog="tippe", description="Linear stability and bifurcation analysis of the Tippe top.",
         epilog="Errors are reported on one line; add --debug (or set TIPPE_DEBUG=1) for a traceback.")

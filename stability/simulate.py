@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .atlas import package_version
+from ._version import package_version
 from .nonlinear import get_nonlinear_model
 from .nonlinear.friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
