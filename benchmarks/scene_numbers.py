@@ -5,7 +5,7 @@ Usage: python benchmarks/scene_numbers.py
 
 from __future__ import annotations
 
-from stability.scene import PAPER_NUMBERS, friction_cases, scene_numbers
+from stability.nonlinear.scene import PAPER_NUMBERS, friction_cases, scene_numbers
 
 
 def main() -> None:

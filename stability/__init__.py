@@ -15,9 +15,9 @@ from .io import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS, LinearModel, get_model
 from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
 from .linear.spectra import eigenvalues, spectrum
-from .simulate import simulate
-from .jacobian import jacobian_eigenvalues
-from .validate import coulomb_growth, validate
+from .nonlinear.runs import simulate
+from .nonlinear.jacobian import jacobian_eigenvalues
+from .nonlinear.validation import coulomb_growth, validate
 from .top import Top
 from .linear.critical import critical_spin, threshold, thresholds
 

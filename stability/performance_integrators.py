@@ -5,7 +5,7 @@ Three problems, all the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``si
 
 * *the paper's run* (Sec. 3(ii), ``fr_inv = 0.3``, ``alpha_v = 0.5``, the printed initial
   conditions, 650 time units sampled every 0.05): the error is that of the time of the axis'
-  90-degree crossing (:func:`stability.scene.crossing_time`, linear interpolation between
+  90-degree crossing (:func:`stability.nonlinear.scene.crossing_time`, linear interpolation between
   samples, the same for every method, so the interpolation error cancels to first order),
   against a DOP853 reference at ``rtol = 1e-13``, ``atol = 1e-16``. Methods: the compiled
   Dormand-Prince 5(4) (``dopri5``, the package's default, ``simulate(method="auto")`` at its
@@ -113,8 +113,8 @@ def crossing_run(method: str, rtol: float = DEFAULT_RTOL, atol: float | None = N
     (float, int)
         Crossing time (units of ``1/Omega``; NaN if the axis never reaches 90 degrees) and nfev.
     """
-    from .scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from .simulate import simulate
+    from .nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from .nonlinear.runs import simulate
 
     _check_tol(rtol)
     ds = simulate("sliding", t_end=T_END, dt=DT, fr_inv=FR_INV, alpha_v=ALPHA_V, **PAPER, **INITIAL_CONDITIONS[FR_INV],
@@ -129,8 +129,8 @@ def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     from scipy.integrate import solve_ivp
 
     from .nonlinear.reference import sliding_rhs
-    from .scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from .simulate import initial_state
+    from .nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from .nonlinear.runs import initial_state
 
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]
@@ -161,7 +161,7 @@ def stiff_run(method: str, alpha_v: float, rtol: float = 1e-6) -> tuple[float, i
     (float, int, int)
         Final tilt ``|k_1 + i k_2|``, nfev and the integrator's status.
     """
-    from .simulate import simulate
+    from .nonlinear.runs import simulate
 
     if not (isinstance(alpha_v, float) and alpha_v > 0):
         raise ValueError(f"alpha_v = {alpha_v!r} must be a float > 0")
@@ -186,8 +186,8 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
     float
         The fitted growth rate ``measured_growth_rate`` (units of the spin rate).
     """
-    from .scene import PAPER
-    from .validate import validate
+    from .nonlinear.scene import PAPER
+    from .nonlinear.validation import validate
 
     _check_tol(rtol)
     ds = validate("sliding", q=PAPER["q"], fr_inv=FR_INV, sigma=PAPER["sigma"], mu=PAPER["mu"], alpha_v=ALPHA_V,

@@ -26,7 +26,7 @@ A ``kind = "critical_spin"`` recipe draws the critical spin rate (rpm) of a real
 :func:`stability.critical_spin`.
 
 A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
-``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.scene`);
+``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.nonlinear.scene`);
 it has no grid.
 
 The outputs are ``<name>.nc`` (regenerated, not committed) and ``<name>.png`` (committed when the
@@ -294,7 +294,7 @@ def _read(path: Path) -> xr.Dataset:
 
 def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
     """The runs a scene figure needs: key -> (label, function making the run)."""
-    from . import scene
+    from .nonlinear import scene
 
     paper = dict(method="rk4", step=0.1, friction="componentwise", slip_scale=1e-12)
     runs: dict[str, tuple[str, Callable[[], xr.Dataset]]] = {

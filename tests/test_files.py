@@ -76,10 +76,10 @@ def _unwritable_directory(tmp_path):
 @pytest.mark.parametrize("command,module,func,argv", [
     ("atlas", "stability.commands.atlas", "atlas", ATLAS),
     ("atlas --chunks", "stability.commands.atlas", "atlas", [*ATLAS, "--chunks", "1"]),
-    ("simulate", "stability.simulate", "simulate",
+    ("simulate", "stability.nonlinear.runs", "simulate",
      ["simulate", "--t-end", "1", "--omega", "0,0,1", "--k", "0,0,1", "--q", "-0.1", "--fr-inv", "0.3",
       "--sigma", "1", "--alpha-v", "0.5"]),
-    ("validate", "stability.validate", "validate",
+    ("validate", "stability.nonlinear.validation", "validate",
      ["validate", "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"]),
     ("neutral", "continuation.neutral", "neutral_curve",
      ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"]),

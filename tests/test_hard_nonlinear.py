@@ -124,7 +124,7 @@ def test_stiff_viscous_friction_default_copes(rolling_reference):
 def test_moderately_stiff_run_keeps_the_explicit_method_and_its_accuracy():
     """alpha_v = 100 (slip-mode rate 127, below STIFF_RATE = 400): "auto" keeps the compiled
     dopri5, whose step is then partly held by stability, because there it is both cheaper and
-    more accurate than LSODA (stability.simulate.STIFF_RATE has the measurements). Reference:
+    more accurate than LSODA (stability.nonlinear.runs.STIFF_RATE has the measurements). Reference:
     DOP853 at rtol 1e-13 (a different method; it agrees with Radau at rtol 1e-12 to 8e-15).
     Linear regime, tilt 1e-3, 50 time units: measured relative error of the final tilt 3e-10
     for "auto" at the default rtol 1e-9 (LSODA at the same rtol: 8.5e-7); the bound 1e-8

@@ -18,7 +18,7 @@ import pytest
 
 import stability
 from stability import jacobian_eigenvalues
-from stability.jacobian import transverse_jacobian
+from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear import reference, rolling, sliding
 from stability.nonlinear.parameters import pack
 from tests.conftest import random_domain_points

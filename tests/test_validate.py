@@ -15,7 +15,7 @@ import pytest
 
 import stability
 from stability import validate
-from stability.validate import coulomb_growth
+from stability.nonlinear.validation import coulomb_growth
 
 # a spread across the domain: both signs of q, fr_inv 0..3, alpha_v 0.05..5, stable and unstable
 SPREAD = dict(q=[-0.3, -0.1, 0.1, 0.3, -0.1, 0.2, 0.1, -0.45],

@@ -48,7 +48,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe simulate``."""
-    from ..simulate import simulate
+    from ..nonlinear.runs import simulate
 
     out = check_output_path(args.output, overwrite=args.overwrite)
     ds = simulate(args.model, t_end=args.t_end, omega=args.omega, k=args.k, velocity=args.velocity,

@@ -30,7 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe validate``."""
     from ..io import check_output_path, write_dataset
-    from ..validate import validate
+    from ..nonlinear.validation import validate
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))

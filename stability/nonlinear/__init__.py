@@ -11,9 +11,15 @@ name           module                                       equations
 Shared pieces: the friction law (:mod:`~stability.nonlinear.friction`), the integrators
 (:mod:`~stability.nonlinear.integrators`), the parameter vector
 (:mod:`~stability.nonlinear.parameters`) and the energy and integrals
-(:mod:`~stability.nonlinear.quantities`). Public entry points are
-:func:`stability.simulate`, :func:`stability.jacobian_eigenvalues` and
-:func:`stability.validate`.
+(:mod:`~stability.nonlinear.quantities`). Built on them: the runs
+(:mod:`~stability.nonlinear.runs`, :func:`stability.simulate`), the first-principles
+linearisation (:mod:`~stability.nonlinear.jacobian`, :func:`stability.jacobian_eigenvalues`),
+the validation of the linear predictions (:mod:`~stability.nonlinear.validation`,
+:func:`stability.validate`) and the scene of Sec. 3(ii) (:mod:`~stability.nonlinear.scene`).
+
+Layer 3 (docs/architecture.md): imports the models and the linear layer, never the grids,
+recipes, figures or command line. This ``__init__`` imports only the three model modules, so
+that ``runs``, ``jacobian`` and ``validation`` can import the registry from it without a cycle.
 """
 
 from __future__ import annotations

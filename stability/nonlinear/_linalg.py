@@ -6,7 +6,7 @@ calls from numba carry an overhead comparable to the work at this size, so the s
 solved here by Gaussian elimination with partial pivoting, written with scalar loops.
 
 The functions are generic in the dtype: called with complex arrays they are compiled for
-complex128, which is what the complex-step Jacobian of :mod:`stability.jacobian` uses (the
+complex128, which is what the complex-step Jacobian of :mod:`stability.nonlinear.jacobian` uses (the
 pivot choice uses ``abs`` and does not break analyticity).
 """
 

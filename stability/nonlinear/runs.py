@@ -21,13 +21,13 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ._version import package_version
-from .nonlinear import get_nonlinear_model
-from .nonlinear.friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
-from .nonlinear.parameters import pack
-from .nonlinear.quantities import energy_parts, h_cg
-from .parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
+from .._version import package_version
+from . import get_nonlinear_model
+from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
+from .parameters import pack
+from .quantities import energy_parts, h_cg
+from ..parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
                          check_integer, check_interval, check_positive)
 
 __all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector"]

@@ -22,8 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from .nonlinear import get_nonlinear_model
-from .parameters import DEFAULT_MU
+from . import get_nonlinear_model
+from ..parameters import DEFAULT_MU
 
 __all__ = ["jacobian_eigenvalues", "transverse_jacobian", "upright_state"]
 
@@ -57,7 +57,7 @@ def transverse_jacobian(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v:
         ``max |J - [[Re A, -Im A], [Im A, Re A]]|``: zero up to rounding when the real block
         is complex-linear.
     """
-    from .simulate import model_parameter_vector
+    from .runs import model_parameter_vector
 
     m = get_nonlinear_model(model)
     _, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v,

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .simulate import simulate
+from .runs import simulate
 
 __all__ = ["PAPER", "INITIAL_CONDITIONS", "FRICTION_CASES", "run", "crossing_time",
            "scene_numbers", "friction_cases"]

@@ -38,11 +38,11 @@ import numpy as np
 import xarray as xr
 
 from .jacobian import transverse_jacobian, upright_state
-from .nonlinear import get_nonlinear_model
-from .nonlinear.integrators import SCIPY_METHODS
-from .parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
-from .simulate import simulate
-from .linear.spectra import eigenvalues
+from . import get_nonlinear_model
+from .integrators import SCIPY_METHODS
+from ..parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
+from .runs import simulate
+from ..linear.spectra import eigenvalues
 
 __all__ = ["validate", "coulomb_growth", "leading_mode", "RESOLVED"]
 
