@@ -8,10 +8,10 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :data:`MODELS` - the registry of linear models ("fixed_pivot", "rolling", "sliding");
 * :func:`state_space`, :func:`friction_loop` - python-control forms of the operators.
 """
-from .atlas import atlas
+from .grids.atlases import atlas
 from .linear.control_forms import friction_loop, state_space
-from .distributed import ChunkError
-from .io import AtlasFileError, open_atlas, write_dataset
+from .grids.chunked import ChunkError
+from .grids.netcdf import AtlasFileError, open_atlas, write_dataset
 from .models import MODELS, LinearModel, get_model
 from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
 from .linear.spectra import eigenvalues, spectrum

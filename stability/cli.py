@@ -9,7 +9,7 @@ Errors end the program with exactly one line on stderr and no traceback
 * a mistake in the command line or its values (argparse's own errors, :class:`ValueError`,
   :class:`TypeError`, including every :class:`~stability.parameters.DomainError`) and a file
   that cannot be read or written (:class:`OSError`): ``tippe CMD: error: ...``, exit status 2;
-* a chunk of a chunked atlas that failed (:class:`~stability.distributed.ChunkError`):
+* a chunk of a chunked atlas that failed (:class:`~stability.grids.chunked.ChunkError`):
   exit status 1, the line says what was kept;
 * an interruption (Ctrl-C): exit status 130, no partial output file is left;
 * anything else is a bug of the program: one line ``tippe CMD: internal error: ...``, exit
@@ -91,7 +91,7 @@ def _debug_env() -> bool:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status."""
     from .commands._args import Interrupted
-    from .distributed import ChunkError
+    from .grids.chunked import ChunkError
 
     args_list = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in args_list or _debug_env()

@@ -50,8 +50,9 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .atlas import atlas
-from .io import AtlasFileError, check_output_path, open_atlas, write_dataset
+from .grids.atlases import atlas
+from .grids.netcdf import AtlasFileError, check_output_path, open_atlas, write_dataset
+from .grids.ranges import parse_values
 from .models import MODELS
 from .parameters import LONG_NAMES, PARAMETERS
 
@@ -128,8 +129,6 @@ def code_fingerprint() -> str:
 
 
 def _grid_value(path: Path, key: str, value: Any) -> float | np.ndarray:
-    from .commands._args import parse_values
-
     if isinstance(value, bool):
         raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
     if isinstance(value, (int, float)):

@@ -77,7 +77,7 @@ def assert_resume_completes(ds: xr.Dataset, out, reference: xr.Dataset, monkeypa
     ``reference``. Undoes the caller's ``monkeypatch`` first (the injected fault), then counts
     the calls of the real chunk function."""
     import stability
-    import stability.distributed as dist
+    import stability.grids.chunked as dist
 
     monkeypatch.undo()
     calls = []

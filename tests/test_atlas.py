@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 import stability
-from stability.io import AtlasFileError
+from stability.grids.netcdf import AtlasFileError
 
 
 @pytest.fixture

@@ -11,7 +11,7 @@ import pytest
 
 import stability
 from stability.cli import main
-from stability.distributed import normalize_chunks
+from stability.grids.chunked import normalize_chunks
 from stability.parameters import DomainError, check_domain
 
 GOOD = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)

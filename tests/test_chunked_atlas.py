@@ -15,7 +15,8 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.distributed import ResumeError, dask_client, parts_directory, write_atlas
+from stability.grids.chunked import ResumeError, parts_directory, write_atlas
+from stability.grids.cluster import dask_client
 from stability.parameters import DomainError
 from conftest import assert_resume_completes, assert_same_atlas
 
@@ -54,7 +55,7 @@ def test_chunk_wise_file_equals_in_memory(tmp_path, reference):
 
 
 def test_interrupted_run_leaves_no_file_and_resumes(tmp_path, reference, monkeypatch):
-    import stability.distributed as dist
+    import stability.grids.chunked as dist
 
     out = tmp_path / "a.nc"
     ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
@@ -78,7 +79,7 @@ def test_interrupted_run_leaves_no_file_and_resumes(tmp_path, reference, monkeyp
 
 
 def test_resume_refuses_a_store_of_another_atlas(tmp_path, monkeypatch):
-    import stability.distributed as dist
+    import stability.grids.chunked as dist
 
     out = tmp_path / "a.nc"
     monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: (_ for _ in ()).throw(KeyboardInterrupt))

@@ -15,7 +15,7 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.commands._args import parse_values
+from stability.grids.ranges import parse_values
 
 
 def test_parse_values():

@@ -16,9 +16,10 @@ import pytest
 import xarray as xr
 
 import stability
-import stability.distributed as dist
+import stability.grids.chunked as dist
 from stability.cli import main
-from stability.distributed import ChunkError, dask_client, parts_directory, write_atlas
+from stability.grids.chunked import ChunkError, parts_directory, write_atlas
+from stability.grids.cluster import dask_client
 from conftest import assert_resume_completes, assert_same_atlas
 
 GRID = dict(q=np.linspace(-0.5, 0.5, 12), fr_inv=[0.0, 0.3], sigma=np.linspace(0.4, 1.2, 4), alpha_v=0.5,

@@ -1,7 +1,7 @@
 """Files: atlases that are missing, truncated, foreign or not netCDF; output paths checked before
 any computation; no partial files; existing files kept unless asked; recipes regenerate their own.
 
-Reference: docs/input_checks.md (file behaviour) and stability.io's contract.
+Reference: docs/input_checks.md (file behaviour) and stability.grids.netcdf's contract.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.io import AtlasFileError
+from stability.grids.netcdf import AtlasFileError
 
 ATLAS = ["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5"]
 

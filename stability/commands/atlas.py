@@ -3,7 +3,7 @@
 With ``--chunks`` the grid is computed and written chunk by chunk (memory stays at a few
 chunks), in this process or on a dask.distributed cluster (``--workers N``: a local one;
 ``--scheduler``: an existing one), with a progress bar; ``--resume`` keeps finished chunks so
-that an interrupted run can be continued (stability.distributed).
+that an interrupted run can be continued (stability.grids.chunked).
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..atlas import atlas
-from ..io import check_output_path, write_dataset
+from ..grids.atlases import atlas
+from ..grids.netcdf import check_output_path, write_dataset
 from ..models import MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ._args import Interrupted, add_parameter_flags, parameter_values
@@ -72,7 +72,8 @@ def parse_chunks(text: str) -> int | dict[str, int]:
 
 def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     """``tippe atlas --chunks``: lazy atlas, written chunk by chunk."""
-    from ..distributed import dask_client, parts_directory, write_atlas
+    from ..grids.chunked import parts_directory, write_atlas
+    from ..grids.cluster import dask_client
 
     if args.plot:
         raise ValueError("--plot is not available with --chunks (the grid may not fit in memory); "

@@ -21,7 +21,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..io import atomic_output, check_output_path
+from ..grids.netcdf import atomic_output, check_output_path
 from ..performance import EIGEN_TARGET, SUITES, WorkPrecision, peak_memory_mb
 
 __all__ = ["register", "run", "run_suite", "summary_lines", "EIGEN_TARGET", "QUICK"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..io import check_output_path, write_dataset
+from ..grids.netcdf import check_output_path, write_dataset
 from ..models import MODELS
 from ._args import FLAGS
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..io import check_output_path, write_dataset
+from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
 

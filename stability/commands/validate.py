@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe validate``."""
-    from ..io import check_output_path, write_dataset
+    from ..grids.netcdf import check_output_path, write_dataset
     from ..nonlinear.validation import validate
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None

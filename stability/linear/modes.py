@@ -188,7 +188,7 @@ def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
     xarray.DataArray
         Over the grid; NaN outside the domain.
     """
-    from ..io import require_atlas
+    from ..grids.netcdf import require_atlas
 
     require_atlas(ds)
     g = ds["growth_rate"].transpose(..., "mode")

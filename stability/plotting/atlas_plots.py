@@ -12,8 +12,8 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ..io import atomic_output
-from ..io import require_atlas
+from ..grids.netcdf import atomic_output
+from ..grids.netcdf import require_atlas
 from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
 

@@ -14,11 +14,11 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ._version import package_version
-from .io import PRODUCT_ATTR
-from .models import get_model
-from .parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
-from .linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+from .._version import package_version
+from .netcdf import PRODUCT_ATTR
+from ..models import get_model
+from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
+from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 
 __all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE"]
 
@@ -48,11 +48,11 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
     method : {"kernel", "polynomial", "lapack"}
         Eigenvalue method (:data:`stability.linear.spectra.METHODS`).
     chunks : int or dict of str to int, optional
-        If given, the dataset is lazy and dask-backed (:mod:`stability.distributed`): chunk
+        If given, the dataset is lazy and dask-backed (:mod:`stability.grids.chunked`): chunk
         sizes along the grid dimensions (an int: the same along each; a dict: by dimension,
         the others whole). Nothing is computed until the values are used; the domain is
         checked at once. Write it chunk by chunk with
-        :func:`stability.distributed.write_atlas` (or ``write_dataset``).
+        :func:`stability.grids.chunked.write_atlas` (or ``write_dataset``).
 
     Returns
     -------
@@ -85,7 +85,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         else:
             grid[k] = v
     if chunks is not None:
-        from .distributed import lazy_spectra
+        from .chunked import lazy_spectra
 
         growth, freq, bound, stab, inside = lazy_spectra(m, values, dims, chunks, mask_unphysical=mask_unphysical,
                                                          method=method)

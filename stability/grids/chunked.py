@@ -8,7 +8,7 @@
   (dimensions, coordinates, attributes, as xarray writes them) under a temporary name next to
   the target; each chunk is computed (in this process, or on a dask.distributed cluster), written
   into its region and dropped; the file is renamed over the target only when complete
-  (:func:`stability.io.atomic_output`). Memory stays at a few chunks whatever the grid size;
+  (:func:`stability.grids.netcdf.atomic_output`). Memory stays at a few chunks whatever the grid size;
   an interruption leaves no output file.
 * Resuming: with ``resume=True`` every finished chunk is also kept in a sidecar directory
   ``<output>.parts/`` (one ``.npz`` per chunk, each renamed into place when complete, and a
@@ -16,22 +16,17 @@
   computes only the others; the directory is removed once the output file is in place. A
   sidecar written for a different atlas (other grid, model, method, chunks or package version)
   is refused with the reason, never mixed in.
-* :func:`dask_client`: where the chunks run. In this process by default (chunks one after the
-  other, each using every core through the kernel's threads); a LocalCluster on 127.0.0.1
-  with ``workers=N``; an existing cluster with ``scheduler="tcp://host:port"`` or the path of
-  a scheduler file. With a cluster, results come back to this process to be written, so
-  no file system needs to be shared.
+* Where the chunks run: in this process by default, or on a dask.distributed cluster given as
+  ``client`` (:func:`stability.grids.cluster.dask_client`).
 """
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import json
-import logging
 import os
 import shutil
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from itertools import product
 from pathlib import Path
 from typing import Any
@@ -39,12 +34,11 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .io import atomic_output, check_output_path
-from .models import LinearModel
-from .parameters import check_domain, check_flag, check_integer
+from .netcdf import atomic_output, check_output_path
+from ..models import LinearModel
+from ..parameters import check_domain, check_flag, check_integer
 
-__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "dask_client", "ResumeError", "ChunkError",
-           "parts_directory"]
+__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "ResumeError", "ChunkError", "parts_directory"]
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
 _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
@@ -122,7 +116,7 @@ def _check_grid_domain(values: dict[str, np.ndarray], dims: list[str], mask: boo
 def _block_spectra(*args: np.ndarray, model: LinearModel, names: tuple[str, ...], mask: bool,
                    method: str) -> tuple[np.ndarray, ...]:
     """Spectra of one chunk: growth rate, frequency, bound, flag, physical."""
-    from .linear.spectra import spectrum
+    from ..linear.spectra import spectrum
 
     p = dict(zip(names, args))
     shape = np.broadcast_shapes(*(np.shape(a) for a in args))
@@ -159,7 +153,7 @@ def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[s
         growth rate, frequency, error bound (grid + mode), stability flag and physical flag
         (grid).
     """
-    from .linear.spectra import METHODS
+    from ..linear.spectra import METHODS
 
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
@@ -298,7 +292,7 @@ def _spec(ds: xr.Dataset, dims: list[str]) -> dict[str, Any]:
 
 def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of one chunk of the grid (runs wherever the chunk is sent)."""
-    from .models import get_model
+    from ..models import get_model
 
     dims = spec["dims"]
     args = []
@@ -334,7 +328,8 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     overwrite : bool, default False
         Replace an existing file.
     client : distributed.Client, optional
-        Compute the chunks on this cluster (see :func:`dask_client`); in this process if None.
+        Compute the chunks on this cluster (see :func:`stability.grids.cluster.dask_client`); in this
+        process if None.
     resume : bool, default False
         Keep finished chunks in ``<output>.parts/`` and reuse those of an earlier interrupted
         run (module docstring). Without it nothing survives an interruption.
@@ -495,72 +490,3 @@ class _progress:
             self.bar.update(1)
         if self.fn is not None:
             self.fn(self.done, self.total)
-
-
-@contextlib.contextmanager
-def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> Iterator[Any]:
-    """Where chunks run: None (this process), a LocalCluster, or an existing cluster.
-
-    Parameters
-    ----------
-    workers : int, optional
-        Start a LocalCluster of this many worker processes (one thread each) on 127.0.0.1,
-        closed on exit.
-    scheduler : str, optional
-        Address of a running scheduler (``tcp://host:port``) or the path of its scheduler
-        file (``dask scheduler --scheduler-file``).
-
-    Yields
-    ------
-    distributed.Client or None
-        None when neither is given: chunks are computed in this process.
-    """
-    if workers is not None and scheduler is not None:
-        raise ValueError("give --workers (a local cluster) or --scheduler (an existing one), not both")
-    if workers is None and scheduler is None:
-        yield None
-        return
-    if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
-        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a "
-                        "scheduler file")
-    from distributed import Client, LocalCluster
-
-    if workers is not None:
-        workers = check_integer("workers", workers, minimum=1)
-        if workers > 1024:
-            raise ValueError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                          dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
-                Client(cluster) as client:
-            yield client
-        return
-    scheduler = str(scheduler)
-    if "://" in scheduler:
-        client = _connect(scheduler, address=scheduler)
-    else:
-        path = Path(scheduler)
-        if not path.is_file():
-            raise FileNotFoundError(f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an "
-                                    "existing scheduler file")
-        try:
-            info = json.loads(path.read_text())
-            address = info["address"]
-        except (ValueError, KeyError, TypeError, UnicodeDecodeError):
-            raise ValueError(f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
-                             "'address', as written by `dask scheduler --scheduler-file`)") from None
-        client = _connect(scheduler, scheduler_file=str(path), address=address)
-    with client:
-        yield client
-
-
-def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
-    """A distributed Client, or an OSError naming the scheduler if it cannot be reached."""
-    from distributed import Client
-
-    try:
-        if "scheduler_file" in kwargs:
-            return Client(timeout="20s", **kwargs)
-        return Client(address, timeout="20s")
-    except (OSError, TimeoutError) as exc:
-        raise ConnectionError(f"cannot reach the dask scheduler {what!r} (address {address}): "
-                              f"{type(exc).__name__}: {exc}") from None

@@ -1,0 +1,91 @@
+"""Where the chunks of a chunked atlas run: this process, a local cluster, or an existing one.
+
+:func:`dask_client`: in this process by default (chunks one after the other, each using every
+core through the kernel's threads); a LocalCluster on 127.0.0.1 with ``workers=N``; an existing
+cluster with ``scheduler="tcp://host:port"`` or the path of a scheduler file. With a cluster,
+results come back to this process to be written (:func:`stability.grids.chunked.write_atlas`),
+so no file system needs to be shared.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import logging
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from ..parameters import check_integer
+
+__all__ = ["dask_client"]
+
+
+@contextlib.contextmanager
+def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> Iterator[Any]:
+    """Where chunks run: None (this process), a LocalCluster, or an existing cluster.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Start a LocalCluster of this many worker processes (one thread each) on 127.0.0.1,
+        closed on exit.
+    scheduler : str, optional
+        Address of a running scheduler (``tcp://host:port``) or the path of its scheduler
+        file (``dask scheduler --scheduler-file``).
+
+    Yields
+    ------
+    distributed.Client or None
+        None when neither is given: chunks are computed in this process.
+    """
+    if workers is not None and scheduler is not None:
+        raise ValueError("give --workers (a local cluster) or --scheduler (an existing one), not both")
+    if workers is None and scheduler is None:
+        yield None
+        return
+    if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
+        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a "
+                        "scheduler file")
+    from distributed import Client, LocalCluster
+
+    if workers is not None:
+        workers = check_integer("workers", workers, minimum=1)
+        if workers > 1024:
+            raise ValueError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                          dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
+                Client(cluster) as client:
+            yield client
+        return
+    scheduler = str(scheduler)
+    if "://" in scheduler:
+        client = _connect(scheduler, address=scheduler)
+    else:
+        path = Path(scheduler)
+        if not path.is_file():
+            raise FileNotFoundError(f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an "
+                                    "existing scheduler file")
+        try:
+            info = json.loads(path.read_text())
+            address = info["address"]
+        except (ValueError, KeyError, TypeError, UnicodeDecodeError):
+            raise ValueError(f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
+                             "'address', as written by `dask scheduler --scheduler-file`)") from None
+        client = _connect(scheduler, scheduler_file=str(path), address=address)
+    with client:
+        yield client
+
+
+def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
+    """A distributed Client, or an OSError naming the scheduler if it cannot be reached."""
+    from distributed import Client
+
+    try:
+        if "scheduler_file" in kwargs:
+            return Client(timeout="20s", **kwargs)
+        return Client(address, timeout="20s")
+    except (OSError, TimeoutError) as exc:
+        raise ConnectionError(f"cannot reach the dask scheduler {what!r} (address {address}): "
+                              f"{type(exc).__name__}: {exc}") from None
