@@ -1,11 +1,19 @@
-"""Numerical continuation of curves ``F(u) = 0`` and the neutral curves of the linear models.
+"""Numerical continuation of curves ``F(u) = 0``: a generic pseudo-arclength engine.
 
 The engine (:mod:`continuation.engine`, :mod:`continuation.events`,
-:mod:`continuation.problem`, and the dense output :mod:`continuation.dense`) is generic and knows nothing about tops. The neutral-curve problem
-of the linear models (:mod:`continuation.neutral`) is one of its clients; it is imported on
-first use so that the engine can be used without :mod:`stability`. A problem may bring its own
-compiled corrector (the ``compiled_step`` hook of :mod:`continuation.problem`, built from
-:mod:`continuation.compiled`; :mod:`continuation.neutral_compiled` for the sliding model).
+:mod:`continuation.problem`, the dense output :mod:`continuation.dense`, and the compiled
+building blocks :mod:`continuation.compiled` and :mod:`continuation.linalg`) knows nothing about
+tops and imports nothing from :mod:`stability`. A problem may bring its own compiled corrector
+(the ``compiled_step`` hook of :mod:`continuation.problem`, built from
+:mod:`continuation.compiled`).
+
+Facade: the neutral curves of the linear models are a client of the engine and live in
+:mod:`stability.linear.neutral_curves` (with their compiled step,
+:mod:`stability.linear.neutral_compiled`). For convenience ``continuation.neutral_curve``,
+``continuation.fold_curve`` and ``continuation.NeutralProblem`` re-export them, imported on
+first use (module ``__getattr__``) so that the engine can be used without :mod:`stability`.
+This ``__init__`` is the only module of the package that refers to :mod:`stability`
+(docs/architecture.md).
 """
 
 from __future__ import annotations
@@ -29,7 +37,7 @@ _LAZY = {"neutral_curve", "fold_curve", "NeutralProblem"}
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        from . import neutral
+        from stability.linear import neutral_curves
 
-        return getattr(neutral, name)
+        return getattr(neutral_curves, name)
     raise AttributeError(f"module 'continuation' has no attribute {name!r}")

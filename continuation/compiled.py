@@ -18,7 +18,7 @@ problem live here, in the same floating-point operations as their Python twins i
   (``engine.hermite`` and the predictor of ``engine.trace``);
 * :func:`corrector_update`: one step of the pseudo-arclength Newton iteration of
   ``engine._newton``, the convergence tests included, so that a problem's loop is a few lines
-  (see :mod:`continuation.neutral_compiled`).
+  (see :mod:`stability.linear.neutral_compiled`).
 
 All are ``numba.njit(cache=True)``: compiled once per machine and cached in ``__pycache__``.
 """
@@ -30,7 +30,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.nonlinear._linalg import back_substitute, swap_rows
+from .linalg import back_substitute, swap_rows
 
 __all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "EPS", "FLOOR",
            "CONTINUE", "CONVERGED", "POLISH", "FAILED"]

@@ -49,7 +49,7 @@ and, optionally,
     same numbers the methods give), which the engine then does not ask for separately. It must solve the same equations as ``residual`` (which the engine
     still uses to project the start point and to end a branch on a constraint). Compiled
     building blocks with the Python path's operations are in :mod:`continuation.compiled`;
-    :mod:`continuation.neutral_compiled` is an example. The engine cannot take a problem's
+    :mod:`stability.linear.neutral_compiled` is an example. The engine cannot take a problem's
     compiled residual and run a generic compiled loop on it: numba does not cache a function
     that receives another compiled function as an argument, and the dispatch costs
     microseconds per call; so the problem owns its loop.

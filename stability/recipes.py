@@ -390,7 +390,7 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
 
 def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
     """Continued neutral curves of ``model`` over the recipe's (x, y) ranges."""
-    from continuation import neutral_curve
+    from .linear.neutral_curves import neutral_curve
 
     grid = _grid_for(model, recipe.grid)
     fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}

@@ -81,7 +81,7 @@ def _unwritable_directory(tmp_path):
       "--sigma", "1", "--alpha-v", "0.5"]),
     ("validate", "stability.nonlinear.validation", "validate",
      ["validate", "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"]),
-    ("neutral", "continuation.neutral", "neutral_curve",
+    ("neutral", "stability.linear.neutral_curves", "neutral_curve",
      ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"]),
 ])
 @pytest.mark.parametrize("problem", ["missing directory", "unwritable directory", "existing file"])

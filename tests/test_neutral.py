@@ -337,13 +337,13 @@ def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
     ("sigma", "alpha_v", dict(q=-0.1, fr_inv=0.3)),
 ])
 def test_compiled_path_gives_the_python_curve(x, y, fixed):
-    """The compiled corrector (continuation.neutral_compiled) against the engine's Python path
+    """The compiled corrector (stability.linear.neutral_compiled) against the engine's Python path
     on the same problem: a second implementation of the same equations, so the same points,
     special points and flags, coordinates and tangents to rounding (observed <= 3e-15; both
     at the rounding floor of a problem whose points have condition ~1). The closed forms above
     remain the reference. (At a branch point, where the Jacobian loses rank, the two agree
     only to the conditioning of the point, ~1e-7: not compared here.)"""
-    from continuation.neutral import NeutralProblem
+    from stability.linear.neutral_curves import NeutralProblem
 
     fast = neutral_curve("sliding", x, y, fixed=fixed)
     slow = neutral_curve("sliding", x, y, fixed=fixed, compiled=False)
@@ -365,7 +365,7 @@ def test_compiled_step_returns_the_problems_constraints_and_test_functions():
     """The compiled step also returns the constraints and test functions at the corrected
     point (continuation.problem: the optional two trailing values), which the engine then does
     not ask for: they must be the numbers the problem's own methods give there, exactly."""
-    from continuation.neutral import NeutralProblem
+    from stability.linear.neutral_curves import NeutralProblem
 
     fixed = dict(fr_inv=0.0, alpha_v=0.5, mu=MU)
     rng = {"q": (-1 / np.sqrt(MU), 1 / np.sqrt(MU)), "sigma": (0.0, 2.0)}
@@ -382,10 +382,10 @@ def test_compiled_step_returns_the_problems_constraints_and_test_functions():
 
 
 def test_dataset_assembled_directly_is_identical_to_the_constructors():
-    """continuation.neutral builds its Dataset from prepared parts (xarray's direct
+    """stability.linear.neutral_curves builds its Dataset from prepared parts (xarray's direct
     constructor, a fast path); it must be identical (values, attributes, index) to what the
     public constructor gives, for a curve and for an empty result."""
-    from continuation.neutral import _point_dataset
+    from stability.linear.neutral_curves import _point_dataset
 
     ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=MU))
     for n, variables in ((ds.sizes["point"], {k: ds[k].variable for k in ds.data_vars}), (0, {})):

@@ -41,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe neutral``."""
-    from continuation.neutral import neutral_curve
+    from ..linear.neutral_curves import neutral_curve
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     model = MODELS[args.model]

@@ -1,7 +1,7 @@
 """Linear stability of the upright spin: spectra of the linear models and what is built on them.
 
 Layer 2 (docs/architecture.md): imports :mod:`stability.models`, :mod:`stability.parameters`
-never the grids, the nonlinear runs, the figures or
+and the generic :mod:`continuation` engine, never the grids, the nonlinear runs, the figures or
 the command line.
 
 * :mod:`~stability.linear.roots` - structured polynomial roots and their error bounds;
@@ -11,5 +11,7 @@ the command line.
 * :mod:`~stability.linear.modes` - mode tracking along a path;
 * :mod:`~stability.linear.neutrality` - the neutral condition ``p(i w) = 0``;
 * :mod:`~stability.linear.critical` - thresholds and the critical spin of a real top;
+* :mod:`~stability.linear.neutral_curves`, :mod:`~stability.linear.neutral_compiled` - neutral
+  curves and folds by continuation (clients of :mod:`continuation`);
 * :mod:`~stability.linear.control_forms` - python-control forms of the operators.
 """

@@ -495,7 +495,7 @@ class NeutralCondition:
 
 # ------------------------------------------------------------------------------------------
 # compiled twins (numba) of the sliding model's crossing form, for the continuation's
-# compiled corrector (continuation.neutral_compiled)
+# compiled corrector (stability.linear.neutral_compiled)
 # ------------------------------------------------------------------------------------------
 #: numba options: IEEE arithmetic (no fastmath: no reassociation or contraction, so the
 #: compiled twins do the same floating-point operations as the scalar Python code above)

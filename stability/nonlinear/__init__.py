@@ -17,8 +17,8 @@ linearisation (:mod:`~stability.nonlinear.jacobian`, :func:`stability.jacobian_e
 the validation of the linear predictions (:mod:`~stability.nonlinear.validation`,
 :func:`stability.validate`) and the scene of Sec. 3(ii) (:mod:`~stability.nonlinear.scene`).
 
-Layer 3 (docs/architecture.md): imports the models and the linear layer, never the grids,
-recipes, figures or command line. This ``__init__`` imports only the three model modules, so
+Layer 3 (docs/architecture.md): imports the models, the linear layer and the small dense solves
+of :mod:`continuation.linalg`, never the grids, recipes, figures or command line. This ``__init__`` imports only the three model modules, so
 that ``runs``, ``jacobian`` and ``validation`` can import the registry from it without a cycle.
 """
 

@@ -28,7 +28,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._linalg import cross, solve_dense
+from continuation.linalg import solve_dense
+
+from .vectors import cross
 from .parameters import FR_INV, MU, Q, SIGMA
 
 __all__ = ["STATE", "rhs", "contact_forces"]

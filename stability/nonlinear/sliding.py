@@ -31,7 +31,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._linalg import cross, solve_dense
+from continuation.linalg import solve_dense
+
+from .vectors import cross
 from .friction import traction
 from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q, SIGMA
 

@@ -47,14 +47,15 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from stability.models import LinearModel, get_model
-from stability.linear.modes import structural_zeros
-from stability.linear.neutrality import NeutralCondition
-from stability.parameters import (DEFAULT_MU, LONG_NAMES, DomainError, as_scalar, check_choice, check_domain, check_flag,
-                                  check_integer, check_positive)
-from stability.linear.spectra import spectrum
+from continuation.engine import Branch, ConvergenceError, project, trace_both
 
-from .engine import Branch, ConvergenceError, project, trace_both
+from .._version import package_version
+from ..models import LinearModel, get_model
+from ..parameters import (DEFAULT_MU, LONG_NAMES, DomainError, as_scalar, check_choice, check_domain, check_flag,
+                          check_integer, check_positive)
+from .modes import structural_zeros
+from .neutrality import NeutralCondition
+from .spectra import spectrum
 
 __all__ = ["neutral_curve", "fold_curve", "NeutralProblem", "FoldProblem", "DEFAULT_RANGES"]
 
@@ -128,7 +129,7 @@ def _outside_domain_error(x: str, y: str, ranges: Mapping[str, tuple[float, floa
 
 
 #: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter,
-#: (code, parameter, a) the same g for the compiled twin, continuation.neutral_compiled)
+#: (code, parameter, a) the same g for the compiled twin, stability.linear.neutral_compiled)
 Constraint = tuple[str, str, Callable[[Mapping[str, float]], float], tuple[str, float] | None,
                    tuple[str, str, float]]
 
@@ -181,7 +182,7 @@ class NeutralProblem:
         ``(m, 2)`` points used to decide the form and structural deflation.
     form : {"crossing", "collision"}, optional
     compiled : bool, default True
-        Offer the engine the compiled step (:mod:`continuation.neutral_compiled`) and evaluate
+        Offer the engine the compiled step (:mod:`stability.linear.neutral_compiled`) and evaluate
         constraints and test functions by their compiled twins, where they exist (the sliding
         model's crossing form); False keeps everything in Python.
 
@@ -208,7 +209,7 @@ class NeutralProblem:
         self._compiled = None
         if self.cond._compiled is not None:  # the sliding model's crossing form, compiled
             from . import neutral_compiled as nc
-            from stability.linear.neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
+            from .neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
 
             codes = [c[4] for c in self._constraints]
             self._compiled = (
@@ -225,7 +226,7 @@ class NeutralProblem:
     def _compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
                        scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
         """The engine's hook (:mod:`continuation.problem`):
-        :func:`continuation.neutral_compiled.sliding_step` (with the constraints and test
+        :func:`stability.linear.neutral_compiled.sliding_step` (with the constraints and test
         functions at the new point)."""
         return self._step_kernel(*self._compiled, guess, t_plane, anchor, float(h), scale,
                                  float(tol), int(max_iter), float(max_move))
@@ -556,8 +557,6 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
         "units": "1"})
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
-    from stability._version import package_version
-
     ds_attrs = {"Conventions": "CF-1.10", "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
                 "model": model.name, "equations": model.equations}
     ds_attrs.update({k: float(v) for k, v in fixed.items()})
@@ -641,7 +640,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     form : {"crossing", "collision"}, optional
         Force the form (see :mod:`stability.linear.neutrality`); default from the model.
     compiled : bool, default True
-        Use the compiled corrector of :mod:`continuation.neutral_compiled` where there is one
+        Use the compiled corrector of :mod:`stability.linear.neutral_compiled` where there is one
         (the sliding model's crossing form; numba, compiled on first use and cached on disk);
         False forces the engine's Python path. The two give the same points to rounding.
 

@@ -1,13 +1,15 @@
-"""Small dense linear algebra for the compiled right-hand sides.
+"""Small dense linear algebra for compiled code: Gaussian elimination with partial pivoting.
 
-The accelerations of the sliding and rolling spheres solve a 6 x 6 linear system at every
-evaluation (three angular accelerations, two horizontal unknowns, the normal force). LAPACK
-calls from numba carry an overhead comparable to the work at this size, so the system is
-solved here by Gaussian elimination with partial pivoting, written with scalar loops.
+:func:`solve_dense` solves a small system in place, written with scalar loops: LAPACK calls from
+numba carry an overhead comparable to the work at this size. Its pieces :func:`swap_rows` and
+:func:`back_substitute` also serve :func:`continuation.compiled.solve_det`. Users outside this
+package: the compiled right-hand sides of the nonlinear models (:mod:`stability.nonlinear`),
+whose sliding and rolling spheres solve a 6 x 6 system (three angular accelerations, two
+horizontal unknowns, the normal force) at every evaluation.
 
 The functions are generic in the dtype: called with complex arrays they are compiled for
-complex128, which is what the complex-step Jacobian of :mod:`stability.nonlinear.jacobian` uses (the
-pivot choice uses ``abs`` and does not break analyticity).
+complex128, which is what a complex-step Jacobian uses (the pivot choice uses ``abs`` and does
+not break analyticity). Generic: nothing here knows about tops.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["solve_dense", "swap_rows", "back_substitute", "cross"]
+__all__ = ["solve_dense", "swap_rows", "back_substitute"]
 
 
 @njit(cache=True)
@@ -79,9 +81,3 @@ def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                     a[r, j] -= m * a[c, j]
                 b[r] -= m * b[c]
     return back_substitute(a, b)
-
-
-@njit(cache=True)
-def cross(u0, u1, u2, v0, v1, v2):
-    """Components of ``u x v`` (scalars in, a 3-tuple out)."""
-    return u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0

@@ -1,6 +1,6 @@
 """The compiled step of the sliding model's neutral curves (crossing form of eq. 11).
 
-:class:`continuation.neutral.NeutralProblem` offers the engine this ``compiled_step``
+:class:`stability.linear.neutral_curves.NeutralProblem` offers the engine this ``compiled_step``
 (:mod:`continuation.problem`) when its neutral condition is the crossing form of the sliding
 model, whose coefficients and exact parameter derivatives have compiled twins in
 :mod:`stability.linear.neutrality` (:func:`~stability.linear.neutrality.sliding_crossing_residual`). One call
@@ -22,9 +22,9 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.linear.neutrality import sliding_crossing_other_growth, sliding_crossing_residual
+from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 
-from .compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
+from .neutrality import sliding_crossing_other_growth, sliding_crossing_residual
 
 __all__ = ["sliding_step", "residual_and_jacobian", "constraint_values", "CONSTRAINT_CODES"]
 
@@ -157,7 +157,7 @@ def constraint_values(point: np.ndarray, free_index: np.ndarray, u: np.ndarray,
                       codes: np.ndarray, index: np.ndarray, a: np.ndarray) -> np.ndarray:
     """The problem's constraints at ``u`` (problem variables), from rows ``(code, index, a)``
     (:data:`CONSTRAINT_CODES`), in the operations of their Python twins in
-    :mod:`continuation.neutral`."""
+    :mod:`stability.linear.neutral_curves`."""
     p = point.copy()
     for i in range(free_index.shape[0]):
         p[free_index[i]] = u[i]
