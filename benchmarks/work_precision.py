@@ -1,6 +1,6 @@
 """Work-precision of the integrators of the nonlinear runs: a thin wrapper.
 
-The measuring code is :mod:`stability.performance_integrators` (one implementation, also behind
+The measuring code is :mod:`stability.bench.integrators` (one implementation, also behind
 ``tippe bench --suite integrators``, which draws the chart ``atlases/work_precision_integrators.png``).
 This script prints the measurements as a table.
 
@@ -12,7 +12,7 @@ from __future__ import annotations
 import sys
 
 from stability.commands.bench import summary_lines
-from stability.performance_integrators import integrator_work_precision
+from stability.bench.integrators import integrator_work_precision
 
 
 def main(quick: bool = False) -> None:

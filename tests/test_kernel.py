@@ -223,7 +223,7 @@ def test_bench_command_writes_chart_and_summary(tmp_path, capsys):
     import matplotlib.pyplot as plt
 
     from stability.cli import main
-    from stability.performance import WorkPrecision
+    from stability.bench.records import WorkPrecision
     from stability.plotting.work_precision import work_precision_figure
 
     rc = main(["bench", "--suite", "eigen", "--points", "3000", "--reference-points", "30", "--loop-points", "50", "--repeat", "1",

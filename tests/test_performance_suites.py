@@ -1,4 +1,4 @@
-"""The work-precision suites of ``tippe bench`` (stability/performance*.py), in tiny configurations.
+"""The work-precision suites of ``tippe bench`` (stability/bench/), in tiny configurations.
 
 No timing is asserted (speed is measured by ``tippe bench``, not by tests); what is tested is
 that each suite's *errors* are what its reference says they are, and that the charts and the
@@ -24,10 +24,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from stability import performance_continuation as pc
-from stability import performance_integrators as pi
+from stability.bench import continuation as pc
+from stability.bench import integrators as pi
 from stability.cli import main
-from stability.performance import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES, WorkPrecision
+from stability.bench import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES
+from stability.bench.records import WorkPrecision
 from stability.plotting.work_precision import suite_figure, verdict
 
 

@@ -1,7 +1,7 @@
 """``tippe bench``: work-precision benchmarks, written as charts (PNG) and JSON summaries.
 
 ``tippe bench`` (or ``--suite all``) runs the three suites of
-:data:`stability.performance.SUITES` in turn: ``eigen`` (eigenvalue methods, 10^6 points),
+:data:`stability.bench.SUITES` in turn: ``eigen`` (eigenvalue methods, 10^6 points),
 ``continuation`` (step settings against the exact fold) and ``integrators`` (the nonlinear
 runs); ``--suite NAME`` runs one. Each writes ``OUT_DIR/work_precision_NAME.png`` and
 ``.json`` (atomically) and prints one line per measurement with its ratio to the baselines.
@@ -22,7 +22,8 @@ from pathlib import Path
 from typing import Any
 
 from ..grids.netcdf import atomic_output, check_output_path
-from ..performance import EIGEN_TARGET, SUITES, WorkPrecision, peak_memory_mb
+from ..bench import EIGEN_TARGET, SUITES
+from ..bench.records import WorkPrecision, peak_memory_mb
 
 __all__ = ["register", "run", "run_suite", "summary_lines", "EIGEN_TARGET", "QUICK"]
 
@@ -124,7 +125,7 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
     Parameters
     ----------
     name : str
-        A key of :data:`stability.performance.SUITES`.
+        A key of :data:`stability.bench.SUITES`.
     out_dir : pathlib.Path
         Existing directory for ``work_precision_NAME.png`` and ``.json``.
     options : dict

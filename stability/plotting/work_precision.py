@@ -1,20 +1,26 @@
 """Work-precision charts: time per unit of work against error, one marker per measurement.
 
-Takes the results of any suite of :mod:`stability.performance` (a list of
-:class:`~stability.performance.WorkPrecision`), so the eigenvalue, continuation and integrator
-charts are drawn by the same functions. Points of one series (a method at several settings)
-are joined by a line and share one legend entry; baselines are hollow squares, the package's
-default path a large star.
+Takes the results of any suite of :mod:`stability.bench` (a list of records with the attributes
+of :class:`~stability.bench.records.WorkPrecision`: ``method``, ``seconds_per_point``, ``error``,
+``baseline``, ``default``, ``series``, ``setting``, ``panel``, ``extra``, ``component``), so the
+eigenvalue, continuation and integrator charts are drawn by the same functions. Points of one
+series (a method at several settings) are joined by a line and share one legend entry;
+baselines are hollow squares, the package's default path a large star.
+
+The records are duck-typed: this module does not import the benchmarks (a higher layer,
+docs/architecture.md); their classes are named for the type checker only.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ..performance import Suite, WorkPrecision
+if TYPE_CHECKING:  # annotations only: the charts take any objects with these attributes
+    from ..bench.records import Suite, WorkPrecision
 
 __all__ = ["work_precision_figure", "suite_figure", "verdict"]
 
@@ -158,13 +164,14 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
 
 
 def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "") -> tuple[Figure, list[Axes]]:
-    """The chart of one suite: one panel per :class:`~stability.performance.Panel`, the title
+    """The chart of one suite: one panel per :class:`~stability.bench.records.Panel`, the title
     naming the default and the fastest method at the required accuracy (:func:`verdict`).
 
     Parameters
     ----------
     suite : Suite
-        The suite (its title and panels).
+        The suite (its ``title`` and ``panels``; each panel's ``select``, ``target``, ``xlabel``,
+        ``ylabel``, ``x`` and ``title``).
     results : sequence of WorkPrecision
         What its ``run`` returned.
     subtitle : str

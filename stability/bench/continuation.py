@@ -1,6 +1,6 @@
 """Continuation against a brentq per grid column: the one measurement of both.
 
-Used by ``tippe bench --suite continuation`` (:data:`stability.performance.SUITES`, through
+Used by ``tippe bench --suite continuation`` (:data:`stability.bench.SUITES`, through
 :func:`continuation_work_precision`) and by ``benchmarks/bench_neutral.py`` (the tables,
 :func:`neutral_benchmark` and :func:`format_tables`): one implementation, one timing method.
 
@@ -48,12 +48,18 @@ from typing import Any
 
 import numpy as np
 
-from .performance import CONTINUATION_TITLE, FOLD_TARGET, WorkPrecision
+from .records import WorkPrecision
 
 __all__ = ["MU", "ALPHA_V", "Q_STAR", "SIGMA_STAR", "FOLD_TARGET", "SETTINGS", "COLUMNS", "sigma_ref",
            "trace", "continuation_errors", "fastest_method", "leading_growth_rate", "leading_growth_rate_roots",
            "columns_in_sigma", "columns_in_q", "column_errors", "columns_for_accuracy", "best_times",
            "neutral_benchmark", "format_tables", "continuation_work_precision", "CONTINUATION_TITLE"]
+
+#: required accuracy of the fold's coordinates (q*, sigma*) (the issue)
+FOLD_TARGET = 1e-10
+
+CONTINUATION_TITLE = ("neutral curve of the sliding model in (q, sigma), fr_inv = 0, alpha_v = 0.5, mu = 2.28: "
+                      "continuation vs brentq per column")
 
 #: the problem: scaled mass and viscous friction (Fig. 3), fr_inv = 0
 MU, ALPHA_V = 2.28, 0.5
@@ -99,11 +105,11 @@ def trace(max_step: float, max_angle: float, compiled: bool = True) -> Any:
     xarray.Dataset
         The traced curve (:func:`continuation.neutral_curve`).
     """
-    import continuation
+    from ..linear.neutral_curves import neutral_curve
 
     _check_setting(max_step, max_angle)
-    return continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
-                                      max_step=max_step, max_angle=max_angle, compiled=compiled)
+    return neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
+                         max_step=max_step, max_angle=max_angle, compiled=compiled)
 
 
 def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
@@ -126,14 +132,14 @@ def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
         rate of the neutral mode (away from the corner ``1 - mu q^2 <= 1e-6``); ``upper``: the
         points above ``sigma = 0.86``, where columns at fixed sigma cross the curve twice.
     """
-    import continuation
+    from continuation.dense import dense
 
     q, s = ds.q.values, ds.sigma.values
     kinds = ds.kind.values
     folds = np.nonzero(kinds == "fold")[0]
     fold = (max(abs(float(q[folds[0]]) - Q_STAR), abs(float(s[folds[0]]) - SIGMA_STAR)) if folds.size
             else math.inf)
-    d = continuation.dense(ds, samples)
+    d = dense(ds, samples)
     qq = np.concatenate([np.linspace(a, b, 20) for a, b in zip(q[:-1], q[1:])])
     order = np.argsort(q)
     inner = (1.0 - MU * q * q) > 1e-6
@@ -155,7 +161,7 @@ def _one_point_time(fn: Callable[[], Any], calls: int = 50) -> float:
 def fastest_method() -> str:
     """The fastest :func:`stability.spectrum` method for one point of the problem, by timing
     (the baseline [A] gets the best the package offers)."""
-    from .linear.spectra import spectrum
+    from ..linear.spectra import spectrum
 
     times = {m: _one_point_time(lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
                                                      mu=MU, method=m))
@@ -167,7 +173,7 @@ def leading_growth_rate(q: float, sigma: float, method: str = "kernel") -> float
     """[A]: the largest ``Re s`` of the sliding model at ``fr_inv = 0`` over the modes that are
     not structurally zero, from :func:`stability.spectrum` (the structural zero eigenvalue,
     exactly 0 from the kernel or ~1e-17 from LAPACK, is the one of smallest modulus: dropped)."""
-    from .linear.spectra import spectrum
+    from ..linear.spectra import spectrum
 
     ev = spectrum("sliding", q=q, fr_inv=0.0, sigma=sigma, alpha_v=ALPHA_V, mu=MU, method=method).eigenvalues
     return float(np.delete(ev, np.argmin(np.abs(ev))).real.max())
@@ -176,7 +182,7 @@ def leading_growth_rate(q: float, sigma: float, method: str = "kernel") -> float
 def leading_growth_rate_roots(q: float, sigma: float) -> float:
     """[B]: the same from ``numpy.roots`` of eq. (11)'s coefficients (``c0 = 0`` at
     ``fr_inv = 0`` dropped)."""
-    from .models import get_model
+    from ..models import get_model
 
     c = get_model("sliding").coefficients(q=q, fr_inv=0.0, sigma=sigma, alpha_v=ALPHA_V, mu=MU)
     return float(np.roots(c[:3]).real.max())

@@ -39,10 +39,22 @@ from typing import Any
 
 import numpy as np
 
-from .performance import CROSSING_TARGET, GROWTH_TARGET, INTEGRATOR_TITLE, WorkPrecision
+from .records import WorkPrecision
 
 __all__ = ["FR_INV", "T_END", "crossing_run", "numpy_rhs_crossing_run", "stiff_run", "growth_run",
            "integrator_work_precision", "CROSSING_TARGET", "GROWTH_TARGET", "INTEGRATOR_TITLE", "TOLERANCES", "RK4_STEPS", "STIFF_ALPHA_V"]
+
+#: required accuracy of the 90-degree crossing time, in time units 1/Omega: the level at which
+#: docs/nonlinear.md calls the scene's run converged (2e-7 from rtol 1e-9 to 1e-13)
+CROSSING_TARGET = 1e-6
+
+#: required relative accuracy of the growth rate fitted to a validation run: the agreement of
+#: the fit with the linear operator at the benchmark's point (8.8e-7), so that the integrator
+#: does not decide a validation's reading (module docstring)
+GROWTH_TARGET = 1e-6
+
+INTEGRATOR_TITLE = ("nonlinear sliding top, the paper's Fr^-1 = 0.3 run (Sec. 3(ii)), the stiff slip mode "
+                    "and a validation run: integrators")
 
 #: the paper's run: fr_inv, alpha_v, final time (the crossing is at ~500), output interval
 FR_INV, ALPHA_V, T_END, DT = 0.3, 0.5, 650.0, 0.05
@@ -113,8 +125,8 @@ def crossing_run(method: str, rtol: float = DEFAULT_RTOL, atol: float | None = N
     (float, int)
         Crossing time (units of ``1/Omega``; NaN if the axis never reaches 90 degrees) and nfev.
     """
-    from .nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from .nonlinear.runs import simulate
+    from ..nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from ..nonlinear.runs import simulate
 
     _check_tol(rtol)
     ds = simulate("sliding", t_end=T_END, dt=DT, fr_inv=FR_INV, alpha_v=ALPHA_V, **PAPER, **INITIAL_CONDITIONS[FR_INV],
@@ -128,9 +140,9 @@ def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     import xarray as xr
     from scipy.integrate import solve_ivp
 
-    from .nonlinear.reference import sliding_rhs
-    from .nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from .nonlinear.runs import initial_state
+    from ..nonlinear.reference import sliding_rhs
+    from ..nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from ..nonlinear.runs import initial_state
 
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]
@@ -161,7 +173,7 @@ def stiff_run(method: str, alpha_v: float, rtol: float = 1e-6) -> tuple[float, i
     (float, int, int)
         Final tilt ``|k_1 + i k_2|``, nfev and the integrator's status.
     """
-    from .nonlinear.runs import simulate
+    from ..nonlinear.runs import simulate
 
     if not (isinstance(alpha_v, float) and alpha_v > 0):
         raise ValueError(f"alpha_v = {alpha_v!r} must be a float > 0")
@@ -186,8 +198,8 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
     float
         The fitted growth rate ``measured_growth_rate`` (units of the spin rate).
     """
-    from .nonlinear.scene import PAPER
-    from .nonlinear.validation import validate
+    from ..nonlinear.scene import PAPER
+    from ..nonlinear.validation import validate
 
     _check_tol(rtol)
     ds = validate("sliding", q=PAPER["q"], fr_inv=FR_INV, sigma=PAPER["sigma"], mu=PAPER["mu"], alpha_v=ALPHA_V,

@@ -1,0 +1,148 @@
+"""Work-precision records: one measurement, a chart's panel, a suite, and the process's peak memory.
+
+A measurement is one :class:`WorkPrecision` point: a method (at one setting), the wall time per
+unit of work it took, and its error against an independent reference. A :class:`Suite`
+(registered by name in :data:`stability.bench.SUITES`) returns a list of them and says how its
+chart is drawn (:class:`Panel`). Generic: nothing here knows about a particular suite.
+"""
+
+from __future__ import annotations
+
+import resource
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["WorkPrecision", "Panel", "Suite", "best_time", "peak_memory_mb"]
+
+
+@dataclass(frozen=True)
+class WorkPrecision:
+    """One point of a work-precision chart.
+
+    Attributes
+    ----------
+    method : str
+        Label of the method and setting.
+    seconds_per_point : float
+        Wall time per unit of work (a grid point for the spectra, a traced curve for the
+        continuation, a run for the integrators), best of the repeats.
+    error : float
+        Largest error against the reference (relative per eigenvalue for the spectra).
+    points : int
+        Batch size the time was measured on.
+    baseline : bool
+        True for the baselines the ratios are quoted against.
+    default : bool
+        True for the package's default path.
+    note : str
+        What the point measures, in a few words.
+    series : str
+        Points of one method at several settings share a series (joined by a line in the
+        chart); default: the method's own.
+    setting : str
+        The setting of this point within its series (e.g. ``"rtol 1e-6"``).
+    panel : str
+        Which panel of the suite's chart the point belongs to (:class:`Panel`).
+    extra : dict of str to float
+        Other numbers measured with the point (a second error, evaluations, a parameter).
+    component : bool
+        A part of a path rather than a path a user calls (the bare kernel, without the domain
+        check): drawn, but not ranked when the chart names the fastest method.
+    """
+
+    method: str
+    seconds_per_point: float
+    error: float
+    points: int
+    baseline: bool = False
+    default: bool = False
+    note: str = ""
+    series: str = ""
+    setting: str = ""
+    panel: str = ""
+    extra: dict[str, float] = field(default_factory=dict)
+    component: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dictionary (for JSON)."""
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class Panel:
+    """One panel of a suite's chart.
+
+    Attributes
+    ----------
+    xlabel, ylabel : str
+        Axis labels.
+    x : str
+        ``"error"`` (a work-precision panel) or a key of :attr:`WorkPrecision.extra`.
+    select : str
+        Draws the results whose :attr:`WorkPrecision.panel` equals it.
+    target : float, optional
+        Required accuracy (vertical line; the fastest point left of it is named).
+    title : str
+        The panel's own title.
+    """
+
+    xlabel: str
+    ylabel: str
+    x: str = "error"
+    select: str = ""
+    target: float | None = None
+    title: str = ""
+
+
+@dataclass(frozen=True)
+class Suite:
+    """A work-precision suite: what ``tippe bench --suite NAME`` runs and draws.
+
+    Attributes
+    ----------
+    run : callable
+        Returns a list of :class:`WorkPrecision`; takes the keywords among ``points``,
+        ``reference_points``, ``loop_points``, ``repeat`` and ``quick`` that it names.
+    title : str
+        What was measured (the chart's title, before the default/fastest summary).
+    panels : tuple of Panel
+        The chart's panels, left to right.
+    unit : str
+        The unit of work of ``seconds_per_point`` ("point", "curve", "run").
+    compare_at : tuple of str
+        Errors (``"error"`` or keys of :attr:`WorkPrecision.extra`) at which speed is compared
+        at equal accuracy: against the fastest setting of each baseline whose error is at most
+        the point's. Empty: plain ratios against each baseline (the eigen suite, whose
+        baselines are single points).
+    """
+
+    run: Callable[..., list[WorkPrecision]]
+    title: str
+    panels: tuple[Panel, ...]
+    unit: str = "point"
+    compare_at: tuple[str, ...] = ()
+
+
+def best_time(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
+    """Best (smallest) wall time of ``repeat`` calls of ``fn`` after one warm-up call, and the
+    last result. The best, not the median: on this shared machine the other processes only
+    ever add time, in bursts that can cover several consecutive runs."""
+    if not (isinstance(repeat, int) and repeat >= 1):
+        raise ValueError(f"repeat = {repeat!r} must be an integer >= 1")
+    fn()
+    best = np.inf
+    out = None
+    for _ in range(repeat):
+        t = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t)
+    return float(best), out
+
+
+def peak_memory_mb() -> float:
+    """Peak resident memory of this process so far, in MB (``ru_maxrss``)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
