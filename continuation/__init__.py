@@ -21,7 +21,8 @@ from __future__ import annotations
 from typing import Any
 
 from .dense import dense, hermite_samples
-from .engine import Branch, ConvergenceError, correct, hermite, project, tangent, trace, trace_both
+from .engine import Branch, correct, hermite, project, tangent, trace, trace_both
+from .errors import ConvergenceError
 from .events import fold_test, locate
 from .problem import ContinuationProblem, finite_difference_jacobian
 

@@ -36,19 +36,15 @@ import math
 
 import numpy as np
 
+from .errors import ConvergenceError
 from .events import locate
 from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
 
-__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite",
-           "ConvergenceError"]
+__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
 
 EPS = float(np.finfo(float).eps)
 #: a residual this small is at the rounding floor: no polishing step
 _FLOOR = 4.0 * EPS
-
-
-class ConvergenceError(ValueError):
-    """Newton's method did not reach the requested residual."""
 
 
 @dataclass

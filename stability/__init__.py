@@ -6,23 +6,32 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`atlas`, :func:`open_atlas` - spectra over parameter grids as xarray datasets;
 * :class:`Top` - a real top in SI units and its nondimensional parameters;
 * :data:`MODELS` - the registry of linear models ("fixed_pivot", "rolling", "sliding");
-* :func:`state_space`, :func:`friction_loop` - python-control forms of the operators.
+* :func:`state_space`, :func:`friction_loop` - python-control forms of the operators;
+* :func:`threshold`, :func:`thresholds`, :func:`critical_spin` - where stability changes;
+* :func:`simulate`, :func:`jacobian_eigenvalues`, :func:`validate` - nonlinear runs and the
+  check of the linear predictions against them;
+* :class:`TippeError` - the base of every exception the package raises on purpose
+  (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``).
+
+This module only re-exports; where each name lives, and which way imports go, is in
+docs/architecture.md.
 """
+from .errors import AtlasFileError, ChunkError, DomainError, InputError, TippeError
 from .grids.atlases import atlas
+from .grids.netcdf import open_atlas, write_dataset
 from .linear.control_forms import friction_loop, state_space
-from .grids.chunked import ChunkError
-from .grids.netcdf import AtlasFileError, open_atlas, write_dataset
-from .models import MODELS, LinearModel, get_model
-from .parameters import DEFAULT_MU, PARAMETERS, DomainError, check_domain
-from .linear.spectra import eigenvalues, spectrum
-from .nonlinear.runs import simulate
-from .nonlinear.jacobian import jacobian_eigenvalues
-from .nonlinear.validation import coulomb_growth, validate
-from .top import Top
 from .linear.critical import critical_spin, threshold, thresholds
+from .linear.spectra import eigenvalues, spectrum
+from .models import MODELS, LinearModel, get_model
+from .nonlinear.jacobian import jacobian_eigenvalues
+from .nonlinear.runs import simulate
+from .nonlinear.validation import coulomb_growth, validate
+from .parameters import DEFAULT_MU, PARAMETERS, check_domain
+from .top import Top
 
 __all__ = [
-    "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "LinearModel", "MODELS", "PARAMETERS", "Top",
+    "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "InputError", "LinearModel", "MODELS", "PARAMETERS",
+    "TippeError", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "critical_spin",

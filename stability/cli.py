@@ -7,10 +7,13 @@ Errors end the program with exactly one line on stderr and no traceback
 (docs/input_checks.md):
 
 * a mistake in the command line or its values (argparse's own errors, :class:`ValueError`,
-  :class:`TypeError`, including every :class:`~stability.parameters.DomainError`) and a file
-  that cannot be read or written (:class:`OSError`): ``tippe CMD: error: ...``, exit status 2;
-* a chunk of a chunked atlas that failed (:class:`~stability.grids.chunked.ChunkError`):
-  exit status 1, the line says what was kept;
+  :class:`TypeError`, including every :class:`~stability.errors.InputError` such as
+  :class:`~stability.errors.DomainError`) and a file that cannot be read or written
+  (:class:`OSError`): ``tippe CMD: error: ...``, exit status 2;
+* a computation that failed: a chunk of a chunked atlas (:class:`~stability.errors.ChunkError`,
+  the line says what was kept), a continuation that did not converge (any
+  :class:`continuation.errors.ConvergenceError`), any other :class:`~stability.errors.TippeError`
+  that is not bad input: ``tippe CMD: error: ...``, exit status 1;
 * an interruption (Ctrl-C): exit status 130, no partial output file is left;
 * anything else is a bug of the program: one line ``tippe CMD: internal error: ...``, exit
   status 1. With ``--debug`` (anywhere on the command line) or the environment variable
@@ -90,8 +93,9 @@ def _debug_env() -> bool:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status."""
-    from .commands._args import Interrupted
-    from .grids.chunked import ChunkError
+    from continuation.errors import ConvergenceError
+
+    from .errors import Interrupted, TippeError
 
     args_list = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in args_list or _debug_env()
@@ -112,16 +116,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise
         print(f"{prog}: interrupted; no output file was left behind", file=sys.stderr)
         return EXIT_INTERRUPTED
-    except ChunkError as exc:
-        if debug:
-            raise
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_FAILURE
-    except (ValueError, TypeError, OSError) as exc:
+    except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
         if debug:
             raise
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
+    except (TippeError, ConvergenceError) as exc:  # a failure to compute: ChunkError, ConvergenceError
+        if debug:
+            raise
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
     except Exception as exc:  # a bug: still one line unless asked
         if debug:
             raise

@@ -23,7 +23,7 @@ Besides the physical domain, every parameter must lie in the *computable range*
 characteristic polynomials overflow double precision and the eigenvalues would come out as
 NaN or inf. A value outside it is refused whatever ``mask`` says.
 
-Every check raises :class:`DomainError` (a :class:`ValueError`) or :class:`TypeError` whose
+Every check raises :class:`~stability.errors.DomainError` (a :class:`ValueError`) or :class:`TypeError` whose
 message names the parameter, its offending value and the bound. The helpers below
 (:func:`as_scalar`, :func:`check_positive`, :func:`check_flag`, :func:`check_integer`,
 :func:`check_choice`, :func:`check_interval`) produce the messages of every other argument check
@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from .errors import DomainError
 from .models.inertia import transverse_inertia_g
 
 __all__ = [
@@ -46,7 +47,6 @@ __all__ = [
     "DEFAULT_MU",
     "LONG_NAMES",
     "COMPUTABLE_RANGE",
-    "DomainError",
     "as_parameter",
     "as_scalar",
     "check_domain",
@@ -88,10 +88,6 @@ COMPUTABLE_RANGE: dict[str, tuple[float, float]] = {
     "q": (0.0, 1e30), "fr_inv": (0.0, 1e30), "sigma": (0.0, 1e30), "alpha_v": (0.0, 1e30),
     "alpha_k": (0.0, 1e30), "mu": (1e-30, 1e30),
 }
-
-
-class DomainError(ValueError):
-    """A parameter lies outside the physical domain (or is not finite, or is empty)."""
 
 
 def _show(value: Any, width: int = 60) -> str:

@@ -51,12 +51,13 @@ import numpy as np
 import xarray as xr
 
 from .grids.atlases import atlas
-from .grids.netcdf import AtlasFileError, check_output_path, open_atlas, write_dataset
+from .errors import AtlasFileError, RecipeError
+from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
 from .models import MODELS
 from .parameters import LONG_NAMES, PARAMETERS
 
-__all__ = ["Recipe", "RecipeError", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
+__all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
            "KINDS"]
 
 #: what a recipe can draw
@@ -66,10 +67,6 @@ SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
 _KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
          "figure", "neutral", "preset"}
-
-
-class RecipeError(ValueError):
-    """A recipe file is malformed; the message names the file and the key."""
 
 
 @dataclass(frozen=True)

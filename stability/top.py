@@ -32,7 +32,8 @@ from typing import Any
 
 import numpy as np
 
-from .parameters import DomainError, as_parameter, as_scalar, check_choice, check_domain, check_positive
+from .errors import DomainError
+from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
 
 __all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH"]
 

@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 import stability
-from stability.grids.netcdf import AtlasFileError
+from stability.errors import AtlasFileError
 
 
 @pytest.fixture

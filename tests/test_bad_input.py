@@ -12,7 +12,8 @@ import pytest
 import stability
 from stability.cli import main
 from stability.grids.chunked import normalize_chunks
-from stability.parameters import DomainError, check_domain
+from stability.errors import DomainError
+from stability.parameters import check_domain
 
 GOOD = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
 SIM = dict(t_end=1.0, omega=[0.02, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)

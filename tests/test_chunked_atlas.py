@@ -15,9 +15,9 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.grids.chunked import ResumeError, parts_directory, write_atlas
+from stability.errors import DomainError, ResumeError
+from stability.grids.chunked import parts_directory, write_atlas
 from stability.grids.cluster import dask_client
-from stability.parameters import DomainError
 from conftest import assert_resume_completes, assert_same_atlas
 
 GRID = dict(q=np.linspace(-0.6, 0.6, 31), fr_inv=[0.0, 0.1, 0.3, 1.0], sigma=np.linspace(0.2, 1.2, 5),

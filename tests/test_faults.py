@@ -18,7 +18,8 @@ import xarray as xr
 import stability
 import stability.grids.chunked as dist
 from stability.cli import main
-from stability.grids.chunked import ChunkError, parts_directory, write_atlas
+from stability.errors import ChunkError
+from stability.grids.chunked import parts_directory, write_atlas
 from stability.grids.cluster import dask_client
 from conftest import assert_resume_completes, assert_same_atlas
 

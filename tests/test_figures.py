@@ -17,7 +17,8 @@ from stability.linear.modes import leading_growth_rate, principal_mode, track_mo
 from stability.plotting import plot_growth_rate, style
 from stability.plotting.maps import plot_stability_map
 from stability.plotting.recipe_figures import recipe_figure
-from stability.recipes import RecipeError, compute, find_recipes, load_recipe
+from stability.errors import RecipeError
+from stability.recipes import compute, find_recipes, load_recipe
 
 ATLASES = Path(__file__).resolve().parents[1] / "atlases"
 

@@ -15,7 +15,7 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.grids.netcdf import AtlasFileError
+from stability.errors import AtlasFileError
 
 ATLAS = ["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5"]
 

@@ -290,7 +290,8 @@ def test_fused_domain_test_agrees_with_check_domain():
     ulps around every bound (and the computable range's), NaN and inf in each parameter, and
     20,000 random points of a box four times wider than the domain. Code 2 (refused even
     masked) must be exactly where check_domain(mask=True) raises."""
-    from stability.parameters import DomainError, check_domain
+    from stability.errors import DomainError
+    from stability.parameters import check_domain
 
     rng = np.random.default_rng(30)
     n = 20000

@@ -416,7 +416,7 @@ def test_ranges_outside_the_domain_are_an_error_not_an_empty_curve(ranges):
     """q in (5, 6) has mu q^2 > 1 everywhere; sigma in (-5, -1) is negative: no point of either
     rectangle is physical (the domain's inequalities, docs/conventions.md). Before, the call
     returned an empty dataset (and `tippe neutral` wrote it), indistinguishable from "no curve"."""
-    from stability.parameters import DomainError
+    from stability.errors import DomainError
 
     with pytest.raises(DomainError, match=r"lie outside the physical domain at fr_inv = 0, alpha_v = 0.5"):
         neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), **ranges)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from stability import simulate
-from stability.parameters import DomainError
+from stability.errors import DomainError
 
 BASE = dict(q=-0.1, fr_inv=0.3, sigma=1.0)
 IC = dict(omega=[0.0219, 0.0047, -0.9997], k=[0.0676, 0.0676, 0.9954], velocity=[0.0935, 0.0384])

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 import stability
-from stability.parameters import DomainError, check_domain
+from stability.errors import DomainError
+from stability.parameters import check_domain
 
 GOOD = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
 

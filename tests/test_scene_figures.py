@@ -15,7 +15,8 @@ import pytest
 
 from stability.plotting import style
 from stability.plotting.recipe_figures import recipe_figure
-from stability.recipes import RecipeError, compute, load_recipe
+from stability.errors import RecipeError
+from stability.recipes import compute, load_recipe
 
 ATLASES = Path(__file__).resolve().parents[1] / "atlases"
 

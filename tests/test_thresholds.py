@@ -18,7 +18,7 @@ import pytest
 import stability
 from stability import critical_spin, threshold, thresholds
 from stability.cli import main
-from stability.parameters import DomainError
+from stability.errors import DomainError
 
 mp = mpmath.mp
 MU = mpmath.mpf("2.28")

@@ -8,11 +8,8 @@ import argparse
 from ..grids.ranges import parse_values
 from ..parameters import DEFAULT_MU
 
-__all__ = ["add_parameter_flags", "parameter_values", "FLAGS", "Interrupted"]
+__all__ = ["add_parameter_flags", "parameter_values", "FLAGS"]
 
-
-class Interrupted(Exception):
-    """Raised by a command instead of ``KeyboardInterrupt`` to say what was kept (exit 130)."""
 
 #: parameter name -> CLI flag
 FLAGS = {"q": "--q", "fr_inv": "--fr-inv", "sigma": "--sigma", "alpha_v": "--alpha-v", "mu": "--mu"}

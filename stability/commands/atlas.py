@@ -15,7 +15,8 @@ from ..grids.atlases import atlas
 from ..grids.netcdf import check_output_path, write_dataset
 from ..models import MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
-from ._args import Interrupted, add_parameter_flags, parameter_values
+from ..errors import Interrupted
+from ._args import add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 

@@ -43,7 +43,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         ``"sliding"``.
     mask_unphysical : bool, default False
         If False, any grid point outside the physical domain refuses the whole request
-        (:class:`~stability.parameters.DomainError`, no partial dataset). If True, those
+        (:class:`~stability.errors.DomainError`, no partial dataset). If True, those
         points get NaN and ``physical = 0``.
     method : {"kernel", "polynomial", "lapack"}
         Eigenvalue method (:data:`stability.linear.spectra.METHODS`).

@@ -34,27 +34,15 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from ..errors import ChunkError, ResumeError
 from .netcdf import atomic_output, check_output_path
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 
-__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "ResumeError", "ChunkError", "parts_directory"]
+__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "parts_directory"]
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
 _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
-
-
-class ResumeError(ValueError):
-    """The sidecar chunk store cannot be used for this atlas (the message says why)."""
-
-
-class ChunkError(RuntimeError):
-    """Computing one chunk of a chunked atlas failed (an exception in it, or its worker died).
-
-    The message names the chunk and its slice of the grid, the cause, and what was kept: with
-    ``resume=True`` the chunks finished before the failure stay in ``<output>.parts/`` and a
-    rerun computes only the others. The original exception is the ``__cause__``.
-    """
 
 
 def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[str, int]) -> dict[str, int]:

@@ -15,17 +15,15 @@ from pathlib import Path
 
 import xarray as xr
 
-__all__ = ["AtlasFileError", "atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
+from ..errors import AtlasFileError
+
+__all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
            "require_atlas"]
 
 #: global attribute naming which product of this package a dataset is
 PRODUCT_ATTR = "tippe_stability_product"
 
 ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
-
-
-class AtlasFileError(ValueError):
-    """A file given where an atlas is expected is missing, unreadable or not an atlas."""
 
 
 def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:

@@ -35,7 +35,8 @@ import numpy as np
 
 from ..models import LinearModel, get_model
 from .neutrality import NeutralCondition
-from ..parameters import (DEFAULT_MU, DomainError, as_parameter, as_scalar, check_choice, check_domain, check_flag,
+from ..errors import DomainError
+from ..parameters import (DEFAULT_MU, as_parameter, as_scalar, check_choice, check_domain, check_flag,
                          check_integer)
 from .spectra import UNSTABLE, spectrum
 

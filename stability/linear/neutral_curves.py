@@ -47,11 +47,13 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from continuation.engine import Branch, ConvergenceError, project, trace_both
+from continuation.engine import Branch, project, trace_both
+from continuation.errors import ConvergenceError as EngineConvergenceError
 
 from .._version import package_version
 from ..models import LinearModel, get_model
-from ..parameters import (DEFAULT_MU, LONG_NAMES, DomainError, as_scalar, check_choice, check_domain, check_flag,
+from ..errors import ConvergenceError, DomainError
+from ..parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
                           check_integer, check_positive)
 from .modes import structural_zeros
 from .neutrality import NeutralCondition
@@ -728,7 +730,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
             continue
         try:
             u = project(prob, g, scale=scale, max_move=0.25 if start is None else np.inf, tol=tol)
-        except ConvergenceError:
+        except EngineConvergenceError:
             if start is None:
                 continue
             raise ConvergenceError(

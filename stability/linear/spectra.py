@@ -203,7 +203,7 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
         Parameters (broadcast together); ``alpha_v`` only for ``"sliding"``.
     mask_unphysical : bool, default False
         If False, a point outside the physical domain refuses the whole request
-        (:class:`~stability.parameters.DomainError`); if True, such points get NaN.
+        (:class:`~stability.errors.DomainError`); if True, such points get NaN.
     method : {"kernel", "polynomial", "lapack"}
         Root finder (see :data:`METHODS`); the default, ``"kernel"``, is the compiled kernel
         of :mod:`stability.linear.kernel` (models of degree <= 3; others fall back to

@@ -1,0 +1,83 @@
+"""The exceptions the package raises on purpose: one hierarchy under :class:`TippeError`.
+
+Layer 0 (docs/architecture.md): imports nothing from the package (only the engine's
+:class:`continuation.errors.ConvergenceError`, to subclass it).
+
+::
+
+    TippeError
+    +-- InputError (ValueError)            bad input: a value outside its range, an unknown name
+    |   +-- DomainError                    a parameter outside the physical or computable domain
+    |   +-- AtlasFileError                 a file given as an atlas is missing, unreadable, not one
+    |   +-- RecipeError                    an atlas recipe that cannot be read or run
+    |   +-- ResumeError                    a chunk store that cannot be resumed from
+    +-- ParameterTypeError (TypeError)     a value of the wrong type (provided; most checks raise
+    |                                      a plain TypeError)
+    +-- ChunkError (RuntimeError)          a chunk of a chunked atlas failed
+    +-- ConvergenceError (RuntimeError,    a continuation did not converge
+    |       continuation.ConvergenceError)
+    +-- Interrupted                        a command was interrupted; says what was kept
+
+Bad input keeps the ancestry of the built-in exceptions (``except ValueError`` catches a
+:class:`DomainError`); a failure to compute is a :class:`RuntimeError`. The ``tippe`` command
+line exits with status 2 on bad input (and on ``ValueError``, ``TypeError``, ``OSError``), 1 on a
+failure to compute (:class:`ChunkError`, any :class:`continuation.errors.ConvergenceError`)
+and 130 when interrupted (docs/input_checks.md).
+"""
+
+from __future__ import annotations
+
+from continuation.errors import ConvergenceError as _EngineConvergenceError
+
+__all__ = ["TippeError", "InputError", "DomainError", "ParameterTypeError", "AtlasFileError", "RecipeError",
+           "ResumeError", "ChunkError", "ConvergenceError", "Interrupted"]
+
+
+class TippeError(Exception):
+    """Base of every exception the package raises on purpose."""
+
+
+class InputError(TippeError, ValueError):
+    """Bad input: a value outside its allowed range, an unknown name, an unusable file."""
+
+
+class DomainError(InputError):
+    """A parameter lies outside the physical domain (or is not finite, or is empty)."""
+
+
+class ParameterTypeError(TippeError, TypeError):
+    """A value of the wrong type (a str where a number is expected, ...)."""
+
+
+class AtlasFileError(InputError):
+    """A file given where an atlas is expected is missing, unreadable or not an atlas."""
+
+
+class RecipeError(InputError):
+    """A recipe file is malformed; the message names the file and the key."""
+
+
+class ResumeError(InputError):
+    """The sidecar chunk store cannot be used for this atlas (the message says why)."""
+
+
+class ChunkError(TippeError, RuntimeError):
+    """Computing one chunk of a chunked atlas failed (an exception in it, or its worker died).
+
+    The message names the chunk and its slice of the grid, the cause, and what was kept: with
+    ``resume=True`` the chunks finished before the failure stay in ``<output>.parts/`` and a
+    rerun computes only the others. The original exception is the ``__cause__``.
+    """
+
+
+class ConvergenceError(TippeError, _EngineConvergenceError):
+    """A continuation did not converge (raised by the package's clients of the engine, e.g. a
+    neutral curve's start point from which Newton's method finds no point of the curve).
+
+    A :class:`continuation.errors.ConvergenceError`: ``except continuation.ConvergenceError``
+    catches both the engine's and this one.
+    """
+
+
+class Interrupted(TippeError):
+    """Raised by a command instead of ``KeyboardInterrupt`` to say what was kept (exit 130)."""
