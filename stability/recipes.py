@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import importlib
+import importlib.util
 import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -118,7 +118,7 @@ def code_fingerprint() -> str:
     """
     h = hashlib.sha256()
     for pkg in ("stability", "continuation"):
-        root = Path(importlib.import_module(pkg).__file__).parent
+        root = Path(importlib.util.find_spec(pkg).origin).parent  # located, not imported
         for f in sorted(root.rglob("*.py")):
             h.update(f.relative_to(root.parent).as_posix().encode())
             h.update(f.read_bytes())

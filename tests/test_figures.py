@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 import stability
-from stability.linear.modes import leading_growth_rate, principal_mode, track_modes
+from stability.grids.atlases import leading_growth_rate
+from stability.linear.modes import principal_mode, track_modes
 from stability.plotting import plot_growth_rate, style
 from stability.plotting.maps import plot_stability_map
 from stability.plotting.recipe_figures import recipe_figure

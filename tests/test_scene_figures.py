@@ -131,7 +131,7 @@ def test_models_figure_one_panel_per_model_on_one_colour_scale(tmp_path):
     """The models side by side: one map per linear model, all on the same colour normalisation
     (so colours compare across panels), each coloured by its atlas's leading growth rate, the
     continued neutral curve on top, one colour bar."""
-    from stability.linear.modes import leading_growth_rate
+    from stability.grids.atlases import leading_growth_rate
 
     fig, data = _scene("models_q_fr_inv", tmp_path)
     names = [k for k in data if not k.endswith("_neutral")]

@@ -4,6 +4,9 @@ Every parameter given as a 1-D array becomes a dimension (in the canonical order
 sigma, alpha_v, mu) with a coordinate of the same name; a scalar becomes a scalar coordinate.
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; ``growth_rate = Re s``
 and ``frequency = Im s`` in units of the spin rate.
+
+:func:`leading_growth_rate` reads off an atlas the growth rate a stability map colours (the
+structural zero mode left out).
 """
 
 from __future__ import annotations
@@ -15,12 +18,13 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
-from .netcdf import PRODUCT_ATTR
+from ..linear.modes import structural_zeros
+from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
-from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+from .netcdf import PRODUCT_ATTR, require_atlas
 
-__all__ = ["atlas", "TIME_CONVENTION", "MARGINAL_RULE"]
+__all__ = ["atlas", "leading_growth_rate", "TIME_CONVENTION", "MARGINAL_RULE"]
 
 TIME_CONVENTION = ("x ~ exp(s t), t in units of 1/Omega, components in the non-rotating frame; "
                    "growth_rate = Re s, frequency = Im s, in units of the spin rate Omega")
@@ -148,3 +152,42 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         if v.ndim == 0:
             attrs[k] = float(v)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
+    """Largest growth rate over the modes of an atlas that are not structurally zero.
+
+    ``max_growth_rate`` includes the structural zero mode, so at ``fr_inv = 0`` it is 0 on the
+    whole stable side of the sliding top (marginal by structure: the ``stability`` flag says
+    so); this is the growth rate of the least stable of the other modes, what a stability map
+    colours. The zero mode is left out only when every point of the atlas has one (a plane at
+    ``fr_inv = 0``): an atlas that crosses ``fr_inv = 0`` keeps it on that line, because there it
+    is the end of the small mode ``s ~ -i c fr_inv`` (real part ``-O(fr_inv^2)``), and leaving
+    it out on one line only would draw a discontinuity that is not in the physics. Where it is
+    not left out this equals ``max_growth_rate``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An atlas (``growth_rate``, ``frequency`` along ``mode``; ``eigenvalue_error_bound`` if
+        present; ``max_growth_rate``).
+
+    Returns
+    -------
+    xarray.DataArray
+        Over the grid; NaN outside the domain.
+    """
+    require_atlas(ds)
+    g = ds["growth_rate"].transpose(..., "mode")
+    bound = ds["eigenvalue_error_bound"].transpose(..., "mode") if "eigenvalue_error_bound" in ds else None
+    zero = structural_zeros(g.values, ds["frequency"].transpose(..., "mode").values,
+                            None if bound is None else bound.values)
+    inside = np.isfinite(ds["max_growth_rate"].transpose(*g.dims[:-1]).values) if g.ndim > 1 else None
+    has = zero.any(axis=-1)
+    if inside is None or not inside.any() or not has[inside].all():
+        out = ds["max_growth_rate"].copy()
+    else:
+        out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
+    out.attrs = {"long_name": "largest growth rate over the modes that are not structurally zero",
+                 "units": "1"}
+    return out.rename("leading_growth_rate")

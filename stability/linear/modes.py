@@ -24,14 +24,11 @@ arbitrary by nature; the bisection stops at ``max_depth`` and keeps the best mat
 from __future__ import annotations
 
 from itertools import permutations
-from typing import TYPE_CHECKING, Callable
+from typing import Callable
 
 import numpy as np
 
-if TYPE_CHECKING:
-    import xarray as xr
-
-__all__ = ["track_modes", "principal_mode", "ambiguous_steps", "structural_zeros", "leading_growth_rate"]
+__all__ = ["track_modes", "principal_mode", "ambiguous_steps", "structural_zeros"]
 
 
 def _match(pred: np.ndarray, cur: np.ndarray, perms: list[list[int]]) -> tuple[np.ndarray, bool]:
@@ -163,44 +160,3 @@ def structural_zeros(growth_rate: np.ndarray, frequency: np.ndarray,
     if error_bound is not None:
         zero &= np.asarray(error_bound) == 0
     return zero
-
-
-def leading_growth_rate(ds: "xr.Dataset") -> "xr.DataArray":
-    """Largest growth rate over the modes of an atlas that are not structurally zero.
-
-    ``max_growth_rate`` includes the structural zero mode, so at ``fr_inv = 0`` it is 0 on the
-    whole stable side of the sliding top (marginal by structure: the ``stability`` flag says
-    so); this is the growth rate of the least stable of the other modes, what a stability map
-    colours. The zero mode is left out only when every point of the atlas has one (a plane at
-    ``fr_inv = 0``): an atlas that crosses ``fr_inv = 0`` keeps it on that line, because there it
-    is the end of the small mode ``s ~ -i c fr_inv`` (real part ``-O(fr_inv^2)``), and leaving
-    it out on one line only would draw a discontinuity that is not in the physics. Where it is
-    not left out this equals ``max_growth_rate``.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        An atlas (``growth_rate``, ``frequency`` along ``mode``; ``eigenvalue_error_bound`` if
-        present; ``max_growth_rate``).
-
-    Returns
-    -------
-    xarray.DataArray
-        Over the grid; NaN outside the domain.
-    """
-    from ..grids.netcdf import require_atlas
-
-    require_atlas(ds)
-    g = ds["growth_rate"].transpose(..., "mode")
-    bound = ds["eigenvalue_error_bound"].transpose(..., "mode") if "eigenvalue_error_bound" in ds else None
-    zero = structural_zeros(g.values, ds["frequency"].transpose(..., "mode").values,
-                            None if bound is None else bound.values)
-    inside = np.isfinite(ds["max_growth_rate"].transpose(*g.dims[:-1]).values) if g.ndim > 1 else None
-    has = zero.any(axis=-1)
-    if inside is None or not inside.any() or not has[inside].all():
-        out = ds["max_growth_rate"].copy()
-    else:
-        out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
-    out.attrs = {"long_name": "largest growth rate over the modes that are not structurally zero",
-                 "units": "1"}
-    return out.rename("leading_growth_rate")

@@ -8,7 +8,7 @@ from matplotlib.axes import Axes
 from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
-from ..linear.modes import leading_growth_rate
+from ..grids.atlases import leading_growth_rate
 from ..parameters import SYMBOLS
 
 __all__ = ["plot_stability_map", "plot_neutral_curve", "growth_norm", "NEUTRAL_STYLE"]
@@ -58,7 +58,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
 
     Notes
     -----
-    The colour is :func:`stability.linear.modes.leading_growth_rate`: the structural zero mode (the
+    The colour is :func:`stability.grids.atlases.leading_growth_rate`: the structural zero mode (the
     sliding top's ``s = 0`` at ``fr_inv = 0``, marginal by structure) is left out, so the stable
     side shows how fast the other modes decay instead of a flat zero.
     The line drawn here is the zero contour of the leading growth rate interpolated on the grid

@@ -5,7 +5,7 @@ from __future__ import annotations
 import xarray as xr
 from matplotlib.figure import Figure
 
-from ..linear.modes import leading_growth_rate
+from ..grids.atlases import leading_growth_rate
 from ..recipes import Recipe
 from .atlas_plots import plot_growth_rate
 from . import scene_plots
