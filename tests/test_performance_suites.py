@@ -29,6 +29,7 @@ from stability.bench import integrators as pi
 from stability.cli import main
 from stability.bench import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES
 from stability.bench.records import WorkPrecision
+from stability.bench.timing import best_times
 from stability.plotting.work_precision import suite_figure, verdict
 
 
@@ -114,12 +115,37 @@ def test_best_times_takes_the_minimum_and_checks_arguments():
         calls.append(1)
         return len(calls)
 
-    best, out = pc.best_times({"f": fn}, 3, 0.0)
+    best, out = best_times({"f": fn}, 3, 0.0)
     assert len(calls) == 6 and out["f"] == 6 and 0 <= best["f"] < 1  # 3 rounds: a warm-up + 1 timed
     with pytest.raises(ValueError, match="repeat"):
-        pc.best_times({"f": fn}, 0)
+        best_times({"f": fn}, 0)
     with pytest.raises(ValueError, match="min_time"):
-        pc.best_times({"f": fn}, 1, -1.0)
+        best_times({"f": fn}, 1, -1.0)
+
+
+def test_best_times_options_make_the_call_sequences_of_the_suites():
+    """The one timer in each of the suites' uses, by the sequence of calls it makes (no time is
+    asserted; the values timed are the minimum per call, so they only need to be >= 0):
+
+    * eigen (``warmup="first"``, ``keep=False``): every function once, then round-robin rounds
+      of one timed call each; no result kept;
+    * integrators (``warmup="none"``): ``repeat`` timed calls, the last result returned;
+    * the method choice of the continuation suite (``number=50``, one round): a warm-up call and
+      a block of 50 calls per function, one function after the other."""
+    log = []
+    fns = {k: (lambda k=k: log.append(k) or len(log)) for k in "ab"}
+    best, out = best_times(fns, 2, warmup="first", keep=False)
+    assert log == ["a", "b", "a", "b", "a", "b"] and out == {} and min(best.values()) >= 0
+    log.clear()
+    best, out = best_times({"a": fns["a"]}, 3, warmup="none")
+    assert log == ["a"] * 3 and out == {"a": 3}
+    log.clear()
+    best, out = best_times(fns, 1, number=50, warmup="round", keep=False)
+    assert log == ["a"] * 51 + ["b"] * 51 and set(best) == {"a", "b"}
+    with pytest.raises(ValueError, match="number = 0 must be an integer >= 1"):
+        best_times(fns, 1, number=0)
+    with pytest.raises(ValueError, match="warmup = 'twice' is not known; choose one of first, round, none"):
+        best_times(fns, 1, warmup="twice")
 
 
 def test_integrator_errors_against_dop853_reference():

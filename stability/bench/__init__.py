@@ -2,11 +2,13 @@
 
 Every measurement is one :class:`~stability.bench.records.WorkPrecision` point: a method (at one
 setting), the wall time per unit of work it took, and its error against an independent
-reference. A suite (:class:`~stability.bench.records.Suite`, registered by name in
-:data:`SUITES`) returns a list of them and says how its chart is drawn
-(:class:`~stability.bench.records.Panel`); ``tippe bench --suite NAME`` runs it and writes
-``atlases/work_precision_NAME.png`` and ``.json``. Speed is quoted as a ratio against baselines
-measured in the same run.
+reference. Every time comes from the one timer, :func:`stability.bench.timing.best_times`
+(the minimum over interleaved rounds). A suite is a module that defines its
+:class:`~stability.bench.records.Suite` as ``SUITE``: the function that measures, the title,
+the chart's panels (:class:`~stability.bench.records.Panel`, each with its required accuracy)
+and its ``--quick`` configuration; :data:`SUITES` collects them by name. ``tippe bench --suite
+NAME`` runs one and writes ``atlases/work_precision_NAME.png`` and ``.json``. Speed is quoted
+as a ratio against baselines measured in the same run.
 
 Suites, one module each (each holds its problem, baselines, references and required accuracy):
 
@@ -24,55 +26,16 @@ Layer 7 (docs/architecture.md): the suites measure the layers below; nothing bel
 
 from __future__ import annotations
 
-from .continuation import CONTINUATION_TITLE, FOLD_TARGET, continuation_work_precision
-from .eigen import EIGEN_TARGET, eigen_work_precision
-from .integrators import CROSSING_TARGET, GROWTH_TARGET, INTEGRATOR_TITLE, integrator_work_precision
+from . import continuation, eigen, integrators
+from .continuation import FOLD_TARGET
+from .eigen import EIGEN_TARGET
+from .integrators import CROSSING_TARGET, GROWTH_TARGET
 from .records import Panel, Suite, WorkPrecision, peak_memory_mb
+from .timing import best_times
 
 __all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "WorkPrecision", "Panel",
-           "Suite", "peak_memory_mb"]
+           "Suite", "best_times", "peak_memory_mb"]
 
-
-def _continuation_suite(repeat: int = 5, quick: bool = False) -> list[WorkPrecision]:
-    """:func:`stability.bench.continuation.continuation_work_precision`, with the options
-    ``tippe bench`` passes to it."""
-    return continuation_work_precision(repeat=repeat, quick=quick)
-
-
-def _integrator_suite(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
-    """:func:`stability.bench.integrators.integrator_work_precision`, with the options
-    ``tippe bench`` passes to it."""
-    return integrator_work_precision(repeat=repeat, quick=quick)
-
-
-def _suites() -> dict[str, Suite]:
-    return {
-        "eigen": Suite(eigen_work_precision,
-                       "eigenvalues of the sliding model (eq. 11) over the physical domain",
-                       (Panel("largest relative error per eigenvalue vs mpmath, 50 digits",
-                              "wall time per point [s]", target=EIGEN_TARGET),)),
-        "continuation": Suite(_continuation_suite, CONTINUATION_TITLE,
-                              (Panel("error of the located fold (q*, sigma*) vs closed form",
-                                     "wall time per traced curve [s]", target=FOLD_TARGET),
-                               Panel("largest error of the curve (dense output / spline) vs closed form",
-                                     "wall time per traced curve [s]", x="curve_error",
-                                     title="the curve between the points: Hermite dense output vs cubic spline")),
-                              unit="curve", compare_at=("error", "curve_error")),
-        "integrators": Suite(_integrator_suite, INTEGRATOR_TITLE,
-                             (Panel("error of the 90-degree crossing time vs DOP853 rtol 1e-13 [1/Omega]",
-                                    "wall time per run [s]", target=CROSSING_TARGET),
-                              Panel("alpha_v (stiff slip mode, linear regime, 200 time units, rtol 1e-6)",
-                                    "wall time per run [s]", x="alpha_v", select="stiff",
-                                    title="cost against stiffness: explicit methods' time grows like alpha_v"),
-                              Panel("relative error of the fitted growth rate vs DOP853 rtol 1e-13",
-                                    "wall time per validation run [s]", select="growth", target=GROWTH_TARGET,
-                                    title="validate(): growth rate fitted to a run (4 e-folds)")),
-                             unit="run", compare_at=("error",)),
-    }
-
-
-#: name -> :class:`Suite`: "eigen" (:mod:`stability.bench.eigen`), "continuation"
-#: (:mod:`stability.bench.continuation`), "integrators"
-#: (:mod:`stability.bench.integrators`); ``tippe bench --suite NAME`` runs one,
-#: ``tippe bench`` (``--suite all``) all three.
-SUITES: dict[str, Suite] = _suites()
+#: name -> :class:`Suite`, in the order ``tippe bench`` (``--suite all``) runs them; a new suite
+#: is a module of this package with its ``SUITE``, and one entry here
+SUITES: dict[str, Suite] = {s.name: s for s in (eigen.SUITE, continuation.SUITE, integrators.SUITE)}

@@ -30,36 +30,33 @@ neutral condition has a closed form (tests/test_neutral.py): the curve is
 * turning back: columns at fixed sigma (brentq in q) see nothing where they cross the curve
   twice (:func:`columns_in_q`).
 
-Timing (:func:`best_times`): wall clock (``time.perf_counter``), the **minimum** over all
-timed calls of a configuration: ``repeat`` rounds, in each a block of consecutive calls of
-every configuration in turn (one untimed warm-up call, then at least ``min_time / repeat``
-seconds), in the same process. Everything timed is single-threaded, so the wall time of a run is its CPU time
-plus what the machine's other jobs take from it; those only ever add time, and the minimum
-is the least disturbed estimate (the advice of :mod:`timeit`). The same rule for the
-continuation and the baselines.
+Timing (:func:`stability.bench.timing.best_times`, warm-up ``"round"``): wall clock
+(``time.perf_counter``), the **minimum** over all timed calls of a configuration: ``repeat``
+rounds, in each a block of consecutive calls of every configuration in turn (one untimed
+warm-up call, then at least ``min_time / repeat`` seconds), in the same process. Everything
+timed is single-threaded, so the wall time of a run is its CPU time plus what the machine's
+other jobs take from it; those only ever add time, and the minimum is the least disturbed
+estimate (the advice of :mod:`timeit`). The same rule for the continuation and the baselines.
 """
 
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Callable, Hashable
 from typing import Any
 
 import numpy as np
 
-from .records import WorkPrecision
+from .records import Panel, Suite, WorkPrecision
+from .timing import best_times
 
 __all__ = ["MU", "ALPHA_V", "Q_STAR", "SIGMA_STAR", "FOLD_TARGET", "SETTINGS", "COLUMNS", "sigma_ref",
            "trace", "continuation_errors", "fastest_method", "leading_growth_rate", "leading_growth_rate_roots",
-           "columns_in_sigma", "columns_in_q", "column_errors", "columns_for_accuracy", "best_times",
-           "neutral_benchmark", "format_tables", "continuation_work_precision", "CONTINUATION_TITLE"]
+           "columns_in_sigma", "columns_in_q", "column_errors", "columns_for_accuracy",
+           "neutral_benchmark", "format_tables", "continuation_work_precision", "SUITE"]
 
 #: required accuracy of the fold's coordinates (q*, sigma*) (the issue)
 FOLD_TARGET = 1e-10
-
-CONTINUATION_TITLE = ("neutral curve of the sliding model in (q, sigma), fr_inv = 0, alpha_v = 0.5, mu = 2.28: "
-                      "continuation vs brentq per column")
 
 #: the problem: scaled mass and viscous friction (Fig. 3), fr_inv = 0
 MU, ALPHA_V = 2.28, 0.5
@@ -150,22 +147,16 @@ def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
             "upper": int(np.count_nonzero(s > 0.86))}
 
 
-def _one_point_time(fn: Callable[[], Any], calls: int = 50) -> float:
-    fn()
-    t0 = time.perf_counter()
-    for _ in range(calls):
-        fn()
-    return (time.perf_counter() - t0) / calls
-
-
 def fastest_method() -> str:
     """The fastest :func:`stability.spectrum` method for one point of the problem, by timing
-    (the baseline [A] gets the best the package offers)."""
+    (the baseline [A] gets the best the package offers): each method's mean over a block of 50
+    consecutive calls after one warm-up call (:func:`~stability.bench.timing.best_times`, one
+    sample of ``number = 50``), the methods one after the other."""
     from ..linear.spectra import spectrum
 
-    times = {m: _one_point_time(lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
-                                                     mu=MU, method=m))
-             for m in ("kernel", "polynomial", "lapack")}
+    times, _ = best_times({m: lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
+                                                   mu=MU, method=m)
+                           for m in ("kernel", "polynomial", "lapack")}, 1, number=50, warmup="round", keep=False)
     return min(times, key=times.get)
 
 
@@ -296,44 +287,6 @@ def columns_for_accuracy(target: float, leading: Callable[[float, float], float]
     return n
 
 
-def best_times(fns: dict[Hashable, Callable[[], Any]], repeat: int, min_time: float = 0.0
-               ) -> tuple[dict[Hashable, float], dict[Hashable, Any]]:
-    """Minimum wall time (``time.perf_counter``) of each function, and its last result.
-
-    ``repeat`` rounds; in each round every configuration in turn runs a block: one untimed
-    call (caches warm again after the other configurations), then timed calls, consecutively,
-    until the block has at least one timed call and ``min_time / repeat`` seconds. The minimum
-    over all timed calls is kept. Consecutive calls time each configuration in its own steady
-    state (as :mod:`timeit` does); the rounds spread its samples over the whole run, so a burst
-    of the machine's other jobs cannot cover all of them. The same budget for every
-    configuration: a short call gets more samples of its floor.
-
-    Raises
-    ------
-    ValueError
-        If ``repeat`` is not an integer >= 1 or ``min_time`` is negative.
-    """
-    if not (isinstance(repeat, int) and repeat >= 1):
-        raise ValueError(f"repeat = {repeat!r} must be an integer >= 1")
-    if not (isinstance(min_time, (int, float)) and min_time >= 0):
-        raise ValueError(f"min_time = {min_time!r} must be a number >= 0 (seconds)")
-    best: dict[Hashable, float] = dict.fromkeys(fns, math.inf)
-    out: dict[Hashable, Any] = {}
-    block = min_time / repeat
-    for _ in range(repeat):
-        for k, fn in fns.items():
-            out[k] = fn()
-            t_end = time.perf_counter() + block
-            while True:
-                t0 = time.perf_counter()
-                out[k] = fn()
-                t1 = time.perf_counter()
-                best[k] = min(best[k], t1 - t0)
-                if t1 >= t_end:
-                    break
-    return best, out
-
-
 def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...] = SETTINGS,
                       columns: tuple[int, ...] = COLUMNS, python_path: bool = True,
                       equal_accuracy: bool = True, turning_back: int = 200,
@@ -357,7 +310,8 @@ def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...]
     method : str, optional
         :func:`stability.spectrum` method of [A] (default: :func:`fastest_method`).
     min_time : float
-        Seconds of timed runs per configuration, at least (:func:`best_times`).
+        Seconds of timed runs per configuration, at least
+        (:func:`~stability.bench.timing.best_times`).
 
     Returns
     -------
@@ -480,7 +434,8 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
     columns : tuple of int
         Column counts of the baseline.
     min_time : float
-        Seconds of timed runs per configuration, at least (:func:`best_times`; quick: at most 0.1).
+        Seconds of timed runs per configuration, at least
+        (:func:`~stability.bench.timing.best_times`; quick: at most 0.1).
     equal_accuracy : bool
         Add the equal-accuracy column counts (not when ``quick``).
 
@@ -515,3 +470,15 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
                  f"(method {b['method']!r}), cubic spline, fold its maximum",
             extra={"curve_error": e["cubic"], "points": e["found"], "point_error": e["point"], "columns": n}))
     return results
+
+
+#: the suite: ``tippe bench --suite continuation``
+SUITE = Suite(
+    "continuation", continuation_work_precision,
+    "neutral curve of the sliding model in (q, sigma), fr_inv = 0, alpha_v = 0.5, mu = 2.28: "
+    "continuation vs brentq per column",
+    (Panel("error of the located fold (q*, sigma*) vs closed form", "wall time per traced curve [s]",
+           target=FOLD_TARGET),
+     Panel("largest error of the curve (dense output / spline) vs closed form", "wall time per traced curve [s]",
+           x="curve_error", title="the curve between the points: Hermite dense output vs cubic spline")),
+    unit="curve", compare_at=("error", "curve_error"), quick={"quick": True})

@@ -11,20 +11,22 @@ package's paths ``spectrum(method=...)`` for ``"lapack"``, ``"polynomial"`` and 
 kernel (:func:`stability.linear.kernel.sliding_spectrum`, no domain check) with and without
 polishing. The baselines start from prebuilt ``M`` and ``A`` (their construction is not
 timed); the package's paths start from the parameters.
+
+Timing: :func:`stability.bench.timing.best_times`, one warm-up call of each method before the
+first round, then ``repeat`` rounds in which the methods run in turn (interleaved), one timed
+call each; the minimum per method. Results are dropped as soon as a call returns (they are
+hundreds of MB at 10^6 points; the chart reports the peak memory).
 """
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable
-from typing import Any
-
 import numpy as np
 
 from ..models import get_model
-from .records import WorkPrecision
+from .records import Panel, Suite, WorkPrecision
+from .timing import best_times
 
-__all__ = ["domain_sample", "eigen_reference", "eigen_errors", "eigen_work_precision", "EIGEN_TARGET"]
+__all__ = ["domain_sample", "eigen_reference", "eigen_errors", "eigen_work_precision", "EIGEN_TARGET", "SUITE"]
 
 #: largest relative error per eigenvalue the issue requires
 EIGEN_TARGET = 1e-13
@@ -92,20 +94,6 @@ def eigen_errors(ev: np.ndarray, reference: list[list]) -> np.ndarray:
     return out
 
 
-def _interleaved_best(fns: dict[str, tuple[Callable[[], Any], int]], repeat: int) -> dict[str, float]:
-    """Best wall time of each function over ``repeat`` round-robin rounds, after one warm-up call
-    each (compilation, first touch of memory)."""
-    for fn, _ in fns.values():
-        fn()
-    best = dict.fromkeys(fns, np.inf)
-    for _ in range(repeat):
-        for name, (fn, _) in fns.items():
-            t = time.perf_counter()
-            fn()
-            best[name] = min(best[name], time.perf_counter() - t)
-    return best
-
-
 def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, loop_points: int = 20_000,
                          repeat: int = 5, seed: int = 0) -> list[WorkPrecision]:
     """Work-precision points of the eigenvalue methods on the sliding model.
@@ -149,16 +137,16 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
     # and the bare kernel timed round-robin, so a change of the machine's load hits them alike);
     # the slower cross-checks follow, after the baselines' matrices are freed
     group = {
-        "scipy loop": (lambda: loop(M, A, n_loop), n_loop),
-        "batched LAPACK": (lambda: np.linalg.eigvals(np.linalg.solve(M, A)), points),
-        "spectrum(kernel)": (lambda: spectrum("sliding", method="kernel", **big), points),
-        "kernel alone": (lambda: kernel.sliding_spectrum(*args, polish=3), points),
-        "kernel alone, no polishing": (lambda: kernel.sliding_spectrum(*args, polish=0), points),
+        "scipy loop": lambda: loop(M, A, n_loop),
+        "batched LAPACK": lambda: np.linalg.eigvals(np.linalg.solve(M, A)),
+        "spectrum(kernel)": lambda: spectrum("sliding", method="kernel", **big),
+        "kernel alone": lambda: kernel.sliding_spectrum(*args, polish=3),
+        "kernel alone, no polishing": lambda: kernel.sliding_spectrum(*args, polish=0),
     }
-    best = _interleaved_best(group, repeat)
+    best, _ = best_times(group, repeat, warmup="first", keep=False)
     M = A = group = None  # free the baselines' matrices before the cross-checks
-    best.update(_interleaved_best({f"spectrum({m})": (lambda m=m: spectrum("sliding", method=m, **big), points)
-                                   for m in ("lapack", "polynomial")}, repeat))
+    best.update(best_times({f"spectrum({m})": lambda m=m: spectrum("sliding", method=m, **big)
+                            for m in ("lapack", "polynomial")}, repeat, warmup="first", keep=False)[0])
     errors = {
         "scipy loop": loop(Ms, As, reference_points),
         "batched LAPACK": np.linalg.eigvals(np.linalg.solve(Ms, As)),
@@ -180,6 +168,14 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
                                          note="package path: domain check, bounds, decision"))
         else:
             results.append(WorkPrecision(name, best[name] / n, err, n, component=True,
-                                         note="stability.kernel.sliding_spectrum, from the parameters, "
+                                         note="stability.linear.kernel.sliding_spectrum, from the parameters, "
                                               "no domain check"))
     return results
+
+
+#: the suite: ``tippe bench --suite eigen``
+SUITE = Suite(
+    "eigen", eigen_work_precision, "eigenvalues of the sliding model (eq. 11) over the physical domain",
+    (Panel("largest relative error per eigenvalue vs mpmath, 50 digits", "wall time per point [s]",
+           target=EIGEN_TARGET),),
+    quick={"points": 100_000, "reference_points": 200, "loop_points": 2000, "repeat": 1})

@@ -27,22 +27,24 @@ Three problems, all the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``si
   ``validate()``'s default (dopri5, ``rtol = 1e-11``); the baseline scipy's RK45 (what
   ``solve_ivp`` does unless told otherwise). Required: :data:`GROWTH_TARGET`.
 
-Times are the best of ``repeat`` runs after one warm-up run per method (numba's compilation and
-caches). This is the measuring code of ``benchmarks/work_precision.py`` (a thin wrapper now).
+Times are the best of ``repeat`` runs (:func:`stability.bench.timing.best_times`, no warm-up
+of its own: every method is warmed up once at the start, numba's compilation and caches). This
+is the measuring code of ``benchmarks/work_precision.py`` (a thin wrapper now).
 """
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from .records import WorkPrecision
+from .records import Panel, Suite, WorkPrecision
+from .timing import best_times
 
 __all__ = ["FR_INV", "T_END", "crossing_run", "numpy_rhs_crossing_run", "stiff_run", "growth_run",
-           "integrator_work_precision", "CROSSING_TARGET", "GROWTH_TARGET", "INTEGRATOR_TITLE", "TOLERANCES", "RK4_STEPS", "STIFF_ALPHA_V"]
+           "integrator_work_precision", "CROSSING_TARGET", "GROWTH_TARGET", "TOLERANCES", "RK4_STEPS",
+           "STIFF_ALPHA_V", "SUITE"]
 
 #: required accuracy of the 90-degree crossing time, in time units 1/Omega: the level at which
 #: docs/nonlinear.md calls the scene's run converged (2e-7 from rtol 1e-9 to 1e-13)
@@ -52,9 +54,6 @@ CROSSING_TARGET = 1e-6
 #: the fit with the linear operator at the benchmark's point (8.8e-7), so that the integrator
 #: does not decide a validation's reading (module docstring)
 GROWTH_TARGET = 1e-6
-
-INTEGRATOR_TITLE = ("nonlinear sliding top, the paper's Fr^-1 = 0.3 run (Sec. 3(ii)), the stiff slip mode "
-                    "and a validation run: integrators")
 
 #: the paper's run: fr_inv, alpha_v, final time (the crossing is at ~500), output interval
 FR_INV, ALPHA_V, T_END, DT = 0.3, 0.5, 650.0, 0.05
@@ -208,13 +207,10 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
 
 
 def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    """Best wall time of ``repeat`` calls (no warm-up: each method is warmed up once at the start)."""
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return float(best), out
+    """:func:`~stability.bench.timing.best_times` of one function, without warm-up (each method
+    is warmed up once at the start): its best time of ``repeat`` calls and its last result."""
+    best, out = best_times({"run": fn}, repeat, warmup="none")
+    return best["run"], out["run"]
 
 
 def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
@@ -303,3 +299,17 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
         note="validate() with its defaults (dopri5, rtol 1e-11, atol 1e-15)",
         extra={"growth_rate": g, "reference": g_ref}))
     return results
+
+
+#: the suite: ``tippe bench --suite integrators``
+SUITE = Suite(
+    "integrators", integrator_work_precision,
+    "nonlinear sliding top, the paper's Fr^-1 = 0.3 run (Sec. 3(ii)), the stiff slip mode and a validation "
+    "run: integrators",
+    (Panel("error of the 90-degree crossing time vs DOP853 rtol 1e-13 [1/Omega]", "wall time per run [s]",
+           target=CROSSING_TARGET),
+     Panel("alpha_v (stiff slip mode, linear regime, 200 time units, rtol 1e-6)", "wall time per run [s]",
+           x="alpha_v", select="stiff", title="cost against stiffness: explicit methods' time grows like alpha_v"),
+     Panel("relative error of the fitted growth rate vs DOP853 rtol 1e-13", "wall time per validation run [s]",
+           select="growth", target=GROWTH_TARGET, title="validate(): growth rate fitted to a run (4 e-folds)")),
+    unit="run", compare_at=("error",), quick={"quick": True})

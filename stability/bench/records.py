@@ -1,22 +1,21 @@
 """Work-precision records: one measurement, a chart's panel, a suite, and the process's peak memory.
 
 A measurement is one :class:`WorkPrecision` point: a method (at one setting), the wall time per
-unit of work it took, and its error against an independent reference. A :class:`Suite`
-(registered by name in :data:`stability.bench.SUITES`) returns a list of them and says how its
-chart is drawn (:class:`Panel`). Generic: nothing here knows about a particular suite.
+unit of work it took (:func:`stability.bench.timing.best_times`), and its error against an
+independent reference. A :class:`Suite` (each suite module defines its own ``SUITE``, collected
+by name in :data:`stability.bench.SUITES`) returns a list of them and says how its chart is
+drawn (:class:`Panel`, which holds the required accuracy). Generic: nothing here knows about a
+particular suite.
 """
 
 from __future__ import annotations
 
 import resource
-import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-import numpy as np
-
-__all__ = ["WorkPrecision", "Panel", "Suite", "best_time", "peak_memory_mb"]
+__all__ = ["WorkPrecision", "Panel", "Suite", "peak_memory_mb"]
 
 
 @dataclass(frozen=True)
@@ -85,7 +84,8 @@ class Panel:
     select : str
         Draws the results whose :attr:`WorkPrecision.panel` equals it.
     target : float, optional
-        Required accuracy (vertical line; the fastest point left of it is named).
+        The required accuracy of the results drawn in this panel (vertical line; the fastest
+        point left of it is named; ``tippe bench`` prints the verdict against it).
     title : str
         The panel's own title.
     """
@@ -104,13 +104,17 @@ class Suite:
 
     Attributes
     ----------
+    name : str
+        Its key in :data:`stability.bench.SUITES` (``--suite NAME``, the files
+        ``work_precision_NAME.png`` and ``.json``).
     run : callable
         Returns a list of :class:`WorkPrecision`; takes the keywords among ``points``,
         ``reference_points``, ``loop_points``, ``repeat`` and ``quick`` that it names.
     title : str
         What was measured (the chart's title, before the default/fastest summary).
     panels : tuple of Panel
-        The chart's panels, left to right.
+        The chart's panels, left to right; each with its required accuracy
+        (:attr:`Panel.target`), if it has one.
     unit : str
         The unit of work of ``seconds_per_point`` ("point", "curve", "run").
     compare_at : tuple of str
@@ -118,29 +122,18 @@ class Suite:
         at equal accuracy: against the fastest setting of each baseline whose error is at most
         the point's. Empty: plain ratios against each baseline (the eigen suite, whose
         baselines are single points).
+    quick : mapping of str to value
+        The keywords of ``run`` under ``tippe bench --quick`` (where no flag gives them): the
+        small configuration, in seconds rather than minutes.
     """
 
+    name: str
     run: Callable[..., list[WorkPrecision]]
     title: str
     panels: tuple[Panel, ...]
     unit: str = "point"
     compare_at: tuple[str, ...] = ()
-
-
-def best_time(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    """Best (smallest) wall time of ``repeat`` calls of ``fn`` after one warm-up call, and the
-    last result. The best, not the median: on this shared machine the other processes only
-    ever add time, in bursts that can cover several consecutive runs."""
-    if not (isinstance(repeat, int) and repeat >= 1):
-        raise ValueError(f"repeat = {repeat!r} must be an integer >= 1")
-    fn()
-    best = np.inf
-    out = None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return float(best), out
+    quick: Mapping[str, Any] = field(default_factory=dict)
 
 
 def peak_memory_mb() -> float:

@@ -22,13 +22,10 @@ from pathlib import Path
 from typing import Any
 
 from ..grids.netcdf import atomic_output, check_output_path
-from ..bench import EIGEN_TARGET, SUITES
+from ..bench import SUITES
 from ..bench.records import WorkPrecision, peak_memory_mb
 
-__all__ = ["register", "run", "run_suite", "summary_lines", "EIGEN_TARGET", "QUICK"]
-
-#: the eigen suite's configuration under --quick (the other suites take quick=True)
-QUICK = {"points": 100_000, "reference_points": 200, "loop_points": 2000, "repeat": 1}
+__all__ = ["register", "run", "run_suite", "summary_lines"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -42,8 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "a JSON summary per suite and prints the speed ratios against the baselines.")
     p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
                    help="suite to run (default: all three)")
-    p.add_argument("--quick", action="store_true", help="small configurations (eigen: 1e5 points, "
-                   "200 reference points, one repeat; the others: fewer settings)")
+    p.add_argument("--quick", action="store_true", help=f"small configurations ({_quick_help()})")
     p.add_argument("--points", type=float, default=None, help="eigen: batch size for the timings (default 1e6)")
     p.add_argument("--reference-points", type=int, default=None, help="eigen: mpmath sample size (default 1000)")
     p.add_argument("--loop-points", type=int, default=None, help="eigen: points timed for the per-point loop "
@@ -52,6 +48,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "continuation 5, integrators 3)")
     p.add_argument("--out-dir", default="atlases", help="directory for the charts and the summaries")
     p.set_defaults(func=run)
+
+
+def _quick_help() -> str:
+    """What ``--quick`` runs, from each suite's :attr:`~stability.bench.records.Suite.quick`."""
+    def shown(k: str, v: Any) -> str:
+        return "fewer settings" if k == "quick" else f"{k.replace('_', ' ')} {v:g}"
+
+    return "; ".join(f"{s.name}: {', '.join(shown(k, v) for k, v in s.quick.items())}" for s in SUITES.values())
 
 
 def _error(r: WorkPrecision, key: str) -> float:
@@ -106,13 +110,15 @@ def summary_lines(results: list[WorkPrecision], unit: str = "point",
 
 
 def _options(args: argparse.Namespace, name: str) -> dict[str, Any]:
-    """Keyword arguments for a suite's run function: the ones it names, from the flags."""
+    """Keyword arguments for a suite's run function: the ones it names, from the flags (with
+    ``--quick``, the suite's :attr:`~stability.bench.records.Suite.quick` where no flag gives one)."""
+    suite = SUITES[name]
     given = {"points": None if args.points is None else int(args.points),
-             "reference_points": args.reference_points, "loop_points": args.loop_points, "repeat": args.repeat}
-    if args.quick and name == "eigen":
-        given = {k: QUICK[k] if v is None else v for k, v in given.items()}
-    given["quick"] = bool(args.quick) if name != "eigen" else None
-    accepted = inspect.signature(SUITES[name].run).parameters
+             "reference_points": args.reference_points, "loop_points": args.loop_points, "repeat": args.repeat,
+             "quick": None}
+    if args.quick:
+        given = {k: suite.quick.get(k) if v is None else v for k, v in given.items()}
+    accepted = inspect.signature(suite.run).parameters
     # every option the suite takes, with its default where no flag gave one (so that the chart
     # and the JSON record the configuration actually run)
     return {k: given[k] if given.get(k) is not None else p.default for k, p in accepted.items()
