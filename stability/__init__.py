@@ -7,7 +7,8 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :class:`Top` - a real top in SI units and its nondimensional parameters;
 * :data:`MODELS` - the registry of linear models ("fixed_pivot", "rolling", "sliding");
 * :func:`state_space`, :func:`friction_loop` - python-control forms of the operators;
-* :func:`threshold`, :func:`thresholds`, :func:`critical_spin` - where stability changes;
+* :func:`threshold`, :func:`thresholds`, :func:`threshold_crossings`, :func:`critical_spin` -
+  where stability changes;
 * :func:`simulate`, :func:`jacobian_eigenvalues`, :func:`validate` - nonlinear runs and the
   check of the linear predictions against them;
 * :class:`TippeError` - the base of every exception the package raises on purpose
@@ -20,7 +21,7 @@ from .errors import AtlasFileError, ChunkError, DomainError, InputError, TippeEr
 from .grids.atlases import atlas
 from .grids.netcdf import open_atlas, write_dataset
 from .linear.control_forms import friction_loop, state_space
-from .linear.critical import critical_spin, threshold, thresholds
+from .linear.critical import critical_spin, threshold, threshold_crossings, thresholds
 from .linear.spectra import eigenvalues, spectrum
 from .models import MODELS, LinearModel, get_model
 from .nonlinear.jacobian import jacobian_eigenvalues
@@ -34,5 +35,5 @@ __all__ = [
     "TippeError", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
-    "threshold", "thresholds", "critical_spin",
+    "threshold", "thresholds", "threshold_crossings", "critical_spin",
 ]

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from continuation import ConvergenceError, neutral_curve
-from stability import thresholds, threshold
+from stability import threshold, threshold_crossings, thresholds
 from stability.models.base import LinearModel
 
 MU = 2.28
@@ -277,7 +277,7 @@ def test_two_crossings_merging_at_a_fold_are_both_listed(delta):
     """
     s = float(fold_reference()[1]) - delta
     refs, d = _q_roots(s)
-    got = thresholds("q", fr_inv=0.0, sigma=s, alpha_v=0.5, return_details=True)
+    got = threshold_crossings("q", fr_inv=0.0, sigma=s, alpha_v=0.5)
     assert len(got) == 2
     tol = 16 * 2.0**-53 / float(d) + 4 * 2.0**-53
     for g, r in zip(got, refs):

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import stability
-from stability import critical_spin, threshold, thresholds
+from stability import critical_spin, threshold, threshold_crossings, thresholds
 from stability.cli import main
 from stability.errors import DomainError
 
@@ -41,7 +41,7 @@ def test_fr_inv_threshold(q, sigma):
     mp.dps = 40
     qm, sm = mpmath.mpf(q), mpmath.mpf(sigma)
     ref = (sm - (1 - MU * qm * qm) / (1 + qm)) / (MU * qm * (1 + qm))
-    found = thresholds("fr_inv", q=q, sigma=sigma, alpha_v=0.5, return_details=True)
+    found = threshold_crossings("fr_inv", q=q, sigma=sigma, alpha_v=0.5)
     # the root's condition number for a normwise backward error of the coefficients:
     # kappa = ||c||_1 max(1, |w|)^3 / (|dp/dfr_inv| |fr_inv|), dp/dfr_inv = -mu^2 q (i w) - mu alpha_v q
     # (the numerator sigma - (1 - mu q^2)/(1 + q) cancels, so kappa ~ 10-50 here); allow 8 u kappa
@@ -52,6 +52,28 @@ def test_fr_inv_threshold(q, sigma):
     assert len(found) == 1
     assert abs(found[0].value - float(ref)) <= 8 * 2.0**-53 * float(kappa) * float(ref)
     assert close(found[0].frequency, 1 / (1 + qm))  # the slip-free frequency 1/(1+q)
+
+
+def test_return_details_is_deprecated_and_still_works():
+    """``thresholds(return_details=...)`` warns (DeprecationWarning, naming threshold_crossings)
+    and returns what it returned before: with True the records (the threshold at fr_inv = 0 is
+    sigma = (1 - mu q^2)/(1 + q), closed form at 40 digits; its neutral frequency the slip-free
+    1/(1 + q)), with False the values. Without the keyword: no warning."""
+    import warnings
+
+    mp.dps = 40
+    qm = mpmath.mpf("-0.1")
+    ref = (1 - MU * qm * qm) / (1 + qm)
+    kw = dict(q=-0.1, fr_inv=0.0, alpha_v=0.5)
+    with pytest.warns(DeprecationWarning, match="threshold_crossings"):
+        (t,) = thresholds("sigma", return_details=True, **kw)
+    assert close(t.value, ref) and close(t.frequency, 1 / (1 + qm)) and t.unstable_side == "below"
+    with pytest.warns(DeprecationWarning, match="return_details"):
+        (v,) = thresholds("sigma", return_details=False, **kw)
+    assert close(v, ref)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert close(thresholds("sigma", **kw)[0], ref)
 
 
 def test_all_q_thresholds_sorted():
@@ -71,7 +93,7 @@ def test_second_order_models_discriminant(model, q, f):
     qm, fm = mpmath.mpf(q), mpmath.mpf(f)
     h = qm if model == "rolling" else 1 + qm
     ref = mp.sqrt(4 * (1 + MU * (1 + 2 * qm)) * MU * fm * h)
-    found = thresholds("sigma", model=model, q=q, fr_inv=f, return_details=True)
+    found = threshold_crossings("sigma", model=model, q=q, fr_inv=f)
     assert len(found) == 1 and close(found[0].value, ref)
     assert found[0].unstable_side == "below"
 

@@ -77,7 +77,7 @@ def _top(args: argparse.Namespace) -> Top:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
-    from ..linear.critical import critical_spin, threshold, thresholds
+    from ..linear.critical import critical_spin, threshold, threshold_crossings
 
     _refuse_unused(args)
     if args.param == "spin":
@@ -105,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
         if len(bracket) != 2:
             raise ValueError(f"--bracket = {args.bracket!r} must be lo:hi")
     if args.all:
-        found = thresholds(args.param, model=model, bracket=bracket, return_details=True, **fixed)
+        found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
         if not found:
             print(f"no threshold in {args.param}")
         for t in found:

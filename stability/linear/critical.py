@@ -1,6 +1,6 @@
 """Threshold queries: where the leading growth rate changes sign as one parameter varies.
 
-Method (for :func:`thresholds`):
+Method (for :func:`threshold_crossings`, whose values :func:`thresholds` returns):
 
 1. sample the parameter over the bracket (a uniform and a geometric grid, ``samples`` points
    each) and decide the stability of each sample (:func:`stability.spectrum`);
@@ -27,6 +27,7 @@ the spin rate above which the upright state is unstable, or the inverted one sta
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple
@@ -40,8 +41,8 @@ from ..parameters import (DEFAULT_MU, as_parameter, as_scalar, check_choice, che
                          check_integer)
 from .spectra import UNSTABLE, spectrum
 
-__all__ = ["Threshold", "threshold", "thresholds", "critical_spin", "CriticalSpin", "default_bracket",
-           "UPPER_BOUND"]
+__all__ = ["Threshold", "threshold", "thresholds", "threshold_crossings", "critical_spin", "CriticalSpin",
+           "default_bracket", "UPPER_BOUND"]
 
 #: upper end of the default bracket of the parameters without a finite physical bound
 UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
@@ -187,8 +188,53 @@ def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: fl
     return Threshold(float(value), float(w), side)
 
 
+def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
+                        bracket: Sequence[float] | None = None, samples: int = 257,
+                        **fixed: Any) -> list[Threshold]:
+    """Every change of stability as ``param`` varies: value, neutral frequency and unstable side.
+
+    The records behind :func:`thresholds` (which returns their values only); the method is the
+    module's.
+
+    Parameters
+    ----------
+    param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
+        The parameter varied.
+    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+        Eqs. (8)-(9) or eq. (11).
+    bracket : pair of float, optional
+        Range searched (inside the physical domain); default :func:`default_bracket`.
+    samples : int
+        Points of each of the uniform and geometric sampling grids.
+    **fixed
+        All other parameters of the model (``mu`` defaults to 2.28).
+
+    Returns
+    -------
+    list of Threshold
+        Sorted by value: the value, the frequency of the neutral mode there, and on which side
+        (``"below"`` or ``"above"`` the value) the state is unstable. Empty if the stability
+        never changes.
+
+    Raises
+    ------
+    ValueError, TypeError
+        As :func:`thresholds`.
+
+    Examples
+    --------
+    >>> import stability
+    >>> (t,) = stability.threshold_crossings("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5)
+    >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
+    (1.085777777778, 'below')
+    """
+    samples = check_integer("samples", samples, minimum=3)
+    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
+    return _search(m, fx, param, lo, hi, samples)[0]
+
+
 def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Sequence[float] | None = None,
-               samples: int = 257, return_details: bool = False, **fixed: Any):
+               samples: int = 257, return_details: bool | None = None, **fixed: Any) -> np.ndarray:
     """All values of ``param`` at which the leading growth rate changes sign, sorted.
 
     Parameters
@@ -201,15 +247,18 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
         Range searched (inside the physical domain); default :func:`default_bracket`.
     samples : int
         Points of each of the uniform and geometric sampling grids.
-    return_details : bool
-        Return :class:`Threshold` records (value, frequency, unstable side) instead of values.
+    return_details : bool, optional
+        Deprecated (a ``DeprecationWarning``; removed in the next release): ``True`` returned
+        the :class:`Threshold` records instead of the values, which is now
+        :func:`threshold_crossings`.
     **fixed
         All other parameters of the model (``mu`` defaults to 2.28).
 
     Returns
     -------
-    numpy.ndarray or list of Threshold
-        Sorted by value; empty if the stability never changes.
+    numpy.ndarray
+        The values, sorted; empty if the stability never changes. (With the deprecated
+        ``return_details=True``: the list of :class:`Threshold` of :func:`threshold_crossings`.)
 
     Raises
     ------
@@ -217,11 +266,15 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
         Unknown model or parameter, missing or extra parameters, bad bracket, values outside the
         physical domain (naming the parameter, its value and the bound).
     """
-    samples = check_integer("samples", samples, minimum=3)
-    return_details = check_flag("return_details", return_details)
-    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found = _search(m, fx, param, lo, hi, samples)[0]
-    return found if return_details else np.array([t.value for t in found])
+    if return_details is not None:
+        return_details = check_flag("return_details", return_details)
+        warnings.warn("thresholds(return_details=...) is deprecated and will be removed in the next release: "
+                      "thresholds() returns the values; threshold_crossings() returns the Threshold records "
+                      "(value, frequency, unstable side)", DeprecationWarning, stacklevel=2)
+    found = threshold_crossings(param, model=model, bracket=bracket, samples=samples, **fixed)
+    if return_details:  # the deprecated return type, until the keyword is removed
+        return found  # type: ignore[return-value]
+    return np.array([t.value for t in found])
 
 
 def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) -> np.ndarray:
