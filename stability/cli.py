@@ -18,6 +18,11 @@ Errors end the program with exactly one line on stderr and no traceback
 * anything else is a bug of the program: one line ``tippe CMD: internal error: ...``, exit
   status 1. With ``--debug`` (anywhere on the command line) or the environment variable
   ``TIPPE_DEBUG=1`` the full traceback is shown instead, for every kind of error.
+
+The library's messages name Python keywords (``pass overwrite=True to replace it``), never
+flags; the error line renders them for ``tippe`` (:func:`render_message`): each ``keyword=value``
+of :data:`KEYWORD_FLAGS` is followed by its flag when the command has it (``pass overwrite=True
+(--overwrite) to replace it``).
 """
 
 from __future__ import annotations
@@ -29,10 +34,10 @@ import re
 import signal
 import sys
 import threading
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import NoReturn
 
-__all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED"]
+__all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED", "KEYWORD_FLAGS", "render_message"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
 COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "bench")
@@ -41,6 +46,53 @@ COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutra
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130
 
 _NEGATIVE_VALUE = re.compile(r"^-[\d.]")
+
+#: library keyword -> the flag of ``tippe`` that sets it: the one table by which the error line
+#: shows a library message's ``keyword=value`` with its flag (:func:`render_message`)
+KEYWORD_FLAGS: dict[str, str] = {
+    "overwrite": "--overwrite",
+    "mask_unphysical": "--mask-unphysical",
+    "force": "--force",
+    "resume": "--resume",
+    "workers": "--workers",
+    "scheduler": "--scheduler",
+}
+
+_KEYWORD_VALUE = re.compile(r"\b(" + "|".join(KEYWORD_FLAGS) + r")=[^\s,;)]+")
+
+
+def render_message(text: str, flags: Collection[str] | None = None) -> str:
+    """A library message as ``tippe`` prints it: every ``keyword=value`` whose keyword is in
+    :data:`KEYWORD_FLAGS` is followed by the flag, ``"pass overwrite=True (--overwrite) to
+    replace it"``.
+
+    Parameters
+    ----------
+    text : str
+        The message (it names keywords, never flags).
+    flags : collection of str, optional
+        The flags of the command that failed: a keyword whose flag the command does not have
+        is left as it is. None: every flag of the table.
+
+    Returns
+    -------
+    str
+    """
+    def with_flag(m: re.Match[str]) -> str:
+        flag = KEYWORD_FLAGS[m.group(1)]
+        if (flags is not None and flag not in flags) or flag in text:
+            return m.group(0)
+        return f"{m.group(0)} ({flag})"
+
+    return _KEYWORD_VALUE.sub(with_flag, text)
+
+
+def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
+    """The option strings of the subcommand ``command`` of the ``tippe`` parser."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and command in action.choices:
+            return {s for a in action.choices[command]._actions for s in a.option_strings}
+    return set()
 
 
 class _Parser(argparse.ArgumentParser):
@@ -103,6 +155,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(args_list)
     prog = f"tippe {args.command}"
+    flags = _command_flags(parser, args.command)
     previous = _terminate_as_interrupt()
     try:
         return int(args.func(args) or 0)
@@ -119,12 +172,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
         if debug:
             raise
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
         return EXIT_USAGE
     except (TippeError, ConvergenceError) as exc:  # a failure to compute: ChunkError, ConvergenceError
         if debug:
             raise
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
         return EXIT_FAILURE
     except Exception as exc:  # a bug: still one line unless asked
         if debug:

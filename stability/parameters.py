@@ -346,7 +346,7 @@ def check_domain(*, mask: bool = False, scalar: bool = False,
                 msg = _describe(name, p, where, bound)
                 if bad.size > 1:
                     msg += (f" ({int(bad.sum())} of {bad.size} grid points violate it; "
-                            "pass mask_unphysical=True (--mask-unphysical) to compute the rest)")
+                            "pass mask_unphysical=True to compute the rest)")
                 raise DomainError(msg)
             inside &= ~bad
     return p, inside

@@ -243,12 +243,12 @@ def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: b
             ds = reader(path)
         except (AtlasFileError, OSError, ValueError) as exc:
             raise RecipeError(f"{path} exists and was not written by a recipe ({exc}); remove it or "
-                              "pass force=True (tippe figures --force) to replace it") from None
+                              "pass force=True to replace it") from None
         if ds.attrs.get("recipe_digest") == digest:
             return ds
         if "recipe_digest" not in ds.attrs:
             raise RecipeError(f"{path} exists and was not written by a recipe (it has no recipe_digest "
-                              "attribute); remove it or pass force=True (tippe figures --force) to replace it")
+                              "attribute); remove it or pass force=True to replace it")
     ds = make()
     ds.attrs["recipe_digest"] = digest
     write_dataset(ds, path, overwrite=True)

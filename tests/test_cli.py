@@ -6,8 +6,12 @@ the numbers themselves are checked against mpmath in test_spectra_reference).
 
 from __future__ import annotations
 
+import argparse
+import importlib.util
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -62,3 +66,105 @@ def test_python_m_stability_no_traceback(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 2
     assert "Traceback" not in r.stderr and "fr_inv = nan is not finite" in r.stderr
+
+
+# ------------------------------------------------------------------------------------------
+# library messages name keywords; the command line shows its flags (stability.cli.KEYWORD_FLAGS)
+# ------------------------------------------------------------------------------------------
+_FLAG = re.compile(r"(?<![\w-])--[a-z]")
+
+
+def _library_messages(tmp_path):
+    """The library's messages that ask for an option, each raised by a library call."""
+    import stability.recipes as recipes
+    from stability.grids.cluster import dask_client
+
+    existing = tmp_path / "a.nc"
+    existing.write_text("")
+    ds = stability.atlas("fixed_pivot", q=0.1, fr_inv=0.1, sigma=1.0)
+    cases = [
+        (FileExistsError, lambda: stability.write_dataset(ds, existing), "pass overwrite=True to replace it"),
+        (stability.DomainError, lambda: stability.atlas("sliding", q=[0.1, 0.9], fr_inv=0.0, sigma=1.0, alpha_v=0.5),
+         "pass mask_unphysical=True to compute the rest"),
+        (ValueError, lambda: dask_client(workers=1, scheduler="tcp://x:1").__enter__(),
+         "pass workers=N for a local cluster or scheduler=ADDRESS for an existing one, not both"),
+    ]
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('title = "x"\nkind = "lines"\nx = "q"\n[grid]\nq = "0:0.2:3"\nfr_inv = 0.1\nsigma = 1.0\n'
+                      'alpha_v = 0.5\n')
+    xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(tmp_path / "r.nc")  # a file no recipe wrote
+    cases.append((stability.errors.RecipeError, lambda: recipes.compute(recipes.load_recipe(recipe)),
+                  "remove it or pass force=True to replace it"))
+    return cases
+
+
+def test_library_messages_name_keywords_not_flags(tmp_path):
+    """Each message names the keyword a Python caller passes, and no flag of ``tippe``."""
+    for exc, call, fragment in _library_messages(tmp_path):
+        with pytest.raises(exc) as info:
+            call()
+        msg = str(info.value)
+        assert fragment in msg and not _FLAG.search(msg), msg
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (["atlas", "--q", "0.1,0.9", "--fr-inv", "0", "--sigma", "1", "--alpha-v", "0.5"],
+     "pass mask_unphysical=True (--mask-unphysical) to compute the rest"),
+    (["atlas", "--q", "0.1,0.2", "--fr-inv", "0", "--sigma", "1", "--alpha-v", "0.5", "--chunks", "1",
+      "--workers", "1", "--scheduler", "tcp://x:1"],
+     "pass workers=N (--workers) for a local cluster or scheduler=ADDRESS (--scheduler) for an existing one"),
+])
+def test_command_line_shows_the_flags(argv, fragment, tmp_path, capsys):
+    """The same messages through ``tippe``: the keyword followed by the command's flag, on the one
+    error line (--overwrite and --force: tests/test_files.py)."""
+    assert main([*argv, "-o", str(tmp_path / "a.nc")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and fragment in err
+
+
+def test_keyword_flag_table():
+    """Every entry of the table is a flag of some command that sets exactly that keyword (its
+    argparse ``dest``); a flag is added only where the command has it, and never twice."""
+    from stability.cli import KEYWORD_FLAGS, build_parser, render_message
+
+    parser = build_parser()
+    (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    dests = {s: a.dest for p in sub.choices.values() for a in p._actions for s in a.option_strings}
+    for keyword, flag in KEYWORD_FLAGS.items():
+        assert dests.get(flag) == keyword, (keyword, flag)
+    assert render_message("pass overwrite=True to replace it") == "pass overwrite=True (--overwrite) to replace it"
+    assert render_message("pass overwrite=True to replace it", {"--force"}) == "pass overwrite=True to replace it"
+    already = "use resume=True (--resume) to keep them"
+    assert render_message(already) == already
+    assert render_message("workers = 0 is outside the allowed range") == "workers = 0 is outside the allowed range"
+
+
+#: library messages that still name a flag, with the reason
+_FLAGS_ALLOWED = {
+    "--scheduler-file": "the option of dask's own command (`dask scheduler --scheduler-file`), not of tippe",
+    "--resume": "stability/grids/chunked.py's ChunkError; tests/test_faults.py asserts the message as it is",
+}
+
+
+def test_no_library_message_names_a_flag():
+    """No string of the library outside the command line (stability.commands, stability.cli)
+    names a ``--flag``, docstrings aside (they may tell what the command line does), except
+    those of _FLAGS_ALLOWED."""
+    import ast
+    import pkgutil
+
+    found = []
+    for info in pkgutil.walk_packages(stability.__path__, "stability."):
+        if info.name.startswith(("stability.commands", "stability.cli", "stability.__main__")):
+            continue
+        path = importlib.util.find_spec(info.name).origin
+        tree = ast.parse(Path(path).read_text(), path)
+        docstrings = {id(n.body[0].value) for n in ast.walk(tree)
+                      if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+                      and n.body and isinstance(n.body[0], ast.Expr) and isinstance(n.body[0].value, ast.Constant)}
+        for const in ast.walk(tree):
+            if isinstance(const, ast.Constant) and isinstance(const.value, str) and id(const) not in docstrings:
+                for flag in re.findall(r"(?<![\w-])--[a-z][a-z-]*", const.value):
+                    if flag not in _FLAGS_ALLOWED:
+                        found.append(f"{info.name}:{const.lineno}: {flag}")
+    assert not found, "library strings naming a flag of tippe:\n" + "\n".join(found)

@@ -41,7 +41,8 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         None when neither is given: chunks are computed in this process.
     """
     if workers is not None and scheduler is not None:
-        raise ValueError("give --workers (a local cluster) or --scheduler (an existing one), not both")
+        raise ValueError(f"workers = {workers!r} and scheduler = {scheduler!r} were both given: pass workers=N "
+                         "for a local cluster or scheduler=ADDRESS for an existing one, not both")
     if workers is None and scheduler is None:
         yield None
         return

@@ -55,7 +55,7 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     if p.is_dir():
         raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
     if (p.exists() or p.is_symlink()) and not overwrite:
-        raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True (--overwrite) to replace it")
+        raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
     parent = p.parent if str(p.parent) else Path(".")
     if not parent.exists():
         raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
