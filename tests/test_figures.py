@@ -127,7 +127,7 @@ def test_recipe_compute_reuse_and_draw(tmp_path):
     compute(r)  # up to date: reused, not rewritten
     assert r.dataset_path.stat().st_mtime_ns == mtime
     with style():
-        fig = recipe_figure(r, {"sliding": ds})
+        fig, _ = recipe_figure(r, {"sliding": ds})
     ax = fig.axes[0]
     assert len(ax.get_legend().get_texts()) == 6  # alpha_v = 0.1 ... 5
 

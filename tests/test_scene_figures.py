@@ -28,7 +28,7 @@ def test_fig5_recipe_lines_carry_the_runs(tmp_path):
     runs = compute(r)
     assert set(runs) == {"fr_inv_0.3", "fr_inv_0.1"}
     with style():
-        fig = recipe_figure(r, runs)
+        fig, _ = recipe_figure(r, runs)
     ax_spin, ax_rate, ax_angle = fig.axes
     lines = ax_angle.get_lines()
     ds = runs["fr_inv_0.3"]
@@ -54,7 +54,7 @@ def _scene(name: str, tmp_path):
     r = load_recipe(path)
     runs = compute(r)
     with style():
-        return recipe_figure(r, runs), runs
+        return recipe_figure(r, runs)[0], runs
 
 
 def test_fig8_path_coloured_by_time_until_the_flip(tmp_path):

@@ -128,7 +128,7 @@ def run(args: argparse.Namespace) -> int:
         from ..plotting import save_figure, style
 
         with style():
-            fig = atlas_figure(ds, x=args.x)
+            fig, _ = atlas_figure(ds, x=args.x)
         # the figure is complete before anything is written
     write_dataset(ds, out, overwrite=args.overwrite)
     counts = {name: int((ds.stability == flag).sum()) for name, flag in

@@ -47,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
     for recipe in recipes:
         datasets = compute(recipe, force=args.force)
         with style():
-            fig = recipe_figure(recipe, datasets)
+            fig, _ = recipe_figure(recipe, datasets)
             save_figure(fig, recipe.figure_path)
         print(f"{recipe.name}: wrote {recipe.figure_path}")
     return 0

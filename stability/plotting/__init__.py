@@ -1,10 +1,52 @@
 """Figures drawn from datasets (computation lives elsewhere).
 
-Every plotting function takes a dataset and an optional ``ax``, returns the Figure and Axes,
-and never calls ``plt.show``. The package style is applied with :func:`style`, a context
-manager around ``plt.style.context``.
-"""
-from .atlas_plots import plot_growth_rate, save_figure, style
-from .figures import atlas_figure
+The convention, for every public plotting function of this package:
 
-__all__ = ["atlas_figure", "plot_growth_rate", "save_figure", "style"]
+* it takes the data (a dataset of the package, or the records of a benchmark) and an optional
+  ``ax`` (one panel) or ``axes`` (a sequence, one Axes per panel), and draws there; without
+  them it makes a new :class:`matplotlib.figure.Figure` (not pyplot's: nothing is shown, no
+  global state, so it works in scripts, notebooks and worker processes alike);
+* it returns ``(Figure, Axes)``, or ``(Figure, list of Axes)`` when it draws several panels;
+* it never computes a dataset, never calls ``plt.show`` and never saves: save with
+  :func:`save_figure` (atomic), style with :func:`style` (a context manager around
+  ``plt.style.context``).
+
+Functions (imported on first use, so that ``import stability`` does not import matplotlib):
+
+* atlases: :func:`plot_atlas` (by its grid), :func:`plot_growth_rate`, :func:`atlas_figure`,
+  :func:`plot_stability_map` (with :func:`growth_norm`);
+* neutral and fold curves: :func:`plot_neutral_curve`, :func:`plot_fold_curve`;
+* nonlinear runs: :func:`plot_run`, the paper's Figs. 5-9 (:mod:`stability.plotting.scene_plots`);
+* validation: :func:`plot_validation`, :func:`plot_coulomb_growth`;
+* a real top: :func:`plot_critical_spin`;
+* recipes: :func:`recipe_figure`; benchmarks: :func:`work_precision_figure`, :func:`suite_figure`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+#: public name -> the module of this package that defines it
+_EXPORTS: dict[str, str] = {
+    "plot_atlas": "figures", "atlas_figure": "figures",
+    "plot_growth_rate": "atlas_plots", "save_figure": "atlas_plots", "style": "atlas_plots",
+    "plot_stability_map": "maps", "plot_neutral_curve": "maps", "plot_fold_curve": "maps", "growth_norm": "maps",
+    "plot_run": "scene_plots",
+    "plot_validation": "validation_plots", "plot_coulomb_growth": "validation_plots",
+    "plot_critical_spin": "spin_plots",
+    "recipe_figure": "recipe_figures",
+    "work_precision_figure": "work_precision", "suite_figure": "work_precision",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

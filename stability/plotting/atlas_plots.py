@@ -12,10 +12,10 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ..grids.netcdf import atomic_output
-from ..grids.netcdf import require_atlas
+from ..grids.netcdf import atomic_output, require_atlas
 from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
+from ._layout import axes_or_new
 
 __all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
 
@@ -86,10 +86,7 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     others = [d for d in grid if d != x]
     if len(others) > 1:
         raise ValueError(f"the atlas has grid dimensions {', '.join(grid)}; select all but {x!r} and one family first")
-    if ax is None:
-        fig = Figure()
-        ax = fig.add_subplot()
-    fig = ax.figure
+    fig, ax = axes_or_new(ax)
     label = QUANTITIES[quantity]
     s = ds["growth_rate"] + 1j * ds["frequency"]
     if others:

@@ -1,4 +1,5 @@
-"""Stability maps: the leading growth rate over a parameter plane, with its neutral contour."""
+"""Stability maps: the leading growth rate over a parameter plane, with its neutral contour;
+continued neutral curves and fold curves (:mod:`stability.linear.neutral_curves`)."""
 
 from __future__ import annotations
 
@@ -10,8 +11,9 @@ from matplotlib.figure import Figure
 
 from ..grids.atlases import leading_growth_rate
 from ..parameters import SYMBOLS
+from ._layout import axes_or_new
 
-__all__ = ["plot_stability_map", "plot_neutral_curve", "growth_norm", "NEUTRAL_STYLE"]
+__all__ = ["plot_stability_map", "plot_neutral_curve", "plot_fold_curve", "growth_norm", "NEUTRAL_STYLE"]
 
 #: the neutral curve's line: contrasting with the cividis colour map, also in grey
 NEUTRAL_STYLE = dict(colors="#D55E00", linewidths=2.0)
@@ -69,10 +71,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     g = leading_growth_rate(ds)  # checks that ds is an atlas
     if set(g.dims) != {x, y}:
         raise ValueError(f"the atlas has grid dimensions {', '.join(g.dims)}; a map needs exactly {x!r} and {y!r}")
-    if ax is None:
-        fig = Figure()
-        ax = fig.add_subplot()
-    fig = ax.figure
+    fig, ax = axes_or_new(ax)
     z = g.transpose(y, x).values
     finite = z[np.isfinite(z)]
     norm = norm or growth_norm(z)
@@ -80,7 +79,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     mesh = ax.pcolormesh(ds[x].values, ds[y].values, z, cmap="cividis", norm=norm, shading="auto",
                          rasterized=True)
     if curve is not None:
-        plot_neutral_curve(curve, ax)
+        plot_neutral_curve(curve, ax=ax)
     elif has_both_signs:
         ax.contour(ds[x].values, ds[y].values, z, levels=[0.0], **NEUTRAL_STYLE)
     else:
@@ -107,24 +106,64 @@ SPECIAL_MARKERS = {"fold": ("^", "fold"), "zero_frequency": ("D", "w = 0"),
                    "double_crossing": ("o", "double crossing"), "branch_point": ("s", "branch point")}
 
 
-def plot_neutral_curve(curve: xr.Dataset, ax: Axes, *, label: str = "neutral curve (continued)") -> Axes:
-    """Draw a continued neutral curve (continuation.neutral_curve) and its special points.
+def plot_neutral_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
+                       label: str = "neutral curve (continued)") -> tuple[Figure, Axes]:
+    """Draw a continued neutral curve (:func:`continuation.neutral_curve`) and its special points.
 
     Parameters
     ----------
     curve : xarray.Dataset
         Along ``point``, with the variables named by its ``x`` and ``y`` attributes, ``branch``
         and ``kind`` (and ``leading``: parts where the traced mode is not the leading one are
-        dashed, since there the curve is not the stability boundary).
-    ax : matplotlib.axes.Axes
+        dashed, since there the curve is not the stability boundary). The dense output of
+        :func:`continuation.dense` (along ``sample``, no ``kind``) is drawn without markers.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into (e.g. a stability map's); a new figure if omitted.
+    x, y : str, optional
+        The variables drawn; default the curve's plane (its ``x`` and ``y`` attributes).
     label : str
         Legend label of the curve.
 
     Returns
     -------
-    matplotlib.axes.Axes
+    (Figure, Axes)
     """
-    x, y = curve.attrs["x"], curve.attrs["y"]
+    x = curve.attrs["x"] if x is None else x
+    y = curve.attrs["y"] if y is None else y
+    return _draw_curve(curve, ax, x, y, label)
+
+
+def plot_fold_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
+                    label: str = "fold curve (continued)") -> tuple[Figure, Axes]:
+    """Draw a continued fold curve (:func:`continuation.fold_curve`): where a neutral curve's
+    fold sits as a third parameter varies.
+
+    Parameters
+    ----------
+    curve : xarray.Dataset
+        Along ``point``, with the variables named by its ``x``, ``y``, ``z`` and ``fold_in``
+        attributes, ``branch`` and ``kind`` (``"fold"`` marks an extremum of ``z`` along the
+        fold curve).
+    ax : matplotlib.axes.Axes, optional
+    x, y : str, optional
+        The variables drawn; default ``z`` (the parameter varied) across and ``fold_in`` (the
+        parameter whose extremum the fold is) up: the fold's value against ``z``.
+    label : str
+        Legend label of the curve.
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    x = curve.attrs["z"] if x is None else x
+    y = curve.attrs["fold_in"] if y is None else y
+    return _draw_curve(curve, ax, x, y, label)
+
+
+def _draw_curve(curve: xr.Dataset, ax: Axes | None, x: str, y: str, label: str) -> tuple[Figure, Axes]:
+    """Branches of a continued curve in the (x, y) plane (solid where the traced mode leads,
+    dashed elsewhere) and its special points (:data:`SPECIAL_MARKERS`)."""
+    fig, ax = axes_or_new(ax)
     first = True
     for b in np.unique(curve["branch"].values):
         sel = curve["branch"].values == b
@@ -138,11 +177,13 @@ def plot_neutral_curve(curve: xr.Dataset, ax: Axes, *, label: str = "neutral cur
             ax.plot(xs, dashed, color=NEUTRAL_STYLE["colors"], linewidth=1.2, linestyle="--",
                     label="neutral, not the leading mode" if first else None)
         first = False
-    kinds = curve["kind"].values.astype(str)
+    kinds = curve["kind"].values.astype(str) if "kind" in curve else np.array([], dtype=str)
     for kind, (marker, text) in SPECIAL_MARKERS.items():
         sel = kinds == kind
         if sel.any():
             ax.plot(curve[x].values[sel], curve[y].values[sel], linestyle="none", marker=marker,
                     markersize=7, markerfacecolor="white", markeredgecolor="black", label=text)
+    ax.set_xlabel(SYMBOLS.get(x, x))
+    ax.set_ylabel(SYMBOLS.get(y, y))
     ax.legend(loc="best", fontsize=8)
-    return ax
+    return fig, ax

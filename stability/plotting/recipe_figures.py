@@ -2,42 +2,51 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import xarray as xr
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..grids.atlases import leading_growth_rate
 from ..recipes import Recipe
-from .atlas_plots import plot_growth_rate
 from . import scene_plots
+from ._layout import panels_or_new
+from .atlas_plots import plot_growth_rate
 from .maps import growth_norm, plot_stability_map
 from .spin_plots import plot_critical_spin
 
 __all__ = ["recipe_figure"]
 
 
-def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
-    """The figure of ``recipe`` drawn from ``datasets`` (model name -> atlas).
+def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset], *,
+                  axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+    """The figure of ``recipe`` drawn from ``datasets`` (model name -> atlas), titled with the
+    recipe's title.
 
     Parameters
     ----------
     recipe : Recipe
     datasets : dict
         As returned by :func:`stability.recipes.compute`.
+    axes : sequence of Axes, optional
+        Where to draw: as many Axes as the figure has panels (one per quantity for ``lines``,
+        one per model for ``models``, one for ``map`` and ``critical_spin``, the panels of the
+        paper's figure for ``scene``; Fig. 8's is 3-D); a new figure by default.
 
     Returns
     -------
-    matplotlib.figure.Figure
+    (Figure, list of Axes)
+        The figure and its panels.
     """
     if recipe.kind == "scene":
-        fig = _scene_figure(recipe.figure, datasets)
+        fig, axes = _scene_figure(recipe.figure, datasets, axes)
     elif recipe.kind == "critical_spin":
-        fig = Figure(figsize=(6.4, 4.2), layout="constrained")
-        ax = fig.add_subplot()
-        plot_critical_spin(datasets[recipe.model], ax=ax)
+        fig, axes = panels_or_new(axes, 1, (6.4, 4.2))
+        plot_critical_spin(datasets[recipe.model], ax=axes[0])
     elif recipe.kind == "lines":
         n = len(recipe.quantities)
-        fig = Figure(figsize=(6.4, 3.4 * n), layout="constrained")
-        axes = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
+        fig, axes = panels_or_new(axes, n, (6.4, 3.4 * n), sharex=True)
         ds = datasets[recipe.model]
         for k, (ax, quantity) in enumerate(zip(axes, recipe.quantities)):
             plot_growth_rate(ds, recipe.x, quantity=quantity, ax=ax)
@@ -47,14 +56,12 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
             if k < n - 1:
                 ax.set_xlabel("")
     elif recipe.kind == "map":
-        fig = Figure(figsize=(6.4, 4.8), layout="constrained")
-        ax = fig.add_subplot()
-        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=ax,
+        fig, axes = panels_or_new(axes, 1, (6.4, 4.8))
+        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=axes[0],
                            curve=datasets.get(f"{recipe.model}_neutral"))
     else:  # models side by side
         names = [k for k in datasets if not k.endswith("_neutral")]
-        fig = Figure(figsize=(4.2 * len(names), 4.0), layout="constrained")
-        axes = fig.subplots(1, len(names), sharey=True)
+        fig, axes = panels_or_new(axes, len(names), (4.2 * len(names), 4.0), row=True, sharey=True)
         norm = growth_norm(*(leading_growth_rate(datasets[k]).values for k in names))
         for ax, name in zip(axes, names):
             plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm,
@@ -62,20 +69,23 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
             if name != names[0]:
                 ax.set_ylabel("")
     fig.suptitle(recipe.title, fontsize=10)
-    return fig
+    return fig, axes
 
 
-def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset]) -> Figure:
+def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset],
+                  axes: Sequence[Axes] | None) -> tuple[Figure, list[Axes]]:
     """One of Figs. 5-9 from the runs of :func:`stability.recipes.scene_runs`."""
     main = runs["fr_inv_0.3"]
     if figure == "fig5":
-        return scene_plots.fig5({runs[k].attrs["label"]: runs[k] for k in ("fr_inv_0.3", "fr_inv_0.1")})
-    if figure == "fig6":
-        return scene_plots.fig6(main)
+        return scene_plots.fig5({runs[k].attrs["label"]: runs[k] for k in ("fr_inv_0.3", "fr_inv_0.1")}, axes=axes)
+    if figure in ("fig6", "fig8"):  # one panel
+        if axes is not None and len(axes) != 1:
+            raise ValueError(f"axes has {len(axes)} Axes; this figure draws 1 panel")
+        draw = scene_plots.fig6 if figure == "fig6" else scene_plots.fig8
+        fig, ax = draw(main, ax=None if axes is None else axes[0])
+        return fig, [ax]
     if figure == "fig7":
-        return scene_plots.fig7(main)
-    if figure == "fig8":
-        return scene_plots.fig8(main)
+        return scene_plots.fig7(main, axes=axes)
     cases = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.startswith("case") and "paper" not in k}
     paper = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.endswith("_paper_scheme")}
-    return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1])
+    return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1], axes=axes)

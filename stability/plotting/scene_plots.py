@@ -1,7 +1,9 @@
 """Figures of the tumbling runs of Sec. 3(ii): Figs. 5-9, drawn from simulate() datasets.
 
 Time axes are in spin periods (``t / 2 pi``, one period being ``2 pi / Omega``), as in the paper.
-Every function takes datasets and returns the Figure; none computes a run.
+Every function takes datasets and an optional ``ax`` / ``axes`` and returns ``(Figure, Axes)``
+(``(Figure, list of Axes)`` for several panels); none computes a run. :func:`plot_run` draws any
+one run (what ``ds.tippe.plot()`` draws for a :func:`stability.simulate` dataset).
 """
 
 from __future__ import annotations
@@ -13,7 +15,9 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-__all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "SCENE_FIGURES"]
+from ._layout import axes_or_new, panels_or_new
+
+__all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "plot_run", "SCENE_FIGURES"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -22,27 +26,21 @@ def _periods(ds: xr.Dataset) -> np.ndarray:
     return ds.time.values / TWO_PI
 
 
-def _axes(axes: Sequence[Axes] | None, n: int, figsize: tuple[float, float], **kw) -> tuple[Figure, Sequence[Axes]]:
-    """The axes to draw into: the caller's, or a new figure's column (row with ``ncols``)."""
-    if axes is not None:
-        if len(axes) != n:
-            raise ValueError(f"axes has {len(axes)} Axes; this figure draws {n} panels")
-        return axes[0].figure, axes
-    fig = Figure(figsize=figsize, layout="constrained")
-    return fig, fig.subplots(kw.pop("nrows", n), kw.pop("ncols", 1), **kw)
-
-
-def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> Figure:
+def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """Fig. 5: (a) spin, (b) transverse angular rate, (c) polar angle against time.
 
     Parameters
     ----------
     runs : dict
-        Label -> sliding run (one line per run, e.g. ``Fr^-1 = 0.3`` and ``0.1``).
+        Label -> run (one line per run, e.g. ``Fr^-1 = 0.3`` and ``0.1``).
     axes : sequence of 3 Axes, optional
         Where to draw; a new figure by default.
+
+    Returns
+    -------
+    (Figure, list of 3 Axes)
     """
-    fig, axes = _axes(axes, 3, (6.4, 7.6), sharex=True)
+    fig, axes = panels_or_new(axes, 3, (6.4, 7.6), sharex=True)
     for label, ds in runs.items():
         t = _periods(ds)
         axes[0].plot(t, ds.spin.values, label=label)
@@ -56,14 +54,36 @@ def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> 
     axes[0].legend()
     for ax, tag in zip(axes, "abc"):
         ax.set_title(f"({tag})", loc="left", fontsize=9)
-    return fig
+    return fig, axes
 
 
-def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> Figure:
-    """Fig. 6: the energy components against time (energy in units of ``A0 Omega^2``)."""
-    if ax is None:
-        ax = Figure(figsize=(6.4, 4.2), layout="constrained").add_subplot()
-    fig = ax.figure
+def plot_run(run: xr.Dataset, *, axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+    """One nonlinear run (:func:`stability.simulate`): spin, transverse angular rate and polar
+    angle against time, the panels of Fig. 5 (:func:`fig5`).
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        A run; its legend label is its ``label`` attribute (set by the scene recipes), else
+        the model and ``fr_inv``.
+    axes : sequence of 3 Axes, optional
+
+    Returns
+    -------
+    (Figure, list of 3 Axes)
+    """
+    label = run.attrs.get("label") or f"{run.attrs.get('model', '')} model, Fr$^{{-1}}$ = {run.attrs['fr_inv']:g}"
+    return fig5({label: run}, axes=axes)
+
+
+def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """Fig. 6: the energy components against time (energy in units of ``A0 Omega^2``).
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = axes_or_new(ax, figsize=(6.4, 4.2), layout="constrained")
     t = _periods(run)
     parts = [("energy", "total"), ("kinetic_spin", "spin (about G)"),
              ("kinetic_transverse", "transverse rotation"), ("kinetic_translational", "translation of G"),
@@ -73,17 +93,21 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> Figure:
     ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
     ax.set_ylabel(r"energy / $A_0 \Omega^2$")
     ax.legend(ncols=2)
-    return fig
+    return fig, ax
 
 
 def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0,
-         axes: Sequence[Axes] | None = None) -> Figure:
+         axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """Fig. 7: the locus of the sphere's centre, (a) whole and (b) magnified start.
 
     Arrows show the centre's velocity every ``arrow_every`` time units (the paper's
     ``5 / (2 pi)`` spin periods) in (a) and every time unit in (b).
+
+    Returns
+    -------
+    (Figure, list of 2 Axes)
     """
-    fig, (ax1, ax2) = _axes(axes, 2, (9.6, 4.4), nrows=1, ncols=2)
+    fig, (ax1, ax2) = panels_or_new(axes, 2, (9.6, 4.4), row=True)
     x, y = run.position.sel(axis=1).values, run.position.sel(axis=2).values
     vx, vy = run.velocity.sel(axis=1).values, run.velocity.sel(axis=2).values
     t = run.time.values
@@ -99,10 +123,10 @@ def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.
         ax.set_ylabel(r"$Y_0 / R$")
     ax1.set_title("(a) whole run", loc="left", fontsize=9)
     ax2.set_title(f"(b) first {zoom_periods:g} spin periods", loc="left", fontsize=9)
-    return fig
+    return fig, [ax1, ax2]
 
 
-def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None) -> Figure:
+def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None) -> tuple[Figure, Axes]:
     """Fig. 8: the axis ``k`` on the unit sphere, coloured by time.
 
     Drawn from the start until the polar angle first reaches ``until_angle`` degrees (the
@@ -120,15 +144,16 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
         Polar angle (degrees) at which the path stops.
     ax : mpl_toolkits.mplot3d.Axes3D, optional
         A 3-D Axes to draw into; a new figure is made if omitted.
+
+    Returns
+    -------
+    (Figure, Axes3D)
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-    if ax is None:
-        fig = Figure(figsize=(5.6, 5.2), layout="constrained")
-        ax = fig.add_subplot(projection="3d")
-    elif getattr(ax, "name", "") != "3d":
+    if ax is not None and getattr(ax, "name", "") != "3d":
         raise ValueError("ax must be a 3-D Axes (projection='3d') for Fig. 8")
-    fig = ax.figure
+    fig, ax = axes_or_new(ax, figsize=(5.6, 5.2), layout="constrained", projection="3d")
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.25)
     pol = run.polar_angle.values
@@ -151,12 +176,12 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
     ax.set_title(f"from the start until the polar angle reaches {until_angle:g} deg", fontsize=9)
-    return fig
+    return fig, ax
 
 
 def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
          paper_scheme: dict[str, xr.Dataset], slip_case: str, *,
-         axes: Sequence[Axes] | None = None) -> Figure:
+         axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """Fig. 9: (a) friction, sliding vs rolling; (b) polar angle for the friction cases;
     (c) sliding speed of one case.
 
@@ -171,8 +196,14 @@ def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
     slip_case : str
         Label of the case whose sliding speed is drawn in (c) (from ``paper_scheme`` and
         ``cases``).
+    axes : sequence of 3 Axes, optional
+        Where to draw; a new figure by default.
+
+    Returns
+    -------
+    (Figure, list of 3 Axes)
     """
-    fig, (ax1, ax2, ax3) = _axes(axes, 3, (6.4, 9.0))
+    fig, (ax1, ax2, ax3) = panels_or_new(axes, 3, (6.4, 9.0))
     ax1.plot(_periods(sliding), sliding.friction_magnitude.values, label="sliding model")
     ax1.plot(_periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
     ax1.set_ylabel(r"$|f|$ / $A_0\Omega^2 R^{-1}$")
@@ -206,7 +237,7 @@ def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
     for ax, tag in zip((ax1, ax2, ax3), ("(a)", "(b)", f"(c) case {slip_case}")):
         ax.set_title(tag, loc="left", fontsize=9)
         ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
-    return fig
+    return fig, [ax1, ax2, ax3]
 
 
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")

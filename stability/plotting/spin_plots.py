@@ -7,6 +7,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..parameters import SYMBOLS
+from ._layout import axes_or_new
 
 __all__ = ["plot_critical_spin"]
 
@@ -24,10 +25,7 @@ def plot_critical_spin(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figur
     -------
     (Figure, Axes)
     """
-    if ax is None:
-        fig = Figure()
-        ax = fig.add_subplot()
-    fig = ax.figure
+    fig, ax = axes_or_new(ax)
     (x,) = ds["critical_spin_upright"].dims
     ax.plot(ds[x].values, ds["critical_spin_upright"].values, marker="o", markersize=3,
             label="upright: unstable above")

@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ._layout import axes_or_new
+
 if TYPE_CHECKING:  # annotations only: the charts take any objects with these attributes
     from ..bench.records import Suite, WorkPrecision
 
@@ -107,11 +109,7 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
     -------
     (Figure, Axes)
     """
-    if ax is None:
-        fig = Figure(figsize=(7.0, 4.6))
-        ax = fig.add_subplot()
-    else:
-        fig = ax.figure
+    fig, ax = axes_or_new(ax, figsize=(7.0, 4.6))
     series: dict[str, list[WorkPrecision]] = {}
     for r in results:
         series.setdefault(r.series or r.method, []).append(r)
@@ -163,7 +161,8 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
     return fig, ax
 
 
-def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "") -> tuple[Figure, list[Axes]]:
+def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "",
+                 axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """The chart of one suite: one panel per :class:`~stability.bench.records.Panel`, the title
     naming the default and the fastest method at the required accuracy (:func:`verdict`).
 
@@ -176,16 +175,25 @@ def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: st
         What its ``run`` returned.
     subtitle : str
         Run conditions (points, cores, peak memory), appended to the title.
+    axes : sequence of Axes, optional
+        One per panel; a new figure (a row of panels, laid out tightly) by default.
 
     Returns
     -------
     (Figure, list of Axes)
     """
     n = len(suite.panels)
-    fig = Figure(figsize=(7.4 * n, 5.2))
-    axes = fig.subplots(1, n, squeeze=False)
+    if axes is None:
+        fig = Figure(figsize=(7.4 * n, 5.2))
+        axes = list(fig.subplots(1, n, squeeze=False)[0])
+        new = True
+    else:
+        axes = list(axes)
+        if len(axes) != n:
+            raise ValueError(f"axes has {len(axes)} Axes; the chart of suite {suite.name!r} draws {n} panels")
+        fig, new = axes[0].figure, False
     lines = [suite.title]
-    for panel, ax in zip(suite.panels, axes[0]):
+    for panel, ax in zip(suite.panels, axes):
         rs = [r for r in results if r.panel == panel.select]
         work_precision_figure(rs, target=panel.target, xlabel=panel.xlabel, ylabel=panel.ylabel, x=panel.x, ax=ax)
         if panel.target is not None:
@@ -195,5 +203,6 @@ def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: st
     if subtitle:
         lines.append(subtitle)
     fig.suptitle("\n".join(dict.fromkeys(lines)), fontsize=9)
-    fig.tight_layout()
-    return fig, list(axes[0])
+    if new:
+        fig.tight_layout()
+    return fig, axes

@@ -1,0 +1,94 @@
+"""Validation of the linear predictions by nonlinear runs (:mod:`stability.nonlinear.validation`)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from ._layout import axes_or_new, panels_or_new
+
+__all__ = ["plot_validation", "plot_coulomb_growth"]
+
+_VALIDATION = ("predicted_growth_rate", "jacobian_growth_rate", "measured_growth_rate")
+_COULOMB = ("tilt", "slip_speed")
+
+
+def _require(ds: object, names: Sequence[str], made_by: str) -> xr.Dataset:
+    if not isinstance(ds, xr.Dataset):
+        raise TypeError(f"ds is a {type(ds).__name__}; it must be an xarray.Dataset from {made_by}")
+    missing = [v for v in names if v not in ds]
+    if missing:
+        raise ValueError(f"ds has no {', '.join(missing)}: it is not a dataset of {made_by}")
+    return ds
+
+
+def plot_validation(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """The growth rate fitted to each nonlinear run against the linear predictions.
+
+    One marker per point and prediction: the Jacobian of the nonlinear model (filled) and the
+    registered linear operator (hollow); on the diagonal a prediction is exact.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`stability.validate`.
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    _require(ds, _VALIDATION, "stability.validate")
+    fig, ax = axes_or_new(ax)
+    measured = ds["measured_growth_rate"].values
+    model = ds.attrs.get("model", "")
+    ax.plot(ds["jacobian_growth_rate"].values, measured, marker="o", linestyle="none",
+            label="Jacobian of the nonlinear model")
+    ax.plot(ds["predicted_growth_rate"].values, measured, marker="s", markerfacecolor="none", linestyle="none",
+            label=f"linear operator ({model})")
+    values = np.concatenate([ds[v].values for v in _VALIDATION])
+    values = values[np.isfinite(values)]
+    if values.size:
+        lo, hi = float(values.min()), float(values.max())
+        ax.plot([lo, hi], [lo, hi], color="0.4", linewidth=0.8, linestyle="-", zorder=0,
+                label="measured = predicted")
+    ax.set_xlabel("predicted growth rate Re $s$ / $\\Omega$")
+    ax.set_ylabel("growth rate fitted to the run / $\\Omega$")
+    ax.set_title(f"{ds.attrs.get('title', '')}: {ds.sizes.get('point', 1)} points", fontsize=9)
+    ax.legend(fontsize=8)
+    return fig, ax
+
+
+def plot_coulomb_growth(ds: xr.Dataset, *, axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+    """Coulomb friction alone: (a) the tilt and (b) the sliding speed against time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`stability.coulomb_growth`; its attributes name the scheme and the reading of
+        the growth (exponential or algebraic, by the residuals of the two fits).
+    axes : sequence of 2 Axes, optional
+
+    Returns
+    -------
+    (Figure, list of 2 Axes)
+    """
+    _require(ds, _COULOMB, "stability.coulomb_growth")
+    fig, (ax1, ax2) = panels_or_new(axes, 2, (6.4, 6.0), sharex=True)
+    t = ds["time"].values / (2.0 * np.pi)
+    ax1.plot(t, ds["tilt"].values)
+    ax1.set_ylabel(r"tilt $|\Phi|$")
+    ax2.semilogy(t, np.maximum(ds["slip_speed"].values, 1e-12))
+    ax2.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
+    ax2.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    a = ds.attrs
+    fits = ", ".join(f"{name} fit {a[key]:.2g}" for name, key in (("exponential", "exponential_residual"),
+                                                                 ("algebraic", "algebraic_residual")) if key in a)
+    ax1.set_title(f"(a) {a.get('scheme', '')} scheme: growth {a.get('growth', 'not classified')}"
+                  + (f" (RMS residuals: {fits})" if fits else ""), loc="left", fontsize=8)
+    ax2.set_title("(b)", loc="left", fontsize=9)
+    return fig, [ax1, ax2]
