@@ -12,7 +12,11 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`simulate`, :func:`jacobian_eigenvalues`, :func:`validate` - nonlinear runs and the
   check of the linear predictions against them;
 * :class:`TippeError` - the base of every exception the package raises on purpose
-  (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``).
+  (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``);
+* ``ds.tippe`` - on every dataset the package returns: ``ds.tippe.product`` (its global
+  attribute ``tippe_stability_product``, docs/datasets.md) and ``ds.tippe.plot()``, the
+  product's figure (:mod:`stability.plotting.accessor`; registered here, matplotlib is
+  imported only when a figure is drawn).
 
 This module only re-exports; where each name lives, and which way imports go, is in
 docs/architecture.md.
@@ -28,6 +32,7 @@ from .nonlinear.jacobian import jacobian_eigenvalues
 from .nonlinear.runs import simulate
 from .nonlinear.validation import coulomb_growth, validate
 from .parameters import DEFAULT_MU, PARAMETERS, check_domain
+from .plotting import accessor as _accessor  # registers ds.tippe  # noqa: F401
 from .top import Top
 
 __all__ = [

@@ -40,6 +40,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("continuation", 0),                 # the generic engine (its __init__ is a facade, below)
     ("stability._version", 0),
     ("stability.errors", 0),
+    ("stability.products", 0),
     ("stability.parameters", 1),
     ("stability.models", 1),
     ("stability.top", 1),

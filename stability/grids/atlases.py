@@ -22,7 +22,8 @@ from ..linear.modes import structural_zeros
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
-from .netcdf import PRODUCT_ATTR, require_atlas
+from ..products import PRODUCT_ATTR
+from .netcdf import require_atlas
 
 __all__ = ["atlas", "leading_growth_rate", "TIME_CONVENTION", "MARGINAL_RULE"]
 

@@ -16,12 +16,10 @@ from pathlib import Path
 import xarray as xr
 
 from ..errors import AtlasFileError
+from ..products import PRODUCT_ATTR
 
 __all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
            "require_atlas"]
-
-#: global attribute naming which product of this package a dataset is
-PRODUCT_ATTR = "tippe_stability_product"
 
 ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
 

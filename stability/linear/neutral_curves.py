@@ -53,6 +53,7 @@ from continuation.errors import ConvergenceError as EngineConvergenceError
 from .._version import package_version
 from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
+from ..products import PRODUCT_ATTR
 from ..parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
                           check_integer, check_positive)
 from .modes import structural_zeros
@@ -754,6 +755,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         if start is None:
             skip[i + 1:] |= _near_branch_mask(G[i + 1:], br.points / scale, cell)
     return _assemble(m, (x, y), fixed, prob, branches, 2, {
+        PRODUCT_ATTR: "neutral_curve",
         "x": x, "y": y, "form": prob.cond.form, "deflated_zero_roots": prob.cond.deflate,
         f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]),
         "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane"})
@@ -854,6 +856,7 @@ def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str
         branches.append(br)
     # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
     return _assemble(m, (x, y, z), rest, prob, branches, 2, {
+        PRODUCT_ATTR: "fold_curve",
         "x": x, "y": y, "z": z, "fold_in": fold_in, "form": prob.cond.form,
         f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]), f"{z}_range": list(ranges[z]),
         "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model "

@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
+from ..products import PRODUCT_ATTR
 from . import get_nonlinear_model
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
@@ -335,6 +336,7 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
     ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model",
                     source=f"stability.simulate (tippe-stability {package_version()})", model=m.name,
                     equations=m.equations)
+    ds.attrs[PRODUCT_ATTR] = "nonlinear_run"
     for name, val in params.items():
         ds.attrs[name] = val
         ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..products import PRODUCT_ATTR
 from .runs import simulate
 
 __all__ = ["PAPER", "INITIAL_CONDITIONS", "FRICTION_CASES", "run", "crossing_time",
@@ -131,5 +132,6 @@ def friction_cases(fr_inv: float = 0.3, *, t_end: float = 1500.0, scheme: str = 
         coords={"case": ("case", case, {"long_name": "friction case of Fig. 9(b)", "units": "1"}),
                 "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
                 "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"})},
-        attrs={"Conventions": "CF-1.10", "title": "friction cases of Fig. 9(b)", "fr_inv": fr_inv,
+        attrs={"Conventions": "CF-1.10", "title": "friction cases of Fig. 9(b)", PRODUCT_ATTR: "friction_cases",
+               "fr_inv": fr_inv,
                "scheme": scheme, "step": step if scheme == "fixed_step" else 0.0, **PAPER})

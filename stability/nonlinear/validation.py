@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from ..products import PRODUCT_ATTR
 from .jacobian import transverse_jacobian, upright_state
 from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS
@@ -237,6 +238,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
                     jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
                     n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
                     convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega")
+    ds.attrs[PRODUCT_ATTR] = "validation"
     return ds
 
 
@@ -302,7 +304,7 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
         coords={"time": ds.time})
     out.attrs.update(
         Conventions="CF-1.10", title="Coulomb friction alone: growth of the tilt",
-        source="stability.validate.coulomb_growth", q=q, fr_inv=fr_inv, sigma=sigma, mu=mu,
+        source="stability.nonlinear.validation.coulomb_growth", q=q, fr_inv=fr_inv, sigma=sigma, mu=mu,
         alpha_k=alpha_k, alpha_v=0.0, friction=friction, amplitude=amplitude, scheme=scheme,
         step=step if scheme == "fixed_step" else 0.0, slip_scale=slip_scale,
         exponential_residual=res_e, algebraic_residual=res_a,
@@ -312,4 +314,5 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
         median_slip_speed=float(np.median(ds.slip_speed.values)),
         sticking_growth_rate=float(np.max(s_stick.real)),
         final_tilt=float(tilt[-1]))
+    out.attrs[PRODUCT_ATTR] = "coulomb_growth"
     return out

@@ -11,6 +11,9 @@ The convention, for every public plotting function of this package:
   :func:`save_figure` (atomic), style with :func:`style` (a context manager around
   ``plt.style.context``).
 
+``ds.tippe.plot()`` (:mod:`stability.plotting.accessor`, registered when :mod:`stability` is
+imported) picks the function for a dataset from its product attribute.
+
 Functions (imported on first use, so that ``import stability`` does not import matplotlib):
 
 * atlases: :func:`plot_atlas` (by its grid), :func:`plot_growth_rate`, :func:`atlas_figure`,
