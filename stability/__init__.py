@@ -10,6 +10,10 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`threshold`, :func:`thresholds`, :func:`critical_spin` - where stability changes;
 * :func:`simulate`, :func:`jacobian_eigenvalues`, :func:`validate` - nonlinear runs and the
   check of the linear predictions against them;
+* :func:`steady_states`, :func:`final_state`, :func:`top_class`, :func:`class_atlas` - where the
+  top goes: the steady tilted states on a Jellett level and their stability, the end of a
+  motion, the high-spin classes (the branch of tilted states is
+  ``continuation.steady_branch``);
 * :class:`TippeError` - the base of every exception the package raises on purpose
   (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``).
 
@@ -27,6 +31,9 @@ from .nonlinear.jacobian import jacobian_eigenvalues
 from .nonlinear.runs import simulate
 from .nonlinear.validation import coulomb_growth, validate
 from .parameters import DEFAULT_MU, PARAMETERS, check_domain
+from .steady.classes import class_atlas, top_class
+from .steady.final import FinalState, final_state
+from .steady.states import steady_states
 from .top import Top
 
 __all__ = [
@@ -35,4 +42,5 @@ __all__ = [
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "critical_spin",
+    "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
 ]
