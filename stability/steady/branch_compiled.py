@@ -36,6 +36,8 @@ _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 
 #: the complex step
 H = 1e-30
+#: below this |sin(theta)| (but not 0) dR/dtheta is interpolated from the vertical state
+NEAR_VERTICAL = 1e-4
 
 
 @njit(**_JIT)
@@ -60,10 +62,20 @@ def divided(theta, lam, p, q, code, n_full):
 def residual_and_jacobian(theta, ell, p, q, code, n_full, degenerate):
     """``R = divided / (1 + lam^2)`` (degenerate: ``/ lam^2``) and ``dR/d(theta, ell)``,
     ``ell = log lam``. The ``lam`` derivative of the divided component is a complex step in
-    ``lam`` (a central difference where ``sin(theta) = 0``)."""
+    ``lam`` (a central difference where ``sin(theta) = 0``); the ``theta`` derivative the complex
+    step of :func:`divided`, except for ``0 < |sin(theta)| < NEAR_VERTICAL`` (see the code)."""
     lam = np.exp(ell)
     r, r_t = divided(theta, lam, p, q, code, n_full)
     s = np.sin(theta)
+    if s != 0.0 and abs(s) < NEAR_VERTICAL:
+        # the complex step of a quotient by sin(theta) loses ~u / sin(theta) in the derivative
+        # (theta = pi in floating point has sin = 1.2e-16); dR/dtheta is odd about the vertical
+        # state theta_v, so take it from theta_v +- NEAR_VERTICAL (relative error ~1e-8, which
+        # only slows Newton's convergence a little)
+        theta_v = 0.0 if theta < 1.0 else math.pi
+        d = theta - theta_v
+        ref = theta_v + (NEAR_VERTICAL if d >= 0 else -NEAR_VERTICAL)
+        r_t = divided(ref, lam, p, q, code, n_full)[1] * d / (ref - theta_v)
     if s != 0.0:
         r_l = (component(theta + 0j, lam + 1j * H, p, q, code, n_full) / s).imag / H
     else:
