@@ -11,6 +11,7 @@ from .atlas_plots import plot_growth_rate
 from . import scene_plots
 from .maps import growth_norm, plot_stability_map
 from .spin_plots import plot_critical_spin
+from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_settle_approach
 
 __all__ = ["recipe_figure"]
 
@@ -28,7 +29,9 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    if recipe.kind == "scene":
+    if recipe.kind in ("bifurcation", "classes", "settle"):
+        fig = _steady_figure(recipe, datasets)
+    elif recipe.kind == "scene":
         fig = _scene_figure(recipe.figure, datasets)
     elif recipe.kind == "critical_spin":
         fig = Figure(figsize=(6.4, 4.2), layout="constrained")
@@ -79,3 +82,23 @@ def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset]) -> Figure:
     cases = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.startswith("case") and "paper" not in k}
     paper = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.endswith("_paper_scheme")}
     return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1])
+
+
+def _steady_figure(recipe: Recipe, datasets: dict[str, xr.Dataset]) -> Figure:
+    """The steady-state figures (stability.recipes' bifurcation, classes and settle kinds)."""
+    if recipe.kind == "bifurcation":
+        fig = Figure(figsize=(7.4, 4.8), layout="constrained")
+        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin_rpm",
+                         ax=fig.add_subplot())
+        return fig
+    if recipe.kind == "classes":
+        fig = Figure(figsize=(6.8, 5.0), layout="constrained")
+        plot_class_map(datasets["classes"], ax=fig.add_subplot())
+        return fig
+    run = datasets["run"]
+    fig = Figure(figsize=(7.4, 5.6), layout="constrained")
+    top, bottom = fig.subplots(2, 1)
+    plot_settle(run, predicted_tilt=run.attrs["predicted_tilt"], label=run.attrs.get("label", ""), ax=top)
+    plot_settle_approach(run, predicted_tilt=run.attrs["predicted_tilt"], rate=run.attrs.get("predicted_growth_rate"),
+                         ax=bottom)
+    return fig

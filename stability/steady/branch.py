@@ -47,7 +47,7 @@ import xarray as xr
 
 from continuation.engine import trace
 
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, DomainError
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_positive
@@ -307,6 +307,9 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         if lam_b is None:
             return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
+        if jmax is not None and not jmax > j_b:
+            raise DomainError(f"jellett_max = {jmax:.6g} is outside the allowed range: jellett_max > {j_b:.6g}, "
+                              f"the Jellett integral at the {start} branch point where the family starts")
         prob.jellett_max = 10.0 * j_b if jmax is None else jmax
         br = trace(prob, [theta_b, math.log(lam_b)], tangent0=t0, project_start=False, step=step,
                    max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled)

@@ -44,7 +44,7 @@ from .products import DEGREE, UNITLESS, flag_attrs, product_attrs, sliding_param
 from .states import state_integrals
 from .verdicts import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, flag_of, structural_zero
 
-__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "MATCH_DEG"]
+__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "settle", "chunk_length", "MATCH_DEG"]
 
 #: a run's end tilt within this of a steady state (degrees) is that state
 MATCH_DEG = 0.05
@@ -348,7 +348,7 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
     t_max = check_positive("t_max", t_max)
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    chunk = _chunk_length(cands, params, J0)
+    chunk = chunk_length(cands, params, J0)
     tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
@@ -368,7 +368,7 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
                              f"{run.seconds:.2g} s)", run=run, **common)
 
 
-def _chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
+def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
     """About ``8 / |g|``, ``g`` the slowest decay rate of the reachable candidates that are not
     unstable (0.01 degree after the transit), within ``[500, 5e4]``; 2000 if none decays."""
     from ..nonlinear.parameters import pack
