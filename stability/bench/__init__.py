@@ -16,7 +16,10 @@ Suites, one module each (each holds its problem, baselines, references and requi
 * ``"continuation"`` (:mod:`stability.bench.continuation`): the continuation's step settings
   against the exact fold of the sliding neutral curve, with brentq per column as the baseline;
 * ``"integrators"`` (:mod:`stability.bench.integrators`): the integrators of the nonlinear runs
-  against a tight DOP853 reference, and the stiff slip mode.
+  against a tight DOP853 reference, and the stiff slip mode;
+* ``"steady"`` (:mod:`stability.bench.steady`): the final state by Jellett's integral against a
+  simulation long enough for the same accuracy, the branch of tilted states against its closed
+  form (baselines: brentq per tilt, the engine's Python path), the class map of 1e6 tops.
 
 Layer 7 (docs/architecture.md): the suites measure the layers below; nothing below imports them
 (the charts, :mod:`stability.plotting.work_precision`, take the records duck-typed).
@@ -28,9 +31,10 @@ from .continuation import CONTINUATION_TITLE, FOLD_TARGET, continuation_work_pre
 from .eigen import EIGEN_TARGET, eigen_work_precision
 from .integrators import CROSSING_TARGET, GROWTH_TARGET, INTEGRATOR_TITLE, integrator_work_precision
 from .records import Panel, Suite, WorkPrecision, peak_memory_mb
+from .steady import BRANCH_TARGET, FINAL_TARGET, STEADY_TITLE, steady_work_precision
 
-__all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "WorkPrecision", "Panel",
-           "Suite", "peak_memory_mb"]
+__all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "FINAL_TARGET",
+           "BRANCH_TARGET", "WorkPrecision", "Panel", "Suite", "peak_memory_mb"]
 
 
 def _continuation_suite(repeat: int = 5, quick: bool = False) -> list[WorkPrecision]:
@@ -43,6 +47,12 @@ def _integrator_suite(repeat: int = 3, quick: bool = False) -> list[WorkPrecisio
     """:func:`stability.bench.integrators.integrator_work_precision`, with the options
     ``tippe bench`` passes to it."""
     return integrator_work_precision(repeat=repeat, quick=quick)
+
+
+def _steady_suite(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
+    """:func:`stability.bench.steady.steady_work_precision`, with the options ``tippe bench``
+    passes to it."""
+    return steady_work_precision(repeat=repeat, quick=quick)
 
 
 def _suites() -> dict[str, Suite]:
@@ -68,11 +78,22 @@ def _suites() -> dict[str, Suite]:
                                     "wall time per validation run [s]", select="growth", target=GROWTH_TARGET,
                                     title="validate(): growth rate fitted to a run (4 e-folds)")),
                              unit="run", compare_at=("error",)),
+        "steady": Suite(_steady_suite, STEADY_TITLE,
+                        (Panel("error of the final tilt against a settled reference run [deg] (the paper's Fr^-1 = 0.3 "
+                               "run of Sec. 3(ii))", "wall time per prediction or run [s]", select="final",
+                               target=FINAL_TARGET, title="final state: Jellett's integral vs simulations of "
+                                                          "increasing length"),
+                         Panel("largest relative error of the precession rate vs the closed form (S3)",
+                               "wall time per branch (~200 points, spectra and flags) [s]", select="branch",
+                               target=BRANCH_TARGET, title="the branch of tilted states (the paper's top)"),
+                         Panel("number of tops", "wall time per call [s]", x="tops", select="classes",
+                               title="class map: stability.top_class")),
+                        unit="call"),
     }
 
 
 #: name -> :class:`Suite`: "eigen" (:mod:`stability.bench.eigen`), "continuation"
 #: (:mod:`stability.bench.continuation`), "integrators"
-#: (:mod:`stability.bench.integrators`); ``tippe bench --suite NAME`` runs one,
-#: ``tippe bench`` (``--suite all``) all three.
+#: (:mod:`stability.bench.integrators`), "steady" (:mod:`stability.bench.steady`);
+#: ``tippe bench --suite NAME`` runs one, ``tippe bench`` (``--suite all``) all of them.
 SUITES: dict[str, Suite] = _suites()

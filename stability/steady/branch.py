@@ -58,7 +58,7 @@ from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var
 from .states import state_integrals
 from .verdicts import flag_of
 
-__all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points"]
+__all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
 
 #: kinds of points of a branch ("" for a regular point)
 KINDS = ("branch_point", "fold", "stability_change", "end")
@@ -338,17 +338,18 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
                                f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}")
     attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
                  n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
-    return _dataset(prob, pts, kinds, details, attrs)
+    return points_dataset(prob, pts, kinds, details, attrs)
 
 
 def _empty(attrs: dict[str, Any], note: str) -> xr.Dataset:
     attrs = dict(attrs, note=note)
-    return _dataset(None, np.zeros((0, 2)), [], [], attrs)
+    return points_dataset(None, np.zeros((0, 2)), [], [], attrs)
 
 
-def _dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str],
-             attrs: dict[str, Any]) -> xr.Dataset:
-    """Spectra, flags and the Dataset of the traced points."""
+def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str],
+                   attrs: dict[str, Any]) -> xr.Dataset:
+    """Spectra, flags and the Dataset of points ``(theta, log lam)`` of the family (traced, or
+    solved otherwise, e.g. by the benchmark's baseline), with their kinds and details."""
     n = len(pts)
     theta, lam = pts[:, 0], np.exp(pts[:, 1])
     c = np.cos(theta)

@@ -44,7 +44,8 @@ from .products import DEGREE, UNITLESS, flag_attrs, product_attrs, sliding_param
 from .states import state_integrals
 from .verdicts import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, flag_of, structural_zero
 
-__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "settle", "chunk_length", "MATCH_DEG"]
+__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle", "chunk_length",
+           "MATCH_DEG"]
 
 #: a run's end tilt within this of a steady state (degrees) is that state
 MATCH_DEG = 0.05
@@ -251,6 +252,16 @@ def candidates(jellett: float, initial_energy: float, *, q: float, sigma: float,
     return tuple(out)
 
 
+def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
+            mu: float) -> tuple[Candidate | None, str, tuple[Candidate, ...]]:
+    """The decision of the Jellett method from the integrals ``(J0, E0)``, in floats: the steady
+    state the motion ends on (None if ``J`` and ``E`` do not decide), the reason, and the
+    candidate table (:func:`candidates`). No input checks: :func:`final_state` does them."""
+    cands = candidates(jellett, initial_energy, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    end, reason = _decide(cands, fr_inv == 0.0 or q == 0.0)
+    return end, reason, cands
+
+
 def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate | None, str]:
     """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
@@ -333,9 +344,7 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
     J0, E0 = state_integrals(y[:8], q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     J0, E0 = float(J0[0]), float(E0[0])
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
-    cands = candidates(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
-    degenerate = fr_inv == 0.0 or q == 0.0
-    end, reason = _decide(cands, degenerate)
+    end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     if end is not None:
         return FinalState(tilt=end.tilt, kind=end.kind, method="jellett", energy=end.energy,
