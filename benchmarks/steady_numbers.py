@@ -166,7 +166,7 @@ def classes_and_paper() -> None:
     inside = names != "outside_domain"
     gamma = (1 - MU * q * q) / sigma
     hug = (q < 0) & (1 + q < gamma) & (gamma < 1 - q)
-    counts = {k: int(v) for k, v in zip(*np.unique(names[inside], return_counts=True))}
+    counts = {str(k): int(v) for k, v in zip(*np.unique(names[inside], return_counts=True))}
     print(f"F. 1e6 random tops: {counts}; 'inverts' vs Hugenholtz 1 - alpha < A_G/C < 1 + alpha: "
           f"{int(np.sum((names == 'inverts')[inside] != hug[inside]))} mismatches")
     for fr in (0.3, 0.1):

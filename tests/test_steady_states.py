@@ -243,3 +243,29 @@ def test_paper_run_level_has_the_hanging_state_at_166_degrees():
     assert list(ds.stability.values) == [2, 0, 2]
     assert float(ds.tilt[1]) == pytest.approx(166.018431, abs=1e-6)
     assert abs(end.jellett) < family.branch_point_jellett("inverted", q=-0.1, sigma=1.0, fr_inv=0.3, mu=MU)
+
+
+def test_without_friction_no_state_is_asymptotically_stable():
+    """alpha_v = 0: the energy is conserved (and horizontal momentum: two more zero modes), so the
+    flag is the Jacobian's with 'stable' demoted to 'marginal'; an energy maximum may still be
+    gyroscopically stable, so unstable states are those whose Jacobian says so."""
+    ds = stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.0)
+    assert 0 not in ds.stability.values
+    assert np.array_equal(ds.stability.values == 2, ds.stability_jacobian.values == 2)
+    assert np.all(ds.n_neutral.values >= 1)
+
+
+@pytest.mark.parametrize("kw,exc,fragment", [
+    (dict(jellett=float("nan")), ValueError, "jellett = nan is not finite"),
+    (dict(jellett="1"), TypeError, "jellett = '1' is a str"),
+    (dict(jellett=[1.0, 2.0]), TypeError, "jellett must be a single number here"),
+    (dict(sigma=2.5), ValueError, "sigma = 2.5 is outside the physical domain"),
+    (dict(fr_inv=-0.1), ValueError, "fr_inv = -0.1 is outside the physical domain: fr_inv >= 0"),
+    (dict(alpha_v=None), TypeError, "alpha_v is required"),
+    (dict(model="fixed_pivot"), ValueError, "model = 'fixed_pivot' is not known; choose one of sliding"),
+])
+def test_bad_input(kw, exc, fragment):
+    args = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    args.update(kw)
+    with pytest.raises(exc, match=fragment):
+        stability.steady_states(**args)
