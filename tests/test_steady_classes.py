@@ -188,3 +188,13 @@ def test_bad_input(call, exc, fragment):
 
 def test_outside_points_are_named_when_masked():
     assert stability.top_class(q=0.9, sigma=1.0, mask_unphysical=True) == "outside_domain"
+
+
+def test_class_atlas_over_mu():
+    """mu as a dimension: the boundaries over (q, mu) are A_G / (1 +- q) with A_G = 1 - mu q^2."""
+    q = np.linspace(-0.4, 0.4, 9)
+    mu = np.array([1.5, 2.28, 3.0])
+    ds = stability.class_atlas(q=q, sigma=0.9, mu=mu)
+    assert ds.top_class.dims == ("q", "mu") and ds.sigma_never_inverts.dims == ("q", "mu")
+    ag = 1 - mu[None, :] * q[:, None] ** 2
+    assert np.allclose(ds.sigma_never_inverts.values, ag / (1 + q[:, None]), rtol=1e-14)

@@ -156,10 +156,10 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
             "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))", DEGREE)),
     }
     bdims = tuple(d for d in dims if d in ("q", "mu"))
-    if "q" in dims or "mu" in dims:
-        qg, mg = (np.meshgrid(*(values[d] for d in bdims), indexing="ij") if len(bdims) == 2 else
-                  (values["q"] if "q" in bdims else values["q"] * np.ones_like(values["mu"]),
-                   values["mu"] if "mu" in bdims else values["mu"] * np.ones_like(values["q"])))
+    if bdims:
+        grid = np.meshgrid(*(values[d] for d in bdims), indexing="ij")
+        qg, mg = (grid[bdims.index(k)] if k in bdims else np.broadcast_to(values[k], grid[0].shape)
+                  for k in ("q", "mu"))
         with np.errstate(invalid="ignore", divide="ignore"):
             ok = family.a_g(qg, mg) > 0
             b = class_boundaries(qg, mg)
