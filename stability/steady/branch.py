@@ -271,7 +271,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
-                          "stability.continuation.steady_branch", params, removed_neutral=True)
+                          "continuation.steady_branch", params, removed_neutral=True)
     attrs["model"] = "sliding"
     step = min(max_step, 0.02)
     if prob.degenerate:
@@ -331,9 +331,10 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             details[i] = "fold in J (dJ/ds = 0)"
         elif k == "end":
             details[i] = f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
-    if ends[-1] not in ("boundary",) and kinds[-1] == "":
-        kinds[-1], details[-1] = "end", f"continuation stopped: {ends[-1].replace('_', ' ')}"
-    if ends[-1] == "step_failure":
+    for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
+        if end != "boundary" and kinds[k] == "":
+            kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
+    if "step_failure" in ends:
         raise ConvergenceError(f"steady_branch: the continuation failed after {len(pts)} points "
                                f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}")
     attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
