@@ -22,7 +22,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--quick", action="store_true", help="three cases, two class-map sizes")
     args = parser.parse_args(argv)
     print(format_table(final_state_cases(repeat=args.repeat, quick=args.quick)))
-    b = branch_measurements(repeat=max(args.repeat, 5))
+    b = branch_measurements(repeat=max(args.repeat, 7))
     print(f"\nbranch of the paper's top, {b['points']} points with spectra and flags "
           "(time, largest relative error of lam vs the closed form):")
     for key in ("compiled", "python", "brentq"):

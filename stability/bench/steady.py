@@ -23,7 +23,9 @@ each against a named baseline measured in the same run:
   same call per top on 2000 tops (per-top time); error: mismatches against Hugenholtz's band
   (0 is drawn at the chart's floor).
 
-Times: :func:`stability.bench.records.best_time` (the best of ``repeat`` calls after a warm-up).
+Times: the minimum wall time; the branch's three paths and the prediction's two are timed in
+alternating rounds (:func:`stability.bench.continuation.best_times`), the simulations by
+:func:`stability.bench.records.best_time` (the best of ``repeat`` after a warm-up).
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from .continuation import best_times
 from .records import WorkPrecision, best_time
 
 __all__ = ["steady_work_precision", "FINAL_TARGET", "BRANCH_TARGET", "STEADY_TITLE", "CASES", "final_state_cases",
@@ -105,11 +108,12 @@ def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, An
         t001 = max(_settle_time(t, tilt, end, FINAL_TARGET), t[1])
         sim_time, sim = best_time(lambda: simulate("sliding", t_end=t001, t_eval=np.array([0.0, t001]), **params,
                                                    **start), repeat)
-        pred_time, pred = best_time(lambda: final_state(**params, **start), max(repeat, 20))
         y = initial_state("sliding", start["omega"], start["k"], start.get("velocity"))
         j0, e0 = (float(v[0]) for v in state_integrals(y[:8], q=params["q"], sigma=params["sigma"],
                                                         fr_inv=params["fr_inv"], mu=2.28))
-        core_time, _ = best_time(lambda: predict(j0, e0, mu=2.28, **params), max(repeat, 20))
+        times, outs = best_times({"call": lambda: final_state(**params, **start),
+                                  "core": lambda: predict(j0, e0, mu=2.28, **params)}, max(repeat, 5), min_time=0.2)
+        pred_time, core_time, pred = times["call"], times["core"], outs["call"]
         rows.append(dict(name=name, params=params, reference=end, t_001=t001, sim_seconds=sim_time,
                          sim_error=abs(float(sim.polar_angle[-1]) - end), pred_seconds=pred_time,
                          core_seconds=core_time, pred_error=abs(pred.tilt - end), method=pred.method,
@@ -149,10 +153,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
         inner = np.abs(np.sin(theta)) > 1e-12
         return float(np.max(np.abs(lam[inner] - ref[inner]) / ref[inner]))
 
-    t_c, ds = best_time(lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step),
-                        repeat)
-    t_py, ds_py = best_time(lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step,
-                                                  compiled=False), max(1, repeat // 2))
+    ds = steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step)
     n = ds.sizes["point"]
     params, p = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu)
     code, n_full = CODES["sliding"], 10
@@ -169,10 +170,15 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
 
         prob = SteadyBranchProblem(params, p)
         return lam, points_dataset(prob, np.column_stack([thetas, np.log(lam)]), [""] * n, [""] * n, {})
-    t_b, (lam_cols, _) = best_time(columns, max(1, repeat // 2))
-    return dict(points=n, compiled=(t_c, error(np.radians(ds.tilt.values), ds.precession_rate.values)),
-                python=(t_py, error(np.radians(ds_py.tilt.values), ds_py.precession_rate.values)),
-                brentq=(t_b, error(thetas, lam_cols)))
+    t, out = best_times({
+        "compiled": lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step),
+        "python": lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step,
+                                        compiled=False),
+        "brentq": columns}, repeat, min_time=1.0)
+    ds, ds_py, (lam_cols, _) = out["compiled"], out["python"], out["brentq"]
+    return dict(points=n, compiled=(t["compiled"], error(np.radians(ds.tilt.values), ds.precession_rate.values)),
+                python=(t["python"], error(np.radians(ds_py.tilt.values), ds_py.precession_rate.values)),
+                brentq=(t["brentq"], error(thetas, lam_cols)))
 
 
 def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, Any]:
@@ -221,7 +227,7 @@ def steady_work_precision(repeat: int = 3, quick: bool = False) -> list[WorkPrec
             "simulate to t_end", sec, err, 1, baseline=True, series="simulate (rtol 1e-9)", setting=f"t_end {t_end:g}",
             panel="final", note="stability.simulate of the paper's Fr^-1 = 0.3 run, default rtol 1e-9",
             extra={"t_end": t_end}))
-    b = branch_measurements(repeat=max(repeat, 5))
+    b = branch_measurements(repeat=max(repeat, 7))
     for key, label, base in (("compiled", "steady_branch (compiled step)", False),
                              ("python", "steady_branch (engine's Python path)", True),
                              ("brentq", "brentq per tilt on the nonlinear residual", True)):
