@@ -91,10 +91,9 @@ def _settle_time(t: np.ndarray, tilt: np.ndarray, end: float, tol: float) -> flo
 def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, Any]]:
     """Per case: the reference end tilt, ``t_0.01``, the simulation's cost and error to ``t_0.01``,
     and the prediction's cost and error (module docstring)."""
-    from ..nonlinear.runs import simulate
+    from ..nonlinear.runs import initial_state, simulate
     from ..steady.final import final_state, predict
     from ..steady.states import state_integrals
-    from ..nonlinear.runs import initial_state
 
     rows = []
     for i, (name, params, start, t_test) in enumerate(CASES):
@@ -140,7 +139,6 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
     from scipy.optimize import brentq
 
     from ..nonlinear.kernels import CODES
-    from ..nonlinear.parameters import pack
     from ..steady import branch_compiled, family
     from ..steady.branch import points_dataset, steady_branch
     from ..steady.products import sliding_parameters

@@ -40,9 +40,9 @@ from ..nonlinear.runs import initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, UNITLESS, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
-from .verdicts import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, flag_of, structural_zero
+from .verdicts import STABLE, UNSTABLE, flag_of
 
 __all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle", "chunk_length",
            "MATCH_DEG"]
