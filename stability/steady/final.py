@@ -407,7 +407,8 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
            rtol: float, samples: int = 20) -> tuple[float, float, SettleRun]:
     """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
     tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
-    ``t_max``. Returns the end tilt (degrees), the end energy and the :class:`SettleRun`."""
+    ``t_max`` (or a failed integration: then unsettled, tilt NaN). Returns the end tilt (degrees),
+    the end energy and the :class:`SettleRun`."""
     w, kk, v = y0[0:3], y0[3:6], y0[6:8]
     t = 0.0
     n = 0
@@ -424,6 +425,9 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
         if j0 is None:
             j0 = float(ds.h_cg[0])
         pol = ds.polar_angle.values
+        if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
+            change, slip = math.nan, math.nan
+            break
         w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
         kk = kk / np.linalg.norm(kk)
         change = float(np.max(pol) - np.min(pol))
@@ -435,4 +439,5 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
                     seconds=time.perf_counter() - t0,
                     jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
                     axial_spin=float(ds.spin[-1]))
-    return float(pol[-1]), float(ds.energy[-1]), run
+    ok = np.isfinite(pol)
+    return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run
