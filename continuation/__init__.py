@@ -12,8 +12,10 @@ Facade: the neutral curves of the linear models are a client of the engine and l
 :mod:`stability.linear.neutral_compiled`). For convenience ``continuation.neutral_curve``,
 ``continuation.fold_curve`` and ``continuation.NeutralProblem`` re-export them, imported on
 first use (module ``__getattr__``) so that the engine can be used without :mod:`stability`.
-This ``__init__`` is the only module of the package that refers to :mod:`stability`
-(docs/architecture.md).
+Likewise ``continuation.steady_branch`` re-exports :func:`stability.steady.branch.steady_branch`
+(the family of tilted steady states of the sliding top against Jellett's integral, traced by
+this engine). This ``__init__`` is the only module of the package that refers to
+:mod:`stability` (docs/architecture.md).
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ __all__ = [
     "Branch", "ConvergenceError", "ContinuationProblem", "correct", "finite_difference_jacobian",
     "fold_test", "locate", "project", "tangent", "trace", "trace_both", "dense", "hermite",
     "hermite_samples",
-    "neutral_curve", "fold_curve", "NeutralProblem",
+    "neutral_curve", "fold_curve", "NeutralProblem", "steady_branch",
 ]
 
 _LAZY = {"neutral_curve", "fold_curve", "NeutralProblem"}
@@ -41,4 +43,8 @@ def __getattr__(name: str) -> Any:
         from stability.linear import neutral_curves
 
         return getattr(neutral_curves, name)
+    if name == "steady_branch":
+        from stability.steady.branch import steady_branch
+
+        return steady_branch
     raise AttributeError(f"module 'continuation' has no attribute {name!r}")

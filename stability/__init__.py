@@ -11,6 +11,10 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
   where stability changes;
 * :func:`simulate`, :func:`jacobian_eigenvalues`, :func:`validate` - nonlinear runs and the
   check of the linear predictions against them;
+* :func:`steady_states`, :func:`final_state`, :func:`top_class`, :func:`class_atlas` - where the
+  top goes: the steady tilted states on a Jellett level and their stability, the end of a
+  motion, the high-spin classes (the branch of tilted states is
+  ``continuation.steady_branch``);
 * :class:`TippeError` - the base of every exception the package raises on purpose
   (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``);
 * ``ds.tippe`` - on every dataset the package returns: ``ds.tippe.product`` (its global
@@ -33,6 +37,9 @@ from .nonlinear.runs import simulate
 from .nonlinear.validation import coulomb_growth, validate
 from .parameters import DEFAULT_MU, PARAMETERS, check_domain
 from .plotting import accessor as _accessor  # registers ds.tippe  # noqa: F401
+from .steady.classes import class_atlas, top_class
+from .steady.final import FinalState, final_state
+from .steady.states import steady_states
 from .top import Top
 
 __all__ = [
@@ -41,4 +48,5 @@ __all__ = [
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
+    "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
 ]

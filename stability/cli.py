@@ -40,7 +40,8 @@ from typing import NoReturn
 __all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED", "KEYWORD_FLAGS", "render_message"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
-COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "bench")
+COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "steady", "final",
+                             "bench")
 
 #: exit statuses: bad input or file (2), a failed computation or a bug (1), interrupted (130)
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130

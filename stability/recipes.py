@@ -29,6 +29,17 @@ A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
 ``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.nonlinear.scene`);
 it has no grid.
 
+Steady states (:mod:`stability.steady`, docs/steady_states.md):
+
+* ``kind = "bifurcation"``: the bifurcation diagram of a preset top (``preset = "table1"``):
+  the tilt of every steady state against the equivalent upright spin in rpm, with the end
+  points of nonlinear runs launched upright (tilt 1 degree) at the spins ``runs_rpm``; ``[grid]``
+  holds ``alpha_v`` (a number);
+* ``kind = "classes"``: the high-spin class map over ``[grid]`` ``q`` and ``sigma`` (1-D) at a
+  scalar ``mu`` (:func:`stability.class_atlas`);
+* ``kind = "settle"``: the paper's run of Sec. 3(ii) at ``[grid] fr_inv`` (0.3 or 0.1)
+  continued to ``t_end`` with the final tilt :func:`stability.final_state` predicts.
+
 The outputs are ``<name>.nc`` (regenerated, not committed) and ``<name>.png`` (committed when the
 README shows it) beside the recipe, ``<name>`` being the recipe's file stem. A dataset already on
 disk is reused when its ``recipe_digest`` attribute matches the digest of the recipe's contents
@@ -62,12 +73,14 @@ __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", 
            "KINDS"]
 
 #: what a recipe can draw
-KINDS = ("lines", "map", "models", "scene", "critical_spin")
+KINDS = ("lines", "map", "models", "scene", "critical_spin", "bifurcation", "classes", "settle")
+#: the steady-state kinds (their own loader, compute and outputs below)
+STEADY_KINDS = ("bifurcation", "classes", "settle")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
 _KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
-         "figure", "neutral", "preset"}
+         "figure", "neutral", "preset", "runs_rpm", "t_end"}
 
 
 @dataclass(frozen=True)
@@ -87,6 +100,8 @@ class Recipe:
     caption: str = ""
     figure: str | None = None
     neutral: bool = False
+    runs_rpm: tuple[float, ...] = ()
+    t_end: float = 0.0
     digest: str = field(default="", compare=False)
 
     @property
@@ -179,6 +194,8 @@ def load_recipe(path: str | Path) -> Recipe:
             raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
         return Recipe(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid={},
                       caption=str(raw.get("caption", "")), figure=figure, digest=digest)
+    if kind in STEADY_KINDS:
+        return _load_steady(p, raw, kind, digest)
     if "grid" not in raw:
         raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
@@ -259,6 +276,8 @@ def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: b
 def output_paths(recipe: Recipe) -> list[Path]:
     """Every file :func:`compute` and ``tippe figures`` may write for ``recipe``."""
     paths = [recipe.figure_path]
+    if recipe.kind in STEADY_KINDS:
+        return paths + [_steady_path(recipe, key) for key in _STEADY_PARTS[recipe.kind]]
     if recipe.kind == "scene":
         return paths + [recipe.path.with_name(f"{recipe.name}_{k}.nc") for k in scene_runs(recipe.figure or "")]
     if recipe.kind == "critical_spin":
@@ -323,6 +342,17 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
         run's label in its ``label`` attribute.
     """
     out: dict[str, xr.Dataset] = {}
+    if recipe.kind in STEADY_KINDS:
+        made: dict[str, xr.Dataset] = {}
+
+        def part(key: str) -> xr.Dataset:
+            if not made:
+                made.update(_STEADY_MAKERS[recipe.kind](recipe))
+            return made[key]
+        for key in _STEADY_PARTS[recipe.kind]:
+            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force,
+                               reader=_read)
+        return out
     if recipe.kind == "critical_spin":
         out[recipe.model] = _cached(recipe.dataset_path, recipe.digest, lambda: critical_spin_dataset(recipe),
                                     force=force, reader=_read)
@@ -400,3 +430,187 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
         if name in ds:
             ds[name] = ds[name].astype(str)
     return ds
+
+
+# ------------------------------------------------------------------------------------------
+# steady states: the bifurcation diagram, the class map, a run settling (stability.steady)
+# ------------------------------------------------------------------------------------------
+#: the datasets each steady kind writes (the first is <name>.nc, the others <name>_<key>.nc)
+_STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("classes",), "settle": ("run",)}
+#: the bifurcation diagram's reference spin: J in units of A0 Omega_ref (any value gives the same figure)
+REFERENCE_RPM = 400.0
+
+
+def _steady_path(recipe: Recipe, key: str) -> Path:
+    return recipe.dataset_path if key == _STEADY_PARTS[recipe.kind][0] else \
+        recipe.path.with_name(f"{recipe.name}_{key}.nc")
+
+
+def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str) -> Recipe:
+    """The steady kinds' keys (module docstring)."""
+    grid_raw = raw.get("grid", {})
+    if not isinstance(grid_raw, dict):
+        raise RecipeError(f"{p}: [grid] must be a table of parameter values")
+    allowed = {"bifurcation": {"alpha_v"}, "classes": {"q", "sigma", "mu"}, "settle": {"fr_inv"}}[kind]
+    bad = set(grid_raw) - allowed
+    if bad:
+        raise RecipeError(f"{p}: a {kind} recipe's grid takes {', '.join(sorted(allowed))}, not {', '.join(sorted(bad))}")
+    grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
+    common = dict(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid=grid,
+                  caption=str(raw.get("caption", "")), digest=digest)
+    if kind == "bifurcation":
+        preset = raw.get("preset", "table1")
+        if preset not in PRESETS:
+            raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
+        runs = raw.get("runs_rpm", [])
+        if not isinstance(runs, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0
+                                                 for v in runs):
+            raise RecipeError(f"{p}: runs_rpm = {runs!r} must be a list of spin rates > 0 (rpm)")
+        if np.ndim(grid.get("alpha_v", 0.5)) != 0 or not float(grid.get("alpha_v", 0.5)) > 0:
+            raise RecipeError(f"{p}: grid.alpha_v must be one number > 0")
+        return Recipe(**common, figure=preset, runs_rpm=tuple(float(v) for v in runs))
+    if kind == "classes":
+        for k in ("q", "sigma"):
+            if np.ndim(grid.get(k)) != 1:
+                raise RecipeError(f"{p}: a classes recipe needs grid.{k} as a 1-D grid (a list or 'start:stop:num')")
+        if np.ndim(grid.get("mu", 2.28)) != 0:
+            raise RecipeError(f"{p}: grid.mu must be one number")
+        return Recipe(**common)
+    fr = grid.get("fr_inv", 0.3)
+    t_end = raw.get("t_end", 15000.0)
+    from .nonlinear.scene import INITIAL_CONDITIONS
+
+    if np.ndim(fr) != 0 or float(fr) not in INITIAL_CONDITIONS:
+        raise RecipeError(f"{p}: grid.fr_inv = {fr!r} must be one of {', '.join(map(str, INITIAL_CONDITIONS))} "
+                          "(the paper's runs of Sec. 3(ii))")
+    if not isinstance(t_end, (int, float)) or isinstance(t_end, bool) or not t_end > 0:
+        raise RecipeError(f"{p}: t_end = {t_end!r} must be a number > 0")
+    return Recipe(**common, t_end=float(t_end))
+
+
+def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
+    """The bifurcation diagram of a preset top (``kind = "bifurcation"``).
+
+    All three datasets share the abscissa ``spin_rpm``, the equivalent upright spin: the spin
+    of an upright launch (``omega = Omega K``) with the same Jellett integral. The branch is
+    traced at the ``fr_inv`` of :data:`REFERENCE_RPM` (J in units of ``A0 Omega_ref``); an
+    upright launch at ``Omega`` has ``J = sigma (1 + q) Omega / Omega_ref`` there, so
+    ``spin_rpm = J / (sigma (1 + q)) * REFERENCE_RPM``.
+
+    Returns
+    -------
+    dict
+        ``"branch"`` (:func:`stability.steady.branch.steady_branch` with ``spin_rpm``),
+        ``"vertical"`` (the flags of the upright and inverted states on a grid of ``spin_rpm``,
+        :func:`stability.steady_states`, branch points included), ``"runs"`` (launch spin,
+        equivalent spin, predicted and simulated end tilt of each run in ``runs_rpm``: upright
+        spin, axis tilted by 1 degree, integrated in chunks until the tilt moves less than 1e-3
+        degree per chunk, :func:`stability.steady.final.settle`; for the Table 1 top also the
+        paper's Fr^-1 = 0.3 run of Sec. 3(ii) from its printed state, ``paper_run = 1``).
+    """
+    import math
+
+    from .nonlinear.runs import initial_state
+    from .steady.branch import branch_points, steady_branch
+    from .steady.final import chunk_length, final_state, settle
+    from .steady.states import steady_states
+    from .top import Top
+
+    top = getattr(Top, recipe.figure or "table1")()
+    alpha_v = float(recipe.grid.get("alpha_v", 0.5))
+    q, sigma, mu = top.q, top.sigma, top.mu
+    fr_ref = float(top.fr_inv(REFERENCE_RPM, unit="rpm"))
+    j_per_rpm = sigma * (1.0 + q) / REFERENCE_RPM
+    bp = branch_points(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu)
+    bp_rpm = [v / j_per_rpm for v in bp.values() if math.isfinite(v)]
+    lo, hi = 0.75 * min(list(recipe.runs_rpm) + bp_rpm), 1.1 * max(list(recipe.runs_rpm) + bp_rpm)
+    branch = steady_branch(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett_max=hi * j_per_rpm,
+                           max_step=0.01)
+    branch["spin_rpm"] = branch.jellett / j_per_rpm
+    branch["spin_rpm"].attrs = {"long_name": "equivalent upright spin (launch spin of an upright top with this J)",
+                                "units": "min-1"}
+    extra = branch.where(branch.kind == "branch_point", drop=True).spin_rpm.values
+    rpm = np.unique(np.concatenate([np.linspace(lo, hi, 221), extra]))
+    flags = {"upright": [], "inverted": []}
+    for r in rpm:
+        ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=r * j_per_rpm)
+        for kind in flags:
+            flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
+    flag_attrs = {"flag_values": np.array([0, 1, 2], dtype=np.int8), "flag_meanings": "stable marginal unstable"}
+    vertical = xr.Dataset(
+        {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin", **flag_attrs})
+         for k, v in flags.items()},
+        coords={"spin_rpm": ("level", rpm, {"long_name": "equivalent upright spin", "units": "min-1"})})
+    rows = []
+    for r in recipe.runs_rpm:
+        fr = float(top.fr_inv(r, unit="rpm"))
+        th = math.radians(1.0)
+        start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
+        params = dict(q=q, sigma=sigma, fr_inv=fr, alpha_v=alpha_v, mu=mu)
+        pred = final_state(**params, **start, simulation=False)
+        chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
+        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, t_max=2e5,
+                             settle_tolerance=1e-3, rtol=1e-10)
+        rows.append((r, pred.jellett / (sigma * (1 + q)) * r, pred.tilt, end, run.t_end, int(run.settled), 0))
+    if recipe.figure == "table1":  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
+        from .nonlinear.scene import INITIAL_CONDITIONS
+
+        ic = INITIAL_CONDITIONS[0.3]
+        params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
+        pred = final_state(**params, **ic)
+        end, _, run = settle(initial_state("sliding", **ic), params, chunk=chunk_length(pred.candidates, params, pred.jellett),
+                             t_max=2e5, settle_tolerance=1e-3, rtol=1e-10)
+        r = float(top.spin_rate(0.3)) * 60.0 / (2.0 * math.pi)
+        rows.append((r, abs(pred.jellett) / (sigma * (1 + q)) * r, pred.tilt, end, run.t_end, int(run.settled), 1))
+    arr = np.array(rows, dtype=float).reshape(-1, 7)
+    unit = {"units": "1"}
+    runs = xr.Dataset(
+        {"launch_rpm": ("run", arr[:, 0], {"long_name": "launch spin", "units": "min-1"}),
+         "spin_rpm": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": "min-1"}),
+         "predicted_tilt": ("run", arr[:, 2], {"long_name": "final tilt predicted by Jellett's integral", "units": "degree"}),
+         "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
+         "t_end": ("run", arr[:, 4], {"long_name": "length of the run", **unit}),
+         "settled": ("run", arr[:, 5].astype(np.int8), {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"}),
+         "paper_run": ("run", arr[:, 6].astype(np.int8), {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) "
+                                                                          "(printed initial state, clockwise)"})},
+        coords={"run": ("run", np.arange(len(rows)))})
+    attrs = {"Conventions": "CF-1.10", "title": recipe.title, "preset": recipe.figure, "reference_rpm": REFERENCE_RPM,
+             "radius_m": top.radius, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v}
+    for ds in (vertical, runs):
+        ds.attrs.update(attrs)
+    branch.attrs.update(preset=recipe.figure, reference_rpm=REFERENCE_RPM, radius_m=top.radius)
+    for name in ("kind", "detail"):
+        branch[name] = branch[name].astype(str)
+    return {"branch": branch, "vertical": vertical, "runs": runs}
+
+
+def classes_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
+    """The class map (``kind = "classes"``): :func:`stability.class_atlas` over the grid."""
+    from .steady.classes import class_atlas
+
+    ds = class_atlas(q=recipe.grid["q"], sigma=recipe.grid["sigma"], mu=float(recipe.grid.get("mu", 2.28)))
+    ds.attrs["recipe"] = recipe.path.name
+    return {"classes": ds}
+
+
+def settle_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
+    """The paper's run continued to ``t_end`` (``kind = "settle"``), with the final state
+    :func:`stability.final_state` predicts from its initial state in the attributes."""
+    from .nonlinear import scene
+    from .steady.final import final_state
+
+    fr = float(recipe.grid.get("fr_inv", 0.3))
+    run = scene.run(fr, t_end=recipe.t_end, dt=max(0.5, recipe.t_end / 20000.0))
+    from .steady.states import steady_states
+
+    end = final_state(fr_inv=fr, alpha_v=0.5, **scene.PAPER, **scene.INITIAL_CONDITIONS[fr])
+    states = steady_states(fr_inv=fr, alpha_v=0.5, **scene.PAPER, jellett=end.jellett)
+    rate = float(states.growth_rate[np.argmin(np.abs(states.tilt.values - end.tilt))])
+    run.attrs.update(predicted_tilt=end.tilt, predicted_kind=end.kind, predicted_method=end.method,
+                     predicted_axial_spin=end.axial_spin, predicted_growth_rate=rate, jellett=end.jellett,
+                     label=f"Fr$^{{-1}}$ = {fr:g}")
+    return {"run": run}
+
+
+_STEADY_MAKERS: dict[str, Callable[[Recipe], dict[str, xr.Dataset]]] = {
+    "bifurcation": bifurcation_datasets, "classes": classes_dataset, "settle": settle_dataset}

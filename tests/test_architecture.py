@@ -47,7 +47,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.linear", 2),
     ("stability.nonlinear", 3),
     ("stability.grids", 3),
-    ("stability.steady", 4),             # reserved
+    ("stability.steady", 4),             # steady states, branch, final state, classes
     ("stability.recipes", 5),
     ("stability.plotting", 6),
     ("stability.bench", 7),

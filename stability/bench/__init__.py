@@ -18,7 +18,10 @@ Suites, one module each (each holds its problem, baselines, references and requi
 * ``"continuation"`` (:mod:`stability.bench.continuation`): the continuation's step settings
   against the exact fold of the sliding neutral curve, with brentq per column as the baseline;
 * ``"integrators"`` (:mod:`stability.bench.integrators`): the integrators of the nonlinear runs
-  against a tight DOP853 reference, and the stiff slip mode.
+  against a tight DOP853 reference, and the stiff slip mode;
+* ``"steady"`` (:mod:`stability.bench.steady`): the final state by Jellett's integral against a
+  simulation long enough for the same accuracy, the branch of tilted states against its closed
+  form (baselines: brentq per tilt, the engine's Python path), the class map of 1e6 tops.
 
 Layer 7 (docs/architecture.md): the suites measure the layers below; nothing below imports them
 (the charts, :mod:`stability.plotting.work_precision`, take the records duck-typed).
@@ -26,16 +29,17 @@ Layer 7 (docs/architecture.md): the suites measure the layers below; nothing bel
 
 from __future__ import annotations
 
-from . import continuation, eigen, integrators
+from . import continuation, eigen, integrators, steady
 from .continuation import FOLD_TARGET
 from .eigen import EIGEN_TARGET
 from .integrators import CROSSING_TARGET, GROWTH_TARGET
 from .records import Panel, Suite, WorkPrecision, peak_memory_mb
+from .steady import BRANCH_TARGET, FINAL_TARGET
 from .timing import best_times
 
-__all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "WorkPrecision", "Panel",
-           "Suite", "best_times", "peak_memory_mb"]
+__all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "FINAL_TARGET", "BRANCH_TARGET",
+           "WorkPrecision", "Panel", "Suite", "best_times", "peak_memory_mb"]
 
 #: name -> :class:`Suite`, in the order ``tippe bench`` (``--suite all``) runs them; a new suite
 #: is a module of this package with its ``SUITE``, and one entry here
-SUITES: dict[str, Suite] = {s.name: s for s in (eigen.SUITE, continuation.SUITE, integrators.SUITE)}
+SUITES: dict[str, Suite] = {s.name: s for s in (eigen.SUITE, continuation.SUITE, integrators.SUITE, steady.SUITE)}

@@ -15,6 +15,7 @@ from ._layout import panels_or_new
 from .atlas_plots import plot_growth_rate
 from .maps import growth_norm, plot_stability_map
 from .spin_plots import plot_critical_spin
+from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_settle_approach
 
 __all__ = ["recipe_figure"]
 
@@ -39,7 +40,9 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset], *,
     (Figure, list of Axes)
         The figure and its panels.
     """
-    if recipe.kind == "scene":
+    if recipe.kind in ("bifurcation", "classes", "settle"):
+        fig, axes = _steady_figure(recipe, datasets, axes)
+    elif recipe.kind == "scene":
         fig, axes = _scene_figure(recipe.figure, datasets, axes)
     elif recipe.kind == "critical_spin":
         fig, axes = panels_or_new(axes, 1, (6.4, 4.2))
@@ -89,3 +92,23 @@ def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset],
     cases = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.startswith("case") and "paper" not in k}
     paper = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.endswith("_paper_scheme")}
     return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1], axes=axes)
+
+
+def _steady_figure(recipe: Recipe, datasets: dict[str, xr.Dataset],
+                   axes: Sequence[Axes] | None) -> tuple[Figure, list[Axes]]:
+    """The steady-state figures (stability.recipes' bifurcation, classes and settle kinds)."""
+    if recipe.kind == "bifurcation":
+        fig, axes = panels_or_new(axes, 1, (7.4, 4.8))
+        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin_rpm",
+                         ax=axes[0])
+        return fig, axes
+    if recipe.kind == "classes":
+        fig, axes = panels_or_new(axes, 1, (6.8, 5.0))
+        plot_class_map(datasets["classes"], ax=axes[0])
+        return fig, axes
+    run = datasets["run"]
+    fig, axes = panels_or_new(axes, 2, (7.4, 5.6))
+    plot_settle(run, predicted_tilt=run.attrs["predicted_tilt"], label=run.attrs.get("label", ""), ax=axes[0])
+    plot_settle_approach(run, predicted_tilt=run.attrs["predicted_tilt"], rate=run.attrs.get("predicted_growth_rate"),
+                         ax=axes[1])
+    return fig, axes

@@ -1,0 +1,94 @@
+"""``tippe steady``: the steady states of a sliding top on one Jellett level, or the branch of
+tilted states (``--branch``); see :func:`stability.steady_states` and
+:func:`continuation.steady_branch`."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..grids.netcdf import check_output_path, write_dataset
+from ..parameters import DEFAULT_MU
+
+__all__ = ["register", "run", "FLAG_NAMES"]
+
+FLAG_NAMES = {0: "stable", 1: "marginal", 2: "unstable"}
+
+
+def add_top_flags(p: argparse.ArgumentParser) -> None:
+    """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required) and ``--mu`` (single numbers)."""
+    p.add_argument("--q", type=float, required=True, metavar="Q",
+                   help="centre-of-mass offset q (G = O + q R k; q < 0: G below O); required")
+    p.add_argument("--sigma", type=float, required=True, metavar="SIGMA", help="sigma = C / A0; required")
+    p.add_argument("--fr-inv", dest="fr_inv", type=float, required=True, metavar="FR_INV",
+                   help="inverse Froude number g / (Omega^2 R) >= 0; required")
+    p.add_argument("--alpha-v", dest="alpha_v", type=float, required=True, metavar="ALPHA_V",
+                   help="viscous friction parameter >= 0; required")
+    p.add_argument("--mu", type=float, default=DEFAULT_MU, metavar="MU",
+                   help=f"scaled mass M R^2 / A0 (default {DEFAULT_MU})")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``steady`` subcommand."""
+    p = sub.add_parser(
+        "steady", help="steady (tilted) states on a Jellett level, or the branch of tilted states",
+        description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
+                    "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
+                    "the family of tilted states traced against J by continuation, with its branch points and "
+                    "folds. Units: simulate's (J in A0 Omega). docs/steady_states.md.")
+    add_top_flags(p)
+    p.add_argument("--jellett", type=float, default=None, metavar="J",
+                   help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))")
+    p.add_argument("--branch", action="store_true",
+                   help="trace the branch of tilted states against J instead (--jellett is then not used)")
+    p.add_argument("--jellett-max", dest="jellett_max", type=float, default=None, metavar="J",
+                   help="with --branch: where a branch running to J = infinity is cut (default 10 x J at its "
+                        "branch point)")
+    p.add_argument("--max-step", dest="max_step", type=float, default=0.02, metavar="H",
+                   help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)")
+    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
+                   help="write the states (or the branch) as netCDF (default: print only)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``tippe steady``."""
+    from ..steady.branch import steady_branch
+    from ..steady.states import steady_states
+
+    if args.branch and args.jellett is not None:
+        raise ValueError("--jellett is not used with --branch (the branch runs over J); give one of them")
+    if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
+        raise ValueError("--jellett-max and --max-step are only used with --branch")
+    out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
+    top = dict(q=args.q, sigma=args.sigma, fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu)
+    if args.branch:
+        ds = steady_branch(**top, jellett_max=args.jellett_max, max_step=args.max_step)
+        n = ds.sizes["point"]
+        if n == 0:
+            print(f"no tilted steady states: {ds.attrs.get('note', '')}")
+        else:
+            print(f"branch of tilted states: {n} points, from the {ds.attrs['start']} branch point "
+                  f"(ends: {ds.attrs['ends']})")
+            print(f"{'kind':<14} {'tilt (deg)':>12} {'J':>14} {'precession':>12} {'stability':>10}  detail")
+            for i in range(n):
+                kind = str(ds.kind.values[i])
+                if kind:
+                    print(f"{kind:<14} {float(ds.tilt[i]):12.6f} {float(ds.jellett[i]):14.10g} "
+                          f"{float(ds.precession_rate[i]):12.6g} {FLAG_NAMES[int(ds.stability[i])]:>10}  "
+                          f"{ds.detail.values[i]}")
+    else:
+        ds = steady_states(**top, jellett=args.jellett)
+        print(f"steady states at J = {ds.attrs['jellett']:.12g} (q = {args.q:g}, sigma = {args.sigma:g}, "
+              f"fr_inv = {args.fr_inv:g}, alpha_v = {args.alpha_v:g}, mu = {args.mu:g})")
+        print(f"{'kind':<9} {'tilt (deg)':>12} {'precession':>12} {'axial spin':>12} {'energy':>12} "
+              f"{'growth rate':>12} {'stability':>10}")
+        for i in range(ds.sizes["state"]):
+            s = ds.isel(state=i)
+            print(f"{str(s.kind.values):<9} {float(s.tilt):12.6f} {float(s.precession_rate):12.6g} "
+                  f"{float(s.axial_spin):12.6g} {float(s.energy):12.8g} {float(s.growth_rate):12.4g} "
+                  f"{FLAG_NAMES[int(s.stability)]:>10}")
+    if out is not None:
+        write_dataset(ds, out, overwrite=args.overwrite)
+        print(f"wrote {out}")
+    return 0

@@ -1,0 +1,251 @@
+"""Figures of the steady states: the bifurcation diagram, the class map, a run settling.
+
+Every function takes datasets (computed by :mod:`stability.steady` and the recipes) and an
+optional ``ax``, and returns ``(Figure, Axes)``; none computes anything. Stable states are
+solid lines, unstable ones dashed, marginal points (branch points, folds) markers.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from matplotlib.axes import Axes
+from matplotlib.colors import ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+
+from ..parameters import SYMBOLS
+
+__all__ = ["plot_bifurcation", "plot_class_map", "plot_settle", "plot_settle_approach", "STABLE_STYLE",
+           "UNSTABLE_STYLE", "X_AXES"]
+
+#: line styles of stable and unstable states
+STABLE_STYLE = dict(linestyle="-", linewidth=2.0, color="C0")
+UNSTABLE_STYLE = dict(linestyle="--", linewidth=1.3, color="C3")
+#: abscissae a bifurcation diagram can use: variable of the branch -> axis label
+X_AXES = {"jellett": "Jellett's integral J (units A0 Omega)",
+          "upright_equivalent_spin": "equivalent upright spin J / (sigma (1 + q)) (units of Omega)",
+          "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J"}
+
+_MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerfacecolor="w", linestyle="none",
+                                 label="branch point (on a vertical state)"),
+            "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
+            "stability_change": dict(marker="X", markersize=7, color="m", linestyle="none", label="stability change"),
+            "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)")}
+
+
+def _axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.6)) -> tuple[Figure, Axes]:
+    if ax is None:
+        fig = Figure(figsize=figsize, layout="constrained")
+        return fig, fig.add_subplot()
+    return ax.figure, ax
+
+
+def _pieces(x: np.ndarray, y: np.ndarray, stable: np.ndarray, marginal: np.ndarray):
+    """Polylines of consecutive points with one verdict: each segment takes the verdict of its
+    end that is not marginal (a marginal point, a fold or a branch point, joins both sides)."""
+    n = len(x)
+    if n < 2:
+        return
+    verdict = []
+    for i in range(n - 1):
+        if not marginal[i]:
+            verdict.append(bool(stable[i]))
+        elif not marginal[i + 1]:
+            verdict.append(bool(stable[i + 1]))
+        else:
+            verdict.append(verdict[-1] if verdict else True)
+    start = 0
+    for i in range(1, n):
+        if i == n - 1 or verdict[i] != verdict[start]:
+            yield x[start:i + 1], y[start:i + 1], verdict[start]
+            start = i
+
+
+def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, runs: xr.Dataset | None = None,
+                     x: str = "jellett", ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """Tilt of every steady state against Jellett's integral (or an equivalent spin).
+
+    Parameters
+    ----------
+    branch : xarray.Dataset
+        :func:`continuation.steady_branch` (``tilt``, ``stability``, ``kind`` over ``point``,
+        and the abscissa ``x``).
+    vertical : xarray.Dataset, optional
+        The vertical states along the same abscissa: ``x``, ``stability_upright``,
+        ``stability_inverted`` over one dimension (the bifurcation recipe's ``*_vertical.nc``).
+    runs : xarray.Dataset, optional
+        End points of nonlinear runs: ``x`` and ``end_tilt`` over ``run`` (optionally
+        ``predicted_tilt``).
+    x : str
+        The abscissa: a key of :data:`X_AXES` present in the datasets.
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = _axes(ax)
+    xs = branch[x].values
+    tilt = branch.tilt.values
+    flags = branch.stability.values
+    marginal = flags == 1
+    labelled = set()
+    for px, py, stable in _pieces(xs, tilt, flags == 0, marginal):
+        style = STABLE_STYLE if stable else UNSTABLE_STYLE
+        label = "stable" if stable else "unstable"
+        ax.plot(px, py, **style, label=None if label in labelled else label)
+        labelled.add(label)
+    if vertical is not None:
+        vx = vertical[x].values
+        for name, level in (("stability_upright", 0.0), ("stability_inverted", 180.0)):
+            vf = vertical[name].values
+            for px, py, stable in _pieces(vx, np.full(vx.shape, level), vf == 0, vf == 1):
+                style = STABLE_STYLE if stable else UNSTABLE_STYLE
+                label = "stable" if stable else "unstable"
+                ax.plot(px, py, **style, label=None if label in labelled else label)
+                labelled.add(label)
+    kinds = branch.kind.values
+    for kind, style in _MARKERS.items():
+        sel = kinds == kind
+        if sel.any():
+            ax.plot(xs[sel], tilt[sel], **style, zorder=5)
+    if runs is not None and runs.sizes.get("run", 0):
+        ax.plot(runs[x].values, runs.end_tilt.values, marker="*", markersize=11, color="C2", linestyle="none",
+                markeredgecolor="k", zorder=6, label="end of a nonlinear run")
+        if "paper_run" in runs:
+            for i in np.nonzero(runs.paper_run.values == 1)[0]:
+                xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
+                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), xytext=(-210, -70),
+                            textcoords="offset points", fontsize=7, arrowprops={"arrowstyle": "->", "linewidth": 0.6})
+    ax.set_xlabel(X_AXES.get(x, x), fontsize=9)
+    ax.set_ylabel("tilt of the axis (deg): 0 upright, 180 inverted")
+    ax.set_ylim(-8, 188)
+    ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
+    a = branch.attrs
+    ax.set_title(f"q = {a.get('q', float('nan')):g}, {SYMBOLS['sigma']} = {a.get('sigma', float('nan')):g}, "
+                 f"{SYMBOLS['mu']} = {a.get('mu', float('nan')):g}, {SYMBOLS['alpha_v']} = "
+                 f"{a.get('alpha_v', float('nan')):g}", fontsize=9)
+    ax.legend(fontsize=7, loc="best")
+    return fig, ax
+
+
+_CLASS_COLOURS = ListedColormap(["white", "#9ecae1", "#fdae6b", "#a1d99b"])
+
+
+def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float, float] | None = (-0.1, 1.0)
+                   ) -> tuple[Figure, Axes]:
+    """The high-spin classes over ``(q, sigma)`` with the closed-form boundaries.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`stability.class_atlas` over ``(q, sigma)`` (``top_class``, ``sigma_never_inverts``,
+        ``sigma_hangs``, ``sigma_domain``).
+    ax : matplotlib.axes.Axes, optional
+    mark : (q, sigma), optional
+        A top to mark with a star (default the paper's, ``q = -0.1``, ``sigma = 1``).
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = _axes(ax)
+    q, sigma = ds.q.values, ds.sigma.values
+    code = ds.top_class.transpose("sigma", "q").values
+    ax.pcolormesh(q, sigma, code, cmap=_CLASS_COLOURS, vmin=-1.5, vmax=2.5, shading="nearest")
+    b1 = ds.sigma_never_inverts.values
+    b2 = ds.sigma_hangs.values
+    top = ds.sigma_domain.values
+    ax.plot(q, np.minimum(b1, top), color="k", linewidth=1.2, label=r"$\sigma = A_G/(1+q)$: never inverts above")
+    neg = q < 0
+    ax.plot(q[neg], b2[neg], color="k", linewidth=1.2, linestyle="--",
+            label=r"$\sigma = A_G/(1-q)$: hangs below")
+    ax.plot(q, top, color="0.4", linewidth=0.8, linestyle=":", label=r"$\sigma = 2 A_G$ (domain)")
+    band = neg & np.isfinite(b2)
+    ax.fill_between(q[band], b2[band], np.minimum(b1, top)[band], facecolor="none", edgecolor="0.25",
+                    hatch="///", linewidth=0.0, label=r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$")
+    if mark is not None:
+        ax.plot([mark[0]], [mark[1]], marker="*", markersize=12, color="k", linestyle="none", label="the paper's top")
+    handles, labels = ax.get_legend_handles_labels()
+    for name, colour in zip(("never inverts", "inverts", "hangs at a tilt"), _CLASS_COLOURS.colors[1:]):
+        handles.append(Patch(facecolor=colour, edgecolor="0.5"))
+        labels.append(name)
+    ax.legend(handles, labels, fontsize=7, loc="upper left", ncol=2)
+    ax.set_xlabel("q (centre-of-mass offset; q < 0: G below O)")
+    ax.set_ylabel(r"$\sigma = C/A_0$")
+    ax.set_ylim(0, max(2.0, float(np.nanmax(sigma))))
+    ax.set_xlim(q.min(), q.max())
+    ax.set_title(f"high-spin classes, {SYMBOLS['mu']} = {float(ds.mu):g}", fontsize=9)
+    return fig, ax
+
+
+def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = None, label: str = "",
+                periods: bool = True) -> tuple[Figure, Axes]:
+    """The polar angle of a run against time, with the predicted final tilt as a line.
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        :func:`stability.simulate` (``polar_angle`` over ``time``).
+    predicted_tilt : float
+        :func:`stability.final_state`'s tilt, degrees (a horizontal dashed line).
+    ax : matplotlib.axes.Axes, optional
+    label : str
+        Legend text of the run.
+    periods : bool
+        Time in spin periods (``t / 2 pi``) rather than ``1 / Omega``.
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = _axes(ax)
+    t = run.time.values / (2 * np.pi) if periods else run.time.values
+    ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
+    ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2,
+               label=f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)")
+    ax.axhline(180.0, color="0.5", linestyle=":", linewidth=0.8, label="complete inversion (180 deg)")
+    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
+    ax.set_ylabel("polar angle of the axis (deg)")
+    ax.legend(fontsize=7, loc="lower right")
+    return fig, ax
+
+
+def plot_settle_approach(run: xr.Dataset, *, predicted_tilt: float, rate: float | None = None,
+                         ax: Axes | None = None, periods: bool = True) -> tuple[Figure, Axes]:
+    """Distance of the polar angle from the predicted final tilt against time (log scale).
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        :func:`stability.simulate`.
+    predicted_tilt : float
+        Degrees.
+    rate : float, optional
+        The end state's slowest decay rate (``growth_rate`` of :func:`stability.steady_states`,
+        negative, units of ``Omega``): drawn as ``exp(rate t)`` through the last sample.
+    ax : matplotlib.axes.Axes, optional
+    periods : bool
+        Time in spin periods.
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = _axes(ax)
+    t = run.time.values
+    tt = t / (2 * np.pi) if periods else t
+    dist = np.abs(run.polar_angle.values - predicted_tilt)
+    ax.semilogy(tt, dist, color="C0", linewidth=0.8, label="|polar angle - predicted tilt|")
+    if rate is not None and rate < 0:
+        ref = dist[-1] * np.exp(rate * (t - t[-1]))
+        ax.semilogy(tt, ref, color="C3", linestyle="--", linewidth=1.0,
+                    label=f"exp(g t), g = {rate:.3g}: the end state's slowest mode")
+    for level, style in ((0.05, ":"), (0.01, "-.")):
+        ax.axhline(level, color="0.4", linestyle=style, linewidth=0.8, label=f"{level:g} deg")
+    ax.set_ylim(max(1e-6, float(np.nanmin(dist[dist > 0])) / 3 if np.any(dist > 0) else 1e-6), 200.0)
+    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
+    ax.set_ylabel("distance from the predicted tilt (deg)")
+    ax.legend(fontsize=7, loc="upper right")
+    return fig, ax

@@ -1,0 +1,406 @@
+"""The family of tilted steady states traced against Jellett's integral by continuation.
+
+Equations (docs/steady_states.md, sec. 3.4). A no-slip steady state of tilt ``theta`` and
+precession rate ``lam`` is the state of :func:`stability.steady.family.state_core`
+(``k = (sin theta, 0, cos theta)``, ``omega = lam (K + q k)``, ``V0 = omega x K``). On it, the
+nonlinear model's right-hand side in the precessing frame, ``F(y) = f(y) - lam G y``
+(:func:`stability.nonlinear.kernels.rhs`: the same compiled function :func:`stability.simulate`
+integrates), vanishes in every component but one, the ``omega`` component along
+``K x k = sin(theta) e_2``: the torque balance about G, which carries the factor
+``sin(theta)`` of the vertical states (steady at every spin). The continuation problem is that
+one component with the vertical branch divided out,
+
+    R(theta, lam) = (F(y(theta, lam)) . e_2) / sin(theta)  /  (1 + lam^2)       (1 equation, 2 unknowns),
+
+evaluated at the complex tilt ``theta + i h`` (``h = 1e-30``): the real part is ``R``, the
+imaginary part ``h dR/dtheta``, both exact to rounding, at ``theta = 0`` too (the limit is
+analytic). All terms of the rotational equations are ``O(sin theta)`` on the no-slip manifold,
+so the division loses nothing near the branch points. ``dR/dlam`` comes from a complex step in
+``lam`` (a central difference at ``sin theta = 0``). The closed form (S3) is not used: it
+checks the traced branch (tests/test_steady_branch.py).
+
+Start: the branch point on the upright spin, ``R(0, lam_b) = 0`` (solved by Newton's method on
+the nonlinear rhs; ``R(0, lam)`` is a quadratic in ``lam``, which gives the first guess), or,
+if the family does not reach the upright spin, the one on the inverted spin. The engine
+(:func:`continuation.trace`) follows the family until a constraint ends it exactly: the other
+vertical state (``theta = pi``: the inverted branch point) or ``|J| = jellett_max`` (the family
+runs to ``J = inf`` at ``c0``); a fold in ``J`` is located as the zero of the test function
+``dJ/ds`` (``J`` by :func:`stability.nonlinear.quantities.h_cg` on the state, its gradient by
+the complex step). After tracing, every point's spectrum (:mod:`stability.steady.linearisation`,
+batched) and flag (:mod:`stability.steady.verdicts`); a change of flag between two points that
+is not at a fold or a branch point is marked ``stability_change`` (the theory says there is
+none: docs/steady_states.md, sec. 4.1).
+
+Degenerate parameters (``fr_inv = 0`` or ``q = 0``): the normal force has no moment about G,
+``R`` is ``lam^2`` times a function of ``theta`` alone, and the family is the line
+``theta = theta0`` for every ``lam`` (a vertical line in the ``(J, tilt)`` plane); it is traced
+with ``R / lam^2`` from ``jellett_max / 1000`` to ``jellett_max`` (both ends kind ``end``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from continuation.engine import trace
+
+from ..errors import ConvergenceError, DomainError
+from ..nonlinear import get_nonlinear_model
+from ..nonlinear.kernels import CODES
+from ..parameters import DEFAULT_MU, check_flag, check_positive
+from . import branch_compiled as kernels
+from . import family
+from .linearisation import modes_verdict, reduced_spectrum
+from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .states import state_integrals
+from .verdicts import flag_of
+
+__all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
+
+#: kinds of points of a branch ("" for a regular point)
+KINDS = ("branch_point", "fold", "stability_change", "end")
+
+
+class SteadyBranchProblem:
+    """Continuation problem of the tilted family: ``u = (theta, log lam)``, one equation.
+
+    The unknown ``log lam`` (``lam > 0``: the branch with ``J > 0``) keeps the arclength
+    bounded where the family runs to ``J = inf`` (``lam -> inf`` at ``c0``).
+
+    Parameters
+    ----------
+    params : dict of float
+        ``q, sigma, fr_inv, alpha_v, mu``.
+    p : numpy.ndarray
+        The kernels' parameter vector.
+    jellett_max : float
+        Where the branch is cut if it runs to ``J = inf``.
+    jellett_min : float
+        (Degenerate parameters only) the lower cut of the vertical line.
+    model : str
+        The nonlinear model whose right-hand side is used.
+
+    Attributes
+    ----------
+    constraint_names : tuple of str
+        ``"upright"`` (``theta >= 0``), ``"inverted"`` (``theta <= pi``), ``"jellett_max"``
+        (``|J| <= jellett_max``) and, degenerate, ``"jellett_min"``.
+    test_function_names : tuple of str
+        ``"jellett_fold"``: ``dJ/ds`` along the branch.
+    """
+
+    test_function_names = ("jellett_fold",)
+
+    def __init__(self, params: dict[str, float], p: np.ndarray, jellett_max: float = math.inf,
+                 jellett_min: float = 0.0, model: str = "sliding"):
+        m = get_nonlinear_model(model)
+        self.params = dict(params)
+        self.p = p
+        self.q = params["q"]
+        self.code = CODES[m.name]
+        self.n_full = len(m.state)
+        self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
+        self.jellett_max = jellett_max
+        self.jellett_min = jellett_min
+        self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
+        self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
+
+    # --- the residual -------------------------------------------------------------------
+    def divided_residual(self, theta: float, lam: float) -> float:
+        """``(F . e_2) / sin(theta)`` (unscaled), at ``theta = 0`` the limit."""
+        return kernels.divided(float(theta), float(lam), self.p, self.q, self.code, self.n_full)[0]
+
+    def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
+        r, rt, rl = kernels.residual_and_jacobian(float(u[0]), float(u[1]), self.p, self.q, self.code,
+                                                  self.n_full, self.degenerate)
+        return np.array([r]), np.array([[rt, rl]])
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        """``R(theta, log lam)`` (1,)."""
+        return self.residual_and_jacobian(u)[0]
+
+    def jacobian(self, u: np.ndarray) -> np.ndarray:
+        """``dR/d(theta, log lam)`` (1, 2)."""
+        return self.residual_and_jacobian(u)[1]
+
+    # --- Jellett's integral, constraints, test function ------------------------------------
+    def jellett(self, u: np.ndarray) -> tuple[float, np.ndarray]:
+        """``J`` at the state of ``u`` and its gradient (complex step of the nonlinear layer's
+        formula), cached for the last ``u``."""
+        key = (float(u[0]), float(u[1]))
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
+        j, jt, jl = kernels.jellett(key[0], key[1], self.q, self.params["sigma"], self.params["mu"])
+        out = (j, np.array([jt, jl]))
+        self._last = (key, out)
+        return out
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        """``[theta, pi - theta, jellett_max - |J|(, |J| - jellett_min)]``, ``>= 0`` on the branch."""
+        return kernels.constraint_values(float(u[0]), self.jellett(u)[0], self.jellett_max, self.jellett_min,
+                                         self.degenerate)
+
+    def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """``[dJ/ds]``: zero at a fold of the family in ``J``."""
+        g = self.jellett(u)[1]
+        return np.array([g[0] * t[0] + g[1] * t[1]])
+
+    def compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
+                      scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
+        """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
+        (corrector, tangent, constraints and test function in one compiled call)."""
+        return kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code, self.n_full,
+                            self.degenerate, float(self.jellett_max), float(self.jellett_min), guess, t_plane,
+                            anchor, float(h), scale, float(tol), int(max_iter), float(max_move))
+
+    # --- start points -------------------------------------------------------------------
+    def branch_point(self, orientation: str) -> float | None:
+        """The precession rate ``lam_b > 0`` at which the family leaves the vertical state
+        (``R(theta_v, lam_b) = 0``), or None if it does not reach it.
+
+        ``R(theta_v, lam)`` is ``A lam^2 + B`` (the rhs is quadratic in the rates on the no-slip
+        manifold): the guess ``lam^2 = -B / A`` from two evaluations, then Newton's method on
+        ``R`` itself to the rounding floor."""
+        theta = 0.0 if orientation == "upright" else math.pi
+        b = self.divided_residual(theta, 0.0)
+        a = self.divided_residual(theta, 1.0) - b
+        if a == 0.0 or not -b / a > 0.0:
+            return None
+        lam = math.sqrt(-b / a)
+        for _ in range(20):
+            _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full,
+                                                     False)
+            r = self.divided_residual(theta, lam)
+            step = r / (rl / lam * (1.0 + lam * lam))
+            lam -= step
+            if abs(step) <= 4e-16 * abs(lam):
+                break
+        return lam if lam > 0 else None
+
+    def degenerate_tilt(self) -> float | None:
+        """(Degenerate parameters) the tilt ``theta0`` of the vertical line: the sign change of
+        ``R(theta, 1)`` on ``(0, pi)`` (64 samples, then Brent), or None."""
+        from scipy.optimize import brentq
+
+        th = np.linspace(0.0, math.pi, 65)[1:-1]
+        r = np.array([self.divided_residual(t, 1.0) for t in th])
+        idx = np.nonzero(np.sign(r[:-1]) * np.sign(r[1:]) < 0)[0]
+        if idx.size != 1:
+            exact = np.nonzero(r == 0.0)[0]
+            return float(th[exact[0]]) if exact.size == 1 and idx.size == 0 else None
+        i = int(idx[0])
+        return float(brentq(lambda t: self.divided_residual(t, 1.0), th[i], th[i + 1], xtol=1e-16, rtol=8.9e-16))
+
+
+def _kind_of(kind: str, detail: str) -> str:
+    if kind == "test":
+        return "fold"
+    if kind == "boundary":
+        return "end" if detail.startswith("jellett") else "branch_point"
+    if kind == "branch_point":
+        return "branch_point"
+    return ""
+
+
+def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU
+                  ) -> dict[str, float]:
+    """Jellett's integral ``|J|`` at the branch points of the tilted family, located on the
+    nonlinear right-hand side (:meth:`SteadyBranchProblem.branch_point`), NaN where the family
+    does not reach the state. Keys ``"upright"``, ``"inverted"``."""
+    params, p = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    prob = SteadyBranchProblem(params, p)
+    out = {}
+    for orientation in ("upright", "inverted"):
+        lam = None if prob.degenerate else prob.branch_point(orientation)
+        theta = 0.0 if orientation == "upright" else math.pi
+        out[orientation] = math.nan if lam is None else abs(prob.jellett(np.array([theta, math.log(lam)]))[0])
+    return out
+
+
+def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any,
+                  mu: Any = DEFAULT_MU, jellett_max: Any = None, max_step: Any = 0.02,
+                  max_angle: Any = 0.1, compiled: bool = True) -> xr.Dataset:
+    """The family of tilted steady states, traced by continuation against Jellett's integral.
+
+    Parameters
+    ----------
+    model : {"sliding"}
+    q, sigma, fr_inv, alpha_v, mu : float
+        Parameters (docs/conventions.md), single numbers in the physical domain.
+    jellett_max : float, optional
+        Where a family that runs to ``J = inf`` (at ``c0``) is cut, simulate's units; default
+        10 times ``|J|`` at the branch point the trace starts from (degenerate parameters:
+        10 times the upright spin 1's ``sigma (1 + q)``).
+    max_step, max_angle : float
+        The engine's largest step (arclength in ``(theta, log lam)``) and the
+        largest turn of the tangent per step (radians): about ``pi / max_step`` points.
+    compiled : bool, default True
+        Let the engine use the problem's compiled step
+        (:func:`stability.steady.branch_compiled.step`); False: the engine's Python path (the
+        same points to rounding).
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``point``, in the order traced (from the branch point where the trace starts):
+        ``tilt`` (degrees), ``jellett`` (``J > 0``: the mirror branch ``J -> -J`` has the
+        same tilts and stability), ``precession_rate``, ``axial_spin``, ``energy``,
+        ``upright_equivalent_spin`` (``J / (sigma (1 + q))``: the upright spin with this
+        ``J``), ``growth_rate``, ``n_neutral``, ``stability`` (flag), ``stability_jacobian``,
+        ``kind`` ("branch_point", "fold", "stability_change", "end" or "" for a regular point)
+        and ``detail``; attributes: the parameters, ``start`` (the branch point traced from),
+        ``ends``, ``jellett_max``, the engine's work counts. No points if the family does not
+        exist (attribute ``note`` says why).
+
+    Raises
+    ------
+    ValueError, TypeError
+        Bad parameters or options.
+    stability.errors.ConvergenceError
+        The continuation failed (not expected in the physical domain).
+    """
+    params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    max_step = check_positive("max_step", max_step)
+    max_angle = check_positive("max_angle", max_angle)
+    compiled = check_flag("compiled", compiled)
+    q, sigma, mu = params["q"], params["sigma"], params["mu"]
+    jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
+    prob = SteadyBranchProblem(params, p)
+    attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
+                          "continuation.steady_branch", params, removed_neutral=True)
+    attrs["model"] = "sliding"
+    step = min(max_step, 0.02)
+    if prob.degenerate:
+        theta0 = prob.degenerate_tilt()
+        if theta0 is None:
+            return _empty(attrs, "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
+                                 "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)")
+        j_unit = abs(prob.jellett(np.array([theta0, 0.0]))[0])  # J is linear in lam: J(lam = 1)
+        jmax = 10.0 * abs(sigma * (1.0 + q)) if jmax is None else jmax
+        prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
+        ell0 = math.log(math.sqrt(jmax * prob.jellett_min) / j_unit)
+        ends = []
+        halves = []
+        for direction in (-1, 1):
+            br = trace(prob, [theta0, ell0], tangent0=[0.0, direction], project_start=True, step=step,
+                       max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled)
+            halves.append(br)
+            ends.append(br.end_reasons[0])
+        lo, hi = halves
+        pts = np.concatenate([lo.points[::-1], hi.points[1:]])
+        kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
+        details = lo.details[::-1] + hi.details[1:]
+        kinds = ["" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
+        work = (lo.n_newton + hi.n_newton, lo.n_residual + hi.n_residual, lo.n_jacobian + hi.n_jacobian)
+        start = "vertical line (fr_inv = 0 or q = 0)"
+    else:
+        start = "upright"
+        lam_b = prob.branch_point("upright")
+        theta_b, t0 = 0.0, [1.0, 0.0]
+        if lam_b is None:
+            start, theta_b, t0 = "inverted", math.pi, [-1.0, 0.0]
+            lam_b = prob.branch_point("inverted")
+        if lam_b is None:
+            return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
+        j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
+        if jmax is not None and not jmax > j_b:
+            raise DomainError(f"jellett_max = {jmax:.6g} is outside the allowed range: jellett_max > {j_b:.6g}, "
+                              f"the Jellett integral at the {start} branch point where the family starts")
+        prob.jellett_max = 10.0 * j_b if jmax is None else jmax
+        br = trace(prob, [theta_b, math.log(lam_b)], tangent0=t0, project_start=False, step=step,
+                   max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled)
+        pts = br.points.copy()
+        kinds = [_kind_of(k, d) for k, d in zip(br.kinds, br.details)]
+        details = list(br.details)
+        kinds[0], details[0] = "branch_point", f"{start} spin"
+        ends = br.end_reasons
+        work = (br.n_newton, br.n_residual, br.n_jacobian)
+    for i, (k, d) in enumerate(zip(kinds, details)):
+        if k == "branch_point" and d in ("upright", "inverted"):
+            pts[i, 0] = 0.0 if d == "upright" else math.pi  # on the bound (within rounding of it)
+            details[i] = f"{d} spin"
+        elif k == "fold" and abs(math.sin(pts[i, 0])) < 1e-6:
+            # dJ/ds vanishes at the branch point itself (J is even in the tilt about a vertical
+            # state: the vertex of the pitchfork); rounding there is no fold
+            kinds[i], details[i] = "", ""
+        elif k == "fold":
+            details[i] = "fold in J (dJ/ds = 0)"
+        elif k == "end":
+            details[i] = f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
+    for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
+        if end != "boundary" and kinds[k] == "":
+            kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
+    if "step_failure" in ends:
+        raise ConvergenceError(f"steady_branch: the continuation failed after {len(pts)} points "
+                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}")
+    attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
+                 n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
+    return points_dataset(prob, pts, kinds, details, attrs)
+
+
+def _empty(attrs: dict[str, Any], note: str) -> xr.Dataset:
+    attrs = dict(attrs, note=note)
+    return points_dataset(None, np.zeros((0, 2)), [], [], attrs)
+
+
+def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str],
+                   attrs: dict[str, Any]) -> xr.Dataset:
+    """Spectra, flags and the Dataset of points ``(theta, log lam)`` of the family (traced, or
+    solved otherwise, e.g. by the benchmark's baseline), with their kinds and details."""
+    n = len(pts)
+    theta, lam = pts[:, 0], np.exp(pts[:, 1])
+    c = np.cos(theta)
+    vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
+    growth = np.full(n, np.nan)
+    n_neutral = np.zeros(n, dtype=np.int8)
+    jac = np.zeros(n, dtype=np.int8)
+    flags = np.zeros(n, dtype=np.int8)
+    J = np.zeros(n)
+    E = np.zeros(n)
+    axial = np.zeros(n)
+    if n:
+        pr = prob.params
+        q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+        c = np.where(vertical, np.sign(c), c)
+        y = family.state_vector(theta, lam, q)
+        for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin lam (1 + q c)
+            y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", lam[i] * (1.0 + q * c[i]))
+        ev, scale = reduced_spectrum(y, lam, vertical, prob.p, q=q, sigma=sigma, mu=mu)
+        growth, n_neutral, jac = modes_verdict(ev, scale)
+        J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+        axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
+        for i in range(n):
+            kind = ("upright" if c[i] > 0 else "inverted") if vertical[i] else "tilted"
+            t, s = family.energy_test(kind, float(c[i]), float(J[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+            flags[i] = flag_of(kind, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(jac[i]))
+        for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
+            if flags[i] != flags[i - 1] and kinds[i] == "" and kinds[i - 1] == "":
+                kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
+    sigma_ = attrs.get("sigma", 1.0)
+    q_ = attrs.get("q", 0.0)
+    data = {
+        "tilt": ("point", np.degrees(theta), var_attrs("polar angle of the axis k from the upward vertical", DEGREE)),
+        "jellett": ("point", J, var_attrs("Jellett's integral J = (K + q k) . I_G omega", comment="units A0 Omega")),
+        "precession_rate": ("point", lam, var_attrs("precession rate of the axis about the vertical",
+                                                    comment="at a branch point: spin / (1 + q cos(tilt))")),
+        "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k")),
+        "energy": ("point", E, var_attrs("total energy", comment="units A0 Omega^2")),
+        "upright_equivalent_spin": ("point", J / (sigma_ * (1.0 + q_)), var_attrs(
+            "spin of the upright state with the same J, J / (sigma (1 + q))", comment="units of the spin rate")),
+        "growth_rate": ("point", growth, var_attrs(
+            "leading growth rate of the linearisation (frame precessing with the state), structural "
+            "neutral directions removed")),
+        "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding")),
+        "stability": ("point", flags, flag_attrs("stability of the steady state")),
+        "stability_jacobian": ("point", np.asarray(jac, dtype=np.int8), flag_attrs(
+            "verdict of the reduced Jacobian alone", comment="neutral if |Re s| <= 1e3 u ||A||_F")),
+        "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point: branch_point, fold, "
+                                                                    "stability_change, end, or '' (regular)"}),
+        "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
+    }
+    return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "index along the branch"})},
+                      attrs=attrs)

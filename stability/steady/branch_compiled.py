@@ -1,0 +1,173 @@
+"""Compiled pieces of the steady branch's continuation problem (:mod:`stability.steady.branch`).
+
+* :func:`component`: the one non-trivial component of the precessing-frame residual
+  ``F = f(y) - lam G y`` of the nonlinear model's compiled right-hand side
+  (:func:`stability.nonlinear.kernels.rhs`) at the no-slip steady state of tilt ``theta`` and
+  precession rate ``lam`` (:func:`stability.steady.family.state_core`);
+* :func:`divided`: that component divided by ``sin(theta)`` (the vertical branch divided out),
+  evaluated at ``theta + i h`` so that the value and its ``theta`` derivative are exact to
+  rounding, at ``theta = 0`` too;
+* :func:`residual_and_jacobian`: the problem's scaled residual and its gradient in
+  ``(theta, log lam)``;
+* :func:`jellett`: Jellett's integral of the state and its gradient
+  (:func:`stability.nonlinear.quantities.jellett_integral`, complex steps);
+* :func:`step`: the engine's ``compiled_step`` hook (:mod:`continuation.problem`): the
+  corrector (Newton on the bordered system, polished), the tangent and ``det [J; t^T]``, and the
+  problem's constraints and test function at the new point, with the building blocks of
+  :mod:`continuation.compiled` (the same operations as the engine's Python path).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
+
+from ..nonlinear.kernels import rhs as model_rhs
+from ..nonlinear.quantities import jellett_integral
+from .family import state_core
+
+__all__ = ["component", "divided", "residual_and_jacobian", "jellett", "constraint_values", "step", "H"]
+
+_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+
+#: the complex step
+H = 1e-30
+#: below this |sin(theta)| (but not 0) dR/dtheta is interpolated from the vertical state
+NEAR_VERTICAL = 1e-4
+
+
+@njit(**_JIT)
+def component(theta, lam, p, q, code, n_full):
+    """``F . e_2`` at the steady state ``(theta, lam)`` (both may be complex), azimuth 0:
+    ``F = f(y) - lam G y`` with ``(G y)_2 = (K x omega)_2 = omega_1``."""
+    y = np.zeros(n_full, dtype=np.complex128)
+    state_core(theta, lam, q, 0.0, y)
+    f = model_rhs(code, 0.0, y, p)
+    return f[1] - lam * y[0]
+
+
+@njit(**_JIT)
+def divided(theta, lam, p, q, code, n_full):
+    """``(F . e_2) / sin(theta)`` and its ``theta`` derivative (complex step at ``theta + i h``)."""
+    z = theta + 1j * H
+    r = component(z, lam + 0j, p, q, code, n_full) / np.sin(z)
+    return r.real, r.imag / H
+
+
+@njit(**_JIT)
+def residual_and_jacobian(theta, ell, p, q, code, n_full, degenerate):
+    """``R = divided / (1 + lam^2)`` (degenerate: ``/ lam^2``) and ``dR/d(theta, ell)``,
+    ``ell = log lam``. The ``lam`` derivative of the divided component is a complex step in
+    ``lam`` (a central difference where ``sin(theta) = 0``); the ``theta`` derivative the complex
+    step of :func:`divided`, except for ``0 < |sin(theta)| < NEAR_VERTICAL`` (see the code)."""
+    lam = np.exp(ell)
+    r, r_t = divided(theta, lam, p, q, code, n_full)
+    s = np.sin(theta)
+    if s != 0.0 and abs(s) < NEAR_VERTICAL:
+        # the complex step of a quotient by sin(theta) loses ~u / sin(theta) in the derivative
+        # (theta = pi in floating point has sin = 1.2e-16); dR/dtheta is odd about the vertical
+        # state theta_v, so take it from theta_v +- NEAR_VERTICAL (relative error ~1e-8, which
+        # only slows Newton's convergence a little)
+        theta_v = 0.0 if theta < 1.0 else math.pi
+        d = theta - theta_v
+        ref = theta_v + (NEAR_VERTICAL if d >= 0 else -NEAR_VERTICAL)
+        r_t = divided(ref, lam, p, q, code, n_full)[1] * d / (ref - theta_v)
+    if s != 0.0:
+        r_l = (component(theta + 0j, lam + 1j * H, p, q, code, n_full) / s).imag / H
+    else:
+        d = 1e-6 * max(1.0, abs(lam))
+        r_l = (divided(theta, lam + d, p, q, code, n_full)[0]
+               - divided(theta, lam - d, p, q, code, n_full)[0]) / (2.0 * d)
+    sc = lam * lam if degenerate else 1.0 + lam * lam
+    return r / sc, r_t / sc, lam * (r_l / sc - r * 2.0 * lam / (sc * sc))
+
+
+@njit(**_JIT)
+def jellett(theta, ell, q, sigma, mu):
+    """``J`` at the state of ``(theta, log lam)`` and ``dJ/dtheta``, ``dJ/d(log lam)``."""
+    lam = np.exp(ell)
+    y = np.zeros(8, dtype=np.complex128)
+    state_core(theta + 1j * H, lam + 0j, q, 0.0, y)
+    j1 = jellett_integral(y[0], y[1], y[2], y[3], y[4], y[5], q, sigma, mu)
+    state_core(theta + 0j, lam + 1j * H, q, 0.0, y)
+    j2 = jellett_integral(y[0], y[1], y[2], y[3], y[4], y[5], q, sigma, mu)
+    return j1.real, j1.imag / H, lam * j2.imag / H
+
+
+@njit(**_JIT)
+def constraint_values(theta, jel, jmax, jmin, degenerate):
+    """``[theta, pi - theta, jmax - |J|(, |J| - jmin)]`` (``>= 0`` on the branch)."""
+    g = np.empty(4 if degenerate else 3)
+    g[0] = theta
+    g[1] = math.pi - theta
+    g[2] = jmax - abs(jel)
+    if degenerate:
+        g[3] = abs(jel) - jmin
+    return g
+
+
+@njit(**_JIT)
+def _scaled(v, scale, p, q, code, n_full, degenerate, F, J):
+    r, rt, rl = residual_and_jacobian(v[0] * scale[0], v[1] * scale[1], p, q, code, n_full, degenerate)
+    F[0] = r
+    J[0, 0] = rt * scale[0]
+    J[0, 1] = rl * scale[1]
+
+
+@njit(**_JIT)
+def step(p, q, sigma, mu, code, n_full, degenerate, jmax, jmin, guess, t_plane, anchor, h, scale, tol,
+         max_iter, max_move):
+    """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
+    ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
+    constraints and ``tests = [dJ/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
+    F = np.empty(1)
+    J = np.empty((1, 2))
+    F2 = np.empty(1)
+    J2 = np.empty((1, 2))
+    v = guess.copy()
+    n_rj = 0
+    n_r = 0
+    ok = False
+    iterations = max_iter
+    for it in range(max_iter + 1):
+        _scaled(v, scale, p, q, code, n_full, degenerate, F, J)
+        n_rj += 1
+        action, dv, fn = corrector_update(it, max_iter, v, guess, F, J, t_plane, anchor, h, tol, True)
+        if action == FAILED:
+            iterations = it
+            break
+        if action == CONVERGED:
+            ok = True
+            iterations = it
+            break
+        if action == POLISH:
+            ok = True
+            iterations = it
+            if math.isfinite(norm(dv)):
+                v2 = v + dv
+                _scaled(v2, scale, p, q, code, n_full, degenerate, F2, J2)
+                n_r += 1
+                if norm(F2) < fn:
+                    v = v2
+                    iterations = it + 1
+            break
+        v = v + dv
+        moved = norm(v - guess)
+        if not math.isfinite(moved) or moved > max_move:
+            iterations = it + 1
+            break
+    tests = np.empty(1)
+    if not ok:
+        return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests
+    t_ok, t_new, det = tangent_det(J, t_plane)
+    u = v * scale
+    jel, jt, jl = jellett(u[0], u[1], q, sigma, mu)
+    g = constraint_values(u[0], jel, jmax, jmin, degenerate)
+    tu = t_new * scale
+    tu = tu / norm(tu)
+    tests[0] = jt * tu[0] + jl * tu[1]
+    return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests

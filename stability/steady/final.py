@@ -1,0 +1,443 @@
+"""The final state of a sliding top, predicted from Jellett's integral and the energy.
+
+Principle (docs/steady_states.md, sec. 5). Along every motion of the sliding sphere with
+viscous friction ``alpha_v > 0``:
+
+* Jellett's integral ``J = (K + q k) . I_G omega`` is constant (every contact force acts at the
+  contact point C, and ``C - G = -(K + q k)``);
+* the energy decreases, ``dE/dt = -alpha_v |V_c|^2``;
+* ``E >= U_J(k . K)`` (the kinetic energy at fixed ``J`` and axis is smallest at the no-slip
+  state with ``omega`` parallel to ``K + q k``), with equality exactly at the steady states.
+
+By LaSalle's principle the motion tends to the set where the contact point does not slip, and
+(``fr_inv > 0``, ``q != 0``) that set on the level ``J0`` is made of the steady states of
+:func:`stability.steady.states.steady_states`: the motion ends on one of them with
+``U_J <= E0``, generically a stable one. So: ``method = "jellett"`` when exactly one steady
+state of the level lies below the initial energy without being unstable, and it is strictly
+stable; it costs a few root findings (microseconds, no integration). Otherwise
+(``method = "simulation"``) a run decides: two stable candidates (bistable levels), a marginal
+one (a level at a fold or a branch point; ``fr_inv = 0`` or ``q = 0``, where the normal force
+has no moment about G and continua of rolling motions sit next to the vertical states and, for
+``q = 0``, to the ``c = 0`` state, so that ``J`` and ``E`` do not fix the end). The run
+integrates :func:`stability.simulate` in chunks until the tilt stops moving and the contact
+point stops slipping, or a time limit, and says which (:class:`SettleRun`).
+
+Without friction (``alpha_v = 0``) the energy is conserved and there is no final state: refused.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ..errors import DomainError
+from ..nonlinear.runs import initial_state, simulate
+from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
+from . import family
+from .linearisation import modes_verdict, reduced_spectrum
+from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .states import state_integrals
+from .verdicts import STABLE, UNSTABLE, flag_of
+
+__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle", "chunk_length",
+           "MATCH_DEG"]
+
+#: a run's end tilt within this of a steady state (degrees) is that state
+MATCH_DEG = 0.05
+#: relative tolerance of the comparison U_J <= E0
+ENERGY_REL_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One steady state of the Jellett level of a motion.
+
+    Attributes
+    ----------
+    kind : str
+        ``"upright"``, ``"inverted"`` or ``"tilted"``.
+    tilt : float
+        Polar angle of the axis, degrees.
+    energy : float
+        ``U_J`` of the state (its energy).
+    precession_rate : float
+        NaN for the vertical states.
+    axial_spin : float
+        ``omega . k``.
+    stability : int
+        0 stable, 1 marginal, 2 unstable (:mod:`stability.steady.verdicts`).
+    energy_test : float
+        The energy criterion (positive at a minimum of ``U_J``).
+    reachable : bool
+        ``U_J <= E0``: the motion can end there.
+    """
+
+    kind: str
+    tilt: float
+    energy: float
+    precession_rate: float
+    axial_spin: float
+    stability: int
+    energy_test: float
+    reachable: bool
+
+    @property
+    def cos_tilt(self) -> float:
+        """``c = k . K``."""
+        return -1.0 if self.kind == "inverted" else 1.0 if self.kind == "upright" else math.cos(math.radians(self.tilt))
+
+
+@dataclass(frozen=True)
+class SettleRun:
+    """How a deciding run went (``method = "simulation"``).
+
+    Attributes
+    ----------
+    t_end : float
+        Time integrated (units of ``1/Omega``).
+    settled : bool
+        The tilt moved by less than ``settle_tolerance`` degrees over the last chunk and the
+        slip speed fell below ``1e-6``; False: the time limit ``t_max`` came first.
+    tilt_change : float
+        Movement of the tilt over the last chunk, degrees.
+    slip_speed : float
+        ``|V_c|`` at the end.
+    chunks : int
+        Number of chunks (``simulate`` calls).
+    seconds : float
+        Wall time of the run.
+    jellett_drift : float
+        ``|J(t_end) - J(0)| / |J(0)|``: the integrator's error on the conserved ``J``.
+    axial_spin : float
+        ``omega . k`` at the end.
+    """
+
+    t_end: float
+    settled: bool
+    tilt_change: float
+    slip_speed: float
+    chunks: int
+    seconds: float
+    jellett_drift: float
+    axial_spin: float
+
+
+@dataclass(frozen=True)
+class FinalState:
+    """The predicted end of a motion (:func:`final_state`).
+
+    Attributes
+    ----------
+    tilt : float
+        Final polar angle of the axis, degrees.
+    kind : str
+        ``"upright"``, ``"inverted"``, ``"tilted"`` (a steady state of the level), or after a run
+        ``"rolling"`` (settled off every steady state: one of the no-slip continua of
+        ``fr_inv = 0`` or ``q = 0``) or ``"unsettled"`` (the time limit came first).
+    method : str
+        ``"jellett"`` (decided by ``J`` and ``E``) or ``"simulation"`` (a run decided).
+    jellett : float
+        Jellett's integral of the motion (simulate's units, ``A0 Omega``).
+    initial_energy : float
+        ``E0``.
+    energy : float
+        Energy of the final state (``U_J`` of the steady state; after a run that ends on no
+        steady state, the run's last energy).
+    precession_rate, axial_spin : float
+        Of the final state (precession NaN for a vertical state or a state off the steady ones).
+    state : Candidate or None
+        The steady state it ends on.
+    candidates : tuple of Candidate
+        Every steady state of the level, by tilt.
+    reason : str
+        Why this method.
+    run : SettleRun or None
+        The deciding run (``method = "simulation"``).
+    parameters : dict
+        ``q, sigma, fr_inv, alpha_v, mu``.
+    initial_tilt : float
+        Degrees.
+    """
+
+    tilt: float
+    kind: str
+    method: str
+    jellett: float
+    initial_energy: float
+    energy: float
+    precession_rate: float
+    axial_spin: float
+    state: Candidate | None
+    candidates: tuple[Candidate, ...]
+    reason: str
+    run: SettleRun | None
+    parameters: dict[str, float] = field(default_factory=dict)
+    initial_tilt: float = math.nan
+
+    def to_dataset(self) -> xr.Dataset:
+        """The prediction as a CF Dataset (product ``final_state``): 0-d variables ``tilt``,
+        ``jellett``, ``initial_energy``, ``energy``, ``precession_rate``, ``axial_spin``; the
+        candidate table over ``candidate``; ``kind``, ``method``, ``reason`` and the run's
+        numbers as attributes."""
+        cands = self.candidates
+        n = len(cands)
+        ends = [c is self.state for c in cands]
+        data = {
+            "tilt": ((), self.tilt, var_attrs("final polar angle of the axis from the upward vertical", DEGREE)),
+            "initial_tilt": ((), self.initial_tilt, var_attrs("initial polar angle of the axis", DEGREE)),
+            "jellett": ((), self.jellett, var_attrs("Jellett's integral J = (K + q k) . I_G omega of the motion",
+                                                    comment="units A0 Omega")),
+            "initial_energy": ((), self.initial_energy, var_attrs("initial energy", comment="units A0 Omega^2")),
+            "energy": ((), self.energy, var_attrs("energy of the final state", comment="units A0 Omega^2")),
+            "precession_rate": ((), self.precession_rate, var_attrs("precession rate of the final state")),
+            "axial_spin": ((), self.axial_spin, var_attrs("spin about the axis of the final state, omega . k")),
+            "candidate_kind": ("candidate", np.array([c.kind for c in cands], dtype=str),
+                               {"long_name": "kind of the steady state of the level"}),
+            "candidate_tilt": ("candidate", np.array([c.tilt for c in cands]), var_attrs("tilt of the steady state", DEGREE)),
+            "candidate_energy": ("candidate", np.array([c.energy for c in cands]), var_attrs("energy U_J of the steady state")),
+            "candidate_precession_rate": ("candidate", np.array([c.precession_rate for c in cands]),
+                                          var_attrs("precession rate of the steady state (NaN: vertical)")),
+            "candidate_axial_spin": ("candidate", np.array([c.axial_spin for c in cands]),
+                                     var_attrs("spin about the axis of the steady state, omega . k")),
+            "candidate_stability": ("candidate", np.array([c.stability for c in cands], dtype=np.int8),
+                                    flag_attrs("stability of the steady state")),
+            "candidate_energy_test": ("candidate", np.array([c.energy_test for c in cands]),
+                                      var_attrs("energy criterion (> 0 at a minimum of U_J)")),
+            "candidate_reachable": ("candidate", np.array([c.reachable for c in cands], dtype=np.int8),
+                                    {"long_name": "U_J <= initial energy", "flag_values": np.array([0, 1], np.int8),
+                                     "flag_meanings": "unreachable reachable"}),
+            "candidate_is_final": ("candidate", np.array(ends, dtype=np.int8),
+                                   {"long_name": "the motion ends on this state", "flag_values": np.array([0, 1], np.int8),
+                                    "flag_meanings": "no yes"}),
+        }
+        attrs = product_attrs("final_state", "Final state of a sliding Tippe top", "stability.final_state",
+                              self.parameters)
+        attrs.update(kind=self.kind, method=self.method, reason=self.reason, model="sliding")
+        if self.run is not None:
+            for name, value in self.run.__dict__.items():
+                attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
+        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "index of the steady state"})},
+                          attrs=attrs)
+
+
+def candidates(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
+               mu: float) -> tuple[Candidate, ...]:
+    """Every steady state of the level ``J`` with its energy, flag and reachability (``U_J <= E0``).
+
+    Plain floats and closed forms (:mod:`stability.steady.family`): no integration, no
+    eigenvalues (the flag is the energy criterion, :mod:`stability.steady.verdicts`;
+    ``alpha_v > 0``)."""
+    J, E0 = jellett, initial_energy
+    tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
+    out = []
+    rows = [("upright", 1.0)] + [("tilted", c) for c in family.tilted_cosines(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)]
+    rows.append(("inverted", -1.0))
+    for kind, c in rows:
+        u = family.effective_potential(c, J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+        test, scale = family.energy_test(kind, c, J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+        flag = flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
+        if kind == "tilted":
+            lam = J / family.d_of_c(c, q, sigma, mu)
+            tilt, axial = math.degrees(math.acos(c)), family.axial_spin(c, lam, q)
+        else:
+            lam = math.nan
+            tilt = 0.0 if kind == "upright" else 180.0
+            axial = c * family.vertical_spin(kind, J, q=q, sigma=sigma)
+        out.append(Candidate(kind, tilt, u, lam, axial, flag, test, u <= E0 + tol))
+    return tuple(out)
+
+
+def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
+            mu: float) -> tuple[Candidate | None, str, tuple[Candidate, ...]]:
+    """The decision of the Jellett method from the integrals ``(J0, E0)``, in floats: the steady
+    state the motion ends on (None if ``J`` and ``E`` do not decide), the reason, and the
+    candidate table (:func:`candidates`). No input checks: :func:`final_state` does them."""
+    cands = candidates(jellett, initial_energy, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    end, reason = _decide(cands, fr_inv == 0.0 or q == 0.0)
+    return end, reason, cands
+
+
+def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate | None, str]:
+    """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
+    reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
+    if len(reach) == 1 and reach[0].stability == STABLE:
+        return reach[0], "one steady state of the Jellett level lies below the initial energy without being " \
+                         "unstable, and it is strictly stable"
+    n_st = sum(c.stability == STABLE for c in reach)
+    n_mg = len(reach) - n_st
+    reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
+    if n_st >= 2:
+        reason += " (bistable: the energy cannot tell which one the motion reaches)"
+    if degenerate and n_mg:
+        reason += (" (fr_inv = 0 or q = 0: the normal force has no moment about G at a no-slip state, and "
+                   "continua of rolling motions next to the marginal states are steady too, so J and E do not "
+                   "fix the end)")
+    elif n_mg:
+        reason += " (a marginal state: the level is at a fold or a branch point)"
+    return None, reason
+
+
+def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = None, q: Any, sigma: Any,
+                fr_inv: Any, alpha_v: Any, mu: Any = DEFAULT_MU, simulation: bool = True, t_max: Any = 2e5,
+                settle_tolerance: Any = 1e-4, rtol: Any = 1e-10) -> FinalState:
+    """The predicted end of the motion of a sliding top (simulate's state arguments).
+
+    Parameters
+    ----------
+    model : {"sliding"}
+    omega, k : array_like, shape (3,)
+        Initial angular velocity and axis (fixed frame, ``K`` up); ``k`` within 1 % of unit
+        length (normalised), as :func:`stability.simulate` takes them.
+    velocity : array_like, shape (2,) or (3,), optional
+        Initial horizontal velocity of the sphere's centre (default zero).
+    q, sigma, fr_inv, alpha_v, mu : float
+        Parameters (docs/conventions.md); ``alpha_v > 0`` (without friction there is no end).
+    simulation : bool, default True
+        Run the deciding simulation when ``J`` and ``E`` do not decide; False returns
+        ``tilt = NaN``, ``kind = "undecided"`` instead.
+    t_max : float, default 2e5
+        Time limit of the deciding run (units of ``1/Omega``).
+    settle_tolerance : float, default 1e-4
+        The run stops when the tilt moves by less than this (degrees) over a chunk and the
+        contact point no longer slips (``|V_c| < 1e-6``).
+    rtol : float, default 1e-10
+        Tolerance of the run (``atol = 1e-3 rtol``); ``J`` drifts by about ``0.25 rtol`` per
+        1000 time units, and near a branch point the end tilt is sensitive to ``J``.
+
+    Returns
+    -------
+    FinalState
+        ``tilt``, ``kind``, ``method`` ("jellett" or "simulation"), ``jellett``, the energies,
+        the steady state it ends on (``state``: precession rate, axial spin), the candidate
+        table, the reason and the run (:class:`SettleRun`) if one decided;
+        ``.to_dataset()`` gives the Dataset (product ``final_state``).
+
+    Raises
+    ------
+    ValueError
+        ``alpha_v = 0`` (no final state), parameters outside the physical domain, an ``omega``,
+        ``k`` or ``velocity`` of the wrong shape or not finite, a ``k`` off unit length by more
+        than 1 %, a vertical velocity, an unknown model.
+    TypeError
+        A non-real or array parameter.
+
+    Examples
+    --------
+    >>> import stability
+    >>> from stability.nonlinear.scene import INITIAL_CONDITIONS
+    >>> end = stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **INITIAL_CONDITIONS[0.3])
+    >>> end.method, end.kind, round(end.tilt, 3)
+    ('jellett', 'tilted', 166.018)
+    """
+    params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+    if alpha_v == 0.0:
+        raise DomainError("alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
+                          "friction the energy is conserved and the motion has no final state)")
+    simulation = check_flag("simulation", simulation)
+    y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
+    J0, E0 = state_integrals(y[:8], q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    J0, E0 = float(J0[0]), float(E0[0])
+    tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
+    end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
+    if end is not None:
+        return FinalState(tilt=end.tilt, kind=end.kind, method="jellett", energy=end.energy,
+                          precession_rate=end.precession_rate, axial_spin=end.axial_spin, state=end,
+                          reason=reason, run=None, **common)
+    if not simulation:
+        return FinalState(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan,
+                          precession_rate=math.nan, axial_spin=math.nan, state=None,
+                          reason=reason + "; no run (simulation=False)", run=None, **common)
+    t_max = check_positive("t_max", t_max)
+    settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
+    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    chunk = chunk_length(cands, params, J0)
+    tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
+    near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
+    state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
+    if state is not None and run.settled:
+        kind = state.kind
+    elif run.settled:
+        kind = "rolling"
+    else:
+        kind = "unsettled"
+    how = "settled" if run.settled else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
+    return FinalState(tilt=tilt, kind=kind, method="simulation",
+                      energy=state.energy if state is not None and run.settled else energy,
+                      precession_rate=state.precession_rate if state is not None and run.settled else math.nan,
+                      axial_spin=state.axial_spin if state is not None and run.settled else run.axial_spin,
+                      state=state if run.settled else None,
+                      reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, "
+                             f"{run.seconds:.2g} s)", run=run, **common)
+
+
+def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
+    """About ``8 / |g|``, ``g`` the slowest decay rate of the reachable candidates that are not
+    unstable (0.01 degree after the transit), within ``[500, 5e4]``; 2000 if none decays."""
+    from ..nonlinear.parameters import pack
+
+    q, sigma, mu = params["q"], params["sigma"], params["mu"]
+    sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
+    if not sel:
+        return 2000.0
+    ys, lams, vert = [], [], []
+    for c in sel:
+        if c.kind == "tilted":
+            ys.append(family.state_vector(math.radians(c.tilt), c.precession_rate, q))
+            lams.append(c.precession_rate)
+            vert.append(False)
+        else:
+            ys.append(family.vertical_state(c.kind, family.vertical_spin(c.kind, jel, q=q, sigma=sigma)))
+            lams.append(0.0)
+            vert.append(True)
+    p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
+    ev, scale = reduced_spectrum(np.array(ys), np.array(lams), np.array(vert), p, q=q, sigma=sigma, mu=mu)
+    growth, _, _ = modes_verdict(ev, scale)
+    g = float(np.max(growth))
+    return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
+
+
+def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: float, settle_tolerance: float,
+           rtol: float, samples: int = 20) -> tuple[float, float, SettleRun]:
+    """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
+    tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
+    ``t_max`` (or a failed integration: then unsettled, tilt NaN). Returns the end tilt (degrees),
+    the end energy and the :class:`SettleRun`."""
+    w, kk, v = y0[0:3], y0[3:6], y0[6:8]
+    t = 0.0
+    n = 0
+    t0 = time.perf_counter()
+    j0 = None
+    settled = False
+    change = math.inf
+    while t < t_max:
+        length = min(chunk, t_max - t)
+        ds = simulate("sliding", t_end=length, t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk,
+                      velocity=v, rtol=rtol, atol=1e-3 * rtol, **params)
+        n += 1
+        t += length
+        if j0 is None:
+            j0 = float(ds.h_cg[0])
+        pol = ds.polar_angle.values
+        if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
+            change, slip = math.nan, math.nan
+            break
+        w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
+        kk = kk / np.linalg.norm(kk)
+        change = float(np.max(pol) - np.min(pol))
+        slip = float(ds.slip_speed[-1])
+        if change < settle_tolerance and slip < 1e-6:
+            settled = True
+            break
+    run = SettleRun(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n,
+                    seconds=time.perf_counter() - t0,
+                    jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
+                    axial_spin=float(ds.spin[-1]))
+    ok = np.isfinite(pol)
+    return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run
