@@ -36,8 +36,11 @@ import math
 
 import numpy as np
 
+from . import interpolation
 from .errors import ConvergenceError
 from .events import locate
+from .interpolation import hermite
+from .linalg import bordered_det, bordered_solve, norm as _norm, tangent_det
 from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
 
 __all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
@@ -138,156 +141,28 @@ class _Scaled:
 _EMPTY = np.zeros(0)
 
 
-def _norm(x: np.ndarray) -> float:
-    """Euclidean norm of a short vector (cheaper than ``numpy.linalg.norm`` for a few entries)."""
-    return math.sqrt(float(x @ x))
-
-
-def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve ``G x = b``; Gaussian elimination with partial pivoting in Python for sizes <= 4.
-
-    The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n``, where the call
-    overhead of LAPACK dominates. Raises ``numpy.linalg.LinAlgError`` on an exact zero pivot.
-    """
-    return _solve_det(G, b)[0]
-
-
-def _solve3(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`_solve_det` for 3 x 3 (a curve in R^3, e.g. a neutral curve in ``(x, y, w)``):
-    the same partial pivoting, unrolled."""
-    r0, r1, r2 = G.tolist()
-    b0, b1, b2 = b.tolist()
-    det = 1.0
-    # column 0: the largest of |a00|, |a10|, |a20| (first one on ties, as the loop)
-    p0, p1, p2 = abs(r0[0]), abs(r1[0]), abs(r2[0])
-    if p1 > p0 and p1 >= p2:
-        r0, r1, b0, b1, det = r1, r0, b1, b0, -det
-    elif p2 > p0 and p2 > p1:
-        r0, r2, b0, b2, det = r2, r0, b2, b0, -det
-    a00, a01, a02 = r0
-    if a00 == 0.0 or a00 != a00:
+# ------------------------------------------------------------------------------------------
+# linear algebra of the Python path (continuation.linalg; LinAlgError on a singular system)
+# ------------------------------------------------------------------------------------------
+def _bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> np.ndarray:
+    """Solve ``[J; c^T] x = [f; r]`` (:func:`continuation.linalg.bordered_solve`);
+    ``numpy.linalg.LinAlgError`` at a zero pivot."""
+    ok, x, _ = bordered_solve(J, c, f, r)
+    if not ok:
         raise np.linalg.LinAlgError("singular matrix")
-    f1, f2 = r1[0] / a00, r2[0] / a00
-    a11, a12, c1 = r1[1] - f1 * a01, r1[2] - f1 * a02, b1 - f1 * b0
-    a21, a22, c2 = r2[1] - f2 * a01, r2[2] - f2 * a02, b2 - f2 * b0
-    if abs(a21) > abs(a11):
-        a11, a12, c1, a21, a22, c2, det = a21, a22, c2, a11, a12, c1, -det
-    if a11 == 0.0 or a11 != a11:
-        raise np.linalg.LinAlgError("singular matrix")
-    f = a21 / a11
-    a22 = a22 - f * a12
-    c2 = c2 - f * c1
-    if a22 == 0.0 or a22 != a22:
-        raise np.linalg.LinAlgError("singular matrix")
-    x2 = c2 / a22
-    x1 = (c1 - a12 * x2) / a11
-    x0 = (b0 - a01 * x1 - a02 * x2) / a00
-    return np.array([x0, x1, x2]), det * a00 * a11 * a22
+    return x
 
 
-def _solve_det(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`_solve` that also returns ``det G`` (the product of the pivots, for free)."""
-    m = b.shape[0]
-    if m == 3:
-        return _solve3(G, b)
-    if m > 4:
-        return np.linalg.solve(G, b), float(np.linalg.det(G))
-    A = G.tolist()
-    x = b.tolist()
-    det = 1.0
-    for k in range(m):
-        p = k
-        big = abs(A[k][k])
-        for i in range(k + 1, m):
-            if abs(A[i][k]) > big:
-                p, big = i, abs(A[i][k])
-        if big == 0.0 or big != big:
-            raise np.linalg.LinAlgError("singular matrix")
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            x[k], x[p] = x[p], x[k]
-            det = -det
-        Ak = A[k]
-        piv = Ak[k]
-        det *= piv
-        for i in range(k + 1, m):
-            Ai = A[i]
-            f = Ai[k] / piv
-            if f != 0.0:
-                for j in range(k + 1, m):
-                    Ai[j] -= f * Ak[j]
-                x[i] -= f * x[k]
-    for k in range(m - 1, -1, -1):
-        Ak = A[k]
-        acc = x[k]
-        for j in range(k + 1, m):
-            acc -= Ak[j] * x[j]
-        x[k] = acc / Ak[k]
-    return np.array(x), det
-
-
-def _det(G: np.ndarray) -> float:
-    """Determinant of a small square matrix (Python LU for sizes <= 4)."""
-    m = G.shape[0]
-    if m > 4:
-        return float(np.linalg.det(G))
-    A = G.tolist()
-    d = 1.0
-    for k in range(m):
-        p = max(range(k, m), key=lambda i: abs(A[i][k]))
-        if A[p][k] == 0.0:
-            return 0.0
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            d = -d
-        Ak = A[k]
-        d *= Ak[k]
-        for i in range(k + 1, m):
-            Ai = A[i]
-            f = Ai[k] / Ak[k]
-            for j in range(k + 1, m):
-                Ai[j] -= f * Ak[j]
-    return d
-
-
-def _bordered(J: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """``[J; t^T]``."""
-    G = np.empty((J.shape[0] + 1, J.shape[1]))
-    G[:-1] = J
-    G[-1] = t
-    return G
-
-
-def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
-            tau: np.ndarray | float) -> np.ndarray:
-    """Cubic Hermite curve through ``p0`` (unit tangent ``t0``) and ``p1`` (``t1``).
-
-    Parametrised by ``tau`` in [0, 1] (values outside extrapolate) with the chord length
-    ``d = |p1 - p0|`` as the length of the arc: ``H(tau) = h00 p0 + h10 d t0 + h01 p1 +
-    h11 d t1``. Its distance from a smooth curve through the two points with those tangents is
-    ``O(d^4)`` (the chord-length parametrisation moves points along the curve by ``O(d^3)``,
-    off it only by ``O(d^4)``).
-
-    Parameters
-    ----------
-    p0, t0, p1, t1 : numpy.ndarray, shape (dim,)
-    tau : float or numpy.ndarray, shape (k,)
-
-    Returns
-    -------
-    numpy.ndarray, shape (dim,) or (k, dim)
-    """
-    d = _norm(p1 - p0)
-    if isinstance(tau, float):  # one point: the basis in Python floats (4 vector operations)
-        t2 = tau * tau
-        t3 = t2 * tau
-        return ((2 * t3 - 3 * t2 + 1) * p0 + ((t3 - 2 * t2 + tau) * d) * t0
-                + (3 * t2 - 2 * t3) * p1 + ((t3 - t2) * d) * t1)
-    tau = np.asarray(tau, dtype=float)
-    tt = tau[..., None]
-    t2, t3 = tt * tt, tt * tt * tt
-    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + tt) * (d * t0)
-            + (3 * t2 - 2 * t3) * p1 + (t3 - t2) * (d * t1))
+def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
+    """:func:`tangent` oriented by ``t_ref``, and the branch-point test ``det [J; t^T]``
+    (:func:`continuation.linalg.tangent_det`; from the SVD if the bordered matrix is singular)."""
+    ok, t, d = tangent_det(J, t_ref)
+    if ok:
+        return t, d
+    _, _, vh = np.linalg.svd(J)
+    t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
+    t = t / _norm(t)
+    return t, bordered_det(J, t)
 
 
 def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
@@ -306,29 +181,9 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     return _tangent_det(J, t_ref)[0]
 
 
-def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`tangent` oriented by ``t_ref``, and the branch-point test ``det [J; t^T]``.
-
-    ``det [J; c^T]`` is linear in ``c``, ``c . g`` with ``g`` the vector of cofactors, and
-    ``J g = 0`` (a repeated row), so ``g = det [J; t^T] t`` for the unit null vector ``t``.
-    The bordered solve ``[J; t_ref^T] y = e_(n+1)`` gives ``t = y / |y|`` and, from its
-    pivots, ``det [J; t_ref^T] = t_ref . g = det [J; t^T] / |y|``: the test costs nothing more.
-    """
-    rhs = np.zeros(J.shape[1])
-    rhs[-1] = 1.0
-    try:
-        y, det_ref = _solve_det(_bordered(J, t_ref), rhs)
-        ny = _norm(y)
-        if not math.isfinite(ny) or ny == 0.0:
-            raise np.linalg.LinAlgError("singular matrix")
-        return y / ny, det_ref * ny
-    except np.linalg.LinAlgError:
-        _, _, vh = np.linalg.svd(J)
-        t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
-        t = t / _norm(t)
-        return t, _bordered_det(J, t)
-
-
+# ------------------------------------------------------------------------------------------
+# Newton's method: the corrector and the projection onto the curve
+# ------------------------------------------------------------------------------------------
 def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
             h: float, tol: float, max_iter: int, max_move: float, polish: bool = True
             ) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
@@ -356,10 +211,7 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
             if t_plane is None:
                 dv = -np.linalg.lstsq(J, f, rcond=None)[0]
             else:
-                rhs = np.empty(f.size + 1)
-                rhs[:-1] = f
-                rhs[-1] = plane
-                dv = -_solve(_bordered(J, t_plane), rhs)
+                dv = -_bordered_solve(J, t_plane, f, plane)
         except np.linalg.LinAlgError:
             return v, converged, it, J
         if converged:
@@ -413,11 +265,6 @@ def project(problem: ContinuationProblem, u0: np.ndarray, *, tol: float = 1e-13,
     if not ok:
         raise ConvergenceError(f"no point of the curve with ||F|| <= {tol:g} found near {u0}")
     return v * sc
-
-
-def _bordered_det(J: np.ndarray, t: np.ndarray) -> float:
-    """``det [J; t^T]``: changes sign at a simple branch point (Allgower & Georg, ch. 8)."""
-    return _det(_bordered(J, t))
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
@@ -536,7 +383,7 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     pts, tans, kinds, details, arc = [v.copy()], [t.copy()], ["start"], [""], [0.0]
     v_start, t_start = v.copy(), t.copy()
     tests = sp.tests(v, t)
-    bp = _bordered_det(sp.jacobian(v), t)
+    bp = bordered_det(sp.jacobian(v), t)
     g = g0
     h = step
     end = "max_points"
@@ -621,11 +468,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
                 # residual tests above, not by the gradient)
                 grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
                                  for e in eye])
-            rhs = np.empty(f.size + 1)
-            rhs[:-1] = f
-            rhs[-1] = gj
             try:
-                du = _solve(_bordered(JJ, grad), rhs)
+                du = _bordered_solve(JJ, grad, f, gj)
             except np.linalg.LinAlgError:
                 return None
             if converged:
@@ -648,14 +492,8 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             break
         # predictor: extrapolate the cubic Hermite curve of the last step (error O(h^3) to
         # O(h^4) instead of the tangent's O(h^2)); the plain tangent after a failure
-        if cstep is not None:  # the same predictor, compiled
-            guess = _compiled.predict(v, t, *(prev if prev is not None else (v, t)),
-                                      prev is not None and use_hermite, h)
-        elif prev is not None and use_hermite:
-            d = _norm(v - prev[0])
-            guess = hermite(prev[0], prev[1], v, t, 1.0 + h / d) if d > 0 else v + h * t
-        else:
-            guess = v + h * t
+        predictor = _compiled.predict if cstep is not None else interpolation.predict
+        guess = predictor(v, t, *(prev if prev is not None else (v, t)), prev is not None and use_hermite, h)
         v_new, ok, it, t_new, bp_new, extra = corrector(guess, h, max_iter, 2.0 * h + 1e-12)
         n_newton += it
         angle = 0.0
@@ -731,9 +569,9 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
             elif pb == 0.0 and abs(pa) > event_floor and stop_event is None:
                 at_new.append(("test", sp.test_names[k]))
         if detect_branch_points:
-            bp_b = bp_new if stop_event is None else _bordered_det(sp.jacobian(v_b), t_b)
+            bp_b = bp_new if stop_event is None else bordered_det(sp.jacobian(v_b), t_b)
             if bp * bp_b < 0:
-                candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
+                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt),
                                    bp, bp_b))
             elif bp_b == 0.0 and abs(bp) > event_floor and stop_event is None:
                 at_new.append(("branch_point", ""))
