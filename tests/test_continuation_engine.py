@@ -10,6 +10,8 @@ from an exact Jacobian, so 1e-12 leaves a margin of ten.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -461,3 +463,36 @@ def test_special_point_exactly_on_an_accepted_point_is_reported_once():
     np.testing.assert_array_equal(br.points, first.points)  # the same steps
     assert br.kinds.count("test") == 1 and br.kinds[3] == "test" and br.details[3] == "x - x_event"
     assert seen.count("test") == 1
+
+
+def test_the_docs_example_problem():
+    """docs/continuation.md's "How to write a problem" example, run as written (the code block
+    and its printed output). References, closed forms of ``x^3 - x - lam = 0``: folds in lam at
+    ``x = -+1/sqrt(3)``, ``lam = +-2/(3 sqrt 3)``; the test function x changes sign at the
+    origin; the branch ends at ``x = -+1.5``, ``lam = -+1.875``. Tolerances: as the other tests
+    of this module (1e-13 for coordinates; a fold's x, off by about the tangent's rounding over
+    the curvature, 1e-12); the printed output matches to its 12 decimals."""
+    import contextlib
+    import io
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "continuation.md").read_text()
+    section = text.split("## How to write a problem", 1)[1].split("\n## ", 1)[0]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    printed = section.split("```python\n", 1)[1].split("```\n", 2)[2].split("```", 1)[0]
+    ns: dict = {}
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "docs/continuation.md", "exec"), ns)
+    assert out.getvalue().split() == printed.split()
+    br = ns["branch"]
+    lam, x = br.points.T
+    assert np.max(np.abs(x**3 - x - lam)) <= 1e-13 and br.end_reasons == ["boundary", "boundary"]
+    fold = br.points[[k == "fold" for k in br.kinds]]
+    assert len(fold) == 2
+    fold = fold[np.argsort(fold[:, 1])]
+    r = 1 / np.sqrt(3)
+    assert np.allclose(fold[:, 1], [-r, r], rtol=0, atol=1e-12)
+    assert np.allclose(fold[:, 0], [2 * r / 3, -2 * r / 3], rtol=0, atol=1e-13)
+    (test,) = br.points[[k == "test" for k in br.kinds]]
+    assert np.max(np.abs(test)) <= 1e-13
+    assert np.allclose(br.points[[0, -1]], [[-1.875, -1.5], [1.875, 1.5]], rtol=0, atol=1e-13)
