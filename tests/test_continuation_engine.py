@@ -496,3 +496,27 @@ def test_the_docs_example_problem():
     (test,) = br.points[[k == "test" for k in br.kinds]]
     assert np.max(np.abs(test)) <= 1e-13
     assert np.allclose(br.points[[0, -1]], [[-1.875, -1.5], [1.875, 1.5]], rtol=0, atol=1e-13)
+
+
+def test_python_path_compiles_nothing():
+    """The engine's Python path (a problem without ``compiled_step``, or ``compiled=False``)
+    runs the building blocks as plain Python: it imports no compiled module and compiles no
+    numba function, so a cold start pays no compilation. Checked in a fresh interpreter (this
+    test process has compiled them already): the dispatchers of continuation.linalg and
+    continuation.compiled have no compiled signature after a traced circle."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np, continuation\n"
+        "from continuation import linalg\n"
+        "class Circle:\n"
+        "    def residual(self, u): return np.array([u[0]**2 + u[1]**2 - 1.0])\n"
+        "br = continuation.trace(Circle(), [1.0, 0.0], fold_components=(0, 1))\n"
+        "assert br.closed\n"
+        "assert 'continuation.compiled' not in sys.modules\n"
+        "assert not linalg.solve_dense.signatures\n"
+        "print('ok')\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
