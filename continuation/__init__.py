@@ -1,9 +1,11 @@
 """Numerical continuation of curves ``F(u) = 0``: a generic pseudo-arclength engine.
 
-The engine (:mod:`continuation.engine`, :mod:`continuation.events`,
-:mod:`continuation.problem`, the dense output :mod:`continuation.dense`, and the compiled
-building blocks :mod:`continuation.compiled` and :mod:`continuation.linalg`) knows nothing about
-tops and imports nothing from :mod:`stability`. A problem may bring its own compiled corrector
+The engine (the stepper :mod:`continuation.engine`, :mod:`continuation.events`, the problem
+protocol :mod:`continuation.problem`, the dense output :mod:`continuation.dense`, and its
+numerical building blocks, each written once for Python and numba: the small dense solves and
+the bordered tangent :mod:`continuation.linalg`, the cubic Hermite curve
+:mod:`continuation.interpolation`, and their compiled faces :mod:`continuation.compiled`) knows
+nothing about tops and imports nothing from :mod:`stability`. A problem may bring its own compiled corrector
 (the ``compiled_step`` hook of :mod:`continuation.problem`, built from
 :mod:`continuation.compiled`).
 
@@ -23,9 +25,10 @@ from __future__ import annotations
 from typing import Any
 
 from .dense import dense, hermite_samples
-from .engine import Branch, correct, hermite, project, tangent, trace, trace_both
+from .engine import Branch, correct, project, tangent, trace, trace_both
 from .errors import ConvergenceError
 from .events import fold_test, locate
+from .interpolation import hermite
 from .problem import ContinuationProblem, finite_difference_jacobian
 
 __all__ = [

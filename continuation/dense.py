@@ -1,7 +1,7 @@
 """Dense output of a traced curve: cubic Hermite interpolation with the stored tangents.
 
 Between two consecutive points ``p0``, ``p1`` of a branch with unit tangents ``t0``, ``t1``
-the curve is approximated by the cubic Hermite curve (:func:`continuation.engine.hermite`)
+the curve is approximated by the cubic Hermite curve (:mod:`continuation.interpolation`)
 parametrised by the chord length ``d = |p1 - p0|``. Its distance from the true curve is
 ``O(d^4)`` (on a circle of curvature ``kappa``: ``kappa^3 d^4 / 128`` at the middle of the
 step, tests/test_continuation_engine.py; 5.6e-7 on the sliding model's ``(q, sigma)`` curve at
@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from .engine import Branch
+from .interpolation import hermite_eval
 
 __all__ = ["dense", "hermite_samples"]
 
@@ -60,13 +61,10 @@ def hermite_samples(points: np.ndarray, tangents: np.ndarray, n: int = 16) -> np
     T = T / np.where(np.linalg.norm(T, axis=1) > 0, np.linalg.norm(T, axis=1), 1.0)[:, None]
     t0 = T[:-1] * np.where(np.einsum("ij,ij->i", T[:-1], chord) < 0, -1.0, 1.0)[:, None]
     t1 = T[1:] * np.where(np.einsum("ij,ij->i", T[1:], chord) < 0, -1.0, 1.0)[:, None]
-    tau = np.arange(n) / n
-    t2, t3 = tau * tau, tau * tau * tau
-    h00, h10 = 2 * t3 - 3 * t2 + 1, t3 - 2 * t2 + tau
-    h01, h11 = 3 * t2 - 2 * t3, t3 - t2
-    # (segment, sample, dim)
-    out = (h00[None, :, None] * P[:-1, None, :] + h10[None, :, None] * (d[:, None] * t0)[:, None, :]
-           + h01[None, :, None] * P[1:, None, :] + h11[None, :, None] * (d[:, None] * t1)[:, None, :])
+    # (segment, sample, dim): the Hermite curve of each segment at tau = 0, 1/n, ..., (n-1)/n
+    tau = (np.arange(n) / n)[None, :, None]
+    out = hermite_eval(P[:-1, None, :], t0[:, None, :], P[1:, None, :], t1[:, None, :], tau,
+                       d[:, None, None])
     return np.concatenate([out.reshape(-1, P.shape[1]), P[-1:]], axis=0)
 
 

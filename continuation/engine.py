@@ -1,43 +1,53 @@
 """Pseudo-arclength continuation of a curve ``F(u) = 0``, ``u`` in ``R^(n+1)``.
 
 Algorithm (Keller's pseudo-arclength; e.g. Allgower & Georg, *Introduction to Numerical
-Continuation Methods*, ch. 2 and 6):
+Continuation Methods*, ch. 2 and 6). One step from the accepted point ``(v, t)``:
 
-1. tangent ``t``: the unit null vector of ``J = dF/du``, from the bordered system
-   ``[J; t_prev^T] t = [0; 1]`` (so consecutive tangents keep their orientation);
-2. predictor ``u_p = u + h t``;
-3. corrector: Newton's method on ``[F(u); t . (u - u_k) - h] = 0``, i.e. on the hyperplane
-   through ``u_p`` orthogonal to ``t``, until ``||F(u)||_2 <= tol``;
-4. step control: a step is rejected and halved if Newton fails or the tangent turns by more
-   than ``max_angle``; it grows by ``grow`` after an easy step; ``min_step <= h <= max_step``;
-5. between two accepted points the engine looks for sign changes of the fold tests (tangent
-   components), of the problem's test functions, of the branch-point test ``det [J; t^T]``
-   and of its constraints, and locates each one exactly (:func:`continuation.events.locate`:
-   Brent on the pseudo-arclength, each evaluation a corrector solve predicted by the cubic
-   Hermite curve of the step; a constraint by Newton's method on ``[F; g_j] = 0`` first);
-   a constraint reaching zero ends the branch there (the other special points are looked for
-   only up to it); a branch that comes back to its start is closed.
+1. predictor: the cubic Hermite curve of the last step extrapolated by ``h`` (error ``O(h^3)``
+   to ``O(h^4)``), or the tangent ``v + h t`` after a rejected step
+   (:func:`continuation.interpolation.predict`);
+2. corrector: Newton's method on ``[F(u); t . (u - v) - h] = 0``, i.e. on the hyperplane
+   orthogonal to ``t`` at distance ``h``, until ``||F(u)||_2 <= tol``, then one polishing step;
+   at the solution the unit tangent from the bordered system ``[J; t^T] y = e_(n+1)`` (so
+   consecutive tangents keep their orientation) and, from its pivots, the branch-point test
+   ``det [J; t^T]`` (:func:`continuation.linalg.tangent_det`);
+3. step control: a step is rejected and halved if Newton fails or the tangent turns by more
+   than ``max_angle``; after an accepted step ``h`` grows by ``grow`` (easy step), stays, or
+   shrinks, and is capped so that the next turn stays below ``max_angle``;
+   ``min_step <= h <= max_step``;
+4. boundary: a constraint ``g_j >= 0`` of the problem that becomes negative over the step ends
+   the branch exactly where it reaches zero (Newton's method on ``[F; g_j] = 0``, or Brent);
+5. events: sign changes of the fold tests (tangent components), of the problem's test functions
+   and of the branch-point test over the step (up to the boundary, if one ends it) are located
+   exactly (:func:`continuation.events.locate`: Brent on the pseudo-arclength, each evaluation a
+   corrector solve predicted by the Hermite curve of the step);
+6. closure: a branch whose step passes its start point again is closed there;
+7. the located points, then the new point, are appended (the result is assembled into a
+   :class:`Branch` at the end).
 
-All lengths are measured in scaled variables ``v = u / scale`` so that unknowns of different
-magnitudes weigh alike. The engine knows nothing about the problem beyond
-:mod:`continuation.problem`. A problem may provide ``compiled_step``, steps 2 and 3 and the
-tangent of step 1 in one compiled call (:mod:`continuation.problem`,
-:mod:`continuation.compiled`); the engine then uses it (with the predictor compiled too) for
-every step and every corrector solve of step 5, and its Python path otherwise
-(``trace(..., compiled=False)`` forces the Python path). Nothing here prints.
+The parts are methods of :class:`_Tracer` (one traced direction), in that order. All lengths
+are measured in scaled variables ``v = u / scale`` so that unknowns of different magnitudes
+weigh alike. The engine knows nothing about the problem beyond :mod:`continuation.problem`. A
+problem may provide ``compiled_step``, the corrector and tangent of step 2 in one compiled call
+(:mod:`continuation.problem`, :mod:`continuation.compiled`); the engine then uses it (with the
+predictor compiled too) for every step and every corrector solve of steps 4-5, and its Python
+path otherwise (``trace(..., compiled=False)`` forces the Python path). Nothing here prints.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-
-import math
+from typing import NamedTuple
 
 import numpy as np
 
+from . import interpolation
 from .errors import ConvergenceError
 from .events import locate
+from .interpolation import hermite
+from .linalg import bordered_det, bordered_solve, norm as _norm, tangent_det
 from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
 
 __all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
@@ -61,8 +71,9 @@ class Branch:
         Cumulative chord length in scaled variables.
     kinds : list of str
         ``"regular"``, ``"fold"`` (turning point of a component), ``"test"`` (a zero of a test
-        function), ``"branch_point"`` (two curves cross), ``"boundary"`` (a constraint reached zero; the branch ends there),
-        ``"start"`` for the start point.
+        function), ``"branch_point"`` (two curves cross), ``"boundary"`` (a constraint reached
+        zero; the branch ends there), ``"closed"`` (the start point again, at the end of a
+        closed branch), ``"start"`` for the start point.
     details : list of str
         For special points: which component folds, which test function or constraint.
     closed : bool
@@ -138,156 +149,28 @@ class _Scaled:
 _EMPTY = np.zeros(0)
 
 
-def _norm(x: np.ndarray) -> float:
-    """Euclidean norm of a short vector (cheaper than ``numpy.linalg.norm`` for a few entries)."""
-    return math.sqrt(float(x @ x))
-
-
-def _solve(G: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve ``G x = b``; Gaussian elimination with partial pivoting in Python for sizes <= 4.
-
-    The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n``, where the call
-    overhead of LAPACK dominates. Raises ``numpy.linalg.LinAlgError`` on an exact zero pivot.
-    """
-    return _solve_det(G, b)[0]
-
-
-def _solve3(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`_solve_det` for 3 x 3 (a curve in R^3, e.g. a neutral curve in ``(x, y, w)``):
-    the same partial pivoting, unrolled."""
-    r0, r1, r2 = G.tolist()
-    b0, b1, b2 = b.tolist()
-    det = 1.0
-    # column 0: the largest of |a00|, |a10|, |a20| (first one on ties, as the loop)
-    p0, p1, p2 = abs(r0[0]), abs(r1[0]), abs(r2[0])
-    if p1 > p0 and p1 >= p2:
-        r0, r1, b0, b1, det = r1, r0, b1, b0, -det
-    elif p2 > p0 and p2 > p1:
-        r0, r2, b0, b2, det = r2, r0, b2, b0, -det
-    a00, a01, a02 = r0
-    if a00 == 0.0 or a00 != a00:
+# ------------------------------------------------------------------------------------------
+# linear algebra of the Python path (continuation.linalg; LinAlgError on a singular system)
+# ------------------------------------------------------------------------------------------
+def _bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> np.ndarray:
+    """Solve ``[J; c^T] x = [f; r]`` (:func:`continuation.linalg.bordered_solve`);
+    ``numpy.linalg.LinAlgError`` at a zero pivot."""
+    ok, x, _ = bordered_solve(J, c, f, r)
+    if not ok:
         raise np.linalg.LinAlgError("singular matrix")
-    f1, f2 = r1[0] / a00, r2[0] / a00
-    a11, a12, c1 = r1[1] - f1 * a01, r1[2] - f1 * a02, b1 - f1 * b0
-    a21, a22, c2 = r2[1] - f2 * a01, r2[2] - f2 * a02, b2 - f2 * b0
-    if abs(a21) > abs(a11):
-        a11, a12, c1, a21, a22, c2, det = a21, a22, c2, a11, a12, c1, -det
-    if a11 == 0.0 or a11 != a11:
-        raise np.linalg.LinAlgError("singular matrix")
-    f = a21 / a11
-    a22 = a22 - f * a12
-    c2 = c2 - f * c1
-    if a22 == 0.0 or a22 != a22:
-        raise np.linalg.LinAlgError("singular matrix")
-    x2 = c2 / a22
-    x1 = (c1 - a12 * x2) / a11
-    x0 = (b0 - a01 * x1 - a02 * x2) / a00
-    return np.array([x0, x1, x2]), det * a00 * a11 * a22
+    return x
 
 
-def _solve_det(G: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`_solve` that also returns ``det G`` (the product of the pivots, for free)."""
-    m = b.shape[0]
-    if m == 3:
-        return _solve3(G, b)
-    if m > 4:
-        return np.linalg.solve(G, b), float(np.linalg.det(G))
-    A = G.tolist()
-    x = b.tolist()
-    det = 1.0
-    for k in range(m):
-        p = k
-        big = abs(A[k][k])
-        for i in range(k + 1, m):
-            if abs(A[i][k]) > big:
-                p, big = i, abs(A[i][k])
-        if big == 0.0 or big != big:
-            raise np.linalg.LinAlgError("singular matrix")
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            x[k], x[p] = x[p], x[k]
-            det = -det
-        Ak = A[k]
-        piv = Ak[k]
-        det *= piv
-        for i in range(k + 1, m):
-            Ai = A[i]
-            f = Ai[k] / piv
-            if f != 0.0:
-                for j in range(k + 1, m):
-                    Ai[j] -= f * Ak[j]
-                x[i] -= f * x[k]
-    for k in range(m - 1, -1, -1):
-        Ak = A[k]
-        acc = x[k]
-        for j in range(k + 1, m):
-            acc -= Ak[j] * x[j]
-        x[k] = acc / Ak[k]
-    return np.array(x), det
-
-
-def _det(G: np.ndarray) -> float:
-    """Determinant of a small square matrix (Python LU for sizes <= 4)."""
-    m = G.shape[0]
-    if m > 4:
-        return float(np.linalg.det(G))
-    A = G.tolist()
-    d = 1.0
-    for k in range(m):
-        p = max(range(k, m), key=lambda i: abs(A[i][k]))
-        if A[p][k] == 0.0:
-            return 0.0
-        if p != k:
-            A[k], A[p] = A[p], A[k]
-            d = -d
-        Ak = A[k]
-        d *= Ak[k]
-        for i in range(k + 1, m):
-            Ai = A[i]
-            f = Ai[k] / Ak[k]
-            for j in range(k + 1, m):
-                Ai[j] -= f * Ak[j]
-    return d
-
-
-def _bordered(J: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """``[J; t^T]``."""
-    G = np.empty((J.shape[0] + 1, J.shape[1]))
-    G[:-1] = J
-    G[-1] = t
-    return G
-
-
-def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
-            tau: np.ndarray | float) -> np.ndarray:
-    """Cubic Hermite curve through ``p0`` (unit tangent ``t0``) and ``p1`` (``t1``).
-
-    Parametrised by ``tau`` in [0, 1] (values outside extrapolate) with the chord length
-    ``d = |p1 - p0|`` as the length of the arc: ``H(tau) = h00 p0 + h10 d t0 + h01 p1 +
-    h11 d t1``. Its distance from a smooth curve through the two points with those tangents is
-    ``O(d^4)`` (the chord-length parametrisation moves points along the curve by ``O(d^3)``,
-    off it only by ``O(d^4)``).
-
-    Parameters
-    ----------
-    p0, t0, p1, t1 : numpy.ndarray, shape (dim,)
-    tau : float or numpy.ndarray, shape (k,)
-
-    Returns
-    -------
-    numpy.ndarray, shape (dim,) or (k, dim)
-    """
-    d = _norm(p1 - p0)
-    if isinstance(tau, float):  # one point: the basis in Python floats (4 vector operations)
-        t2 = tau * tau
-        t3 = t2 * tau
-        return ((2 * t3 - 3 * t2 + 1) * p0 + ((t3 - 2 * t2 + tau) * d) * t0
-                + (3 * t2 - 2 * t3) * p1 + ((t3 - t2) * d) * t1)
-    tau = np.asarray(tau, dtype=float)
-    tt = tau[..., None]
-    t2, t3 = tt * tt, tt * tt * tt
-    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + tt) * (d * t0)
-            + (3 * t2 - 2 * t3) * p1 + (t3 - t2) * (d * t1))
+def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
+    """:func:`tangent` oriented by ``t_ref``, and the branch-point test ``det [J; t^T]``
+    (:func:`continuation.linalg.tangent_det`; from the SVD if the bordered matrix is singular)."""
+    ok, t, d = tangent_det(J, t_ref)
+    if ok:
+        return t, d
+    _, _, vh = np.linalg.svd(J)
+    t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
+    t = t / _norm(t)
+    return t, bordered_det(J, t)
 
 
 def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
@@ -306,29 +189,9 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     return _tangent_det(J, t_ref)[0]
 
 
-def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
-    """:func:`tangent` oriented by ``t_ref``, and the branch-point test ``det [J; t^T]``.
-
-    ``det [J; c^T]`` is linear in ``c``, ``c . g`` with ``g`` the vector of cofactors, and
-    ``J g = 0`` (a repeated row), so ``g = det [J; t^T] t`` for the unit null vector ``t``.
-    The bordered solve ``[J; t_ref^T] y = e_(n+1)`` gives ``t = y / |y|`` and, from its
-    pivots, ``det [J; t_ref^T] = t_ref . g = det [J; t^T] / |y|``: the test costs nothing more.
-    """
-    rhs = np.zeros(J.shape[1])
-    rhs[-1] = 1.0
-    try:
-        y, det_ref = _solve_det(_bordered(J, t_ref), rhs)
-        ny = _norm(y)
-        if not math.isfinite(ny) or ny == 0.0:
-            raise np.linalg.LinAlgError("singular matrix")
-        return y / ny, det_ref * ny
-    except np.linalg.LinAlgError:
-        _, _, vh = np.linalg.svd(J)
-        t = vh[-1] * np.sign(vh[-1] @ t_ref or 1.0)
-        t = t / _norm(t)
-        return t, _bordered_det(J, t)
-
-
+# ------------------------------------------------------------------------------------------
+# Newton's method: the corrector and the projection onto the curve
+# ------------------------------------------------------------------------------------------
 def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
             h: float, tol: float, max_iter: int, max_move: float, polish: bool = True
             ) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
@@ -356,10 +219,7 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
             if t_plane is None:
                 dv = -np.linalg.lstsq(J, f, rcond=None)[0]
             else:
-                rhs = np.empty(f.size + 1)
-                rhs[:-1] = f
-                rhs[-1] = plane
-                dv = -_solve(_bordered(J, t_plane), rhs)
+                dv = -_bordered_solve(J, t_plane, f, plane)
         except np.linalg.LinAlgError:
             return v, converged, it, J
         if converged:
@@ -415,17 +275,460 @@ def project(problem: ContinuationProblem, u0: np.ndarray, *, tol: float = 1e-13,
     return v * sc
 
 
-def _bordered_det(J: np.ndarray, t: np.ndarray) -> float:
-    """``det [J; t^T]``: changes sign at a simple branch point (Allgower & Georg, ch. 8)."""
-    return _det(_bordered(J, t))
-
-
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
     """Distance from ``p`` to segment ``[a, b]`` and the segment parameter of the foot."""
     d = b - a
     L2 = float(d @ d)
     lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((p - a) @ d) / L2))
     return _norm(p - (a + lam * d)), lam
+
+
+# ------------------------------------------------------------------------------------------
+# the stepper
+# ------------------------------------------------------------------------------------------
+@dataclass(slots=True)
+class _Step:
+    """A corrected step of length ``h`` from the current point, before its events: the new
+    point ``v`` with its tangent ``t`` and ``det [J; t^T]``, the constraints and test functions
+    there if the compiled step gave them (``extra``), the corrector's Newton iterations and the
+    angle the tangent turned by."""
+
+    h: float
+    v: np.ndarray
+    t: np.ndarray
+    det: float
+    extra: tuple[np.ndarray, np.ndarray] | None
+    iterations: int
+    angle: float
+
+
+class _Event(NamedTuple):
+    """A special point located on a step, at pseudo-arclength ``h`` from the current point."""
+
+    h: float
+    kind: str
+    detail: str
+    v: np.ndarray
+    t: np.ndarray
+
+
+class _Tracer:
+    """One traced direction of a branch: the state of :func:`trace` and the parts of a step.
+
+    Reading order: :meth:`run` (the loop) calls :meth:`_step` (predictor, corrector, rejection:
+    :meth:`_correct`) and :meth:`_advance` for an accepted step, which calls :meth:`_boundary`
+    (constraints; :meth:`_boundary_point`), :meth:`_special_points` (folds, test functions,
+    branch points; each located by :func:`continuation.events.locate` on
+    :meth:`_point_on_step`), :meth:`_closure`, :meth:`_append` (the points kept) and
+    :meth:`_adapt_step` (step control); :meth:`_branch` assembles the result.
+
+    State: the current (last accepted) point ``v`` with its tangent ``t``, constraints ``g``,
+    test functions ``tests`` and branch-point test ``bp``; the point before it (``prev``, for
+    the Hermite predictor); the step length ``h``; the accepted points so far (``pts``,
+    ``tans``, ``kinds``, ``details``, ``arc``, in scaled variables); why and whether the branch
+    ended (``end``, ``done``, ``closed``); the work counters (``n_newton`` here, the residual
+    and Jacobian evaluations in ``sp``). Arguments: those of :func:`trace`, checked there.
+    """
+
+    def __init__(self, problem: ContinuationProblem, u0: np.ndarray, sc: np.ndarray, *,
+                 direction: int, tangent0: Sequence[float] | None, step: float, min_step: float,
+                 max_step: float, max_points: int, max_arclength: float, tol: float, max_iter: int,
+                 max_angle: float, grow: float, fold_components: tuple[int, ...],
+                 callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
+                 detect_closed: bool, detect_branch_points: bool, event_floor: float,
+                 project_start: bool, start_slack: float, compiled: bool):
+        self.sp = _Scaled(problem, sc)
+        self.sc = sc
+        self.h, self.min_step, self.max_step, self.grow = step, min_step, max_step, grow
+        self.max_points, self.max_arclength = max_points, max_arclength
+        self.tol, self.max_iter, self.max_angle = tol, max_iter, max_angle
+        self.fold_components = fold_components
+        self.callback = callback
+        self.detect_closed, self.detect_branch_points = detect_closed, detect_branch_points
+        self.event_floor = event_floor
+        # the problem's compiled corrector (continuation.problem), if it has one and may use it;
+        # then the predictor is compiled too
+        self.cstep = getattr(problem, "compiled_step", None) if compiled else None
+        if self.cstep is not None:
+            from . import compiled as _compiled
+
+            self.predictor = _compiled.predict
+        else:
+            self.predictor = interpolation.predict
+        self.n_newton = 0
+        self.end = "max_points"
+        self.done = False
+        self.closed = False
+        self.prev: tuple[np.ndarray, np.ndarray] | None = None  # the accepted point before v
+        self.use_hermite = True  # False after a rejected step: the tangent predictor
+        # points of the current step already corrected, (h, v, t) sorted by h: the predictor of
+        # a new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
+        # Brent's iterates close in on a special point one Newton step (or none) suffices
+        self.known: list[tuple[float, np.ndarray, np.ndarray]] = []
+        self._start(u0, direction, tangent0, project_start, start_slack)
+
+    def _start(self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None,
+               project_start: bool, start_slack: float) -> None:
+        """The start point: on the curve, inside the constraints, with its tangent and tests."""
+        sp, sc, tol = self.sp, self.sc, self.tol
+        v = u0 / sc
+        if project_start:
+            v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
+            self.n_newton += it
+            if not ok:
+                raise ConvergenceError(f"the start point {u0} is not on the curve (||F|| > {tol:g} "
+                                       "after 30 Newton steps)")
+        g0 = sp.constraints(v)
+        # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
+        # errors) may sit a few ulp outside it: that is "on the boundary"
+        g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
+        if np.any(g0 < 0):
+            j = int(np.argmin(g0))
+            raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} "
+                             f"(value {g0[j]:.3g} < 0)")
+        if tangent0 is None:
+            t = tangent(sp.jacobian(v))
+        else:
+            t0 = np.asarray(tangent0, float) / sc
+            t = tangent(sp.jacobian(v), t0 / np.linalg.norm(t0))
+        t = direction * t
+        self.pts, self.tans, self.kinds, self.details, self.arc = [v.copy()], [t.copy()], ["start"], [""], [0.0]
+        self.v_start, self.t_start = v.copy(), t.copy()
+        self.v, self.t = v, t
+        self.g = g0
+        self.tests = sp.tests(v, t)
+        self.bp = bordered_det(sp.jacobian(v), t)
+        if self.callback is not None and self.callback(v * sc, sp.unscaled_tangent(t), "start") is False:
+            self._finish("callback")
+
+    # --- the loop ----------------------------------------------------------------------------
+    def run(self) -> Branch:
+        """Step until the branch ends (a boundary, closure, a failure, a limit, the callback)."""
+        while not self.done and len(self.pts) < self.max_points:
+            if self.arc[-1] >= self.max_arclength:
+                self._finish("max_arclength")
+                break
+            step = self._step()
+            if step is not None:
+                self._advance(step)
+        return self._branch()
+
+    def _finish(self, reason: str) -> None:
+        self.end = reason
+        self.done = True
+
+    # --- predictor, corrector, rejection -------------------------------------------------------
+    def _step(self) -> _Step | None:
+        """Predict and correct a step of length ``h``; None if it was rejected (``h`` halved,
+        the tangent predictor next) or failed at ``min_step`` (the branch ends)."""
+        v, t, h = self.v, self.t, self.h
+        prev = self.prev
+        guess = self.predictor(v, t, *(prev if prev is not None else (v, t)),
+                               prev is not None and self.use_hermite, h)
+        v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.max_iter, 2.0 * h + 1e-12)
+        self.n_newton += it
+        angle = 0.0
+        if ok:
+            angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
+            ok = angle <= self.max_angle or h <= self.min_step
+        if not ok:
+            if h <= self.min_step:
+                self._finish("step_failure")
+            else:
+                self.h = max(h / 2.0, self.min_step)
+                self.use_hermite = False
+            return None
+        self.use_hermite = True
+        return _Step(h, v_new, t_new, bp_new, extra, it, angle)
+
+    def _correct(self, guess: np.ndarray, h: float, max_it: int, max_move: float
+                 ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
+        """Corrector from ``guess`` on the plane ``t . (v' - v) = h`` of the current point, then
+        the tangent and ``det [J; t^T]`` at the solution: the problem's compiled step if it has
+        one, else :func:`_newton` and :func:`_tangent_det`. Returns ``(v', ok, iterations, t',
+        det, extra)``; ``extra``: the constraints and test functions at ``v'`` if the compiled
+        step gave them (and its tangent is the one used), else None."""
+        sp, t = self.sp, self.t
+        if self.cstep is not None:
+            res = self.cstep(guess, t, self.v, h, self.sc, self.tol, max_it, max_move)
+            ok, it, n_rj, n_r, vv, JJ, t_ok, tt, d = res[:9]
+            sp.n_residual += n_rj + n_r
+            sp.n_jacobian += n_rj
+            if not ok:
+                return vv, False, it, None, 0.0, None
+            if not t_ok:  # singular bordered matrix: the SVD fallback
+                tt, d = _tangent_det(JJ, t)
+                return vv, True, it, tt, d, None
+            return vv, True, it, tt, d, (res[9], res[10]) if len(res) == 11 else None
+        vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.tol, max_it, max_move)
+        if not ok:
+            return vv, False, it, None, 0.0, None
+        tt, d = _tangent_det(JJ, t)
+        return vv, True, it, tt, d, None
+
+    def _point_on_step(self, h: float) -> tuple[np.ndarray, np.ndarray]:
+        """The point of the curve and its tangent at pseudo-arclength ``h`` of the current step
+        (for :func:`continuation.events.locate`): a corrector solve predicted by the Hermite
+        curve between the nearest points of the step already known."""
+        known, v, t = self.known, self.v, self.t
+        k = 1
+        while k < len(known) - 1 and known[k][0] < h:
+            k += 1
+        (ha, va, ta), (hb, vb, tb) = known[k - 1], known[k]
+        if hb > ha:
+            guess = hermite(va, ta, vb, tb, (h - ha) / (hb - ha))
+            guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
+        else:
+            guess = v + h * t
+        vv, ok, _, tt, _, _ = self._correct(guess, h, self.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not ok:
+            vv, ok, _, tt, _, _ = self._correct(v + h * t, h, self.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not ok:
+            raise ConvergenceError("corrector failed while locating a special point")
+        if ha < h < hb:
+            known.insert(k, (h, vv, tt))
+        return vv, tt
+
+    # --- one accepted step: boundary, events, closure, the new points, the next step length ----
+    def _advance(self, s: _Step) -> None:
+        """Everything after an accepted corrector step ``s``: where a constraint ends the
+        branch on it, the special points on it, whether it closes the branch; the points to
+        keep, and the next step length."""
+        sp = self.sp
+        self.known[:] = [(0.0, self.v, self.t), (s.h, s.v, s.t)]
+        # the constraints and test functions at the new point: from the compiled step if it gave them
+        g_new = s.extra[0] if s.extra is not None and sp.constraint_names else sp.constraints(s.v)
+        stop, v_b, t_b = self._boundary(s, g_new)
+        tests_new = s.extra[1] if s.extra is not None and sp.test_names else sp.tests(s.v, s.t)
+        events, at_new = self._special_points(s, stop, v_b, t_b, tests_new)
+        seg = _norm(s.v - self.v)  # the step's chord (also the arclength increment)
+        close_at = self._closure(s, seg)
+        if self._append(s, events, stop, close_at, at_new, seg):
+            return
+        self.prev = (self.v, self.t)
+        self.v, self.t, self.g, self.tests, self.bp = s.v, s.t, g_new, tests_new, s.det
+        self._adapt_step(s)
+
+    def _adapt_step(self, s: _Step) -> None:
+        """Step control after an accepted step: grow after an easy corrector (<= 3 Newton
+        iterations), keep after a moderate one, shrink after a hard one; and keep the next turn
+        of the tangent below ``max_angle`` (if it turns by ``angle`` over ``h``, about ``0.9
+        max_angle`` next)."""
+        factor = self.grow if s.iterations <= 3 else (1.0 if s.iterations <= 5 else 0.7)
+        if s.angle > 0:
+            factor = min(factor, 0.9 * self.max_angle / s.angle)
+        self.h = min(max(self.h * factor, self.min_step), self.max_step)
+
+    # --- boundary handling (constraints) ---------------------------------------------------
+    def _boundary(self, s: _Step, g_new: np.ndarray
+                  ) -> tuple[_Event | None, np.ndarray, np.ndarray]:
+        """Where the step leaves the constraints, if it does: ``(stop, v_b, t_b)``, the
+        boundary point that ends the branch (None if none) and the end of the part of the step
+        that counts (the boundary point, or the new point).
+
+        Each constraint ``j`` with ``g_j >= 0`` at the current point and ``< 0`` at the new one
+        is located, the earliest crossing (by linear interpolation) first; the others only if
+        they are still violated at the located point (ties go to the constraint listed first).
+        """
+        negative = np.nonzero(g_new < 0)[0]
+        if negative.size == 0:  # most steps
+            return None, s.v, s.t
+        sp, g = self.sp, self.g
+        stop = None
+        crossed = [j for j in negative if g[j] >= 0]
+        crossed.sort(key=lambda j: (g[j] / (g[j] - g_new[j]), j))
+        h_b, at_b, g_b = s.h, (s.v, s.t), g_new
+        while crossed:
+            j = crossed.pop(0)
+            found = self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
+            if found is not None:
+                hs, vs, ts = found
+            else:
+                try:
+                    hs, vs, ts = locate(self._point_on_step, lambda vv, tt, j=j: sp.constraints(vv)[j],
+                                        0.0, h_b, float(g[j]), float(g_b[j]), (self.v, self.t), at_b)
+                except (ConvergenceError, ValueError):
+                    hs, vs, ts = h_b, at_b[0], at_b[1]
+            # j is violated at the current stop point, so its zero comes first (ties included)
+            if stop is None or hs <= stop.h + 1e-9 * s.h:
+                stop = _Event(hs, "boundary", sp.constraint_names[j], vs, ts)
+                g_s = sp.constraints(vs)
+                crossed = [k for k in crossed if g_s[k] < 0]
+                h_b, at_b, g_b = hs, (vs, ts), g_s
+        return stop, at_b[0], at_b[1]
+
+    def _boundary_point(self, s: _Step, j: int, h_b: float, ga: float, gb: float
+                        ) -> tuple[float, np.ndarray, np.ndarray] | None:
+        """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
+        the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
+        for the linear and quadratic bounds of a box or a domain) from the Hermite point at the
+        linear interpolate of ``g_j``; None if it does not converge inside the step (the caller
+        then brackets with :func:`continuation.events.locate`)."""
+        if not (ga > 0 > gb):
+            return None
+        sp, v, t, h, tol = self.sp, self.v, self.t, s.h, self.tol
+        h0 = h_b * ga / (ga - gb)
+        uu = hermite(v, t, s.v, s.t, h0 / h) if h > 0 else v + h0 * t
+        gscale = max(1.0, abs(ga), abs(gb))
+        delta = 1e-6
+        eye = np.eye(uu.size) * delta
+        grad = None
+        for _ in range(8):
+            f, JJ = sp.residual_and_jacobian(uu)
+            gj = float(sp.constraints(uu)[j])
+            fn = _norm(f)
+            if not math.isfinite(fn) or not math.isfinite(gj):
+                return None
+            converged = fn <= tol and abs(gj) <= 8 * EPS * gscale
+            if grad is None:
+                # once: the bounds are linear or quadratic and the start is within O(h^4) of the
+                # point, so a fixed gradient converges as fast (the accuracy is set by the
+                # residual tests above, not by the gradient)
+                grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
+                                 for e in eye])
+            try:
+                du = _bordered_solve(JJ, grad, f, gj)
+            except np.linalg.LinAlgError:
+                return None
+            if converged:
+                if fn > _FLOOR:  # polish, as the corrector does
+                    u2 = uu - du
+                    if _norm(sp.residual(u2)) < fn and abs(float(sp.constraints(u2)[j])) <= 8 * EPS * gscale:
+                        uu = u2
+                hs = float(t @ (uu - v))
+                if not (-1e-12 * h <= hs <= h_b * (1 + 1e-12)):
+                    return None
+                return min(max(hs, 0.0), h_b), uu, tangent(JJ, t)
+            uu = uu - du
+        return None
+
+    # --- event location: folds, test functions, branch points -------------------------------
+    def _special_points(self, s: _Step, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray,
+                        tests_new: np.ndarray) -> tuple[list[_Event], list[tuple[str, str]]]:
+        """The special points strictly inside the step (up to the boundary ``v_b`` if ``stop``),
+        located, and ``at_new``: the ``(kind, detail)`` of the tests that are exactly 0.0 at the
+        new point.
+
+        Candidates are the tests that change sign over the step: the fold tests ``t_i``, the
+        problem's test functions, the branch-point test ``det [J; t^T]``. A sign change whose
+        values are both below ``event_floor`` is rounding noise. A test exactly 0.0 at the start
+        point of the branch (and not at the end of its first step) makes the start that
+        special point; a test exactly 0.0 at the new point (and not at the current one) makes
+        the new point that special point (the next step then starts from 0.0 and brackets
+        nothing, so it is reported once), unless a boundary cuts the step short.
+        """
+        sp, t, floor = self.sp, self.t, self.event_floor
+        kinds, details = self.kinds, self.details
+        candidates: list[tuple[str, str, Callable, float, float]] = []
+        at_start = len(self.pts) == 1 and kinds[0] == "start"
+        at_new: list[tuple[str, str]] = []
+        for i in self.fold_components:
+            pa, pb = float(t[i]), float(t_b[i])
+            if pa * pb < 0:
+                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
+            elif at_start and pa == 0.0 and abs(pb) > floor:
+                kinds[0], details[0] = "fold", str(i)
+            elif pb == 0.0 and abs(pa) > floor and stop is None:
+                at_new.append(("fold", str(i)))
+        tests, tests_b = self.tests, tests_new if stop is None else sp.tests(v_b, t_b)
+        for k in range(tests.size):
+            pa, pb = float(tests[k]), float(tests_b[k])
+            if pa * pb < 0:
+                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
+                                   pa, pb))
+            elif at_start and pa == 0.0 and abs(pb) > floor:
+                kinds[0], details[0] = "test", sp.test_names[k]
+            elif pb == 0.0 and abs(pa) > floor and stop is None:
+                at_new.append(("test", sp.test_names[k]))
+        if self.detect_branch_points:
+            bp, bp_b = self.bp, s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
+            if bp * bp_b < 0:
+                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt),
+                                   bp, bp_b))
+            elif bp_b == 0.0 and abs(bp) > floor and stop is None:
+                at_new.append(("branch_point", ""))
+        h_b = s.h if stop is None else stop.h
+        events: list[_Event] = []
+        for kind, name, phi, pa, pb in candidates:
+            if max(abs(pa), abs(pb)) > floor:
+                try:
+                    hs, vs, ts = locate(self._point_on_step, phi, 0.0, h_b, pa, pb,
+                                        (self.v, self.t), (v_b, t_b))
+                except (ConvergenceError, ValueError):
+                    continue  # a special point that cannot be located is not reported
+                # a special point at the end of the branch (within 1e-6 of the last step) is
+                # not reported separately from the end point
+                if stop is None or hs < stop.h - 1e-6 * s.h:
+                    events.append(_Event(hs, kind, name, vs, ts))
+        return events, at_new
+
+    # --- closure detection ---------------------------------------------------------------------
+    def _closure(self, s: _Step, seg: float) -> float | None:
+        """Pseudo-arclength on the step where the branch passes its start point again (within 5%
+        of the step's chord ``seg``, in the start's direction), or None. Only once the branch
+        has at least 4 points and has gone more than 3 steps' length."""
+        if not (self.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * s.h):
+            return None
+        v, v_start = self.v, self.v_start
+        # the distance to the segment is at least |v_start - v| - seg: most steps stop here
+        dist, lam = ((np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9
+                     else _segment_distance(v_start, v, s.v))
+        if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (s.v - v) @ self.t_start > 0:
+            return lam * s.h
+        return None
+
+    # --- the points kept ---------------------------------------------------------------------
+    def _append(self, s: _Step, events: list[_Event], stop: _Event | None, close_at: float | None,
+                at_new: list[tuple[str, str]], seg: float) -> bool:
+        """Append the step's points: the special points before the branch ends (at a boundary
+        or closure), then the end point or the new point; True if the branch ended."""
+        events.sort(key=lambda e: e.h)
+        limit = min(stop.h if stop is not None else np.inf, close_at if close_at is not None else np.inf)
+        for e in events:
+            if e.h < limit and self._add(e.v, e.t, e.kind, e.detail) is False:
+                self.end = "callback"  # the other special points of the step still come
+        if self.end == "callback":
+            self.done = True
+            return True
+        if close_at is not None and (stop is None or close_at <= stop.h):
+            self._add(self.v_start.copy(), self.t_start.copy(), "closed", "", call=False)
+            self.closed = True
+            self._finish("closed")
+            return True
+        if stop is not None:
+            if stop.h <= 1e-12 * s.h and len(events) == 0:  # the boundary is the current point itself
+                self.kinds[-1], self.details[-1] = stop.kind, stop.detail
+            else:
+                self._add(stop.v, stop.t, stop.kind, stop.detail)
+            self._finish("boundary")
+            return True
+        kind, detail = at_new[0] if at_new else ("regular", "")
+        if self._add(s.v, s.t, kind, detail, seg) is False:
+            self._finish("callback")
+            return True
+        return False
+
+    def _add(self, v: np.ndarray, t: np.ndarray, kind: str, detail: str, seg: float | None = None,
+             call: bool = True) -> bool | None:
+        """Append an accepted point (``seg``: its chord from the last one, if known) and tell the
+        callback; returns what the callback returned."""
+        self.pts.append(v)
+        self.tans.append(t)
+        self.kinds.append(kind)
+        self.details.append(detail)
+        self.arc.append(self.arc[-1] + (_norm(v - self.pts[-2]) if seg is None else seg))
+        if call and self.callback is not None:
+            return self.callback(v * self.sc, self.sp.unscaled_tangent(t), kind)
+        return None
+
+    # --- result assembly ---------------------------------------------------------------------
+    def _branch(self) -> Branch:
+        """The branch in the problem's variables, with the unscaled unit tangents."""
+        P = np.array(self.pts) * self.sc
+        T = np.array(self.tans) * self.sc  # the unscaled unit tangents, all at once
+        T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
+        return Branch(P, T, np.array(self.arc), self.kinds, self.details, self.closed, [self.end],
+                      self.n_newton, self.sp.n_residual, self.sp.n_jacobian)
 
 
 def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int = 1,
@@ -504,304 +807,14 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
     sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
     if sc.shape != u0.shape or np.any(sc <= 0):
         raise ValueError(f"scale must be {u0.size} positive numbers, got {scale!r}")
-    sp = _Scaled(problem, sc)
-    # the problem's compiled corrector (continuation.problem), if it has one and may use it
-    cstep = getattr(problem, "compiled_step", None) if compiled else None
-    if cstep is not None:
-        from . import compiled as _compiled
-    v = u0 / sc
-    n_newton = 0
-    if project_start:
-        v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
-        n_newton += it
-        if not ok:
-            raise ConvergenceError(f"the start point {u0} is not on the curve (||F|| > {tol:g} "
-                                   "after 30 Newton steps)")
-    g0 = sp.constraints(v)
-    # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
-    # errors) may sit a few ulp outside it: that is "on the boundary"
-    g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
-    if np.any(g0 < 0):
-        j = int(np.argmin(g0))
-        raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} "
-                         f"(value {g0[j]:.3g} < 0)")
-    if tangent0 is None:
-        t = tangent(sp.jacobian(v))
-    else:
-        t0 = np.asarray(tangent0, float) / sc
-        t = tangent(sp.jacobian(v), t0 / np.linalg.norm(t0))
-    t = direction * t
-    fold_components = tuple(int(i) for i in fold_components)
-
-    pts, tans, kinds, details, arc = [v.copy()], [t.copy()], ["start"], [""], [0.0]
-    v_start, t_start = v.copy(), t.copy()
-    tests = sp.tests(v, t)
-    bp = _bordered_det(sp.jacobian(v), t)
-    g = g0
-    h = step
-    end = "max_points"
-    closed = False
-    if callback is not None and callback(v * sc, sp.unscaled_tangent(t), "start") is False:
-        end = "callback"
-        max_points = 0
-
-    # points of the current step already corrected, (h, v, t) sorted by h: the predictor of a
-    # new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
-    # Brent's iterates close in on a special point one Newton step (or none) suffices
-    known: list[tuple[float, np.ndarray, np.ndarray]] = []
-
-    def corrector(guess: np.ndarray, h_: float, max_it: int, max_move: float
-                  ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
-        """Corrector from ``guess`` on the plane ``t . (v - v_k) = h_``, then the tangent and
-        ``det [J; t^T]`` at the solution: the problem's compiled step if it has one, else
-        :func:`_newton` and :func:`_tangent_det`. Returns ``(v, ok, iterations, t, det,
-        extra)``; ``extra``: the constraints and test functions at ``v`` if the compiled step
-        gave them (and its tangent is the one used), else None."""
-        if cstep is not None:
-            res = cstep(guess, t, v, h_, sc, tol, max_it, max_move)
-            ok_, it_, n_rj, n_r, vv, JJ, t_ok, tt, det = res[:9]
-            sp.n_residual += n_rj + n_r
-            sp.n_jacobian += n_rj
-            if not ok_:
-                return vv, False, it_, None, 0.0, None
-            if not t_ok:  # singular bordered matrix: the SVD fallback
-                tt, det = _tangent_det(JJ, t)
-                return vv, True, it_, tt, det, None
-            return vv, True, it_, tt, det, (res[9], res[10]) if len(res) == 11 else None
-        vv, ok_, it_, JJ = _newton(sp, guess, t, v, h_, tol, max_it, max_move)
-        if not ok_:
-            return vv, False, it_, None, 0.0, None
-        tt, det = _tangent_det(JJ, t)
-        return vv, True, it_, tt, det, None
-
-    def corrected(h_: float) -> tuple[np.ndarray, np.ndarray]:
-        k = 1
-        while k < len(known) - 1 and known[k][0] < h_:
-            k += 1
-        (ha, va, ta), (hb, vb, tb) = known[k - 1], known[k]
-        if hb > ha:
-            guess = hermite(va, ta, vb, tb, (h_ - ha) / (hb - ha))
-            guess = guess + (h_ - float(t @ (guess - v))) * t  # onto the plane exactly
-        else:
-            guess = v + h_ * t
-        vv, ok_, _, tt, _, _ = corrector(guess, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
-        if not ok_:
-            vv, ok_, _, tt, _, _ = corrector(v + h_ * t, h_, max_iter + 4, 4 * abs(h_) + 1e-12)
-        if not ok_:
-            raise ConvergenceError("corrector failed while locating a special point")
-        if ha < h_ < hb:
-            known.insert(k, (h_, vv, tt))
-        return vv, tt
-
-    def boundary_point(j: int, h_b: float, ga: float, gb: float
-                       ) -> tuple[float, np.ndarray, np.ndarray] | None:
-        """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
-        the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
-        for the linear and quadratic bounds of a box or a domain) from the Hermite point at the
-        linear interpolate of ``g_j``; None if it does not converge inside the step (the caller
-        then brackets with :func:`continuation.events.locate`)."""
-        if not (ga > 0 > gb):
-            return None
-        h0 = h_b * ga / (ga - gb)
-        uu = hermite(v, t, v_new, t_new, h0 / h) if h > 0 else v + h0 * t
-        gscale = max(1.0, abs(ga), abs(gb))
-        delta = 1e-6
-        eye = np.eye(uu.size) * delta
-        grad = None
-        for _ in range(8):
-            f, JJ = sp.residual_and_jacobian(uu)
-            gj = float(sp.constraints(uu)[j])
-            fn = _norm(f)
-            if not math.isfinite(fn) or not math.isfinite(gj):
-                return None
-            converged = fn <= tol and abs(gj) <= 8 * EPS * gscale
-            if grad is None:
-                # once: the bounds are linear or quadratic and the start is within O(h^4) of the
-                # point, so a fixed gradient converges as fast (the accuracy is set by the
-                # residual tests above, not by the gradient)
-                grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
-                                 for e in eye])
-            rhs = np.empty(f.size + 1)
-            rhs[:-1] = f
-            rhs[-1] = gj
-            try:
-                du = _solve(_bordered(JJ, grad), rhs)
-            except np.linalg.LinAlgError:
-                return None
-            if converged:
-                if fn > _FLOOR:  # polish, as the corrector does
-                    u2 = uu - du
-                    if _norm(sp.residual(u2)) < fn and abs(float(sp.constraints(u2)[j])) <= 8 * EPS * gscale:
-                        uu = u2
-                hs = float(t @ (uu - v))
-                if not (-1e-12 * h <= hs <= h_b * (1 + 1e-12)):
-                    return None
-                return min(max(hs, 0.0), h_b), uu, tangent(JJ, t)
-            uu = uu - du
-        return None
-
-    prev: tuple[np.ndarray, np.ndarray] | None = None  # the accepted point before v
-    use_hermite = True
-    while len(pts) < max_points:
-        if arc[-1] >= max_arclength:
-            end = "max_arclength"
-            break
-        # predictor: extrapolate the cubic Hermite curve of the last step (error O(h^3) to
-        # O(h^4) instead of the tangent's O(h^2)); the plain tangent after a failure
-        if cstep is not None:  # the same predictor, compiled
-            guess = _compiled.predict(v, t, *(prev if prev is not None else (v, t)),
-                                      prev is not None and use_hermite, h)
-        elif prev is not None and use_hermite:
-            d = _norm(v - prev[0])
-            guess = hermite(prev[0], prev[1], v, t, 1.0 + h / d) if d > 0 else v + h * t
-        else:
-            guess = v + h * t
-        v_new, ok, it, t_new, bp_new, extra = corrector(guess, h, max_iter, 2.0 * h + 1e-12)
-        n_newton += it
-        angle = 0.0
-        if ok:
-            angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
-            ok = angle <= max_angle or h <= min_step
-        if not ok:
-            if h <= min_step:
-                end = "step_failure"
-                break
-            h = max(h / 2.0, min_step)
-            use_hermite = False
-            continue
-        use_hermite = True
-
-        # --- special points between v (h = 0) and v_new (h) -----------------------------
-        known[:] = [(0.0, v, t), (h, v_new, t_new)]
-        events: list[tuple[float, str, str, np.ndarray, np.ndarray]] = []
-        # the constraints and test functions at v_new: from the compiled step if it gave them
-        g_new = extra[0] if extra is not None and sp.constraint_names else sp.constraints(v_new)
-        stop_event = None
-        crossed = [j for j in np.nonzero(g_new < 0)[0] if g[j] >= 0]
-        # the earliest crossing by linear interpolation first; the others only if they are
-        # already violated at the located point (ties go to the constraint listed first)
-        crossed.sort(key=lambda j: (g[j] / (g[j] - g_new[j]), j))
-        h_b, at_b, g_b = h, (v_new, t_new), g_new
-        while crossed:
-            j = crossed.pop(0)
-            found = boundary_point(j, h_b, float(g[j]), float(g_b[j]))
-            if found is not None:
-                hs, vs, ts = found
-            else:
-                try:
-                    hs, vs, ts = locate(corrected, lambda vv, tt, j=j: sp.constraints(vv)[j], 0.0, h_b,
-                                        float(g[j]), float(g_b[j]), (v, t), at_b)
-                except (ConvergenceError, ValueError):
-                    hs, vs, ts = h_b, at_b[0], at_b[1]
-            # j is violated at the current stop point, so its zero comes first (ties included)
-            if stop_event is None or hs <= stop_event[0] + 1e-9 * h:
-                stop_event = (hs, "boundary", sp.constraint_names[j], vs, ts)
-                g_s = sp.constraints(vs)
-                crossed = [k for k in crossed if g_s[k] < 0]
-                h_b, at_b, g_b = hs, (vs, ts), g_s
-        # other special points are looked for up to the boundary only
-        v_b, t_b = at_b
-        # candidates: only the test functions that change sign over the step
-        candidates: list[tuple[str, str, Callable, float, float]] = []
-        # a start point exactly at a special point (its test is 0.0 there, e.g. a start at a
-        # fold, where the tangent's component vanishes): no sign change to bracket, the start
-        # point itself is the special point
-        at_start = len(pts) == 1 and kinds[0] == "start"
-        # a test exactly 0.0 at the new point (and not at the current one): the new point is
-        # the special point (the next step then starts from 0.0 and brackets nothing, so it is
-        # reported once); only when the step is not cut short by a boundary
-        at_new: list[tuple[str, str]] = []
-        for i in fold_components:
-            pa, pb = float(t[i]), float(t_b[i])
-            if pa * pb < 0:
-                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
-            elif at_start and pa == 0.0 and abs(pb) > event_floor:
-                kinds[0], details[0] = "fold", str(i)
-            elif pb == 0.0 and abs(pa) > event_floor and stop_event is None:
-                at_new.append(("fold", str(i)))
-        tests_new = extra[1] if extra is not None and sp.test_names else sp.tests(v_new, t_new)
-        tests_b = tests_new if stop_event is None else sp.tests(v_b, t_b)
-        for k in range(tests.size):
-            pa, pb = float(tests[k]), float(tests_b[k])
-            if pa * pb < 0:
-                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
-                                   pa, pb))
-            elif at_start and pa == 0.0 and abs(pb) > event_floor:
-                kinds[0], details[0] = "test", sp.test_names[k]
-            elif pb == 0.0 and abs(pa) > event_floor and stop_event is None:
-                at_new.append(("test", sp.test_names[k]))
-        if detect_branch_points:
-            bp_b = bp_new if stop_event is None else _bordered_det(sp.jacobian(v_b), t_b)
-            if bp * bp_b < 0:
-                candidates.append(("branch_point", "", lambda vv, tt: _bordered_det(sp.jacobian(vv), tt),
-                                   bp, bp_b))
-            elif bp_b == 0.0 and abs(bp) > event_floor and stop_event is None:
-                at_new.append(("branch_point", ""))
-        for kind, name, phi, pa, pb in candidates:
-            if max(abs(pa), abs(pb)) > event_floor:
-                try:
-                    hs, vs, ts = locate(corrected, phi, 0.0, h_b, pa, pb, (v, t), at_b)
-                except (ConvergenceError, ValueError):
-                    continue  # a special point that cannot be located is not reported
-                # a special point at the end of the branch (within 1e-6 of the last step) is
-                # not reported separately from the end point
-                if stop_event is None or hs < stop_event[0] - 1e-6 * h:
-                    events.append((hs, kind, name, vs, ts))
-        h_stop = stop_event[0] if stop_event is not None else h
-        close_at = None
-        seg = _norm(v_new - v)  # the step's chord (also the arclength increment below)
-        if detect_closed and len(pts) >= 4 and arc[-1] > 3.0 * h:
-            # the distance to the segment is at least |v_start - v| - seg: most steps stop here
-            dist, lam = ((np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9
-                         else _segment_distance(v_start, v, v_new))
-            if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (v_new - v) @ t_start > 0:
-                close_at = lam * h
-        events.sort(key=lambda e: e[0])
-        limit = min(h_stop if stop_event is not None else np.inf, close_at if close_at is not None else np.inf)
-        for hs, kind, name, vs, ts in events:
-            if hs < limit:
-                pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
-                arc.append(arc[-1] + _norm(vs - pts[-2]))
-                if callback is not None and callback(vs * sc, sp.unscaled_tangent(ts), kind) is False:
-                    end = "callback"
-        if end == "callback":
-            break
-        if close_at is not None and (stop_event is None or close_at <= h_stop):
-            pts.append(v_start.copy()); tans.append(t_start.copy()); kinds.append("closed"); details.append("")
-            arc.append(arc[-1] + _norm(v_start - pts[-2]))
-            closed, end = True, "closed"
-            break
-        if stop_event is not None:
-            hs, kind, name, vs, ts = stop_event
-            if hs <= 1e-12 * h and len(events) == 0:  # the boundary is the current point itself
-                kinds[-1], details[-1] = kind, name
-                end = "boundary"
-                break
-            pts.append(vs); tans.append(ts); kinds.append(kind); details.append(name)
-            arc.append(arc[-1] + _norm(vs - pts[-2]))
-            if callback is not None:
-                callback(vs * sc, sp.unscaled_tangent(ts), kind)
-            end = "boundary"
-            break
-        kind_new, detail_new = at_new[0] if at_new else ("regular", "")
-        pts.append(v_new); tans.append(t_new); kinds.append(kind_new); details.append(detail_new)
-        arc.append(arc[-1] + seg)
-        if callback is not None and callback(v_new * sc, sp.unscaled_tangent(t_new), kind_new) is False:
-            end = "callback"
-            break
-        prev = (v, t)
-        v, t, g, tests, bp = v_new, t_new, g_new, tests_new, bp_new
-        # --- step control --------------------------------------------------------------
-        factor = grow if it <= 3 else (1.0 if it <= 5 else 0.7)
-        if angle > 0:
-            factor = min(factor, 0.9 * max_angle / angle)
-        h = min(max(h * factor, min_step), max_step)
-
-    P = np.array(pts) * sc
-    T = np.array(tans) * sc  # the unscaled unit tangents, all at once
-    T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
-    return Branch(P, T, np.array(arc), kinds, details, closed, [end], n_newton,
-                  sp.n_residual, sp.n_jacobian)
+    tracer = _Tracer(problem, u0, sc, direction=direction, tangent0=tangent0, step=step,
+                     min_step=min_step, max_step=max_step, max_points=max_points,
+                     max_arclength=max_arclength, tol=tol, max_iter=max_iter, max_angle=max_angle,
+                     grow=grow, fold_components=tuple(int(i) for i in fold_components),
+                     callback=callback, detect_closed=detect_closed,
+                     detect_branch_points=detect_branch_points, event_floor=event_floor,
+                     project_start=project_start, start_slack=start_slack, compiled=compiled)
+    return tracer.run()
 
 
 def trace_both(problem: ContinuationProblem, u0: Sequence[float], **options) -> Branch:

@@ -1,54 +1,342 @@
-"""Small dense linear algebra for compiled code: Gaussian elimination with partial pivoting.
+"""Small dense linear algebra of the continuation engine, written once for Python and numba.
 
-:func:`solve_dense` solves a small system in place, written with scalar loops: LAPACK calls from
-numba carry an overhead comparable to the work at this size. Its pieces :func:`swap_rows` and
-:func:`back_substitute` also serve :func:`continuation.compiled.solve_det`. Users outside this
-package: the compiled right-hand sides of the nonlinear models (:mod:`stability.nonlinear`),
-whose sliding and rolling spheres solve a 6 x 6 system (three angular accelerations, two
-horizontal unknowns, the normal force) at every evaluation.
+The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n`` (3 x 3 for a curve in
+``R^3``), where the call overhead of LAPACK, from Python or from numba, is larger than the work.
+Each building block here is written once and runs in both worlds: the functions are
+``numba.extending.register_jitable`` (a plain Python function when called from Python, compiled
+into the caller when called from ``@njit`` code), or, where the two worlds need a different
+storage, a Python function with a :func:`numba.extending.overload` for compiled code, both
+calling the one algorithm. Users:
 
-The functions are generic in the dtype: called with complex arrays they are compiled for
-complex128, which is what a complex-step Jacobian uses (the pivot choice uses ``abs`` and does
-not break analyticity). Generic: nothing here knows about tops.
+* the engine's Python path (:mod:`continuation.engine`): corrector, tangent, branch-point test;
+* the compiled corrector's building blocks (:mod:`continuation.compiled`, and through them a
+  problem's ``compiled_step``, e.g. :mod:`stability.linear.neutral_compiled`);
+* the compiled right-hand sides of the nonlinear models (:mod:`stability.nonlinear`), whose
+  sliding and rolling spheres solve a 6 x 6 system at every evaluation (:func:`solve_dense`).
+
+The algorithm (:func:`lu_solve`): Gaussian elimination with partial pivoting, the first largest
+``|a_ik|`` of a column as pivot (ties go to the upper row), the multipliers ``a_ik / a_kk``, a
+row skipped when its multiplier is exactly zero, back substitution, and the determinant as the
+signed product of the pivots. It stops with ``ok = False`` at a pivot that is zero or NaN, before
+dividing by it. Generic in the dtype: called from compiled code with complex arrays it is
+compiled for complex128 (a complex-step Jacobian; the pivot choice uses ``abs`` and does not break
+analyticity).
+
+Storage in each world, for speed (the operations, hence the numbers, are the same):
+Python works on nested lists (indexing a list is several times faster than indexing an array
+from Python), compiled code on the arrays. Two things differ by design between the worlds:
+:func:`norm` (Python: one BLAS dot product; compiled: a loop, not bit-identical to BLAS, so a
+problem's compiled step and the engine's Python path agree to rounding, not bit for bit); and
+systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
+elimination costs ``m^3 / 3`` Python operations).
+
+Caveat of numba's on-disk cache: a cached ``@njit`` function that calls these is not recompiled
+when only this file changes; delete the ``*.nbi``/``*.nbc`` files after editing it.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
+from numba.extending import overload, register_jitable
 
-__all__ = ["solve_dense", "swap_rows", "back_substitute"]
+__all__ = ["lu_solve", "solve_det", "bordered_solve", "bordered_det", "tangent_det", "norm",
+           "solve_dense", "PYTHON_LU_MAX"]
 
-
-@njit(cache=True)
-def swap_rows(a: np.ndarray, b: np.ndarray, i: int, j: int) -> None:
-    """Exchange rows ``i`` and ``j`` of the system ``a x = b`` in place (a pivoting step; also
-    used by :func:`continuation.compiled.solve_det`)."""
-    for k in range(a.shape[1]):
-        tmp = a[i, k]
-        a[i, k] = a[j, k]
-        a[j, k] = tmp
-    tmp = b[i]
-    b[i] = b[j]
-    b[j] = tmp
+#: largest system that the Python faces solve with :func:`lu_solve`; larger ones go to LAPACK
+PYTHON_LU_MAX = 4
 
 
-@njit(cache=True)
-def back_substitute(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve the upper-triangular system left in ``a`` by elimination, in place in ``b``
-    (returned); also used by :func:`continuation.compiled.solve_det`."""
-    n = b.shape[0]
-    for c in range(n - 1, -1, -1):
-        s = b[c]
-        for j in range(c + 1, n):
-            s -= a[c, j] * b[j]
-        b[c] = s / a[c, c]
-    return b
+# ------------------------------------------------------------------------------------------
+# the elimination
+# ------------------------------------------------------------------------------------------
+@register_jitable
+def lu_solve(A, x):
+    """Solve ``A y = x`` in place by Gaussian elimination with partial pivoting.
+
+    Parameters
+    ----------
+    A : rows of a square matrix, size m x m
+        Nested lists (Python) or a 2-D array (compiled); overwritten with the elimination.
+    x : vector of size m
+        Right-hand side; overwritten with the solution ``y``.
+
+    Returns
+    -------
+    ok : bool
+        False if a pivot is zero or NaN (``x`` is then not the solution).
+    det : float or complex
+        ``det A``, the signed product of the pivots; if not ``ok``, the offending pivot's
+        magnitude: 0.0 (the matrix is singular, its determinant 0 to rounding) or NaN.
+
+    Notes
+    -----
+    For m = 3 the same steps run unrolled (:func:`_lu_solve3`; 3 x 3 is the engine's most
+    frequent system, and the loop :func:`_lu_solve_loop` costs the Python path about three
+    times as much, docs/continuation.md); the two agree bit for bit
+    (tests/test_continuation_engine.py).
+    """
+    if len(x) == 3:
+        return _lu_solve3(A, x)
+    return _lu_solve_loop(A, x)
 
 
+@register_jitable
+def _lu_solve_loop(A, x):
+    """:func:`lu_solve` for any size, in loops."""
+    m = len(x)
+    det = 1.0
+    for k in range(m):
+        # pivot: the first largest |a_ik|, i >= k
+        p = k
+        big = abs(A[k][k])
+        for i in range(k + 1, m):
+            if abs(A[i][k]) > big:
+                p = i
+                big = abs(A[i][k])
+        if big == 0.0 or big != big:
+            return False, big
+        Ak = A[k]
+        if p != k:  # exchange rows k and p (columns < k are no longer read)
+            Ap = A[p]
+            for j in range(k, m):
+                tmp = Ak[j]
+                Ak[j] = Ap[j]
+                Ap[j] = tmp
+            tmp = x[k]
+            x[k] = x[p]
+            x[p] = tmp
+            det = -det
+        piv = Ak[k]
+        det *= piv
+        for i in range(k + 1, m):
+            Ai = A[i]
+            f = Ai[k] / piv
+            if f != 0.0:
+                for j in range(k + 1, m):
+                    Ai[j] -= f * Ak[j]
+                x[i] -= f * x[k]
+    for k in range(m - 1, -1, -1):
+        Ak = A[k]
+        acc = x[k]
+        for j in range(k + 1, m):
+            acc -= Ak[j] * x[j]
+        x[k] = acc / Ak[k]
+    return True, det
+
+
+@register_jitable
+def _lu_solve3(A, x):
+    """:func:`lu_solve` for m = 3: the operations of :func:`_lu_solve_loop` in the same order,
+    unrolled (``A`` is read, not written)."""
+    a00, a01, a02 = A[0]
+    a10, a11, a12 = A[1]
+    a20, a21, a22 = A[2]
+    b0, b1, b2 = x
+    det = 1.0
+    # column 0
+    big = abs(a00)
+    p = 0
+    if abs(a10) > big:
+        big = abs(a10)
+        p = 1
+    if abs(a20) > big:
+        big = abs(a20)
+        p = 2
+    if big == 0.0 or big != big:
+        return False, big
+    if p == 1:
+        a00, a01, a02, b0, a10, a11, a12, b1 = a10, a11, a12, b1, a00, a01, a02, b0
+        det = -det
+    elif p == 2:
+        a00, a01, a02, b0, a20, a21, a22, b2 = a20, a21, a22, b2, a00, a01, a02, b0
+        det = -det
+    det *= a00
+    f = a10 / a00
+    if f != 0.0:
+        a11 -= f * a01
+        a12 -= f * a02
+        b1 -= f * b0
+    f = a20 / a00
+    if f != 0.0:
+        a21 -= f * a01
+        a22 -= f * a02
+        b2 -= f * b0
+    # column 1
+    big = abs(a11)
+    if abs(a21) > big:
+        big = abs(a21)
+        a11, a12, b1, a21, a22, b2 = a21, a22, b2, a11, a12, b1
+        det = -det
+    if big == 0.0 or big != big:
+        return False, big
+    det *= a11
+    f = a21 / a11
+    if f != 0.0:
+        a22 -= f * a12
+        b2 -= f * b1
+    # column 2
+    big = abs(a22)
+    if big == 0.0 or big != big:
+        return False, big
+    det *= a22
+    # back substitution
+    y2 = b2 / a22
+    y1 = (b1 - a12 * y2) / a11
+    y0 = (b0 - a01 * y1 - a02 * y2) / a00
+    x[0] = y0
+    x[1] = y1
+    x[2] = y2
+    return True, det
+
+
+# ------------------------------------------------------------------------------------------
+# faces: arrays in, new arrays out (Python: nested lists inside; compiled: array copies)
+# ------------------------------------------------------------------------------------------
+def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
+    """Solve ``G x = b`` (:func:`lu_solve`, inputs untouched): ``(ok, x, det G)``.
+
+    ``ok`` is False at a zero or NaN pivot. From Python, a system larger than
+    :data:`PYTHON_LU_MAX` goes to LAPACK (``ok`` False if it reports a singular matrix).
+    """
+    m = b.shape[0]
+    if m > PYTHON_LU_MAX:
+        try:
+            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
+        except np.linalg.LinAlgError:
+            return False, b.copy(), 0.0
+    A = G.tolist()
+    x = b.tolist()
+    ok, d = lu_solve(A, x)
+    return ok, np.array(x), d
+
+
+@overload(solve_det, jit_options=dict(nogil=True, error_model="numpy"))
+def _solve_det_compiled(G, b):
+    def impl(G, b):
+        A = G.copy()
+        x = b.copy()
+        ok, d = lu_solve(A, x)
+        return ok, x, d
+    return impl
+
+
+def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float
+                   ) -> tuple[bool, np.ndarray, float]:
+    """Solve the bordered system ``[J; c^T] x = [f; r]`` (:func:`lu_solve`): ``(ok, x, det)``.
+
+    The engine's systems: the corrector's Newton step (``c`` the tangent, ``r`` the distance
+    from the plane), the tangent (``f = 0``, ``r = 1``), the location of a boundary (``c`` the
+    constraint's gradient). ``J`` has shape (n, n+1), ``c`` (n+1,), ``f`` (n,); ``det`` is
+    ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
+    :data:`PYTHON_LU_MAX` goes to LAPACK.
+    """
+    m = J.shape[1]
+    if m > PYTHON_LU_MAX:
+        G = np.empty((m, m))
+        G[:-1] = J
+        G[-1] = c
+        b = np.empty(m)
+        b[:-1] = f
+        b[-1] = r
+        return solve_det(G, b)
+    A = J.tolist()
+    A.append(c.tolist())
+    x = f.tolist()
+    x.append(r)
+    ok, d = lu_solve(A, x)
+    return ok, np.array(x), d
+
+
+@overload(bordered_solve, jit_options=dict(nogil=True, error_model="numpy"))
+def _bordered_solve_compiled(J, c, f, r):
+    def impl(J, c, f, r):
+        n, m = J.shape
+        G = np.empty((m, m))
+        x = np.empty(m)
+        for i in range(n):
+            for j in range(m):
+                G[i, j] = J[i, j]
+            x[i] = f[i]
+        for j in range(m):
+            G[n, j] = c[j]
+        x[n] = r
+        ok, d = lu_solve(G, x)
+        return ok, x, d
+    return impl
+
+
+def bordered_det(J: np.ndarray, c: np.ndarray) -> float:
+    """``det [J; c^T]`` by :func:`lu_solve` (its pivots; 0.0 at a zero pivot), from Python;
+    LAPACK above :data:`PYTHON_LU_MAX`."""
+    m = J.shape[1]
+    if m > PYTHON_LU_MAX:
+        G = np.empty((m, m))
+        G[:-1] = J
+        G[-1] = c
+        return float(np.linalg.det(G))
+    A = J.tolist()
+    A.append(c.tolist())
+    return lu_solve(A, [0.0] * m)[1]
+
+
+def norm(x: np.ndarray) -> float:
+    """Euclidean norm of a short vector: ``sqrt(x . x)`` (cheaper than ``numpy.linalg.norm``
+    for a few entries). Compiled: a loop (its own summation, so the two worlds agree to
+    rounding)."""
+    return math.sqrt(float(x @ x))
+
+
+@overload(norm, jit_options=dict(nogil=True, error_model="numpy"))
+def _norm_compiled(x):
+    def impl(x):
+        s = 0.0
+        for i in range(x.shape[0]):
+            s += x[i] * x[i]
+        return math.sqrt(s)
+    return impl
+
+
+# ------------------------------------------------------------------------------------------
+# the bordered tangent and the branch-point test
+# ------------------------------------------------------------------------------------------
+@register_jitable
+def tangent_det(J, t_ref):
+    """Unit null vector ``t`` of ``J`` (n, n+1), oriented by ``t_ref``, and ``det [J; t^T]``.
+
+    The bordered solve ``[J; t_ref^T] y = e_(n+1)`` gives ``J y = 0`` and ``t_ref . y = 1``, so
+    ``t = y / |y|`` has ``t . t_ref > 0``. The branch-point test costs nothing more: ``det [J;
+    c^T]`` is linear in ``c``, ``c . g`` with ``g`` the vector of cofactors, and ``J g = 0`` (a
+    repeated row), so ``g = det [J; t^T] t``; the pivots of the solve give ``det [J; t_ref^T] =
+    t_ref . g = det [J; t^T] / |y|``. ``det [J; t^T]`` changes sign at a simple branch point
+    (Allgower & Georg, *Introduction to Numerical Continuation Methods*, ch. 8).
+
+    Returns
+    -------
+    ok : bool
+        False if the bordered matrix is singular (``t_ref`` orthogonal to the null space, or
+        ``J`` rank-deficient); the caller then needs another way (the engine: the SVD).
+    t : numpy.ndarray, shape (n+1,)
+    det : float
+        ``det [J; t^T]`` (0.0 if not ``ok``).
+    """
+    ok, y, det_ref = bordered_solve(J, t_ref, np.zeros(J.shape[0]), 1.0)
+    if not ok:
+        return False, y, 0.0
+    ny = norm(y)
+    if not math.isfinite(ny) or ny == 0.0:
+        return False, y, 0.0
+    return True, y / ny, det_ref * ny
+
+
+# ------------------------------------------------------------------------------------------
+# in place, for compiled code (the nonlinear models' right-hand sides)
+# ------------------------------------------------------------------------------------------
 @njit(cache=True)
 def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve ``a x = b`` in place by Gaussian elimination with partial pivoting.
+    """Solve ``a x = b`` in place by :func:`lu_solve` (compiled; float or complex).
 
     Parameters
     ----------
@@ -60,24 +348,10 @@ def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        The solution ``x`` (the array ``b``).
+        The solution ``x`` (the array ``b``); all NaN if a pivot is zero or NaN (an integrator
+        sees a non-finite derivative and rejects the step).
     """
-    n = b.shape[0]
-    for c in range(n):
-        piv = c
-        big = abs(a[c, c])
-        for r in range(c + 1, n):
-            v = abs(a[r, c])
-            if v > big:
-                big = v
-                piv = r
-        if piv != c:
-            swap_rows(a, b, c, piv)
-        inv = 1.0 / a[c, c]
-        for r in range(c + 1, n):
-            m = a[r, c] * inv
-            if m != 0:
-                for j in range(c + 1, n):
-                    a[r, j] -= m * a[c, j]
-                b[r] -= m * b[c]
-    return back_substitute(a, b)
+    ok, _ = lu_solve(a, b)
+    if not ok:
+        b[:] = np.nan
+    return b

@@ -1,28 +1,41 @@
-"""The problem protocol of the continuation engine.
+"""The problem protocol of the continuation engine: what a client writes.
 
 A *continuation problem* is a smooth map ``F: R^(n+1) -> R^n`` whose zero set near a regular
-point is a curve. The engine (:mod:`continuation.engine`) needs only:
+point is a curve; the continuation parameter is one of the ``n + 1`` unknowns (as in pacopy or
+AUTO, with the parameter not singled out). A problem is any object with the attributes below:
+the engine (:func:`continuation.trace`, :func:`continuation.trace_both`,
+:func:`continuation.project`, :func:`continuation.correct`) looks the optional ones up by name
+and knows nothing else about it. All arrays are float64 NumPy arrays in the problem's own
+variables ``u``; the engine measures lengths in ``v = u / scale`` (``trace(..., scale=)``) and
+does the scaling itself. A worked example: docs/continuation.md, "How to write a problem".
+
+Required:
 
 ``residual(u) -> ndarray (n,)``
     ``F(u)``. Its size defines the accuracy of the traced points: the corrector iterates until
     ``||F(u)||_2 <= tol``, so a client should scale ``F`` to be ``O(1)`` (for instance a
     relative backward error).
-``jacobian(u) -> ndarray (n, n+1)`` (optional)
+
+Optional:
+
+``jacobian(u) -> ndarray (n, n+1)``
     ``dF/du``. Accuracy of the Jacobian only affects the convergence rate of Newton's method
     and the tangent (hence where folds are located, see :mod:`continuation.events`); without
     it the engine uses central differences (:func:`finite_difference_jacobian`).
-
-and, optionally,
-
-``test_function_names`` and ``test_functions(u, tangent) -> ndarray``
-    Scalars whose sign changes along the curve mark special points; the engine locates each
-    change exactly (:mod:`continuation.events`). Folds (turning points of a component of
-    ``u``) need no test function: ask for them with ``fold_components``.
-``constraint_names`` and ``constraints(u) -> ndarray``
-    Values ``g_j(u)`` that must stay ``>= 0``; the branch ends exactly where the first one
-    reaches zero (bounds of a box, edges of a physical domain).
 ``residual_and_jacobian(u) -> (ndarray (n,), ndarray (n, n+1))``
-    Both at once, when that is cheaper than two calls.
+    Both at once, when that is cheaper than two calls (the corrector asks for both at every
+    Newton iterate); without it the engine calls the two methods.
+``test_function_names`` (tuple of str) and ``test_functions(u, t) -> ndarray (len(names),)``
+    Scalars whose sign changes along the curve mark special points; the engine locates each
+    change exactly (:mod:`continuation.events`) and marks the point ``"test"`` with the
+    function's name as detail. ``t`` is the unit tangent at ``u`` (problem variables), for
+    tests that need it. Folds (turning points of a component of ``u``) need no test function:
+    ask for them with ``trace(..., fold_components=(i, ...))``; branch points (``det [J; t^T]``
+    changes sign) are found without one too.
+``constraint_names`` (tuple of str) and ``constraints(u) -> ndarray (len(names),)``
+    Values ``g_j(u)`` that must stay ``>= 0``; the branch ends exactly where the first one
+    reaches zero (kind ``"boundary"``, the constraint's name as detail): bounds of a box,
+    edges of a physical domain. A start point must satisfy them (to ``start_slack``).
 ``compiled_step(guess, t_plane, anchor, h, scale, tol, max_iter, max_move) -> tuple``
     A compiled corrector (numba), used by :func:`continuation.trace` for every step and for
     every corrector solve while locating special points; absent or None: the engine's Python
@@ -46,15 +59,22 @@ and, optionally,
     ``tangent_ok`` False (singular bordered matrix) makes the engine take the tangent from
     the SVD of ``J``. Optionally two more values, ``(..., det, g, tests)``: the problem's
     ``constraints(u)`` and ``test_functions(u, t)`` at ``u = v * scale`` (when ``ok``; the
-    same numbers the methods give), which the engine then does not ask for separately. It must solve the same equations as ``residual`` (which the engine
-    still uses to project the start point and to end a branch on a constraint). Compiled
-    building blocks with the Python path's operations are in :mod:`continuation.compiled`;
-    :mod:`stability.linear.neutral_compiled` is an example. The engine cannot take a problem's
-    compiled residual and run a generic compiled loop on it: numba does not cache a function
-    that receives another compiled function as an argument, and the dispatch costs
-    microseconds per call; so the problem owns its loop.
+    same numbers the methods give), which the engine then does not ask for separately. It
+    must solve the same equations as ``residual`` (which the engine still uses to project the
+    start point and to end a branch on a constraint). The building blocks, the Python path's
+    own functions compiled, are in :mod:`continuation.compiled` (one Newton update with the
+    convergence tests, the bordered tangent, the norm), so that the loop is a few lines:
+    ``HopfWithHook`` in tests/test_continuation_engine.py, or
+    :mod:`stability.linear.neutral_compiled`. The engine cannot take a problem's compiled
+    residual and run a generic compiled loop on it: numba does not cache a function that
+    receives another compiled function as an argument, and the dispatch costs microseconds
+    per call; so the problem owns its loop.
 
-The engine knows nothing else about the problem.
+Rules: the methods are functions of their arguments only. The engine calls them at points of
+its choosing (predictions, Newton iterates, points inside a step while it locates special
+points), as often and in whatever order it needs, and relies on the same ``u`` giving the same
+numbers (the traced points are reproducible bit for bit). ``F``, its Jacobian, the test
+functions, the constraints and ``compiled_step`` describe one and the same curve.
 """
 
 from __future__ import annotations
@@ -69,7 +89,12 @@ __all__ = ["ContinuationProblem", "finite_difference_jacobian", "problem_dimensi
 
 @runtime_checkable
 class ContinuationProblem(Protocol):
-    """Minimal protocol: a residual ``F: R^(n+1) -> R^n`` (see the module docstring)."""
+    """Minimal protocol: a residual ``F: R^(n+1) -> R^n``.
+
+    The optional members (``jacobian``, ``residual_and_jacobian``, ``test_function_names`` and
+    ``test_functions``, ``constraint_names`` and ``constraints``, ``compiled_step``) and the
+    rules are in the docstring of :mod:`continuation.problem`.
+    """
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """Return ``F(u)``, shape ``(n,)``."""

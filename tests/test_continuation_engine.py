@@ -10,6 +10,8 @@ from an exact Jacobian, so 1e-12 leaves a margin of ten.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -191,30 +193,190 @@ def test_dense_errors():
         dense([1, 2, 3])
 
 
-def test_compiled_building_blocks_match_the_python_twins():
-    """continuation.compiled against the engine's Python code (the same operations: the solve
-    and its determinant agree bit for bit; the tangent and the Hermite predictor to rounding,
-    their norms being summed in another order)."""
-    from continuation import compiled
-    from continuation.engine import _solve_det, _tangent_det, hermite
+def _bits(x):
+    """The bit patterns of a float array (so that NaN and -0.0 compare too)."""
+    return np.asarray(x, dtype=float).view(np.uint64)
+
+
+def _random_systems(rng, m, count):
+    """Random m x m systems, with ties in the pivot column, exact zeros of either sign and
+    singular matrices among them."""
+    for _ in range(count):
+        G, b = rng.normal(size=(m, m)), rng.normal(size=m)
+        r = rng.random()
+        if r < 0.2:
+            G[rng.integers(m), rng.integers(m)] = 0.0
+        elif r < 0.3:
+            G[:, 0] = np.round(G[:, 0])  # ties for the first pivot
+        elif r < 0.35:
+            G[rng.integers(m)] = 0.0  # singular
+        elif r < 0.4:
+            G[rng.integers(m), rng.integers(m)] = -0.0
+        yield G, b
+
+
+def test_unrolled_3x3_elimination_is_the_loop():
+    """continuation.linalg solves 3 x 3 systems (the engine's most frequent) unrolled, for the
+    Python path's speed. Reference: the loop version of the same elimination
+    (``_lu_solve_loop``), a second coding of it. They must agree bit for bit (the same
+    operations in the same order), on ties in the pivot column, zero multipliers, zeros of
+    either sign and singular matrices too; in Python and compiled."""
+    from numba import njit
+
+    from continuation.linalg import _lu_solve3, _lu_solve_loop
+
+    @njit
+    def both(G, b):
+        A1, x1, A2, x2 = G.copy(), b.copy(), G.copy(), b.copy()
+        ok1, d1 = _lu_solve3(A1, x1)
+        ok2, d2 = _lu_solve_loop(A2, x2)
+        return ok1, d1, x1, ok2, d2, x2
+
+    rng = np.random.default_rng(5)
+    n_singular = 0
+    for G, b in _random_systems(rng, 3, 2000):
+        x1, x2 = b.tolist(), b.tolist()
+        ok1, d1 = _lu_solve3(G.tolist(), x1)
+        ok2, d2 = _lu_solve_loop(G.tolist(), x2)
+        assert ok1 == ok2 and _bits(d1) == _bits(d2)
+        n_singular += not ok1
+        if ok1:
+            assert np.array_equal(_bits(x1), _bits(x2))
+        c1, e1, y1, c2, e2, y2 = both(G, b)
+        assert (c1, _bits(e1)) == (ok1, _bits(d1)) and (c2, _bits(e2)) == (ok1, _bits(d1))
+        if ok1:
+            assert np.array_equal(_bits(y1), _bits(x1)) and np.array_equal(_bits(y2), _bits(x1))
+    assert n_singular > 50  # the singular cases were exercised
+
+
+@pytest.mark.parametrize("m", [2, 3, 4, 5])
+def test_small_solves_against_lapack(m):
+    """continuation.linalg's solves and determinants, from Python (lists; LAPACK itself above
+    PYTHON_LU_MAX = 4) and compiled (continuation.compiled), against LAPACK
+    (numpy.linalg.solve and det, another implementation of LU with partial pivoting).
+    Tolerances: Gaussian elimination with partial pivoting is backward stable, residual
+    ``||G x - b|| <= c m eps ||G|| ||x||`` with a small growth factor (c = 8 is generous at
+    these sizes); determinants to 1e-13 relative, a few roundings per pivot over m <= 5 pivots
+    of well-conditioned matrices (condition < 1e4, checked). The Python and compiled faces do
+    the same operations (up to LAPACK above PYTHON_LU_MAX), so below it they agree bit for
+    bit: that is what lets the engine's two paths give the same points."""
+    from continuation import compiled, linalg
+
+    rng = np.random.default_rng(100 + m)
+    eps = np.finfo(float).eps
+    for _ in range(200):
+        G, b = rng.normal(size=(m, m)), rng.normal(size=m)
+        if np.linalg.cond(G) > 1e4:
+            continue
+        det_ref = np.linalg.det(G)
+        for ok, x, d in (linalg.solve_det(G, b), compiled.solve_det(G, b)):
+            assert ok
+            assert np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
+            assert abs(d - det_ref) <= 1e-13 * abs(det_ref)
+        J, c, f, r = G[:-1], G[-1], b[:-1], float(b[-1])
+        ok, x, d = linalg.bordered_solve(J, c, f, r)
+        assert ok and np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
+        assert abs(linalg.bordered_det(J, c) - det_ref) <= 1e-13 * abs(det_ref)
+        if m <= linalg.PYTHON_LU_MAX:
+            okc, xc, dc = compiled.solve_det(G, b)
+            assert np.array_equal(_bits(xc), _bits(linalg.solve_det(G, b)[1]))
+            assert _bits(dc) == _bits(linalg.solve_det(G, b)[2]) == _bits(d)
+            assert np.array_equal(_bits(x), _bits(xc))
+    # an exactly singular matrix: no solution, determinant 0.0
+    S = np.ones((m, m))
+    assert not linalg.solve_det(S, np.ones(m))[0] and not compiled.solve_det(S, np.ones(m))[0]
+    assert linalg.bordered_det(S[:-1], S[-1]) == 0.0
+
+
+def test_bordered_tangent_and_branch_point_test():
+    """continuation.linalg.tangent_det against its definition: ``J t = 0`` (to rounding, ``m
+    eps ||J||``), ``|t| = 1``, ``t . t_ref > 0``, and ``det [J; t^T]`` against LAPACK's
+    determinant of the bordered matrix (1e-12 relative: the test comes from the pivots of the
+    solve with ``t_ref`` and the norm of the solution, a few more roundings than a plain
+    determinant). Compiled and Python agree to rounding (1e-14: the norm is a BLAS dot product
+    in Python, a loop compiled). With ``t_ref`` orthogonal to the null space the bordered
+    matrix is singular: ``ok`` is False, and the engine takes the tangent from the SVD."""
+    from continuation import compiled, linalg
+    from continuation.engine import _tangent_det
 
     rng = np.random.default_rng(11)
-    for m in (2, 3, 4):
+    eps = np.finfo(float).eps
+    for m in (2, 3, 4, 5):
         for _ in range(50):
-            G, b = rng.normal(size=(m, m)), rng.normal(size=m)
-            x, det = _solve_det(G, b)
-            ok, xc, detc = compiled.solve_det(G, b)
-            assert ok and np.array_equal(x, xc) and det == detc
             J, t_ref = rng.normal(size=(m - 1, m)), rng.normal(size=m)
-            t, d = _tangent_det(J, t_ref)
-            ok, tc, dc = compiled.tangent_det(J, t_ref)
-            assert ok and np.allclose(tc, t, rtol=0, atol=1e-14) and abs(dc - d) <= 1e-13 * abs(d)
-    assert not compiled.solve_det(np.zeros((3, 3)), np.ones(3))[0]
-    p0, t0, p1, t1 = (rng.normal(size=3) for _ in range(4))
-    h = 0.3
-    ref = hermite(p0, t0, p1, t1, 1.0 + h / np.linalg.norm(p1 - p0))
-    assert np.allclose(compiled.predict(p1, t1, p0, t0, True, h), ref, rtol=0, atol=1e-14)
-    assert np.array_equal(compiled.predict(p1, t1, p0, t0, False, h), p1 + h * t1)
+            ok, t, d = linalg.tangent_det(J, t_ref)
+            assert ok
+            assert np.linalg.norm(J @ t) <= 4 * m * eps * np.linalg.norm(J, 2)
+            assert abs(np.linalg.norm(t) - 1) <= 4 * eps and t @ t_ref > 0
+            ref = np.linalg.det(np.vstack([J, t]))
+            assert abs(d - ref) <= 1e-12 * abs(ref)
+            okc, tc, dc = compiled.tangent_det(J, t_ref)
+            assert okc and np.max(np.abs(tc - t)) <= 1e-14 and abs(dc - d) <= 1e-13 * abs(d)
+    J = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])  # null vector e_3
+    ok, _, _ = linalg.tangent_det(J, np.array([1.0, 0.0, 0.0]))
+    assert not ok and not compiled.tangent_det(J, np.array([1.0, 0.0, 0.0]))[0]
+    t, d = _tangent_det(J, np.array([1.0, 0.0, 0.0]))  # the SVD fallback
+    assert np.allclose(np.abs(t), [0, 0, 1], atol=0) and abs(d) == 1.0
+
+
+def test_hermite_predictor_on_a_line_and_a_circle():
+    """The cubic Hermite curve (continuation.interpolation), Python and compiled. References:
+    on a straight line with its own direction as tangents the chord-length Hermite curve is the
+    line, ``H(tau) = p0 + tau (p1 - p0)`` (``h01 + h10 + h11 = tau``), so the predictor
+    extrapolates exactly, to ``v + h e`` (to rounding, 4 eps of the coordinates); on the unit
+    circle (arc 2a, exact tangents) the midpoint lies at radius ``cos a + sin(a)^2 / 2``
+    (tests above). Without the last step, or after a rejected one, the predictor is the
+    tangent ``v + h t`` exactly. Compiled and Python agree to rounding (their norms are
+    summed differently)."""
+    from continuation import compiled
+    from continuation.interpolation import hermite, predict
+
+    rng = np.random.default_rng(2)
+    eps = np.finfo(float).eps
+    for _ in range(20):
+        p0, e = rng.normal(size=3), rng.normal(size=3)
+        e /= np.linalg.norm(e)
+        d, h = rng.uniform(0.1, 1.0), rng.uniform(0.01, 0.5)
+        p1 = p0 + d * e
+        for P in (predict, compiled.predict):
+            guess = P(p1, e, p0, e, True, h)
+            assert np.max(np.abs(guess - (p1 + h * e))) <= 8 * eps * (1 + np.max(np.abs(p1)))
+            assert np.array_equal(P(p1, e, p0, e, False, h), p1 + h * e)
+        taus = np.array([0.0, 0.25, 0.5, 1.0, 1.5])
+        line = hermite(p0, e, p1, e, taus)
+        assert np.max(np.abs(line - (p0 + np.outer(taus, p1 - p0)))) <= 8 * eps * (1 + np.max(np.abs(p1)))
+        t0, t1 = rng.normal(size=3), rng.normal(size=3)
+        assert np.max(np.abs(compiled.predict(p1, t1, p0, t0, True, h) - predict(p1, t1, p0, t0, True, h))) <= 1e-14
+    a = 0.3
+    p0, p1 = np.array([np.cos(a), -np.sin(a)]), np.array([np.cos(a), np.sin(a)])
+    t0, t1 = np.array([np.sin(a), np.cos(a)]), np.array([-np.sin(a), np.cos(a)])
+    mid = hermite(p0, t0, p1, t1, 0.5)
+    assert abs(mid[0] - (np.cos(a) + np.sin(a) ** 2 / 2)) <= 1e-15 and abs(mid[1]) <= 1e-16
+
+
+def test_solve_dense_complex_step_and_singular():
+    """continuation.linalg.solve_dense, the nonlinear models' compiled 6 x 6 solve, in float
+    and complex. References: LAPACK (backward error as above); the complex-step derivative of
+    ``x(s) = G(s)^-1 b`` through it against the closed form ``x' = -G^-1 G' x`` (the pivot
+    choice uses ``abs`` and an imaginary part of 1e-30 does not change it, so the step is exact
+    to rounding: 1e-12 relative for these condition numbers < 1e4). A singular matrix gives
+    NaN (an integrator then rejects the step) rather than an exception or a silent number."""
+    from continuation.linalg import solve_dense
+
+    rng = np.random.default_rng(3)
+    eps = np.finfo(float).eps
+    for _ in range(50):
+        G, dG, b = rng.normal(size=(6, 6)), rng.normal(size=(6, 6)), rng.normal(size=6)
+        if np.linalg.cond(G) > 1e4:
+            continue
+        x = solve_dense(G.copy(), b.copy())
+        assert np.linalg.norm(G @ x - b) <= 48 * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
+        xc = solve_dense(G + 1e-30j * dG, b.astype(complex))
+        deriv = -np.linalg.solve(G, dG @ np.linalg.solve(G, b))
+        assert np.max(np.abs(xc.imag / 1e-30 - deriv)) <= 1e-12 * np.max(np.abs(deriv))
+        assert np.max(np.abs(xc.real - x)) <= 4 * eps * np.max(np.abs(x))  # the real solve, to rounding
+    assert np.isnan(solve_dense(np.ones((6, 6)), np.ones(6))).all()
+    assert np.isnan(solve_dense(np.ones((6, 6), complex), np.ones(6, complex))).all()
 
 
 class HopfWithHook(HopfNormalForm):
@@ -301,3 +463,60 @@ def test_special_point_exactly_on_an_accepted_point_is_reported_once():
     np.testing.assert_array_equal(br.points, first.points)  # the same steps
     assert br.kinds.count("test") == 1 and br.kinds[3] == "test" and br.details[3] == "x - x_event"
     assert seen.count("test") == 1
+
+
+def test_the_docs_example_problem():
+    """docs/continuation.md's "How to write a problem" example, run as written (the code block
+    and its printed output). References, closed forms of ``x^3 - x - lam = 0``: folds in lam at
+    ``x = -+1/sqrt(3)``, ``lam = +-2/(3 sqrt 3)``; the test function x changes sign at the
+    origin; the branch ends at ``x = -+1.5``, ``lam = -+1.875``. Tolerances: as the other tests
+    of this module (1e-13 for coordinates; a fold's x, off by about the tangent's rounding over
+    the curvature, 1e-12); the printed output matches to its 12 decimals."""
+    import contextlib
+    import io
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "continuation.md").read_text()
+    section = text.split("## How to write a problem", 1)[1].split("\n## ", 1)[0]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    printed = section.split("```python\n", 1)[1].split("```\n", 2)[2].split("```", 1)[0]
+    ns: dict = {}
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "docs/continuation.md", "exec"), ns)
+    assert out.getvalue().split() == printed.split()
+    br = ns["branch"]
+    lam, x = br.points.T
+    assert np.max(np.abs(x**3 - x - lam)) <= 1e-13 and br.end_reasons == ["boundary", "boundary"]
+    fold = br.points[[k == "fold" for k in br.kinds]]
+    assert len(fold) == 2
+    fold = fold[np.argsort(fold[:, 1])]
+    r = 1 / np.sqrt(3)
+    assert np.allclose(fold[:, 1], [-r, r], rtol=0, atol=1e-12)
+    assert np.allclose(fold[:, 0], [2 * r / 3, -2 * r / 3], rtol=0, atol=1e-13)
+    (test,) = br.points[[k == "test" for k in br.kinds]]
+    assert np.max(np.abs(test)) <= 1e-13
+    assert np.allclose(br.points[[0, -1]], [[-1.875, -1.5], [1.875, 1.5]], rtol=0, atol=1e-13)
+
+
+def test_python_path_compiles_nothing():
+    """The engine's Python path (a problem without ``compiled_step``, or ``compiled=False``)
+    runs the building blocks as plain Python: it imports no compiled module and compiles no
+    numba function, so a cold start pays no compilation. Checked in a fresh interpreter (this
+    test process has compiled them already): the dispatchers of continuation.linalg and
+    continuation.compiled have no compiled signature after a traced circle."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np, continuation\n"
+        "from continuation import linalg\n"
+        "class Circle:\n"
+        "    def residual(self, u): return np.array([u[0]**2 + u[1]**2 - 1.0])\n"
+        "br = continuation.trace(Circle(), [1.0, 0.0], fold_components=(0, 1))\n"
+        "assert br.closed\n"
+        "assert 'continuation.compiled' not in sys.modules\n"
+        "assert not linalg.solve_dense.signatures\n"
+        "print('ok')\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
