@@ -246,10 +246,11 @@ def bound_holds(lower, upper, strict, slack):
 
     Written as the sign of ``upper * slack - lower``, which for finite floats is exactly the
     comparison (a difference of two floats is zero only if they are equal); NaN fails.
-    Branch-free (``&``, ``|``): floats, numpy arrays, numba.
+    Floats, numpy arrays, numba (``strict`` is a constant of the table, no data-dependent
+    branch).
     """
     m = upper * slack - lower
-    return (m > 0.0) | ((m == 0.0) & (not strict))
+    return m > 0.0 if strict else m >= 0.0
 
 
 @register_jitable

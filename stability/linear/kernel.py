@@ -130,12 +130,12 @@ def _mod2(z):
 @njit(**_JIT)
 def _newton(c3, c2, c1, c0, r, iterations):
     """Newton steps on ``p``, each kept only if ``|p|`` drops."""
-    p, d1, _ = horner_scheme((c3, c2, c1, c0), r)
+    p, d1, _ = horner_scheme((c3, c2, c1, c0), r, 1)
     for _ in range(iterations):
         if d1 == 0:
             break
         trial = r - p / d1
-        pt, dt, _ = horner_scheme((c3, c2, c1, c0), trial)
+        pt, dt, _ = horner_scheme((c3, c2, c1, c0), trial, 1)
         if not _mod2(pt) < _mod2(p):
             break
         r, p, d1 = trial, pt, dt
@@ -228,7 +228,7 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     Newton's step on ``p`` with the other roots divided out (so nearly colliding roots stay
     apart). Returns the new root and ``|step|^2 - 1e-16 |r|^2`` (> 0: a relative step above
     1e-8)."""
-    p = horner_scheme((c3, c2, c1, c0), r)[0]
+    p = horner_scheme((c3, c2, c1, c0), r, 0)[0]
     den = c3 * (r - o1) * (r - o2)
     n2 = _mod2(den)
     if n2 == 0 or not np.isfinite(n2):

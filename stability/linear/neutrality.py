@@ -108,27 +108,25 @@ def conservative_phase(c: np.ndarray) -> int | None:
 # the modes other than the neutral one: one source for every engine
 # ------------------------------------------------------------------------------------------
 @register_jitable
-def _other_roots_into(c, ncoef, w, multiplicity, work, out):
+def _other_roots_into(c, ncoef, w, multiplicity, out):
     """Roots of ``p(s) / (s - i w)^multiplicity`` for ``p = c[0..ncoef-1]`` (highest first).
 
-    The quotient goes to ``work`` (length >= ``ncoef``; composite division,
-    :func:`stability.linear.roots.divide_root`); its roots, if its degree ``m`` is 1 or 2, to
-    ``out[:m]`` (the stable quadratic formula). Returns ``m`` (a larger ``m`` is left to the
-    caller, with the quotient in ``work[:m + 1]``). Lists of Python numbers or numba arrays.
+    The quotient replaces ``c`` (composite division, :func:`stability.linear.roots.divide_root`,
+    in place); its roots, if its degree ``m`` is 1 or 2, go to ``out[:m]`` (the stable quadratic
+    formula). Returns ``m`` (a larger ``m`` is left to the caller, with the quotient in
+    ``c[:m + 1]``). Lists of Python numbers or numba arrays.
     """
     r = complex(0.0, w)
     n = ncoef - 1
-    for j in range(ncoef):
-        work[j] = c[j]
     for _ in range(multiplicity):
         if n < 1:
             return 0
-        divide_root(work, n, r, work)
+        divide_root(c, n, r, c)
         n -= 1
     if n == 1:
-        out[0] = -work[1] / work[0]
+        out[0] = -c[1] / c[0]
     elif n == 2:
-        r1, r2, _ = quadratic_roots(work[0], work[1], work[2])
+        r1, r2, _ = quadratic_roots(c[0], c[1], c[2])
         out[0] = r1
         out[1] = r2
     return n
@@ -136,10 +134,9 @@ def _other_roots_into(c, ncoef, w, multiplicity, work, out):
 
 def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
     """:func:`other_roots` as a list (Python numbers; ``numpy.roots`` beyond degree 2)."""
-    cc = [complex(x) for x in c]
-    work = list(cc)
+    work = [complex(x) for x in c]
     out = [0j, 0j]
-    m = _other_roots_into(cc, len(cc), float(w), multiplicity, work, out)
+    m = _other_roots_into(work, len(work), float(w), multiplicity, out)
     if m <= 0:
         return []
     if m <= 2:
@@ -161,12 +158,14 @@ def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.nda
 
 @njit(**_JIT)
 def _other_roots_many(c, ncoef, w, multiplicity, out):
-    """:func:`_other_roots_into` over a batch: ``c`` (m, >= ncoef), ``w`` (m,), ``out`` (m, k)
-    with ``k`` the quotient's degree (<= 2)."""
+    """:func:`_other_roots_into` over a batch: ``c`` (m, >= ncoef; not changed), ``w`` (m,),
+    ``out`` (m, k) with ``k`` the quotient's degree (<= 2)."""
     work = np.empty(ncoef, dtype=np.complex128)
     roots = np.empty(2, dtype=np.complex128)
     for i in range(c.shape[0]):
-        k = _other_roots_into(c[i], ncoef, w[i], multiplicity, work, roots)
+        for j in range(ncoef):
+            work[j] = c[i, j]
+        k = _other_roots_into(work, ncoef, w[i], multiplicity, roots)
         for j in range(k):
             out[i, j] = roots[j]
 
@@ -263,14 +262,14 @@ class NeutralCondition:
             for i, v in zip(self._free_index, values):
                 p[i] = float(v)
             m = self._ncoef
-            parts = self._formula(*p)
-            c = [complex(parts[2 * j], parts[2 * j + 1]) for j in range(m)]
+            it = iter(self._formula(*p))
+            c = list(map(complex, it, it))[:m]  # (re, im) pairs -> complex numbers
             if not derivatives:
                 return c, None
             dc = []
             for k in self._free_index:
-                d = self._derivative(*p, k)
-                dc.append([complex(d[2 * j], d[2 * j + 1]) for j in range(m)])
+                it = iter(self._derivative(*p, k))
+                dc.append(list(map(complex, it, it))[:m])
             return c, dc
         if derivatives:
             c, dc = self.coefficients_and_derivatives(np.asarray(values, dtype=float))
@@ -327,7 +326,7 @@ class NeutralCondition:
         n = len(c) - 1
         if self.form == "crossing":
             z = 1j * w
-            p, dpz, _ = horner_scheme(c, z)
+            p, dpz, _ = horner_scheme(c, z, 1)
             norm = 0.0
             for ck in c:  # a plain loop, as the compiled twin (sum() compensates from Python 3.12)
                 norm += abs(ck)
@@ -337,7 +336,7 @@ class NeutralCondition:
                 return F, None
             re, im = [], []
             for row in dc:
-                d = horner_scheme(row, z)[0]
+                d = horner_scheme(row, z, 0)[0]
                 re.append(d.real / S)
                 im.append(d.imag / S)
             dpw = 1j * dpz
@@ -348,17 +347,17 @@ class NeutralCondition:
         norm = sum(abs(x) for x in a)
         S0 = norm * max(1.0, abs(w)) ** n or 1.0
         S1 = n * norm * max(1.0, abs(w)) ** max(n - 1, 0) or 1.0
-        P, dP, _ = horner_scheme(a, w)
+        P, dP, _ = horner_scheme(a, w, 1)
         F = np.array([P.real / S0, dP.real / S1])
         if not jacobian:
             return F, None
         d1 = [x * (n - k) for k, x in enumerate(a[:-1])]  # P' (highest first)
         J = np.empty((2, len(dc) + 1))
         for i, row in enumerate(dc):
-            v, dv, _ = horner_scheme(self._real_poly_list(row), w)
+            v, dv, _ = horner_scheme(self._real_poly_list(row), w, 1)
             J[0, i], J[1, i] = v.real / S0, dv.real / S1
         J[0, -1] = dP.real / S0
-        J[1, -1] = horner_scheme(d1, w)[1].real / S1 if d1 else 0.0
+        J[1, -1] = horner_scheme(d1, w, 1)[1].real / S1 if d1 else 0.0
         return F, J
 
     def _real_poly_list(self, c: Sequence[complex]) -> list[complex]:
@@ -396,7 +395,7 @@ class NeutralCondition:
         n = c.shape[-1] - 1
         big = np.maximum(1.0, np.abs(w))
         if self.form == "crossing":
-            p = horner_scheme(c.T, 1j * w)[0]
+            p = horner_scheme(c.T, 1j * w, 0)[0]
             S = np.abs(c).sum(axis=-1) * big**n
             S = np.where(S == 0, 1.0, S)
             return np.stack([p.real / S, p.imag / S], axis=-1)
@@ -404,7 +403,7 @@ class NeutralCondition:
         norm = np.abs(a).sum(axis=-1)
         S0 = norm * big**n
         S1 = n * norm * big ** max(n - 1, 0)
-        P, dP, _ = horner_scheme(a.T, w)
+        P, dP, _ = horner_scheme(a.T, w, 1)
         return np.stack([P / np.where(S0 == 0, 1.0, S0), dP / np.where(S1 == 0, 1.0, S1)], axis=-1)
 
     def backward_errors(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -435,8 +434,8 @@ class NeutralCondition:
             return out
         quotients = np.empty((len(w), m + 1), dtype=complex)
         for i in range(len(w)):
-            work, roots = list(c[i]), [0j, 0j]
-            _other_roots_into(work, len(work), float(w[i]), multiplicity, work, roots)
+            work = [complex(x) for x in c[i]]
+            _other_roots_into(work, len(work), float(w[i]), multiplicity, [0j, 0j])
             quotients[i] = work[: m + 1]
         comp = np.zeros((len(w), m, m), dtype=complex)
         comp[:, 0, :] = -quotients[:, 1:] / quotients[:, :1]
@@ -515,7 +514,7 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         c = np.empty(n + 1, dtype=np.complex128)
         fill(p, c)
         z = complex(0.0, w)
-        val, dpz, _ = horner_scheme(c[:ncoef], z)
+        val, dpz, _ = horner_scheme(c[:ncoef], z, 1)
         norm = 0.0
         for j in range(ncoef):
             norm += abs(c[j])
@@ -529,7 +528,7 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         d = np.empty(n + 1, dtype=np.complex128)
         for i in range(k):
             fill_derivative(p, free_index[i], d)
-            acc = horner_scheme(d[:ncoef], z)[0]
+            acc = horner_scheme(d[:ncoef], z, 0)[0]
             J[0, i] = acc.real / S
             J[1, i] = acc.imag / S
         J[0, k] = -dpz.imag / S
@@ -544,9 +543,8 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
             p[free_index[i]] = u[i]
         c = np.empty(n + 1, dtype=np.complex128)
         fill(p, c)
-        work = np.empty(n + 1, dtype=np.complex128)
         roots = np.empty(2, dtype=np.complex128)
-        m = _other_roots_into(c, ncoef, u[k], 1, work, roots)
+        m = _other_roots_into(c, ncoef, u[k], 1, roots)
         g = -np.inf
         for j in range(m):
             g = max(g, roots[j].real)
@@ -589,13 +587,12 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         out = np.zeros((m, max(ncoef - 2, 0)), dtype=np.complex128)
         p = point.copy()
         c = np.empty(n + 1, dtype=np.complex128)
-        work = np.empty(n + 1, dtype=np.complex128)
         roots = np.empty(2, dtype=np.complex128)
         for i in range(m):
             for j in range(k):
                 p[free_index[j]] = values[i, j]
             fill(p, c)
-            q = _other_roots_into(c, ncoef, w[i], 1, work, roots)
+            q = _other_roots_into(c, ncoef, w[i], 1, roots)
             for j in range(q):
                 out[i, j] = roots[j]
         return out

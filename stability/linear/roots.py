@@ -106,7 +106,7 @@ def csqrt(z):
 
 
 @register_jitable
-def horner_scheme(c, s):
+def horner_scheme(c, s, order=2):
     """``p(s)``, ``p'(s)`` and ``p''(s)`` by Horner's scheme (the one source of every engine).
 
     Parameters
@@ -117,6 +117,8 @@ def horner_scheme(c, s):
         coefficient axis first (``numpy.moveaxis(c, -1, 0)``; ``c[k]`` broadcasts against ``s``).
     s : number or numpy.ndarray
         Evaluation point(s).
+    order : {0, 1, 2}
+        The derivatives wanted: those above ``order`` are not evaluated (returned as 0).
 
     Returns
     -------
@@ -124,11 +126,13 @@ def horner_scheme(c, s):
         Value, first and second derivative.
     """
     p = c[0]
-    d1 = p * 0.0
-    d2 = p * 0.0
+    d1 = 0.0
+    d2 = 0.0
     for k in range(1, len(c)):
-        d2 = d2 * s + 2.0 * d1
-        d1 = d1 * s + p
+        if order >= 2:
+            d2 = d2 * s + 2.0 * d1
+        if order >= 1:
+            d1 = d1 * s + p
         p = p * s + c[k]
     return p, d1, d2
 

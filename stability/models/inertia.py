@@ -13,11 +13,10 @@ evaluates it with error-free transformations (Dekker's product, Knuth's sum), wh
 accurate to a few units of round-off relative to ``A_G`` itself, for the floating-point q and
 mu given; :func:`inertia_contact` adds positive terms only.
 
-One source, three engines. :func:`two_product`, :func:`two_sum`, :func:`inertia_g` and
-:func:`inertia_contact` are written in plain arithmetic and registered with
-:func:`numba.extending.register_jitable`: called from Python they run as written, on floats or
-on numpy arrays (elementwise, broadcasting); called from ``@njit`` code they are compiled into
-the caller. The spectral kernel, the parameter domain and the models all use these, so
+One source, three engines. :func:`inertia_g` and :func:`inertia_contact` are written in plain
+arithmetic and registered with :func:`numba.extending.register_jitable`: called from Python
+they run as written, on floats or on numpy arrays (elementwise, broadcasting); called from
+``@njit`` code they are compiled into the caller. The spectral kernel, the parameter domain and the models all use these, so
 ``A_G`` is the same number, bit for bit, wherever it is computed (``fastmath`` is off in every
 compiled caller: no reassociation, no contraction into fused multiply-adds).
 :func:`transverse_inertia_g` and :func:`transverse_inertia_contact` are their array front ends.
@@ -28,45 +27,38 @@ from __future__ import annotations
 import numpy as np
 from numba.extending import register_jitable
 
-__all__ = ["two_product", "two_sum", "inertia_g", "inertia_contact", "transverse_inertia_g",
-           "transverse_inertia_contact"]
+__all__ = ["inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
 
 _SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp)
-
-
-@register_jitable
-def two_product(a, b):
-    """``a b = p + e`` exactly (Dekker; Veltkamp's split): returns ``(p, e)``."""
-    p = a * b
-    c = _SPLITTER * a
-    ah = c - (c - a)
-    al = a - ah
-    c = _SPLITTER * b
-    bh = c - (c - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
-@register_jitable
-def two_sum(a, b):
-    """``a + b = s + e`` exactly (Knuth): returns ``(s, e)``."""
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
 
 
 @register_jitable
 def inertia_g(q, mu):
     """``A_G = 1 - mu q^2`` (units of A0), accurate relative to ``A_G`` near the domain edge.
 
-    ``mu q^2 = u + ue`` exactly up to the rounding of ``ue`` (two products), then
-    ``1 - u = s + se`` exactly (a sum): ``A_G = s + (se - ue)``. Plain arithmetic (floats,
-    numpy arrays, numba).
+    ``q q = t + te`` and ``mu t = u + ue'`` exactly (Dekker's products, with Veltkamp's splits
+    into halves of 26 bits), so ``mu q^2 = u + ue`` with ``ue = ue' + mu te`` up to the rounding
+    of ``ue``; then ``1 - u = s + se`` exactly (Knuth's sum): ``A_G = s + (se - ue)``. Plain
+    arithmetic, written out (no helper calls, which cost more than the arithmetic in Python):
+    floats, numpy arrays (broadcast together), numba.
     """
-    t, te = two_product(q, q)
-    u, ue = two_product(mu, t)
+    t = q * q
+    c = _SPLITTER * q
+    qh = c - (c - q)
+    ql = q - qh
+    te = ((qh * qh - t) + qh * ql + ql * qh) + ql * ql
+    u = mu * t
+    c = _SPLITTER * mu
+    mh = c - (c - mu)
+    ml = mu - mh
+    c = _SPLITTER * t
+    th = c - (c - t)
+    tl = t - th
+    ue = ((mh * th - u) + mh * tl + ml * th) + ml * tl
     ue = ue + mu * te
-    s, se = two_sum(1.0, -u)
+    s = 1.0 + (-u)
+    bb = s - 1.0
+    se = (1.0 - (s - bb)) + (-u - bb)
     return s + (se - ue)
 
 

@@ -158,7 +158,8 @@ def scalar_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, m
 
 def _assemble(parts: tuple[float, ...]) -> list[complex]:
     """``[complex(re, im), ...]`` of a flat ``(re, im, re, im, ...)`` tuple."""
-    return [complex(parts[j], parts[j + 1]) for j in range(0, len(parts), 2)]
+    it = iter(parts)
+    return list(map(complex, it, it))
 
 
 class Sliding(LinearModel):
