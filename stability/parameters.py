@@ -41,6 +41,7 @@ of the package, so that they read the same everywhere (docs/input_checks.md list
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from collections.abc import Callable, Iterable, Mapping
@@ -249,7 +250,7 @@ def bound_holds(lower, upper, strict, slack):
     Floats, numpy arrays, numba (``strict`` is a constant of the table, no data-dependent
     branch).
     """
-    m = upper * slack - lower
+    m = (upper * slack if slack != 1.0 else upper) - lower
     return m > 0.0 if strict else m >= 0.0
 
 
@@ -265,8 +266,12 @@ def inside_domain(sides, applies):
 
 def domain_applies(names: Iterable[str]) -> tuple[bool, ...]:
     """For each bound of :data:`DOMAIN`, whether it applies to a point that gives ``names``."""
-    given = set(names)
-    return tuple(set(b.involves) <= given for b in DOMAIN)
+    return _applies(frozenset(names))
+
+
+@functools.lru_cache(maxsize=64)
+def _applies(given: frozenset[str]) -> tuple[bool, ...]:
+    return tuple(given.issuperset(b.involves) for b in DOMAIN)
 
 
 def domain_text(names: Iterable[str]) -> str:
@@ -279,12 +284,18 @@ _ABSENT = {"q": 0.0, "fr_inv": 0.0, "sigma": 1.0, "alpha_v": 0.0, "mu": 1.0, "al
 
 
 def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
-    """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p``."""
-    sides = domain_sides(*(p.get(k, _ABSENT[k]) for k in DOMAIN_ARGUMENTS))
+    """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p`` (arrays of
+    one shape; a single point is evaluated in Python floats, the same operations, faster than
+    numpy on 0-d arrays)."""
+    if all(np.ndim(v) == 0 for v in p.values()):
+        args = [float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS]
+    else:
+        args = [p.get(k, _ABSENT[k]) for k in DOMAIN_ARGUMENTS]
+    sides = domain_sides(*args)
     out: list[tuple[Bound, np.ndarray]] = []
     for k, (b, applies) in enumerate(zip(DOMAIN, domain_applies(p))):
         if applies:
-            out.append((b, ~bound_holds(sides[2 * k], sides[2 * k + 1], b.strict, b.slack)))
+            out.append((b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict, b.slack))))
     return out
 
 

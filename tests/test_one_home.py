@@ -395,10 +395,10 @@ for d in funcs:
 def test_compiled_closures_have_the_same_cache_key_in_every_process():
     """The per-model compiled loops are closures over the model's formulas; numba keys their
     disk cache by a hash of the pickled captured values (numba.core.caching.Cache._index_key).
-    If a captured local function referred to an ``njit`` dispatcher, that pickle would differ
-    in every process: each process would compile the kernel again (seconds) and the cache
-    index would grow. Reference: the same hashes computed in two fresh processes (no
-    compilation happens here)."""
+    If a closure captured an ``njit`` dispatcher (directly, or through a local helper function
+    that refers to one), that pickle would differ in every process: each process would compile
+    the kernel again (seconds) and the cache index would grow. Reference: the same hashes
+    computed in two fresh processes (no compilation happens here)."""
     runs = [subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
             for _ in range(2)]
     assert runs[0] == runs[1] and len(runs[0].splitlines()) == 12

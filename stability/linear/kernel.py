@@ -64,12 +64,12 @@ from __future__ import annotations
 
 import functools
 import math
+import types
 from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit, prange
-from numba.extending import register_jitable
 
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides, inside_domain
@@ -309,7 +309,7 @@ def _before(a, b):
     return a.real > b.real or (a.real == b.real and a.imag > b.imag)
 
 
-@register_jitable
+@njit(**_JIT)
 def _solve(c3, c2, c1, c0, deg, polish):
     """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
     (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
@@ -357,7 +357,7 @@ def _solve(c3, c2, c1, c0, deg, polish):
     return r0, r1, r2, e0, e1, e2, x0, x1, x2
 
 
-@register_jitable
+@njit(**_JIT)
 def _solve_linear(c1, c0):
     """The root of ``c1 s + c0``, its bound and exact-zero flag (in :func:`_solve`'s layout)."""
     r0 = -c0 / c1
@@ -381,7 +381,7 @@ def _mode(r, e, x, floor):
     return nt, (r.real > tol) & (not nt)
 
 
-@register_jitable
+@njit(**_JIT)
 def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
     compare-exchanges by selects, no data-dependent branches), write them to ``ev``, ``bd``,
@@ -424,7 +424,7 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     return _MARGINAL if anyneutral else _STABLE
 
 
-@register_jitable
+@njit(**_JIT)
 def _mark_outside(n, ev, bd, neutral):
     for j in range(n):
         ev[j] = complex(np.nan, np.nan)
@@ -444,7 +444,7 @@ def _refused(x, lo, hi):
     return (not m <= hi) | ((m < lo) & (x > 0))
 
 
-@register_jitable
+@njit(**_JIT)
 def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
     :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
@@ -492,15 +492,45 @@ def _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab):
 
 
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
-# The local functions below may refer (as globals) to plain functions only: ``register_jitable``
-# ones, like _solve, _decide, _mark_outside and _domain_code above, never to an ``njit``
-# dispatcher. numba keys the disk cache of a closure by its captured values, pickled; a local
-# function is pickled with the globals it uses, and a dispatcher pickles differently in every
-# process, so the closure would be compiled anew in every process (and its index would grow).
-# tests/test_one_home.py checks that the keys are the same in a fresh process.
+
+@njit(**_JIT)
+def _solve_parts(parts, polish):
+    """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
+    ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
+    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
+    if len(parts) == 8:
+        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]),
+                      complex(parts[6], parts[7]), 3, polish)
+    if len(parts) == 6:
+        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), 0j, 2,
+                      polish)
+    return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
+
+
+@njit(**_JIT)
+def _complex_parts(parts):
+    """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
+    if len(parts) == 8:
+        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), complex(
+            parts[6], parts[7])
+    if len(parts) == 6:
+        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
+    return complex(parts[0], parts[1]), complex(parts[2], parts[3])
+
+
+def _serial_twin(f: Callable[..., Any]) -> Callable[..., Any]:
+    """A copy of the Python function ``f`` under the qualified name ``<f>_serial``, to be compiled
+    without ``parallel`` (``prange`` then runs as ``range``). numba names a function's disk-cache
+    files after its qualified name and first line, so two ``njit`` of ``f`` itself, one parallel
+    and one not, would overwrite each other's cache."""
+    g = types.FunctionType(f.__code__, f.__globals__, f.__name__ + "_serial", f.__defaults__, f.__closure__)
+    g.__qualname__ = f.__qualname__ + "_serial"
+    g.__doc__ = f.__doc__
+    return g
+
 
 class _Kernels(NamedTuple):
-    """The compiled loops of one model (:func:`_model_kernels`)."""
+    """The compiled loops of one model (:func:`_compile`)."""
 
     checked: Callable[..., None]
     checked_serial: Callable[..., None]
@@ -516,104 +546,55 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     """The loops for the coefficient formula ``formula`` (a model's ``point_coefficients``, of
     degree ``n``) and the domain bounds ``applies`` (:func:`stability.parameters.domain_applies`).
 
-    Closures over ``formula`` compiled with ``cache=True``: numba keys a closure's disk cache by
-    its captured values (the formula pickled by reference), so each model's loops are compiled
-    once per machine. Loops exist in pairs, parallel (``prange``) and serial (separate
-    functions: the disk cache does not tell two ``njit`` of one function apart).
+    Closures over ``formula``, ``n`` and ``applies``, compiled with ``cache=True``: numba keys a
+    closure's disk cache by its captured values, pickled (the formula by reference), so each
+    model's loops are compiled once per machine. The loops call the kernel's helpers as globals
+    (never captured: a captured ``njit`` dispatcher pickles differently in every process, and
+    the cache would never be found again; tests/test_one_home.py checks the keys), and write
+    the point's work out in the loop body rather than in a local helper function (an inlined
+    local ``register_jitable`` helper compiled half as fast again).
     """
-    if n == 3:
-        @register_jitable(inline="always")
-        def solve(q, fr_inv, sigma, alpha_v, mu, polish):
-            r3, i3, r2, i2, r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return _solve(complex(r3, i3), complex(r2, i2), complex(r1, i1), complex(r0, i0), 3, polish)
-
-        @register_jitable
-        def coefficients(q, fr_inv, sigma, alpha_v, mu):
-            r3, i3, r2, i2, r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return complex(r3, i3), complex(r2, i2), complex(r1, i1), complex(r0, i0)
-    elif n == 2:
-        @register_jitable(inline="always")
-        def solve(q, fr_inv, sigma, alpha_v, mu, polish):
-            r2, i2, r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return _solve(complex(r2, i2), complex(r1, i1), complex(r0, i0), 0j, 2, polish)
-
-        @register_jitable
-        def coefficients(q, fr_inv, sigma, alpha_v, mu):
-            r2, i2, r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return complex(r2, i2), complex(r1, i1), complex(r0, i0)
-    elif n == 1:
-        @register_jitable(inline="always")
-        def solve(q, fr_inv, sigma, alpha_v, mu, polish):
-            r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return _solve_linear(complex(r1, i1), complex(r0, i0))
-
-        @register_jitable
-        def coefficients(q, fr_inv, sigma, alpha_v, mu):
-            r1, i1, r0, i0 = formula(q, fr_inv, sigma, alpha_v, mu)
-            return complex(r1, i1), complex(r0, i0)
-    else:
+    if not 1 <= n <= MAX_DEGREE:
         raise ValueError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
 
-    @register_jitable(inline="always")
-    def checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab,
-                      where):
-        qi, mi = q[i * sq], mu[i * sm]
-        fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-        code = _domain_code(qi, fi, si, ai, mi, lim, applies)
-        where[i] = code
-        if code != _INSIDE:
-            _mark_outside(n, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            return
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = solve(qi, fi, si, ai, mi, polish)
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
-
-    @register_jitable(inline="always")
-    def masked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
-        if not inside[i]:
-            _mark_outside(n, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            return
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = solve(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa],
-                                                   mu[i * sm], polish)
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
-
-    @njit(parallel=True, **_JIT)
     def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
-        # no reduction variables (they slowed the loop by ~15%): the driver counts
+        """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
+        :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
+        (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
+        (No reduction variables, which slowed the loop by ~15%: the driver counts.)"""
         for i in prange(stab.shape[0]):
-            checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral,
-                          stab, where)
+            qi, mi = q[i * sq], mu[i * sm]
+            fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
+            code = _domain_code(qi, fi, si, ai, mi, lim, applies)
+            where[i] = code
+            if code != _INSIDE:
+                _mark_outside(n, ev[i], bd[i], neutral[i])
+                stab[i] = _OUTSIDE
+                continue
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(formula(qi, fi, si, ai, mi), polish)
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
 
-    @njit(**_JIT)
-    def checked_serial(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab,
-                       where):
-        for i in range(stab.shape[0]):
-            checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral,
-                          stab, where)
-
-    @njit(parallel=True, **_JIT)
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
+        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
         for i in prange(stab.shape[0]):
-            masked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral,
-                         stab)
+            if not inside[i]:
+                _mark_outside(n, ev[i], bd[i], neutral[i])
+                stab[i] = _OUTSIDE
+                continue
+            parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(parts, polish)
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
 
-    @njit(**_JIT)
-    def masked_serial(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
-        for i in range(stab.shape[0]):
-            masked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral,
-                         stab)
-
-    @njit(parallel=True, **_JIT)
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         for i in prange(q.shape[0]):
             code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
 
-    @njit(**_JIT)
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
-        return coefficients(q, fr_inv, sigma, alpha_v, mu)
+        return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
 
-    return _Kernels(checked, checked_serial, masked, masked_serial, domain, point_coefficients, n)
+    return _Kernels(njit(parallel=True, **_JIT)(checked), njit(**_JIT)(_serial_twin(checked)),
+                    njit(parallel=True, **_JIT)(masked), njit(**_JIT)(_serial_twin(masked)),
+                    njit(parallel=True, **_JIT)(domain), njit(**_JIT)(point_coefficients), n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
