@@ -82,15 +82,22 @@ def run(args: argparse.Namespace) -> int:
     _refuse_unused(args)
     if args.param == "spin":
         top = _top(args)
-        orient = ["upright", "inverted"] if args.orientation in (None, "both") else [args.orientation]
+        orientation = args.orientation or "both"
+        alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
+        found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
+        if orientation == "both":
+            per = {"upright": found.upright, "inverted": found.inverted}
+        else:
+            per = {orientation: found}
         print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
-        for o in orient:
-            alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
-            c = critical_spin(top, args.model, o, alpha_v=alpha_v)
+        for o, c in per.items():
+            if c is None:
+                print(f"{o:>8}: no critical spin: {found.reasons[o]}")
+                continue
             state = "unstable" if c.unstable_above else "stable"
             print(f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
                   f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})")
-        print(f"friction: {c.friction}")
+        print(f"friction: {next(c for c in per.values() if c is not None).friction}")
         return 0
     model = MODELS[args.model]
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
