@@ -52,6 +52,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import importlib.util
+import time
 import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -251,7 +252,8 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
 
 
 def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: bool,
-            reader: Callable[[Path], xr.Dataset]) -> xr.Dataset:
+            reader: Callable[[Path], xr.Dataset],
+            log: list[tuple[Path, str, float]] | None = None) -> xr.Dataset:
     """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
 
     A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
@@ -263,13 +265,18 @@ def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: b
             raise RecipeError(f"{path} exists and was not written by a recipe ({exc}); remove it or "
                               "pass force=True to replace it") from None
         if ds.attrs.get("recipe_digest") == digest:
+            if log is not None:
+                log.append((path, "reused", 0.0))
             return ds
         if "recipe_digest" not in ds.attrs:
             raise RecipeError(f"{path} exists and was not written by a recipe (it has no recipe_digest "
                               "attribute); remove it or pass force=True to replace it")
+    start = time.perf_counter()
     ds = make()
     ds.attrs["recipe_digest"] = digest
     write_dataset(ds, path, overwrite=True)
+    if log is not None:
+        log.append((path, "computed", time.perf_counter() - start))
     return ds
 
 
@@ -329,11 +336,22 @@ def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
     return runs
 
 
-def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
+def compute(recipe: Recipe, *, force: bool = False,
+            log: list[tuple[Path, str, float]] | None = None) -> dict[str, xr.Dataset]:
     """Compute (or reuse from disk) the recipe's datasets.
 
     A dataset on disk is reused when its ``recipe_digest`` attribute equals the recipe's;
     otherwise it is recomputed and written atomically.
+
+    Parameters
+    ----------
+    recipe : Recipe
+        The recipe.
+    force : bool
+        Recompute even when a matching dataset exists.
+    log : list, optional
+        If given, one ``(path, action, seconds)`` is appended per dataset, ``action`` being
+        ``"reused"`` or ``"computed"`` (what ``tippe figures`` prints).
 
     Returns
     -------
@@ -350,12 +368,12 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
                 made.update(_STEADY_MAKERS[recipe.kind](recipe))
             return made[key]
         for key in _STEADY_PARTS[recipe.kind]:
-            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force,
+            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log,
                                reader=_read)
         return out
     if recipe.kind == "critical_spin":
         out[recipe.model] = _cached(recipe.dataset_path, recipe.digest, lambda: critical_spin_dataset(recipe),
-                                    force=force, reader=_read)
+                                    force=force, log=log, reader=_read)
         return out
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
@@ -364,7 +382,7 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
                 ds.attrs["label"] = label
                 return ds
             out[key] = _cached(recipe.path.with_name(f"{recipe.name}_{key}.nc"), recipe.digest, made,
-                               force=force, reader=_read)
+                               force=force, log=log, reader=_read)
         return out
     for model in recipe.models():
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
@@ -373,10 +391,10 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
             ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
             ds.attrs["recipe"] = recipe.path.name
             return ds
-        out[model] = _cached(path, recipe.digest, make, force=force, reader=open_atlas)
+        out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
         if recipe.neutral:
             out[f"{model}_neutral"] = _cached(path.with_name(path.stem + "_neutral.nc"), recipe.digest,
-                                              lambda model=model: _neutral(recipe, model), force=force, reader=_read)
+                                              lambda model=model: _neutral(recipe, model), force=force, log=log, reader=_read)
     return out
 
 

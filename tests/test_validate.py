@@ -98,3 +98,21 @@ def test_atlas_subset_is_validated_on_its_whole_grid():
     assert sorted(zip(ds.q.values.tolist(), ds.fr_inv.values.tolist())) == [(-0.1, 0.3), (-0.1, 1.0), (0.1, 0.3),
                                                                              (0.1, 1.0)]
     assert bool(ds.sign_agrees.all()) and float(ds.growth_rate_error.max()) < 1e-6
+
+
+def test_cli_prints_a_narrow_block_per_point(capsys):
+    """Issue 15 item 8: `tippe validate` printed a table ~170 characters wide; now one block per
+    point, no line over 100 characters, holding the dataset's numbers (reference: validate()
+    called with the same arguments, rounded as printed)."""
+    from stability.cli import main
+
+    argv = ["validate", "--q", "-0.1,0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert max(len(line) for line in out.splitlines()) <= 100
+    ds = validate("sliding", q=[-0.1, 0.1], fr_inv=0.3, sigma=1.0, alpha_v=0.5)
+    for j in range(2):
+        assert f"point {j}: q = {float(ds.q[j]):.6g}, fr_inv = 0.3, sigma = 1" in out
+        assert f"{float(ds.measured_growth_rate[j]):.6g}" in out
+        assert f"{float(ds.jacobian_frequency[j]):.6g}" in out
+    assert out.count("sign agrees") == 2

@@ -45,7 +45,13 @@ def run(args: argparse.Namespace) -> int:
     for recipe in recipes:  # every output writable before anything is computed
         check_outputs(recipe)
     for recipe in recipes:
-        datasets = compute(recipe, force=args.force)
+        log: list = []
+        datasets = compute(recipe, force=args.force, log=log)
+        for path, action, seconds in log:
+            if action == "reused":
+                print(f"{recipe.name}: reused {path} (recipe and code unchanged)")
+            else:
+                print(f"{recipe.name}: computed {path} ({seconds:.1f} s)")
         with style():
             fig, _ = recipe_figure(recipe, datasets)
             save_figure(fig, recipe.figure_path)

@@ -9,8 +9,27 @@ from ._args import add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 
-_COLUMNS = ("jacobian_growth_rate", "measured_growth_rate", "growth_rate_error",
-            "jacobian_frequency", "measured_frequency", "frequency_error", "sign_agrees")
+_COORDS = ("q", "fr_inv", "sigma", "mu", "alpha_v")
+
+
+def format_points(ds) -> str:
+    """The validation dataset as one short block per point (every line under 80 characters).
+
+    Each block names the point's parameters, then the growth rate and frequency of the
+    nonlinear model's Jacobian, the values measured on the run and their relative errors, and
+    whether the measured growth rate has the Jacobian's sign.
+    """
+    lines = []
+    for j in range(ds.sizes["point"]):
+        pt = ds.isel(point=j)
+        params = ", ".join(f"{k} = {float(pt[k]):.6g}" for k in _COORDS if k in pt.coords)
+        lines += [f"point {j}: {params}",
+                  f"  {'':<12} {'Jacobian':>13} {'measured':>13} {'rel. error':>10}"]
+        for label, key in (("growth rate", "growth_rate"), ("frequency", "frequency")):
+            lines.append(f"  {label:<12} {float(pt['jacobian_' + key]):>13.6g} "
+                         f"{float(pt['measured_' + key]):>13.6g} {float(pt[key + '_error']):>10.2g}")
+        lines.append(f"  {'sign agrees':<12} {'yes' if bool(pt['sign_agrees']) else 'NO'}")
+    return "\n".join(lines)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -35,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     ds = validate(args.model, amplitude=args.amplitude, **values)
-    print(ds[list(_COLUMNS)].to_dataframe().to_string(float_format=lambda v: f"{v:.6g}"))
+    print(format_points(ds))
     if out is not None:
         write_dataset(ds, out, overwrite=args.overwrite)
     return 0

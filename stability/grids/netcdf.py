@@ -164,10 +164,14 @@ def open_atlas(path: str | os.PathLike) -> xr.Dataset:
                                  f"{' '.join(str(exc).split())[:120]})") from None
         raise AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file (it does not start "
                              "with a netCDF or HDF5 signature)") from None
-    if ds.attrs.get(PRODUCT_ATTR) != "atlas":
-        raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: a netCDF file "
-                             f"whose global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r}, "
-                             "not 'atlas'")
+    product = ds.attrs.get(PRODUCT_ATTR)
+    if product is None:
+        raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global "
+                             f"attribute {PRODUCT_ATTR!r} (written by another program, or by xarray "
+                             "directly; stability.atlas and tippe atlas set it)")
+    if product != "atlas":
+        raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
+                             "tippe-stability (open it with xarray.open_dataset)")
     missing = [v for v in ATLAS_VARIABLES if v not in ds]
     if missing:
         raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}")
