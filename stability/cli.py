@@ -96,8 +96,26 @@ def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
     return set()
 
 
+class HelpFormatter(argparse.HelpFormatter):
+    """Help with each option's default appended, ``(default: X)``, unless the help already
+    names it or there is none to show (None, a flag that is off)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        if ("default" in text or default is None or default is argparse.SUPPRESS or isinstance(default, bool)
+                or not action.option_strings):
+            return text
+        return f"{text} (default: %(default)s)"
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with errors on one line (``prog: error: message``), without the usage block."""
+    """argparse with errors on one line (``prog: error: message``), without the usage block;
+    every option's default shown in its help (:class:`HelpFormatter`)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
-from ._args import add_parameter_flags, parameter_values
+from ._args import add_model_flag, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -37,12 +37,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("validate", help="check linear growth rates against nonlinear runs",
                        description="For each point (values broadcast together), perturb the upright "
                                    "spin along the leading eigenvector, integrate the nonlinear model, "
-                                   "fit growth rate and frequency, and print them beside the predictions.")
-    p.add_argument("--model", choices=list(NONLINEAR_MODELS), default="sliding")
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"))
-    p.add_argument("--amplitude", type=float, default=1e-4, help="initial tilt |Phi|")
-    p.add_argument("-o", "--output", default=None, help="also write the Dataset as netCDF")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+                                   "fit growth rate and frequency, and print them beside the predictions. "
+                                   "Default model: sliding (--alpha-v then required).")
+    add_model_flag(p, NONLINEAR_MODELS, "sliding", what="model (nonlinear, and its linearisation)")
+    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
+                        extra={"alpha_v": " (sliding only; > 0 there)"})
+    p.add_argument("--amplitude", type=float, default=1e-4, metavar="A",
+                   help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)")
+    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
+                   help="also write the Dataset as netCDF (default: print only)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
 
