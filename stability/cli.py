@@ -34,6 +34,7 @@ import re
 import signal
 import sys
 import threading
+import warnings
 from collections.abc import Collection, Sequence
 from typing import NoReturn
 
@@ -177,7 +178,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     flags = _command_flags(parser, args.command)
     previous = _terminate_as_interrupt()
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            _model_name_warnings_as_lines(prog)
+            return int(args.func(args) or 0)
     except Interrupted as exc:
         if debug:
             raise
@@ -207,6 +210,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     finally:
         for signum, handler in previous.items():
             signal.signal(signum, handler)
+
+
+def _model_name_warnings_as_lines(prog: str) -> None:
+    """Show the library's warnings about model names (a deprecated name, the changed meaning of
+    ``rolling``: :mod:`stability.models`) as one line ``tippe CMD: warning: ...``; call inside
+    ``warnings.catch_warnings()``, which restores the previous state."""
+    warnings.filterwarnings("default", message="model '", category=DeprecationWarning)
+    previous = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ANN001
+        if issubclass(category, (FutureWarning, DeprecationWarning)) and str(message).startswith("model '"):
+            print(f"{prog}: warning: {_one_line(message)}", file=sys.stderr)
+            return
+        previous(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
 
 
 def _raise_interrupt(signum: int, frame: object) -> None:

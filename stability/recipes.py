@@ -66,7 +66,7 @@ from .grids.atlases import atlas
 from .errors import AtlasFileError, RecipeError
 from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
-from .models import MODELS
+from .models import MODELS, get_model
 from .parameters import LONG_NAMES, PARAMETERS
 from .products import PRODUCT_ATTR
 
@@ -200,8 +200,10 @@ def load_recipe(path: str | Path) -> Recipe:
     if "grid" not in raw:
         raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
-    if model not in MODELS:
-        raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}")
+    try:  # a recipe's model is a public lookup: "rolling" warns once, a deprecated name is mapped
+        model = get_model(model).name
+    except ValueError:
+        raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
     if kind == "critical_spin":
         preset = raw.get("preset", "table1")
         if preset not in PRESETS:
@@ -388,7 +390,7 @@ def compute(recipe: Recipe, *, force: bool = False,
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
 
         def make(model=model) -> xr.Dataset:
-            ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+            ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
             ds.attrs["recipe"] = recipe.path.name
             return ds
         out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
@@ -442,7 +444,7 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
     grid = _grid_for(model, recipe.grid)
     fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}
     xs, ys = np.asarray(grid[recipe.x]), np.asarray(grid[recipe.y or ""])
-    ds = neutral_curve(model, recipe.x, recipe.y, fixed=fixed,
+    ds = neutral_curve(MODELS[model], recipe.x, recipe.y, fixed=fixed,
                        x_range=(float(xs.min()), float(xs.max())), y_range=(float(ys.min()), float(ys.max())))
     for name in ("kind", "detail"):
         if name in ds:

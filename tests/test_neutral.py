@@ -167,7 +167,7 @@ def test_sliding_against_mpmath_bisection():
         assert abs(s - (lo + hi) / 2) <= 1e-13
 
 
-@pytest.mark.parametrize("model, h", [("rolling", lambda q: q), ("fixed_pivot", lambda q: 1 + q)])
+@pytest.mark.parametrize("model, h", [("rolling_eq8", lambda q: q), ("fixed_pivot", lambda q: 1 + q)])
 def test_second_order_models_follow_the_discriminant(model, h):
     f = 0.05 if model == "fixed_pivot" else 0.3
     ds = neutral_curve(model, "q", "sigma", fixed=dict(fr_inv=f))

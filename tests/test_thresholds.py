@@ -87,11 +87,11 @@ def test_all_q_thresholds_sorted():
     assert np.all(np.diff(got) > 0)
 
 
-@pytest.mark.parametrize("model, q, f", [("rolling", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
+@pytest.mark.parametrize("model, q, f", [("rolling_eq8", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
 def test_second_order_models_discriminant(model, q, f):
     mp.dps = 40
     qm, fm = mpmath.mpf(q), mpmath.mpf(f)
-    h = qm if model == "rolling" else 1 + qm
+    h = qm if model == "rolling_eq8" else 1 + qm
     ref = mp.sqrt(4 * (1 + MU * (1 + 2 * qm)) * MU * fm * h)
     found = threshold_crossings("sigma", model=model, q=q, fr_inv=f)
     assert len(found) == 1 and close(found[0].value, ref)

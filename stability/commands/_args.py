@@ -72,11 +72,14 @@ def add_parameter_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, na
 
 
 def add_model_flag(p: argparse.ArgumentParser, models: Iterable[str], default: str = "sliding", *,
-                   what: str = "linear model") -> None:
-    """``--model`` with its choices and default listed in the help."""
+                   what: str = "linear model", deprecated: dict[str, str] | None = None) -> None:
+    """``--model`` with its choices and default listed in the help; ``deprecated`` (old name ->
+    new name) are accepted too (the library warns) and named as such."""
     models = list(models)
-    p.add_argument("--model", choices=models, default=default, metavar="MODEL",
-                   help=f"{what}: {', '.join(models)}")
+    deprecated = deprecated or {}
+    old = "; ".join(f"{o}: deprecated name of {n}" for o, n in deprecated.items())
+    p.add_argument("--model", choices=[*models, *deprecated], default=default, metavar="MODEL",
+                   help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""))
 
 
 def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, object]:

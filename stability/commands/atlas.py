@@ -13,7 +13,7 @@ import sys
 
 from ..grids.atlases import atlas
 from ..grids.netcdf import check_output_path, write_dataset
-from ..models import MODELS
+from ..models import DEPRECATED_NAMES, MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..errors import Interrupted
 from ._args import add_model_flag, add_parameter_flags, parameter_values
@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
                     "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
                     "(--alpha-v then required).")
-    add_model_flag(p, MODELS, "sliding")
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
                         extra={"alpha_v": " (sliding model only)"})
     p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required")

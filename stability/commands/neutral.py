@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
-from ..models import MODELS
+from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
 from ._args import FLAGS, add_model_flag, add_parameter_flags
 
@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "(Re s = 0) in the plane of two parameters, print the special points (folds, "
                     "zero-frequency and double crossings, domain edges) and write the curves. Give the "
                     "parameters other than --x and --y. Default model: sliding (--alpha-v then required).")
-    add_model_flag(p, MODELS, "sliding")
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter; required")
     p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter; required")
     add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     from ..linear.neutral_curves import neutral_curve
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
-    model = MODELS[args.model]
+    model = get_model(args.model)
     fixed = {}
     for name in model.parameters:
         v = getattr(args, name)

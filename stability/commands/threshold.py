@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..models import MODELS
+from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..top import Top
 from ..parameters import DEFAULT_MU
 from ._args import FLAGS, add_model_flag, add_parameter_flags
@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "Default model: sliding.")
     p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM",
                    help="q, fr_inv, sigma, alpha_v, mu or spin")
-    add_model_flag(p, MODELS, "sliding")
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
                         extra={"mu": f" (default {DEFAULT_MU})",
                                "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no "
@@ -111,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
                   f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})")
         print(f"friction: {next(c for c in per.values() if c is not None).friction}")
         return 0
-    model = MODELS[args.model]
+    model = get_model(args.model)
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
         raise ValueError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")

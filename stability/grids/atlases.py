@@ -41,7 +41,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"}
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"}
         Eqs. (8)-(9) or eq. (11).
     q, fr_inv, sigma, alpha_v, mu : float or 1-D array_like
         Scalars become scalar coordinates, 1-D arrays dimensions. ``alpha_v`` only for

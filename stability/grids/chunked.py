@@ -291,7 +291,7 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
             shape[dims.index(k)] = -1
             v = v[sl[k]].reshape(shape)
         args.append(v)
-    out = _block_spectra(*args, model=get_model(spec["model"]), names=tuple(spec["names"]), mask=spec["mask"],
+    out = _block_spectra(*args, model=get_model(spec["model"], warn=False), names=tuple(spec["names"]), mask=spec["mask"],
                          method=spec["method"])
     return dict(zip(_BLOCK_VARIABLES, out))
 

@@ -200,7 +200,7 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched (inside the physical domain); default :func:`default_bracket`.
@@ -241,7 +241,7 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched (inside the physical domain); default :func:`default_bracket`.
@@ -342,7 +342,7 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied; all others are fixed.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched; default the physical range (:func:`default_bracket`).

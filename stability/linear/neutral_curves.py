@@ -606,7 +606,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     x, y : str
         The two traced parameters, from the model's ``q, fr_inv, sigma, alpha_v, mu``.

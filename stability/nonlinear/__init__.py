@@ -79,7 +79,7 @@ NONLINEAR_MODELS: dict[str, NonlinearModel] = {
     "rolling": NonlinearModel(
         "rolling", "(1), (2), (4), (5) with V_c = 0", rolling.rhs, rolling.contact_forces,
         rolling.STATE, ("q", "fr_inv", "sigma", "mu"), ((0, 1), (3, 4)),
-        "rolling_first_principles"),
+        "rolling"),
     "fixed_pivot": NonlinearModel(
         "fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", fixed_pivot.rhs,
         fixed_pivot.contact_forces, fixed_pivot.STATE, ("q", "fr_inv", "sigma", "mu"),

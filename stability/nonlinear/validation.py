@@ -14,16 +14,16 @@ For each parameter point :func:`validate`
    ``2 pi / |Im s|`` for a neutral mode), capped at ``max_time``;
 4. fits ``log |Phi(t)|`` and the unwrapped phase of ``Phi(t) = k_1 + i k_2`` by straight
    lines: the slopes are the measured growth rate and (fixed-frame) frequency;
-5. returns the predictions of the registered linear operator of the same name (eq. 11 for
-   ``"sliding"``, eq. (8) for ``"fixed_pivot"`` and ``"rolling"``) and of the Jacobian, the
-   measured values and the relative errors.
+5. returns the predictions of the registered linear operator that linearises the model
+   (``NONLINEAR_MODELS[model].linear_model``: eq. 11 for ``"sliding"``, eq. (8) for
+   ``"fixed_pivot"``, the first-principles ``"rolling"``) and of the Jacobian, the measured
+   values and the relative errors.
 
 A growth rate is *resolved* when ``|Re s| > 1e-3 |s|``; elsewhere the relative error of the
 growth rate is meaningless and the error is reported relative to ``|s|``.
 
-For ``"rolling"`` the registered operator is eq. (8) as printed, which is not the rolling
-sphere's linearisation; its prediction is its own leading mode and disagrees with the run
-(docs/nonlinear.md), while the Jacobian's (= ``"rolling_first_principles"``) agrees.
+Eq. (8) as printed for the rolling top (model ``"rolling_eq8"``) is not the rolling sphere's
+linearisation and is not what ``validate("rolling")`` predicts with (docs/nonlinear.md).
 
 Coulomb friction alone (``alpha_v = 0``, ``alpha_k > 0``) has no linear operator (the
 friction does not vanish with the slip); :func:`coulomb_growth` runs it and compares an
@@ -44,6 +44,7 @@ from .integrators import SCIPY_METHODS
 from ..parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
 from .runs import simulate
 from ..linear.spectra import eigenvalues
+from ..models import MODELS
 
 __all__ = ["validate", "coulomb_growth", "leading_mode", "RESOLVED"]
 
@@ -90,10 +91,8 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     i = leading_mode(ev)
     s = complex(ev[i])
     v = vec[:, i] / vec[1, i] * amplitude          # |Phi| = amplitude, Phi real at t = 0
-    s_lin_all = eigenvalues(model, **lin)
-    s_lin = complex(s_lin_all[leading_mode(s_lin_all)])
-    if m.name != "rolling":   # same operator: predict the same mode (nearest root)
-        s_lin = complex(s_lin_all[np.argmin(np.abs(s_lin_all - s))])
+    s_lin_all = eigenvalues(MODELS[m.linear_model], **lin)
+    s_lin = complex(s_lin_all[np.argmin(np.abs(s_lin_all - s))])  # same operator: the same mode
     y = upright_state(model)
     y[0], y[1] = v[0].real, v[0].imag
     y[3], y[4] = v[1].real, v[1].imag
@@ -234,7 +233,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     coords = {k: ("point", v, {"long_name": LONG_NAMES[k], "units": "1"}) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
-                    source="stability.validate", model=m.name, linear_model=m.name,
+                    source="stability.validate", model=m.name, linear_model=m.linear_model,
                     jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
                     n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
                     convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega")
