@@ -21,7 +21,7 @@ from stability import jacobian_eigenvalues
 from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear import reference, rolling, sliding
 from stability.nonlinear.parameters import pack
-from tests.conftest import random_domain_points
+from conftest import random_domain_points
 
 
 def _match(a: np.ndarray, b: np.ndarray) -> float:
