@@ -67,7 +67,7 @@ from .errors import AtlasFileError, RecipeError
 from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
 from .models import MODELS, get_model
-from .parameters import LONG_NAMES, PARAMETERS
+from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
 
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
@@ -431,7 +431,7 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
     return xr.Dataset(
         {"critical_spin_upright": (x, out["upright"], {"long_name": "spin rate above which the upright top is unstable", **unit}),
          "critical_spin_inverted": (x, out["inverted"], {"long_name": "spin rate above which the inverted top is stable", **unit})},
-        coords={x: (x, values, {"long_name": LONG_NAMES[x], "units": "1"})},
+        coords={x: (x, values, parameter_attrs(x))},
         attrs={"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin",
                "model": recipe.model, "preset": recipe.figure,
                "mass_kg": base.mass, "radius_m": base.radius, "q": base.q, "mu": base.mu, "sigma": base.sigma})

@@ -35,6 +35,7 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, ResumeError
+from .leading import leading, zero_everywhere
 from .netcdf import atomic_output, check_output_path
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
@@ -390,11 +391,36 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
                         put(name, sl, block, True)
                 else:
                     _run_on_cluster(client, spec, todo, put, window, failed, report)
+                _write_leading(nc, blocks, dims)
     finally:
         report(close=True)
     if resume and store.exists():
         shutil.rmtree(store)
     return target
+
+
+def _write_leading(nc: Any, blocks: list[tuple[str, dict[str, slice]]], dims: list[str]) -> None:
+    """Fill ``leading_growth_rate`` from the chunks written: whether the structural zero mode is
+    left out is decided on the whole grid first (stability.grids.leading), then each chunk."""
+    if "leading_growth_rate" not in nc.variables:
+        return
+    mdims = (*dims, "mode")
+
+    def part(sl: dict[str, slice]) -> tuple[Any, ...]:
+        idx = tuple(sl[d] for d in dims)
+        bound = (xr.DataArray(nc.variables["eigenvalue_error_bound"][idx], dims=mdims)
+                 if "eigenvalue_error_bound" in nc.variables else None)
+        return (idx, xr.DataArray(nc.variables["growth_rate"][idx], dims=mdims),
+                xr.DataArray(nc.variables["frequency"][idx], dims=mdims), bound,
+                xr.DataArray(nc.variables["max_growth_rate"][idx], dims=dims))
+
+    drop = bool(dims)
+    if drop:
+        flags = [zero_everywhere(*part(sl)[1:4]) for _, sl in blocks]
+        drop = all(bool(e) for e, _ in flags) and any(bool(i) for _, i in flags)
+    for _, sl in blocks:
+        idx, g, f, b, m = part(sl)
+        nc.variables["leading_growth_rate"][idx] = leading(g, f, b, m, drop=drop).values
 
 
 class _Failure:

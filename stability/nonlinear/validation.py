@@ -41,7 +41,7 @@ from ..products import PRODUCT_ATTR
 from .jacobian import transverse_jacobian, upright_state
 from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS
-from ..parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
+from ..parameters import DEFAULT_MU, check_domain, parameter_attrs, check_choice, check_interval, check_positive
 from .runs import simulate
 from ..linear.spectra import eigenvalues
 from ..models import MODELS
@@ -230,7 +230,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         vals = np.array([r[name] for r in rows])
         data[name] = ("point", vals, {"long_name": _VAR_ATTRS[name],
                                       "units": "1" if name != "duration" else "1"})
-    coords = {k: ("point", v, {"long_name": LONG_NAMES[k], "units": "1"}) for k, v in flat.items()}
+    coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
                     source="stability.validate", model=m.name, linear_model=m.linear_model,

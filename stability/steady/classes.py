@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..parameters import DEFAULT_MU, LONG_NAMES, as_parameter, check_domain, check_flag
+from ..parameters import DEFAULT_MU, as_parameter, check_domain, check_flag, parameter_attrs
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
 
@@ -143,7 +143,7 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
     tilt = np.where(inside, tilt, np.nan)
     coords: dict[str, Any] = {}
     for k, v in values.items():
-        attrs = {"long_name": LONG_NAMES[k], "units": "1"}
+        attrs = parameter_attrs(k)
         coords[k] = (k, v, attrs) if v.ndim == 1 else ((), float(v), attrs)
     data: dict[str, Any] = {
         "top_class": (tuple(dims), code, {
