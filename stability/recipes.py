@@ -429,8 +429,10 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
                 pass
     unit = {"units": "min-1"}
     return xr.Dataset(
-        {"critical_spin_upright": (x, out["upright"], {"long_name": "spin rate above which the upright top is unstable", **unit}),
-         "critical_spin_inverted": (x, out["inverted"], {"long_name": "spin rate above which the inverted top is stable", **unit})},
+        {"critical_spin_upright": (x, out["upright"], {"long_name": "upright critical spin", **unit,
+                                                         "comment": "spin rate above which the upright top is unstable"}),
+         "critical_spin_inverted": (x, out["inverted"], {"long_name": "inverted critical spin", **unit,
+                                                           "comment": "spin rate above which the inverted top is stable"})},
         coords={x: (x, values, parameter_attrs(x))},
         attrs={"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin",
                "model": recipe.model, "preset": recipe.figure,

@@ -15,7 +15,9 @@ import pytest  # noqa: E402
 import stability  # noqa: E402
 from conftest import mp_sliding_eigenvalues  # noqa: E402
 
-MAX_LONG_NAME = 40
+#: xarray labels an axis "long_name [units]" and wraps the label beyond 30 characters
+#: (xarray.plot.utils.label_from_attrs)
+LABEL_WIDTH = 30
 
 
 @pytest.fixture(scope="module")
@@ -29,15 +31,20 @@ def run():
                               sigma=1.0, alpha_v=0.5)
 
 
-def _long_names(ds):
-    return {k: v.attrs.get("long_name", "") for k, v in ds.variables.items()}
+def _too_long(ds):
+    """Variables whose axis label would wrap."""
+    out = {}
+    for k, v in ds.variables.items():
+        label = v.attrs.get("long_name", k) + (f" [{v.attrs['units']}]" if "units" in v.attrs else "")
+        if len(label) > LABEL_WIDTH:
+            out[k] = label
+    return out
 
 
 @pytest.mark.parametrize("which", ["atlas", "run"])
 def test_long_names_are_short(which, atlas_fr0, run):
     ds = atlas_fr0 if which == "atlas" else run
-    too_long = {k: n for k, n in _long_names(ds).items() if len(n) > MAX_LONG_NAME}
-    assert not too_long
+    assert not _too_long(ds)
 
 
 def test_plain_xarray_labels_of_an_atlas(atlas_fr0):
@@ -92,3 +99,17 @@ def test_leading_growth_rate_survives_files_and_chunks(atlas_fr0, tmp_path):
     np.testing.assert_array_equal(back.leading_growth_rate.values, ref.leading_growth_rate.values)
     np.testing.assert_array_equal(lazy.leading_growth_rate.values, ref.leading_growth_rate.values)
     assert (ref.leading_growth_rate != ref.max_growth_rate).any()
+
+
+def test_validation_and_neutral_curve_long_names_are_short():
+    import continuation
+
+    ds = stability.validate("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
+    assert not _too_long(ds)
+    assert ds.duration.attrs["units"] == "1/Omega" and ds.measured_growth_rate.attrs["units"] == "Omega"
+    curve = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
+    assert not _too_long(curve)
+    fig, ax = plt.subplots()
+    curve.frequency.plot(ax=ax)
+    assert ax.get_ylabel() == "neutral frequency [Omega]"
+    plt.close(fig)

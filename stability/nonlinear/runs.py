@@ -334,7 +334,7 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
         a_c = 1.0 + mu * (1.0 + 2.0 * q)
         l_p = a_c * omega + (sigma - a_c) * wk[:, None] * k
         data["angular_momentum_vertical"] = ("time", l_p[:, 2], _attrs(
-            "vertical angular momentum", "A0 Omega", comment="vertical angular momentum about the pivot"))
+            "L_z about the pivot", "A0 Omega", comment="vertical angular momentum about the pivot"))
     names = {"kinetic_translational": ("translational KE", "kinetic energy of translation of G"),
              "kinetic_spin": ("spin KE", "rotational kinetic energy of the spin about G"),
              "kinetic_transverse": ("transverse KE", "rotational kinetic energy of the transverse rotation about G"),

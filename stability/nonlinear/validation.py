@@ -128,23 +128,32 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     }
 
 
+#: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
-    "predicted_growth_rate": "growth rate Re s of the registered linear operator",
-    "predicted_frequency": "frequency Im s of the registered linear operator (fixed frame)",
-    "jacobian_growth_rate": "growth rate Re s of the nonlinear model's Jacobian",
-    "jacobian_frequency": "frequency Im s of the nonlinear model's Jacobian (fixed frame)",
-    "measured_growth_rate": "growth rate fitted to log|Phi(t)| of the nonlinear run",
-    "measured_frequency": "frequency fitted to the phase of Phi(t) of the nonlinear run",
-    "growth_rate_error": "relative error of the measured growth rate against the linear operator "
-                         "(relative to |s| where the growth rate is not resolved)",
-    "frequency_error": "relative error of the measured frequency against the linear operator",
-    "growth_rate_error_jacobian": "relative error of the measured growth rate against the Jacobian "
-                                  "(relative to |s| where the growth rate is not resolved)",
-    "frequency_error_jacobian": "relative error of the measured frequency against the Jacobian",
-    "resolved": "growth rate resolved: |Re s| > 1e-3 |s|",
-    "sign_agrees": "sign of the measured growth rate agrees with the Jacobian's (neutral where unresolved)",
-    "duration": "length of the run",
-    "final_tilt": "tilt |Phi| at the end of the run",
+    "predicted_growth_rate": ("predicted growth rate", "Omega",
+                              "growth rate Re s of the registered linear operator"),
+    "predicted_frequency": ("predicted frequency", "Omega",
+                            "frequency Im s of the registered linear operator (fixed frame)"),
+    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", "growth rate Re s of the nonlinear model's Jacobian"),
+    "jacobian_frequency": ("Jacobian frequency", "Omega",
+                           "frequency Im s of the nonlinear model's Jacobian (fixed frame)"),
+    "measured_growth_rate": ("measured growth rate", "Omega", "growth rate fitted to log|Phi(t)| of the nonlinear run"),
+    "measured_frequency": ("measured frequency", "Omega", "frequency fitted to the phase of Phi(t) of the nonlinear run"),
+    "growth_rate_error": ("growth error (linear)", "1",
+                          "relative error of the measured growth rate against the linear operator "
+                          "(relative to |s| where the growth rate is not resolved)"),
+    "frequency_error": ("frequency error (linear)", "1",
+                        "relative error of the measured frequency against the linear operator"),
+    "growth_rate_error_jacobian": ("growth error (Jacobian)", "1",
+                                   "relative error of the measured growth rate against the Jacobian "
+                                   "(relative to |s| where the growth rate is not resolved)"),
+    "frequency_error_jacobian": ("frequency error (Jacobian)", "1",
+                                 "relative error of the measured frequency against the Jacobian"),
+    "resolved": ("growth resolved", None, "growth rate resolved: |Re s| > 1e-3 |s|"),
+    "sign_agrees": ("sign agrees", None,
+                    "sign of the measured growth rate agrees with the Jacobian's (neutral where unresolved)"),
+    "duration": ("duration", "1/Omega", "length of the run"),
+    "final_tilt": ("final tilt |Phi|", "1", "tilt |Phi| at the end of the run"),
 }
 
 
@@ -228,8 +237,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     data = {}
     for name in rows[0]:
         vals = np.array([r[name] for r in rows])
-        data[name] = ("point", vals, {"long_name": _VAR_ATTRS[name],
-                                      "units": "1" if name != "duration" else "1"})
+        long_name, units, comment = _VAR_ATTRS[name]
+        attrs = {"long_name": long_name, "comment": comment}
+        if units is not None:
+            attrs["units"] = units
+        data[name] = ("point", vals, attrs)
     coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
