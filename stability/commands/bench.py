@@ -38,7 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "nonlinear runs against a tight DOP853 reference (integrators). Writes a chart (PNG) and "
                     "a JSON summary per suite and prints the speed ratios against the baselines.")
     p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
-                   help="suite to run (default: all three)")
+                   help="suite to run (default: all, each in its own process)")
     p.add_argument("--quick", action="store_true", help=f"small configurations ({_quick_help()})")
     p.add_argument("--points", type=float, default=None, metavar="N",
                    help="eigen: batch size for the timings (default 1e6)")
