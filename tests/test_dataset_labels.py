@@ -113,3 +113,20 @@ def test_validation_and_neutral_curve_long_names_are_short():
     curve.frequency.plot(ax=ax)
     assert ax.get_ylabel() == "neutral frequency [Omega]"
     plt.close(fig)
+
+
+def test_steady_products_long_names_are_short():
+    import continuation
+    from stability.nonlinear.scene import INITIAL_CONDITIONS
+
+    products = {
+        "steady_states": stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+        "steady_branch": continuation.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
+        "final_state": stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
+                                             **INITIAL_CONDITIONS[0.3]).to_dataset(),
+        "class_atlas": stability.class_atlas(q=np.linspace(-0.6, 0.6, 5), sigma=np.linspace(0.01, 2, 4)),
+    }
+    for name, ds in products.items():
+        assert not _too_long(ds), name
+    ds = products["steady_states"]
+    assert ds.precession_rate.attrs["units"] == "Omega" and ds.energy.attrs["units"] == "A0 Omega^2"

@@ -58,9 +58,14 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
     return params, p
 
 
-def var_attrs(long_name: str, units: str = UNITLESS, **extra: Any) -> dict[str, Any]:
-    """CF attributes of a variable."""
-    return {"long_name": long_name, "units": units, **extra}
+def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None, **extra: Any) -> dict[str, Any]:
+    """CF attributes of a variable. With ``short``, that is the ``long_name`` (what xarray prints
+    on an axis, "long_name [units]", within its 30-character wrap) and ``long_name`` opens the
+    ``comment``."""
+    if short is None:
+        return {"long_name": long_name, "units": units, **extra}
+    comment = long_name + (f"; {extra.pop('comment')}" if "comment" in extra else "")
+    return {"long_name": short, "units": units, "comment": comment, **extra}
 
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
