@@ -83,3 +83,12 @@ def test_the_package_own_lookups_are_silent(fresh, tmp_path, capsys):
     rc, caught = _caught(lambda: main(["figures", str(recipe)]))
     assert rc == 0 and caught == [] and "warning" not in capsys.readouterr().err
     assert models._ROLLING_WARNED is False
+
+
+def test_an_old_rolling_atlas_says_what_it_holds(tmp_path):
+    """A file written before the rename, model 'rolling' with eq. (8)-(9), is eq. (8) as printed."""
+    ds = stability.atlas("rolling_eq8", q=[0.1, 0.2], fr_inv=0.3, sigma=1.0)
+    ds.attrs.update(model="rolling", model_equations="(8)-(9)", source="tippe-stability 0.1.0")
+    path = stability.write_dataset(ds, tmp_path / "old.nc")
+    with pytest.warns(FutureWarning, match="eq. \\(8\\) as printed, which is now called 'rolling_eq8'"):
+        stability.open_atlas(path)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
+import warnings
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -175,4 +176,8 @@ def open_atlas(path: str | os.PathLike) -> xr.Dataset:
     missing = [v for v in ATLAS_VARIABLES if v not in ds]
     if missing:
         raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}")
+    if ds.attrs.get("model") == "rolling" and ds.attrs.get("model_equations") == "(8)-(9)":
+        warnings.warn(f"atlas file {str(p)!r} was written by {ds.attrs.get('source', 'an older version')}: its "
+                      "model 'rolling' is eq. (8) as printed, which is now called 'rolling_eq8' ('rolling' is now "
+                      "the rolling top from first principles)", FutureWarning, stacklevel=2)
     return ds
