@@ -15,10 +15,13 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from ..parameters import SYMBOLS
+from ._layout import axes_or_new
 
 __all__ = ["plot_bifurcation", "plot_class_map", "plot_settle", "plot_settle_approach", "STABLE_STYLE",
            "UNSTABLE_STYLE", "X_AXES"]
 
+#: size of a new figure (inches)
+FIGSIZE = (6.4, 4.6)
 #: line styles of stable and unstable states
 STABLE_STYLE = dict(linestyle="-", linewidth=2.0, color="C0")
 UNSTABLE_STYLE = dict(linestyle="--", linewidth=1.3, color="C3")
@@ -32,13 +35,6 @@ _MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerface
             "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
             "stability_change": dict(marker="X", markersize=7, color="m", linestyle="none", label="stability change"),
             "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)")}
-
-
-def _axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.6)) -> tuple[Figure, Axes]:
-    if ax is None:
-        fig = Figure(figsize=figsize, layout="constrained")
-        return fig, fig.add_subplot()
-    return ax.figure, ax
 
 
 def _pieces(x: np.ndarray, y: np.ndarray, stable: np.ndarray, marginal: np.ndarray):
@@ -85,7 +81,7 @@ def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, 
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     xs = branch[x].values
     tilt = branch.tilt.values
     flags = branch.stability.values
@@ -150,7 +146,7 @@ def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float,
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     q, sigma = ds.q.values, ds.sigma.values
     code = ds.top_class.transpose("sigma", "q").values
     ax.pcolormesh(q, sigma, code, cmap=_CLASS_COLOURS, vmin=-1.5, vmax=2.5, shading="nearest")
@@ -200,7 +196,7 @@ def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = Non
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values / (2 * np.pi) if periods else run.time.values
     ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
     ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2,
@@ -233,7 +229,7 @@ def plot_settle_approach(run: xr.Dataset, *, predicted_tilt: float, rate: float 
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values
     tt = t / (2 * np.pi) if periods else t
     dist = np.abs(run.polar_angle.values - predicted_tilt)
