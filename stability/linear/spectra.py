@@ -145,7 +145,10 @@ def _plain_float(value: Any) -> np.ndarray | None:
     if isinstance(value, np.ndarray):
         return value if value.dtype == np.float64 and value.size > 0 else None
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
-        return np.asarray(value, dtype=np.float64)
+        try:
+            return np.asarray(value, dtype=np.float64)
+        except OverflowError:  # a Python integer beyond the doubles: as_parameter names it
+            return None
     return None
 
 
