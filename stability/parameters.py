@@ -205,12 +205,13 @@ def _integer_text(v: int) -> str:
 
 
 def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
-    """An object array of Python integers (numpy's dtype for integers beyond int64) as floats;
+    """An object array of Python integers (numpy's dtype for integers beyond int64, also mixed
+    with floats) as floats;
     a :class:`DomainError` naming the first integer too large for a double. Other object arrays
     are returned unchanged (their dtype is refused by the caller)."""
     items = arr.reshape(-1)
-    if items.size == 0 or not all(isinstance(v, numbers.Integral) and not isinstance(v, (bool, np.bool_))
-                                  for v in items):
+    if items.size == 0 or not all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_))
+                                  for v in items) or not any(isinstance(v, numbers.Integral) for v in items):
         return arr
     out = np.empty(arr.shape, dtype=np.float64)
     flat = out.reshape(-1)
