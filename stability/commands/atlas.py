@@ -124,6 +124,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
+        _check_plot_format(args.plot)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     if args.chunks is not None:
         return _run_chunked(args, out, values)
@@ -136,7 +137,9 @@ def run(args: argparse.Namespace) -> int:
 
         with style():
             fig, _ = atlas_figure(ds, x=args.x)
-        # the figure is complete before anything is written
+        # the figure is written before the netCDF file is committed: a failure to draw or save
+        # it leaves no atlas file behind
+        save_figure(fig, args.plot, overwrite=args.overwrite)
     write_dataset(ds, out, overwrite=args.overwrite)
     counts = {name: int((ds.stability == flag).sum()) for name, flag in
               (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
@@ -144,7 +147,20 @@ def run(args: argparse.Namespace) -> int:
     print(f"wrote {out}: {args.model} model, grid {grid}; "
           + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
     if args.plot:
-        save_figure(fig, args.plot, overwrite=args.overwrite)
         print(f"wrote {args.plot}")
     return 0
+
+
+def _check_plot_format(path: str) -> None:
+    """Refuse a ``--plot`` file whose suffix names no format matplotlib can write, before any
+    computation (the format comes from the suffix, :func:`stability.plotting.save_figure`)."""
+    from pathlib import Path
+
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    known = FigureCanvasBase.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in known:
+        raise ValueError(f"--plot = {path!r}: the format {('.' + suffix) if suffix else '(no suffix)'} is not "
+                         f"known to matplotlib; the allowed suffixes are {', '.join('.' + k for k in sorted(known))}")
 

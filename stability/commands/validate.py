@@ -29,6 +29,8 @@ def format_points(ds) -> str:
             lines.append(f"  {label:<12} {float(pt['jacobian_' + key]):>13.6g} "
                          f"{float(pt['measured_' + key]):>13.6g} {float(pt[key + '_error']):>10.2g}")
         lines.append(f"  {'sign agrees':<12} {'yes' if bool(pt['sign_agrees']) else 'NO'}")
+        if "status" in pt and str(pt["status"].values) != "ok":
+            lines.append(f"  {'status':<12} {pt['status'].values}")
     return "\n".join(lines)
 
 
