@@ -30,8 +30,9 @@ import re
 __all__ = ["memory_limit", "check_memory", "format_bytes", "HEADROOM", "SIMULATE_BYTES_PER_TIME",
            "SIMULATE_FILE_BYTES_PER_TIME", "ATLAS_BYTES_PER_POINT_MODE", "ATLAS_BYTES_PER_POINT",
            "ATLAS_FILE_BYTES_PER_POINT_MODE", "ATLAS_FILE_BYTES_PER_POINT", "THRESHOLD_BYTES_PER_SAMPLE",
-           "START_GRID_BYTES_PER_POINT", "simulate_bytes", "simulate_file_bytes", "atlas_bytes",
-           "atlas_file_bytes", "ENV_LIMIT"]
+           "START_GRID_BYTES_PER_POINT", "CLASS_ATLAS_BYTES_PER_POINT", "ATLAS_BLOCK_BYTES_PER_POINT",
+           "simulate_bytes", "simulate_file_bytes", "atlas_bytes", "atlas_file_bytes", "check_threshold_samples",
+           "check_start_grid", "check_class_atlas", "ENV_LIMIT"]
 
 #: environment variable overriding the memory limit (bytes)
 ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
@@ -40,31 +41,40 @@ ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
 #: libraries, the other processes' growth)
 HEADROOM = 0.8
 
-#: simulate: peak bytes per output time, by nonlinear model. Stored: 31 float64 per time for the
-#: sliding and rolling runs (248 B: omega, k, velocity, position, momentum, friction; 13 scalars
-#: and the time), 19 for fixed_pivot (152 B); the peak adds the integrator's state array
-#: (10 float64 per time for sliding) and the temporaries of building the dataset
-SIMULATE_BYTES_PER_TIME: dict[str, float] = {"sliding": 500.0, "rolling": 470.0, "fixed_pivot": 330.0}
+#: simulate: peak bytes per output time, by nonlinear model (measured 386 / 378 / 226 B at 2e5 and
+#: 1e6 output times). Stored: 31 float64 per time for the sliding and rolling runs (248 B: omega,
+#: k, velocity, position, momentum, friction; 12 scalars and the time), 19 for fixed_pivot
+#: (152 B); the peak adds the integrator's output array (10, 8 and 6 float64 per time) and the
+#: temporaries of the derived quantities
+SIMULATE_BYTES_PER_TIME: dict[str, float] = {"sliding": 400.0, "rolling": 390.0, "fixed_pivot": 235.0}
 
 #: simulate: bytes per output time in the netCDF file (the stored values)
 SIMULATE_FILE_BYTES_PER_TIME: dict[str, float] = {"sliding": 248.0, "rolling": 248.0, "fixed_pivot": 152.0}
 
-#: in-memory atlas: peak bytes per grid point = per point and mode x modes + per point. Stored:
-#: growth rate, frequency and bound per mode (24 B), max growth rate, two int8 flags (10 B); the
-#: peak adds the spectrum's complex eigenvalues, bounds and flags of a block
+#: in-memory atlas: bytes per grid point = per point and mode x modes + per point (the stored
+#: growth rate, frequency and bound per mode, 24 B; the largest growth rate and two int8 flags,
+#: 10 B), plus :data:`ATLAS_BLOCK_BYTES_PER_POINT` for each point of one block of the spectrum
+#: (its complex eigenvalues, bounds, flags and broadcast copies). Measured: 168 B per point at
+#: 5e4 points (one block), 96 at 5e5, 84 at 2e6 (sliding); 60 at 2e6 (two modes)
 ATLAS_BYTES_PER_POINT_MODE = 24.0
-ATLAS_BYTES_PER_POINT = 12.0
+ATLAS_BYTES_PER_POINT = 10.0
+ATLAS_BLOCK_BYTES_PER_POINT = 90.0
 
 #: atlas file: bytes per grid point (per mode and per point) as written
 ATLAS_FILE_BYTES_PER_POINT_MODE = 24.0
 ATLAS_FILE_BYTES_PER_POINT = 10.0
 
-#: threshold, thresholds, critical_spin: peak bytes per sample (about 3 spectra per sample: the
-#: uniform and two geometric sampling grids, and the hidden-pair pass)
+#: threshold, thresholds, critical_spin: peak bytes per sample (measured 588 / 579 B at 2e5 / 1e6
+#: samples: the uniform and geometric sampling grids' spectra, and the hidden-pair pass)
 THRESHOLD_BYTES_PER_SAMPLE = 600.0
 
-#: neutral_curve: peak bytes per point of the start grid (its meshgrid, spectrum and counts)
-START_GRID_BYTES_PER_POINT = 220.0
+#: neutral_curve: peak bytes per point of the start grid (its meshgrid, spectrum and counts;
+#: measured 149 B at 700 x 700)
+START_GRID_BYTES_PER_POINT = 160.0
+
+#: class_atlas: peak bytes per grid point (meshgrids, the checked parameters, codes and tilts;
+#: measured 132 B at 1e6 and 4e6 points)
+CLASS_ATLAS_BYTES_PER_POINT = 140.0
 
 _SUFFIX = {"": 1.0, "k": 1e3, "m": 1e6, "g": 1e9, "t": 1e12, "kib": 2.0**10, "mib": 2.0**20, "gib": 2.0**30,
            "tib": 2.0**40, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "b": 1.0}
@@ -227,14 +237,15 @@ def check_memory(nbytes: float, *, what: str, parameter: str, way_out: str) -> N
     Raises
     ------
     stability.errors.ResourceError
-        "simulate: 100000001 output times (t_end / dt) need about 50 GB of memory; about 17 GB
-        is available (80% of MemAvailable); give a larger dt ...".
+        "simulate: 100000001 output times (t_end / dt = 1e+07 / 0.1) would need about 40 GB of
+        memory (set by t_end / dt); about 17 GB is available (80% of MemAvailable); give a
+        larger dt ...".
     """
     limit, source = memory_limit()
     if nbytes > limit:
         from .errors import ResourceError
 
-        raise ResourceError(f"{what} need about {format_bytes(nbytes)} of memory (set by {parameter}); about "
+        raise ResourceError(f"{what} would need about {format_bytes(nbytes)} of memory (set by {parameter}); about "
                             f"{format_bytes(limit)} is available ({source}); {way_out}")
 
 
@@ -248,9 +259,32 @@ def simulate_file_bytes(model: str, n_times: int) -> float:
     return SIMULATE_FILE_BYTES_PER_TIME.get(model, max(SIMULATE_FILE_BYTES_PER_TIME.values())) * float(n_times)
 
 
-def atlas_bytes(n_modes: int, n_points: float) -> float:
-    """Peak memory of an in-memory atlas of ``n_points`` grid points."""
-    return (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * float(n_points)
+def atlas_bytes(n_modes: int, n_points: float, block_points: float) -> float:
+    """Peak memory of an in-memory atlas of ``n_points`` grid points computed in blocks of at
+    most ``block_points``."""
+    n = float(n_points)
+    return (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * n \
+        + ATLAS_BLOCK_BYTES_PER_POINT * min(n, float(block_points))
+
+
+def check_threshold_samples(samples: int) -> None:
+    """Refuse a threshold search (``threshold``, ``thresholds``, ``critical_spin``) whose
+    ``samples`` cannot fit in memory."""
+    check_memory(THRESHOLD_BYTES_PER_SAMPLE * float(samples), what=f"a threshold search over {samples} samples",
+                 parameter="samples", way_out="use fewer samples (the default is 257; each crossing is refined "
+                                             "between two samples)")
+
+
+def check_start_grid(nx: int, ny: int) -> None:
+    """Refuse a neutral curve whose start grid ``nx x ny`` cannot fit in memory."""
+    check_memory(START_GRID_BYTES_PER_POINT * float(nx) * float(ny), what=f"a start grid of {nx} x {ny} points",
+                 parameter="grid", way_out="use a coarser grid (the default is 25 x 25), or give start points")
+
+
+def check_class_atlas(n_points: int) -> None:
+    """Refuse a class atlas of ``n_points`` grid points that cannot fit in memory."""
+    check_memory(CLASS_ATLAS_BYTES_PER_POINT * float(n_points), what=f"a class atlas of {n_points} grid points",
+                 parameter="the grid's ranges", way_out="use fewer points, or compute it in slices of q")
 
 
 def atlas_file_bytes(n_modes: int, n_points: float) -> float:

@@ -37,6 +37,7 @@ import numpy as np
 from ..models import LinearModel, get_model
 from .neutrality import NeutralCondition
 from ..errors import DomainError
+from ..resources import check_threshold_samples
 from ..parameters import (DEFAULT_MU, as_parameter, as_scalar, check_choice, check_domain, check_flag,
                          check_integer)
 from .spectra import UNSTABLE, spectrum
@@ -229,6 +230,7 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     (1.085777777778, 'below')
     """
     samples = check_integer("samples", samples, minimum=3)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     return _search(m, fx, param, lo, hi, samples)[0]
 
@@ -370,6 +372,7 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     1.085777777778
     """
     samples = check_integer("samples", samples, minimum=3)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     found, u = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
@@ -506,6 +509,7 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
     check_choice("orientation", orientation, ("upright", "inverted"))
     samples = check_integer("samples", samples, minimum=3)
+    check_threshold_samples(samples)
     if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
         raise TypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)

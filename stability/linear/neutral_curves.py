@@ -54,6 +54,7 @@ from .._version import package_version
 from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
 from ..products import PRODUCT_ATTR
+from ..resources import check_start_grid
 from ..parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
                           check_integer, check_positive)
 from .modes import structural_zeros
@@ -687,6 +688,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):
         raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2) for g in grid)
+    check_start_grid(*grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
     lo = np.array([ranges[x][0], ranges[y][0]])
