@@ -95,7 +95,7 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
-                        progress=not args.no_progress, notes=note)
+                        progress=not args.no_progress and sys.stderr.isatty(), notes=note)
     except KeyboardInterrupt:
         if args.resume:
             raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "

@@ -23,7 +23,7 @@ from ..linear.modes import structural_zeros
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter, check_domain
-from ..interrupts import checkpoint
+from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from ..resources import atlas_bytes, check_memory
 from .schema import require_atlas
@@ -199,6 +199,17 @@ def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], g
     bound = np.empty(full + (n,))
     stab = np.empty(full, dtype=np.int8)
     inside = np.empty(full, dtype=np.int8)
+    with deferred():
+        _fill_blocks(m, values, dims, full, mask, method, (growth, freq, bound, stab, inside))
+    return growth, freq, bound, stab, inside
+
+
+def _fill_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], full: tuple[int, ...], mask: bool,
+                 method: str, arrays: tuple[np.ndarray, ...]) -> None:
+    """The loop of :func:`_spectra_in_blocks`: one spectrum per block, an interruption point
+    before each."""
+    growth, freq, bound, stab, inside = arrays
+    n = m.n_modes
     for sl in _blocks(dims, full):
         checkpoint()
         part = {}
@@ -219,7 +230,6 @@ def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], g
         stab[idx] = np.broadcast_to(sp.stability, bshape)
         inside[idx] = np.broadcast_to(sp.inside, bshape)
     checkpoint()
-    return growth, freq, bound, stab, inside
 
 
 def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:

@@ -111,7 +111,7 @@ def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exc
             raise error(f"variable {v!r} has dtype {var.dtype}; an atlas stores it as floating-point numbers")
     flags = ds["stability"].attrs.get("flag_values")
     if flags is not None and [int(f) for f in np.atleast_1d(flags)] != list(FLAG_VALUES):
-        raise error(f"variable 'stability' has flag_values {list(np.atleast_1d(flags))}; an atlas's flags are "
+        raise error(f"variable 'stability' has flag_values {[int(f) for f in np.atleast_1d(flags)]}; an atlas's flags are "
                     f"{list(FLAG_VALUES)} (outside the domain, stable, marginal, unstable)")
     for d in grid:
         if d not in ds.coords or ds[d].dims != (d,):
@@ -174,5 +174,5 @@ def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Except
 
 
 def _example(values: np.ndarray) -> str:
-    v = np.unique(values)[:3]
-    return ", ".join(repr(x.item()) for x in v) + (" ..." if np.unique(values).size > 3 else "")
+    u = np.unique(values)
+    return ", ".join(repr(x.item()) for x in u[:3]) + (" ..." if u.size > 3 else "")

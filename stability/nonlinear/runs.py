@@ -182,7 +182,7 @@ def _progress(how: bool | Callable[[float], None], t_end: float) -> tuple[Callab
         return None, lambda: None
     from tqdm import tqdm
 
-    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False,
+    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False, delay=1.0,
                bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]")
 
     def report(t: float) -> None:
@@ -242,8 +242,9 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         one by one for this): a run that hits it stops with a warning and ``status = -1``
         instead of running for hours (stiff friction with an explicit method).
     progress : bool or callable, default False
-        A progress bar on stderr (True), or ``progress(t)`` with the time reached, every few
-        milliseconds of integration; silent by default.
+        A progress bar on stderr (True; shown once the run has taken a second), or
+        ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
+        default.
 
     Returns
     -------
