@@ -181,15 +181,29 @@ def _interrupted(prog: str, text: str | None) -> int:
     return EXIT_INTERRUPTED
 
 
+def _reader_gone(fd: int) -> bool:
+    """True if ``fd`` is the write end of a pipe whose reader has closed it (``poll`` reports
+    POLLERR): the failed write's data may have been dropped from the buffer, so a flush alone
+    does not tell."""
+    import select
+
+    if not hasattr(select, "poll"):  # pragma: no cover - not POSIX
+        return False
+    poller = select.poll()
+    poller.register(fd, select.POLLOUT)
+    return any(ev & select.POLLERR for _, ev in poller.poll(0))
+
+
 def _stdout_broken() -> bool:
     """True if stdout is a closed pipe (the reader went away); stdout is then sent to devnull so
     that the interpreter's final flush does not complain."""
     try:
         sys.stdout.flush()
-        return False
+        if not _reader_gone(sys.stdout.fileno()):
+            return False
     except BrokenPipeError:
         pass
-    except (OSError, ValueError):
+    except (OSError, ValueError, AttributeError):
         return False
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)

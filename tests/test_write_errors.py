@@ -156,3 +156,22 @@ def test_failures_that_are_not_write_errors_pass_unchanged(tmp_path, monkeypatch
         with pytest.raises(type(exc)):
             stability.write_dataset(xr.Dataset({"x": ("t", np.arange(3.0))}), tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_closed_stdout_after_the_write_is_not_an_error(tmp_path):
+    """E10: ``tippe atlas ... | <reader that exits at once>``: the file is complete, so the
+    command says so on stderr and exits 0 (it used to say "[Errno 32] Broken pipe", exit 2).
+    Reference for "complete": the file read back equals the atlas computed in this process."""
+    proc = subprocess.Popen([*TIPPE, *ATLAS, "-o", "p.nc"], cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    proc.stdout.close()  # the reader goes away before the report is printed
+    err = proc.stderr.read()
+    proc.wait(timeout=300)
+    assert proc.returncode == 0, err
+    assert "wrote 'p.nc'" in err and "could not be printed" in err and len(err.strip().splitlines()) == 1
+    with xr.open_dataset(tmp_path / "p.nc") as ds:
+        got = ds.load()
+    ref = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 31), fr_inv=np.linspace(0, 1, 4), sigma=1.0,
+                          alpha_v=0.5, mask_unphysical=True)
+    xr.testing.assert_identical(got.drop_attrs(), ref.drop_attrs())
+    assert _leftovers(tmp_path) == []
