@@ -18,6 +18,15 @@ Why these bounds: the transverse moment about G is ``A_G = A0 - M R^2 q^2``, pos
 ``1 - mu q^2 > 0`` (at equality the mass matrix of eq. 11 is singular); the principal moments
 about G obey the triangle inequality ``C <= 2 A_G``, i.e. ``sigma <= 2 (1 - mu q^2)``.
 
+The bounds are one table, :data:`DOMAIN` (one row per bound: the parameter a violation is
+reported for, the parameters involved, strict or not, the text, a slack), whose sides are
+computed by :func:`domain_sides` (plain arithmetic registered with numba's
+``register_jitable``: Python floats, numpy arrays, compiled kernels; ``A_G`` compensated,
+:func:`stability.models.inertia.inertia_g`). From it derive the test of a point
+(:func:`bound_holds`; :func:`check_domain` and :func:`domain_mask` on arrays, the spectral
+kernel compiled, :func:`inside_domain`), the signed margins ``upper - lower`` (``>= 0`` inside)
+that the neutral curves' continuation uses as constraints, and the messages.
+
 Besides the physical domain, every parameter must lie in the *computable range*
 :data:`COMPUTABLE_RANGE` (``|x| <= 1e30``, and ``mu >= 1e-30``): beyond it the coefficients of the
 characteristic polynomials overflow double precision and the eigenvalues would come out as
@@ -32,21 +41,31 @@ of the package, so that they read the same everywhere (docs/input_checks.md list
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
-from collections.abc import Iterable, Mapping
-from typing import Any
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any, NamedTuple
 
 import numpy as np
+from numba.extending import register_jitable
 
 from .errors import DomainError
-from .models.inertia import transverse_inertia_g
+from .models.inertia import inertia_g
 
 __all__ = [
     "PARAMETERS",
     "DEFAULT_MU",
     "LONG_NAMES",
     "COMPUTABLE_RANGE",
+    "DOMAIN",
+    "Bound",
+    "SIGMA_SLACK",
+    "domain_sides",
+    "bound_holds",
+    "inside_domain",
+    "domain_applies",
+    "domain_text",
     "as_parameter",
     "as_scalar",
     "check_domain",
@@ -143,37 +162,148 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
     return arr
 
 
-def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[str, np.ndarray, str]]:
-    """List (parameter, violating mask, bound text) for every domain bound."""
-    out: list[tuple[str, np.ndarray, str]] = []
-    mu = p.get("mu")
-    if mu is not None:
-        out.append(("mu", mu <= 0, "mu > 0"))
-    for name in ("fr_inv", "alpha_v", "alpha_k"):
-        if name in p:
-            out.append((name, p[name] < 0, f"{name} >= 0"))
-    a_g = transverse_inertia_g(p["q"], mu) if "q" in p and mu is not None else None
-    if a_g is not None:
-        out.append(("q", ~(a_g > 0), "1 - mu q^2 > 0, i.e. |q| < 1/sqrt(mu)"))
-    if "sigma" in p:
-        out.append(("sigma", p["sigma"] <= 0, "sigma > 0"))
-        if a_g is not None:
-            # equality (a flat disc) is allowed; a few units of round-off in the caller's own
-            # evaluation of the bound are not a physical violation
-            out.append(("sigma", p["sigma"] > 2.0 * a_g * (1.0 + 8 * 2.0**-53), "sigma <= 2 (1 - mu q^2)"))
+# --- the physical domain: one table ---------------------------------------------------------
+
+#: slack of the bound ``sigma <= 2 A_G`` in the test of a point (not in the margins): a few units
+#: of round-off in the caller's own evaluation of the bound are not a physical violation
+SIGMA_SLACK: float = 1.0 + 8 * 2.0**-53
+
+
+class Bound(NamedTuple):
+    """One bound of the physical domain, ``lower < upper`` (strict) or ``lower <= upper``.
+
+    Attributes
+    ----------
+    parameter : str
+        The parameter a violation is reported for.
+    involves : tuple of str
+        Every parameter the bound depends on; it applies where all of them are given.
+    strict : bool
+        ``<`` (True) or ``<=``.
+    text : str
+        The bound as messages print it (and the name of the continuation constraint).
+    slack : float
+        The test of a point is ``lower <= upper * slack`` (1 but for ``sigma <= 2 A_G``).
+    explain : callable or None
+        ``explain(values) -> str``: what a message adds after ``text``, from the values of the
+        involved parameters at the violating point (floats).
+    """
+
+    parameter: str
+    involves: tuple[str, ...]
+    strict: bool
+    text: str
+    slack: float = 1.0
+    explain: Callable[[Mapping[str, float]], str] | None = None
+
+
+def _q_limit(v: Mapping[str, float]) -> str:
+    mu = v["mu"]
+    return ", i.e. |q| < 1/sqrt(mu)" + (f" = {1 / math.sqrt(mu):.6g} (mu = {mu:.6g})" if mu > 0 else "")
+
+
+def _sigma_limit(v: Mapping[str, float]) -> str:
+    return f" = {2 * float(inertia_g(v['q'], v['mu'])):.6g} at q = {v['q']:.6g}, mu = {v['mu']:.6g}"
+
+
+#: The physical domain, one row per bound, in the order a violation is reported. Row ``k``
+#: compares the sides ``domain_sides(...)[2 k]`` (lower) and ``[2 k + 1]`` (upper): the test of
+#: a point (:func:`bound_holds`: numpy arrays in :func:`check_domain` and :func:`domain_mask`,
+#: compiled in the spectral kernel), the signed margins ``upper - lower`` (``>= 0`` inside) that
+#: the neutral curves' continuation uses as constraints, and the messages all come from here.
+DOMAIN: tuple[Bound, ...] = (
+    Bound("mu", ("mu",), True, "mu > 0"),
+    Bound("fr_inv", ("fr_inv",), False, "fr_inv >= 0"),
+    Bound("alpha_v", ("alpha_v",), False, "alpha_v >= 0"),
+    Bound("alpha_k", ("alpha_k",), False, "alpha_k >= 0"),
+    Bound("q", ("q", "mu"), True, "1 - mu q^2 > 0", explain=_q_limit),
+    Bound("sigma", ("sigma",), True, "sigma > 0"),
+    # equality (a flat disc) is allowed
+    Bound("sigma", ("sigma", "q", "mu"), False, "sigma <= 2 (1 - mu q^2)", SIGMA_SLACK, _sigma_limit),
+)
+
+#: the columns ``strict`` and ``slack`` of :data:`DOMAIN` as constants for compiled callers
+DOMAIN_STRICT: tuple[bool, ...] = tuple(b.strict for b in DOMAIN)
+DOMAIN_SLACK: tuple[float, ...] = tuple(b.slack for b in DOMAIN)
+
+#: the arguments of :func:`domain_sides`, in order
+DOMAIN_ARGUMENTS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu", "alpha_k")
+
+
+@register_jitable
+def domain_sides(q, fr_inv, sigma, alpha_v, mu, alpha_k):
+    """The sides ``(lower, upper)`` of every bound of :data:`DOMAIN`, flat, in its order.
+
+    Plain arithmetic (Python floats, numpy arrays, numba): ``A_G = 1 - mu q^2`` is the
+    compensated one of :func:`stability.models.inertia.inertia_g`, the same bits everywhere.
+    """
+    a_g = inertia_g(q, mu)
+    return (0.0, mu, 0.0, fr_inv, 0.0, alpha_v, 0.0, alpha_k, 0.0, a_g, 0.0, sigma, sigma, 2.0 * a_g)
+
+
+@register_jitable
+def bound_holds(lower, upper, strict, slack):
+    """The test of one bound: ``lower < upper`` (strict) or ``lower <= upper * slack``.
+
+    Written as the sign of ``upper * slack - lower``, which for finite floats is exactly the
+    comparison (a difference of two floats is zero only if they are equal); NaN fails.
+    Floats, numpy arrays, numba (``strict`` is a constant of the table, no data-dependent
+    branch).
+    """
+    m = (upper * slack if slack != 1.0 else upper) - lower
+    return m > 0.0 if strict else m >= 0.0
+
+
+@register_jitable
+def inside_domain(sides, applies):
+    """All bounds of :data:`DOMAIN` whose ``applies[k]`` is true hold (compiled callers; every
+    test evaluated, no short circuit)."""
+    ok = True
+    for k in range(len(DOMAIN_STRICT)):
+        ok &= bound_holds(sides[2 * k], sides[2 * k + 1], DOMAIN_STRICT[k], DOMAIN_SLACK[k]) | (not applies[k])
+    return ok
+
+
+def domain_applies(names: Iterable[str]) -> tuple[bool, ...]:
+    """For each bound of :data:`DOMAIN`, whether it applies to a point that gives ``names``."""
+    return _applies(frozenset(names))
+
+
+@functools.lru_cache(maxsize=64)
+def _applies(given: frozenset[str]) -> tuple[bool, ...]:
+    return tuple(given.issuperset(b.involves) for b in DOMAIN)
+
+
+def domain_text(names: Iterable[str]) -> str:
+    """The bounds that apply to ``names``, as text (``"mu > 0, fr_inv >= 0, ..."``)."""
+    return ", ".join(b.text for b, a in zip(DOMAIN, domain_applies(names)) if a)
+
+
+#: values for parameters a caller does not give (the bounds that involve them do not apply)
+_ABSENT = {"q": 0.0, "fr_inv": 0.0, "sigma": 1.0, "alpha_v": 0.0, "mu": 1.0, "alpha_k": 0.0}
+
+
+def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
+    """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p`` (arrays of
+    one shape; a single point is evaluated in Python floats, the same operations, faster than
+    numpy on 0-d arrays)."""
+    if all(np.ndim(v) == 0 for v in p.values()):
+        args = [float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS]
+    else:
+        args = [p.get(k, _ABSENT[k]) for k in DOMAIN_ARGUMENTS]
+    sides = domain_sides(*args)
+    out: list[tuple[Bound, np.ndarray]] = []
+    for k, (b, applies) in enumerate(zip(DOMAIN, domain_applies(p))):
+        if applies:
+            out.append((b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict, b.slack))))
     return out
 
 
-def _describe(name: str, p: Mapping[str, np.ndarray], where: tuple, bound: str) -> str:
-    """Build the message for the first violating point."""
-    val = float(p[name][where])
-    msg = f"{name} = {val:.6g} is outside the physical domain: {bound}"
-    mu = float(p["mu"][where]) if "mu" in p else None
-    if name == "q" and mu is not None and mu > 0:
-        msg += f" = {1 / math.sqrt(mu):.6g} (mu = {mu:.6g})"
-    if name == "sigma" and bound.startswith("sigma <= 2") and mu is not None:
-        qv = float(p["q"][where])
-        msg += f" = {2 * float(transverse_inertia_g(qv, mu)):.6g} at q = {qv:.6g}, mu = {mu:.6g}"
+def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple) -> str:
+    """The message for the first point ``where`` violating ``b``."""
+    msg = f"{b.parameter} = {float(p[b.parameter][where]):.6g} is outside the physical domain: {b.text}"
+    if b.explain is not None:
+        msg += b.explain({k: float(p[k][where]) for k in b.involves})
     return msg
 
 
@@ -194,7 +324,7 @@ def domain_mask(**params: Any) -> np.ndarray:
     b = np.broadcast_arrays(*p.values())
     p = dict(zip(p.keys(), b))
     ok = np.ones(b[0].shape, dtype=bool)
-    for _, bad, _ in _violations(p):
+    for _, bad in _violations(p):
         ok &= ~bad
     return ok
 
@@ -339,11 +469,11 @@ def check_domain(*, mask: bool = False, scalar: bool = False,
         raise DomainError(f"parameter shapes do not broadcast together ({shapes})") from None
     p = {k: np.asarray(v) for k, v in zip(p.keys(), b)}
     inside = np.ones(b[0].shape, dtype=bool)
-    for name, bad, bound in _violations(p):
+    for bound, bad in _violations(p):
         if bad.any():
             if not mask:
                 where = tuple(int(i[0]) for i in np.nonzero(bad)) if bad.ndim else ()
-                msg = _describe(name, p, where, bound)
+                msg = _describe(bound, p, where)
                 if bad.size > 1:
                     msg += (f" ({int(bad.sum())} of {bad.size} grid points violate it; "
                             "pass mask_unphysical=True to compute the rest)")

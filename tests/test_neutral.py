@@ -35,7 +35,7 @@ from conftest import mp_polyroots
 from continuation import dense, fold_curve, neutral_curve
 from stability.models import get_model
 from stability.models.base import LinearModel
-from stability.linear.neutrality import sliding_coefficients
+from stability.models.sliding import scalar_coefficients as sliding_coefficients
 
 MU = 2.28
 
@@ -105,7 +105,7 @@ def test_dense_output_against_the_closed_form(curve_fr0):
 
 
 def test_sliding_analytic_coefficients_match_the_model():
-    """The scalar fast path of the neutral condition (stability.linear.neutrality.sliding_coefficients)
+    """The scalar fast path of the neutral condition (stability.models.sliding.scalar_coefficients)
     against the model's batched coefficients (the same operations: bit for bit) and its
     derivatives against the 4th-order central stencil on the model (the coefficients are
     polynomials of degree <= 2 in each parameter, so the stencil is exact up to rounding,
@@ -305,12 +305,11 @@ def test_errors():
 
 
 def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
-    """The compiled neutral condition (stability.linear.neutrality.sliding_crossing_residual, used by
+    """The compiled neutral condition (stability.linear.neutrality.crossing_kernels, used by
     the compiled corrector) and the second test function against the scalar Python path: the
     same floating-point operations, so the same bits, at random points (both derivatives'
     parameters, structural zero root deflated or not, |w| below and above 1)."""
-    from stability.linear.neutrality import (NeutralCondition, _other_roots_list,
-                                      sliding_crossing_other_growth, sliding_crossing_residual)
+    from stability.linear.neutrality import NeutralCondition, _other_roots_list
 
     rng = np.random.default_rng(5)
     planes = [("q", "sigma"), ("q", "fr_inv"), ("sigma", "alpha_v"), ("q", "mu"), ("fr_inv", "sigma")]
@@ -320,6 +319,7 @@ def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
                  sigma=rng.uniform(0, 2), alpha_v=rng.uniform(0.1, 3), mu=rng.uniform(1, 3))
         cond = NeutralCondition("sliding", free, {n: v for n, v in p.items() if n not in free})
         assert cond._compiled is not None
+        sliding_crossing_residual, sliding_crossing_other_growth = cond.kernels.residual, cond.kernels.other_growth
         vals, w = np.array([p[n] for n in free]), rng.uniform(-3, 3)
         F, J = cond.residual_and_jacobian(vals, w)
         Fc, Jc = np.empty(2), np.empty((2, 3))
@@ -429,7 +429,7 @@ def test_no_false_double_crossing_as_fr_inv_goes_to_zero():
     absolute error ~u, which decided that root's sign (+3.8e-15 for a true -3e-34 next to the
     edge) and produced a "double_crossing" at fr_inv = 5e-7; with composite deflation (the last
     coefficient -c0/r) the small root is right to relative rounding."""
-    from stability.linear.neutrality import other_roots, sliding_coefficients
+    from stability.linear.neutrality import other_roots
 
     ds = neutral_curve("sliding", "sigma", "fr_inv", fixed=dict(q=-0.1, alpha_v=0.5))
     assert "double_crossing" not in set(ds.kind.values)

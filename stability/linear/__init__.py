@@ -4,7 +4,8 @@ Layer 2 (docs/architecture.md): imports :mod:`stability.models`, :mod:`stability
 and the generic :mod:`continuation` engine, never the grids, the nonlinear runs, the figures or
 the command line.
 
-* :mod:`~stability.linear.roots` - structured polynomial roots and their error bounds;
+* :mod:`~stability.linear.roots` - structured polynomial roots and their error bounds, and the
+  polynomial building blocks every engine shares (Horner, the quadratic formula, deflation);
 * :mod:`~stability.linear.kernel` - the compiled default eigenvalue method;
 * :mod:`~stability.linear.spectra` - :func:`~stability.linear.spectra.eigenvalues`,
   :func:`~stability.linear.spectra.spectrum` and the marginal decision;

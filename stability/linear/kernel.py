@@ -4,32 +4,38 @@ One pass per grid point, in parallel over the points (``numba.njit(parallel=True
 ``fastmath=False``: IEEE arithmetic, no reassociation, so the error-free transformations and
 the exact structural tests below mean what they say). Per point:
 
-0. *Domain* (:func:`checked_sliding_spectrum`, the default path of :func:`stability.spectrum`):
-   the bounds of :func:`stability.parameters.check_domain` tested in the same pass, with the
-   same ``A_G`` (bit for bit) and the same comparisons (``sigma <= 2 A_G (1 + 8 u)``); points
-   outside get NaN and flag -1 and are counted, and the caller calls ``check_domain`` to raise
-   its error when the request is not masked (the messages live there only). Scalars are read
-   in place (stride 0), not broadcast in memory.
-1. *Coefficients.* For the sliding model (eq. 11) they are formed inside the kernel from the
-   parameters, with the same floating-point operations as
-   :meth:`stability.models.sliding.Sliding.coefficients` (``A_G`` by Dekker's product and
-   Knuth's sum as in :mod:`stability.models.inertia`); ``tests/test_kernel.py`` checks that the two
-   agree bit for bit. Any other model of degree <= 3 goes through
+0. *Domain* (:func:`checked_model_spectrum`, the default path of :func:`stability.spectrum`
+   for a model that offers its coefficients as a formula): the bounds of the domain table
+   :data:`stability.parameters.DOMAIN` tested in the same pass, compiled from the same source
+   as :func:`stability.parameters.check_domain`'s numpy test (:func:`~stability.parameters.domain_sides`,
+   :func:`~stability.parameters.bound_holds`: the same ``A_G`` bit for bit and the same
+   comparisons, ``sigma <= 2 A_G (1 + 8 u)``); points outside get NaN and flag -1 and are
+   counted, and the caller calls ``check_domain`` to raise its error when the request is not
+   masked (the messages live there only). Scalars are read in place (stride 0), not broadcast
+   in memory.
+1. *Coefficients.* A model that offers ``point_coefficients`` (the optional capability of
+   :mod:`stability.models.base`; the sliding model, eq. 11) has them formed inside the kernel
+   from the parameters: its formula, a ``register_jitable`` function, is compiled into the
+   kernel's loop (:func:`_model_kernels`, one set of loops per model, cached on disk), so the
+   kernel does the same floating-point operations as the model's own numpy
+   :meth:`~stability.models.base.LinearModel.coefficients` (``tests/test_kernel.py`` checks
+   that the two engines agree bit for bit). Any other model of degree <= 3 goes through
    :func:`coefficient_spectrum`, on the coefficients the model returns.
 2. *Structural zeros.* Exactly zero trailing coefficients (the sliding model's
    ``c0 = -mu alpha_v q fr_inv`` at ``fr_inv = 0``, ``q = 0`` or ``alpha_v = 0``) give exactly
    zero roots with error bound 0; the polynomial is deflated exactly.
-3. *Quadratics* (the deflated cubic, and the fixed-pivot and rolling models, eq. 8) as in
-   :mod:`stability.linear.roots`: conservative ones (``p(i nu)`` real) in real arithmetic, so that a
-   neutral mode has ``Re s = 0`` exactly; others by the cancellation-free formula; one Newton
-   step.
+3. *Quadratics* (the deflated cubic, and the fixed-pivot and rolling models, eq. 8) by
+   :func:`stability.linear.roots.quadratic_roots`: conservative ones (``p(i nu)`` real) in real
+   arithmetic, so that a neutral mode has ``Re s = 0`` exactly; others by the
+   cancellation-free formula; one Newton step.
 4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates (a real leading
    coefficient divided out in real arithmetic; the cube root without trigonometric functions,
    :func:`_cbrt`: a polynomial start and one Halley step, a few ulp). Where the scales
    are widely separated (smallest estimate below 1e-4 x the largest), Cardano's small roots
    carry an absolute error ``~u |largest|``: the largest root (which Cardano gets to full
-   relative accuracy) is Newton-polished and divided out by backward deflation (stable for the
-   largest root), and the remaining quadratic is solved by the cancellation-free formula. All
+   relative accuracy) is Newton-polished and divided out by backward deflation
+   (:func:`stability.linear.roots.deflate_cubic_backward`, stable for the largest root), and the
+   remaining quadratic is solved by the cancellation-free formula. All
    three roots are then polished on the *undeflated* polynomial by Weierstrass (Durand-Kerner)
    sweeps, ``step = p(r) / (c3 prod_j (r - r_j))`` (Newton's step with the other roots divided
    out, which keeps nearly colliding roots apart), until every relative step is below 1e-8
@@ -44,30 +50,44 @@ the exact structural tests below mean what they say). Per point:
    by decreasing ``Im s``; compare-exchanges by selects); a mode is neutral if ``Re s = 0`` by
    structure or ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
 
+Polynomial building blocks (Horner's scheme, the quadratic formula, deflation, the complex
+square root and modulus) come from :mod:`stability.linear.roots`, where they are written once
+for every engine. Every loop has a parallel and a serial version (``parallel`` argument of the
+drivers; by default serial below :data:`SERIAL_BELOW` points): a caller that wants one thread
+asks for it, the process-wide thread count is never changed.
+
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
 ``Re s``, frequency ``Im s`` in units of the spin rate.
 """
 
 from __future__ import annotations
 
+import functools
 import math
-from typing import NamedTuple
+import types
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["sliding_spectrum", "checked_sliding_spectrum", "sliding_domain", "coefficient_spectrum",
-           "KernelSpectrum", "CheckedSpectrum", "MAX_DEGREE"]
+from ..models import LinearModel, get_model
+from ..parameters import PARAMETERS, domain_applies, domain_sides, inside_domain
+from .roots import csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
+
+__all__ = ["accepts", "model_spectrum", "checked_model_spectrum", "model_domain", "model_coefficients",
+           "sliding_spectrum", "checked_sliding_spectrum", "sliding_domain", "sliding_coefficients",
+           "coefficient_spectrum", "KernelSpectrum", "CheckedSpectrum", "MAX_DEGREE", "SERIAL_BELOW"]
 
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
 
+#: batches below this many points run serially unless a caller asks otherwise
+SERIAL_BELOW = 512
+
 _U = 2.0**-53
-_SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp), as in stability.models.inertia
 _STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
 _INSIDE, _OUTSIDE_DOMAIN, _NOT_FINITE = 0, 1, 2  # codes of _domain_code
-#: slack of the bound sigma <= 2 A_G, as in stability.parameters (round-off in the caller's bound)
-_SIGMA_SLACK = 1.0 + 8 * 2.0**-53
 _OMEGA = complex(-0.5, math.sqrt(3.0) / 2.0)  # primitive cube root of unity
 _OMEGA2 = complex(-0.5, -math.sqrt(3.0) / 2.0)
 _CBRT_I = complex(math.sqrt(3.0) / 2.0, 0.5)  # exp(i pi / 6), a cube root of i
@@ -80,58 +100,26 @@ _CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 
 
-class KernelSpectrum(tuple):
-    """``(eigenvalues, error_bound, neutral, stability)`` as returned by the kernel drivers.
+class KernelSpectrum(NamedTuple):
+    """What the kernel drivers return (a named tuple: ``ev, bd, nt, st = ...`` still works).
 
-    eigenvalues : complex (N, n), sorted; error_bound : float (N, n); neutral : bool (N, n);
-    stability : int8 (N,) (-1 where the point was marked outside the domain).
+    Attributes
+    ----------
+    eigenvalues : numpy.ndarray of complex, shape (..., n)
+        Sorted by decreasing real part (ties by decreasing imaginary part).
+    error_bound : numpy.ndarray of float, shape (..., n)
+    neutral : numpy.ndarray of bool, shape (..., n)
+    stability : numpy.ndarray of int8, shape (...)
+        -1 where the point was marked outside the domain.
     """
+
+    eigenvalues: np.ndarray
+    error_bound: np.ndarray
+    neutral: np.ndarray
+    stability: np.ndarray
 
 
 # --- scalar helpers (inlined by LLVM) ---------------------------------------------------------
-
-@njit(**_JIT)
-def _mod(z):
-    """``|z|``: ``sqrt(re^2 + im^2)`` (within an ulp of ``hypot``, and much faster) unless the
-    squares would underflow or overflow, then ``hypot``."""
-    s = z.real * z.real + z.imag * z.imag
-    if 1e-290 < s < 1e290:
-        return math.sqrt(s)
-    return math.hypot(z.real, z.imag)
-
-
-@njit(**_JIT)
-def _horner(c3, c2, c1, c0, s):
-    """``p, p', p''`` at ``s`` (Horner, as stability.linear.roots.horner with leading zeros)."""
-    p = c3
-    d1 = 0j
-    d2 = 0j
-    for ck in (c2, c1, c0):
-        d2 = d2 * s + 2.0 * d1
-        d1 = d1 * s + p
-        p = p * s + ck
-    return p, d1, d2
-
-
-@njit(**_JIT)
-def _value(c3, c2, c1, c0, s):
-    """``p(s)`` only."""
-    return ((c3 * s + c2) * s + c1) * s + c0
-
-
-@njit(**_JIT)
-def _bound(c3, c2, c1, c0, deg, r):
-    """Absolute error bound of a root ``r`` (stability.linear.roots, module docstring)."""
-    a = _mod(r)
-    scale = ((_mod(c3) * a + _mod(c2)) * a + _mod(c1)) * a + _mod(c0)
-    dp = (deg + 4) * _U * scale
-    _, d1, d2 = _horner(c3, c2, c1, c0, r)
-    m1 = _mod(d1)
-    m2 = _mod(d2)
-    first = dp / m1 if m1 > 0 else np.inf
-    second = math.sqrt(2.0 * dp / m2) if m2 > 0 else np.inf
-    return min(first, second)
-
 
 @njit(**_JIT)
 def _mod2(z):
@@ -140,67 +128,18 @@ def _mod2(z):
 
 
 @njit(**_JIT)
-def _pd(c3, c2, c1, c0, s):
-    """``p, p'`` at ``s``."""
-    p = c3 * s + c2
-    d1 = c3 * s + p
-    p = p * s + c1
-    d1 = d1 * s + p
-    p = p * s + c0
-    return p, d1
-
-
-@njit(**_JIT)
 def _newton(c3, c2, c1, c0, r, iterations):
     """Newton steps on ``p``, each kept only if ``|p|`` drops."""
-    p, d1 = _pd(c3, c2, c1, c0, r)
+    p, d1, _ = horner_scheme((c3, c2, c1, c0), r, 1)
     for _ in range(iterations):
         if d1 == 0:
             break
         trial = r - p / d1
-        pt, dt = _pd(c3, c2, c1, c0, trial)
+        pt, dt, _ = horner_scheme((c3, c2, c1, c0), trial, 1)
         if not _mod2(pt) < _mod2(p):
             break
         r, p, d1 = trial, pt, dt
     return r
-
-
-@njit(**_JIT)
-def _quadratic(a, b, k):
-    """Roots of ``a s^2 + b s + k`` and whether their real part is exactly zero (stability.linear.roots)."""
-    if a.imag == 0 and b.real == 0 and k.imag == 0:
-        # conservative: p(i nu) = -a nu^2 - b.imag nu + k is real
-        A, B, C = -a.real, -b.imag, k.real
-        disc = B * B - 4.0 * A * C
-        sq = math.sqrt(abs(disc))
-        sgn = 1.0 if B >= 0 else -1.0
-        if disc >= 0:
-            big = -(B + sgn * sq) / 2.0
-            nu1 = big / A if big != 0 else 0.0
-            nu2 = C / big if big != 0 else 0.0
-            return complex(0.0, nu1), complex(0.0, nu2), True
-        nu1 = complex(-B / (2 * A), sq / (2 * abs(A)))
-        nu2 = complex(-B / (2 * A), -sq / (2 * abs(A)))
-        return 1j * nu1, 1j * nu2, False
-    sq = _csqrt(b * b - 4.0 * a * k)
-    sgn = 1.0 if (b.conjugate() * sq).real >= 0 else -1.0
-    big = -(b + sgn * sq) / 2.0
-    if big != 0:
-        return big / a, k / big, False
-    return 0j, 0j, False
-
-
-@njit(**_JIT)
-def _csqrt(z):
-    """Principal complex square root, without cancellation (a few ulp; faster than
-    ``numpy.sqrt``, which calls ``hypot``)."""
-    x, y = z.real, z.imag
-    if x == 0 and y == 0:
-        return complex(0.0, y)
-    t = math.sqrt(0.5 * (abs(x) + _mod(z)))
-    if x >= 0:
-        return complex(t, y / (2.0 * t))
-    return complex(abs(y) / (2.0 * t), math.copysign(t, y))
 
 
 @njit(**_JIT)
@@ -222,7 +161,7 @@ def _cbrt(w):
     Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one thread); this
     takes ~35."""
     x, y = w.real, w.imag
-    r = _mod(w)
+    r = modulus(w)
     if not 0.0 < r < np.inf:
         return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
     # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
@@ -270,7 +209,7 @@ def _cardano(c3, c2, c1, c0):
     a3 = _scale(a, _THIRD)
     P3 = _scale(b - a * a3, _THIRD)
     Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
-    sd = _csqrt(Q2 * Q2 + P3 * P3 * P3)
+    sd = csqrt(Q2 * Q2 + P3 * P3 * P3)
     w1 = -Q2 + sd
     w2 = -Q2 - sd
     w = w1 if _mod2(w1) >= _mod2(w2) else w2
@@ -289,7 +228,7 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     Newton's step on ``p`` with the other roots divided out (so nearly colliding roots stay
     apart). Returns the new root and ``|step|^2 - 1e-16 |r|^2`` (> 0: a relative step above
     1e-8)."""
-    p = _value(c3, c2, c1, c0, r)
+    p = horner_scheme((c3, c2, c1, c0), r, 0)[0]
     den = c3 * (r - o1) * (r - o2)
     n2 = _mod2(den)
     if n2 == 0 or not np.isfinite(n2):
@@ -314,14 +253,11 @@ def _cubic(c3, c2, c1, c0, polish):
             r0 = r2
         if polish > 0:
             r0 = _newton(c3, c2, c1, c0, r0, 2)
-        ib = 1.0 / r0
-        b0 = -c0 * ib
-        b1 = (b0 - c1) * ib
-        b2 = (b1 - c2) * ib
-        r1, r2, _ = _quadratic(b2, b1, b0)
+        b2, b1, b0 = deflate_cubic_backward(c3, c2, c1, c0, r0)
+        r1, r2, _ = quadratic_roots(b2, b1, b0)
     if not (np.isfinite(r0) and np.isfinite(r1) and np.isfinite(r2)):
         # Cardano overflowed (|c2/c3| beyond ~1e100): start on a circle enclosing the roots
-        rho = 2.0 * max(_mod(c2 / c3), math.sqrt(_mod(c1 / c3)), np.cbrt(_mod(c0 / c3)))
+        rho = 2.0 * max(modulus(c2 / c3), math.sqrt(modulus(c1 / c3)), np.cbrt(modulus(c0 / c3)))
         r0, r1, r2 = rho * complex(0.6, 0.8), rho * _OMEGA * complex(0.6, 0.8), rho * _OMEGA2 * complex(0.6, 0.8)
         sweeps = 100 * polish
     for _ in range(sweeps):
@@ -336,10 +272,24 @@ def _cubic(c3, c2, c1, c0, polish):
 
 
 @njit(**_JIT)
+def _bound(c3, c2, c1, c0, deg, r):
+    """Absolute error bound of a root ``r`` (stability.linear.roots, module docstring)."""
+    a = modulus(r)
+    scale = ((modulus(c3) * a + modulus(c2)) * a + modulus(c1)) * a + modulus(c0)
+    dp = (deg + 4) * _U * scale
+    _, d1, d2 = horner_scheme((c3, c2, c1, c0), r)
+    m1 = modulus(d1)
+    m2 = modulus(d2)
+    first = dp / m1 if m1 > 0 else np.inf
+    second = math.sqrt(2.0 * dp / m2) if m2 > 0 else np.inf
+    return min(first, second)
+
+
+@njit(**_JIT)
 def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     """:func:`_bound` with the coefficient moduli ``m_k = |c_k|`` given (one square root
     fewer per comparison; the same value up to rounding)."""
-    a = _mod(r)
+    a = modulus(r)
     dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
     # p' and p'' directly (Horner's scheme would form p as well)
     t = _scale(c3, 3.0) * r + _scale(c2, 2.0)
@@ -389,7 +339,7 @@ def _solve(c3, c2, c1, c0, deg, polish):
         r0, r1, r2 = _cubic(d3, d2, d1, d0, polish)
         x0 = x1 = x2 = False
     elif m == 2:
-        r0, r1, ex = _quadratic(d2, d1, d0)
+        r0, r1, ex = quadratic_roots(d2, d1, d0)
         if not ex and polish > 0:
             r0 = _newton(d3, d2, d1, d0, r0, 1)
             r1 = _newton(d3, d2, d1, d0, r1, 1)
@@ -398,13 +348,22 @@ def _solve(c3, c2, c1, c0, deg, polish):
         r0 = -d0 / d1
         x0 = False
     if m > 0:
-        m3, m2, m1, m0 = _mod(d3), _mod(d2), _mod(d1), _mod(d0)
+        m3, m2, m1, m0 = modulus(d3), modulus(d2), modulus(d1), modulus(d0)
         e0 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r0)
         if m > 1:
             e1 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r1)
         if m > 2:
             e2 = _bound_fast(d3, d2, d1, d0, m3, m2, m1, m0, m, r2)
     return r0, r1, r2, e0, e1, e2, x0, x1, x2
+
+
+@njit(**_JIT)
+def _solve_linear(c1, c0):
+    """The root of ``c1 s + c0``, its bound and exact-zero flag (in :func:`_solve`'s layout)."""
+    r0 = -c0 / c1
+    x0 = c0 == 0
+    e0 = 0.0 if x0 else _bound(0j, 0j, c1, c0, 1, r0)
+    return r0, 0j, 0j, e0, 0.0, 0.0, x0, False, False
 
 
 @njit(**_JIT)
@@ -473,32 +432,7 @@ def _mark_outside(n, ev, bd, neutral):
         neutral[j] = False
 
 
-# --- the sliding model, coefficients formed in the kernel -------------------------------------
-
-@njit(**_JIT)
-def _two_product(a, b):
-    p = a * b
-    c = _SPLITTER * a
-    ah = c - (c - a)
-    al = a - ah
-    c = _SPLITTER * b
-    bh = c - (c - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
-@njit(**_JIT)
-def _transverse_inertia_g(q, mu):
-    """``A_G = 1 - mu q^2`` with the operations of :func:`stability.models.inertia.transverse_inertia_g`
-    (Dekker's product, Knuth's sum), so the two agree bit for bit."""
-    t, te = _two_product(q, q)
-    u, ue = _two_product(mu, t)
-    ue = ue + mu * te
-    s = 1.0 + (-u)
-    bb = s - 1.0
-    se = (1.0 - (s - bb)) + (-u - bb)
-    return s + (se - ue)
-
+# --- the domain test, compiled from the domain table of stability.parameters ------------------
 
 @njit(**_JIT)
 def _refused(x, lo, hi):
@@ -511,121 +445,180 @@ def _refused(x, lo, hi):
 
 
 @njit(**_JIT)
-def _domain_code(q, fr_inv, sigma, alpha_v, mu, a_g, lim):
-    """Where a sliding point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound violated) or
+def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
+    """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
+    :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
     ``_NOT_FINITE`` (a parameter not finite or outside the computable range ``lim``, the pairs
     ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, an array of 10 floats, ``hi`` finite: refused
-    whatever the mask). The bounds of
-    :func:`stability.parameters.check_domain`, with its comparisons as written there
-    (``A_G > 0``; ``sigma <= 2 A_G (1 + 8 u)``; NaN fails). Every test is evaluated (``|``, no
-    short circuit): the point is inside nearly always, and the branches cost more."""
+    whatever the mask). The bounds are :func:`stability.parameters.inside_domain` on
+    :func:`stability.parameters.domain_sides`, the source of ``check_domain``'s numpy test
+    (NaN fails). Every test is evaluated (``|``, no short circuit): the point is inside nearly
+    always, and the branches cost more."""
     bad = (_refused(q, lim[0], lim[1]) | _refused(fr_inv, lim[2], lim[3]) | _refused(sigma, lim[4], lim[5])
            | _refused(alpha_v, lim[6], lim[7]) | _refused(mu, lim[8], lim[9]))
-    out = ((mu <= 0.0) | (fr_inv < 0.0) | (alpha_v < 0.0) | (not a_g > 0.0) | (sigma <= 0.0)
-           | (sigma > 2.0 * a_g * _SIGMA_SLACK))
+    out = not inside_domain(domain_sides(q, fr_inv, sigma, alpha_v, mu, 0.0), applies)
     return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
-
-
-@njit(**_JIT)
-def sliding_coefficients(q, fr_inv, sigma, alpha_v, mu):
-    """``mu det(s M - A)`` of eq. (11) for one point, as Sliding.coefficients computes it."""
-    return _sliding_coefficients(q, fr_inv, sigma, alpha_v, mu, _transverse_inertia_g(q, mu))
-
-
-@njit(**_JIT)
-def _sliding_coefficients(q, fr_inv, sigma, alpha_v, mu, a_g):
-    """:func:`sliding_coefficients` with ``A_G`` given."""
-    a_c = a_g + mu * (1.0 + q) ** 2
-    c3 = complex(mu * a_g, 0.0)
-    c2 = complex(alpha_v * a_c, -(mu * sigma))
-    c1 = complex(-mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q))))
-    c0 = complex(-mu * alpha_v * q * fr_inv, 0.0)
-    return c3, c2, c1, c0
-
-
-@njit(parallel=True, **_JIT)
-def _sliding_kernel(q, fr_inv, sigma, alpha_v, mu, inside, polish, ev, bd, neutral, stab):
-    for i in prange(q.shape[0]):
-        if not inside[i]:
-            _mark_outside(3, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            continue
-        c3, c2, c1, c0 = sliding_coefficients(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i])
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, polish)
-        stab[i] = _decide(3, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
-
-
-@njit(inline="always", **_JIT)
-def _checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
-    """Point ``i`` of :func:`_checked_sliding_kernel`."""
-    qi, mi = q[i * sq], mu[i * sm]
-    fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-    a_g = _transverse_inertia_g(qi, mi)
-    code = _domain_code(qi, fi, si, ai, mi, a_g, lim)
-    where[i] = code
-    if code != _INSIDE:
-        _mark_outside(3, ev[i], bd[i], neutral[i])
-        stab[i] = _OUTSIDE
-        return
-    c3, c2, c1, c0 = _sliding_coefficients(qi, fi, si, ai, mi, a_g)
-    r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, polish)
-    stab[i] = _decide(3, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
-
-
-@njit(parallel=True, **_JIT)
-def _checked_sliding_kernel(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral,
-                            stab, where):
-    """:func:`_sliding_kernel` with the domain test fused in; ``where`` (int8) gets the code of
-    :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
-    (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
-    (No reduction variables, which slowed the loop by ~15%; the driver counts.)"""
-    for i in prange(stab.shape[0]):
-        _checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab,
-                       where)
-
-
-@njit(**_JIT)
-def _checked_sliding_serial(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral,
-                            stab, where):
-    """The same loop without threads, for small batches (a parallel launch costs more than a
-    few points, and much more on a loaded machine). A separate function, not a second
-    ``njit`` of the same one: numba's disk cache would not tell the two apart."""
-    for i in range(stab.shape[0]):
-        _checked_point(i, q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab,
-                       where)
-
-
-#: batches below this many points run serially
-SERIAL_BELOW = 512
-
-
-@njit(parallel=True, **_JIT)
-def _domain_kernel(q, fr_inv, sigma, alpha_v, mu, lim, code):
-    for i in prange(q.shape[0]):
-        code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i],
-                               _transverse_inertia_g(q[i], mu[i]), lim)
 
 
 @njit(parallel=True, **_JIT)
 def _coefficient_kernel(c, inside, polish, ev, bd, neutral, stab):
-    n = c.shape[1] - 1
     for i in prange(c.shape[0]):
-        if not inside[i]:
-            _mark_outside(n, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            continue
-        if n == 3:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], c[i, 3], 3, polish)
-        elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], 0j, 2, polish)
-        else:
-            r0 = -c[i, 1] / c[i, 0]
-            x0 = c[i, 1] == 0
-            e0 = 0.0 if x0 else _bound(0j, 0j, c[i, 0], c[i, 1], 1, r0)
-            r1 = r2 = 0j
-            e1 = e2 = 0.0
-            x1 = x2 = False
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+        _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab)
+
+
+@njit(**_JIT)
+def _coefficient_serial(c, inside, polish, ev, bd, neutral, stab):
+    """:func:`_coefficient_kernel` without threads (a separate function, not a second ``njit``
+    of the same one: numba's disk cache would not tell the two apart)."""
+    for i in range(c.shape[0]):
+        _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab)
+
+
+@njit(inline="always", **_JIT)
+def _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab):
+    """Point ``i`` of :func:`_coefficient_kernel`."""
+    n = c.shape[1] - 1
+    if not inside[i]:
+        _mark_outside(n, ev[i], bd[i], neutral[i])
+        stab[i] = _OUTSIDE
+        return
+    if n == 3:
+        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], c[i, 3], 3, polish)
+    elif n == 2:
+        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], 0j, 2, polish)
+    else:
+        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(c[i, 0], c[i, 1])
+    stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+
+
+# --- the loops of a model that offers its coefficients as a formula ---------------------------
+
+@njit(**_JIT)
+def _solve_parts(parts, polish):
+    """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
+    ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
+    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
+    if len(parts) == 8:
+        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]),
+                      complex(parts[6], parts[7]), 3, polish)
+    if len(parts) == 6:
+        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), 0j, 2,
+                      polish)
+    return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
+
+
+@njit(**_JIT)
+def _complex_parts(parts):
+    """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
+    if len(parts) == 8:
+        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), complex(
+            parts[6], parts[7])
+    if len(parts) == 6:
+        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
+    return complex(parts[0], parts[1]), complex(parts[2], parts[3])
+
+
+def _serial_twin(f: Callable[..., Any]) -> Callable[..., Any]:
+    """A copy of the Python function ``f`` under the qualified name ``<f>_serial``, to be compiled
+    without ``parallel`` (``prange`` then runs as ``range``). numba names a function's disk-cache
+    files after its qualified name and first line, so two ``njit`` of ``f`` itself, one parallel
+    and one not, would overwrite each other's cache."""
+    g = types.FunctionType(f.__code__, f.__globals__, f.__name__ + "_serial", f.__defaults__, f.__closure__)
+    g.__qualname__ = f.__qualname__ + "_serial"
+    g.__doc__ = f.__doc__
+    return g
+
+
+class _Kernels(NamedTuple):
+    """The compiled loops of one model (:func:`_compile`)."""
+
+    checked: Callable[..., None]
+    checked_serial: Callable[..., None]
+    masked: Callable[..., None]
+    masked_serial: Callable[..., None]
+    domain: Callable[..., None]
+    coefficients: Callable[..., tuple]
+    n: int
+
+
+@functools.cache
+def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -> _Kernels:
+    """The loops for the coefficient formula ``formula`` (a model's ``point_coefficients``, of
+    degree ``n``) and the domain bounds ``applies`` (:func:`stability.parameters.domain_applies`).
+
+    Closures over ``formula``, ``n`` and ``applies``, compiled with ``cache=True``: numba keys a
+    closure's disk cache by its captured values, pickled (the formula by reference), so each
+    model's loops are compiled once per machine. The loops call the kernel's helpers as globals
+    (never captured: a captured ``njit`` dispatcher pickles differently in every process, and
+    the cache would never be found again; tests/test_one_home.py checks the keys), and write
+    the point's work out in the loop body rather than in a local helper function (an inlined
+    local ``register_jitable`` helper compiled half as fast again).
+    """
+    if not 1 <= n <= MAX_DEGREE:
+        raise ValueError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
+
+    def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
+        """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
+        :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
+        (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
+        (No reduction variables, which slowed the loop by ~15%: the driver counts.)"""
+        for i in prange(stab.shape[0]):
+            qi, mi = q[i * sq], mu[i * sm]
+            fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
+            code = _domain_code(qi, fi, si, ai, mi, lim, applies)
+            where[i] = code
+            if code != _INSIDE:
+                _mark_outside(n, ev[i], bd[i], neutral[i])
+                stab[i] = _OUTSIDE
+                continue
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(formula(qi, fi, si, ai, mi), polish)
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+
+    def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
+        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
+        for i in prange(stab.shape[0]):
+            if not inside[i]:
+                _mark_outside(n, ev[i], bd[i], neutral[i])
+                stab[i] = _OUTSIDE
+                continue
+            parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(parts, polish)
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+
+    def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
+        for i in prange(q.shape[0]):
+            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
+
+    def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
+        return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
+
+    return _Kernels(njit(parallel=True, **_JIT)(checked), njit(**_JIT)(_serial_twin(checked)),
+                    njit(parallel=True, **_JIT)(masked), njit(**_JIT)(_serial_twin(masked)),
+                    njit(parallel=True, **_JIT)(domain), njit(**_JIT)(point_coefficients), n)
+
+
+def _model_kernels(model: LinearModel) -> _Kernels | None:
+    """The compiled loops of ``model`` if it offers ``point_coefficients`` (the optional
+    capability of :mod:`stability.models.base`) and has degree <= :data:`MAX_DEGREE`, else None."""
+    formula = getattr(model, "point_coefficients", None)
+    if formula is None or not 1 <= model.n_modes <= MAX_DEGREE:
+        return None
+    return _compile(formula, int(model.n_modes), domain_applies(model.parameters))
+
+
+def accepts(model: LinearModel) -> bool:
+    """Whether the kernel forms ``model``'s coefficients itself (it offers ``point_coefficients``
+    of degree <= :data:`MAX_DEGREE`): :func:`model_spectrum` and :func:`checked_model_spectrum`
+    apply; any other model goes through :func:`coefficient_spectrum`."""
+    return _model_kernels(model) is not None
+
+
+def _require_kernels(model: LinearModel) -> _Kernels:
+    kernels = _model_kernels(model)
+    if kernels is None:
+        raise ValueError(f"model {model.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
+                         "(stability.models.base); use coefficient_spectrum on its coefficients")
+    return kernels
 
 
 # --- drivers ----------------------------------------------------------------------------------
@@ -644,39 +637,73 @@ def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np
     return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
 
 
-def sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                     mu: np.ndarray, inside: np.ndarray | None = None, *,
-                     polish: int = 3) -> KernelSpectrum:
-    """Sorted eigenvalues, error bounds and the stability decision of the sliding model.
+def _serial(npts: int, parallel: bool | None) -> bool:
+    """Whether to run the serial loop: asked for (``parallel=False``), or by default
+    (``parallel=None``) below :data:`SERIAL_BELOW` points (a parallel launch costs more than a
+    few points, and much more on a loaded machine)."""
+    return (npts < SERIAL_BELOW) if parallel is None else not parallel
+
+
+def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
+    """The five linear parameters in :data:`stability.parameters.PARAMETERS` order (the
+    arguments of ``point_coefficients``); ``0.0`` for those the model does not take."""
+    missing = [n for n in model.parameters if n not in params]
+    if missing:
+        raise TypeError(f"model {model.name!r} needs {', '.join(missing)}")
+    return [params[n] if n in model.parameters else 0.0 for n in PARAMETERS]
+
+
+def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: np.ndarray | None = None, *,
+                   polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
+    """Sorted eigenvalues, error bounds and the stability decision of a model whose coefficients
+    the kernel forms itself (``point_coefficients``), without a domain check.
 
     Parameters
     ----------
-    q, fr_inv, sigma, alpha_v, mu : numpy.ndarray
-        Parameters of eq. (11), broadcast together; not checked against the physical domain
+    model : str or LinearModel
+        A model that offers ``point_coefficients`` (:mod:`stability.models.base`).
+    params : mapping of str to numpy.ndarray
+        The model's parameters, broadcast together; not checked against the physical domain
         (:func:`stability.spectrum` does that).
     inside : numpy.ndarray of bool, optional
         Points to compute (the others get NaN and flag -1); default all.
     polish : int, default 3
         Largest number of polishing sweeps; 0 gives Cardano's roots with deflation only.
+    parallel : bool, optional
+        Run on numba's threads (True) or in this thread (False); default: serially below
+        :data:`SERIAL_BELOW` points.
 
     Returns
     -------
     KernelSpectrum
-        ``(eigenvalues, error_bound, neutral, stability)``, shape ``broadcast + (3,)`` (and
-        ``broadcast`` for the flag).
+        Shapes ``broadcast + (n_modes,)`` (and ``broadcast`` for the flag).
     """
-    shape = np.broadcast_shapes(*(np.shape(v) for v in (q, fr_inv, sigma, alpha_v, mu)))
-    args = [_flat(v, shape) for v in (q, fr_inv, sigma, alpha_v, mu)]
-    npts = args[0].size
+    m = get_model(model)
+    kernels = _require_kernels(m)
+    values = _canonical(m, params)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    npts = math.prod(shape)
+    flat = [_strided(v, shape) for v in values]
     ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
-    ev, bd, nt, st = _outputs(npts, 3)
-    _sliding_kernel(*args, ins, int(polish), ev, bd, nt, st)
-    return KernelSpectrum((ev.reshape(shape + (3,)), bd.reshape(shape + (3,)),
-                           nt.reshape(shape + (3,)), st.reshape(shape)))
+    n = kernels.n
+    ev, bd, nt, st = _outputs(npts, n)
+    loop = kernels.masked_serial if _serial(npts, parallel) else kernels.masked
+    loop(*(a for pair in flat for a in pair), ins, int(polish), ev, bd, nt, st)
+    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
+                          st.reshape(shape))
+
+
+def sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
+                     mu: np.ndarray, inside: np.ndarray | None = None, *,
+                     polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
+    """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
+    kernel of the benchmarks)."""
+    return model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), inside,
+                          polish=polish, parallel=parallel)
 
 
 class CheckedSpectrum(NamedTuple):
-    """What :func:`checked_sliding_spectrum` returns.
+    """What :func:`checked_model_spectrum` returns.
 
     Attributes
     ----------
@@ -722,74 +749,114 @@ def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
     return np.ascontiguousarray(np.broadcast_to(y, shape)).reshape(-1), 1
 
 
-def checked_sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                             mu: np.ndarray, *, polish: int = 3) -> CheckedSpectrum:
-    """The sliding model's spectrum (eq. 11) with the physical domain tested in the same pass.
+def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], *, polish: int = 3,
+                           parallel: bool | None = None) -> CheckedSpectrum:
+    """A model's spectrum with the physical domain tested in the same pass.
 
-    The domain test is :func:`stability.parameters.check_domain`'s, point by point (the same
-    ``A_G`` bit for bit, the same comparisons; ``tests/test_kernel.py`` checks that they agree
-    on and a few ulps around every bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``,
-    ``1 - mu q^2 > 0``, ``0 < sigma <= 2 (1 - mu q^2) (1 + 8 u)``, and every parameter finite and
-    in the computable range (:data:`stability.parameters.COMPUTABLE_RANGE`).
+    The domain test is :func:`stability.parameters.check_domain`'s, point by point (the table
+    :data:`stability.parameters.DOMAIN` compiled: the same ``A_G`` bit for bit, the same
+    comparisons; ``tests/test_kernel.py`` checks that they agree on and a few ulps around every
+    bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``, ``1 - mu q^2 > 0``,
+    ``0 < sigma <= 2 (1 - mu q^2) (1 + 8 u)`` (those of the model's parameters), and every
+    parameter finite and in the computable range (:data:`stability.parameters.COMPUTABLE_RANGE`).
     The kernel only reports; raising (with the canonical message) is left to the caller, which
     calls ``check_domain`` when ``n_outside > 0``.
 
     Parameters
     ----------
-    q, fr_inv, sigma, alpha_v, mu : numpy.ndarray of float64
-        Parameters, broadcast together (scalars are read in place, not broadcast in memory).
+    model : str or LinearModel
+        A model that offers ``point_coefficients`` (:mod:`stability.models.base`).
+    params : mapping of str to numpy.ndarray of float64
+        The model's parameters, broadcast together (scalars are read in place, not broadcast
+        in memory).
     polish : int, default 3
-        Largest number of polishing sweeps (:func:`sliding_spectrum`).
+        Largest number of polishing sweeps (:func:`model_spectrum`).
+    parallel : bool, optional
+        As in :func:`model_spectrum`.
 
     Returns
     -------
     CheckedSpectrum
-        Shapes ``broadcast + (3,)`` and ``broadcast``.
+        Shapes ``broadcast + (n_modes,)`` and ``broadcast``.
 
     Raises
     ------
     ValueError
         If the shapes do not broadcast together.
     """
-    values = (q, fr_inv, sigma, alpha_v, mu)
+    m = get_model(model)
+    kernels = _require_kernels(m)
+    values = _canonical(m, params)
     shape = np.broadcast_shapes(*(np.shape(v) for v in values))
     npts = math.prod(shape)
     flat = [_strided(v, shape) for v in values]
-    ev, bd, nt, st = _outputs(npts, 3)
+    n = kernels.n
+    ev, bd, nt, st = _outputs(npts, n)
     where = np.empty(npts, dtype=np.int8)
-    loop = _checked_sliding_serial if npts < SERIAL_BELOW else _checked_sliding_kernel
+    loop = kernels.checked_serial if _serial(npts, parallel) else kernels.checked
     loop(*(a for pair in flat for a in pair), _computable_limits(), int(polish), ev, bd, nt, st, where)
     inside = where == _INSIDE
     n_out = npts - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = KernelSpectrum((ev.reshape(shape + (3,)), bd.reshape(shape + (3,)), nt.reshape(shape + (3,)),
-                           st.reshape(shape)))
+    spec = KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
+                          st.reshape(shape))
     return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
 
 
-def sliding_domain(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                   mu: np.ndarray) -> np.ndarray:
+def checked_sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
+                             mu: np.ndarray, *, polish: int = 3, parallel: bool | None = None) -> CheckedSpectrum:
+    """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
+    return checked_model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
+                                  polish=polish, parallel=parallel)
+
+
+def model_domain(model: str | LinearModel, params: Mapping[str, Any]) -> np.ndarray:
     """The kernel's domain test alone (for tests): 0 inside, 1 outside the physical domain, 2 a
     parameter not finite or outside the computable range (refused even when masked).
 
     Parameters
     ----------
-    q, fr_inv, sigma, alpha_v, mu : numpy.ndarray
-        Parameters, broadcast together.
+    model : str or LinearModel
+        A model that offers ``point_coefficients``.
+    params : mapping of str to numpy.ndarray
+        The model's parameters, broadcast together.
 
     Returns
     -------
     numpy.ndarray of int8, broadcast shape
     """
-    shape = np.broadcast_shapes(*(np.shape(v) for v in (q, fr_inv, sigma, alpha_v, mu)))
-    args = [_flat(v, shape) for v in (q, fr_inv, sigma, alpha_v, mu)]
-    code = np.empty(args[0].size, dtype=np.int8)
-    _domain_kernel(*args, _computable_limits(), code)
+    m = get_model(model)
+    kernels = _require_kernels(m)
+    values = _canonical(m, params)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    args = [_flat(v, shape) for v in values]
+    code = np.empty(math.prod(shape), dtype=np.int8)
+    kernels.domain(*args, _computable_limits(), code)
     return code.reshape(shape)
 
 
+def sliding_domain(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
+                   mu: np.ndarray) -> np.ndarray:
+    """:func:`model_domain` of the sliding model, parameters by position."""
+    return model_domain("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+
+
+def model_coefficients(model: str | LinearModel, q: float, fr_inv: float, sigma: float, alpha_v: float,
+                       mu: float) -> tuple[complex, ...]:
+    """The coefficients at one point as the compiled kernel forms them (highest power first):
+    the numba execution of the model's ``point_coefficients`` (tests compare it, bit for bit,
+    with the model's numpy :meth:`~stability.models.base.LinearModel.coefficients`)."""
+    return _require_kernels(get_model(model)).coefficients(float(q), float(fr_inv), float(sigma), float(alpha_v),
+                                                           float(mu))
+
+
+def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float) -> tuple[complex, ...]:
+    """``mu det(s M - A)`` of eq. (11) at one point as the kernel forms it (:func:`model_coefficients`)."""
+    return model_coefficients("sliding", q, fr_inv, sigma, alpha_v, mu)
+
+
 def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
-                         polish: int = 3) -> KernelSpectrum:
+                         polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
     """The kernel on given coefficients ``c`` (..., n+1), highest power first, ``1 <= n <= 3``.
 
     Parameters
@@ -800,11 +867,13 @@ def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
         Points to compute (the others get NaN and flag -1); default all.
     polish : int, default 3
         Largest number of polishing sweeps.
+    parallel : bool, optional
+        As in :func:`model_spectrum`.
 
     Returns
     -------
     KernelSpectrum
-        As :func:`sliding_spectrum`, with ``n`` modes.
+        As :func:`model_spectrum`, with ``n`` modes.
     """
     c = np.asarray(c, dtype=np.complex128)
     n = c.shape[-1] - 1
@@ -816,6 +885,7 @@ def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
     flat = np.ascontiguousarray(c.reshape(-1, n + 1))
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     ev, bd, nt, st = _outputs(flat.shape[0], n)
-    _coefficient_kernel(flat, ins, int(polish), ev, bd, nt, st)
-    return KernelSpectrum((ev.reshape(shape + (n,)), bd.reshape(shape + (n,)),
-                           nt.reshape(shape + (n,)), st.reshape(shape)))
+    loop = _coefficient_serial if _serial(flat.shape[0], parallel) else _coefficient_kernel
+    loop(flat, ins, int(polish), ev, bd, nt, st)
+    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
+                          st.reshape(shape))

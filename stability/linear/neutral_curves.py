@@ -40,12 +40,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
-import numba
 import numpy as np
 import pandas as pd
 import xarray as xr
+from xarray.indexes import PandasIndex
 
 from continuation.engine import Branch, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
@@ -53,11 +53,12 @@ from continuation.errors import ConvergenceError as EngineConvergenceError
 from .._version import package_version
 from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
+from ..parameters import (DEFAULT_MU, DOMAIN, LONG_NAMES, PARAMETERS, as_scalar, check_choice, check_domain,
+                          check_flag, check_integer, check_positive, domain_sides, domain_text)
 from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
-from ..parameters import (DEFAULT_MU, LONG_NAMES, as_scalar, check_choice, check_domain, check_flag,
-                          check_integer, check_positive)
 from .modes import structural_zeros
+from .neutral_compiled import CONSTRAINT_CODES, constraint_values, step_kernel
 from .neutrality import NeutralCondition
 from .spectra import spectrum
 
@@ -121,7 +122,7 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     return lo, hi
 
 
-def _outside_domain_error(x: str, y: str, ranges: Mapping[str, tuple[float, float]],
+def _outside_domain_error(model: LinearModel, x: str, y: str, ranges: Mapping[str, tuple[float, float]],
                           fixed: Mapping[str, float]) -> DomainError:
     """Ranges that miss the physical domain (no point of the start atlas's grid over them lies
     inside): tracing there finds nothing, and an empty dataset would look like "no neutral
@@ -129,42 +130,70 @@ def _outside_domain_error(x: str, y: str, ranges: Mapping[str, tuple[float, floa
     fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
     return DomainError(f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
                        f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
-                       "(1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0)")
+                       f"({domain_text(model.parameters)})")
 
 
-#: (name, kind, g(params) >= 0 inside, (parameter, bound) if g is a simple bound on one parameter,
-#: (code, parameter, a) the same g for the compiled twin, stability.linear.neutral_compiled)
-Constraint = tuple[str, str, Callable[[Mapping[str, float]], float], tuple[str, float] | None,
-                   tuple[str, str, float]]
+class Constraint(NamedTuple):
+    """One constraint ``g(params) >= 0`` of a neutral-curve problem.
+
+    Attributes
+    ----------
+    name : str
+        The bound as text (a domain bound's text of :data:`stability.parameters.DOMAIN`, or the
+        end of a requested range); the ``detail`` of a point where a branch ends on it.
+    kind : str
+        ``"domain_edge"`` or ``"endpoint"``.
+    code : str
+        ``"domain"`` (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus
+        ``a``), ``"lower"`` (``p[index] - a``) or ``"upper"`` (``a - p[index]``); ``index`` of a
+        parameter counts in :data:`stability.parameters.PARAMETERS`
+        (:data:`stability.linear.neutral_compiled.CONSTRAINT_CODES`).
+    index : int
+    a : float
+    bound : (str, float) or None
+        ``(parameter, value)`` if ``g`` is a simple bound on one parameter.
+    """
+
+    name: str
+    kind: str
+    code: str
+    index: int
+    a: float
+    bound: tuple[str, float] | None
 
 
-def _constraints(free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
+def _constraints(model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
                  margin: float) -> list[Constraint]:
-    """Domain bounds involving a free parameter, then the requested ranges."""
+    """The bounds of the domain table that involve a free parameter (and only parameters of the
+    model), strict ones as ``>= margin``, then the requested ranges."""
     f = set(free)
+    given = set(model.parameters)
     out: list[Constraint] = []
-    if f & {"q", "mu"}:
-        out.append(("1 - mu q^2 > 0", "domain_edge", lambda p: 1.0 - p["mu"] * p["q"] ** 2 - margin, None,
-                    ("inside", "q", margin)))
-    if "sigma" in f:
-        out.append(("sigma > 0", "domain_edge", lambda p: p["sigma"] - margin, ("sigma", margin),
-                    ("lower", "sigma", margin)))
-    if f & {"sigma", "q", "mu"}:
-        out.append(("sigma <= 2 (1 - mu q^2)", "domain_edge",
-                    lambda p: 2.0 * (1.0 - p["mu"] * p["q"] ** 2) - p["sigma"], None,
-                    ("sigma_max", "sigma", 0.0)))
-    for name in ("fr_inv", "alpha_v"):
-        if name in f:
-            out.append((f"{name} >= 0", "domain_edge", lambda p, n=name: p[n], (name, 0.0),
-                        ("lower", name, 0.0)))
-    if "mu" in f:
-        out.append(("mu > 0", "domain_edge", lambda p: p["mu"] - margin, ("mu", margin),
-                    ("lower", "mu", margin)))
+    for k, b in enumerate(DOMAIN):
+        if set(b.involves) <= given and set(b.involves) & f:
+            a = margin if b.strict else 0.0
+            simple = (b.involves[0], a) if len(b.involves) == 1 else None
+            out.append(Constraint(b.text, "domain_edge", "domain", k, a, simple))
     for name, (lo, hi) in ranges.items():
-        out.append((f"{name} >= {lo:g} (end of {name}_range)", "endpoint",
-                    lambda p, n=name, a=lo: p[n] - a, (name, lo), ("lower", name, lo)))
-        out.append((f"{name} <= {hi:g} (end of {name}_range)", "endpoint",
-                    lambda p, n=name, b=hi: b - p[n], (name, hi), ("upper", name, hi)))
+        j = PARAMETERS.index(name)
+        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", "lower", j, lo, (name, lo)))
+        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", "upper", j, hi, (name, hi)))
+    return out
+
+
+def _constraint_values(constraints: Sequence[Constraint], p: Mapping[str, float]) -> np.ndarray:
+    """The constraints at the parameters ``p`` (Python floats): the same source and operations
+    as the compiled :func:`stability.linear.neutral_compiled.constraint_values`."""
+    point = [p.get(name, 0.0) for name in PARAMETERS]
+    sides = domain_sides(*point, 0.0)
+    out = np.empty(len(constraints))
+    for k, c in enumerate(constraints):
+        if c.code == "domain":
+            out[k] = (sides[2 * c.index + 1] - sides[2 * c.index]) - c.a
+        elif c.code == "lower":
+            out[k] = point[c.index] - c.a
+        else:
+            out[k] = c.a - point[c.index]
     return out
 
 
@@ -206,31 +235,27 @@ class NeutralProblem:
         self.names = (x, y)
         self.fixed = dict(fixed)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
-        self._constraints = _constraints(self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c[0] for c in self._constraints)
-        self.constraint_kinds = tuple(c[1] for c in self._constraints)
-        self.constraint_bounds = tuple(c[3] for c in self._constraints)
+        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self.constraint_names = tuple(c.name for c in self._constraints)
+        self.constraint_kinds = tuple(c.kind for c in self._constraints)
+        self.constraint_bounds = tuple(c.bound for c in self._constraints)
         self._compiled = None
-        if self.cond._compiled is not None:  # the sliding model's crossing form, compiled
-            from . import neutral_compiled as nc
-            from .neutrality import _SLIDING_PARAMS, sliding_crossing_other_growth
-
-            codes = [c[4] for c in self._constraints]
+        kernels = self.cond.kernels
+        if kernels is not None:  # the crossing form of a model with formulas, compiled
             self._compiled = (
                 *self.cond._compiled,
-                np.array([nc.CONSTRAINT_CODES[c[0]] for c in codes], dtype=np.int64),
-                np.array([_SLIDING_PARAMS.index(c[1]) for c in codes], dtype=np.int64),
-                np.array([c[2] for c in codes], dtype=float))
-            self._step_kernel = nc.sliding_step
-            self._rj_kernel = nc.residual_and_jacobian
-            self._constraint_kernel = nc.constraint_values
-            self._growth_kernel = sliding_crossing_other_growth
+                np.array([CONSTRAINT_CODES[c.code] for c in self._constraints], dtype=np.int64),
+                np.array([c.index for c in self._constraints], dtype=np.int64),
+                np.array([c.a for c in self._constraints], dtype=float))
+            self._step_kernel = step_kernel(kernels)
+            self._rj_kernel = kernels.residual_and_jacobian
+            self._growth_kernel = kernels.other_growth
             self.compiled_step = self._compiled_step
 
     def _compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
                        scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
-        """The engine's hook (:mod:`continuation.problem`):
-        :func:`stability.linear.neutral_compiled.sliding_step` (with the constraints and test
+        """The engine's hook (:mod:`continuation.problem`): the step of
+        :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
         return self._step_kernel(*self._compiled, guess, t_plane, anchor, float(h), scale,
                                  float(tol), int(max_iter), float(max_move))
@@ -267,22 +292,16 @@ class NeutralProblem:
         r = self.cond.other_modes_list(u[:2], float(u[2]))
         return max(z.real for z in r) if r else -np.inf
 
-    def traced_mode_leads(self, u: np.ndarray) -> bool:
-        """Whether no other mode grows at ``u``, so that the curve is the stability boundary.
-
-        An other mode counts as growing only beyond ``1e-12 max(1, max|s|)``: the roots of the
-        deflated characteristic polynomial carry round-off of order ``u max|s|`` amplified by the
-        polynomial's conditioning, and a structurally neutral mode (for example the zero root of
-        the sliding model on the line ``q = 0``) comes out as ``+-1e-17`` rather than 0.
-        """
-        r = self.cond.other_modes(u[:2], float(u[2]))
-        if not r.size:
-            return True
-        tol = 1e-12 * max(1.0, float(np.max(np.abs(r))), abs(float(u[2])))
-        return bool(np.max(r.real) <= tol)
-
     def traced_modes_lead(self, U: np.ndarray) -> np.ndarray:
-        """:meth:`traced_mode_leads` at many points ``U`` (m, 3) at once (same tolerance)."""
+        """Whether no other mode grows at the points ``U`` (m, 3), so that the curve is the
+        stability boundary there.
+
+        An other mode counts as growing only beyond ``1e-12 max(1, max|s|, |w|)``: the roots of
+        the deflated characteristic polynomial carry round-off of order ``u max|s|`` amplified
+        by the polynomial's conditioning, and a structurally neutral mode (for example the zero
+        root of the sliding model on the line ``q = 0``) may come out as ``+-1e-17`` rather
+        than 0.
+        """
         U = np.asarray(U, dtype=float).reshape(-1, 3)
         if len(U) == 0:
             return np.zeros(0, dtype=bool)
@@ -301,11 +320,11 @@ class NeutralProblem:
         """Domain and range bounds, ``>= 0`` inside."""
         if self._compiled is not None:
             point, free, _, codes, index, a = self._compiled
-            return self._constraint_kernel(point, free, np.asarray(u, dtype=float), codes, index, a)
+            return constraint_values(point, free, np.asarray(u, dtype=float), codes, index, a)
         p = self.fixed.copy()
         p[self.names[0]] = float(u[0])
         p[self.names[1]] = float(u[1])
-        return np.array([c[2](p) for c in self._constraints])
+        return _constraint_values(self._constraints, p)
 
 
 class FoldProblem:
@@ -327,10 +346,10 @@ class FoldProblem:
         self.fixed = dict(fixed)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
         self.other = 1 if fold_in == x else 0
-        self._constraints = _constraints(self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c[0] for c in self._constraints)
-        self.constraint_kinds = tuple(c[1] for c in self._constraints)
-        self.constraint_bounds = tuple(c[3] for c in self._constraints)
+        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self.constraint_names = tuple(c.name for c in self._constraints)
+        self.constraint_kinds = tuple(c.kind for c in self._constraints)
+        self.constraint_bounds = tuple(c.bound for c in self._constraints)
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         p = dict(self.fixed)
@@ -345,8 +364,8 @@ class FoldProblem:
         return np.array([F[0], F[1], B[0, 0] * B[1, 1] - B[0, 1] * B[1, 0]])
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
-        p = self.params(u)
-        return np.array([c[2](p) for c in self._constraints])
+        """Domain and range bounds, ``>= 0`` inside."""
+        return _constraint_values(self._constraints, self.params(u))
 
 
 # ------------------------------------------------------------------------------------------
@@ -364,17 +383,12 @@ def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float
     xs = np.linspace(*ranges[x], grid[0])
     ys = np.linspace(*ranges[y], grid[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
-    # the compiled kernel (stability.linear.kernel), in this thread only: on a thread pool, start-up
+    # the compiled kernel (stability.linear.kernel), its serial loop: on a thread pool, start-up
     # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
-    threads = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        sp = spectrum(model, mask_unphysical=True, method="kernel", **_grid_params(x, y, fixed, X, Y))
-    finally:
-        numba.set_num_threads(threads)
+    sp = spectrum(model, mask_unphysical=True, method="kernel", parallel=False, **_grid_params(x, y, fixed, X, Y))
     if not sp.inside.any():
-        raise _outside_domain_error(x, y, ranges, fixed)
+        raise _outside_domain_error(model, x, y, ranges, fixed)
     ev = sp.eigenvalues
     grows = (ev.real > 0) & ~sp.neutral
     count = np.where(sp.inside, grows.sum(axis=-1), -1)
@@ -436,20 +450,6 @@ def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray
     dxy = G[:, None, :2] - foot[..., :2]
     near = ((dxy * dxy).sum(axis=2) <= cell * cell) & (np.abs(G[:, None, 2] - foot[..., 2]) <= 0.1)
     return near.any(axis=1)
-
-
-def _near_branch(g: np.ndarray, pts: np.ndarray, cell: float) -> bool:
-    """Whether a scaled guess ``(x, y, w)`` lies within ``cell`` of a scaled branch in ``(x, y)``."""
-    a, b = pts[:-1], pts[1:]
-    if len(pts) < 2:
-        return False
-    d = b - a
-    d2 = d[:, :2]
-    L2 = (d2 * d2).sum(axis=1)
-    lam = np.clip(((g[None, :2] - a[:, :2]) * d2).sum(axis=1) / np.where(L2 > 0, L2, 1.0), 0, 1)
-    foot = a + lam[:, None] * d
-    near = (np.linalg.norm(g[:2] - foot[:, :2], axis=1) <= cell) & (np.abs(g[2] - foot[:, 2]) <= 0.1)
-    return bool(near.any())
 
 
 # ------------------------------------------------------------------------------------------
@@ -575,27 +575,23 @@ _POINT_ATTRS = {"long_name": "index of the point along the traced branches"}
 def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any],
                    direct: bool = True) -> xr.Dataset:
     """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
-    coordinate ``point = 0..n-1`` and ``attrs``.
+    coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
 
-    ``direct``: assemble it from its parts (``xarray.Dataset._construct_direct`` with a
-    ``PandasIndex``), skipping the constructor's merging and alignment of variables that are
-    aligned by construction (~0.2 ms of a ~3 ms call); the result is identical to the public
-    constructor's (tests/test_neutral.py), which is the fallback should xarray change.
+    ``direct``: hand the constructor the coordinate with its index already built
+    (:class:`xarray.Coordinates` with a :class:`xarray.indexes.PandasIndex`), so that it does
+    not infer one; else a plain coordinate variable (the index created by xarray). The two give
+    identical datasets (tests/test_neutral.py). The constructor's merge and alignment of the
+    variables, which are aligned by construction, cost ~0.3 ms of a ~3 ms call
+    (docs/continuation.md); no public path skips them.
     """
+    positions = np.arange(n)
     if direct:
-        try:
-            from xarray.core.indexes import PandasIndex
-
-            idx = PandasIndex(pd.Index(np.arange(n)), "point")
-            coord = idx.create_variables({"point": xr.Variable(("point",), np.arange(n), _POINT_ATTRS)})
-            out = dict(variables)
-            out.update(coord)
-            return xr.Dataset._construct_direct(out, {"point"}, {"point": n}, dict(attrs), {"point": idx})
-        except (ImportError, AttributeError, TypeError):  # pragma: no cover - another xarray
-            pass
-    ds = xr.Dataset(variables, coords={"point": xr.IndexVariable(("point",), np.arange(n), _POINT_ATTRS)})
-    ds.attrs.update(attrs)
-    return ds
+        index = PandasIndex(pd.Index(positions), "point")
+        coords = xr.Coordinates(index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}),
+                                indexes={"point": index})
+    else:
+        coords = {"point": xr.IndexVariable(("point",), positions, _POINT_ATTRS)}
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 # ------------------------------------------------------------------------------------------

@@ -25,7 +25,8 @@ from typing import Any
 import numpy as np
 
 from ..models import LinearModel, get_model
-from ..parameters import DEFAULT_MU, check_domain
+from ..parameters import DEFAULT_MU, check_domain, check_flag
+from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, polynomial_roots
 
 __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
@@ -118,14 +119,13 @@ def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
     return ev, bound, np.zeros(ev.shape, dtype=bool)
 
 
-def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray):
+def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray, parallel: bool | None):
     """The compiled kernel over the whole grid (outside points: NaN, flag -1), or None if the
-    model's degree is beyond it."""
-    from . import kernel
-    from ..models.sliding import Sliding
-
-    if isinstance(m, Sliding):
-        return kernel.sliding_spectrum(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"], inside)
+    model's degree is beyond it. A model that offers ``point_coefficients``
+    (:mod:`stability.models.base`) has them formed in the kernel; any other passes its
+    coefficients in."""
+    if kernel.accepts(m):
+        return kernel.model_spectrum(m, p, inside, parallel=parallel)
     if m.n_modes > kernel.MAX_DEGREE:
         return None
     shape = inside.shape
@@ -135,7 +135,7 @@ def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray):
         c = m.coefficients(**p)
     elif inside.any():
         c[inside] = m.coefficients(**{k: v[inside] for k, v in p.items()})
-    return kernel.coefficient_spectrum(c, inside)
+    return kernel.coefficient_spectrum(c, inside, parallel=parallel)
 
 
 def _plain_float(value: Any) -> np.ndarray | None:
@@ -149,17 +149,15 @@ def _plain_float(value: Any) -> np.ndarray | None:
     return None
 
 
-def _fused_sliding(m: LinearModel, given: dict[str, Any], mask_unphysical: bool) -> Spectrum | None:
-    """The default path for the sliding model: one kernel pass that also tests the domain
-    (:func:`stability.linear.kernel.checked_sliding_spectrum`). Where a point is outside and the
-    request is not masked, or a parameter is not finite, :func:`check_domain` is called to raise
-    its error (the messages live there only). None if the fused path does not apply (another
-    model, input that is not plain float64, shapes that do not broadcast): the caller then
-    takes the general path, which reports such input."""
-    from . import kernel
-    from ..models.sliding import Sliding
-
-    if not isinstance(m, Sliding) or not isinstance(mask_unphysical, (bool, np.bool_)):
+def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, parallel: bool | None) -> Spectrum | None:
+    """The default path for a model that offers ``point_coefficients`` (the sliding model): one
+    kernel pass that also tests the domain (:func:`stability.linear.kernel.checked_model_spectrum`).
+    Where a point is outside and the request is not masked, or a parameter is not finite,
+    :func:`check_domain` is called to raise its error (the messages live there only). None if
+    the fused path does not apply (a model without the formula, input that is not plain
+    float64, shapes that do not broadcast): the caller then takes the general path, which
+    reports such input."""
+    if not kernel.accepts(m) or not isinstance(mask_unphysical, (bool, np.bool_)):
         return None
     arrays = {k: _plain_float(v) for k, v in given.items()}
     if any(v is None for v in arrays.values()):
@@ -168,8 +166,7 @@ def _fused_sliding(m: LinearModel, given: dict[str, Any], mask_unphysical: bool)
         shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
     except ValueError:
         return None
-    out = kernel.checked_sliding_spectrum(arrays["q"], arrays["fr_inv"], arrays["sigma"], arrays["alpha_v"],
-                                          arrays["mu"])
+    out = kernel.checked_model_spectrum(m, arrays, parallel=parallel)
     if out.n_not_finite or (out.n_outside and not mask_unphysical):
         # a parameter not finite or beyond the computable range, or an unmasked point outside:
         # check_domain raises the canonical DomainError
@@ -192,7 +189,7 @@ def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
 
 def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
              alpha_v: Any = None, mu: Any = DEFAULT_MU, mask_unphysical: bool = False,
-             method: str = DEFAULT_METHOD) -> Spectrum:
+             method: str = DEFAULT_METHOD, parallel: bool | None = None) -> Spectrum:
     """Eigenvalues, error bounds and the stability decision over a parameter grid.
 
     Parameters
@@ -208,6 +205,11 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
         Root finder (see :data:`METHODS`); the default, ``"kernel"``, is the compiled kernel
         of :mod:`stability.linear.kernel` (models of degree <= 3; others fall back to
         ``"polynomial"``).
+    parallel : bool, optional
+        The kernel's threads: True runs its loop on numba's thread pool, False in this thread
+        only (e.g. for a small grid on a busy machine), None (default) decides by size (serial
+        below :data:`stability.linear.kernel.SERIAL_BELOW` points). The numbers are the same;
+        the other methods ignore it.
 
     Returns
     -------
@@ -217,13 +219,15 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
     given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+    if parallel is not None:
+        parallel = check_flag("parallel", parallel)
     if method == "kernel":
-        fused = _fused_sliding(m, given, mask_unphysical)
+        fused = _fused(m, given, mask_unphysical, parallel)
         if fused is not None:
             return fused
     p, inside = check_domain(mask=mask_unphysical, **given)
     if method == "kernel":
-        out = _kernel(m, p, inside)  # the kernel writes every point (NaN, flag -1 outside)
+        out = _kernel(m, p, inside, parallel)  # the kernel writes every point (NaN, flag -1 outside)
         if out is not None:
             ev, bound, neutral, stab = out
             return Spectrum(m, p, ev, bound, neutral, stab, inside)

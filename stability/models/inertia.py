@@ -8,65 +8,83 @@ In units of A0 (the transverse moment about the sphere centre O):
   = 1 + mu (1 + 2 q)``.
 
 Near the domain edge ``1 - mu q^2`` loses all its digits to cancellation if evaluated
-naively (relative error ``u / A_G``, so 1e-10 at ``A_G = 1e-6``). :func:`transverse_inertia_g`
+naively (relative error ``u / A_G``, so 1e-10 at ``A_G = 1e-6``). :func:`inertia_g`
 evaluates it with error-free transformations (Dekker's product, Knuth's sum), which makes it
 accurate to a few units of round-off relative to ``A_G`` itself, for the floating-point q and
-mu given; :func:`transverse_inertia_contact` adds positive terms only.
+mu given; :func:`inertia_contact` adds positive terms only.
+
+One source, three engines. :func:`inertia_g` and :func:`inertia_contact` are written in plain
+arithmetic and registered with :func:`numba.extending.register_jitable`: called from Python
+they run as written, on floats or on numpy arrays (elementwise, broadcasting); called from
+``@njit`` code they are compiled into the caller. The spectral kernel, the parameter domain and the models all use these, so
+``A_G`` is the same number, bit for bit, wherever it is computed (``fastmath`` is off in every
+compiled caller: no reassociation, no contraction into fused multiply-adds).
+:func:`transverse_inertia_g` and :func:`transverse_inertia_contact` are their array front ends.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import register_jitable
 
-__all__ = ["transverse_inertia_g", "transverse_inertia_contact"]
+__all__ = ["inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
 
 _SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp)
 
 
-def _split(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    c = _SPLITTER * a
-    hi = c - (c - a)
-    return hi, a - hi
+@register_jitable
+def inertia_g(q, mu):
+    """``A_G = 1 - mu q^2`` (units of A0), accurate relative to ``A_G`` near the domain edge.
+
+    ``q q = t + te`` and ``mu t = u + ue'`` exactly (Dekker's products, with Veltkamp's splits
+    into halves of 26 bits), so ``mu q^2 = u + ue`` with ``ue = ue' + mu te`` up to the rounding
+    of ``ue``; then ``1 - u = s + se`` exactly (Knuth's sum): ``A_G = s + (se - ue)``. Plain
+    arithmetic, written out (no helper calls, which cost more than the arithmetic in Python):
+    floats, numpy arrays (broadcast together), numba.
+    """
+    t = q * q
+    c = _SPLITTER * q
+    qh = c - (c - q)
+    ql = q - qh
+    te = ((qh * qh - t) + qh * ql + ql * qh) + ql * ql
+    u = mu * t
+    c = _SPLITTER * mu
+    mh = c - (c - mu)
+    ml = mu - mh
+    c = _SPLITTER * t
+    th = c - (c - t)
+    tl = t - th
+    ue = ((mh * th - u) + mh * tl + ml * th) + ml * tl
+    ue = ue + mu * te
+    s = 1.0 + (-u)
+    bb = s - 1.0
+    se = (1.0 - (s - bb)) + (-u - bb)
+    return s + (se - ue)
 
 
-def _two_product(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``a b = p + e`` exactly (Dekker)."""
-    p = a * b
-    ah, al = _split(a)
-    bh, bl = _split(b)
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, e
-
-
-def _two_sum(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``a + b = s + e`` exactly (Knuth)."""
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
+@register_jitable
+def inertia_contact(q, mu, a_g):
+    """``A_C = A_G + mu (1 + q)^2 = 1 + mu (1 + 2 q)`` from ``A_G`` (a sum of positive terms)."""
+    return a_g + mu * ((1.0 + q) * (1.0 + q))
 
 
 def transverse_inertia_g(q: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """``A_G = 1 - mu q^2`` (units of A0), accurate relative to ``A_G`` near the domain edge.
+    """``A_G = 1 - mu q^2`` (units of A0) of array arguments (:func:`inertia_g`).
 
     Parameters
     ----------
     q, mu : array_like
-        Centre-of-mass offset and scaled mass.
+        Centre-of-mass offset and scaled mass (broadcast together).
 
     Returns
     -------
     numpy.ndarray
     """
-    q = np.asarray(q, dtype=float)
-    mu = np.asarray(mu, dtype=float)
-    t, te = _two_product(q, q)
-    u, ue = _two_product(mu, t)
-    ue = ue + mu * te
-    s, se = _two_sum(np.ones_like(u), -u)
-    return s + (se - ue)
+    return inertia_g(np.asarray(q, dtype=float), np.asarray(mu, dtype=float))
 
 
 def transverse_inertia_contact(q: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """``A_C = A_G + mu (1 + q)^2 = 1 + mu (1 + 2 q)`` (units of A0), a sum of positive terms."""
+    """``A_C = A_G + mu (1 + q)^2 = 1 + mu (1 + 2 q)`` (units of A0) of array arguments."""
     q = np.asarray(q, dtype=float)
-    return transverse_inertia_g(q, mu) + np.asarray(mu, dtype=float) * (1.0 + q) ** 2
+    mu = np.asarray(mu, dtype=float)
+    return inertia_contact(q, mu, inertia_g(q, mu))

@@ -44,6 +44,28 @@ Friction as feedback: with ``alpha_v = 0`` the plant ``M x' = A_0 x + B f``, sli
 ``V_c = C x``, has ``B = (-i, 0, 1/mu)^T`` and ``C = (i, 0, 1)``; closing ``f = -alpha_v V_c``
 gives ``A = A_0 - alpha_v B C``, eq. (11).
 
+Exact derivatives of the coefficients (they are polynomials in the parameters; with
+``A_C = 1 + mu (1 + 2 q)``, ``dA_G/dq = -2 mu q``, ``dA_C/dq = 2 mu``, ``dA_G/dmu = -q^2``,
+``dA_C/dmu = 1 + 2 q``)::
+
+    d/dq       : c3' = -2 mu^2 q,      c2' = 2 mu alpha_v,                 c1' = -mu^2 fr_inv - i alpha_v mu,
+                 c0' = -mu alpha_v fr_inv
+    d/dfr_inv  : c3' = 0,  c2' = 0,    c1' = -mu^2 q,                      c0' = -mu alpha_v q
+    d/dsigma   : c3' = 0,  c2' = -i mu, c1' = -i alpha_v,                  c0' = 0
+    d/dalpha_v : c3' = 0,  c2' = A_C,  c1' = -i (sigma + mu (1 + q)),      c0' = -mu q fr_inv
+    d/dmu      : c3' = 1 - 2 mu q^2,   c2' = alpha_v (1 + 2 q) - i sigma,
+                 c1' = -2 mu q fr_inv - i alpha_v (1 + q),                  c0' = -alpha_v q fr_inv
+
+One home, three engines. :func:`coefficient_parts` and :func:`derivative_parts` are the only
+place these formulas are written. They are plain arithmetic, registered with
+:func:`numba.extending.register_jitable`, and return real and imaginary parts as separate
+reals (the caller assembles ``complex(re, im)`` or fills ``.real``/``.imag``), so that the same
+source runs on Python floats (the neutral condition's scalar path), on numpy arrays
+(:meth:`Sliding.coefficients`) and compiled into numba kernels (the spectral kernel, the
+compiled neutral condition), with the same floating-point operations and hence the same bits
+in every engine. :class:`Sliding` offers them to the rest of the package as its optional
+capabilities ``point_coefficients`` and ``point_derivatives`` (:mod:`stability.models.base`).
+
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
 ``Re s``, frequency ``Im s`` in units of the spin rate.
 """
@@ -51,11 +73,93 @@ Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import register_jitable
 
 from .base import LinearModel
-from .inertia import transverse_inertia_contact, transverse_inertia_g
+from .inertia import inertia_contact, inertia_g
 
-__all__ = ["Sliding"]
+__all__ = ["Sliding", "coefficient_parts", "derivative_parts", "scalar_coefficients"]
+
+#: the parameters of eq. (11), in the order of :data:`stability.parameters.PARAMETERS` (the
+#: index ``k`` of :func:`derivative_parts`)
+PARAMETER_ORDER = ("q", "fr_inv", "sigma", "alpha_v", "mu")
+
+
+@register_jitable
+def coefficient_parts(q, fr_inv, sigma, alpha_v, mu):
+    """``mu det(s M - A)`` of eq. (11) as real and imaginary parts, highest power first.
+
+    Returns ``(Re c3, Im c3, Re c2, Im c2, Re c1, Im c1, Re c0, Im c0)`` with ``c3 = mu A_G``,
+    ``c2 = alpha_v A_C - i mu sigma``, ``c1 = -mu^2 q fr_inv - i alpha_v (sigma + mu (1 + q))``,
+    ``c0 = -mu alpha_v q fr_inv`` (``A_G`` compensated, :func:`stability.models.inertia.inertia_g`).
+    Plain arithmetic: floats, numpy arrays (broadcast together) or numba.
+    """
+    a_g = inertia_g(q, mu)
+    a_c = inertia_contact(q, mu, a_g)
+    return (mu * a_g, 0.0,
+            alpha_v * a_c, -(mu * sigma),
+            -mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q))),
+            -mu * alpha_v * q * fr_inv, 0.0)
+
+
+@register_jitable
+def derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
+    """Exact derivatives of :func:`coefficient_parts` by parameter ``k`` (0 ``q``, 1 ``fr_inv``,
+    2 ``sigma``, 3 ``alpha_v``, 4 ``mu``; module docstring), in the same layout."""
+    if k == 0:
+        return (-2.0 * mu * mu * q, 0.0, 2.0 * mu * alpha_v, 0.0,
+                -mu * mu * fr_inv, -alpha_v * mu, -mu * alpha_v * fr_inv, 0.0)
+    if k == 1:
+        return (0.0, 0.0, 0.0, 0.0, -mu * mu * q, 0.0, -mu * alpha_v * q, 0.0)
+    if k == 2:
+        return (0.0, 0.0, 0.0, -mu, 0.0, -alpha_v, 0.0, 0.0)
+    if k == 3:
+        return (0.0, 0.0, inertia_contact(q, mu, inertia_g(q, mu)), 0.0,
+                0.0, -(sigma + mu * (1.0 + q)), -mu * q * fr_inv, 0.0)
+    return (1.0 - 2.0 * mu * q * q, 0.0, alpha_v * (1.0 + 2.0 * q), -sigma,
+            -2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q), -alpha_v * q * fr_inv, 0.0)
+
+
+def scalar_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float,
+                        derivatives: bool = True, which=None
+                        ) -> tuple[list[complex], dict[str, list[complex]] | None]:
+    """Eq. (11)'s coefficients at one point as Python complex numbers, and their derivatives.
+
+    The Python-float engine of :func:`coefficient_parts` and :func:`derivative_parts` (the same
+    values as :meth:`Sliding.coefficients` and as the compiled kernels, bit for bit).
+
+    Parameters
+    ----------
+    q, fr_inv, sigma, alpha_v, mu : float
+        One point.
+    derivatives : bool
+        Also return ``dc/dparameter``.
+    which : sequence of str, optional
+        The parameters to differentiate by (default all five).
+
+    Returns
+    -------
+    c : list of complex
+        ``[c3, c2, c1, c0]``.
+    dc : dict of str to list of complex, or None
+        ``{name: [dc3, dc2, dc1, dc0]}`` for each parameter of ``which``.
+    """
+    point = (float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu))
+    c = _assemble(coefficient_parts(*point))
+    if not derivatives:
+        return c, None
+    dc: dict[str, list[complex]] = {}
+    for name in PARAMETER_ORDER if which is None else which:
+        if name not in PARAMETER_ORDER:
+            raise ValueError(f"{name!r} is not a parameter of eq. (11); use {', '.join(PARAMETER_ORDER)}")
+        dc[name] = _assemble(derivative_parts(*point, PARAMETER_ORDER.index(name)))
+    return c, dc
+
+
+def _assemble(parts: tuple[float, ...]) -> list[complex]:
+    """``[complex(re, im), ...]`` of a flat ``(re, im, re, im, ...)`` tuple."""
+    it = iter(parts)
+    return list(map(complex, it, it))
 
 
 class Sliding(LinearModel):
@@ -63,10 +167,14 @@ class Sliding(LinearModel):
 
     name = "sliding"
     equations = "(11)"
-    parameters = ("q", "fr_inv", "sigma", "alpha_v", "mu")
+    parameters = PARAMETER_ORDER
     state = ("omega", "Phi", "V")
     n_modes = 3
     description = "top sliding on its sphere with viscous friction alpha_v, eq. (11)"
+    # the optional capabilities of the contract (stability.models.base): one point's
+    # coefficients and their exact derivatives, for every engine
+    point_coefficients = staticmethod(coefficient_parts)
+    point_derivatives = staticmethod(derivative_parts)
 
     def mass_matrix(self, *, q, mu) -> np.ndarray:
         """``M`` of eq. (11), shape (..., 3, 3)."""
@@ -93,14 +201,14 @@ class Sliding(LinearModel):
         return self.mass_matrix(q=q, mu=mu), A
 
     def coefficients(self, *, q, fr_inv, sigma, alpha_v, mu):
-        """``mu det(s M - A)``, highest power first (see module docstring)."""
+        """``mu det(s M - A)``, highest power first (:func:`coefficient_parts` on arrays)."""
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
             *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu)))
+        parts = coefficient_parts(q, fr_inv, sigma, alpha_v, mu)
         c = np.empty(q.shape + (4,), dtype=complex)
-        c[..., 0] = mu * transverse_inertia_g(q, mu)
-        c[..., 1] = alpha_v * transverse_inertia_contact(q, mu) - 1j * mu * sigma
-        c[..., 2] = -mu * mu * q * fr_inv - 1j * alpha_v * (sigma + mu * (1.0 + q))
-        c[..., 3] = -mu * alpha_v * q * fr_inv
+        for j in range(4):
+            c.real[..., j] = parts[2 * j]
+            c.imag[..., j] = parts[2 * j + 1]
         return c
 
     def friction_plant(self, *, q, fr_inv, sigma, mu):
