@@ -17,8 +17,9 @@ set, else :data:`HEADROOM` times the smallest of: ``MemAvailable`` (``/proc/memi
 and the room left under the soft ``RLIMIT_AS`` and ``RLIMIT_DATA``; where none is known, the
 free physical pages.
 
-The constants are peaks measured with ``ru_maxrss`` (``tests/test_resources.py`` pins each within
-[0.7, 1.3] of a fresh measurement): the stored values plus the temporaries of building them.
+The constants are measured peaks (``VmHWM`` after the call minus ``VmRSS`` before it, the peak
+reset after a warm-up call; ``tests/test_resources.py`` pins each within [0.7, 1.3] of a fresh
+measurement): the stored values plus the temporaries of building them.
 """
 
 from __future__ import annotations
@@ -29,7 +30,8 @@ import re
 
 __all__ = ["memory_limit", "check_memory", "format_bytes", "HEADROOM", "SIMULATE_BYTES_PER_TIME",
            "SIMULATE_FILE_BYTES_PER_TIME", "ATLAS_BYTES_PER_POINT_MODE", "ATLAS_BYTES_PER_POINT",
-           "ATLAS_FILE_BYTES_PER_POINT_MODE", "ATLAS_FILE_BYTES_PER_POINT", "THRESHOLD_BYTES_PER_SAMPLE",
+           "ATLAS_FILE_BYTES_PER_POINT_MODE", "ATLAS_FILE_BYTES_PER_POINT", "ATLAS_CHECK_BYTES_PER_POINT",
+           "THRESHOLD_BYTES_PER_SAMPLE",
            "START_GRID_BYTES_PER_POINT", "CLASS_ATLAS_BYTES_PER_POINT", "ATLAS_BLOCK_BYTES_PER_POINT",
            "simulate_bytes", "simulate_file_bytes", "atlas_bytes", "atlas_file_bytes", "check_threshold_samples",
            "check_start_grid", "check_class_atlas", "ENV_LIMIT"]
@@ -42,7 +44,7 @@ ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
 HEADROOM = 0.8
 
 #: simulate: peak bytes per output time, by nonlinear model (measured 386 / 378 / 226 B at 2e5 and
-#: 1e6 output times). Stored: 31 float64 per time for the sliding and rolling runs (248 B: omega,
+#: 1e6 output times; with the peak reset after a warm-up, 368 B for sliding at 2e5). Stored: 31 float64 per time for the sliding and rolling runs (248 B: omega,
 #: k, velocity, position, momentum, friction; 12 scalars and the time), 19 for fixed_pivot
 #: (152 B); the peak adds the integrator's output array (10, 8 and 6 float64 per time) and the
 #: temporaries of the derived quantities
@@ -60,21 +62,28 @@ ATLAS_BYTES_PER_POINT_MODE = 24.0
 ATLAS_BYTES_PER_POINT = 10.0
 ATLAS_BLOCK_BYTES_PER_POINT = 90.0
 
+#: in-memory atlas without ``mask_unphysical``: the domain check of the whole grid before the
+#: first block (the broadcast parameters and the temporaries of the bounds) peaks at this many
+#: bytes per grid point, whatever the number of modes (measured with the peak reset after a
+#: warm-up: 120 B per point at 1e6 and 2e6 points for the sliding, rolling and fixed-pivot
+#: models); the peak is the larger of this and the stored arrays plus one block
+ATLAS_CHECK_BYTES_PER_POINT = 125.0
+
 #: atlas file: bytes per grid point (per mode and per point) as written
 ATLAS_FILE_BYTES_PER_POINT_MODE = 24.0
 ATLAS_FILE_BYTES_PER_POINT = 10.0
 
 #: threshold, thresholds, critical_spin: peak bytes per sample (measured 588 / 579 B at 2e5 / 1e6
-#: samples: the uniform and geometric sampling grids' spectra, and the hidden-pair pass)
+#: samples, 564 B at 2e5 with the peak reset after a warm-up: the uniform and geometric sampling grids' spectra, and the hidden-pair pass)
 THRESHOLD_BYTES_PER_SAMPLE = 600.0
 
 #: neutral_curve: peak bytes per point of the start grid (its meshgrid, spectrum and counts;
-#: measured 149 B at 700 x 700)
+#: measured 149 B at 700 x 700; 147 B with the peak reset after a warm-up)
 START_GRID_BYTES_PER_POINT = 160.0
 
 #: class_atlas: peak bytes per grid point (meshgrids, the checked parameters, codes and tilts;
-#: measured 132 B at 1e6 and 4e6 points)
-CLASS_ATLAS_BYTES_PER_POINT = 140.0
+#: measured 179 B at 1e6 and 2e6 points, the peak reset after a warm-up)
+CLASS_ATLAS_BYTES_PER_POINT = 185.0
 
 _SUFFIX = {"": 1.0, "k": 1e3, "m": 1e6, "g": 1e9, "t": 1e12, "kib": 2.0**10, "mib": 2.0**20, "gib": 2.0**30,
            "tib": 2.0**40, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "b": 1.0}
@@ -259,12 +268,14 @@ def simulate_file_bytes(model: str, n_times: int) -> float:
     return SIMULATE_FILE_BYTES_PER_TIME.get(model, max(SIMULATE_FILE_BYTES_PER_TIME.values())) * float(n_times)
 
 
-def atlas_bytes(n_modes: int, n_points: float, block_points: float) -> float:
+def atlas_bytes(n_modes: int, n_points: float, block_points: float, *, domain_check: bool = False) -> float:
     """Peak memory of an in-memory atlas of ``n_points`` grid points computed in blocks of at
-    most ``block_points``."""
+    most ``block_points``; ``domain_check``: the whole grid's domain is checked first (without
+    ``mask_unphysical``)."""
     n = float(n_points)
-    return (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * n \
+    stored = (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * n \
         + ATLAS_BLOCK_BYTES_PER_POINT * min(n, float(block_points))
+    return max(stored, ATLAS_CHECK_BYTES_PER_POINT * n) if domain_check else stored
 
 
 def check_threshold_samples(samples: int) -> None:

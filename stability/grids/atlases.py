@@ -100,7 +100,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
     else:
         full = tuple(values[d].size for d in dims)
         n_points = int(np.prod(full, dtype=np.int64))
-        check_memory(atlas_bytes(m.n_modes, n_points, BLOCK_POINTS),
+        check_memory(atlas_bytes(m.n_modes, n_points, BLOCK_POINTS, domain_check=not mask_unphysical),
                      what=f"atlas: {n_points} grid points ({' x '.join(f'{d}({n})' for d, n in zip(dims, full))})",
                      parameter="the grid's ranges",
                      way_out="pass chunks=100 (or another chunk size) to compute and write it chunk by chunk, "
