@@ -630,16 +630,27 @@ def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
     """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p`` (arrays of
     one shape; a single point is evaluated in Python floats, the same operations, faster than
     numpy on 0-d arrays)."""
+    applies = domain_applies(p)
     if all(np.ndim(v) == 0 for v in p.values()):
-        args = [float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS]
-    else:
-        args = [p.get(k, _ABSENT[k]) for k in DOMAIN_ARGUMENTS]
-    sides = domain_sides(*args)
-    out: list[tuple[Bound, np.ndarray]] = []
-    for k, (b, applies) in enumerate(zip(DOMAIN, domain_applies(p))):
-        if applies:
-            out.append((b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict))))
-    return out
+        sides = domain_sides(*[float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS])
+        return [(b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict)))
+                for k, b in enumerate(DOMAIN) if applies[k]]
+    # arrays: in blocks, so that the few dozen temporaries of the exact margins stay small
+    shape = np.broadcast_shapes(*(np.shape(v) for v in p.values()))
+    flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in p.items()}
+    n = int(np.prod(shape, dtype=np.int64))
+    bad = {k: np.zeros(n, dtype=bool) for k in range(len(DOMAIN)) if applies[k]}
+    for start in range(0, n, _DOMAIN_BLOCK):
+        stop = min(n, start + _DOMAIN_BLOCK)
+        sides = domain_sides(*[flat[k][start:stop] if k in flat else _ABSENT[k] for k in DOMAIN_ARGUMENTS])
+        for k, out in bad.items():
+            out[start:stop] = np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], DOMAIN[k].strict))
+    return [(DOMAIN[k], out.reshape(shape)) for k, out in bad.items()]
+
+
+#: points per block of the domain test of arrays (:func:`_violations`): the exact margins keep
+#: about 60 temporaries alive, 60 x 8 B x 65536 = 31 MB at most
+_DOMAIN_BLOCK = 65536
 
 
 def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple) -> str:

@@ -16,6 +16,7 @@ from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..errors import Interrupted
+from .. import interrupts
 from ._args import add_model_flag, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
@@ -89,12 +90,19 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
                chunks=parse_chunks(args.chunks), **values)
     store = parts_directory(out)
+    _check_space(out, args.model, values)
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
+    if args.resume:
+        interrupts.set_kept(f"the finished chunks are kept in {store}; rerun the same command to continue")
+
+    def note(text: str) -> None:
+        print(f"tippe atlas: note: {text}", file=sys.stderr)
+
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
-                        progress=not args.no_progress)
+                        progress=not args.no_progress and sys.stderr.isatty(), notes=note)
     except KeyboardInterrupt:
         if args.resume:
             raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "
@@ -119,6 +127,19 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     return 0
 
 
+def _check_space(out, model: str, values: dict) -> None:  # noqa: ANN001
+    """Refuse, before computing, an atlas whose file cannot fit on its file system."""
+    import numpy as np
+
+    from ..grids.outputs import check_free_space
+    from ..resources import atlas_file_bytes
+
+    n = 1
+    for v in values.values():
+        n *= int(np.size(v))
+    check_free_space(out, atlas_file_bytes(MODELS[model].n_modes, n))
+
+
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     out = check_output_path(args.output, overwrite=args.overwrite)
@@ -130,6 +151,7 @@ def run(args: argparse.Namespace) -> int:
         return _run_chunked(args, out, values)
     if args.workers is not None or args.scheduler is not None or args.resume:
         raise ValueError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
+    _check_space(out, args.model, values)
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values)
     if args.plot:
         from ..plotting.figures import atlas_figure

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..resources import check_memory
+
 __all__ = ["parse_values"]
 
 
@@ -55,6 +57,8 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
         if num > 1 and not np.isfinite((stop - start) / (num - 1)):
             raise ValueError(f"{name} = {text!r}: the step (stop - start)/(num - 1) overflows a double; "
                              f"{name} must have |stop - start| <= 1.7e308")
+        check_memory(8.0 * num, what=f"{name} = {text!r} ({num} values)", parameter=name,
+                     way_out="give fewer points")
         return np.linspace(start, stop, num)
     if "," in t:
         vals = [number(v) for v in t.split(",") if v.strip()]

@@ -51,6 +51,7 @@ from .neutrality import NeutralCondition
 from ..errors import DomainError
 from ..parameters import (DEFAULT_MU, as_scalar, check_choice, check_domain, check_flag,
                           check_integer, fmt_against, sigma_max)
+from ..resources import check_threshold_samples
 from .growth import GROWS, UNDECIDED, growth
 from .spectra import MARGINAL, STABLE, UNSTABLE
 
@@ -310,6 +311,7 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     (1.085777777778, 'below')
     """
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     return _search(m, fx, param, lo, hi, samples)[0]
 
@@ -502,6 +504,7 @@ def _one_threshold(param: str, model: str | LinearModel, bracket: Sequence[float
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
@@ -680,6 +683,7 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
             raise ValueError("; ".join(reasons.values()))
         return CriticalSpins(upright=found_["upright"], inverted=found_["inverted"], reasons=reasons)
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
         raise TypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)

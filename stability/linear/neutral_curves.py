@@ -65,6 +65,7 @@ from ..parameters import (DEFAULT_MU, DOMAIN, LONG_NAMES, PARAMETERS, as_scalar,
                           check_flag, check_integer, check_positive, domain_range, domain_sides, domain_text,
                           fmt_against, parameter_attrs)
 from ..products import PRODUCT_ATTR
+from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
 from .neutral_compiled import CONSTRAINT_CODES, constraint_values, step_kernel
@@ -767,6 +768,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):
         raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
+    check_start_grid(*grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
     lo = np.array([ranges[x][0], ranges[y][0]])

@@ -32,6 +32,7 @@ import numpy as np
 import xarray as xr
 
 from ..parameters import DEFAULT_MU, DOMAIN, as_parameter, check_domain, check_flag, domain_sides, parameter_attrs
+from ..resources import check_class_atlas
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
 
@@ -143,6 +144,7 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
             raise TypeError(f"{name} must be a number or a 1-D array here, got shape {arr.shape}")
         values[name] = arr
     dims = [k for k, v in values.items() if v.ndim == 1]
+    check_class_atlas(int(np.prod([values[d].size for d in dims], dtype=np.int64)))
     grids = np.meshgrid(*(values[d] for d in dims), indexing="ij") if dims else []
     full = {k: (grids[dims.index(k)] if k in dims else values[k]) for k in values}
     p, inside = check_domain(mask=check_flag("mask_unphysical", mask_unphysical), **full)
