@@ -294,8 +294,6 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
     ``(a, x_max, b)`` for each refined maximum with ``g > 0``: the window ``(a, b)`` holds two
     thresholds, one on each side of ``x_max``.
     """
-    from scipy.optimize import minimize_scalar
-
     if len(x) < 3:
         return []
     g = _growth(m, fx, param, x)
@@ -309,6 +307,8 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
         if -g[k] > 4.0 * rise:  # far below zero for its curvature: no crossing nearby
             continue
         a, b = float(x[k - 1]), float(x[k + 1])
+        from scipy.optimize import minimize_scalar  # here: most thresholds never refine (0.5 s import)
+
         res = minimize_scalar(lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
                               bounds=(a, b), method="bounded",
                               options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))})
