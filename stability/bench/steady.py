@@ -30,6 +30,7 @@ alternating rounds (:func:`stability.bench.timing.best_times`), the simulations 
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from typing import Any
@@ -57,7 +58,10 @@ def _start(theta_deg: float, spin: float = 1.0, transverse: float = 0.0, velocit
     return dict(omega=list(spin * k + transverse * e), k=list(k), velocity=list(velocity))
 
 
+@functools.cache
 def _cases() -> list[tuple[str, dict[str, float], dict[str, list], float]]:
+    """:data:`CASES` (made on first use: the paper's initial conditions come with the nonlinear
+    runs, whose import costs a second; ``tippe --help`` lists the suites without it)."""
     from ..nonlinear.scene import INITIAL_CONDITIONS
 
     paper = dict(q=-0.1, sigma=1.0, alpha_v=0.5)
@@ -78,8 +82,12 @@ def _cases() -> list[tuple[str, dict[str, float], dict[str, list], float]]:
     ]
 
 
-#: (name, parameters, initial state, the test's run length)
-CASES = _cases()
+def __getattr__(name: str) -> Any:
+    """``CASES``: (name, parameters, initial state, the test's run length), made on first use."""
+    if name == "CASES":
+        return _cases()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 _QUICK = (0, 2, 7)
 
 
@@ -96,7 +104,7 @@ def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, An
     from ..steady.states import state_integrals
 
     rows = []
-    for i, (name, params, start, t_test) in enumerate(CASES):
+    for i, (name, params, start, t_test) in enumerate(_cases()):
         if quick and i not in _QUICK:
             continue
         t_ref = 3.0 * t_test
@@ -125,7 +133,7 @@ def _paper_series(reference: float, repeat: int, quick: bool) -> list[tuple[floa
     """The paper's case simulated to several lengths: ``(t_end, seconds, error)``."""
     from ..nonlinear.runs import simulate
 
-    name, params, start, _ = CASES[0]
+    name, params, start, _ = _cases()[0]
     out = []
     for t_end in ((4000.0, 12000.0) if quick else (2000.0, 4000.0, 7000.0, 10000.0, 13000.0, 16000.0, 20000.0)):
         sec, runs = best_times({"run": lambda: simulate("sliding", t_end=t_end, t_eval=np.array([0.0, t_end]),

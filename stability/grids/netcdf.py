@@ -12,11 +12,13 @@ import os
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
-
-import xarray as xr
+from typing import TYPE_CHECKING
 
 from ..errors import AtlasFileError
 from ..products import PRODUCT_ATTR
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
            "require_atlas"]
@@ -27,6 +29,8 @@ ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
 def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     """``ds`` itself if it is an atlas dataset (the variables of :data:`ATLAS_VARIABLES`);
     otherwise a ``TypeError`` (not a Dataset) or ``ValueError`` (which variables are missing)."""
+    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
+
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
                         "stability.atlas or stability.open_atlas")
@@ -118,6 +122,8 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     pathlib.Path
         The written path.
     """
+    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
+
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
     with atomic_output(path, overwrite=overwrite) as tmp:
@@ -143,6 +149,8 @@ def open_atlas(path: str | os.PathLike) -> xr.Dataset:
         The file is missing, unreadable (truncated, not netCDF) or not an atlas of this
         package; the message names the file.
     """
+    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
+
     p = _as_path("atlas path", path)
     if p.is_dir():
         raise AtlasFileError(f"atlas file {str(p)!r} is a directory, not a netCDF file")
