@@ -45,7 +45,6 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
-import sys
 import types
 from collections.abc import Callable
 from typing import Any

@@ -15,8 +15,10 @@ does. The rule (docs/performance.md, "The first call"):
   in numba's disk cache), one line on stderr says so first, once per process
   (:data:`NOTICE`); ``tippe warmup`` compiles every loop ahead of time;
 * the environment variable :data:`ENVIRONMENT` (``TIPPE_KERNEL``) forces a path: ``python``,
-  ``compiled`` or ``auto`` (the default, the rule above); functions that take an ``engine``
-  argument take the same three values (None: the environment's).
+  ``compiled`` or ``auto`` (the default, the rule above); so does :func:`using` inside a block
+  (the benchmarks of ``tippe bench`` measure the compiled paths), and functions that take an
+  ``engine`` argument take the same three values (None: :func:`using`'s, else the
+  environment's).
 
 The two executions run the same source on the same points: the tests compare them bit for bit
 (an engine-agreement check; the independent references remain mpmath and the closed forms).
@@ -33,7 +35,7 @@ from typing import Any
 from .errors import InputError
 
 __all__ = ["ENVIRONMENT", "ENGINES", "PYTHON_BELOW", "NOTICE", "engine", "use_compiled", "before_compiled_call",
-           "quiet"]
+           "quiet", "using"]
 
 #: the environment variable that forces an execution
 ENVIRONMENT = "TIPPE_KERNEL"
@@ -49,17 +51,20 @@ PYTHON_BELOW = 4096
 NOTICE = ("tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
           "(cached for later runs; `tippe warmup` compiles them all)")
 
-_STATE = {"noticed": False, "quiet": 0}
+_STATE: dict[str, Any] = {"noticed": False, "quiet": 0, "using": None}
 
 
 def engine(value: str | None = None) -> str:
-    """The execution asked for: ``value`` if given, else :data:`ENVIRONMENT`'s, else ``"auto"``.
+    """The execution asked for: ``value`` if given, else :func:`using`'s, else
+    :data:`ENVIRONMENT`'s, else ``"auto"``.
 
     Raises
     ------
     InputError
         A value that is not one of :data:`ENGINES` (the message names where it came from).
     """
+    if value is None and _STATE["using"] is not None:
+        return _STATE["using"]
     if value is None:
         raw = os.environ.get(ENVIRONMENT, "").strip().lower()
         if raw in ("", "auto"):
@@ -103,3 +108,18 @@ def quiet() -> Iterator[None]:
         yield
     finally:
         _STATE["quiet"] -= 1
+
+
+@contextlib.contextmanager
+def using(value: str) -> Iterator[None]:
+    """Every loop inside runs in the execution ``value`` (one of :data:`ENGINES`) unless a call
+    asks for another; also a decorator. The suites of ``tippe bench`` measure the compiled
+    paths under ``using("compiled")``: their baselines and the package's default both get
+    compiled code, as a long-running process has."""
+    chosen = engine(value)
+    previous = _STATE["using"]
+    _STATE["using"] = chosen
+    try:
+        yield
+    finally:
+        _STATE["using"] = previous

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -96,6 +97,7 @@ def _settle_time(t: np.ndarray, tilt: np.ndarray, end: float, tol: float) -> flo
     return 0.0 if bad.size == 0 else float(t[min(bad[-1] + 1, t.size - 1)])
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, Any]]:
     """Per case: the reference end tilt, ``t_0.01``, the simulation's cost and error to ``t_0.01``,
     and the prediction's cost and error (module docstring)."""
@@ -142,6 +144,7 @@ def _paper_series(reference: float, repeat: int, quick: bool) -> list[tuple[floa
     return out
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, Any]:
     """The paper's branch (about 200 points with spectra and flags) by continuation (compiled
     step and Python path) and by brentq per tilt, each with its error against the closed form."""
@@ -188,6 +191,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
                 brentq=(t["brentq"], error(thetas, lam_cols)))
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, Any]:
     """:func:`stability.top_class` on random tops (shapes 1e4, 1e5, 1e6), and per top."""
     from ..steady.classes import top_class
@@ -213,6 +217,7 @@ def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, An
     return out
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def steady_work_precision(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
     """All three measurements as work-precision records (module docstring)."""
     results: list[WorkPrecision] = []

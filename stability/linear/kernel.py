@@ -101,7 +101,7 @@ SERIAL_BELOW = 512
 
 #: what compiling one model's loop takes on a cold cache (s; the estimate of the stderr notice,
 #: measured on a 2-core machine with numba 0.68, docs/performance.md)
-COMPILE_SECONDS = 8.0
+COMPILE_SECONDS = 10.0
 
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
 #: serially, numba's ``prange`` in a parallel compilation (:class:`continuation.jit.Twin`)
