@@ -14,7 +14,9 @@ Errors end the program with exactly one line on stderr and no traceback
   the line says what was kept), a continuation that did not converge (any
   :class:`continuation.errors.ConvergenceError`), any other :class:`~stability.errors.TippeError`
   that is not bad input: ``tippe CMD: error: ...``, exit status 1;
-* an interruption (Ctrl-C): exit status 130, no partial output file is left;
+* an interruption (Ctrl-C, SIGTERM, SIGHUP; :mod:`stability.interrupts`): exit status 130,
+  one line saying what was kept or written, no partial output file, within 2 s whatever the
+  command is doing;
 * anything else is a bug of the program: one line ``tippe CMD: internal error: ...``, exit
   status 1. With ``--debug`` (anywhere on the command line) or the environment variable
   ``TIPPE_DEBUG=1`` the full traceback is shown instead, for every kind of error.
@@ -31,9 +33,7 @@ import argparse
 import importlib
 import os
 import re
-import signal
 import sys
-import threading
 from collections.abc import Collection, Sequence
 from typing import NoReturn
 
@@ -57,6 +57,7 @@ KEYWORD_FLAGS: dict[str, str] = {
     "resume": "--resume",
     "workers": "--workers",
     "scheduler": "--scheduler",
+    "chunks": "--chunks",
 }
 
 _KEYWORD_VALUE = re.compile(r"\b(" + "|".join(KEYWORD_FLAGS) + r")=[^\s,;)]+")
@@ -145,7 +146,74 @@ def _debug_env() -> bool:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status."""
+    """Run the command line; return the exit status.
+
+    The first thing it does is to make SIGINT, SIGTERM and SIGHUP set a flag
+    (:func:`stability.interrupts.install`), before any heavy import: a signal at any moment,
+    during start-up too, ends the command at the next safe point (at the latest 2 s later) with
+    exit status 130, one line on stderr and no partial file, never a traceback, a hang or a
+    swallowed interrupt. The handlers stay until the process exits when ``argv`` is None (the
+    ``tippe`` program, ``python -m stability``); called with ``argv`` (as a library function,
+    in tests) the previous handlers are restored on return.
+    """
+    from . import interrupts
+
+    interrupts.install("tippe")
+    try:
+        return _main(argv, interrupts)
+    finally:
+        if argv is not None:
+            interrupts.uninstall()
+
+
+def _interrupted(prog: str, text: str | None) -> int:
+    """Print the one line of an interrupted command, truthful about what was written."""
+    from . import interrupts
+
+    done = interrupts.committed()
+    if done:
+        what = ", ".join(repr(f) for f in done)
+        line = f"{prog}: interrupted after {what} {'was' if len(done) == 1 else 'were'} written (complete)"
+    else:
+        line = f"{prog}: interrupted; {_one_line(text) if text else 'no output file was left behind'}"
+    interrupts.mark_reported()
+    print(line, file=sys.stderr)
+    return EXIT_INTERRUPTED
+
+
+def _reader_gone(fd: int) -> bool:
+    """True if ``fd`` is the write end of a pipe whose reader has closed it (``poll`` reports
+    POLLERR): the failed write's data may have been dropped from the buffer, so a flush alone
+    does not tell."""
+    import select
+
+    if not hasattr(select, "poll"):  # pragma: no cover - not POSIX
+        return False
+    poller = select.poll()
+    poller.register(fd, select.POLLOUT)
+    return any(ev & select.POLLERR for _, ev in poller.poll(0))
+
+
+def _stdout_broken() -> bool:
+    """True if stdout is a closed pipe (the reader went away); stdout is then sent to devnull so
+    that the interpreter's final flush does not complain."""
+    try:
+        sys.stdout.flush()
+        if not _reader_gone(sys.stdout.fileno()):
+            return False
+    except BrokenPipeError:
+        pass
+    except (OSError, ValueError, AttributeError):
+        return False
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
+    return True
+
+
+def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the module stability.interrupts
     from continuation.errors import ConvergenceError
 
     from .errors import Interrupted, TippeError
@@ -153,23 +221,36 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in args_list or _debug_env()
     args_list = _join_negative_values([a for a in args_list if a != "--debug"])
-    parser = build_parser()
-    args = parser.parse_args(args_list)
-    prog = f"tippe {args.command}"
-    flags = _command_flags(parser, args.command)
-    previous = _terminate_as_interrupt()
+    prog, flags = "tippe", None
     try:
-        return int(args.func(args) or 0)
+        parser = build_parser()
+        args = parser.parse_args(args_list)
+        prog = f"tippe {args.command}"
+        interrupts.set_label(prog)
+        flags = _command_flags(parser, args.command)
+        interrupts.checkpoint()  # a signal during start-up
+        status = int(args.func(args) or 0)
+        if interrupts.received():  # after the last safe point: the command had finished
+            return _interrupted(prog, None)
+        return status
     except Interrupted as exc:
         if debug:
             raise
-        print(f"{prog}: interrupted; {_one_line(exc)}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted(prog, str(exc))
     except KeyboardInterrupt:
         if debug:
             raise
-        print(f"{prog}: interrupted; no output file was left behind", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted(prog, None)
+    except BrokenPipeError:
+        if not _stdout_broken():
+            print(f"{prog}: error: broken pipe", file=sys.stderr)
+            return EXIT_USAGE
+        done = interrupts.committed()
+        if done:  # the output is complete; only the report on stdout was lost
+            print(f"{prog}: wrote {', '.join(repr(f) for f in done)}; the report on stdout could not be printed "
+                  "(its reader closed the pipe)", file=sys.stderr)
+            return 0
+        return EXIT_FAILURE
     except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
         if debug:
             raise
@@ -186,29 +267,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
               "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)", file=sys.stderr)
         return EXIT_FAILURE
-    finally:
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
-
-
-def _raise_interrupt(signum: int, frame: object) -> None:
-    raise KeyboardInterrupt(f"{signal.Signals(signum).name} received")
-
-
-def _terminate_as_interrupt() -> dict[int, object]:
-    """Make SIGTERM and SIGHUP (``kill``, ``timeout``, a batch scheduler, a closed terminal)
-    interrupt a command as Ctrl-C does, so that its clean-up runs: no partial output file, the
-    finished chunks kept with ``--resume``. Python's default for them ends the process at once.
-    Returns the previous handlers (restored after the command); nothing is changed outside the
-    main thread, where handlers cannot be set."""
-    if threading.current_thread() is not threading.main_thread():
-        return {}
-    previous = {}
-    for name in ("SIGTERM", "SIGHUP"):
-        signum = getattr(signal, name, None)
-        if signum is not None:
-            previous[signum] = signal.signal(signum, _raise_interrupt)
-    return previous
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -11,8 +11,11 @@ Layer 0 (docs/architecture.md): imports nothing from the package (only the engin
     |   +-- AtlasFileError                 a file given as an atlas is missing, unreadable, not one
     |   +-- RecipeError                    an atlas recipe that cannot be read or run
     |   +-- ResumeError                    a chunk store that cannot be resumed from
+    |   +-- ResourceError                  a request that cannot fit in the memory available
     +-- ParameterTypeError (TypeError)     a value of the wrong type (provided; most checks raise
     |                                      a plain TypeError)
+    +-- OutputWriteError (OSError)         an output file could not be written (disk full, file
+    |                                      size limit, ...): names the file and the cause
     +-- ChunkError (RuntimeError)          a chunk of a chunked atlas failed
     +-- ConvergenceError (RuntimeError,    a continuation did not converge
     |       continuation.ConvergenceError)
@@ -33,7 +36,8 @@ from __future__ import annotations
 from continuation.errors import ConvergenceError as _EngineConvergenceError
 
 __all__ = ["TippeError", "InputError", "DomainError", "ParameterTypeError", "AtlasFileError", "RecipeError",
-           "ResumeError", "ChunkError", "ConvergenceError", "Interrupted", "MissingExtraError", "require_extra"]
+           "ResumeError", "ResourceError", "OutputWriteError", "ChunkError", "ConvergenceError", "Interrupted",
+           "MissingExtraError", "require_extra"]
 
 
 class TippeError(Exception):
@@ -62,6 +66,25 @@ class RecipeError(InputError):
 
 class ResumeError(InputError):
     """The sidecar chunk store cannot be used for this atlas (the message says why)."""
+
+
+class ResourceError(InputError):
+    """A request whose estimated memory exceeds what is available; the message gives the estimate,
+    the parameter that sets it and a way out (:mod:`stability.resources`)."""
+
+
+class OutputWriteError(TippeError, OSError):
+    """An output file could not be written: the message names the file and the cause (no space
+    left, the file size limit, a read-only file system, ...) and says that nothing was written.
+
+    ``errno`` is the cause's error number when it is known (``errno.ENOSPC``, ``errno.EFBIG``,
+    ...), else None; ``path`` is the output file. The original exception is the ``__cause__``.
+    """
+
+    def __init__(self, message: str, errno: int | None = None, path: str | None = None) -> None:
+        super().__init__(message)
+        self.errno = errno
+        self.path = path
 
 
 class ChunkError(TippeError, RuntimeError):

@@ -512,6 +512,7 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
 
     from .nonlinear.runs import initial_state
     from .steady.branch import branch_points, steady_branch
+    from .steady.family import upright_jellett
     from .steady.final import chunk_length, final_state, settle
     from .steady.states import steady_states
     from .top import Top
@@ -520,7 +521,7 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
     alpha_v = float(recipe.grid.get("alpha_v", 0.5))
     q, sigma, mu = top.q, top.sigma, top.mu
     fr_ref = float(top.fr_inv(REFERENCE_RPM, unit="rpm"))
-    j_per_rpm = sigma * (1.0 + q) / REFERENCE_RPM
+    j_per_rpm = upright_jellett(q=q, sigma=sigma) / REFERENCE_RPM
     bp = branch_points(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu)
     bp_rpm = [v / j_per_rpm for v in bp.values() if math.isfinite(v)]
     lo, hi = 0.75 * min(list(recipe.runs_rpm) + bp_rpm), 1.1 * max(list(recipe.runs_rpm) + bp_rpm)
@@ -551,7 +552,8 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
         chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
         end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, t_max=2e5,
                              settle_tolerance=1e-3, rtol=1e-10)
-        rows.append((r, pred.jellett / (sigma * (1 + q)) * r, pred.tilt, end, run.t_end, int(run.settled), 0))
+        rows.append((r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
+                     int(run.settled), 0))
     if recipe.figure == "table1":  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
         from .nonlinear.scene import INITIAL_CONDITIONS
 
@@ -561,7 +563,8 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
         end, _, run = settle(initial_state("sliding", **ic), params, chunk=chunk_length(pred.candidates, params, pred.jellett),
                              t_max=2e5, settle_tolerance=1e-3, rtol=1e-10)
         r = float(top.spin_rate(0.3)) * 60.0 / (2.0 * math.pi)
-        rows.append((r, abs(pred.jellett) / (sigma * (1 + q)) * r, pred.tilt, end, run.t_end, int(run.settled), 1))
+        rows.append((r, abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
+                     int(run.settled), 1))
     arr = np.array(rows, dtype=float).reshape(-1, 7)
     unit = {"units": "1"}
     runs = xr.Dataset(

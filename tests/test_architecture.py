@@ -44,6 +44,8 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.errors", 0),
     ("stability.products", 0),
     ("stability.execution", 0),
+    ("stability.interrupts", 0),         # signals as flags, checkpoints, temporary files
+    ("stability.resources", 0),          # memory estimates and limits
     ("stability.parameters", 1),
     ("stability.models", 1),
     ("stability.top", 1),

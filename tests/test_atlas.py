@@ -77,10 +77,12 @@ def test_existing_file_not_overwritten(ds, tmp_path):
 
 
 def test_failed_write_leaves_no_file(ds, tmp_path, monkeypatch):
-    def boom(self, path, *a, **k):
+    import stability.grids.netcdf as netcdf
+
+    def boom(ds, path):
         open(path, "wb").write(b"CDF\x01 partial")
         raise RuntimeError("disk full")
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", boom)
+    monkeypatch.setattr(netcdf, "_to_netcdf", boom)
     with pytest.raises(RuntimeError, match="disk full"):
         stability.write_dataset(ds, tmp_path / "atlas.nc")
     assert list(tmp_path.iterdir()) == []

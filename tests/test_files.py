@@ -133,11 +133,13 @@ def test_overwrite_only_when_asked(tmp_path, capsys):
 def test_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
     ds = stability.atlas("fixed_pivot", q=[0.1, 0.2], fr_inv=0.1, sigma=1.0)
 
-    def broken(self, path, *args, **kwargs):
+    def broken(ds, path):
         Path(path).write_bytes(b"CDF\x01 half written")
         raise OSError("disk full")
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    import stability.grids.netcdf as netcdf
+
+    monkeypatch.setattr(netcdf, "_to_netcdf", broken)
     with pytest.raises(OSError, match="disk full"):
         stability.write_dataset(ds, tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []

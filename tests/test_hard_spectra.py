@@ -22,6 +22,7 @@ import pytest
 
 import stability
 from stability.models.inertia import transverse_inertia_g
+from stability.parameters import sigma_max
 from stability.linear.modes import ambiguous_steps, track_modes
 from stability.linear.roots import inclusion_radius
 from conftest import mp_polyroots, mp_sliding_eigenvalues
@@ -31,7 +32,9 @@ MU = 2.28
 CASES = []
 for eps in (1e-3, 1e-6, 1e-9, 1e-12):
     q = -np.sqrt((1 - eps) / MU)
-    CASES.append(dict(q=q, fr_inv=0.3, sigma=float(2 * transverse_inertia_g(q, MU)), alpha_v=0.5))
+    # on the bound sigma = 2 A_G: the largest sigma allowed (the exact bound rounded down; twice
+    # the compensated A_G can be an ulp above it, and the bound is exact: docs/input_checks.md)
+    CASES.append(dict(q=q, fr_inv=0.3, sigma=float(sigma_max(q, MU)), alpha_v=0.5))
 for a in (1e-6, 1e-3, 1e3, 1e6):
     CASES.append(dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=a))
 for f in (1e-8, 1e2, 1e3):

@@ -253,8 +253,8 @@ def _ulps(x: float, k: int) -> list[float]:
 def _bound_points() -> dict[str, np.ndarray]:
     """Points exactly on and within 12 ulps of every bound of the domain: mu = 0, fr_inv = 0,
     alpha_v = 0, sigma = 0, A_G = 1 - mu q^2 = 0 (q = +-1/sqrt(mu) and its neighbours, in
-    several mu) and sigma = 2 A_G (1 + 8 u) (the bound and its neighbours, so the 8-ulp slack
-    of check_domain is crossed both ways), then NaN and +-inf in each parameter."""
+    several mu) and sigma = 2 A_G (1 + 8 u) (the bound and its neighbours: the exact bound of
+    check_domain is crossed both ways), then NaN and +-inf in each parameter."""
     base = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
     rows = []
     for name in ("mu", "fr_inv", "alpha_v", "sigma"):
@@ -286,7 +286,7 @@ def test_fused_domain_test_agrees_with_check_domain():
     """The kernel's domain test (fused into the default path) against the package's canonical
     one, stability.parameters.check_domain, point by point: exact agreement is required (no
     tolerance: both must evaluate the same A_G bit for bit and the same comparisons, including
-    the 8-ulp slack of sigma <= 2 A_G and the compensated 1 - mu q^2). Points: on and a few
+    the exact sign of 2 (1 - mu q^2) - sigma and of 1 - mu q^2). Points: on and a few
     ulps around every bound (and the computable range's), NaN and inf in each parameter, and
     20,000 random points of a box four times wider than the domain. Code 2 (refused even
     masked) must be exactly where check_domain(mask=True) raises."""

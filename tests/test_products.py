@@ -28,6 +28,7 @@ import continuation
 import stability
 import stability.plotting
 from stability.errors import InputError
+from stability.nonlinear.scene import INITIAL_CONDITIONS
 from stability.plotting.accessor import PLOTS, plotting_function
 from stability.products import PRODUCT_ATTR
 from stability.recipes import critical_spin_dataset, load_recipe
@@ -55,6 +56,12 @@ MAKERS = {
                                                  n_efold=1.0),
     "coulomb_growth": lambda tmp: stability.coulomb_growth(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_k=0.2, t_end=60.0),
     "critical_spin": _critical_spin,
+    "steady_states": lambda tmp: stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
+                                                         jellett=-0.9001185873),
+    "steady_branch": lambda tmp: continuation.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
+    "final_state": lambda tmp: stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
+                                                     **INITIAL_CONDITIONS[0.3]).to_dataset(),
+    "top_classes": lambda tmp: stability.class_atlas(q=np.linspace(-0.6, 0.6, 25), sigma=np.linspace(0.05, 2.0, 20)),
 }
 
 

@@ -26,7 +26,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import stability
-from stability.models.inertia import transverse_inertia_g
+from stability.parameters import sigma_max
 
 
 @st.composite
@@ -35,7 +35,7 @@ def sliding_points(draw, alpha_v=True):
     q = draw(st.floats(-0.97, 0.97)) / np.sqrt(mu)
     # 2 A_G without cancellation (a naive 1 - mu q^2 is off by ~u / A_G, which can put
     # sigma = 2 A_G an ulp outside the domain check's 8 u allowance)
-    sigma = draw(st.floats(0.01, 1.0)) * 2 * float(transverse_inertia_g(q, mu))
+    sigma = draw(st.floats(0.01, 1.0)) * float(sigma_max(q, mu))  # up to the largest sigma allowed
     fr_inv = draw(st.floats(0.0, 5.0))
     a = 10 ** draw(st.floats(-3.0, 2.0)) if alpha_v else 0.0
     return dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=a, mu=mu)
@@ -101,8 +101,8 @@ def hard_points(draw):
     mu = draw(st.floats(0.3, 8.0))
     edge = draw(st.floats(-12.0, 0.0))
     q = draw(st.sampled_from([-1.0, 1.0])) * np.sqrt((1 - 10**edge * 0.999) / mu)
-    a_g = float(transverse_inertia_g(q, mu))
-    sigma = 10 ** draw(st.floats(-6.0, 0.0)) * 2 * a_g
+    # up to the largest sigma allowed, sigma_max (the exact bound 2 A_G rounded down)
+    sigma = 10 ** draw(st.floats(-6.0, 0.0)) * float(sigma_max(q, mu))
     fr_inv = 10 ** draw(st.floats(-6.0, 3.0))
     a = 10 ** draw(st.floats(-6.0, 6.0))
     return dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=a, mu=mu)
@@ -156,7 +156,7 @@ def test_spectrum_continuous_along_a_parameter(p, name, log_h):
 def nonlinear_points(draw):
     mu = draw(st.floats(0.5, 6.0))
     q = draw(st.floats(-0.9, 0.9)) / np.sqrt(mu)
-    sigma = draw(st.floats(0.1, 1.0)) * 2 * float(transverse_inertia_g(q, mu))
+    sigma = draw(st.floats(0.1, 1.0)) * float(sigma_max(q, mu))  # up to the largest sigma allowed
     tilt = draw(st.floats(0.05, 1.2))
     az = draw(st.floats(0.0, 2 * np.pi))
     w = [draw(st.floats(-0.2, 0.2)), draw(st.floats(-0.2, 0.2)), draw(st.floats(0.5, 1.5))]

@@ -15,6 +15,7 @@ from ..grids.netcdf import check_output_path, write_dataset
 from ..models import MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..errors import Interrupted
+from .. import interrupts
 from ._args import add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
@@ -82,12 +83,19 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
                chunks=parse_chunks(args.chunks), **values)
     store = parts_directory(out)
+    _check_space(out, args.model, values)
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
+    if args.resume:
+        interrupts.set_kept(f"the finished chunks are kept in {store}; rerun the same command to continue")
+
+    def note(text: str) -> None:
+        print(f"tippe atlas: note: {text}", file=sys.stderr)
+
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
-                        progress=not args.no_progress)
+                        progress=not args.no_progress and sys.stderr.isatty(), notes=note)
     except KeyboardInterrupt:
         if args.resume:
             raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "
@@ -112,6 +120,19 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     return 0
 
 
+def _check_space(out, model: str, values: dict) -> None:  # noqa: ANN001
+    """Refuse, before computing, an atlas whose file cannot fit on its file system."""
+    import numpy as np
+
+    from ..grids.outputs import check_free_space
+    from ..resources import atlas_file_bytes
+
+    n = 1
+    for v in values.values():
+        n *= int(np.size(v))
+    check_free_space(out, atlas_file_bytes(MODELS[model].n_modes, n))
+
+
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
@@ -119,11 +140,13 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
+        _check_plot_format(args.plot)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     if args.chunks is not None:
         return _run_chunked(args, out, values)
     if args.workers is not None or args.scheduler is not None or args.resume:
         raise ValueError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
+    _check_space(out, args.model, values)
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values)
     if args.plot:
         from ..plotting.figures import atlas_figure
@@ -131,7 +154,9 @@ def run(args: argparse.Namespace) -> int:
 
         with style():
             fig, _ = atlas_figure(ds, x=args.x)
-        # the figure is complete before anything is written
+        # the figure is written before the netCDF file is committed: a failure to draw or save
+        # it leaves no atlas file behind
+        save_figure(fig, args.plot, overwrite=args.overwrite)
     write_dataset(ds, out, overwrite=args.overwrite)
     counts = {name: int((ds.stability == flag).sum()) for name, flag in
               (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
@@ -139,7 +164,20 @@ def run(args: argparse.Namespace) -> int:
     print(f"wrote {out}: {args.model} model, grid {grid}; "
           + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
     if args.plot:
-        save_figure(fig, args.plot, overwrite=args.overwrite)
         print(f"wrote {args.plot}")
     return 0
+
+
+def _check_plot_format(path: str) -> None:
+    """Refuse a ``--plot`` file whose suffix names no format matplotlib can write, before any
+    computation (the format comes from the suffix, :func:`stability.plotting.save_figure`)."""
+    from pathlib import Path
+
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    known = FigureCanvasBase.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in known:
+        raise ValueError(f"--plot = {path!r}: the format {('.' + suffix) if suffix else '(no suffix)'} is not "
+                         f"known to matplotlib; the allowed suffixes are {', '.join('.' + k for k in sorted(known))}")
 

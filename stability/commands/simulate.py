@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import sys
 
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
@@ -43,18 +46,53 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--step", type=float, default=None, help="step of --method rk4")
     p.add_argument("-o", "--output", required=True, help="netCDF file to write")
     p.add_argument("--overwrite", action="store_true")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--progress", action="store_true", dest="progress", default=None,
+                   help="show a progress bar (default: when stderr is a terminal and the run takes over a second)")
+    g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
     p.set_defaults(func=run)
 
 
+#: outputs above this size get a warning on stderr before the run
+WARN_BYTES = 100e6
+
+
+def _output_times(t_end: float, dt: float) -> int | None:
+    """The number of output times of ``--t-end`` and ``--dt``, or None if they are not valid
+    (``simulate`` then says why)."""
+    if not (math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0) or t_end / dt > 1e8:
+        return None
+    return int(math.ceil(t_end / dt - 1e-9)) + 1
+
+
 def run(args: argparse.Namespace) -> int:
-    """Run ``tippe simulate``."""
-    from ..nonlinear.runs import simulate
+    """Run ``tippe simulate``: check the output, the memory and the disk first; warn before a
+    large output; show progress on a terminal; say what was written."""
+    from ..grids.outputs import check_free_space
+    from ..nonlinear.runs import check_run_memory, simulate
+    from ..resources import format_bytes, simulate_file_bytes
 
     out = check_output_path(args.output, overwrite=args.overwrite)
+    n = _output_times(args.t_end, args.dt)
+    if n is not None:
+        check_run_memory(args.model, n, t_end=args.t_end, dt=args.dt)
+        size = simulate_file_bytes(args.model, n)
+        check_free_space(out, size)
+        if size > WARN_BYTES:
+            print(f"tippe simulate: warning: the output will be about {format_bytes(size)} ({n} output times at "
+                  f"--dt {args.dt:g}); use a larger --dt or a shorter --t-end for a smaller file", file=sys.stderr)
+    show = args.progress if args.progress is not None else sys.stderr.isatty()
     ds = simulate(args.model, t_end=args.t_end, omega=args.omega, k=args.k, velocity=args.velocity,
                   q=args.q, fr_inv=args.fr_inv, sigma=args.sigma, alpha_v=args.alpha_v,
                   alpha_k=args.alpha_k, mu=args.mu, friction=args.friction, normal=args.normal,
                   slip_scale=args.slip_scale, method=args.method, rtol=args.rtol, atol=args.atol,
-                  dt=args.dt, step=args.step)
+                  dt=args.dt, step=args.step, progress=show)
     write_dataset(ds, out, overwrite=args.overwrite)
+    a = ds.attrs
+    t = ds["time"].values
+    tol = f"rtol {a['rtol']:g}" if a["method"] != "rk4" else f"step {args.step:g}"
+    rejected = f" ({a['nreject']} rejected)" if a["method"] not in ("rk4",) else ""
+    print(f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
+          f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
+          f"{a['nfev']} evaluations, status: {a['message']}")
     return 0

@@ -77,7 +77,7 @@ def _top(args: argparse.Namespace) -> Top:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
-    from ..linear.critical import critical_spin, threshold, threshold_crossings
+    from ..linear.critical import _one_threshold, critical_spin, threshold_crossings
 
     _refuse_unused(args)
     if args.param == "spin":
@@ -90,6 +90,10 @@ def run(args: argparse.Namespace) -> int:
             state = "unstable" if c.unstable_above else "stable"
             print(f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
                   f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})")
+            if not c.exact:
+                print(f"{'':>8}  an interval, not a value: the change of stability lies between "
+                      f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
+                      "cannot be decided inside it)")
         print(f"friction: {c.friction}")
         return 0
     model = MODELS[args.model]
@@ -109,8 +113,17 @@ def run(args: argparse.Namespace) -> int:
         if not found:
             print(f"no threshold in {args.param}")
         for t in found:
-            print(f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})")
+            print(f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
+                  + _interval(args.param, t))
         return 0
-    v = threshold(args.param, model=model, bracket=bracket, **fixed)
-    print(f"{args.param} = {v:.16g}")
+    t = _one_threshold(args.param, model, bracket, 257, fixed)
+    print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
     return 0
+
+
+def _interval(param: str, t) -> str:
+    """What the CLI adds to a threshold known only to an interval (``Threshold.exact`` False)."""
+    if t.exact:
+        return ""
+    return (f"\n  an interval, not a value: the change of stability lies in {param} in [{t.lower!r}, {t.upper!r}] "
+            "(the sign of the growth rate cannot be decided inside it)")

@@ -12,6 +12,7 @@ structural zero mode left out).
 from __future__ import annotations
 
 from datetime import datetime, timezone
+from itertools import product
 from typing import Any
 
 import numpy as np
@@ -21,10 +22,12 @@ from .._version import package_version
 from ..linear.modes import structural_zeros
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
-from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter
+from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter, check_domain
 from ..errors import require_extra
+from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
-from .netcdf import require_atlas
+from ..resources import atlas_bytes, check_memory
+from .schema import require_atlas
 
 __all__ = ["atlas", "leading_growth_rate", "TIME_CONVENTION", "MARGINAL_RULE"]
 
@@ -97,13 +100,14 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         growth, freq, bound, stab, inside = lazy_spectra(m, values, dims, chunks, mask_unphysical=mask_unphysical,
                                                          method=method)
     else:
-        sp = spectrum(m, mask_unphysical=mask_unphysical, method=method, **grid)
         full = tuple(values[d].size for d in dims)
-        ev = np.broadcast_to(sp.eigenvalues, full + (m.n_modes,))
-        growth, freq = ev.real.copy(), ev.imag.copy()
-        bound = np.broadcast_to(sp.error_bound, full + (m.n_modes,)).copy()
-        stab = np.broadcast_to(sp.stability, full).astype(np.int8)
-        inside = np.broadcast_to(sp.inside, full).astype(np.int8)
+        n_points = int(np.prod(full, dtype=np.int64))
+        check_memory(atlas_bytes(m.n_modes, n_points, BLOCK_POINTS, domain_check=not mask_unphysical),
+                     what=f"atlas: {n_points} grid points ({' x '.join(f'{d}({n})' for d, n in zip(dims, full))})",
+                     parameter="the grid's ranges",
+                     way_out="pass chunks=100 (or another chunk size) to compute and write it chunk by chunk, "
+                             "or use fewer points")
+        growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, grid, full, mask_unphysical, method)
 
     mdims = (*dims, "mode")
     unit = {"units": "1"}
@@ -155,6 +159,79 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         if v.ndim == 0:
             attrs[k] = float(v)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+#: grid points per call of the spectrum in an in-memory atlas: a bounded piece of compiled work
+#: (tens of milliseconds) between interruption points, and bounded temporaries
+BLOCK_POINTS = 2**16
+
+
+def _blocks(dims: list[str], full: tuple[int, ...]) -> list[dict[str, slice]]:
+    """Slices of the grid of at most :data:`BLOCK_POINTS` points: whole trailing dimensions, a
+    run of rows of one dimension, single indices of the leading ones."""
+    if not dims:
+        return [{}]
+    k = 0
+    while int(np.prod(full[k + 1:], dtype=np.int64)) > BLOCK_POINTS:
+        k += 1
+    rows = max(1, BLOCK_POINTS // int(np.prod(full[k + 1:], dtype=np.int64)))
+    ranges = [[slice(i, i + 1) for i in range(full[j])] for j in range(k)]
+    ranges.append([slice(i, min(i + rows, full[k])) for i in range(0, full[k], rows)])
+    ranges.extend([[slice(0, full[j])] for j in range(k + 1, len(dims))])
+    return [dict(zip(dims, combo)) for combo in product(*ranges)]
+
+
+def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], grid: dict[str, np.ndarray],
+                       full: tuple[int, ...], mask: bool, method: str) -> tuple[np.ndarray, ...]:
+    """Growth rate, frequency, bound (grid + mode), stability and physical flags (int8) of the
+    whole grid, computed block by block (:func:`_blocks`) with an interruption point between
+    blocks. Each point's arithmetic does not depend on the block it is in, so the values are
+    those of one call over the whole grid."""
+    n = m.n_modes
+    if int(np.prod(full, dtype=np.int64)) <= BLOCK_POINTS:
+        sp = spectrum(m, mask_unphysical=mask, method=method, **grid)
+        ev = np.broadcast_to(sp.eigenvalues, full + (n,))
+        return (ev.real.copy(), ev.imag.copy(), np.broadcast_to(sp.error_bound, full + (n,)).copy(),
+                np.broadcast_to(sp.stability, full).astype(np.int8),
+                np.broadcast_to(sp.inside, full).astype(np.int8))
+    if not mask:
+        check_domain(mask=False, **grid)  # the whole grid refused at once, as one call would
+    growth = np.empty(full + (n,))
+    freq = np.empty(full + (n,))
+    bound = np.empty(full + (n,))
+    stab = np.empty(full, dtype=np.int8)
+    inside = np.empty(full, dtype=np.int8)
+    with deferred():
+        _fill_blocks(m, values, dims, full, mask, method, (growth, freq, bound, stab, inside))
+    return growth, freq, bound, stab, inside
+
+
+def _fill_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], full: tuple[int, ...], mask: bool,
+                 method: str, arrays: tuple[np.ndarray, ...]) -> None:
+    """The loop of :func:`_spectra_in_blocks`: one spectrum per block, an interruption point
+    before each."""
+    growth, freq, bound, stab, inside = arrays
+    n = m.n_modes
+    for sl in _blocks(dims, full):
+        checkpoint()
+        part = {}
+        for k, v in values.items():
+            if k in sl:
+                shape = [1] * len(dims)
+                shape[dims.index(k)] = -1
+                part[k] = v[sl[k]].reshape(shape)
+            else:
+                part[k] = v
+        sp = spectrum(m, mask_unphysical=mask, method=method, **part)
+        bshape = tuple(sl[d].stop - sl[d].start for d in dims)
+        idx = tuple(sl[d] for d in dims)
+        ev = np.broadcast_to(sp.eigenvalues, bshape + (n,))
+        growth[idx] = ev.real
+        freq[idx] = ev.imag
+        bound[idx] = np.broadcast_to(sp.error_bound, bshape + (n,))
+        stab[idx] = np.broadcast_to(sp.stability, bshape)
+        inside[idx] = np.broadcast_to(sp.inside, bshape)
+    checkpoint()
 
 
 def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:

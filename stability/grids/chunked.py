@@ -6,26 +6,33 @@
   chunk is computed (a refused grid refuses at once, as the in-memory atlas does).
 * :func:`write_atlas` writes such a dataset to netCDF chunk by chunk: the file is created
   (dimensions, coordinates, attributes, as xarray writes them) under a temporary name next to
-  the target; each chunk is computed (in this process, or on a dask.distributed cluster), written
-  into its region and dropped; the file is renamed over the target only when complete
-  (:func:`stability.grids.netcdf.atomic_output`). Memory stays at a few chunks whatever the grid size;
-  an interruption leaves no output file.
+  the target; each chunk is computed (in this process, or on a dask.distributed cluster), checked
+  (exact dtypes and shapes: a block is never broadcast or cast into the file), written into its
+  region and dropped; the file is committed only when complete
+  (:func:`stability.grids.outputs.atomic_output`: no partial file, and an existing file, or one
+  another run created meanwhile, is not replaced unless asked). Memory stays at a few chunks
+  whatever the grid size; an interruption (checked between chunks) leaves no output file.
 * Resuming: with ``resume=True`` every finished chunk is also kept in a sidecar directory
-  ``<output>.parts/`` (one ``.npz`` per chunk, each renamed into place when complete, and a
-  manifest naming the atlas). A rerun with the same arguments reads the chunks found there and
-  computes only the others; the directory is removed once the output file is in place. A
-  sidecar written for a different atlas (other grid, model, method, chunks or package version)
-  is refused with the reason, never mixed in.
+  ``<output>.parts/`` (:class:`_Store`: one ``.npz`` per chunk, each renamed into place when
+  complete, a journal of digests binding each chunk's content to its name, slice and store, a
+  manifest naming the atlas, and a lock: one run at a time). A rerun with the same arguments
+  uses the chunks found there that match their records and computes only the others; the
+  directory is removed once the output file is in place. A store written for a different
+  atlas (other grid, model, method, chunks or package version) or by an older version, and a
+  chunk file that does not match its record, are refused with the reason, never mixed in: a
+  resumed atlas equals the one computed in one go, bit for bit.
 * Where the chunks run: in this process by default, or on a dask.distributed cluster given as
   ``client`` (:func:`stability.grids.cluster.dask_client`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
 import shutil
+import warnings
 from collections.abc import Callable
 from itertools import product
 from pathlib import Path
@@ -35,9 +42,11 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, ResumeError
-from .netcdf import atomic_output, check_output_path
+from ..interrupts import Temporary, checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
+from ..resources import atlas_file_bytes
+from .outputs import TEMPORARY_PREFIX, atomic_output, check_output_path, close_quietly, temporary_name, write_error
 
 __all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "parts_directory"]
 
@@ -176,13 +185,23 @@ def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[s
 
 # --- writing -----------------------------------------------------------------------------------
 
+#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
+_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
+    "growth_rate": (np.dtype(np.float64), True), "frequency": (np.dtype(np.float64), True),
+    "eigenvalue_error_bound": (np.dtype(np.float64), True), "stability": (np.dtype(np.int8), False),
+    "physical": (np.dtype(np.int8), False)}
+
+#: format of the chunk store (manifest, journal, digests); a store of another format is refused
+STORE_FORMAT = 2
+
+
 def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int]) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
     data variables defined (chunked like the dataset) but not yet written."""
     import netCDF4
 
     scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
-    with netCDF4.Dataset(path, "w", format="NETCDF4") as nc:
+    with close_quietly(netCDF4.Dataset(path, "w", format="NETCDF4")) as nc:
         for d, n in ds.sizes.items():
             nc.createDimension(d, n)
         for k, c in ds.coords.items():
@@ -219,13 +238,51 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
             **{k: str(ds.attrs.get(k)) for k in keep}}
 
 
-def _open_store(store: Path, ident: dict[str, Any]) -> set[str]:
-    """Create or check the sidecar store; return the names of the chunks already there."""
-    manifest = store / "manifest.json"
-    if store.exists():
+class _Store:
+    """The sidecar chunk store ``<output>.parts/`` of a resumable run (module docstring).
+
+    Layout: ``lock`` (an exclusive ``flock`` held for the whole run; it holds the pid),
+    ``manifest.json`` (format, a random store id, the atlas's identity), ``chunks.jsonl`` (the
+    journal: one line per finished chunk, appended after the chunk's file is in place, with the
+    digest binding its content to its name, slice, the store and the atlas) and one
+    ``chunk-*.npz`` per finished chunk (its arrays and the same digest).
+
+    A kept chunk is used only if its recomputed digest equals both records; a file the journal
+    does not know (killed between the rename and the journal line) or that cannot be read is
+    computed again, and said so; a file whose content or digest disagrees (edited, swapped,
+    copied from another store) is refused with :class:`~stability.errors.ResumeError` naming it.
+    An integrity check against accidents and mix-ups, not a security boundary: whoever can write
+    the store can also rewrite the digests.
+    """
+
+    def __init__(self, path: Path, ident: dict[str, Any], dims: list[str], notes: Callable[[str], None]) -> None:
+        self.path, self.ident, self.dims, self.notes = path, ident, dims, notes
+        self.lock_fd: int | None = None
+        self.store_id = ""
+        self.journal: dict[str, str] = {}
+
+    # -- opening ----------------------------------------------------------------------------
+    def open(self) -> set[str]:
+        """Create or check the store, under its lock; the names of the chunk files found."""
+        store = self.path
+        existed = store.exists()
+        if existed and not store.is_dir():
+            raise ResumeError(f"cannot resume: {str(store)!r} exists and is not a directory (not a chunk store "
+                              "of this package); remove it or choose another output")
+        store.mkdir(exist_ok=True)
+        self._lock()
+        manifest = store / "manifest.json"
+        others = [p.name for p in store.iterdir() if p.name != "lock" and not p.name.startswith(TEMPORARY_PREFIX)]
         if not manifest.is_file():
-            raise ResumeError(f"cannot resume: {str(store)!r} exists but has no manifest.json "
-                              "(not a chunk store of this package); remove it or choose another output")
+            if others:
+                raise ResumeError(f"cannot resume: {str(store)!r} exists but has no manifest.json (not a chunk "
+                                  "store of this package); remove it or choose another output")
+            import uuid
+
+            self.store_id = uuid.uuid4().hex
+            _write_json_atomically(store, "manifest.json", {"format": STORE_FORMAT, "store_id": self.store_id,
+                                                            "identity": self.ident})
+            return set()
         try:
             old = json.loads(manifest.read_text())
             if not isinstance(old, dict):
@@ -233,31 +290,163 @@ def _open_store(store: Path, ident: dict[str, Any]) -> set[str]:
         except (ValueError, UnicodeDecodeError, OSError):
             raise ResumeError(f"cannot resume: {str(manifest)!r} is not a readable manifest; remove "
                               f"{str(store)!r} to start afresh") from None
-        diff = [k for k in ident if old.get(k) != ident[k]]
+        if old.get("format") != STORE_FORMAT or not isinstance(old.get("identity"), dict):
+            raise ResumeError(f"cannot resume from {str(store)!r}: it was written by an older version of the "
+                              "package (no chunk journal to check its chunks against); remove it to start afresh")
+        diff = [k for k in self.ident if old["identity"].get(k) != json.loads(json.dumps(self.ident[k]))]
         if diff:
             raise ResumeError(f"cannot resume from {str(store)!r}: it was written for a different atlas "
                               f"({', '.join(diff)} differ); remove it to start afresh")
+        self.store_id = str(old.get("store_id", ""))
+        self.journal = self._read_journal()
         return {p.stem for p in store.glob("chunk-*.npz")}
-    store.mkdir()
-    tmp = store / ".manifest.json.tmp"
-    tmp.write_text(json.dumps(ident, indent=1))
-    os.replace(tmp, manifest)
-    return set()
+
+    def _lock(self) -> None:
+        """Take the store's exclusive lock, or fail at once naming the run holding it."""
+        path = self.path / "lock"
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not POSIX: no early warning, the commit still decides
+            self.lock_fd = fd
+            return
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = ""
+            with contextlib.suppress(OSError, ValueError):
+                holder = os.pread(fd, 64, 0).decode().strip()
+            os.close(fd)
+            raise ResumeError(f"cannot resume from {str(self.path)!r}: another run{f' (pid {holder})' if holder else ''} "
+                              "is using this chunk store; wait for it to end, or write to another output") from None
+        except OSError:  # no locks on this file system: no early warning, the commit still decides
+            pass
+        with contextlib.suppress(OSError):
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, str(os.getpid()).encode(), 0)
+        self.lock_fd = fd
+
+    def close(self) -> None:
+        if self.lock_fd is not None:
+            with contextlib.suppress(OSError):
+                os.close(self.lock_fd)
+            self.lock_fd = None
+
+    def _read_journal(self) -> dict[str, str]:
+        out: dict[str, str] = {}
+        path = self.path / "chunks.jsonl"
+        if not path.is_file():
+            return out
+        with open(path, encoding="utf-8", errors="replace") as f:
+            for line in f:
+                try:
+                    rec = json.loads(line)
+                    out[str(rec["name"])] = str(rec["digest"])
+                except (ValueError, KeyError, TypeError):
+                    continue  # a line torn by a kill: its chunk is computed again
+        return out
+
+    # -- chunks ------------------------------------------------------------------------------
+    def digest(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> str:
+        """sha256 of the store id, the atlas identity, the chunk's name and slice, and each array's
+        name, dtype, shape and bytes."""
+        h = hashlib.sha256()
+        h.update(self.store_id.encode())
+        h.update(json.dumps(self.ident, sort_keys=True).encode())
+        h.update(name.encode())
+        h.update(json.dumps([[d, sl[d].start, sl[d].stop] for d in self.dims]).encode())
+        for k in _BLOCK_VARIABLES:
+            a = np.ascontiguousarray(block[k])
+            h.update(k.encode())
+            h.update(a.dtype.str.encode())
+            h.update(repr(a.shape).encode())
+            h.update(a.tobytes())
+        return h.hexdigest()
+
+    def save(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray], target: Path) -> None:
+        """Write a finished chunk atomically (unique temporary name, removed on failure), then its
+        journal line."""
+        digest = self.digest(name, sl, block)
+        final = self.path / f"{name}.npz"
+        tmp = Temporary(temporary_name(final), None)
+        try:
+            try:
+                with open(tmp.path, "wb") as f:
+                    np.savez(f, _digest=np.array(digest), **block)
+                os.replace(tmp.path, final)
+                tmp.done(committed=False)
+                with open(self.path / "chunks.jsonl", "a", encoding="utf-8") as f:
+                    f.write(json.dumps({"name": name, "digest": digest}) + "\n")
+            except OSError as exc:
+                err = write_error(exc, target, tmp.path, what=str(final))
+                if err is not None:
+                    raise err from exc
+                raise
+        finally:
+            if tmp.state == "writing":
+                with contextlib.suppress(OSError):
+                    os.unlink(tmp.path)
+                tmp.done(committed=False)
+        self.journal[name] = digest
+
+    def load(self, name: str, sl: dict[str, slice], shape: tuple[int, ...], n_modes: int) -> dict[str, np.ndarray] | None:
+        """A kept chunk, checked; None (computed again, and said so) if its file cannot be read
+        or the journal does not know it."""
+        path = self.path / f"{name}.npz"
+        recorded = self.journal.get(name)
+        if recorded is None:
+            self.notes(f"{path} is not in the chunk journal (the run was stopped while saving it): computed again")
+            return None
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                block = {k: np.asarray(z[k]) for k in z.files}
+        except Exception:  # unreadable or incomplete: computed again
+            self.notes(f"{path} cannot be read: computed again")
+            return None
+        stored = block.pop("_digest", None)
+        _check_block(block, shape, n_modes, lambda text: ResumeError(
+            f"cannot resume: chunk file {str(path)!r} {text}; delete it to have it computed again, or delete "
+            f"{str(self.path)!r}"))
+        if stored is None or str(stored) != recorded or self.digest(name, sl, block) != recorded:
+            raise ResumeError(f"cannot resume: chunk file {str(path)!r} does not match what this run recorded for "
+                              f"{name} (edited, swapped or from another run); delete it to have it computed again, or "
+                              f"delete {str(self.path)!r}")
+        _check_values(block, lambda text: ResumeError(f"cannot resume: chunk file {str(path)!r} {text}"))
+        return block
 
 
-def _save_chunk(store: Path, name: str, block: dict[str, np.ndarray]) -> None:
-    tmp = store / f".{name}.tmp.npz"
-    np.savez(tmp, **block)
-    os.replace(tmp, store / f"{name}.npz")
+def _write_json_atomically(directory: Path, name: str, data: Any) -> None:
+    tmp = directory / f"{TEMPORARY_PREFIX}{name}"
+    tmp.write_text(json.dumps(data, indent=1))
+    os.replace(tmp, directory / name)
 
 
-def _load_chunk(store: Path, name: str) -> dict[str, np.ndarray] | None:
-    """A kept chunk, or None (to recompute it) if its file cannot be read."""
-    try:
-        with np.load(store / f"{name}.npz") as z:
-            return {k: np.asarray(z[k]) for k in _BLOCK_VARIABLES}
-    except Exception:  # unreadable or incomplete: computed again
-        return None
+def _check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int,
+                 error: Callable[[str], Exception]) -> None:
+    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
+    if set(block) != set(_BLOCK_LAYOUT):
+        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
+    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
+        a = block[k]
+        want = shape + ((n_modes,) if modal else ())
+        if a.dtype != dtype:
+            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
+        if a.shape != want:
+            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
+
+
+def _check_values(block: dict[str, np.ndarray], error: Callable[[str], Exception]) -> None:
+    """Flags in range, and NaN exactly outside the domain (as :mod:`stability.grids.schema`)."""
+    stab, phys = block["stability"], block["physical"]
+    if not np.isin(stab, (-1, 0, 1, 2)).all() or not np.isin(phys, (0, 1)).all():
+        raise error("holds flag values outside stability in {-1, 0, 1, 2}, physical in {0, 1}")
+    outside = stab == -1
+    if not np.array_equal(phys == 0, outside):
+        raise error("has physical == 0 where stability != -1, or the reverse")
+    for k in ("growth_rate", "frequency", "eigenvalue_error_bound"):
+        nan = np.isnan(block[k])
+        if not (nan.all(axis=-1) == outside).all() or not (nan.any(axis=-1) == outside).all():
+            raise error(f"has NaN in {k} where the point is inside the domain, or a number outside it")
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -298,12 +487,17 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
 
 def _slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of an in-memory atlas."""
-    return {k: np.asarray(ds[k].isel(sl).values) for k in _BLOCK_VARIABLES}
+    dims = list(ds["stability"].dims)
+    out = {}
+    for k in _BLOCK_VARIABLES:
+        v = ds[k].isel(sl)
+        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
+    return out
 
 
 def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, client: Any = None,
                 resume: bool = False, progress: bool | Callable[[int, int], None] = False,
-                window: int | None = None) -> Path:
+                window: int | None = None, notes: Callable[[str], None] | None = None) -> Path:
     """Write an atlas (lazy or not) to netCDF chunk by chunk, atomically.
 
     Parameters
@@ -320,12 +514,15 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
         process if None.
     resume : bool, default False
         Keep finished chunks in ``<output>.parts/`` and reuse those of an earlier interrupted
-        run (module docstring). Without it nothing survives an interruption.
+        run (module docstring, :class:`_Store`). Without it nothing survives an interruption.
     progress : bool or callable, default False
         A progress bar on stderr (True), or ``progress(done, total)`` after each chunk;
         silent by default.
     window : int, optional
         Chunks in flight at once on a cluster (default: twice its threads); bounds memory.
+    notes : callable, optional
+        Receives one line per kept chunk computed again (unreadable, or unknown to the journal);
+        a ``UserWarning`` each if None.
 
     Returns
     -------
@@ -334,7 +531,13 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     Raises
     ------
     ResumeError
-        ``resume=True`` and ``<output>.parts/`` belongs to another atlas.
+        ``resume=True`` and ``<output>.parts/`` belongs to another atlas, to an older version,
+        is in use by another run, or holds a chunk file that does not match its record (named).
+    FileExistsError
+        The output exists (or was created by another process during the run) and ``overwrite``
+        is False, or is not a regular file.
+    stability.errors.OutputWriteError
+        The output or a chunk file could not be written (named, with the cause).
     """
     overwrite = check_flag("overwrite", overwrite)
     resume = check_flag("resume", resume)
@@ -342,59 +545,86 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
         raise TypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
+    if notes is None:
+        def notes(text: str) -> None:
+            warnings.warn(text, UserWarning, stacklevel=3)
     target = check_output_path(path, overwrite=overwrite)
     dims = [d for d in ds["stability"].dims]
+    n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
     for d in dims:
         c = ds.chunksizes.get(d) if ds.chunks else None
         chunk_shape[d] = int(c[0]) if c else ds.sizes[d]
     blocks = _chunk_slices(ds, dims, chunk_shape)
-    store = parts_directory(target)
-    done: set[str] = set()
-    if resume:
-        done = _open_store(store, _identity(ds, chunk_shape))
+    n_points = int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64))
+    expected = atlas_file_bytes(n_modes, n_points)
     report = _progress(progress, len(blocks))
+    store = None
     try:
-        with atomic_output(target, overwrite=overwrite) as tmp:
-            _create_skeleton(ds, tmp, chunk_shape)
-            import netCDF4
-
-            with netCDF4.Dataset(tmp, "a") as nc:
-                nc.set_auto_mask(False)
-
-                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
-                    if resume and fresh:
-                        _save_chunk(store, name, block)
-                    idx = tuple(sl[d] for d in dims)
-                    for k, v in block.items():
-                        nc.variables[k][idx] = v
-                    nc.variables["max_growth_rate"][idx] = block["growth_rate"][..., 0]
-                    report()
-
-                todo = []
-                for name, sl in blocks:
-                    kept = _load_chunk(store, name) if name in done else None
-                    if kept is not None:
-                        put(name, sl, kept, False)
-                    else:
-                        todo.append((name, sl))
-                lazy = bool(ds.chunks)
-                spec = _spec(ds, dims)
-                failed = _Failure(store if resume else None, len(blocks))
-                if client is None or not lazy:
-                    for name, sl in todo:
-                        try:
-                            block = _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
-                        except Exception as exc:
-                            raise failed(name, sl, exc, report.done) from exc
-                        put(name, sl, block, True)
-                else:
-                    _run_on_cluster(client, spec, todo, put, window, failed, report)
+        with deferred():
+            if resume:
+                store = _Store(parts_directory(target), _identity(ds, chunk_shape), dims, notes)
+                done = store.open()
+            else:
+                done = set()
+            _write_chunks(ds, target, overwrite, expected, dims, n_modes, chunk_shape, blocks, done, store, client,
+                          window, report)
+            if store is not None:
+                shutil.rmtree(store.path, ignore_errors=True)
     finally:
         report(close=True)
-    if resume and store.exists():
-        shutil.rmtree(store)
+        if store is not None:
+            store.close()
     return target
+
+
+def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float, dims: list[str], n_modes: int,
+                  chunk_shape: dict[str, int], blocks: list, done: set[str], store: _Store | None, client: Any,
+                  window: int | None, report: "_progress") -> None:
+    """The body of :func:`write_atlas`: skeleton, kept chunks, computed chunks, commit."""
+    import netCDF4
+
+    with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
+        _create_skeleton(ds, tmp, chunk_shape)
+        checkpoint()
+        with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
+            nc.set_auto_mask(False)
+
+            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
+                shape = tuple(sl[d].stop - sl[d].start for d in dims)
+                if fresh:
+                    _check_block(block, shape, n_modes, lambda text: ChunkError(
+                        f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"))
+                    if store is not None:
+                        store.save(name, sl, block, target)
+                idx = tuple(sl[d] for d in dims)
+                for k, v in block.items():
+                    nc.variables[k][idx] = v
+                nc.variables["max_growth_rate"][idx] = block["growth_rate"][..., 0]
+                report()
+                checkpoint()
+
+            todo = []
+            for name, sl in blocks:
+                shape = tuple(sl[d].stop - sl[d].start for d in dims)
+                kept = store.load(name, sl, shape, n_modes) if (store is not None and name in done) else None
+                if kept is not None:
+                    put(name, sl, kept, False)
+                else:
+                    todo.append((name, sl))
+            lazy = bool(ds.chunks)
+            spec = _spec(ds, dims)
+            failed = _Failure(store.path if store is not None else None, len(blocks))
+            if client is None or not lazy:
+                for name, sl in todo:
+                    checkpoint()
+                    try:
+                        block = _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+                    except Exception as exc:
+                        raise failed(name, sl, exc, report.done) from exc
+                    put(name, sl, block, True)
+            else:
+                _run_on_cluster(client, spec, todo, put, window, failed, report)
 
 
 class _Failure:
@@ -438,6 +668,7 @@ def _run_on_cluster(client: Any, spec: dict[str, Any], todo: list, put: Callable
             if len(names) >= window:
                 break
         for fut in ac:
+            checkpoint()
             name, sl, _ = names.pop(fut.key)
             try:
                 block = fut.result()

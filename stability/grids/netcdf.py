@@ -1,109 +1,105 @@
-"""Datasets on disk: atomic netCDF writing, and reading an atlas back with checks.
+"""Datasets on disk: netCDF writing in bounded slabs, and reading an atlas back with checks.
 
-Writing goes to a temporary file in the target's directory, renamed over the target only when
-complete (``os.replace`` is atomic on one file system): an interrupted or failed run leaves
-no partial file, and an existing file is kept unless ``overwrite=True``.
+* :func:`write_dataset` writes any dataset of the package through
+  :func:`stability.grids.outputs.atomic_output` (a temporary file committed only when complete;
+  no partial file; an existing file kept unless ``overwrite=True``; the refusal holds at the
+  moment of the commit). Large numeric variables are written in slabs of at most
+  :data:`SLAB_BYTES` along their first dimension, with an interruption point between slabs, so
+  that Ctrl-C or SIGTERM is acted on within one slab (a fraction of a second) whatever the size;
+  xarray does the encoding, so the file is the one ``to_netcdf`` writes (same variables,
+  attributes and data types).
+* :func:`open_atlas` reads an atlas back and checks it with
+  :func:`stability.grids.schema.validate_atlas`, slab by slab, before loading it; a file larger
+  than the memory available is refused unless opened lazily (``chunks=``).
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
-from collections.abc import Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from ..errors import AtlasFileError
+from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
+from .outputs import atomic_output, check_output_path, describe_kind
+from .schema import ATLAS_VARIABLES, require_atlas, validate_atlas
 
 if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
-           "require_atlas"]
+           "require_atlas", "SLAB_BYTES", "ATLAS_VARIABLES"]
 
-ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
-
-
-def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
-    """``ds`` itself if it is an atlas dataset (the variables of :data:`ATLAS_VARIABLES`);
-    otherwise a ``TypeError`` (not a Dataset) or ``ValueError`` (which variables are missing)."""
-    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
-
-    if not isinstance(ds, xr.Dataset):
-        raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
-                        "stability.atlas or stability.open_atlas")
-    missing = [v for v in ATLAS_VARIABLES if v not in ds]
-    if missing:
-        raise ValueError(f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
-                         f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)")
-    return ds
+#: largest piece of a variable written in one call (an interruption point between pieces)
+SLAB_BYTES = 16 * 2**20
 
 
-def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Path:
-    """Fail early (before any computation) if ``path`` cannot be written.
+def _slab_rows(shape: tuple[int, ...], itemsize: int) -> int:
+    """Rows (along the first dimension) of at most :data:`SLAB_BYTES`; at least one."""
+    row = itemsize * int(np.prod(shape[1:], dtype=np.int64))
+    return max(1, SLAB_BYTES // max(1, row))
 
-    Raises
-    ------
-    FileExistsError
-        ``path`` exists and ``overwrite`` is False.
-    FileNotFoundError, PermissionError
-        The directory does not exist or is not writable.
-    """
-    p = _as_path("output path", path)
-    if not isinstance(overwrite, bool):
-        raise TypeError(f"overwrite = {overwrite!r} must be True or False")
-    if p.is_dir():
-        raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
-    if (p.exists() or p.is_symlink()) and not overwrite:
-        raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.exists():
-        raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
-    if not parent.is_dir():
-        raise NotADirectoryError(f"output directory {str(parent)!r} of {str(p)!r} is not a directory")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable")
-    # permission bits do not tell everything (root, read-only mounts, pseudo file systems):
-    # create and remove a probe file, which is what writing will need
+
+def _slab_writer() -> Any:
+    """xarray's array writer, writing every large array in slabs with an interruption point
+    before each (and computing a dask array one row of blocks at a time, in this thread)."""
+    from xarray.backends.common import ArrayWriter
+
+    class SlabWriter(ArrayWriter):
+        __slots__ = ()
+
+        def add(self, source: Any, target: Any, region: Any = None) -> None:
+            checkpoint()
+            if region:
+                return super().add(source, target, region)
+            if hasattr(source, "chunks") and getattr(source, "chunks", None) is not None \
+                    and hasattr(source, "compute") and getattr(source, "ndim", 0) >= 1:
+                from dask.local import get_sync
+
+                start = 0
+                for rows in source.chunks[0]:
+                    checkpoint()
+                    target[start:start + rows, ...] = np.asarray(source[start:start + rows].compute(scheduler=get_sync))
+                    start += rows
+                return None
+            if isinstance(source, np.ndarray) and source.ndim >= 1 and source.nbytes > SLAB_BYTES:
+                step = _slab_rows(source.shape, source.itemsize)
+                for i in range(0, source.shape[0], step):
+                    checkpoint()
+                    target[i:i + step, ...] = source[i:i + step]
+                return None
+            return super().add(source, target, region)
+
+    return SlabWriter()
+
+
+def _to_netcdf(ds: xr.Dataset, tmp: str) -> None:
+    """``ds.to_netcdf(tmp, format="NETCDF4")`` through xarray's own encoding and store (so the file
+    is the one ``to_netcdf`` writes), with :func:`_slab_writer`."""
+    from xarray.backends import NetCDF4DataStore
+
     try:
-        fd, probe = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".probe", dir=parent)
-    except OSError as exc:
-        raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable "
-                              f"({exc.strerror})") from None
-    os.close(fd)
-    os.unlink(probe)
-    return p
+        from xarray.backends.writers import dump_to_store
+    except ImportError:  # xarray before 2025: the same function in backends.api
+        from xarray.backends.api import dump_to_store
+    from xarray.backends import netCDF4_
 
-
-def _as_path(what: str, path: object) -> Path:
-    """A non-empty path-like as a Path, or a TypeError naming ``what``."""
-    if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
-        raise TypeError(f"{what} = {path!r} must be a file name (a non-empty str or path-like)")
-    return Path(path)
-
-
-@contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, *, overwrite: bool = False) -> Iterator[str]:
-    """Yield a temporary file name next to ``path``; rename it to ``path`` only on success.
-
-    The temporary file is removed on any exception (including ``KeyboardInterrupt``), so no
-    partial output is ever left; the final file gets the usual permissions (umask).
-    """
-    p = check_output_path(path, overwrite=overwrite)
-    directory = p.parent if str(p.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp" + p.suffix, dir=directory)
-    os.close(fd)
+    writer = _slab_writer()
+    # the lock xarray takes for netCDF4-python, without the per-file write lock whose choice
+    # imports dask.distributed (0.7 s) to ask for a scheduler: the temporary file has one writer
+    store = NetCDF4DataStore.open(tmp, mode="w", format="NETCDF4", lock=netCDF4_.NETCDF4_PYTHON_LOCK)
     try:
-        yield tmp
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, p)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        dump_to_store(ds, store, writer, unlimited_dims=ds.encoding.get("unlimited_dims"))
+        writer.sync()
+    except BaseException:
+        with contextlib.suppress(Exception):  # a close error never replaces the first one
+            store.close()
+        raise
+    store.close()
 
 
 def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
@@ -113,7 +109,7 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     ----------
     ds : xarray.Dataset
     path : path-like
-        Target file.
+        Target file: a new name, or an existing regular file with ``overwrite=True``.
     overwrite : bool, default False
         Replace an existing file.
 
@@ -121,62 +117,122 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     -------
     pathlib.Path
         The written path.
+
+    Raises
+    ------
+    FileExistsError
+        The file exists (or was created by another process while this one was writing) and
+        ``overwrite`` is False, or the path is not a regular file.
+    stability.errors.OutputWriteError
+        The file could not be written (no space left, the file size limit, ...): the message
+        names the file and the cause; nothing is left behind.
     """
     import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
 
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
-    with atomic_output(path, overwrite=overwrite) as tmp:
-        ds.to_netcdf(tmp, format="NETCDF4")
+    with deferred(), atomic_output(path, overwrite=overwrite, expected_bytes=float(ds.nbytes)) as tmp:
+        _to_netcdf(ds, tmp)
     return Path(path)
 
 
-def open_atlas(path: str | os.PathLike) -> xr.Dataset:
+def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None = None) -> xr.Dataset:
     """Read an atlas written by :func:`stability.atlas` (or ``tippe atlas``).
 
     Parameters
     ----------
     path : path-like
+    chunks : int or dict, optional
+        Open lazily with dask chunks of these sizes (the file stays open until ``ds.close()``),
+        for an atlas larger than memory. By default the atlas is loaded and the file closed.
 
     Returns
     -------
     xarray.Dataset
-        Loaded into memory (the file is closed).
 
     Raises
     ------
     AtlasFileError
-        The file is missing, unreadable (truncated, not netCDF) or not an atlas of this
-        package; the message names the file.
+        The file is missing, not a regular file, unreadable (truncated, not netCDF), not an
+        atlas of this package, or breaks the atlas layout (wrong data types, dimensions, flag
+        values, NaN where a point is inside the domain, ...:
+        :mod:`stability.grids.schema`); the message names the file and the rule.
+    stability.errors.ResourceError
+        Loading it would need more memory than is available (pass ``chunks=``).
     """
-    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
-
-    p = _as_path("atlas path", path)
-    if p.is_dir():
-        raise AtlasFileError(f"atlas file {str(p)!r} is a directory, not a netCDF file")
-    if not p.is_file():
-        raise AtlasFileError(f"atlas file {str(p)!r} does not exist")
-    if not os.access(p, os.R_OK):
-        raise AtlasFileError(f"atlas file {str(p)!r} is not readable (permission denied)")
-    if p.stat().st_size == 0:
-        raise AtlasFileError(f"atlas file {str(p)!r} is empty (0 bytes), not a netCDF file")
+    p = Path(_atlas_path(path))
+    ds = _open(p)
     try:
-        with xr.open_dataset(p) as ds:
-            ds = ds.load()
+        if ds.attrs.get(PRODUCT_ATTR) != "atlas":
+            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: a netCDF file whose "
+                                 f"global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r}, not 'atlas'")
+        missing = [v for v in ATLAS_VARIABLES if v not in ds]
+        if missing:
+            raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables "
+                                 f"{', '.join(missing)}")
+        try:
+            validate_atlas(ds, lambda text: AtlasFileError(f"atlas file {str(p)!r} is not a valid atlas: {text}"))
+        except AtlasFileError:
+            raise
+        except Exception as exc:  # a slab that cannot be read: the file is damaged past its header
+            raise _unreadable(p, exc) from None
+        if chunks is not None:
+            return ds.chunk(chunks)
+        from ..resources import check_memory
+
+        check_memory(float(ds.nbytes), what=f"open_atlas({str(p)!r})", parameter="the file's size",
+                     way_out="pass chunks= (e.g. chunks=1000) to open it lazily, or select a slice with "
+                             "xarray.open_dataset(path).isel(...)")
+        try:
+            loaded = ds.load()
+        except Exception as exc:
+            raise _unreadable(p, exc) from None
+        ds.close()
+        return loaded
+    except BaseException:
+        ds.close()
+        raise
+
+
+def _atlas_path(path: object) -> str:
+    """Check that ``path`` names a readable regular file; say what it is otherwise."""
+    if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+        raise TypeError(f"atlas path = {path!r} must be a file name (a non-empty str or path-like)")
+    p = str(path)
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        raise AtlasFileError(f"atlas file {p!r} does not exist") from None
+    except OSError as exc:
+        raise AtlasFileError(f"atlas file {p!r} cannot be read ({exc.strerror})") from None
+    import stat
+
+    if stat.S_ISDIR(st.st_mode):
+        raise AtlasFileError(f"atlas file {p!r} is a directory, not a netCDF file")
+    if not stat.S_ISREG(st.st_mode):
+        raise AtlasFileError(f"atlas file {p!r} is {describe_kind(st.st_mode)}, not a netCDF file")
+    if not os.access(p, os.R_OK):
+        raise AtlasFileError(f"atlas file {p!r} is not readable (permission denied)")
+    if st.st_size == 0:
+        raise AtlasFileError(f"atlas file {p!r} is empty (0 bytes), not a netCDF file")
+    return p
+
+
+def _open(p: Path) -> xr.Dataset:
+    """The file opened lazily (nothing loaded yet), or an AtlasFileError saying why not."""
+    try:
+        import xarray as xr
+
+        return xr.open_dataset(p)
     except Exception as exc:  # netCDF4/h5 raise OSError, ValueError or their own types
-        with open(p, "rb") as f:
-            head = f.read(8)
-        if head.startswith((b"\x89HDF", b"CDF")):
-            raise AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to "
-                                 f"the end (truncated or damaged: {type(exc).__name__}: "
-                                 f"{' '.join(str(exc).split())[:120]})") from None
-        raise AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file (it does not start "
-                             "with a netCDF or HDF5 signature)") from None
-    if ds.attrs.get(PRODUCT_ATTR) != "atlas":
-        raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: a netCDF file "
-                             f"whose global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r}, "
-                             "not 'atlas'")
-    missing = [v for v in ATLAS_VARIABLES if v not in ds]
-    if missing:
-        raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}")
-    return ds
+        raise _unreadable(p, exc) from None
+
+
+def _unreadable(p: Path, exc: BaseException) -> AtlasFileError:
+    with open(p, "rb") as f:
+        head = f.read(8)
+    if head.startswith((b"\x89HDF", b"CDF")):
+        return AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to the end "
+                              f"(truncated or damaged: {type(exc).__name__}: {' '.join(str(exc).split())[:120]})")
+    return AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file (it does not start with a netCDF "
+                          "or HDF5 signature)")

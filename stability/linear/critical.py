@@ -3,22 +3,34 @@
 Method (for :func:`threshold_crossings`, whose values :func:`thresholds` returns):
 
 1. sample the parameter over the bracket (a uniform and a geometric grid, ``samples`` points
-   each) and decide the stability of each sample (:func:`stability.spectrum`);
-2. each pair of neighbouring samples on which "unstable" changes brackets a threshold;
-   bisection on the stability decision narrows it to ``1e-7`` of the bracket;
+   each) and decide, at each sample, the sign of every mode's growth rate against that mode's
+   own scale (:mod:`stability.linear.growth`: the root's ``Re s`` where it exceeds four times
+   its own error bound, else the structured estimate of
+   :func:`stability.linear.roots.axis_growth`, one Newton step from the imaginary axis with the
+   real and imaginary parts of ``p(i w)`` evaluated separately). A sample is *unstable* if a
+   mode grows, *undecided* if no mode grows and some mode's sign is within rounding of zero;
+   not the stability flag of the atlases, whose floor ``16 u max|s|`` (relative to the
+   largest mode) hides the tiny growth rates near a crossing at small and large ``alpha_v``
+   (docs/hard_cases.md, section 3);
+2. each pair of neighbouring decided samples on which "unstable" changes brackets a threshold
+   (undecided samples between them lie inside the bracket); bisection on the same sign narrows
+   it, as long as the midpoint's sign is decided;
 3. Newton's method on the neutral condition of the crossing mode (:mod:`stability.linear.neutrality`:
-   ``Re p(i w) = Im p(i w) = 0`` in the unknowns (parameter, ``w``); for a conservative model
-   the collision ``P(w) = P'(w) = 0``) polishes it to a relative backward error of about
-   ``1e-16``: the root of the smooth mode-wise ``Re s``, not an interpolation. If Newton leaves
-   the bracket, bisection continues to the last bit instead.
+   the row-scaled ``[Re p(i w) / S_a, Im p(i w) / S_b] = 0`` in the unknowns (parameter, ``w``);
+   for a conservative model the collision ``P(w) = P'(w) = 0``) polishes it: the root of the
+   smooth mode-wise ``Re s``, not an interpolation. It is accepted only inside the final
+   bracket (within 2 ulp of its ends). Otherwise bisection continues to the last bit; if the
+   sign cannot be decided down to a few ulp and Newton does not land in the bracket, the answer
+   is the bracket itself, an honest interval (``Threshold.exact = False``,
+   ``lower``/``upper``), and :func:`threshold` and ``tippe threshold`` say so.
 
 Two crossings closer than the sampling step (a neutral curve folding back between two
-samples) do not change the stability decision from sample to sample. They are looked for where
-the growth rate of the stable samples has a local maximum close to zero (compared with its
-variation between samples): the maximum is refined by bounded Brent, and if it is positive the
-two crossings on either side are polished as above. A crossing that only touches zero (the
-growth rate's maximum at zero to rounding, exactly at a fold) is not a change of stability and
-is not reported.
+samples) do not change the sign from sample to sample. They are looked for where the growth
+estimate of the stable samples has a local maximum close to zero (compared with its
+variation between samples): the maximum is refined by bounded Brent, and if the mode grows
+there the two crossings on either side are polished as above. A crossing that only touches
+zero (the growth rate's maximum at zero to rounding, exactly at a fold) is not a change of
+stability and is not reported.
 
 :func:`critical_spin` answers the physical question for a real top (:class:`stability.Top`):
 the spin rate above which the upright state is unstable, or the inverted one stable.
@@ -37,9 +49,11 @@ import numpy as np
 from ..models import LinearModel, get_model
 from .neutrality import NeutralCondition
 from ..errors import DomainError
-from ..parameters import (DEFAULT_MU, as_parameter, as_scalar, check_choice, check_domain, check_flag,
-                         check_integer)
-from .spectra import UNSTABLE, spectrum
+from ..parameters import (DEFAULT_MU, as_scalar, check_choice, check_domain, check_flag,
+                          check_integer, fmt_against, sigma_max)
+from ..resources import check_threshold_samples
+from .growth import GROWS, UNDECIDED, growth
+from .spectra import MARGINAL, STABLE, UNSTABLE
 
 __all__ = ["Threshold", "threshold", "thresholds", "threshold_crossings", "critical_spin", "CriticalSpin",
            "default_bracket", "UPPER_BOUND"]
@@ -48,19 +62,36 @@ __all__ = ["Threshold", "threshold", "thresholds", "threshold_crossings", "criti
 UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
 
 
+#: the largest number of samples a threshold search takes (three grids of this many points)
+MAX_SAMPLES = 10**6
+
+
 class Threshold(NamedTuple):
-    """One threshold: the value, the neutral mode's frequency and the unstable side."""
+    """One threshold: the value, the neutral mode's frequency and the unstable side.
+
+    The last three fields say how well the value is known: ``exact`` (the root of the neutral
+    condition, or a bracket a few ulp wide) or not, in which case the change of sign lies
+    somewhere in ``[lower, upper]`` (the sign of the growth rate could not be decided inside
+    it) and ``value`` is its midpoint, or its end on the domain's edge if it reaches one (a
+    change of stability at ``alpha_v = 0``, where the model is conservative: the growth rate
+    ``~alpha_v`` is decided down to ``alpha_v ~ 1e-45``, not to 0); for an exact threshold
+    ``lower = upper = value``.
+    """
 
     value: float
     frequency: float
     unstable_side: str  # "below" or "above" the value
+    lower: float = math.nan
+    upper: float = math.nan
+    exact: bool = True
 
 
 def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, float]:
     """The physical range of ``param`` given the other parameters (closed, slightly inside).
 
     ``q``: ``mu q^2 <= 1 - sigma/2`` (from ``sigma <= 2 (1 - mu q^2)``); ``sigma``:
-    ``(0, 2 (1 - mu q^2)]``; ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at 1e3;
+    ``(0, sigma_max(q, mu)]`` (:func:`stability.parameters.sigma_max`, the exact bound
+    ``2 (1 - mu q^2)`` rounded down); ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at 1e3;
     ``fr_inv``, ``alpha_v``: ``[0, 1e3]``.
     """
     shrink = 1e-12
@@ -68,7 +99,7 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
         b = math.sqrt(max(0.0, 1.0 - fixed.get("sigma", 0.0) / 2.0) / fixed["mu"]) * (1 - shrink)
         return (-b, b)
     if param == "sigma":
-        return (shrink, 2.0 * (1.0 - fixed["mu"] * fixed["q"] ** 2) * (1 - shrink))
+        return (shrink, float(sigma_max(fixed["q"], fixed["mu"])) * (1 - shrink))
     if param == "mu":
         q = fixed["q"]
         hi = UPPER_BOUND["mu"] if q == 0 else min(UPPER_BOUND["mu"], (1.0 - fixed["sigma"] / 2.0) / q**2 * (1 - shrink))
@@ -98,17 +129,18 @@ def _setup(param: str, model: str | LinearModel, bracket: Sequence[float] | None
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:
-        try:
-            lo, hi = (float(as_parameter("bracket", v)) for v in bracket)
-        except (TypeError, ValueError) as exc:
-            raise TypeError(f"bracket must be a pair (lo, hi) of real numbers, got {bracket!r}") from exc
+        if isinstance(bracket, (str, bytes)) or not hasattr(bracket, "__len__") or len(bracket) != 2:
+            raise TypeError(f"bracket = {bracket!r} must be a pair (lo, hi) of real numbers")
+        lo, hi = (as_scalar("bracket", v) for v in bracket)
         if not lo < hi:
-            raise ValueError(f"bracket = ({lo:g}, {hi:g}) must have lo < hi")
+            a, b = fmt_against(lo, hi)
+            raise ValueError(f"bracket = ({a}, {b}) is outside the allowed range: lo < hi")
         for end in (lo, hi):  # each end on its own: a grid's hint (mask_unphysical) does not apply
             try:
                 check_domain(scalar=True, **{**fx, param: end})
             except DomainError as exc:
-                raise DomainError(f"bracket = ({lo:g}, {hi:g}) leaves the physical domain: {exc}") from None
+                a, b = fmt_against(lo, hi)
+                raise DomainError(f"bracket = ({a}, {b}) leaves the physical domain: {exc}") from None
     return m, fx, (lo, hi)
 
 
@@ -118,65 +150,111 @@ def _samples(lo: float, hi: float, n: int) -> np.ndarray:
     return np.unique(np.concatenate([np.linspace(lo, hi, n), lo + w * g, hi - w * g]))
 
 
-def _unstable(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray):
-    sp = spectrum(m, mask_unphysical=True, **{**fx, param: x})
-    return sp.stability == UNSTABLE, sp.inside, sp.eigenvalues
+def _states(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray):
+    """The signs at the samples ``x`` (:func:`stability.linear.growth.growth`)."""
+    return growth(m, parallel=False, **{**fx, param: np.asarray(x, dtype=float)})
 
 
-def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float,
-            unstable_a: bool) -> Threshold:
-    """Locate the threshold between samples ``a`` (state ``unstable_a``) and ``b``."""
-    for _ in range(24):  # bisection on the stability decision, to 6e-8 of the bracket
-        c = 0.5 * (a + b)
-        u, inside, _ = _unstable(m, fx, param, np.array([c]))
-        if not inside[0]:
-            break
-        if bool(u[0]) == unstable_a:
-            a = c
-        else:
-            b = c
-    side_unstable = a if unstable_a else b
-    _, _, ev = _unstable(m, fx, param, np.array([side_unstable]))
-    ev = ev[0]
-    grow = ev[ev.real > 0]
-    w0 = float(grow[np.argmin(grow.real)].imag) if grow.size else float(ev[0].imag)
-    cond = NeutralCondition(m, (param,), fx, samples=np.array([[a], [b]]))
-    lo, hi = min(a, b), max(a, b)
-    width = hi - lo
-    x = np.array([0.5 * (a + b)])
+def _crossing_frequency(sign: np.ndarray, estimate: np.ndarray, eigenvalues: np.ndarray) -> float:
+    """The frequency of the crossing mode at an unstable point (its modes' signs, growth
+    estimates and eigenvalues): the growing mode with the smallest growth estimate."""
+    est = np.where(sign == GROWS, estimate, np.inf)
+    return float(eigenvalues[int(np.argmin(est))].imag)
+
+
+def _newton(cond: NeutralCondition, x0: float, w0: float) -> tuple[float, float] | None:
+    """Newton's method on the neutral condition from ``(x0, w0)``: the point with the smallest
+    residual if it is at most ``1e-13`` (each row, relative backward error), else None."""
+    x = np.array([x0])
     w = w0
     best = None
     for _ in range(40):
         F, J = cond.residual_and_jacobian(x, w)
-        fn = float(np.linalg.norm(F))
+        fn = float(np.max(np.abs(F)))
+        if not math.isfinite(fn):
+            break
         if best is None or fn < best[0]:
             best = (fn, float(x[0]), w)
         try:
             d = np.linalg.solve(J, -F)
         except np.linalg.LinAlgError:
             break
-        x, w = x + d[:1], w + float(d[1])
-        if not (lo - 10 * width <= x[0] <= hi + 10 * width) or not np.isfinite(w):
+        if not np.all(np.isfinite(d)):
             break
+        x, w = x + d[:1], w + float(d[1])
         if abs(d[0]) <= 2e-16 * max(1.0, abs(x[0])) and abs(d[1]) <= 2e-16 * max(1.0, abs(w)):
             F, _ = cond.residual_and_jacobian(x, w, jacobian=False)
-            fn = float(np.linalg.norm(F))
+            fn = float(np.max(np.abs(F)))
             if fn < best[0]:
                 best = (fn, float(x[0]), w)
             break
-    if best is not None and best[0] <= 1e-13 and lo - 10 * width <= best[1] <= hi + 10 * width:
-        value, w = best[1], best[2]
-    else:  # bisection to the last bit on the stability decision
-        for _ in range(200):
+    if best is not None and best[0] <= 1e-13:
+        return best[1], best[2]
+    return None
+
+
+def _on_edge(fx: Mapping[str, float], param: str, x: float, outward: float) -> bool:
+    """Whether ``x`` is inside the domain and the next double towards ``outward`` is not."""
+    _, inside = check_domain(mask=True, **{**fx, param: np.array([x, math.nextafter(x, outward)])})
+    return bool(inside[0] and not inside[1])
+
+
+def _ulps(lo: float, hi: float) -> float:
+    """``hi - lo`` in units of the spacing of doubles at ``max(|lo|, |hi|)``."""
+    return (hi - lo) / float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
+
+
+def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float,
+            unstable_a: bool, w_start: float) -> Threshold:
+    """Locate the threshold between decided samples ``a`` (unstable: ``unstable_a``) and ``b``
+    (the other state); ``w_start``: the crossing mode's frequency at the unstable one."""
+    cond = NeutralCondition(m, (param,), fx, samples=np.array([[a], [b]]))
+    w_unstable = w_start
+    decided = True
+
+    def bisect(a: float, b: float, steps: int) -> tuple[float, float, bool]:
+        nonlocal w_unstable
+        for _ in range(steps):
             c = 0.5 * (a + b)
             if c in (a, b):
                 break
-            u, _, _ = _unstable(m, fx, param, np.array([c]))
-            if bool(u[0]) == unstable_a:
+            gr = _states(m, fx, param, np.array([c]))
+            st = int(gr.state[0])
+            if st < 0 or st == UNDECIDED:  # outside (rounding at an edge) or sign undecided
+                return a, b, False
+            if (st == UNSTABLE) == unstable_a:
                 a = c
             else:
                 b = c
-        value, w = 0.5 * (a + b), w0
+            if st == UNSTABLE:
+                w_unstable = _crossing_frequency(gr.sign[0], gr.estimate[0], gr.spectrum.eigenvalues[0])
+        return a, b, True
+
+    def accept(a: float, b: float) -> tuple[float, float] | None:
+        lo, hi = min(a, b), max(a, b)
+        root = _newton(cond, 0.5 * (a + b), w_unstable)
+        if root is None:
+            return None
+        slack = 2.0 * float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
+        if lo - slack <= root[0] <= hi + slack:
+            return min(max(root[0], lo), hi), root[1]
+        return None
+
+    # to 6e-8 of the sample step, then Newton; else bisection to the last bit, Newton again
+    a, b, decided = bisect(a, b, 24)
+    root = accept(a, b)
+    if root is None and decided:
+        a, b, decided = bisect(a, b, 2000)
+        root = accept(a, b)
+    lo, hi = min(a, b), max(a, b)
+    if root is not None:
+        value, w, exact = root[0], root[1], True
+    else:
+        value, w, exact = 0.5 * (a + b), w_unstable, _ulps(lo, hi) <= 4.0
+        if not exact:  # an interval that reaches the domain's edge: the edge is the value given
+            for end, out in ((lo, -math.inf), (hi, math.inf)):
+                if _on_edge(fx, param, end, out):
+                    value = end
     # a change of stability at the domain's edge (e.g. alpha_v = 0: every friction destabilises)
     # is polished by Newton to a rounding error on either side of it (alpha_v = -2e-27): the
     # threshold is the edge itself, never a value outside the physical domain
@@ -185,7 +263,9 @@ def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: fl
         edge_lo, edge_hi = default_bracket(param, fx)
         value = edge_lo if abs(value - edge_lo) <= abs(value - edge_hi) else edge_hi
     side = "below" if (unstable_a and a < b) or (not unstable_a and b < a) else "above"
-    return Threshold(float(value), float(w), side)
+    if exact:
+        lo = hi = value
+    return Threshold(float(value), float(w), side, float(lo), float(hi), bool(exact))
 
 
 def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
@@ -205,16 +285,18 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     bracket : pair of float, optional
         Range searched (inside the physical domain); default :func:`default_bracket`.
     samples : int
-        Points of each of the uniform and geometric sampling grids.
+        Points of each of the uniform and geometric sampling grids (3 to ``1e6``).
     **fixed
         All other parameters of the model (``mu`` defaults to 2.28).
 
     Returns
     -------
     list of Threshold
-        Sorted by value: the value, the frequency of the neutral mode there, and on which side
-        (``"below"`` or ``"above"`` the value) the state is unstable. Empty if the stability
-        never changes.
+        Sorted by value: the value, the frequency of the neutral mode there, on which side
+        (``"below"`` or ``"above"`` the value) the state is unstable, and the bracket
+        ``lower``, ``upper`` that holds the change of sign with ``exact`` (False: the value is
+        only known to lie in the bracket, its midpoint given). Empty if the stability never
+        changes.
 
     Raises
     ------
@@ -228,7 +310,8 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
     (1.085777777778, 'below')
     """
-    samples = check_integer("samples", samples, minimum=3)
+    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     return _search(m, fx, param, lo, hi, samples)[0]
 
@@ -272,34 +355,34 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
                       "thresholds() returns the values; threshold_crossings() returns the Threshold records "
                       "(value, frequency, unstable side)", DeprecationWarning, stacklevel=2)
     found = threshold_crossings(param, model=model, bracket=bracket, samples=samples, **fixed)
+    _inexact_warning(found, param)
     if return_details:  # the deprecated return type, until the keyword is removed
         return found  # type: ignore[return-value]
     return np.array([t.value for t in found])
 
 
 def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) -> np.ndarray:
-    """Largest growth rate over the modes that are not flagged neutral (structural zeros)."""
-    sp = spectrum(m, mask_unphysical=True, **{**fx, param: x})
-    ev = np.where(sp.neutral, complex(-np.inf, 0.0), sp.eigenvalues)
-    return np.max(ev.real, axis=-1)
+    """Largest growth estimate over the modes that are not neutral by structure
+    (:mod:`stability.linear.growth`; ``-inf`` if every mode is)."""
+    return np.max(_states(m, fx, param, x).estimate, axis=-1)
 
 
 def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray,
-                  u: np.ndarray) -> list[tuple[float, float, float]]:
+                  state: np.ndarray, g: np.ndarray) -> list[tuple[float, float, float]]:
     """Pairs of crossings between two samples (a neutral curve folding back there).
 
-    Where the growth rate ``g`` of the stable samples has a local maximum whose parabola
-    through the three samples comes within its own variation of zero, the maximum is refined
-    (bounded Brent, :func:`scipy.optimize.minimize_scalar`, to ``1e-13`` relative). Returns
-    ``(a, x_max, b)`` for each refined maximum with ``g > 0``: the window ``(a, b)`` holds two
-    thresholds, one on each side of ``x_max``.
+    Where the growth estimate ``g`` of the decided, not unstable samples has a local maximum
+    whose parabola through the three samples comes within its own variation of zero, the
+    maximum is refined (bounded Brent, :func:`scipy.optimize.minimize_scalar`, to ``1e-13``
+    relative). Returns ``(a, x_max, b)`` for each refined maximum where a mode grows: the window
+    ``(a, b)`` holds two thresholds, one on each side of ``x_max``.
     """
     if len(x) < 3:
         return []
-    g = _growth(m, fx, param, x)
     out = []
+    quiet = (state == STABLE) | (state == MARGINAL)
     for k in range(1, len(x) - 1):
-        if u[k - 1] or u[k] or u[k + 1] or not (g[k] >= g[k - 1] and g[k] >= g[k + 1]):
+        if not (quiet[k - 1] and quiet[k] and quiet[k + 1]) or not (g[k] >= g[k - 1] and g[k] >= g[k + 1]):
             continue
         if not np.all(np.isfinite(g[k - 1:k + 2])) or g[k] >= 0:
             continue
@@ -318,20 +401,57 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
 
 
 def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: float, n: int):
+    """Every threshold in ``[lo, hi]`` (module docstring) and the states of the samples."""
     x = _samples(lo, hi, n)
-    u, inside, _ = _unstable(m, fx, param, x)
-    x, u = x[inside], u[inside]
+    gr = _states(m, fx, param, x)
+    keep = gr.state >= 0
+    x, state = x[keep], gr.state[keep]
+    sign, estimate, ev = gr.sign[keep], gr.estimate[keep], gr.spectrum.eigenvalues[keep]
     found = []
-    for k in np.nonzero(u[1:] != u[:-1])[0]:
-        found.append(_polish(m, fx, param, float(x[k]), float(x[k + 1]), bool(u[k])))
+    decided = np.nonzero(state != UNDECIDED)[0]
+    unstable = state == UNSTABLE
+    for i, j in zip(decided[:-1], decided[1:]):
+        if unstable[i] != unstable[j]:
+            k = i if unstable[i] else j
+            w0 = _crossing_frequency(sign[k], estimate[k], ev[k])
+            found.append(_polish(m, fx, param, float(x[i]), float(x[j]), bool(unstable[i]), w0))
     # two crossings between neighbouring samples (near a fold of the neutral curve): the
-    # stability decision does not change from sample to sample, the growth rate's maximum does
-    for a, xm, b in _hidden_pairs(m, fx, param, x, u):
-        if _unstable(m, fx, param, np.array([xm]))[0][0]:
-            found.append(_polish(m, fx, param, a, xm, False))
-            found.append(_polish(m, fx, param, b, xm, False))
+    # sign does not change from sample to sample, the growth rate's maximum does
+    for a, xm, b in _hidden_pairs(m, fx, param, x, state, np.max(estimate, axis=-1)):
+        gm = _states(m, fx, param, np.array([xm]))
+        if gm.state[0] == UNSTABLE:
+            w0 = _crossing_frequency(gm.sign[0], gm.estimate[0], gm.spectrum.eigenvalues[0])
+            found.append(_polish(m, fx, param, a, xm, False, w0))
+            found.append(_polish(m, fx, param, b, xm, False, w0))
     found.sort(key=lambda t: t.value)
-    return found, u
+    return found, state
+
+
+def _inexact_warning(found: Sequence[Threshold], param: str) -> None:
+    """Warn about thresholds known only to an interval (``exact = False``)."""
+    loose = [t for t in found if not t.exact]
+    if loose:
+        listed = ", ".join(f"[{t.lower!r}, {t.upper!r}]" for t in loose)
+        warnings.warn(f"{len(loose)} threshold(s) in {param} known only to an interval (the sign of the growth "
+                      f"rate could not be decided inside it; the value given is its midpoint): {listed}",
+                      UserWarning, stacklevel=3)
+
+
+def _no_threshold_state(state: np.ndarray) -> str:
+    """What holds throughout a range without a change of sign (for the messages)."""
+    n = state.size
+    undecided = int((state == UNDECIDED).sum())
+    if undecided == n:
+        return ("within rounding of neutral at every sample (the sign of the leading growth rate "
+                "cannot be decided anywhere; marginal to working precision)")
+    if undecided:
+        rest = state[state != UNDECIDED]
+        what = ("unstable" if (rest == UNSTABLE).all() else "stable" if (rest == STABLE).all()
+                else "marginal (neutrally stable)" if (rest == MARGINAL).all() else "stable or marginal")
+        return (f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
+                f"decided at {undecided} of {n} samples)")
+    return ("unstable" if (state == UNSTABLE).all() else "stable" if (state == STABLE).all()
+            else "marginal (neutrally stable)" if (state == MARGINAL).all() else "stable or marginal")
 
 
 def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequence[float] | None = None,
@@ -354,14 +474,19 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     Returns
     -------
     float
-        The threshold, to a relative backward error of the neutral condition ``~1e-16``.
+        The threshold, to a relative backward error of the neutral condition ``~1e-16`` (each
+        of its two rows). Should the sign of the growth rate be undecidable over more than a
+        few ulp and Newton's method fail there, the midpoint of the interval that holds the
+        change of sign, with a ``UserWarning`` giving the interval
+        (:func:`threshold_crossings` returns it as ``lower``, ``upper``, ``exact = False``).
 
     Raises
     ------
     ValueError
         If there is no sign change in the bracket (the message says whether the state is
-        stable, marginal or unstable throughout, and the range searched), or several (the
-        message lists them; use a narrower ``bracket`` or :func:`thresholds`).
+        stable, marginal or unstable throughout, or at how many samples the sign cannot be
+        decided, and the range searched), or several (the message lists them; use a narrower
+        ``bracket`` or :func:`thresholds`).
 
     Examples
     --------
@@ -369,22 +494,28 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     >>> round(stability.threshold("sigma", q=-0.1, fr_inv=0.0, alpha_v=0.5), 12)  # (1 - mu q^2)/(1 + q)
     1.085777777778
     """
-    samples = check_integer("samples", samples, minimum=3)
+    t = _one_threshold(param, model, bracket, samples, fixed)
+    _inexact_warning([t], param)
+    return t.value
+
+
+def _one_threshold(param: str, model: str | LinearModel, bracket: Sequence[float] | None, samples: Any,
+                   fixed: Mapping[str, Any]) -> Threshold:
+    """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
+    the bracket, or the errors of :func:`threshold`."""
+    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found, u = _search(m, fx, param, lo, hi, samples)
+    found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
-        sp = spectrum(m, mask_unphysical=True, **{**fx, param: _samples(lo, hi, int(samples))})
-        st = sp.stability[sp.inside]
-        state = ("unstable" if u.all() else "stable" if (st == 0).all()
-                 else "marginal (neutrally stable)" if (st == 1).all() else "stable or marginal")
-        raise ValueError(f"no threshold in {param}: the {m.name} model is {state} throughout "
-                         f"{param} in [{lo:.6g}, {hi:.6g}] ({given})")
+        raise ValueError(f"no threshold in {param}: the {m.name} model is {_no_threshold_state(state)} "
+                         f"throughout {param} in [{lo:.6g}, {hi:.6g}] ({given})")
     if len(found) > 1:
         listed = ", ".join(f"{t.value:.12g} (unstable {t.unstable_side})" for t in found)
         raise ValueError(f"{len(found)} thresholds in {param} in [{lo:.6g}, {hi:.6g}] ({given}): "
                          f"{listed}; pass bracket=(lo, hi) around one, or use stability.thresholds")
-    return found[0].value
+    return found[0]
 
 
 # ------------------------------------------------------------------------------------------
@@ -414,6 +545,13 @@ class CriticalSpin:
         The friction assumption used.
     transitions : tuple of float
         Every spin rate (rad/s) at which the stability changes in the range searched.
+    exact : bool
+        True if the spin is the root of the neutral condition (or known to a few ulp); False if
+        the change of sign is only known to lie in ``spin_interval`` (``spin`` its midpoint in
+        ``fr_inv``).
+    spin_interval : tuple of float
+        ``(low, high)`` spin rates (rad/s) between which the change of sign lies (both equal
+        to ``spin`` to rounding when ``exact``).
     """
 
     orientation: str
@@ -425,6 +563,8 @@ class CriticalSpin:
     alpha_v: float | None
     friction: str
     transitions: tuple[float, ...]
+    exact: bool = True
+    spin_interval: tuple[float, float] = (math.nan, math.nan)
 
 
 class _SpinScaled(LinearModel):
@@ -496,7 +636,8 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
     ------
     ValueError
         Unknown orientation, or no change of stability in the range (the message says which
-        state holds throughout, and the spin range in rad/s and rpm).
+        state holds throughout, or at how many samples the sign cannot be decided, and the spin
+        range in rad/s and rpm).
     TypeError
         If ``top`` is not a :class:`stability.Top`.
     """
@@ -505,7 +646,8 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
     if not isinstance(top, Top):
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
     check_choice("orientation", orientation, ("upright", "inverted"))
-    samples = check_integer("samples", samples, minimum=3)
+    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
     if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
         raise TypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)
@@ -523,31 +665,37 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
             friction = (f"viscous, mu_v = {t.mu_v:g} s/m: alpha_v = mu mu_v g / Omega "
                         f"= {k:.6g} sqrt(fr_inv)")
         else:
-            a = float(as_parameter("alpha_v", alpha_v))
-            if a < 0:
-                raise DomainError(f"alpha_v = {a:g} is outside the physical domain: alpha_v >= 0")
+            a = as_scalar("alpha_v", alpha_v)
+            check_domain(scalar=True, alpha_v=a)
             fixed["alpha_v"] = a
             friction = (f"viscous, alpha_v = {a:g} held fixed (no mu_v given); the threshold of the "
                         "sliding model is the same for every alpha_v > 0")
     else:
         friction = f"none: the {base.name} model has no friction parameter"
-    try:
-        found, u = _search(m, fixed, "fr_inv", lo, hi, int(samples))
-    except DomainError:
-        raise
+    found, state = _search(m, fixed, "fr_inv", lo, hi, int(samples))
     spins = sorted(float(t.spin_rate(th.value)) for th in found)
     if not found:
-        state = "unstable" if u.all() else "not unstable (stable or neutrally stable)"
+        undecided = int((state == UNDECIDED).sum())
+        if undecided == state.size:
+            what = "within rounding of neutral (the sign of its leading growth rate cannot be decided)"
+        else:
+            what = "unstable" if (state == UNSTABLE).all() else (
+                "unstable wherever the sign can be decided" if (state[state != UNDECIDED] == UNSTABLE).all()
+                else "not unstable (stable or neutrally stable)")
+            if undecided:
+                what += f" (the sign cannot be decided at {undecided} of {state.size} samples)"
         s_lo, s_hi = t.spin_rate(hi), t.spin_rate(lo)
-        raise ValueError(f"the {orientation} {base.name} top is {state} at every spin from "
+        raise ValueError(f"the {orientation} {base.name} top is {what} at every spin from "
                          f"{s_lo:.6g} to {s_hi:.6g} rad/s ({s_lo * 60 / (2 * math.pi):.6g} to "
                          f"{s_hi * 60 / (2 * math.pi):.6g} rpm); no critical spin there")
     th = found[0]  # smallest fr_inv = highest spin
+    _inexact_warning([th], "fr_inv (the critical spin)")
     spin = float(t.spin_rate(th.value))
     a_v = None
     if "alpha_v" in base.parameters:
         a_v = float(fixed["alpha_v"]) if "alpha_v" in fixed else float(t.alpha_v(spin))
+    interval = (float(t.spin_rate(th.upper)), float(t.spin_rate(th.lower)))
     return CriticalSpin(orientation=orientation, spin=spin, rpm=spin * 60.0 / (2.0 * math.pi),
                         fr_inv=th.value, frequency=th.frequency,
                         unstable_above=(th.unstable_side == "below"), alpha_v=a_v,
-                        friction=friction, transitions=tuple(spins))
+                        friction=friction, transitions=tuple(spins), exact=th.exact, spin_interval=interval)

@@ -28,18 +28,26 @@ region, not a curve. For them the traced curve is the boundary of that region: t
 two neutral modes, ``P(w) = P'(w) = 0`` (for eq. 8 the discriminant ``sigma_hat^2 = 4 kappa``,
 ``w = sigma_hat / 2``); the dataset's attribute ``form`` says ``"collision"``.
 
-Start points come from a coarse atlas of the model (:func:`stability.spectrum`): on every grid
-edge where the number of growing modes changes, the mode that crossed gives a guess that
-minimum-norm Newton projects onto the curve. Each start point not already on a traced branch
-starts a new branch, traced in both directions. A curve that never changes the number of
-growing modes across the coarse grid (a closed curve inside one cell, or a curve along which a
-mode touches the axis without crossing) is not found from the atlas; pass ``start=`` then.
+Start points come from a coarse atlas of the model: on every grid edge where the number of
+growing modes changes, the mode that crossed gives a guess that minimum-norm Newton projects
+onto the curve. The modes are counted by the sign of each growth rate against its own scale
+(:mod:`stability.linear.growth`), not by the atlas's stability flag, whose floor
+``16 u max|s|`` (relative to the largest mode) flags every slow mode marginal once a fast mode
+is ``~1e8`` times larger (the sliding top at ``alpha_v >= 1e8``: no edge changed, and an empty
+curve was returned). A grid point where some mode's sign cannot be decided counts as unknown;
+if no point of the grid is decided, :func:`neutral_curve` refuses (pass ``start=``), and if
+the signs are decided and the count never changes, the empty curve is returned with a
+``UserWarning`` and the attribute ``note`` saying so. Each start point not already on a traced
+branch starts a new branch, traced in both directions. A curve that never changes the number
+of growing modes across the coarse grid (a closed curve inside one cell, or a curve along which
+a mode touches the axis without crossing) is not found from the atlas; pass ``start=`` then.
 """
 
 from __future__ import annotations
 
 import math
 import sys
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
@@ -56,18 +64,29 @@ from .._version import package_version
 from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
 from ..parameters import (DEFAULT_MU, DOMAIN, LONG_NAMES, PARAMETERS, as_scalar, check_choice, check_domain,
-                          check_flag, check_integer, check_positive, domain_sides, domain_text)
+                          check_flag, check_integer, check_positive, domain_range, domain_sides, domain_text,
+                          fmt_against)
 from ..products import PRODUCT_ATTR
+from ..resources import check_start_grid
+from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
 from .neutrality import NeutralCondition, crossing_kernels
+from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
 from .spectra import spectrum
 
 __all__ = ["neutral_curve", "fold_curve", "NeutralProblem", "FoldProblem", "DEFAULT_RANGES"]
 
-#: default ranges of the parameters that have no finite physical bound (q and sigma are bounded
-#: by the domain: |q| < 1/sqrt(mu), 0 < sigma <= 2 (1 - mu q^2) <= 2)
+#: default ends of the ranges where the physical domain sets none (its bounds come from the table
+#: :data:`stability.parameters.DOMAIN`, :func:`stability.parameters.domain_range`: ``|q| < 1/sqrt(mu)``,
+#: ``0 < sigma <= 2 (1 - mu q^2)``, or ``<= 2`` where q or mu is traced; ``q`` here only for a traced mu)
 DEFAULT_RANGES: dict[str, tuple[float, float]] = {
-    "fr_inv": (0.0, 10.0), "alpha_v": (0.0, 10.0), "mu": (0.0, 10.0), "sigma": (0.0, 2.0)}
+    "fr_inv": (0.0, 10.0), "alpha_v": (0.0, 10.0), "mu": (0.0, 10.0), "q": (-1.0, 1.0)}
+
+#: the largest coarse grid for start points, per axis (the spectra of its points are held in memory)
+MAX_GRID = 2000
+
+#: the largest number of points per direction of a branch
+MAX_POINTS = 10**6
 
 _KIND_DETAIL = {
     "branch_point": ("branch_point", "two neutral curves cross here (the Jacobian loses rank)"),
@@ -104,11 +123,11 @@ def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[st
 
 
 def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]:
-    if name == "q":
-        mu = fixed.get("mu")
-        b = 1.0 / math.sqrt(mu) if mu is not None else 1.0
-        return (-b, b)
-    return DEFAULT_RANGES[name]
+    """The domain's range of ``name`` given the fixed parameters (the table), its open ends
+    closed by :data:`DEFAULT_RANGES`."""
+    lo, hi = domain_range(name, fixed)
+    dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
+    return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
 
 
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
@@ -118,7 +137,8 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
         raise TypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar(f"{name}_range", v) for v in rng)  # finite reals, or a named error
     if not lo < hi:
-        raise ValueError(f"{name}_range = ({lo:g}, {hi:g}) is outside the allowed range: lo < hi")
+        a, b = fmt_against(lo, hi)
+        raise ValueError(f"{name}_range = ({a}, {b}) is outside the allowed range: lo < hi")
     return lo, hi
 
 
@@ -301,11 +321,13 @@ class NeutralProblem:
         """Whether no other mode grows at the points ``U`` (m, 3), so that the curve is the
         stability boundary there.
 
-        An other mode counts as growing only beyond ``1e-12 max(1, max|s|, |w|)``: the roots of
-        the deflated characteristic polynomial carry round-off of order ``u max|s|`` amplified
-        by the polynomial's conditioning, and a structurally neutral mode (for example the zero
-        root of the sliding model on the line ``q = 0``) may come out as ``+-1e-17`` rather
-        than 0.
+        Each other mode's growth rate is signed against its own scale
+        (:func:`stability.linear.growth.mode_signs`: its real part against its own error
+        bound, else the structured estimate on the undeflated-by-``i w`` polynomial), not
+        against a tolerance relative to the largest mode (which, at ``alpha_v = 1e12``, made
+        every O(1) mode count as "not growing" beside the slip mode). A mode whose sign cannot
+        be decided (within rounding of the axis: a second neutral mode) does not count as
+        growing; a structural zero root is neutral.
         """
         U = np.asarray(U, dtype=float).reshape(-1, 3)
         if len(U) == 0:
@@ -313,8 +335,9 @@ class NeutralProblem:
         r = self.cond.other_modes_many(U[:, :2], U[:, 2])
         if r.shape[1] == 0:
             return np.ones(len(U), dtype=bool)
-        tol = 1e-12 * np.maximum(np.maximum(1.0, np.abs(r).max(axis=1)), np.abs(U[:, 2]))
-        return r.real.max(axis=1) <= tol
+        c = self.cond.coefficients(U[:, :2])
+        sign, _ = mode_signs(c, r, root_bound(c, r))
+        return ~(sign == GROWS).any(axis=1)
 
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
         """``[w, max Re(other modes)]``."""
@@ -401,50 +424,86 @@ def _grid_params(x: str, y: str, fixed: Mapping[str, float], X: np.ndarray, Y: n
     return p
 
 
+class _Guesses(NamedTuple):
+    """Start guesses from the coarse atlas, and how many of its points decided every sign."""
+
+    points: list[np.ndarray]
+    inside: int
+    decided: int
+
+
 def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float],
-                   ranges: Mapping[str, tuple[float, float]], grid: tuple[int, int]) -> list[np.ndarray]:
-    """Guesses ``(x, y, w)`` on grid edges where the number of growing modes changes."""
+                   ranges: Mapping[str, tuple[float, float]], grid: tuple[int, int]) -> _Guesses:
+    """Guesses ``(x, y, w)`` on grid edges where the number of growing modes changes (the
+    modes' signs of :mod:`stability.linear.growth`; points with an undecided sign are left
+    out)."""
     xs = np.linspace(*ranges[x], grid[0])
     ys = np.linspace(*ranges[y], grid[1])
     X, Y = np.meshgrid(xs, ys, indexing="ij")
     # the compiled kernel (stability.linear.kernel), its serial loop: on a thread pool, start-up
     # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
-    sp = spectrum(model, mask_unphysical=True, method="kernel", parallel=False, **_grid_params(x, y, fixed, X, Y))
+    gr = growth(model, parallel=False, **_grid_params(x, y, fixed, X, Y))
+    sp = gr.spectrum
     if not sp.inside.any():
         raise _outside_domain_error(model, x, y, ranges, fixed)
     ev = sp.eigenvalues
-    grows = (ev.real > 0) & ~sp.neutral
-    count = np.where(sp.inside, grows.sum(axis=-1), -1)
+    grows = gr.sign == GROWS
+    decided = sp.inside & ~(gr.sign == UNRESOLVED).any(axis=-1)
+    count = np.where(decided, grows.sum(axis=-1), -1)
+    out = _Guesses([], int(sp.inside.sum()), int(decided.sum()))
     # grid edges (a, b) on which the number of growing modes changes: axis 0 first, then
-    # axis 1, each in row-major order
+    # axis 1, each in row-major order; an edge joins neighbouring decided points of a grid line,
+    # across the undecided points between them (a curve through grid points, e.g. q = 0 on a
+    # grid that holds it, leaves those points within rounding of neutral), never across a point
+    # outside the domain
     nx, ny = count.shape
     flat = np.arange(nx * ny).reshape(nx, ny)
+    inside_flat = sp.inside.reshape(-1)
     pa_list, pb_list = [], []
-    for a, b in ((flat[:-1, :], flat[1:, :]), (flat[:, :-1], flat[:, 1:])):
-        ca, cb = count.flat[a], count.flat[b]
-        sel = (ca >= 0) & (cb >= 0) & (ca != cb)
+    for lines in (flat.T, flat):  # rows of `lines`: the grid lines along axis 0, then axis 1
+        a_parts, b_parts = [], []
+        for line in lines:
+            d = np.nonzero(count.flat[line] >= 0)[0]
+            if len(d) < 2:
+                continue
+            out_before = np.cumsum(~inside_flat[line])
+            ok = out_before[d[1:]] == out_before[d[:-1]]
+            a_parts.append(line[d[:-1][ok]])
+            b_parts.append(line[d[1:][ok]])
+        if not a_parts:
+            continue
+        a, b = np.concatenate(a_parts), np.concatenate(b_parts)
+        order = np.argsort(a, kind="stable")
+        a, b = a[order], b[order]
+        sel = count.flat[a] != count.flat[b]
         pa_list.append(a[sel])
         pb_list.append(b[sel])
+    if not pa_list:
+        return out
     PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
     if PA.size == 0:
-        return []
+        return out
     # a: the end with more growing modes
     swap = count.flat[PA] < count.flat[PB]
     PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
     EV = ev.reshape(nx * ny, -1)
+    EST = gr.estimate.reshape(nx * ny, -1)
     ea, eb = EV[PA], EV[PB]
     k = np.arange(len(PA))
     # the mode that crossed: the least growing of the growing modes at a, and the eigenvalue
-    # nearest to it at b; linear interpolation of its growth rate to zero along the edge
-    ra = ea[k, np.argmin(np.where(grows.reshape(nx * ny, -1)[PA], ea.real, np.inf), axis=-1)]
-    rb = eb[k, np.argmin(np.abs(eb - ra[:, None]), axis=-1)]
+    # nearest to it at b; linear interpolation of its growth estimate to zero along the edge
+    ia = np.argmin(np.where(grows.reshape(nx * ny, -1)[PA], EST[PA], np.inf), axis=-1)
+    ra = ea[k, ia]
+    ib = np.argmin(np.abs(eb - ra[:, None]), axis=-1)
+    rb = eb[k, ib]
+    ga, gb = EST[PA][k, ia], EST[PB][k, ib]
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(rb.real < ra.real, ra.real / (ra.real - rb.real), 0.5)
-    t = np.clip(t, 0.0, 1.0)
+        t = np.where(gb < ga, ga / (ga - gb), 0.5)
+    t = np.clip(np.nan_to_num(t, nan=0.5), 0.0, 1.0)
     ua = np.stack([X.flat[PA], Y.flat[PA], ra.imag], axis=-1)
     ub = np.stack([X.flat[PB], Y.flat[PB], rb.imag], axis=-1)
-    return list(ua + t[:, None] * (ub - ua))
+    return out._replace(points=list(ua + t[:, None] * (ub - ua)))
 
 
 def _on_branch(v: np.ndarray, pts: np.ndarray) -> bool:
@@ -523,24 +582,38 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> 
 
 
 def _check_points(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
-                  cols: Sequence[np.ndarray], w: np.ndarray) -> np.ndarray:
-    """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``.
+                  cols: Sequence[np.ndarray], w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``, and its
+    error bound.
 
     The model's matrices (eq. 8 or 11), not its characteristic polynomial, and LAPACK's
     ``geev`` on ``M^-1 A`` for all points in one call; the traced points lie inside the domain
     (``det M = A_G > 0``). Should ``M`` be singular at some point, :func:`stability.spectrum`
-    (method ``"lapack"``, points outside the domain masked) is used instead.
+    (method ``"lapack"``, points outside the domain masked) is used instead. The bound is that
+    of the LAPACK method of :mod:`stability.linear.spectra`: ``max(8 n u ||M^-1 A||, r)`` with
+    ``r`` the inclusion radius of the eigenvalue as a root of the model's polynomial
+    (:func:`stability.linear.roots.inclusion_radius`): LAPACK's error is absolute, ``~u`` of
+    the largest mode, so at ``alpha_v = 1e12`` (slip mode ``-1.3e12``) the check of an O(1)
+    neutral mode is good to ``~1e-4``, not ``1e-16``, and says so.
     """
     p: dict[str, Any] = dict(fixed)
     for n, c in zip(names, cols):
         p[n] = c
     try:
         M, A = model.matrices(**p)
-        ev = np.linalg.eigvals(np.linalg.solve(M, A))
+        MA = np.linalg.solve(M, A)
+        ev = np.linalg.eigvals(MA)
+        scale = np.linalg.norm(MA, axis=(-2, -1))
     except np.linalg.LinAlgError:
-        ev = spectrum(model, mask_unphysical=True, method="lapack", **p).eigenvalues
+        sp = spectrum(model, mask_unphysical=True, method="lapack", **p)
+        ev, scale = sp.eigenvalues, None
     k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
-    return np.take_along_axis(ev, k[:, None], -1)[:, 0].real
+    near = np.take_along_axis(ev, k[:, None], -1)
+    radius = inclusion_radius(model.coefficients(**{n: np.broadcast_to(np.asarray(v, float), w.shape)
+                                                    for n, v in p.items()}), near)[:, 0]
+    if scale is not None:
+        radius = np.maximum(radius, 8 * model.n_modes * UNIT_ROUNDOFF * scale)
+    return near[:, 0].real, radius
 
 
 def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
@@ -569,19 +642,25 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
                      "domain_edge or endpoint"})
     data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
     data["residual"] = ("point", residual, {
-        "long_name": "normwise relative backward error |p(i w)| / (||c||_1 max(1, |w|)^n) of the "
-                     "neutral condition",
+        "long_name": "relative backward error of the neutral condition: the larger of its two rows, "
+                     "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
+                     "(stability.linear.neutrality)",
         "units": "1"})
     if leading is not None:
         data["leading"] = ("point", leading, {
             "long_name": "the traced mode is the leading one (the curve is the stability boundary)"})
     if len(points):
-        check = _check_points(model, names, fixed, cols, w)
+        check, check_bound = _check_points(model, names, fixed, cols, w)
     else:
-        check = np.zeros(0)
+        check, check_bound = np.zeros(0), np.zeros(0)
     data["check_growth_rate"] = ("point", check, {
         "long_name": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
-                     "(about 1e-8 at a collision, where two eigenvalues coincide)",
+                     "(zero within check_bound on a neutral curve)",
+        "units": "1"})
+    data["check_bound"] = ("point", check_bound, {
+        "long_name": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
+                     "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
+                     "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
         "units": "1"})
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
@@ -645,7 +724,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         Start points ``(x, y)`` or ``(x, y, w)`` (projected onto the curve; without ``w`` the
         mode of smallest ``|Re s|`` gives it); default: from a coarse atlas.
     grid : pair of int
-        Size of the coarse atlas for start points.
+        Size of the coarse atlas for start points (2 to :data:`MAX_GRID` each).
     step, max_step : float
         Initial (default ``max_step``; halved by the engine when too long) and largest
         continuation step (arclength in the ranges scaled to 1).
@@ -655,9 +734,10 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         (:func:`continuation.dense`, cubic Hermite with the tangents) is far more accurate,
         ``O(step^4)``: about 6e-7 at the defaults for the sliding model's ``(q, sigma)`` curve.
     max_points : int
-        Largest number of points per direction of a branch.
+        Largest number of points per direction of a branch (at most :data:`MAX_POINTS`).
     tol : float
-        Points satisfy the neutral condition to a relative backward error ``<= tol``.
+        Points satisfy the neutral condition to a relative backward error ``<= tol`` (each of
+        its two rows scaled by its own size, :mod:`stability.linear.neutrality`).
     edge_margin : float
         Strict domain bounds (``1 - mu q^2 > 0``, ``sigma > 0``, ``mu > 0``) are applied as
         ``>= edge_margin``.
@@ -676,15 +756,18 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     xarray.Dataset
         Along dimension ``point``: ``x`` and ``y`` (named after the parameters), ``frequency``,
         the unit tangent ``tangent_<x>``, ``tangent_<y>``, ``tangent_frequency`` (for
-        :func:`continuation.dense`), ``branch``, ``kind``, ``detail``, ``residual``, ``leading``
-        and ``check_growth_rate``;
+        :func:`continuation.dense`), ``branch``, ``kind``, ``detail``, ``residual``, ``leading``,
+        ``check_growth_rate`` and its bound ``check_bound``;
         CF attributes, the fixed parameters as attributes. Empty (no points) if no curve
-        crosses the ranges.
+        crosses the ranges: then with a ``UserWarning`` and the attribute ``note`` saying why
+        (the start grid's signs are decided and the number of growing modes never changes, or
+        no start guess converged).
 
     Raises
     ------
     ValueError, TypeError
-        Unknown model or parameter, ``x == y``, bad range, fixed values outside the domain.
+        Unknown model or parameter, ``x == y``, bad range, fixed values outside the domain; a
+        start grid that decides the sign of no growth rate at all (``start=`` is needed).
 
     Examples
     --------
@@ -704,13 +787,14 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     max_angle = check_positive("max_angle", max_angle)
     tol = check_positive("tol", tol)
     edge_margin = check_positive("edge_margin", edge_margin)
-    max_points = check_integer("max_points", max_points, minimum=2)
+    max_points = check_integer("max_points", max_points, minimum=2, maximum=MAX_POINTS)
     compiled = None if compiled is None else check_flag("compiled", compiled)
     if form is not None:
         form = check_choice("form", form, ("crossing", "collision"))
     if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):
         raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
-    grid = tuple(check_integer("grid", g, minimum=2) for g in grid)
+    grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
+    check_start_grid(*grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
     lo = np.array([ranges[x][0], ranges[y][0]])
@@ -718,8 +802,22 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     samples = lo + rng.random((8, 2)) * scale[:2]
     prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form, compiled)
 
+    note = None
     if start is None:
-        guesses = _atlas_guesses(m, x, y, fixed, ranges, grid)
+        found = _atlas_guesses(m, x, y, fixed, ranges, grid)
+        if found.decided == 0:
+            raise ValueError(
+                f"the start grid ({grid[0]} x {grid[1]} points over {x}_range = {_pair(ranges[x])} and "
+                f"{y}_range = {_pair(ranges[y])}) could not decide the sign of a growth rate at any of its "
+                f"{found.inside} points inside the domain (every point has a mode within rounding of neutral); "
+                "pass start=[(x, y), ...] near the curve, or other ranges")
+        guesses = found.points
+        if not guesses:
+            note = (f"no neutral curve crosses the ranges: the number of growing modes is the same at all "
+                    f"{found.decided} points of the {grid[0]} x {grid[1]} start grid where every sign is decided"
+                    + (f" ({found.inside - found.decided} points inside the domain have a mode within rounding "
+                       "of neutral and were left out)" if found.decided < found.inside else "")
+                    + "; a closed curve inside one grid cell is not found this way: pass start= or a finer grid")
     else:
         guesses = []
         if isinstance(start, (str, bytes)) or not hasattr(start, "__iter__"):
@@ -778,11 +876,23 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         branches.append(br)
         if start is None:
             skip[i + 1:] |= _near_branch_mask(G[i + 1:], br.points / scale, cell)
-    return _assemble(m, (x, y), fixed, prob, branches, 2, {
+    if not branches and note is None:
+        note = (f"no neutral curve traced: none of the {len(guesses)} start guesses of the start grid "
+                f"converged to a neutral point (backward error <= {tol:g}) inside the ranges; pass start= "
+                "near the curve")
+    attrs = {
         PRODUCT_ATTR: "neutral_curve",
         "x": x, "y": y, "form": prob.cond.form, "deflated_zero_roots": prob.cond.deflate,
         f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]),
-        "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane"})
+        "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane"}
+    if note is not None:
+        attrs["note"] = note
+        warnings.warn(note, UserWarning, stacklevel=2)
+    return _assemble(m, (x, y), fixed, prob, branches, 2, attrs)
+
+
+def _pair(r: tuple[float, float]) -> str:
+    return f"({r[0]:g}, {r[1]:g})"
 
 
 def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], prob: Any,

@@ -6,12 +6,42 @@ model, eq. 8 for the fixed-pivot and rolling models; coefficients from the model
 included) there are two forms:
 
 *crossing* (dissipative models)
-    ``F = [Re p(i w), Im p(i w)] / S`` with ``S = ||c||_1 max(1, |w|)^n``: two real equations;
+    Write ``p(i w) = A(w) + i B(w)`` with the real polynomials ``a_k = Re(c_k i^k)`` and
+    ``b_k = Im(c_k i^k)``. The equations are ``F = [A(w) / S_a, B(w) / S_b]``, each row scaled by
+    its own size,
+
+    ``S_a = max(1, |w|)^n (||a||_1 + sum_j |x_j| ||da/dx_j||_1)``
+
+    (and ``S_b`` from ``b``), the sum over the free parameters ``x_j``: two real equations;
     with two free parameters the solutions form curves in ``(x, y, w)``, along which one mode
-    sits on the imaginary axis. ``||F||`` is a normwise relative backward error of ``i w`` as a
-    root (about ``1e-16`` at a rounded root). ``S`` never vanishes (the leading coefficient is
-    nonzero), unlike the componentwise ``sum_k |c_k| |w|^k``, which tends to zero where a root
-    passes through ``s = 0`` (``c_0 -> 0`` and ``w -> 0``) and would spoil Newton's method there.
+    sits on the imaginary axis. Each ``|F_i|`` is the normwise relative backward error of its
+    row with respect to its coefficients and to relative perturbations of the free parameters
+    (about ``1e-16`` at a rounded root); the residual reported is the larger of the two.
+
+    Why one scale per row: for eq. 11, ``p(i w) = alpha_v P_r(w) + i mu w P_f(w)``, so with one
+    scale for both rows (``||c||_1``, as before) the real row is ``O(alpha_v)`` of it when
+    alpha_v is small and the imaginary row ``O(1/alpha_v)`` when it is large, and a tolerance on
+    the pair is then met by any point that satisfies the dominant row alone (32,717 spurious
+    points of the rolling limit ``P_r = 0`` were traced at ``alpha_v = 1e12``, and the curve was
+    off by ``7e-12`` at ``1e-12``). Row by row, ``F`` does not change when the dissipative part
+    is scaled: any alpha_v > 0 gives the same equations, as the closed form says. Why the
+    parameter term: a row whose coefficients cancel (``A_G = 1 - mu q^2`` at the corner
+    ``q -> 1/sqrt(mu)`` of the ``(q, sigma)`` plane, where ``||a||_1 ~ mu (A_G + sigma) ~ 1e-9``)
+    moves by far more than its own rounding when a free parameter moves by one ulp (here
+    ``5e-8`` of ``S_a`` per ulp of ``q``): no double solves that row to ``1e-13`` of
+    ``||a||_1``, while relative to what one ulp of the parameters does to it, it is solved to
+    rounding.
+
+    The scales are evaluated at the point and held constant in the Jacobian. The Newton and
+    minimum-norm steps do not depend on them at all (scaling the rows of a full-row-rank system
+    leaves its solution set unchanged), so the scales only decide what ``||F|| <= tol``
+    accepts, and that is a property of the point alone (the same number as the stored residual,
+    whatever the corrector started from). ``S_a`` and ``S_b`` do not vanish in this form (a
+    model whose ``a`` or ``b`` vanishes identically is conservative and takes the collision
+    form; at a point where one does, e.g. ``alpha_v = 0`` reached along a traced ``alpha_v``,
+    the domain's edge, the row uses 1). The normwise ``max(1, |w|)^n`` rather than the
+    componentwise ``sum_k |a_k| |w|^k``, which tends to zero where a root passes through
+    ``s = 0`` (``c_0 -> 0`` and ``w -> 0``) and would spoil Newton's method there.
 *collision* (conservative models, where every ``c_k i^k`` has one common phase, so
     ``p(i w) = e^{i theta} P(w)`` with ``P`` real)
     Such a model has ``Re s = 0`` exactly for every real root of ``P`` (a whole region is
@@ -69,7 +99,7 @@ from continuation.jit import active as jit_active
 from .. import execution
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS
-from .roots import divide_root, horner_scheme, quadratic_roots
+from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = ["NeutralCondition", "conservative_phase", "other_roots", "crossing_kernels", "CrossingKernels",
            "twins_in_memory"]
@@ -333,27 +363,33 @@ class NeutralCondition:
     def residual_and_jacobian(self, values: np.ndarray, w: float, jacobian: bool = True
                               ) -> tuple[np.ndarray, np.ndarray | None]:
         """``F`` (2,) and ``dF/d(free..., w)`` (2, len(free)+1) at one point."""
-        c, dc = self._scalar(values, jacobian)
+        crossing = self.form == "crossing"
+        c, dc = self._scalar(values, jacobian or crossing)
         w = float(w)
         n = len(c) - 1
-        if self.form == "crossing":
+        if crossing:
             z = 1j * w
             p, dpz, _ = horner_scheme(c, z, 1)
-            norm = 0.0
-            for ck in c:  # a plain loop, as the compiled twin (sum() compensates from Python 3.12)
-                norm += abs(ck)
-            S = norm * max(1.0, abs(w)) ** n or 1.0
-            F = np.array([p.real / S, p.imag / S])
+            na, nb = axis_norms(c, n + 1)  # plain loops, as the compiled twin
+            for x, row in zip(values, dc):
+                da, db = axis_norms(row, n + 1)
+                ax = abs(float(x))
+                na += ax * da
+                nb += ax * db
+            big = max(1.0, abs(w)) ** n
+            Sa = na * big or 1.0
+            Sb = nb * big or 1.0
+            F = np.array([p.real / Sa, p.imag / Sb])
             if not jacobian:
                 return F, None
             re, im = [], []
             for row in dc:
                 d = horner_scheme(row, z, 0)[0]
-                re.append(d.real / S)
-                im.append(d.imag / S)
+                re.append(d.real / Sa)
+                im.append(d.imag / Sb)
             dpw = 1j * dpz
-            re.append(dpw.real / S)
-            im.append(dpw.imag / S)
+            re.append(dpw.real / Sa)
+            im.append(dpw.imag / Sb)
             return F, np.array([re, im])
         a = self._real_poly_list(c)
         norm = sum(abs(x) for x in a)
@@ -408,9 +444,15 @@ class NeutralCondition:
         big = np.maximum(1.0, np.abs(w))
         if self.form == "crossing":
             p = horner_scheme(c.T, 1j * w, 0)[0]
-            S = np.abs(c).sum(axis=-1) * big**n
-            S = np.where(S == 0, 1.0, S)
-            return np.stack([p.real / S, p.imag / S], axis=-1)
+            na, nb = axis_norms(c.T, n + 1)
+            for j, dcj in enumerate(self._derivatives_many(values)):
+                da, db = axis_norms(dcj.T, n + 1)
+                ax = np.abs(values[:, j])
+                na = na + ax * da
+                nb = nb + ax * db
+            Sa = na * big**n
+            Sb = nb * big**n
+            return np.stack([p.real / np.where(Sa == 0, 1.0, Sa), p.imag / np.where(Sb == 0, 1.0, Sb)], axis=-1)
         a = self._real_poly(c)
         norm = np.abs(a).sum(axis=-1)
         S0 = norm * big**n
@@ -418,10 +460,31 @@ class NeutralCondition:
         P, dP, _ = horner_scheme(a.T, w, 1)
         return np.stack([P / np.where(S0 == 0, 1.0, S0), dP / np.where(S1 == 0, 1.0, S1)], axis=-1)
 
+    def _derivatives_many(self, values: np.ndarray) -> list[np.ndarray]:
+        """``dc/d free_j`` at many points, one array (m, ncoef) per free parameter (deflated):
+        the model's formula on arrays, or the stencil point by point."""
+        m = len(values)
+        if self._analytic:
+            p = [np.full(m, v) for v in self._point]
+            for i, k in enumerate(self._free_index):
+                p[k] = values[:, i]
+            out = []
+            for k in self._free_index:
+                parts = self._derivative(*p, k)
+                d = np.empty((m, len(parts) // 2), dtype=complex)
+                for j in range(d.shape[1]):
+                    d.real[:, j] = parts[2 * j]
+                    d.imag[:, j] = parts[2 * j + 1]
+                out.append(d[:, : self._ncoef])
+            return out
+        rows = [self.coefficients_and_derivatives(v)[1] for v in values]
+        return [np.array([r[j] for r in rows]).reshape(m, -1) for j in range(len(self.free))]
+
     def backward_errors(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """``||F||`` at many points at once, shape ``(m,)``: the normwise relative backward
-        error ``|p(i w)| / (||c||_1 max(1, |w|)^n)`` (with ``P'`` in the collision form)."""
-        return np.linalg.norm(self.residuals(values, w), axis=-1)
+        """``max |F_i|`` at many points at once, shape ``(m,)``: the larger of the two rows'
+        normwise relative backward errors, ``|A(w)| / S_a`` and ``|B(w)| / S_b`` (module
+        docstring; ``P`` and ``P'`` in the collision form)."""
+        return np.abs(self.residuals(values, w)).max(axis=-1) if len(np.atleast_1d(w)) else np.zeros(0)
 
     def other_modes_many(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
         """:meth:`other_modes` at many points at once, shape ``(m, k)``.
@@ -542,7 +605,7 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
     @register_jitable
     def residual_into(point, free_index, ncoef, u, jacobian, F, J):
         """``F`` and (if ``jacobian``) ``dF/du`` at ``u = (free..., w)`` into ``F`` (2,) and ``J``
-        (2, k + 1), with ``S`` held fixed in ``J`` as in the Python path."""
+        (2, k + 1), with the row scales ``S_a``, ``S_b`` held fixed in ``J`` as in the Python path."""
         k = free_index.shape[0]
         p = point.copy()
         for i in range(k):
@@ -552,24 +615,32 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         fill(p, c)
         z = complex(0.0, w)
         val, dpz, _ = horner_scheme(c[:ncoef], z, 1)
-        norm = 0.0
-        for j in range(ncoef):
-            norm += abs(c[j])
-        S = norm * math.pow(max(1.0, abs(w)), float(ncoef - 1))
-        if S == 0.0:
-            S = 1.0
-        F[0] = val.real / S
-        F[1] = val.imag / S
-        if not jacobian:
-            return
+        na, nb = axis_norms(c, ncoef)
         d = np.empty(n + 1, dtype=np.complex128)
         for i in range(k):
             fill_derivative(p, free_index[i], d)
+            da, db = axis_norms(d, ncoef)
+            ax = abs(u[i])
+            na += ax * da
+            nb += ax * db
+        big = math.pow(max(1.0, abs(w)), float(ncoef - 1))
+        Sa = na * big
+        Sb = nb * big
+        if Sa == 0.0:
+            Sa = 1.0
+        if Sb == 0.0:
+            Sb = 1.0
+        F[0] = val.real / Sa
+        F[1] = val.imag / Sb
+        if not jacobian:
+            return
+        for i in range(k):
+            fill_derivative(p, free_index[i], d)
             acc = horner_scheme(d[:ncoef], z, 0)[0]
-            J[0, i] = acc.real / S
-            J[1, i] = acc.imag / S
-        J[0, k] = -dpz.imag / S
-        J[1, k] = dpz.real / S
+            J[0, i] = acc.real / Sa
+            J[1, i] = acc.imag / Sb
+        J[0, k] = -dpz.imag / Sa
+        J[1, k] = dpz.real / Sb
 
     @register_jitable
     def other_growth_of(point, free_index, ncoef, u):

@@ -28,9 +28,11 @@ Building blocks, one home each (used by :func:`polynomial_roots`, the compiled k
 :func:`horner_scheme` (``p, p', p''``), :func:`quadratic_roots` (the stable quadratic formula,
 general and conservative), :func:`divide_root` (synthetic division by ``s - r``, composite) and
 :func:`deflate_cubic_backward` (backward division by the largest root), with :func:`csqrt`,
-:func:`modulus` and :func:`cbrt`. They are plain arithmetic registered with
-``register_jitable`` (:mod:`continuation.jit`, which defers numba's registration until compiled
-code is wanted): one source that runs on Python numbers, inside numba kernels, and
+:func:`modulus` and :func:`cbrt`; on the imaginary axis, :func:`axis_norms` (the scales of the
+real and imaginary parts of ``p(i w)``, the neutral condition's rows) and :func:`axis_growth` (the
+structured growth estimate of a root near the axis, below). They are plain arithmetic registered
+with ``register_jitable`` (:mod:`continuation.jit`, which defers numba's registration until
+compiled code is wanted): one source that runs on Python numbers, inside numba kernels, and
 (:func:`horner_scheme`, whose array front end is :func:`horner`) on numpy arrays; batched numpy
 callers of the others run a small loop over them (:func:`quadratic_roots_many`), interpreted or
 compiled (:mod:`stability.execution`), with the same bits. On arrays, numpy's complex multiplication may use fused
@@ -46,6 +48,32 @@ its evaluation and of the coefficients) and ``|p'(r)|`` below; the smaller radiu
 It does not assume that ``r`` is accurate: an eigenvalue wrong by O(1) (``M^-1 A`` formed
 from a near-singular ``M``) gets an O(1) radius, and one beside a double root a radius that
 follows the ``sqrt(u)`` error there.
+
+Structured growth estimate near the imaginary axis (:func:`axis_growth`). Write
+``p(i w) = A(w) + i B(w)`` with the real polynomials ``a_k = Re(c_k i^k)`` and
+``b_k = Im(c_k i^k)`` (exact: a product with ``1, i, -1, -i`` only swaps and negates parts).
+A Newton step from ``i w`` towards the root, ``delta = -p(i w) / p'(i w)``, has the real part
+``(B A' - A B') / (A'^2 + B'^2)`` and the imaginary part ``-(A A' + B B') / (A'^2 + B'^2)`` (by
+which ``w`` is first moved, twice, so that the step is nearly real), with ``A, A', B, B'``
+(derivatives in ``w``) evaluated by Horner's scheme in real arithmetic, each to its *own*
+relative accuracy: ``A`` and ``B`` are never added, so neither is lost in the rounding of the
+other. For the sliding model ``p(i w) = alpha_v P_r(w) + i mu w P_f(w)`` (eq. 11): at
+``alpha_v = 1e-12`` the real part is ``1e-12`` of the imaginary one and at ``1e12`` ``1e12``
+times it, and the eigenvalue's own ``Re s`` (absolute error ``~u |s|`` at best, and the floor
+``16 u max|s|`` of the stability flag) cannot resolve a growth rate of ``1e-12 x distance`` from
+the crossing, while the estimate resolves its sign down to a relative distance of a few ``u`` at
+any ``alpha_v``. A Newton step's own error is second order, ``Re((p''/2p') e0^2)`` with ``e0``
+the distance from ``i w`` to the root; ``w`` is a double, so ``e0`` keeps an imaginary part of
+up to half an ulp of the frequency, and that term alone (``~1e-32``) would hide growth rates
+below it (the sliding top at ``alpha_v < 1e-29``). The estimate is therefore Chebyshev's step,
+``g = Re(delta - (p''/2p') delta^2)``, whose error is third order,
+``(2 |c2|^2 + |c3|) |e0|^3`` (``c_k = p^(k) / (k! p')``). Its bound ``e_g`` is the rounding of
+``A, B`` (``(3 n + 5) u sum_k |a_k| |w|^k``: coefficients formed with relative error
+``(n + 4) u``, Horner's ``2 n u``) and of ``A', B'`` carried through the quotient and the
+correction, plus that third-order term with ``|e0| <= 2 |delta|``; the estimate is refused
+(``e_g = inf``) once ``|c2| |delta| > 1/4``, where a step from the axis says nothing (near a
+collision of two roots, where ``p' -> 0``). So ``|g| > 4 e_g`` decides the sign of the growth
+rate of the root near ``i w``.
 """
 
 from __future__ import annotations
@@ -60,7 +88,8 @@ from continuation.jit import Twin, overload, register_jitable
 from .. import execution
 
 __all__ = ["PolynomialRoots", "polynomial_roots", "horner", "horner_scheme", "inclusion_radius", "modulus",
-           "csqrt", "cbrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward"]
+           "csqrt", "cbrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward",
+           "axis_norms", "axis_growth", "axis_growth_many", "root_bound"]
 
 UNIT_ROUNDOFF = 2.0**-53
 
@@ -247,6 +276,162 @@ def deflate_cubic_backward(c3, c2, c1, c0, r):
     return b2, b1, b0
 
 
+@register_jitable
+def axis_norms(c, ncoef):
+    """``(||a||_1, ||b||_1)`` of ``p(i w) = A(w) + i B(w)`` for ``c[0..ncoef-1]`` (highest first):
+    ``|Re(c_k i^k)|`` and ``|Im(c_k i^k)|`` summed in a plain loop (each is ``|Re c_k|`` or
+    ``|Im c_k|``, exactly). Lists of Python numbers, numba arrays, or numpy arrays with the
+    coefficient axis first (``c[k]`` an array)."""
+    na = 0.0
+    nb = 0.0
+    n = ncoef - 1
+    for k in range(ncoef):
+        ck = c[k]
+        if (n - k) % 2 == 0:
+            na = na + abs(ck.real)
+            nb = nb + abs(ck.imag)
+        else:
+            na = na + abs(ck.imag)
+            nb = nb + abs(ck.real)
+    return na, nb
+
+
+@register_jitable
+def _axis_horner(c, ncoef, w):
+    """The values and first three derivatives of ``A`` and of ``B`` in ``p(i w) = A(w) + i B(w)``,
+    and the scales of their rounding: ``sum_k |a_k| |w|^k`` and its first two derivatives in
+    ``|w|`` (and the same for ``b``)."""
+    n = ncoef - 1
+    A = 0.0
+    dA = 0.0
+    ddA = 0.0
+    dddA = 0.0
+    B = 0.0
+    dB = 0.0
+    ddB = 0.0
+    dddB = 0.0
+    sa = 0.0
+    sda = 0.0
+    sdda = 0.0
+    sb = 0.0
+    sdb = 0.0
+    sddb = 0.0
+    aw = abs(w)
+    for k in range(ncoef):
+        ck = c[k]
+        m = (n - k) % 4
+        if m == 0:
+            ak = ck.real
+            bk = ck.imag
+        elif m == 1:
+            ak = -ck.imag
+            bk = ck.real
+        elif m == 2:
+            ak = -ck.real
+            bk = -ck.imag
+        else:
+            ak = ck.imag
+            bk = -ck.real
+        dddA = dddA * w + 3.0 * ddA
+        ddA = ddA * w + 2.0 * dA
+        dA = dA * w + A
+        A = A * w + ak
+        dddB = dddB * w + 3.0 * ddB
+        ddB = ddB * w + 2.0 * dB
+        dB = dB * w + B
+        B = B * w + bk
+        sdda = sdda * aw + 2.0 * sda
+        sda = sda * aw + sa
+        sa = sa * aw + abs(ak)
+        sddb = sddb * aw + 2.0 * sdb
+        sdb = sdb * aw + sb
+        sb = sb * aw + abs(bk)
+    return A, dA, ddA, dddA, B, dB, ddB, dddB, sa, sda, sdda, sb, sdb, sddb
+
+
+@register_jitable
+def axis_growth(c, ncoef, w):
+    """The structured growth estimate ``g`` of the root of ``c[0..ncoef-1]`` (highest first)
+    near ``i w``, and its bound ``e_g`` (module docstring): the real part of Chebyshev's step
+    ``delta - (p''/2p') delta^2``, ``delta = -p(i w) / p'(i w)``, with the real and imaginary
+    parts of ``p(i w)`` and of its derivatives evaluated separately, after ``w`` is moved twice
+    by the imaginary part of ``delta``. ``e_g = inf`` where the step is not informative
+    (``p'(i w) = 0``, or a second-order term that is not small). Python numbers or numba (a 1-D
+    array ``c``); :func:`axis_growth_many` runs it over a batch."""
+    n = ncoef - 1
+    for _ in range(2):
+        A, dA, ddA, dddA, B, dB, ddB, dddB, sa, sda, sdda, sb, sdb, sddb = _axis_horner(c, ncoef, w)
+        den = dA * dA + dB * dB
+        if not den > 0.0:
+            return 0.0, math.inf
+        dw = -(A * dA + B * dB) / den
+        if not math.isfinite(dw):
+            return 0.0, math.inf
+        w = w + dw
+    A, dA, ddA, dddA, B, dB, ddB, dddB, sa, sda, sdda, sb, sdb, sddb = _axis_horner(c, ncoef, w)
+    den = dA * dA + dB * dB
+    if not den > 0.0:
+        return 0.0, math.inf
+    u = UNIT_ROUNDOFF
+    # absolute errors of A, B and their derivatives: coefficients (n + 4) u, Horner 2 n u
+    gamma = (3.0 * n + 5.0) * u
+    eA = gamma * sa
+    eB = gamma * sb
+    edA = gamma * sda
+    edB = gamma * sdb
+    eddA = gamma * sdda
+    eddB = gamma * sddb
+    eden = 2.0 * (edA * abs(dA) + edB * abs(dB)) / den + 3.0 * u  # relative
+    # Newton's step delta = g + i h from i w (p'(i w) = B' - i A')
+    g = (B * dA - A * dB) / den
+    h = -(A * dA + B * dB) / den
+    eg = ((eB * abs(dA) + abs(B) * edA + eA * abs(dB) + abs(A) * edB
+           + 3.0 * u * (abs(B * dA) + abs(A * dB))) / den + abs(g) * (eden + u))
+    eh = ((eA * abs(dA) + abs(A) * edA + eB * abs(dB) + abs(B) * edB
+           + 3.0 * u * (abs(A * dA) + abs(B * dB))) / den + abs(h) * (eden + u))
+    # c2 = p''/(2 p') = cr + i ci, with p''(i w) = -(A'' + i B'')
+    cr = -(ddA * dB - ddB * dA) / (2.0 * den)
+    ci = -(ddA * dA + ddB * dB) / (2.0 * den)
+    ecr = ((eddA * abs(dB) + abs(ddA) * edB + eddB * abs(dA) + abs(ddB) * edA
+            + 3.0 * u * (abs(ddA * dB) + abs(ddB * dA))) / (2.0 * den) + abs(cr) * (eden + u))
+    eci = ((eddA * abs(dA) + abs(ddA) * edA + eddB * abs(dB) + abs(ddB) * edB
+            + 3.0 * u * (abs(ddA * dA) + abs(ddB * dB))) / (2.0 * den) + abs(ci) * (eden + u))
+    step = math.sqrt(g * g + h * h) + eg + eh
+    c2 = math.sqrt(cr * cr + ci * ci)
+    if c2 * step > 0.25:
+        return g, math.inf
+    # Chebyshev's correction -Re(c2 delta^2), and its error with the real and imaginary parts
+    # kept apart: cr and g are small together where the rows' scales differ (module docstring)
+    corr = -cr * (g * g - h * h) + 2.0 * ci * g * h
+    ecorr = (abs(cr) * (2.0 * abs(g) * eg + eg * eg + 2.0 * abs(h) * eh + eh * eh) + ecr * abs(g * g - h * h)
+             + 2.0 * abs(ci) * (abs(g) * eh + abs(h) * eg + eg * eh) + 2.0 * eci * abs(g * h)
+             + 4.0 * u * (abs(cr) * (g * g + h * h) + 2.0 * abs(ci * g * h)))
+    # Chebyshev's third-order error (2 |c2|^2 + |c3|) |e0|^3 with |e0| <= 2 |delta|, c3 = p'''/(6 p')
+    c3 = math.sqrt(dddA * dddA + dddB * dddB) / (6.0 * math.sqrt(den))
+    third = (2.0 * c2 * c2 + c3) * 8.0 * step * step * step
+    est = g + corr
+    return est, eg + ecorr + third + u * abs(est)
+
+
+def _axis_growth_loop(c, w, g, eg):
+    """:func:`axis_growth` over a batch: ``c`` (m, n+1) complex, ``w`` (m, k) into ``g``, ``eg``
+    (m, k) (the roots' frequencies ``w[i, j]`` of polynomial ``c[i]``; NaN gives ``e_g = inf``)."""
+    ncoef = c.shape[1]
+    for i in range(c.shape[0]):
+        for j in range(w.shape[1]):
+            x = w[i, j]
+            if math.isfinite(x):
+                g[i, j], eg[i, j] = axis_growth(c[i], ncoef, x)
+            else:
+                g[i, j] = np.nan
+                eg[i, j] = np.inf
+
+
+#: :func:`axis_growth` over a batch, interpreted or compiled (a :class:`continuation.jit.Twin`;
+#: the caller picks by :func:`stability.execution.use_compiled`)
+axis_growth_many = Twin(_axis_growth_loop, cache=True)
+
+
 def horner(c: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate ``p``, ``p'`` and ``p''`` at ``s`` by Horner's scheme (:func:`horner_scheme`).
 
@@ -283,6 +468,13 @@ def _bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
         first = np.where(np.abs(d1) > 0, dp_scale / np.abs(d1), np.inf)
         second = np.where(np.abs(d2) > 0, np.sqrt(2.0 * dp_scale / np.abs(d2)), np.inf)
     return np.minimum(first, second)
+
+
+def root_bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The error bound of the module docstring for roots ``r`` (..., m) of the polynomials ``c``
+    (..., n+1): ``min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))``, ``dp = (n + 4) u sum_k |c_k| |r|^k``."""
+    c = np.asarray(c, dtype=complex)
+    return _bound(c[..., None, :], np.asarray(r, dtype=complex))
 
 
 def inclusion_radius(c: np.ndarray, r: np.ndarray) -> np.ndarray:

@@ -142,10 +142,14 @@ def _plain_float(value: Any) -> np.ndarray | None:
     """``value`` as a float64 array without a copy if it plainly is one (a non-empty float64
     array, or a Python or numpy real scalar that is not a bool); None for anything else (which
     then goes through :func:`~stability.parameters.as_parameter` and its messages)."""
-    if isinstance(value, np.ndarray):
-        return value if value.dtype == np.float64 and value.size > 0 else None
+    if isinstance(value, np.ndarray):  # not a masked array: as_parameter checks its mask
+        return (value if value.dtype == np.float64 and value.size > 0 and not isinstance(value, np.ma.MaskedArray)
+                else None)
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
-        return np.asarray(value, dtype=np.float64)
+        try:
+            return np.asarray(value, dtype=np.float64)
+        except OverflowError:  # a Python integer beyond the doubles: as_parameter names it
+            return None
     return None
 
 

@@ -15,19 +15,31 @@
   on a stiff run stops and reports instead of running for hours (docs/hard_cases.md).
 
 Every integrator returns the states at the requested times and the work counters.
+
+The compiled integrators run in slices of at most :data:`SLICE_STEPS` steps (``dopri5_slice``,
+``rk4_slice``: the whole state of the run, step size, first-same-as-last stage, rejection flag
+and counters, is carried from one slice to the next, so the steps and the results are those of
+one uninterrupted call, bit for bit). Between slices the run reports its progress and checks for
+an interruption (:func:`stability.interrupts.checkpoint`): Ctrl-C or SIGTERM ends a run of hours
+within milliseconds, with an ordinary exception, never from inside compiled code. The kernels
+hold no GIL and assign no array slices (a slice assignment makes numba compile its
+shape-mismatch message formatting, seconds of compile time for nothing).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 
+from ..interrupts import checkpoint
 from .kernels import CODES, rhs as _model_rhs
 
-__all__ = ["Solution", "integrate", "dopri5", "rk4", "COMPILED_METHODS", "SCIPY_METHODS"]
+__all__ = ["Solution", "integrate", "dopri5", "rk4", "dopri5_slice", "rk4_slice", "COMPILED_METHODS",
+           "SCIPY_METHODS", "SLICE_STEPS"]
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
@@ -99,81 +111,128 @@ def _rms(e, y, yn, rtol, atol):
     return np.sqrt(s / e.shape[0])
 
 
-@njit(cache=True)
-def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps):
-    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval`` (compiled).
+#: scipy steps between two interruption points (each step is a Python call of a few hundred us)
+SCIPY_REPORT_STEPS = 200
+
+#: return code of a slice that used up its step budget (the run continues in the next slice)
+CONTINUE = 1
+
+#: attempted steps per compiled slice: a few milliseconds to a few tens of milliseconds of work
+#: between two interruption points (and progress reports), whatever the run's length
+SLICE_STEPS = 20_000
+
+# layout of the integer state of a compiled run (``cnt``): output index, counters, flags
+_J, _NFEV, _NACCEPT, _NREJECT, _STEPS, _STATUS, _REJECTED, _STARTED = range(8)
+# layout of the float state (``fs``): time reached, current step
+_T, _H = 0, 1
+
+
+@njit(cache=True, nogil=True)
+def _copy_row(dst, i, src):
+    for c in range(src.shape[0]):
+        dst[i, c] = src[c]
+
+
+@njit(cache=True, nogil=True)
+def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out):
+    """At most ``budget`` attempted steps of adaptive Dormand-Prince 5(4) with dense output at
+    ``t_eval`` (compiled, without the GIL), continuing the run held in the state arrays.
+
+    A run is a sequence of calls on the same state: its steps, and so its results, do not depend
+    on how it is cut into slices (nothing is clipped at a slice's end; the state carries
+    everything the next step needs).
 
     Parameters
     ----------
     code : int
         Model code (:data:`stability.nonlinear.kernels.CODES`).
-    y0 : numpy.ndarray, shape (n,)
-        State at ``t_eval[0]``.
     t_eval : numpy.ndarray, shape (m,)
         Increasing output times.
     p : numpy.ndarray
         Parameter vector passed to ``rhs``.
     rtol, atol : float
         Tolerances.
-    h_init : float
-        First step; 0 for the automatic choice of Hairer et al. (II.4).
     max_steps : int
-        Limit on attempted steps.
+        Limit on attempted steps over the whole run.
+    budget : int
+        Attempted steps in this call.
+    y : numpy.ndarray, shape (n,)
+        The state at ``fs[_T]`` (the initial state before the first call); updated.
+    k : numpy.ndarray, shape (7, n)
+        Stages (``k[0]``: the derivative at ``y``, first-same-as-last); updated.
+    fs : numpy.ndarray, shape (2,)
+        ``[t, h]``: the time of ``y`` (``t_eval[0]`` at first) and the next step (at first the
+        initial step, 0 for the automatic choice of Hairer et al. II.4); updated.
+    cnt : numpy.ndarray of int64, shape (8,)
+        Output index, evaluations, accepted, rejected and attempted steps, status, the
+        "rejected last" flag, "started" (0 before the first call); updated.
+    out : numpy.ndarray, shape (m, n)
+        Outputs, written from row ``cnt[_J]`` on (rows not reached stay as they are).
 
     Returns
     -------
-    tuple
-        ``(y_out, nfev, naccept, nreject, status)``.
+    int
+        :data:`CONTINUE` if the budget was used up before the end, else the final status
+        (0 success, or a failure code).
     """
-    n = y0.shape[0]
+    n = y.shape[0]
     m = t_eval.shape[0]
-    out = np.full((m, n), np.nan)
-    k = np.empty((7, n))
-    y = y0.copy()
     ys = np.empty(n)
     yn = np.empty(n)
     err = np.empty(n)
-    t = t_eval[0]
     t_end = t_eval[m - 1]
-    out[0] = y
-    j = 1
-    k[0] = _model_rhs(code, t, y, p)
-    nfev = 1
-    naccept = 0
-    nreject = 0
+    if cnt[_STARTED] == 0:
+        cnt[_STARTED] = 1
+        t = t_eval[0]
+        _copy_row(out, 0, y)
+        cnt[_J] = 1
+        _copy_row(k, 0, _model_rhs(code, t, y, p))
+        cnt[_NFEV] = 1
+        h = fs[_H]
+        if h <= 0.0:
+            # Hairer, Norsett & Wanner II.4: starting step size
+            d0 = 0.0
+            d1 = 0.0
+            for i in range(n):
+                sc = atol + rtol * abs(y[i])
+                d0 += (y[i] / sc) ** 2
+                d1 += (k[0, i] / sc) ** 2
+            d0 = np.sqrt(d0 / n)
+            d1 = np.sqrt(d1 / n)
+            h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+            for i in range(n):
+                ys[i] = y[i] + h0 * k[0, i]
+            f1 = _model_rhs(code, t + h0, ys, p)
+            cnt[_NFEV] += 1
+            d2 = 0.0
+            for i in range(n):
+                sc = atol + rtol * abs(y[i])
+                d2 += ((f1[i] - k[0, i]) / sc) ** 2
+            d2 = np.sqrt(d2 / n) / h0
+            dm = max(d1, d2)
+            h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
+            h = min(100.0 * h0, h1)
+        fs[_T] = t
+        fs[_H] = min(h, t_end - t)
+    t = fs[_T]
+    h = fs[_H]
+    j = cnt[_J]
+    steps = cnt[_STEPS]
+    nfev = cnt[_NFEV]
+    naccept = cnt[_NACCEPT]
+    nreject = cnt[_NREJECT]
+    rejected = cnt[_REJECTED] != 0
     status = 0
-    h = h_init
-    if h <= 0.0:
-        # Hairer, Norsett & Wanner II.4: starting step size
-        d0 = 0.0
-        d1 = 0.0
-        for i in range(n):
-            sc = atol + rtol * abs(y[i])
-            d0 += (y[i] / sc) ** 2
-            d1 += (k[0, i] / sc) ** 2
-        d0 = np.sqrt(d0 / n)
-        d1 = np.sqrt(d1 / n)
-        h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-        for i in range(n):
-            ys[i] = y[i] + h0 * k[0, i]
-        f1 = _model_rhs(code, t + h0, ys, p)
-        nfev += 1
-        d2 = 0.0
-        for i in range(n):
-            sc = atol + rtol * abs(y[i])
-            d2 += ((f1[i] - k[0, i]) / sc) ** 2
-        d2 = np.sqrt(d2 / n) / h0
-        dm = max(d1, d2)
-        h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
-        h = min(100.0 * h0, h1)
-    h = min(h, t_end - t)
-    rejected = False
-    steps = 0
+    used = 0
     while j < m:
+        if used >= budget:
+            status = CONTINUE
+            break
         if steps >= max_steps:
             status = -1
             break
         steps += 1
+        used += 1
         last = False
         if t + h >= t_end or t + 1.0000001 * h >= t_end:
             h = t_end - t
@@ -187,13 +246,13 @@ def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps):
                 for r in range(s):
                     acc += _A[s, r] * k[r, i]
                 ys[i] = y[i] + h * acc
-            k[s] = _model_rhs(code, t + _C[s] * h, ys, p)
+            _copy_row(k, s, _model_rhs(code, t + _C[s] * h, ys, p))
         for i in range(n):
             acc = 0.0
             for r in range(6):
                 acc += _B[r] * k[r, i]
             yn[i] = y[i] + h * acc
-        k[6] = _model_rhs(code, t + h, yn, p)
+        _copy_row(k, 6, _model_rhs(code, t + h, yn, p))
         nfev += 6
         for i in range(n):
             acc = 0.0
@@ -216,13 +275,13 @@ def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps):
                 for i in range(n):
                     acc = 0.0
                     for r in range(7):
-                        pr = _P[r]
-                        acc += k[r, i] * th * (pr[0] + th * (pr[1] + th * (pr[2] + th * pr[3])))
+                        acc += k[r, i] * th * (_P[r, 0] + th * (_P[r, 1] + th * (_P[r, 2] + th * _P[r, 3])))
                     out[j, i] = y[i] + h * acc
                 j += 1
             t = t_new
-            y[:] = yn
-            k[0] = k[6]
+            for i in range(n):
+                y[i] = yn[i]
+                k[0, i] = k[6, i]
             naccept += 1
             fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en ** -0.2))
             if rejected:
@@ -233,36 +292,57 @@ def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps):
             nreject += 1
             rejected = True
             h *= max(0.2, 0.9 * en ** -0.2)
-    return out, nfev, naccept, nreject, status
+    fs[_T] = t
+    fs[_H] = h
+    cnt[_J] = j
+    cnt[_STEPS] = steps
+    cnt[_NFEV] = nfev
+    cnt[_NACCEPT] = naccept
+    cnt[_NREJECT] = nreject
+    cnt[_REJECTED] = 1 if rejected else 0
+    cnt[_STATUS] = 0 if status == CONTINUE else status
+    return status
 
 
-@njit(cache=True)
-def rk4(code, y0, t_eval, p, h):
-    """Classical fixed-step fourth-order Runge-Kutta (the paper's scheme), compiled.
+@njit(cache=True, nogil=True)
+def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out):
+    """At most ``budget`` steps of the classical fixed-step fourth-order Runge-Kutta (the paper's
+    scheme), compiled without the GIL, continuing the run held in the state arrays.
 
     Steps of size ``h`` (the last one shortened to end at ``t_eval[-1]``); outputs by cubic
-    Hermite interpolation between steps. Returns ``(y_out, nfev, nsteps, 0, status)``.
+    Hermite interpolation between steps. ``y`` (the state at ``fs[0]``), ``f0`` (its derivative),
+    ``fs = [t, h]`` and ``cnt`` (layout of :func:`dopri5_slice`) are updated. Returns
+    :data:`CONTINUE` or the final status.
     """
-    n = y0.shape[0]
+    n = y.shape[0]
     m = t_eval.shape[0]
-    out = np.full((m, n), np.nan)
-    y = y0.copy()
-    t = t_eval[0]
     t_end = t_eval[m - 1]
-    out[0] = y
-    j = 1
-    f0 = _model_rhs(code, t, y, p)
-    nfev = 1
-    steps = 0
     ys = np.empty(n)
     yn = np.empty(n)
+    if cnt[_STARTED] == 0:
+        cnt[_STARTED] = 1
+        fs[_T] = t_eval[0]
+        _copy_row(out, 0, y)
+        cnt[_J] = 1
+        f = _model_rhs(code, fs[_T], y, p)
+        for i in range(n):
+            f0[i] = f[i]
+        cnt[_NFEV] = 1
+    t = fs[_T]
+    j = cnt[_J]
+    nfev = cnt[_NFEV]
+    steps = cnt[_STEPS]
     status = 0
+    used = 0
     while j < m:
+        if used >= budget:
+            status = CONTINUE
+            break
+        used += 1
         hh = min(h, t_end - t)
         last = t + 1.0000001 * hh >= t_end
-        k1 = f0
         for i in range(n):
-            ys[i] = y[i] + 0.5 * hh * k1[i]
+            ys[i] = y[i] + 0.5 * hh * f0[i]
         k2 = _model_rhs(code, t + 0.5 * hh, ys, p)
         for i in range(n):
             ys[i] = y[i] + 0.5 * hh * k2[i]
@@ -271,7 +351,7 @@ def rk4(code, y0, t_eval, p, h):
             ys[i] = y[i] + hh * k3[i]
         k4 = _model_rhs(code, t + hh, ys, p)
         for i in range(n):
-            yn[i] = y[i] + hh / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            yn[i] = y[i] + hh / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
         f1 = _model_rhs(code, t + hh, yn, p)
         nfev += 4
         steps += 1
@@ -285,18 +365,83 @@ def rk4(code, y0, t_eval, p, h):
             for i in range(n):
                 out[j, i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
             j += 1
-        y[:] = yn
-        f0 = f1
+        finite = True
+        for i in range(n):
+            y[i] = yn[i]
+            f0[i] = f1[i]
+            if not np.isfinite(yn[i]):
+                finite = False
         t = t_new
-        if not np.isfinite(y).all():
+        if not finite:
             status = -3
             break
-    return out, nfev, steps, 0, status
+    fs[_T] = t
+    cnt[_J] = j
+    cnt[_NFEV] = nfev
+    cnt[_STEPS] = steps
+    cnt[_NACCEPT] = steps
+    cnt[_STATUS] = 0 if status == CONTINUE else status
+    return status
 
 
-def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps):
+def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
+    """Call ``step(budget)`` until it returns a final status, with an interruption point and a
+    progress report (the time reached) between calls."""
+    while True:
+        checkpoint()
+        status, t = step(budget)
+        if progress is not None:
+            progress(t)
+        if status != CONTINUE:
+            return
+
+
+def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = SLICE_STEPS, progress=None):
+    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
+    :func:`dopri5_slice` called in slices of ``budget`` steps.
+
+    Returns
+    -------
+    tuple
+        ``(y_out, nfev, naccept, nreject, status)``; rows of ``y_out`` not reached are NaN.
+    """
+    y = np.array(y0, dtype=np.float64)
+    n, m = y.size, t_eval.size
+    out = np.full((m, n), np.nan)
+    k = np.empty((7, n))
+    fs = np.array([t_eval[0], float(h_init)])
+    cnt = np.zeros(8, dtype=np.int64)
+
+    def step(b: int):
+        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out)
+        return st, fs[_T]
+
+    _run_slices(step, t_eval, progress, budget)
+    return out, int(cnt[_NFEV]), int(cnt[_NACCEPT]), int(cnt[_NREJECT]), int(cnt[_STATUS])
+
+
+def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None):
+    """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
+    slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status)``."""
+    y = np.array(y0, dtype=np.float64)
+    n, m = y.size, t_eval.size
+    out = np.full((m, n), np.nan)
+    f0 = np.empty(n)
+    fs = np.array([t_eval[0], float(h)])
+    cnt = np.zeros(8, dtype=np.int64)
+
+    def step(b: int):
+        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out)
+        return st, fs[_T]
+
+    _run_slices(step, t_eval, progress, budget)
+    return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, int(cnt[_STATUS])
+
+
+def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None):
     """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
-    ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``."""
+    ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``; an
+    interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps."""
     def fun(t, yy):
         return _model_rhs(code, t, yy, p)
 
@@ -309,6 +454,10 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps):
         if steps >= max_steps:
             status = MAX_STEPS
             break
+        if steps % SCIPY_REPORT_STEPS == 0:
+            checkpoint()
+            if progress is not None:
+                progress(solver.t)
         message = solver.step()
         steps += 1
         if solver.status == "failed":
@@ -329,7 +478,8 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps):
 
 def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
               method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
-              step: float | None = None, max_steps: int = 10_000_000) -> Solution:
+              step: float | None = None, max_steps: int = 10_000_000,
+              progress: Callable[[float], None] | None = None) -> Solution:
     """Integrate a nonlinear model and return its states at ``t_eval``.
 
     Parameters
@@ -353,6 +503,8 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
         integrator, accepted steps of scipy's): an explicit method on a stiff run (large
         ``alpha_v``, or Coulomb friction at sticking) stops there with status -1
         (``MAX_STEPS``) and the states computed so far, instead of running for hours.
+    progress : callable, optional
+        Called with the time reached after each slice of work (a few milliseconds apart).
 
     Returns
     -------
@@ -363,13 +515,13 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
     if method == "dopri5":
         y, nfev, na, nr, st = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
-                                     float(step or 0.0), int(max_steps))
+                                     float(step or 0.0), int(max_steps), progress=progress)
     elif method == "rk4":
         if step is None or not step > 0:
             raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st = rk4(code, y0, t_eval, p, float(step))
+        y, nfev, na, nr, st = rk4(code, y0, t_eval, p, float(step), progress=progress)
     elif method in SCIPY_METHODS:
-        y, nfev, na, nr, st = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps)
+        y, nfev, na, nr, st = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress)
     else:
         raise ValueError(f"method = {method!r} is not known; choose one of "
                          f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")

@@ -13,25 +13,59 @@ Nondimensional (energy in units of ``A0 Omega^2``). With ``G = O + q k`` and ``I
   normal to ``r_cg``). ``dh_cg/dt = q (omega x k) . I_G omega = 0`` for any force acting at the
   contact point, so ``h_cg`` is conserved by the rolling sphere and also by the sliding sphere
   with any friction law (Jellett's integral).
+
+``A_G`` is :func:`stability.models.inertia.inertia_g` (compensated: accurate near the domain
+edge), its one home. The formulas are written once, by components, as plain arithmetic
+registered with numba (:func:`centre_velocity`, :func:`energy_terms`) or compiled
+(:func:`jellett_integral`): the array functions apply them to columns, and compiled callers
+(the steady layer's integrals of one state, the branch's complex steps) call them directly.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
+from continuation.jit import register_jitable
 
-__all__ = ["energy_parts", "h_cg", "jellett_integral", "centre_of_mass_velocity"]
+from ..models.inertia import inertia_g
+
+__all__ = ["energy_parts", "energy_terms", "h_cg", "jellett_integral", "centre_of_mass_velocity",
+           "centre_velocity", "ENERGY_PARTS"]
+
+#: the names of :func:`energy_parts` (the order of :func:`energy_terms`)
+ENERGY_PARTS = ("kinetic_translational", "kinetic_spin", "kinetic_transverse", "potential", "energy")
+
+
+@register_jitable
+def centre_velocity(w0, w1, w2, k0, k1, k2, v0, v1, v2, arm):
+    """``V_G = V0 + arm omega x k`` by components (arm = q from O, 1 + q from the pivot).
+
+    Plain arithmetic registered with numba (floats, numpy arrays elementwise, compiled callers)."""
+    return (v0 + arm * (w1 * k2 - w2 * k1), v1 + arm * (w2 * k0 - w0 * k2), v2 + arm * (w0 * k1 - w1 * k0))
 
 
 def centre_of_mass_velocity(omega: np.ndarray, k: np.ndarray, v0: np.ndarray, arm: float) -> np.ndarray:
-    """``V_G = V0 + arm omega x k`` (arm = q from O, 1 + q from the pivot), shape (n, 3).
+    """``V_G = V0 + arm omega x k`` (arm = q from O, 1 + q from the pivot), shape (n, 3)
+    (:func:`centre_velocity` on the columns; ``numpy.cross`` costs ~30 us of set-up on a few rows)."""
+    w, kk, v = np.asarray(omega), np.asarray(k), np.asarray(v0)
+    return np.stack(centre_velocity(w[..., 0], w[..., 1], w[..., 2], kk[..., 0], kk[..., 1], kk[..., 2],
+                                    v[..., 0], v[..., 1], v[..., 2], arm), axis=-1)
 
-    The cross product by components (``numpy.cross`` costs ~30 us of set-up on a few rows)."""
-    w, kk = np.asarray(omega), np.asarray(k)
-    cross = np.stack([w[..., 1] * kk[..., 2] - w[..., 2] * kk[..., 1],
-                      w[..., 2] * kk[..., 0] - w[..., 0] * kk[..., 2],
-                      w[..., 0] * kk[..., 1] - w[..., 1] * kk[..., 0]], axis=-1)
-    return v0 + arm * cross
+
+@register_jitable
+def energy_terms(w0, w1, w2, k0, k1, k2, g0, g1, g2, z_g, q, fr_inv, sigma, mu):
+    """The parts of the energy and their sum, by components (the order of :data:`ENERGY_PARTS`).
+
+    ``omega = (w0, w1, w2)``, ``k = (k0, k1, k2)``, ``V_G = (g0, g1, g2)``, ``z_G`` the height of
+    G; ``A_G`` is :func:`stability.models.inertia.inertia_g`. Plain arithmetic registered with
+    numba: floats, numpy arrays (elementwise), compiled callers."""
+    a_g = inertia_g(q, mu)
+    wk = w0 * k0 + w1 * k1 + w2 * k2
+    translational = 0.5 * mu * (g0 * g0 + g1 * g1 + g2 * g2)
+    spin = 0.5 * sigma * (wk * wk)
+    transverse = 0.5 * a_g * ((w0 * w0 + w1 * w1 + w2 * w2) - wk * wk)
+    potential = mu * fr_inv * z_g
+    return translational, spin, transverse, potential, ((translational + spin) + transverse) + potential
 
 
 def energy_parts(omega: np.ndarray, k: np.ndarray, v_g: np.ndarray, z_g: np.ndarray, *,
@@ -52,26 +86,20 @@ def energy_parts(omega: np.ndarray, k: np.ndarray, v_g: np.ndarray, z_g: np.ndar
         ``kinetic_translational``, ``kinetic_spin``, ``kinetic_transverse``, ``potential``,
         ``energy``.
     """
-    a_g = 1.0 - mu * q * q
-    wk = np.einsum("ij,ij->i", omega, k)
-    parts = {
-        "kinetic_translational": 0.5 * mu * np.einsum("ij,ij->i", v_g, v_g),
-        "kinetic_spin": 0.5 * sigma * wk ** 2,
-        "kinetic_transverse": 0.5 * a_g * (np.einsum("ij,ij->i", omega, omega) - wk ** 2),
-        "potential": mu * fr_inv * z_g,
-    }
-    parts["energy"] = sum(parts.values())
-    return parts
+    w, kk, g = np.asarray(omega), np.asarray(k), np.asarray(v_g)
+    terms = energy_terms(w[:, 0], w[:, 1], w[:, 2], kk[:, 0], kk[:, 1], kk[:, 2], g[:, 0], g[:, 1], g[:, 2],
+                         np.asarray(z_g), q, fr_inv, sigma, mu)
+    return dict(zip(ENERGY_PARTS, terms))
 
 
 @njit(cache=True)
 def jellett_integral(w0, w1, w2, k0, k1, k2, q, sigma, mu):
     """The integral of eq. (10) at one state, ``(q k + K) . I_G omega`` (Jellett's integral).
 
-    ``I_G omega = A_G omega + (sigma - A_G) (omega . k) k`` with ``A_G = 1 - mu q^2``. Compiled;
-    the components may be real or complex (complex-step derivatives). :func:`h_cg` is the same
-    formula over many states."""
-    a_g = 1.0 - mu * q * q
+    ``I_G omega = A_G omega + (sigma - A_G) (omega . k) k`` with ``A_G = 1 - mu q^2``
+    (:func:`stability.models.inertia.inertia_g`, compiled in). Compiled; the components may be
+    real or complex (complex-step derivatives). :func:`h_cg` is the same formula over many states."""
+    a_g = inertia_g(q, mu)
     wk = w0 * k0 + w1 * k1 + w2 * k2
     b = (sigma - a_g) * wk
     return (q * k0) * (a_g * w0 + b * k0) + (q * k1) * (a_g * w1 + b * k1) + (1.0 + q * k2) * (a_g * w2 + b * k2)

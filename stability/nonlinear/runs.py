@@ -16,13 +16,16 @@ coefficient ``alpha_k / slip_scale``; see
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from .._version import package_version
+from ..interrupts import deferred
 from ..products import PRODUCT_ATTR
+from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
@@ -31,7 +34,7 @@ from .quantities import energy_parts, h_cg
 from ..parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
                          check_integer, check_interval, check_positive)
 
-__all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector"]
+__all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector", "check_run_memory"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA. Measured
 #: (``tippe bench --suite integrators``; a linear-regime run, q = -0.1, 200 time units, rtol
@@ -146,6 +149,48 @@ def _auto_method(model: str, params: dict[str, float]) -> str:
     return "LSODA" if (rate > STIFF_RATE or params["alpha_k"] > 0) else "dopri5"
 
 
+def check_run_memory(model: str, n_times: int, *, t_end: float, dt: float | None) -> None:
+    """Refuse a run whose ``n_times`` output times cannot fit in memory
+    (:func:`stability.resources.check_memory`), suggesting a ``dt`` that fits."""
+    need = simulate_bytes(model, n_times)
+    limit, _ = memory_limit()
+    if need <= limit:
+        return
+    per = need / n_times
+    fit = max(1, int(limit // per) - 1)
+    if dt is not None:
+        what = f"simulate: {n_times} output times (t_end / dt = {t_end:.6g} / {dt:.6g})"
+        parameter = "t_end / dt"
+        suggestion = float(f"{t_end / fit:.2g}")
+        while t_end / suggestion + 1 > fit:
+            suggestion *= 1.25
+        way_out = (f"give a larger dt (dt = {suggestion:.2g} gives {int(np.ceil(t_end / suggestion)) + 1} output "
+                   "times), or a shorter t_end and continue from the run's last state")
+    else:
+        what = f"simulate: {n_times} output times (t_eval)"
+        parameter = "the length of t_eval"
+        way_out = f"give fewer t_eval points (at most about {fit}), or a shorter t_end"
+    check_memory(need, what=what, parameter=parameter, way_out=way_out)
+
+
+def _progress(how: bool | Callable[[float], None], t_end: float) -> tuple[Callable[[float], None] | None,
+                                                                           Callable[[], None]]:
+    """``(report(t), close())``: a tqdm bar over the time (True), the caller's function, or nothing."""
+    if callable(how):
+        return how, lambda: None
+    if not how:
+        return None, lambda: None
+    from tqdm import tqdm
+
+    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False, delay=1.0,
+               bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]")
+
+    def report(t: float) -> None:
+        bar.update(max(0.0, min(t_end, float(t)) - bar.n))
+
+    return report, bar.close
+
+
 def _attrs(long_name: str, units: str = _ONE, **extra: str) -> dict[str, str]:
     return {"long_name": long_name, "units": units, **extra}
 
@@ -155,7 +200,7 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
              mu: Any = DEFAULT_MU, friction: str = "isotropic", normal: str = "equilibrium",
              slip_scale: float = DEFAULT_SLIP_SCALE, method: str = "auto", rtol: float = 1e-9,
              atol: float = 1e-12, dt: float = 0.1, t_eval: Any = None, step: float | None = None,
-             max_steps: int = 50_000_000) -> xr.Dataset:
+             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False) -> xr.Dataset:
     """Integrate a nonlinear model of the top from a given state.
 
     Parameters
@@ -196,6 +241,10 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         Step limit of every method (the compiled ``"dopri5"`` and scipy's, which are stepped
         one by one for this): a run that hits it stops with a warning and ``status = -1``
         instead of running for hours (stiff friction with an explicit method).
+    progress : bool or callable, default False
+        A progress bar on stderr (True; shown once the run has taken a second), or
+        ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
+        default.
 
     Returns
     -------
@@ -211,6 +260,16 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     ------
     TypeError, ValueError
         For bad input; the message names the parameter, its value and the allowed range.
+    stability.errors.ResourceError
+        The output times would need more memory than is available (about
+        :data:`stability.resources.SIMULATE_BYTES_PER_TIME` bytes each); the message suggests a
+        ``dt``.
+
+    Notes
+    -----
+    The run is interruptible: Ctrl-C (SIGINT) is acted on between slices of the compiled
+    integration (milliseconds apart) and raises ``KeyboardInterrupt`` there
+    (:mod:`stability.interrupts`).
 
     Examples
     --------
@@ -236,18 +295,25 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         if n > 10**8:
             raise ValueError(f"dt = {dt:.6g} gives {n} output times up to t_end = {t_end:.6g}; "
                              "the allowed range is t_end / dt <= 1e8")
+        check_run_memory(m.name, n + 1, t_end=t_end, dt=dt)
         t_eval = np.linspace(0.0, float(t_end), n + 1)
     else:
         t_eval = as_parameter("t_eval", t_eval)
         if (t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0 or np.any(np.diff(t_eval) <= 0)
                 or not np.isclose(t_eval[-1], t_end)):
             raise ValueError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
+        check_run_memory(m.name, t_eval.size, t_end=t_end, dt=None)
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = _auto_method(m.name, params)
     y0 = initial_state(m.name, omega, k, velocity)
-    sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
-                    max_steps=max_steps)
+    report, close = _progress(progress, float(t_end))
+    try:
+        with deferred():
+            sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
+                            max_steps=max_steps, progress=report)
+    finally:
+        close()
     if sol.status < 0:
         warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
                       stacklevel=2)

@@ -2,24 +2,41 @@
 
 For each parameter point :func:`validate`
 
-1. takes the leading mode ``s`` of the first-principles linearisation
-   (:func:`stability.jacobian_eigenvalues`: the mode with the largest real part among the
-   nonzero ones, ties to the larger frequency; the structural zero mode of the sliding model
-   is skipped) and its eigenvector ``(omega, Phi[, V])``;
-2. starts the nonlinear model (:func:`stability.simulate`) on the upright spin
+1. takes the leading mode ``s``: the mode with the largest growth rate (ties to the larger
+   frequency) of the first-principles linearisation, from the spectral kernel
+   (:func:`stability.spectrum` of the registered linear model that is the nonlinear model's
+   linearisation, ``NonlinearModel.linear_model``: per-root accuracy and error bounds at any
+   scale); a structural zero mode (``s = 0`` with error bound 0, from an exactly zero
+   coefficient: the sliding model at ``fr_inv = 0``) is skipped by its structure, never by
+   being small beside the largest mode (which at ``alpha_v = 1e12``, slip mode ``-1.3e12``,
+   made the O(1) modes look like zeros and picked the slip mode);
+2. takes the eigenvector of the nonlinear model's Jacobian (:func:`stability.jacobian_eigenvalues`)
+   for the eigenvalue nearest ``s``, sharpened by two steps of inverse iteration with the shift
+   ``s``, and the Jacobian's eigenvalue with its error bound ``jacobian_bound``
+   (``8 n u ||A||_F kappa``, ``kappa`` the eigenvalue's condition number: LAPACK's error is
+   absolute, ``~u`` of the largest mode, so at ``alpha_v = 1e9`` an O(1) mode's growth rate
+   ``1e-11`` is not resolved, and ``jacobian_resolved`` says so);
+3. starts the nonlinear model (:func:`stability.simulate`) on the upright spin
    ``omega = k = K`` plus that eigenvector scaled to a tilt ``|Phi| = amplitude``
    (default ``1e-4`` rad: the neglected terms are ``O(|Phi|^2)`` relative, ``1e-8``, far below
-   the 1 % target even after the growth of the run);
-3. integrates over ``n_efold`` e-folding times ``1 / |Re s|`` (``n_periods`` periods
+   the 1 % target even after the growth of the run), integrated by ``method`` (default
+   ``"auto"``: the compiled Dormand-Prince, or LSODA where the slip mode is stiff, as
+   :func:`stability.simulate` decides);
+4. integrates over ``n_efold`` e-folding times ``1 / |Re s|`` (``n_periods`` periods
    ``2 pi / |Im s|`` for a neutral mode), capped at ``max_time``;
-4. fits ``log |Phi(t)|`` and the unwrapped phase of ``Phi(t) = k_1 + i k_2`` by straight
+5. fits ``log |Phi(t)|`` and the unwrapped phase of ``Phi(t) = k_1 + i k_2`` by straight
    lines: the slopes are the measured growth rate and (fixed-frame) frequency;
-5. returns the predictions of the registered linear operator of the same name (eq. 11 for
+6. returns the predictions of the registered linear operator of the same name (eq. 11 for
    ``"sliding"``, eq. (8) for ``"fixed_pivot"`` and ``"rolling"``) and of the Jacobian, the
-   measured values and the relative errors.
+   measured values, the relative errors, and whether the measurement is to be trusted.
 
-A growth rate is *resolved* when ``|Re s| > 1e-3 |s|``; elsewhere the relative error of the
-growth rate is meaningless and the error is reported relative to ``|s|``.
+A measurement is *resolved* only if everything holds: the growth rate is resolved,
+``|Re s| > 1e-3 |s|`` (elsewhere the relative error of the growth rate is meaningless and the
+error is reported relative to ``|s|``); the run succeeded (``status == 0``); every sample is
+finite; and the log-linear fit is good (RMS residual of ``log |Phi|`` at most
+:data:`FIT_RMS`). The variable ``status`` says which failed ("ok" otherwise); a run that
+failed or gave non-finite samples also has ``sign_agrees = False`` and is reported by a
+``RuntimeWarning``.
 
 For ``"rolling"`` the registered operator is eq. (8) as printed, which is not the rolling
 sphere's linearisation; its prediction is its own leading mode and disagrees with the run
@@ -32,6 +49,7 @@ exponential with an algebraic (linear-in-time) fit of the tilt amplitude.
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
@@ -43,23 +61,51 @@ from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS
 from ..parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
 from .runs import simulate
-from ..linear.spectra import eigenvalues
+from ..linear.modes import structural_zeros
+from ..linear.roots import UNIT_ROUNDOFF
+from ..linear.spectra import eigenvalues, spectrum
 
-__all__ = ["validate", "coulomb_growth", "leading_mode", "RESOLVED"]
+__all__ = ["validate", "coulomb_growth", "leading_mode", "jacobian_modes", "RESOLVED", "FIT_RMS"]
 
 #: a growth rate is compared relatively where |Re s| > RESOLVED |s|
 RESOLVED: float = 1e-3
 
+#: the largest RMS residual of the fit of log|Phi(t)| by a straight line for a resolved measurement
+#: (an exponential mode fits to ~1e-8: the O(|Phi|^2) terms and the integrator's error)
+FIT_RMS: float = 1e-3
 
-def leading_mode(values: np.ndarray, zero_tol: float = 1e-12) -> int:
-    """Index of the leading mode: largest real part among the nonzero ``s``, ties to larger ``Im s``."""
-    scale = max(float(np.max(np.abs(values))), 1e-300)
-    cand = [i for i, v in enumerate(values) if abs(v) > zero_tol * max(scale, 1.0)]
-    if not cand:
-        return 0
-    top = max(values[i].real for i in cand)
-    near = [i for i in cand if values[i].real >= top - 1e-9 * scale]
+
+def leading_mode(values: np.ndarray, bound: np.ndarray | None = None) -> int:
+    """Index of the leading mode: the largest real part among the modes that are not
+    structural zeros (``s = 0`` exactly with an error bound of exactly 0,
+    :func:`stability.linear.modes.structural_zeros`; without ``bound``, ``s = 0`` exactly);
+    real parts equal within their error bounds (``bound``; exactly equal without it) tie, and
+    the larger ``Im s`` wins. Every mode counts, however small beside the largest."""
+    values = np.asarray(values, dtype=complex)
+    e = np.zeros(values.shape) if bound is None else np.asarray(bound, dtype=float)
+    zero = structural_zeros(values.real, values.imag, None if bound is None else e)
+    cand = [i for i in range(values.size) if not zero[i]] or list(range(values.size))
+    best = max(cand, key=lambda i: values[i].real)
+    near = [i for i in cand if values[i].real >= values[best].real - (e[i] + e[best])]
     return max(near, key=lambda i: values[i].imag)
+
+
+def jacobian_modes(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Eigenvalues, unit eigenvectors (columns) and error bounds of a Jacobian ``A`` (n, n).
+
+    The bound of eigenvalue ``j`` is ``8 n u ||A||_F kappa_j`` with the condition number
+    ``kappa_j = ||x_j|| ||y_j|| / |y_j^H x_j|`` (right and left eigenvectors; the rows of
+    ``V^-1`` are the left ones scaled so that ``y_j^H x_j = 1``): LAPACK's backward error
+    ``~n u ||A||`` carried to the eigenvalue to first order. Absolute: a mode far smaller than
+    the largest is known only to ``~u ||A||``.
+    """
+    ev, vec = np.linalg.eig(A)
+    n = A.shape[0]
+    try:
+        kappa = np.linalg.norm(np.linalg.inv(vec), axis=1) * np.linalg.norm(vec, axis=0)
+    except np.linalg.LinAlgError:  # defective to working precision
+        kappa = np.full(n, np.inf)
+    return ev, vec, 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
 
 
 def _duration(s: complex, n_efold: float, n_periods: float, max_time: float) -> float:
@@ -73,27 +119,47 @@ def _duration(s: complex, n_efold: float, n_periods: float, max_time: float) -> 
     return min(t, max_time)
 
 
-def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float]:
-    """Slopes of ``log|Phi|`` and of the unwrapped phase (least squares)."""
-    g = np.polyfit(t, np.log(np.abs(phi)), 1)[0]
+def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
+    """Slopes of ``log|Phi|`` and of the unwrapped phase (least squares), and the RMS residual
+    of the first fit; NaN if fewer than two samples are finite and nonzero."""
+    ok = np.isfinite(phi) & (phi != 0)
+    if ok.sum() < 2:
+        return np.nan, np.nan, np.nan
+    t, phi = t[ok], phi[ok]
+    log_amp = np.log(np.abs(phi))
+    g_fit = np.polyfit(t, log_amp, 1)
     w = np.polyfit(t, np.unwrap(np.angle(phi)), 1)[0]
-    return float(g), float(w)
+    rms = float(np.sqrt(np.mean((np.polyval(g_fit, t) - log_amp) ** 2)))
+    return float(g_fit[0]), float(w), rms
 
 
 def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: float,
                n_periods: float, max_time: float, rtol: float, atol: float,
-               method: str = "dopri5") -> dict[str, float]:
+               method: str = "auto") -> dict[str, Any]:
     m = get_nonlinear_model(model)
     lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
+    # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
+    fp = spectrum(m.linear_model, **lin)
+    s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
     A, _ = transverse_jacobian(model, **lin)
-    ev, vec = np.linalg.eig(A)
-    i = leading_mode(ev)
-    s = complex(ev[i])
-    v = vec[:, i] / vec[1, i] * amplitude          # |Phi| = amplitude, Phi real at t = 0
-    s_lin_all = eigenvalues(model, **lin)
-    s_lin = complex(s_lin_all[leading_mode(s_lin_all)])
-    if m.name != "rolling":   # same operator: predict the same mode (nearest root)
-        s_lin = complex(s_lin_all[np.argmin(np.abs(s_lin_all - s))])
+    ev, vec, bound = jacobian_modes(A)
+    i = int(np.argmin(np.abs(ev - s)))
+    s_jac, jac_bound = complex(ev[i]), float(bound[i])
+    x = vec[:, i]
+    for _ in range(2):  # inverse iteration with the kernel's eigenvalue as the shift
+        try:
+            y = np.linalg.solve(A - s * np.eye(len(x)), x)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(y)) or not np.any(y):
+            break
+        x = y / np.linalg.norm(y)
+    v = x / x[1] * amplitude          # |Phi| = amplitude, Phi real at t = 0
+    if m.name == m.linear_model:   # the registered operator is the linearisation: the same mode
+        s_lin = s
+    else:                          # eq. (8) as printed for "rolling": its own leading mode
+        sp = spectrum(m.name, **lin)
+        s_lin = complex(sp.eigenvalues[leading_mode(sp.eigenvalues, sp.error_bound)])
     y = upright_state(model)
     y[0], y[1] = v[0].real, v[0].imag
     y[3], y[4] = v[1].real, v[1].imag
@@ -104,28 +170,55 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     t_end = _duration(s, n_efold, n_periods, max_time)
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
-    ds = simulate(model, t_end=t_end, t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3],
-                  k=y[3:6], velocity=velocity, rtol=rtol, atol=atol, method=method,
-                  **{k: v for k, v in params.items() if k != "alpha_k"})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
+        ds = simulate(model, t_end=t_end, t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3],
+                      k=y[3:6], velocity=velocity, rtol=rtol, atol=atol, method=method,
+                      **{k: v for k, v in params.items() if k != "alpha_k"})
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
-    g, w = _fit(ds.time.values, phi)
-    resolved = abs(s.real) > RESOLVED * abs(s)
+    g, w, rms = _fit(ds.time.values, phi)
+    growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
+    run_status = int(ds.attrs.get("status", 0))
+    finite = bool(np.all(np.isfinite(phi)))
+    if run_status != 0:
+        status = f"integration failed ({ds.attrs.get('method')}): {ds.attrs.get('message', run_status)}"
+    elif not finite:
+        status = "the run's samples are not all finite"
+    elif not rms <= FIT_RMS:
+        status = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
+    elif not growth_resolved:
+        status = f"growth rate not resolved: |Re s| <= {RESOLVED:g} |s| (its error is relative to |s|)"
+    else:
+        status = "ok"
+    failed = run_status != 0 or not finite or not rms <= FIT_RMS
+    resolved = status == "ok"
 
     def rel(meas: float, pred: float, scale: float) -> float:
         return abs(meas - pred) / (abs(pred) if abs(pred) > 0 else scale)
 
+    if failed:
+        agrees = False
+    elif growth_resolved:
+        agrees = bool(np.sign(g) == np.sign(s.real))
+    else:
+        agrees = bool(abs(g) <= RESOLVED * abs(s))
     return {
         "predicted_growth_rate": s_lin.real, "predicted_frequency": s_lin.imag,
-        "jacobian_growth_rate": s.real, "jacobian_frequency": s.imag,
+        "jacobian_growth_rate": s_jac.real, "jacobian_frequency": s_jac.imag,
+        "jacobian_bound": jac_bound, "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
         "measured_growth_rate": g, "measured_frequency": w,
-        "growth_rate_error": rel(g, s_lin.real, abs(s_lin)) if resolved else abs(g - s_lin.real) / abs(s_lin),
+        "growth_rate_error": rel(g, s_lin.real, abs(s_lin)) if growth_resolved else abs(g - s_lin.real) / abs(s_lin),
         "frequency_error": rel(w, s_lin.imag, abs(s_lin)),
-        "growth_rate_error_jacobian": rel(g, s.real, abs(s)) if resolved else abs(g - s.real) / abs(s),
-        "frequency_error_jacobian": rel(w, s.imag, abs(s)),
+        "growth_rate_error_jacobian": (rel(g, s_jac.real, abs(s_jac)) if growth_resolved
+                                       else abs(g - s_jac.real) / abs(s_jac)),
+        "frequency_error_jacobian": rel(w, s_jac.imag, abs(s_jac)),
         "resolved": bool(resolved),
-        "sign_agrees": bool(np.sign(g) == np.sign(s.real)) if resolved else bool(abs(g) <= RESOLVED * abs(s)),
+        "sign_agrees": agrees,
         "duration": t_end,
         "final_tilt": float(abs(phi[-1])),
+        "fit_rms": rms,
+        "status": status,
+        "_failed": failed,
     }
 
 
@@ -142,17 +235,25 @@ _VAR_ATTRS = {
     "growth_rate_error_jacobian": "relative error of the measured growth rate against the Jacobian "
                                   "(relative to |s| where the growth rate is not resolved)",
     "frequency_error_jacobian": "relative error of the measured frequency against the Jacobian",
-    "resolved": "growth rate resolved: |Re s| > 1e-3 |s|",
-    "sign_agrees": "sign of the measured growth rate agrees with the Jacobian's (neutral where unresolved)",
+    "jacobian_bound": "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
+                      "(absolute: ~u of the largest mode)",
+    "jacobian_resolved": "the Jacobian's growth rate exceeds four times its error bound (else compare "
+                         "with predicted_growth_rate, from the spectral kernel)",
+    "resolved": "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
+                "samples are finite and log|Phi| fits a straight line (see status)",
+    "sign_agrees": "sign of the measured growth rate agrees with the linearisation's (neutral where the "
+                   "growth rate is unresolved; False where the run failed)",
     "duration": "length of the run",
     "final_tilt": "tilt |Phi| at the end of the run",
+    "fit_rms": "RMS residual of the straight-line fit of log|Phi(t)|",
+    "status": "ok, or why the measurement is not resolved",
 }
 
 
 def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
              mu: Any = DEFAULT_MU, amplitude: float = 1e-4, n_efold: float = 4.0,
              n_periods: float = 10.0, max_time: float = 3000.0, rtol: float = 1e-11,
-             atol: float = 1e-15, method: str = "dopri5") -> xr.Dataset:
+             atol: float = 1e-15, method: str = "auto") -> xr.Dataset:
     """Compare linear growth rates and frequencies with short nonlinear runs.
 
     Parameters
@@ -173,16 +274,21 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         Cap on the length of a run.
     rtol, atol : float
         Tolerances of the integrator.
-    method : str, default "dopri5"
-        Integrator of the runs: the compiled Dormand-Prince 5(4), or a scipy method
-        (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``); the integrator
-        benchmark (``tippe bench --suite integrators``) compares them on the fitted growth rate.
+    method : str, default "auto"
+        Integrator of the runs: ``"auto"`` (the compiled Dormand-Prince 5(4), or LSODA where
+        the slip mode is stiff, as :func:`stability.simulate` decides), ``"dopri5"``, or a
+        scipy method (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``); the
+        integrator benchmark (``tippe bench --suite integrators``) compares them on the fitted
+        growth rate.
 
     Returns
     -------
     xarray.Dataset
-        Along ``point``: the parameters, ``predicted_*`` (linear operator), ``jacobian_*``,
-        ``measured_*``, the relative errors, ``resolved`` and ``sign_agrees``.
+        Along ``point``: the parameters, ``predicted_*`` (linear operator), ``jacobian_*``
+        (with ``jacobian_bound``, ``jacobian_resolved``), ``measured_*``, the relative errors,
+        ``resolved``, ``sign_agrees``, ``fit_rms`` and ``status`` (module docstring). A point
+        whose run failed (or whose samples are not finite, or do not fit) is reported by a
+        ``RuntimeWarning``.
 
     Examples
     --------
@@ -209,7 +315,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     if named:  # an atlas subset: broadcast by dimension name (the grid of the subset)
         for k, v in zip(named, xr.broadcast(*named.values())):
             given[k] = v.values
-    arrays, _ = check_domain(**given)
+    arrays, _ = check_domain(maskable=False, **given)
     flat = {k: np.ravel(v) for k, v in arrays.items()}
     if m.name == "sliding" and np.any(flat["alpha_v"] == 0):
         raise ValueError("alpha_v = 0 has no exponential mode to validate (frictionless, or "
@@ -221,16 +327,22 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     max_time = check_positive("max_time", max_time)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     atol = check_interval("atol", atol, 0.0, 1.0)
-    method = check_choice("method", method, ("dopri5",) + tuple(SCIPY_METHODS))
+    method = check_choice("method", method, ("auto", "dopri5") + tuple(SCIPY_METHODS))
     rows = []
     for j in range(flat["q"].size):
         pt = {k: float(v[j]) for k, v in flat.items()}
-        rows.append(_one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol, method))
+        row = _one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol, method)
+        if row.pop("_failed"):
+            where = ", ".join(f"{k} = {v:g}" for k, v in pt.items())
+            warnings.warn(f"validate({m.name!r}): point {j} ({where}): {row['status']}; its measurement is not "
+                          "resolved", RuntimeWarning, stacklevel=2)
+        rows.append(row)
     data = {}
     for name in rows[0]:
-        vals = np.array([r[name] for r in rows])
-        data[name] = ("point", vals, {"long_name": _VAR_ATTRS[name],
-                                      "units": "1" if name != "duration" else "1"})
+        vals = np.array([r[name] for r in rows], dtype=object if name == "status" else None)
+        data[name] = ("point", vals, {"long_name": _VAR_ATTRS[name], "units": "1"}
+                      if name not in ("status", "resolved", "sign_agrees", "jacobian_resolved")
+                      else {"long_name": _VAR_ATTRS[name]})
     coords = {k: ("point", v, {"long_name": LONG_NAMES[k], "units": "1"}) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
@@ -280,7 +392,9 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
     t_end = check_positive("t_end", t_end)
     A, _ = transverse_jacobian("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k, mu=mu)
     ev, vec = np.linalg.eig(A)
-    i = leading_mode(ev)
+    lead = spectrum("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k, mu=mu)
+    s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
+    i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
     k = [v[1].real, v[1].imag, np.sqrt(1 - abs(v[1]) ** 2)]
     run = dict(t_end=t_end, dt=t_end / 3000, omega=[v[0].real, v[0].imag, 1.0], k=k,

@@ -22,6 +22,9 @@ Functions (imported on first use, so that ``import stability`` does not import m
 * nonlinear runs: :func:`plot_run`, the paper's Figs. 5-9 (:mod:`stability.plotting.scene_plots`);
 * validation: :func:`plot_validation`, :func:`plot_coulomb_growth`;
 * a real top: :func:`plot_critical_spin`;
+* steady states: :func:`plot_steady_states` (the states of a Jellett level on its effective
+  potential), :func:`plot_final_state`, :func:`plot_bifurcation`, :func:`plot_class_map`,
+  :func:`plot_settle`, :func:`plot_settle_approach`;
 * recipes: :func:`recipe_figure`; benchmarks: :func:`work_precision_figure`, :func:`suite_figure`.
 """
 
@@ -38,6 +41,8 @@ _EXPORTS: dict[str, str] = {
     "plot_run": "scene_plots",
     "plot_validation": "validation_plots", "plot_coulomb_growth": "validation_plots",
     "plot_critical_spin": "spin_plots",
+    "plot_steady_states": "steady_plots", "plot_final_state": "steady_plots", "plot_bifurcation": "steady_plots",
+    "plot_class_map": "steady_plots", "plot_settle": "steady_plots", "plot_settle_approach": "steady_plots",
     "recipe_figure": "recipe_figures",
     "work_precision_figure": "work_precision", "suite_figure": "work_precision",
 }

@@ -41,6 +41,10 @@ PLOTS: dict[str, str | Callable[..., Any]] = {
     "validation": "stability.plotting.validation_plots:plot_validation",
     "coulomb_growth": "stability.plotting.validation_plots:plot_coulomb_growth",
     "critical_spin": "stability.plotting.spin_plots:plot_critical_spin",
+    "steady_states": "stability.plotting.steady_plots:plot_steady_states",
+    "steady_branch": "stability.plotting.steady_plots:plot_bifurcation",
+    "final_state": "stability.plotting.steady_plots:plot_final_state",
+    "top_classes": "stability.plotting.steady_plots:plot_class_map",
 }
 
 

@@ -1,8 +1,12 @@
-"""Figures of the steady states: the bifurcation diagram, the class map, a run settling.
+"""Figures of the steady states: the states of a level, the final state, the bifurcation
+diagram, the class map, a run settling.
 
 Every function takes datasets (computed by :mod:`stability.steady` and the recipes) and an
-optional ``ax``, and returns ``(Figure, Axes)``; none computes anything. Stable states are
-solid lines, unstable ones dashed, marginal points (branch points, folds) markers.
+optional ``ax``, and returns ``(Figure, Axes)``; none computes anything. Lines: stable states
+solid, unstable ones dashed, marginal points (branch points, folds) markers. The states of a
+level (:func:`plot_steady_states`, :func:`plot_final_state`) are drawn on the effective
+potential ``U_J`` against the tilt (the curve the dataset carries): stable filled, unstable
+open, marginal half filled (:data:`FILL_STYLES`).
 """
 
 from __future__ import annotations
@@ -15,10 +19,13 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from ..parameters import SYMBOLS
+from ._layout import axes_or_new
 
-__all__ = ["plot_bifurcation", "plot_class_map", "plot_settle", "plot_settle_approach", "STABLE_STYLE",
-           "UNSTABLE_STYLE", "X_AXES"]
+__all__ = ["plot_steady_states", "plot_final_state", "plot_bifurcation", "plot_class_map", "plot_settle",
+           "plot_settle_approach", "STABLE_STYLE", "UNSTABLE_STYLE", "X_AXES", "FILL_STYLES", "FLAG_COLOURS"]
 
+#: size of a new figure (inches)
+FIGSIZE = (6.4, 4.6)
 #: line styles of stable and unstable states
 STABLE_STYLE = dict(linestyle="-", linewidth=2.0, color="C0")
 UNSTABLE_STYLE = dict(linestyle="--", linewidth=1.3, color="C3")
@@ -27,6 +34,13 @@ X_AXES = {"jellett": "Jellett's integral J (units A0 Omega)",
           "upright_equivalent_spin": "equivalent upright spin J / (sigma (1 + q)) (units of Omega)",
           "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J"}
 
+#: marker fill style of a steady state by its stability flag (0 stable, 1 marginal, 2 unstable)
+FILL_STYLES = {0: "full", 1: "left", 2: "none"}
+#: marker colour of a steady state by its flag (those of the stable and unstable lines; marginal grey)
+FLAG_COLOURS = {0: STABLE_STYLE["color"], 1: "0.35", 2: UNSTABLE_STYLE["color"]}
+_FLAG_NAMES = {0: "stable", 1: "marginal", 2: "unstable"}
+_TILT_LABEL = "tilt of the axis (deg): 0 upright, 180 inverted"
+
 _MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerfacecolor="w", linestyle="none",
                                  label="branch point (on a vertical state)"),
             "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
@@ -34,11 +48,117 @@ _MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerface
             "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)")}
 
 
-def _axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 4.6)) -> tuple[Figure, Axes]:
-    if ax is None:
-        fig = Figure(figsize=figsize, layout="constrained")
-        return fig, fig.add_subplot()
-    return ax.figure, ax
+
+def _parameters_text(attrs: dict) -> str:
+    """``q = .., sigma = .., Fr^-1 = .., alpha_v = ..`` from a dataset's attributes."""
+    return ", ".join(f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}" for name in ("q", "sigma", "fr_inv", "alpha_v")
+                     if name in attrs)
+
+
+def _level(ax: Axes, tilt_grid: np.ndarray, potential: np.ndarray, tilts: np.ndarray, energies: np.ndarray,
+           flags: np.ndarray, kinds: np.ndarray, tilt_range: tuple[float, float] | None) -> None:
+    """The curve ``U_J(tilt)`` and every steady state on it, marked by its flag and labelled by kind."""
+    ax.plot(tilt_grid, potential, color="k", linewidth=1.2, label=r"effective potential $U_J$(tilt)")
+    for tilt, energy, flag, kind in zip(tilts, energies, flags, kinds):
+        flag, kind = int(flag), str(kind)
+        where = f"{kind} {tilt:.4g} deg" if kind == "tilted" else kind
+        ax.plot([tilt], [energy], linestyle="none", marker="o", markersize=9, markeredgewidth=1.5,
+                fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag], zorder=5, label=f"{where}: {_FLAG_NAMES[flag]}")
+        ax.annotate(kind, (tilt, energy), xytext=(0, -15) if kind == "tilted" else (0, 9), textcoords="offset points",
+                    ha="center", fontsize=8)
+    ax.set_xlabel(_TILT_LABEL)
+    ax.set_ylabel(r"$U_J = J^2/(2D) + \mu\,$Fr$^{-1}(1 + q\cos\theta)$ (units $A_0\Omega^2$)", fontsize=9)
+    if tilt_range is None:
+        ax.set_xlim(-5, 185)
+        ax.set_xticks([0, 30, 60, 90, 120, 150, 180])
+    else:
+        lo, hi = float(min(tilt_range)), float(max(tilt_range))
+        inside = (tilt_grid >= lo) & (tilt_grid <= hi)
+        ax.set_xlim(lo, hi)
+        if inside.any():
+            u_lo, u_hi = float(np.min(potential[inside])), float(np.max(potential[inside]))
+            pad = 0.08 * (u_hi - u_lo) or 1e-12 * max(1.0, abs(u_hi))
+            ax.set_ylim(u_lo - pad, u_hi + 2 * pad)
+
+
+def plot_steady_states(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
+                       ) -> tuple[Figure, Axes]:
+    """Every steady state of one Jellett level on its effective potential.
+
+    The steady states of the level ``J`` are the critical points of ``U_J(c) = J^2 / (2 D(c))
+    + mu Fr^-1 (1 + q c)`` on ``(-1, 1)`` and its two ends (docs/steady_states.md, the energy
+    principle): a minimum is stable, a maximum unstable. The curve is the dataset's
+    ``effective_potential`` over ``tilt_grid``; each state is marked at its tilt and energy
+    (stable filled, unstable open, marginal half filled) and labelled by its kind.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`stability.steady_states` (``effective_potential`` over ``tilt_grid``; ``tilt``,
+        ``energy``, ``stability``, ``kind`` over ``state``).
+    ax : matplotlib.axes.Axes, optional
+    tilt_range : (float, float), optional
+        Degrees: draw only this range of tilts, the energy axis fitted to the curve there
+        (the differences of energy between neighbouring states can be 1e-5 of the whole range).
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
+    _level(ax, ds.tilt_grid.values, ds.effective_potential.values, ds.tilt.values, ds.energy.values,
+           ds.stability.values, ds.kind.values, tilt_range)
+    ax.set_title(f"steady states on the Jellett level J = {float(ds.attrs['jellett']):.6g}: "
+                 f"{_parameters_text(ds.attrs)}", fontsize=9)
+    ax.legend(fontsize=7, loc="best")
+    return fig, ax
+
+
+def plot_final_state(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
+                     ) -> tuple[Figure, Axes]:
+    """Where a motion ends, on the effective potential of its Jellett level.
+
+    The motion keeps ``J`` and loses energy, and ``E >= U_J(tilt)`` always: it ends on a steady
+    state of its level below its initial energy ``E0`` (docs/steady_states.md, sec. 5). Drawn:
+    ``U_J`` of the level (the dataset's ``effective_potential``), the steady states of the level
+    (stable filled, unstable open, marginal half filled, labelled by kind), the initial energy
+    ``E0`` (a horizontal line; the tilts where ``U_J <= E0`` shaded: the states there are
+    reachable), the initial state (a cross at its tilt and ``E0``), the end (a star) and the
+    method (``"jellett"`` or ``"simulation"``) in the title.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :meth:`stability.steady.final.FinalState.to_dataset` (product ``final_state``).
+    ax : matplotlib.axes.Axes, optional
+    tilt_range : (float, float), optional
+        Degrees: draw only this range of tilts, the energy axis fitted to the curve there.
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
+    grid, u = ds.tilt_grid.values, ds.effective_potential.values
+    e0 = float(ds.initial_energy)
+    ax.fill_between(grid, u, e0, where=u <= e0, interpolate=True, facecolor="C2", alpha=0.15, linewidth=0.0,
+                    label=r"$U_J \leq E_0$: reachable")
+    ax.axhline(e0, color="C2", linestyle="--", linewidth=1.0, label=f"initial energy E0 = {e0:.8g}")
+    _level(ax, grid, u, ds.candidate_tilt.values, ds.candidate_energy.values, ds.candidate_stability.values,
+           ds.candidate_kind.values, tilt_range)
+    ax.plot([float(ds.initial_tilt)], [e0], linestyle="none", marker="x", markersize=8, color="C2",
+            label=f"initial state, tilt {float(ds.initial_tilt):.4g} deg")
+    tilt, kind, method = float(ds.tilt), str(ds.attrs["kind"]), str(ds.attrs["method"])
+    if np.isfinite(tilt):
+        ax.plot([tilt], [float(ds.energy)], linestyle="none", marker="*", markersize=22, color="gold",
+                markeredgecolor="k", zorder=4, label=f"end: {kind}, tilt {tilt:.6g} deg")
+        end = f"{kind} at {tilt:.6g} deg"
+    else:
+        end = kind
+    ax.set_title(f"final state (method: {method}): {end}; J = {float(ds.jellett):.6g}\n"
+                 f"{_parameters_text(ds.attrs)}", fontsize=9)
+    ax.legend(fontsize=7, loc="best")
+    return fig, ax
 
 
 def _pieces(x: np.ndarray, y: np.ndarray, stable: np.ndarray, marginal: np.ndarray):
@@ -85,7 +205,7 @@ def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, 
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     xs = branch[x].values
     tilt = branch.tilt.values
     flags = branch.stability.values
@@ -149,8 +269,17 @@ def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float,
     Returns
     -------
     (Figure, Axes)
+
+    Raises
+    ------
+    ValueError
+        If the dataset's grid is not ``(q, sigma)`` (select the other dimensions first).
     """
-    fig, ax = _axes(ax)
+    if set(ds.top_class.dims) != {"q", "sigma"}:
+        raise ValueError(f"the class map is drawn over (q, sigma); this dataset's grid is "
+                         f"({', '.join(map(str, ds.top_class.dims)) or 'none'}): give class_atlas 1-D grids of q and "
+                         "sigma, or select the other dimensions first (ds.sel(...))")
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     q, sigma = ds.q.values, ds.sigma.values
     code = ds.top_class.transpose("sigma", "q").values
     ax.pcolormesh(q, sigma, code, cmap=_CLASS_COLOURS, vmin=-1.5, vmax=2.5, shading="nearest")
@@ -200,7 +329,7 @@ def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = Non
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values / (2 * np.pi) if periods else run.time.values
     ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
     ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2,
@@ -233,7 +362,7 @@ def plot_settle_approach(run: xr.Dataset, *, predicted_tilt: float, rate: float 
     -------
     (Figure, Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values
     tt = t / (2 * np.pi) if periods else t
     dist = np.abs(run.polar_angle.values - predicted_tilt)

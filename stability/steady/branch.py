@@ -280,7 +280,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             return _empty(attrs, "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
                                  "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)")
         j_unit = abs(prob.jellett(np.array([theta0, 0.0]))[0])  # J is linear in lam: J(lam = 1)
-        jmax = 10.0 * abs(sigma * (1.0 + q)) if jmax is None else jmax
+        jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
         ell0 = math.log(math.sqrt(jmax * prob.jellett_min) / j_unit)
         ends = []
@@ -367,8 +367,8 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
         c = np.where(vertical, np.sign(c), c)
         y = family.state_vector(theta, lam, q)
-        for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin lam (1 + q c)
-            y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", lam[i] * (1.0 + q * c[i]))
+        for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
+            y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
         ev, scale = reduced_spectrum(y, lam, vertical, prob.p, q=q, sigma=sigma, mu=mu)
         growth, n_neutral, jac = modes_verdict(ev, scale)
         J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
@@ -380,8 +380,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
             if flags[i] != flags[i - 1] and kinds[i] == "" and kinds[i - 1] == "":
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
-    sigma_ = attrs.get("sigma", 1.0)
-    q_ = attrs.get("q", 0.0)
+    j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
         "tilt": ("point", np.degrees(theta), var_attrs("polar angle of the axis k from the upward vertical", DEGREE)),
         "jellett": ("point", J, var_attrs("Jellett's integral J = (K + q k) . I_G omega", comment="units A0 Omega")),
@@ -389,7 +388,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
                                                     comment="at a branch point: spin / (1 + q cos(tilt))")),
         "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k")),
         "energy": ("point", E, var_attrs("total energy", comment="units A0 Omega^2")),
-        "upright_equivalent_spin": ("point", J / (sigma_ * (1.0 + q_)), var_attrs(
+        "upright_equivalent_spin": ("point", J / j_upright, var_attrs(
             "spin of the upright state with the same J, J / (sigma (1 + q))", comment="units of the spin rate")),
         "growth_rate": ("point", growth, var_attrs(
             "leading growth rate of the linearisation (frame precessing with the state), structural "

@@ -31,7 +31,8 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..parameters import DEFAULT_MU, LONG_NAMES, as_parameter, check_domain, check_flag
+from ..parameters import DEFAULT_MU, DOMAIN, LONG_NAMES, as_parameter, check_domain, check_flag, domain_sides
+from ..resources import check_class_atlas
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
 
@@ -43,6 +44,14 @@ CLASSES: tuple[str, ...] = ("never_inverts", "inverts", "hangs")
 CLASS_CODES: dict[str, int] = {name: i for i, name in enumerate(CLASSES)}
 OUTSIDE = -1
 _NAMES = np.array(CLASSES + ("outside_domain",))
+#: the row of the physical domain's table that bounds sigma from above, sigma <= 2 A_G
+_SIGMA_TOP = next(i for i, b in enumerate(DOMAIN) if b.parameter == "sigma" and "q" in b.involves)
+
+
+def _sigma_domain(q: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """The top of the physical domain in ``sigma`` at ``(q, mu)``: the upper side of the bound
+    ``sigma <= 2 (1 - mu q^2)`` of :data:`stability.parameters.DOMAIN` (its one home)."""
+    return domain_sides(q, 0.0, 0.0, 0.0, mu, 0.0)[2 * _SIGMA_TOP + 1]
 
 
 def class_codes(q: np.ndarray, sigma: np.ndarray, mu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -106,8 +115,8 @@ def class_boundaries(q: Any, mu: Any = DEFAULT_MU) -> dict[str, np.ndarray]:
     """
     q = as_parameter("q", q)
     mu = as_parameter("mu", mu)
-    ag = family.a_g(q, mu)
-    return {"never_inverts": ag / (1.0 + q), "hangs": np.where(q < 0, ag / (1.0 - q), np.nan), "domain": 2.0 * ag}
+    return {"never_inverts": family.sigma_of_c0(1.0, q, mu), "hangs": np.where(q < 0, family.sigma_of_c0(-1.0, q, mu), np.nan),
+            "domain": _sigma_domain(q, mu)}
 
 
 def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bool = True) -> xr.Dataset:
@@ -135,6 +144,7 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
             raise TypeError(f"{name} must be a number or a 1-D array here, got shape {arr.shape}")
         values[name] = arr
     dims = [k for k, v in values.items() if v.ndim == 1]
+    check_class_atlas(int(np.prod([values[d].size for d in dims], dtype=np.int64)))
     grids = np.meshgrid(*(values[d] for d in dims), indexing="ij") if dims else []
     full = {k: (grids[dims.index(k)] if k in dims else values[k]) for k in values}
     p, inside = check_domain(mask=check_flag("mask_unphysical", mask_unphysical), **full)

@@ -17,75 +17,83 @@ not slip on it, the centre of mass G is at rest, and (S1-S4)::
 
 The vertical states ``k = +-K`` (spin ``n``, ``omega = n K``) are steady for every ``n``; in
 these variables the upright spin is ``c = 1, lam = n / (1 + q)`` and the inverted one
-``c = -1, lam = n / (1 - q)``.
+``c = -1, lam = n / (1 - q)``; their Jellett integral is ``J = sigma n (1 + q c)``
+(:func:`vertical_jellett`), and their spectrum is eq. (11)'s at the *equivalent point*
+``(q c, fr_inv / n^2, alpha_v / |n|)`` times ``|n|`` (:func:`equivalent_point`).
 
 ``U_J(c) = J^2 / (2 D(c)) + mu fr_inv (1 + q c)`` is a lower bound of the energy of every
 state with Jellett integral ``J`` and axis height ``c``, reached exactly at the steady states,
 which are the critical points of ``U_J`` on ``(-1, 1)`` plus the two ends (S6-S7). Hence
 
 * the tilted states of a level ``J``: roots of the quartic
-  ``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` where ``q P(c) > 0`` (:func:`tilted_cosines`);
+  ``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` where ``q P(c) > 0`` (:func:`tilted_roots`,
+  :func:`tilted_cosines`);
 * the family against ``J``: ``J(c)^2 = mu fr_inv q D(c)^2 / P(c)``; it runs to ``J = inf``
   at ``c0 = sigma q / (A_G - sigma)`` (the root of ``P``) and meets the vertical states at
   the branch points ``J_up``, ``J_inv`` (:func:`branch_point_jellett`), which are eq. (11)'s
   neutral curves at the equivalent spin;
 * folds of ``J(c)`` at ``c0 +- sqrt(D(c0) / (3 a))`` (``a > 0`` only; :func:`fold_cosines`);
 * the energy criterion of stability (S8): a strict minimum of ``U_J`` is stable, a maximum
-  unstable (:func:`energy_test`).
+  unstable (:func:`energy_test`);
+* every steady state of a level at once, in one compiled call (:func:`level_states`: what
+  :func:`stability.final_state` and :func:`stability.steady_states` use).
 
-Every function takes Python floats or numpy arrays (plain arithmetic, broadcast), so that the
-final-state prediction runs on floats without array overhead; :func:`state_core` is compiled
-(numba) for the branch's residual.
+One source, three engines (as :mod:`stability.models.inertia`): the formulas are plain
+arithmetic registered with :func:`numba.extending.register_jitable`. Called from Python they
+run as written, on floats or numpy arrays (broadcast); called from ``@njit`` code
+(:func:`level_states`, :func:`state_core`) they are compiled into the caller. ``A_G`` is
+:func:`stability.models.inertia.inertia_g` (compensated) everywhere. Their arguments are
+positional or keyword (numba does not take keyword-only arguments); call them with keywords.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from typing import Any
 
 import numpy as np
 from numba import njit
+from continuation.jit import register_jitable
 
-from ..models.inertia import transverse_inertia_g
+from ..models.inertia import inertia_g, transverse_inertia_g
 
-__all__ = ["a_g", "detuning", "d_of_c", "p_of_c", "c0", "precession_rate", "jellett_of_c",
-           "effective_potential", "potential_slope", "potential_curvature", "axial_spin",
-           "branch_point_jellett", "fold_cosines", "family_interval", "tilted_cosines",
-           "energy_test", "vertical_spin", "state_vector", "vertical_state", "state_core", "ORIENTATIONS"]
+__all__ = ["a_g", "detuning", "d_of_c", "p_of_c", "c0", "c0_point", "sigma_of_c0", "degenerate_cosine", "precession_rate",
+           "jellett_of_c", "effective_potential", "potential_slope", "potential_curvature", "axial_spin",
+           "omega_vertical", "vertical_jellett", "upright_jellett", "vertical_spin", "equivalent_point",
+           "branch_point_jellett", "fold_cosines", "family_interval", "level_quartic", "tilted_roots",
+           "tilted_cosines", "energy_test_at", "energy_test", "level_states", "LEVEL_COLUMNS", "state_vector",
+           "vertical_state", "state_core", "ORIENTATIONS"]
 
 #: the two vertical states: name -> cos(theta)
 ORIENTATIONS: dict[str, float] = {"upright": 1.0, "inverted": -1.0}
 
 
-@functools.lru_cache(maxsize=64)
-def _a_g_scalar(q: float, mu: float) -> float:
-    return float(transverse_inertia_g(q, mu))
-
-
 def a_g(q: Any, mu: Any) -> Any:
     """Transverse moment about G, ``A_G = 1 - mu q^2`` (units A0), by
-    :func:`stability.models.inertia.transverse_inertia_g` (accurate near the domain edge
-    ``A_G -> 0``); numbers give a float (cached: the closed forms ask for it often)."""
-    if (isinstance(q, float) and isinstance(mu, float)) or (np.ndim(q) == 0 and np.ndim(mu) == 0):
-        return _a_g_scalar(float(q), float(mu))
+    :func:`stability.models.inertia.inertia_g` (accurate near the domain edge ``A_G -> 0``);
+    numbers give a float, arrays an array."""
+    if np.ndim(q) == 0 and np.ndim(mu) == 0:
+        return float(inertia_g(float(q), float(mu)))
     return transverse_inertia_g(q, mu)
 
 
-def detuning(q: Any, sigma: Any, mu: Any) -> Any:
+@register_jitable
+def detuning(q, sigma, mu):
     """``a = sigma - A_G``: the family has a fold only where ``a > 0``."""
-    return sigma - a_g(q, mu)
+    return sigma - inertia_g(q, mu)
 
 
-def d_of_c(c: Any, q: Any, sigma: Any, mu: Any) -> Any:
+@register_jitable
+def d_of_c(c, q, sigma, mu):
     """``D(c) = (K + q k) . I_G (K + q k) = sigma (c + q)^2 + A_G (1 - c^2)`` (S4).
 
     ``D(1) = sigma (1 + q)^2``, ``D(-1) = sigma (1 - q)^2``; ``D > 0`` on ``[-1, 1]`` in the
     physical domain (a squared length times a moment of inertia)."""
-    return sigma * (c + q) ** 2 + a_g(q, mu) * (1.0 - c * c)
+    return sigma * ((c + q) * (c + q)) + inertia_g(q, mu) * (1.0 - c * c)
 
 
-def p_of_c(c: Any, q: Any, sigma: Any, mu: Any) -> Any:
+@register_jitable
+def p_of_c(c, q, sigma, mu):
     """``P(c) = D'(c) / 2 = (sigma - A_G) c + sigma q`` (S3).
 
     ``P(1) = sigma (1 + q) - A_G``, ``P(-1) = A_G - sigma (1 - q)``: their signs decide the
@@ -93,19 +101,44 @@ def p_of_c(c: Any, q: Any, sigma: Any, mu: Any) -> Any:
     return detuning(q, sigma, mu) * c + sigma * q
 
 
+@register_jitable
+def c0_point(q, sigma, mu):
+    """``c0 = sigma q / (A_G - sigma)`` of one top (floats; compiled callers): ``+-inf`` (the sign
+    of ``sigma q``) at ``sigma = A_G``, NaN at ``q = 0 = sigma - A_G``."""
+    den = inertia_g(q, mu) - sigma
+    if den == 0.0:
+        return math.nan if q == 0.0 else math.copysign(math.inf, sigma * q)
+    return sigma * q / den
+
+
 def c0(q: Any, sigma: Any, mu: Any) -> Any:
     """``c0 = sigma q / (A_G - sigma)``: the root of ``P``, where the family runs to ``J = inf``.
 
     Also the tilted state of the ``fr_inv = 0`` (high-spin) limit. ``+-inf`` at ``sigma = A_G``
-    (no root), NaN at ``q = 0 = sigma - A_G``."""
-    ag = a_g(q, mu)
-    if isinstance(ag, float):
-        den = ag - sigma
-        if den == 0.0:
-            return math.nan if q == 0.0 else math.copysign(math.inf, sigma * q)
-        return sigma * q / den
+    (no root), NaN at ``q = 0 = sigma - A_G``. Numbers: :func:`c0_point`; arrays: the same
+    quotient elementwise (IEEE division gives the same infinities and NaN)."""
+    if np.ndim(q) == 0 and np.ndim(sigma) == 0 and np.ndim(mu) == 0:
+        return c0_point(float(q), float(sigma), float(mu))
+    q = np.asarray(q, float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return sigma * np.asarray(q, float) / (ag - sigma)
+        return sigma * q / (a_g(q, mu) - sigma)
+
+
+def sigma_of_c0(c: Any, q: Any, mu: Any) -> Any:
+    """The ``sigma`` at which ``c`` is the root ``c0`` of ``P``: ``P(c) = 0 <=> sigma = A_G c / (c + q)``.
+
+    At ``c = 1``, ``A_G / (1 + q)``; at ``c = -1``, ``A_G / (1 - q)``: the boundaries of the
+    high-spin classes (:func:`stability.steady.classes.class_boundaries`)."""
+    return a_g(q, mu) * c / (c + q)
+
+
+@register_jitable
+def degenerate_cosine(q, sigma, mu):
+    """The one tilted cosine of every level when ``fr_inv = 0`` or ``q = 0`` (sec. 3): ``c0``
+    (``0`` for ``q = 0``); NaN when undefined (``q = 0``, ``sigma = A_G``: every tilt is steady)."""
+    if detuning(q, sigma, mu) == 0.0:
+        return math.nan
+    return c0_point(q, sigma, mu)
 
 
 def precession_rate(c: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any, sign: float = 1.0) -> Any:
@@ -124,35 +157,68 @@ def jellett_of_c(c: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any, sign: floa
     return precession_rate(c, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu, sign=sign) * d_of_c(c, q, sigma, mu)
 
 
-def effective_potential(c: Any, jellett: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any) -> Any:
+@register_jitable
+def effective_potential(c, jellett, q, sigma, fr_inv, mu):
     """``U_J(c) = J^2 / (2 D(c)) + mu fr_inv (1 + q c)`` (S5): the energy of the steady state at
     ``c`` on the level ``J``, and a lower bound of the energy of every state there."""
     return jellett * jellett / (2.0 * d_of_c(c, q, sigma, mu)) + mu * fr_inv * (1.0 + q * c)
 
 
-def potential_slope(c: Any, jellett: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any) -> Any:
+@register_jitable
+def potential_slope(c, jellett, q, sigma, fr_inv, mu):
     """``U_J'(c) = -J^2 P / D^2 + mu fr_inv q``; zero at the tilted states (S3 with S4)."""
     d = d_of_c(c, q, sigma, mu)
     return -jellett * jellett * p_of_c(c, q, sigma, mu) / (d * d) + mu * fr_inv * q
 
 
-def potential_curvature(c: Any, jellett: Any, *, q: Any, sigma: Any, mu: Any) -> Any:
+@register_jitable
+def potential_curvature(c, jellett, q, sigma, mu):
     """``U_J''(c) = J^2 (4 P^2 - a D) / D^3`` at a tilted state (S8; ``U_J' = 0`` used)."""
     d = d_of_c(c, q, sigma, mu)
     p = p_of_c(c, q, sigma, mu)
-    return jellett * jellett * (4.0 * p * p - detuning(q, sigma, mu) * d) / d ** 3
+    return jellett * jellett * (4.0 * p * p - detuning(q, sigma, mu) * d) / (d * d * d)
 
 
-def axial_spin(c: Any, lam: Any, q: Any) -> Any:
+@register_jitable
+def axial_spin(c, lam, q):
     """``omega . k = lam (c + q)`` on a steady state (S1)."""
     return lam * (c + q)
 
 
+@register_jitable
+def omega_vertical(c, lam, q):
+    """``omega . K = lam (1 + q c)`` on a steady state (S1); the spin ``n`` of a vertical state."""
+    return lam * (1.0 + q * c)
+
+
+@register_jitable
+def vertical_jellett(c, spin, q, sigma):
+    """``J = sigma n (1 + q c)``: Jellett's integral of the vertical state ``c = +-1`` (upright,
+    inverted) with spin ``n`` (``omega = n K``); its spin at a given ``J`` is
+    ``J / vertical_jellett(c, 1, q, sigma)``."""
+    return sigma * spin * (1.0 + q * c)
+
+
+def upright_jellett(*, q: Any, sigma: Any) -> Any:
+    """Jellett's integral of the upright spin ``omega = K`` (spin 1, the linear atlases' state):
+    ``J = sigma (1 + q)``; ``J / upright_jellett`` is the *equivalent upright spin*."""
+    return vertical_jellett(1.0, 1.0, q, sigma)
+
+
 def vertical_spin(orientation: str, jellett: Any, *, q: Any, sigma: Any) -> Any:
     """Spin ``n`` (``omega = n K``) of the upright (``J = sigma n (1 + q)``) or inverted
-    (``J = sigma n (1 - q)``) state with Jellett integral ``J``."""
-    c = ORIENTATIONS[orientation]
-    return jellett / (sigma * (1.0 + q * c))
+    (``J = sigma n (1 - q)``) state with Jellett integral ``J`` (:func:`vertical_jellett`)."""
+    return jellett / vertical_jellett(ORIENTATIONS[orientation], 1.0, q, sigma)
+
+
+def equivalent_point(c: Any, spin: Any, *, q: Any, fr_inv: Any, alpha_v: Any) -> tuple[Any, Any, Any]:
+    """The point ``(q, fr_inv, alpha_v)`` of eq. (11) whose spectrum, times ``|n|``, is that of the
+    vertical state ``c = +-1`` with spin ``n``: ``(q c, fr_inv / n^2, alpha_v / |n|)``.
+
+    Time rescaled by ``|n|`` (eq. (11) is written at spin 1); the inverted top is the upright
+    one with ``q -> -q``. docs/steady_states.md, sec. 4.2; the branch points
+    (:func:`branch_point_jellett`) are eq. (11)'s neutral curve at this point."""
+    return q * c, fr_inv / (spin * spin), alpha_v / abs(spin)
 
 
 def branch_point_jellett(orientation: str, *, q: Any, sigma: Any, fr_inv: Any, mu: Any) -> Any:
@@ -173,18 +239,19 @@ def branch_point_jellett(orientation: str, *, q: Any, sigma: Any, fr_inv: Any, m
     return np.sqrt(np.where(j2 > 0, j2, np.nan))
 
 
-def fold_cosines(q: float, sigma: float, mu: float) -> tuple[float, float]:
+@register_jitable
+def fold_cosines(q, sigma, mu):
     """Cosines ``c0 -+ sqrt(D(c0) / (3 a))`` of the folds of ``J(c)`` (NaN where there is none).
 
     ``d(J^2)/dc = mu fr_inv q D (4 P^2 - a D) / P^2`` and ``4 P^2 - a D = 3 a^2 (c - c0)^2 -
     a D(c0)``, so ``dJ/dc = 0`` only for ``a > 0`` and ``D(c0) > 0``; the two folds lie on
     either side of ``c0`` and the family on one side only, so a branch has at most one fold.
-    The same for every ``fr_inv > 0``.
+    The same for every ``fr_inv > 0``. One top (floats; compiled callers).
     """
     a = detuning(q, sigma, mu)
     if a <= 0.0:
         return math.nan, math.nan
-    cc = c0(q, sigma, mu)
+    cc = c0_point(q, sigma, mu)
     dc0 = d_of_c(cc, q, sigma, mu)
     if not dc0 > 0.0:
         return math.nan, math.nan
@@ -198,19 +265,16 @@ def family_interval(q: float, sigma: float, fr_inv: float, mu: float) -> tuple[f
     ``fr_inv > 0`` and ``q != 0``: the interval of ``[-1, 1]`` where ``q P(c) > 0`` (one
     interval: ``P`` is linear); its ends are ``"inverted"`` (``c = -1``), ``"upright"``
     (``c = 1``) or ``"infinity"`` (``c0``, where ``J -> inf``). ``fr_inv = 0`` or ``q = 0``:
-    the single cosine ``c0`` (``0`` for ``q = 0``) at every ``J``, ends ``"vertical_line"``;
+    the single cosine :func:`degenerate_cosine` at every ``J``, ends ``"vertical_line"``;
     None if it is outside ``(-1, 1)`` or undefined (``q = 0``, ``sigma = A_G``).
     """
-    a = detuning(q, sigma, mu)
     if fr_inv == 0.0 or q == 0.0:
-        if a == 0.0:
-            return None
-        cc = c0(q, sigma, mu)
+        cc = degenerate_cosine(q, sigma, mu)
         return (cc, cc, "vertical_line", "vertical_line") if -1.0 < cc < 1.0 else None
     lo, hi, elo, ehi = -1.0, 1.0, "inverted", "upright"
-    cc = c0(q, sigma, mu)
+    cc = c0_point(q, sigma, mu)
     if -1.0 < cc < 1.0:
-        if q * a > 0:  # P = a (c - c0) has the sign of q above c0
+        if q * detuning(q, sigma, mu) > 0:  # P = a (c - c0) has the sign of q above c0
             lo, elo = cc, "infinity"
         else:
             hi, ehi = cc, "infinity"
@@ -219,18 +283,31 @@ def family_interval(q: float, sigma: float, fr_inv: float, mu: float) -> tuple[f
     return lo, hi, elo, ehi
 
 
-def _root(f, df, lo: float, hi: float, flo: float, fhi: float) -> float:
-    """Safeguarded Newton on a bracket with ``flo * fhi < 0``, to the last bit of ``c``."""
+@register_jitable
+def level_quartic(c, jellett, q, sigma, fr_inv, mu):
+    """``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` (S6) and ``Q'(c) = 4 mu fr_inv q D P - J^2 a``
+    (``D' = 2 P``, ``P' = a``): the tilted states of the level ``J`` are its roots where
+    ``q P > 0``."""
+    d = d_of_c(c, q, sigma, mu)
+    p = p_of_c(c, q, sigma, mu)
+    k = mu * fr_inv * q
+    j2 = jellett * jellett
+    return k * d * d - j2 * p, 4.0 * k * d * p - j2 * detuning(q, sigma, mu)
+
+
+@register_jitable
+def _bracketed_root(lo, hi, flo, fhi, jellett, q, sigma, fr_inv, mu):
+    """Safeguarded Newton on :func:`level_quartic` in a bracket with ``flo * fhi < 0``, to the
+    last bit of ``c``."""
     x = lo - flo * (hi - lo) / (fhi - flo)
     for _ in range(200):
-        fx = f(x)
+        fx, d = level_quartic(x, jellett, q, sigma, fr_inv, mu)
         if fx == 0.0:
             return x
         if (fx < 0) == (flo < 0):
             lo, flo = x, fx
         else:
             hi, fhi = x, fx
-        d = df(x)
         xn = x - fx / d if d != 0.0 else 0.5 * (lo + hi)
         if not lo < xn < hi:
             xn = 0.5 * (lo + hi)
@@ -240,87 +317,150 @@ def _root(f, df, lo: float, hi: float, flo: float, fhi: float) -> float:
     return x
 
 
-def tilted_cosines(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float) -> list[float]:
-    """Cosines of every tilted steady state (``-1 < c < 1``) on the Jellett level ``J``.
+@register_jitable
+def _insert_decreasing(out, n, x):
+    """Insert ``x`` into ``out[:n]`` (decreasing, distinct); return the new count."""
+    for i in range(n):
+        if out[i] == x:
+            return n
+    i = n
+    while i > 0 and out[i - 1] < x:
+        out[i] = out[i - 1]
+        i -= 1
+    out[i] = x
+    return n + 1
 
-    Method: the roots of ``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` (S6). ``[-1, 1]`` is cut at
-    ``c0`` and at the folds (:func:`fold_cosines`); on each piece where ``q P > 0`` the function
-    ``J^2(c)`` is monotone, so ``Q`` changes sign at most once there, and a safeguarded Newton
-    step on the bracket finds the root to the last bit (``Q`` has no pole). ``fr_inv = 0`` or
-    ``q = 0``: the single cosine of :func:`family_interval` at every ``J != 0``.
 
-    Returns
-    -------
-    list of float
-        Decreasing (increasing tilt). A level exactly at a fold (a double root) is found only
-        if rounding gives a sign change: the state is then marginal (:func:`energy_test`).
+@register_jitable
+def tilted_roots(jellett, q, sigma, fr_inv, mu, out):
+    """Cosines of every tilted steady state (``-1 < c < 1``) on the Jellett level ``J``, written
+    to ``out`` (length >= 8) in decreasing order (increasing tilt); returns their number.
+
+    Method: the roots of ``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` (S6, :func:`level_quartic`).
+    ``[-1, 1]`` is cut at ``c0`` and at the folds (:func:`fold_cosines`); on each piece where
+    ``q P > 0`` the function ``J^2(c)`` is monotone, so ``Q`` changes sign at most once there,
+    and a safeguarded Newton step on the bracket finds the root to the last bit (``Q`` has no
+    pole). ``fr_inv = 0`` or ``q = 0``: the single cosine of :func:`degenerate_cosine` at every
+    ``J != 0``. A level exactly at a fold (a double root) is found only if rounding gives a
+    sign change: the state is then marginal (:func:`energy_test`).
     """
-    q, sigma, fr_inv, mu, jellett = float(q), float(sigma), float(fr_inv), float(mu), float(jellett)
     if jellett == 0.0:
-        return []
+        return 0
     if fr_inv == 0.0 or q == 0.0:
-        iv = family_interval(q, sigma, fr_inv, mu)
-        return [iv[0]] if iv is not None else []
-    ag = a_g(q, mu)
-    a = sigma - ag
-    k = mu * fr_inv * q
-    j2 = jellett * jellett
-    sq = sigma * q
-
-    def quartic(c: float) -> float:
-        d = sigma * (c + q) ** 2 + ag * (1.0 - c * c)
-        return k * d * d - j2 * (a * c + sq)
-
-    def dquartic(c: float) -> float:
-        d = sigma * (c + q) ** 2 + ag * (1.0 - c * c)
-        return 4.0 * k * d * (a * c + sq) - j2 * a
-
-    cuts = [-1.0, 1.0]
-    if a != 0.0:
-        cc = -sq / a
+        cc = degenerate_cosine(q, sigma, mu)
         if -1.0 < cc < 1.0:
-            cuts.append(cc)
-        for cf in fold_cosines(q, sigma, mu):
-            if -1.0 < cf < 1.0:
-                cuts.append(cf)
-    cuts.sort()
-    roots = []
-    for lo, hi in zip(cuts[:-1], cuts[1:]):
-        if q * (a * 0.5 * (lo + hi) + sq) <= 0:
+            out[0] = cc
+            return 1
+        return 0
+    cuts = np.empty(5)  # decreasing: 1, the cuts inside, -1
+    m = _insert_decreasing(cuts, _insert_decreasing(cuts, 0, 1.0), -1.0)
+    if detuning(q, sigma, mu) != 0.0:
+        f_lo, f_hi = fold_cosines(q, sigma, mu)
+        for cut in (c0_point(q, sigma, mu), f_lo, f_hi):
+            if -1.0 < cut < 1.0:
+                m = _insert_decreasing(cuts, m, cut)
+    n = 0
+    for i in range(m - 1):
+        hi, lo = cuts[i], cuts[i + 1]
+        if q * p_of_c(0.5 * (lo + hi), q, sigma, mu) <= 0:
             continue
-        flo, fhi = quartic(lo), quartic(hi)
+        flo = level_quartic(lo, jellett, q, sigma, fr_inv, mu)[0]
+        fhi = level_quartic(hi, jellett, q, sigma, fr_inv, mu)[0]
         if flo == 0.0 and lo > -1.0:
-            roots.append(lo)
+            n = _insert_decreasing(out, n, lo)
         if flo * fhi < 0:
-            r = _root(quartic, dquartic, lo, hi, flo, fhi)
+            r = _bracketed_root(lo, hi, flo, fhi, jellett, q, sigma, fr_inv, mu)
             if -1.0 < r < 1.0:
-                roots.append(r)
-    return sorted(set(roots), reverse=True)
+                n = _insert_decreasing(out, n, r)
+    return n
 
 
-def energy_test(kind: str, c: float, jellett: float, *, q: float, sigma: float, fr_inv: float,
-                mu: float) -> tuple[float, float]:
-    """The energy criterion of stability (S8): a signed test and its scale.
+@register_jitable
+def energy_test_at(c, vertical, jellett, q, sigma, fr_inv, mu):
+    """The energy criterion of stability (S8) at ``c``: a signed test and its scale.
 
-    Upright: ``-U_J'(1)``, i.e. ``n^2 (sigma (1 + q) - A_G) - mu fr_inv q (1 + q)^2`` up to a
-    positive factor: eq. (11)'s neutral curve, stable side positive. Inverted: ``U_J'(-1)``
-    (the same with ``q -> -q``). Tilted: ``U_J'' = J^2 (4 P^2 - a D) / D^3``. Positive means a
-    strict minimum of ``U_J`` (stable with friction), negative a maximum (unstable).
-
-    Returns
-    -------
-    test : float
-    scale : float
-        The size of the terms the test is made of (for a relative tolerance).
+    Vertical state (``c = +-1``): ``c (J^2 P / D^2 - mu fr_inv q)``, i.e. ``-U_J'(1)`` upright
+    (``n^2 (sigma (1 + q) - A_G) - mu fr_inv q (1 + q)^2`` up to a positive factor: eq. (11)'s
+    neutral curve, stable side positive) and ``U_J'(-1)`` inverted (the same with ``q -> -q``).
+    Tilted: ``U_J'' = J^2 (4 P^2 - a D) / D^3``. Positive means a strict minimum of ``U_J``
+    (stable with friction), negative a maximum (unstable). The scale is the size of the terms
+    the test is made of (for a relative tolerance).
     """
     d = d_of_c(c, q, sigma, mu)
     p = p_of_c(c, q, sigma, mu)
     j2 = jellett * jellett
-    if kind == "tilted":
-        a = detuning(q, sigma, mu)
-        return j2 * (4.0 * p * p - a * d) / d ** 3, j2 * (4.0 * p * p + abs(a) * d) / d ** 3
-    sign = ORIENTATIONS[kind]  # upright: -U'(1); inverted: +U'(-1)
-    return sign * (j2 * p / (d * d) - mu * fr_inv * q), j2 * abs(p) / (d * d) + mu * fr_inv * abs(q)
+    if vertical:
+        return c * (j2 * p / (d * d) - mu * fr_inv * q), j2 * abs(p) / (d * d) + mu * fr_inv * abs(q)
+    a = detuning(q, sigma, mu)
+    return j2 * (4.0 * p * p - a * d) / (d * d * d), j2 * (4.0 * p * p + abs(a) * d) / (d * d * d)
+
+
+def energy_test(kind: str, c: float, jellett: float, *, q: float, sigma: float, fr_inv: float,
+                mu: float) -> tuple[float, float]:
+    """The energy criterion of stability (S8) of a state of ``kind`` ("upright", "inverted",
+    "tilted"; the vertical ones at ``c = +-1``): :func:`energy_test_at`.
+
+    Returns
+    -------
+    test : float
+        Positive at a strict minimum of ``U_J`` (stable with friction), negative at a maximum.
+    scale : float
+        The size of the terms the test is made of (for a relative tolerance).
+    """
+    vertical = kind != "tilted"
+    return energy_test_at(ORIENTATIONS[kind] if vertical else c, vertical, jellett, q, sigma, fr_inv, mu)
+
+
+#: the columns of :func:`level_states`
+LEVEL_COLUMNS = ("cos_tilt", "energy", "energy_test", "energy_scale", "precession_rate", "axial_spin")
+
+
+@njit(cache=True)
+def level_states(jellett, q, sigma, fr_inv, mu):
+    """Every steady state of the Jellett level ``J``, in one compiled call.
+
+    Rows: the upright state, each tilted state (:func:`tilted_roots`, increasing tilt), the
+    inverted state. Columns (:data:`LEVEL_COLUMNS`): ``c``, its energy ``U_J(c)``
+    (:func:`effective_potential`), the energy criterion and its scale (:func:`energy_test_at`),
+    the precession rate ``J / D(c)`` (NaN for the vertical states) and the axial spin
+    ``omega . k`` (vertical: ``c n``, ``n = J / (sigma (1 + q c))``).
+
+    Parameters
+    ----------
+    jellett, q, sigma, fr_inv, mu : float
+        Checked by the caller (no input checks here).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_tilted + 2, 6)
+    """
+    roots = np.empty(8)
+    n = tilted_roots(jellett, q, sigma, fr_inv, mu, roots)
+    out = np.empty((n + 2, 6))
+    for i in range(n + 2):
+        vertical = i == 0 or i == n + 1
+        c = 1.0 if i == 0 else (-1.0 if i == n + 1 else roots[i - 1])
+        test, scale = energy_test_at(c, vertical, jellett, q, sigma, fr_inv, mu)
+        if vertical:
+            lam = math.nan
+            axial = c * (jellett / vertical_jellett(c, 1.0, q, sigma))
+        else:
+            lam = jellett / d_of_c(c, q, sigma, mu)
+            axial = axial_spin(c, lam, q)
+        out[i, 0] = c
+        out[i, 1] = effective_potential(c, jellett, q, sigma, fr_inv, mu)
+        out[i, 2] = test
+        out[i, 3] = scale
+        out[i, 4] = lam
+        out[i, 5] = axial
+    return out
+
+
+def tilted_cosines(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float) -> list[float]:
+    """Cosines of every tilted steady state (``-1 < c < 1``) on the Jellett level ``J``,
+    decreasing (increasing tilt): :func:`tilted_roots`, through :func:`level_states`."""
+    rows = level_states(float(jellett), float(q), float(sigma), float(fr_inv), float(mu))
+    return rows[1:-1, 0].tolist()
 
 
 @njit(cache=True)

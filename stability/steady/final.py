@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -40,12 +40,12 @@ from ..nonlinear.runs import initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
-from .states import state_integrals
+from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
-__all__ = ["final_state", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle", "chunk_length",
-           "MATCH_DEG"]
+__all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle",
+           "chunk_length", "MATCH_DEG"]
 
 #: a run's end tilt within this of a steady state (degrees) is that state
 MATCH_DEG = 0.05
@@ -53,9 +53,9 @@ MATCH_DEG = 0.05
 ENERGY_REL_TOL = 1e-12
 
 
-@dataclass(frozen=True)
-class Candidate:
-    """One steady state of the Jellett level of a motion.
+class Candidate(NamedTuple):
+    """One steady state of the Jellett level of a motion: a row of the candidate table (an
+    immutable named tuple, cheap to make).
 
     Attributes
     ----------
@@ -181,9 +181,11 @@ class FinalState:
 
     def to_dataset(self) -> xr.Dataset:
         """The prediction as a CF Dataset (product ``final_state``): 0-d variables ``tilt``,
-        ``jellett``, ``initial_energy``, ``energy``, ``precession_rate``, ``axial_spin``; the
-        candidate table over ``candidate``; ``kind``, ``method``, ``reason`` and the run's
-        numbers as attributes."""
+        ``initial_tilt``, ``jellett``, ``initial_energy``, ``energy``, ``precession_rate``,
+        ``axial_spin``; the candidate table over ``candidate``; the effective potential ``U_J``
+        of the level over ``tilt_grid`` (what the figure draws, ``ds.tippe.plot()``:
+        :func:`stability.plotting.plot_final_state`); ``kind``, ``method``, ``reason`` and the
+        run's numbers as attributes."""
         cands = self.candidates
         n = len(cands)
         ends = [c is self.state for c in cands]
@@ -215,40 +217,36 @@ class FinalState:
                                    {"long_name": "the motion ends on this state", "flag_values": np.array([0, 1], np.int8),
                                     "flag_meanings": "no yes"}),
         }
+        p = self.parameters
+        curve, curve_coords = potential_curve(self.jellett, q=p["q"], sigma=p["sigma"], fr_inv=p["fr_inv"], mu=p["mu"])
+        data.update(curve)
         attrs = product_attrs("final_state", "Final state of a sliding Tippe top", "stability.final_state",
                               self.parameters)
         attrs.update(kind=self.kind, method=self.method, reason=self.reason, model="sliding")
         if self.run is not None:
             for name, value in self.run.__dict__.items():
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
-        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "index of the steady state"})},
-                          attrs=attrs)
+        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "index of the steady state"}),
+                                        **curve_coords}, attrs=attrs)
 
 
 def candidates(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
                mu: float) -> tuple[Candidate, ...]:
     """Every steady state of the level ``J`` with its energy, flag and reachability (``U_J <= E0``).
 
-    Plain floats and closed forms (:mod:`stability.steady.family`): no integration, no
-    eigenvalues (the flag is the energy criterion, :mod:`stability.steady.verdicts`;
-    ``alpha_v > 0``)."""
-    J, E0 = jellett, initial_energy
+    The closed forms in one compiled call (:func:`stability.steady.family.level_states`): no
+    integration, no eigenvalues (the flag is the energy criterion,
+    :mod:`stability.steady.verdicts`; ``alpha_v > 0``)."""
+    J, E0 = float(jellett), float(initial_energy)
     tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
+    rows = family.level_states(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
+    last = len(rows) - 1
     out = []
-    rows = [("upright", 1.0)] + [("tilted", c) for c in family.tilted_cosines(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)]
-    rows.append(("inverted", -1.0))
-    for kind, c in rows:
-        u = family.effective_potential(c, J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-        test, scale = family.energy_test(kind, c, J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-        flag = flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
-        if kind == "tilted":
-            lam = J / family.d_of_c(c, q, sigma, mu)
-            tilt, axial = math.degrees(math.acos(c)), family.axial_spin(c, lam, q)
-        else:
-            lam = math.nan
-            tilt = 0.0 if kind == "upright" else 180.0
-            axial = c * family.vertical_spin(kind, J, q=q, sigma=sigma)
-        out.append(Candidate(kind, tilt, u, lam, axial, flag, test, u <= E0 + tol))
+    for i, (c, u, test, scale, lam, axial) in enumerate(rows):
+        kind = "upright" if i == 0 else "inverted" if i == last else "tilted"
+        tilt = 0.0 if i == 0 else 180.0 if i == last else math.degrees(math.acos(c))
+        out.append(Candidate(kind, tilt, u, lam, axial, flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v),
+                             test, u <= E0 + tol))
     return tuple(out)
 
 
@@ -334,15 +332,40 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
     >>> end.method, end.kind, round(end.tilt, 3)
     ('jellett', 'tilted', 166.018)
     """
-    params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     if alpha_v == 0.0:
         raise DomainError("alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
                           "friction the energy is conserved and the motion has no final state)")
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
-    J0, E0 = state_integrals(y[:8], q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-    J0, E0 = float(J0[0]), float(E0[0])
+    return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance,
+                            rtol=rtol)
+
+
+def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: bool = True, t_max: Any = 2e5,
+                     settle_tolerance: Any = 1e-4, rtol: Any = 1e-10) -> FinalState:
+    """:func:`final_state` after its input checks: from a checked state and checked parameters.
+
+    What the steady layer itself does per call: ``J0`` and ``E0`` of the state
+    (:func:`stability.steady.states.point_integrals`), the steady states of the level and the
+    decision (:func:`predict`), the result; and the deciding run when one is needed (its options
+    ``t_max``, ``settle_tolerance``, ``rtol`` are checked then). ``tippe bench --suite steady``
+    times it apart from the checks.
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        State ``(omega, k, V0_h, ...)`` of :func:`stability.nonlinear.runs.initial_state`
+        (``|k| = 1``; only the first 8 entries are used).
+    params : dict of float
+        ``q, fr_inv, sigma, mu, alpha_v`` in the physical domain, ``alpha_v > 0``
+        (:func:`stability.steady.products.sliding_parameters`).
+    simulation, t_max, settle_tolerance, rtol
+        As in :func:`final_state`.
+    """
+    q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+    J0, E0 = point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)

@@ -1,10 +1,12 @@
 """Inputs and dataset attributes shared by the products of the steady layer.
 
 One place for: the check of the model name and of the physical parameters (through
-:func:`stability.nonlinear.runs.model_parameter_vector`, whose messages name the parameter, its
-value and the allowed range), and the CF attributes of the products ``steady_states``,
-``steady_branch``, ``final_state`` and ``top_classes`` (global attribute
-:data:`stability.grids.netcdf.PRODUCT_ATTR`).
+:func:`stability.nonlinear.runs.model_parameter_vector` and
+:func:`stability.parameters.check_domain`, whose messages name the parameter, its value and the
+allowed range), the CF attributes of the products ``steady_states``, ``steady_branch``,
+``final_state`` and ``top_classes`` (global attribute :data:`stability.products.PRODUCT_ATTR`),
+and the curve of the effective potential that the figures of ``steady_states`` and
+``final_state`` draw (:func:`potential_curve`).
 """
 
 from __future__ import annotations
@@ -14,32 +16,47 @@ from typing import Any
 import numpy as np
 
 from .._version import package_version
-from ..grids.netcdf import PRODUCT_ATTR
-from ..nonlinear.runs import model_parameter_vector
 from ..errors import InputError
-from ..parameters import LONG_NAMES
+from ..nonlinear.runs import model_parameter_vector
+from ..parameters import LONG_NAMES, check_domain
+from ..products import PRODUCT_ATTR
+from . import family
 from .linearisation import REMOVED_NEUTRAL
 from .verdicts import FLAG_MEANINGS, FLAG_VALUES, RULE
 
-__all__ = ["MODELS", "sliding_parameters", "product_attrs", "var_attrs", "flag_attrs", "UNITLESS", "DEGREE"]
+__all__ = ["MODELS", "sliding_parameters", "product_attrs", "var_attrs", "flag_attrs", "potential_curve", "UNITLESS",
+           "DEGREE", "TILT_GRID_POINTS"]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
 MODELS = ("sliding",)
 
 UNITLESS = "1"
 DEGREE = "degree"
+#: number of tilts (0 to 180 degrees, every 0.25 degree) at which :func:`potential_curve` samples U_J
+TILT_GRID_POINTS = 721
 
 
-def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any, mu: Any
-                       ) -> tuple[dict[str, float], np.ndarray]:
+def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any, mu: Any, kernel: bool = True
+                       ) -> tuple[dict[str, float], np.ndarray | None]:
     """Check ``model`` and the parameters (single numbers in the physical domain).
+
+    Parameters
+    ----------
+    model : {"sliding"}
+    q, sigma, fr_inv, alpha_v, mu : float
+    kernel : bool, default True
+        Also pack the compiled kernels' parameter vector
+        (:func:`stability.nonlinear.runs.model_parameter_vector`, which checks the point with
+        :func:`stability.parameters.check_domain`). False: only that check of the point (the
+        same check and messages), for callers that need the numbers alone
+        (:func:`stability.final_state`, whose deciding run packs its own).
 
     Returns
     -------
     params : dict of float
         ``q, fr_inv, sigma, mu, alpha_v`` (``alpha_k = 0``).
-    p : numpy.ndarray
-        Parameter vector of the compiled kernels.
+    p : numpy.ndarray or None
+        Parameter vector of the compiled kernels (None if not ``kernel``).
 
     Raises
     ------
@@ -53,6 +70,9 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
         raise InputError(f"model = {model!r:.60} is not known; choose one of {', '.join(MODELS)} (the rolling "
                          "sphere has the same steady states, but it conserves energy: no final state, and no "
                          "steady state of it is asymptotically stable)")
+    if not kernel:
+        checked, _ = check_domain(scalar=True, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu, alpha_v=alpha_v)
+        return {name: float(v) for name, v in checked.items()}, None
     params, p = model_parameter_vector("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)
     params.pop("alpha_k", None)
     return params, p
@@ -88,3 +108,31 @@ def product_attrs(product: str, title: str, function: str, params: dict[str, flo
                           "equivalent spin, times |n|)")
         attrs["stability_rule"] = RULE
     return attrs
+
+
+def potential_curve(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float
+                    ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The effective potential of the level ``J`` against the tilt, for the figures.
+
+    ``U_J(c) = J^2 / (2 D(c)) + mu fr_inv (1 + q c)`` (S5;
+    :func:`stability.steady.family.effective_potential`) at :data:`TILT_GRID_POINTS` tilts from 0
+    to 180 degrees: a lower bound of the energy of every state of the level with that tilt,
+    equal to it exactly at the steady states, which are its critical points and the two ends
+    (docs/steady_states.md, sec. 2, the energy principle).
+
+    Returns
+    -------
+    data_vars, coords : dict
+        ``{"effective_potential": ("tilt_grid", ...)}`` and ``{"tilt_grid": ...}`` (degrees),
+        entries for an :class:`xarray.Dataset`.
+    """
+    grid = np.linspace(0.0, 180.0, TILT_GRID_POINTS)
+    u = family.effective_potential(np.cos(np.radians(grid)), jellett, q, sigma, fr_inv, mu)
+    data = {"effective_potential": ("tilt_grid", u, var_attrs(
+        "effective potential U_J of the Jellett level", comment=(
+            "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
+            "units A0 Omega^2; a lower bound of the energy of every state of the level with this tilt, "
+            "reached at the steady states (its critical points and the two ends)")))}
+    coords = {"tilt_grid": ("tilt_grid", grid, var_attrs("tilt at which U_J is sampled (0 upright, 180 inverted)",
+                                                         DEGREE))}
+    return data, coords

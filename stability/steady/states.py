@@ -3,11 +3,13 @@
 :func:`steady_states` answers: at a given Jellett integral ``J`` (conserved by every contact
 force, so fixed by the initial state of a motion), which steady states exist, with what
 tilt, precession, spin and energy, and which are stable. The upright and inverted spins exist
-at every ``J``; the tilted ones are the roots of the quartic (S6) of
-:func:`stability.steady.family.tilted_cosines`. Their energies and ``J`` are evaluated on the
-state vectors with the nonlinear layer's own formulas (:mod:`stability.nonlinear.quantities`),
-their spectra by :mod:`stability.steady.linearisation`, their flags by
-:mod:`stability.steady.verdicts`. docs/steady_states.md has the derivation.
+at every ``J``; the tilted ones are the roots of the quartic (S6), all found with their energy
+test in one compiled call (:func:`stability.steady.family.level_states`). Their energies and
+``J`` are evaluated on the state vectors with the nonlinear layer's own formulas
+(:mod:`stability.nonlinear.quantities`, :func:`state_integrals`), their spectra by
+:mod:`stability.steady.linearisation`, their flags by :mod:`stability.steady.verdicts`; the
+dataset also carries the effective potential ``U_J`` of the level against the tilt, which its
+figure draws. docs/steady_states.md has the derivation.
 """
 
 from __future__ import annotations
@@ -18,34 +20,58 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..nonlinear.quantities import centre_of_mass_velocity, energy_parts, h_cg
+from numba import njit
+from continuation.jit import register_jitable
+
+from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar
 from . import family
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .verdicts import flag_of
 
-__all__ = ["steady_states", "state_integrals", "upright_jellett"]
+__all__ = ["steady_states", "state_integrals", "point_integrals", "upright_jellett"]
+
+#: Jellett's integral of the upright spin 1 (:func:`stability.steady.family.upright_jellett`)
+upright_jellett = family.upright_jellett
 
 
-def upright_jellett(*, q: float, sigma: float) -> float:
-    """Jellett's integral of the upright spin ``omega = K`` (spin 1, the linear atlases' state):
-    ``J = sigma (1 + q)``."""
-    return sigma * (1.0 + q)
+@register_jitable
+def _integrals_of(w0, w1, w2, k0, k1, k2, v0, v1, q, sigma, fr_inv, mu):
+    """``J`` and ``E`` of one state ``(omega, k, V0_h)`` of the sliding model (``V0`` horizontal,
+    ``z_G = 1 + q k_3``): the nonlinear layer's formulas."""
+    g0, g1, g2 = centre_velocity(w0, w1, w2, k0, k1, k2, v0, v1, 0.0, q)
+    energy = energy_terms(w0, w1, w2, k0, k1, k2, g0, g1, g2, 1.0 + q * k2, q, fr_inv, sigma, mu)[4]
+    return jellett_integral(w0, w1, w2, k0, k1, k2, q, sigma, mu), energy
+
+
+@njit(cache=True)
+def _integrals(y, q, sigma, fr_inv, mu):
+    n = y.shape[0]
+    jel = np.empty(n)
+    energy = np.empty(n)
+    for i in range(n):
+        jel[i], energy[i] = _integrals_of(y[i, 0], y[i, 1], y[i, 2], y[i, 3], y[i, 4], y[i, 5], y[i, 6], y[i, 7],
+                                          q, sigma, fr_inv, mu)
+    return jel, energy
+
+
+@njit(cache=True)
+def point_integrals(y, q, sigma, fr_inv, mu):
+    """``(J, E)`` of one state ``y = (omega, k, V0_h, ...)`` (1-D float array, the first 8
+    entries used; floats ``q, sigma, fr_inv, mu``): :func:`state_integrals` of one state,
+    without its array handling (what :func:`stability.final_state` calls)."""
+    return _integrals_of(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], q, sigma, fr_inv, mu)
 
 
 def state_integrals(y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu: float
                     ) -> tuple[np.ndarray, np.ndarray]:
-    """Jellett's integral and the energy of states ``(omega, k, V0_h)`` (shape ``(n, 8)``), by the
-    nonlinear layer's formulas (:func:`~stability.nonlinear.quantities.h_cg`,
-    :func:`~stability.nonlinear.quantities.energy_parts`), as :func:`stability.simulate` reports them."""
-    y = np.atleast_2d(y)
-    w, k = y[:, 0:3], y[:, 3:6]
-    v0 = np.zeros_like(w)
-    v0[:, :2] = y[:, 6:8]
-    vg = centre_of_mass_velocity(w, k, v0, q)
-    e = energy_parts(w, k, vg, 1.0 + q * k[:, 2], q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)["energy"]
-    return h_cg(w, k.copy(), q=q, sigma=sigma, mu=mu), e
+    """Jellett's integral and the energy of states ``(omega, k, V0_h)`` (shape ``(n, 8)`` or
+    ``(8,)``), by the nonlinear layer's formulas (:func:`~stability.nonlinear.quantities.jellett_integral`,
+    :func:`~stability.nonlinear.quantities.energy_terms`, the ones :func:`stability.simulate`
+    reports ``h_cg`` and ``energy`` with), compiled."""
+    y = np.ascontiguousarray(np.atleast_2d(y)[:, :8], dtype=np.float64)
+    return _integrals(y, float(q), float(sigma), float(fr_inv), float(mu))
 
 
 def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any,
@@ -78,8 +104,11 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         minimum of ``U_J``), ``mode_growth_rate`` and ``mode_frequency`` (``state``, ``mode``),
         and for the vertical states ``equivalent_fr_inv``, ``equivalent_alpha_v``,
         ``equivalent_q`` (the point of eq. (11) with the same verdict: ``fr_inv / n^2``,
-        ``alpha_v / |n|``, ``+-q``). The attributes name the removed neutral directions
-        (``removed_neutral_*``) and the stability rule.
+        ``alpha_v / |n|``, ``+-q``: :func:`stability.steady.family.equivalent_point`); over
+        ``tilt_grid`` (0 to 180 degrees), ``effective_potential``: ``U_J`` of the level against the
+        tilt, whose critical points and ends are the states (the figure, ``ds.tippe.plot()``,
+        :func:`stability.plotting.plot_steady_states`). The attributes name the removed neutral
+        directions (``removed_neutral_*``) and the stability rule.
 
     Raises
     ------
@@ -99,31 +128,29 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
-    rows = []
-    for kind in ("upright", "inverted"):
-        n = family.vertical_spin(kind, J, q=q, sigma=sigma)
-        rows.append((kind, family.ORIENTATIONS[kind], math.nan, family.vertical_state(kind, n), n))
-    for c in family.tilted_cosines(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu):
-        lam = J / family.d_of_c(c, q, sigma, mu)
-        rows.append(("tilted", c, lam, family.state_vector(math.acos(c), lam, q), math.nan))
-    rows.sort(key=lambda r: -r[1])
-    kinds = [r[0] for r in rows]
-    cosines = np.array([r[1] for r in rows])
-    lam = np.array([r[2] for r in rows])
-    y = np.array([r[3] for r in rows])
+    table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
+    n = table.shape[0]
+    kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
+    cosines, tests, scales, lam = table[:, 0], table[:, 2], table[:, 3], table[:, 4]
     vertical = np.array([k != "tilted" for k in kinds])
+    spin = np.full(n, np.nan)
+    y = np.empty((n, 8))
+    for i, kind in enumerate(kinds):
+        if vertical[i]:
+            spin[i] = family.vertical_spin(kind, J, q=q, sigma=sigma)
+            y[i] = family.vertical_state(kind, spin[i])
+        else:
+            y[i] = family.state_vector(math.acos(cosines[i]), lam[i], q)
     ev, scale = reduced_spectrum(y, np.nan_to_num(lam), vertical, p, q=q, sigma=sigma, mu=mu)
     growth, n_neutral, jac = modes_verdict(ev, scale)
-    tests = [family.energy_test(k, float(c), J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-             for k, c in zip(kinds, cosines)]
     flags = np.array([flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v))
-                      for k, (t, s), v in zip(kinds, tests, jac)], dtype=np.int8)
+                      for k, t, s, v in zip(kinds, tests, scales, jac)], dtype=np.int8)
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-    spin = np.array([r[4] for r in rows])
-    with np.errstate(divide="ignore"):
-        eq = {"equivalent_fr_inv": np.where(vertical, fr_inv / spin ** 2, np.nan),
-              "equivalent_alpha_v": np.where(vertical, alpha_v / np.abs(spin), np.nan),
-              "equivalent_q": np.where(vertical, q * cosines, np.nan)}
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q_eq, fr_eq, av_eq = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
+    eq = {"equivalent_fr_inv": np.where(vertical, fr_eq, np.nan),
+          "equivalent_alpha_v": np.where(vertical, av_eq, np.nan),
+          "equivalent_q": np.where(vertical, q_eq, np.nan)}
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
     data = {
         "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state: upright, inverted or tilted"}),
@@ -143,7 +170,7 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         "stability": ("state", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("state", jac, flag_attrs(
             "verdict of the reduced Jacobian alone", comment="neutral if |Re s| <= 1e3 u ||A||_F")),
-        "energy_test": ("state", np.array([t for t, _ in tests]), var_attrs(
+        "energy_test": ("state", tests, var_attrs(
             "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum")),
         "mode_growth_rate": (("state", "mode"), ev.real, var_attrs("growth rate Re s of each physical mode")),
         "mode_frequency": (("state", "mode"), ev.imag, var_attrs(
@@ -152,9 +179,12 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     for name, values in eq.items():
         data[name] = ("state", values, var_attrs(f"{name.split('_', 1)[1]} of eq. (11) at the equivalent spin "
                                                   "(vertical states)"))
-    coords = {"state": ("state", np.arange(len(rows)), {"long_name": "index of the steady state"}),
+    curve, curve_coords = potential_curve(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    data.update(curve)
+    coords = {"state": ("state", np.arange(n), {"long_name": "index of the steady state"}),
               "mode": ("mode", np.arange(6), {"long_name": "index of the physical mode, by decreasing growth rate "
-                                                           "(tilted states have 5: the 6th is NaN)"})}
+                                                           "(tilted states have 5: the 6th is NaN)"}),
+              **curve_coords}
     attrs = product_attrs("steady_states", "Steady states of the sliding Tippe top on one Jellett level",
                           "stability.steady_states", params, removed_neutral=True)
     attrs["model"] = "sliding"

@@ -1,0 +1,232 @@
+"""The one commit primitive (stability.grids.outputs): exactly one winner, regular files only.
+
+Issue 13, items 4 and 7. References:
+
+* the race: a barrier of N real processes writing different datasets to the same new name at
+  once; the reference for the file's content is the winner's own in-memory dataset (each
+  dataset is tagged), and the invariant is the contract: exactly one returns, the others get
+  ``FileExistsError``, no temporary file remains;
+* the no-replace primitives: each fallback is forced by disabling the ones above it, and the
+  same contract is checked (target unchanged, the loser's temporary removed);
+* non-regular targets: a FIFO, a UNIX socket, a symbolic link, and a character device when
+  ``mknod`` is permitted (created in the test's directory, never /dev/null), with and without
+  ``overwrite``, through every writer and the command line; the reference is the path's own
+  ``lstat`` before and after (``os.path.samestat``, mode).
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import socket
+import stat
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import stability
+import stability.grids.outputs as outputs
+from stability.cli import main
+from stability.grids.chunked import write_atlas
+from stability.grids.outputs import TEMPORARY_PREFIX, atomic_output, temporary_name
+
+pytestmark = pytest.mark.skipif(os.name != "posix", reason="POSIX file semantics")
+
+
+def _leftovers(d: Path) -> list[str]:
+    return sorted(p.name for p in d.iterdir() if p.name.startswith(TEMPORARY_PREFIX))
+
+
+def _tagged(i: int, n: int = 50) -> xr.Dataset:
+    return xr.Dataset({"x": ("t", np.arange(float(n + i)))}, attrs={"writer": i})
+
+
+# --- the race ------------------------------------------------------------------------------------
+
+def _race_writer(path: str, i: int, barrier, results) -> None:
+    """Runs in a spawned process: wait for every writer, then write dataset i to ``path``."""
+    from stability.grids.netcdf import write_dataset
+
+    barrier.wait(timeout=120)
+    try:
+        write_dataset(_tagged(i), path)
+        results.put((i, "wrote"))
+    except FileExistsError as exc:
+        results.put((i, f"FileExistsError: {exc}"))
+    except BaseException as exc:  # pragma: no cover - reported by the assertion
+        results.put((i, f"{type(exc).__name__}: {exc}"))
+
+
+def test_concurrent_writers_exactly_one_wins(tmp_path):
+    """N processes released together by a barrier write to one new name without overwrite:
+    exactly one succeeds, every other gets FileExistsError, the file is the winner's."""
+    n = 6
+    ctx = multiprocessing.get_context("spawn")
+    barrier, results = ctx.Barrier(n), ctx.Queue()
+    path = tmp_path / "same.nc"
+    procs = [ctx.Process(target=_race_writer, args=(str(path), i, barrier, results)) for i in range(n)]
+    for p in procs:
+        p.start()
+    for p in procs:
+        p.join(timeout=300)
+        assert p.exitcode == 0
+    outcome = dict(results.get(timeout=10) for _ in range(n))
+    winners = [i for i, r in outcome.items() if r == "wrote"]
+    assert len(winners) == 1, outcome
+    losers = [r for i, r in outcome.items() if i not in winners]
+    assert all(r.startswith("FileExistsError") for r in losers), outcome
+    with xr.open_dataset(path) as f:
+        xr.testing.assert_identical(f.load(), _tagged(winners[0]))
+    assert _leftovers(tmp_path) == []
+
+
+def test_file_created_during_the_run_is_not_replaced(tmp_path):
+    """Deterministic: another process creates the target between the start and the commit."""
+    path = tmp_path / "a.nc"
+    with pytest.raises(FileExistsError, match=r"was created by another process while this run was computing; "
+                                              r"nothing was written \(pass overwrite=True"):
+        with atomic_output(path) as tmp:
+            Path(tmp).write_text("mine")
+            path.write_text("theirs")
+    assert path.read_text() == "theirs"
+    assert _leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("disabled", [0, 1, 2], ids=["renameat2", "link", "exclusive-create"])
+def test_each_no_replace_fallback_keeps_the_contract(tmp_path, monkeypatch, disabled):
+    """The primitive actually used is the first one not disabled; each refuses an existing
+    target and commits to a new name."""
+    methods = list(outputs.NOREPLACE_METHODS)
+    for k in range(disabled):
+        methods[k] = lambda src, dst: False  # "not supported here" (EINVAL, EPERM, ...)
+    used = []
+    for k in range(disabled, len(methods)):
+        real = methods[k]
+        methods[k] = (lambda real: lambda src, dst: used.append(real.__name__) or real(src, dst))(real)
+    monkeypatch.setattr(outputs, "NOREPLACE_METHODS", tuple(methods))
+    path = tmp_path / "b.txt"
+    with atomic_output(path) as tmp:
+        Path(tmp).write_text("first")
+    assert path.read_text() == "first"
+    with pytest.raises(FileExistsError):
+        with atomic_output(tmp_path / "c.txt") as tmp:
+            Path(tmp).write_text("second")
+            (tmp_path / "c.txt").write_text("other")
+    assert (tmp_path / "c.txt").read_text() == "other"
+    assert _leftovers(tmp_path) == []
+    assert used and used[0] == ("_rename_noreplace_syscall", "_link_noreplace", "_exclusive_noreplace")[disabled]
+
+
+def test_renameat2_is_used_here(tmp_path):
+    """On this Linux machine the first primitive is available (glibc >= 2.28): one atomic step."""
+    if not os.uname().sysname == "Linux":
+        pytest.skip("Linux only")
+    src = tmp_path / "s"
+    src.write_text("x")
+    assert outputs._rename_noreplace_syscall(str(src), str(tmp_path / "d"))
+    src.write_text("y")
+    with pytest.raises(FileExistsError):
+        outputs._rename_noreplace_syscall(str(src), str(tmp_path / "d"))
+    assert (tmp_path / "d").read_text() == "x"
+
+
+def test_temporary_names_are_unique_hidden_and_keep_the_suffix(tmp_path):
+    names = {temporary_name(tmp_path / "fig.png") for _ in range(50)}
+    assert len(names) == 50
+    for n in names:
+        assert Path(n).name.startswith(TEMPORARY_PREFIX) and Path(n).suffix == ".png"
+    assert Path(temporary_name(tmp_path / "noext")).suffix == ""  # a figure's format is read off it
+
+
+# --- non-regular targets -------------------------------------------------------------------------
+
+def _make(kind: str, path: Path) -> str:
+    """Create a non-regular file of ``kind`` at ``path``; return the kind's words."""
+    if kind == "fifo":
+        os.mkfifo(path)
+        return "a FIFO (named pipe)"
+    if kind == "socket":
+        s = socket.socket(socket.AF_UNIX)
+        s.bind(str(path))
+        s.close()
+        return "a socket"
+    if kind == "symlink":
+        target = path.with_name(path.name + ".target")
+        target.write_text("the link's target")
+        path.symlink_to(target)
+        return "a symbolic link"
+    try:
+        os.mknod(path, stat.S_IFCHR | 0o600, os.makedev(1, 3))
+    except (PermissionError, OSError):
+        pytest.skip("mknod not permitted here")
+    return "a character device"
+
+
+def _writers():
+    ds = stability.atlas("fixed_pivot", q=[0.1, 0.2], fr_inv=0.1, sigma=1.0)
+
+    def save_figure(path, overwrite):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from stability.plotting import save_figure as save
+
+        fig = plt.figure()
+        try:
+            save(fig, path, overwrite=overwrite)
+        finally:
+            plt.close(fig)
+
+    return {"write_dataset": lambda p, o: stability.write_dataset(ds, p, overwrite=o),
+            "write_atlas": lambda p, o: write_atlas(ds, p, overwrite=o),
+            "save_figure": save_figure}
+
+
+@pytest.mark.parametrize("kind", ["fifo", "socket", "symlink", "chardev"])
+@pytest.mark.parametrize("writer", ["write_dataset", "write_atlas", "save_figure"])
+@pytest.mark.parametrize("overwrite", [False, True])
+def test_only_a_regular_file_is_replaced(tmp_path, kind, writer, overwrite):
+    path = tmp_path / ("out.png" if writer == "save_figure" else "out.nc")
+    words = _make(kind, path)
+    before = os.lstat(path)
+    with pytest.raises(FileExistsError) as err:
+        _writers()[writer](path, overwrite)
+    assert f"output path '{path}' is {words}; only a regular file can be replaced" in str(err.value)
+    after = os.lstat(path)
+    assert os.path.samestat(before, after) and before.st_mode == after.st_mode
+    assert _leftovers(tmp_path) == []
+
+
+def test_overwrite_is_checked_again_at_commit(tmp_path):
+    """The path becomes a FIFO while the run computes: the commit refuses it (lstat again)."""
+    path = tmp_path / "a.nc"
+    path.write_text("regular at the start")
+    with pytest.raises(FileExistsError, match="is a FIFO"):
+        with atomic_output(path, overwrite=True) as tmp:
+            Path(tmp).write_text("new")
+            path.unlink()
+            os.mkfifo(path)
+    assert stat.S_ISFIFO(os.lstat(path).st_mode)
+    assert _leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("kind", ["fifo", "symlink"])
+def test_cli_refuses_non_regular_output_before_computing(tmp_path, capsys, kind):
+    path = tmp_path / "out.nc"
+    words = _make(kind, path)
+    rc = main(["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "-o", str(path),
+               "--overwrite"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and f"is {words}; only a regular file can be replaced" in err
+
+
+def test_open_atlas_says_what_a_non_regular_path_is(tmp_path):
+    """E12: a FIFO is not 'missing' (and opening it for reading would block)."""
+    path = tmp_path / "pipe.nc"
+    os.mkfifo(path)
+    with pytest.raises(stability.AtlasFileError, match=r"pipe.nc' is a FIFO \(named pipe\), not a netCDF file"):
+        stability.open_atlas(path)

@@ -1,0 +1,246 @@
+"""Memory estimates before allocating (stability.resources), issue 13 item 10 and issue 15 item 4.
+
+References:
+
+* the estimates: the peak resident memory of the real call, measured in a fresh subprocess
+  (``VmHWM`` after the call minus ``VmRSS`` before it, the peak being reset by writing 5 to
+  ``/proc/self/clear_refs`` after a small warm-up call of the same function, which has compiled
+  and imported everything: a numba compilation peaks higher than the requests measured here),
+  divided by the request's size. The
+  constants of :mod:`stability.resources` must lie within [0.7, 1.3] of it: the estimate is
+  there to refuse requests that are far above the memory (a factor of 2 would still do that
+  job), and a tighter band would follow the allocator's page granularity and the noise of a
+  shared machine; sizes are chosen so that the measured growth is 40-200 MB, far above that
+  noise (a few MB);
+* the refusals: a request sized at 10x the limit set by ``TIPPE_MEMORY_LIMIT`` is refused before
+  anything is allocated (the process's peak stays under the limit), and the message names the
+  estimate, the parameter and a way out;
+* the limit: ``MemAvailable`` read from /proc/meminfo by the test itself.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import stability
+from stability import resources
+from stability.cli import main
+from stability.errors import ResourceError
+from stability.grids.atlases import BLOCK_POINTS
+from stability.grids.ranges import parse_values
+from stability.linear.neutral_curves import neutral_curve
+from stability.models import get_model
+
+MEASURE = textwrap.dedent("""
+    import json, sys
+    import numpy as np
+    import stability
+    from stability.grids import atlases
+
+    kind, n = sys.argv[1], int(sys.argv[2])
+
+    def run(size):
+        if kind == "simulate":
+            return stability.simulate("sliding", t_end=(size - 1) * 0.01, dt=0.01, omega=[0.02, 0, 1],
+                                      k=[0.05, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.5, alpha_v=0.5)
+        if kind == "atlas":
+            side = int(round(size ** 0.5))
+            return stability.atlas("sliding", q=np.linspace(-0.3, 0.3, side), sigma=np.linspace(1.0, 1.5, side),
+                                   fr_inv=0.3, alpha_v=0.5)
+        if kind == "atlas_masked":
+            side = int(round(size ** 0.5))
+            return stability.atlas("sliding", q=np.linspace(-0.3, 0.3, side), sigma=np.linspace(1.0, 1.6, side),
+                                   fr_inv=0.3, alpha_v=0.5, mask_unphysical=True)
+        if kind == "threshold":
+            return stability.thresholds("sigma", q=-0.1, fr_inv=0.3, alpha_v=0.5, samples=size)
+        if kind == "start_grid":
+            side = int(round(size ** 0.5))
+            from stability.linear.neutral_curves import neutral_curve
+            return neutral_curve("sliding", "q", "sigma", fixed={"fr_inv": 0.3, "alpha_v": 0.5},
+                                           grid=(side, side), max_points=5)
+        if kind == "class_atlas":
+            side = int(round(size ** 0.5))
+            return stability.class_atlas(q=np.linspace(-0.3, 0.3, side), sigma=np.linspace(1.0, 1.6, side))
+        raise SystemExit(kind)
+
+    def status(key):
+        with open("/proc/self/status") as f:
+            return float(next(ln for ln in f if ln.startswith(key)).split()[1]) * 1024.0
+
+    run(n // 8)    # compiles and imports what the size needs (parallel kernels too); its peak is not counted
+    with open("/proc/self/clear_refs", "w") as f:
+        f.write("5")                            # reset the peak (VmHWM) to the current RSS
+    base = status("VmRSS")
+    out = run(n)
+    print(json.dumps({"grown": status("VmHWM") - base}))
+""")
+
+#: (kind, size, estimate of the package for that size)
+CASES = [
+    ("simulate", 200_000, lambda n: resources.simulate_bytes("sliding", n)),
+    ("atlas", 1000 * 1000, lambda n: resources.atlas_bytes(get_model("sliding").n_modes, n, BLOCK_POINTS,
+                                                           domain_check=True)),
+    ("atlas_masked", 1000 * 1000, lambda n: resources.atlas_bytes(get_model("sliding").n_modes, n, BLOCK_POINTS)),
+    ("threshold", 200_000, lambda n: resources.THRESHOLD_BYTES_PER_SAMPLE * n),
+    ("start_grid", 700 * 700, lambda n: resources.START_GRID_BYTES_PER_POINT * n),
+    ("class_atlas", 1000 * 1000, lambda n: resources.CLASS_ATLAS_BYTES_PER_POINT * n),
+]
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/clear_refs"), reason="Linux peak-RSS reset")
+@pytest.mark.parametrize("kind,size,estimate", CASES, ids=[c[0] for c in CASES])
+def test_estimate_matches_the_measured_peak(kind, size, estimate):
+    r = subprocess.run([sys.executable, "-c", MEASURE, kind, str(size)], capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode == 0, r.stderr[-3000:]
+    grown = json.loads(r.stdout.strip().splitlines()[-1])["grown"]
+    ratio = estimate(size) / grown
+    print(f"{kind}: estimate {estimate(size):.4g} B, measured {grown:.4g} B, ratio {ratio:.3f}")
+    assert 0.7 <= ratio <= 1.3, f"{kind}: estimate {estimate(size):.3g} B, measured peak growth {grown:.3g} B"
+
+
+# --- the limit and the refusals ------------------------------------------------------------------
+
+@pytest.mark.skipif(not os.path.exists("/proc/meminfo"), reason="Linux /proc/meminfo")
+def test_limit_is_a_fraction_of_mem_available(monkeypatch):
+    monkeypatch.delenv(resources.ENV_LIMIT, raising=False)
+    with open("/proc/meminfo") as f:
+        avail = next(float(ln.split()[1]) * 1024 for ln in f if ln.startswith("MemAvailable:"))
+    limit, source = resources.memory_limit()
+    # the smallest of several sources: at most 80 % of MemAvailable (which moves by a few %
+    # between the two reads on a shared machine)
+    assert limit <= resources.HEADROOM * avail * 1.05
+    assert "80%" in source
+
+
+@pytest.mark.parametrize("text,value", [("2e9", 2e9), ("500M", 500e6), ("8G", 8e9), ("1GiB", 2.0**30),
+                                        ("123", 123.0)])
+def test_env_limit_syntax(monkeypatch, text, value):
+    monkeypatch.setenv(resources.ENV_LIMIT, text)
+    assert resources.memory_limit() == (value, f"the limit {resources.ENV_LIMIT}")
+
+
+def test_env_limit_garbage_is_named(monkeypatch):
+    monkeypatch.setenv(resources.ENV_LIMIT, "lots")
+    with pytest.raises(ValueError, match="TIPPE_MEMORY_LIMIT"):
+        resources.memory_limit()
+
+
+LIMIT = 50e6
+
+
+@pytest.mark.parametrize("call,fragments", [
+    (lambda: stability.simulate("sliding", t_end=2e5, dt=0.1, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1,
+                                fr_inv=0.3, sigma=1.5, alpha_v=0.5),
+     ["2000001 output times", "t_end", "dt"]),
+    (lambda: stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 3000), sigma=np.linspace(1.0, 1.6, 3000),
+                             fr_inv=0.3, alpha_v=0.5),
+     ["9000000", "chunk"]),
+    (lambda: stability.thresholds("sigma", q=-0.1, fr_inv=0.3, alpha_v=0.5, samples=10**6),
+     ["1000000 samples", "samples"]),
+    (lambda: neutral_curve("sliding", "q", "sigma", fixed={"fr_inv": 0.3, "alpha_v": 0.5},
+                                     grid=(2000, 2000)),
+     ["2000 x 2000", "grid"]),
+    (lambda: stability.class_atlas(q=np.linspace(-0.3, 0.3, 2000), sigma=np.linspace(1.0, 1.6, 2000)),
+     ["4000000 grid points"]),
+    (lambda: parse_values("0:1:100000000", name="q"),
+     ["q = '0:1:100000000' (100000000 values)", "fewer points"]),
+], ids=["simulate", "atlas", "thresholds", "neutral_curve", "class_atlas", "parse_values"])
+def test_requests_above_the_limit_are_refused_with_estimate_and_way_out(monkeypatch, call, fragments):
+    """Each entry point refuses at once (before allocating: measured below for simulate) with the
+    estimate, the limit's source and the parameter."""
+    monkeypatch.setenv(resources.ENV_LIMIT, str(LIMIT))
+    with pytest.raises(ResourceError) as info:
+        call()
+    text = str(info.value)
+    assert "would need about" in text and "TIPPE_MEMORY_LIMIT" in text
+    for f in fragments:
+        assert f in text, text
+    assert isinstance(info.value, ValueError)
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/clear_refs"), reason="Linux peak-RSS reset")
+def test_refusal_happens_before_allocating():
+    """A simulate request of ~20 GB under a 200 MB limit: the peak resident memory grows by less
+    than 50 MB during the refused call (the peak reset after the imports, as above)."""
+    code = textwrap.dedent("""
+        import stability
+        from stability.errors import ResourceError
+
+        def status(key):
+            with open("/proc/self/status") as f:
+                return float(next(ln for ln in f if ln.startswith(key)).split()[1]) * 1024.0
+
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+        base = status("VmRSS")
+        try:
+            stability.simulate("sliding", t_end=1e7, dt=0.2, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1,
+                               fr_inv=0.3, sigma=1.5, alpha_v=0.5)
+        except ResourceError:
+            print(status("VmHWM") - base)
+    """)
+    env = dict(os.environ, TIPPE_MEMORY_LIMIT="200M")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert float(r.stdout.split()[-1]) < 50e6  # no 20 GB array, not even a part of it
+
+
+def test_cli_refusal_exit_2_one_line(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv(resources.ENV_LIMIT, "100M")
+    status = main(["simulate", "--t-end", "1e6", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1",
+                   "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5", "-o", str(tmp_path / "s.nc")])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert len(err.strip().splitlines()) == 1 and "would need about" in err and "dt" in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+# --- issue 15 item 4: tippe simulate says what it wrote and warns before a large output -----------
+
+def test_simulate_says_what_it_wrote(tmp_path, capsys):
+    """The report against the file itself: its size on disk, its first and last time, its
+    number of output times."""
+    import xarray as xr
+
+    out = tmp_path / "s.nc"
+    status = main(["simulate", "--t-end", "5", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1",
+                   "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5", "-o", str(out)])
+    assert status == 0
+    text = capsys.readouterr()
+    assert text.err == ""
+    with xr.open_dataset(out) as ds:
+        n = ds.sizes["time"]
+        t0, t1 = float(ds.time[0]), float(ds.time[-1])
+    assert text.out.startswith(f"wrote {out} (")
+    assert resources.format_bytes(out.stat().st_size) in text.out
+    assert f"t = {t0:g} ... {t1:g} ({n} output times" in text.out
+    assert "steps" in text.out
+
+
+def test_simulate_warns_before_a_large_output(tmp_path, monkeypatch, capsys):
+    """Above WARN_BYTES the warning comes before the run (checked: the run is stopped at once by
+    a failing simulate, and the warning is already on stderr)."""
+    import stability.commands.simulate as cmd
+    import stability.nonlinear.runs as runs
+
+    monkeypatch.setattr(cmd, "WARN_BYTES", 1e5)
+
+    def boom(*a, **k):
+        raise RuntimeError("not run")
+
+    monkeypatch.setattr(runs, "simulate", boom)
+    status = main(["simulate", "--t-end", "100", "--dt", "0.1", "--omega", "0.02,0,1", "--k", "0.05,0,1",
+                   "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5",
+                   "-o", str(tmp_path / "s.nc")])
+    err = capsys.readouterr().err
+    assert status == 1
+    assert "warning: the output will be about" in err and "1001 output times" in err
+    assert err.index("warning") < err.index("not run")
