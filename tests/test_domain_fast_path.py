@@ -70,3 +70,24 @@ def test_sigma_bound_exact_on_the_fast_path(q):
     assert P._plain_point_inside(dict(q=q, sigma=float(np.nextafter(top, 3.0)), mu=mu)) is None
     with pytest.raises(DomainError, match="sigma"):
         P.check_domain(scalar=True, q=q, sigma=float(np.nextafter(top, 3.0)), mu=mu)
+
+
+@pytest.mark.parametrize("value", [(0.0, 0.0, 5.0), [0.01, 0, 0.99995], (1, 2, 3), (1e30, -1e30, 0.0),
+                                   (1e31, 0.0, 0.0), (0.0, float("nan"), 1.0), (10**400, 0, 0), (1.0, 2.0),
+                                   (1.0, 2.0, 3.0, 4.0)])
+def test_state_vector_fast_path_agrees_with_the_general_path(value):
+    """simulate's / final_state's state vectors given as a tuple or list of plain numbers take a fast
+    path; the reference is the same numbers in a tuple subclass, which the fast path does not take
+    (the general path's checks and messages): the same vector, or the same refusal."""
+    from stability.nonlinear.runs import _vector
+
+    def outcome(v):
+        try:
+            return "ok", _vector("omega", v, (3,)).tolist()
+        except (ValueError, TypeError) as e:
+            return type(e).__name__, str(e).split(" = ")[0]
+
+    class General(tuple):
+        pass
+
+    assert outcome(value) == outcome(General(value))

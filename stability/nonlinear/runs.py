@@ -49,6 +49,9 @@ _ONE = "1"
 
 
 def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
+    if type(value) in (tuple, list) and len(value) in n and all(
+            type(x) in (float, int) and -1e30 <= x <= 1e30 for x in value):  # NaN fails the range
+        return np.array(value, dtype=float)  # fast path: plain numbers that pass every test below
     sizes = " or ".join(map(str, n))
     arr = as_parameter(name, value)  # type, emptiness and finiteness, with the standard messages
     if arr.ndim != 1 or arr.size not in n:
