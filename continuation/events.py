@@ -5,7 +5,8 @@ tangent there). Between two accepted points ``u_a`` (pseudo-arclength ``h = 0``)
 (``h = h_b``) where ``phi`` changes sign, the curve is parametrised by ``h``: ``u(h)`` is the
 corrector's solution of ``F(u) = 0``, ``t_a . (u - u_a) = h`` (a regular parametrisation while
 the tangent turns by less than 90 degrees). The zero of ``phi(u(h), t(h))`` is found by Brent's
-method to ``|dh| <= 1e-14 h_b`` (``scipy.optimize.brentq``).
+method to ``|dh| <= 1e-14 h_b`` (:func:`continuation.brent.brentq`, scipy's brentq without
+importing scipy.optimize).
 
 Test functions used by the engine:
 
@@ -22,7 +23,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from scipy.optimize import brentq
+
+from .brent import brentq
 
 __all__ = ["locate", "fold_test"]
 
