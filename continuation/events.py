@@ -5,8 +5,7 @@ tangent there). Between two accepted points ``u_a`` (pseudo-arclength ``h = 0``)
 (``h = h_b``) where ``phi`` changes sign, the curve is parametrised by ``h``: ``u(h)`` is the
 corrector's solution of ``F(u) = 0``, ``t_a . (u - u_a) = h`` (a regular parametrisation while
 the tangent turns by less than 90 degrees). The zero of ``phi(u(h), t(h))`` is found by Brent's
-method to ``|dh| <= 1e-14 h_b`` (:func:`continuation.brent.brentq`, scipy's brentq without
-importing scipy.optimize).
+method to ``|dh| <= 1e-14 h_b`` (``scipy.optimize.brentq``).
 
 Test functions used by the engine:
 
@@ -23,8 +22,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-
-from .brent import brentq
 
 __all__ = ["locate", "fold_test"]
 
@@ -81,6 +78,8 @@ def locate(point: Callable[[float], tuple[np.ndarray, np.ndarray]],
             return phi_b
         cache[h] = point(h)
         return phi(*cache[h])
+
+    from scipy.optimize import brentq  # here, not at import: a branch without events never pays for it
 
     width = abs(h_b - h_a)
     h = brentq(f, h_a, h_b, xtol=rel_tol * width + 1e-300, rtol=4.5 * np.finfo(float).eps,
