@@ -284,6 +284,24 @@ def test_compile_notice_once_per_process_and_only_if_not_cached(tmp_path):
     assert "tippe warmup" in out.stderr and "~7 s" in out.stderr
 
 
+def test_compile_notice_before_a_first_compiled_run(tmp_path):
+    """simulate's compiled integrators say so too before compiling on an empty cache (issue 15:
+    a first simulate compiled ~18 s of CPU silently). Checked without compiling: the slices
+    are neither in memory nor in the (empty) disk cache, so the line is printed, once."""
+    code = """
+        import sys
+        from stability import execution
+        from stability.nonlinear import integrators as I
+        for slice_ in (I.dopri5_slice, I.rk4_slice):
+            c = I._Compiled(slice_)
+            assert not c.in_memory() and c.cached() is False
+            execution.before_compiled_call(c, I.COMPILE_SECONDS)
+    """
+    out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.splitlines() == [execution.NOTICE.format(seconds=20.0)]
+
+
 # --- what a fresh process imports -----------------------------------------------------------
 
 def test_import_stability_imports_nothing_heavy():
