@@ -18,18 +18,29 @@ Likewise ``continuation.steady_branch`` re-exports :func:`stability.steady.branc
 (the family of tilted steady states of the sliding top against Jellett's integral, traced by
 this engine). This ``__init__`` is the only module of the package that refers to
 :mod:`stability` (docs/architecture.md).
+
+Every name is imported on first use (PEP 562), so that importing a building block
+(``from continuation.jit import register_jitable``, which the formulas of :mod:`stability` do)
+imports neither the engine nor scipy.
 """
 
 from __future__ import annotations
 
+import importlib
 from typing import Any
 
-from .dense import dense, hermite_samples
-from .engine import Branch, correct, project, tangent, trace, trace_both
-from .errors import ConvergenceError
-from .events import fold_test, locate
-from .interpolation import hermite
-from .problem import ContinuationProblem, finite_difference_jacobian
+#: public name -> the module that defines it (imported on first use)
+_EXPORTS: dict[str, str] = {
+    "dense": ".dense", "hermite_samples": ".dense",
+    **dict.fromkeys(("Branch", "correct", "project", "tangent", "trace", "trace_both"), ".engine"),
+    "ConvergenceError": ".errors",
+    "fold_test": ".events", "locate": ".events",
+    "hermite": ".interpolation",
+    "ContinuationProblem": ".problem", "finite_difference_jacobian": ".problem",
+    # the facade: the clients of the engine in stability
+    **dict.fromkeys(("neutral_curve", "fold_curve", "NeutralProblem"), "stability.linear.neutral_curves"),
+    "steady_branch": "stability.steady.branch",
+}
 
 __all__ = [
     "Branch", "ConvergenceError", "ContinuationProblem", "correct", "finite_difference_jacobian",
@@ -38,16 +49,18 @@ __all__ = [
     "neutral_curve", "fold_curve", "NeutralProblem", "steady_branch",
 ]
 
-_LAZY = {"neutral_curve", "fold_curve", "NeutralProblem"}
-
 
 def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        from stability.linear import neutral_curves
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+        if _EXPORTS[name].startswith("stability"):
+            # the clients return datasets: give them ds.tippe (stability's facade does the same)
+            importlib.import_module("stability.plotting.accessor")
+        else:
+            globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-        return getattr(neutral_curves, name)
-    if name == "steady_branch":
-        from stability.steady.branch import steady_branch
 
-        return steady_branch
-    raise AttributeError(f"module 'continuation' has no attribute {name!r}")
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

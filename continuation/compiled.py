@@ -20,7 +20,10 @@ problem are here. Each is the engine's own building block compiled, not a copy o
   ``engine._newton``, the convergence tests included, so that a problem's loop is a few lines
   (see :mod:`stability.linear.neutral_compiled`).
 
-All are ``numba.njit(cache=True)``: compiled once per machine and cached in ``__pycache__``.
+All are ``numba.njit(cache=True)`` (through :func:`continuation.jit.njit`, which registers the
+building blocks with numba first and stamps the cache with their sources): compiled once per
+machine and cached in ``__pycache__``. Importing this module imports numba; the engine's Python
+path never imports it.
 """
 
 from __future__ import annotations
@@ -28,9 +31,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from . import interpolation, linalg
+from .jit import njit
 
 __all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "EPS", "FLOOR",
            "CONTINUE", "CONVERGED", "POLISH", "FAILED"]

@@ -22,7 +22,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from scipy.optimize import brentq
 
 __all__ = ["locate", "fold_test"]
 
@@ -79,6 +78,8 @@ def locate(point: Callable[[float], tuple[np.ndarray, np.ndarray]],
             return phi_b
         cache[h] = point(h)
         return phi(*cache[h])
+
+    from scipy.optimize import brentq  # here, not at import: a branch without events never pays for it
 
     width = abs(h_b - h_a)
     h = brentq(f, h_a, h_b, xtol=rel_tol * width + 1e-300, rtol=4.5 * np.finfo(float).eps,

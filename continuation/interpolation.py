@@ -23,7 +23,8 @@ corrector solves that locate special points (:func:`hermite`), and the dense out
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from .jit import register_jitable
 
 from .linalg import norm
 

@@ -3,10 +3,11 @@
 The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n`` (3 x 3 for a curve in
 ``R^3``), where the call overhead of LAPACK, from Python or from numba, is larger than the work.
 Each building block here is written once and runs in both worlds: the functions are
-``numba.extending.register_jitable`` (a plain Python function when called from Python, compiled
-into the caller when called from ``@njit`` code), or, where the two worlds need a different
-storage, a Python function with a :func:`numba.extending.overload` for compiled code, both
-calling the one algorithm. Users:
+``register_jitable`` (a plain Python function when called from Python, compiled into the caller
+when called from ``@njit`` code), or, where the two worlds need a different storage, a Python
+function with an ``overload`` for compiled code, both calling the one algorithm (numba's
+registrations, deferred by :mod:`continuation.jit` until compiled code is wanted: the Python
+path never imports numba). Users:
 
 * the engine's Python path (:mod:`continuation.engine`): corrector, tangent, branch-point test;
 * the compiled corrector's building blocks (:mod:`continuation.compiled`, and through them a
@@ -30,8 +31,9 @@ problem's compiled step and the engine's Python path agree to rounding, not bit 
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
 elimination costs ``m^3 / 3`` Python operations).
 
-Caveat of numba's on-disk cache: a cached ``@njit`` function that calls these is not recompiled
-when only this file changes; delete the ``*.nbi``/``*.nbc`` files after editing it.
+numba's on-disk cache of a function compiled through :mod:`continuation.jit` is stamped with a
+hash of this file too, so editing it invalidates the compiled callers
+(:func:`continuation.jit.source_stamp`).
 """
 
 from __future__ import annotations
@@ -39,8 +41,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
-from numba.extending import overload, register_jitable
+
+from .jit import njit, overload, register_jitable
 
 __all__ = ["lu_solve", "solve_det", "bordered_solve", "bordered_det", "tangent_det", "norm",
            "solve_dense", "PYTHON_LU_MAX"]
@@ -334,8 +336,7 @@ def tangent_det(J, t_ref):
 # ------------------------------------------------------------------------------------------
 # in place, for compiled code (the nonlinear models' right-hand sides)
 # ------------------------------------------------------------------------------------------
-@njit(cache=True)
-def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Solve ``a x = b`` in place by :func:`lu_solve` (compiled; float or complex).
 
     Parameters
@@ -355,3 +356,13 @@ def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     if not ok:
         b[:] = np.nan
     return b
+
+
+def __getattr__(name: str) -> object:
+    """``solve_dense``: :func:`_solve_dense` compiled (``numba.njit(cache=True)``), made on first
+    access, so that importing this module imports no numba (only the nonlinear models, compiled
+    code themselves, ask for it)."""
+    if name == "solve_dense":
+        globals()["solve_dense"] = disp = njit(_solve_dense, cache=True)
+        return disp
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

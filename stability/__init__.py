@@ -19,28 +19,40 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
   (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``);
 * ``ds.tippe`` - on every dataset the package returns: ``ds.tippe.product`` (its global
   attribute ``tippe_stability_product``, docs/datasets.md) and ``ds.tippe.plot()``, the
-  product's figure (:mod:`stability.plotting.accessor`; registered here, matplotlib is
-  imported only when a figure is drawn).
+  product's figure (:mod:`stability.plotting.accessor`; registered by this module, below;
+  matplotlib is imported only when a figure is drawn).
 
-This module only re-exports; where each name lives, and which way imports go, is in
-docs/architecture.md.
+This module only re-exports, lazily (PEP 562): ``import stability`` imports none of numpy,
+numba, scipy, xarray or matplotlib; each name is imported from the module that defines it on
+first use (:data:`_EXPORTS`), and handing out a function that returns datasets registers the
+accessor ``ds.tippe`` (so does ``import stability.plotting.accessor``, for code that imports
+such functions from their modules). Subpackages (``stability.plotting`` ...) are reachable as
+attributes too. Where each name lives, and which way imports go, is in docs/architecture.md.
 """
-from .errors import AtlasFileError, ChunkError, DomainError, InputError, TippeError
-from .grids.atlases import atlas
-from .grids.netcdf import open_atlas, write_dataset
-from .linear.control_forms import friction_loop, state_space
-from .linear.critical import critical_spin, threshold, threshold_crossings, thresholds
-from .linear.spectra import eigenvalues, spectrum
-from .models import MODELS, LinearModel, get_model
-from .nonlinear.jacobian import jacobian_eigenvalues
-from .nonlinear.runs import simulate
-from .nonlinear.validation import coulomb_growth, validate
-from .parameters import DEFAULT_MU, PARAMETERS, check_domain
-from .plotting import accessor as _accessor  # registers ds.tippe  # noqa: F401
-from .steady.classes import class_atlas, top_class
-from .steady.final import FinalState, final_state
-from .steady.states import steady_states
-from .top import Top
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+#: public name -> the module that defines it (imported on first use)
+_EXPORTS: dict[str, str] = {
+    **dict.fromkeys(("AtlasFileError", "ChunkError", "DomainError", "InputError", "TippeError"), ".errors"),
+    "atlas": ".grids.atlases",
+    "open_atlas": ".grids.netcdf", "write_dataset": ".grids.netcdf",
+    "friction_loop": ".linear.control_forms", "state_space": ".linear.control_forms",
+    **dict.fromkeys(("critical_spin", "threshold", "threshold_crossings", "thresholds"), ".linear.critical"),
+    "eigenvalues": ".linear.spectra", "spectrum": ".linear.spectra",
+    "MODELS": ".models", "LinearModel": ".models", "get_model": ".models",
+    "jacobian_eigenvalues": ".nonlinear.jacobian",
+    "simulate": ".nonlinear.runs",
+    "coulomb_growth": ".nonlinear.validation", "validate": ".nonlinear.validation",
+    "DEFAULT_MU": ".parameters", "PARAMETERS": ".parameters", "check_domain": ".parameters",
+    "class_atlas": ".steady.classes", "top_class": ".steady.classes",
+    "FinalState": ".steady.final", "final_state": ".steady.final",
+    "steady_states": ".steady.states",
+    "Top": ".top",
+}
 
 __all__ = [
     "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "InputError", "LinearModel", "MODELS", "PARAMETERS",
@@ -50,3 +62,31 @@ __all__ = [
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
     "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
 ]
+
+
+#: the public functions that return datasets: handing one out registers ``ds.tippe``
+#: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
+#: docstrings)
+_DATASETS = frozenset({"atlas", "open_atlas", "simulate", "validate", "coulomb_growth", "steady_states",
+                       "final_state", "class_atlas"})
+
+
+def __getattr__(name: str) -> Any:
+    """A public name, imported from its module on first use; or a subpackage."""
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+        globals()[name] = value
+        if name in _DATASETS:
+            importlib.import_module(".plotting.accessor", __name__)
+        return value
+    if not name.startswith("__"):
+        try:
+            return importlib.import_module(f"{__name__}.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

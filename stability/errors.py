@@ -20,12 +20,15 @@ Layer 0 (docs/architecture.md): imports nothing from the package (only the engin
     +-- ConvergenceError (RuntimeError,    a continuation did not converge
     |       continuation.ConvergenceError)
     +-- Interrupted                        a command was interrupted; says what was kept
+    +-- MissingExtraError (ImportError)    a feature needs an optional dependency that is not
+                                           installed; the message names the pip extra
 
 Bad input keeps the ancestry of the built-in exceptions (``except ValueError`` catches a
 :class:`DomainError`); a failure to compute is a :class:`RuntimeError`. The ``tippe`` command
 line exits with status 2 on bad input (and on ``ValueError``, ``TypeError``, ``OSError``), 1 on a
 failure to compute (:class:`ChunkError`, any :class:`continuation.errors.ConvergenceError`)
-and 130 when interrupted (docs/input_checks.md).
+and 130 when interrupted (docs/input_checks.md); a missing optional dependency ends it with
+status 1.
 """
 
 from __future__ import annotations
@@ -33,7 +36,8 @@ from __future__ import annotations
 from continuation.errors import ConvergenceError as _EngineConvergenceError
 
 __all__ = ["TippeError", "InputError", "DomainError", "ParameterTypeError", "AtlasFileError", "RecipeError",
-           "ResumeError", "ResourceError", "OutputWriteError", "ChunkError", "ConvergenceError", "Interrupted"]
+           "ResumeError", "ResourceError", "OutputWriteError", "ChunkError", "ConvergenceError", "Interrupted",
+           "MissingExtraError", "require_extra"]
 
 
 class TippeError(Exception):
@@ -103,3 +107,32 @@ class ConvergenceError(TippeError, _EngineConvergenceError):
 
 class Interrupted(TippeError):
     """Raised by a command instead of ``KeyboardInterrupt`` to say what was kept (exit 130)."""
+
+
+class MissingExtraError(TippeError, ImportError):
+    """A feature needs an optional dependency that is not installed (:func:`require_extra`)."""
+
+
+def require_extra(module: str, extra: str, feature: str) -> None:
+    """Refuse ``feature`` with a :class:`MissingExtraError` naming the pip extra if ``module``
+    cannot be imported (looked up, not imported).
+
+    Parameters
+    ----------
+    module : str
+        The optional dependency's import name (``"dask"``).
+    extra : str
+        The extra of the distribution that installs it (``"cluster"``).
+    feature : str
+        What asked for it, as the message names it (``"chunks="``).
+    """
+    import importlib.util
+
+    try:
+        found = importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):
+        found = False
+    if not found:
+        raise MissingExtraError(f"{feature} needs {module}, which is not installed; install the package with "
+                                f"its {extra!r} extra: pip install 'tippe-stability[{extra}]' "
+                                f"(from a clone: pip install '.[{extra}]')", name=module)

@@ -64,7 +64,8 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
-from numba.extending import register_jitable
+
+from continuation.jit import register_jitable
 
 from .errors import DomainError
 from .models.inertia import inertia_g

@@ -9,7 +9,9 @@ inside functions (a lazy import is still a dependency), relative imports resolve
 under ``if TYPE_CHECKING:`` are left out (annotations only, never executed). ``from pkg import
 name`` counts as an import of the submodule ``pkg.name`` when there is one, else of ``pkg``.
 Importing a submodule also runs its parent packages' ``__init__``; that implicit step is not
-counted (otherwise every module would depend on the ``stability`` facade).
+counted (otherwise every module would depend on the ``stability`` facade). A facade imports its
+names lazily through a module-level table ``_EXPORTS`` (name -> module, ``.relative`` or
+absolute): the modules named there count as its imports.
 
 It fails on
 
@@ -41,6 +43,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability._version", 0),
     ("stability.errors", 0),
     ("stability.products", 0),
+    ("stability.execution", 0),
     ("stability.interrupts", 0),         # signals as flags, checkpoints, temporary files
     ("stability.resources", 0),          # memory estimates and limits
     ("stability.parameters", 1),
@@ -105,13 +108,33 @@ def _import_nodes(tree: ast.AST):
         stack.extend(ast.iter_child_nodes(node))
 
 
+def _lazy_exports(tree: ast.Module, package: str) -> set[str]:
+    """The modules named in a module-level ``_EXPORTS`` table (a facade's lazy imports): its
+    string values that start with "." (relative to ``package``) or with a package's name."""
+    out = set()
+    for node in tree.body:
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(
+            node, ast.AnnAssign) else []
+        if not any(isinstance(t, ast.Name) and t.id == "_EXPORTS" for t in targets) or node.value is None:
+            continue
+        values = node.value.values if isinstance(node.value, ast.Dict) else [node.value]
+        for v in values:
+            for c in ast.walk(v):
+                if isinstance(c, ast.Constant) and isinstance(c.value, str):
+                    if c.value.startswith("."):
+                        out.add(package + c.value)
+                    elif c.value.split(".")[0] in PACKAGES:
+                        out.add(c.value)
+    return out
+
+
 def imports_of(name: str) -> set[str]:
     """The package modules ``name`` imports (module level and in functions)."""
     path, is_pkg = MODULES[name]
     with open(path, encoding="utf-8") as f:
         tree = ast.parse(f.read(), path)
     package = name if is_pkg else name.rpartition(".")[0]
-    found = set()
+    found = {t for t in _lazy_exports(tree, package) if t in MODULES and t != name}
     for node in _import_nodes(tree):
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
@@ -143,7 +166,8 @@ def test_the_walk_finds_the_packages():
                  "stability.grids.atlases", "stability.nonlinear.runs", "stability.bench.records",
                  "stability.commands.atlas", "continuation.engine"):
         assert name in MODULES
-    assert "stability.linear.neutral_curves" in GRAPH["continuation"]  # lazy, in __getattr__
+    assert "stability.linear.neutral_curves" in GRAPH["continuation"]  # lazy, in _EXPORTS
+    assert "stability.linear.spectra" in GRAPH["stability"]  # lazy, in _EXPORTS
     assert "stability.linear.kernel" in GRAPH["stability.linear.spectra"]  # inside a function
     assert "stability.bench.records" not in GRAPH["stability.plotting.work_precision"]  # TYPE_CHECKING
 

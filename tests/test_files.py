@@ -79,8 +79,8 @@ def _unwritable_directory(tmp_path):
 
 
 @pytest.mark.parametrize("command,module,func,argv", [
-    ("atlas", "stability.commands.atlas", "atlas", ATLAS),
-    ("atlas --chunks", "stability.commands.atlas", "atlas", [*ATLAS, "--chunks", "1"]),
+    ("atlas", "stability.grids.atlases", "atlas", ATLAS),  # commands import it in run()
+    ("atlas --chunks", "stability.grids.atlases", "atlas", [*ATLAS, "--chunks", "1"]),
     ("simulate", "stability.nonlinear.runs", "simulate",
      ["simulate", "--t-end", "1", "--omega", "0,0,1", "--k", "0,0,1", "--q", "-0.1", "--fr-inv", "0.3",
       "--sigma", "1", "--alpha-v", "0.5"]),
@@ -180,12 +180,12 @@ def test_recipes_regenerate_their_own_outputs_and_refuse_foreign_files(tmp_path,
 
 
 def test_figures_output_directory_checked_before_computing(tmp_path, monkeypatch, capsys):
-    import stability.commands.figures as fig
+    import stability.recipes as recipes  # tippe figures imports compute from here in its run()
 
     recipe = tmp_path / "tiny.toml"
     recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
                       '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
     (tmp_path / "tiny.png").mkdir()  # the output path is taken by a directory
-    monkeypatch.setattr(fig, "compute", _never)
+    monkeypatch.setattr(recipes, "compute", _never)
     assert main(["figures", str(recipe)]) == 2
     assert "tiny.png' is a directory" in capsys.readouterr().err

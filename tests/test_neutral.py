@@ -317,7 +317,7 @@ def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
         free = planes[k % 5]
         p = dict(q=rng.uniform(-0.6, 0.6), fr_inv=rng.uniform(0, 3) if k % 3 else 0.0,
                  sigma=rng.uniform(0, 2), alpha_v=rng.uniform(0.1, 3), mu=rng.uniform(1, 3))
-        cond = NeutralCondition("sliding", free, {n: v for n, v in p.items() if n not in free})
+        cond = NeutralCondition("sliding", free, {n: v for n, v in p.items() if n not in free}, compiled=True)
         assert cond._compiled is not None
         sliding_crossing_residual, sliding_crossing_other_growth = cond.kernels.residual, cond.kernels.other_growth
         vals, w = np.array([p[n] for n in free]), rng.uniform(-3, 3)
@@ -345,7 +345,7 @@ def test_compiled_path_gives_the_python_curve(x, y, fixed):
     only to the conditioning of the point, ~1e-7: not compared here.)"""
     from stability.linear.neutral_curves import NeutralProblem
 
-    fast = neutral_curve("sliding", x, y, fixed=fixed)
+    fast = neutral_curve("sliding", x, y, fixed=fixed, compiled=True)
     slow = neutral_curve("sliding", x, y, fixed=fixed, compiled=False)
     assert fast.sizes == slow.sizes and fast.sizes["point"] > 10
     for v in ("kind", "detail", "branch", "leading"):
@@ -355,10 +355,10 @@ def test_compiled_path_gives_the_python_curve(x, y, fixed):
     assert float(fast.residual.max()) <= 1e-14
     # the compiled path exists for the sliding model's crossing form only
     rng = {x: (0.0, 1.0), y: (0.0, 1.0)}
-    assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng).compiled_step is not None
+    assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=True).compiled_step is not None
     assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=False).compiled_step is None
-    assert NeutralProblem("rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)}
-                          ).compiled_step is None
+    assert NeutralProblem("rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)},
+                          compiled=True).compiled_step is None
 
 
 def test_compiled_step_returns_the_problems_constraints_and_test_functions():
@@ -369,7 +369,7 @@ def test_compiled_step_returns_the_problems_constraints_and_test_functions():
 
     fixed = dict(fr_inv=0.0, alpha_v=0.5, mu=MU)
     rng = {"q": (-1 / np.sqrt(MU), 1 / np.sqrt(MU)), "sigma": (0.0, 2.0)}
-    prob = NeutralProblem("sliding", "q", "sigma", fixed, rng)
+    prob = NeutralProblem("sliding", "q", "sigma", fixed, rng, compiled=True)
     scale = np.array([2 / np.sqrt(MU), 2.0, 1.0])
     for q in (-0.3, 0.0, 0.2, 0.6):
         u = np.array([q, (1 - MU * q * q) / (1 + q), 1 / (1 + q)])

@@ -197,7 +197,7 @@ def test_margins_same_bits_python_and_compiled():
     for x, y, fixed in (("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5, mu=2.28)),
                         ("q", "mu", dict(fr_inv=0.3, sigma=0.5, alpha_v=0.5)),
                         ("sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5, mu=2.28))):
-        prob = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)})
+        prob = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=True)
         assert prob._compiled is not None
         for _ in range(200):
             u = np.array([rng.uniform(-0.7, 0.7) if x == "q" else rng.uniform(0, 2.2), rng.uniform(-0.01, 2.5),
@@ -382,8 +382,8 @@ import stability
 from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
-cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28))
-funcs = [ks.checked, ks.checked_serial, ks.masked, ks.masked_serial, ks.domain, ks.coefficients,
+cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
+funcs = [*ks.checked, *ks.masked, *ks.domain, ks.coefficients,
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func
@@ -401,7 +401,7 @@ def test_compiled_closures_have_the_same_cache_key_in_every_process():
     computed in two fresh processes (no compilation happens here)."""
     runs = [subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
             for _ in range(2)]
-    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 12
+    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 13
 
 
 # --- models added through the registry only ----------------------------------------------------

@@ -246,7 +246,8 @@ def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
 
     monkeypatch.setattr(pc, "SETTINGS", ((0.05, 0.1),))
     monkeypatch.setattr(pc, "COLUMNS", (10, 25))
-    monkeypatch.setattr(pc.continuation_work_precision, "__defaults__",
+    # the suite runs under execution.using("compiled") (a decorator): its defaults are the wrapped function's
+    monkeypatch.setattr(pc.continuation_work_precision.__wrapped__, "__defaults__",
                         (5, False, ((0.05, 0.1),), (10, 25), 0.0, False))
     assert main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)]) == 0
     js = tmp_path / "work_precision_continuation.json"

@@ -173,6 +173,10 @@ def test_refusal_happens_before_allocating():
     code = textwrap.dedent("""
         import stability
         from stability.errors import ResourceError
+        from stability.nonlinear import get_nonlinear_model
+
+        simulate = stability.simulate  # the lazy facade imports the run's modules here, before the reset
+        get_nonlinear_model("sliding")
 
         def status(key):
             with open("/proc/self/status") as f:
@@ -182,7 +186,7 @@ def test_refusal_happens_before_allocating():
             f.write("5")
         base = status("VmRSS")
         try:
-            stability.simulate("sliding", t_end=1e7, dt=0.2, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1,
+            simulate("sliding", t_end=1e7, dt=0.2, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1,
                                fr_inv=0.3, sigma=1.5, alpha_v=0.5)
         except ResourceError:
             print(status("VmHWM") - base)

@@ -47,6 +47,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -287,6 +288,7 @@ def columns_for_accuracy(target: float, leading: Callable[[float, float], float]
     return n
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...] = SETTINGS,
                       columns: tuple[int, ...] = COLUMNS, python_path: bool = True,
                       equal_accuracy: bool = True, turning_back: int = 200,
@@ -411,6 +413,7 @@ def format_tables(b: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def continuation_work_precision(repeat: int = 5, quick: bool = False,
                                 settings: tuple[tuple[float, float], ...] = SETTINGS,
                                 columns: tuple[int, ...] = COLUMNS, min_time: float = 0.5,

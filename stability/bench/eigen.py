@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import execution
 from ..models import get_model
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
@@ -94,6 +95,7 @@ def eigen_errors(ev: np.ndarray, reference: list[list]) -> np.ndarray:
     return out
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, loop_points: int = 20_000,
                          repeat: int = 5, seed: int = 0) -> list[WorkPrecision]:
     """Work-precision points of the eigenvalue methods on the sliding model.

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -213,6 +214,7 @@ def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
     return best["run"], out["run"]
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
     """Work-precision points of the integrators (module docstring).
 

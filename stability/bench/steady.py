@@ -30,12 +30,14 @@ alternating rounds (:func:`stability.bench.timing.best_times`), the simulations 
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from typing import Any
 
 import numpy as np
 
+from .. import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -57,7 +59,10 @@ def _start(theta_deg: float, spin: float = 1.0, transverse: float = 0.0, velocit
     return dict(omega=list(spin * k + transverse * e), k=list(k), velocity=list(velocity))
 
 
+@functools.cache
 def _cases() -> list[tuple[str, dict[str, float], dict[str, list], float]]:
+    """:data:`CASES` (made on first use: the paper's initial conditions come with the nonlinear
+    runs, whose import costs a second; ``tippe --help`` lists the suites without it)."""
     from ..nonlinear.scene import INITIAL_CONDITIONS
 
     paper = dict(q=-0.1, sigma=1.0, alpha_v=0.5)
@@ -78,8 +83,12 @@ def _cases() -> list[tuple[str, dict[str, float], dict[str, list], float]]:
     ]
 
 
-#: (name, parameters, initial state, the test's run length)
-CASES = _cases()
+def __getattr__(name: str) -> Any:
+    """``CASES``: (name, parameters, initial state, the test's run length), made on first use."""
+    if name == "CASES":
+        return _cases()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 _QUICK = (0, 2, 7)
 
 
@@ -88,6 +97,7 @@ def _settle_time(t: np.ndarray, tilt: np.ndarray, end: float, tol: float) -> flo
     return 0.0 if bad.size == 0 else float(t[min(bad[-1] + 1, t.size - 1)])
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, Any]]:
     """Per case: the reference end tilt, ``t_0.01``, the simulation's cost and error to ``t_0.01``,
     and the prediction's cost and error (module docstring)."""
@@ -96,7 +106,7 @@ def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, An
     from ..steady.states import state_integrals
 
     rows = []
-    for i, (name, params, start, t_test) in enumerate(CASES):
+    for i, (name, params, start, t_test) in enumerate(_cases()):
         if quick and i not in _QUICK:
             continue
         t_ref = 3.0 * t_test
@@ -125,7 +135,7 @@ def _paper_series(reference: float, repeat: int, quick: bool) -> list[tuple[floa
     """The paper's case simulated to several lengths: ``(t_end, seconds, error)``."""
     from ..nonlinear.runs import simulate
 
-    name, params, start, _ = CASES[0]
+    name, params, start, _ = _cases()[0]
     out = []
     for t_end in ((4000.0, 12000.0) if quick else (2000.0, 4000.0, 7000.0, 10000.0, 13000.0, 16000.0, 20000.0)):
         sec, runs = best_times({"run": lambda: simulate("sliding", t_end=t_end, t_eval=np.array([0.0, t_end]),
@@ -134,6 +144,7 @@ def _paper_series(reference: float, repeat: int, quick: bool) -> list[tuple[floa
     return out
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, Any]:
     """The paper's branch (about 200 points with spectra and flags) by continuation (compiled
     step and Python path) and by brentq per tilt, each with its error against the closed form."""
@@ -180,6 +191,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
                 brentq=(t["brentq"], error(thetas, lam_cols)))
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, Any]:
     """:func:`stability.top_class` on random tops (shapes 1e4, 1e5, 1e6), and per top."""
     from ..steady.classes import top_class
@@ -205,6 +217,7 @@ def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, An
     return out
 
 
+@execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def steady_work_precision(repeat: int = 3, quick: bool = False) -> list[WorkPrecision]:
     """All three measurements as work-precision records (module docstring)."""
     results: list[WorkPrecision] = []

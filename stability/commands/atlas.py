@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..grids.atlases import atlas
 from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
@@ -81,6 +80,7 @@ def parse_chunks(text: str) -> int | dict[str, int]:
 
 def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     """``tippe atlas --chunks``: lazy atlas, written chunk by chunk."""
+    from ..grids.atlases import atlas
     from ..grids.chunked import parts_directory, write_atlas
     from ..grids.cluster import dask_client
 
@@ -142,6 +142,8 @@ def _check_space(out, model: str, values: dict) -> None:  # noqa: ANN001
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
+    from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
+
     out = check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)

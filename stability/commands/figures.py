@@ -5,8 +5,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..recipes import check_outputs, compute, find_recipes, load_recipe
-
 __all__ = ["register", "run"]
 
 
@@ -29,6 +27,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe figures``."""
     from ..plotting import save_figure, style
     from ..plotting.recipe_figures import recipe_figure
+    from ..recipes import check_outputs, compute, find_recipes, load_recipe
 
     targets = args.recipes or ["atlases"]
     recipes = []

@@ -22,6 +22,7 @@ from .._version import package_version
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
+from ..errors import require_extra
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from ..resources import atlas_bytes, check_memory
@@ -93,6 +94,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         else:
             grid[k] = v
     if chunks is not None:
+        require_extra("dask", "cluster", "an atlas in chunks (chunks=)")
         from .chunked import lazy_spectra
 
         growth, freq, bound, stab, inside = lazy_spectra(m, values, dims, chunks, mask_unphysical=mask_unphysical,

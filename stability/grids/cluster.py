@@ -17,6 +17,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from ..errors import require_extra
 from ..parameters import check_integer
 
 __all__ = ["dask_client"]
@@ -49,6 +50,7 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
     if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
         raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a "
                         "scheduler file")
+    require_extra("distributed", "cluster", "workers= or scheduler= (a dask cluster)")
     from distributed import Client, LocalCluster
 
     if workers is not None:

@@ -19,16 +19,18 @@ import contextlib
 import os
 import warnings
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 
 from ..errors import AtlasFileError
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from .outputs import atomic_output, check_output_path, describe_kind
 from .schema import ATLAS_VARIABLES, require_atlas, validate_atlas
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
            "require_atlas", "SLAB_BYTES", "ATLAS_VARIABLES"]
@@ -126,6 +128,8 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
         The file could not be written (no space left, the file size limit, ...): the message
         names the file and the cause; nothing is left behind.
     """
+    import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
+
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
     with deferred(), atomic_output(path, overwrite=overwrite, expected_bytes=float(ds.nbytes)) as tmp:
@@ -227,6 +231,8 @@ def _atlas_path(path: object) -> str:
 def _open(p: Path) -> xr.Dataset:
     """The file opened lazily (nothing loaded yet), or an AtlasFileError saying why not."""
     try:
+        import xarray as xr
+
         return xr.open_dataset(p)
     except Exception as exc:  # netCDF4/h5 raise OSError, ValueError or their own types
         raise _unreadable(p, exc) from None

@@ -36,8 +36,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import xarray as xr
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["validate_atlas", "require_atlas", "ATLAS_VARIABLES", "FLAG_VALUES", "SLAB_POINTS"]
 
@@ -56,6 +60,8 @@ _MODAL = ("growth_rate", "frequency", "eigenvalue_error_bound")
 def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     """``ds`` itself if it is an atlas dataset (:func:`validate_atlas`); otherwise a
     ``TypeError`` (not a Dataset) or ``ValueError`` naming what is wrong."""
+    import xarray as xr  # here: importing the checks imports no xarray (tippe --help)
+
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
                         "stability.atlas or stability.open_atlas")

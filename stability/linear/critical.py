@@ -377,8 +377,6 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
     relative). Returns ``(a, x_max, b)`` for each refined maximum where a mode grows: the window
     ``(a, b)`` holds two thresholds, one on each side of ``x_max``.
     """
-    from scipy.optimize import minimize_scalar
-
     if len(x) < 3:
         return []
     out = []
@@ -392,6 +390,8 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
         if -g[k] > 4.0 * rise:  # far below zero for its curvature: no crossing nearby
             continue
         a, b = float(x[k - 1]), float(x[k + 1])
+        from scipy.optimize import minimize_scalar  # here: most thresholds never refine (0.5 s import)
+
         res = minimize_scalar(lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
                               bounds=(a, b), method="bounded",
                               options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))})

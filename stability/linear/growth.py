@@ -39,6 +39,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from .. import execution
 from ..models import LinearModel, get_model
 from .roots import axis_growth_many
 from .spectra import MARGINAL, STABLE, UNSTABLE, Spectrum, spectrum
@@ -115,7 +116,12 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     flat_e = e.reshape(-1, shape[-1])
     g = np.empty(flat_r.shape)
     eg = np.empty(flat_r.shape)
-    axis_growth_many(flat_c, np.ascontiguousarray(flat_r.imag), g, eg)
+    w = np.ascontiguousarray(flat_r.imag)
+    if execution.use_compiled(axis_growth_many, len(flat_c)):  # stability.execution's rule
+        execution.before_compiled_call(axis_growth_many, 2.0)
+        axis_growth_many(flat_c, w, g, eg)
+    else:
+        axis_growth_many.python(flat_c, w, g, eg)
     re = flat_r.real
     with np.errstate(invalid="ignore"):
         own = np.abs(re) > 4.0 * flat_e

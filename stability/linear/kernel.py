@@ -1,8 +1,11 @@
-"""A fast spectral kernel: roots of the characteristic polynomials, compiled with numba.
+"""A fast spectral kernel: roots of the characteristic polynomials, one pass per point.
 
-One pass per grid point, in parallel over the points (``numba.njit(parallel=True)``,
-``fastmath=False``: IEEE arithmetic, no reassociation, so the error-free transformations and
-the exact structural tests below mean what they say). Per point:
+Written once in plain Python and run two ways (:mod:`stability.execution`): compiled by numba,
+in parallel over the points (``parallel=True``, ``fastmath=False``: IEEE arithmetic, no
+reassociation, so the error-free transformations and the exact structural tests below mean what
+they say), or interpreted, for small requests in a process that has not compiled the loop
+(no compilation, no numba import; ~200x slower per point, which does not matter below a few
+thousand points). The two give the same bits (tests/test_kernel.py). Per point:
 
 0. *Domain* (:func:`checked_model_spectrum`, the default path of :func:`stability.spectrum`
    for a model that offers its coefficients as a formula): the bounds of the domain table
@@ -51,10 +54,19 @@ the exact structural tests below mean what they say). Per point:
    structure or ``|Re s| <= 4 e + 16 u max|s|``; the point is unstable, marginal or stable.
 
 Polynomial building blocks (Horner's scheme, the quadratic formula, deflation, the complex
-square root and modulus) come from :mod:`stability.linear.roots`, where they are written once
-for every engine. Every loop has a parallel and a serial version (``parallel`` argument of the
-drivers; by default serial below :data:`SERIAL_BELOW` points): a caller that wants one thread
-asks for it, the process-wide thread count is never changed.
+square root and modulus, the real cube root) come from :mod:`stability.linear.roots`, where
+they are written once for every engine.
+
+Executions. Every loop is a :class:`continuation.jit.Twin`: its source, which loops over
+``prange`` (the builtin ``range`` here) and indexes ``x[i][j]`` and ``len(x)`` only, runs on
+Python lists (interpreted) or on numpy arrays (compiled, serial or parallel; numba's
+``prange`` in the parallel copy). The drivers choose the execution by
+:func:`stability.execution.use_compiled` (interpreted below
+:data:`stability.execution.PYTHON_BELOW` points unless the compiled loop is in memory;
+``engine=`` or ``TIPPE_KERNEL`` force one) and the compiled loop by size (serial below
+:data:`SERIAL_BELOW` points, or as asked by ``parallel``): a caller that wants one thread asks
+for it, the process-wide thread count is never changed. Only the loops are compiled as entry
+points (cached on disk); the helpers are ``register_jitable`` functions compiled into them.
 
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
 ``Re s``, frequency ``Im s`` in units of the spin rate.
@@ -64,26 +76,36 @@ from __future__ import annotations
 
 import functools
 import math
-import types
 from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
-from numba import njit, prange
 
+from continuation.jit import Twin, register_jitable
+
+from .. import execution
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides, inside_domain
-from .roots import csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
+from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = ["accepts", "model_spectrum", "checked_model_spectrum", "model_domain", "model_coefficients",
            "sliding_spectrum", "checked_sliding_spectrum", "sliding_domain", "sliding_coefficients",
-           "coefficient_spectrum", "KernelSpectrum", "CheckedSpectrum", "MAX_DEGREE", "SERIAL_BELOW"]
+           "coefficient_spectrum", "KernelSpectrum", "CheckedSpectrum", "MAX_DEGREE", "SERIAL_BELOW",
+           "COMPILE_SECONDS"]
 
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
 
-#: batches below this many points run serially unless a caller asks otherwise
+#: compiled batches below this many points run serially unless a caller asks otherwise
 SERIAL_BELOW = 512
+
+#: what compiling one model's loop takes on a cold cache (s; the estimate of the stderr notice,
+#: measured on a 2-core machine with numba 0.68, docs/performance.md)
+COMPILE_SECONDS = 10.0
+
+#: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
+#: serially, numba's ``prange`` in a parallel compilation (:class:`continuation.jit.Twin`)
+prange = range
 
 _U = 2.0**-53
 _STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
@@ -97,7 +119,9 @@ _THIRD = 1.0 / 3.0
 _CB0, _CB1 = 0.3333211994662179, 0.05011247842998644
 _CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
 
-_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+#: options of the compiled loops (numba's disk cache; the arithmetic options are
+#: :data:`continuation.jit.OPTIONS`)
+_CACHE = dict(cache=True)
 
 
 class KernelSpectrum(NamedTuple):
@@ -119,15 +143,21 @@ class KernelSpectrum(NamedTuple):
     stability: np.ndarray
 
 
-# --- scalar helpers (inlined by LLVM) ---------------------------------------------------------
+# --- scalar helpers (compiled into the loops) ---------------------------------------------------------
 
-@njit(**_JIT)
+@register_jitable
+def _finite(z):
+    """Both parts of the complex ``z`` finite (``numpy.isfinite`` of a complex number)."""
+    return math.isfinite(z.real) and math.isfinite(z.imag)
+
+
+@register_jitable
 def _mod2(z):
     """``|z|^2`` (for comparisons)."""
     return z.real * z.real + z.imag * z.imag
 
 
-@njit(**_JIT)
+@register_jitable
 def _newton(c3, c2, c1, c0, r, iterations):
     """Newton steps on ``p``, each kept only if ``|p|`` drops."""
     p, d1, _ = horner_scheme((c3, c2, c1, c0), r, 1)
@@ -142,13 +172,13 @@ def _newton(c3, c2, c1, c0, r, iterations):
     return r
 
 
-@njit(**_JIT)
+@register_jitable
 def _scale(z, t):
     """``z t`` for a real ``t``, componentwise (numba would multiply by ``complex(t, 0)``)."""
     return complex(z.real * t, z.imag * t)
 
 
-@njit(**_JIT)
+@register_jitable
 def _cbrt(w):
     """A cube root of ``w`` (not always the principal one: Cardano's formula takes any), to a
     few ulp, without trigonometric functions.
@@ -162,7 +192,7 @@ def _cbrt(w):
     takes ~35."""
     x, y = w.real, w.imag
     r = modulus(w)
-    if not 0.0 < r < np.inf:
+    if not 0.0 < r < math.inf:
         return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
     # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
     # w = i sy W (|x| < |y|), with sx, sy the signs of x and y
@@ -187,7 +217,7 @@ def _cbrt(w):
     inv = 1.0 / (er * er + ei * ei)
     qr = (dr * er + di * ei) * inv
     qi = (di * er - dr * ei) * inv
-    m = np.cbrt(r)
+    m = cbrt(r)
     zr = m * (cp + (cp * qr - sp * qi))
     zi = m * (sp + (cp * qi + sp * qr))
     # undo the turn: times a cube root of sx (sx itself) or of i sy (exp(i sy pi/6))
@@ -196,7 +226,7 @@ def _cbrt(w):
     return complex(zr * tr - zi * ti, zr * ti + zi * tr)
 
 
-@njit(**_JIT)
+@register_jitable
 def _cardano(c3, c2, c1, c0):
     """Cardano's three roots of a cubic, in complex arithmetic (a real leading coefficient, as
     the sliding model's, is divided out in real arithmetic)."""
@@ -222,7 +252,7 @@ def _cardano(c3, c2, c1, c0):
     return u + v - a3, _OMEGA * u + _OMEGA2 * v - a3, _OMEGA2 * u + _OMEGA * v - a3
 
 
-@njit(**_JIT)
+@register_jitable
 def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     """One Weierstrass (Durand-Kerner) step for root ``r``: ``p(r) / (c3 (r - o1)(r - o2))``,
     Newton's step on ``p`` with the other roots divided out (so nearly colliding roots stay
@@ -231,13 +261,13 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     p = horner_scheme((c3, c2, c1, c0), r, 0)[0]
     den = c3 * (r - o1) * (r - o2)
     n2 = _mod2(den)
-    if n2 == 0 or not np.isfinite(n2):
+    if n2 == 0 or not math.isfinite(n2):
         return r, 0.0
     step = p * den.conjugate() * (1.0 / n2)
     return r - step, _mod2(step) - 1e-16 * _mod2(r)
 
 
-@njit(**_JIT)
+@register_jitable
 def _cubic(c3, c2, c1, c0, polish):
     """Three roots of a cubic with ``c0 != 0`` (module docstring, step 4)."""
     r0, r1, r2 = _cardano(c3, c2, c1, c0)
@@ -255,9 +285,9 @@ def _cubic(c3, c2, c1, c0, polish):
             r0 = _newton(c3, c2, c1, c0, r0, 2)
         b2, b1, b0 = deflate_cubic_backward(c3, c2, c1, c0, r0)
         r1, r2, _ = quadratic_roots(b2, b1, b0)
-    if not (np.isfinite(r0) and np.isfinite(r1) and np.isfinite(r2)):
+    if not (_finite(r0) and _finite(r1) and _finite(r2)):
         # Cardano overflowed (|c2/c3| beyond ~1e100): start on a circle enclosing the roots
-        rho = 2.0 * max(modulus(c2 / c3), math.sqrt(modulus(c1 / c3)), np.cbrt(modulus(c0 / c3)))
+        rho = 2.0 * max(modulus(c2 / c3), math.sqrt(modulus(c1 / c3)), cbrt(modulus(c0 / c3)))
         r0, r1, r2 = rho * complex(0.6, 0.8), rho * _OMEGA * complex(0.6, 0.8), rho * _OMEGA2 * complex(0.6, 0.8)
         sweeps = 100 * polish
     for _ in range(sweeps):
@@ -271,7 +301,7 @@ def _cubic(c3, c2, c1, c0, polish):
     return r0, r1, r2
 
 
-@njit(**_JIT)
+@register_jitable
 def _bound(c3, c2, c1, c0, deg, r):
     """Absolute error bound of a root ``r`` (stability.linear.roots, module docstring)."""
     a = modulus(r)
@@ -280,12 +310,12 @@ def _bound(c3, c2, c1, c0, deg, r):
     _, d1, d2 = horner_scheme((c3, c2, c1, c0), r)
     m1 = modulus(d1)
     m2 = modulus(d2)
-    first = dp / m1 if m1 > 0 else np.inf
-    second = math.sqrt(2.0 * dp / m2) if m2 > 0 else np.inf
+    first = dp / m1 if m1 > 0 else math.inf
+    second = math.sqrt(2.0 * dp / m2) if m2 > 0 else math.inf
     return min(first, second)
 
 
-@njit(**_JIT)
+@register_jitable
 def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     """:func:`_bound` with the coefficient moduli ``m_k = |c_k|`` given (one square root
     fewer per comparison; the same value up to rounding)."""
@@ -299,17 +329,17 @@ def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     n2 = _mod2(d2)
     # min(dp / |p'|, sqrt(2 dp / |p''|)): the second is smaller iff 4 |p'|^4 < dp^2 |p''|^2
     if 4.0 * n1 * n1 < dp * dp * n2 or n1 == 0:
-        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else np.inf
+        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
     return dp / math.sqrt(n1)
 
 
-@njit(**_JIT)
+@register_jitable
 def _before(a, b):
     """Mode ``a`` sorts before ``b``: larger real part, then larger imaginary part."""
     return a.real > b.real or (a.real == b.real and a.imag > b.imag)
 
 
-@njit(**_JIT)
+@register_jitable
 def _solve(c3, c2, c1, c0, deg, polish):
     """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
     (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
@@ -357,7 +387,7 @@ def _solve(c3, c2, c1, c0, deg, polish):
     return r0, r1, r2, e0, e1, e2, x0, x1, x2
 
 
-@njit(**_JIT)
+@register_jitable
 def _solve_linear(c1, c0):
     """The root of ``c1 s + c0``, its bound and exact-zero flag (in :func:`_solve`'s layout)."""
     r0 = -c0 / c1
@@ -366,13 +396,13 @@ def _solve_linear(c1, c0):
     return r0, 0j, 0j, e0, 0.0, 0.0, x0, False, False
 
 
-@njit(**_JIT)
+@register_jitable
 def _swap(s, a, b):
     """``(b, a)`` if ``s`` else ``(a, b)`` (a select, not a branch)."""
     return (b, a) if s else (a, b)
 
 
-@njit(**_JIT)
+@register_jitable
 def _mode(r, e, x, floor):
     """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
     whether it grows (module docstring, step 6)."""
@@ -381,7 +411,7 @@ def _mode(r, e, x, floor):
     return nt, (r.real > tol) & (not nt)
 
 
-@njit(**_JIT)
+@register_jitable
 def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
     compare-exchanges by selects, no data-dependent branches), write them to ``ev``, ``bd``,
@@ -424,17 +454,17 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     return _MARGINAL if anyneutral else _STABLE
 
 
-@njit(**_JIT)
+@register_jitable
 def _mark_outside(n, ev, bd, neutral):
     for j in range(n):
-        ev[j] = complex(np.nan, np.nan)
-        bd[j] = np.nan
+        ev[j] = complex(math.nan, math.nan)
+        bd[j] = math.nan
         neutral[j] = False
 
 
 # --- the domain test, compiled from the domain table of stability.parameters ------------------
 
-@njit(**_JIT)
+@register_jitable
 def _refused(x, lo, hi):
     """``x`` is not finite or outside the computable range ``lo <= |x| <= hi`` (``|x| < lo``
     counts only for ``x > 0``), as :func:`stability.parameters.check_domain` refuses it.
@@ -444,7 +474,7 @@ def _refused(x, lo, hi):
     return (not m <= hi) | ((m < lo) & (x > 0))
 
 
-@njit(**_JIT)
+@register_jitable
 def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
     :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
@@ -460,40 +490,31 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
 
 
-@njit(parallel=True, **_JIT)
-def _coefficient_kernel(c, inside, polish, ev, bd, neutral, stab):
-    for i in prange(c.shape[0]):
-        _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab)
+def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
+    """The spectrum of the polynomials ``c[i]`` (``n + 1`` complex coefficients, highest power
+    first) at the points ``inside`` (the others: NaN, flag -1)."""
+    for i in prange(len(stab)):
+        if not inside[i]:
+            _mark_outside(n, ev[i], bd[i], neutral[i])
+            stab[i] = _OUTSIDE
+            continue
+        ci = c[i]
+        if n == 3:
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
+        elif n == 2:
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
+        else:
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
+        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
 
 
-@njit(**_JIT)
-def _coefficient_serial(c, inside, polish, ev, bd, neutral, stab):
-    """:func:`_coefficient_kernel` without threads (a separate function, not a second ``njit``
-    of the same one: numba's disk cache would not tell the two apart)."""
-    for i in range(c.shape[0]):
-        _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab)
-
-
-@njit(inline="always", **_JIT)
-def _coefficient_point(i, c, inside, polish, ev, bd, neutral, stab):
-    """Point ``i`` of :func:`_coefficient_kernel`."""
-    n = c.shape[1] - 1
-    if not inside[i]:
-        _mark_outside(n, ev[i], bd[i], neutral[i])
-        stab[i] = _OUTSIDE
-        return
-    if n == 3:
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], c[i, 3], 3, polish)
-    elif n == 2:
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c[i, 0], c[i, 1], c[i, 2], 0j, 2, polish)
-    else:
-        r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(c[i, 0], c[i, 1])
-    stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+#: :func:`_coefficient_loop`, serial and parallel
+_COEFFICIENT_LOOPS = (Twin(_coefficient_loop, **_CACHE), Twin(_coefficient_loop, parallel=True, **_CACHE))
 
 
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
 
-@njit(**_JIT)
+@register_jitable
 def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
@@ -507,7 +528,7 @@ def _solve_parts(parts, polish):
     return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
 
 
-@njit(**_JIT)
+@register_jitable
 def _complex_parts(parts):
     """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
     if len(parts) == 8:
@@ -518,26 +539,13 @@ def _complex_parts(parts):
     return complex(parts[0], parts[1]), complex(parts[2], parts[3])
 
 
-def _serial_twin(f: Callable[..., Any]) -> Callable[..., Any]:
-    """A copy of the Python function ``f`` under the qualified name ``<f>_serial``, to be compiled
-    without ``parallel`` (``prange`` then runs as ``range``). numba names a function's disk-cache
-    files after its qualified name and first line, so two ``njit`` of ``f`` itself, one parallel
-    and one not, would overwrite each other's cache."""
-    g = types.FunctionType(f.__code__, f.__globals__, f.__name__ + "_serial", f.__defaults__, f.__closure__)
-    g.__qualname__ = f.__qualname__ + "_serial"
-    g.__doc__ = f.__doc__
-    return g
-
-
 class _Kernels(NamedTuple):
-    """The compiled loops of one model (:func:`_compile`)."""
+    """The loops of one model (:func:`_compile`): ``(serial, parallel)`` twins of each."""
 
-    checked: Callable[..., None]
-    checked_serial: Callable[..., None]
-    masked: Callable[..., None]
-    masked_serial: Callable[..., None]
-    domain: Callable[..., None]
-    coefficients: Callable[..., tuple]
+    checked: tuple[Twin, Twin]
+    masked: tuple[Twin, Twin]
+    domain: tuple[Twin, Twin]
+    coefficients: Twin
     n: int
 
 
@@ -546,7 +554,8 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     """The loops for the coefficient formula ``formula`` (a model's ``point_coefficients``, of
     degree ``n``) and the domain bounds ``applies`` (:func:`stability.parameters.domain_applies`).
 
-    Closures over ``formula``, ``n`` and ``applies``, compiled with ``cache=True``: numba keys a
+    Closures over ``formula``, ``n`` and ``applies``, run interpreted or compiled
+    (:class:`continuation.jit.Twin`, nothing is compiled here) with ``cache=True``: numba keys a
     closure's disk cache by its captured values, pickled (the formula by reference), so each
     model's loops are compiled once per machine. The loops call the kernel's helpers as globals
     (never captured: a captured ``njit`` dispatcher pickles differently in every process, and
@@ -562,7 +571,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
         (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
         (No reduction variables, which slowed the loop by ~15%: the driver counts.)"""
-        for i in prange(stab.shape[0]):
+        for i in prange(len(stab)):
             qi, mi = q[i * sq], mu[i * sm]
             fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
             code = _domain_code(qi, fi, si, ai, mi, lim, applies)
@@ -576,7 +585,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
-        for i in prange(stab.shape[0]):
+        for i in prange(len(stab)):
             if not inside[i]:
                 _mark_outside(n, ev[i], bd[i], neutral[i])
                 stab[i] = _OUTSIDE
@@ -586,15 +595,17 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
-        for i in prange(q.shape[0]):
+        """The code of :func:`_domain_code` per point."""
+        for i in prange(len(code)):
             code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
 
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
 
-    return _Kernels(njit(parallel=True, **_JIT)(checked), njit(**_JIT)(_serial_twin(checked)),
-                    njit(parallel=True, **_JIT)(masked), njit(**_JIT)(_serial_twin(masked)),
-                    njit(parallel=True, **_JIT)(domain), njit(**_JIT)(point_coefficients), n)
+    def both(f: Callable[..., None]) -> tuple[Twin, Twin]:
+        return Twin(f, **_CACHE), Twin(f, parallel=True, **_CACHE)
+
+    return _Kernels(both(checked), both(masked), both(domain), Twin(point_coefficients, **_CACHE), n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
@@ -644,6 +655,27 @@ def _serial(npts: int, parallel: bool | None) -> bool:
     return (npts < SERIAL_BELOW) if parallel is None else not parallel
 
 
+def _run(loops: tuple[Twin, Twin], npts: int, parallel: bool | None, engine: str | None,
+         inputs: list[Any], outputs: tuple[np.ndarray, ...]) -> None:
+    """``loop(*inputs, *outputs)`` for one of ``loops`` (serial, parallel) in one execution.
+
+    The loop: the serial one if :func:`_serial`. The execution: compiled if
+    :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
+    must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
+    floats and complex numbers, the same values; numpy scalars would be slower and complex
+    division on them is numpy's, not the one numba copies from CPython), whose results are then
+    written into ``outputs`` (every element of which the loops set)."""
+    twin = loops[0] if _serial(npts, parallel) else loops[1]
+    if execution.use_compiled(twin, npts, engine):
+        execution.before_compiled_call(twin, COMPILE_SECONDS)
+        twin(*inputs, *outputs)
+        return
+    lists = [o.tolist() for o in outputs]
+    twin.python(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
+    for out, values in zip(outputs, lists):
+        out[...] = values
+
+
 def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
     """The five linear parameters in :data:`stability.parameters.PARAMETERS` order (the
     arguments of ``point_coefficients``); ``0.0`` for those the model does not take."""
@@ -654,7 +686,7 @@ def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
 
 
 def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: np.ndarray | None = None, *,
-                   polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
+                   polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
     """Sorted eigenvalues, error bounds and the stability decision of a model whose coefficients
     the kernel forms itself (``point_coefficients``), without a domain check.
 
@@ -672,6 +704,10 @@ def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: 
     parallel : bool, optional
         Run on numba's threads (True) or in this thread (False); default: serially below
         :data:`SERIAL_BELOW` points.
+    engine : {"auto", "python", "compiled"}, optional
+        The execution (:mod:`stability.execution`); default: the environment variable
+        ``TIPPE_KERNEL``, else ``"auto"`` (interpreted below
+        :data:`stability.execution.PYTHON_BELOW` points unless the compiled loop is in memory).
 
     Returns
     -------
@@ -687,19 +723,19 @@ def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: 
     ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     n = kernels.n
     ev, bd, nt, st = _outputs(npts, n)
-    loop = kernels.masked_serial if _serial(npts, parallel) else kernels.masked
-    loop(*(a for pair in flat for a in pair), ins, int(polish), ev, bd, nt, st)
+    _run(kernels.masked, npts, parallel, engine, [*(a for pair in flat for a in pair), ins, int(polish)],
+         (ev, bd, nt, st))
     return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
                           st.reshape(shape))
 
 
 def sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
                      mu: np.ndarray, inside: np.ndarray | None = None, *,
-                     polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
+                     polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
     """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
     kernel of the benchmarks)."""
     return model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), inside,
-                          polish=polish, parallel=parallel)
+                          polish=polish, parallel=parallel, engine=engine)
 
 
 class CheckedSpectrum(NamedTuple):
@@ -750,7 +786,7 @@ def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
 
 
 def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], *, polish: int = 3,
-                           parallel: bool | None = None) -> CheckedSpectrum:
+                           parallel: bool | None = None, engine: str | None = None) -> CheckedSpectrum:
     """A model's spectrum with the physical domain tested in the same pass.
 
     The domain test is :func:`stability.parameters.check_domain`'s, point by point (the table
@@ -771,7 +807,7 @@ def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], 
         in memory).
     polish : int, default 3
         Largest number of polishing sweeps (:func:`model_spectrum`).
-    parallel : bool, optional
+    parallel, engine : optional
         As in :func:`model_spectrum`.
 
     Returns
@@ -793,8 +829,8 @@ def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], 
     n = kernels.n
     ev, bd, nt, st = _outputs(npts, n)
     where = np.empty(npts, dtype=np.int8)
-    loop = kernels.checked_serial if _serial(npts, parallel) else kernels.checked
-    loop(*(a for pair in flat for a in pair), _computable_limits(), int(polish), ev, bd, nt, st, where)
+    _run(kernels.checked, npts, parallel, engine, [*(a for pair in flat for a in pair), _computable_limits(),
+                                                   int(polish)], (ev, bd, nt, st, where))
     inside = where == _INSIDE
     n_out = npts - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
@@ -804,13 +840,14 @@ def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], 
 
 
 def checked_sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                             mu: np.ndarray, *, polish: int = 3, parallel: bool | None = None) -> CheckedSpectrum:
+                             mu: np.ndarray, *, polish: int = 3, parallel: bool | None = None,
+                             engine: str | None = None) -> CheckedSpectrum:
     """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
     return checked_model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-                                  polish=polish, parallel=parallel)
+                                  polish=polish, parallel=parallel, engine=engine)
 
 
-def model_domain(model: str | LinearModel, params: Mapping[str, Any]) -> np.ndarray:
+def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine: str | None = None) -> np.ndarray:
     """The kernel's domain test alone (for tests): 0 inside, 1 outside the physical domain, 2 a
     parameter not finite or outside the computable range (refused even when masked).
 
@@ -820,6 +857,8 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any]) -> np.ndar
         A model that offers ``point_coefficients``.
     params : mapping of str to numpy.ndarray
         The model's parameters, broadcast together.
+    engine : {"auto", "python", "compiled"}, optional
+        As in :func:`model_spectrum`.
 
     Returns
     -------
@@ -830,15 +869,16 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any]) -> np.ndar
     values = _canonical(m, params)
     shape = np.broadcast_shapes(*(np.shape(v) for v in values))
     args = [_flat(v, shape) for v in values]
-    code = np.empty(math.prod(shape), dtype=np.int8)
-    kernels.domain(*args, _computable_limits(), code)
+    npts = math.prod(shape)
+    code = np.empty(npts, dtype=np.int8)
+    _run(kernels.domain, npts, None, engine, [*args, _computable_limits()], (code,))
     return code.reshape(shape)
 
 
 def sliding_domain(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                   mu: np.ndarray) -> np.ndarray:
+                   mu: np.ndarray, *, engine: str | None = None) -> np.ndarray:
     """:func:`model_domain` of the sliding model, parameters by position."""
-    return model_domain("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
+    return model_domain("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), engine=engine)
 
 
 def model_coefficients(model: str | LinearModel, q: float, fr_inv: float, sigma: float, alpha_v: float,
@@ -856,7 +896,7 @@ def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, 
 
 
 def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
-                         polish: int = 3, parallel: bool | None = None) -> KernelSpectrum:
+                         polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
     """The kernel on given coefficients ``c`` (..., n+1), highest power first, ``1 <= n <= 3``.
 
     Parameters
@@ -867,7 +907,7 @@ def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
         Points to compute (the others get NaN and flag -1); default all.
     polish : int, default 3
         Largest number of polishing sweeps.
-    parallel : bool, optional
+    parallel, engine : optional
         As in :func:`model_spectrum`.
 
     Returns
@@ -884,8 +924,8 @@ def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
     shape = c.shape[:-1]
     flat = np.ascontiguousarray(c.reshape(-1, n + 1))
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
-    ev, bd, nt, st = _outputs(flat.shape[0], n)
-    loop = _coefficient_serial if _serial(flat.shape[0], parallel) else _coefficient_kernel
-    loop(flat, ins, int(polish), ev, bd, nt, st)
+    npts = flat.shape[0]
+    ev, bd, nt, st = _outputs(npts, n)
+    _run(_COEFFICIENT_LOOPS, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
     return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
                           st.reshape(shape))

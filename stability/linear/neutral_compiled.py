@@ -24,7 +24,7 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 

@@ -46,6 +46,7 @@ a mode touches the axis without crossing) is not found from the atlas; pass ``st
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
@@ -58,6 +59,7 @@ from xarray.indexes import PandasIndex
 from continuation.engine import Branch, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
 
+from .. import execution
 from .._version import package_version
 from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
@@ -68,8 +70,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
-from .neutral_compiled import CONSTRAINT_CODES, constraint_values, step_kernel
-from .neutrality import NeutralCondition
+from .neutrality import NeutralCondition, crossing_kernels
 from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
 from .spectra import spectrum
 
@@ -233,10 +234,11 @@ class NeutralProblem:
     samples : numpy.ndarray, optional
         ``(m, 2)`` points used to decide the form and structural deflation.
     form : {"crossing", "collision"}, optional
-    compiled : bool, default True
+    compiled : bool, optional
         Offer the engine the compiled step (:mod:`stability.linear.neutral_compiled`) and evaluate
         constraints and test functions by their compiled twins, where they exist (the sliding
-        model's crossing form); False keeps everything in Python.
+        model's crossing form); False keeps everything in Python. None (default): the rule of
+        :mod:`stability.execution`, :func:`compiled_step_in_memory`.
 
     Attributes
     ----------
@@ -249,10 +251,12 @@ class NeutralProblem:
 
     def __init__(self, model: str | LinearModel, x: str, y: str, fixed: Mapping[str, float],
                  ranges: Mapping[str, tuple[float, float]], edge_margin: float = 1e-9,
-                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool = True):
+                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool | None = None):
         self.model = get_model(model)
         self.names = (x, y)
         self.fixed = dict(fixed)
+        if compiled is None:
+            compiled = compiled_step_in_memory(self.model)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
         self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
@@ -261,6 +265,8 @@ class NeutralProblem:
         self._compiled = None
         kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
+            from .neutral_compiled import CONSTRAINT_CODES, step_kernel
+
             self._compiled = (
                 *self.cond._compiled,
                 np.array([CONSTRAINT_CODES[c.code] for c in self._constraints], dtype=np.int64),
@@ -341,6 +347,8 @@ class NeutralProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
         if self._compiled is not None:
+            from .neutral_compiled import constraint_values
+
             point, free, _, codes, index, a = self._compiled
             return constraint_values(point, free, np.asarray(u, dtype=float), codes, index, a)
         p = self.fixed.copy()
@@ -388,6 +396,23 @@ class FoldProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
         return _constraint_values(self._constraints, self.params(u))
+
+
+def compiled_step_in_memory(model: str | LinearModel) -> bool:
+    """The execution of the neutral curves' corrector by the rule of :mod:`stability.execution`:
+    ``TIPPE_KERNEL`` if it forces one, else whether this process has compiled the model's
+    compiled step (:mod:`stability.linear.neutral_compiled`) already; nothing is compiled or
+    imported to find out."""
+    chosen = execution.engine()
+    if chosen != "auto":
+        return chosen == "compiled"
+    compiled = sys.modules.get(__package__ + ".neutral_compiled")
+    m = get_model(model)
+    formula = getattr(m, "point_coefficients", None)
+    derivative = getattr(m, "point_derivatives", None)
+    if compiled is None or formula is None or derivative is None:
+        return False
+    return bool(compiled.step_kernel(crossing_kernels(formula, derivative, int(m.n_modes))).signatures)
 
 
 # ------------------------------------------------------------------------------------------
@@ -682,7 +707,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
                   start: Sequence[Sequence[float]] | None = None, grid: tuple[int, int] = (25, 25),
                   step: float | None = None, max_step: float = 0.05, max_angle: float = 0.1,
                   max_points: int = 4000, tol: float = 1e-13, edge_margin: float = 1e-9,
-                  form: str | None = None, compiled: bool = True) -> xr.Dataset:
+                  form: str | None = None, compiled: bool | None = None) -> xr.Dataset:
     """Trace the neutral curves of a linear model in the plane of two parameters.
 
     Parameters
@@ -720,10 +745,13 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
         ``>= edge_margin``.
     form : {"crossing", "collision"}, optional
         Force the form (see :mod:`stability.linear.neutrality`); default from the model.
-    compiled : bool, default True
+    compiled : bool, optional
         Use the compiled corrector of :mod:`stability.linear.neutral_compiled` where there is one
         (the sliding model's crossing form; numba, compiled on first use and cached on disk);
-        False forces the engine's Python path. The two give the same points to rounding.
+        False forces the engine's Python path. The two give the same points to rounding. None
+        (default): the rule of :mod:`stability.execution` (:func:`compiled_step_in_memory`: the
+        compiled corrector only if this process has compiled it already, unless
+        ``TIPPE_KERNEL`` says otherwise); a first curve in a fresh process then compiles nothing.
 
     Returns
     -------
@@ -762,7 +790,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     tol = check_positive("tol", tol)
     edge_margin = check_positive("edge_margin", edge_margin)
     max_points = check_integer("max_points", max_points, minimum=2, maximum=MAX_POINTS)
-    compiled = check_flag("compiled", compiled)
+    compiled = None if compiled is None else check_flag("compiled", compiled)
     if form is not None:
         form = check_choice("form", form, ("crossing", "collision"))
     if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):

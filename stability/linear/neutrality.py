@@ -92,14 +92,17 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
-from numba.extending import register_jitable
 
+from continuation.jit import Twin, njit, register_jitable
+from continuation.jit import active as jit_active
+
+from .. import execution
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
-__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "crossing_kernels", "CrossingKernels"]
+__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "crossing_kernels", "CrossingKernels",
+           "twins_in_memory"]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
 _WEIGHTS = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0
@@ -186,10 +189,11 @@ def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.nda
     return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
-@njit(**_JIT)
-def _other_roots_many(c, ncoef, w, multiplicity, out):
+def _other_roots_loop(c, ncoef, w, multiplicity, out):
     """:func:`_other_roots_into` over a batch: ``c`` (m, >= ncoef; not changed), ``w`` (m,),
-    ``out`` (m, k) with ``k`` the quotient's degree (<= 2)."""
+    ``out`` (m, k) with ``k`` the quotient's degree (<= 2). Compiled (:data:`_other_roots_many`);
+    the interpreted execution runs :func:`_other_roots_into` on lists row by row
+    (:meth:`NeutralCondition.other_modes_many`)."""
     work = np.empty(ncoef, dtype=np.complex128)
     roots = np.empty(2, dtype=np.complex128)
     for i in range(c.shape[0]):
@@ -198,6 +202,10 @@ def _other_roots_many(c, ncoef, w, multiplicity, out):
         k = _other_roots_into(work, ncoef, w[i], multiplicity, roots)
         for j in range(k):
             out[i, j] = roots[j]
+
+
+#: :func:`_other_roots_loop`, compiled on first call (``.python``: the source)
+_other_roots_many = Twin(_other_roots_loop, **_JIT)
 
 
 class NeutralCondition:
@@ -215,10 +223,12 @@ class NeutralCondition:
         Points used to decide the form and the deflation (default: the centre of a unit box).
     form : {"crossing", "collision"}, optional
         Force the form (default: decided from the samples, see the module docstring).
-    compiled : bool, default True
+    compiled : bool, optional
         Evaluate :meth:`residuals` and :meth:`other_modes_many` (many points at once) by their
         compiled twins where they exist (a model with ``point_coefficients`` and
-        ``point_derivatives``, crossing form); False keeps numpy.
+        ``point_derivatives``, crossing form); False keeps numpy and the interpreter. None
+        (default): the rule of :mod:`stability.execution` (``TIPPE_KERNEL``; by default only if
+        this process has compiled them already, :func:`twins_in_memory`).
 
     Attributes
     ----------
@@ -232,7 +242,7 @@ class NeutralCondition:
     """
 
     def __init__(self, model: str | LinearModel, free: Sequence[str], fixed: Mapping[str, float],
-                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool = True):
+                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool | None = None):
         self.model = get_model(model)
         self.free = tuple(free)
         self.fixed = {k: float(v) for k, v in fixed.items()}
@@ -279,6 +289,8 @@ class NeutralCondition:
             # those the model does not take
             self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
             self._free_index = [PARAMETERS.index(name) for name in self.free]
+            if compiled is None and self.form == "crossing":
+                compiled = twins_in_memory(self.model)
             if self.form == "crossing" and compiled and self._ncoef - 2 <= 2:
                 self.kernels = crossing_kernels(self._formula, self._derivative, int(self.model.n_modes))
                 self._compiled = (np.array(self._point, dtype=float),
@@ -491,10 +503,19 @@ class NeutralCondition:
         m = c.shape[1] - 1 - multiplicity
         if m <= 0:
             return np.zeros((len(w), 0), dtype=complex)
-        if m <= 2:
+        if m <= 2 and execution.use_compiled(_other_roots_many, len(w)):
             out = np.empty((len(w), m), dtype=np.complex128)
+            execution.before_compiled_call(_other_roots_many, 2.0)
             _other_roots_many(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
+        if m <= 2:  # interpreted: the same source on Python numbers, row by row
+            rows = []
+            for i in range(len(w)):
+                work = c[i].tolist()
+                roots = [0j, 0j]
+                _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
+                rows.append(roots[:m])
+            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
         quotients = np.empty((len(w), m + 1), dtype=complex)
         for i in range(len(w)):
             work = [complex(x) for x in c[i]]
@@ -537,6 +558,22 @@ class CrossingKernels(NamedTuple):
     other_growth: Callable[..., float]
     residuals: Callable[..., np.ndarray]
     other_modes_many: Callable[..., np.ndarray]
+
+
+def twins_in_memory(model: str | LinearModel) -> bool:
+    """The execution of the neutral condition's compiled twins by the rule of
+    :mod:`stability.execution`: ``TIPPE_KERNEL`` if it forces one, else whether this process
+    has compiled them already (numba imported and the model's :func:`crossing_kernels` compiled;
+    nothing is compiled or imported to find out)."""
+    chosen = execution.engine()
+    if chosen != "auto":
+        return chosen == "compiled"
+    m = get_model(model)
+    formula = getattr(m, "point_coefficients", None)
+    derivative = getattr(m, "point_derivatives", None)
+    if formula is None or derivative is None or not jit_active():
+        return False
+    return bool(crossing_kernels(formula, derivative, int(m.n_modes)).residuals.signatures)
 
 
 @functools.cache

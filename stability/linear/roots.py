@@ -27,14 +27,15 @@ Building blocks, one home each (used by :func:`polynomial_roots`, the compiled k
 :mod:`stability.linear.kernel` and the neutral condition :mod:`stability.linear.neutrality`):
 :func:`horner_scheme` (``p, p', p''``), :func:`quadratic_roots` (the stable quadratic formula,
 general and conservative), :func:`divide_root` (synthetic division by ``s - r``, composite) and
-:func:`deflate_cubic_backward` (backward division by the largest root), with :func:`csqrt` and
-:func:`modulus`; on the imaginary axis, :func:`axis_norms` (the scales of the real and imaginary
-parts of ``p(i w)``, the neutral condition's rows) and :func:`axis_growth` (the structured
-growth estimate of a root near the axis, below). They are plain arithmetic registered with
-:func:`numba.extending.register_jitable`: one source that runs on Python numbers, inside numba
-kernels, and (:func:`horner_scheme`, whose array front end is :func:`horner`) on numpy arrays;
-batched numpy callers of the others run a small compiled loop over them
-(:func:`quadratic_roots_many`). On arrays, numpy's complex multiplication may use fused
+:func:`deflate_cubic_backward` (backward division by the largest root), with :func:`csqrt`,
+:func:`modulus` and :func:`cbrt`; on the imaginary axis, :func:`axis_norms` (the scales of the
+real and imaginary parts of ``p(i w)``, the neutral condition's rows) and :func:`axis_growth` (the
+structured growth estimate of a root near the axis, below). They are plain arithmetic registered
+with ``register_jitable`` (:mod:`continuation.jit`, which defers numba's registration until
+compiled code is wanted): one source that runs on Python numbers, inside numba kernels, and
+(:func:`horner_scheme`, whose array front end is :func:`horner`) on numpy arrays; batched numpy
+callers of the others run a small loop over them (:func:`quadratic_roots_many`), interpreted or
+compiled (:mod:`stability.execution`), with the same bits. On arrays, numpy's complex multiplication may use fused
 multiply-adds (AVX2/FMA3 machines), so complex arithmetic on arrays agrees with the scalar and
 compiled engines only to rounding; the compiled loops agree with the scalar engine bit for bit.
 
@@ -81,11 +82,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
-from numba.extending import register_jitable
+
+from continuation.jit import Twin, overload, register_jitable
+
+from .. import execution
 
 __all__ = ["PolynomialRoots", "polynomial_roots", "horner", "horner_scheme", "inclusion_radius", "modulus",
-           "csqrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward",
+           "csqrt", "cbrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward",
            "axis_norms", "axis_growth", "axis_growth_many", "root_bound"]
 
 UNIT_ROUNDOFF = 2.0**-53
@@ -113,12 +116,37 @@ class PolynomialRoots:
 
 @register_jitable
 def modulus(z):
-    """``|z|``: ``sqrt(re^2 + im^2)`` (within an ulp of ``hypot``, and much faster) unless the
-    squares would underflow or overflow, then ``hypot``."""
-    s = z.real * z.real + z.imag * z.imag
+    """``|z|``: ``sqrt(re^2 + im^2)`` (within an ulp of ``hypot``, and much faster); where the
+    squares would underflow or overflow, the same after scaling both parts by a power of two
+    (exact), and ``hypot`` for 0, inf and NaN only. Plain IEEE arithmetic throughout, so the
+    interpreter and numba give the same bits: CPython's ``math.hypot`` is an algorithm of its
+    own, not the C library's ``hypot`` that numba calls, and the two differ in the last bit on
+    about 0.5% of arguments."""
+    x, y = z.real, z.imag
+    s = x * x + y * y
     if 1e-290 < s < 1e290:
         return math.sqrt(s)
-    return math.hypot(z.real, z.imag)
+    m = max(abs(x), abs(y))
+    if m == 0.0 or not m < math.inf:
+        return math.hypot(x, y)  # exact: 0, inf or NaN
+    e = math.frexp(m)[1]
+    x = math.ldexp(x, -e)
+    y = math.ldexp(y, -e)
+    return math.ldexp(math.sqrt(x * x + y * y), e)
+
+
+def cbrt(x):
+    """The real cube root of ``x``: the C library's ``cbrt``, from Python (:func:`math.cbrt`)
+    and, compiled, through ``numpy.cbrt`` (numba has no ``math.cbrt``; numba's ``numpy.cbrt``
+    gives the same bits as ``math.cbrt``, tests/test_one_home.py)."""
+    return math.cbrt(x)
+
+
+@overload(cbrt, jit_options=dict(nogil=True, error_model="numpy"))
+def _cbrt_compiled(x):
+    def impl(x):
+        return np.cbrt(x)
+    return impl
 
 
 @register_jitable
@@ -197,16 +225,21 @@ def quadratic_roots(a, b, k):
     return 0j, 0j, False
 
 
-@njit(cache=True, fastmath=False, nogil=True, error_model="numpy")
-def quadratic_roots_many(a, b, k, roots, exact):
+def _quadratic_roots_loop(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
-    ``exact`` (m, 2): the compiled loop of the batched numpy callers."""
-    for i in range(a.shape[0]):
+    ``exact`` (m, 2); lists or arrays (:class:`continuation.jit.Twin`)."""
+    for i in range(len(a)):
         r1, r2, ex = quadratic_roots(a[i], b[i], k[i])
-        roots[i, 0] = r1
-        roots[i, 1] = r2
-        exact[i, 0] = ex
-        exact[i, 1] = ex
+        roots[i][0] = r1
+        roots[i][1] = r2
+        exact[i][0] = ex
+        exact[i][1] = ex
+
+
+#: the loop of the batched numpy callers: ``quadratic_roots_many(a, b, k, roots, exact)`` runs it
+#: compiled, ``quadratic_roots_many.python`` interpreted (:func:`_quadratic` chooses by
+#: :func:`stability.execution.use_compiled`)
+quadratic_roots_many = Twin(_quadratic_roots_loop, cache=True)
 
 
 @register_jitable
@@ -380,8 +413,7 @@ def axis_growth(c, ncoef, w):
     return est, eg + ecorr + third + u * abs(est)
 
 
-@njit(cache=True, fastmath=False, nogil=True, error_model="numpy")
-def axis_growth_many(c, w, g, eg):
+def _axis_growth_loop(c, w, g, eg):
     """:func:`axis_growth` over a batch: ``c`` (m, n+1) complex, ``w`` (m, k) into ``g``, ``eg``
     (m, k) (the roots' frequencies ``w[i, j]`` of polynomial ``c[i]``; NaN gives ``e_g = inf``)."""
     ncoef = c.shape[1]
@@ -393,6 +425,11 @@ def axis_growth_many(c, w, g, eg):
             else:
                 g[i, j] = np.nan
                 eg[i, j] = np.inf
+
+
+#: :func:`axis_growth` over a batch, interpreted or compiled (a :class:`continuation.jit.Twin`;
+#: the caller picks by :func:`stability.execution.use_compiled`)
+axis_growth_many = Twin(_axis_growth_loop, cache=True)
 
 
 def horner(c: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -499,10 +536,19 @@ def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Roots of ``a s^2 + b s + c`` for a batch (..., 3) (:func:`quadratic_roots` compiled over
     the batch); returns roots and exact_real mask."""
     flat = np.ascontiguousarray(np.asarray(c, dtype=complex).reshape(-1, 3))
-    roots = np.empty((flat.shape[0], 2), dtype=complex)
-    exact = np.empty((flat.shape[0], 2), dtype=bool)
-    quadratic_roots_many(np.ascontiguousarray(flat[:, 0]), np.ascontiguousarray(flat[:, 1]),
-                         np.ascontiguousarray(flat[:, 2]), roots, exact)
+    m = flat.shape[0]
+    if execution.use_compiled(quadratic_roots_many, m):
+        roots = np.empty((m, 2), dtype=complex)
+        exact = np.empty((m, 2), dtype=bool)
+        execution.before_compiled_call(quadratic_roots_many, 2.0)
+        quadratic_roots_many(np.ascontiguousarray(flat[:, 0]), np.ascontiguousarray(flat[:, 1]),
+                             np.ascontiguousarray(flat[:, 2]), roots, exact)
+    else:
+        out = [[0j, 0j] for _ in range(m)]
+        ex = [[False, False] for _ in range(m)]
+        quadratic_roots_many.python(flat[:, 0].tolist(), flat[:, 1].tolist(), flat[:, 2].tolist(), out, ex)
+        roots = np.array(out, dtype=complex).reshape(m, 2)
+        exact = np.array(ex, dtype=bool).reshape(m, 2)
     shape = c.shape[:-1] + (2,)
     return roots.reshape(shape), exact.reshape(shape)
 

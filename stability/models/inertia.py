@@ -25,7 +25,8 @@ compiled caller: no reassociation, no contraction into fused multiply-adds).
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from continuation.jit import register_jitable
 
 __all__ = ["inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
 

@@ -73,7 +73,8 @@ Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from continuation.jit import register_jitable
 
 from .base import LinearModel
 from .inertia import inertia_contact, inertia_g

@@ -18,16 +18,19 @@ the validation of the linear predictions (:mod:`~stability.nonlinear.validation`
 :func:`stability.validate`) and the scene of Sec. 3(ii) (:mod:`~stability.nonlinear.scene`).
 
 Layer 3 (docs/architecture.md): imports the models, the linear layer and the small dense solves
-of :mod:`continuation.linalg`, never the grids, recipes, figures or command line. This ``__init__`` imports only the three model modules, so
-that ``runs``, ``jacobian`` and ``validation`` can import the registry from it without a cycle.
+of :mod:`continuation.linalg`, never the grids, recipes, figures or command line. This ``__init__`` holds the
+registry and imports no model module: :data:`NONLINEAR_MODELS` knows the names without them (the
+command line lists them without importing numba) and imports a model's compiled module when the
+model is first asked for; ``runs``, ``jacobian`` and ``validation`` import the registry from here
+without a cycle.
 """
 
 from __future__ import annotations
 
+import importlib
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Callable
-
-from . import fixed_pivot, rolling, sliding
 
 __all__ = ["NonlinearModel", "NONLINEAR_MODELS", "get_nonlinear_model"]
 
@@ -71,20 +74,45 @@ class NonlinearModel:
         return "X_1" in self.state
 
 
-NONLINEAR_MODELS: dict[str, NonlinearModel] = {
-    "sliding": NonlinearModel(
-        "sliding", "(1), (2), (4), (5), (7)/(16)", sliding.rhs, sliding.contact_forces,
-        sliding.STATE, ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
-        ((0, 1), (3, 4), (6, 7)), "sliding"),
-    "rolling": NonlinearModel(
-        "rolling", "(1), (2), (4), (5) with V_c = 0", rolling.rhs, rolling.contact_forces,
-        rolling.STATE, ("q", "fr_inv", "sigma", "mu"), ((0, 1), (3, 4)),
-        "rolling"),
-    "fixed_pivot": NonlinearModel(
-        "fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", fixed_pivot.rhs,
-        fixed_pivot.contact_forces, fixed_pivot.STATE, ("q", "fr_inv", "sigma", "mu"),
-        ((0, 1), (3, 4)), "fixed_pivot"),
+#: name -> (module, equations, parameters, transverse index pairs, linear model): what the registry
+#: knows before the model's compiled module is imported (:class:`NonlinearModel`)
+_MODELS: dict[str, tuple[str, str, tuple[str, ...], tuple[tuple[int, int], ...], str]] = {
+    "sliding": ("sliding", "(1), (2), (4), (5), (7)/(16)", ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
+                ((0, 1), (3, 4), (6, 7)), "sliding"),
+    "rolling": ("rolling", "(1), (2), (4), (5) with V_c = 0", ("q", "fr_inv", "sigma", "mu"), ((0, 1), (3, 4)),
+                "rolling"),
+    "fixed_pivot": ("fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", ("q", "fr_inv", "sigma", "mu"),
+                    ((0, 1), (3, 4)), "fixed_pivot"),
 }
+
+
+class _Registry(Mapping[str, NonlinearModel]):
+    """The nonlinear models by name: the names (iteration, ``in``) without importing anything, a
+    model (its compiled module imported, its :class:`NonlinearModel` built) on first access."""
+
+    def __init__(self) -> None:
+        self._built: dict[str, NonlinearModel] = {}
+
+    def __getitem__(self, name: str) -> NonlinearModel:
+        if name not in self._built:
+            module, equations, parameters, transverse, linear_model = _MODELS[name]
+            mod = importlib.import_module(f"{__name__}.{module}")
+            self._built[name] = NonlinearModel(name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters,
+                                               transverse, linear_model)
+        return self._built[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(_MODELS)
+
+    def __len__(self) -> int:
+        return len(_MODELS)
+
+    def __repr__(self) -> str:
+        return f"NONLINEAR_MODELS({', '.join(_MODELS)})"
+
+
+#: name -> :class:`NonlinearModel` (a mapping; a model's module is imported on first access)
+NONLINEAR_MODELS: Mapping[str, NonlinearModel] = _Registry()
 
 
 def get_nonlinear_model(model: str) -> NonlinearModel:

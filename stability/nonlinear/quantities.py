@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from numba.extending import register_jitable
+from continuation.jit import register_jitable
 
 from ..models.inertia import inertia_g
 

@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 from numba import njit
-from numba.extending import register_jitable
+from continuation.jit import register_jitable
 
 from ..models.inertia import inertia_g, transverse_inertia_g
 
@@ -89,7 +89,7 @@ def d_of_c(c, q, sigma, mu):
 
     ``D(1) = sigma (1 + q)^2``, ``D(-1) = sigma (1 - q)^2``; ``D > 0`` on ``[-1, 1]`` in the
     physical domain (a squared length times a moment of inertia)."""
-    return sigma * (c + q) ** 2 + inertia_g(q, mu) * (1.0 - c * c)
+    return sigma * ((c + q) * (c + q)) + inertia_g(q, mu) * (1.0 - c * c)
 
 
 @register_jitable
@@ -176,7 +176,7 @@ def potential_curvature(c, jellett, q, sigma, mu):
     """``U_J''(c) = J^2 (4 P^2 - a D) / D^3`` at a tilted state (S8; ``U_J' = 0`` used)."""
     d = d_of_c(c, q, sigma, mu)
     p = p_of_c(c, q, sigma, mu)
-    return jellett * jellett * (4.0 * p * p - detuning(q, sigma, mu) * d) / d ** 3
+    return jellett * jellett * (4.0 * p * p - detuning(q, sigma, mu) * d) / (d * d * d)
 
 
 @register_jitable
@@ -392,7 +392,7 @@ def energy_test_at(c, vertical, jellett, q, sigma, fr_inv, mu):
     if vertical:
         return c * (j2 * p / (d * d) - mu * fr_inv * q), j2 * abs(p) / (d * d) + mu * fr_inv * abs(q)
     a = detuning(q, sigma, mu)
-    return j2 * (4.0 * p * p - a * d) / d ** 3, j2 * (4.0 * p * p + abs(a) * d) / d ** 3
+    return j2 * (4.0 * p * p - a * d) / (d * d * d), j2 * (4.0 * p * p + abs(a) * d) / (d * d * d)
 
 
 def energy_test(kind: str, c: float, jellett: float, *, q: float, sigma: float, fr_inv: float,

@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 
 from numba import njit
-from numba.extending import register_jitable
+from continuation.jit import register_jitable
 
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar

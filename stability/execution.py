@@ -1,0 +1,125 @@
+"""Which execution runs a loop that is written once: interpreted (Python) or compiled (numba).
+
+The spectral kernel's loops, the batched root finders and the neutral curves' corrector are
+each one plain Python source (:class:`continuation.jit.Twin`) with two executions that give the
+same bits: the interpreter, which needs no compilation but costs ~50-100 us per point, and numba,
+~0.3 us per point once compiled but several seconds to compile on a machine whose numba disk
+cache does not hold it yet (a fresh install), and ~0.5 s to import numba and load it when it
+does. The rule (docs/performance.md, "The first call"):
+
+* fewer than :data:`PYTHON_BELOW` points run interpreted, unless the compiled loop is already in
+  memory in this process (then it runs, compiling and loading nothing); a first eigenvalue,
+  threshold or neutral curve in a fresh process then takes a fraction of a second and imports
+  no numba;
+* larger requests run compiled; if that needs a compilation (the loop is neither in memory nor
+  in numba's disk cache), one line on stderr says so first, once per process
+  (:data:`NOTICE`); ``tippe warmup`` compiles every loop ahead of time;
+* the environment variable :data:`ENVIRONMENT` (``TIPPE_KERNEL``) forces a path: ``python``,
+  ``compiled`` or ``auto`` (the default, the rule above); so does :func:`using` inside a block
+  (the benchmarks of ``tippe bench`` measure the compiled paths), and functions that take an
+  ``engine`` argument take the same three values (None: :func:`using`'s, else the
+  environment's).
+
+The two executions run the same source on the same points: the tests compare them bit for bit
+(an engine-agreement check; the independent references remain mpmath and the closed forms).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+from collections.abc import Iterator
+from typing import Any
+
+from .errors import InputError
+
+__all__ = ["ENVIRONMENT", "ENGINES", "PYTHON_BELOW", "NOTICE", "engine", "use_compiled", "before_compiled_call",
+           "quiet", "using"]
+
+#: the environment variable that forces an execution
+ENVIRONMENT = "TIPPE_KERNEL"
+
+#: its values: the rule of the module docstring, the interpreter, numba
+ENGINES = ("auto", "python", "compiled")
+
+#: requests of fewer points run interpreted unless the compiled loop is in memory (~0.2-0.4 s of
+#: interpreted work at this size, less than importing numba and loading a cached loop)
+PYTHON_BELOW = 4096
+
+#: the line printed on stderr, once per process, before a compilation (``{seconds}``: an estimate)
+NOTICE = ("tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
+          "(cached for later runs; `tippe warmup` compiles them all)")
+
+_STATE: dict[str, Any] = {"noticed": False, "quiet": 0, "using": None}
+
+
+def engine(value: str | None = None) -> str:
+    """The execution asked for: ``value`` if given, else :func:`using`'s, else
+    :data:`ENVIRONMENT`'s, else ``"auto"``.
+
+    Raises
+    ------
+    InputError
+        A value that is not one of :data:`ENGINES` (the message names where it came from).
+    """
+    if value is None and _STATE["using"] is not None:
+        return _STATE["using"]
+    if value is None:
+        raw = os.environ.get(ENVIRONMENT, "").strip().lower()
+        if raw in ("", "auto"):
+            return "auto"
+        if raw not in ENGINES:
+            raise InputError(f"the environment variable {ENVIRONMENT} = {raw!r} is not known; "
+                             f"set it to one of {', '.join(ENGINES)} (or unset it)")
+        return raw
+    if value not in ENGINES:
+        raise InputError(f"engine = {value!r} is not known; choose one of {', '.join(ENGINES)} "
+                         f"or None (the environment variable {ENVIRONMENT}, default auto)")
+    return value
+
+
+def use_compiled(twin: Any, npts: int, value: str | None = None) -> bool:
+    """Whether ``twin`` (a :class:`continuation.jit.Twin`) runs compiled on ``npts`` points
+    (module docstring); ``value`` as in :func:`engine`."""
+    chosen = engine(value)
+    if chosen != "auto":
+        return chosen == "compiled"
+    return npts >= PYTHON_BELOW or twin.in_memory()
+
+
+def before_compiled_call(twin: Any, seconds: float) -> None:
+    """Say on stderr, once per process, that ``twin`` is about to be compiled (``seconds``: the
+    estimate printed), if it is neither in memory nor in numba's disk cache; nothing while
+    :func:`quiet` is active or if the cache cannot be read (the call then just compiles)."""
+    if _STATE["noticed"] or _STATE["quiet"] or twin.in_memory():
+        return
+    if twin.cached() is not False:
+        return
+    _STATE["noticed"] = True
+    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)
+
+
+@contextlib.contextmanager
+def quiet() -> Iterator[None]:
+    """No :data:`NOTICE` inside (``tippe warmup`` reports its own progress)."""
+    _STATE["quiet"] += 1
+    try:
+        yield
+    finally:
+        _STATE["quiet"] -= 1
+
+
+@contextlib.contextmanager
+def using(value: str) -> Iterator[None]:
+    """Every loop inside runs in the execution ``value`` (one of :data:`ENGINES`) unless a call
+    asks for another; also a decorator. The suites of ``tippe bench`` measure the compiled
+    paths under ``using("compiled")``: their baselines and the package's default both get
+    compiled code, as a long-running process has."""
+    chosen = engine(value)
+    previous = _STATE["using"]
+    _STATE["using"] = chosen
+    try:
+        yield
+    finally:
+        _STATE["using"] = previous
