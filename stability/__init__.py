@@ -5,7 +5,7 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`eigenvalues`, :func:`spectrum` - spectra of the linear models (eqs. 8-11);
 * :func:`atlas`, :func:`open_atlas` - spectra over parameter grids as xarray datasets;
 * :class:`Top` - a real top in SI units and its nondimensional parameters;
-* :data:`MODELS` - the registry of linear models ("fixed_pivot", "rolling", "sliding");
+* :data:`MODELS` - the registry of linear models ("fixed_pivot", "rolling", "rolling_eq8", "sliding");
 * :func:`state_space`, :func:`friction_loop` - python-control forms of the operators;
 * :func:`threshold`, :func:`thresholds`, :func:`threshold_crossings`, :func:`critical_spin` -
   where stability changes;

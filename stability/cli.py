@@ -34,6 +34,7 @@ import importlib
 import os
 import re
 import sys
+import warnings
 from collections.abc import Collection, Sequence
 from typing import NoReturn
 
@@ -97,8 +98,26 @@ def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
     return set()
 
 
+class HelpFormatter(argparse.HelpFormatter):
+    """Help with each option's default appended, ``(default: X)``, unless the help already
+    names it or there is none to show (None, a flag that is off)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        if ("default" in text or default is None or default is argparse.SUPPRESS or isinstance(default, bool)
+                or not action.option_strings):
+            return text
+        return f"{text} (default: %(default)s)"
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with errors on one line (``prog: error: message``), without the usage block."""
+    """argparse with errors on one line (``prog: error: message``), without the usage block;
+    every option's default shown in its help (:class:`HelpFormatter`)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
@@ -229,7 +248,9 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the 
         interrupts.set_label(prog)
         flags = _command_flags(parser, args.command)
         interrupts.checkpoint()  # a signal during start-up
-        status = int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            _model_name_warnings_as_lines(prog)
+            status = int(args.func(args) or 0)
         if interrupts.received():  # after the last safe point: the command had finished
             return _interrupted(prog, None)
         return status
@@ -267,6 +288,22 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the 
         print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
               "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)", file=sys.stderr)
         return EXIT_FAILURE
+
+
+def _model_name_warnings_as_lines(prog: str) -> None:
+    """Show the library's warnings about model names (a deprecated name, the changed meaning of
+    ``rolling``: :mod:`stability.models`) as one line ``tippe CMD: warning: ...``; call inside
+    ``warnings.catch_warnings()``, which restores the previous state."""
+    warnings.filterwarnings("default", message="model '", category=DeprecationWarning)
+    previous = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ANN001
+        if issubclass(category, (FutureWarning, DeprecationWarning)) and str(message).startswith("model '"):
+            print(f"{prog}: warning: {_one_line(message)}", file=sys.stderr)
+            return
+        previous(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
 
 
 if __name__ == "__main__":  # pragma: no cover

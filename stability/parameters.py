@@ -74,6 +74,9 @@ __all__ = [
     "PARAMETERS",
     "DEFAULT_MU",
     "LONG_NAMES",
+    "UNITS",
+    "COMMENTS",
+    "parameter_attrs",
     "COMPUTABLE_RANGE",
     "DOMAIN",
     "Bound",
@@ -103,13 +106,33 @@ PARAMETERS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu")
 DEFAULT_MU: float = 2.28
 
 LONG_NAMES: dict[str, str] = {
-    "q": "centre-of-mass offset along the symmetry axis, in units of R",
-    "fr_inv": "inverse Froude number g / (Omega^2 R)",
-    "sigma": "axial to transverse moment of inertia about the sphere centre, C / A0",
-    "alpha_v": "viscous friction parameter mu Omega R Fr^-1 mu_v",
-    "alpha_k": "Coulomb friction parameter mu Fr^-1 mu_K",
-    "mu": "scaled mass M R^2 / A0",
+    "q": "centre-of-mass offset q",
+    "fr_inv": "inverse Froude number",
+    "sigma": "inertia ratio sigma = C/A0",
+    "alpha_v": "viscous friction alpha_v",
+    "alpha_k": "Coulomb friction alpha_K",
+    "mu": "scaled mass mu = M R^2/A0",
 }
+
+#: units of each parameter as datasets write them (xarray prints ``long_name [units]``)
+UNITS: dict[str, str] = {"q": "R", "fr_inv": "1", "sigma": "1", "alpha_v": "1", "alpha_k": "1", "mu": "1"}
+
+#: what each parameter is, beyond its short long_name (the ``comment`` attribute)
+COMMENTS: dict[str, str] = {
+    "q": "offset of the centre of mass G from the sphere's centre O along the symmetry axis, "
+         "G = O + q R k, in units of the radius R (q < 0: G below O)",
+    "fr_inv": "g / (Omega^2 R), eq. (3)",
+    "sigma": "axial to transverse moment of inertia about the sphere's centre, C / A0, eq. (3)",
+    "alpha_v": "viscous friction parameter mu Omega R Fr^-1 mu_v, eq. (7)",
+    "alpha_k": "Coulomb friction parameter mu Fr^-1 mu_K, eq. (7)",
+    "mu": "scaled mass M R^2 / A0, eq. (3)",
+}
+
+
+def parameter_attrs(name: str) -> dict[str, str]:
+    """The netCDF attributes of a parameter coordinate: short ``long_name``, ``units``, ``comment``."""
+    return {"long_name": LONG_NAMES[name], "units": UNITS[name], "comment": COMMENTS[name]}
+
 
 SYMBOLS: dict[str, str] = {
     "q": "q",

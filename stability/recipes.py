@@ -52,6 +52,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import importlib.util
+import time
 import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -65,8 +66,8 @@ from .grids.atlases import atlas
 from .errors import AtlasFileError, RecipeError
 from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
-from .models import MODELS
-from .parameters import LONG_NAMES, PARAMETERS
+from .models import MODELS, get_model
+from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
 
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
@@ -199,8 +200,10 @@ def load_recipe(path: str | Path) -> Recipe:
     if "grid" not in raw:
         raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
-    if model not in MODELS:
-        raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}")
+    try:  # a recipe's model is a public lookup: "rolling" warns once, a deprecated name is mapped
+        model = get_model(model).name
+    except ValueError:
+        raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
     if kind == "critical_spin":
         preset = raw.get("preset", "table1")
         if preset not in PRESETS:
@@ -251,7 +254,8 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
 
 
 def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: bool,
-            reader: Callable[[Path], xr.Dataset]) -> xr.Dataset:
+            reader: Callable[[Path], xr.Dataset],
+            log: list[tuple[Path, str, float]] | None = None) -> xr.Dataset:
     """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
 
     A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
@@ -263,13 +267,18 @@ def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: b
             raise RecipeError(f"{path} exists and was not written by a recipe ({exc}); remove it or "
                               "pass force=True to replace it") from None
         if ds.attrs.get("recipe_digest") == digest:
+            if log is not None:
+                log.append((path, "reused", 0.0))
             return ds
         if "recipe_digest" not in ds.attrs:
             raise RecipeError(f"{path} exists and was not written by a recipe (it has no recipe_digest "
                               "attribute); remove it or pass force=True to replace it")
+    start = time.perf_counter()
     ds = make()
     ds.attrs["recipe_digest"] = digest
     write_dataset(ds, path, overwrite=True)
+    if log is not None:
+        log.append((path, "computed", time.perf_counter() - start))
     return ds
 
 
@@ -329,11 +338,22 @@ def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
     return runs
 
 
-def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
+def compute(recipe: Recipe, *, force: bool = False,
+            log: list[tuple[Path, str, float]] | None = None) -> dict[str, xr.Dataset]:
     """Compute (or reuse from disk) the recipe's datasets.
 
     A dataset on disk is reused when its ``recipe_digest`` attribute equals the recipe's;
     otherwise it is recomputed and written atomically.
+
+    Parameters
+    ----------
+    recipe : Recipe
+        The recipe.
+    force : bool
+        Recompute even when a matching dataset exists.
+    log : list, optional
+        If given, one ``(path, action, seconds)`` is appended per dataset, ``action`` being
+        ``"reused"`` or ``"computed"`` (what ``tippe figures`` prints).
 
     Returns
     -------
@@ -350,12 +370,12 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
                 made.update(_STEADY_MAKERS[recipe.kind](recipe))
             return made[key]
         for key in _STEADY_PARTS[recipe.kind]:
-            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force,
+            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log,
                                reader=_read)
         return out
     if recipe.kind == "critical_spin":
         out[recipe.model] = _cached(recipe.dataset_path, recipe.digest, lambda: critical_spin_dataset(recipe),
-                                    force=force, reader=_read)
+                                    force=force, log=log, reader=_read)
         return out
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
@@ -364,19 +384,19 @@ def compute(recipe: Recipe, *, force: bool = False) -> dict[str, xr.Dataset]:
                 ds.attrs["label"] = label
                 return ds
             out[key] = _cached(recipe.path.with_name(f"{recipe.name}_{key}.nc"), recipe.digest, made,
-                               force=force, reader=_read)
+                               force=force, log=log, reader=_read)
         return out
     for model in recipe.models():
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
 
         def make(model=model) -> xr.Dataset:
-            ds = atlas(model, mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+            ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
             ds.attrs["recipe"] = recipe.path.name
             return ds
-        out[model] = _cached(path, recipe.digest, make, force=force, reader=open_atlas)
+        out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
         if recipe.neutral:
             out[f"{model}_neutral"] = _cached(path.with_name(path.stem + "_neutral.nc"), recipe.digest,
-                                              lambda model=model: _neutral(recipe, model), force=force, reader=_read)
+                                              lambda model=model: _neutral(recipe, model), force=force, log=log, reader=_read)
     return out
 
 
@@ -409,9 +429,11 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
                 pass
     unit = {"units": "min-1"}
     return xr.Dataset(
-        {"critical_spin_upright": (x, out["upright"], {"long_name": "spin rate above which the upright top is unstable", **unit}),
-         "critical_spin_inverted": (x, out["inverted"], {"long_name": "spin rate above which the inverted top is stable", **unit})},
-        coords={x: (x, values, {"long_name": LONG_NAMES[x], "units": "1"})},
+        {"critical_spin_upright": (x, out["upright"], {"long_name": "upright critical spin", **unit,
+                                                         "comment": "spin rate above which the upright top is unstable"}),
+         "critical_spin_inverted": (x, out["inverted"], {"long_name": "inverted critical spin", **unit,
+                                                           "comment": "spin rate above which the inverted top is stable"})},
+        coords={x: (x, values, parameter_attrs(x))},
         attrs={"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin",
                "model": recipe.model, "preset": recipe.figure,
                "mass_kg": base.mass, "radius_m": base.radius, "q": base.q, "mu": base.mu, "sigma": base.sigma})
@@ -424,7 +446,7 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
     grid = _grid_for(model, recipe.grid)
     fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}
     xs, ys = np.asarray(grid[recipe.x]), np.asarray(grid[recipe.y or ""])
-    ds = neutral_curve(model, recipe.x, recipe.y, fixed=fixed,
+    ds = neutral_curve(MODELS[model], recipe.x, recipe.y, fixed=fixed,
                        x_range=(float(xs.min()), float(xs.max())), y_range=(float(ys.min()), float(ys.max())))
     for name in ("kind", "detail"):
         if name in ds:

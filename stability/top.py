@@ -168,17 +168,55 @@ class Top:
             raise ValueError("mu_k is not set on this Top; give mu_k to compute alpha_k")
         return self.mu * self.fr_inv(spin, unit) * self.mu_k
 
-    def nondimensional(self, spin: Any, unit: str = "rad/s") -> dict[str, Any]:
+    def nondimensional(self, spin: Any, unit: str = "rad/s", *, alpha_v: Any = None,
+                       model: Any = None) -> dict[str, Any]:
         """The nondimensional parameters at a spin rate: q, fr_inv, sigma, mu (+ alpha_v, alpha_k).
 
-        ``alpha_v`` and ``alpha_k`` are included when ``mu_v`` and ``mu_k`` are set.
+        Parameters
+        ----------
+        spin : float or array
+            Spin rate, in ``unit``.
+        unit : {"rad/s", "rpm", "rev/s", "Hz"}
+            Unit of ``spin``.
+        alpha_v : float, optional
+            The viscous parameter (eq. 7) to use when the top has no ``mu_v``; with ``mu_v`` set
+            it is computed from the spin (``mu mu_v g / Omega``) and giving it too is an error.
+            The threshold of the sliding model does not depend on ``alpha_v > 0`` but its
+            eigenvalues do, hence no silent default.
+        model : str or LinearModel, optional
+            Return exactly the parameters of this model (e.g. no ``alpha_v`` for
+            ``"rolling"``); a model that needs ``alpha_v`` when neither ``mu_v`` nor
+            ``alpha_v`` is given is a ``TypeError`` naming both ways.
+
+        Returns
+        -------
+        dict
+            ``q, fr_inv, sigma, mu``, plus ``alpha_v`` (from ``mu_v`` or the argument) and
+            ``alpha_k`` (when ``mu_k`` is set), so that
+            ``eigenvalues("sliding", **top.nondimensional(w, alpha_v=0.5))`` works.
         """
         out: dict[str, Any] = {"q": self.q, "fr_inv": self.fr_inv(spin, unit),
                                "sigma": self.sigma, "mu": self.mu}
         if self.mu_v is not None:
+            if alpha_v is not None:
+                raise TypeError(f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {self.mu_v:g} "
+                                "s/m, from which alpha_v follows (eq. 7); give one of them")
             out["alpha_v"] = self.alpha_v(spin, unit)
+        elif alpha_v is not None:
+            a = as_parameter("alpha_v", alpha_v)
+            if np.any(a < 0):
+                raise DomainError(f"alpha_v = {alpha_v!r} is outside the physical domain: alpha_v >= 0")
+            out["alpha_v"] = float(a) if np.ndim(a) == 0 else a
         if self.mu_k is not None:
             out["alpha_k"] = self.alpha_k(spin, unit)
+        if model is not None:
+            from .models import get_model
+
+            m = get_model(model)
+            if "alpha_v" in m.parameters and "alpha_v" not in out:
+                raise TypeError(f"the {m.name} model needs alpha_v, and this Top has no mu_v: pass "
+                                "alpha_v=... or build the Top with mu_v=... (s/m)")
+            out = {k: v for k, v in out.items() if k in m.parameters}
         return out
 
     def inverted(self) -> "Top":

@@ -1,11 +1,70 @@
 """Shared fixtures and references: random points of the physical domain (seeded), mpmath roots
-and the mpmath eigenvalues of eq. (11)."""
+and the mpmath eigenvalues of eq. (11).
+
+The tests exercise the installed package (issue 15 item 9): ``pytest`` (the console script)
+does not put the repository root on ``sys.path`` and the import mode is ``importlib``
+(pyproject.toml; ``tests/`` is on the path for these helpers). ``python -m pytest`` does put the
+current directory first; when the installed package is not an editable install of this tree,
+that entry is removed here before anything imports ``stability``, and
+:func:`pytest_sessionstart` fails the run with a clear message if ``stability`` still comes
+from somewhere other than the install.
+"""
 
 from __future__ import annotations
 
-import numpy as np
-import pytest
-import xarray as xr
+import json
+import os
+import sys
+from importlib import metadata
+from pathlib import Path
+
+#: the repository this conftest belongs to
+REPOSITORY = Path(__file__).resolve().parent.parent
+
+
+def _install() -> tuple[bool, Path | None]:
+    """(editable, source directory of an editable install) of the installed tippe-stability."""
+    # the metadata of the install, not a stale tippe_stability.egg-info of the tree (which
+    # `python -m pytest` would find first, through the current directory on sys.path)
+    found = [d for d in metadata.distributions(name="tippe-stability")
+             if Path(str(d.locate_file(""))).resolve() != REPOSITORY]
+    if not found:
+        raise SystemExit("tests/conftest.py: tippe-stability is not installed in this Python "
+                         f"({sys.executable}); install it first: pip install '.[test]'")
+    dist = found[0]
+    info = json.loads(dist.read_text("direct_url.json") or "{}")
+    editable = bool(info.get("dir_info", {}).get("editable", False))
+    url = str(info.get("url", ""))
+    source = Path(url[len("file://"):]).resolve() if editable and url.startswith("file://") else None
+    return editable, source
+
+
+_EDITABLE, _SOURCE = _install()
+if not _EDITABLE:  # `python -m pytest` puts the current directory first: it would shadow the install
+    sys.path[:] = [p for p in sys.path if Path(p or os.getcwd()).resolve() != REPOSITORY]
+
+
+def pytest_sessionstart(session) -> None:  # noqa: ANN001
+    """Fail at once if the tests would not exercise the installed package."""
+    import pytest
+
+    import stability
+
+    here = Path(stability.__file__).resolve()
+    inside = REPOSITORY in here.parents
+    if _EDITABLE and _SOURCE is not None and _SOURCE != REPOSITORY:
+        pytest.exit(f"tests/conftest.py: tippe-stability is installed editable from {_SOURCE}, not from "
+                    f"this repository ({REPOSITORY}): these tests would test that tree; reinstall "
+                    "with pip install -e . from here, or use this repository's venv", returncode=4)
+    if not _EDITABLE and inside:
+        pytest.exit(f"tests/conftest.py: stability was imported from the source tree ({here}), not from "
+                    "the installed package; run `pytest` (not `python -m pytest`, which puts the current "
+                    "directory first on sys.path), or `python -P -m pytest`", returncode=4)
+
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+import xarray as xr  # noqa: E402
 
 
 def random_domain_points(n: int, seed: int, *, alpha_v: bool = True) -> dict[str, np.ndarray]:

@@ -44,7 +44,10 @@ def test_cf_attributes(ds):
     assert ds.attrs["sigma"] == 1.0 and ds.attrs["alpha_v"] == 0.5
     for name in list(ds.data_vars) + ["q", "fr_inv", "sigma", "alpha_v", "mu", "mode"]:
         assert "long_name" in ds[name].attrs, name
-    for name in ("growth_rate", "frequency", "q", "fr_inv", "sigma"):
+    for name in ("growth_rate", "frequency", "max_growth_rate", "leading_growth_rate"):
+        assert ds[name].attrs["units"] == "Omega"   # rates in units of the spin rate
+    assert ds.q.attrs["units"] == "R"
+    for name in ("fr_inv", "sigma"):
         assert ds[name].attrs["units"] == "1"
     st = ds.stability.attrs
     assert list(st["flag_values"]) == [-1, 0, 1, 2]

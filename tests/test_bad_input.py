@@ -191,7 +191,7 @@ def test_threshold_and_state_space_name_the_array_parameter():
     (dict(fr_inv_range=(0.0, 1.0)), DomainError, r"fr_inv_range = \(0, 1\) is outside the allowed range: 0 < lo < hi"),
     (dict(fr_inv_range=(1e-6, float("nan"))), DomainError, "^fr_inv_range = nan"),
     (dict(fr_inv_range=0.3), TypeError, "fr_inv_range = 0.3 must be a pair"),
-    (dict(orientation="sideways"), ValueError, "orientation = 'sideways' is not known; choose one of upright, inverted"),
+    (dict(orientation="sideways"), ValueError, "orientation = 'sideways' is not known; choose one of upright, inverted, both"),
 ])
 def test_critical_spin_arguments(kw, exc, fragment):
     with pytest.raises(exc, match=fragment):

@@ -168,3 +168,57 @@ def test_no_library_message_names_a_flag():
                     if flag not in _FLAGS_ALLOWED:
                         found.append(f"{info.name}:{const.lineno}: {flag}")
     assert not found, "library strings naming a flag of tippe:\n" + "\n".join(found)
+
+
+def _subparsers() -> dict[str, argparse.ArgumentParser]:
+    from stability.cli import build_parser
+
+    parser = build_parser()
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return dict(action.choices)
+
+
+def test_every_option_of_every_subcommand_has_help():
+    """Issue 15 item 5: every option has help text, every --model names its default in the help,
+    and every subcommand's description names its model (the default one, or "sliding model only")."""
+    subs = _subparsers()
+    assert set(subs) == set(__import__("stability.cli", fromlist=["COMMANDS"]).COMMANDS)
+    missing = []
+    for name, sub in subs.items():
+        text = sub.format_help()
+        for action in sub._actions:
+            if isinstance(action, argparse._HelpAction):
+                continue
+            if not (action.help or "").strip() or action.help is argparse.SUPPRESS:
+                missing.append(f"{name} {'/'.join(action.option_strings) or action.dest}")
+            if action.option_strings == ["--model"]:
+                assert f"(default: {action.default})" in " ".join(text.split()), name
+                assert all(c in " ".join(text.split()) for c in action.choices), name
+        if any(a.option_strings == ["--model"] for a in sub._actions) or name in ("steady", "final"):
+            assert re.search(r"[Dd]efault model: \w+|[Ss]liding model only", " ".join(sub.description.split())), name
+    assert not missing, f"options without help: {', '.join(missing)}"
+
+
+def test_simulate_help_matches_the_library():
+    """The choices and defaults `tippe simulate` shows are the ones stability.simulate uses
+    (they are written in the command so that --help imports no integrator)."""
+    import inspect
+
+    from stability.nonlinear.integrators import COMPILED_METHODS, SCIPY_METHODS
+    from stability.nonlinear.runs import simulate
+
+    sub = _subparsers()["simulate"]
+    by_dest = {a.dest: a for a in sub._actions}
+    assert tuple(by_dest["method"].choices) == ("auto", *COMPILED_METHODS, *SCIPY_METHODS)
+    for name, par in inspect.signature(simulate).parameters.items():
+        if name == "progress":  # the command decides by the terminal (--progress/--no-progress)
+            continue
+        if name in by_dest and par.default is not inspect.Parameter.empty and not by_dest[name].required:
+            assert by_dest[name].default == par.default, name
+
+
+def test_bench_creates_a_missing_out_dir(tmp_path, capsys):
+    """`tippe bench --out-dir` creates a directory that does not exist (it used to refuse it)."""
+    out = tmp_path / "new" / "dir"
+    assert main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(out)]) == 0
+    assert (out / "work_precision_continuation.json").is_file()

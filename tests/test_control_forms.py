@@ -54,7 +54,7 @@ def test_plant_is_the_frictionless_top():
     _same_set(plant.poles(), expected, 1e-7)  # the double zero is defective-free but LAPACK-limited
 
 
-@pytest.mark.parametrize("model", ["fixed_pivot", "rolling"])
+@pytest.mark.parametrize("model", ["fixed_pivot", "rolling_eq8"])
 def test_second_order_state_space(model):
     q, F, sg, mu = 0.2, 0.7, 0.9, 2.28
     a_c = 1 + mu * (1 + 2 * q)
@@ -66,4 +66,4 @@ def test_second_order_state_space(model):
 
 def test_state_space_refuses_arrays():
     with pytest.raises(TypeError, match=r"^q must be a single number here, got an array of shape \(2,\)"):
-        stability.state_space("rolling", q=[0.1, 0.2], fr_inv=0.3, sigma=1.0)
+        stability.state_space("rolling_eq8", q=[0.1, 0.2], fr_inv=0.3, sigma=1.0)

@@ -7,6 +7,7 @@ Reference: docs/input_checks.md (file behaviour) and stability.grids.netcdf's co
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +32,11 @@ def atlas_file(tmp_path_factory) -> Path:
     (lambda p, good: p.write_bytes(good.read_bytes()[: good.stat().st_size // 2]),
      "is not a readable netCDF file: it cannot be read to the end (truncated or damaged"),
     (lambda p, good: xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(p),
-     "is not an atlas of tippe-stability: a netCDF file whose global attribute 'tippe_stability_product' is None"),
+     "is not an atlas of tippe-stability: it has no global attribute 'tippe_stability_product' (written by "
+     "another program"),
+    (lambda p, good: stability.write_dataset(stability.open_atlas(good).assign_attrs(
+        tippe_stability_product="neutral_curve"), p),
+     "is not an atlas: it is a 'neutral_curve' file of tippe-stability (open it with xarray.open_dataset)"),
     (lambda p, good: p.write_text("plain text"), "is not a readable netCDF file (it does not start with a netCDF"),
     (lambda p, good: p.write_bytes(b""), "is empty (0 bytes)"),
     (lambda p, good: stability.write_dataset(stability.open_atlas(good).drop_vars("frequency"), p),
@@ -149,12 +154,19 @@ def test_recipes_regenerate_their_own_outputs_and_refuse_foreign_files(tmp_path,
     recipe = tmp_path / "tiny.toml"
     recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
                       '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
+    capsys.readouterr()
     assert main(["figures", str(recipe)]) == 0           # fresh
     png, nc = tmp_path / "tiny.png", tmp_path / "tiny.nc"
     assert png.is_file() and nc.is_file()
+    out = capsys.readouterr().out  # what it did with the dataset is said (issue 15 item 8)
+    assert re.search(rf"tiny: computed {re.escape(str(nc))} \(\d+\.\d s\)", out) and "reused" not in out
+    assert f"tiny: wrote {png}" in out
     assert main(["figures", str(recipe)]) == 0           # second run: reuses the dataset, redraws the PNG
+    out = capsys.readouterr().out
+    assert f"tiny: reused {nc}" in out and "computed" not in out and f"tiny: wrote {png}" in out
     recipe.write_text(recipe.read_text().replace("0.2:5", "0.2:7"))
     assert main(["figures", str(recipe)]) == 0           # stale dataset: replaced (it is the recipe's own)
+    assert f"tiny: computed {nc}" in capsys.readouterr().out
     assert stability.open_atlas(nc).sizes["q"] == 7
     capsys.readouterr()
     nc.unlink()

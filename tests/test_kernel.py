@@ -164,10 +164,10 @@ def test_neutral_curve_is_flagged_not_guessed():
 
 
 def test_second_order_models_against_eq8(domain_points):
-    """fixed_pivot and rolling through the coefficient kernel: eq. (8) in mpmath (the paper's
+    """fixed_pivot and rolling_eq8 through the coefficient kernel: eq. (8) in mpmath (the paper's
     lambda, s = i (lambda + 1)); a gyroscopically stable top keeps Re s = 0 exactly."""
     p = domain_points(200, seed=23, alpha_v=False)
-    for model, h in (("fixed_pivot", lambda q: 1 + q), ("rolling", lambda q: q)):
+    for model, h in (("fixed_pivot", lambda q: 1 + q), ("rolling_eq8", lambda q: q)):
         sp = stability.spectrum(model, method="kernel", **p)
         for j in range(200):
             q, F, sg, m = (mp.mpf(float(p[k][j])) for k in ("q", "fr_inv", "sigma", "mu"))

@@ -40,9 +40,9 @@ def test_stable_point():
 
 
 def test_conservative_models_neutral_exactly():
-    # rolling with q < 0 is always gyroscopically stable (paper, after eq. 9): Re s == 0 exactly
+    # rolling (eq. 8 as printed) with q < 0 is always gyroscopically stable (paper, after eq. 9): Re s == 0 exactly
     q = np.linspace(-0.6, -0.01, 60)
-    sp = stability.spectrum("rolling", q=q, fr_inv=np.array([[0.0], [0.3], [3.0]]), sigma=0.3)
+    sp = stability.spectrum("rolling_eq8", q=q, fr_inv=np.array([[0.0], [0.3], [3.0]]), sigma=0.3)
     assert (sp.eigenvalues.real == 0).all()
     assert (sp.stability == MARGINAL).all()
 

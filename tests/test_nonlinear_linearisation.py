@@ -21,7 +21,7 @@ from stability import jacobian_eigenvalues
 from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear import reference, rolling, sliding
 from stability.nonlinear.parameters import pack
-from tests.conftest import random_domain_points
+from conftest import random_domain_points
 
 
 def _match(a: np.ndarray, b: np.ndarray) -> float:
@@ -36,7 +36,7 @@ def _separation(a: np.ndarray) -> float:
 @pytest.mark.parametrize("nonlinear,linear,with_alpha", [
     ("sliding", "sliding", True),
     ("fixed_pivot", "fixed_pivot", False),
-    ("rolling", "rolling_first_principles", False),
+    ("rolling", "rolling", False),
 ])
 def test_jacobian_matches_linear_operator(nonlinear, linear, with_alpha):
     pts = random_domain_points(25, seed=4, alpha_v=with_alpha)
@@ -62,7 +62,7 @@ def test_rolling_jacobian_disagrees_with_eq8_as_printed():
     mu = 2.28
     s_jac = jacobian_eigenvalues("rolling", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu)
     assert _match(s_jac, np.array([1j, 0.0])) < 1e-14
-    s_paper = stability.eigenvalues("rolling", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu)
+    s_paper = stability.eigenvalues("rolling_eq8", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu)
     assert _match(s_paper, np.array([1j / (1 + mu), 0.0])) < 1e-14
 
 
@@ -72,7 +72,7 @@ def test_sliding_polynomial_tends_to_first_principles_rolling():
     i.e. exactly O(1/alpha_v)."""
     q, fr_inv, sigma, mu = -0.13, 0.8, 1.1, 2.28
     a_c = 1 + mu * (1 + 2 * q)
-    target = np.concatenate([[0.0], a_c * stability.MODELS["rolling_first_principles"].coefficients(
+    target = np.concatenate([[0.0], a_c * stability.MODELS["rolling"].coefficients(
         q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)])
     for alpha_v in (1e3, 1e6):
         c = stability.MODELS["sliding"].coefficients(q=q, fr_inv=fr_inv, sigma=sigma,
@@ -88,7 +88,7 @@ def test_structural_zero_of_sliding_at_zero_fr_inv():
 
 def test_first_principles_rolling_contract():
     """matrices and coefficients describe the same polynomial: det(s M - A) at random s."""
-    m = stability.MODELS["rolling_first_principles"]
+    m = stability.MODELS["rolling"]
     pts = random_domain_points(10, seed=9, alpha_v=False)
     M, A = m.matrices(**pts)
     c = m.coefficients(**pts)

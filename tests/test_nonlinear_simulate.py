@@ -26,7 +26,7 @@ def test_dataset_has_cf_attributes_and_the_documented_variables():
                  "potential", "slip_speed", "friction", "normal_force", "h_cg"):
         assert name in ds, name
         assert ds[name].attrs["long_name"]
-        assert ds[name].attrs["units"] in ("1", "degree")
+        assert ds[name].attrs["units"] in ("1", "degree", "Omega", "Omega R", "R", "A0 Omega", "A0 Omega^2")
     assert ds.omega.dims == ("time", "axis")
     assert ds.attrs["Conventions"].startswith("CF")
     assert ds.attrs["status"] == 0

@@ -135,7 +135,7 @@ def test_models_figure_one_panel_per_model_on_one_colour_scale(tmp_path):
 
     fig, data = _scene("models_q_fr_inv", tmp_path)
     names = [k for k in data if not k.endswith("_neutral")]
-    assert names == ["fixed_pivot", "rolling", "sliding", "rolling_first_principles"]
+    assert names == ["fixed_pivot", "rolling", "rolling_eq8", "sliding"]
     maps = [ax for ax in fig.axes if ax.collections and ax.get_label() != "<colorbar>"][:4]
     assert len(maps) == 4
     norms = {(m.collections[0].norm.vmin, m.collections[0].norm.vmax) for m in maps}

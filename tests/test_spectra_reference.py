@@ -74,7 +74,7 @@ def _eq8_reference(q, fr_inv, sigma, mu, h) -> list:
     return [mp.mpc(0, 1) * (x + 1) for x in lam]
 
 
-@pytest.mark.parametrize("model,h_of_q", [("fixed_pivot", lambda q: 1 + q), ("rolling", lambda q: q)])
+@pytest.mark.parametrize("model,h_of_q", [("fixed_pivot", lambda q: 1 + q), ("rolling_eq8", lambda q: q)])
 def test_second_order_models_against_eq8(domain_points, model, h_of_q):
     p = domain_points(300, seed=13, alpha_v=False)
     s = stability.eigenvalues(model, **p)
@@ -137,3 +137,40 @@ def test_zero_spin_gravity_closed_form():
             w = sg / (1 - mu * q * q)
             k = np.argmin(np.abs(s - 1j * w))
             assert abs(s[k] - 1j * w) <= 1e-13 * w
+
+
+def _rolling_reference(q, fr_inv, sigma, mu) -> list:
+    """The rolling sphere linearised from first principles at 50 digits (docs/nonlinear.md):
+    A_C s^2 - i (sigma + mu (1 + q)) s - mu fr_inv q = 0, A_C = 1 + mu (1 + 2 q), by the
+    quadratic formula."""
+    q, F, sg, m = (mp.mpf(float(v)) for v in (q, fr_inv, sigma, mu))
+    a_c = 1 + m * (1 + 2 * q)
+    b = -mp.mpc(0, 1) * (sg + m * (1 + q))
+    c = -m * F * q
+    d = mp.sqrt(b * b - 4 * a_c * c)
+    return [(-b + d) / (2 * a_c), (-b - d) / (2 * a_c)]
+
+
+def test_rolling_is_first_principles_and_the_stiff_limit_of_sliding(domain_points):
+    """Issue 15 item 2: "rolling" is the rolling top from first principles, i.e. the
+    alpha_v -> infinity limit of "sliding". References: the closed form above (mpmath, 50
+    digits) for the model, and eq. (11) in mpmath (conftest.mp_sliding_eigenvalues, typed from
+    the paper) at alpha_v = 1e9 for the limit, whose two slow roots differ from the closed form
+    by O(1/alpha_v) (the third runs off to -alpha_v A_C / (mu A_G))."""
+    p = domain_points(200, seed=29, alpha_v=False)
+    s = stability.eigenvalues("rolling", **p)
+    worst = max(_match(s[j], _rolling_reference(*(p[k][j] for k in ("q", "fr_inv", "sigma", "mu"))))
+                for j in range(200))
+    assert worst <= RTOL, worst
+    for j in range(20):
+        pt = [p[k][j] for k in ("q", "fr_inv", "sigma", "mu")]
+        ref = _rolling_reference(*pt)
+        slide = sorted(mp_sliding_eigenvalues(pt[0], pt[1], pt[2], 1e9, pt[3]), key=lambda z: abs(z))[:2]
+        for r in ref:
+            assert min(abs(r - x) for x in slide) <= 1e-6 * max(1, abs(r)), (j, r, slide)
+    # eq. (8) as printed is another operator (rolling_eq8): a uniform ball (q = 0, sigma = 1)
+    # rolls with s = 0 and i from first principles, s = 0 and i / (1 + mu) as printed
+    mu = 2.28
+    assert _match(stability.eigenvalues("rolling", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu), [mp.mpc(0, 1), 0]) < 1e-14
+    assert _match(stability.eigenvalues("rolling_eq8", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu),
+                  [mp.mpc(0, 1) / (1 + mu), 0]) < 1e-14

@@ -87,11 +87,11 @@ def test_all_q_thresholds_sorted():
     assert np.all(np.diff(got) > 0)
 
 
-@pytest.mark.parametrize("model, q, f", [("rolling", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
+@pytest.mark.parametrize("model, q, f", [("rolling_eq8", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
 def test_second_order_models_discriminant(model, q, f):
     mp.dps = 40
     qm, fm = mpmath.mpf(q), mpmath.mpf(f)
-    h = qm if model == "rolling" else 1 + qm
+    h = qm if model == "rolling_eq8" else 1 + qm
     ref = mp.sqrt(4 * (1 + MU * (1 + 2 * qm)) * MU * fm * h)
     found = threshold_crossings("sigma", model=model, q=q, fr_inv=f)
     assert len(found) == 1 and close(found[0].value, ref)
@@ -221,3 +221,22 @@ def test_threshold_cli_refuses_options_it_would_ignore(argv, names, capsys):
     assert main(["threshold", *argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and names in err
+
+
+def test_critical_spin_both_orientations():
+    """orientation="both" (the CLI's default) answers for the two orientations at once.
+    Reference: the closed form of the neutral curve at the no-slip frequency (see
+    _fr_inv_closed), for q and -q."""
+    top = stability.Top.table1()
+    both = critical_spin(top, orientation="both")
+    assert both.reasons == {}
+    assert both.upright.orientation == "upright" and both.inverted.orientation == "inverted"
+    assert math.isclose(both.upright.fr_inv, float(_fr_inv_closed(top.q, top.sigma)), rel_tol=1e-13)
+    assert math.isclose(both.inverted.fr_inv, float(_fr_inv_closed(-top.q, top.sigma)), rel_tol=1e-13)
+    assert both.upright.unstable_above and not both.inverted.unstable_above
+    # sigma = 1.5: the upright top is stable at every spin (test_critical_spin_errors); the
+    # inverted one (q = +0.1) changes at fr_inv = 2.4387 by the same closed form
+    t2 = stability.Top.from_nondimensional(mass=0.02, radius=0.016, q=-0.1, mu=2.28, sigma=1.5)
+    r = critical_spin(t2, orientation="both")
+    assert r.upright is None and "upright sliding top is not unstable" in r.reasons["upright"]
+    assert math.isclose(r.inverted.fr_inv, float(_fr_inv_closed(0.1, 1.5)), rel_tol=1e-13)

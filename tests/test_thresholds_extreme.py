@@ -177,7 +177,7 @@ def test_fold_pair_at_extreme_alpha_v(alpha_v, delta):
     assert [g.unstable_side for g in got] == ["above", "below"]
 
 
-@pytest.mark.parametrize("model, q, f", [("rolling", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
+@pytest.mark.parametrize("model, q, f", [("rolling_eq8", 0.1, 0.3), ("fixed_pivot", -0.1, 0.05)])
 def test_collision_models_keep_their_form(model, q, f):
     """The conservative models (eq. 8) cross by a collision of two neutral modes; the
     threshold is the discriminant's root sigma_c^2 = 4 A_C mu fr_inv h (h = q rolling, 1 + q
@@ -185,7 +185,7 @@ def test_collision_models_keep_their_form(model, q, f):
     dissipative row to scale: the row-scaled crossing form is for dissipative models only)."""
     mp.dps = 40
     qm, fm = mpmath.mpf(q), mpmath.mpf(f)
-    h = qm if model == "rolling" else 1 + qm
+    h = qm if model == "rolling_eq8" else 1 + qm
     ref = mp.sqrt(4 * (1 + MU * (1 + 2 * qm)) * MU * fm * h)
     (t,) = threshold_crossings("sigma", model=model, q=q, fr_inv=f)
     assert t.exact and abs(t.value - float(ref)) <= 8 * U * float(ref)

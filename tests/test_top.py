@@ -13,6 +13,8 @@ import math
 import numpy as np
 import pytest
 
+import stability
+
 from stability import Top
 from stability.top import INCH, OUNCE
 
@@ -102,3 +104,28 @@ def test_top_outside_domain():
 def test_bad_unit():
     with pytest.raises(ValueError, match="unit = 'Hz'"):
         Top.table1().fr_inv(10, unit="Hz")
+
+
+def test_nondimensional_takes_alpha_v_when_the_top_has_no_mu_v():
+    """Issue 15 item 6: ``eigenvalues("sliding", **top.nondimensional(w))`` needs alpha_v; a Top
+    without mu_v takes it as an argument. Reference: the parameters written by hand from eq. (3)
+    (fr_inv = g / (Omega^2 R)), whose spectrum must be the same array (same inputs, same code)."""
+    t = Top.table1()
+    w = 44.92
+    nd = t.nondimensional(w, alpha_v=0.5)
+    by_hand = dict(q=t.q, fr_inv=t.g / (w**2 * t.radius), sigma=t.sigma, mu=t.mu, alpha_v=0.5)
+    assert nd.keys() == by_hand.keys()
+    for k in nd:
+        assert nd[k] == pytest.approx(by_hand[k], rel=1e-15)
+    s = stability.eigenvalues("sliding", **nd)
+    assert np.array_equal(s, stability.eigenvalues("sliding", **by_hand))
+    # without alpha_v (and no mu_v), asking for a model that needs it names both ways
+    with pytest.raises(TypeError, match=r"pass alpha_v=\.\.\. or build the Top with mu_v="):
+        t.nondimensional(w, model="sliding")
+    # model= returns exactly that model's parameters (no foreign alpha_v for the rolling top)
+    assert "alpha_v" not in t.nondimensional(w, alpha_v=0.5, model="fixed_pivot")
+    # with mu_v, alpha_v follows from the spin (eq. 7); giving it too is refused
+    with pytest.raises(TypeError, match="conflicts with this Top's mu_v"):
+        Top.table1(mu_v=0.01).nondimensional(w, alpha_v=0.5)
+    with pytest.raises(ValueError, match="alpha_v = -1 is outside the physical domain"):
+        t.nondimensional(w, alpha_v=-1)

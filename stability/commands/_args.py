@@ -1,26 +1,85 @@
-"""Shared argument parsing for the ``tippe`` subcommands: parameter flags (their values are read by
-:func:`stability.grids.ranges.parse_values`, which recipes use too)."""
+"""Shared argument parsing for the ``tippe`` subcommands: the parameter flags and their help
+(their values are read by :func:`stability.grids.ranges.parse_values`, which recipes use too),
+and the help of ``--model``."""
 
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterable
 
 from ..grids.ranges import parse_values
-from ..parameters import DEFAULT_MU
+from ..parameters import DEFAULT_MU, DOMAIN
 
-__all__ = ["add_parameter_flags", "parameter_values", "FLAGS"]
+__all__ = ["add_parameter_flags", "parameter_values", "parameter_help", "add_model_flag", "FLAGS",
+           "PARAMETER_HELP"]
 
 
 #: parameter name -> CLI flag
 FLAGS = {"q": "--q", "fr_inv": "--fr-inv", "sigma": "--sigma", "alpha_v": "--alpha-v", "mu": "--mu"}
 
+#: what each parameter is, with its unit (docs/conventions.md); the physical domain is added
+#: from :data:`stability.parameters.DOMAIN` by :func:`parameter_help`
+PARAMETER_HELP: dict[str, str] = {
+    "q": "centre-of-mass offset q, units of R (G = O + q R k; q < 0: G below the centre O)",
+    "fr_inv": "inverse Froude number g / (Omega^2 R), ~ 1/spin^2",
+    "sigma": "inertia ratio sigma = C / A0 (axial / transverse about O)",
+    "alpha_v": "viscous friction alpha_v = mu mu_v g / Omega (eq. 7)",
+    "alpha_k": "Coulomb friction alpha_k = mu Fr^-1 mu_K (eq. 7)",
+    "mu": "scaled mass mu = M R^2 / A0",
+}
 
-def add_parameter_flags(p: argparse.ArgumentParser, names: tuple[str, ...], *, required: tuple[str, ...]) -> None:
-    """Add ``--q``, ``--fr-inv``, ... flags taking a number, a list or a range."""
+_VALUES = {"values": "a number, a comma list, or start:stop:num", "value": "a number"}
+
+
+def parameter_help(name: str, *, kind: str = "value", extra: str = "") -> str:
+    """The help of a parameter flag: what it is, its unit, its physical domain (``DOMAIN``)."""
+    domain = " and ".join(b.text for b in DOMAIN if b.parameter == name)
+    text = f"{PARAMETER_HELP[name]}; {domain}" if domain else PARAMETER_HELP[name]
+    return f"{text}{extra}: {_VALUES[kind]}".replace("%", "%%")
+
+
+def add_parameter_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, names: Iterable[str], *,
+                        required: Iterable[str] = (), kind: str = "values",
+                        defaults: dict[str, object] | None = None,
+                        extra: dict[str, str] | None = None) -> None:
+    """Add ``--q``, ``--fr-inv``, ... with their help (what, unit, domain, default).
+
+    Parameters
+    ----------
+    p : argparse parser or group
+    names : iterable of str
+        Parameter names (keys of :data:`PARAMETER_HELP`).
+    required : iterable of str
+        The names whose flag is required.
+    kind : {"values", "value"}
+        ``"values"``: a number, a comma list or a range (read later by :func:`parameter_values`);
+        ``"value"``: one float.
+    defaults : dict, optional
+        Default per name (``mu`` defaults to :data:`stability.parameters.DEFAULT_MU`, the
+        others to None: not given).
+    extra : dict, optional
+        Text added to a name's help (e.g. which model needs it).
+    """
+    required = tuple(required)
+    defaults = {"mu": DEFAULT_MU, **(defaults or {})}
     for name in names:
-        p.add_argument(FLAGS[name], dest=name, metavar="VALUES", required=name in required,
-                       default=DEFAULT_MU if name == "mu" else None,
-                       help=f"{name}: a number, a comma list, or start:stop:num")
+        flag = FLAGS.get(name, "--" + name.replace("_", "-"))
+        p.add_argument(flag, dest=name, metavar="VALUES" if kind == "values" else "VALUE",
+                       type=float if kind == "value" else None, required=name in required,
+                       default=defaults.get(name),
+                       help=parameter_help(name, kind=kind, extra=(extra or {}).get(name, ""))
+                       + ("; required" if name in required else ""))
+
+
+def add_model_flag(p: argparse.ArgumentParser, models: Iterable[str], default: str = "sliding", *,
+                   what: str = "linear model", deprecated: dict[str, str] | None = None) -> None:
+    """``--model`` with its choices and default listed in the help; ``deprecated`` (old name ->
+    new name) are accepted too (the library warns) and named as such."""
+    models = list(models)
+    deprecated = deprecated or {}
+    old = "; ".join(f"{o}: deprecated name of {n}" for o, n in deprecated.items())
+    p.add_argument("--model", choices=[*models, *deprecated], default=default, metavar="MODEL",
+                   help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""))
 
 
 def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, object]:

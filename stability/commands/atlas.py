@@ -12,11 +12,11 @@ import argparse
 import sys
 
 from ..grids.netcdf import check_output_path, write_dataset
-from ..models import MODELS
+from ..models import DEPRECATED_NAMES, MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..errors import Interrupted
 from .. import interrupts
-from ._args import add_parameter_flags, parameter_values
+from ._args import add_model_flag, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -26,26 +26,33 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "atlas", help="eigenvalues of a linear model over a parameter grid -> netCDF",
         description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
-                    "Ranges: start:stop:num (linspace) or comma lists.")
-    p.add_argument("--model", choices=list(MODELS), default="sliding")
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"))
-    p.add_argument("-o", "--output", required=True, help="netCDF file to write (atomically)")
+                    "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
+                    "(--alpha-v then required).")
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
+    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
+                        extra={"alpha_v": " (sliding model only)"})
+    p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required")
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
     p.add_argument("--mask-unphysical", action="store_true",
                    help="mask grid points outside the physical domain (NaN) instead of refusing the grid")
-    p.add_argument("--method", choices=list(METHODS), default=DEFAULT_METHOD)
+    p.add_argument("--method", choices=list(METHODS), default=DEFAULT_METHOD,
+                   help="eigenvalue method: kernel (compiled closed-form roots of the characteristic "
+                        "polynomial, polished, with error bounds; the fastest at full accuracy), polynomial "
+                        "(companion-matrix eigenvalues + Newton), lapack (numpy.linalg.eigvals of the "
+                        "operator); the last two are slower cross-checks")
     p.add_argument("--plot", metavar="PNG", help="also draw the leading growth rate and frequency against --x")
-    p.add_argument("--x", default="q", help="abscissa of the plot (a grid dimension)")
+    p.add_argument("--x", default="q", help="abscissa of the --plot (a grid dimension: q, fr_inv, sigma, alpha_v, mu)")
     g = p.add_argument_group("large grids (dask)")
     g.add_argument("--chunks", metavar="SIZES",
                    help="compute and write chunk by chunk: one size for every grid dimension (e.g. 100) "
-                        "or sizes by dimension (e.g. q=100,sigma=50; the others whole)")
-    g.add_argument("--workers", type=int, metavar="N", help="run the chunks on a local dask cluster of N processes")
+                        "or sizes by dimension (e.g. q=100,sigma=50; the others whole) (default: the whole "
+                        "grid at once)")
+    g.add_argument("--workers", type=int, metavar="N", help="run the chunks on a local dask cluster of N processes (default: in this process)")
     g.add_argument("--scheduler", metavar="ADDRESS|FILE",
                    help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file")
     g.add_argument("--resume", action="store_true",
                    help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run")
-    g.add_argument("--no-progress", action="store_true", help="no progress bar")
+    g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
     p.set_defaults(func=run)
 
 

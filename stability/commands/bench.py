@@ -38,15 +38,17 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "nonlinear runs against a tight DOP853 reference (integrators). Writes a chart (PNG) and "
                     "a JSON summary per suite and prints the speed ratios against the baselines.")
     p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
-                   help="suite to run (default: all three)")
+                   help="suite to run (default: all, each in its own process)")
     p.add_argument("--quick", action="store_true", help=f"small configurations ({_quick_help()})")
-    p.add_argument("--points", type=float, default=None, help="eigen: batch size for the timings (default 1e6)")
+    p.add_argument("--points", type=float, default=None, metavar="N",
+                   help="eigen: batch size for the timings (default 1e6)")
     p.add_argument("--reference-points", type=int, default=None, help="eigen: mpmath sample size (default 1000)")
     p.add_argument("--loop-points", type=int, default=None, help="eigen: points timed for the per-point loop "
                    "(default 20000)")
     p.add_argument("--repeat", type=int, default=None, help="timed repeats, the best kept (eigen 5, "
                    "continuation 5, integrators 3)")
-    p.add_argument("--out-dir", default="atlases", help="directory for the charts and the summaries")
+    p.add_argument("--out-dir", default="atlases", metavar="DIR",
+                   help="directory for the charts and the summaries (created if missing)")
     p.set_defaults(func=run)
 
 
@@ -176,9 +178,10 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe bench``."""
     out_dir = Path(args.out_dir)
-    if not out_dir.is_dir():
-        raise FileNotFoundError(f"output directory {str(out_dir)!r} does not exist")
+    if out_dir.exists() and not out_dir.is_dir():
+        raise FileExistsError(f"--out-dir {str(out_dir)!r} exists and is not a directory")
     _check_sizes(args)
+    out_dir.mkdir(parents=True, exist_ok=True)
     names = list(SUITES) if args.suite == "all" else [args.suite]
     if len(names) == 1:
         run_suite(names[0], out_dir, _options(args, names[0]))

@@ -14,11 +14,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Run atlas recipes: compute the datasets that are missing or out of date "
                                    "(netCDF beside each recipe) and draw their figures (PNG). A recipe's own outputs "
                                    "(<name>.png, <name>*.nc beside it) are replaced; a file there that no "
-                                   "recipe wrote is refused unless --force.")
-    p.add_argument("recipes", nargs="*", help="recipe files or directories (default: atlases/)")
+                                   "recipe wrote is refused unless --force. Each recipe names its models "
+                                   "(default: sliding).")
+    p.add_argument("recipes", nargs="*", metavar="RECIPE", help="recipe files or directories (default: atlases/)")
     p.add_argument("--force", action="store_true",
                    help="recompute even when a matching dataset exists, and replace a file at a recipe's "
-                        "output path that was not written by a recipe")
+                        "output path that was not written by a recipe (default: reuse, refuse)")
     p.set_defaults(func=run)
 
 
@@ -44,7 +45,13 @@ def run(args: argparse.Namespace) -> int:
     for recipe in recipes:  # every output writable before anything is computed
         check_outputs(recipe)
     for recipe in recipes:
-        datasets = compute(recipe, force=args.force)
+        log: list = []
+        datasets = compute(recipe, force=args.force, log=log)
+        for path, action, seconds in log:
+            if action == "reused":
+                print(f"{recipe.name}: reused {path} (recipe and code unchanged)")
+            else:
+                print(f"{recipe.name}: computed {path} ({seconds:.1f} s)")
         with style():
             fig, _ = recipe_figure(recipe, datasets)
             save_figure(fig, recipe.figure_path)

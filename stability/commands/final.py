@@ -25,13 +25,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Where the motion of a sliding top from a given state ends: the steady states of its "
                     "Jellett level below its initial energy decide it when exactly one is stable (method "
                     "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
-                    "arguments as in tippe simulate (fixed frame, K up).")
+                    "arguments as in tippe simulate (fixed frame, K up). Sliding model only.")
     p.add_argument("--omega", type=_vec, required=True, metavar="W1,W2,W3",
                    help="initial angular velocity (units of the spin rate); required")
     p.add_argument("--k", type=_vec, required=True, metavar="K1,K2,K3",
                    help="initial symmetry axis, within 1 %% of unit length (normalised); required")
     p.add_argument("--velocity", type=_vec, default=None, metavar="V1,V2",
-                   help="initial horizontal velocity of the sphere's centre (default 0,0)")
+                   help="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)")
     add_top_flags(p)
     p.add_argument("--no-simulation", dest="simulation", action="store_false",
                    help="do not run a simulation when Jellett's integral does not decide (default: run one)")

@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
-from ..models import MODELS
-from ._args import FLAGS
+from ..models import DEPRECATED_NAMES, MODELS, get_model
+from ..parameters import DEFAULT_MU
+from ._args import FLAGS, add_model_flag, add_parameter_flags
 
 __all__ = ["register", "run"]
 
@@ -25,17 +26,18 @@ def register(sub: argparse._SubParsersAction) -> None:
         "neutral", help="neutral curves of a linear model in a parameter plane -> netCDF",
         description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
                     "(Re s = 0) in the plane of two parameters, print the special points (folds, "
-                    "zero-frequency and double crossings, domain edges) and write the curves.")
-    p.add_argument("--model", choices=list(MODELS), default="sliding")
-    p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter")
-    p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter")
-    for name, flag in FLAGS.items():
-        p.add_argument(flag, dest=name, type=float, default=None, metavar="VALUE",
-                       help=f"fixed value of {name}" + (" (default 2.28)" if name == "mu" else ""))
+                    "zero-frequency and double crossings, domain edges) and write the curves. Give the "
+                    "parameters other than --x and --y. Default model: sliding (--alpha-v then required).")
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
+    p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter; required")
+    p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter; required")
+    add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
+                        extra={"mu": f" (default {DEFAULT_MU} unless traced)",
+                               "alpha_v": " (sliding model only)"})
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
-    p.add_argument("-o", "--output", help="netCDF file to write")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+    p.add_argument("-o", "--output", metavar="FILE.nc", help="netCDF file to write (default: print only)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
 
@@ -44,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     from ..linear.neutral_curves import neutral_curve
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
-    model = MODELS[args.model]
+    model = get_model(args.model)
     fixed = {}
     for name in model.parameters:
         v = getattr(args, name)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
-from ..parameters import DEFAULT_MU
+from ._args import add_parameter_flags
 
 __all__ = ["register", "run", "FLAG_NAMES"]
 
@@ -16,15 +16,8 @@ FLAG_NAMES = {0: "stable", 1: "marginal", 2: "unstable"}
 
 def add_top_flags(p: argparse.ArgumentParser) -> None:
     """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required) and ``--mu`` (single numbers)."""
-    p.add_argument("--q", type=float, required=True, metavar="Q",
-                   help="centre-of-mass offset q (G = O + q R k; q < 0: G below O); required")
-    p.add_argument("--sigma", type=float, required=True, metavar="SIGMA", help="sigma = C / A0; required")
-    p.add_argument("--fr-inv", dest="fr_inv", type=float, required=True, metavar="FR_INV",
-                   help="inverse Froude number g / (Omega^2 R) >= 0; required")
-    p.add_argument("--alpha-v", dest="alpha_v", type=float, required=True, metavar="ALPHA_V",
-                   help="viscous friction parameter >= 0; required")
-    p.add_argument("--mu", type=float, default=DEFAULT_MU, metavar="MU",
-                   help=f"scaled mass M R^2 / A0 (default {DEFAULT_MU})")
+    add_parameter_flags(p, ("q", "sigma", "fr_inv", "alpha_v", "mu"), kind="value",
+                        required=("q", "sigma", "fr_inv", "alpha_v"))
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -34,7 +27,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
                     "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
                     "the family of tilted states traced against J by continuation, with its branch points and "
-                    "folds. Units: simulate's (J in A0 Omega). docs/steady_states.md.")
+                    "folds. Sliding model only. Units: simulate's (J in A0 Omega). docs/steady_states.md.")
     add_top_flags(p)
     p.add_argument("--jellett", type=float, default=None, metavar="J",
                    help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))")

@@ -4,13 +4,18 @@ from __future__ import annotations
 
 import argparse
 
-from ..models import MODELS
+from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..top import Top
-from ._args import FLAGS
+from ..parameters import DEFAULT_MU
+from ._args import FLAGS, add_model_flag, add_parameter_flags
 
 __all__ = ["register", "run"]
 
 _TOP_FLAGS = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
+_TOP_HELP = {"mass": "mass M, kg", "radius": "radius R of the sphere, m",
+             "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
+             "inertia_transverse": "transverse moment of inertia about G, kg m^2",
+             "inertia_axial": "axial moment of inertia C, kg m^2"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -19,25 +24,32 @@ def register(sub: argparse._SubParsersAction) -> None:
         "threshold", help="threshold of one parameter, or the critical spin of a real top",
         description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
                     "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
-                    "rate above which the upright state is unstable and the inverted one stable.")
+                    "rate above which the upright state is unstable and the inverted one stable. "
+                    "Default model: sliding.")
     p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM",
                    help="q, fr_inv, sigma, alpha_v, mu or spin")
-    p.add_argument("--model", choices=list(MODELS), default="sliding")
-    for name, flag in FLAGS.items():
-        p.add_argument(flag, dest=name, type=float, default=None, metavar="VALUE",
-                       help=f"value of {name}" + (" (default 2.28)" if name == "mu" else ""))
+    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
+    add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
+                        extra={"mu": f" (default {DEFAULT_MU})",
+                               "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no "
+                                          "--mu-v; default 0.5 there)"})
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
-    p.add_argument("--all", action="store_true", help="list every threshold in the range")
+    p.add_argument("--all", action="store_true", help="list every threshold in the range (default: the one "
+                                                      "threshold, an error if there are several)")
     g = p.add_argument_group("a real top (PARAM = spin), SI units")
-    g.add_argument("--preset", choices=["table1", "table1_measured"], help="the paper's toy top")
+    g.add_argument("--preset", choices=["table1", "table1_measured"],
+                   help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1, as its simulations) or "
+                        "table1_measured (Table 1 taken literally)")
     for name in _TOP_FLAGS:
-        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE")
+        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE",
+                       help=_TOP_HELP[name])
     g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2",
                    help="gravity (default 9.80665)")
     g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
-                   help="viscous friction coefficient (alpha_v then scales as 1/spin)")
+                   help="viscous friction coefficient mu_v, s/m (alpha_v = mu mu_v g / Omega then scales "
+                        "as 1/spin; default: none, --alpha-v held fixed)")
     g.add_argument("--orientation", choices=["upright", "inverted", "both"], default=None,
-                   help="default: both")
+                   help="which state: upright (as given), inverted (q -> -q) or both (default: both)")
     p.set_defaults(func=run)
 
 
@@ -82,11 +94,18 @@ def run(args: argparse.Namespace) -> int:
     _refuse_unused(args)
     if args.param == "spin":
         top = _top(args)
-        orient = ["upright", "inverted"] if args.orientation in (None, "both") else [args.orientation]
+        orientation = args.orientation or "both"
+        alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
+        found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
+        if orientation == "both":
+            per = {"upright": found.upright, "inverted": found.inverted}
+        else:
+            per = {orientation: found}
         print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
-        for o in orient:
-            alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
-            c = critical_spin(top, args.model, o, alpha_v=alpha_v)
+        for o, c in per.items():
+            if c is None:
+                print(f"{o:>8}: no critical spin: {found.reasons[o]}")
+                continue
             state = "unstable" if c.unstable_above else "stable"
             print(f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
                   f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})")
@@ -94,9 +113,9 @@ def run(args: argparse.Namespace) -> int:
                 print(f"{'':>8}  an interval, not a value: the change of stability lies between "
                       f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
                       "cannot be decided inside it)")
-        print(f"friction: {c.friction}")
+        print(f"friction: {next(c for c in per.values() if c is not None).friction}")
         return 0
-    model = MODELS[args.model]
+    model = get_model(args.model)
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
         raise ValueError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")

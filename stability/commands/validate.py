@@ -5,12 +5,33 @@ from __future__ import annotations
 import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
-from ._args import add_parameter_flags, parameter_values
+from ._args import add_model_flag, add_parameter_flags, parameter_values
 
 __all__ = ["register", "run"]
 
-_COLUMNS = ("jacobian_growth_rate", "measured_growth_rate", "growth_rate_error",
-            "jacobian_frequency", "measured_frequency", "frequency_error", "sign_agrees")
+_COORDS = ("q", "fr_inv", "sigma", "mu", "alpha_v")
+
+
+def format_points(ds) -> str:
+    """The validation dataset as one short block per point (every line under 80 characters).
+
+    Each block names the point's parameters, then the growth rate and frequency of the
+    nonlinear model's Jacobian, the values measured on the run and their relative errors, and
+    whether the measured growth rate has the Jacobian's sign.
+    """
+    lines = []
+    for j in range(ds.sizes["point"]):
+        pt = ds.isel(point=j)
+        params = ", ".join(f"{k} = {float(pt[k]):.6g}" for k in _COORDS if k in pt.coords)
+        lines += [f"point {j}: {params}",
+                  f"  {'':<12} {'Jacobian':>13} {'measured':>13} {'rel. error':>10}"]
+        for label, key in (("growth rate", "growth_rate"), ("frequency", "frequency")):
+            lines.append(f"  {label:<12} {float(pt['jacobian_' + key]):>13.6g} "
+                         f"{float(pt['measured_' + key]):>13.6g} {float(pt[key + '_error']):>10.2g}")
+        lines.append(f"  {'sign agrees':<12} {'yes' if bool(pt['sign_agrees']) else 'NO'}")
+        if "status" in pt and str(pt["status"].values) != "ok":
+            lines.append(f"  {'status':<12} {pt['status'].values}")
+    return "\n".join(lines)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -18,12 +39,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("validate", help="check linear growth rates against nonlinear runs",
                        description="For each point (values broadcast together), perturb the upright "
                                    "spin along the leading eigenvector, integrate the nonlinear model, "
-                                   "fit growth rate and frequency, and print them beside the predictions.")
-    p.add_argument("--model", choices=list(NONLINEAR_MODELS), default="sliding")
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"))
-    p.add_argument("--amplitude", type=float, default=1e-4, help="initial tilt |Phi|")
-    p.add_argument("-o", "--output", default=None, help="also write the Dataset as netCDF")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+                                   "fit growth rate and frequency, and print them beside the predictions. "
+                                   "Default model: sliding (--alpha-v then required).")
+    add_model_flag(p, NONLINEAR_MODELS, "sliding", what="model (nonlinear, and its linearisation)")
+    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
+                        extra={"alpha_v": " (sliding only; > 0 there)"})
+    p.add_argument("--amplitude", type=float, default=1e-4, metavar="A",
+                   help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)")
+    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
+                   help="also write the Dataset as netCDF (default: print only)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
 
@@ -35,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     ds = validate(args.model, amplitude=args.amplitude, **values)
-    print(ds[list(_COLUMNS)].to_dataframe().to_string(float_format=lambda v: f"{v:.6g}"))
+    print(format_points(ds))
     if out is not None:
         write_dataset(ds, out, overwrite=args.overwrite)
     return 0

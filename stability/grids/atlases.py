@@ -19,14 +19,14 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
-from ..linear.modes import structural_zeros
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
-from ..parameters import DEFAULT_MU, LONG_NAMES, PARAMETERS, as_parameter, check_domain
+from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
 from ..errors import require_extra
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from ..resources import atlas_bytes, check_memory
+from .leading import leading, zero_everywhere
 from .schema import require_atlas
 
 __all__ = ["atlas", "leading_growth_rate", "TIME_CONVENTION", "MARGINAL_RULE"]
@@ -45,7 +45,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"}
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"}
         Eqs. (8)-(9) or eq. (11).
     q, fr_inv, sigma, alpha_v, mu : float or 1-D array_like
         Scalars become scalar coordinates, 1-D arrays dimensions. ``alpha_v`` only for
@@ -110,34 +110,39 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, grid, full, mask_unphysical, method)
 
     mdims = (*dims, "mode")
-    unit = {"units": "1"}
+    rate = {"units": "Omega"}  # xarray labels axes "long_name [units]": rates in units of the spin rate
     coords: dict[str, Any] = {}
     for k in PARAMETERS:
         if k in values:
-            attrs = {"long_name": LONG_NAMES[k], **unit}
+            attrs = parameter_attrs(k)
             coords[k] = (k, values[k], attrs) if values[k].ndim == 1 else ((), float(values[k]), attrs)
     coords["mode"] = ("mode", np.arange(m.n_modes),
-                      {"long_name": "mode index, modes sorted by decreasing growth rate", **unit})
+                      {"long_name": "mode", "comment": "mode index, modes sorted by decreasing growth rate"})
     data_vars = {
         "growth_rate": (mdims, growth,
-                        {"long_name": "growth rate Re s of each mode, in units of the spin rate", **unit}),
+                        {"long_name": "growth rate Re s", **rate,
+                         "comment": "growth rate of each mode, x ~ exp(s t), in units of the spin rate"}),
         "frequency": (mdims, freq,
-                      {"long_name": "frequency Im s of each mode, fixed frame, in units of the spin rate",
-                       **unit}),
+                      {"long_name": "frequency Im s", **rate,
+                       "comment": "frequency of each mode, fixed frame, in units of the spin rate"}),
         "eigenvalue_error_bound": (mdims, bound,
-                                   {"long_name": "absolute error bound of each eigenvalue s", **unit}),
+                                   {"long_name": "error bound of s", **rate,
+                                    "comment": "absolute error bound of each eigenvalue s"}),
         "max_growth_rate": (tuple(dims), growth[..., 0].copy(),
-                            {"long_name": "largest growth rate max Re s", **unit}),
+                            {"long_name": "max growth rate", **rate,
+                             "comment": "largest growth rate max Re s over every mode, the structural "
+                                        "s = 0 mode included (leading_growth_rate leaves it out)"}),
         "stability": (tuple(dims), stab,
-                      {"long_name": "linear stability of the upright spin",
+                      {"long_name": "stability",
                        "flag_values": np.array([-1, STABLE, MARGINAL, UNSTABLE], dtype=np.int8),
                        "flag_meanings": "outside_domain " + FLAG_MEANINGS,
-                       "comment": MARGINAL_RULE}),
+                       "comment": "linear stability of the upright spin; " + MARGINAL_RULE}),
         "physical": (tuple(dims), inside,
-                     {"long_name": "point lies in the physical domain",
+                     {"long_name": "in physical domain",
                       "flag_values": np.array([0, 1], dtype=np.int8),
                       "flag_meanings": "outside_domain inside_domain",
-                      "comment": "1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0"}),
+                      "comment": "the point lies in the physical domain: 1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), "
+                                 "mu > 0, fr_inv >= 0, alpha_v >= 0"}),
     }
     attrs: dict[str, Any] = {
         "Conventions": "CF-1.10",
@@ -158,7 +163,9 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
     for k, v in values.items():
         if v.ndim == 0:
             attrs[k] = float(v)
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+    ds = xr.Dataset(data_vars, coords=coords, attrs=attrs)
+    ds["leading_growth_rate"] = leading_growth_rate(ds)
+    return ds
 
 
 #: grid points per call of the spectrum in an in-memory atlas: a bounded piece of compiled work
@@ -240,11 +247,9 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
     ``max_growth_rate`` includes the structural zero mode, so at ``fr_inv = 0`` it is 0 on the
     whole stable side of the sliding top (marginal by structure: the ``stability`` flag says
     so); this is the growth rate of the least stable of the other modes, what a stability map
-    colours. The zero mode is left out only when every point of the atlas has one (a plane at
-    ``fr_inv = 0``): an atlas that crosses ``fr_inv = 0`` keeps it on that line, because there it
-    is the end of the small mode ``s ~ -i c fr_inv`` (real part ``-O(fr_inv^2)``), and leaving
-    it out on one line only would draw a discontinuity that is not in the physics. Where it is
-    not left out this equals ``max_growth_rate``.
+    colours, and what atlases store as ``leading_growth_rate``. The zero mode is left out only
+    when every point of the atlas has one (the rule and why: :mod:`stability.grids.leading`).
+    Where it is not left out this equals ``max_growth_rate``.
 
     Parameters
     ----------
@@ -258,16 +263,11 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
         Over the grid; NaN outside the domain.
     """
     require_atlas(ds)
-    g = ds["growth_rate"].transpose(..., "mode")
-    bound = ds["eigenvalue_error_bound"].transpose(..., "mode") if "eigenvalue_error_bound" in ds else None
-    zero = structural_zeros(g.values, ds["frequency"].transpose(..., "mode").values,
-                            None if bound is None else bound.values)
-    inside = np.isfinite(ds["max_growth_rate"].transpose(*g.dims[:-1]).values) if g.ndim > 1 else None
-    has = zero.any(axis=-1)
-    if inside is None or not inside.any() or not has[inside].all():
-        out = ds["max_growth_rate"].copy()
+    g, f = ds["growth_rate"], ds["frequency"]
+    bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
+    if g.ndim <= 1:
+        drop: Any = False
     else:
-        out = g.where(~zero).max("mode").fillna(ds["max_growth_rate"])
-    out.attrs = {"long_name": "largest growth rate over the modes that are not structurally zero",
-                 "units": "1"}
-    return out.rename("leading_growth_rate")
+        everywhere, any_inside = zero_everywhere(g, f, bound)
+        drop = everywhere & any_inside
+    return leading(g, f, bound, ds["max_growth_rate"], drop=drop)

@@ -43,6 +43,7 @@ import xarray as xr
 
 from ..errors import ChunkError, ResumeError
 from ..interrupts import Temporary, checkpoint, deferred
+from .leading import leading, zero_everywhere
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
@@ -480,7 +481,7 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
             shape[dims.index(k)] = -1
             v = v[sl[k]].reshape(shape)
         args.append(v)
-    out = _block_spectra(*args, model=get_model(spec["model"]), names=tuple(spec["names"]), mask=spec["mask"],
+    out = _block_spectra(*args, model=get_model(spec["model"], warn=False), names=tuple(spec["names"]), mask=spec["mask"],
                          method=spec["method"])
     return dict(zip(_BLOCK_VARIABLES, out))
 
@@ -578,6 +579,30 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     return target
 
 
+def _write_leading(nc: Any, blocks: list[tuple[str, dict[str, slice]]], dims: list[str]) -> None:
+    """Fill ``leading_growth_rate`` from the chunks written: whether the structural zero mode is
+    left out is decided on the whole grid first (stability.grids.leading), then each chunk."""
+    if "leading_growth_rate" not in nc.variables:
+        return
+    mdims = (*dims, "mode")
+
+    def part(sl: dict[str, slice]) -> tuple[Any, ...]:
+        idx = tuple(sl[d] for d in dims)
+        bound = (xr.DataArray(nc.variables["eigenvalue_error_bound"][idx], dims=mdims)
+                 if "eigenvalue_error_bound" in nc.variables else None)
+        return (idx, xr.DataArray(nc.variables["growth_rate"][idx], dims=mdims),
+                xr.DataArray(nc.variables["frequency"][idx], dims=mdims), bound,
+                xr.DataArray(nc.variables["max_growth_rate"][idx], dims=dims))
+
+    drop = bool(dims)
+    if drop:
+        flags = [zero_everywhere(*part(sl)[1:4]) for _, sl in blocks]
+        drop = all(bool(e) for e, _ in flags) and any(bool(i) for _, i in flags)
+    for _, sl in blocks:
+        idx, g, f, b, m = part(sl)
+        nc.variables["leading_growth_rate"][idx] = leading(g, f, b, m, drop=drop).values
+
+
 def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float, dims: list[str], n_modes: int,
                   chunk_shape: dict[str, int], blocks: list, done: set[str], store: _Store | None, client: Any,
                   window: int | None, report: "_progress") -> None:
@@ -625,6 +650,7 @@ def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float
                     put(name, sl, block, True)
             else:
                 _run_on_cluster(client, spec, todo, put, window, failed, report)
+            _write_leading(nc, blocks, dims)
 
 
 class _Failure:

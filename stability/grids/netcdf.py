@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -163,9 +164,14 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
     p = Path(_atlas_path(path))
     ds = _open(p)
     try:
-        if ds.attrs.get(PRODUCT_ATTR) != "atlas":
-            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: a netCDF file whose "
-                                 f"global attribute {PRODUCT_ATTR!r} is {ds.attrs.get(PRODUCT_ATTR)!r}, not 'atlas'")
+        product = ds.attrs.get(PRODUCT_ATTR)
+        if product is None:
+            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global "
+                                 f"attribute {PRODUCT_ATTR!r} (written by another program, or by xarray "
+                                 "directly; stability.atlas and tippe atlas set it)")
+        if product != "atlas":
+            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
+                                 "tippe-stability (open it with xarray.open_dataset)")
         missing = [v for v in ATLAS_VARIABLES if v not in ds]
         if missing:
             raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables "
@@ -176,6 +182,10 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
             raise
         except Exception as exc:  # a slab that cannot be read: the file is damaged past its header
             raise _unreadable(p, exc) from None
+        if ds.attrs.get("model") == "rolling" and ds.attrs.get("model_equations") == "(8)-(9)":
+            warnings.warn(f"atlas file {str(p)!r} was written by {ds.attrs.get('source', 'an older version')}: "
+                          "its model 'rolling' is eq. (8) as printed, which is now called 'rolling_eq8' "
+                          "('rolling' is now the rolling top from first principles)", FutureWarning, stacklevel=2)
         if chunks is not None:
             return ds.chunk(chunks)
         from ..resources import check_memory

@@ -54,7 +54,7 @@ def state_space(model: str, *, q: float, fr_inv: float, sigma: float, alpha_v: f
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"}
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"}
     q, fr_inv, sigma, alpha_v, mu : float
         Scalars in the physical domain (``alpha_v`` for ``"sliding"`` only).
 

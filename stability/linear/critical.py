@@ -56,7 +56,7 @@ from .growth import GROWS, UNDECIDED, growth
 from .spectra import MARGINAL, STABLE, UNSTABLE
 
 __all__ = ["Threshold", "threshold", "thresholds", "threshold_crossings", "critical_spin", "CriticalSpin",
-           "default_bracket", "UPPER_BOUND"]
+           "CriticalSpins", "default_bracket", "UPPER_BOUND"]
 
 #: upper end of the default bracket of the parameters without a finite physical bound
 UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
@@ -280,7 +280,7 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched (inside the physical domain); default :func:`default_bracket`.
@@ -324,7 +324,7 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched (inside the physical domain); default :func:`default_bracket`.
@@ -462,7 +462,7 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     ----------
     param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
         The parameter varied; all others are fixed.
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     bracket : pair of float, optional
         Range searched; default the physical range (:func:`default_bracket`).
@@ -594,9 +594,30 @@ class _SpinScaled(LinearModel):
         return self.base.coefficients(**self._p(params))
 
 
+class _NoTransition(ValueError):
+    """No change of stability in the spin range searched (the message says which state holds)."""
+
+
+class CriticalSpins(NamedTuple):
+    """The critical spins of both orientations of a top (``critical_spin(..., orientation="both")``).
+
+    Attributes
+    ----------
+    upright, inverted : CriticalSpin or None
+        None for an orientation whose stability does not change in the range searched; the
+        reason is then in ``reasons``.
+    reasons : dict
+        Orientation -> why it has no critical spin (empty when both have one).
+    """
+
+    upright: CriticalSpin | None
+    inverted: CriticalSpin | None
+    reasons: dict[str, str]
+
+
 def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: str = "upright", *,
                   alpha_v: float = 0.5, fr_inv_range: Sequence[float] = (1e-6, 1e4),
-                  samples: int = 257) -> CriticalSpin:
+                  samples: int = 257) -> CriticalSpin | CriticalSpins:
     """The spin rate above which a real top is unstable (upright) or stable (inverted).
 
     Friction assumption (sliding model, eq. 11): if the top has a viscous coefficient
@@ -616,8 +637,9 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
         The top (SI units).
     model : str or LinearModel
         A linear model; ``"sliding"`` by default.
-    orientation : {"upright", "inverted"}
-        ``"inverted"`` uses ``top.inverted()`` (``q -> -q``).
+    orientation : {"upright", "inverted", "both"}
+        ``"inverted"`` uses ``top.inverted()`` (``q -> -q``); ``"both"`` answers for the two
+        (what ``tippe threshold spin`` prints by default).
     alpha_v : float
         Viscous parameter used when ``top.mu_v`` is None (sliding model only).
     fr_inv_range : pair of float
@@ -628,16 +650,18 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
 
     Returns
     -------
-    CriticalSpin
+    CriticalSpin or CriticalSpins
         For the transition at the highest spin (the one above which the state no longer
-        changes); all transitions are in ``transitions``.
+        changes); all transitions are in ``transitions``. With ``orientation="both"``, a
+        :class:`CriticalSpins` holding one per orientation (None for an orientation without a
+        transition in the range, with the reason in ``reasons``).
 
     Raises
     ------
     ValueError
         Unknown orientation, or no change of stability in the range (the message says which
         state holds throughout, or at how many samples the sign cannot be decided, and the spin
-        range in rad/s and rpm).
+        range in rad/s and rpm); with ``"both"``, only if neither orientation has one.
     TypeError
         If ``top`` is not a :class:`stability.Top`.
     """
@@ -645,7 +669,19 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
 
     if not isinstance(top, Top):
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
-    check_choice("orientation", orientation, ("upright", "inverted"))
+    check_choice("orientation", orientation, ("upright", "inverted", "both"))
+    if orientation == "both":
+        found_: dict[str, CriticalSpin | None] = {}
+        reasons: dict[str, str] = {}
+        for o in ("upright", "inverted"):
+            try:
+                found_[o] = critical_spin(top, model, o, alpha_v=alpha_v, fr_inv_range=fr_inv_range,
+                                          samples=samples)
+            except _NoTransition as e:
+                found_[o], reasons[o] = None, str(e)
+        if len(reasons) == 2:
+            raise ValueError("; ".join(reasons.values()))
+        return CriticalSpins(upright=found_["upright"], inverted=found_["inverted"], reasons=reasons)
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
     check_threshold_samples(samples)
     if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
@@ -685,7 +721,7 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
             if undecided:
                 what += f" (the sign cannot be decided at {undecided} of {state.size} samples)"
         s_lo, s_hi = t.spin_rate(hi), t.spin_rate(lo)
-        raise ValueError(f"the {orientation} {base.name} top is {what} at every spin from "
+        raise _NoTransition(f"the {orientation} {base.name} top is {what} at every spin from "
                          f"{s_lo:.6g} to {s_hi:.6g} rad/s ({s_lo * 60 / (2 * math.pi):.6g} to "
                          f"{s_hi * 60 / (2 * math.pi):.6g} rpm); no critical spin there")
     th = found[0]  # smallest fr_inv = highest spin

@@ -65,7 +65,7 @@ from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
 from ..parameters import (DEFAULT_MU, DOMAIN, LONG_NAMES, PARAMETERS, as_scalar, check_choice, check_domain,
                           check_flag, check_integer, check_positive, domain_range, domain_sides, domain_text,
-                          fmt_against)
+                          fmt_against, parameter_attrs)
 from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
@@ -539,7 +539,7 @@ def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray
 # the dataset
 # ------------------------------------------------------------------------------------------
 def _var_attrs(name: str) -> dict[str, str]:
-    return {"long_name": LONG_NAMES.get(name, name), "units": "1"}
+    return parameter_attrs(name) if name in LONG_NAMES else {"long_name": name, "units": "1"}
 
 
 def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> dict[str, list]:
@@ -626,42 +626,44 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
         data[n] = ("point", c, _var_attrs(n))
     w = points[:, freq_col] if len(points) else np.zeros(0)
     data["frequency"] = ("point", w, {
-        "long_name": "frequency Im s of the neutral mode (fixed frame, units of the spin rate)",
-        "units": "1"})
+        "long_name": "neutral frequency", "units": "Omega",
+        "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate"})
     if tangents is None:
         tangents = np.zeros_like(points)
     order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
         data[f"tangent_{n}"] = ("point", tangents[:, i], {
-            "long_name": f"{n} component of the unit tangent of the curve (oriented along the "
-                         "branch; continuation.dense interpolates with it)",
-            "units": "1"})
-    data["branch"] = ("point", branch.astype(np.int32), {"long_name": "index of the traced branch"})
+            "long_name": f"tangent, {n}", "units": "1",
+            "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+                       "branch; continuation.dense interpolates with it)"})
+    data["branch"] = ("point", branch.astype(np.int32), {"long_name": "branch",
+                                                          "comment": "index of the traced branch"})
     data["kind"] = ("point", np.array(kinds, dtype=object), {
-        "long_name": "kind of point: regular, fold, zero_frequency, double_crossing, "
-                     "domain_edge or endpoint"})
+        "long_name": "kind of point",
+        "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint"})
     data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
     data["residual"] = ("point", residual, {
-        "long_name": "relative backward error of the neutral condition: the larger of its two rows, "
-                     "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
-                     "(stability.linear.neutrality)",
-        "units": "1"})
+        "long_name": "backward error", "units": "1",
+        "comment": "relative backward error of the neutral condition: the larger of its two rows, "
+                   "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
+                   "(stability.linear.neutrality)"})
     if leading is not None:
         data["leading"] = ("point", leading, {
-            "long_name": "the traced mode is the leading one (the curve is the stability boundary)"})
+            "long_name": "traced mode leads",
+            "comment": "the traced mode is the leading one (the curve is the stability boundary)"})
     if len(points):
         check, check_bound = _check_points(model, names, fixed, cols, w)
     else:
         check, check_bound = np.zeros(0), np.zeros(0)
     data["check_growth_rate"] = ("point", check, {
-        "long_name": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
-                     "(zero within check_bound on a neutral curve)",
-        "units": "1"})
+        "long_name": "check: LAPACK Re s", "units": "Omega",
+        "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
+                   "(zero within check_bound on a neutral curve)"})
     data["check_bound"] = ("point", check_bound, {
-        "long_name": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
-                     "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
-                     "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
-        "units": "1"})
+        "long_name": "check error bound", "units": "Omega",
+        "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
+                   "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
+                   "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)"})
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
     ds_attrs = {"Conventions": "CF-1.10", "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
@@ -672,7 +674,7 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
     return _point_dataset(variables, len(points), ds_attrs)
 
 
-_POINT_ATTRS = {"long_name": "index of the point along the traced branches"}
+_POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
 
 
 def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any],
@@ -710,7 +712,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) or eq. (11).
     x, y : str
         The two traced parameters, from the model's ``q, fr_inv, sigma, alpha_v, mu``.

@@ -198,7 +198,7 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"} or LinearModel
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
         Eqs. (8)-(9) for the first two, eq. (11) for ``"sliding"``.
     q, fr_inv, sigma, alpha_v, mu : float or array_like
         Parameters (broadcast together); ``alpha_v`` only for ``"sliding"``.
@@ -264,7 +264,7 @@ def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
 
     Parameters
     ----------
-    model : {"fixed_pivot", "rolling", "sliding"}
+    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"}
         Eqs. (8)-(9) (two modes) or eq. (11) (three modes).
     q, fr_inv, sigma : float or array_like
         Centre-of-mass offset, inverse Froude number, inertia ratio (broadcast together).

@@ -1,4 +1,7 @@
-"""Rolling top from first principles: the linearised rolling sphere.
+"""Rolling top from first principles: the linearised rolling sphere (model ``"rolling"``).
+
+Registered as ``"rolling"`` (it was ``"rolling_first_principles"`` in tippe-stability 0.1.0;
+that name still works for one release, with a DeprecationWarning).
 
 Linearising eqs. (1), (2), (4) with the rolling constraint ``V_c = 0`` (eq. 5) about the
 upright spin ``omega = k = K`` (spin +1) gives, with ``Phi = l + i m``
@@ -11,7 +14,7 @@ Sketch: the constraint ties the centre's velocity to the rotation, ``V = -i omeg
 in the transverse part of (2) with ``Phi' = i Phi - i omega`` (eq. 11, second line) the
 ``mu (1 + q)`` terms that are not moments of inertia add to the gyroscopic coefficient.
 
-It differs from eq. (8) as printed (model ``"rolling"``, ``sigma_hat = sigma / A_C``) by the
+It differs from eq. (8) as printed (model ``"rolling_eq8"``, ``sigma_hat = sigma / A_C``) by the
 gyroscopic term ``mu (1 + q) Phi'``; it is the ``alpha_v -> infinity`` limit of the sliding
 polynomial (eq. 11 divided by ``alpha_v``) and the linearisation of the nonlinear rolling
 model (:func:`stability.jacobian_eigenvalues`). Monic state form, ``x = (Phi, Phi')``::
@@ -30,13 +33,13 @@ import numpy as np
 from .base import LinearModel
 from .second_order import contact_transverse_inertia, gyroscopic_coefficients, gyroscopic_state_form
 
-__all__ = ["RollingFirstPrinciples"]
+__all__ = ["Rolling"]
 
 
-class RollingFirstPrinciples(LinearModel):
+class Rolling(LinearModel):
     """Linearised rolling sphere: ``A_C Phi'' - i (sigma + mu (1+q)) Phi' - mu fr_inv q Phi = 0``."""
 
-    name = "rolling_first_principles"
+    name = "rolling"
     equations = "(1), (2), (4), (5) linearised"
     parameters = ("q", "fr_inv", "sigma", "mu")
     state = ("Phi", "dPhi_dt")

@@ -80,7 +80,7 @@ _MODELS: dict[str, tuple[str, str, tuple[str, ...], tuple[tuple[int, int], ...],
     "sliding": ("sliding", "(1), (2), (4), (5), (7)/(16)", ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
                 ((0, 1), (3, 4), (6, 7)), "sliding"),
     "rolling": ("rolling", "(1), (2), (4), (5) with V_c = 0", ("q", "fr_inv", "sigma", "mu"), ((0, 1), (3, 4)),
-                "rolling_first_principles"),
+                "rolling"),
     "fixed_pivot": ("fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", ("q", "fr_inv", "sigma", "mu"),
                     ((0, 1), (3, 4)), "fixed_pivot"),
 }

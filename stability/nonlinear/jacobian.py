@@ -96,7 +96,8 @@ def jacobian_eigenvalues(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v
         ``s`` with ``x ~ exp(s t)`` (fixed frame, time in ``1/Omega``), sorted by decreasing
         real part (ties by decreasing imaginary part). ``"sliding"`` agrees with eq. (11)
         (model ``"sliding"``), ``"fixed_pivot"`` with eq. (8), and ``"rolling"`` with
-        ``"rolling_first_principles"``, not with eq. (8) as printed (docs/nonlinear.md).
+        the linear ``"rolling"`` (first principles), not with eq. (8) as printed
+        (``"rolling_eq8"``, docs/nonlinear.md).
 
     Raises
     ------

@@ -19,7 +19,7 @@ First-principles linearisation about ``omega = k = K`` (derived in docs/nonlinea
 
     A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0,   A_C = 1 + mu (1 + 2 q),
 
-which is the model ``"rolling_first_principles"``; eq. (8) as printed (model ``"rolling"``)
+which is the linear model ``"rolling"``; eq. (8) as printed (model ``"rolling_eq8"``)
 has the gyroscopic coefficient ``sigma`` instead of ``sigma + mu (1 + q)``.
 """
 

@@ -340,26 +340,28 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
     forces = np.full((n, 3), np.nan)
     if good.any():
         forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
-    comp = {"long_name": "component", "units": _ONE,
+    comp = {"long_name": "component",
             "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
-    coords = {"time": ("time", t, _attrs("time", _ONE, axis="T",
+    coords = {"time": ("time", t, _attrs("time", "1/Omega", axis="T",
                                           comment="in units of 1/Omega; one spin period is 2 pi")),
               "axis": ("axis", np.array([1, 2, 3]), comp)}
     data: dict[str, tuple] = {
-        "omega": (("time", "axis"), omega, _attrs("angular velocity", _ONE)),
-        "k": (("time", "axis"), k, _attrs("unit vector along the symmetry axis", _ONE)),
+        "omega": (("time", "axis"), omega, _attrs("angular velocity", "Omega",
+                                                  comment="in units of the spin rate Omega")),
+        "k": (("time", "axis"), k, _attrs("symmetry axis k", _ONE, comment="unit vector along the symmetry axis")),
     }
     wk = np.einsum("ij,ij->i", omega, k)
     kn = np.linalg.norm(k, axis=1)
     with np.errstate(invalid="ignore"):
         polar = np.degrees(np.arccos(np.clip(k[:, 2] / kn, -1.0, 1.0)))
-    data["polar_angle"] = ("time", polar, _attrs("polar angle of k from the upward vertical",
-                                                 "degree"))
-    data["spin"] = ("time", wk, _attrs("spin, omega . k", _ONE))
+    data["polar_angle"] = ("time", polar, _attrs("polar angle of k", "degree",
+                                                 comment="angle of k from the upward vertical K"))
+    data["spin"] = ("time", wk, _attrs("spin", "Omega", comment="omega . k, in units of the spin rate Omega"))
     data["transverse_rate"] = ("time", np.hypot(omega[:, 0], omega[:, 1]),
-                               _attrs("transverse angular rate |omega_1 + i omega_2| (fixed frame)", _ONE))
+                               _attrs("transverse rate", "Omega",
+                                      comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"))
     if m.has_translation:
         if m.name == "sliding":
             v0 = np.column_stack([y[:, 6], y[:, 7], np.zeros(n)])
@@ -369,38 +371,48 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
             x0 = np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
         v_g = v0 + q * np.cross(omega, k)
         z_g = 1.0 + q * k[:, 2]
-        data["velocity"] = (("time", "axis"), v0, _attrs("velocity of the sphere's centre O", _ONE))
-        data["position"] = (("time", "axis"), x0, _attrs("position of the sphere's centre O", _ONE,
-                                                         comment="the plane is at height 0"))
-        data["momentum"] = (("time", "axis"), mu * v_g, _attrs("linear momentum mu V_G", _ONE))
+        data["velocity"] = (("time", "axis"), v0, _attrs("velocity of O", "Omega R",
+                                                         comment="velocity of the sphere's centre O"))
+        data["position"] = (("time", "axis"), x0, _attrs("position of O", "R",
+                                                         comment="position of the sphere's centre O; the "
+                                                                 "plane is at height 0"))
+        data["momentum"] = (("time", "axis"), mu * v_g, _attrs("momentum mu V_G", _ONE,
+                                                               comment="linear momentum mu V_G"))
         data["h_cg"] = ("time", h_cg(omega, k, q=q, sigma=sigma, mu=mu),
-                        _attrs("angular momentum about G along r_cg = q k + K, eq. (10)", _ONE))
+                        _attrs("h_cg, eq. (10)", "A0 Omega",
+                               comment="angular momentum about G along r_cg = q k + K, eq. (10)"))
         slip = np.column_stack([v0[:, 0] - omega[:, 1], v0[:, 1] + omega[:, 0], np.zeros(n)])
         data["slip_speed"] = ("time", np.linalg.norm(slip, axis=1),
-                              _attrs("speed of the contact point |V_c|, eq. (5)", _ONE))
+                              _attrs("slip speed", "Omega R",
+                                     comment="speed of the contact point |V_c|, eq. (5)"))
         f = np.column_stack([forces[:, 0], forces[:, 1], np.zeros(n)])
         data["friction"] = (("time", "axis"), f, _attrs(
-            "tangential contact force" + (" (friction law)" if m.name == "sliding"
-                                          else " needed to keep rolling"), _ONE))
+            "friction force", _ONE, comment="tangential contact force" + (
+                " (friction law)" if m.name == "sliding" else " needed to keep rolling")))
         data["friction_magnitude"] = ("time", np.hypot(f[:, 0], f[:, 1]),
-                                      _attrs("magnitude of the tangential contact force", _ONE))
-        data["normal_force"] = ("time", forces[:, 2], _attrs("normal contact force N", _ONE,
-                                                             comment="equilibrium value mu fr_inv"))
+                                      _attrs("friction magnitude", _ONE,
+                                             comment="magnitude of the tangential contact force"))
+        data["normal_force"] = ("time", forces[:, 2], _attrs("normal force N", _ONE,
+                                                             comment="normal contact force; equilibrium "
+                                                                     "value mu fr_inv"))
     else:
         v_g = (1.0 + q) * np.cross(omega, k)
         z_g = (1.0 + q) * k[:, 2]
-        data["reaction"] = (("time", "axis"), forces, _attrs("force of the pivot on the top", _ONE))
+        data["reaction"] = (("time", "axis"), forces, _attrs("pivot force", _ONE,
+                                                             comment="force of the pivot on the top"))
         a_c = 1.0 + mu * (1.0 + 2.0 * q)
         l_p = a_c * omega + (sigma - a_c) * wk[:, None] * k
         data["angular_momentum_vertical"] = ("time", l_p[:, 2], _attrs(
-            "vertical angular momentum about the pivot", _ONE))
-    names = {"kinetic_translational": "kinetic energy of translation of G",
-             "kinetic_spin": "rotational kinetic energy of the spin about G",
-             "kinetic_transverse": "rotational kinetic energy of the transverse rotation about G",
-             "potential": "potential energy mu fr_inv z_G", "energy": "total energy"}
+            "L_z about the pivot", "A0 Omega", comment="vertical angular momentum about the pivot"))
+    names = {"kinetic_translational": ("translational KE", "kinetic energy of translation of G"),
+             "kinetic_spin": ("spin KE", "rotational kinetic energy of the spin about G"),
+             "kinetic_transverse": ("transverse KE", "rotational kinetic energy of the transverse rotation about G"),
+             "potential": ("potential energy", "potential energy mu fr_inv z_G"),
+             "energy": ("energy", "total energy")}
     for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma,
                                   mu=mu).items():
-        data[name] = ("time", val, _attrs(names[name], _ONE, comment="in units of A0 Omega^2"))
+        short, what = names[name]
+        data[name] = ("time", val, _attrs(short, "A0 Omega^2", comment=f"{what}, in units of A0 Omega^2"))
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model",
                     source=f"stability.simulate (tippe-stability {package_version()})", model=m.name,

@@ -26,9 +26,10 @@ For each parameter point :func:`validate`
    ``2 pi / |Im s|`` for a neutral mode), capped at ``max_time``;
 5. fits ``log |Phi(t)|`` and the unwrapped phase of ``Phi(t) = k_1 + i k_2`` by straight
    lines: the slopes are the measured growth rate and (fixed-frame) frequency;
-6. returns the predictions of the registered linear operator of the same name (eq. 11 for
-   ``"sliding"``, eq. (8) for ``"fixed_pivot"`` and ``"rolling"``) and of the Jacobian, the
-   measured values, the relative errors, and whether the measurement is to be trusted.
+6. returns the predictions of the registered linear operator that linearises the model
+   (``NONLINEAR_MODELS[model].linear_model``: eq. 11 for ``"sliding"``, eq. (8) for
+   ``"fixed_pivot"``, the first-principles ``"rolling"``) and of the Jacobian, the measured
+   values, the relative errors, and whether the measurement is to be trusted.
 
 A measurement is *resolved* only if everything holds: the growth rate is resolved,
 ``|Re s| > 1e-3 |s|`` (elsewhere the relative error of the growth rate is meaningless and the
@@ -38,9 +39,8 @@ finite; and the log-linear fit is good (RMS residual of ``log |Phi|`` at most
 failed or gave non-finite samples also has ``sign_agrees = False`` and is reported by a
 ``RuntimeWarning``.
 
-For ``"rolling"`` the registered operator is eq. (8) as printed, which is not the rolling
-sphere's linearisation; its prediction is its own leading mode and disagrees with the run
-(docs/nonlinear.md), while the Jacobian's (= ``"rolling_first_principles"``) agrees.
+Eq. (8) as printed for the rolling top (model ``"rolling_eq8"``) is not the rolling sphere's
+linearisation and is not what ``validate("rolling")`` predicts with (docs/nonlinear.md).
 
 Coulomb friction alone (``alpha_v = 0``, ``alpha_k > 0``) has no linear operator (the
 friction does not vanish with the slip); :func:`coulomb_growth` runs it and compares an
@@ -59,11 +59,12 @@ from ..products import PRODUCT_ATTR
 from .jacobian import transverse_jacobian, upright_state
 from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS
-from ..parameters import DEFAULT_MU, LONG_NAMES, check_domain, check_choice, check_interval, check_positive
+from ..parameters import DEFAULT_MU, check_domain, parameter_attrs, check_choice, check_interval, check_positive
 from .runs import simulate
 from ..linear.modes import structural_zeros
 from ..linear.roots import UNIT_ROUNDOFF
 from ..linear.spectra import eigenvalues, spectrum
+from ..models import MODELS
 
 __all__ = ["validate", "coulomb_growth", "leading_mode", "jacobian_modes", "RESOLVED", "FIT_RMS"]
 
@@ -139,7 +140,7 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     m = get_nonlinear_model(model)
     lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
     # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
-    fp = spectrum(m.linear_model, **lin)
+    fp = spectrum(MODELS[m.linear_model], **lin)
     s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
     A, _ = transverse_jacobian(model, **lin)
     ev, vec, bound = jacobian_modes(A)
@@ -155,11 +156,9 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
             break
         x = y / np.linalg.norm(y)
     v = x / x[1] * amplitude          # |Phi| = amplitude, Phi real at t = 0
-    if m.name == m.linear_model:   # the registered operator is the linearisation: the same mode
-        s_lin = s
-    else:                          # eq. (8) as printed for "rolling": its own leading mode
-        sp = spectrum(m.name, **lin)
-        s_lin = complex(sp.eigenvalues[leading_mode(sp.eigenvalues, sp.error_bound)])
+    # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
+    # model since "rolling" is the first-principles one, issue 15): the same mode
+    s_lin = s
     y = upright_state(model)
     y[0], y[1] = v[0].real, v[0].imag
     y[3], y[4] = v[1].real, v[1].imag
@@ -222,31 +221,43 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     }
 
 
+#: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
-    "predicted_growth_rate": "growth rate Re s of the registered linear operator",
-    "predicted_frequency": "frequency Im s of the registered linear operator (fixed frame)",
-    "jacobian_growth_rate": "growth rate Re s of the nonlinear model's Jacobian",
-    "jacobian_frequency": "frequency Im s of the nonlinear model's Jacobian (fixed frame)",
-    "measured_growth_rate": "growth rate fitted to log|Phi(t)| of the nonlinear run",
-    "measured_frequency": "frequency fitted to the phase of Phi(t) of the nonlinear run",
-    "growth_rate_error": "relative error of the measured growth rate against the linear operator "
-                         "(relative to |s| where the growth rate is not resolved)",
-    "frequency_error": "relative error of the measured frequency against the linear operator",
-    "growth_rate_error_jacobian": "relative error of the measured growth rate against the Jacobian "
-                                  "(relative to |s| where the growth rate is not resolved)",
-    "frequency_error_jacobian": "relative error of the measured frequency against the Jacobian",
-    "jacobian_bound": "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
-                      "(absolute: ~u of the largest mode)",
-    "jacobian_resolved": "the Jacobian's growth rate exceeds four times its error bound (else compare "
-                         "with predicted_growth_rate, from the spectral kernel)",
-    "resolved": "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
-                "samples are finite and log|Phi| fits a straight line (see status)",
-    "sign_agrees": "sign of the measured growth rate agrees with the linearisation's (neutral where the "
-                   "growth rate is unresolved; False where the run failed)",
-    "duration": "length of the run",
-    "final_tilt": "tilt |Phi| at the end of the run",
-    "fit_rms": "RMS residual of the straight-line fit of log|Phi(t)|",
-    "status": "ok, or why the measurement is not resolved",
+    "predicted_growth_rate": ("predicted growth rate", "Omega",
+                              "growth rate Re s of the registered linear operator"),
+    "predicted_frequency": ("predicted frequency", "Omega",
+                            "frequency Im s of the registered linear operator (fixed frame)"),
+    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", "growth rate Re s of the nonlinear model's Jacobian"),
+    "jacobian_frequency": ("Jacobian frequency", "Omega",
+                           "frequency Im s of the nonlinear model's Jacobian (fixed frame)"),
+    "measured_growth_rate": ("measured growth rate", "Omega", "growth rate fitted to log|Phi(t)| of the nonlinear run"),
+    "measured_frequency": ("measured frequency", "Omega", "frequency fitted to the phase of Phi(t) of the nonlinear run"),
+    "growth_rate_error": ("growth error (linear)", "1",
+                          "relative error of the measured growth rate against the linear operator "
+                          "(relative to |s| where the growth rate is not resolved)"),
+    "frequency_error": ("frequency error (linear)", "1",
+                        "relative error of the measured frequency against the linear operator"),
+    "growth_rate_error_jacobian": ("growth error (Jacobian)", "1",
+                                   "relative error of the measured growth rate against the Jacobian "
+                                   "(relative to |s| where the growth rate is not resolved)"),
+    "frequency_error_jacobian": ("frequency error (Jacobian)", "1",
+                                 "relative error of the measured frequency against the Jacobian"),
+    "jacobian_bound": ("Jacobian error bound", "Omega",
+                       "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
+                       "(absolute: ~u of the largest mode)"),
+    "jacobian_resolved": ("Jacobian resolved", None,
+                          "the Jacobian's growth rate exceeds four times its error bound (else compare "
+                          "with predicted_growth_rate, from the spectral kernel)"),
+    "resolved": ("growth resolved", None,
+                 "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
+                 "samples are finite and log|Phi| fits a straight line (see status)"),
+    "sign_agrees": ("sign agrees", None,
+                    "sign of the measured growth rate agrees with the linearisation's (neutral where the "
+                    "growth rate is unresolved; False where the run failed)"),
+    "duration": ("duration", "1/Omega", "length of the run"),
+    "final_tilt": ("final tilt |Phi|", "1", "tilt |Phi| at the end of the run"),
+    "fit_rms": ("fit RMS residual", "1", "RMS residual of the straight-line fit of log|Phi(t)|"),
+    "status": ("status", None, "ok, or why the measurement is not resolved"),
 }
 
 
@@ -340,13 +351,15 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     data = {}
     for name in rows[0]:
         vals = np.array([r[name] for r in rows], dtype=object if name == "status" else None)
-        data[name] = ("point", vals, {"long_name": _VAR_ATTRS[name], "units": "1"}
-                      if name not in ("status", "resolved", "sign_agrees", "jacobian_resolved")
-                      else {"long_name": _VAR_ATTRS[name]})
-    coords = {k: ("point", v, {"long_name": LONG_NAMES[k], "units": "1"}) for k, v in flat.items()}
+        long_name, units, comment = _VAR_ATTRS[name]
+        attrs = {"long_name": long_name, "comment": comment}
+        if units is not None:
+            attrs["units"] = units
+        data[name] = ("point", vals, attrs)
+    coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
-                    source="stability.validate", model=m.name, linear_model=m.name,
+                    source="stability.validate", model=m.name, linear_model=m.linear_model,
                     jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
                     n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
                     convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega")

@@ -382,24 +382,25 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
-        "tilt": ("point", np.degrees(theta), var_attrs("polar angle of the axis k from the upward vertical", DEGREE)),
-        "jellett": ("point", J, var_attrs("Jellett's integral J = (K + q k) . I_G omega", comment="units A0 Omega")),
-        "precession_rate": ("point", lam, var_attrs("precession rate of the axis about the vertical",
-                                                    comment="at a branch point: spin / (1 + q cos(tilt))")),
-        "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k")),
-        "energy": ("point", E, var_attrs("total energy", comment="units A0 Omega^2")),
+        "tilt": ("point", np.degrees(theta), var_attrs("polar angle of the axis k from the upward vertical", DEGREE, short="tilt")),
+        "jellett": ("point", J, var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J")),
+        "precession_rate": ("point", lam, var_attrs("precession rate of the axis about the vertical", "Omega",
+                                                    short="precession rate", comment="at a branch point: spin / (1 + q cos(tilt))")),
+        "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
+        "energy": ("point", E, var_attrs("total energy", "A0 Omega^2", short="energy")),
         "upright_equivalent_spin": ("point", J / j_upright, var_attrs(
-            "spin of the upright state with the same J, J / (sigma (1 + q))", comment="units of the spin rate")),
+            "spin of the upright state with the same J, J / (sigma (1 + q))", "Omega",
+            short="upright-equiv. spin")),
         "growth_rate": ("point", growth, var_attrs(
             "leading growth rate of the linearisation (frame precessing with the state), structural "
-            "neutral directions removed")),
-        "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding")),
+            "neutral directions removed", "Omega", short="leading growth rate")),
+        "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("point", np.asarray(jac, dtype=np.int8), flag_attrs(
-            "verdict of the reduced Jacobian alone", comment="neutral if |Re s| <= 1e3 u ||A||_F")),
-        "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point: branch_point, fold, "
+            "Jacobian verdict", comment="verdict of the reduced Jacobian alone; neutral if |Re s| <= 1e3 u ||A||_F")),
+        "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point", "comment": "branch_point, fold, "
                                                                     "stability_change, end, or '' (regular)"}),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
-    return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "index along the branch"})},
+    return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
                       attrs=attrs)

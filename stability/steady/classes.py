@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..parameters import DEFAULT_MU, DOMAIN, LONG_NAMES, as_parameter, check_domain, check_flag, domain_sides
+from ..parameters import DEFAULT_MU, DOMAIN, as_parameter, check_domain, check_flag, domain_sides, parameter_attrs
 from ..resources import check_class_atlas
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
@@ -153,17 +153,18 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
     tilt = np.where(inside, tilt, np.nan)
     coords: dict[str, Any] = {}
     for k, v in values.items():
-        attrs = {"long_name": LONG_NAMES[k], "units": "1"}
+        attrs = parameter_attrs(k)
         coords[k] = (k, v, attrs) if v.ndim == 1 else ((), float(v), attrs)
     data: dict[str, Any] = {
         "top_class": (tuple(dims), code, {
-            "long_name": "high-spin class of the top (launched near upright with a large spin)",
+            "long_name": "high-spin class",
             "flag_values": np.array([OUTSIDE, 0, 1, 2], dtype=np.int8),
             "flag_meanings": "outside_domain " + " ".join(CLASSES),
-            "comment": "never_inverts: sigma (1 + q) > A_G; inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: "
+            "comment": "high-spin class of the top (launched near upright with a large spin); never_inverts: sigma (1 + q) > A_G; inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: "
                        "otherwise (ties: the class of every large finite spin)"}),
         "high_spin_tilt": (tuple(dims), tilt, var_attrs(
-            "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))", DEGREE)),
+            "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))", DEGREE,
+            short="high-spin end tilt")),
     }
     bdims = tuple(d for d in dims if d in ("q", "mu"))
     if bdims:
@@ -173,10 +174,12 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
         with np.errstate(invalid="ignore", divide="ignore"):
             ok = family.a_g(qg, mg) > 0
             b = class_boundaries(qg, mg)
-        for name, text in (("never_inverts", "boundary sigma = A_G / (1 + q): never_inverts above"),
-                           ("hangs", "boundary sigma = A_G / (1 - q), q < 0: hangs below, inverts above"),
-                           ("domain", "top of the physical domain, sigma = 2 A_G")):
-            data[f"sigma_{name}"] = (bdims, np.where(ok, b[name], np.nan), var_attrs(text))
+        for name, short, text in (("never_inverts", "sigma, never_inverts above",
+                                   "boundary sigma = A_G / (1 + q): never_inverts above"),
+                                  ("hangs", "sigma, hangs below", "boundary sigma = A_G / (1 - q), q < 0: hangs "
+                                                                  "below, inverts above"),
+                                  ("domain", "sigma, domain top", "top of the physical domain, sigma = 2 A_G")):
+            data[f"sigma_{name}"] = (bdims, np.where(ok, b[name], np.nan), var_attrs(text, short=short))
     attrs = product_attrs("top_classes", "High-spin classes of sliding tops", "stability.class_atlas")
     attrs["grid_dimensions"] = " ".join(dims)
     attrs["literature"] = ("inverts <=> 1 - alpha < A_G/C < 1 + alpha (alpha = -q): Hugenholtz's condition; "

@@ -190,31 +190,33 @@ class FinalState:
         n = len(cands)
         ends = [c is self.state for c in cands]
         data = {
-            "tilt": ((), self.tilt, var_attrs("final polar angle of the axis from the upward vertical", DEGREE)),
-            "initial_tilt": ((), self.initial_tilt, var_attrs("initial polar angle of the axis", DEGREE)),
+            "tilt": ((), self.tilt, var_attrs("final polar angle of the axis from the upward vertical", DEGREE, short="final tilt")),
+            "initial_tilt": ((), self.initial_tilt, var_attrs("initial polar angle of the axis", DEGREE, short="initial tilt")),
             "jellett": ((), self.jellett, var_attrs("Jellett's integral J = (K + q k) . I_G omega of the motion",
-                                                    comment="units A0 Omega")),
-            "initial_energy": ((), self.initial_energy, var_attrs("initial energy", comment="units A0 Omega^2")),
-            "energy": ((), self.energy, var_attrs("energy of the final state", comment="units A0 Omega^2")),
-            "precession_rate": ((), self.precession_rate, var_attrs("precession rate of the final state")),
-            "axial_spin": ((), self.axial_spin, var_attrs("spin about the axis of the final state, omega . k")),
+                                                    "A0 Omega", short="Jellett's J")),
+            "initial_energy": ((), self.initial_energy, var_attrs("initial energy", "A0 Omega^2")),
+            "energy": ((), self.energy, var_attrs("energy of the final state", "A0 Omega^2", short="final energy")),
+            "precession_rate": ((), self.precession_rate, var_attrs("precession rate of the final state", "Omega", short="precession rate")),
+            "axial_spin": ((), self.axial_spin, var_attrs("spin about the axis of the final state, omega . k", "Omega", short="axial spin")),
             "candidate_kind": ("candidate", np.array([c.kind for c in cands], dtype=str),
-                               {"long_name": "kind of the steady state of the level"}),
-            "candidate_tilt": ("candidate", np.array([c.tilt for c in cands]), var_attrs("tilt of the steady state", DEGREE)),
-            "candidate_energy": ("candidate", np.array([c.energy for c in cands]), var_attrs("energy U_J of the steady state")),
+                               {"long_name": "kind of state", "comment": "kind of the steady state of the level"}),
+            "candidate_tilt": ("candidate", np.array([c.tilt for c in cands]), var_attrs("tilt of the steady state", DEGREE, short="tilt")),
+            "candidate_energy": ("candidate", np.array([c.energy for c in cands]), var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J")),
             "candidate_precession_rate": ("candidate", np.array([c.precession_rate for c in cands]),
-                                          var_attrs("precession rate of the steady state (NaN: vertical)")),
+                                          var_attrs("precession rate of the steady state (NaN: vertical)", "Omega",
+                                                    short="precession rate")),
             "candidate_axial_spin": ("candidate", np.array([c.axial_spin for c in cands]),
-                                     var_attrs("spin about the axis of the steady state, omega . k")),
+                                     var_attrs("spin about the axis of the steady state, omega . k", "Omega",
+                                               short="axial spin")),
             "candidate_stability": ("candidate", np.array([c.stability for c in cands], dtype=np.int8),
                                     flag_attrs("stability of the steady state")),
             "candidate_energy_test": ("candidate", np.array([c.energy_test for c in cands]),
-                                      var_attrs("energy criterion (> 0 at a minimum of U_J)")),
+                                      var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion")),
             "candidate_reachable": ("candidate", np.array([c.reachable for c in cands], dtype=np.int8),
                                     {"long_name": "U_J <= initial energy", "flag_values": np.array([0, 1], np.int8),
                                      "flag_meanings": "unreachable reachable"}),
             "candidate_is_final": ("candidate", np.array(ends, dtype=np.int8),
-                                   {"long_name": "the motion ends on this state", "flag_values": np.array([0, 1], np.int8),
+                                   {"long_name": "final state", "comment": "the motion ends on this state", "flag_values": np.array([0, 1], np.int8),
                                     "flag_meanings": "no yes"}),
         }
         p = self.parameters
@@ -226,7 +228,8 @@ class FinalState:
         if self.run is not None:
             for name, value in self.run.__dict__.items():
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
-        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "index of the steady state"}),
+        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "candidate",
+                                                                                  "comment": "index of the steady state"}),
                                         **curve_coords}, attrs=attrs)
 
 

@@ -78,9 +78,14 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
     return params, p
 
 
-def var_attrs(long_name: str, units: str = UNITLESS, **extra: Any) -> dict[str, Any]:
-    """CF attributes of a variable."""
-    return {"long_name": long_name, "units": units, **extra}
+def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None, **extra: Any) -> dict[str, Any]:
+    """CF attributes of a variable. With ``short``, that is the ``long_name`` (what xarray prints
+    on an axis, "long_name [units]", within its 30-character wrap) and ``long_name`` opens the
+    ``comment``."""
+    if short is None:
+        return {"long_name": long_name, "units": units, **extra}
+    comment = long_name + (f"; {extra.pop('comment')}" if "comment" in extra else "")
+    return {"long_name": short, "units": units, "comment": comment, **extra}
 
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
@@ -129,10 +134,10 @@ def potential_curve(jellett: float, *, q: float, sigma: float, fr_inv: float, mu
     grid = np.linspace(0.0, 180.0, TILT_GRID_POINTS)
     u = family.effective_potential(np.cos(np.radians(grid)), jellett, q, sigma, fr_inv, mu)
     data = {"effective_potential": ("tilt_grid", u, var_attrs(
-        "effective potential U_J of the Jellett level", comment=(
+        "effective potential U_J of the Jellett level", "A0 Omega^2", short="U_J of the level", comment=(
             "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
-            "units A0 Omega^2; a lower bound of the energy of every state of the level with this tilt, "
+            "a lower bound of the energy of every state of the level with this tilt, "
             "reached at the steady states (its critical points and the two ends)")))}
     coords = {"tilt_grid": ("tilt_grid", grid, var_attrs("tilt at which U_J is sampled (0 upright, 180 inverted)",
-                                                         DEGREE))}
+                                                         DEGREE, short="tilt"))}
     return data, coords

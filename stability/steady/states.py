@@ -27,7 +27,7 @@ from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integr
 from ..parameters import DEFAULT_MU, as_scalar
 from . import family
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, UNITLESS, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .verdicts import flag_of
 
 __all__ = ["steady_states", "state_integrals", "point_integrals", "upright_jellett"]
@@ -153,37 +153,40 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
           "equivalent_q": np.where(vertical, q_eq, np.nan)}
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
     data = {
-        "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state: upright, inverted or tilted"}),
+        "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"}),
         "tilt": ("state", np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))),
-                 var_attrs("polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE)),
+                 var_attrs("polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE, short="tilt")),
         "precession_rate": ("state", lam, var_attrs(
-            "precession rate of the axis about the vertical (NaN for the vertical states)",
-            comment="units of the spin rate Omega (simulate's time unit 1/Omega)")),
-        "axial_spin": ("state", axial, var_attrs("spin about the axis, omega . k")),
-        "omega_vertical": ("state", y[:, 2], var_attrs("vertical component of the angular velocity, omega . K")),
-        "energy": ("state", energy, var_attrs("total energy of the state", comment="units A0 Omega^2")),
-        "jellett": ("state", jel, var_attrs("Jellett's integral J = (K + q k) . I_G omega", comment="units A0 Omega")),
+            "precession rate of the axis about the vertical (NaN for the vertical states)", "Omega",
+            short="precession rate", comment="units of the spin rate Omega (simulate's time unit 1/Omega)")),
+        "axial_spin": ("state", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
+        "omega_vertical": ("state", y[:, 2], var_attrs("vertical component of the angular velocity, omega . K", "Omega", short="vertical omega")),
+        "energy": ("state", energy, var_attrs("total energy of the state", "A0 Omega^2", short="energy")),
+        "jellett": ("state", jel, var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J")),
         "growth_rate": ("state", growth, var_attrs(
             "leading growth rate of the linearisation about the state (frame precessing with it), "
-            "structural neutral directions removed")),
-        "n_neutral": ("state", n_neutral.astype(np.int8), var_attrs("number of physical modes neutral within rounding")),
+            "structural neutral directions removed", "Omega", short="leading growth rate")),
+        "n_neutral": ("state", n_neutral.astype(np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
         "stability": ("state", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("state", jac, flag_attrs(
-            "verdict of the reduced Jacobian alone", comment="neutral if |Re s| <= 1e3 u ||A||_F")),
+            "Jacobian verdict", comment="verdict of the reduced Jacobian alone; neutral if |Re s| <= 1e3 u ||A||_F")),
         "energy_test": ("state", tests, var_attrs(
-            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum")),
-        "mode_growth_rate": (("state", "mode"), ev.real, var_attrs("growth rate Re s of each physical mode")),
+            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
+            short="energy criterion")),
+        "mode_growth_rate": (("state", "mode"), ev.real, var_attrs("growth rate Re s of each physical mode", "Omega", short="growth rate Re s")),
         "mode_frequency": (("state", "mode"), ev.imag, var_attrs(
-            "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)")),
+            "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
+            "Omega", short="frequency Im s")),
     }
     for name, values in eq.items():
         data[name] = ("state", values, var_attrs(f"{name.split('_', 1)[1]} of eq. (11) at the equivalent spin "
-                                                  "(vertical states)"))
+                                                  "(vertical states)", "R" if name == "equivalent_q" else UNITLESS,
+                                                  short=f"equivalent {name.split('_', 1)[1]}"))
     curve, curve_coords = potential_curve(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     data.update(curve)
-    coords = {"state": ("state", np.arange(n), {"long_name": "index of the steady state"}),
-              "mode": ("mode", np.arange(6), {"long_name": "index of the physical mode, by decreasing growth rate "
-                                                           "(tilted states have 5: the 6th is NaN)"}),
+    coords = {"state": ("state", np.arange(n), {"long_name": "state", "comment": "index of the steady state"}),
+              "mode": ("mode", np.arange(6), {"long_name": "mode", "comment": "index of the physical mode, by "
+                                              "decreasing growth rate (tilted states have 5: the 6th is NaN)"}),
               **curve_coords}
     attrs = product_attrs("steady_states", "Steady states of the sliding Tippe top on one Jellett level",
                           "stability.steady_states", params, removed_neutral=True)
