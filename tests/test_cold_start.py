@@ -155,8 +155,8 @@ def test_spectrum_same_bits_in_every_execution(monkeypatch):
     every model (the sliding model's fused kernel, the others' coefficient kernel)."""
     rng = np.random.default_rng(157)
     q = rng.uniform(-0.5, 0.5, 300)
-    for model, extra in (("sliding", dict(alpha_v=0.5)), ("rolling", {}), ("fixed_pivot", {}),
-                         ("rolling_first_principles", {})):
+    for model, extra in (("sliding", dict(alpha_v=0.5)), ("rolling_eq8", {}), ("fixed_pivot", {}),
+                         ("rolling", {})):
         out = {}
         for mode in ("python", "compiled"):
             monkeypatch.setenv(execution.ENVIRONMENT, mode)

@@ -20,8 +20,8 @@ import warnings
 
 from .base import LinearModel
 from .fixed_pivot import FixedPivot
-from .rolling import RollingEq8
-from .rolling_first_principles import Rolling
+from .rolling_eq8 import RollingEq8
+from .rolling import Rolling
 from .sliding import Sliding
 
 __all__ = ["LinearModel", "MODELS", "DEPRECATED_NAMES", "get_model"]

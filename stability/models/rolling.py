@@ -1,43 +1,64 @@
-"""Rolling top, eqs. (8)-(9) as printed: h = q (model ``"rolling_eq8"``).
+"""Rolling top from first principles: the linearised rolling sphere (model ``"rolling"``).
 
-Eq. (8) with ``h = q``, ``sigma_hat = sigma / A_C`` (the axial to transverse moment ratio about
-the contact point, as the paper defines it), ``A_C = 1 + mu (1 + 2 q)`` and
-``kappa = mu fr_inv q / A_C``.
+Registered as ``"rolling"`` (it was ``"rolling_first_principles"`` in tippe-stability 0.1.0;
+that name still works for one release, with a DeprecationWarning).
 
-Known difference from first principles (docs/models.md). Linearising the rolling sphere
-(eqs. 1, 2, 4 with ``V_c = 0`` of eq. 5 and the traction eliminated) gives
-``A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0``: the gyroscopic
-coefficient gains ``mu (1 + q)`` from the rolling constraint (the translation of O is tied
-to the rotation); that is the model ``"rolling"``
-(:mod:`stability.models.rolling_first_principles`). This module keeps the paper's operator as
-printed, under the name ``"rolling_eq8"`` (it was ``"rolling"`` in tippe-stability 0.1.0); the two agree on the
-stiffness ``kappa`` and on stability for ``q < 0`` (both always neutrally stable there), and
-differ in the frequencies and in the inverted (``q > 0``) threshold. A check: for a uniform
-ball (``q = 0``, ``sigma = 1``) the rolling frequencies are 0 and 1 from first principles,
-and ``0`` and ``1 / (1 + mu)`` here. The first-principles polynomial is also the
-``alpha_v -> infinity`` limit of the sliding model's (divide eq. 11's ``det(s M - A)`` by
-``alpha_v``).
+Linearising eqs. (1), (2), (4) with the rolling constraint ``V_c = 0`` (eq. 5) about the
+upright spin ``omega = k = K`` (spin +1) gives, with ``Phi = l + i m``
+(derivation in docs/nonlinear.md)::
+
+    A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0,   A_C = 1 + mu (1 + 2 q).
+
+Sketch: the constraint ties the centre's velocity to the rotation, ``V = -i omega``
+(``V0 = -K x omega``), and makes the traction ``f = mu (V' + q Phi'')`` from (1); inserted
+in the transverse part of (2) with ``Phi' = i Phi - i omega`` (eq. 11, second line) the
+``mu (1 + q)`` terms that are not moments of inertia add to the gyroscopic coefficient.
+
+It differs from eq. (8) as printed (model ``"rolling_eq8"``, ``sigma_hat = sigma / A_C``) by the
+gyroscopic term ``mu (1 + q) Phi'``; it is the ``alpha_v -> infinity`` limit of the sliding
+polynomial (eq. 11 divided by ``alpha_v``) and the linearisation of the nonlinear rolling
+model (:func:`stability.jacobian_eigenvalues`). Monic state form, ``x = (Phi, Phi')``::
+
+    x' = [[0, 1], [kappa, i gamma]] x,  gamma = (sigma + mu (1 + q)) / A_C,
+    kappa = mu fr_inv q / A_C,  det(s 1 - A) = s^2 - i gamma s - kappa.
 
 Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
-``Re s``, frequency ``Im s`` in units of the spin rate (eq. 8's ``lambda = -i s - 1``).
+``Re s``, frequency ``Im s`` in units of the spin rate.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .second_order import SecondOrderTop
+from .base import LinearModel
+from .second_order import contact_transverse_inertia, gyroscopic_coefficients, gyroscopic_state_form
 
-__all__ = ["RollingEq8"]
+__all__ = ["Rolling"]
 
 
-class RollingEq8(SecondOrderTop):
-    """Rolling top, eqs. (8)-(9) with ``h = q``, as printed in the paper."""
+class Rolling(LinearModel):
+    """Linearised rolling sphere: ``A_C Phi'' - i (sigma + mu (1+q)) Phi' - mu fr_inv q Phi = 0``."""
 
-    name = "rolling_eq8"
-    equations = "(8)-(9) as printed"
-    description = "top rolling on its sphere, eq. (8)-(9) as printed, h = q, sigma_hat = sigma/A_C"
+    name = "rolling"
+    equations = "(1), (2), (4), (5) linearised"
+    parameters = ("q", "fr_inv", "sigma", "mu")
+    state = ("Phi", "dPhi_dt")
+    n_modes = 2
+    description = "top rolling on its sphere, linearised from the vector equations (1), (2), (4), (5)"
 
-    def h(self, q: np.ndarray) -> np.ndarray:
-        """``h = q`` (eq. 9): height of G above the sphere's centre."""
-        return np.asarray(q, dtype=float)
+    def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
+        """``A_C``, the gyroscopic coefficient ``gamma`` and the stiffness ``kappa``."""
+        q, fr_inv, sigma, mu = np.broadcast_arrays(
+            *(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
+        a_c = contact_transverse_inertia(q, mu)
+        return {"A_C": a_c, "gamma": (sigma + mu * (1.0 + q)) / a_c, "kappa": mu * fr_inv * q / a_c}
+
+    def matrices(self, *, q, fr_inv, sigma, mu):
+        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]``."""
+        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        return gyroscopic_state_form(d["gamma"], d["kappa"])
+
+    def coefficients(self, *, q, fr_inv, sigma, mu):
+        """``s^2 - i gamma s - kappa``, highest power first."""
+        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        return gyroscopic_coefficients(d["gamma"], d["kappa"])
