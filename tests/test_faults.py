@@ -134,8 +134,20 @@ def cluster_client():
     import cloudpickle
 
     cloudpickle.register_pickle_by_value(sys.modules[__name__])
-    with dask_client(workers=2) as client:
-        yield client
+    # pytest's importlib mode names this module "tests.test_faults", which the workers must
+    # import to unpickle its functions: they get a folder holding only a link to tests/ on
+    # their path (not the repository: they keep importing the installed package)
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as only_tests:
+        (Path(only_tests) / "tests").symlink_to(Path(__file__).resolve().parent)
+        sys.path.append(only_tests)  # multiprocessing's spawn hands the parent's path to the workers
+        try:
+            with dask_client(workers=2) as client:
+                yield client
+        finally:
+            sys.path.remove(only_tests)
     cloudpickle.unregister_pickle_by_value(sys.modules[__name__])
 
 
