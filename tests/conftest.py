@@ -51,7 +51,8 @@ def pytest_sessionstart(session) -> None:  # noqa: ANN001
     import stability
 
     here = Path(stability.__file__).resolve()
-    inside = REPOSITORY in here.parents
+    # the tree's own package directory (a venv inside the repository, as the README makes, is an install)
+    inside = here.parent == REPOSITORY / "stability"
     if _EDITABLE and _SOURCE is not None and _SOURCE != REPOSITORY:
         pytest.exit(f"tests/conftest.py: tippe-stability is installed editable from {_SOURCE}, not from "
                     f"this repository ({REPOSITORY}): these tests would test that tree; reinstall "
