@@ -17,6 +17,7 @@ Issue 13, items 4 and 7. References:
 from __future__ import annotations
 
 import multiprocessing
+import sys
 import os
 import socket
 import stat
@@ -67,8 +68,18 @@ def test_concurrent_writers_exactly_one_wins(tmp_path):
     barrier, results = ctx.Barrier(n), ctx.Queue()
     path = tmp_path / "same.nc"
     procs = [ctx.Process(target=_race_writer, args=(str(path), i, barrier, results)) for i in range(n)]
-    for p in procs:
-        p.start()
+    # spawn hands the parent's sys.path to the children, which must import this module by its
+    # importlib-mode name ("tests.test_commit"): a folder holding only a link to tests/ (not
+    # the repository, so the installed package stays the one imported)
+    only_tests = tmp_path / "only_tests"
+    only_tests.mkdir()
+    (only_tests / "tests").symlink_to(Path(__file__).resolve().parent)
+    sys.path.append(str(only_tests))
+    try:
+        for p in procs:
+            p.start()
+    finally:
+        sys.path.remove(str(only_tests))
     for p in procs:
         p.join(timeout=300)
         assert p.exitcode == 0
