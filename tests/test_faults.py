@@ -50,13 +50,13 @@ def _failing_at(k: int, exc: BaseException):
     return compute, calls
 
 
-
 def _without_compile_notice(err: str) -> str:
     """stderr without the one-line notice a cold numba cache prints before its first compile.
 
     A fresh install (CI's clean clone) has no cache, so the first compiled call of a process
     announces itself; that line is not the interruption's one line under test."""
     return "".join(ln for ln in err.splitlines(True) if not ln.startswith("tippe-stability: compiling"))
+
 
 def test_exception_in_one_chunk_names_it_keeps_the_others_and_resume_completes(tmp_path, monkeypatch, reference):
     out = tmp_path / "a.nc"
