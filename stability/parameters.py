@@ -68,7 +68,7 @@ import numpy as np
 from continuation.jit import register_jitable
 
 from .errors import DomainError
-from .models.inertia import inertia_g
+from .models.inertia import inertia_g, two_product
 
 __all__ = [
     "PARAMETERS",
@@ -364,8 +364,9 @@ def _sigma_interval(v: Mapping[str, float]) -> tuple[float, float]:
 def _exact_margins(q, mu, sigma):
     """``A_G = 1 - mu q^2`` and ``A_G - sigma/2`` as doubles whose signs are exact.
 
-    ``q q = t + te`` (Dekker's product, Veltkamp's splits), ``mu t = u + ue``,
-    ``mu te = v + ve``: ``mu q^2 = u + ue + v + ve`` exactly. ``1 - u - ue - v - ve`` is grown
+    ``q q = t + te``, ``mu t = u + ue``,
+    ``mu te = v + ve`` (:func:`stability.models.inertia.two_product`, exact):
+    ``mu q^2 = u + ue + v + ve`` exactly. ``1 - u - ue - v - ve`` is grown
     into a nonoverlapping expansion by Knuth's two-sums (Shewchuk's grow-expansion), then
     ``-sigma/2`` added the same way. The sign of an expansion is that of its largest nonzero
     component; its value, the components summed from the smallest, is within a few ulp (and
@@ -373,25 +374,9 @@ def _exact_margins(q, mu, sigma):
     the sign). Plain arithmetic without data-dependent branches: Python floats, numpy arrays,
     numba (the same operations in each).
     """
-    sp = 134217729.0  # 2**27 + 1 (Veltkamp)
-    t = q * q
-    c = sp * q
-    qh = c - (c - q)
-    ql = q - qh
-    te = ((qh * qh - t) + qh * ql + ql * qh) + ql * ql
-    c = sp * mu
-    mh = c - (c - mu)
-    ml = mu - mh
-    u = mu * t
-    c = sp * t
-    th = c - (c - t)
-    tl = t - th
-    ue = ((mh * th - u) + mh * tl + ml * th) + ml * tl
-    v = mu * te
-    c = sp * te
-    eh = c - (c - te)
-    el = te - eh
-    ve = ((mh * eh - v) + mh * el + ml * eh) + ml * el
+    t, te = two_product(q, q)
+    u, ue = two_product(mu, t)
+    v, ve = two_product(mu, te)
     # 1 - u: two-sum -> (x1, x0)
     x1 = 1.0 - u
     bb = x1 - 1.0

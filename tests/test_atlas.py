@@ -114,4 +114,4 @@ def test_second_order_model_atlas():
     assert ds.sizes == {"q": 3, "fr_inv": 5, "mode": 2}
     assert "alpha_v" not in ds.coords
     with pytest.raises(TypeError, match="scalar or a 1-D array"):
-        stability.atlas("rolling", q=np.zeros((2, 2)), fr_inv=0.1, sigma=1.0)
+        stability.atlas("fixed_pivot", q=np.zeros((2, 2)), fr_inv=0.1, sigma=1.0)

@@ -28,34 +28,43 @@ import numpy as np
 
 from continuation.jit import register_jitable
 
-__all__ = ["inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
+__all__ = ["two_product", "inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
 
 _SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp)
+
+
+@register_jitable
+def two_product(a, b):
+    """``(p, e)`` with ``p = fl(a b)`` and ``a b = p + e`` exactly (Dekker's product).
+
+    Each factor is split by Veltkamp's method into halves of 26 bits (``c = (2**27 + 1) x``,
+    ``hi = c - (c - x)``, ``lo = x - hi``), whose pairwise products are exact; ``e`` is their sum
+    minus ``p`` in an order that is exact (Dekker 1971). Exact barring overflow of ``c``
+    (``|x| < 2**996``) and underflow of the products. Plain arithmetic: floats, numpy arrays
+    (broadcast together), numba. The one home of the split; :func:`inertia_g` and the
+    exact domain margins of :mod:`stability.parameters` use it.
+    """
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
 @register_jitable
 def inertia_g(q, mu):
     """``A_G = 1 - mu q^2`` (units of A0), accurate relative to ``A_G`` near the domain edge.
 
-    ``q q = t + te`` and ``mu t = u + ue'`` exactly (Dekker's products, with Veltkamp's splits
-    into halves of 26 bits), so ``mu q^2 = u + ue`` with ``ue = ue' + mu te`` up to the rounding
-    of ``ue``; then ``1 - u = s + se`` exactly (Knuth's sum): ``A_G = s + (se - ue)``. Plain
-    arithmetic, written out (no helper calls, which cost more than the arithmetic in Python):
-    floats, numpy arrays (broadcast together), numba.
+    ``q q = t + te`` and ``mu t = u + ue'`` exactly (:func:`two_product`), so
+    ``mu q^2 = u + ue`` with ``ue = ue' + mu te`` up to the rounding of ``ue``; then
+    ``1 - u = s + se`` exactly (Knuth's sum, written out): ``A_G = s + (se - ue)``. Plain
+    arithmetic: floats, numpy arrays (broadcast together), numba.
     """
-    t = q * q
-    c = _SPLITTER * q
-    qh = c - (c - q)
-    ql = q - qh
-    te = ((qh * qh - t) + qh * ql + ql * qh) + ql * ql
-    u = mu * t
-    c = _SPLITTER * mu
-    mh = c - (c - mu)
-    ml = mu - mh
-    c = _SPLITTER * t
-    th = c - (c - t)
-    tl = t - th
-    ue = ((mh * th - u) + mh * tl + ml * th) + ml * tl
+    t, te = two_product(q, q)
+    u, ue = two_product(mu, t)
     ue = ue + mu * te
     s = 1.0 + (-u)
     bb = s - 1.0
