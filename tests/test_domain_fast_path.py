@@ -74,11 +74,16 @@ def test_sigma_bound_exact_on_the_fast_path(q):
 
 @pytest.mark.parametrize("value", [(0.0, 0.0, 5.0), [0.01, 0, 0.99995], (1, 2, 3), (1e30, -1e30, 0.0),
                                    (1e31, 0.0, 0.0), (0.0, float("nan"), 1.0), (10**400, 0, 0), (1.0, 2.0),
-                                   (1.0, 2.0, 3.0, 4.0)])
+                                   (1.0, 2.0, 3.0, 4.0), [np.float64(0.1), 0.0, np.float64(1.0)],
+                                   (np.float64(1e31), 0.0, 0.0), np.array([0.01, 0.0, 0.99995]),
+                                   np.array([1e30, -1e30, 0.0]), np.array([0.0, np.inf, 1.0]),
+                                   np.array([0.0, np.nan, 1.0]), np.array([1.0, 2.0]), np.zeros(4),
+                                   np.zeros((1, 3)), np.array([1, 2, 3]), np.array([1.0, 2.0, 3.0], np.float32)])
 def test_state_vector_fast_path_agrees_with_the_general_path(value):
-    """simulate's / final_state's state vectors given as a tuple or list of plain numbers take a fast
-    path; the reference is the same numbers in a tuple subclass, which the fast path does not take
-    (the general path's checks and messages): the same vector, or the same refusal."""
+    """simulate's / final_state's state vectors given as a tuple or list of plain numbers (float,
+    int, numpy.float64) or as a 1-D float64 array take a fast path; the reference is the same
+    numbers in a tuple subclass, which the fast path does not take (the general path's checks and
+    messages): the same vector, or the same refusal; and a returned array is never the caller's."""
     from stability.nonlinear.runs import _vector
 
     def outcome(v):
@@ -91,3 +96,5 @@ def test_state_vector_fast_path_agrees_with_the_general_path(value):
         pass
 
     assert outcome(value) == outcome(General(value))
+    if isinstance(value, np.ndarray) and outcome(value)[0] == "ok":
+        assert not np.shares_memory(_vector("omega", value, (3,)), value)
