@@ -214,6 +214,27 @@ def in_disk_cache(disp: Any) -> bool | None:
         return None
 
 
+class Compiled:
+    """One or more numba dispatchers, asked as a whole whether calling them compiles: whether
+    their code is in memory (:meth:`in_memory`) or in numba's disk cache (:meth:`cached`); what a
+    caller needs to say "compiling, once" before a first call (the same two questions as
+    :class:`Twin`'s). List the dispatchers that a call always runs (callees compiled into them
+    have disk caches of their own and follow)."""
+
+    def __init__(self, *dispatchers: Any) -> None:
+        self.dispatchers = dispatchers
+
+    def in_memory(self) -> bool:
+        """Whether this process holds the compiled code of every one of them."""
+        return all(bool(d.overloads) for d in self.dispatchers)
+
+    def cached(self) -> bool | None:
+        """Whether numba's disk cache holds every one of them (:func:`in_disk_cache`; None if
+        that cannot be told for one)."""
+        states = [in_disk_cache(d) for d in self.dispatchers]
+        return None if None in states else all(states)
+
+
 # ------------------------------------------------------------------------------------------
 # a Python function and its compilation
 # ------------------------------------------------------------------------------------------

@@ -54,12 +54,14 @@ SIMULATE_BYTES_PER_TIME: dict[str, float] = {"sliding": 400.0, "rolling": 390.0,
 SIMULATE_FILE_BYTES_PER_TIME: dict[str, float] = {"sliding": 248.0, "rolling": 248.0, "fixed_pivot": 152.0}
 
 #: in-memory atlas: bytes per grid point = per point and mode x modes + per point (the stored
-#: growth rate, frequency and bound per mode, 24 B; the largest growth rate and two int8 flags,
-#: 10 B), plus :data:`ATLAS_BLOCK_BYTES_PER_POINT` for each point of one block of the spectrum
-#: (its complex eigenvalues, bounds, flags and broadcast copies). Measured: 168 B per point at
-#: 5e4 points (one block), 96 at 5e5, 84 at 2e6 (sliding); 60 at 2e6 (two modes)
+#: growth rate, frequency and bound per mode, 24 B; the largest and the leading growth rate and
+#: two int8 flags, 18 B), plus :data:`ATLAS_BLOCK_BYTES_PER_POINT` for each point of one block of
+#: the spectrum (its complex eigenvalues, bounds, flags and broadcast copies); the atlas's own
+#: checks (schema.validate_atlas, the leading growth rate) run in slabs and blocks and stay below
+#: that. Measured 86-90 B per point at 1e6 points (sliding, with the peak reset after a warm-up;
+#: 115-124 B when the checks took the whole grid at once)
 ATLAS_BYTES_PER_POINT_MODE = 24.0
-ATLAS_BYTES_PER_POINT = 10.0
+ATLAS_BYTES_PER_POINT = 18.0
 ATLAS_BLOCK_BYTES_PER_POINT = 90.0
 
 #: in-memory atlas without ``mask_unphysical``: the domain check of the whole grid before the
@@ -70,15 +72,17 @@ ATLAS_BLOCK_BYTES_PER_POINT = 90.0
 #: the larger of this and the stored arrays plus one block
 ATLAS_CHECK_BYTES_PER_POINT = 45.0
 
-#: atlas file: bytes per grid point (per mode and per point) as written
+#: atlas file: bytes per grid point (per mode and per point) as written (the variables of an
+#: in-memory atlas; 90.1 B per point measured for 2.5e5 points, three modes)
 ATLAS_FILE_BYTES_PER_POINT_MODE = 24.0
-ATLAS_FILE_BYTES_PER_POINT = 10.0
+ATLAS_FILE_BYTES_PER_POINT = 18.0
 
 #: threshold, thresholds, critical_spin: peak bytes per sample (the uniform and geometric sampling
 #: grids' spectra, the structured growth signs of every mode, and the hidden-pair pass; measured
-#: 1096 B at 2e5 samples with the peak reset after a warm-up, since the signs come from
-#: linear.growth; 564 B before)
-THRESHOLD_BYTES_PER_SAMPLE = 1100.0
+#: 1210 B at 2e5 samples with the peak reset after a warm-up and the freed heap trimmed; 1096 B
+#: without the trim, which a cold numba cache's compile made room for; 564 B before the signs
+#: came from linear.growth)
+THRESHOLD_BYTES_PER_SAMPLE = 1250.0
 
 #: neutral_curve: peak bytes per point of the start grid (its meshgrid, spectrum, structured
 #: growth signs and counts; measured 335 B at 700 x 700 with the peak reset after a warm-up,
@@ -86,8 +90,9 @@ THRESHOLD_BYTES_PER_SAMPLE = 1100.0
 START_GRID_BYTES_PER_POINT = 340.0
 
 #: class_atlas: peak bytes per grid point (meshgrids, the checked parameters, codes and tilts;
-#: measured 179 B at 1e6 and 2e6 points, the peak reset after a warm-up)
-CLASS_ATLAS_BYTES_PER_POINT = 185.0
+#: measured 138 B at 1e6 points, the peak reset after a warm-up; 179 B before the exact domain
+#: margins took their products from models.inertia.two_product, whose temporaries die sooner)
+CLASS_ATLAS_BYTES_PER_POINT = 140.0
 
 _SUFFIX = {"": 1.0, "k": 1e3, "m": 1e6, "g": 1e9, "t": 1e12, "kib": 2.0**10, "mib": 2.0**20, "gib": 2.0**30,
            "tib": 2.0**40, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "b": 1.0}

@@ -63,6 +63,7 @@ def test_rolling_warns_once_per_process(fresh):
     assert other == []
 
 
+@pytest.mark.filterwarnings("default:model 'rolling' is now:FutureWarning")  # Python's own default, not the suite's
 def test_cli_prints_the_warning_on_one_line(fresh, capsys):
     assert main(["threshold", "sigma", "--model", "rolling", "--q", "0.1", "--fr-inv", "0.3"]) in (0, 2)
     err = capsys.readouterr().err

@@ -75,6 +75,8 @@ MEASURE = textwrap.dedent("""
             return float(next(ln for ln in f if ln.startswith(key)).split()[1]) * 1024.0
 
     run(n // 8)    # compiles and imports what the size needs (parallel kernels too); its peak is not counted
+    import ctypes  # give the heap the warm-up freed back to the system: a cold numba cache (a compile)
+    ctypes.CDLL("libc.so.6").malloc_trim(0)  # would otherwise leave room that hides part of the peak
     with open("/proc/self/clear_refs", "w") as f:
         f.write("5")                            # reset the peak (VmHWM) to the current RSS
     base = status("VmRSS")

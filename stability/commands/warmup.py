@@ -5,7 +5,8 @@ nothing (stability.execution); a large one compiles its loop first (a few second
 on stderr). This command compiles them all now, or loads them from numba's disk cache where it
 already holds them, so that later processes only load: the spectral kernel's loops (the sliding
 model's, with and without the domain test, serial and parallel; the coefficient loop of the
-other models), the batched root finders, the neutral curves' compiled corrector and the
+other models), the batched root finders and growth-rate signs, the neutral curves' compiled
+corrector, the steady states' closed forms and the compiled step of their branch, and the
 integrators of the nonlinear runs. Each line names a step, its time, and whether it compiled or
 loaded.
 """
@@ -24,8 +25,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``warmup`` subcommand."""
     p = sub.add_parser("warmup", help="compile every compiled kernel now (numba's disk cache) and report the times",
                        description="Compile (or load from numba's disk cache) every compiled path: the spectral "
-                                   "kernel's loops, the batched root finders, the neutral curves' corrector, the "
-                                   "integrators. Later processes then load them instead of compiling (a first call "
+                                   "kernel's loops, the batched root finders and growth-rate signs, the neutral curves' "
+                                   "corrector, the steady states and their branch, the integrators. Later processes then load them instead of compiling (a first call "
                                    "with a large grid, or a first simulate, would otherwise compile for seconds).")
     p.add_argument("--list", action="store_true", help="list the steps without running them")
     p.set_defaults(func=run)
@@ -37,15 +38,23 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     import numpy as np
 
     from ..linear import kernel, neutrality, roots
+    from ..linear.growth import growth
     from ..linear.neutral_curves import neutral_curve
     from ..models import get_model
     from ..nonlinear import NONLINEAR_MODELS
     from ..nonlinear.runs import simulate
+    from ..steady.branch import steady_branch
+    from ..steady.branch_compiled import step
+    from ..steady.family import level_states
+    from ..steady.final import final_state
+    from ..steady.linearisation import _jacobians
+    from ..steady.states import _integrals, point_integrals, steady_states
+    from continuation.jit import Compiled
 
     sliding = kernel._model_kernels(get_model("sliding"))
     p = dict(q=np.linspace(-0.4, 0.4, 64), fr_inv=np.full(64, 0.3), sigma=np.ones(64), alpha_v=np.full(64, 0.5),
              mu=np.full(64, 2.28))
-    c = get_model("rolling").coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
+    c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
     out: list[tuple[str, Callable[[], object], list]] = []
     for parallel in (False, True):
@@ -71,6 +80,17 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                 lambda: neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
                                    compiled=True),
                 []))
+    out.append(("growth-rate signs of every mode (batched; the atlases' leading growth rate)",
+                lambda: growth("sliding", **p),
+                [roots.axis_growth_many]))
+    out.append(("steady states and the final state (sliding model)",
+                lambda: (steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                         final_state("sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0],
+                                     q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)),
+                [Compiled(level_states, _integrals, point_integrals, _jacobians)]))
+    out.append(("branch of tilted states: compiled step (sliding model)",
+                lambda: steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                [Compiled(step)]))
     for name in NONLINEAR_MODELS:
         out.append((f"integrator, {name} model",
                     lambda name=name: simulate(name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1,

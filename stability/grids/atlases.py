@@ -265,8 +265,13 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
     require_atlas(ds)
     g, f = ds["growth_rate"], ds["frequency"]
     bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
+    dims = list(ds["max_growth_rate"].dims)
     if g.ndim <= 1:
         drop: Any = False
+    elif g.chunks is None:  # in memory: decided block by block, so its temporaries stay block-sized
+        parts = [zero_everywhere(*(None if x is None else x.isel(sl) for x in (g, f, bound)))
+                 for sl in _blocks(dims, tuple(ds.sizes[d] for d in dims))]
+        drop = all(bool(e) for e, _ in parts) and any(bool(a) for _, a in parts)
     else:
         everywhere, any_inside = zero_everywhere(g, f, bound)
         drop = everywhere & any_inside

@@ -57,8 +57,11 @@ def leading(growth: xr.DataArray, frequency: xr.DataArray, bound: xr.DataArray |
     """The leading growth rate over the grid, given the decision ``drop`` (leave the structural
     zero mode out, a bool or a 0-d array); NaN outside the domain. Works on numpy- and
     dask-backed arrays alike."""
-    zero = _zeros(growth, frequency, bound)
-    out = xr.where(drop, growth.where(~zero).max("mode").fillna(max_growth), max_growth)
+    if getattr(drop, "chunks", None) is None and not bool(drop):
+        out = max_growth.copy()  # decided, and nothing left out: no temporaries the size of the grid
+    else:
+        zero = _zeros(growth, frequency, bound)
+        out = xr.where(drop, growth.where(~zero).max("mode").fillna(max_growth), max_growth)
     out = out.transpose(*max_growth.dims)
     out.attrs = dict(ATTRS)
     return out.rename("leading_growth_rate")

@@ -32,10 +32,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 
-from continuation.jit import in_disk_cache
+from continuation.jit import Compiled
 
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint
@@ -484,20 +484,6 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
 COMPILE_SECONDS = 20.0
 
 
-class _Compiled:
-    """A compiled integrator slice as :func:`stability.execution.before_compiled_call` asks of
-    it: whether its code is in memory, or in numba's disk cache."""
-
-    def __init__(self, dispatcher) -> None:
-        self.dispatcher = dispatcher
-
-    def in_memory(self) -> bool:
-        return bool(self.dispatcher.overloads)
-
-    def cached(self) -> bool | None:
-        return in_disk_cache(self.dispatcher)
-
-
 def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
               method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
               step: float | None = None, max_steps: int = 10_000_000,
@@ -536,7 +522,7 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
     if method in COMPILED_METHODS:
-        before_compiled_call(_Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
+        before_compiled_call(Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
     if method == "dopri5":
         y, nfev, na, nr, st = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
                                      float(step or 0.0), int(max_steps), progress=progress)

@@ -24,7 +24,7 @@ registered with numba (:func:`centre_velocity`, :func:`energy_terms`) or compile
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 from continuation.jit import register_jitable
 
 from ..models.inertia import inertia_g

@@ -26,7 +26,7 @@ has the gyroscopic coefficient ``sigma`` instead of ``sigma + mu (1 + q)``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 
 from continuation.linalg import solve_dense
 

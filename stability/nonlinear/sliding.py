@@ -29,7 +29,7 @@ Linearisation about ``omega = k = K`` (spin +1) is eq. (11) (``stability.models.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 
 from continuation.linalg import solve_dense
 

@@ -46,16 +46,22 @@ import numpy as np
 import xarray as xr
 
 from continuation.engine import trace
+from continuation.jit import Compiled
 
 from ..errors import ConvergenceError, DomainError
+from ..execution import before_compiled_call
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_positive
 from . import branch_compiled as kernels
-from . import family
+from . import family, linearisation
 from .linearisation import modes_verdict, reduced_spectrum
 from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
+
+#: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
+#: and the nonlinear right-hand side): measured 25 s of wall time on the 2-core machine
+COMPILE_SECONDS = 25.0
 from .verdicts import flag_of
 
 __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
@@ -269,6 +275,8 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
+    before_compiled_call(Compiled(kernels.step if compiled else kernels.residual_and_jacobian,
+                                  linearisation._jacobians), COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
                           "continuation.steady_branch", params, removed_neutral=True)

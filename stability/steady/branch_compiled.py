@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from continuation.jit import njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 

@@ -35,7 +35,10 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
+from continuation.jit import Compiled
+
 from ..errors import DomainError
+from ..execution import before_compiled_call
 from ..nonlinear.runs import initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
@@ -43,6 +46,10 @@ from .linearisation import modes_verdict, reduced_spectrum
 from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
+
+#: the first prediction's compilation on a cold numba cache (the level's closed forms and the
+#: integrals of the initial state): measured 5.5 s of wall time on the 2-core machine
+COMPILE_SECONDS = 6.0
 
 __all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle",
            "chunk_length", "MATCH_DEG"]
@@ -342,6 +349,7 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
                           "friction the energy is conserved and the motion has no final state)")
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
+    before_compiled_call(Compiled(family.level_states, point_integrals), COMPILE_SECONDS)
     return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance,
                             rtol=rtol)
 

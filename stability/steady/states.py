@@ -20,15 +20,19 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from numba import njit
-from continuation.jit import register_jitable
+from continuation.jit import Compiled, njit, register_jitable
 
+from ..execution import before_compiled_call
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar
-from . import family
+from . import family, linearisation
 from .linearisation import modes_verdict, reduced_spectrum
 from .products import DEGREE, UNITLESS, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .verdicts import flag_of
+
+#: the first call's compilation on a cold numba cache (the level's closed forms, the integrals,
+#: the linearisations and the nonlinear right-hand side they use): measured 18 s of wall time
+COMPILE_SECONDS = 20.0
 
 __all__ = ["steady_states", "state_integrals", "point_integrals", "upright_jellett"]
 
@@ -128,6 +132,7 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
+    before_compiled_call(Compiled(family.level_states, _integrals, linearisation._jacobians), COMPILE_SECONDS)
     table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]
     kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
