@@ -125,15 +125,20 @@ def _env_limit() -> float | None:
     return value
 
 
-def _meminfo(key: str) -> float | None:
+def _kib_field(path: str, key: str) -> float | None:
+    """Bytes of the field ``key`` of a ``/proc`` file of ``key: value kB`` lines; None if unreadable."""
     try:
-        with open("/proc/meminfo") as f:
+        with open(path) as f:
             for line in f:
                 if line.startswith(key + ":"):
                     return float(line.split()[1]) * 1024.0
     except (OSError, ValueError, IndexError):
         return None
     return None
+
+
+def _meminfo(key: str) -> float | None:
+    return _kib_field("/proc/meminfo", key)
 
 
 def _read_number(path: str) -> float | None:
@@ -185,14 +190,7 @@ def _cgroup_room() -> float | None:
 
 
 def _status(key: str) -> float | None:
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith(key + ":"):
-                    return float(line.split()[1]) * 1024.0
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
+    return _kib_field("/proc/self/status", key)
 
 
 def _rlimit_room() -> float | None:

@@ -25,8 +25,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``warmup`` subcommand."""
     p = sub.add_parser("warmup", help="compile every compiled kernel now (numba's disk cache) and report the times",
                        description="Compile (or load from numba's disk cache) every compiled path: the spectral "
-                                   "kernel's loops, the batched root finders and growth-rate signs, the neutral curves' "
-                                   "corrector, the steady states and their branch, the integrators. Later processes then load them instead of compiling (a first call "
+                                   "kernel's loops, the batched root finders and growth-rate signs, the neutral "
+                                   "curves' corrector, the steady states and their branch, the integrators. Later "
+                                   "processes then load them instead of compiling (a first call "
                                    "with a large grid, or a first simulate, would otherwise compile for seconds).")
     p.add_argument("--list", action="store_true", help="list the steps without running them")
     p.set_defaults(func=run)
@@ -43,13 +44,7 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     from ..models import get_model
     from ..nonlinear import NONLINEAR_MODELS
     from ..nonlinear.runs import simulate
-    from ..steady.branch import steady_branch
-    from ..steady.branch_compiled import step
-    from ..steady.family import level_states
-    from ..steady.final import final_state
-    from ..steady.linearisation import _jacobians
-    from ..steady.states import _integrals, point_integrals, steady_states
-    from continuation.jit import Compiled
+    from ..steady import branch, final, states
 
     sliding = kernel._model_kernels(get_model("sliding"))
     p = dict(q=np.linspace(-0.4, 0.4, 64), fr_inv=np.full(64, 0.3), sigma=np.ones(64), alpha_v=np.full(64, 0.5),
@@ -84,13 +79,13 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                 lambda: growth("sliding", **p),
                 [roots.axis_growth_many]))
     out.append(("steady states and the final state (sliding model)",
-                lambda: (steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                         final_state("sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0],
-                                     q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)),
-                [Compiled(level_states, _integrals, point_integrals, _jacobians)]))
+                lambda: (states.steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                         final.final_state("sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0],
+                                           velocity=[0.0, 0.0], q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)),
+                [states.COMPILED, final.COMPILED]))
     out.append(("branch of tilted states: compiled step (sliding model)",
-                lambda: steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                [Compiled(step)]))
+                lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                [branch.COMPILED_STEP]))
     for name in NONLINEAR_MODELS:
         out.append((f"integrator, {name} model",
                     lambda name=name: simulate(name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1,

@@ -62,6 +62,10 @@ from .states import state_integrals
 #: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
 #: and the nonlinear right-hand side): measured 25 s of wall time on the 2-core machine
 COMPILE_SECONDS = 25.0
+#: the compiled functions a branch runs with the compiled step, and with the engine's Python
+#: path (the notice's question; ``tippe warmup``)
+COMPILED_STEP = Compiled(kernels.step, linearisation._jacobians)
+PYTHON_STEP = Compiled(kernels.residual_and_jacobian, linearisation._jacobians)
 from .verdicts import flag_of
 
 __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
@@ -275,8 +279,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
-    before_compiled_call(Compiled(kernels.step if compiled else kernels.residual_and_jacobian,
-                                  linearisation._jacobians), COMPILE_SECONDS)
+    before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
                           "continuation.steady_branch", params, removed_neutral=True)

@@ -50,6 +50,8 @@ from .verdicts import STABLE, UNSTABLE, flag_of
 #: the first prediction's compilation on a cold numba cache (the level's closed forms and the
 #: integrals of the initial state): measured 5.5 s of wall time on the 2-core machine
 COMPILE_SECONDS = 6.0
+#: the compiled functions every prediction runs (the notice's question; ``tippe warmup``)
+COMPILED = Compiled(family.level_states, point_integrals)
 
 __all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle",
            "chunk_length", "MATCH_DEG"]
@@ -349,7 +351,7 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
                           "friction the energy is conserved and the motion has no final state)")
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
-    before_compiled_call(Compiled(family.level_states, point_integrals), COMPILE_SECONDS)
+    before_compiled_call(COMPILED, COMPILE_SECONDS)
     return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance,
                             rtol=rtol)
 

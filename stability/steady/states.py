@@ -68,6 +68,11 @@ def point_integrals(y, q, sigma, fr_inv, mu):
     return _integrals_of(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], q, sigma, fr_inv, mu)
 
 
+#: the compiled functions every call of :func:`steady_states` runs (the notice's question;
+#: ``tippe warmup``)
+COMPILED = Compiled(family.level_states, _integrals, linearisation._jacobians)
+
+
 def state_integrals(y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu: float
                     ) -> tuple[np.ndarray, np.ndarray]:
     """Jellett's integral and the energy of states ``(omega, k, V0_h)`` (shape ``(n, 8)`` or
@@ -132,7 +137,7 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
-    before_compiled_call(Compiled(family.level_states, _integrals, linearisation._jacobians), COMPILE_SECONDS)
+    before_compiled_call(COMPILED, COMPILE_SECONDS)
     table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]
     kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
