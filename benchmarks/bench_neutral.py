@@ -1,7 +1,7 @@
 """Benchmark: neutral curve by continuation vs a brentq per grid column, at equal accuracy.
 
 A thin script: the measurement (problem, baselines, error definitions, timing) is
-:mod:`stability.bench.continuation`, the same code as ``tippe bench --suite continuation``;
+:mod:`suites.continuation`, the same code as ``python benchmarks/run.py --suite continuation``;
 this prints its tables (continuation settings, column counts, equal accuracy, turning back).
 
 Run: ``python3 benchmarks/bench_neutral.py [--repeat 7] [--min-time 0.5]`` (about a minute;
@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import argparse
 
-from stability.bench.continuation import neutral_benchmark, format_tables
+from suites.continuation import neutral_benchmark, format_tables
 
 COLUMNS = (10, 15, 20, 25, 30, 40, 50, 60, 80, 100, 125, 150, 200, 300, 400)
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Run :func:`stability.bench.continuation.neutral_benchmark` and print its tables."""
+    """Run :func:`suites.continuation.neutral_benchmark` and print its tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7,
                         help="rounds over all configurations (the minimum over all timed calls is kept)")

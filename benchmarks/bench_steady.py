@@ -1,7 +1,7 @@
 """Benchmark: the final state by Jellett's integral against simulations, case by case.
 
-A thin script: the measurement is :mod:`stability.bench.steady` (the same code as
-``tippe bench --suite steady``); this prints its per-case table (the reference end tilt,
+A thin script: the measurement is :mod:`suites.steady` (the same code as
+``python benchmarks/run.py --suite steady``); this prints its per-case table (the reference end tilt,
 ``t_0.01``, the cost and error of a simulation to it, the cost of the prediction) and the
 branch and class-map numbers.
 
@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import argparse
 
-from stability.bench.steady import branch_measurements, class_map_measurements, final_state_cases, format_table
+from suites.steady import branch_measurements, class_map_measurements, final_state_cases, format_table
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Print the tables of :mod:`stability.bench.steady`."""
+    """Print the tables of :mod:`suites.steady`."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3, help="timed repeats (the best is kept)")
     parser.add_argument("--quick", action="store_true", help="three cases, two class-map sizes")

@@ -1,7 +1,7 @@
 """Work-precision of the integrators of the nonlinear runs: a thin wrapper.
 
-The measuring code is :mod:`stability.bench.integrators` (one implementation, also behind
-``tippe bench --suite integrators``, which draws the chart ``atlases/work_precision_integrators.png``).
+The measuring code is :mod:`suites.integrators` (one implementation, also behind
+``python benchmarks/run.py --suite integrators``, which draws the chart ``atlases/work_precision_integrators.png``).
 This script prints the measurements as a table.
 
 Usage: python benchmarks/work_precision.py [--quick]
@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import sys
 
-from stability.commands.bench import summary_lines
-from stability.bench.integrators import integrator_work_precision
+from run import summary_lines
+from suites.integrators import integrator_work_precision
 
 
 def main(quick: bool = False) -> None:

@@ -16,7 +16,7 @@ does. The rule (docs/performance.md, "The first call"):
   (:data:`NOTICE`); ``tippe warmup`` compiles every loop ahead of time;
 * the environment variable :data:`ENVIRONMENT` (``TIPPE_KERNEL``) forces a path: ``python``,
   ``compiled`` or ``auto`` (the default, the rule above); so does :func:`using` inside a block
-  (the benchmarks of ``tippe bench`` measure the compiled paths), and functions that take an
+  (the benchmarks of ``python benchmarks/run.py`` measure the compiled paths), and functions that take an
   ``engine`` argument take the same three values (None: :func:`using`'s, else the
   environment's).
 
@@ -113,7 +113,7 @@ def quiet() -> Iterator[None]:
 @contextlib.contextmanager
 def using(value: str) -> Iterator[None]:
     """Every loop inside runs in the execution ``value`` (one of :data:`ENGINES`) unless a call
-    asks for another; also a decorator. The suites of ``tippe bench`` measure the compiled
+    asks for another; also a decorator. The suites of ``python benchmarks/run.py`` measure the compiled
     paths under ``using("compiled")``: their baselines and the package's default both get
     compiled code, as a long-running process has."""
     chosen = engine(value)

@@ -20,6 +20,12 @@ from pathlib import Path
 
 #: the repository this conftest belongs to
 REPOSITORY = Path(__file__).resolve().parent.parent
+#: the benchmark suites and their runner: beside the package, not installed; the tests of the
+#: suites import them from here (``import suites``, ``import run``), appended so that they never
+#: shadow an installed module
+BENCHMARKS = REPOSITORY / "benchmarks"
+if str(BENCHMARKS) not in sys.path:
+    sys.path.append(str(BENCHMARKS))
 
 
 def _install() -> tuple[bool, Path | None]:

@@ -1,7 +1,7 @@
 """The import layers of the package (docs/architecture.md), checked on the installed code.
 
 Why: the folder tree is meant to show the architecture, models -> linear -> grids / nonlinear ->
-recipes -> plotting -> benchmarks -> command line, and the continuation engine is meant to be
+recipes -> plotting -> command line, and the continuation engine is meant to be
 generic. Nothing but a test keeps it so. This one walks every module of the installed
 ``stability`` and ``continuation`` packages (found with ``pkgutil`` from the imported packages,
 not from a source path), parses each with ``ast`` and collects every import: at module level and
@@ -30,6 +30,7 @@ from __future__ import annotations
 import ast
 import importlib
 import importlib.util
+import pathlib
 import pkgutil
 
 import pytest
@@ -55,7 +56,6 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.steady", 4),             # steady states, branch, final state, classes
     ("stability.recipes", 5),
     ("stability.plotting", 6),
-    ("stability.bench", 7),
     ("stability.commands", 8),
     ("stability.cli", 8),
     ("stability.__main__", 8),
@@ -163,13 +163,14 @@ def test_the_walk_finds_the_packages():
     """A sanity check of the walk itself: the facades, a few modules of each layer, the lazy
     facade import of continuation/__init__ and a function-level import are seen."""
     for name in ("stability", "continuation", "stability.errors", "stability.linear.kernel",
-                 "stability.grids.atlases", "stability.nonlinear.runs", "stability.bench.records",
+                 "stability.grids.atlases", "stability.nonlinear.runs", "stability.steady.final",
                  "stability.commands.atlas", "continuation.engine"):
         assert name in MODULES
     assert "stability.linear.neutral_curves" in GRAPH["continuation"]  # lazy, in _EXPORTS
     assert "stability.linear.spectra" in GRAPH["stability"]  # lazy, in _EXPORTS
     assert "stability.linear.kernel" in GRAPH["stability.linear.spectra"]  # inside a function
-    assert "stability.bench.records" not in GRAPH["stability.plotting.work_precision"]  # TYPE_CHECKING
+    hidden = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import a\nelse:\n    import b\n")
+    assert [n.names[0].name for n in _import_nodes(hidden) if isinstance(n, ast.Import)] == ["b"]  # TYPE_CHECKING
 
 
 def test_every_module_has_a_layer():
@@ -251,3 +252,18 @@ def test_nothing_imports_a_facade(facade):
     for the package names themselves, whose layer is not their subpackages')."""
     users = sorted(a for a, targets in GRAPH.items() if facade in targets and a not in FACADES)
     assert not users, f"modules importing the facade {facade!r}: {users}"
+
+
+def test_no_bench_code_in_the_installed_package():
+    """Measurement lives beside the package (benchmarks/suites/, benchmarks/run.py), as scipy
+    keeps its benchmarks: no installed module is a benchmark, draws a work-precision chart or
+    imports the suites, and ``tippe`` has no ``bench`` command (issue 22, move 5)."""
+    from stability.cli import COMMANDS
+
+    named = sorted(m for m in MODULES if any(w in m for w in ("bench", "work_precision", "timing")))
+    assert not named, f"benchmark modules in the installed package: {named}"
+    users = sorted(m for m in MODULES for node in _import_nodes(ast.parse(pathlib.Path(MODULES[m][0]).read_text()))
+                   for a in (node.names if isinstance(node, ast.Import) else [ast.alias(node.module or "")])
+                   if a.name.split(".")[0] in ("suites", "run", "benchmarks"))
+    assert not users, f"installed modules importing the benchmark suites: {users}"
+    assert "bench" not in COMMANDS

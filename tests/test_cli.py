@@ -215,10 +215,3 @@ def test_simulate_help_matches_the_library():
             continue
         if name in by_dest and par.default is not inspect.Parameter.empty and not by_dest[name].required:
             assert by_dest[name].default == par.default, name
-
-
-def test_bench_creates_a_missing_out_dir(tmp_path, capsys):
-    """`tippe bench --out-dir` creates a directory that does not exist (it used to refuse it)."""
-    out = tmp_path / "new" / "dir"
-    assert main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(out)]) == 0
-    assert (out / "work_precision_continuation.json").is_file()

@@ -214,32 +214,6 @@ def test_masked_points_and_polish_none():
     assert rel.max() < 1e-6
 
 
-def test_bench_command_writes_chart_and_summary(tmp_path, capsys):
-    """``tippe bench`` on a small batch: a chart with one marker per method and a JSON summary
-    whose errors are the mpmath comparison (the kernel's within the target). Speeds are not
-    asserted here (benchmarks, not tests, measure them)."""
-    import json
-
-    import matplotlib.pyplot as plt
-
-    from stability.cli import main
-    from stability.bench.records import WorkPrecision
-    from stability.plotting.work_precision import work_precision_figure
-
-    rc = main(["bench", "--suite", "eigen", "--points", "3000", "--reference-points", "30", "--loop-points", "50", "--repeat", "1",
-               "--out-dir", str(tmp_path)])
-    assert rc == 0
-    assert "x scipy loop" in capsys.readouterr().out
-    info = json.loads((tmp_path / "work_precision_eigen.json").read_text())
-    res = {r["method"]: r for r in info["results"]}
-    assert res["spectrum(kernel)"]["default"] and res["spectrum(kernel)"]["error"] <= RTOL
-    assert res["scipy loop"]["baseline"] and res["batched LAPACK"]["baseline"]
-    assert (tmp_path / "work_precision_eigen.png").stat().st_size > 10_000
-    fig, ax = work_precision_figure([WorkPrecision(**r) for r in info["results"]], target=RTOL)
-    assert len(ax.lines) == len(info["results"]) + 1  # one marker each and the target line
-    plt.close(fig)
-
-
 def _ulps(x: float, k: int) -> list[float]:
     """``x`` and its neighbours up to ``k`` ulps away on each side."""
     out = [x]

@@ -1,6 +1,7 @@
-"""The work-precision suites of ``tippe bench`` (stability/bench/), in tiny configurations.
+"""The work-precision suites (benchmarks/suites/) and their runner (benchmarks/run.py), in tiny
+configurations. The suites are not installed: tests/conftest.py puts benchmarks/ on the path.
 
-No timing is asserted (speed is measured by ``tippe bench``, not by tests); what is tested is
+No timing is asserted (speed is measured by ``python benchmarks/run.py``, not by tests); what is tested is
 that each suite's *errors* are what its reference says they are, and that the charts and the
 JSON summaries carry what they claim.
 
@@ -19,18 +20,20 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from stability.bench import continuation as pc
-from stability.bench import integrators as pi
-from stability.cli import main
-from stability.bench import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES
-from stability.bench.records import WorkPrecision
-from stability.bench.timing import best_times
-from stability.plotting.work_precision import suite_figure, verdict
+import run as bench
+from run import main
+from suites import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES
+from suites import continuation as pc
+from suites import integrators as pi
+from suites.charts import suite_figure, verdict
+from suites.records import WorkPrecision
+from suites.timing import best_times
 
 
 def test_fold_closed_form_is_the_maximum_of_the_curve():
@@ -198,11 +201,11 @@ def tiny_integrators(monkeypatch):
 
 
 def test_bench_integrators_chart_and_json(tmp_path, capsys, tiny_integrators):
-    """``tippe bench --suite integrators --quick`` (shrunk): the JSON's errors are the distances
+    """``benchmarks/run.py --suite integrators --quick`` (shrunk): the JSON's errors are the distances
     to the DOP853 reference it records (recomputed here), the default is marked and meets the
     target, and the chart has one line per series (+ the default's star and the target line)
     and three panels (crossing time, stiffness, fitted growth rate)."""
-    assert main(["bench", "--suite", "integrators", "--quick", "--out-dir", str(tmp_path)]) == 0
+    assert main(["--suite", "integrators", "--quick", "--out-dir", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "[default]" in out and "x RK4 fixed step (paper)" in out
     info = json.loads((tmp_path / "work_precision_integrators.json").read_text())
@@ -238,18 +241,16 @@ def test_bench_integrators_chart_and_json(tmp_path, capsys, tiny_integrators):
 
 
 def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
-    """``tippe bench --suite continuation``, one setting and two column counts: the chart has two
+    """``benchmarks/run.py --suite continuation``, one setting and two column counts: the chart has two
     panels (fold error, curve error) with the target on the first; the JSON is written
     atomically: a failure while writing it leaves the previous file intact and no temporary
     file behind."""
-    from stability.commands import bench
-
     monkeypatch.setattr(pc, "SETTINGS", ((0.05, 0.1),))
     monkeypatch.setattr(pc, "COLUMNS", (10, 25))
     # the suite runs under execution.using("compiled") (a decorator): its defaults are the wrapped function's
     monkeypatch.setattr(pc.continuation_work_precision.__wrapped__, "__defaults__",
                         (5, False, ((0.05, 0.1),), (10, 25), 0.0, False))
-    assert main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)]) == 0
+    assert main(["--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)]) == 0
     js = tmp_path / "work_precision_continuation.json"
     info = json.loads(js.read_text())
     res = [WorkPrecision(**r) for r in info["results"]]
@@ -268,7 +269,7 @@ def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
 
     monkeypatch.setattr(bench.json, "dumps", broken)
     try:  # the command line reports an internal error with a nonzero status (or lets it through)
-        rc = main(["bench", "--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)])
+        rc = main(["--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)])
     except RuntimeError as exc:
         assert "disk full" in str(exc)
     else:
@@ -299,21 +300,59 @@ def test_verdict_names_default_and_fastest():
 def test_bench_sizes_are_checked_before_running(argv, message, tmp_path, capsys):
     """Sizes are checked first, with the flag, its value and the range (they used to surface as
     numpy's "negative dimensions" or an OverflowError)."""
-    assert main(["bench", *argv, "--out-dir", str(tmp_path)]) == 2
+    assert main([*argv, "--out-dir", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and message in err
     assert list(tmp_path.iterdir()) == []
 
 
 def test_bench_all_runs_each_suite_in_its_own_process(tmp_path, monkeypatch):
-    """`tippe bench` (all suites) runs one process per suite, so that each chart's peak memory
+    """`benchmarks/run.py` (all suites) runs one process per suite, so that each chart's peak memory
     (ru_maxrss, which never decreases in a process) is its own suite's: in one process every
     suite after eigen reported eigen's 1.3 GB. Measured with --quick: 343, 243, 242 MB."""
-    from stability.commands import bench
-
     calls = []
     monkeypatch.setattr(bench.subprocess, "run", lambda cmd: calls.append(cmd) or type("R", (), {"returncode": 0}))
-    assert main(["bench", "--quick", "--repeat", "2", "--out-dir", str(tmp_path)]) == 0
+    assert main(["--quick", "--repeat", "2", "--out-dir", str(tmp_path)]) == 0
     assert [c[c.index("--suite") + 1] for c in calls] == list(SUITES)
     for c in calls:
-        assert c[1:4] == ["-m", "stability", "bench"] and "--quick" in c and c[c.index("--repeat") + 1] == "2"
+        assert c[1] == str(Path(bench.__file__).resolve()) and "--quick" in c and c[c.index("--repeat") + 1] == "2"
+
+
+def test_bench_creates_a_missing_out_dir(tmp_path, capsys):
+    """`benchmarks/run.py --out-dir` creates a directory that does not exist (it used to refuse it)."""
+    out = tmp_path / "new" / "dir"
+    assert main(["--suite", "continuation", "--repeat", "1", "--out-dir", str(out)]) == 0
+    assert (out / "work_precision_continuation.json").is_file()
+
+
+def test_quick_never_writes_over_the_committed_charts(tmp_path, monkeypatch):
+    """Issue 20 item 16: without --out-dir, --quick writes to a new temporary folder, never to
+    atlases/ (the committed charts); a full run writes to atlases/; --out-dir always wins."""
+    monkeypatch.setattr(bench.tempfile, "tempdir", str(tmp_path))
+    quick = bench.output_directory(bench.parser().parse_args(["--quick"]))
+    assert quick.parent == tmp_path and quick.is_dir() and not any(quick.iterdir())
+    assert bench.output_directory(bench.parser().parse_args([])) == bench.ATLASES
+    assert bench.ATLASES == Path(__file__).resolve().parent.parent / "atlases"
+    given = bench.parser().parse_args(["--quick", "--out-dir", str(tmp_path / "x")])
+    assert bench.output_directory(given) == tmp_path / "x"
+
+
+def test_bench_eigen_writes_chart_and_summary(tmp_path, capsys):
+    """The eigen suite on a small batch: a chart with one marker per method and a JSON summary
+    whose errors are the mpmath comparison (the kernel's within the target). Speeds are not
+    asserted here (benchmarks, not tests, measure them)."""
+    from suites.charts import work_precision_figure
+
+    rtol = 1e-13  # the kernel's target against mpmath (tests/test_kernel.py: RTOL)
+    rc = main(["--suite", "eigen", "--points", "3000", "--reference-points", "30", "--loop-points", "50",
+               "--repeat", "1", "--out-dir", str(tmp_path)])
+    assert rc == 0
+    assert "x scipy loop" in capsys.readouterr().out
+    info = json.loads((tmp_path / "work_precision_eigen.json").read_text())
+    res = {r["method"]: r for r in info["results"]}
+    assert res["spectrum(kernel)"]["default"] and res["spectrum(kernel)"]["error"] <= rtol
+    assert res["scipy loop"]["baseline"] and res["batched LAPACK"]["baseline"]
+    assert (tmp_path / "work_precision_eigen.png").stat().st_size > 10_000
+    fig, ax = work_precision_figure([WorkPrecision(**r) for r in info["results"]], target=rtol)
+    assert len(ax.lines) == len(info["results"]) + 1  # one marker each and the target line
+    plt.close(fig)

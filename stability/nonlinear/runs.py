@@ -37,7 +37,7 @@ from ..parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, ch
 __all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector", "check_run_memory"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA. Measured
-#: (``tippe bench --suite integrators``; a linear-regime run, q = -0.1, 200 time units, rtol
+#: (``python benchmarks/run.py --suite integrators``; a linear-regime run, q = -0.1, 200 time units, rtol
 #: 1e-9, the default): the compiled dopri5, held to steps ~3.3 / rate by stability, costs
 #: 7 / 21 / 67 ms at rates 63 / 190 / 635 (alpha_v 50 / 150 / 500) with final-tilt errors
 #: 4e-8 / 2e-10 / 2e-12 against Radau at rtol 1e-11; LSODA costs 44-47 ms throughout with

@@ -289,7 +289,7 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         Integrator of the runs: ``"auto"`` (the compiled Dormand-Prince 5(4), or LSODA where
         the slip mode is stiff, as :func:`stability.simulate` decides), ``"dopri5"``, or a
         scipy method (``"RK45"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``); the
-        integrator benchmark (``tippe bench --suite integrators``) compares them on the fitted
+        integrator benchmark (``python benchmarks/run.py --suite integrators``) compares them on the fitted
         growth rate.
 
     Returns

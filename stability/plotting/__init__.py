@@ -2,7 +2,7 @@
 
 The convention, for every public plotting function of this package:
 
-* it takes the data (a dataset of the package, or the records of a benchmark) and an optional
+* it takes the data (a dataset of the package) and an optional
   ``ax`` (one panel) or ``axes`` (a sequence, one Axes per panel), and draws there; without
   them it makes a new :class:`matplotlib.figure.Figure` (not pyplot's: nothing is shown, no
   global state, so it works in scripts, notebooks and worker processes alike);
@@ -25,7 +25,10 @@ Functions (imported on first use, so that ``import stability`` does not import m
 * steady states: :func:`plot_steady_states` (the states of a Jellett level on its effective
   potential), :func:`plot_final_state`, :func:`plot_bifurcation`, :func:`plot_class_map`,
   :func:`plot_settle`, :func:`plot_settle_approach`;
-* recipes: :func:`recipe_figure`; benchmarks: :func:`work_precision_figure`, :func:`suite_figure`.
+* recipes: :func:`recipe_figure`.
+
+The work-precision charts of the benchmarks follow the same convention but live beside the
+package, in ``benchmarks/suites/charts.py``.
 """
 
 from __future__ import annotations
@@ -44,7 +47,6 @@ _EXPORTS: dict[str, str] = {
     "plot_steady_states": "steady_plots", "plot_final_state": "steady_plots", "plot_bifurcation": "steady_plots",
     "plot_class_map": "steady_plots", "plot_settle": "steady_plots", "plot_settle_approach": "steady_plots",
     "recipe_figure": "recipe_figures",
-    "work_precision_figure": "work_precision", "suite_figure": "work_precision",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -363,7 +363,7 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     What the steady layer itself does per call: ``J0`` and ``E0`` of the state
     (:func:`stability.steady.states.point_integrals`), the steady states of the level and the
     decision (:func:`predict`), the result; and the deciding run when one is needed (its options
-    ``t_max``, ``settle_tolerance``, ``rtol`` are checked then). ``tippe bench --suite steady``
+    ``t_max``, ``settle_tolerance``, ``rtol`` are checked then). ``python benchmarks/run.py --suite steady``
     times it apart from the checks.
 
     Parameters

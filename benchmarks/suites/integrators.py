@@ -27,7 +27,7 @@ Three problems, all the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``si
   ``validate()``'s default (dopri5, ``rtol = 1e-11``); the baseline scipy's RK45 (what
   ``solve_ivp`` does unless told otherwise). Required: :data:`GROWTH_TARGET`.
 
-Times are the best of ``repeat`` runs (:func:`stability.bench.timing.best_times`, no warm-up
+Times are the best of ``repeat`` runs (:func:`suites.timing.best_times`, no warm-up
 of its own: every method is warmed up once at the start, numba's compilation and caches). This
 is the measuring code of ``benchmarks/work_precision.py`` (a thin wrapper now).
 """
@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import execution
+from stability import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -125,8 +125,8 @@ def crossing_run(method: str, rtol: float = DEFAULT_RTOL, atol: float | None = N
     (float, int)
         Crossing time (units of ``1/Omega``; NaN if the axis never reaches 90 degrees) and nfev.
     """
-    from ..nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from ..nonlinear.runs import simulate
+    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from stability.nonlinear.runs import simulate
 
     _check_tol(rtol)
     ds = simulate("sliding", t_end=T_END, dt=DT, fr_inv=FR_INV, alpha_v=ALPHA_V, **PAPER, **INITIAL_CONDITIONS[FR_INV],
@@ -140,9 +140,9 @@ def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     import xarray as xr
     from scipy.integrate import solve_ivp
 
-    from ..nonlinear.reference import sliding_rhs
-    from ..nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
-    from ..nonlinear.runs import initial_state
+    from stability.nonlinear.reference import sliding_rhs
+    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+    from stability.nonlinear.runs import initial_state
 
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]
@@ -173,7 +173,7 @@ def stiff_run(method: str, alpha_v: float, rtol: float = 1e-6) -> tuple[float, i
     (float, int, int)
         Final tilt ``|k_1 + i k_2|``, nfev and the integrator's status.
     """
-    from ..nonlinear.runs import simulate
+    from stability.nonlinear.runs import simulate
 
     if not (isinstance(alpha_v, float) and alpha_v > 0):
         raise ValueError(f"alpha_v = {alpha_v!r} must be a float > 0")
@@ -198,8 +198,8 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
     float
         The fitted growth rate ``measured_growth_rate`` (units of the spin rate).
     """
-    from ..nonlinear.scene import PAPER
-    from ..nonlinear.validation import validate
+    from stability.nonlinear.scene import PAPER
+    from stability.nonlinear.validation import validate
 
     _check_tol(rtol)
     ds = validate("sliding", q=PAPER["q"], fr_inv=FR_INV, sigma=PAPER["sigma"], mu=PAPER["mu"], alpha_v=ALPHA_V,
@@ -208,7 +208,7 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
 
 
 def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    """:func:`~stability.bench.timing.best_times` of one function, without warm-up (each method
+    """:func:`~suites.timing.best_times` of one function, without warm-up (each method
     is warmed up once at the start): its best time of ``repeat`` calls and its last result."""
     best, out = best_times({"run": fn}, repeat, warmup="none")
     return best["run"], out["run"]
@@ -303,7 +303,7 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
     return results
 
 
-#: the suite: ``tippe bench --suite integrators``
+#: the suite: ``python benchmarks/run.py --suite integrators``
 SUITE = Suite(
     "integrators", integrator_work_precision,
     "nonlinear sliding top, the paper's Fr^-1 = 0.3 run (Sec. 3(ii)), the stiff slip mode and a validation "

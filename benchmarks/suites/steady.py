@@ -1,6 +1,6 @@
 """Work-precision of the steady layer: the final state, the branch, the class map.
 
-Used by ``tippe bench --suite steady`` (:data:`stability.bench.SUITES`). Three measurements,
+Used by ``python benchmarks/run.py --suite steady`` (:data:`suites.SUITES`). Three measurements,
 each against a named baseline measured in the same run:
 
 * **final state** (:func:`stability.final_state` by Jellett's integral) against a simulation
@@ -24,8 +24,8 @@ each against a named baseline measured in the same run:
   (0 is drawn at the chart's floor).
 
 Times: the minimum wall time; the branch's three paths and the prediction's two are timed in
-alternating rounds (:func:`stability.bench.timing.best_times`), the simulations by
-:func:`stability.bench.records.best_time` (the best of ``repeat`` after a warm-up).
+alternating rounds (:func:`suites.timing.best_times`), the simulations by
+:func:`suites.records.best_time` (the best of ``repeat`` after a warm-up).
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import execution
+from stability import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -63,7 +63,7 @@ def _start(theta_deg: float, spin: float = 1.0, transverse: float = 0.0, velocit
 def _cases() -> list[tuple[str, dict[str, float], dict[str, list], float]]:
     """:data:`CASES` (made on first use: the paper's initial conditions come with the nonlinear
     runs, whose import costs a second; ``tippe --help`` lists the suites without it)."""
-    from ..nonlinear.scene import INITIAL_CONDITIONS
+    from stability.nonlinear.scene import INITIAL_CONDITIONS
 
     paper = dict(q=-0.1, sigma=1.0, alpha_v=0.5)
     return [
@@ -101,9 +101,9 @@ def _settle_time(t: np.ndarray, tilt: np.ndarray, end: float, tol: float) -> flo
 def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, Any]]:
     """Per case: the reference end tilt, ``t_0.01``, the simulation's cost and error to ``t_0.01``,
     and the prediction's cost and error (module docstring)."""
-    from ..nonlinear.runs import initial_state, simulate
-    from ..steady.final import final_state, predict
-    from ..steady.states import state_integrals
+    from stability.nonlinear.runs import initial_state, simulate
+    from stability.steady.final import final_state, predict
+    from stability.steady.states import state_integrals
 
     rows = []
     for i, (name, params, start, t_test) in enumerate(_cases()):
@@ -133,7 +133,7 @@ def final_state_cases(repeat: int = 3, quick: bool = False) -> list[dict[str, An
 
 def _paper_series(reference: float, repeat: int, quick: bool) -> list[tuple[float, float, float]]:
     """The paper's case simulated to several lengths: ``(t_end, seconds, error)``."""
-    from ..nonlinear.runs import simulate
+    from stability.nonlinear.runs import simulate
 
     name, params, start, _ = _cases()[0]
     out = []
@@ -150,10 +150,10 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
     step and Python path) and by brentq per tilt, each with its error against the closed form."""
     from scipy.optimize import brentq
 
-    from ..nonlinear.kernels import CODES
-    from ..steady import branch_compiled, family
-    from ..steady.branch import points_dataset, steady_branch
-    from ..steady.products import sliding_parameters
+    from stability.nonlinear.kernels import CODES
+    from stability.steady import branch_compiled, family
+    from stability.steady.branch import points_dataset, steady_branch
+    from stability.steady.products import sliding_parameters
 
     q, sigma, fr, av, mu = -0.1, 1.0, 0.3, 0.5, 2.28
 
@@ -176,7 +176,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
         for i, th in enumerate(thetas):
             f = lambda la: branch_compiled.divided(th, la, p, q, code, n_full)[0]  # noqa: E731
             lam[i] = brentq(f, 0.5 * min(lam_b, lam_e), 2.0 * max(lam_b, lam_e), xtol=1e-15, rtol=8.9e-16)
-        from ..steady.branch import SteadyBranchProblem
+        from stability.steady.branch import SteadyBranchProblem
 
         prob = SteadyBranchProblem(params, p)
         return lam, points_dataset(prob, np.column_stack([thetas, np.log(lam)]), [""] * n, [""] * n, {})
@@ -194,7 +194,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
 @execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
 def class_map_measurements(repeat: int = 3, quick: bool = False) -> dict[str, Any]:
     """:func:`stability.top_class` on random tops (shapes 1e4, 1e5, 1e6), and per top."""
-    from ..steady.classes import top_class
+    from stability.steady.classes import top_class
 
     rng = np.random.default_rng(0)
     out: dict[str, Any] = {"sizes": []}
@@ -280,7 +280,7 @@ def format_table(rows: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
-#: the suite of ``tippe bench --suite steady`` (registered in :data:`stability.bench.SUITES`)
+#: the suite of ``python benchmarks/run.py --suite steady`` (registered in :data:`suites.SUITES`)
 SUITE = Suite(
     "steady", steady_work_precision, STEADY_TITLE,
     (Panel("error of the final tilt against a settled reference run [deg] (the paper's Fr^-1 = 0.3 run of Sec. 3(ii))",

@@ -1,6 +1,6 @@
 """Continuation against a brentq per grid column: the one measurement of both.
 
-Used by ``tippe bench --suite continuation`` (:data:`stability.bench.SUITES`, through
+Used by ``python benchmarks/run.py --suite continuation`` (:data:`suites.SUITES`, through
 :func:`continuation_work_precision`) and by ``benchmarks/bench_neutral.py`` (the tables,
 :func:`neutral_benchmark` and :func:`format_tables`): one implementation, one timing method.
 
@@ -30,7 +30,7 @@ neutral condition has a closed form (tests/test_neutral.py): the curve is
 * turning back: columns at fixed sigma (brentq in q) see nothing where they cross the curve
   twice (:func:`columns_in_q`).
 
-Timing (:func:`stability.bench.timing.best_times`, warm-up ``"round"``): wall clock
+Timing (:func:`suites.timing.best_times`, warm-up ``"round"``): wall clock
 (``time.perf_counter``), the **minimum** over all timed calls of a configuration: ``repeat``
 rounds, in each a block of consecutive calls of every configuration in turn (one untimed
 warm-up call, then at least ``min_time / repeat`` seconds), in the same process. Everything
@@ -47,7 +47,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import execution
+from stability import execution
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -103,7 +103,7 @@ def trace(max_step: float, max_angle: float, compiled: bool = True) -> Any:
     xarray.Dataset
         The traced curve (:func:`continuation.neutral_curve`).
     """
-    from ..linear.neutral_curves import neutral_curve
+    from stability.linear.neutral_curves import neutral_curve
 
     _check_setting(max_step, max_angle)
     return neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
@@ -151,9 +151,9 @@ def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
 def fastest_method() -> str:
     """The fastest :func:`stability.spectrum` method for one point of the problem, by timing
     (the baseline [A] gets the best the package offers): each method's mean over a block of 50
-    consecutive calls after one warm-up call (:func:`~stability.bench.timing.best_times`, one
+    consecutive calls after one warm-up call (:func:`~suites.timing.best_times`, one
     sample of ``number = 50``), the methods one after the other."""
-    from ..linear.spectra import spectrum
+    from stability.linear.spectra import spectrum
 
     times, _ = best_times({m: lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
                                                    mu=MU, method=m)
@@ -165,7 +165,7 @@ def leading_growth_rate(q: float, sigma: float, method: str = "kernel") -> float
     """[A]: the largest ``Re s`` of the sliding model at ``fr_inv = 0`` over the modes that are
     not structurally zero, from :func:`stability.spectrum` (the structural zero eigenvalue,
     exactly 0 from the kernel or ~1e-17 from LAPACK, is the one of smallest modulus: dropped)."""
-    from ..linear.spectra import spectrum
+    from stability.linear.spectra import spectrum
 
     ev = spectrum("sliding", q=q, fr_inv=0.0, sigma=sigma, alpha_v=ALPHA_V, mu=MU, method=method).eigenvalues
     return float(np.delete(ev, np.argmin(np.abs(ev))).real.max())
@@ -174,7 +174,7 @@ def leading_growth_rate(q: float, sigma: float, method: str = "kernel") -> float
 def leading_growth_rate_roots(q: float, sigma: float) -> float:
     """[B]: the same from ``numpy.roots`` of eq. (11)'s coefficients (``c0 = 0`` at
     ``fr_inv = 0`` dropped)."""
-    from ..models import get_model
+    from stability.models import get_model
 
     c = get_model("sliding").coefficients(q=q, fr_inv=0.0, sigma=sigma, alpha_v=ALPHA_V, mu=MU)
     return float(np.roots(c[:3]).real.max())
@@ -313,7 +313,7 @@ def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...]
         :func:`stability.spectrum` method of [A] (default: :func:`fastest_method`).
     min_time : float
         Seconds of timed runs per configuration, at least
-        (:func:`~stability.bench.timing.best_times`).
+        (:func:`~suites.timing.best_times`).
 
     Returns
     -------
@@ -423,7 +423,7 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
 
     With ``equal_accuracy`` the baseline also has, for each setting, the smallest column count
     as accurate as that setting's dense output, so that the ratio at equal curve accuracy
-    ``tippe bench`` prints is the one of ``benchmarks/bench_neutral.py`` (the same N, the same
+    ``python benchmarks/run.py`` prints is the one of ``benchmarks/bench_neutral.py`` (the same N, the same
     timing), not the one of the next coarser or finer listed count.
 
     Parameters
@@ -438,7 +438,7 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
         Column counts of the baseline.
     min_time : float
         Seconds of timed runs per configuration, at least
-        (:func:`~stability.bench.timing.best_times`; quick: at most 0.1).
+        (:func:`~suites.timing.best_times`; quick: at most 0.1).
     equal_accuracy : bool
         Add the equal-accuracy column counts (not when ``quick``).
 
@@ -475,7 +475,7 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
     return results
 
 
-#: the suite: ``tippe bench --suite continuation``
+#: the suite: ``python benchmarks/run.py --suite continuation``
 SUITE = Suite(
     "continuation", continuation_work_precision,
     "neutral curve of the sliding model in (q, sigma), fr_inv = 0, alpha_v = 0.5, mu = 2.28: "

@@ -12,7 +12,7 @@ kernel (:func:`stability.linear.kernel.sliding_spectrum`, no domain check) with 
 polishing. The baselines start from prebuilt ``M`` and ``A`` (their construction is not
 timed); the package's paths start from the parameters.
 
-Timing: :func:`stability.bench.timing.best_times`, one warm-up call of each method before the
+Timing: :func:`suites.timing.best_times`, one warm-up call of each method before the
 first round, then ``repeat`` rounds in which the methods run in turn (interleaved), one timed
 call each; the minimum per method. Results are dropped as soon as a call returns (they are
 hundreds of MB at 10^6 points; the chart reports the peak memory).
@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import execution
-from ..models import get_model
+from stability import execution
+from stability.models import get_model
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
@@ -119,8 +119,8 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
     """
     import scipy.linalg
 
-    from ..linear import kernel
-    from ..linear.spectra import DEFAULT_METHOD, spectrum
+    from stability.linear import kernel
+    from stability.linear.spectra import DEFAULT_METHOD, spectrum
 
     model = get_model("sliding")
     big = domain_sample(points, seed)
@@ -175,7 +175,7 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
     return results
 
 
-#: the suite: ``tippe bench --suite eigen``
+#: the suite: ``python benchmarks/run.py --suite eigen``
 SUITE = Suite(
     "eigen", eigen_work_precision, "eigenvalues of the sliding model (eq. 11) over the physical domain",
     (Panel("largest relative error per eigenvalue vs mpmath, 50 digits", "wall time per point [s]",

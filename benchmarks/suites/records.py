@@ -1,9 +1,9 @@
 """Work-precision records: one measurement, a chart's panel, a suite, and the process's peak memory.
 
 A measurement is one :class:`WorkPrecision` point: a method (at one setting), the wall time per
-unit of work it took (:func:`stability.bench.timing.best_times`), and its error against an
+unit of work it took (:func:`suites.timing.best_times`), and its error against an
 independent reference. A :class:`Suite` (each suite module defines its own ``SUITE``, collected
-by name in :data:`stability.bench.SUITES`) returns a list of them and says how its chart is
+by name in :data:`suites.SUITES`) returns a list of them and says how its chart is
 drawn (:class:`Panel`, which holds the required accuracy). Generic: nothing here knows about a
 particular suite.
 """
@@ -85,7 +85,7 @@ class Panel:
         Draws the results whose :attr:`WorkPrecision.panel` equals it.
     target : float, optional
         The required accuracy of the results drawn in this panel (vertical line; the fastest
-        point left of it is named; ``tippe bench`` prints the verdict against it).
+        point left of it is named; ``python benchmarks/run.py`` prints the verdict against it).
     title : str
         The panel's own title.
     """
@@ -100,12 +100,12 @@ class Panel:
 
 @dataclass(frozen=True)
 class Suite:
-    """A work-precision suite: what ``tippe bench --suite NAME`` runs and draws.
+    """A work-precision suite: what ``python benchmarks/run.py --suite NAME`` runs and draws.
 
     Attributes
     ----------
     name : str
-        Its key in :data:`stability.bench.SUITES` (``--suite NAME``, the files
+        Its key in :data:`suites.SUITES` (``--suite NAME``, the files
         ``work_precision_NAME.png`` and ``.json``).
     run : callable
         Returns a list of :class:`WorkPrecision`; takes the keywords among ``points``,
@@ -123,7 +123,7 @@ class Suite:
         the point's. Empty: plain ratios against each baseline (the eigen suite, whose
         baselines are single points).
     quick : mapping of str to value
-        The keywords of ``run`` under ``tippe bench --quick`` (where no flag gives them): the
+        The keywords of ``run`` under ``python benchmarks/run.py --quick`` (where no flag gives them): the
         small configuration, in seconds rather than minutes.
     """
 

@@ -1,14 +1,14 @@
 """Work-precision charts: time per unit of work against error, one marker per measurement.
 
-Takes the results of any suite of :mod:`stability.bench` (a list of records with the attributes
-of :class:`~stability.bench.records.WorkPrecision`: ``method``, ``seconds_per_point``, ``error``,
+Takes the results of any suite of :mod:`suites` (a list of records with the attributes
+of :class:`~suites.records.WorkPrecision`: ``method``, ``seconds_per_point``, ``error``,
 ``baseline``, ``default``, ``series``, ``setting``, ``panel``, ``extra``, ``component``), so the
 eigenvalue, continuation and integrator charts are drawn by the same functions. Points of one
 series (a method at several settings) are joined by a line and share one legend entry;
 baselines are hollow squares, the package's default path a large star.
 
-The records are duck-typed: this module does not import the benchmarks (a higher layer,
-docs/architecture.md); their classes are named for the type checker only.
+Plotting convention of the package (stability/plotting/__init__.py): data and an optional
+``ax`` in, ``(Figure, Axes)`` out; the records' classes are named for the type checker only.
 """
 
 from __future__ import annotations
@@ -19,10 +19,9 @@ from typing import TYPE_CHECKING
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ._layout import axes_or_new
 
 if TYPE_CHECKING:  # annotations only: the charts take any objects with these attributes
-    from ..bench.records import Suite, WorkPrecision
+    from .records import Suite, WorkPrecision
 
 __all__ = ["work_precision_figure", "suite_figure", "verdict"]
 
@@ -109,7 +108,8 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
     -------
     (Figure, Axes)
     """
-    fig, ax = axes_or_new(ax, figsize=(7.0, 4.6))
+    fig = ax.figure if ax is not None else Figure(figsize=(7.0, 4.6))
+    ax = ax if ax is not None else fig.add_subplot()
     series: dict[str, list[WorkPrecision]] = {}
     for r in results:
         series.setdefault(r.series or r.method, []).append(r)
@@ -163,7 +163,7 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
 
 def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "",
                  axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
-    """The chart of one suite: one panel per :class:`~stability.bench.records.Panel`, the title
+    """The chart of one suite: one panel per :class:`~suites.records.Panel`, the title
     naming the default and the fastest method at the required accuracy (:func:`verdict`).
 
     Parameters

@@ -1,11 +1,22 @@
-"""``tippe bench``: work-precision benchmarks, written as charts (PNG) and JSON summaries.
+"""Work-precision benchmarks, written as charts (PNG) and JSON summaries: the one runner.
 
-``tippe bench`` (or ``--suite all``) runs the three suites of
-:data:`stability.bench.SUITES` in turn: ``eigen`` (eigenvalue methods, 10^6 points),
-``continuation`` (step settings against the exact fold) and ``integrators`` (the nonlinear
-runs); ``--suite NAME`` runs one. Each writes ``OUT_DIR/work_precision_NAME.png`` and
-``.json`` (atomically) and prints one line per measurement with its ratio to the baselines.
-``--quick`` runs smaller configurations (seconds, not minutes).
+The suites live beside the package, not in it (as scipy keeps its benchmarks):
+``benchmarks/suites/`` (:data:`suites.SUITES`). Run from the repository::
+
+    python benchmarks/run.py                     # every suite, each in its own process -> atlases/
+    python benchmarks/run.py --suite eigen       # one suite -> atlases/work_precision_eigen.*
+    python benchmarks/run.py --suite eigen --quick   # seconds, not minutes -> a temporary folder
+
+The suites are ``eigen`` (eigenvalue methods, 10^6 points), ``continuation`` (step settings
+against the exact fold), ``integrators`` (the nonlinear runs) and ``steady`` (final state, branch,
+class map). Each writes ``OUT_DIR/work_precision_NAME.png`` and ``.json`` (atomically) and prints
+one line per measurement with its ratio to the baselines.
+
+Where the files go: ``--out-dir DIR`` if given; otherwise the committed charts in the
+repository's ``atlases/`` for a full run, and a new temporary folder (printed) for ``--quick``,
+whose small configurations must never replace the committed charts (issue 20, item 16).
+
+Exit status: 0, or 2 for a bad flag (one line on stderr), or the failing suite's status.
 """
 
 from __future__ import annotations
@@ -18,25 +29,33 @@ import os
 import platform
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
-from ..grids.netcdf import atomic_output, check_output_path
-from ..bench import SUITES
-from ..bench.records import WorkPrecision, peak_memory_mb
+if __package__ in (None, ""):  # run as a script: its folder holds the suites
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-__all__ = ["register", "run", "run_suite", "summary_lines"]
+from stability.grids.netcdf import atomic_output, check_output_path  # noqa: E402
+from suites import SUITES  # noqa: E402
+from suites.records import WorkPrecision, peak_memory_mb  # noqa: E402
+
+__all__ = ["main", "parser", "run", "run_suite", "summary_lines", "ATLASES"]
+
+#: the committed charts: where a full run writes by default
+ATLASES = Path(__file__).resolve().parent.parent / "atlases"
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``bench`` subcommand."""
-    p = sub.add_parser(
-        "bench", help="work-precision benchmarks -> charts under atlases/",
+def parser() -> argparse.ArgumentParser:
+    """The runner's flags."""
+    p = argparse.ArgumentParser(
+        prog="benchmarks/run.py",
         description="Work-precision benchmarks: the eigenvalue methods on a large batch of points over the "
                     "physical domain against mpmath at 50 digits (eigen), the continuation's step settings "
                     "against the exact fold of the neutral curve (continuation), the integrators of the "
-                    "nonlinear runs against a tight DOP853 reference (integrators). Writes a chart (PNG) and "
-                    "a JSON summary per suite and prints the speed ratios against the baselines.")
+                    "nonlinear runs against a tight DOP853 reference (integrators), the steady states "
+                    "(steady). Writes a chart (PNG) and a JSON summary per suite and prints the speed "
+                    "ratios against the baselines.")
     p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
                    help="suite to run (default: all, each in its own process)")
     p.add_argument("--quick", action="store_true", help=f"small configurations ({_quick_help()})")
@@ -47,13 +66,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "(default 20000)")
     p.add_argument("--repeat", type=int, default=None, help="timed repeats, the best kept (eigen 5, "
                    "continuation 5, integrators 3)")
-    p.add_argument("--out-dir", default="atlases", metavar="DIR",
-                   help="directory for the charts and the summaries (created if missing)")
-    p.set_defaults(func=run)
+    p.add_argument("--out-dir", default=None, metavar="DIR",
+                   help="directory for the charts and the summaries (created if missing; default: atlases/ "
+                        "of the repository, or a new temporary folder with --quick)")
+    return p
 
 
 def _quick_help() -> str:
-    """What ``--quick`` runs, from each suite's :attr:`~stability.bench.records.Suite.quick`."""
+    """What ``--quick`` runs, from each suite's :attr:`~suites.records.Suite.quick`."""
     def shown(k: str, v: Any) -> str:
         return "fewer settings" if k == "quick" else f"{k.replace('_', ' ')} {v:g}"
 
@@ -113,7 +133,7 @@ def summary_lines(results: list[WorkPrecision], unit: str = "point",
 
 def _options(args: argparse.Namespace, name: str) -> dict[str, Any]:
     """Keyword arguments for a suite's run function: the ones it names, from the flags (with
-    ``--quick``, the suite's :attr:`~stability.bench.records.Suite.quick` where no flag gives one)."""
+    ``--quick``, the suite's :attr:`~suites.records.Suite.quick` where no flag gives one)."""
     suite = SUITES[name]
     given = {"points": None if args.points is None else int(args.points),
              "reference_points": args.reference_points, "loop_points": args.loop_points, "repeat": args.repeat,
@@ -133,7 +153,7 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
     Parameters
     ----------
     name : str
-        A key of :data:`stability.bench.SUITES`.
+        A key of :data:`suites.SUITES`.
     out_dir : pathlib.Path
         Existing directory for ``work_precision_NAME.png`` and ``.json``.
     options : dict
@@ -150,8 +170,9 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
     js = check_output_path(out_dir / f"work_precision_{name}.json", overwrite=True)
     results = suite.run(**options)
     peak = peak_memory_mb()
-    from ..plotting import save_figure, style
-    from ..plotting.work_precision import suite_figure, verdict
+    from stability.plotting import save_figure, style
+
+    from suites.charts import suite_figure, verdict
 
     cond = ", ".join(f"{k.replace('_', ' ')} {v:g}" if not isinstance(v, bool) else k
                      for k, v in options.items() if v is not False)
@@ -175,13 +196,18 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
     return results
 
 
-def run(args: argparse.Namespace) -> int:
-    """Run ``tippe bench``."""
-    out_dir = Path(args.out_dir)
-    if out_dir.exists() and not out_dir.is_dir():
-        raise FileExistsError(f"--out-dir {str(out_dir)!r} exists and is not a directory")
-    _check_sizes(args)
-    out_dir.mkdir(parents=True, exist_ok=True)
+def output_directory(args: argparse.Namespace) -> Path:
+    """Where the charts go: ``--out-dir``, else :data:`ATLASES` (full run) or a new temporary
+    folder (``--quick``: its small configurations never replace the committed charts)."""
+    if args.out_dir is not None:
+        return Path(args.out_dir)
+    if args.quick:
+        return Path(tempfile.mkdtemp(prefix="tippe-bench-"))
+    return ATLASES
+
+
+def run(args: argparse.Namespace, out_dir: Path) -> int:
+    """Run the suites the flags name into the existing folder ``out_dir``; return the exit status."""
     names = list(SUITES) if args.suite == "all" else [args.suite]
     if len(names) == 1:
         run_suite(names[0], out_dir, _options(args, names[0]))
@@ -189,17 +215,32 @@ def run(args: argparse.Namespace) -> int:
     # one process per suite: the peak memory a chart reports (ru_maxrss, which never decreases)
     # is then that suite's own, not the largest of the suites run before it in the same process
     for name in names:
-        cmd = [sys.executable, "-m", "stability", "bench", "--suite", name, "--out-dir", str(out_dir)]
+        cmd = [sys.executable, str(Path(__file__).resolve()), "--suite", name, "--out-dir", str(out_dir)]
         cmd += ["--quick"] * bool(args.quick)
         for flag in ("points", "reference_points", "loop_points", "repeat"):
             if getattr(args, flag) is not None:
                 cmd += ["--" + flag.replace("_", "-"), repr(getattr(args, flag))]
         done = subprocess.run(cmd)
         if done.returncode != 0:
-            print(f"tippe bench: suite {name} failed (exit {done.returncode}); the suites before it are written",
-                  file=sys.stderr)
+            print(f"benchmarks/run.py: suite {name} failed (exit {done.returncode}); the suites before it are "
+                  "written", file=sys.stderr)
             return done.returncode
     return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Parse ``argv`` and run; a bad flag value is one line on stderr and exit status 2."""
+    args = parser().parse_args(argv)
+    try:  # the flags are checked before anything runs or is written
+        _check_sizes(args)
+        out_dir = output_directory(args)
+        if out_dir.exists() and not out_dir.is_dir():
+            raise FileExistsError(f"--out-dir {str(out_dir)!r} exists and is not a directory")
+    except (ValueError, FileExistsError) as exc:
+        print(f"benchmarks/run.py: error: {exc}", file=sys.stderr)
+        return 2
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return run(args, out_dir)
 
 
 #: the sizes a flag may take (eigen: the batch must fit in memory, ~1.3 kB per point at 1e6)
@@ -216,3 +257,7 @@ def _check_sizes(args: argparse.Namespace) -> None:
         if not (isinstance(value, (int, float)) and math.isfinite(value) and float(value).is_integer()
                 and lo <= value <= hi):
             raise ValueError(f"{flag} = {value!r} is outside the allowed range: an integer in [{lo}, {hi:g}]")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,6 +1,6 @@
 """The one timer of the work-precision suites: the best (minimum) wall time per call.
 
-Every suite of :data:`stability.bench.SUITES` and ``benchmarks/bench_neutral.py`` time with
+Every suite of :data:`suites.SUITES` and ``benchmarks/bench_neutral.py`` time with
 :func:`best_times`, so "time per point", "per curve" and "per run" mean the same statistic:
 wall clock (``time.perf_counter``), the **minimum** over the timed samples, in the same
 process. The minimum, not the mean or the median: the code timed is single-threaded, so a
