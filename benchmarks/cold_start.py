@@ -44,7 +44,7 @@ CALLS: dict[str, tuple[str, tuple[str, ...]]] = {
     "first threshold": ('stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)', ("auto", "compiled")),
     "first critical spin": ('stability.critical_spin(stability.Top.table1(), orientation="upright")',
                             ("auto", "compiled")),
-    "first neutral curve": ('continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))',
+    "first neutral curve": ('stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))',
                             ("auto", "compiled")),
     "README atlas (181 x 3)": ('stability.atlas("sliding", q=np.linspace(-0.45, 0.45, 181), fr_inv=[0, 0.1, 0.3], '
                                'sigma=1.0, alpha_v=0.5)', ("auto", "compiled")),

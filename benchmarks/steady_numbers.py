@@ -112,7 +112,7 @@ def branches() -> None:
              (-0.295, 1.107, 1 / MU)]
     worst = fold = 0.0
     for q, sigma, fr in cases:
-        ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5)
+        ds = stability.steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5)
         c = np.cos(np.radians(ds.tilt.values))
         inner = ds.kind.values != "branch_point"
         lam = family.precession_rate(c, q=q, sigma=sigma, fr_inv=fr, mu=MU)

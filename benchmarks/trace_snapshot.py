@@ -129,7 +129,19 @@ def _branch(out: dict, name: str, br) -> None:
 
 def snapshot() -> dict:
     import continuation
-    from continuation import neutral_curve, fold_curve, project, trace, trace_both
+    from continuation import project
+
+    try:  # the engine's options object and the curves' home in stability (issue 22)
+        from continuation import TraceOptions
+        from stability import fold_curve, neutral_curve
+
+        def trace(problem, u0, callback=None, **options):
+            return continuation.trace(problem, u0, TraceOptions(**options), callback=callback)
+
+        def trace_both(problem, u0, **options):
+            return continuation.trace_both(problem, u0, TraceOptions(**options))
+    except ImportError:  # before: keywords, and the curves re-exported by continuation
+        from continuation import fold_curve, neutral_curve, trace, trace_both
 
     out: dict = {}
     sliding = [

@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -48,9 +48,9 @@ from .errors import ConvergenceError
 from .events import locate
 from .interpolation import hermite
 from .linalg import bordered_det, bordered_solve, norm as _norm, tangent_det
-from .problem import ContinuationProblem, finite_difference_jacobian, problem_dimension
+from .problem import ContinuationProblem, StepResult, finite_difference_jacobian, problem_dimension
 
-__all__ = ["Branch", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
+__all__ = ["Branch", "TraceOptions", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
 
 EPS = float(np.finfo(float).eps)
 #: a residual this small is at the rounding floor: no polishing step
@@ -312,6 +312,87 @@ class _Event(NamedTuple):
     t: np.ndarray
 
 
+@dataclass(frozen=True)
+class TraceOptions:
+    """The settings of :func:`trace`: step control, accuracy and what is detected.
+
+    One immutable object, like BifurcationKit's ``ContinuationPar``: a client builds it once
+    (``TraceOptions(max_step=0.05, max_angle=0.1)``) and derives variants with
+    :func:`dataclasses.replace`; the defaults below are the engine's, for a problem of order-1
+    scaled unknowns. Checked when made (a ``ValueError`` naming the setting).
+
+    Attributes
+    ----------
+    step, min_step, max_step : float, default 0.02, 1e-9, 0.1
+        Initial, smallest and largest step (scaled arclength); ``0 < min_step <= step <=
+        max_step``.
+    max_points : int, default 2000
+        Largest number of accepted points.
+    max_arclength : float, default inf
+        Stop after this scaled arclength.
+    tol : float, default 1e-13
+        Accept a point when ``||F(u)||_2 <= tol``.
+    max_iter : int, default 8
+        Newton iterations per corrector.
+    max_angle : float, default 0.15
+        Largest angle (radians) between consecutive tangents; bounds the chord error of the
+        polyline by about ``max_angle * h / 8``.
+    grow : float, default 1.6
+        Step growth factor after an easy step.
+    fold_components : tuple of int, default ()
+        Components ``i`` of ``u`` whose turning points (``t_i = 0``) are located and marked
+        ``"fold"``.
+    scale : tuple of float, optional
+        Typical magnitude of each unknown (default all 1); lengths are measured in
+        ``u / scale``.
+    detect_closed : bool, default True
+        Stop when the branch returns to its start.
+    detect_branch_points : bool, default True
+        Locate sign changes of ``det [J; t^T]`` (a simple branch point, where two curves of
+        solutions cross and ``J`` loses rank; the engine continues on the same branch).
+    event_floor : float, default 1e-9
+        Sign changes of a test function (or tangent component) whose values at both ends are
+        below this in magnitude are rounding noise (e.g. ``t_i`` along a curve on which ``u_i``
+        is constant) and are ignored.
+    start_slack : float, default 1e-12
+        A start point violating a constraint by at most this much (rounding errors of the
+        projection onto a curve that starts on a bound) counts as lying on it.
+    compiled : bool, default True
+        Use the problem's ``compiled_step`` (:mod:`continuation.problem`) for the corrector
+        and the tangent, if it has one; False forces the Python path (the same points to
+        rounding).
+    """
+
+    step: float = 0.02
+    min_step: float = 1e-9
+    max_step: float = 0.1
+    max_points: int = 2000
+    max_arclength: float = math.inf
+    tol: float = 1e-13
+    max_iter: int = 8
+    max_angle: float = 0.15
+    grow: float = 1.6
+    fold_components: tuple[int, ...] = ()
+    scale: tuple[float, ...] | None = None
+    detect_closed: bool = True
+    detect_branch_points: bool = True
+    event_floor: float = 1e-9
+    start_slack: float = 1e-12
+    compiled: bool = True
+
+    def __post_init__(self) -> None:
+        if not (0 < self.min_step <= self.step <= self.max_step):
+            raise ValueError(f"steps must satisfy 0 < min_step <= step <= max_step, got "
+                             f"{self.min_step}, {self.step}, {self.max_step}")
+        object.__setattr__(self, "fold_components", tuple(int(i) for i in self.fold_components))
+        if self.scale is not None:
+            object.__setattr__(self, "scale", tuple(float(x) for x in np.ravel(self.scale)))
+
+
+#: the engine's default settings
+DEFAULT_OPTIONS = TraceOptions()
+
+
 class _Tracer:
     """One traced direction of a branch: the state of :func:`trace` and the parts of a step.
 
@@ -330,25 +411,22 @@ class _Tracer:
     and Jacobian evaluations in ``sp``). Arguments: those of :func:`trace`, checked there.
     """
 
-    def __init__(self, problem: ContinuationProblem, u0: np.ndarray, sc: np.ndarray, *,
-                 direction: int, tangent0: Sequence[float] | None, step: float, min_step: float,
-                 max_step: float, max_points: int, max_arclength: float, tol: float, max_iter: int,
-                 max_angle: float, grow: float, fold_components: tuple[int, ...],
+    def __init__(self, problem: ContinuationProblem, u0: np.ndarray, sc: np.ndarray, o: TraceOptions, *,
+                 direction: int, tangent0: Sequence[float] | None,
                  callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
-                 detect_closed: bool, detect_branch_points: bool, event_floor: float,
-                 project_start: bool, start_slack: float, compiled: bool):
+                 project_start: bool):
         self.sp = _Scaled(problem, sc)
         self.sc = sc
-        self.h, self.min_step, self.max_step, self.grow = step, min_step, max_step, grow
-        self.max_points, self.max_arclength = max_points, max_arclength
-        self.tol, self.max_iter, self.max_angle = tol, max_iter, max_angle
-        self.fold_components = fold_components
+        self.h, self.min_step, self.max_step, self.grow = o.step, o.min_step, o.max_step, o.grow
+        self.max_points, self.max_arclength = o.max_points, o.max_arclength
+        self.tol, self.max_iter, self.max_angle = o.tol, o.max_iter, o.max_angle
+        self.fold_components = o.fold_components
         self.callback = callback
-        self.detect_closed, self.detect_branch_points = detect_closed, detect_branch_points
-        self.event_floor = event_floor
+        self.detect_closed, self.detect_branch_points = o.detect_closed, o.detect_branch_points
+        self.event_floor = o.event_floor
         # the problem's compiled corrector (continuation.problem), if it has one and may use it;
         # then the predictor is compiled too
-        self.cstep = getattr(problem, "compiled_step", None) if compiled else None
+        self.cstep = getattr(problem, "compiled_step", None) if o.compiled else None
         if self.cstep is not None:
             from . import compiled as _compiled
 
@@ -365,7 +443,7 @@ class _Tracer:
         # a new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
         # Brent's iterates close in on a special point one Newton step (or none) suffices
         self.known: list[tuple[float, np.ndarray, np.ndarray]] = []
-        self._start(u0, direction, tangent0, project_start, start_slack)
+        self._start(u0, direction, tangent0, project_start, o.start_slack)
 
     def _start(self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None,
                project_start: bool, start_slack: float) -> None:
@@ -450,16 +528,16 @@ class _Tracer:
         step gave them (and its tangent is the one used), else None."""
         sp, t = self.sp, self.t
         if self.cstep is not None:
-            res = self.cstep(guess, t, self.v, h, self.sc, self.tol, max_it, max_move)
-            ok, it, n_rj, n_r, vv, JJ, t_ok, tt, d = res[:9]
-            sp.n_residual += n_rj + n_r
-            sp.n_jacobian += n_rj
-            if not ok:
-                return vv, False, it, None, 0.0, None
-            if not t_ok:  # singular bordered matrix: the SVD fallback
-                tt, d = _tangent_det(JJ, t)
-                return vv, True, it, tt, d, None
-            return vv, True, it, tt, d, (res[9], res[10]) if len(res) == 11 else None
+            r = StepResult(*self.cstep(guess, t, self.v, h, self.sc, self.tol, max_it, max_move))
+            sp.n_residual += r.n_residual_and_jacobian + r.n_residual
+            sp.n_jacobian += r.n_residual_and_jacobian
+            if not r.ok:
+                return r.v, False, r.iterations, None, 0.0, None
+            if not r.tangent_ok:  # singular bordered matrix: the SVD fallback
+                tt, d = _tangent_det(r.jacobian, t)
+                return r.v, True, r.iterations, tt, d, None
+            extra = None if r.constraints is None else (r.constraints, r.tests)
+            return r.v, True, r.iterations, r.tangent, r.det, extra
         vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.tol, max_it, max_move)
         if not ok:
             return vv, False, it, None, 0.0, None
@@ -731,15 +809,10 @@ class _Tracer:
                       self.n_newton, self.sp.n_residual, self.sp.n_jacobian)
 
 
-def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int = 1,
-          tangent0: Sequence[float] | None = None, step: float = 0.02, min_step: float = 1e-9,
-          max_step: float = 0.1, max_points: int = 2000, max_arclength: float = np.inf,
-          tol: float = 1e-13, max_iter: int = 8, max_angle: float = 0.15, grow: float = 1.6,
-          fold_components: Sequence[int] = (), scale: Sequence[float] | None = None,
+def trace(problem: ContinuationProblem, u0: Sequence[float], options: TraceOptions | None = None, *,
+          direction: int = 1, tangent0: Sequence[float] | None = None,
           callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
-          detect_closed: bool = True, detect_branch_points: bool = True,
-          event_floor: float = 1e-9, project_start: bool = True,
-          start_slack: float = 1e-12, compiled: bool = True) -> Branch:
+          project_start: bool = True) -> Branch:
     """Trace one direction of the curve through ``u0``.
 
     Parameters
@@ -748,84 +821,48 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], *, direction: int =
         See :mod:`continuation.problem`.
     u0 : sequence of float
         Start point (projected onto the curve first if ``project_start``).
+    options : TraceOptions, optional
+        Step control, accuracy and detection (:class:`TraceOptions`; default: its defaults).
     direction : {1, -1}
         Follow the initial tangent or its opposite.
     tangent0 : sequence of float, optional
         Initial tangent (problem variables); default: the null vector of ``J(u0)``.
-    step, min_step, max_step : float
-        Initial, smallest and largest step (scaled arclength).
-    max_points : int
-        Largest number of accepted points.
-    max_arclength : float
-        Stop after this scaled arclength.
-    tol : float, default 1e-13
-        Accept a point when ``||F(u)||_2 <= tol``.
-    max_iter : int
-        Newton iterations per corrector.
-    max_angle : float, default 0.15
-        Largest angle (radians) between consecutive tangents; bounds the chord error of the
-        polyline by about ``max_angle * h / 8``.
-    grow : float
-        Step growth factor after an easy step.
-    fold_components : sequence of int
-        Components ``i`` of ``u`` whose turning points (``t_i = 0``) are located and marked
-        ``"fold"``.
-    scale : sequence of float, optional
-        Typical magnitude of each unknown (default all 1).
     callback : callable, optional
         ``callback(u, t, kind)`` after each accepted point; returning False stops the branch.
-    detect_closed : bool
-        Stop when the branch returns to ``u0``.
-    detect_branch_points : bool
-        Locate sign changes of ``det [J; t^T]`` (a simple branch point, where two curves of
-        solutions cross and ``J`` loses rank; the engine continues on the same branch).
-    event_floor : float
-        Sign changes of a test function (or tangent component) whose values at both ends are
-        below this in magnitude are rounding noise (e.g. ``t_i`` along a curve on which ``u_i``
-        is constant) and are ignored.
     project_start : bool
         Project ``u0`` onto the curve first.
-    start_slack : float, default 1e-12
-        A start point violating a constraint by at most this much (rounding errors of the
-        projection onto a curve that starts on a bound) counts as lying on it.
-    compiled : bool, default True
-        Use the problem's ``compiled_step`` (:mod:`continuation.problem`) for the corrector
-        and the tangent, if it has one; False forces the Python path (the same points to
-        rounding).
 
     Returns
     -------
     Branch
     """
+    o = DEFAULT_OPTIONS if options is None else options
+    if not isinstance(o, TraceOptions):
+        raise TypeError(f"options = {options!r} must be a continuation.TraceOptions")
     if direction not in (1, -1):
         raise ValueError(f"direction = {direction!r}; use 1 or -1")
-    if not (0 < min_step <= step <= max_step):
-        raise ValueError(f"steps must satisfy 0 < min_step <= step <= max_step, got "
-                         f"{min_step}, {step}, {max_step}")
     u0 = np.asarray(u0, dtype=float)
     problem_dimension(problem, u0)
-    sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
+    sc = np.ones(u0.size) if o.scale is None else np.asarray(o.scale, float)
     if sc.shape != u0.shape or np.any(sc <= 0):
-        raise ValueError(f"scale must be {u0.size} positive numbers, got {scale!r}")
-    tracer = _Tracer(problem, u0, sc, direction=direction, tangent0=tangent0, step=step,
-                     min_step=min_step, max_step=max_step, max_points=max_points,
-                     max_arclength=max_arclength, tol=tol, max_iter=max_iter, max_angle=max_angle,
-                     grow=grow, fold_components=tuple(int(i) for i in fold_components),
-                     callback=callback, detect_closed=detect_closed,
-                     detect_branch_points=detect_branch_points, event_floor=event_floor,
-                     project_start=project_start, start_slack=start_slack, compiled=compiled)
-    return tracer.run()
+        raise ValueError(f"scale must be {u0.size} positive numbers, got {o.scale!r}")
+    return _Tracer(problem, u0, sc, o, direction=direction, tangent0=tangent0, callback=callback,
+                   project_start=project_start).run()
 
 
-def trace_both(problem: ContinuationProblem, u0: Sequence[float], **options) -> Branch:
+def trace_both(problem: ContinuationProblem, u0: Sequence[float], options: TraceOptions | None = None, *,
+               callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None) -> Branch:
     """Trace the curve through ``u0`` in both directions and join the two halves.
 
     Parameters
     ----------
     problem : ContinuationProblem
     u0 : sequence of float
-    **options
-        Passed to :func:`trace` (not ``direction``).
+        Start point (projected onto the curve first).
+    options : TraceOptions, optional
+        As in :func:`trace`.
+    callback : callable, optional
+        As in :func:`trace`, for both halves.
 
     Returns
     -------
@@ -833,13 +870,10 @@ def trace_both(problem: ContinuationProblem, u0: Sequence[float], **options) -> 
         Ordered from the end reached backwards to the end reached forwards; the start point
         keeps kind ``"start"``. A closed curve is traced once.
     """
-    options.pop("direction", None)
-    fwd = trace(problem, u0, direction=1, **options)
+    fwd = trace(problem, u0, options, callback=callback)
     if fwd.closed:
         return fwd
-    options["project_start"] = False
-    options["tangent0"] = -fwd.tangents[0]
-    bwd = trace(problem, fwd.points[0], direction=1, **options)
+    bwd = trace(problem, fwd.points[0], options, tangent0=-fwd.tangents[0], callback=callback, project_start=False)
     pts = np.concatenate([bwd.points[::-1], fwd.points[1:]])
     tans = np.concatenate([-bwd.tangents[::-1], fwd.tangents[1:]])
     arc_b = bwd.arclength[-1] - bwd.arclength[::-1]

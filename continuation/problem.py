@@ -53,8 +53,9 @@ Optional:
        |y|`` (so ``t . t_plane > 0``), and the branch-point test ``det [J; t^T] = det [J;
        t_plane^T] |y|``.
 
-    Returns ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t,
-    det)``: the work counts feed :class:`continuation.Branch`; ``J`` is the scaled Jacobian
+    Returns a :class:`StepResult` (or a plain tuple of its 9 or 11 fields, which the engine
+    turns into one), ``(ok, iterations, n_residual_and_jacobian, n_residual, v, jacobian,
+    tangent_ok, tangent, det)``: the work counts feed :class:`continuation.Branch`; ``J`` is the scaled Jacobian
     the tangent came from (the one of the last Newton step if the polishing step was kept);
     ``tangent_ok`` False (singular bordered matrix) makes the engine take the tangent from
     the SVD of ``J``. Optionally two more values, ``(..., det, g, tests)``: the problem's
@@ -80,11 +81,39 @@ functions, the constraints and ``compiled_step`` describe one and the same curve
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Protocol, runtime_checkable
+from typing import NamedTuple, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["ContinuationProblem", "finite_difference_jacobian", "problem_dimension"]
+__all__ = ["ContinuationProblem", "StepResult", "finite_difference_jacobian", "problem_dimension"]
+
+
+class StepResult(NamedTuple):
+    """What a problem's ``compiled_step`` returns (module docstring, item ``compiled_step``):
+    one corrector solve and the tangent at its point, in the engine's scaled variables."""
+
+    #: whether Newton's method converged
+    ok: bool
+    #: Newton iterations taken
+    iterations: int
+    #: evaluations of the residual together with the Jacobian
+    n_residual_and_jacobian: int
+    #: evaluations of the residual alone
+    n_residual: int
+    #: the point reached (scaled), shape (n+1,)
+    v: np.ndarray
+    #: the scaled Jacobian the tangent came from
+    jacobian: np.ndarray
+    #: False: the bordered matrix was singular (the engine takes the tangent from the SVD)
+    tangent_ok: bool
+    #: the unit tangent at ``v``
+    tangent: np.ndarray
+    #: the branch-point test ``det [J; t^T]``
+    det: float
+    #: optional: the problem's constraints at the point (then ``tests`` too)
+    constraints: np.ndarray | None = None
+    #: optional: the problem's test functions at the point
+    tests: np.ndarray | None = None
 
 
 @runtime_checkable

@@ -13,8 +13,10 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
   check of the linear predictions against them;
 * :func:`steady_states`, :func:`final_state`, :func:`top_class`, :func:`class_atlas` - where the
   top goes: the steady tilted states on a Jellett level and their stability, the end of a
-  motion, the high-spin classes (the branch of tilted states is
-  ``continuation.steady_branch``);
+  motion, the high-spin classes; :func:`steady_branch` - the branch of tilted states, traced
+  by the continuation engine;
+* :func:`neutral_curve`, :func:`fold_curve` - neutral and fold curves of the linear models,
+  traced by the continuation engine (:mod:`continuation`, which knows nothing of tops);
 * :class:`TippeError` - the base of every exception the package raises on purpose
   (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``);
 * ``ds.tippe`` - on every dataset the package returns: ``ds.tippe.product`` (its global
@@ -44,12 +46,14 @@ _EXPORTS: dict[str, str] = {
     **dict.fromkeys(("critical_spin", "threshold", "threshold_crossings", "thresholds"), ".linear.critical"),
     "eigenvalues": ".linear.spectra", "spectrum": ".linear.spectra",
     "MODELS": ".models", "LinearModel": ".models", "get_model": ".models",
+    **dict.fromkeys(("fold_curve", "neutral_curve"), ".linear.neutral_curves"),
     "jacobian_eigenvalues": ".nonlinear.jacobian",
     "simulate": ".nonlinear.runs",
     "coulomb_growth": ".nonlinear.validation", "validate": ".nonlinear.validation",
     "DEFAULT_MU": ".parameters", "PARAMETERS": ".parameters", "check_domain": ".parameters",
     "class_atlas": ".steady.classes", "top_class": ".steady.classes",
     "FinalState": ".steady.final", "final_state": ".steady.final",
+    "steady_branch": ".steady.branch",
     "steady_states": ".steady.states",
     "Top": ".top",
 }
@@ -61,6 +65,7 @@ __all__ = [
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
     "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
+    "neutral_curve", "fold_curve", "steady_branch",
 ]
 
 
@@ -68,7 +73,7 @@ __all__ = [
 #: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
 #: docstrings)
 _DATASETS = frozenset({"atlas", "open_atlas", "simulate", "validate", "coulomb_growth", "steady_states",
-                       "final_state", "class_atlas"})
+                       "final_state", "class_atlas", "neutral_curve", "fold_curve", "steady_branch"})
 
 
 def __getattr__(name: str) -> Any:

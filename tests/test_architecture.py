@@ -18,9 +18,9 @@ It fails on
 1. an import of a higher layer (a lower layer must not know what is built on it);
 2. an import cycle among modules (a strongly connected component of more than one module, lazy
    imports included: a cycle hidden in a function is still a cycle);
-3. an import of ``stability`` from a module of ``continuation`` other than its ``__init__``
-   (the engine knows nothing about tops; ``continuation/__init__.py`` re-exports the neutral
-   curves lazily, the one documented exception);
+3. an import of ``stability`` from any module of ``continuation``, its ``__init__`` included
+   (the engine knows nothing about tops; its clients, ``stability.neutral_curve`` and
+   ``stability.steady_branch``, live in the application);
 4. a module that is in no layer (a new module must be placed in the table below, and in the
    table of docs/architecture.md, which mirrors it).
 """
@@ -166,7 +166,7 @@ def test_the_walk_finds_the_packages():
                  "stability.grids.atlases", "stability.nonlinear.runs", "stability.steady.final",
                  "stability.commands.atlas", "continuation.engine"):
         assert name in MODULES
-    assert "stability.linear.neutral_curves" in GRAPH["continuation"]  # lazy, in _EXPORTS
+    assert "continuation.engine" in GRAPH["continuation"]  # lazy, in _EXPORTS
     assert "stability.linear.spectra" in GRAPH["stability"]  # lazy, in _EXPORTS
     assert "stability.linear.kernel" in GRAPH["stability.linear.spectra"]  # inside a function
     hidden = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import a\nelse:\n    import b\n")
@@ -186,9 +186,29 @@ def test_no_import_goes_up_a_layer():
 
 
 def test_the_engine_does_not_import_stability():
-    bad = sorted(f"{a} imports {b}" for a, targets in GRAPH.items() if a.startswith("continuation.")
+    bad = sorted(f"{a} imports {b}" for a, targets in GRAPH.items() if a.split(".")[0] == "continuation"
                  for b in targets if b.split(".")[0] == "stability")
-    assert not bad, "continuation (except its __init__ facade) must not import stability:\n" + "\n".join(bad)
+    assert not bad, "continuation (its __init__ included) must not import stability:\n" + "\n".join(bad)
+
+
+def test_using_the_engine_imports_nothing_of_stability():
+    """At run time too: a fresh interpreter imports continuation, traces a circle with the
+    engine (Python path) and its dense output, and has not imported any module of stability."""
+    import subprocess
+    import sys
+
+    code = ("import sys, numpy as np, continuation\n"
+            "class Circle:\n"
+            "    def residual(self, u): return np.array([u[0] ** 2 + u[1] ** 2 - 1.0])\n"
+            "    def jacobian(self, u): return np.array([[2 * u[0], 2 * u[1]]])\n"
+            "br = continuation.trace(Circle(), [1.0, 0.0])\n"
+            "continuation.dense(br, 4)\n"
+            "assert br.closed, br.end_reasons\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'stability'))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"
+    assert not {"neutral_curve", "steady_branch", "fold_curve"} & set(importlib.import_module("continuation").__all__)
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
@@ -267,3 +287,25 @@ def test_no_bench_code_in_the_installed_package():
                    if a.name.split(".")[0] in ("suites", "run", "benchmarks"))
     assert not users, f"installed modules importing the benchmark suites: {users}"
     assert "bench" not in COMMANDS
+
+
+def test_trace_takes_one_options_object():
+    """Issue 22, move 4: the engine's settings are one frozen options object
+    (continuation.TraceOptions, like BifurcationKit's ContinuationPar), so that ``trace`` takes
+    at most 8 parameters and its clients cannot re-list its keywords with other defaults; the
+    compiled step's result is a named tuple."""
+    import dataclasses
+    import inspect
+
+    import continuation
+
+    assert len(inspect.signature(continuation.trace).parameters) <= 8
+    assert len(inspect.signature(continuation.trace_both).parameters) <= 8
+    opts = continuation.TraceOptions()
+    assert dataclasses.is_dataclass(opts)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        opts.max_angle = 0.1  # type: ignore[misc]
+    with pytest.raises(ValueError, match="min_step <= step <= max_step"):
+        continuation.TraceOptions(step=1.0, max_step=0.1)
+    assert continuation.StepResult._fields[:4] == ("ok", "iterations", "n_residual_and_jacobian", "n_residual")
+    assert len(continuation.StepResult._fields) == 11

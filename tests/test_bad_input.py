@@ -223,17 +223,17 @@ NEUTRAL = dict(fixed=dict(fr_inv=0.0, alpha_v=0.5))
     (dict(fixed=dict(fr_inv=[0.0, 0.1], alpha_v=0.5)), TypeError, "^fr_inv must be a single number here"),
 ])
 def test_neutral_curve_arguments(kw, exc, fragment):
-    import continuation
+    import stability
 
     with pytest.raises(exc, match=fragment):
-        continuation.neutral_curve("sliding", "q", "sigma", **{**NEUTRAL, **kw})
+        stability.neutral_curve("sliding", "q", "sigma", **{**NEUTRAL, **kw})
 
 
 def test_fold_curve_fold_in():
-    import continuation
+    import stability
 
     with pytest.raises(ValueError, match="fold_in = 'mu' is not known; choose one of q, sigma"):
-        continuation.fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="mu",
+        stability.fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="mu",
                                 fixed=dict(fr_inv=0.0, alpha_v=0.5))
 
 

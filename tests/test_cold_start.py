@@ -308,7 +308,7 @@ STEADY_CALLS = """
     stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1, sigma=1.0, fr_inv=0.3,
                           alpha_v=0.5)
     stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-    continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
 """
 
 
@@ -334,7 +334,7 @@ def test_steady_entry_points_say_before_they_compile(tmp_path):
         for call in (lambda: stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1,
                                                    sigma=1.0, fr_inv=0.3, alpha_v=0.5),
                      lambda: stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                     lambda: continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)):
+                     lambda: stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)):
             try:
                 call()
             except Stop:
@@ -381,7 +381,7 @@ def test_import_stability_imports_nothing_heavy():
     ('stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
     ('stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
     ('stability.critical_spin(stability.Top.table1(), orientation="upright")', ("numba", "scipy", "xarray")),
-    ('continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))', ("numba",)),
+    ('stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))', ("numba",)),
     ('stability.spectrum("sliding", q=np.linspace(-0.4, 0.4, 5000), fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
      ("numba",)),
 ])

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from continuation import ConvergenceError, project, trace, trace_both
+from continuation import ConvergenceError, TraceOptions, project, trace, trace_both
 
 
 class Circle:
@@ -71,7 +71,7 @@ class CrossingLines:
 
 def test_circle_closes_with_four_exact_folds():
     u0 = [np.cos(0.3), np.sin(0.3)]
-    br = trace(Circle(), u0, fold_components=(0, 1), max_angle=0.15, max_step=0.3)
+    br = trace(Circle(), u0, TraceOptions(fold_components=(0, 1), max_angle=0.15, max_step=0.3))
     assert br.closed and br.end_reasons == ["closed"]
     assert np.allclose(br.points[-1], br.points[0], atol=1e-15)
     r = np.hypot(br.points[:, 0], br.points[:, 1])
@@ -89,7 +89,7 @@ def test_circle_closes_with_four_exact_folds():
 
 
 def test_cubic_folds_and_bounds_with_finite_difference_jacobian():
-    br = trace_both(Cubic(), [0.0, 0.0], fold_components=(0,), max_step=0.1)
+    br = trace_both(Cubic(), [0.0, 0.0], TraceOptions(fold_components=(0,), max_step=0.1))
     ys = br.points[:, 1]
     assert br.end_reasons == ["boundary", "boundary"]
     ends = sorted([ys[0], ys[-1]])
@@ -109,7 +109,7 @@ def test_cubic_folds_and_bounds_with_finite_difference_jacobian():
 def test_hopf_normal_form_neutral_curve_is_the_unit_circle():
     prob = HopfNormalForm()
     u0 = project(prob, [1.1, 0.1, 1.6])
-    br = trace(prob, u0, fold_components=(0, 1))
+    br = trace(prob, u0, TraceOptions(fold_components=(0, 1)))
     assert br.closed
     x, y, w = br.points.T
     assert np.max(np.abs(x * x + y * y - 1)) <= 1e-13
@@ -118,7 +118,7 @@ def test_hopf_normal_form_neutral_curve_is_the_unit_circle():
 
 
 def test_branch_point_of_two_crossing_lines():
-    br = trace(CrossingLines(), [-1.0, -1.0], max_points=200, max_arclength=2.5)
+    br = trace(CrossingLines(), [-1.0, -1.0], TraceOptions(max_points=200, max_arclength=2.5))
     bp = br.points[[k == "branch_point" for k in br.kinds]]
     assert len(bp) == 1
     # det [J; t] = 2 (x t_2 + y t_1) is linear in arclength through the origin
@@ -142,7 +142,7 @@ def test_errors():
     with pytest.raises(ValueError, match="direction"):
         trace(Circle(), [1.0, 0.0], direction=2)
     with pytest.raises(ValueError, match="min_step"):
-        trace(Circle(), [1.0, 0.0], step=1.0, max_step=0.1)
+        trace(Circle(), [1.0, 0.0], TraceOptions(step=1.0, max_step=0.1))
     with pytest.raises(ValueError, match="equations"):
         trace(Circle(), [1.0, 0.0, 0.0])
     with pytest.raises(ConvergenceError):
@@ -164,7 +164,7 @@ def test_dense_output_of_a_circle_is_fourth_order():
 
     errs = []
     for max_angle in (0.4, 0.2):
-        br = trace(Circle(), [1.0, 0.0], max_angle=max_angle, max_step=1.0, step=0.1)
+        br = trace(Circle(), [1.0, 0.0], TraceOptions(max_angle=max_angle, max_step=1.0, step=0.1))
         assert br.closed
         d = dense(br, 64)
         # the samples include the traced points themselves
@@ -416,9 +416,9 @@ def test_compiled_step_hook_gives_the_python_branch():
     prob = HopfWithHook()
     u0 = project(prob, [1.1, 0.1, 1.6])
     HopfWithHook.calls = 0
-    hooked = trace(prob, u0, fold_components=(0, 1))
+    hooked = trace(prob, u0, TraceOptions(fold_components=(0, 1)))
     assert HopfWithHook.calls > len(hooked.points)  # every step, and the fold searches
-    python = trace(prob, u0, fold_components=(0, 1), compiled=False)
+    python = trace(prob, u0, TraceOptions(fold_components=(0, 1), compiled=False))
     assert hooked.closed and python.closed
     assert hooked.kinds == python.kinds and hooked.points.shape == python.points.shape
     assert np.max(np.abs(hooked.points - python.points)) <= 1e-14
@@ -455,11 +455,11 @@ def test_special_point_exactly_on_an_accepted_point_is_reported_once():
     first run without the event (its point 3, where the second run's test is x_3 - x_3 = 0.0
     exactly: the engine is deterministic and the test does not steer the steps); before this
     was handled, the event went unreported."""
-    first = trace(LineWithTest(10.0), [0.0, 0.0], max_step=0.3)
+    first = trace(LineWithTest(10.0), [0.0, 0.0], TraceOptions(max_step=0.3))
     assert "test" not in first.kinds
     x3 = float(first.points[3, 0])
     seen = []
-    br = trace(LineWithTest(x3), [0.0, 0.0], max_step=0.3, callback=lambda u, t, kind: seen.append(kind))
+    br = trace(LineWithTest(x3), [0.0, 0.0], TraceOptions(max_step=0.3), callback=lambda u, t, kind: seen.append(kind))
     np.testing.assert_array_equal(br.points, first.points)  # the same steps
     assert br.kinds.count("test") == 1 and br.kinds[3] == "test" and br.details[3] == "x - x_event"
     assert seen.count("test") == 1
@@ -512,7 +512,7 @@ def test_python_path_compiles_nothing():
         "from continuation import linalg\n"
         "class Circle:\n"
         "    def residual(self, u): return np.array([u[0]**2 + u[1]**2 - 1.0])\n"
-        "br = continuation.trace(Circle(), [1.0, 0.0], fold_components=(0, 1))\n"
+        "br = continuation.trace(Circle(), [1.0, 0.0], continuation.TraceOptions(fold_components=(0, 1)))\n"
         "assert br.closed\n"
         "assert 'continuation.compiled' not in sys.modules\n"
         "assert not linalg.solve_dense.signatures\n"

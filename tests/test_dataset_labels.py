@@ -102,12 +102,12 @@ def test_leading_growth_rate_survives_files_and_chunks(atlas_fr0, tmp_path):
 
 
 def test_validation_and_neutral_curve_long_names_are_short():
-    import continuation
+    import stability
 
     ds = stability.validate("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
     assert not _too_long(ds)
     assert ds.duration.attrs["units"] == "1/Omega" and ds.measured_growth_rate.attrs["units"] == "Omega"
-    curve = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
+    curve = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
     assert not _too_long(curve)
     fig, ax = plt.subplots()
     curve.frequency.plot(ax=ax)
@@ -116,12 +116,12 @@ def test_validation_and_neutral_curve_long_names_are_short():
 
 
 def test_steady_products_long_names_are_short():
-    import continuation
+    import stability
     from stability.nonlinear.scene import INITIAL_CONDITIONS
 
     products = {
         "steady_states": stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-        "steady_branch": continuation.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
+        "steady_branch": stability.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
         "final_state": stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
                                              **INITIAL_CONDITIONS[0.3]).to_dataset(),
         "class_atlas": stability.class_atlas(q=np.linspace(-0.6, 0.6, 5), sigma=np.linspace(0.01, 2, 4)),

@@ -53,7 +53,7 @@ def test_a_neutral_start_that_does_not_converge_raises_the_packages_convergence_
     """Newton's method cannot reach a backward error of 1e-300: the package reports the start
     point with its own ConvergenceError (a TippeError and the engine's class)."""
     with pytest.raises(errors.ConvergenceError, match=r"start point \(q, sigma, w\) = \(0\.1, 0\.5, 3\)"):
-        continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
+        stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
                                    start=[(0.1, 0.5, 3.0)], tol=1e-300)
 
 

@@ -170,10 +170,10 @@ def test_bad_recipes(tmp_path, text, msg):
 def test_neutral_curve_overlay_and_fold_marker():
     """The continued curve drawn on a map passes through the closed-form fold
     (q*, sigma*) = (-1 + sqrt(1 - 1/mu), 2 (mu - sqrt(mu (mu - 1)))) (docs/models.md), marked."""
-    import continuation
+    import stability
 
     mu = 2.28
-    curve = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=mu))
+    curve = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=mu))
     ds = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 25), fr_inv=0.0, sigma=np.linspace(0.05, 1.9, 20),
                          alpha_v=0.5, mask_unphysical=True)
     fig, ax = plot_stability_map(ds, "q", "sigma", curve=curve)
@@ -192,9 +192,9 @@ def test_every_branch_of_a_leading_neutral_curve_is_solid():
     line q = 0, where p(i w) = (w - w^2)(alpha_v (1 + mu) + i mu w): no other mode grows) are
     stability boundaries and must be drawn solid; the style sheet cycles line styles, so a
     second branch drawn without an explicit style came out dashed, like a non-leading part."""
-    import continuation
+    import stability
 
-    curve = continuation.neutral_curve("sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5),
+    curve = stability.neutral_curve("sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5),
                                        x_range=(-0.4, 0.4), y_range=(0.0, 1.0))
     assert len(np.unique(curve.branch.values)) == 2 and bool(curve.leading.all())
     ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 9), fr_inv=np.linspace(0, 1, 5), sigma=1.0,

@@ -16,7 +16,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from continuation import ConvergenceError, neutral_curve
+from continuation import ConvergenceError
+from stability import neutral_curve
 from stability import threshold, threshold_crossings, thresholds
 from stability.models.base import LinearModel
 

@@ -32,7 +32,8 @@ import pytest
 import xarray as xr
 from conftest import mp_polyroots
 
-from continuation import dense, fold_curve, neutral_curve
+from continuation import dense
+from stability import fold_curve, neutral_curve
 from stability.models import get_model
 from stability.models.base import LinearModel
 from stability.models.sliding import scalar_coefficients as sliding_coefficients

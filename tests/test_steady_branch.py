@@ -1,4 +1,4 @@
-"""The branch of tilted steady states traced by continuation (continuation.steady_branch).
+"""The branch of tilted steady states traced by continuation (stability.steady_branch).
 
 References (independent of the traced branch, which solves the nonlinear model's right-hand
 side with the continuation engine):
@@ -19,7 +19,6 @@ import math
 import numpy as np
 import pytest
 
-import continuation
 import stability
 from stability.nonlinear import sliding
 from stability.nonlinear.parameters import pack
@@ -37,7 +36,7 @@ CASES = [(-0.1, 1.0, 0.3), (-0.3, 0.5, 0.1), (0.2, 0.7, 0.3), (-0.2, 1.3, 0.5), 
 
 @pytest.fixture(scope="module")
 def branches():
-    return {c: continuation.steady_branch(q=c[0], sigma=c[1], fr_inv=c[2], alpha_v=0.5) for c in CASES}
+    return {c: stability.steady_branch(q=c[0], sigma=c[1], fr_inv=c[2], alpha_v=0.5) for c in CASES}
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -102,7 +101,7 @@ def test_branch_points_of_the_table1_top_are_its_critical_spins():
     top = stability.Top.table1()
     for orient, sgn in (("upright", 1.0), ("inverted", -1.0)):
         cs = stability.critical_spin(top, orientation=orient)
-        ds = continuation.steady_branch(q=top.q, sigma=top.sigma, fr_inv=cs.fr_inv, alpha_v=0.5, mu=top.mu)
+        ds = stability.steady_branch(q=top.q, sigma=top.sigma, fr_inv=cs.fr_inv, alpha_v=0.5, mu=top.mu)
         bps = ds.where(ds.kind == "branch_point", drop=True)
         j = float(bps.jellett[np.argmin(np.abs(bps.tilt.values - (0.0 if sgn > 0 else 180.0)))])
         assert j == pytest.approx(top.sigma * (1 + sgn * top.q), rel=1e-10)
@@ -141,8 +140,8 @@ def test_ends_and_events(branches):
 def test_compiled_step_and_python_path_agree():
     """The engine's Python path and the problem's compiled step trace the same points (the same
     equations, the same operations): 1e-12."""
-    a = continuation.steady_branch(q=-0.15, sigma=1.12, fr_inv=0.3, alpha_v=0.5)
-    b = continuation.steady_branch(q=-0.15, sigma=1.12, fr_inv=0.3, alpha_v=0.5, compiled=False)
+    a = stability.steady_branch(q=-0.15, sigma=1.12, fr_inv=0.3, alpha_v=0.5)
+    b = stability.steady_branch(q=-0.15, sigma=1.12, fr_inv=0.3, alpha_v=0.5, compiled=False)
     assert a.sizes == b.sizes and list(a.kind.values) == list(b.kind.values)
     for name in ("tilt", "precession_rate", "jellett"):
         assert np.allclose(a[name].values, b[name].values, rtol=1e-12, atol=1e-12)
@@ -152,7 +151,7 @@ def test_compiled_step_and_python_path_agree():
 def test_degenerate_family_is_a_vertical_line(q, sigma, fr):
     """fr_inv = 0 or q = 0: one tilt at every J (arccos c0; 90 degrees for q = 0), traced from
     jellett_max / 1000 to jellett_max; the tilt is constant to 1e-12 deg."""
-    ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5)
+    ds = stability.steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5)
     ref = math.degrees(math.acos(family.c0(q, sigma, MU)))
     assert np.max(np.abs(ds.tilt.values - ref)) < 1e-12
     assert list(ds.kind.values[[0, -1]]) == ["end", "end"]
@@ -161,7 +160,7 @@ def test_degenerate_family_is_a_vertical_line(q, sigma, fr):
 
 def test_no_family_gives_an_empty_branch_with_a_note():
     """q = 0 and sigma = A_G = 1: every tilt is steady (a dynamically spherical ball); no line."""
-    ds = continuation.steady_branch(q=0.0, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    ds = stability.steady_branch(q=0.0, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     assert ds.sizes["point"] == 0 and "note" in ds.attrs
 
 
@@ -186,4 +185,4 @@ def test_bad_input(kw, exc, fragment):
     args = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     args.update(kw)
     with pytest.raises(exc, match=fragment):
-        continuation.steady_branch(**args)
+        stability.steady_branch(**args)

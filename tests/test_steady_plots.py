@@ -19,7 +19,6 @@ import numpy as np
 import pytest
 import xarray as xr
 
-import continuation
 import stability
 from stability.errors import RecipeError
 from stability.nonlinear.scene import INITIAL_CONDITIONS
@@ -64,7 +63,7 @@ def _state_markers(ax):
 @pytest.fixture(scope="module")
 def fold_branch():
     """A never_inverts top whose branch has a fold: stable beyond it, unstable before."""
-    return continuation.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5)
+    return stability.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5)
 
 
 def _lines(ax, style):

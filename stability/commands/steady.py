@@ -1,6 +1,6 @@
 """``tippe steady``: the steady states of a sliding top on one Jellett level, or the branch of
 tilted states (``--branch``); see :func:`stability.steady_states` and
-:func:`continuation.steady_branch`."""
+:func:`stability.steady_branch`."""
 
 from __future__ import annotations
 

@@ -56,8 +56,9 @@ import pandas as pd
 import xarray as xr
 from xarray.indexes import PandasIndex
 
-from continuation.engine import Branch, project, trace_both
+from continuation.engine import Branch, TraceOptions, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
+from continuation.problem import StepResult
 
 from .. import execution
 from .._version import package_version
@@ -87,6 +88,11 @@ MAX_GRID = 2000
 
 #: the largest number of points per direction of a branch
 MAX_POINTS = 10**6
+
+#: the largest turn of the tangent per step (radians) of the application's traced curves: the
+#: default of neutral_curve, fold_curve and steady_branch (finer than the engine's generic
+#: ``continuation.TraceOptions.max_angle``, 0.15, since these curves are drawn and interpolated)
+CURVE_MAX_ANGLE = 0.1
 
 _KIND_DETAIL = {
     "branch_point": ("branch_point", "two neutral curves cross here (the Jacobian loses rank)"),
@@ -278,12 +284,12 @@ class NeutralProblem:
             self.compiled_step = self._compiled_step
 
     def _compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
-                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
+                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> StepResult:
         """The engine's hook (:mod:`continuation.problem`): the step of
         :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
-        return self._step_kernel(*self._compiled, guess, t_plane, anchor, float(h), scale,
-                                 float(tol), int(max_iter), float(max_move))
+        return StepResult(*self._step_kernel(*self._compiled, guess, t_plane, anchor, float(h), scale,
+                                             float(tol), int(max_iter), float(max_move)))
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         """All parameters at ``u``."""
@@ -705,7 +711,7 @@ def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, A
 def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[str, Any],
                   x_range: Sequence[float] | None = None, y_range: Sequence[float] | None = None,
                   start: Sequence[Sequence[float]] | None = None, grid: tuple[int, int] = (25, 25),
-                  step: float | None = None, max_step: float = 0.05, max_angle: float = 0.1,
+                  step: float | None = None, max_step: float = 0.05, max_angle: float = CURVE_MAX_ANGLE,
                   max_points: int = 4000, tol: float = 1e-13, edge_margin: float = 1e-9,
                   form: str | None = None, compiled: bool | None = None) -> xr.Dataset:
     """Trace the neutral curves of a linear model in the plane of two parameters.
@@ -773,8 +779,8 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
 
     Examples
     --------
-    >>> import continuation
-    >>> ds = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
+    >>> import stability
+    >>> ds = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
     >>> float(ds.sigma[ds.kind == "fold"].max())  # doctest: +ELLIPSIS
     1.1433...
     """
@@ -873,8 +879,8 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
                 f"domain ({'; '.join(bad)})")
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(prob, u, fold_components=(0, 1), scale=scale, step=step, max_step=max_step,
-                        max_angle=max_angle, max_points=max_points, tol=tol)
+        br = trace_both(prob, u, TraceOptions(fold_components=(0, 1), scale=scale, step=step, max_step=max_step,
+                                              max_angle=max_angle, max_points=max_points, tol=tol))
         branches.append(br)
         if start is None:
             skip[i + 1:] |= _near_branch_mask(G[i + 1:], br.points / scale, cell)
@@ -925,7 +931,7 @@ def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], 
 def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str,
                fixed: Mapping[str, Any], x_range: Sequence[float] | None = None,
                y_range: Sequence[float] | None = None, z_range: Sequence[float] | None = None,
-               step: float = 0.01, max_step: float = 0.05, max_angle: float = 0.1,
+               step: float = 0.01, max_step: float = 0.05, max_angle: float = CURVE_MAX_ANGLE,
                max_points: int = 4000, tol: float = 1e-12, edge_margin: float = 1e-9) -> xr.Dataset:
     """Follow the folds of the ``(x, y)`` neutral curves as a third parameter ``z`` varies.
 
@@ -987,8 +993,8 @@ def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str
         u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(prob, u, fold_components=(3,), scale=scale, step=step, max_step=max_step,
-                        max_angle=max_angle, max_points=max_points, tol=tol)
+        br = trace_both(prob, u, TraceOptions(fold_components=(3,), scale=scale, step=step, max_step=max_step,
+                                              max_angle=max_angle, max_points=max_points, tol=tol))
         branches.append(br)
     # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
     return _assemble(m, (x, y, z), rest, prob, branches, 2, {

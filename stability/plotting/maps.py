@@ -51,7 +51,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     norm : matplotlib.colors.TwoSlopeNorm, optional
         Shared colour normalisation (:func:`growth_norm`); by default from this atlas alone.
     curve : xarray.Dataset, optional
-        Continued neutral curves of the same plane (``continuation.neutral_curve``); drawn
+        Continued neutral curves of the same plane (``stability.neutral_curve``); drawn
         with their special points instead of the grid's contour.
 
     Returns
@@ -108,7 +108,7 @@ SPECIAL_MARKERS = {"fold": ("^", "fold"), "zero_frequency": ("D", "w = 0"),
 
 def plot_neutral_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
                        label: str = "neutral curve (continued)") -> tuple[Figure, Axes]:
-    """Draw a continued neutral curve (:func:`continuation.neutral_curve`) and its special points.
+    """Draw a continued neutral curve (:func:`stability.neutral_curve`) and its special points.
 
     Parameters
     ----------
@@ -135,7 +135,7 @@ def plot_neutral_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | No
 
 def plot_fold_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
                     label: str = "fold curve (continued)") -> tuple[Figure, Axes]:
-    """Draw a continued fold curve (:func:`continuation.fold_curve`): where a neutral curve's
+    """Draw a continued fold curve (:func:`stability.fold_curve`): where a neutral curve's
     fold sits as a third parameter varies.
 
     Parameters

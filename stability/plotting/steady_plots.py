@@ -189,7 +189,7 @@ def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, 
     Parameters
     ----------
     branch : xarray.Dataset
-        :func:`continuation.steady_branch` (``tilt``, ``stability``, ``kind`` over ``point``,
+        :func:`stability.steady_branch` (``tilt``, ``stability``, ``kind`` over ``point``,
         and the abscissa ``x``).
     vertical : xarray.Dataset, optional
         The vertical states along the same abscissa: ``x``, ``stability_upright``,

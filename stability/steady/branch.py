@@ -45,11 +45,13 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from continuation.engine import trace
+from continuation.engine import TraceOptions, trace
+from continuation.problem import StepResult
 from continuation.jit import Compiled
 
 from ..errors import ConvergenceError, DomainError
 from ..execution import before_compiled_call
+from ..linear.neutral_curves import CURVE_MAX_ANGLE
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_positive
@@ -160,12 +162,13 @@ class SteadyBranchProblem:
         return np.array([g[0] * t[0] + g[1] * t[1]])
 
     def compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
-                      scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:
+                      scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> StepResult:
         """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
         (corrector, tangent, constraints and test function in one compiled call)."""
-        return kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code, self.n_full,
-                            self.degenerate, float(self.jellett_max), float(self.jellett_min), guess, t_plane,
-                            anchor, float(h), scale, float(tol), int(max_iter), float(max_move))
+        return StepResult(*kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code,
+                                        self.n_full, self.degenerate, float(self.jellett_max),
+                                        float(self.jellett_min), guess, t_plane, anchor, float(h), scale,
+                                        float(tol), int(max_iter), float(max_move)))
 
     # --- start points -------------------------------------------------------------------
     def branch_point(self, orientation: str) -> float | None:
@@ -233,7 +236,7 @@ def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: An
 
 def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any,
                   mu: Any = DEFAULT_MU, jellett_max: Any = None, max_step: Any = 0.02,
-                  max_angle: Any = 0.1, compiled: bool = True) -> xr.Dataset:
+                  max_angle: Any = CURVE_MAX_ANGLE, compiled: bool = True) -> xr.Dataset:
     """The family of tilted steady states, traced by continuation against Jellett's integral.
 
     Parameters
@@ -284,7 +287,8 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
                           "continuation.steady_branch", params, removed_neutral=True)
     attrs["model"] = "sliding"
-    step = min(max_step, 0.02)
+    options = TraceOptions(step=min(max_step, 0.02), max_step=max_step, max_angle=max_angle, max_points=100000,
+                           compiled=compiled)
     if prob.degenerate:
         theta0 = prob.degenerate_tilt()
         if theta0 is None:
@@ -297,8 +301,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         ends = []
         halves = []
         for direction in (-1, 1):
-            br = trace(prob, [theta0, ell0], tangent0=[0.0, direction], project_start=True, step=step,
-                       max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled)
+            br = trace(prob, [theta0, ell0], options, tangent0=[0.0, direction], project_start=True)
             halves.append(br)
             ends.append(br.end_reasons[0])
         lo, hi = halves
@@ -322,8 +325,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             raise DomainError(f"jellett_max = {jmax:.6g} is outside the allowed range: jellett_max > {j_b:.6g}, "
                               f"the Jellett integral at the {start} branch point where the family starts")
         prob.jellett_max = 10.0 * j_b if jmax is None else jmax
-        br = trace(prob, [theta_b, math.log(lam_b)], tangent0=t0, project_start=False, step=step,
-                   max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled)
+        br = trace(prob, [theta_b, math.log(lam_b)], options, tangent0=t0, project_start=False)
         pts = br.points.copy()
         kinds = [_kind_of(k, d) for k, d in zip(br.kinds, br.details)]
         details = list(br.details)
