@@ -17,8 +17,8 @@ Its clients live in the application: the neutral and fold curves of the linear m
 ``__init__`` included, refers to :mod:`stability` (docs/architecture.md).
 
 Every name is imported on first use (PEP 562), so that importing a building block
-(``from continuation.jit import register_jitable``, which the formulas of :mod:`stability` do)
-imports neither the engine nor scipy.
+(``from continuation.linalg import lu_solve``) imports neither the engine nor scipy, and
+nothing here imports numba until compiled code is wanted (:mod:`continuation.compiled`).
 """
 
 from __future__ import annotations

@@ -16,14 +16,19 @@ problem are here. Each is the engine's own building block compiled, not a copy o
 * :func:`predict`: :func:`continuation.interpolation.predict`, the Hermite extrapolation of the
   last step, or the tangent;
 * :func:`norm`: :func:`continuation.linalg.norm` (compiled: a loop);
+* :func:`solve_dense`: ``continuation.linalg._solve_dense``, ``a x = b`` in place (float or
+  complex; all NaN at a zero pivot), the compiled 6 x 6 solve of the nonlinear models'
+  right-hand sides;
 * :func:`corrector_update`: one step of the pseudo-arclength Newton iteration of
   ``engine._newton``, the convergence tests included, so that a problem's loop is a few lines
   (see :mod:`stability.linear.neutral_compiled`).
 
-All are ``numba.njit(cache=True)`` (through :func:`continuation.jit.njit`, which registers the
-building blocks with numba first and stamps the cache with their sources): compiled once per
-machine and cached in ``__pycache__``. Importing this module imports numba; the engine's Python
-path never imports it.
+All are ``numba.njit(cache=True)``: compiled once per machine and cached in ``__pycache__``.
+Importing this module imports numba and registers the engine's building blocks with it, through
+numba's public API only (:func:`register`: ``numba.extending.register_jitable`` for the
+functions of :mod:`continuation.linalg` and :mod:`continuation.interpolation` that run in both
+worlds, ``numba.extending.overload`` for the three whose compiled storage differs); the
+engine's Python path never imports it.
 """
 
 from __future__ import annotations
@@ -32,13 +37,34 @@ import math
 
 import numpy as np
 
-from . import interpolation, linalg
-from .jit import njit
+import numba
+from numba.extending import overload, register_jitable
 
-__all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "EPS", "FLOOR",
+from . import interpolation, linalg
+
+__all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "solve_dense", "EPS", "FLOOR",
            "CONTINUE", "CONVERGED", "POLISH", "FAILED"]
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+
+#: numba's njit (public API), for the callers of this package that compile its building blocks
+njit = numba.njit
+
+
+def register() -> None:
+    """Register the building blocks of :mod:`continuation.linalg` and
+    :mod:`continuation.interpolation` with numba (run once, when this module is imported)."""
+    for fn in (linalg.lu_solve, linalg._lu_solve_loop, linalg._lu_solve3, linalg.tangent_det,
+               interpolation.hermite_eval, interpolation.predict):
+        register_jitable(fn)
+    options = {k: _JIT[k] for k in ("fastmath", "nogil", "error_model")}
+    for fn, impl in ((linalg.solve_det, linalg._solve_det_compiled),
+                     (linalg.bordered_solve, linalg._bordered_solve_compiled),
+                     (linalg.norm, linalg._norm_compiled)):
+        overload(fn, jit_options=options)(impl)
+
+
+register()
 
 EPS = float(np.finfo(float).eps)
 #: a residual this small is at the rounding floor: no polishing step (``engine._FLOOR``)
@@ -67,6 +93,10 @@ tangent_det = njit(**_JIT)(linalg.tangent_det)
 
 #: the predictor of a step (:func:`continuation.interpolation.predict`, compiled)
 predict = njit(**_JIT)(interpolation.predict)
+
+#: ``a x = b`` in place by :func:`continuation.linalg.lu_solve` (``a`` overwritten, ``b`` holds
+#: and is the solution; all NaN at a zero or NaN pivot), for float and complex arrays
+solve_dense = njit(cache=True)(linalg._solve_dense)
 
 
 @njit(**_JIT)

@@ -16,22 +16,20 @@ tests/test_continuation_engine.py). Values of ``tau`` outside [0, 1] extrapolate
 Users: the engine's predictor (:func:`predict`: the curve of the last step extrapolated; in
 the Python path and, compiled, in :func:`continuation.compiled.predict`), its predictor of the
 corrector solves that locate special points (:func:`hermite`), and the dense output
-(:func:`continuation.dense.hermite_samples`). :func:`hermite_eval` and :func:`predict` are
-``numba.extending.register_jitable``: plain Python from Python, compiled into ``@njit`` callers.
+(:func:`continuation.dense.hermite_samples`). :func:`hermite_eval` and :func:`predict` are plain
+Python from Python, and compiled into ``@njit`` callers once :mod:`continuation.compiled` has
+registered them (``numba.extending.register_jitable``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .jit import register_jitable
-
 from .linalg import norm
 
 __all__ = ["hermite", "hermite_eval", "predict"]
 
 
-@register_jitable
 def hermite_eval(p0, t0, p1, t1, tau, d):
     """``H(tau)`` (module docstring) for a given chord length ``d``.
 
@@ -70,7 +68,6 @@ def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
     return hermite_eval(p0, t0, p1, t1, np.asarray(tau, dtype=float)[..., None], d)
 
 
-@register_jitable
 def predict(v, t, v_prev, t_prev, use_prev, h):
     """Predictor of a continuation step of length ``h`` from ``(v, t)``.
 

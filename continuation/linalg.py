@@ -2,18 +2,21 @@
 
 The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n`` (3 x 3 for a curve in
 ``R^3``), where the call overhead of LAPACK, from Python or from numba, is larger than the work.
-Each building block here is written once and runs in both worlds: the functions are
-``register_jitable`` (a plain Python function when called from Python, compiled into the caller
-when called from ``@njit`` code), or, where the two worlds need a different storage, a Python
-function with an ``overload`` for compiled code, both calling the one algorithm (numba's
-registrations, deferred by :mod:`continuation.jit` until compiled code is wanted: the Python
-path never imports numba). Users:
+Each building block here is written once and runs in both worlds: plain Python functions, which
+:mod:`continuation.compiled` registers with numba's public ``numba.extending.register_jitable``
+(compiled into the caller when called from ``@njit`` code), or, where the two worlds need a
+different storage, a Python function with an implementation for compiled code
+(``_*_compiled``, registered there with ``numba.extending.overload``), both calling the one
+algorithm. This module never imports numba: the registrations are made when
+:mod:`continuation.compiled` is imported, i.e. when compiled code is first wanted, so the
+Python path never imports numba. Users:
 
 * the engine's Python path (:mod:`continuation.engine`): corrector, tangent, branch-point test;
 * the compiled corrector's building blocks (:mod:`continuation.compiled`, and through them a
   problem's ``compiled_step``, e.g. :mod:`stability.linear.neutral_compiled`);
 * the compiled right-hand sides of the nonlinear models (:mod:`stability.nonlinear`), whose
-  sliding and rolling spheres solve a 6 x 6 system at every evaluation (:func:`solve_dense`).
+  sliding and rolling spheres solve a 6 x 6 system at every evaluation
+  (:func:`_solve_dense`, compiled as :func:`continuation.compiled.solve_dense`).
 
 The algorithm (:func:`lu_solve`): Gaussian elimination with partial pivoting, the first largest
 ``|a_ik|`` of a column as pivot (ties go to the upper row), the multipliers ``a_ik / a_kk``, a
@@ -31,9 +34,10 @@ problem's compiled step and the engine's Python path agree to rounding, not bit 
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
 elimination costs ``m^3 / 3`` Python operations).
 
-numba's on-disk cache of a function compiled through :mod:`continuation.jit` is stamped with a
-hash of this file too, so editing it invalidates the compiled callers
-(:func:`continuation.jit.source_stamp`).
+numba keys its on-disk cache of a compiled function by that function's own source file only:
+after editing this file in a development install, clear the ``__pycache__`` of
+:mod:`continuation.compiled` (the stamping of :mod:`stability.jit` covers the compiled code of
+``stability``, whose sources it hashes with this package's).
 """
 
 from __future__ import annotations
@@ -42,10 +46,9 @@ import math
 
 import numpy as np
 
-from .jit import njit, overload, register_jitable
 
 __all__ = ["lu_solve", "solve_det", "bordered_solve", "bordered_det", "tangent_det", "norm",
-           "solve_dense", "PYTHON_LU_MAX"]
+           "PYTHON_LU_MAX"]
 
 #: largest system that the Python faces solve with :func:`lu_solve`; larger ones go to LAPACK
 PYTHON_LU_MAX = 4
@@ -54,7 +57,6 @@ PYTHON_LU_MAX = 4
 # ------------------------------------------------------------------------------------------
 # the elimination
 # ------------------------------------------------------------------------------------------
-@register_jitable
 def lu_solve(A, x):
     """Solve ``A y = x`` in place by Gaussian elimination with partial pivoting.
 
@@ -85,7 +87,6 @@ def lu_solve(A, x):
     return _lu_solve_loop(A, x)
 
 
-@register_jitable
 def _lu_solve_loop(A, x):
     """:func:`lu_solve` for any size, in loops."""
     m = len(x)
@@ -129,7 +130,6 @@ def _lu_solve_loop(A, x):
     return True, det
 
 
-@register_jitable
 def _lu_solve3(A, x):
     """:func:`lu_solve` for m = 3: the operations of :func:`_lu_solve_loop` in the same order,
     unrolled (``A`` is read, not written)."""
@@ -215,7 +215,6 @@ def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
     return ok, np.array(x), d
 
 
-@overload(solve_det, jit_options=dict(nogil=True, error_model="numpy"))
 def _solve_det_compiled(G, b):
     def impl(G, b):
         A = G.copy()
@@ -252,7 +251,6 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float
     return ok, np.array(x), d
 
 
-@overload(bordered_solve, jit_options=dict(nogil=True, error_model="numpy"))
 def _bordered_solve_compiled(J, c, f, r):
     def impl(J, c, f, r):
         n, m = J.shape
@@ -291,7 +289,6 @@ def norm(x: np.ndarray) -> float:
     return math.sqrt(float(x @ x))
 
 
-@overload(norm, jit_options=dict(nogil=True, error_model="numpy"))
 def _norm_compiled(x):
     def impl(x):
         s = 0.0
@@ -304,7 +301,6 @@ def _norm_compiled(x):
 # ------------------------------------------------------------------------------------------
 # the bordered tangent and the branch-point test
 # ------------------------------------------------------------------------------------------
-@register_jitable
 def tangent_det(J, t_ref):
     """Unit null vector ``t`` of ``J`` (n, n+1), oriented by ``t_ref``, and ``det [J; t^T]``.
 
@@ -356,13 +352,3 @@ def _solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     if not ok:
         b[:] = np.nan
     return b
-
-
-def __getattr__(name: str) -> object:
-    """``solve_dense``: :func:`_solve_dense` compiled (``numba.njit(cache=True)``), made on first
-    access, so that importing this module imports no numba (only the nonlinear models, compiled
-    code themselves, ask for it)."""
-    if name == "solve_dense":
-        globals()["solve_dense"] = disp = njit(_solve_dense, cache=True)
-        return disp
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

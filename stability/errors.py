@@ -12,8 +12,8 @@ Layer 0 (docs/architecture.md): imports nothing from the package (only the engin
     |   +-- RecipeError                    an atlas recipe that cannot be read or run
     |   +-- ResumeError                    a chunk store that cannot be resumed from
     |   +-- ResourceError                  a request that cannot fit in the memory available
-    +-- ParameterTypeError (TypeError)     a value of the wrong type (provided; most checks raise
-    |                                      a plain TypeError)
+    +-- ParameterTypeError (TypeError)     a value of the wrong type (the parameter checks of
+    |                                      stability.parameters raise it)
     +-- OutputWriteError (OSError)         an output file could not be written (disk full, file
     |                                      size limit, ...): names the file and the cause
     +-- ChunkError (RuntimeError)          a chunk of a chunked atlas failed

@@ -1,7 +1,7 @@
 """Which execution runs a loop that is written once: interpreted (Python) or compiled (numba).
 
 The spectral kernel's loops, the batched root finders and the neutral curves' corrector are
-each one plain Python source (:class:`continuation.jit.Twin`) with two executions that give the
+each one plain Python source (:class:`stability.jit.Twin`) with two executions that give the
 same bits: the interpreter, which needs no compilation but costs ~50-100 us per point, and numba,
 ~0.3 us per point once compiled but several seconds to compile on a machine whose numba disk
 cache does not hold it yet (a fresh install), and ~0.5 s to import numba and load it when it
@@ -80,7 +80,7 @@ def engine(value: str | None = None) -> str:
 
 
 def use_compiled(twin: Any, npts: int, value: str | None = None) -> bool:
-    """Whether ``twin`` (a :class:`continuation.jit.Twin`) runs compiled on ``npts`` points
+    """Whether ``twin`` (a :class:`stability.jit.Twin`) runs compiled on ``npts`` points
     (module docstring); ``value`` as in :func:`engine`."""
     chosen = engine(value)
     if chosen != "auto":

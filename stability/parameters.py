@@ -65,9 +65,9 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from continuation.jit import register_jitable
+from stability.jit import register_jitable
 
-from .errors import DomainError
+from .errors import DomainError, ParameterTypeError
 from .models.inertia import inertia_g, two_product
 
 __all__ = [
@@ -144,10 +144,14 @@ SYMBOLS: dict[str, str] = {
 }
 
 
+#: the largest magnitude of any parameter or state component the package computes with (the
+#: computable range, module docstring)
+COMPUTABLE_MAX = 1e30
+
 #: name -> (smallest, largest) magnitude accepted (the computable range, module docstring)
 COMPUTABLE_RANGE: dict[str, tuple[float, float]] = {
-    "q": (0.0, 1e30), "fr_inv": (0.0, 1e30), "sigma": (0.0, 1e30), "alpha_v": (0.0, 1e30),
-    "alpha_k": (0.0, 1e30), "mu": (1e-30, 1e30),
+    "q": (0.0, COMPUTABLE_MAX), "fr_inv": (0.0, COMPUTABLE_MAX), "sigma": (0.0, COMPUTABLE_MAX),
+    "alpha_v": (0.0, COMPUTABLE_MAX), "alpha_k": (0.0, COMPUTABLE_MAX), "mu": (1e-30, COMPUTABLE_MAX),
 }
 
 
@@ -180,24 +184,24 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
         For an empty array or a non-finite entry (NaN, inf).
     """
     if value is None:
-        raise TypeError(f"{name} is required (got None); give a real number or an array of reals")
+        raise ParameterTypeError(f"{name} is required (got None); give a real number or an array of reals")
     if isinstance(value, (str, bytes, bool, np.bool_)):
-        raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; "
+        raise ParameterTypeError(f"{name} = {_show(value)} is a {type(value).__name__}; "
                         f"{name} must be a real number or an array of reals")
     if isinstance(value, numbers.Number) and not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} = {_show(value)} is {type(value).__name__}; {name} must be real")
+        raise ParameterTypeError(f"{name} = {_show(value)} is {type(value).__name__}; {name} must be real")
     if isinstance(value, np.ma.MaskedArray):
         value = _unmasked(name, value)
     try:
         arr = np.asarray(value)
     except Exception:  # ragged lists and the like
-        raise TypeError(f"{name} = {_show(value)} is not a rectangular array; "
+        raise ParameterTypeError(f"{name} = {_show(value)} is not a rectangular array; "
                         f"{name} must be a real number or an array of reals") from None
     if arr.dtype.kind == "O":
         arr = _integers_as_floats(name, value, arr)
     if arr.dtype.kind not in "iuf":
         what = "holds complex numbers" if arr.dtype.kind == "c" else f"has dtype {arr.dtype}"
-        raise TypeError(f"{name} = {_show(value)} {what}; {name} must be a real number or an array of reals")
+        raise ParameterTypeError(f"{name} = {_show(value)} {what}; {name} must be a real number or an array of reals")
     arr = arr.astype(np.float64)
     if arr.size == 0:
         raise DomainError(f"{name} is empty; give at least one value")
@@ -243,9 +247,8 @@ def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
         try:
             flat[i] = float(v)
         except OverflowError:
-            lo, hi = COMPUTABLE_RANGE.get(name, (0.0, float(np.finfo(float).max)))
-            rng = f"|{name}| <= {hi:g}" if lo == 0 else f"{lo:g} <= {name} <= {hi:g}"
-            raise DomainError(f"{name} = {_integer_text(int(v))} is outside the computable range: {rng} "
+            raise DomainError(f"{name} = {_integer_text(int(v))} is outside the computable range: "
+                              f"{computable_range_text(name)} "
                               "(it does not even fit a double)") from None
     return out
 
@@ -674,19 +677,33 @@ def domain_mask(**params: Any) -> np.ndarray:
     return ok
 
 
+def outside_computable(name: str, value: Any) -> Any:
+    """Where ``value`` (a float or an array) lies outside ``name``'s :data:`COMPUTABLE_RANGE`:
+    ``|value| > largest``, or ``0 < value < smallest``. NaN is not outside (finiteness is
+    checked apart). The one home of the test, for the array and the scalar paths."""
+    lo, hi = COMPUTABLE_RANGE[name]
+    mag = abs(value)
+    return (mag > hi) | ((mag < lo) & (value > 0))
+
+
+def computable_range_text(name: str) -> str:
+    """``name``'s computable range as a message states it (``|q| <= 1e+30``)."""
+    lo, hi = COMPUTABLE_RANGE.get(name, (0.0, float(np.finfo(float).max)))
+    return f"|{name}| <= {hi:g}" if lo == 0 else f"{lo:g} <= {name} <= {hi:g}"
+
+
 def _check_computable(p: Mapping[str, np.ndarray]) -> None:
     """Refuse magnitudes outside :data:`COMPUTABLE_RANGE` (always, whatever the mask)."""
     for name, v in p.items():
         if name not in COMPUTABLE_RANGE:
             continue
         lo, hi = COMPUTABLE_RANGE[name]
-        mag = np.abs(v)
-        bad = (mag > hi) | ((mag < lo) & (v > 0))
+        bad = outside_computable(name, v)
         if bad.any():
             val = float(v[bad].flat[0])
             if abs(val) > hi:
                 v_text = fmt_against(val, math.copysign(hi, val))[0]
-                rng = f"|{name}| <= {hi:g}" if lo == 0 else f"{lo:g} <= {name} <= {hi:g}"
+                rng = computable_range_text(name)
             else:
                 v_text, lo_text = fmt_against(val, lo)
                 rng = f"{lo_text} <= {name} <= {hi:g}"
@@ -706,7 +723,7 @@ def as_scalar(name: str, value: Any) -> float:
     """
     arr = as_parameter(name, value)
     if arr.size != 1:
-        raise TypeError(f"{name} must be a single number here, got an array of shape {arr.shape}")
+        raise ParameterTypeError(f"{name} must be a single number here, got an array of shape {arr.shape}")
     return float(arr.reshape(()))
 
 
@@ -753,7 +770,7 @@ def check_flag(name: str, value: Any) -> bool:
     """``True`` or ``False`` (also numpy booleans); anything else is a :class:`TypeError`."""
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
-    raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be True or False")
+    raise ParameterTypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be True or False")
 
 
 def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
@@ -767,7 +784,7 @@ def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum:
         if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
         else:
-            raise TypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be an integer{both}")
+            raise ParameterTypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be an integer{both}")
     v = int(value)
     if (minimum is not None and v < minimum) or (maximum is not None and v > maximum):
         shown = _integer_text(v) if len(str(abs(v))) > 18 else str(v)
@@ -809,8 +826,7 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
         if type(v) is int and not -2**53 <= v <= 2**53:
             return None
         x = float(v)
-        lo, hi = COMPUTABLE_RANGE[k]
-        if not (abs(x) <= hi and (x <= 0.0 or x >= lo)):  # NaN fails here too
+        if x != x or outside_computable(k, x):
             return None
         vals[k] = x
     if not vals:

@@ -45,6 +45,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.errors", 0),
     ("stability.products", 0),
     ("stability.execution", 0),
+    ("stability.jit", 0),                # one source, two executions (numba on demand)
     ("stability.interrupts", 0),         # signals as flags, checkpoints, temporary files
     ("stability.resources", 0),          # memory estimates and limits
     ("stability.parameters", 1),

@@ -3,7 +3,7 @@
 Two kinds of check, said for each test:
 
 * *engine agreement* (not an independent reference): the kernel's loops and the batched loops
-  (stability.execution; continuation.jit.Twin) run interpreted (Python lists) and compiled
+  (stability.execution; stability.jit.Twin) run interpreted (Python lists) and compiled
   (numba) on the same points must give the same bits, signed zeros included (a NaN must be a
   NaN in both; its sign bit, which IEEE 754 leaves unspecified, is not compared). The
   independent references of the numbers themselves stay where they are (mpmath in
@@ -31,7 +31,7 @@ import numpy as np
 import pytest
 
 import stability
-from continuation.jit import Twin
+from stability.jit import Twin
 from stability import execution
 from stability.errors import InputError
 from stability.linear import kernel
@@ -291,7 +291,7 @@ def test_compile_notice_before_a_first_compiled_run(tmp_path):
     code = """
         import sys
         from stability import execution
-        from continuation.jit import Compiled
+        from stability.jit import Compiled
         from stability.nonlinear import integrators as I
         for slice_ in (I.dopri5_slice, I.rk4_slice):
             c = Compiled(slice_)

@@ -81,7 +81,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from continuation.jit import Twin, register_jitable
+from stability.jit import Twin, register_jitable
 
 from .. import execution
 from ..models import LinearModel, get_model

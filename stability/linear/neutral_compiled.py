@@ -24,7 +24,7 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import OPTIONS, njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 
@@ -33,7 +33,7 @@ from .neutrality import CrossingKernels
 
 __all__ = ["step_kernel", "constraint_values", "CONSTRAINT_CODES"]
 
-_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+_JIT = dict(OPTIONS, cache=True)
 
 #: kinds of constraint rows ``(code, index, a)`` for :func:`constraint_values` (parameters
 #: ``p`` indexed as ``(q, fr_inv, sigma, alpha_v, mu)``): the margin ``upper - lower`` of row

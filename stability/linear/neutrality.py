@@ -93,8 +93,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from continuation.jit import Twin, njit, register_jitable
-from continuation.jit import active as jit_active
+from stability.jit import OPTIONS, Twin, njit, register_jitable
+from stability.jit import active as jit_active
 
 from .. import execution
 from ..models import LinearModel, get_model
@@ -110,7 +110,7 @@ _REL_H = 1e-3
 _IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 #: numba options: IEEE arithmetic (no fastmath: no reassociation or contraction, so the
 #: compiled twins do the same floating-point operations as the scalar Python code)
-_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+_JIT = dict(OPTIONS, cache=True)
 
 
 def _i_power(k: np.ndarray) -> np.ndarray:

@@ -31,7 +31,7 @@ general and conservative), :func:`divide_root` (synthetic division by ``s - r``,
 :func:`modulus` and :func:`cbrt`; on the imaginary axis, :func:`axis_norms` (the scales of the
 real and imaginary parts of ``p(i w)``, the neutral condition's rows) and :func:`axis_growth` (the
 structured growth estimate of a root near the axis, below). They are plain arithmetic registered
-with ``register_jitable`` (:mod:`continuation.jit`, which defers numba's registration until
+with ``register_jitable`` (:mod:`stability.jit`, which defers numba's registration until
 compiled code is wanted): one source that runs on Python numbers, inside numba kernels, and
 (:func:`horner_scheme`, whose array front end is :func:`horner`) on numpy arrays; batched numpy
 callers of the others run a small loop over them (:func:`quadratic_roots_many`), interpreted or
@@ -83,15 +83,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from continuation.jit import Twin, overload, register_jitable
+from stability.jit import OPTIONS, Twin, overload, register_jitable
 
 from .. import execution
 
 __all__ = ["PolynomialRoots", "polynomial_roots", "horner", "horner_scheme", "inclusion_radius", "modulus",
            "csqrt", "cbrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward",
-           "axis_norms", "axis_growth", "axis_growth_many", "root_bound"]
+           "axis_norms", "axis_growth", "axis_growth_many", "root_bound", "neutral_tolerance"]
 
 UNIT_ROUNDOFF = 2.0**-53
+
+
+@register_jitable
+def neutral_tolerance(bound, scale):
+    """The neutral-mode rule's tolerance (docs/conventions.md), its one home: a root ``s`` with
+    error bound ``bound`` (``e``) is neutral when ``|Re s| <= 4 e + 16 u max|s|``, ``scale`` being
+    ``max|s|`` over the point's spectrum and ``u = 2**-53``. Floats, numpy arrays (broadcast)
+    or compiled code alike."""
+    return 4.0 * bound + 16.0 * UNIT_ROUNDOFF * scale
 
 
 @dataclass(frozen=True)
@@ -142,7 +151,7 @@ def cbrt(x):
     return math.cbrt(x)
 
 
-@overload(cbrt, jit_options=dict(nogil=True, error_model="numpy"))
+@overload(cbrt, jit_options=OPTIONS)
 def _cbrt_compiled(x):
     def impl(x):
         return np.cbrt(x)
@@ -227,7 +236,7 @@ def quadratic_roots(a, b, k):
 
 def _quadratic_roots_loop(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
-    ``exact`` (m, 2); lists or arrays (:class:`continuation.jit.Twin`)."""
+    ``exact`` (m, 2); lists or arrays (:class:`stability.jit.Twin`)."""
     for i in range(len(a)):
         r1, r2, ex = quadratic_roots(a[i], b[i], k[i])
         roots[i][0] = r1
@@ -427,7 +436,7 @@ def _axis_growth_loop(c, w, g, eg):
                 eg[i, j] = np.inf
 
 
-#: :func:`axis_growth` over a batch, interpreted or compiled (a :class:`continuation.jit.Twin`;
+#: :func:`axis_growth` over a batch, interpreted or compiled (a :class:`stability.jit.Twin`;
 #: the caller picks by :func:`stability.execution.use_compiled`)
 axis_growth_many = Twin(_axis_growth_loop, cache=True)
 

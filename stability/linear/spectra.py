@@ -9,7 +9,8 @@ How *marginal* is decided (docs/conventions.md):
 * a mode whose real part is zero by structure (an exactly zero root of ``det(s M - A)``, or a
   neutral root of a conservative polynomial, see :mod:`stability.linear.roots`) is neutral;
 * otherwise a mode is neutral when ``|Re s| <= 4 e + 16 u max|s|``, with ``e`` the root's own
-  error bound and ``u = 2**-53`` (the second term is a floor relative to the spectrum's scale);
+  error bound and ``u = 2**-53`` (the second term is a floor relative to the spectrum's scale;
+  the rule's one home is :func:`stability.linear.roots.neutral_tolerance`);
 * a point is *unstable* if any mode has ``Re s`` above that tolerance, *stable* if every mode is
   below minus it, and *marginal* otherwise.
 
@@ -27,7 +28,7 @@ import numpy as np
 from ..models import LinearModel, get_model
 from ..parameters import DEFAULT_MU, check_domain, check_flag
 from . import kernel
-from .roots import UNIT_ROUNDOFF, inclusion_radius, polynomial_roots
+from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
 
 __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
            "DEFAULT_METHOD"]
@@ -183,7 +184,7 @@ def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, paralle
 
 def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
-    tol = 4.0 * bound + 16.0 * UNIT_ROUNDOFF * scale
+    tol = neutral_tolerance(bound, scale)
     re = ev.real
     neutral = (exact & (re == 0)) | (np.abs(re) <= tol)
     grows = (re > tol) & ~neutral

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from continuation.jit import register_jitable
+from stability.jit import register_jitable
 
 __all__ = ["two_product", "inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
 

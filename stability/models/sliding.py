@@ -74,7 +74,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from continuation.jit import register_jitable
+from stability.jit import register_jitable
 
 from .base import LinearModel
 from .inertia import inertia_contact, inertia_g

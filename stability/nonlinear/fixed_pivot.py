@@ -18,7 +18,7 @@ Linearisation: ``A_C Phi'' - i sigma Phi' - mu fr_inv (1 + q) Phi = 0``, eq. (8)
 from __future__ import annotations
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import njit
 
 from .vectors import cross
 from .parameters import FR_INV, MU, Q, SIGMA

@@ -27,7 +27,7 @@ when the slip actually comes near zero.
 
 from __future__ import annotations
 
-from continuation.jit import njit
+from stability.jit import njit
 import numpy as np
 
 __all__ = ["FRICTION_LAWS", "NORMAL_FORCE", "DEFAULT_SLIP_SCALE", "traction"]

@@ -32,10 +32,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import njit
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 
-from continuation.jit import Compiled
+from stability.jit import Compiled
 
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint

@@ -7,7 +7,7 @@ branches to the model's kernel (the branch costs nothing next to the 6 x 6 solve
 
 from __future__ import annotations
 
-from continuation.jit import njit
+from stability.jit import njit
 
 from . import fixed_pivot, rolling, sliding
 

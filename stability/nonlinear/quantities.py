@@ -24,7 +24,7 @@ registered with numba (:func:`centre_velocity`, :func:`energy_terms`) or compile
 from __future__ import annotations
 
 import numpy as np
-from continuation.jit import njit, register_jitable
+from stability.jit import njit, register_jitable
 
 from ..models.inertia import inertia_g
 

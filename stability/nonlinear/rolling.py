@@ -26,9 +26,9 @@ has the gyroscopic coefficient ``sigma`` instead of ``sigma + mu (1 + q)``.
 from __future__ import annotations
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import njit
 
-from continuation.linalg import solve_dense
+from continuation.compiled import solve_dense
 
 from .vectors import cross
 from .parameters import FR_INV, MU, Q, SIGMA

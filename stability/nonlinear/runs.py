@@ -31,7 +31,7 @@ from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
-from ..parameters import (DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
+from ..parameters import (COMPUTABLE_MAX, DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
                          check_integer, check_interval, check_positive)
 
 __all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector", "check_run_memory"]
@@ -55,19 +55,20 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
     # path costs ~15 us): a tuple or list of plain numbers, or a 1-D float64 array, that passes
     # every test below (NaN fails the range) and comes out as the same doubles
     if type(value) in (tuple, list) and len(value) in n and all(
-            type(x) in _PLAIN_COMPONENT and -1e30 <= x <= 1e30 for x in value):
+            type(x) in _PLAIN_COMPONENT and -COMPUTABLE_MAX <= x <= COMPUTABLE_MAX for x in value):
         return np.array(value, dtype=float)
     if type(value) is np.ndarray and value.dtype == np.float64 and value.ndim == 1 and value.size in n:
         arr = value.copy()
-        if all(-1e30 <= x <= 1e30 for x in arr.tolist()):
+        if all(-COMPUTABLE_MAX <= x <= COMPUTABLE_MAX for x in arr.tolist()):
             return arr
     sizes = " or ".join(map(str, n))
     arr = as_parameter(name, value)  # type, emptiness and finiteness, with the standard messages
     if arr.ndim != 1 or arr.size not in n:
         raise ValueError(f"{name} = {value!r:.60} has shape {arr.shape}; {name} must be a vector of "
                          f"{sizes} components (fixed frame I, J, K)")
-    if np.max(np.abs(arr)) > 1e30:
-        raise ValueError(f"{name} = {value!r:.60} is outside the computable range: every |component| <= 1e30")
+    if np.max(np.abs(arr)) > COMPUTABLE_MAX:
+        raise ValueError(f"{name} = {value!r:.60} is outside the computable range: every |component| <= "
+                         f"{COMPUTABLE_MAX:g}")
     return arr
 
 

@@ -29,9 +29,9 @@ Linearisation about ``omega = k = K`` (spin +1) is eq. (11) (``stability.models.
 from __future__ import annotations
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import njit
 
-from continuation.linalg import solve_dense
+from continuation.compiled import solve_dense
 
 from .vectors import cross
 from .friction import traction

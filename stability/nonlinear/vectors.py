@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from continuation.jit import njit
+from stability.jit import njit
 
 __all__ = ["cross"]
 

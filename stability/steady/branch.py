@@ -47,7 +47,7 @@ import xarray as xr
 
 from continuation.engine import TraceOptions, trace
 from continuation.problem import StepResult
-from continuation.jit import Compiled
+from stability.jit import Compiled
 
 from ..errors import ConvergenceError, DomainError
 from ..execution import before_compiled_call

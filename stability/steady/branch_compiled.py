@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import OPTIONS, njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
 
@@ -32,7 +32,7 @@ from .family import state_core
 
 __all__ = ["component", "divided", "residual_and_jacobian", "jellett", "constraint_values", "step", "H"]
 
-_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+_JIT = dict(OPTIONS, cache=True)
 
 #: the complex step
 H = 1e-30

@@ -52,7 +52,7 @@ import math
 from typing import Any
 
 import numpy as np
-from continuation.jit import njit, register_jitable
+from stability.jit import njit, register_jitable
 
 from ..models.inertia import inertia_g, transverse_inertia_g
 

@@ -35,7 +35,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from continuation.jit import Compiled
+from stability.jit import Compiled
 
 from ..errors import DomainError
 from ..execution import before_compiled_call

@@ -44,7 +44,7 @@ horizontal momentum (two more zeros).
 from __future__ import annotations
 
 import numpy as np
-from continuation.jit import njit
+from stability.jit import njit
 
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES, rhs as model_rhs

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from continuation.jit import Compiled, njit, register_jitable
+from stability.jit import Compiled, njit, register_jitable
 
 from ..execution import before_compiled_call
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral

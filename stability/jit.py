@@ -1,8 +1,10 @@
 """One source, two executions: plain Python functions that numba compiles only on demand.
 
-The numerical building blocks of both packages are written once, as plain arithmetic that runs
+The numerical building blocks of the package are written once, as plain arithmetic that runs
 on Python numbers, on numpy arrays and inside numba-compiled loops (the "one home per formula"
-rule, docs/architecture.md). numba makes such a function callable from compiled code with
+rule, docs/architecture.md). Layer 0 (it imports nothing of the package); the continuation
+engine does not use it (its compiled face, :mod:`continuation.compiled`, registers its own
+building blocks with numba's public API when imported). numba makes such a function callable from compiled code with
 :func:`numba.extending.register_jitable` (or :func:`numba.extending.overload`), which registers
 it at decoration time and so needs numba imported, ~0.45 s, before any compiled code is wanted.
 This module defers that: its :func:`register_jitable` and :func:`overload` take the same
@@ -30,12 +32,13 @@ its compilation sees numba's ``prange`` instead.
 Disk cache. numba stamps the cache of a compiled function with a hash of its own source file
 only: a compiled loop that calls a ``register_jitable`` function of another file would be loaded
 stale after that file changed (the helpers are compiled into the loop). Every function compiled
-through this module with ``cache=True`` is stamped instead with a hash of its own file and of
-every source file of its package and of this one that registers functions for compiled code
-(:func:`source_stamp`): editing any single-sourced formula invalidates the caches that may
-contain it.
+through this module with ``cache=True`` is stamped instead with a hash of its own file, of
+every source file of its package that registers functions for compiled code, and of every
+source file of :mod:`continuation` (whose compiled building blocks are compiled into the
+callers) (:func:`source_stamp`): editing any single-sourced formula invalidates the caches
+that may contain it.
 
-The numba options used across the packages are :data:`OPTIONS` (IEEE arithmetic: no fastmath,
+The numba options used across the package are :data:`OPTIONS` (IEEE arithmetic: no fastmath,
 so no reassociation or contraction into fused multiply-adds, and the same bits as the Python
 execution; numpy's error model, so a division by zero gives inf or NaN as in numpy).
 """
@@ -52,7 +55,7 @@ from typing import Any
 __all__ = ["OPTIONS", "register_jitable", "overload", "activate", "active", "njit", "Twin", "source_stamp",
            "in_disk_cache"]
 
-#: numba options of the compiled code of both packages (module docstring)
+#: numba options of the compiled code of the package (module docstring)
 OPTIONS: dict[str, Any] = dict(fastmath=False, nogil=True, error_model="numpy")
 
 #: registrations waiting for numba: ("jitable", function, options) or ("overload", function, impl, options)
@@ -159,6 +162,28 @@ def _package_sources(root: str) -> tuple[tuple[str, bytes], ...]:
     return tuple(out)
 
 
+def _continuation_root() -> str:
+    """The directory of the installed :mod:`continuation` package (found, not imported)."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("continuation")
+    return os.path.dirname(spec.origin) if spec is not None and spec.origin else ""
+
+
+@functools.lru_cache(maxsize=None)
+def _all_sources(root: str) -> tuple[tuple[str, bytes], ...]:
+    """``(path, contents)`` of every ``.py`` file under ``root``, sorted by path."""
+    out = []
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if not d.startswith((".", "__")))
+        for name in sorted(files):
+            if name.endswith(".py"):
+                path = os.path.join(folder, name)
+                with open(path, "rb") as f:
+                    out.append((os.path.relpath(path, root), f.read()))
+    return tuple(out)
+
+
 def _package_root(filename: str) -> str:
     """The top-level package directory of a source file (the highest folder with an
     ``__init__.py`` above it)."""
@@ -171,8 +196,9 @@ def _package_root(filename: str) -> str:
 @functools.lru_cache(maxsize=None)
 def source_stamp(filename: str) -> bytes:
     """The stamp of numba's disk cache for a function defined in ``filename``: a SHA-256 of that
-    file and of every source file of its top-level package and of :mod:`continuation` that
-    registers functions for compiled code (module docstring)."""
+    file, of every source file of its top-level package and of this one that registers
+    functions for compiled code, and of every source file of :mod:`continuation` (module
+    docstring)."""
     h = hashlib.sha256()
     with open(filename, "rb") as f:
         h.update(f.read())
@@ -180,6 +206,10 @@ def source_stamp(filename: str) -> bytes:
         for path, data in _package_sources(root):
             h.update(path.encode())
             h.update(hashlib.sha256(data).digest())
+    engine = _continuation_root()
+    for path, data in _all_sources(engine) if engine else ():
+        h.update(b"continuation/" + path.encode())
+        h.update(hashlib.sha256(data).digest())
     return h.digest()
 
 
