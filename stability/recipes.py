@@ -68,7 +68,7 @@ from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
-from .products import PRODUCT_ATTR
+from .products import FLAG_MEANINGS, FLAG_VALUES, PRODUCT_ATTR
 
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
            "KINDS"]
@@ -559,7 +559,7 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
         ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=r * j_per_rpm)
         for kind in flags:
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    flag_attrs = {"flag_values": np.array([0, 1, 2], dtype=np.int8), "flag_meanings": "stable marginal unstable"}
+    flag_attrs = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
     vertical = xr.Dataset(
         {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin", **flag_attrs})
          for k, v in flags.items()},

@@ -7,11 +7,11 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
+from ..products import FLAG_NAMES
 from ._args import add_parameter_flags
 
 __all__ = ["register", "run", "FLAG_NAMES"]
 
-FLAG_NAMES = {0: "stable", 1: "marginal", 2: "unstable"}
 
 
 def add_top_flags(p: argparse.ArgumentParser) -> None:

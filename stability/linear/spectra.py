@@ -27,14 +27,13 @@ import numpy as np
 
 from ..models import LinearModel, get_model
 from ..parameters import DEFAULT_MU, check_domain, check_flag
+from ..products import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE
 from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
 
 __all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
            "DEFAULT_METHOD"]
 
-STABLE, MARGINAL, UNSTABLE = 0, 1, 2
-FLAG_MEANINGS = "stable marginal unstable"
 
 #: eigenvalue methods: "kernel" (default: the compiled one-pass kernel of stability.linear.kernel,
 #: Cardano + Weierstrass polishing, the fastest at full accuracy, docs/performance.md),

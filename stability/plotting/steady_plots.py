@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from ..parameters import SYMBOLS
+from ..products import FLAG_NAMES
 from ._layout import axes_or_new
 
 __all__ = ["plot_steady_states", "plot_final_state", "plot_bifurcation", "plot_class_map", "plot_settle",
@@ -38,7 +39,6 @@ X_AXES = {"jellett": "Jellett's integral J (units A0 Omega)",
 FILL_STYLES = {0: "full", 1: "left", 2: "none"}
 #: marker colour of a steady state by its flag (those of the stable and unstable lines; marginal grey)
 FLAG_COLOURS = {0: STABLE_STYLE["color"], 1: "0.35", 2: UNSTABLE_STYLE["color"]}
-_FLAG_NAMES = {0: "stable", 1: "marginal", 2: "unstable"}
 _TILT_LABEL = "tilt of the axis (deg): 0 upright, 180 inverted"
 
 _MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerfacecolor="w", linestyle="none",
@@ -63,7 +63,7 @@ def _level(ax: Axes, tilt_grid: np.ndarray, potential: np.ndarray, tilts: np.nda
         flag, kind = int(flag), str(kind)
         where = f"{kind} {tilt:.4g} deg" if kind == "tilted" else kind
         ax.plot([tilt], [energy], linestyle="none", marker="o", markersize=9, markeredgewidth=1.5,
-                fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag], zorder=5, label=f"{where}: {_FLAG_NAMES[flag]}")
+                fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag], zorder=5, label=f"{where}: {FLAG_NAMES[flag]}")
         ax.annotate(kind, (tilt, energy), xytext=(0, -15) if kind == "tilted" else (0, 9), textcoords="offset points",
                     ha="center", fontsize=8)
     ax.set_xlabel(_TILT_LABEL)

@@ -25,12 +25,10 @@ fold or a branch point, or a level that touches one.
 
 from __future__ import annotations
 
+from ..products import FLAG_MEANINGS, FLAG_VALUES, MARGINAL, STABLE, UNSTABLE
+
 __all__ = ["STABLE", "MARGINAL", "UNSTABLE", "FLAG_VALUES", "FLAG_MEANINGS", "REL_TOL", "structural_zero",
            "flag_of", "RULE"]
-
-STABLE, MARGINAL, UNSTABLE = 0, 1, 2
-FLAG_VALUES = (STABLE, MARGINAL, UNSTABLE)
-FLAG_MEANINGS = "stable marginal unstable"
 
 #: relative tolerance of the energy test (a test below it in magnitude is marginal)
 REL_TOL = 1e-12
