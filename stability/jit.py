@@ -15,11 +15,10 @@ that only ever runs the Python execution never imports numba.
 :func:`activate` runs (it is idempotent)
 
 * when a compiled function is made through this module (:func:`njit`, :class:`Twin`);
-* before numba compiles anything at all in the process, through numba's extension hook (the
-  ``numba_extensions`` entry point of the installed distribution, ``pyproject.toml``): an
-  ``@numba.njit`` function of a user's own that calls, say, ``stability.models.inertia.inertia_g``
-  compiles as it did when the registration was immediate;
-* when called.
+* when called: an ``@numba.njit`` function of a user's own that calls, say,
+  ``stability.models.inertia.inertia_g`` needs ``stability.jit.activate()`` called once before
+  it compiles (the package installs no hook into numba: no ``numba_extensions`` entry point,
+  which would run in every numba program of the environment).
 
 :class:`Twin` pairs a plain Python function (a loop over points, say) with its numba
 compilation, made on first use: ``twin.python`` runs interpreted, ``twin(...)`` compiled,
@@ -112,8 +111,8 @@ def overload(python_fn: Callable, jit_options: dict[str, Any] | None = None) -> 
 def activate() -> Any:
     """Import numba and register every function marked so far; return the numba module.
 
-    Also the ``init`` hook of numba's ``numba_extensions`` entry point (numba calls it before it
-    compiles anything).
+    Call it before compiling code of your own that calls the package's formulas (module
+    docstring).
     """
     global _NUMBA
     if _NUMBA is None:

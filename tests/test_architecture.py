@@ -350,3 +350,14 @@ def test_the_bare_raise_checker():
            "    raise DomainError('b')\n")
     assert bare_builtin_raises(src) == [(2, "ValueError"), (5, "TypeError")]
     assert isinstance(bare_raises_in_stability(), dict)
+
+
+def test_no_hook_into_numba():
+    """Issue 22, move 1: the installed distribution declares no ``numba_extensions`` entry point
+    (numba runs every such hook in every numba program of the environment); the package's
+    deferred registrations run when it compiles, or when ``stability.jit.activate()`` is called."""
+    from importlib import metadata
+
+    hooks = [ep for ep in metadata.entry_points(group="numba_extensions")
+             if ep.value.split(".")[0] in PACKAGES]
+    assert not hooks, hooks

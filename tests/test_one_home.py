@@ -36,6 +36,7 @@ from numba import njit
 from numba.extending import register_jitable
 
 import stability
+import stability.jit
 from stability.linear import kernel
 from stability.linear.neutral_curves import neutral_curve
 from stability.linear.neutrality import NeutralCondition, _other_roots_list, _other_roots_many
@@ -47,6 +48,10 @@ from stability.parameters import DOMAIN, domain_applies, domain_mask, domain_sid
 
 from conftest import mp_polyroots, random_domain_points
 from test_kernel import NAMES, _bound_points
+
+# numba code of one's own that calls the package's formulas: register them first (the package
+# installs no hook into numba; stability/jit.py)
+stability.jit.activate()
 
 U = 2.0**-53
 
