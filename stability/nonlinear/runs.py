@@ -36,13 +36,10 @@ from ..parameters import (COMPUTABLE_MAX, DEFAULT_MU, LONG_NAMES, as_parameter, 
 
 __all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector", "check_run_memory"]
 
-#: decay rate of the fast slip mode above which "auto" picks LSODA. Measured
-#: (``python benchmarks/run.py --suite integrators``; a linear-regime run, q = -0.1, 200 time units, rtol
-#: 1e-9, the default): the compiled dopri5, held to steps ~3.3 / rate by stability, costs
-#: 7 / 21 / 67 ms at rates 63 / 190 / 635 (alpha_v 50 / 150 / 500) with final-tilt errors
-#: 4e-8 / 2e-10 / 2e-12 against Radau at rtol 1e-11; LSODA costs 44-47 ms throughout with
-#: errors 3-4e-6 (its global error is ~1000 rtol here). The costs cross near rate 430, and
-#: below it dopri5 is also the more accurate: so 400, not the stability limit of a few.
+#: decay rate of the fast slip mode above which "auto" picks LSODA: where the measured costs of
+#: the compiled dopri5 (held to steps ~3.3 / rate by stability) and of LSODA cross, below which
+#: dopri5 is also the more accurate (docs/performance.md, the integrators' stiff panel;
+#: ``python benchmarks/run.py --suite integrators``)
 STIFF_RATE: float = 400.0
 
 _ONE = "1"
