@@ -145,31 +145,6 @@ def njit(fn: Callable | None = None, **options: Any) -> Any:
 # the disk cache
 # ------------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=None)
-def _package_sources(root: str) -> tuple[tuple[str, bytes], ...]:
-    """``(path, contents)`` of the ``.py`` files under ``root`` that register functions for
-    compiled code (they contain one of :data:`_MARKERS`), sorted by path."""
-    out = []
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith((".", "__")))
-        for name in sorted(files):
-            if name.endswith(".py"):
-                path = os.path.join(folder, name)
-                with open(path, "rb") as f:
-                    data = f.read()
-                if any(m in data for m in _MARKERS):
-                    out.append((os.path.relpath(path, root), data))
-    return tuple(out)
-
-
-def _continuation_root() -> str:
-    """The directory of the installed :mod:`continuation` package (found, not imported)."""
-    import importlib.util
-
-    spec = importlib.util.find_spec("continuation")
-    return os.path.dirname(spec.origin) if spec is not None and spec.origin else ""
-
-
-@functools.lru_cache(maxsize=None)
 def _all_sources(root: str) -> tuple[tuple[str, bytes], ...]:
     """``(path, contents)`` of every ``.py`` file under ``root``, sorted by path."""
     out = []
@@ -181,6 +156,20 @@ def _all_sources(root: str) -> tuple[tuple[str, bytes], ...]:
                 with open(path, "rb") as f:
                     out.append((os.path.relpath(path, root), f.read()))
     return tuple(out)
+
+
+def _package_sources(root: str) -> tuple[tuple[str, bytes], ...]:
+    """The files of :func:`_all_sources` that register functions for compiled code (they
+    contain one of :data:`_MARKERS`)."""
+    return tuple((path, data) for path, data in _all_sources(root) if any(m in data for m in _MARKERS))
+
+
+def _continuation_root() -> str:
+    """The directory of the installed :mod:`continuation` package (found, not imported)."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("continuation")
+    return os.path.dirname(spec.origin) if spec is not None and spec.origin else ""
 
 
 def _package_root(filename: str) -> str:
