@@ -677,13 +677,21 @@ def domain_mask(**params: Any) -> np.ndarray:
     return ok
 
 
+@register_jitable
+def outside_range(x, lo, hi):
+    """Whether ``x`` (a float, an array, or a number in compiled code) lies outside the range
+    ``lo <= |x| <= hi`` of magnitudes (``|x| < lo`` counts only for ``x > 0``; NaN is outside).
+    The one home of the computable-range test (:data:`COMPUTABLE_RANGE`), without branches so
+    that it works elementwise."""
+    m = abs(x)
+    return (m > hi) | (m != m) | ((m < lo) & (x > 0))
+
+
 def outside_computable(name: str, value: Any) -> Any:
-    """Where ``value`` (a float or an array) lies outside ``name``'s :data:`COMPUTABLE_RANGE`:
-    ``|value| > largest``, or ``0 < value < smallest``. NaN is not outside (finiteness is
-    checked apart). The one home of the test, for the array and the scalar paths."""
+    """Where ``value`` (a float or an array) lies outside ``name``'s :data:`COMPUTABLE_RANGE`
+    (:func:`outside_range`)."""
     lo, hi = COMPUTABLE_RANGE[name]
-    mag = abs(value)
-    return (mag > hi) | ((mag < lo) & (value > 0))
+    return outside_range(value, lo, hi)
 
 
 def computable_range_text(name: str) -> str:
@@ -826,7 +834,7 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
         if type(v) is int and not -2**53 <= v <= 2**53:
             return None
         x = float(v)
-        if x != x or outside_computable(k, x):
+        if outside_computable(k, x):  # NaN too
             return None
         vals[k] = x
     if not vals:
