@@ -56,7 +56,7 @@ from ..parameters import DEFAULT_MU, check_flag, check_positive
 from . import branch_compiled as kernels
 from . import family, linearisation
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
 
 #: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
@@ -113,6 +113,8 @@ class SteadyBranchProblem:
         self.code = CODES[m.name]
         self.n_full = len(m.state)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
+        #: the scale of lam^2 on the family, mu fr_inv |q| (the residual is relative to it)
+        self.weight = kernels.residual_weight(params["q"], params["fr_inv"], params["mu"], self.degenerate)
         self.jellett_max = jellett_max
         self.jellett_min = jellett_min
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
@@ -126,7 +128,7 @@ class SteadyBranchProblem:
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
         r, rt, rl = kernels.residual_and_jacobian(float(u[0]), float(u[1]), self.p, self.q, self.code,
-                                                  self.n_full, self.degenerate)
+                                                  self.n_full, self.weight)
         return np.array([r]), np.array([[rt, rl]])
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -164,7 +166,7 @@ class SteadyBranchProblem:
         """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
         (corrector, tangent, constraints and test function in one compiled call)."""
         return kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code, self.n_full,
-                            self.degenerate, float(self.jellett_max), float(self.jellett_min), guess, t_plane,
+                            self.degenerate, self.weight, float(self.jellett_max), float(self.jellett_min), guess, t_plane,
                             anchor, float(h), scale, float(tol), int(max_iter), float(max_move))
 
     # --- start points -------------------------------------------------------------------
@@ -173,19 +175,21 @@ class SteadyBranchProblem:
         (``R(theta_v, lam_b) = 0``), or None if it does not reach it.
 
         ``R(theta_v, lam)`` is ``A lam^2 + B`` (the rhs is quadratic in the rates on the no-slip
-        manifold): the guess ``lam^2 = -B / A`` from two evaluations, then Newton's method on
-        ``R`` itself to the rounding floor."""
+        manifold, ``B ~ mu fr_inv q``): the guess ``lam^2 = -B / A`` from evaluations at ``0`` and
+        at the family's own scale ``lam_w = sqrt(weight)`` (so that ``A lam_w^2`` and ``B`` are of
+        one size at every scale), then Newton's method on ``R`` itself to the rounding floor."""
         theta = 0.0 if orientation == "upright" else math.pi
+        w = self.weight
         b = self.divided_residual(theta, 0.0)
-        a = self.divided_residual(theta, 1.0) - b
+        a = (self.divided_residual(theta, math.sqrt(w)) - b) / w  # w > 0: not degenerate here
         if a == 0.0 or not -b / a > 0.0:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
             _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full,
-                                                     False)
+                                                     w)
             r = self.divided_residual(theta, lam)
-            step = r / (rl / lam * (1.0 + lam * lam))
+            step = r / (rl / lam * (lam * lam + w))
             lam -= step
             if abs(step) <= 4e-16 * abs(lam):
                 break
@@ -279,6 +283,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
+    check_scales(params, jmax)
     before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",

@@ -43,7 +43,8 @@ from ..nonlinear.runs import initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .products import (DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters,
+                       var_attrs)
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
@@ -379,6 +380,7 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J0, E0 = point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)

@@ -91,15 +91,22 @@ def _jacobians(Y, lam, p, code, n_full):
     out = np.empty((n, m, m))
     y = np.zeros(n_full, dtype=np.complex128)
     for i in range(n):
+        # the step of a rate (omega, V0) relative to the state's rates, whose size is that of
+        # the family's scale (any size); the axis k is a unit vector
+        rates = 0.0
+        for r in range(m):
+            if r < 3 or r >= 6:
+                rates = max(rates, abs(Y[i, r]))
         for j in range(m):
             for r in range(n_full):
                 y[r] = 0.0
             for r in range(m):
                 y[r] = Y[i, r]
-            y[j] += 1j * _H
+            h = _H * rates if (j < 3 or j >= 6) and rates > 0.0 else _H
+            y[j] += 1j * h
             f = model_rhs(code, 0.0, y, p)
             for r in range(m):
-                out[i, r, j] = f[r].imag / _H
+                out[i, r, j] = f[r].imag / h
         # - lam G (G: rotation about K on (omega, k, V0_h))
         out[i, 0, 1] += lam[i]
         out[i, 1, 0] -= lam[i]

@@ -27,7 +27,7 @@ from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integr
 from ..parameters import DEFAULT_MU, as_scalar
 from . import family, linearisation
 from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, UNITLESS, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, UNITLESS, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .verdicts import flag_of
 
 #: the first call's compilation on a cold numba cache (the level's closed forms, the integrals,
@@ -137,6 +137,7 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
+    check_scales(params, J)
     before_compiled_call(COMPILED, COMPILE_SECONDS)
     table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]

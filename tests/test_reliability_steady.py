@@ -1,0 +1,61 @@
+"""Issue 20: no wrong number without a flag in the steady layer (scales, vertical states, starts).
+
+References: the closed form of the family (S3-S4: ``J(c)^2 = mu fr_inv q D^2 / P``,
+:func:`stability.steady.family.jellett_of_c`, which shares nothing with the traced branch's
+nonlinear residual), eq. (11) through :func:`stability.eigenvalues` (the linear layer's own
+polynomial roots), and the family's scale invariance.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import continuation
+import stability
+from stability.errors import DomainError
+from stability.steady import family
+
+
+def _closed_form_error(ds, q, sigma, fr_inv, mu=2.28):
+    c = np.cos(np.radians(ds.tilt.values[1:-1]))
+    j = family.jellett_of_c(c, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    return float(np.max(np.abs(j / ds.jellett.values[1:-1] - 1.0)))
+
+
+@pytest.mark.parametrize("q, sigma, fr_inv", [(-0.1, 1.0, 1e-12), (1e-12, 0.8, 0.3), (-0.1, 1.0, 1e16),
+                                              (-0.1, 1.0, 1e30), (-1e-40, 1.2, 0.3), (1e-60, 0.8, 0.3)])
+def test_branch_points_on_the_closed_form_at_every_scale(q, sigma, fr_inv):
+    """Every traced point (the first step included) lies on S3-S4's J(c) to 1e-12 relative:
+    the corrector's tolerance is relative to the size of the terms (the residual divided by
+    lam^2 + mu fr_inv |q|), so a 1e-13 residual means 1e-13 of the terms at every scale
+    (the reproducers had 1e-5 to 1e-4 before: the first step accepted uncorrected)."""
+    ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=0.5)
+    assert ds.sizes["point"] > 100
+    assert _closed_form_error(ds, q, sigma, fr_inv) < 1e-12
+
+
+def test_branch_scale_invariance():
+    """J^2 / (mu fr_inv) is a function of q, sigma, mu, c only: the tilts of the branch at
+    fr_inv = 1e20 equal those at 0.3 (the same trace in log lam shifted by a constant), and
+    J scales by sqrt(1e20 / 0.3). Tolerance: 1e-9 deg (rounding of the trace's steps)."""
+    a = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    b = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=1e20, alpha_v=0.5)
+    assert a.sizes["point"] == b.sizes["point"]
+    np.testing.assert_allclose(b.tilt.values, a.tilt.values, atol=1e-9)
+    np.testing.assert_allclose(b.jellett.values, a.jellett.values * math.sqrt(1e20 / 0.3), rtol=1e-12)
+    assert list(a.kind.values) == list(b.kind.values)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(q=1e-300), "q"), (dict(q=-5e-324), "q"), (dict(sigma=1e-170), "sigma"),
+                                      (dict(fr_inv=1e120), "fr_inv")])
+def test_scales_that_do_not_fit_a_double_are_refused(kw, name):
+    """Beyond SCALE_RANGE a square underflows or overflows: every steady entry point refuses,
+    naming the parameter (never a ZeroDivisionError, an empty branch or a missed state)."""
+    p = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5) | kw
+    for call in (lambda: continuation.steady_branch(**p), lambda: stability.steady_states(**p),
+                 lambda: stability.final_state(**p, omega=[0.1, 0, 1], k=[0, 0, 1])):
+        with pytest.raises(DomainError, match=name):
+            call()
+    with pytest.raises(DomainError, match="parameter jellett"):
+        stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, jellett=1e155)
