@@ -59,3 +59,32 @@ def test_scales_that_do_not_fit_a_double_are_refused(kw, name):
             call()
     with pytest.raises(DomainError, match="parameter jellett"):
         stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, jellett=1e155)
+
+
+@pytest.mark.parametrize("alpha_v, jellett", [(0.5, None), (1e9, None), (1e6, None), (0.5, 1e12), (0.5, -0.9)])
+def test_vertical_growth_rates_are_eq11s(alpha_v, jellett):
+    """The vertical states' growth rates are |n| times eq. (11)'s at the equivalent point
+    (q c, fr_inv / n^2, alpha_v / |n|), here through stability.eigenvalues (the linear layer,
+    which the steady layer's reduced Jacobian shares nothing with), at the issue's hard point
+    A_G ~ 2e-15 where the reduced Jacobian's eigenvalues lost every digit (343.9 against
+    -0.195). Tolerance: the reported bound plus 1e-12 relative (the same roots, spin applied)."""
+    q = -(1 - 1e-15) / math.sqrt(2.28)
+    sigma = 1 - 2.28 * q * q
+    ds = stability.steady_states(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, jellett=jellett)
+    for i in np.nonzero(ds.kind.values != "tilted")[0]:
+        c = 1.0 if ds.kind.values[i] == "upright" else -1.0
+        n = abs(float(ds.omega_vertical[i]))
+        s = stability.eigenvalues("sliding", q=q * c, fr_inv=0.3 / n**2, sigma=sigma, alpha_v=alpha_v / n) * n
+        ref = float(s.real.max())
+        assert abs(float(ds.growth_rate[i]) - ref) <= float(ds.growth_rate_bound[i]) + 1e-12 * abs(ref)
+
+
+def test_branch_point_growth_rate_is_eq11s():
+    """A branch's first point (the vertical state where the family leaves it) carries eq. (11)'s
+    growth rate at its equivalent point, as stability.eigenvalues gives it; at a branch point
+    eq. (11) is neutral (the neutral curve), so |growth| is within its bound."""
+    ds = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    n = float(ds.precession_rate[0]) * (1 - 0.1)  # spin = lam (1 + q c), c = 1
+    s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3 / n**2, sigma=1.0, alpha_v=0.5 / n) * n
+    assert float(ds.growth_rate[0]) == pytest.approx(float(s.real.max()), abs=1e-12)
+    assert abs(float(ds.growth_rate[0])) < 1e-9

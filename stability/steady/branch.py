@@ -55,7 +55,7 @@ from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_positive
 from . import branch_compiled as kernels
 from . import family, linearisation
-from .linearisation import modes_verdict, reduced_spectrum
+from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
 
@@ -372,6 +372,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
     c = np.cos(theta)
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
     growth = np.full(n, np.nan)
+    bound = np.full(n, np.nan)
     n_neutral = np.zeros(n, dtype=np.int8)
     jac = np.zeros(n, dtype=np.int8)
     flags = np.zeros(n, dtype=np.int8)
@@ -385,8 +386,9 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         y = family.state_vector(theta, lam, q)
         for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
             y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
-        ev, scale = reduced_spectrum(y, lam, vertical, prob.p, q=q, sigma=sigma, mu=mu)
-        growth, n_neutral, jac = modes_verdict(ev, scale)
+        spins = family.omega_vertical(c, lam, q)
+        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, q=q, sigma=sigma,
+                                                        fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
         J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
         axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
         for i in range(n):
@@ -410,10 +412,14 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         "growth_rate": ("point", growth, var_attrs(
             "leading growth rate of the linearisation (frame precessing with the state), structural "
             "neutral directions removed", "Omega", short="leading growth rate")),
+        "growth_rate_bound": ("point", bound, var_attrs(
+            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)", "Omega", short="growth rate bound")),
         "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("point", np.asarray(jac, dtype=np.int8), flag_attrs(
-            "Jacobian verdict", comment="verdict of the reduced Jacobian alone; neutral if |Re s| <= 1e3 u ||A||_F")),
+            "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
+            "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points")),
         "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point", "comment": "branch_point, fold, "
                                                                     "stability_change, end, or '' (regular)"}),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),

@@ -42,7 +42,7 @@ from ..execution import before_compiled_call
 from ..nonlinear.runs import initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
-from .linearisation import modes_verdict, reduced_spectrum
+from .linearisation import state_modes
 from .products import (DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters,
                        var_attrs)
 from .states import point_integrals
@@ -424,19 +424,22 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    ys, lams, vert = [], [], []
+    ys, lams, vert, cos_, spins = [], [], [], [], []
     for c in sel:
         if c.kind == "tilted":
             ys.append(family.state_vector(math.radians(c.tilt), c.precession_rate, q))
             lams.append(c.precession_rate)
             vert.append(False)
+            spins.append(math.nan)
         else:
-            ys.append(family.vertical_state(c.kind, family.vertical_spin(c.kind, jel, q=q, sigma=sigma)))
+            spins.append(family.vertical_spin(c.kind, jel, q=q, sigma=sigma))
+            ys.append(family.vertical_state(c.kind, spins[-1]))
             lams.append(0.0)
             vert.append(True)
+        cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
     p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    ev, scale = reduced_spectrum(np.array(ys), np.array(lams), np.array(vert), p, q=q, sigma=sigma, mu=mu)
-    growth, _, _ = modes_verdict(ev, scale)
+    growth = state_modes(np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p, q=q,
+                         sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
