@@ -157,9 +157,10 @@ class SteadyBranchProblem:
                                          self.degenerate)
 
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """``[dJ/ds]``: zero at a fold of the family in ``J``."""
-        g = self.jellett(u)[1]
-        return np.array([g[0] * t[0] + g[1] * t[1]])
+        """``[d(log |J|)/ds]``: zero at a fold of the family in ``J`` (relative to ``J``, so that
+        the engine's rounding floor of events means the same at every scale of ``J``)."""
+        j, g = self.jellett(u)
+        return np.array([(g[0] * t[0] + g[1] * t[1]) / abs(j)])
 
     def compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple:

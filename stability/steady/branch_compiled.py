@@ -139,7 +139,7 @@ def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, guess, t
          max_iter, max_move):
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
-    constraints and ``tests = [dJ/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
+    constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
     F = np.empty(1)
     J = np.empty((1, 2))
     F2 = np.empty(1)
@@ -185,5 +185,5 @@ def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, guess, t
     g = constraint_values(u[0], jel, jmax, jmin, degenerate)
     tu = t_new * scale
     tu = tu / norm(tu)
-    tests[0] = jt * tu[0] + jl * tu[1]
+    tests[0] = (jt * tu[0] + jl * tu[1]) / abs(jel)  # d(log |J|)/ds: scale-free
     return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests
