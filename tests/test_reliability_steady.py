@@ -88,3 +88,33 @@ def test_branch_point_growth_rate_is_eq11s():
     s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3 / n**2, sigma=1.0, alpha_v=0.5 / n) * n
     assert float(ds.growth_rate[0]) == pytest.approx(float(s.real.max()), abs=1e-12)
     assert abs(float(ds.growth_rate[0])) < 1e-9
+
+
+def _atlas_file(tmp_path):
+    ds = stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 13), fr_inv=np.linspace(0.0, 1.0, 11), sigma=1.0,
+                         alpha_v=0.5)
+    return ds
+
+
+def test_open_atlas_checks_its_flags_against_its_own_growth_rates(tmp_path):
+    """Item 4: an atlas whose unstable flags were set to stable opens with an error that counts
+    them. Reference: the file's own max_growth_rate and eigenvalue_error_bound (a stable point
+    has every Re s < -4 bound, an unstable one a growing mode)."""
+    from stability.errors import AtlasFileError
+
+    ds = _atlas_file(tmp_path)
+    n_unstable = int((ds.stability == 2).sum())
+    assert n_unstable > 0
+    good = tmp_path / "good.nc"
+    ds.to_netcdf(good)
+    stability.open_atlas(good)  # the untouched file opens
+    bad = ds.copy(deep=True)
+    bad["stability"] = bad.stability.where(bad.stability != 2, 0).astype(np.int8)
+    bad.to_netcdf(tmp_path / "bad.nc")
+    with pytest.raises(AtlasFileError, match=f"{n_unstable} points flagged stable"):
+        stability.open_atlas(tmp_path / "bad.nc")
+    perm = ds.copy(deep=True)
+    perm.stability.attrs["flag_meanings"] = "outside_domain unstable marginal stable"
+    perm.to_netcdf(tmp_path / "perm.nc")
+    with pytest.raises(AtlasFileError, match="flag_meanings"):
+        stability.open_atlas(tmp_path / "perm.nc")
