@@ -118,3 +118,22 @@ def test_open_atlas_checks_its_flags_against_its_own_growth_rates(tmp_path):
     perm.to_netcdf(tmp_path / "perm.nc")
     with pytest.raises(AtlasFileError, match="flag_meanings"):
         stability.open_atlas(tmp_path / "perm.nc")
+
+
+def test_a_start_on_a_steady_state_says_so():
+    """Item 5: a launch from an exact steady state (upright: unstable; inverted: stable; the
+    tilted state of the paper's level: stable) says in ``reason`` that the start is itself that
+    state. Reference: the state built from the closed form (S1, family.state_vector) and its
+    flag from steady_states; a start 0.01 off the vertical is no steady state."""
+    p = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    up = stability.final_state(**p, omega=[0, 0, 1], k=[0, 0, 1])
+    assert "start is itself a steady state (the upright one, unstable)" in up.reason
+    inv = stability.final_state(**p, omega=[0, 0, 1], k=[0, 0, -1])
+    assert "start is itself a steady state (the inverted one, stable)" in inv.reason and inv.kind == "inverted"
+    ds = stability.steady_states(**p, jellett=-0.900118587)
+    i = int(np.nonzero(ds.kind.values == "tilted")[0][0])
+    y = family.state_vector(math.radians(float(ds.tilt[i])), float(ds.precession_rate[i]), -0.1)
+    tilted = stability.final_state(**p, omega=y[0:3], k=y[3:6], velocity=[y[6], y[7], 0.0])
+    assert "start is itself a steady state (the tilted one, stable)" in tilted.reason
+    off = stability.final_state(**p, omega=[0.01, 0, 1], k=[0, 0, 1])
+    assert "start is itself" not in off.reason

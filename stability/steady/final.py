@@ -273,6 +273,27 @@ def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr
     return end, reason, cands
 
 
+def start_note(cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float,
+               gravity: float) -> str:
+    """``"; the start is itself ..."`` if the initial state is one of the level's steady states,
+    else ``""``.
+
+    ``E >= U_J(c)`` for every state of axis height ``c`` on the level ``J``, with equality
+    exactly at the steady state of that ``c`` (S5-S7): a start whose energy equals the
+    candidate's at its own tilt (within :data:`ENERGY_REL_TOL` of the terms) is that steady
+    state, where the top stays forever; the prediction is then where any perturbation of it
+    leads (an unstable start) or the start itself."""
+    tol = ENERGY_REL_TOL * (abs(initial_energy) + jellett * jellett + gravity)
+    for c in cands:
+        if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
+            flag = ("stable", "marginal", "unstable")[c.stability]
+            if c.stability == UNSTABLE:
+                return (f"; the start is itself a steady state (the {c.kind} one, {flag}), where the top stays "
+                        "forever: the end given is where any perturbation of it leads")
+            return f"; the start is itself a steady state (the {c.kind} one, {flag}): the top stays there"
+    return ""
+
+
 def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate | None, str]:
     """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
@@ -383,6 +404,7 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     if end is not None:
         return FinalState(tilt=end.tilt, kind=end.kind, method="jellett", energy=end.energy,
