@@ -137,3 +137,29 @@ def test_a_start_on_a_steady_state_says_so():
     assert "start is itself a steady state (the tilted one, stable)" in tilted.reason
     off = stability.final_state(**p, omega=[0.01, 0, 1], k=[0, 0, 1])
     assert "start is itself" not in off.reason
+
+
+def test_class_boundary_exactly_and_next_to_it():
+    """Item 7: at sigma (1 + q) = A_G exactly (P(1) = 0: no upright branch point, J_up = inf)
+    the family is traced from the inverted branch point and its points lie on the closed form
+    S3-S4 (1e-12 relative, as above); 1e-10 below the boundary the family lies within ~1e-9 rad
+    of the upright state, where the residual divided by sin(tilt) has no digits left: the error
+    says so and names the boundary (no ZeroDivisionError, no bare 'failed after 2 points')."""
+    from stability.errors import ConvergenceError
+    from stability.models.inertia import inertia_g
+
+    sigma = inertia_g(-0.1, 2.28) / 0.9
+    ds = continuation.steady_branch(q=-0.1, sigma=sigma, fr_inv=0.3, alpha_v=0.5)
+    assert ds.attrs["start"] == "inverted" and ds.sizes["point"] > 100
+    assert _closed_form_error(ds, -0.1, sigma, 0.3) < 1e-12
+    with pytest.raises(ConvergenceError, match="class boundary"):
+        continuation.steady_branch(q=-0.1, sigma=sigma * (1 - 1e-10), fr_inv=0.3, alpha_v=0.5)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(jellett_max=1e150), "jellett_max"), (dict(max_step=1e-300), "max_step"),
+                                      (dict(max_angle=0.0), "max_angle")])
+def test_branch_options_refused_by_their_own_names(kw, name):
+    """Item 8: options outside their range are refused naming the option (not the engine's
+    min_step, not 'SVD did not converge')."""
+    with pytest.raises(DomainError, match=name):
+        continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **kw)

@@ -52,7 +52,7 @@ from ..errors import ConvergenceError, DomainError
 from ..execution import before_compiled_call
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
-from ..parameters import DEFAULT_MU, check_flag, check_positive
+from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family, linearisation
 from .linearisation import state_modes
@@ -69,6 +69,9 @@ PYTHON_STEP = Compiled(kernels.residual_and_jacobian, linearisation._jacobians)
 from .verdicts import flag_of
 
 __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
+
+#: the smallest max_step (a branch is ~pi / max_step points, within the trace's 100000)
+MIN_MAX_STEP = 1e-4
 
 #: kinds of points of a branch ("" for a regular point)
 KINDS = ("branch_point", "fold", "stability_change", "end")
@@ -276,15 +279,21 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     ValueError, TypeError
         Bad parameters or options.
     stability.errors.ConvergenceError
-        The continuation failed (not expected in the physical domain).
+        The continuation failed. Not expected in the physical domain except where the
+        residual's rounding (``~u / sin(tilt)`` of its terms, from the division by
+        ``sin(tilt)``, or ``~u / A_G`` from the mass matrix) exceeds the corrector's tolerance:
+        a family that lies within ``~1e-4`` rad of a vertical state (``sigma (1 +- q)`` within
+        ``~1e-9`` of ``A_G``, next to a high-spin class boundary) or ``A_G < ~1e-8``. The message
+        says which; :func:`stability.steady_states` (closed forms) answers at any ``J`` there.
     """
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
-    max_step = check_positive("max_step", max_step)
-    max_angle = check_positive("max_angle", max_angle)
+    # a branch is at most ~pi / max_step points (the engine's max_points is 100000): 1e-4 or more
+    max_step = check_interval("max_step", max_step, MIN_MAX_STEP, math.inf, closed="left")
+    max_angle = check_interval("max_angle", max_angle, 1e-6, math.pi, closed="both")
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
-    check_scales(params, jmax)
+    check_scales(params, jmax, jellett_name="jellett_max")
     before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
@@ -352,8 +361,19 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         if end != "boundary" and kinds[k] == "":
             kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
     if "step_failure" in ends:
+        a_g = family.a_g(q, mu)
+        why = []
+        if abs(math.sin(pts[-1, 0])) < 1e-4:
+            why.append(f"the family stays within {abs(math.sin(pts[-1, 0])):.2g} rad of the vertical state, where the "
+                       "residual (divided by sin(tilt)) loses ~u / sin(tilt) of its digits: sigma (1 + q) = "
+                       f"{sigma * (1 + q):.17g} and sigma (1 - q) = {sigma * (1 - q):.17g} against A_G = {a_g:.17g} "
+                       "(a high-spin class boundary is sigma (1 +- q) = A_G)")
+        if a_g < 1e-8:
+            why.append(f"A_G = 1 - mu q^2 = {a_g:.3g} is near the domain edge, where the mass matrix is singular")
         raise ConvergenceError(f"steady_branch: the continuation failed after {len(pts)} points "
-                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}")
+                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
+                               + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J "
+                                  "there" if why else ""))
     attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
                  n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
     return points_dataset(prob, pts, kinds, details, attrs)

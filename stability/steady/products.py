@@ -84,7 +84,7 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
 SCALE_RANGE = (1e-100, 1e100)
 
 
-def check_scales(params: dict[str, float], jellett: float | None = None) -> None:
+def check_scales(params: dict[str, float], jellett: float | None = None, *, jellett_name: str = "jellett") -> None:
     """Refuse scales at which the steady layer's doubles would underflow or overflow.
 
     The family is scale invariant (``J^2 / (mu fr_inv)`` and ``lam^2 / (mu fr_inv |q|)`` are
@@ -93,7 +93,7 @@ def check_scales(params: dict[str, float], jellett: float | None = None) -> None
     double. So each of ``sigma``, ``mu``, ``mu fr_inv``, ``mu fr_inv |q|`` (the scale of
     ``lam^2`` on the family), ``|J|`` and ``|J| / sigma`` (the spin of the vertical states) that
     is not zero must lie in :data:`SCALE_RANGE`; the message names the parameter that leaves
-    it, its value and the range. (``|q|`` so small that ``mu fr_inv |q|`` is below the range is
+    it, its value and the range (``jellett_name``: the caller's name of ``jellett``). (``|q|`` so small that ``mu fr_inv |q|`` is below the range is
     the ``q = 0`` family to far below rounding: pass ``q = 0``.)
 
     Raises
@@ -108,9 +108,9 @@ def check_scales(params: dict[str, float], jellett: float | None = None) -> None
                f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
                "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0")]
     if jellett is not None:
-        checks += [("|jellett|", abs(jellett), "jellett", ""),
-                   ("|jellett| / sigma", abs(jellett) / sigma, "jellett",
-                    f"jellett = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states")]
+        checks += [(f"|{jellett_name}|", abs(jellett), jellett_name, ""),
+                   (f"|{jellett_name}| / sigma", abs(jellett) / sigma, jellett_name,
+                    f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states")]
     for label, value, name, why in checks:
         if value != 0.0 and not lo <= value <= hi:
             raise DomainError(f"{label} = {value:.6g} is outside the steady layer's range [{lo:g}, {hi:g}] "
