@@ -174,7 +174,7 @@ def test_branch_dataset_attributes(branches):
 
 
 @pytest.mark.parametrize("kw,exc,fragment", [
-    (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: max_step > 0"),
+    (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: 0.0001 <= max_step"),
     (dict(jellett_max=-1.0), ValueError, "jellett_max = -1 is outside the allowed range"),
     (dict(jellett_max=0.5), ValueError, "jellett_max = 0.5 is outside the allowed range: jellett_max > 0.762438"),
     (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),
