@@ -169,7 +169,7 @@ def test_branch_dataset_attributes(branches):
     ds = branches[CASES[0]]
     assert ds.attrs["tippe_stability_product"] == "steady_branch"
     assert ds.attrs["start"] == "upright" and ds.tilt.attrs["units"] == "degree"
-    assert set(np.unique(ds.kind.values)) <= {"", "branch_point", "fold", "stability_change", "end"}
+    assert set(np.unique(ds.kind.values)) <= {"regular", "branch_point", "fold", "stability_change", "end"}
     assert ds.stability.attrs["flag_meanings"] == "stable marginal unstable"
 
 

@@ -73,8 +73,8 @@ __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "po
 #: the smallest max_step (a branch is ~pi / max_step points, within the trace's 100000)
 MIN_MAX_STEP = 1e-4
 
-#: kinds of points of a branch ("" for a regular point)
-KINDS = ("branch_point", "fold", "stability_change", "end")
+#: kinds of points of a branch ("regular" for an ordinary point, as neutral_curve says)
+KINDS = ("regular", "branch_point", "fold", "stability_change", "end")
 
 
 class SteadyBranchProblem:
@@ -221,7 +221,7 @@ def _kind_of(kind: str, detail: str) -> str:
         return "end" if detail.startswith("jellett") else "branch_point"
     if kind == "branch_point":
         return "branch_point"
-    return ""
+    return "regular"
 
 
 def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU
@@ -269,7 +269,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         same tilts and stability), ``precession_rate``, ``axial_spin``, ``energy``,
         ``upright_equivalent_spin`` (``J / (sigma (1 + q))``: the upright spin with this
         ``J``), ``growth_rate``, ``n_neutral``, ``stability`` (flag), ``stability_jacobian``,
-        ``kind`` ("branch_point", "fold", "stability_change", "end" or "" for a regular point)
+        ``kind`` ("branch_point", "fold", "stability_change", "end" or "regular" for an ordinary point, as :func:`continuation.neutral_curve`)
         and ``detail``; attributes: the parameters, ``start`` (the branch point traced from),
         ``ends``, ``jellett_max``, the engine's work counts. No points if the family does not
         exist (attribute ``note`` says why).
@@ -320,7 +320,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         pts = np.concatenate([lo.points[::-1], hi.points[1:]])
         kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
         details = lo.details[::-1] + hi.details[1:]
-        kinds = ["" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
+        kinds = ["regular" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
         work = (lo.n_newton + hi.n_newton, lo.n_residual + hi.n_residual, lo.n_jacobian + hi.n_jacobian)
         start = "vertical line (fr_inv = 0 or q = 0)"
     else:
@@ -352,13 +352,13 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         elif k == "fold" and abs(math.sin(pts[i, 0])) < 1e-6:
             # dJ/ds vanishes at the branch point itself (J is even in the tilt about a vertical
             # state: the vertex of the pitchfork); rounding there is no fold
-            kinds[i], details[i] = "", ""
+            kinds[i], details[i] = "regular", ""
         elif k == "fold":
             details[i] = "fold in J (dJ/ds = 0)"
         elif k == "end":
             details[i] = f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
     for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
-        if end != "boundary" and kinds[k] == "":
+        if end != "boundary" and kinds[k] == "regular":
             kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
     if "step_failure" in ends:
         a_g = family.a_g(q, mu)
@@ -417,7 +417,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
             t, s = family.energy_test(kind, float(c[i]), float(J[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
             flags[i] = flag_of(kind, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(jac[i]))
         for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
-            if flags[i] != flags[i - 1] and kinds[i] == "" and kinds[i - 1] == "":
+            if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
@@ -442,7 +442,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
             "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
             "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points")),
         "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point", "comment": "branch_point, fold, "
-                                                                    "stability_change, end, or '' (regular)"}),
+                                                                    "stability_change, end, or regular"}),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
