@@ -32,3 +32,26 @@ def test_one_name_for_an_ordinary_point():
     for ds in (nc, br):
         kinds = set(ds.kind.values.astype(str))
         assert "regular" in kinds and "" not in kinds
+
+
+def test_cli_mistyped_option_and_messages_in_cli_names(capsys):
+    """Item 17: a mistyped option gets 'did you mean' and the subcommand's own help (exit 2),
+    before any complaint about required options; library messages come out with the CLI's
+    names (--alpha-v, not alpha_v; --fr-inv, not fixed). Reference: the flags argparse
+    registered for the subcommand."""
+    import pytest
+
+    from stability.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(["final", "--alpha_v", "0.5"])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert "did you mean --alpha-v" in err and "usage: tippe final" in err and "arguments are required" not in err
+    assert main(["final", "--q", "0", "--sigma", "0.8", "--fr-inv", "0.3", "--alpha-v", "-1", "--omega=0,0,1",
+                 "--k=0,0,1"]) == 2
+    err = capsys.readouterr().err
+    assert "--alpha-v = -1 is outside the physical domain: --alpha-v >= 0" in err and "alpha_v" not in err
+    assert main(["neutral", "--x", "q", "--y", "sigma", "--alpha-v", "0.5"]) == 2
+    err = capsys.readouterr().err
+    assert "give --fr-inv" in err and "fixed" not in err
