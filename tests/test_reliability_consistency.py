@@ -55,3 +55,20 @@ def test_cli_mistyped_option_and_messages_in_cli_names(capsys):
     assert main(["neutral", "--x", "q", "--y", "sigma", "--alpha-v", "0.5"]) == 2
     err = capsys.readouterr().err
     assert "give --fr-inv" in err and "fixed" not in err
+
+
+def test_atlas_plot_of_a_2d_grid_is_a_map():
+    """Item 16: --plot of a 2-D grid with many values of the second dimension draws the map
+    (an image of the grid, one colour per point), not a line per value with a legend for each;
+    a few values still give lines. Reference: the artists of the figure."""
+    import numpy as np
+
+    import stability
+    from stability.commands.atlas import MAX_LINES, plot_figure
+
+    ds = stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 21), sigma=np.linspace(0.5, 1.5, MAX_LINES + 5),
+                         fr_inv=0.3, alpha_v=0.5)
+    fig = plot_figure(ds, "q")
+    assert len(fig.axes[0].lines) < MAX_LINES and (fig.axes[0].images or fig.axes[0].collections)
+    few = plot_figure(ds.isel(sigma=slice(0, 3)), "q")
+    assert len(few.axes[0].lines) >= 3
