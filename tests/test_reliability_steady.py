@@ -163,3 +163,15 @@ def test_branch_options_refused_by_their_own_names(kw, name):
     min_step, not 'SVD did not converge')."""
     with pytest.raises(DomainError, match=name):
         continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **kw)
+
+
+def test_a_stiff_deciding_run_says_its_cost_first(capsys):
+    """Item 9: a deciding run that is stiff (alpha_v = 1e8: LSODA) announces on stderr, before
+    it starts, its cost per time unit and the bound t_max puts on it; a non-stiff one says
+    nothing. (The cost is a measured constant, docs/hard_cases.md: no timing here.)"""
+    end = stability.final_state(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=1e8, omega=[0.1, 0, 1], k=[0, 0, 1],
+                                t_max=50.0)
+    err = capsys.readouterr().err
+    assert end.method == "simulation" and "stiff" in err and "t_max = 50" in err
+    stability.final_state(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=0.5, omega=[0.1, 0, 1], k=[0, 0, 1], t_max=50.0)
+    assert "stiff" not in capsys.readouterr().err

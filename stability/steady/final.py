@@ -38,8 +38,8 @@ import xarray as xr
 from continuation.jit import Compiled
 
 from ..errors import DomainError
-from ..execution import before_compiled_call
-from ..nonlinear.runs import initial_state, simulate
+from ..execution import announce, before_compiled_call
+from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import state_modes
@@ -61,6 +61,9 @@ __all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "Settle
 MATCH_DEG = 0.05
 #: relative tolerance of the comparison U_J <= E0
 ENERGY_REL_TOL = 1e-12
+#: wall time of a stiff deciding run (LSODA) per unit of simulated time: 11.2 s for 2e4 units
+#: at q = 0, sigma = 0.8, fr_inv = 0.3, alpha_v = 1e8 (the 2-core machine, docs/hard_cases.md)
+STIFF_SECONDS_PER_UNIT = 5.6e-4
 
 
 class Candidate(NamedTuple):
@@ -418,6 +421,11 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     chunk = chunk_length(cands, params, J0)
+    if _auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
+        announce(f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
+                 f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
+                 f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
+                 "simulation=False skips it)")
     tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
