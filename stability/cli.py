@@ -267,10 +267,16 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     interrupts.install("tippe")
     try:
-        return _main(argv, interrupts)
+        status = _main(argv, interrupts)
     finally:
         if argv is not None:
             interrupts.uninstall()
+    # the program (not a library call): from here to the end of the process a signal waits
+    # (the interpreter's shutdown restores the default handlers); one that came after the
+    # command's last check is reported as the others are
+    if argv is None and interrupts.hold_until_exit():
+        status = _interrupted(interrupts.label(), None)
+    return status
 
 
 def _interrupted(prog: str, text: str | None) -> int:

@@ -72,3 +72,17 @@ def test_atlas_plot_of_a_2d_grid_is_a_map():
     assert len(fig.axes[0].lines) < MAX_LINES and (fig.axes[0].images or fig.axes[0].collections)
     few = plot_figure(ds.isel(sigma=slice(0, 3)), "q")
     assert len(few.axes[0].lines) >= 3
+
+
+def test_a_signal_after_the_last_check_is_reported_not_fatal(tmp_path):
+    """Item 10: a SIGTERM that arrives once the command has ended (after 'wrote c.nc') either
+    is reported as the others are (exit 130, one line: the flag was set before the hold), or,
+    during the interpreter's shutdown (which restores the default handlers: exit 143 and no
+    line before), waits behind the block and the process ends with its own status."""
+    code = ("import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
+            "os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); print(interrupts.hold_until_exit())")
+    assert _run(code, tmp_path).strip() == "True"
+    code = ("import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
+            "print(interrupts.hold_until_exit()); os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); "
+            "print('alive')")
+    assert _run(code, tmp_path).split() == ["False", "alive"]
