@@ -25,12 +25,14 @@ def _closed_form_error(ds, q, sigma, fr_inv, mu=2.28):
 
 @pytest.mark.parametrize("q, sigma, fr_inv", [(-0.1, 1.0, 1e-12), (1e-12, 0.8, 0.3), (-0.1, 1.0, 1e16),
                                               (-0.1, 1.0, 1e30), (-1e-40, 1.2, 0.3), (1e-60, 0.8, 0.3)])
-def test_branch_points_on_the_closed_form_at_every_scale(q, sigma, fr_inv):
+@pytest.mark.parametrize("compiled", [True, False])
+def test_branch_points_on_the_closed_form_at_every_scale(q, sigma, fr_inv, compiled):
     """Every traced point (the first step included) lies on S3-S4's J(c) to 1e-12 relative:
     the corrector's tolerance is relative to the size of the terms (the residual divided by
     lam^2 + mu fr_inv |q|), so a 1e-13 residual means 1e-13 of the terms at every scale
-    (the reproducers had 1e-5 to 1e-4 before: the first step accepted uncorrected)."""
-    ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=0.5)
+    (the reproducers had 1e-5 to 1e-4 before: the first step accepted uncorrected); the
+    compiled step and the engine's Python path alike."""
+    ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=0.5, compiled=compiled)
     assert ds.sizes["point"] > 100
     assert _closed_form_error(ds, q, sigma, fr_inv) < 1e-12
 
