@@ -689,9 +689,12 @@ class _Tracer:
 
         Candidates are the tests that change sign over the step: the fold tests ``t_i``, the
         problem's test functions, the branch-point test ``det [J; t^T]``. A sign change whose
-        values are both below ``event_floor`` is rounding noise. A test exactly 0.0 at the start
-        point of the branch (and not at the end of its first step) makes the start that
-        special point; a test exactly 0.0 at the new point (and not at the current one) makes
+        values are both below ``event_floor`` is rounding noise. A test at the start point of
+        the branch that is zero to rounding (``|value| <= event_floor``, whatever its sign or its
+        last bits) and not at the end of the first step makes the start that special point, in
+        both directions alike, so a start on a special point is reported once, at the start, on
+        every machine (its sign there is rounding, and deciding by it would report the point
+        in one direction or the other, or as the start and again a rounding away from it); a test exactly 0.0 at the new point (and not at the current one) makes
         the new point that special point (the next step then starts from 0.0 and brackets
         nothing, so it is reported once), unless a boundary cuts the step short.
         """
@@ -702,25 +705,27 @@ class _Tracer:
         at_new: list[tuple[str, str]] = []
         for i in self.fold_components:
             pa, pb = float(t[i]), float(t_b[i])
-            if pa * pb < 0:
-                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
-            elif at_start and pa == 0.0 and abs(pb) > floor:
+            if at_start and abs(pa) <= floor and abs(pb) > floor:
                 kinds[0], details[0] = "fold", str(i)
+            elif pa * pb < 0:
+                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append(("fold", str(i)))
         tests, tests_b = self.tests, tests_new if stop is None else sp.tests(v_b, t_b)
         for k in range(tests.size):
             pa, pb = float(tests[k]), float(tests_b[k])
-            if pa * pb < 0:
+            if at_start and abs(pa) <= floor and abs(pb) > floor:
+                kinds[0], details[0] = "test", sp.test_names[k]
+            elif pa * pb < 0:
                 candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
                                    pa, pb))
-            elif at_start and pa == 0.0 and abs(pb) > floor:
-                kinds[0], details[0] = "test", sp.test_names[k]
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append(("test", sp.test_names[k]))
         if self.detect_branch_points:
             bp, bp_b = self.bp, s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
-            if bp * bp_b < 0:
+            if at_start and abs(bp) <= floor and abs(bp_b) > floor:
+                kinds[0], details[0] = "branch_point", ""
+            elif bp * bp_b < 0:
                 candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt),
                                    bp, bp_b))
             elif bp_b == 0.0 and abs(bp) > floor and stop is None:

@@ -35,6 +35,7 @@ attributes too. Where each name lives, and which way imports go, is in docs/arch
 from __future__ import annotations
 
 import importlib
+import importlib.util
 from typing import Any
 
 #: public name -> the module that defines it (imported on first use)
@@ -95,3 +96,43 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_EXPORTS))
+
+
+def _register_accessor() -> None:
+    """Register ``ds.tippe`` (:mod:`stability.plotting.accessor`) as soon as xarray is there.
+
+    ``import stability`` imports no xarray; but a user who opens a file with xarray directly
+    (``xr.open_dataset("run.nc").tippe``) has xarray, and the accessor must be there too
+    (docs/datasets.md). So: if xarray is already imported, register now; otherwise register
+    right after xarray's own import completes (a finder on ``sys.meta_path`` that answers only
+    for ``xarray``, delegates to the other finders, and runs the registration once after the
+    module executed)."""
+    import sys
+
+    if "xarray" in sys.modules:
+        importlib.import_module(".plotting.accessor", __name__)
+        return
+
+    class _AfterXarray:
+        @staticmethod
+        def find_spec(fullname: str, path: Any = None, target: Any = None) -> Any:
+            if fullname != "xarray":
+                return None
+            sys.meta_path.remove(_AfterXarray)
+            spec = importlib.util.find_spec("xarray")
+            if spec is None or spec.loader is None:
+                return spec
+            loader = spec.loader
+            run = loader.exec_module
+
+            def exec_module(module: Any) -> None:
+                run(module)
+                importlib.import_module(".plotting.accessor", __name__)
+
+            loader.exec_module = exec_module  # type: ignore[method-assign]
+            return spec
+
+    sys.meta_path.insert(0, _AfterXarray)  # type: ignore[arg-type]
+
+
+_register_accessor()

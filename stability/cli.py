@@ -87,7 +87,39 @@ def render_message(text: str, flags: Collection[str] | None = None) -> str:
             return m.group(0)
         return f"{m.group(0)} ({flag})"
 
-    return _KEYWORD_VALUE.sub(with_flag, text)
+    text = _KEYWORD_VALUE.sub(with_flag, text)
+    return _parameters_as_flags(text, flags) if flags is not None else text
+
+
+#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``
+_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|and [\w-]+ must) )"
+_AS_BOUND = r"((?:<=|<|>=|>) )({kw})(?![\w(])"
+#: the neutral curve's library phrase for a parameter that must be held fixed
+_FIXED_MUST_GIVE = re.compile(r"\bfixed must give (\w+)")
+
+
+def _parameters_as_flags(text: str, flags: Collection[str]) -> str:
+    """``alpha_v = 2 is outside ...: 0 <= alpha_v`` -> ``--alpha-v = 2 ...: 0 <= --alpha-v``, for
+    the keywords whose flag (``--`` and the keyword with dashes) the command has; the library's
+    ``fixed must give fr_inv`` (the neutral curve's ``fixed=`` dict) -> ``give --fr-inv``.
+    Formulas (``1 - mu q^2``) are left as they are: only a name beside ``=`` or a comparison
+    is a parameter's value or bound."""
+    def flag_of(kw: str) -> str | None:
+        flag = "--" + kw.replace("_", "-")
+        return flag if flag in flags else None
+
+    def fixed(m: re.Match[str]) -> str:
+        flag = flag_of(m.group(1))
+        return f"give {flag}" if flag else m.group(0)
+
+    text = _FIXED_MUST_GIVE.sub(fixed, text)
+    for kw in {f[2:].replace("-", "_") for f in flags if f.startswith("--")}:
+        flag = flag_of(kw)
+        if flag is None or kw not in text:
+            continue
+        for pattern in (_AS_VALUE, _AS_BOUND):
+            text = re.sub(pattern.format(kw=re.escape(kw)), lambda m, f=flag: m.group(1) + f, text)
+    return text
 
 
 def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
@@ -121,6 +153,62 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201 - argparse's signature
+        """As argparse's, but arguments left over are reported by the subcommand that got them
+        (its own help and ``did you mean``), not by ``tippe``."""
+        ns, extras = self.parse_known_args(args, namespace)
+        if extras:
+            sub = self._subcommand(getattr(ns, "command", None))
+            (sub or self).unrecognized(extras)
+        return ns
+
+    def parse_known_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201
+        """A subcommand checks its options first: a mistyped one is reported before a missing
+        required one (``tippe final --alpha_v 0.5``: did you mean --alpha-v)."""
+        if self._subparsers is None and args is not None:
+            unknown = [a for a in self._option_tokens(args) if not self._known_option(a)]
+            if unknown:
+                self.unrecognized(unknown)
+        return super().parse_known_args(args, namespace)
+
+    def _subcommand(self, command: str | None) -> _Parser | None:
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction) and command in action.choices:
+                return action.choices[command]
+        return None
+
+    @staticmethod
+    def _option_tokens(args: Sequence[str]) -> list[str]:
+        out = []
+        for a in args:
+            if a == "--":
+                break
+            if a.startswith("-") and len(a) > 1 and not _NEGATIVE_VALUE.match(a):
+                out.append(a.split("=", 1)[0])
+        return out
+
+    def _options(self) -> list[str]:
+        return [s for a in self._actions for s in a.option_strings]
+
+    def _known_option(self, token: str) -> bool:
+        opts = self._options()
+        return token in opts or (token.startswith("--") and any(o.startswith(token) for o in opts))
+
+    def unrecognized(self, extras: Sequence[str]) -> NoReturn:
+        """Exit 2 after the command's own help and one error line that names the unknown
+        arguments and, for a mistyped option, the closest one (``difflib``)."""
+        import difflib
+
+        opts = [o for o in self._options() if o.startswith("--")]
+        hints = []
+        for tok in self._option_tokens(extras):
+            if not self._known_option(tok):
+                close = difflib.get_close_matches(tok.replace("_", "-").lower(), opts, n=1, cutoff=0.6)
+                if close:
+                    hints.append(f"did you mean {close[0]} (for {tok})?")
+        sys.stderr.write(self.format_help() + "\n")
+        self.error(f"unrecognized arguments: {' '.join(extras)}" + (f"; {' '.join(hints)}" if hints else ""))
 
 
 def _one_line(text: str) -> str:
@@ -179,10 +267,16 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     interrupts.install("tippe")
     try:
-        return _main(argv, interrupts)
+        status = _main(argv, interrupts)
     finally:
         if argv is not None:
             interrupts.uninstall()
+    # the program (not a library call): from here to the end of the process a signal waits
+    # (the interpreter's shutdown restores the default handlers); one that came after the
+    # command's last check is reported as the others are
+    if argv is None and interrupts.hold_until_exit():
+        status = _interrupted(interrupts.label(), None)
+    return status
 
 
 def _interrupted(prog: str, text: str | None) -> int:

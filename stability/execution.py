@@ -35,7 +35,7 @@ from typing import Any
 from .errors import InputError
 
 __all__ = ["ENVIRONMENT", "ENGINES", "PYTHON_BELOW", "NOTICE", "engine", "use_compiled", "before_compiled_call",
-           "quiet", "using"]
+           "announce", "quiet", "using"]
 
 #: the environment variable that forces an execution
 ENVIRONMENT = "TIPPE_KERNEL"
@@ -98,6 +98,13 @@ def before_compiled_call(twin: Any, seconds: float) -> None:
         return
     _STATE["noticed"] = True
     print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)
+
+
+def announce(text: str) -> None:
+    """Say on stderr, before a long computation starts, what it will cost (one line; nothing
+    while :func:`quiet` is active): the same channel as :data:`NOTICE`."""
+    if not _STATE["quiet"]:
+        print(f"tippe-stability: {text}", file=sys.stderr, flush=True)
 
 
 @contextlib.contextmanager

@@ -45,7 +45,7 @@ import time
 from collections.abc import Iterator
 
 __all__ = ["install", "uninstall", "deferred", "checkpoint", "pending", "received", "Temporary",
-           "committed", "set_label", "set_kept", "mark_reported", "WATCHDOG_SECONDS", "SIGNALS"]
+           "committed", "set_label", "set_kept", "mark_reported", "hold_until_exit", "label", "WATCHDOG_SECONDS", "SIGNALS"]
 
 #: seconds between the first signal and the emergency exit of the command line
 WATCHDOG_SECONDS = 2.0
@@ -268,6 +268,23 @@ def set_kept(text: str) -> None:
     """What an interrupted command keeps (``"the finished chunks are kept in a.nc.parts"``), for the
     emergency exit's line; empty for nothing."""
     _state.kept = str(text)
+
+
+def hold_until_exit() -> bool:
+    """The command has ended: block the signals for the rest of the process (its interpreter
+    shutdown, which restores the default handlers: a SIGTERM then would kill it with status
+    143 and no line), and say whether one arrived since the command's last check (handled by
+    the flag, or now pending behind the block) that its line has not reported yet."""
+    arrived = _state.pending is not None
+    if hasattr(signal, "pthread_sigmask") and _main_thread():
+        signal.pthread_sigmask(signal.SIG_BLOCK, set(SIGNALS))
+        arrived = arrived or bool(signal.sigpending() & set(SIGNALS))
+    return arrived and not _state.reported
+
+
+def label() -> str:
+    """The program name set by :func:`set_label`."""
+    return _state.label
 
 
 def mark_reported() -> None:

@@ -155,5 +155,5 @@ def test_scheduler_errors(tmp_path, capsys):
     assert rc == 2 and "bad.json' is not a dask scheduler file" in err
     rc = main([*base, "--workers", "0", "-o", str(tmp_path / "a.nc")])
     err = capsys.readouterr().err
-    assert rc == 2 and "workers = 0 is outside the allowed range: workers >= 1" in err
+    assert rc == 2 and "--workers = 0 is outside the allowed range: --workers >= 1" in err
     assert not (tmp_path / "a.nc").exists()

@@ -65,7 +65,7 @@ def test_python_m_stability_no_traceback(tmp_path):
                         "--sigma", "1", "--alpha-v", "0.5", "-o", str(tmp_path / "a.nc")],
                        capture_output=True, text=True)
     assert r.returncode == 2
-    assert "Traceback" not in r.stderr and "fr_inv = nan is not finite" in r.stderr
+    assert "Traceback" not in r.stderr and "--fr-inv = nan is not finite" in r.stderr
 
 
 # ------------------------------------------------------------------------------------------

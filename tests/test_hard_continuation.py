@@ -297,3 +297,21 @@ def test_tangential_crossing_at_the_fold_is_not_a_threshold():
     with pytest.raises(ValueError, match="no threshold in q"):
         threshold("q", fr_inv=0.0, sigma=s + 1e-12, alpha_v=0.5)
     assert thresholds("q", fr_inv=0.0, sigma=s + 1e-12, alpha_v=0.5).size == 0
+
+
+@pytest.mark.parametrize("ulps", [-3, -1, 0, 1, 3])
+def test_start_on_the_fold_reported_once_whatever_its_last_bits(ulps):
+    """The fold test (the tangent's sigma component) is zero to rounding at a start on the
+    fold, and its sign there is the machine's last bits: the engine makes the start the fold
+    when the test is below its rounding floor at the start, in both directions alike. Moving
+    the start along q by a few ulps (what another machine's libm may do) changes nothing: one
+    fold, at the start. Reference: the mpmath fold (q*, sigma*); tolerance as above."""
+    q_star, s_star = fold_reference()
+    q0 = float(q_star)
+    for _ in range(abs(ulps)):
+        q0 = np.nextafter(q0, np.inf if ulps > 0 else -np.inf)
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
+                       start=[(q0, float(s_star), float(1 / (1 + q_star)))])
+    fold = ds.where(ds.kind == "fold", drop=True)
+    assert fold.sizes["point"] == 1
+    assert abs(float(fold.q[0]) - float(q_star)) <= 1e-13

@@ -168,12 +168,12 @@ def test_branch_dataset_attributes(branches):
     ds = branches[CASES[0]]
     assert ds.attrs["tippe_stability_product"] == "steady_branch"
     assert ds.attrs["start"] == "upright" and ds.tilt.attrs["units"] == "degree"
-    assert set(np.unique(ds.kind.values)) <= {"", "branch_point", "fold", "stability_change", "end"}
+    assert set(np.unique(ds.kind.values)) <= {"regular", "branch_point", "fold", "stability_change", "end"}
     assert ds.stability.attrs["flag_meanings"] == "stable marginal unstable"
 
 
 @pytest.mark.parametrize("kw,exc,fragment", [
-    (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: max_step > 0"),
+    (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: 0.0001 <= max_step"),
     (dict(jellett_max=-1.0), ValueError, "jellett_max = -1 is outside the allowed range"),
     (dict(jellett_max=0.5), ValueError, "jellett_max = 0.5 is outside the allowed range: jellett_max > 0.762438"),
     (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),

@@ -53,9 +53,9 @@ def test_final_without_simulation(capsys):
 
 
 @pytest.mark.parametrize("argv,fragment", [
-    (["final", "--omega", "0,0,1", "--k", "0,0,1", *TOP[:-1], "0"], "alpha_v = 0 is outside the allowed range"),
+    (["final", "--omega", "0,0,1", "--k", "0,0,1", *TOP[:-1], "0"], "--alpha-v = 0 is outside the allowed range"),
     (["final", "--omega", "0,0,1", "--k", "0,0,1.2", *TOP], "k is the unit symmetry axis"),
-    (["final", "--omega", "0,0", "--k", "0,0,1", *TOP], "omega must be a vector of 3 components"),
+    (["final", "--omega", "0,0", "--k", "0,0,1", *TOP], "--omega must be a vector of 3 components"),
     (["final", "--omega", "a,b,c", "--k", "0,0,1", *TOP], "is not a comma list of numbers"),
     (["steady", "--q", "0.9", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5"], "q = 0.9 is outside the physical domain"),
     (["steady", *TOP, "--branch", "--jellett", "1"], "--jellett is not used with --branch"),

@@ -174,7 +174,7 @@ def test_cli_neutral(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "fold" in text and "1.1433349593" in text and out.exists()
     assert main(["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0"]) == 2
-    assert "alpha_v" in capsys.readouterr().err
+    assert "give --alpha-v" in capsys.readouterr().err
 
 
 def test_threshold_at_the_domain_edge_is_the_edge():

@@ -179,7 +179,7 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
         from stability.steady.branch import SteadyBranchProblem
 
         prob = SteadyBranchProblem(params, p)
-        return lam, points_dataset(prob, np.column_stack([thetas, np.log(lam)]), [""] * n, [""] * n, {})
+        return lam, points_dataset(prob, np.column_stack([thetas, np.log(lam)]), ["regular"] * n, [""] * n, {})
     t, out = best_times({
         "compiled": lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step),
         "python": lambda: steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=av, mu=mu, max_step=max_step,

@@ -21,6 +21,22 @@ from ._args import add_model_flag, add_parameter_flags, parameter_values
 __all__ = ["register", "run"]
 
 
+#: the most lines --plot draws for a second grid dimension; beyond it, the map over the two
+MAX_LINES = 10
+
+
+def plot_figure(ds, x: str):  # noqa: ANN001, ANN201 - xarray and matplotlib are imported late
+    """The figure of ``--plot``: growth rate and frequency against ``x``, one line per value of a
+    second grid dimension, or, with more than :data:`MAX_LINES` values there, the stability map
+    over the two (as the recipes draw a 2-D grid)."""
+    from ..plotting.figures import atlas_figure, plot_atlas
+
+    family = [d for d in ds.max_growth_rate.dims if ds.sizes[d] > 1 and d != x]
+    if len(family) == 1 and ds.sizes[family[0]] > MAX_LINES:
+        return plot_atlas(ds, x=x, y=family[0])[0]
+    return atlas_figure(ds, x=x)[0]
+
+
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``atlas`` subcommand."""
     p = sub.add_parser(
@@ -40,7 +56,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "polynomial, polished, with error bounds; the fastest at full accuracy), polynomial "
                         "(companion-matrix eigenvalues + Newton), lapack (numpy.linalg.eigvals of the "
                         "operator); the last two are slower cross-checks")
-    p.add_argument("--plot", metavar="PNG", help="also draw the leading growth rate and frequency against --x")
+    p.add_argument("--plot", metavar="PNG", help="also draw the leading growth rate and frequency against --x "
+                   f"(one line per value of a second grid dimension; with more than {MAX_LINES} values there, "
+                   "the stability map over the two)")
     p.add_argument("--x", default="q", help="abscissa of the --plot (a grid dimension: q, fr_inv, sigma, alpha_v, mu)")
     g = p.add_argument_group("large grids (dask)")
     g.add_argument("--chunks", metavar="SIZES",
@@ -156,11 +174,10 @@ def run(args: argparse.Namespace) -> int:
     _check_space(out, args.model, values)
     ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values)
     if args.plot:
-        from ..plotting.figures import atlas_figure
         from ..plotting import save_figure, style
 
         with style():
-            fig, _ = atlas_figure(ds, x=args.x)
+            fig = plot_figure(ds, args.x)
         # the figure is written before the netCDF file is committed: a failure to draw or save
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)

@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"{'kind':<14} {'tilt (deg)':>12} {'J':>14} {'precession':>12} {'stability':>10}  detail")
             for i in range(n):
                 kind = str(ds.kind.values[i])
-                if kind:
+                if kind != "regular":
                     print(f"{kind:<14} {float(ds.tilt[i]):12.6f} {float(ds.jellett[i]):14.10g} "
                           f"{float(ds.precession_rate[i]):12.6g} {FLAG_NAMES[int(ds.stability[i])]:>10}  "
                           f"{ds.detail.values[i]}")

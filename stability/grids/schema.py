@@ -18,6 +18,10 @@ grid                                   the dimensions of ``stability``; each has
                                        mode 0 (bit for bit, NaN where NaN)
 ``stability``                          integer; dimensions the grid; values in its flags
                                        {-1, 0, 1, 2} (``flag_values``, if given, exactly these)
+                                       (``flag_meanings``, if given, "outside_domain stable
+                                       marginal unstable"); flagged stable only where
+                                       ``max_growth_rate < -eigenvalue_error_bound`` (mode 0),
+                                       unstable only where ``max_growth_rate > 0`` (counted)
 ``physical``                           integer; dimensions the grid; values in {0, 1}
 consistency                            outside the domain (``stability == -1``) exactly where
                                        ``physical == 0``, and there every growth rate, frequency
@@ -50,6 +54,8 @@ ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
 
 #: the values of the ``stability`` flag: outside the domain, stable, marginal, unstable
 FLAG_VALUES = (-1, 0, 1, 2)
+#: what they mean (the ``flag_meanings`` attribute, if given, says exactly this)
+FLAG_MEANINGS = ("outside_domain", "stable", "marginal", "unstable")
 
 #: grid points checked at a time (its temporaries: ~30 bytes per point and mode, ~8 MB for
 #: three modes; 2e6 points made them a third of an in-memory atlas's peak)
@@ -120,6 +126,10 @@ def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exc
     if flags is not None and [int(f) for f in np.atleast_1d(flags)] != list(FLAG_VALUES):
         raise error(f"variable 'stability' has flag_values {[int(f) for f in np.atleast_1d(flags)]}; an atlas's flags are "
                     f"{list(FLAG_VALUES)} (outside the domain, stable, marginal, unstable)")
+    meanings = ds["stability"].attrs.get("flag_meanings")
+    if meanings is not None and str(meanings).split() != list(FLAG_MEANINGS):
+        raise error(f"variable 'stability' has flag_meanings {str(meanings)!r}; an atlas's flags mean "
+                    f"{' '.join(FLAG_MEANINGS)!r} (for {list(FLAG_VALUES)})")
     for d in grid:
         if d not in ds.coords or ds[d].dims != (d,):
             raise error(f"grid dimension {d!r} has no coordinate of its own name")
@@ -151,6 +161,8 @@ def _slabs(ds: xr.Dataset, grid: tuple[str, ...]) -> list[dict[str, slice]]:
 
 
 def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exception]) -> None:
+    n_stable_bad = n_unstable_bad = 0
+    first_bad: dict[str, float] | None = None
     for sl in _slabs(ds, grid):
         part = ds[_present(ds)].isel(sl)
         stab = part["stability"].transpose(*grid).values
@@ -178,6 +190,26 @@ def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Except
         if not np.array_equal(g0, mx, equal_nan=True):
             raise error("variable 'max_growth_rate' differs from growth_rate of mode 0 (the modes are sorted by "
                         "decreasing growth rate)")
+        # the flags against the stored numbers (the rule of stability.linear.spectra: a mode is
+        # neutral within tol >= its bound, so a stable point has max Re s < -bound_0 and an
+        # unstable one max Re s > 0, whatever the rest of the rule)
+        b0 = (part["eigenvalue_error_bound"].transpose(*grid, "mode").values[..., 0]
+              if "eigenvalue_error_bound" in part else np.zeros_like(mx))
+        bad_s = (stab == 0) & ~(mx + b0 < 0)
+        bad_u = (stab == 2) & ~(mx > 0)
+        n_stable_bad += int(bad_s.sum())
+        n_unstable_bad += int(bad_u.sum())
+        if first_bad is None and (bad_s.any() or bad_u.any()):
+            idx = np.argwhere(bad_s | bad_u)[0]
+            first_bad = {d: float(part[d].values[i]) for d, i in zip(grid, idx)}
+            first_bad["max_growth_rate"] = float(mx[tuple(idx)])
+            first_bad["stability"] = int(stab[tuple(idx)])
+    if n_stable_bad or n_unstable_bad:
+        where = ", ".join(f"{k} = {v:.6g}" for k, v in first_bad.items())
+        raise error(f"its flags disagree with its own growth rates: {n_stable_bad} points flagged stable (0) have "
+                    f"max_growth_rate >= -eigenvalue_error_bound and {n_unstable_bad} flagged unstable (2) have "
+                    f"max_growth_rate <= 0 (first: {where}); the file was edited or damaged. Recompute it "
+                    "(stability.atlas or tippe atlas), or read the numbers alone with xarray.open_dataset")
 
 
 def _example(values: np.ndarray) -> str:

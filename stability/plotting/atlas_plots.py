@@ -109,8 +109,58 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     return fig, ax
 
 
+#: the resolution to which drawn data are rounded before a figure is saved: this fraction of
+#: the axis span (lines) or of the colour range (maps); ~1e-9, far below a pixel and far above
+#: the rounding-level differences of the numbers between machines
+QUANTUM = 2.0 ** -30
+
+#: metadata that would make the same figure's bytes differ between matplotlib versions or runs
+_NO_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None},
+                "svg": {"Creator": None, "Date": None}}
+
+
+def _rounded(values: np.ndarray, span: float) -> np.ndarray:
+    q = QUANTUM * span
+    if not (np.isfinite(q) and q > 0):
+        return values
+    with np.errstate(invalid="ignore"):
+        return np.round(values / q) * q
+
+
+def settle_data(fig: Figure) -> None:
+    """Round the data of every line and colour map of ``fig`` to :data:`QUANTUM` of its axis
+    span or colour range.
+
+    Why: the same figure drawn on two machines gets numbers that differ in their last bits
+    (numba compiles for each CPU; a continuation places its points after step decisions taken
+    on rounding-level quantities), and antialiased edges and colour levels turn that into
+    pixels (hundreds of pixels of ``map_sigma_fr_inv.png``, 1/255 each, along its neutral line).
+    Rounded to ~1e-9 of the span, the drawn data are the same bits unless a value lies within
+    rounding of a quantum's edge (probability ~1e-7 per value), and no pixel can move."""
+    for ax in fig.axes:
+        spans = [abs(float(b) - float(a)) for a, b in (ax.get_xlim(), ax.get_ylim())]
+        for line in ax.get_lines():
+            x, y = line.get_data(orig=True)
+            x, y = np.asarray(x), np.asarray(y)
+            if x.dtype.kind == "f" and y.dtype.kind == "f":
+                line.set_data(_rounded(x, spans[0]), _rounded(y, spans[1]))
+        for artist in [*ax.collections, *ax.images]:
+            arr = artist.get_array() if hasattr(artist, "get_array") else None
+            if arr is None or np.asarray(arr).dtype.kind != "f":
+                continue
+            norm = getattr(artist, "norm", None)
+            lo, hi = (norm.vmin, norm.vmax) if norm is not None and norm.vmin is not None else (np.nanmin(arr), np.nanmax(arr))
+            rounded = _rounded(np.ma.getdata(arr), abs(float(hi) - float(lo)))
+            artist.set_array(np.ma.array(rounded, mask=np.ma.getmask(arr)) if np.ma.isMaskedArray(arr) else rounded)
+
+
 def save_figure(fig: Figure, path: str | os.PathLike, *, overwrite: bool = True) -> Path:
-    """Save ``fig`` to ``path`` atomically (no partial file); the format comes from the suffix."""
+    """Save ``fig`` to ``path`` atomically (no partial file); the format comes from the suffix.
+
+    The same figure gives the same bytes on every machine: its data are rounded first
+    (:func:`settle_data`) and no metadata that names a version or a date is written."""
+    settle_data(fig)
+    fmt = Path(path).suffix.lstrip(".").lower()
     with atomic_output(path, overwrite=overwrite) as tmp:
-        fig.savefig(tmp)
+        fig.savefig(tmp, format=fmt or None, metadata=_NO_METADATA.get(fmt))
     return Path(path)

@@ -130,7 +130,9 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     """Fig. 8: the axis ``k`` on the unit sphere, coloured by time.
 
     Drawn from the start until the polar angle first reaches ``until_angle`` degrees (the
-    flip; afterwards the axis circles the lower pole for the rest of the run). The path winds
+    flip; afterwards the axis circles the lower pole for the rest of the run); the subtitle
+    says so and gives the run's last polar angle (where it ends: the circle of the steady
+    tilted state of its Jellett level, 166.018 deg for the paper's Fr^-1 = 0.3 run). The path winds
     round the vertical once per precession period (~165 times at Fr^-1 = 0.3), so a single
     colour would fill the sphere; the colour (time in spin periods, colour bar) shows the
     drift from the north pole to the south. Seen from slightly above the equator, back half
@@ -175,7 +177,8 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     ax.set_zlabel("$K_3$")
     ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"from the start until the polar angle reaches {until_angle:g} deg", fontsize=9)
+    ax.set_title(f"drawn from the start until the polar angle reaches {until_angle:g} deg; "
+                 f"the run ends at {float(pol[-1]):.3f} deg", fontsize=9)
     return fig, ax
 
 

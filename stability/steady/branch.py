@@ -54,11 +54,11 @@ from ..execution import before_compiled_call
 from ..linear.neutral_curves import CURVE_MAX_ANGLE
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
-from ..parameters import DEFAULT_MU, check_flag, check_positive
+from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family, linearisation
-from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .linearisation import state_modes
+from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
 
 #: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
@@ -72,8 +72,11 @@ from .verdicts import flag_of
 
 __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
 
-#: kinds of points of a branch ("" for a regular point)
-KINDS = ("branch_point", "fold", "stability_change", "end")
+#: the smallest max_step (a branch is ~pi / max_step points, within the trace's 100000)
+MIN_MAX_STEP = 1e-4
+
+#: kinds of points of a branch ("regular" for an ordinary point, as neutral_curve says)
+KINDS = ("regular", "branch_point", "fold", "stability_change", "end")
 
 
 class SteadyBranchProblem:
@@ -115,6 +118,8 @@ class SteadyBranchProblem:
         self.code = CODES[m.name]
         self.n_full = len(m.state)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
+        #: the scale of lam^2 on the family, mu fr_inv |q| (the residual is relative to it)
+        self.weight = kernels.residual_weight(params["q"], params["fr_inv"], params["mu"], self.degenerate)
         self.jellett_max = jellett_max
         self.jellett_min = jellett_min
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
@@ -128,7 +133,7 @@ class SteadyBranchProblem:
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
         r, rt, rl = kernels.residual_and_jacobian(float(u[0]), float(u[1]), self.p, self.q, self.code,
-                                                  self.n_full, self.degenerate)
+                                                  self.n_full, self.weight)
         return np.array([r]), np.array([[rt, rl]])
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -157,16 +162,17 @@ class SteadyBranchProblem:
                                          self.degenerate)
 
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """``[dJ/ds]``: zero at a fold of the family in ``J``."""
-        g = self.jellett(u)[1]
-        return np.array([g[0] * t[0] + g[1] * t[1]])
+        """``[d(log |J|)/ds]``: zero at a fold of the family in ``J`` (relative to ``J``, so that
+        the engine's rounding floor of events means the same at every scale of ``J``)."""
+        j, g = self.jellett(u)
+        return np.array([(g[0] * t[0] + g[1] * t[1]) / abs(j)])
 
     def compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> StepResult:
         """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
         (corrector, tangent, constraints and test function in one compiled call)."""
         return StepResult(*kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code,
-                                        self.n_full, self.degenerate, float(self.jellett_max),
+                                        self.n_full, self.degenerate, self.weight, float(self.jellett_max),
                                         float(self.jellett_min), guess, t_plane, anchor, float(h), scale,
                                         float(tol), int(max_iter), float(max_move)))
 
@@ -176,19 +182,21 @@ class SteadyBranchProblem:
         (``R(theta_v, lam_b) = 0``), or None if it does not reach it.
 
         ``R(theta_v, lam)`` is ``A lam^2 + B`` (the rhs is quadratic in the rates on the no-slip
-        manifold): the guess ``lam^2 = -B / A`` from two evaluations, then Newton's method on
-        ``R`` itself to the rounding floor."""
+        manifold, ``B ~ mu fr_inv q``): the guess ``lam^2 = -B / A`` from evaluations at ``0`` and
+        at the family's own scale ``lam_w = sqrt(weight)`` (so that ``A lam_w^2`` and ``B`` are of
+        one size at every scale), then Newton's method on ``R`` itself to the rounding floor."""
         theta = 0.0 if orientation == "upright" else math.pi
+        w = self.weight
         b = self.divided_residual(theta, 0.0)
-        a = self.divided_residual(theta, 1.0) - b
+        a = (self.divided_residual(theta, math.sqrt(w)) - b) / w  # w > 0: not degenerate here
         if a == 0.0 or not -b / a > 0.0:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
             _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full,
-                                                     False)
+                                                     w)
             r = self.divided_residual(theta, lam)
-            step = r / (rl / lam * (1.0 + lam * lam))
+            step = r / (rl / lam * (lam * lam + w))
             lam -= step
             if abs(step) <= 4e-16 * abs(lam):
                 break
@@ -216,7 +224,7 @@ def _kind_of(kind: str, detail: str) -> str:
         return "end" if detail.startswith("jellett") else "branch_point"
     if kind == "branch_point":
         return "branch_point"
-    return ""
+    return "regular"
 
 
 def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU
@@ -264,7 +272,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         same tilts and stability), ``precession_rate``, ``axial_spin``, ``energy``,
         ``upright_equivalent_spin`` (``J / (sigma (1 + q))``: the upright spin with this
         ``J``), ``growth_rate``, ``n_neutral``, ``stability`` (flag), ``stability_jacobian``,
-        ``kind`` ("branch_point", "fold", "stability_change", "end" or "" for a regular point)
+        ``kind`` ("branch_point", "fold", "stability_change", "end" or "regular" for an ordinary point, as :func:`continuation.neutral_curve`)
         and ``detail``; attributes: the parameters, ``start`` (the branch point traced from),
         ``ends``, ``jellett_max``, the engine's work counts. No points if the family does not
         exist (attribute ``note`` says why).
@@ -274,14 +282,21 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     ValueError, TypeError
         Bad parameters or options.
     stability.errors.ConvergenceError
-        The continuation failed (not expected in the physical domain).
+        The continuation failed. Not expected in the physical domain except where the
+        residual's rounding (``~u / sin(tilt)`` of its terms, from the division by
+        ``sin(tilt)``, or ``~u / A_G`` from the mass matrix) exceeds the corrector's tolerance:
+        a family that lies within ``~1e-4`` rad of a vertical state (``sigma (1 +- q)`` within
+        ``~1e-9`` of ``A_G``, next to a high-spin class boundary) or ``A_G < ~1e-8``. The message
+        says which; :func:`stability.steady_states` (closed forms) answers at any ``J`` there.
     """
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
-    max_step = check_positive("max_step", max_step)
-    max_angle = check_positive("max_angle", max_angle)
+    # a branch is at most ~pi / max_step points (the engine's max_points is 100000): 1e-4 or more
+    max_step = check_interval("max_step", max_step, MIN_MAX_STEP, math.inf, closed="left")
+    max_angle = check_interval("max_angle", max_angle, 1e-6, math.pi, closed="both")
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
+    check_scales(params, jmax, jellett_name="jellett_max")
     before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
     attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
@@ -308,7 +323,7 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         pts = np.concatenate([lo.points[::-1], hi.points[1:]])
         kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
         details = lo.details[::-1] + hi.details[1:]
-        kinds = ["" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
+        kinds = ["regular" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
         work = (lo.n_newton + hi.n_newton, lo.n_residual + hi.n_residual, lo.n_jacobian + hi.n_jacobian)
         start = "vertical line (fr_inv = 0 or q = 0)"
     else:
@@ -339,17 +354,28 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         elif k == "fold" and abs(math.sin(pts[i, 0])) < 1e-6:
             # dJ/ds vanishes at the branch point itself (J is even in the tilt about a vertical
             # state: the vertex of the pitchfork); rounding there is no fold
-            kinds[i], details[i] = "", ""
+            kinds[i], details[i] = "regular", ""
         elif k == "fold":
             details[i] = "fold in J (dJ/ds = 0)"
         elif k == "end":
             details[i] = f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
     for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
-        if end != "boundary" and kinds[k] == "":
+        if end != "boundary" and kinds[k] == "regular":
             kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
     if "step_failure" in ends:
+        a_g = family.a_g(q, mu)
+        why = []
+        if abs(math.sin(pts[-1, 0])) < 1e-4:
+            why.append(f"the family stays within {abs(math.sin(pts[-1, 0])):.2g} rad of the vertical state, where the "
+                       "residual (divided by sin(tilt)) loses ~u / sin(tilt) of its digits: sigma (1 + q) = "
+                       f"{sigma * (1 + q):.17g} and sigma (1 - q) = {sigma * (1 - q):.17g} against A_G = {a_g:.17g} "
+                       "(a high-spin class boundary is sigma (1 +- q) = A_G)")
+        if a_g < 1e-8:
+            why.append(f"A_G = 1 - mu q^2 = {a_g:.3g} is near the domain edge, where the mass matrix is singular")
         raise ConvergenceError(f"steady_branch: the continuation failed after {len(pts)} points "
-                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}")
+                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
+                               + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J "
+                                  "there" if why else ""))
     attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
                  n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
     return points_dataset(prob, pts, kinds, details, attrs)
@@ -369,6 +395,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
     c = np.cos(theta)
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
     growth = np.full(n, np.nan)
+    bound = np.full(n, np.nan)
     n_neutral = np.zeros(n, dtype=np.int8)
     jac = np.zeros(n, dtype=np.int8)
     flags = np.zeros(n, dtype=np.int8)
@@ -382,8 +409,9 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         y = family.state_vector(theta, lam, q)
         for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
             y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
-        ev, scale = reduced_spectrum(y, lam, vertical, prob.p, q=q, sigma=sigma, mu=mu)
-        growth, n_neutral, jac = modes_verdict(ev, scale)
+        spins = family.omega_vertical(c, lam, q)
+        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, q=q, sigma=sigma,
+                                                        fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
         J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
         axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
         for i in range(n):
@@ -391,7 +419,7 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
             t, s = family.energy_test(kind, float(c[i]), float(J[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
             flags[i] = flag_of(kind, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(jac[i]))
         for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
-            if flags[i] != flags[i - 1] and kinds[i] == "" and kinds[i - 1] == "":
+            if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
@@ -407,12 +435,16 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         "growth_rate": ("point", growth, var_attrs(
             "leading growth rate of the linearisation (frame precessing with the state), structural "
             "neutral directions removed", "Omega", short="leading growth rate")),
+        "growth_rate_bound": ("point", bound, var_attrs(
+            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)", "Omega", short="growth rate bound")),
         "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("point", np.asarray(jac, dtype=np.int8), flag_attrs(
-            "Jacobian verdict", comment="verdict of the reduced Jacobian alone; neutral if |Re s| <= 1e3 u ||A||_F")),
+            "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
+            "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points")),
         "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point", "comment": "branch_point, fold, "
-                                                                    "stability_change, end, or '' (regular)"}),
+                                                                    "stability_change, end, or regular"}),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},

@@ -30,7 +30,7 @@ from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import jellett_integral
 from .family import state_core
 
-__all__ = ["component", "divided", "residual_and_jacobian", "jellett", "constraint_values", "step", "H"]
+__all__ = ["component", "divided", "residual_and_jacobian", "jellett", "constraint_values", "step", "H", "residual_weight"]
 
 _JIT = dict(OPTIONS, cache=True)
 
@@ -59,9 +59,16 @@ def divided(theta, lam, p, q, code, n_full):
 
 
 @njit(**_JIT)
-def residual_and_jacobian(theta, ell, p, q, code, n_full, degenerate):
-    """``R = divided / (1 + lam^2)`` (degenerate: ``/ lam^2``) and ``dR/d(theta, ell)``,
-    ``ell = log lam``. The ``lam`` derivative of the divided component is a complex step in
+def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
+    """``R = divided / (lam^2 + weight)`` and ``dR/d(theta, ell)``, ``ell = log lam``.
+
+    ``weight`` is the size of the gravity terms in units of ``lam^2``: ``mu fr_inv |q|``
+    (:func:`residual_weight`; ``0`` for degenerate parameters). The divided component is
+    ``A(theta) lam^2 + weight b(theta)`` (quadratic in the rates on the no-slip manifold, the
+    normal force's moment ``~ mu fr_inv q``), so ``R = (A lam_hat^2 + b) / (lam_hat^2 + 1)`` with
+    ``lam_hat^2 = lam^2 / weight``: ``O(1)`` terms at every scale of ``mu fr_inv |q|`` (the
+    family's scale invariance, ``J^2 / (mu fr_inv)`` a function of ``q, sigma, mu, c`` only),
+    so the engine's absolute tolerance is one relative to the size of the terms. The ``lam`` derivative of the divided component is a complex step in
     ``lam`` (a central difference where ``sin(theta) = 0``); the ``theta`` derivative the complex
     step of :func:`divided`, except for ``0 < |sin(theta)| < NEAR_VERTICAL`` (see the code)."""
     lam = np.exp(ell)
@@ -77,13 +84,20 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, degenerate):
         ref = theta_v + (NEAR_VERTICAL if d >= 0 else -NEAR_VERTICAL)
         r_t = divided(ref, lam, p, q, code, n_full)[1] * d / (ref - theta_v)
     if s != 0.0:
-        r_l = (component(theta + 0j, lam + 1j * H, p, q, code, n_full) / s).imag / H
+        # the complex step relative to lam (lam is ~sqrt(mu fr_inv |q|), of any size)
+        r_l = (component(theta + 0j, lam * (1.0 + 1j * H), p, q, code, n_full) / s).imag / (H * lam)
     else:
-        d = 1e-6 * max(1.0, abs(lam))
+        d = 1e-6 * lam  # relative to lam (of the family's scale, any size)
         r_l = (divided(theta, lam + d, p, q, code, n_full)[0]
                - divided(theta, lam - d, p, q, code, n_full)[0]) / (2.0 * d)
-    sc = lam * lam if degenerate else 1.0 + lam * lam
+    sc = lam * lam + weight
     return r / sc, r_t / sc, lam * (r_l / sc - r * 2.0 * lam / (sc * sc))
+
+
+def residual_weight(q, fr_inv, mu, degenerate):
+    """``mu fr_inv |q|`` (``0`` if ``degenerate``): the scale of ``lam^2`` on the family
+    (``lam^2 P(c) = mu fr_inv q``, S3) that :func:`residual_and_jacobian` divides by."""
+    return 0.0 if degenerate else mu * fr_inv * abs(q)
 
 
 @njit(**_JIT)
@@ -93,37 +107,39 @@ def jellett(theta, ell, q, sigma, mu):
     y = np.zeros(8, dtype=np.complex128)
     state_core(theta + 1j * H, lam + 0j, q, 0.0, y)
     j1 = jellett_integral(y[0], y[1], y[2], y[3], y[4], y[5], q, sigma, mu)
-    state_core(theta + 0j, lam + 1j * H, q, 0.0, y)
+    state_core(theta + 0j, lam * (1.0 + 1j * H), q, 0.0, y)  # dJ/d(log lam): a step relative to lam
     j2 = jellett_integral(y[0], y[1], y[2], y[3], y[4], y[5], q, sigma, mu)
-    return j1.real, j1.imag / H, lam * j2.imag / H
+    return j1.real, j1.imag / H, j2.imag / H
 
 
 @njit(**_JIT)
 def constraint_values(theta, jel, jmax, jmin, degenerate):
-    """``[theta, pi - theta, jmax - |J|(, |J| - jmin)]`` (``>= 0`` on the branch)."""
+    """``[theta, pi - theta, 1 - |J| / jmax(, |J| / jmin - 1)]`` (``>= 0`` on the branch; the
+    cuts of ``J`` relative to their own size, so that the engine locates them to rounding at
+    every scale of ``J``)."""
     g = np.empty(4 if degenerate else 3)
     g[0] = theta
     g[1] = math.pi - theta
-    g[2] = jmax - abs(jel)
+    g[2] = 1.0 - abs(jel) / jmax
     if degenerate:
-        g[3] = abs(jel) - jmin
+        g[3] = abs(jel) / jmin - 1.0
     return g
 
 
 @njit(**_JIT)
-def _scaled(v, scale, p, q, code, n_full, degenerate, F, J):
-    r, rt, rl = residual_and_jacobian(v[0] * scale[0], v[1] * scale[1], p, q, code, n_full, degenerate)
+def _scaled(v, scale, p, q, code, n_full, weight, F, J):
+    r, rt, rl = residual_and_jacobian(v[0] * scale[0], v[1] * scale[1], p, q, code, n_full, weight)
     F[0] = r
     J[0, 0] = rt * scale[0]
     J[0, 1] = rl * scale[1]
 
 
 @njit(**_JIT)
-def step(p, q, sigma, mu, code, n_full, degenerate, jmax, jmin, guess, t_plane, anchor, h, scale, tol,
+def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, guess, t_plane, anchor, h, scale, tol,
          max_iter, max_move):
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
-    constraints and ``tests = [dJ/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
+    constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
     F = np.empty(1)
     J = np.empty((1, 2))
     F2 = np.empty(1)
@@ -134,7 +150,7 @@ def step(p, q, sigma, mu, code, n_full, degenerate, jmax, jmin, guess, t_plane, 
     ok = False
     iterations = max_iter
     for it in range(max_iter + 1):
-        _scaled(v, scale, p, q, code, n_full, degenerate, F, J)
+        _scaled(v, scale, p, q, code, n_full, weight, F, J)
         n_rj += 1
         action, dv, fn = corrector_update(it, max_iter, v, guess, F, J, t_plane, anchor, h, tol, True)
         if action == FAILED:
@@ -149,7 +165,7 @@ def step(p, q, sigma, mu, code, n_full, degenerate, jmax, jmin, guess, t_plane, 
             iterations = it
             if math.isfinite(norm(dv)):
                 v2 = v + dv
-                _scaled(v2, scale, p, q, code, n_full, degenerate, F2, J2)
+                _scaled(v2, scale, p, q, code, n_full, weight, F2, J2)
                 n_r += 1
                 if norm(F2) < fn:
                     v = v2
@@ -169,5 +185,5 @@ def step(p, q, sigma, mu, code, n_full, degenerate, jmax, jmin, guess, t_plane, 
     g = constraint_values(u[0], jel, jmax, jmin, degenerate)
     tu = t_new * scale
     tu = tu / norm(tu)
-    tests[0] = jt * tu[0] + jl * tu[1]
+    tests[0] = (jt * tu[0] + jl * tu[1]) / abs(jel)  # d(log |J|)/ds: scale-free
     return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests

@@ -38,12 +38,13 @@ import xarray as xr
 from stability.jit import Compiled
 
 from ..errors import DomainError
-from ..execution import before_compiled_call
-from ..nonlinear.runs import initial_state, simulate
+from ..execution import announce, before_compiled_call
+from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
-from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .linearisation import state_modes
+from .products import (DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters,
+                       var_attrs)
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
@@ -60,6 +61,9 @@ __all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "Settle
 MATCH_DEG = 0.05
 #: relative tolerance of the comparison U_J <= E0
 ENERGY_REL_TOL = 1e-12
+#: wall time of a stiff deciding run (LSODA) per unit of simulated time: 11.2 s for 2e4 units
+#: at q = 0, sigma = 0.8, fr_inv = 0.3, alpha_v = 1e8 (the 2-core machine, docs/hard_cases.md)
+STIFF_SECONDS_PER_UNIT = 5.6e-4
 
 
 class Candidate(NamedTuple):
@@ -272,6 +276,27 @@ def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr
     return end, reason, cands
 
 
+def start_note(cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float,
+               gravity: float) -> str:
+    """``"; the start is itself ..."`` if the initial state is one of the level's steady states,
+    else ``""``.
+
+    ``E >= U_J(c)`` for every state of axis height ``c`` on the level ``J``, with equality
+    exactly at the steady state of that ``c`` (S5-S7): a start whose energy equals the
+    candidate's at its own tilt (within :data:`ENERGY_REL_TOL` of the terms) is that steady
+    state, where the top stays forever; the prediction is then where any perturbation of it
+    leads (an unstable start) or the start itself."""
+    tol = ENERGY_REL_TOL * (abs(initial_energy) + jellett * jellett + gravity)
+    for c in cands:
+        if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
+            flag = ("stable", "marginal", "unstable")[c.stability]
+            if c.stability == UNSTABLE:
+                return (f"; the start is itself a steady state (the {c.kind} one, {flag}), where the top stays "
+                        "forever: the end given is where any perturbation of it leads")
+            return f"; the start is itself a steady state (the {c.kind} one, {flag}): the top stays there"
+    return ""
+
+
 def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate | None, str]:
     """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
@@ -379,8 +404,10 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J0, E0 = point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     if end is not None:
         return FinalState(tilt=end.tilt, kind=end.kind, method="jellett", energy=end.energy,
@@ -394,6 +421,11 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     chunk = chunk_length(cands, params, J0)
+    if _auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
+        announce(f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
+                 f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
+                 f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
+                 "simulation=False skips it)")
     tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
@@ -422,19 +454,22 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    ys, lams, vert = [], [], []
+    ys, lams, vert, cos_, spins = [], [], [], [], []
     for c in sel:
         if c.kind == "tilted":
             ys.append(family.state_vector(math.radians(c.tilt), c.precession_rate, q))
             lams.append(c.precession_rate)
             vert.append(False)
+            spins.append(math.nan)
         else:
-            ys.append(family.vertical_state(c.kind, family.vertical_spin(c.kind, jel, q=q, sigma=sigma)))
+            spins.append(family.vertical_spin(c.kind, jel, q=q, sigma=sigma))
+            ys.append(family.vertical_state(c.kind, spins[-1]))
             lams.append(0.0)
             vert.append(True)
+        cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
     p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    ev, scale = reduced_spectrum(np.array(ys), np.array(lams), np.array(vert), p, q=q, sigma=sigma, mu=mu)
-    growth, _, _ = modes_verdict(ev, scale)
+    growth = state_modes(np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p, q=q,
+                         sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 

@@ -43,14 +43,18 @@ horizontal momentum (two more zeros).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from stability.jit import njit
 
+from ..errors import InputError
+from ..linear.spectra import spectrum
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES, rhs as model_rhs
 from ..nonlinear.quantities import h_cg
 
-__all__ = ["REMOVED_NEUTRAL", "ROTATION", "NEUTRAL_FACTOR", "precessing_jacobians", "neutral_covectors",
+__all__ = ["vertical_spectrum", "state_modes", "REMOVED_NEUTRAL", "ROTATION", "NEUTRAL_FACTOR", "precessing_jacobians", "neutral_covectors",
            "reduced_spectrum", "modes_verdict", "reduced_state_size"]
 
 #: the structural neutral directions removed before the growth rate is taken
@@ -91,15 +95,22 @@ def _jacobians(Y, lam, p, code, n_full):
     out = np.empty((n, m, m))
     y = np.zeros(n_full, dtype=np.complex128)
     for i in range(n):
+        # the step of a rate (omega, V0) relative to the state's rates, whose size is that of
+        # the family's scale (any size); the axis k is a unit vector
+        rates = 0.0
+        for r in range(m):
+            if r < 3 or r >= 6:
+                rates = max(rates, abs(Y[i, r]))
         for j in range(m):
             for r in range(n_full):
                 y[r] = 0.0
             for r in range(m):
                 y[r] = Y[i, r]
-            y[j] += 1j * _H
+            h = _H * rates if (j < 3 or j >= 6) and rates > 0.0 else _H
+            y[j] += 1j * h
             f = model_rhs(code, 0.0, y, p)
             for r in range(m):
-                out[i, r, j] = f[r].imag / _H
+                out[i, r, j] = f[r].imag / h
         # - lam G (G: rotation about K on (omega, k, V0_h))
         out[i, 0, 1] += lam[i]
         out[i, 1, 0] -= lam[i]
@@ -225,3 +236,70 @@ def modes_verdict(ev: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.nda
     verdict = np.where(grows.any(-1), 2, np.where(neutral.any(-1), 1, 0)).astype(np.int8)
     growth = np.max(np.where(valid, re, -np.inf), axis=-1)
     return growth, neutral.sum(-1), verdict
+
+
+def vertical_spectrum(cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma: float, fr_inv: float,
+                      alpha_v: float, mu: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The spectrum of vertical states from eq. (11): the one home of their growth rates.
+
+    The vertical state ``c = +-1`` with spin ``n`` has ``|n|`` times the spectrum of eq. (11)
+    at the equivalent point :func:`stability.steady.family.equivalent_point`
+    (``q c, fr_inv / n^2, alpha_v / |n|``), computed by :func:`stability.linear.spectra.spectrum`
+    with its error bounds and its decision (which is rigorous where the reduced Jacobian's
+    eigenvalues lose every digit: near ``A_G -> 0`` or at ``alpha_v >> |n|``). The real state
+    space carries each mode ``s`` of eq. (11) with ``conj(s)``.
+
+    Returns
+    -------
+    eigenvalues : numpy.ndarray of complex, shape (n, 6)
+        By decreasing real part; NaN rows where eq. (11) cannot be evaluated (``n = 0``, or an
+        equivalent point outside its computable range).
+    bound : numpy.ndarray, shape (n,)
+        Absolute error bound of the leading growth rate (``|n|`` times eq. (11)'s).
+    n_neutral : numpy.ndarray of int
+    verdict : numpy.ndarray of int8 (-1 where NaN)
+    """
+    cosines = np.atleast_1d(np.asarray(cosines, float))
+    spins = np.atleast_1d(np.asarray(spins, float))
+    m = cosines.size
+    ev = np.full((m, 6), np.nan + 0j)
+    bound = np.full(m, np.nan)
+    n_neutral = np.zeros(m, dtype=np.int64)
+    verdict = np.full(m, -1, dtype=np.int8)
+    for i in range(m):
+        n = abs(spins[i])
+        if not (n > 0.0 and math.isfinite(n)):
+            continue
+        try:
+            sp = spectrum("sliding", q=q * cosines[i], fr_inv=fr_inv / (n * n), sigma=sigma, alpha_v=alpha_v / n, mu=mu)
+        except InputError:
+            continue
+        s = sp.eigenvalues * n
+        pair = np.concatenate([s, np.conj(s)])
+        ev[i] = pair[np.argsort(-pair.real, kind="stable")]
+        bound[i] = float(sp.error_bound[0]) * n
+        n_neutral[i] = 2 * int(np.sum(sp.neutral))
+        verdict[i] = int(sp.stability)
+    return ev, bound, n_neutral, verdict
+
+
+def state_modes(y: np.ndarray, lam: np.ndarray, vertical: np.ndarray, cosines: np.ndarray, spins: np.ndarray,
+                p: np.ndarray, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Eigenvalues, leading growth rate, its error bound, neutral count and verdict of steady
+    states: tilted ones from the reduced Jacobian (:func:`reduced_spectrum`,
+    :func:`modes_verdict`; bound ``NEUTRAL_FACTOR u ||A||_F``), vertical ones from eq. (11)
+    (:func:`vertical_spectrum`; the Jacobian's only where eq. (11) cannot be evaluated).
+    What :func:`stability.steady_states` and :func:`continuation.steady_branch` report."""
+    ev, scale = reduced_spectrum(y, lam, vertical, p, q=q, sigma=sigma, mu=mu)
+    growth, n_neutral, verdict = modes_verdict(ev, scale)
+    bound = NEUTRAL_FACTOR * _U * np.asarray(scale, float)
+    idx = np.nonzero(vertical)[0]
+    if idx.size:
+        ev_v, b_v, nn_v, ver_v = vertical_spectrum(np.asarray(cosines)[idx], np.asarray(spins)[idx], q=q,
+                                                   sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+        ok = ver_v >= 0
+        j = idx[ok]
+        ev[j], bound[j], n_neutral[j], verdict[j] = ev_v[ok], b_v[ok], nn_v[ok], ver_v[ok]
+        growth[j] = ev_v[ok, 0].real
+    return ev, growth, bound, n_neutral, verdict

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._version import package_version
-from ..errors import InputError
+from ..errors import DomainError, InputError
 from ..nonlinear.runs import model_parameter_vector
 from ..parameters import LONG_NAMES, check_domain
 from ..products import PRODUCT_ATTR
@@ -24,7 +24,8 @@ from . import family
 from .linearisation import REMOVED_NEUTRAL
 from .verdicts import FLAG_MEANINGS, FLAG_VALUES, RULE
 
-__all__ = ["MODELS", "sliding_parameters", "product_attrs", "var_attrs", "flag_attrs", "potential_curve", "UNITLESS",
+__all__ = ["MODELS", "sliding_parameters", "check_scales", "SCALE_RANGE",
+           "product_attrs", "var_attrs", "flag_attrs", "potential_curve", "UNITLESS",
            "DEGREE", "TILT_GRID_POINTS"]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
@@ -76,6 +77,45 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
     params, p = model_parameter_vector("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)
     params.pop("alpha_k", None)
     return params, p
+
+
+#: the range of the scales the steady layer computes with (:func:`check_scales`): their squares
+#: and products of a few stay normal doubles, so no term underflows or overflows
+SCALE_RANGE = (1e-100, 1e100)
+
+
+def check_scales(params: dict[str, float], jellett: float | None = None, *, jellett_name: str = "jellett") -> None:
+    """Refuse scales at which the steady layer's doubles would underflow or overflow.
+
+    The family is scale invariant (``J^2 / (mu fr_inv)`` and ``lam^2 / (mu fr_inv |q|)`` are
+    functions of ``q, sigma, mu, c`` only, S3-S4), and every computation of the layer is
+    relative to those scales; what it cannot do is carry a scale whose square is not a normal
+    double. So each of ``sigma``, ``mu``, ``mu fr_inv``, ``mu fr_inv |q|`` (the scale of
+    ``lam^2`` on the family), ``|J|`` and ``|J| / sigma`` (the spin of the vertical states) that
+    is not zero must lie in :data:`SCALE_RANGE`; the message names the parameter that leaves
+    it, its value and the range (``jellett_name``: the caller's name of ``jellett``). (``|q|`` so small that ``mu fr_inv |q|`` is below the range is
+    the ``q = 0`` family to far below rounding: pass ``q = 0``.)
+
+    Raises
+    ------
+    stability.errors.DomainError
+    """
+    lo, hi = SCALE_RANGE
+    q, sigma, fr_inv, mu = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
+    checks = [("sigma", sigma, "sigma", ""), ("mu", mu, "mu", ""),
+              ("mu fr_inv", mu * fr_inv, "fr_inv", f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"),
+              ("mu fr_inv |q|", mu * fr_inv * abs(q), "q" if abs(q) < 1e-3 else "fr_inv",
+               f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
+               "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0")]
+    if jellett is not None:
+        checks += [(f"|{jellett_name}|", abs(jellett), jellett_name, ""),
+                   (f"|{jellett_name}| / sigma", abs(jellett) / sigma, jellett_name,
+                    f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states")]
+    for label, value, name, why in checks:
+        if value != 0.0 and not lo <= value <= hi:
+            raise DomainError(f"{label} = {value:.6g} is outside the steady layer's range [{lo:g}, {hi:g}] "
+                              f"(parameter {name}{'; ' + why if why else ''}): its square would underflow or "
+                              "overflow a double")
 
 
 def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None, **extra: Any) -> dict[str, Any]:

@@ -26,8 +26,8 @@ from ..execution import before_compiled_call
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar
 from . import family, linearisation
-from .linearisation import modes_verdict, reduced_spectrum
-from .products import DEGREE, UNITLESS, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .linearisation import state_modes
+from .products import DEGREE, UNITLESS, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .verdicts import flag_of
 
 #: the first call's compilation on a cold numba cache (the level's closed forms, the integrals,
@@ -137,6 +137,7 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
+    check_scales(params, J)
     before_compiled_call(COMPILED, COMPILE_SECONDS)
     table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]
@@ -151,8 +152,8 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             y[i] = family.vertical_state(kind, spin[i])
         else:
             y[i] = family.state_vector(math.acos(cosines[i]), lam[i], q)
-    ev, scale = reduced_spectrum(y, np.nan_to_num(lam), vertical, p, q=q, sigma=sigma, mu=mu)
-    growth, n_neutral, jac = modes_verdict(ev, scale)
+    ev, growth, bound, n_neutral, jac = state_modes(y, np.nan_to_num(lam), vertical, cosines, spin, p, q=q,
+                                                    sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     flags = np.array([flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v))
                       for k, t, s, v in zip(kinds, tests, scales, jac)], dtype=np.int8)
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
@@ -176,10 +177,14 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         "growth_rate": ("state", growth, var_attrs(
             "leading growth rate of the linearisation about the state (frame precessing with it), "
             "structural neutral directions removed", "Omega", short="leading growth rate")),
+        "growth_rate_bound": ("state", bound, var_attrs(
+            "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)", "Omega", short="growth rate bound")),
         "n_neutral": ("state", n_neutral.astype(np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
         "stability": ("state", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": ("state", jac, flag_attrs(
-            "Jacobian verdict", comment="verdict of the reduced Jacobian alone; neutral if |Re s| <= 1e3 u ||A||_F")),
+            "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
+            "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for vertical ones")),
         "energy_test": ("state", tests, var_attrs(
             "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
             short="energy criterion")),
