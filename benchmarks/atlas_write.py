@@ -2,12 +2,12 @@
 
 The grid of ``benchmarks/atlas_memory.py`` with ``--q-points`` values of q (default 100: 10^7
 points; 1000 gives its 10^8), chunks q=20, sliding model, masked outside the domain. In one
-process, interleaved over ``--rounds``: the bare spectra (``stability.spectrum`` on each chunk,
-results dropped: what any atlas must compute), then :func:`stability.grids.chunked.write_atlas`
-of the lazy atlas in each layout asked (``--layouts``; e.g. ``all`` = every variable in float64,
+process, interleaved over ``--rounds``: for each layout the bare spectra (``stability.spectrum``
+on each chunk, results dropped: what any atlas must compute) and right after them
+:func:`stability.grids.chunked.write_atlas` of the lazy atlas in that layout (``--layouts``; e.g. ``all`` = every variable in float64,
 uncompressed, the default file; ``map+zstd+f32`` = the leading growth rate and the flag, zstd,
-float32). Reported per layout: min and median wall time, their ratio to the bare spectra of the
-same round, and bytes per grid point on disk.
+float32). Reported per layout: min and median wall time, the ratio of each write to the bare spectra
+measured just before it, and bytes per grid point on disk.
 
     python benchmarks/atlas_write.py --out-dir /tmp --rounds 2
     # the previous code, same machine, one after the other (A/B):
@@ -64,11 +64,11 @@ def measure(q_points: int, out_dir: str, layouts: list[str], rounds: int) -> dic
     sizes: dict[str, int] = {}
     ratios: dict[str, list[float]] = {}
     for _ in range(rounds):
-        t = time.perf_counter()
-        bare()
-        tb = time.perf_counter() - t
-        times["bare spectra"].append(tb)
         for layout in layouts:
+            t = time.perf_counter()
+            bare()
+            tb = time.perf_counter() - t
+            times["bare spectra"].append(tb)
             path = os.path.join(out_dir, f"atlas_write_{layout}.nc")
             ds = stability.atlas("sliding", mask_unphysical=True, chunks={"q": 20}, **grid)
             t = time.perf_counter()
