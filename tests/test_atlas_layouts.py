@@ -115,3 +115,28 @@ def test_cli_map_file(tmp_path, reference, chunks):
     assert set(read.data_vars) == {"leading_growth_rate", "stability"}
     a, b = _aligned(read, reference, "stability")
     assert np.array_equal(a, b)
+
+
+def test_map_file_draws_the_same_stability_map(tmp_path, reference):
+    """The map file draws the stability map of the full atlas: the same colour array (the leading
+    growth rate, bit for bit in float64) over the same plane."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from stability.plotting.figures import plot_atlas
+
+    plane = dict(fr_inv=0.5, alpha_v=0.1)
+    read = stability.open_atlas(write_atlas(reference, tmp_path / "m.nc", variables="map"))
+    fig_a, ax_a = plot_atlas(reference.sel(plane), "q", "sigma")
+    fig_b, ax_b = plot_atlas(read.sel(plane), "q", "sigma")
+    a = np.ma.filled(ax_a.collections[0].get_array(), np.nan)
+    b = np.ma.filled(ax_b.collections[0].get_array(), np.nan)
+    assert np.array_equal(a, b, equal_nan=True)
+    plt.close(fig_a)
+    plt.close(fig_b)
+    with pytest.raises(ValueError, match="map atlas"):
+        from stability.plotting.atlas_plots import plot_growth_rate
+
+        plot_growth_rate(read.sel(fr_inv=0.5, alpha_v=0.1, sigma=1.0, method="nearest"), "q")

@@ -82,7 +82,7 @@ def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
                         "stability.atlas or stability.open_atlas")
-    missing = [v for v in ATLAS_VARIABLES if v not in ds]
+    missing = [v for v in required_variables(ds) if v not in ds]
     if missing:
         raise ValueError(f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
                          f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)")
