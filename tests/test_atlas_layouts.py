@@ -88,11 +88,12 @@ def test_leading_growth_rate_decided_on_the_whole_grid(tmp_path):
     assert np.array_equal(a, b, equal_nan=True)
 
 
-def test_float32_refuses_a_value_it_would_change(tmp_path, reference):
+@pytest.mark.parametrize("value", [-1e-300, 1e-40, 1e39])  # -> -0.0, a subnormal, inf in float32
+def test_float32_refuses_a_value_it_would_change(tmp_path, reference, value):
     ds = reference.copy(deep=True)
     inside = np.argwhere(ds.stability.values >= 0)[0]
-    ds["growth_rate"].values[tuple(inside) + (2,)] = -1e-300  # would round to -0.0 in float32
-    with pytest.raises(InputError, match="growth_rate = -1e-300 is outside the normal range of float32"):
+    ds["frequency"].values[tuple(inside) + (2,)] = value
+    with pytest.raises(InputError, match=f"frequency = {value!r} is outside the normal range of float32"):
         write_atlas(ds, tmp_path / "a.nc", float32=True)
     assert not (tmp_path / "a.nc").exists()
 

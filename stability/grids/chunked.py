@@ -282,11 +282,20 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     would not keep a value's sign and magnitude class: a finite nonzero value that would become
     zero, subnormal or infinite."""
     w = v.astype(np.float32)
-    finite = np.isfinite(v)
     tiny = np.finfo(np.float32).tiny
-    bad = finite & (v != 0) & ~(np.abs(w) >= tiny) | (finite & ~np.isfinite(w))
-    if bad.any():
-        x = float(v[bad][0])
+    # two passes in the usual case: values below float32's normal range (the exact zeros of the
+    # structural mode, anything that underflowed) and infinities are rare, and only they are
+    # looked at again
+    small = np.abs(w) < tiny
+    bad = np.zeros(0, dtype=v.dtype)
+    if small.any():
+        x = v[small]
+        bad = x[x != 0]
+    if not bad.size and np.isinf(w).any():
+        x = v[np.isinf(w)]
+        bad = x[np.isfinite(x)]
+    if bad.size:
+        x = float(bad[0])
         raise InputError(f"float32=True: {name} = {x!r} is outside the normal range of float32 "
                          f"({tiny!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
                          "change it beyond the stated bound: write with float32=False")
