@@ -297,7 +297,7 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     if bad.size:
         x = float(bad[0])
         raise InputError(f"float32=True: {name} = {x!r} is outside the normal range of float32 "
-                         f"({tiny!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
+                         f"({float(tiny)!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
                          "change it beyond the stated bound: write with float32=False")
     return w
 
