@@ -281,7 +281,8 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     """``v`` rounded to float32, refused (:class:`~stability.errors.InputError`) where the rounding
     would not keep a value's sign and magnitude class: a finite nonzero value that would become
     zero, subnormal or infinite."""
-    w = v.astype(np.float32)
+    with np.errstate(over="ignore"):  # an overflow is refused below, by name
+        w = v.astype(np.float32)
     tiny = np.finfo(np.float32).tiny
     # two passes in the usual case: values below float32's normal range (the exact zeros of the
     # structural mode, anything that underflowed) and infinities are rare, and only they are
