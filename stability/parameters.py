@@ -81,6 +81,7 @@ __all__ = [
     "DOMAIN",
     "Bound",
     "domain_sides",
+    "domain_sides_quick",
     "sigma_max",
     "fmt_against",
     "bound_holds",
@@ -363,6 +364,10 @@ def _sigma_interval(v: Mapping[str, float]) -> tuple[float, float]:
     return (-math.inf, _sigma_largest(v))
 
 
+#: the unit round-off of double precision (the margins of :func:`domain_sides_quick`)
+_U_DOMAIN = 2.0**-53
+
+
 @register_jitable
 def _exact_margins(q, mu, sigma):
     """``A_G = 1 - mu q^2`` and ``A_G - sigma/2`` as doubles whose signs are exact.
@@ -500,6 +505,47 @@ def domain_sides(q, fr_inv, sigma, alpha_v, mu, alpha_k):
     (:func:`_exact_margins`, module docstring).
     """
     a_g, room = _exact_margins(q, mu, sigma)
+    return (0.0, mu, 0.0, fr_inv, 0.0, alpha_v, 0.0, alpha_k, 0.0, a_g, 0.0, sigma, 0.0, 2.0 * room)
+
+
+@register_jitable
+def domain_sides_quick(q, fr_inv, sigma, alpha_v, mu, alpha_k):
+    """Sides of every bound of :data:`DOMAIN` with the *same signs* as :func:`domain_sides`
+    (so :func:`inside_domain` decides the same), cheaply: the two bounds through ``A_G`` are
+    decided by a plain floating-point comparison where its rounding cannot change the answer,
+    and by the exact :func:`_exact_margins` only where it can (points within a few ulp of
+    ``1 - mu q^2 = 0`` or ``sigma = 2 (1 - mu q^2)``, and any point with ``mu < 0``,
+    ``sigma < 0`` or NaN). The values of the two ``A_G`` sides are then ``+-1`` rather than the
+    margins: for the test only (compiled kernels), not for continuation constraints or messages.
+
+    The margin (round to nearest, unit round-off ``u = 2**-53``, ``mu >= 0``, ``sigma >= 0``):
+    ``t = fl(q q) = q^2 (1 + d1)``, ``a = fl(mu t) = mu q^2 (1 + d1)(1 + d2)``,
+    ``w = fl(sigma/2 + a) = (sigma/2 + a)(1 + d3)``, ``|dk| <= u`` (``sigma/2`` is exact), so
+    with ``X = mu q^2`` and ``Y = sigma/2 + X`` (both ``>= 0``)::
+
+        a / (1 + u)^2 <= X <= a / (1 - u)^2,    w / (1 + u)^3 <= Y <= w / (1 - u)^3.
+
+    Hence ``a <= 1 - 4u`` gives ``X <= (1 - 4u)/(1 - u)^2 < 1`` (``A_G > 0``), ``a >= 1 + 4u``
+    gives ``X >= (1 + 4u)/(1 + u)^2 > 1`` (``A_G < 0``); ``w <= 1 - 4u`` gives ``Y < 1``
+    (``sigma < 2 A_G``) and ``w >= 1 + 4u`` gives ``Y >= (1 + 4u)/(1 + u)^3 > 1`` (``sigma > 2 A_G``). Underflow in
+    ``t`` or ``a`` adds at most ``2**-1074 (1 + mu)`` absolutely (``mu <= 1e30`` in the
+    computable range), far below the slack ``~2u`` of these thresholds; overflow to inf makes
+    ``a`` or ``w`` inf, which the thresholds decide as outside, as the exact test does.
+    Between the thresholds (and for ``mu < 0``, ``sigma < 0``, NaN, where the comparisons
+    fail) the exact sign is computed. tests/test_parameters.py checks the decision against
+    :mod:`fractions` on the bounds and one ulp either side.
+    """
+    a = mu * (q * q)
+    w = 0.5 * sigma + a
+    plain = (mu >= 0.0) & (sigma >= 0.0)
+    lo = 1.0 - 4.0 * _U_DOMAIN
+    q_easy = plain & ((a <= lo) | (a >= 1.0 + 4.0 * _U_DOMAIN))
+    s_easy = plain & ((w <= lo) | (w >= 1.0 + 4.0 * _U_DOMAIN))
+    if q_easy & s_easy:
+        a_g = 1.0 if a <= lo else -1.0
+        room = 1.0 if w <= lo else -1.0
+    else:
+        a_g, room = _exact_margins(q, mu, sigma)
     return (0.0, mu, 0.0, fr_inv, 0.0, alpha_v, 0.0, alpha_k, 0.0, a_g, 0.0, sigma, 0.0, 2.0 * room)
 
 

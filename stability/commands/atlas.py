@@ -60,6 +60,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    f"(one line per value of a second grid dimension; with more than {MAX_LINES} values there, "
                    "the stability map over the two)")
     p.add_argument("--x", default="q", help="abscissa of the --plot (a grid dimension: q, fr_inv, sigma, alpha_v, mu)")
+    f = p.add_argument_group("what the file stores")
+    f.add_argument("--variables", choices=("all", "map"), default="all",
+                   help="all: every variable (all modes, for a study; default); map: the leading growth rate "
+                        "and the stability flag only, the smallest file that draws a stability map")
+    f.add_argument("--compression", choices=("none", "zlib", "zstd"), default="none",
+                   help="lossless compression of the data variables (netCDF4 filters; default none)")
+    f.add_argument("--float32", action="store_true",
+                   help="store growth rates, frequencies and bounds as float32 (relative error <= 2^-24, "
+                        "stated in the variables' attributes; the flags are decided in float64)")
     g = p.add_argument_group("large grids (dask)")
     g.add_argument("--chunks", metavar="SIZES",
                    help="compute and write chunk by chunk: one size for every grid dimension (e.g. 100) "
@@ -120,7 +129,7 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
-                        progress=not args.no_progress and sys.stderr.isatty(), notes=note)
+                        progress=not args.no_progress and sys.stderr.isatty(), notes=note, **_layout(args))
     except KeyboardInterrupt:
         if args.resume:
             raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "
@@ -143,6 +152,14 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     print(f"wrote {out}: {args.model} model, grid {grid} in chunks; "
           + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
     return 0
+
+
+def _layout(args: argparse.Namespace | None) -> dict:
+    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags (None: the defaults)."""
+    if args is None:
+        return {"variables": "all", "compression": None, "float32": False}
+    return {"variables": args.variables, "compression": None if args.compression == "none" else args.compression,
+            "float32": bool(args.float32)}
 
 
 def _check_space(out, model: str, values: dict) -> None:  # noqa: ANN001
@@ -181,7 +198,13 @@ def run(args: argparse.Namespace) -> int:
         # the figure is written before the netCDF file is committed: a failure to draw or save
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)
-    write_dataset(ds, out, overwrite=args.overwrite)
+    layout = _layout(args)
+    if layout == _layout(None):
+        write_dataset(ds, out, overwrite=args.overwrite)
+    else:
+        from ..grids.chunked import write_atlas
+
+        write_atlas(ds, out, overwrite=args.overwrite, **layout)
     counts = {name: int((ds.stability == flag).sum()) for name, flag in
               (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
     grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"

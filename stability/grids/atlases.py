@@ -263,6 +263,8 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
         Over the grid; NaN outside the domain.
     """
     require_atlas(ds)
+    if "growth_rate" not in ds:  # a map atlas file: the leading growth rate is what it stores
+        return ds["leading_growth_rate"]
     g, f = ds["growth_rate"], ds["frequency"]
     bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
     dims = list(ds["max_growth_rate"].dims)

@@ -36,20 +36,21 @@ import warnings
 from collections.abc import Callable
 from itertools import product
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, ResumeError
+from ..errors import ChunkError, InputError, ResumeError
 from ..interrupts import Temporary, checkpoint, deferred
 from .leading import leading, zero_everywhere
+from .schema import MAP_VARIABLES, STORED_ATTR
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .outputs import TEMPORARY_PREFIX, atomic_output, check_output_path, close_quietly, temporary_name, write_error
 
-__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "parts_directory"]
+__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "parts_directory", "VARIABLE_CHOICES", "COMPRESSIONS"]
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
 _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
@@ -120,6 +121,13 @@ def _block_spectra(*args: np.ndarray, model: LinearModel, names: tuple[str, ...]
     shape = np.broadcast_shapes(*(np.shape(a) for a in args))
     sp = spectrum(model, mask_unphysical=mask, method=method, **p)
     n = model.n_modes
+    if sp.eigenvalues.shape == shape + (n,) and sp.error_bound.shape == shape + (n,):
+        # the usual case (a chunk of a grid): views of the fresh, writable arrays, no copies (a
+        # writer that keeps only a map never reads most of them; copying them cost a quarter
+        # of a map's writing time)
+        return (sp.eigenvalues.real, sp.eigenvalues.imag, sp.error_bound,
+                np.broadcast_to(sp.stability, shape).astype(np.int8),
+                np.broadcast_to(sp.inside, shape).astype(np.int8))
     ev = np.broadcast_to(sp.eigenvalues, shape + (n,))
     return (np.ascontiguousarray(ev.real), np.ascontiguousarray(ev.imag),
             np.broadcast_to(sp.error_bound, shape + (n,)).copy(),
@@ -196,30 +204,103 @@ _BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
 STORE_FORMAT = 2
 
 
-def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int]) -> None:
+#: what :func:`write_atlas` can store (``variables=``): every variable of the atlas, or the
+#: smallest set that draws a stability map (:data:`stability.grids.schema.MAP_VARIABLES`)
+VARIABLE_CHOICES = ("all", "map")
+
+#: compressions of :func:`write_atlas` (netCDF4's filters; None: none)
+COMPRESSIONS = (None, "zlib", "zstd")
+
+#: the relative rounding error of a value stored as float32 (round to nearest, 24-bit significand)
+FLOAT32_ROUNDING = 2.0**-24
+
+
+def _stored(ds: xr.Dataset, variables: str) -> list[str]:
+    """The data variables of ``ds`` that a file with ``variables`` stores."""
+    if variables == "map":
+        return [k for k in MAP_VARIABLES if k in ds.data_vars]
+    return list(ds.data_vars)
+
+
+def _float32_attrs() -> dict[str, Any]:
+    """What a float32 variable says about its rounding (:func:`write_atlas`)."""
+    return {"storage_dtype": "float32",
+            "storage_relative_error": FLOAT32_ROUNDING,
+            "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
+                               "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
+                               "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
+                               "that would round to zero, a subnormal or infinity is refused), and the "
+                               "stability flag was decided in float64 before it"}
+
+
+def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], stored: list[str] | None = None,
+                     compression: str | None = None, float32: bool = False) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
-    data variables defined (chunked like the dataset) but not yet written."""
+    data variables (``stored``; default all) defined (chunked like the dataset, compressed as
+    asked, floating ones as float32 if asked) but not yet written."""
     import netCDF4
 
+    if stored is None:
+        stored = list(ds.data_vars)
     scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
+    filters: dict[str, Any] = {} if compression is None else {"compression": compression, "complevel": 1,
+                                                               "shuffle": True}
     with close_quietly(netCDF4.Dataset(path, "w", format="NETCDF4")) as nc:
         for d, n in ds.sizes.items():
+            if d == "mode" and not any("mode" in ds[k].dims for k in stored):
+                continue
             nc.createDimension(d, n)
         for k, c in ds.coords.items():
+            if "mode" in c.dims and "mode" not in nc.dimensions:
+                continue
             fill = np.nan if c.dtype.kind == "f" else None
             var = nc.createVariable(k, c.dtype, c.dims, fill_value=fill)
             var.setncatts(dict(c.attrs))
             var[...] = c.values
-        for k, v in ds.data_vars.items():
-            fill = np.nan if v.dtype.kind == "f" else None
+        for k in stored:
+            v = ds[k]
+            dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype
+            fill = dtype.type(np.nan) if dtype.kind == "f" else None
             cs = [chunk_shape.get(d, ds.sizes[d]) for d in v.dims]
-            var = nc.createVariable(k, v.dtype, v.dims, fill_value=fill, chunksizes=cs or None,
-                                    contiguous=not cs)
+            var = nc.createVariable(k, dtype, v.dims, fill_value=fill, chunksizes=cs or None,
+                                    contiguous=not cs and not filters, **(filters if cs else {}))
             attrs = dict(v.attrs)
             if scalar_coords:
                 attrs["coordinates"] = " ".join(scalar_coords)
+            if dtype != v.dtype:
+                attrs.update(_float32_attrs())
             var.setncatts(attrs)
         nc.setncatts(dict(ds.attrs))
+        if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
+            nc.setncatts({STORED_ATTR: "map"})
+        if compression is not None:
+            nc.setncatts({"compression": f"{compression} level 1, byte shuffle (lossless)"})
+
+
+def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
+    """``v`` rounded to float32, refused (:class:`~stability.errors.InputError`) where the rounding
+    would not keep a value's sign and magnitude class: a finite nonzero value that would become
+    zero, subnormal or infinite."""
+    with np.errstate(over="ignore"):  # an overflow is refused below, by name
+        w = v.astype(np.float32)
+    tiny = np.finfo(np.float32).tiny
+    # two passes in the usual case: values below float32's normal range (the exact zeros of the
+    # structural mode, anything that underflowed) and infinities are rare, and only they are
+    # looked at again
+    small = np.abs(w) < tiny
+    bad = np.zeros(0, dtype=v.dtype)
+    if small.any():
+        x = v[small]
+        bad = x[x != 0]
+    if not bad.size and np.isinf(w).any():
+        x = v[np.isinf(w)]
+        bad = x[np.isfinite(x)]
+    if bad.size:
+        x = float(bad[0])
+        raise InputError(f"float32=True: {name} = {x!r} is outside the normal range of float32 "
+                         f"({float(tiny)!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
+                         "change it beyond the stated bound: write with float32=False")
+    return w
 
 
 def parts_directory(path: str | os.PathLike) -> Path:
@@ -498,7 +579,8 @@ def _slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
 
 def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, client: Any = None,
                 resume: bool = False, progress: bool | Callable[[int, int], None] = False,
-                window: int | None = None, notes: Callable[[str], None] | None = None) -> Path:
+                window: int | None = None, notes: Callable[[str], None] | None = None, variables: str = "all",
+                compression: str | None = None, float32: bool = False) -> Path:
     """Write an atlas (lazy or not) to netCDF chunk by chunk, atomically.
 
     Parameters
@@ -524,6 +606,18 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     notes : callable, optional
         Receives one line per kept chunk computed again (unreadable, or unknown to the journal);
         a ``UserWarning`` each if None.
+    variables : {"all", "map"}, default "all"
+        What the file stores: every variable of the atlas, or for a map the leading growth rate
+        and the stability flag only (:data:`stability.grids.schema.MAP_VARIABLES`; the file's
+        attribute ``atlas_variables = "map"``; :func:`stability.open_atlas` reads both).
+    compression : {None, "zlib", "zstd"}, default None
+        netCDF4's compression of the data variables (level 1, with the byte shuffle): lossless.
+    float32 : bool, default False
+        Store the floating-point variables as float32: relative error <= 2**-24 from the
+        rounding, stated in each such variable's attributes (``storage_relative_error``); the
+        flags are decided in float64 before. A value whose rounding would leave the normal
+        float32 range (become zero, subnormal or infinite) is refused
+        (:class:`~stability.errors.InputError`), never stored changed.
 
     Returns
     -------
@@ -549,6 +643,12 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     if notes is None:
         def notes(text: str) -> None:
             warnings.warn(text, UserWarning, stacklevel=3)
+    if variables not in VARIABLE_CHOICES:
+        raise InputError(f"variables = {variables!r} is not a choice; choose one of {', '.join(VARIABLE_CHOICES)}")
+    if compression not in COMPRESSIONS:
+        raise InputError(f"compression = {compression!r} is not a choice; choose one of "
+                         f"{', '.join(map(str, COMPRESSIONS))}")
+    float32 = check_flag("float32", float32)
     target = check_output_path(path, overwrite=overwrite)
     dims = [d for d in ds["stability"].dims]
     n_modes = ds.sizes.get("mode", 0)
@@ -569,7 +669,7 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
             else:
                 done = set()
             _write_chunks(ds, target, overwrite, expected, dims, n_modes, chunk_shape, blocks, done, store, client,
-                          window, report)
+                          window, report, _Layout(_stored(ds, variables), compression, float32))
             if store is not None:
                 shutil.rmtree(store.path, ignore_errors=True)
     finally:
@@ -579,41 +679,96 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     return target
 
 
-def _write_leading(nc: Any, blocks: list[tuple[str, dict[str, slice]]], dims: list[str]) -> None:
-    """Fill ``leading_growth_rate`` from the chunks written: whether the structural zero mode is
-    left out is decided on the whole grid first (stability.grids.leading), then each chunk."""
-    if "leading_growth_rate" not in nc.variables:
-        return
-    mdims = (*dims, "mode")
+class _Layout(NamedTuple):
+    """What :func:`write_atlas` stores and how."""
 
-    def part(sl: dict[str, slice]) -> tuple[Any, ...]:
-        idx = tuple(sl[d] for d in dims)
-        bound = (xr.DataArray(nc.variables["eigenvalue_error_bound"][idx], dims=mdims)
-                 if "eigenvalue_error_bound" in nc.variables else None)
-        return (idx, xr.DataArray(nc.variables["growth_rate"][idx], dims=mdims),
-                xr.DataArray(nc.variables["frequency"][idx], dims=mdims), bound,
-                xr.DataArray(nc.variables["max_growth_rate"][idx], dims=dims))
+    stored: list[str]
+    compression: str | None
+    float32: bool
 
-    drop = bool(dims)
-    if drop:
-        flags = [zero_everywhere(*part(sl)[1:4]) for _, sl in blocks]
-        drop = all(bool(e) for e, _ in flags) and any(bool(i) for _, i in flags)
-    for _, sl in blocks:
-        idx, g, f, b, m = part(sl)
-        nc.variables["leading_growth_rate"][idx] = leading(g, f, b, m, drop=drop).values
+
+class _Leading:
+    """``leading_growth_rate`` chunk by chunk, from the chunk in memory (never read back).
+
+    The rule (:mod:`stability.grids.leading`) leaves the structural zero mode out only if every
+    part of the grid has it at every point inside and one part has a point inside. Each chunk is
+    written with the zero mode left out while every chunk so far has it everywhere
+    (``zero_everywhere``), else as ``max_growth_rate``; at the first chunk that has not, the
+    chunks written before (each of which has it everywhere) are rewritten as
+    ``max_growth_rate``, read from the file or recomputed (``again``), and at the end, if no
+    chunk had a point inside, the same. The values are those of deciding on the whole grid
+    first, bit for bit."""
+
+    def __init__(self, nc: Any, dims: list[str], again: Callable[[str, dict[str, slice]], dict[str, np.ndarray]],
+                 cast: Callable[[str, np.ndarray], np.ndarray]) -> None:
+        self.nc, self.dims, self.again, self.cast = nc, dims, again, cast
+        self.active = "leading_growth_rate" in nc.variables
+        self.dropping, self.any_inside, self.provisional = True, False, []
+
+    def _max(self, name: str, sl: dict[str, slice]) -> np.ndarray:
+        idx = tuple(sl[d] for d in self.dims)
+        if "max_growth_rate" in self.nc.variables:
+            return np.asarray(self.nc.variables["max_growth_rate"][idx])
+        return self.cast("leading_growth_rate", np.ascontiguousarray(self.again(name, sl)["growth_rate"][..., 0]))
+
+    def _undo(self) -> None:
+        for name, sl in self.provisional:
+            checkpoint()
+            self.nc.variables["leading_growth_rate"][tuple(sl[d] for d in self.dims)] = self._max(name, sl)
+        self.provisional = []
+
+    def put(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+        if not self.active:
+            return
+        mdims = (*self.dims, "mode")
+        g = xr.DataArray(block["growth_rate"], dims=mdims)
+        f = xr.DataArray(block["frequency"], dims=mdims)
+        b = xr.DataArray(block["eigenvalue_error_bound"], dims=mdims)
+        m = xr.DataArray(np.ascontiguousarray(block["growth_rate"][..., 0]), dims=self.dims)
+        if self.dropping:
+            everywhere, inside = zero_everywhere(g, f, b)
+            self.any_inside |= bool(inside)
+            if not bool(everywhere) or not self.dims:
+                self.dropping = False
+                self._undo()
+        value = leading(g, f, b, m, drop=self.dropping).values
+        if self.dropping:
+            self.provisional.append((name, sl))
+        self.nc.variables["leading_growth_rate"][tuple(sl[d] for d in self.dims)] = self.cast(
+            "leading_growth_rate", np.ascontiguousarray(value))
+
+    def close(self) -> None:
+        if self.active and self.dropping and not self.any_inside:
+            self._undo()
 
 
 def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float, dims: list[str], n_modes: int,
                   chunk_shape: dict[str, int], blocks: list, done: set[str], store: _Store | None, client: Any,
-                  window: int | None, report: "_progress") -> None:
+                  window: int | None, report: "_progress", layout: _Layout | None = None) -> None:
     """The body of :func:`write_atlas`: skeleton, kept chunks, computed chunks, commit."""
     import netCDF4
 
+    if layout is None:
+        layout = _Layout(list(ds.data_vars), None, False)
+    lazy = bool(ds.chunks)
+    spec = _spec(ds, dims)
+
+    def cast(name: str, v: np.ndarray) -> np.ndarray:
+        return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
+
+    def again(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
+        if store is not None and name in done:
+            kept = store.load(name, sl, tuple(sl[d].stop - sl[d].start for d in dims), n_modes)
+            if kept is not None:
+                return kept
+        return _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
-        _create_skeleton(ds, tmp, chunk_shape)
+        _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
         checkpoint()
         with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
             nc.set_auto_mask(False)
+            lead = _Leading(nc, dims, again, cast)
 
             def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
                 shape = tuple(sl[d].stop - sl[d].start for d in dims)
@@ -624,8 +779,11 @@ def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float
                         store.save(name, sl, block, target)
                 idx = tuple(sl[d] for d in dims)
                 for k, v in block.items():
-                    nc.variables[k][idx] = v
-                nc.variables["max_growth_rate"][idx] = block["growth_rate"][..., 0]
+                    if k in nc.variables:
+                        nc.variables[k][idx] = cast(k, v)
+                if "max_growth_rate" in nc.variables:
+                    nc.variables["max_growth_rate"][idx] = cast("max_growth_rate", block["growth_rate"][..., 0])
+                lead.put(name, sl, block)
                 report()
                 checkpoint()
 
@@ -637,8 +795,6 @@ def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float
                     put(name, sl, kept, False)
                 else:
                     todo.append((name, sl))
-            lazy = bool(ds.chunks)
-            spec = _spec(ds, dims)
             failed = _Failure(store.path if store is not None else None, len(blocks))
             if client is None or not lazy:
                 for name, sl in todo:
@@ -650,7 +806,7 @@ def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float
                     put(name, sl, block, True)
             else:
                 _run_on_cluster(client, spec, todo, put, window, failed, report)
-            _write_leading(nc, blocks, dims)
+            lead.close()
 
 
 class _Failure:

@@ -27,7 +27,7 @@ from ..errors import AtlasFileError
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from .outputs import atomic_output, check_output_path, describe_kind
-from .schema import ATLAS_VARIABLES, require_atlas, validate_atlas
+from .schema import ATLAS_VARIABLES, require_atlas, required_variables, validate_atlas
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -172,7 +172,7 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
         if product != "atlas":
             raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
                                  "tippe-stability (open it with xarray.open_dataset)")
-        missing = [v for v in ATLAS_VARIABLES if v not in ds]
+        missing = [v for v in required_variables(ds) if v not in ds]
         if missing:
             raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables "
                                  f"{', '.join(missing)}")

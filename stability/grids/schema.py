@@ -47,10 +47,26 @@ import numpy as np
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["validate_atlas", "require_atlas", "ATLAS_VARIABLES", "FLAG_VALUES", "SLAB_POINTS"]
+__all__ = ["validate_atlas", "require_atlas", "required_variables", "ATLAS_VARIABLES", "MAP_VARIABLES",
+           "STORED_ATTR", "FLAG_VALUES", "SLAB_POINTS"]
 
 #: the variables every atlas has
 ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
+
+#: the variables of a *map* atlas file (``write_atlas(..., variables="map")``, ``tippe atlas
+#: --variables map``): the smallest that draws a stability map; its global attribute
+#: :data:`STORED_ATTR` is ``"map"``
+MAP_VARIABLES = ("leading_growth_rate", "stability")
+
+#: global attribute naming what an atlas file stores: ``"all"`` (or absent) or ``"map"``
+STORED_ATTR = "atlas_variables"
+
+
+def required_variables(ds: xr.Dataset) -> tuple[str, ...]:
+    """The variables ``ds`` must have: :data:`MAP_VARIABLES` for a map atlas (its attribute
+    :data:`STORED_ATTR` is ``"map"``), else :data:`ATLAS_VARIABLES`."""
+    return MAP_VARIABLES if str(ds.attrs.get(STORED_ATTR, "all")) == "map" else ATLAS_VARIABLES
+
 
 #: the values of the ``stability`` flag: outside the domain, stable, marginal, unstable
 FLAG_VALUES = (-1, 0, 1, 2)
@@ -72,7 +88,7 @@ def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     if not isinstance(ds, xr.Dataset):
         raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
                         "stability.atlas or stability.open_atlas")
-    missing = [v for v in ATLAS_VARIABLES if v not in ds]
+    missing = [v for v in required_variables(ds) if v not in ds]
     if missing:
         raise ValueError(f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
                          f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)")
@@ -91,7 +107,7 @@ def validate_atlas(ds: xr.Dataset, error: Callable[[str], Exception]) -> None:
     error : callable
         Makes the exception from the violation's text (the caller names the file or argument).
     """
-    missing = [v for v in ATLAS_VARIABLES if v not in ds]
+    missing = [v for v in required_variables(ds) if v not in ds]
     if missing:
         raise error(f"missing variables {', '.join(missing)}")
     grid = tuple(ds["stability"].dims)
@@ -104,7 +120,7 @@ def validate_atlas(ds: xr.Dataset, error: Callable[[str], Exception]) -> None:
 
 
 def _present(ds: xr.Dataset) -> list[str]:
-    return [v for v in (*ATLAS_VARIABLES, "eigenvalue_error_bound", "physical") if v in ds]
+    return [v for v in (*ATLAS_VARIABLES, "eigenvalue_error_bound", "physical", "leading_growth_rate") if v in ds]
 
 
 def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exception]) -> None:
@@ -185,6 +201,13 @@ def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Except
                             "(NaN marks exactly the points outside the domain)")
             if v == "eigenvalue_error_bound" and (a < 0).any():  # NaN < 0 is False: no copy of the numbers
                 raise error("variable 'eigenvalue_error_bound' has negative values; a bound is >= 0")
+        if "leading_growth_rate" in part:
+            lead = part["leading_growth_rate"].transpose(*grid).values
+            if not np.array_equal(np.isnan(lead), outside):
+                raise error("variable 'leading_growth_rate' has NaN where 'stability' is not -1, or a number where "
+                            "it is -1 (NaN marks exactly the points outside the domain)")
+        if "growth_rate" not in part or "max_growth_rate" not in part:
+            continue  # a map atlas
         g0 = part["growth_rate"].transpose(*grid, "mode").values[..., 0]
         mx = part["max_growth_rate"].transpose(*grid).values
         if not np.array_equal(g0, mx, equal_nan=True):

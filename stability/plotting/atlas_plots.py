@@ -76,6 +76,9 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     (Figure, Axes)
     """
     require_atlas(ds)
+    if "growth_rate" not in ds:
+        raise ValueError("ds is a map atlas (atlas_variables = 'map': leading_growth_rate and stability only); "
+                         "growth rates and frequencies per mode need an atlas written with variables='all'")
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
     if mode not in MODES:

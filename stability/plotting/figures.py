@@ -68,7 +68,7 @@ def plot_atlas(ds: xr.Dataset, x: str | None = None, y: str | None = None, *, ax
     (Figure, Axes)
     """
     require_atlas(ds)
-    grid = list(ds["max_growth_rate"].dims)
+    grid = list(ds["stability"].dims)
     if len(grid) == 1:
         if y is not None:
             raise ValueError(f"y = {y!r}: the atlas has one grid dimension ({grid[0]}); a line plot has no y")

@@ -86,7 +86,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
         # conservative models: the stable side is neutral (Re s = 0 exactly), so there is no
         # zero crossing to interpolate; draw the boundary of the unstable region instead
         unstable = (ds["stability"] == 2).transpose(y, x).values.astype(float)
-        unstable[ds["physical"].transpose(y, x).values == 0] = np.nan
+        unstable[(ds["stability"] == -1).transpose(y, x).values] = np.nan  # outside (= physical == 0)
         if np.nanmin(unstable) < 0.5 < np.nanmax(unstable):
             ax.contour(ds[x].values, ds[y].values, unstable, levels=[0.5], **NEUTRAL_STYLE)
     ax.set_xlabel(SYMBOLS.get(x, x))

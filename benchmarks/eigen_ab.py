@@ -1,0 +1,113 @@
+"""A/B of the kernel's speed: two versions of the package, interleaved, on a loaded machine.
+
+``stability.eigenvalues`` (domain check, error bounds and decision included) on ``--points``
+random sliding points (``benchmarks/suites/eigen.py`` ``domain_sample``, seed 0), against
+``numpy.linalg.eigvals(numpy.linalg.solve(M, A))`` batched on the same points in the same
+process (the eigen suite's baseline), best of ``--repeat`` calls each, interleaved in the
+process. Also the pieces, to see where time goes: the fused loop alone
+(:func:`stability.linear.kernel.checked_sliding_spectrum`), the loop without the domain test
+(:func:`~stability.linear.kernel.sliding_spectrum`), the domain test alone
+(:func:`~stability.linear.kernel.sliding_domain`), and the same on one thread.
+
+Each version runs in its own process (``PYTHONPATH``), ``--rounds`` times, alternating
+A B A B ..., so that a burst of load from other users of the machine hits both alike; the
+report gives per method the minimum and the median over rounds of each version and their
+ratio (B/A of the time per point), and each version's ratio to numpy (numpy time / eigenvalues
+time, from the same process)::
+
+    git worktree add /tmp/base 2083ca0
+    python benchmarks/eigen_ab.py --a /tmp/base --b . --points 1000000 --rounds 4
+
+Run one process only (``--child``) to print its JSON line.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+
+def child(points: int, repeat: int) -> dict:
+    import numpy as np
+
+    import stability
+    try:  # the suites live beside the package now (benchmarks/suites); older trees installed them
+        from stability.bench.eigen import domain_sample
+    except ImportError:
+        sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parent))
+        from suites.eigen import domain_sample
+    from stability.linear import kernel as K
+    from stability.models import get_model
+
+    p = domain_sample(points, seed=0)
+    M, A = get_model("sliding").matrices(**p)
+    fns = {
+        "eigenvalues": lambda: stability.eigenvalues("sliding", **p),
+        "fused loop": lambda: K.checked_sliding_spectrum(**p),
+        "no domain test": lambda: K.sliding_spectrum(**p),
+        "domain test": lambda: K.sliding_domain(**p),
+        "fused loop, 1 thread": lambda: K.checked_sliding_spectrum(**p, parallel=False),
+        "no domain test, 1 thread": lambda: K.sliding_spectrum(**p, parallel=False),
+        "numpy batched": lambda: np.linalg.eigvals(np.linalg.solve(M, A)),
+    }
+    for f in fns.values():
+        f()
+    best = dict.fromkeys(fns, float("inf"))
+    for _ in range(repeat):
+        for k, f in fns.items():
+            t = time.perf_counter()
+            f()
+            best[k] = min(best[k], time.perf_counter() - t)
+    ns = {k: v / points * 1e9 for k, v in best.items()}
+    ns["x numpy"] = best["numpy batched"] / best["eigenvalues"]
+    return ns
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--a", default=None, help="source tree of version A (PYTHONPATH), e.g. /tmp/base")
+    ap.add_argument("--b", default=".", help="source tree of version B")
+    ap.add_argument("--points", type=int, default=1_000_000)
+    ap.add_argument("--repeat", type=int, default=3, help="calls per method and process (best kept)")
+    ap.add_argument("--rounds", type=int, default=4, help="processes per version, interleaved")
+    ap.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    a = ap.parse_args(argv)
+    if a.child:
+        print(json.dumps(child(a.points, a.repeat)))
+        return
+    runs: dict[str, list[dict]] = {"A": [], "B": []}
+    for r in range(a.rounds):
+        for label, tree in (("A", a.a), ("B", a.b)):
+            if tree is None:
+                continue
+            env = dict(os.environ, PYTHONPATH=os.path.abspath(tree))
+            out = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", "--points", str(a.points),
+                                  "--repeat", str(a.repeat)], env=env, capture_output=True, text=True, check=True,
+                                 cwd="/tmp")
+            res = json.loads(out.stdout.strip().splitlines()[-1])
+            runs[label].append(res)
+            print(f"round {r} {label}: " + ", ".join(f"{k} {v:.1f}" for k, v in res.items()), flush=True)
+    keys = list((runs["B"] or runs["A"])[0])
+    print(f"\n{'method':28s} {'A min':>8s} {'A med':>8s} {'B min':>8s} {'B med':>8s} {'B/A min':>8s} {'B/A med':>8s}"
+          "   (ns per point; 'x numpy': ratio)")
+    for k in keys:
+        row = []
+        for label in ("A", "B"):
+            v = [r[k] for r in runs[label]]
+            row += [min(v), statistics.median(v)] if v else [float("nan")] * 2
+        mn = max if k == "x numpy" else min
+        ra = [r[k] for r in runs["A"]]
+        rb = [r[k] for r in runs["B"]]
+        if ra and rb:
+            row[0], row[2] = mn(ra), mn(rb)
+        print(f"{k:28s} " + " ".join(f"{x:8.1f}" for x in row) + f" {row[2] / row[0]:8.3f} {row[3] / row[1]:8.3f}")
+    print("('x numpy': best = the largest ratio)")
+
+
+if __name__ == "__main__":
+    main()
