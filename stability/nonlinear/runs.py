@@ -28,6 +28,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
+from .contact import check_on_contact_loss, first_contact_loss
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
@@ -212,7 +213,8 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
              mu: Any = DEFAULT_MU, friction: str = "isotropic", normal: str = "equilibrium",
              slip_scale: float = DEFAULT_SLIP_SCALE, method: str = "auto", rtol: float = 1e-9,
              atol: float = 1e-12, dt: float = 0.1, t_eval: Any = None, step: float | None = None,
-             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False) -> xr.Dataset:
+             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False,
+             on_contact_loss: str = "stop") -> xr.Dataset:
     """Integrate a nonlinear model of the top from a given state.
 
     Parameters
@@ -257,6 +259,11 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         A progress bar on stderr (True; shown once the run has taken a second), or
         ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
         default.
+    on_contact_loss : {"stop"}, default "stop"
+        The sliding and rolling runs end at the first zero of the normal force
+        (:mod:`stability.nonlinear.contact`): the last sample is the event, ``attrs["event"]``
+        is ``"contact_lost"`` and ``attrs["event_time"]`` its time (``"none"`` and NaN when the
+        contact holds to ``t_end``). ``"continue"`` (a flight phase) is refused: not built.
 
     Returns
     -------
@@ -318,6 +325,7 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = _auto_method(m.name, params)
+    check_on_contact_loss(on_contact_loss)
     y0 = initial_state(m.name, omega, k, velocity)
     report, close = _progress(progress, float(t_end))
     try:
@@ -329,7 +337,17 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     if sol.status < 0:
         warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
                       stacklevel=2)
-    ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    t_out, y_out = sol.t, sol.y
+    hit = None
+    if m.has_translation:
+        hit = first_contact_loss(m.name, sol.t, sol.y, p, rtol=rtol, atol=atol)
+        if hit is not None:
+            t_out = np.append(sol.t[:hit.index][sol.t[:hit.index] < hit.time], hit.time)
+            y_out = np.vstack([sol.y[:t_out.size - 1], hit.state[None, :]])
+    ds = trajectory_dataset(m.name, t_out, y_out, params, p)
+    ds.attrs.update(event="none" if hit is None else "contact_lost",
+                    event_time=float("nan") if hit is None else hit.time,
+                    on_contact_loss=on_contact_loss)
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept,
                     nreject=sol.nreject, status=sol.status, message=sol.message,
                     friction_law=friction if m.name == "sliding" else "none (constraint force)",
