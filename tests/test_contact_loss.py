@@ -118,3 +118,19 @@ def test_continue_is_refused_naming_what_is_missing():
     with pytest.raises(InputError, match="on_contact_loss = 'fly'"):
         simulate("sliding", t_end=1, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
                  k=_unit([0.3, 0, 1]), on_contact_loss="fly")
+
+
+def test_final_state_run_reports_the_contact_loss():
+    """The deciding run of final_state (steady.final.settle) stops at the event; reference: the
+    independent DOP853 event time (1e-6 relative, as above)."""
+    from stability.nonlinear.runs import initial_state, model_parameter_vector
+    from stability.steady.final import settle
+
+    params, _ = model_parameter_vector("sliding", q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5)
+    params.pop("alpha_k")
+    y0 = initial_state("sliding", [2.0, 0.0, 1.0], _unit([0.3, 0, 1]), [0.0, 0.0])
+    tilt, _, run = settle(y0, params, chunk=50.0, t_max=200.0, settle_tolerance=1e-4, rtol=1e-10)
+    t_ref = _reference([2.0, 0.0, 1.0], [0.3, 0, 1], -0.1, 0.05, 1.0, 0.5, 20.0).t_events[0][0]
+    assert run.event == "contact_lost" and not run.settled
+    assert abs(run.event_time - t_ref) <= 1e-6 * t_ref
+    assert run.t_end == run.event_time

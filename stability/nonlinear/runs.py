@@ -28,7 +28,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .contact import check_on_contact_loss, first_contact_loss
+from .contact import check_on_contact_loss
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
@@ -264,6 +264,8 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         (:mod:`stability.nonlinear.contact`): the last sample is the event, ``attrs["event"]``
         is ``"contact_lost"`` and ``attrs["event_time"]`` its time (``"none"`` and NaN when the
         contact holds to ``t_end``). ``"continue"`` (a flight phase) is refused: not built.
+        Not watched at ``fr_inv = 0`` (no gravity: ``N`` is 0 at equilibrium and its sign says
+        nothing) nor for the fixed pivot: ``attrs["contact_watched"] = 0``.
 
     Returns
     -------
@@ -328,26 +330,22 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     check_on_contact_loss(on_contact_loss)
     y0 = initial_state(m.name, omega, k, velocity)
     report, close = _progress(progress, float(t_end))
+    # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
+    # says nothing there, the contact is the model's assumption; not watched (attrs say so)
+    watched = m.has_translation and params["fr_inv"] > 0.0
     try:
         with deferred():
             sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
-                            max_steps=max_steps, progress=report)
+                            max_steps=max_steps, progress=report, watch_contact=watched)
     finally:
         close()
     if sol.status < 0:
         warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
                       stacklevel=2)
-    t_out, y_out = sol.t, sol.y
-    hit = None
-    if m.has_translation:
-        hit = first_contact_loss(m.name, sol.t, sol.y, p, rtol=rtol, atol=atol)
-        if hit is not None:
-            t_out = np.append(sol.t[:hit.index][sol.t[:hit.index] < hit.time], hit.time)
-            y_out = np.vstack([sol.y[:t_out.size - 1], hit.state[None, :]])
-    ds = trajectory_dataset(m.name, t_out, y_out, params, p)
-    ds.attrs.update(event="none" if hit is None else "contact_lost",
-                    event_time=float("nan") if hit is None else hit.time,
-                    on_contact_loss=on_contact_loss)
+    ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    lost = bool(np.isfinite(sol.event_time))
+    ds.attrs.update(event="contact_lost" if lost else "none", event_time=sol.event_time,
+                    on_contact_loss=on_contact_loss, contact_watched=int(watched))
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept,
                     nreject=sol.nreject, status=sol.status, message=sol.message,
                     friction_law=friction if m.name == "sliding" else "none (constraint force)",
