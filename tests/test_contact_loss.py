@@ -134,3 +134,28 @@ def test_final_state_run_reports_the_contact_loss():
     assert run.event == "contact_lost" and not run.settled
     assert abs(run.event_time - t_ref) <= 1e-6 * t_ref
     assert run.t_end == run.event_time
+
+
+@pytest.mark.parametrize("method, extra", [("rk4", {"step": 2e-3}), ("DOP853", {}), ("LSODA", {}),
+                                           ("Radau", {})])
+def test_every_integrator_locates_the_event(method, extra):
+    """Each integrator's own location (rk4: Hermite cubic; scipy: dense output and Brent) against
+    the independent DOP853 event. Tolerance: 1e-6 relative (rk4 at step 2e-3 has a global error
+    ~1e-10 here; LSODA's and Radau's global errors are ~100-1000 rtol, with rtol 1e-11)."""
+    t_ref = _reference([2.0, 0.0, 1.0], [0.3, 0, 1], -0.1, 0.05, 1.0, 0.5, 20.0).t_events[0][0]
+    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
+                  k=_unit([0.3, 0, 1]), method=method, rtol=1e-11, atol=1e-13, **extra)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["status"] == 0
+    assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
+    assert float(ds.time[-1]) == ds.attrs["event_time"]
+    assert float(ds.normal_force.min()) > -1e-8
+
+
+def test_a_launch_without_normal_force_stops_at_once():
+    """N at the start <= 0 (a spin so fast about a tilted axis that the floor would have to
+    pull): the event is the initial state, t = 0 (the reference's N there is negative)."""
+    k = _unit([1.0, 0.0, 1.0])
+    assert _accelerations(np.concatenate([[0, 0, 30.0], k, [0, 0]]), -0.1, 0.05, 1.0, 0.5, MU)[5] < 0
+    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[0, 0, 30], k=k)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["event_time"] == 0.0
+    assert ds.time.size == 1

@@ -639,12 +639,14 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         t_new = solver.t
         if watch and n_of(t_new, solver.y) <= 0.0:
             dense = solver.dense_output()
-            t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15, rtol=4e-16)
-            while True:  # the first time N <= 0: the bracket's right end
-                y_ev = dense(t_ev)
+            t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15,
+                          rtol=4 * np.finfo(float).eps)
+            y_ev = dense(t_ev)
+            for _ in range(64):  # the first time N <= 0 (Brent's answer may be just before it)
                 if n_of(t_ev, y_ev) <= 0.0 or t_ev >= t_new:
                     break
                 t_ev = min(t_new, np.nextafter(t_ev, np.inf))
+                y_ev = dense(t_ev)
             k = j
             while k < t_eval.size and t_eval[k] < t_ev:
                 k += 1
