@@ -160,6 +160,12 @@ def normal_force_of(y, dy, p):
 
 
 @njit(cache=True, nogil=True)
+def normal_force_at(code, t, y, p):
+    """:func:`normal_force_of` at a state alone (one right-hand side): one compiled call."""
+    return normal_force_of(y, _model_rhs(code, t, y, p), p)
+
+
+@njit(cache=True, nogil=True)
 def _dopri5_dense(y, k, h, th, res):
     for i in range(y.shape[0]):
         acc = 0.0
@@ -613,7 +619,7 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         return _model_rhs(code, t, yy, p)
 
     def n_of(t, yy):
-        return normal_force_of(yy, _model_rhs(code, t, yy, p), p)
+        return normal_force_at(code, t, yy, p)
 
     kw = {"first_step": step} if step else {}
     solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
