@@ -95,6 +95,8 @@ class Solution:
     event_time : float
         The first zero of the normal force of a watched run (``watch_contact``), NaN if none:
         then ``t`` ends at it and the last row of ``y`` is the state there.
+    event : str
+        ``"none"``, ``"contact_lost"`` or ``"stick_contact"``.
     """
 
     t: np.ndarray
@@ -105,6 +107,7 @@ class Solution:
     status: int
     method: str
     event_time: float = float("nan")
+    event: str = "none"
 
     @property
     def message(self) -> str:
@@ -160,9 +163,33 @@ def normal_force_of(y, dy, p):
 
 
 @njit(cache=True, nogil=True)
+def event_value(y, dy, p, watch, c_stick):
+    """The watched quantity whose first zero ends a run: the smaller of the normal force
+    (``watch != 0``) and the stick's gap ``k_3 - c_stick |k|`` (``c_stick >= -1``: the cosine
+    of the tilt at which the stick touches; positive while the tilt is below it). The first zero
+    of the minimum is the first zero of either; +inf when nothing is watched."""
+    g = np.inf
+    if watch != 0:
+        g = normal_force_of(y, dy, p)
+    if c_stick >= -1.0:
+        gap = y[5] - c_stick * np.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5])
+        if gap < g:
+            g = gap
+    return g
+
+
+@njit(cache=True, nogil=True)
 def normal_force_at(code, t, y, p):
     """:func:`normal_force_of` at a state alone (one right-hand side): one compiled call."""
     return normal_force_of(y, _model_rhs(code, t, y, p), p)
+
+
+@njit(cache=True, nogil=True)
+def event_value_at(code, t, y, p, watch, c_stick):
+    """:func:`event_value` at a state alone (one right-hand side when ``N`` is watched)."""
+    if watch == 0:
+        return event_value(y, y, p, watch, c_stick)
+    return event_value(y, _model_rhs(code, t, y, p), p, watch, c_stick)
 
 
 @njit(cache=True, nogil=True)
@@ -185,7 +212,7 @@ def _hermite(y, f0, yn, f1, hh, th, res):
 
 
 @njit(cache=True, nogil=True)
-def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res):
+def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_stick):
     """The zero of ``N`` within the step ``[t, t + h]`` (``N(t) = n0 > 0 >= n1 = N(t + h)``) on
     the step's interpolant (dense output of dopri5, or rk4's Hermite cubic with ``k[0] = f0``),
     ``N`` exact at each interpolated state (one right-hand side). Illinois regula falsi on the
@@ -202,7 +229,7 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res):
             _hermite(y, k[0], yn, f1, h, x, res)
         else:
             _dopri5_dense(y, k, h, x, res)
-        fx = normal_force_of(res, _model_rhs(code, t + x * h, res, p), p)
+        fx = event_value(res, _model_rhs(code, t + x * h, res, p), p, watch, c_stick)
         if fx > 0.0:
             a, fa = x, fx
             if side == -1:
@@ -231,7 +258,7 @@ def _copy_row(dst, i, src):
 
 
 @njit(cache=True, nogil=True)
-def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch):
+def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of adaptive Dormand-Prince 5(4) with dense output at
     ``t_eval`` (compiled, without the GIL), continuing the run held in the state arrays.
 
@@ -271,6 +298,9 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         at its first zero, located on the dense output (:func:`_locate_zero`): status
         :data:`EVENT`, ``y`` the state and ``fs[_TEV]`` the time of the zero, outputs written
         before it only. 0: no watching (a model without a contact point).
+    c_stick : float
+        The cosine of the tilt at which the stick touches the floor, watched with ``N``
+        (:func:`event_value`: the run stops at the first zero of either); < -1: no stick.
 
     Returns
     -------
@@ -317,8 +347,8 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             h = min(100.0 * h0, h1)
         fs[_T] = t
         fs[_H] = min(h, t_end - t)
-        if watch != 0:
-            fs[_N] = normal_force_of(y, k[0], p)
+        if watch != 0 or c_stick >= -1.0:
+            fs[_N] = event_value(y, k[0], p, watch, c_stick)
             if fs[_N] <= 0.0:  # no contact force at the start: the event is the initial state
                 fs[_TEV] = t
                 cnt[_STATUS] = EVENT
@@ -379,10 +409,10 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             continue
         if en <= 1.0:
             t_new = t_end if last else t + h
-            if watch != 0:
-                n_new = normal_force_of(yn, k[6], p)
+            if watch != 0 or c_stick >= -1.0:
+                n_new = event_value(yn, k[6], p, watch, c_stick)
                 if n_new <= 0.0:
-                    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys)
+                    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys, watch, c_stick)
                     t_ev = t + th_ev * h
                     while j < m and t_eval[j] < t_ev:
                         th = (t_eval[j] - t) / h
@@ -432,7 +462,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
 
 
 @njit(cache=True, nogil=True)
-def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch):
+def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     """At most ``budget`` steps of the classical fixed-step fourth-order Runge-Kutta (the paper's
     scheme), compiled without the GIL, continuing the run held in the state arrays.
 
@@ -456,8 +486,8 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch):
         for i in range(n):
             f0[i] = f[i]
         cnt[_NFEV] = 1
-        if watch != 0:
-            fs[_N] = normal_force_of(y, f0, p)
+        if watch != 0 or c_stick >= -1.0:
+            fs[_N] = event_value(y, f0, p, watch, c_stick)
             if fs[_N] <= 0.0:
                 fs[_TEV] = fs[_T]
                 cnt[_STATUS] = EVENT
@@ -490,13 +520,13 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch):
         nfev += 4
         steps += 1
         t_new = t_end if last else t + hh
-        if watch != 0:
-            n_new = normal_force_of(yn, f1, p)
+        if watch != 0 or c_stick >= -1.0:
+            n_new = event_value(yn, f1, p, watch, c_stick)
             if n_new <= 0.0:
                 kk = np.empty((1, n))
                 for i in range(n):
                     kk[0, i] = f0[i]
-                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, kk, yn, f1, True, ys)
+                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, kk, yn, f1, True, ys, watch, c_stick)
                 t_ev = t + th_ev * hh
                 while j < m and t_eval[j] < t_ev:
                     th = (t_eval[j] - t) / hh
@@ -555,7 +585,7 @@ def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
 
 
 def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = SLICE_STEPS, progress=None,
-           watch: bool = False):
+           watch: bool = False, c_stick: float = -2.0):
     """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
     :func:`dopri5_slice` called in slices of ``budget`` steps.
 
@@ -575,7 +605,7 @@ def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = 
     w = 1 if watch else 0
 
     def step(b: int):
-        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w)
+        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
@@ -589,7 +619,8 @@ def _event(cnt, fs, y):
     return int(cnt[_STATUS]), None
 
 
-def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False):
+def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False,
+        c_stick: float = -2.0):
     """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
     slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status, event)`` (``event``
     as in :func:`dopri5`)."""
@@ -602,14 +633,15 @@ def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, wat
     w = 1 if watch else 0
 
     def step(b: int):
-        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w)
+        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
     return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, *_event(cnt, fs, y)
 
 
-def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False):
+def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False,
+           c_stick=-2.0):
     """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
     ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``; an
     interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps. With
@@ -618,8 +650,12 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     def fun(t, yy):
         return _model_rhs(code, t, yy, p)
 
+    w = 1 if watch else 0
+
     def n_of(t, yy):
-        return normal_force_at(code, t, yy, p)
+        return event_value_at(code, t, yy, p, w, c_stick)
+
+    watch = watch or c_stick >= -1.0
 
     kw = {"first_step": step} if step else {}
     solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
@@ -681,7 +717,8 @@ COMPILE_SECONDS = 20.0
 def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
               method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
               step: float | None = None, max_steps: int = 10_000_000,
-              progress: Callable[[float], None] | None = None, watch_contact: bool = False) -> Solution:
+              progress: Callable[[float], None] | None = None, watch_contact: bool = False,
+              stick_tilt: float | None = None) -> Solution:
     """Integrate a nonlinear model and return its states at ``t_eval``.
 
     Parameters
@@ -711,12 +748,16 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
         Stop at the first zero of the normal force (sliding and rolling models:
         :func:`normal_force_of` after every step, the zero located on the step's interpolant):
         ``Solution.event_time``, and ``t`` and ``y`` end there.
+    stick_tilt : float, optional
+        Also stop where the tilt of ``k`` first reaches this (degrees, the stick touches the
+        floor: ``Solution.event = "stick_contact"``).
 
     Returns
     -------
     Solution
     """
     code = CODES[model]
+    c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
     if method in COMPILED_METHODS:
@@ -724,20 +765,24 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
     if method == "dopri5":
         y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
                                          float(step or 0.0), int(max_steps), progress=progress,
-                                         watch=watch_contact)
+                                         watch=watch_contact, c_stick=c_stick)
     elif method == "rk4":
         if step is None or not step > 0:
             raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact)
+        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact,
+                                      c_stick=c_stick)
     elif method in SCIPY_METHODS:
         y, nfev, na, nr, st, ev = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress,
-                                         watch_contact)
+                                         watch_contact, c_stick)
     else:
         raise ValueError(f"method = {method!r} is not known; choose one of "
                          f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
     if ev is not None:
         t_ev, y_ev, rows = ev
         rows = rows - 1 if rows > 0 and t_eval[rows - 1] >= t_ev else rows  # an event at an output time
+        # which watched quantity reached zero: the stick's gap, or else the normal force
+        gap = event_value(y_ev, y_ev, p, 0, c_stick)
+        kind = "stick_contact" if gap <= 0.0 else "contact_lost"
         return Solution(np.append(t_eval[:rows], t_ev), np.vstack([y[:rows], y_ev[None, :]]), int(nfev),
-                        int(na), int(nr), int(st), method, t_ev)
+                        int(na), int(nr), int(st), method, t_ev, kind)
     return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)
