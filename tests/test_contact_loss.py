@@ -194,3 +194,17 @@ def test_stick_tilt_is_checked():
     with pytest.raises(ValueError, match="stick_tilt"):
         simulate("sliding", t_end=1, q=-0.1, fr_inv=0.3, sigma=1, alpha_v=0.5, omega=[0, 0, 1], k=[0, 0, 1],
                  stick_tilt=190.0)
+
+
+def test_contact_figure_marks_the_event():
+    """The figure draws N(t) as the run has it and marks the event at the run's event time."""
+    from stability.plotting import plot_contact_run
+
+    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
+                  k=_unit([0.3, 0, 1]))
+    fig, axes = plot_contact_run(ds)
+    assert len(axes) == 2
+    line = axes[0].lines[0]
+    np.testing.assert_array_equal(line.get_ydata(), ds.normal_force.values)
+    marks = [ln for ln in axes[0].lines if ln.get_marker() == "o"]
+    assert marks and marks[0].get_xdata()[0] == ds.attrs["event_time"]
