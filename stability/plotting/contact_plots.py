@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 __all__ = ["plot_contact_run"]
 
 
-def plot_contact_run(run: xr.Dataset, *, axes: "list[Axes] | None" = None) -> "tuple[Figure, list[Axes]]":
+def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """A run (:func:`stability.simulate`) with its event: the normal force ``N(t)`` (with its
     equilibrium value ``mu fr_inv`` and zero) and the tilt, the event marked (contact lost, or
     the stick reached, with the stick's tilt as a line).
