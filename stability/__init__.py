@@ -57,11 +57,12 @@ _EXPORTS: dict[str, str] = {
     "steady_branch": ".steady.branch",
     "steady_states": ".steady.states",
     "Top": ".top",
+    "Stick": ".stick",
 }
 
 __all__ = [
     "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "InputError", "LinearModel", "MODELS", "PARAMETERS",
-    "TippeError", "Top",
+    "TippeError", "Top", "Stick",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",

@@ -32,8 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from .errors import DomainError
+from .errors import DomainError, InputError
 from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
+from .stick import Stick
 
 __all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH"]
 
@@ -85,6 +86,9 @@ class Top:
         Coulomb (kinetic) friction coefficient (dimensionless, >= 0).
     mu_v : float, optional
         Viscous friction coefficient in s/m (>= 0): f = -N (mu_K + mu_v V_c) e_v (eq. 6).
+    stick : stability.Stick, optional
+        The toy's stick and truncation (:mod:`stability.stick`): :meth:`stick_contact`,
+        :meth:`on_stick`; refused if it does not fit the sphere.
     """
 
     mass: float
@@ -95,6 +99,7 @@ class Top:
     g: float = 9.80665
     mu_k: float | None = None
     mu_v: float | None = None
+    stick: Stick | None = None
 
     def __post_init__(self) -> None:
         for name in ("mass", "radius", "inertia_transverse", "inertia_axial", "g"):
@@ -116,6 +121,8 @@ class Top:
                               f"{self.com_offset:g} m, inertias {self.inertia_transverse:g}, "
                               f"{self.inertia_axial:g} kg m^2); give SI values of a real top")
         check_domain(**nd)
+        if self.stick is not None:
+            self.stick.check_fits(self.radius)
 
     # -- spin-independent nondimensional parameters (eq. 3) --------------------------------
     @property
@@ -255,3 +262,28 @@ class Top:
         return cls(mass=0.64 * OUNCE, radius=r, com_offset=-0.094 * r,
                    inertia_transverse=0.066 * OUNCE * INCH**2,
                    inertia_axial=0.066 * OUNCE * INCH**2, **kwargs)
+
+    def stick_contact(self) -> tuple[float, str]:
+        """The tilt (degrees) at which the stick first touches the floor, and the part that
+        touches, ``"tip"`` or ``"rim"`` (closed form: :mod:`stability.stick`).
+
+        Raises
+        ------
+        stability.errors.InputError
+            The top has no stick.
+        """
+        return self._stick().contact(self.radius)
+
+    def on_stick(self) -> "Top":
+        """The top standing on its stick's tip: a sphere of radius ``tip_radius`` with G at
+        ``tip_center - com_offset`` from its centre, away from the stick (``q = (tip_center -
+        com_offset) / tip_radius > 0``; its "upright" state spins on the stick with G above the
+        tip; :mod:`stability.stick`). Same mass, moments about G, gravity and friction; no stick."""
+        st = self._stick()
+        return replace(self, radius=st.tip_radius, com_offset=st.tip_center - self.com_offset, stick=None)
+
+    def _stick(self) -> Stick:
+        if self.stick is None:
+            raise InputError("this Top has no stick; build it with stick=stability.Stick(tip_center, "
+                             "tip_radius, truncation) (metres)")
+        return self.stick

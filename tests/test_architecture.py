@@ -51,6 +51,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.parameters", 1),
     ("stability.models", 1),
     ("stability.top", 1),
+    ("stability.stick", 1),
     ("stability.linear", 2),
     ("stability.nonlinear", 3),
     ("stability.grids", 3),

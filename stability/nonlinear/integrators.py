@@ -34,12 +34,15 @@ from dataclasses import dataclass
 import numpy as np
 from stability.jit import njit
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
+from scipy.optimize import brentq
 
 from stability.jit import Compiled
 
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint
 from .kernels import CODES, rhs as _model_rhs
+from .parameters import FR_INV, MU, Q
+from .vectors import cross
 
 __all__ = ["Solution", "integrate", "dopri5", "rk4", "dopri5_slice", "rk4_slice", "COMPILED_METHODS",
            "SCIPY_METHODS", "SLICE_STEPS"]
@@ -89,6 +92,11 @@ class Solution:
     status : int
         0 on success, negative on failure (see ``message``).
     method : str
+    event_time : float
+        The first zero of the normal force of a watched run (``watch_contact``), NaN if none:
+        then ``t`` ends at it and the last row of ``y`` is the state there.
+    event : str
+        ``"none"``, ``"contact_lost"`` or ``"stick_contact"``.
     """
 
     t: np.ndarray
@@ -98,6 +106,8 @@ class Solution:
     nreject: int
     status: int
     method: str
+    event_time: float = float("nan")
+    event: str = "none"
 
     @property
     def message(self) -> str:
@@ -119,6 +129,8 @@ SCIPY_REPORT_STEPS = 200
 
 #: return code of a slice that used up its step budget (the run continues in the next slice)
 CONTINUE = 1
+#: return code of a run that stopped at the first zero of the normal force (``watch`` on)
+EVENT = 2
 
 #: attempted steps per compiled slice: a few milliseconds to a few tens of milliseconds of work
 #: between two interruption points (and progress reports), whatever the run's length
@@ -126,8 +138,117 @@ SLICE_STEPS = 20_000
 
 # layout of the integer state of a compiled run (``cnt``): output index, counters, flags
 _J, _NFEV, _NACCEPT, _NREJECT, _STEPS, _STATUS, _REJECTED, _STARTED = range(8)
-# layout of the float state (``fs``): time reached, current step
-_T, _H = 0, 1
+# layout of the float state (``fs``): time reached, current step, the normal force at the time
+# reached (watched runs), the event's time
+_T, _H, _N, _TEV = 0, 1, 2, 3
+#: Illinois iterations at most when locating the zero of N within a step (each one right-hand
+#: side; the bracket shrinks superlinearly, to round-off in a dozen)
+_ROOT_ITERATIONS = 100
+
+
+@njit(cache=True, nogil=True)
+def normal_force_of(y, dy, p):
+    """The normal force from the state ``y`` and its derivative ``dy`` (sliding and rolling).
+
+    The vertical component of eq. (1) with O at height R (``V0 . K = 0``, ``V0' . K = 0``):
+    ``N = mu fr_inv + mu q (k'')_3``, ``k'' = omega' x k + omega x (omega x k)``, so
+    ``N = mu fr_inv + mu q (omega'_1 k_2 - omega'_2 k_1 + (omega x (omega x k))_3)``. The
+    integrators watch it after every step from the derivative they already have (first same as
+    last), at no extra right-hand side.
+    """
+    q, fr, mu = p[Q], p[FR_INV], p[MU]
+    c0, c1, c2 = cross(y[0], y[1], y[2], y[3], y[4], y[5])
+    d2 = y[0] * c1 - y[1] * c0
+    return mu * fr + mu * q * ((dy[0] * y[4] - dy[1] * y[3]) + d2)
+
+
+@njit(cache=True, nogil=True)
+def event_value(y, dy, p, watch, c_stick):
+    """The watched quantity whose first zero ends a run: the smaller of the normal force
+    (``watch != 0``) and the stick's gap ``k_3 - c_stick |k|`` (``c_stick >= -1``: the cosine
+    of the tilt at which the stick touches; positive while the tilt is below it). The first zero
+    of the minimum is the first zero of either; +inf when nothing is watched."""
+    g = np.inf
+    if watch != 0:
+        g = normal_force_of(y, dy, p)
+    if c_stick >= -1.0:
+        gap = y[5] - c_stick * np.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5])
+        if gap < g:
+            g = gap
+    return g
+
+
+@njit(cache=True, nogil=True)
+def normal_force_at(code, t, y, p):
+    """:func:`normal_force_of` at a state alone (one right-hand side): one compiled call."""
+    return normal_force_of(y, _model_rhs(code, t, y, p), p)
+
+
+@njit(cache=True, nogil=True)
+def event_value_at(code, t, y, p, watch, c_stick):
+    """:func:`event_value` at a state alone (one right-hand side when ``N`` is watched)."""
+    if watch == 0:
+        return event_value(y, y, p, watch, c_stick)
+    return event_value(y, _model_rhs(code, t, y, p), p, watch, c_stick)
+
+
+@njit(cache=True, nogil=True)
+def _dopri5_dense(y, k, h, th, res):
+    for i in range(y.shape[0]):
+        acc = 0.0
+        for r in range(7):
+            acc += k[r, i] * th * (_P[r, 0] + th * (_P[r, 1] + th * (_P[r, 2] + th * _P[r, 3])))
+        res[i] = y[i] + h * acc
+
+
+@njit(cache=True, nogil=True)
+def _hermite(y, f0, yn, f1, hh, th, res):
+    h00 = (1 + 2 * th) * (1 - th) ** 2
+    h10 = th * (1 - th) ** 2
+    h01 = th * th * (3 - 2 * th)
+    h11 = th * th * (th - 1)
+    for i in range(y.shape[0]):
+        res[i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
+
+
+@njit(cache=True, nogil=True)
+def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_stick):
+    """The zero of ``N`` within the step ``[t, t + h]`` (``N(t) = n0 > 0 >= n1 = N(t + h)``) on
+    the step's interpolant (dense output of dopri5, or rk4's Hermite cubic with ``k[0] = f0``),
+    ``N`` exact at each interpolated state (one right-hand side). Illinois regula falsi on the
+    step fraction. Leaves the state at the zero in ``res``; returns the fraction."""
+    a, b = 0.0, 1.0
+    fa, fb = n0, n1
+    side = 0
+    x = 1.0
+    for _ in range(_ROOT_ITERATIONS):
+        x = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
+        if not (a < x < b):
+            x = 0.5 * (a + b)
+        if hermite:
+            _hermite(y, k[0], yn, f1, h, x, res)
+        else:
+            _dopri5_dense(y, k, h, x, res)
+        fx = event_value(res, _model_rhs(code, t + x * h, res, p), p, watch, c_stick)
+        if fx > 0.0:
+            a, fa = x, fx
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = x, fx
+            if side == 1:
+                fa *= 0.5
+            side = 1
+        if (b - a) * abs(h) <= 4e-16 * max(1.0, abs(t)):
+            break
+    # the event is the first time N <= 0: the bracket's right end
+    if x != b:
+        if hermite:
+            _hermite(y, k[0], yn, f1, h, b, res)
+        else:
+            _dopri5_dense(y, k, h, b, res)
+    return b
 
 
 @njit(cache=True, nogil=True)
@@ -137,7 +258,7 @@ def _copy_row(dst, i, src):
 
 
 @njit(cache=True, nogil=True)
-def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out):
+def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of adaptive Dormand-Prince 5(4) with dense output at
     ``t_eval`` (compiled, without the GIL), continuing the run held in the state arrays.
 
@@ -163,20 +284,29 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         The state at ``fs[_T]`` (the initial state before the first call); updated.
     k : numpy.ndarray, shape (7, n)
         Stages (``k[0]``: the derivative at ``y``, first-same-as-last); updated.
-    fs : numpy.ndarray, shape (2,)
-        ``[t, h]``: the time of ``y`` (``t_eval[0]`` at first) and the next step (at first the
-        initial step, 0 for the automatic choice of Hairer et al. II.4); updated.
+    fs : numpy.ndarray, shape (4,)
+        ``[t, h, N, t_event]``: the time of ``y`` (``t_eval[0]`` at first), the next step (at
+        first the initial step, 0 for the automatic choice of Hairer et al. II.4), the normal
+        force at ``t`` and the time of the event (watched runs); updated.
     cnt : numpy.ndarray of int64, shape (8,)
         Output index, evaluations, accepted, rejected and attempted steps, status, the
         "rejected last" flag, "started" (0 before the first call); updated.
     out : numpy.ndarray, shape (m, n)
         Outputs, written from row ``cnt[_J]`` on (rows not reached stay as they are).
+    watch : int
+        1: watch the normal force (:func:`normal_force_of`) after every accepted step and stop
+        at its first zero, located on the dense output (:func:`_locate_zero`): status
+        :data:`EVENT`, ``y`` the state and ``fs[_TEV]`` the time of the zero, outputs written
+        before it only. 0: no watching (a model without a contact point).
+    c_stick : float
+        The cosine of the tilt at which the stick touches the floor, watched with ``N``
+        (:func:`event_value`: the run stops at the first zero of either); < -1: no stick.
 
     Returns
     -------
     int
         :data:`CONTINUE` if the budget was used up before the end, else the final status
-        (0 success, or a failure code).
+        (0 success, :data:`EVENT`, or a failure code).
     """
     n = y.shape[0]
     m = t_eval.shape[0]
@@ -217,6 +347,12 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             h = min(100.0 * h0, h1)
         fs[_T] = t
         fs[_H] = min(h, t_end - t)
+        if watch != 0 or c_stick >= -1.0:
+            fs[_N] = event_value(y, k[0], p, watch, c_stick)
+            if fs[_N] <= 0.0:  # no contact force at the start: the event is the initial state
+                fs[_TEV] = t
+                cnt[_STATUS] = EVENT
+                return EVENT
     t = fs[_T]
     h = fs[_H]
     j = cnt[_J]
@@ -273,6 +409,24 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             continue
         if en <= 1.0:
             t_new = t_end if last else t + h
+            if watch != 0 or c_stick >= -1.0:
+                n_new = event_value(yn, k[6], p, watch, c_stick)
+                if n_new <= 0.0:
+                    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys, watch, c_stick)
+                    t_ev = t + th_ev * h
+                    while j < m and t_eval[j] < t_ev:
+                        th = (t_eval[j] - t) / h
+                        _dopri5_dense(y, k, h, th, err)
+                        _copy_row(out, j, err)
+                        j += 1
+                    for i in range(n):
+                        y[i] = ys[i]
+                    t = t_ev
+                    fs[_TEV] = t_ev
+                    naccept += 1
+                    status = EVENT
+                    break
+                fs[_N] = n_new
             while j < m and t_eval[j] <= t_new:
                 th = (t_eval[j] - t) / h
                 for i in range(n):
@@ -308,14 +462,15 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
 
 
 @njit(cache=True, nogil=True)
-def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out):
+def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     """At most ``budget`` steps of the classical fixed-step fourth-order Runge-Kutta (the paper's
     scheme), compiled without the GIL, continuing the run held in the state arrays.
 
     Steps of size ``h`` (the last one shortened to end at ``t_eval[-1]``); outputs by cubic
     Hermite interpolation between steps. ``y`` (the state at ``fs[0]``), ``f0`` (its derivative),
-    ``fs = [t, h]`` and ``cnt`` (layout of :func:`dopri5_slice`) are updated. Returns
-    :data:`CONTINUE` or the final status.
+    ``fs = [t, h, N, t_event]`` and ``cnt`` (layout of :func:`dopri5_slice`) are updated;
+    ``watch`` as there (the zero of N located on the Hermite cubic). Returns :data:`CONTINUE`
+    or the final status.
     """
     n = y.shape[0]
     m = t_eval.shape[0]
@@ -331,6 +486,12 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out):
         for i in range(n):
             f0[i] = f[i]
         cnt[_NFEV] = 1
+        if watch != 0 or c_stick >= -1.0:
+            fs[_N] = event_value(y, f0, p, watch, c_stick)
+            if fs[_N] <= 0.0:
+                fs[_TEV] = fs[_T]
+                cnt[_STATUS] = EVENT
+                return EVENT
     t = fs[_T]
     j = cnt[_J]
     nfev = cnt[_NFEV]
@@ -359,6 +520,30 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out):
         nfev += 4
         steps += 1
         t_new = t_end if last else t + hh
+        if watch != 0 or c_stick >= -1.0:
+            n_new = event_value(yn, f1, p, watch, c_stick)
+            if n_new <= 0.0:
+                kk = np.empty((1, n))
+                for i in range(n):
+                    kk[0, i] = f0[i]
+                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, kk, yn, f1, True, ys, watch, c_stick)
+                t_ev = t + th_ev * hh
+                while j < m and t_eval[j] < t_ev:
+                    th = (t_eval[j] - t) / hh
+                    h00 = (1 + 2 * th) * (1 - th) ** 2
+                    h10 = th * (1 - th) ** 2
+                    h01 = th * th * (3 - 2 * th)
+                    h11 = th * th * (th - 1)
+                    for i in range(n):
+                        out[j, i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
+                    j += 1
+                for i in range(n):
+                    y[i] = ys[i]
+                t = t_ev
+                fs[_TEV] = t_ev
+                status = EVENT
+                break
+            fs[_N] = n_new
         while j < m and t_eval[j] <= t_new:
             th = (t_eval[j] - t) / hh
             h00 = (1 + 2 * th) * (1 - th) ** 2
@@ -399,60 +584,87 @@ def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
             return
 
 
-def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = SLICE_STEPS, progress=None):
+def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = SLICE_STEPS, progress=None,
+           watch: bool = False, c_stick: float = -2.0):
     """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
     :func:`dopri5_slice` called in slices of ``budget`` steps.
 
     Returns
     -------
     tuple
-        ``(y_out, nfev, naccept, nreject, status)``; rows of ``y_out`` not reached are NaN.
+        ``(y_out, nfev, naccept, nreject, status, event)``; rows of ``y_out`` not reached are
+        NaN; ``event`` is None or ``(t_event, y_event, rows)`` (``watch``: the first zero of the
+        normal force, after ``rows`` output rows).
     """
     y = np.array(y0, dtype=np.float64)
     n, m = y.size, t_eval.size
     out = np.full((m, n), np.nan)
     k = np.empty((7, n))
-    fs = np.array([t_eval[0], float(h_init)])
+    fs = np.array([t_eval[0], float(h_init), np.nan, np.nan])
     cnt = np.zeros(8, dtype=np.int64)
+    w = 1 if watch else 0
 
     def step(b: int):
-        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out)
+        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
-    return out, int(cnt[_NFEV]), int(cnt[_NACCEPT]), int(cnt[_NREJECT]), int(cnt[_STATUS])
+    return out, int(cnt[_NFEV]), int(cnt[_NACCEPT]), int(cnt[_NREJECT]), *_event(cnt, fs, y)
 
 
-def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None):
+def _event(cnt, fs, y):
+    """``(status, event)`` of a compiled run: an :data:`EVENT` is a success with its event."""
+    if cnt[_STATUS] == EVENT:
+        return SUCCESS, (float(fs[_TEV]), y.copy(), int(cnt[_J]))
+    return int(cnt[_STATUS]), None
+
+
+def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False,
+        c_stick: float = -2.0):
     """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
-    slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status)``."""
+    slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status, event)`` (``event``
+    as in :func:`dopri5`)."""
     y = np.array(y0, dtype=np.float64)
     n, m = y.size, t_eval.size
     out = np.full((m, n), np.nan)
     f0 = np.empty(n)
-    fs = np.array([t_eval[0], float(h)])
+    fs = np.array([t_eval[0], float(h), np.nan, np.nan])
     cnt = np.zeros(8, dtype=np.int64)
+    w = 1 if watch else 0
 
     def step(b: int):
-        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out)
+        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
-    return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, int(cnt[_STATUS])
+    return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, *_event(cnt, fs, y)
 
 
-def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None):
+def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False,
+           c_stick=-2.0):
     """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
     ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``; an
-    interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps."""
+    interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps. With
+    ``watch``, the normal force is checked after every step and the run stops at its first
+    zero, located on the step's dense output by Brent's method (as ``solve_ivp``'s events)."""
     def fun(t, yy):
         return _model_rhs(code, t, yy, p)
+
+    w = 1 if watch else 0
+
+    def n_of(t, yy):
+        return event_value_at(code, t, yy, p, w, c_stick)
+
+    watch = watch or c_stick >= -1.0
 
     kw = {"first_step": step} if step else {}
     solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
     y = np.full((t_eval.size, y0.size), np.nan)
     y[0] = y0
     j, steps, status = 1, 0, SUCCESS
+    event = None
+    if watch and n_of(t_eval[0], y0) <= 0.0:
+        return y, 1, 0, 0, status, (float(t_eval[0]), np.array(y0, dtype=float), 1)
     while j < t_eval.size:
         if steps >= max_steps:
             status = MAX_STEPS
@@ -467,6 +679,24 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
             status = STEP_TOO_SMALL if message and "step size" in message else NOT_FINITE
             break
         t_new = solver.t
+        if watch and n_of(t_new, solver.y) <= 0.0:
+            dense = solver.dense_output()
+            t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15,
+                          rtol=4 * np.finfo(float).eps)
+            y_ev = dense(t_ev)
+            for _ in range(64):  # the first time N <= 0 (Brent's answer may be just before it)
+                if n_of(t_ev, y_ev) <= 0.0 or t_ev >= t_new:
+                    break
+                t_ev = min(t_new, np.nextafter(t_ev, np.inf))
+                y_ev = dense(t_ev)
+            k = j
+            while k < t_eval.size and t_eval[k] < t_ev:
+                k += 1
+            if k > j:
+                y[j:k] = dense(t_eval[j:k]).T
+                j = k
+            event = (float(t_ev), np.asarray(y_ev, dtype=float), j)
+            break
         k = j
         while k < t_eval.size and t_eval[k] <= t_new:
             k += 1
@@ -476,7 +706,7 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         if solver.status == "finished" and j < t_eval.size:
             y[j:] = solver.y
             j = t_eval.size
-    return y, int(solver.nfev), steps, 0, status
+    return y, int(solver.nfev), steps, 0, status, event
 
 
 #: the first compiled run's compilation (the integrator and the three models' right-hand sides),
@@ -487,7 +717,8 @@ COMPILE_SECONDS = 20.0
 def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
               method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
               step: float | None = None, max_steps: int = 10_000_000,
-              progress: Callable[[float], None] | None = None) -> Solution:
+              progress: Callable[[float], None] | None = None, watch_contact: bool = False,
+              stick_tilt: float | None = None) -> Solution:
     """Integrate a nonlinear model and return its states at ``t_eval``.
 
     Parameters
@@ -513,26 +744,45 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
         (``MAX_STEPS``) and the states computed so far, instead of running for hours.
     progress : callable, optional
         Called with the time reached after each slice of work (a few milliseconds apart).
+    watch_contact : bool, default False
+        Stop at the first zero of the normal force (sliding and rolling models:
+        :func:`normal_force_of` after every step, the zero located on the step's interpolant):
+        ``Solution.event_time``, and ``t`` and ``y`` end there.
+    stick_tilt : float, optional
+        Also stop where the tilt of ``k`` first reaches this (degrees, the stick touches the
+        floor: ``Solution.event = "stick_contact"``).
 
     Returns
     -------
     Solution
     """
     code = CODES[model]
+    c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
     if method in COMPILED_METHODS:
         before_compiled_call(Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
     if method == "dopri5":
-        y, nfev, na, nr, st = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
-                                     float(step or 0.0), int(max_steps), progress=progress)
+        y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
+                                         float(step or 0.0), int(max_steps), progress=progress,
+                                         watch=watch_contact, c_stick=c_stick)
     elif method == "rk4":
         if step is None or not step > 0:
             raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st = rk4(code, y0, t_eval, p, float(step), progress=progress)
+        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact,
+                                      c_stick=c_stick)
     elif method in SCIPY_METHODS:
-        y, nfev, na, nr, st = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress)
+        y, nfev, na, nr, st, ev = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress,
+                                         watch_contact, c_stick)
     else:
         raise ValueError(f"method = {method!r} is not known; choose one of "
                          f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
+    if ev is not None:
+        t_ev, y_ev, rows = ev
+        rows = rows - 1 if rows > 0 and t_eval[rows - 1] >= t_ev else rows  # an event at an output time
+        # which watched quantity reached zero: the stick's gap, or else the normal force
+        gap = event_value(y_ev, y_ev, p, 0, c_stick)
+        kind = "stick_contact" if gap <= 0.0 else "contact_lost"
+        return Solution(np.append(t_eval[:rows], t_ev), np.vstack([y[:rows], y_ev[None, :]]), int(nfev),
+                        int(na), int(nr), int(st), method, t_ev, kind)
     return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)

@@ -28,6 +28,8 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
+from ..errors import InputError
+from .contact import check_on_contact_loss
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
@@ -210,7 +212,8 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
              mu: Any = DEFAULT_MU, friction: str = "isotropic", normal: str = "equilibrium",
              slip_scale: float = DEFAULT_SLIP_SCALE, method: str = "auto", rtol: float = 1e-9,
              atol: float = 1e-12, dt: float = 0.1, t_eval: Any = None, step: float | None = None,
-             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False) -> xr.Dataset:
+             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False,
+             on_contact_loss: str = "stop", stick_tilt: float | None = None) -> xr.Dataset:
     """Integrate a nonlinear model of the top from a given state.
 
     Parameters
@@ -255,6 +258,17 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         A progress bar on stderr (True; shown once the run has taken a second), or
         ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
         default.
+    on_contact_loss : {"stop"}, default "stop"
+        The sliding and rolling runs end at the first zero of the normal force
+        (:mod:`stability.nonlinear.contact`): the last sample is the event, ``attrs["event"]``
+        is ``"contact_lost"`` and ``attrs["event_time"]`` its time (``"none"`` and NaN when the
+        contact holds to ``t_end``). ``"continue"`` (a flight phase) is refused: not built.
+        Not watched at ``fr_inv = 0`` (no gravity: ``N`` is 0 at equilibrium and its sign says
+        nothing) nor for the fixed pivot: ``attrs["contact_watched"] = 0``.
+    stick_tilt : float, optional
+        The tilt (degrees, in (0, 180)) at which the top's stick touches the floor
+        (:meth:`stability.Top.stick_contact`): the run stops where the tilt first reaches it,
+        ``attrs["event"] = "stick_contact"`` (sliding and rolling).
 
     Returns
     -------
@@ -316,18 +330,29 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = _auto_method(m.name, params)
+    check_on_contact_loss(on_contact_loss)
+    if stick_tilt is not None:
+        stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
+        if not m.has_translation:
+            raise InputError(f"stick_tilt = {stick_tilt:g}: model {m.name!r} has no floor for a stick to touch")
     y0 = initial_state(m.name, omega, k, velocity)
     report, close = _progress(progress, float(t_end))
+    # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
+    # says nothing there, the contact is the model's assumption; not watched (attrs say so)
+    watched = m.has_translation and params["fr_inv"] > 0.0
     try:
         with deferred():
             sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
-                            max_steps=max_steps, progress=report)
+                            max_steps=max_steps, progress=report, watch_contact=watched,
+                            stick_tilt=stick_tilt)
     finally:
         close()
     if sol.status < 0:
         warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
                       stacklevel=2)
     ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss,
+                    contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept,
                     nreject=sol.nreject, status=sol.status, message=sol.message,
                     friction_law=friction if m.name == "sliding" else "none (constraint force)",

@@ -179,7 +179,11 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
     run_status = int(ds.attrs.get("status", 0))
     finite = bool(np.all(np.isfinite(phi)))
-    if run_status != 0:
+    contact_lost = ds.attrs.get("event", "none") != "none"
+    if contact_lost:
+        status = (f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the "
+                  "model does not hold beyond)")
+    elif run_status != 0:
         status = f"integration failed ({ds.attrs.get('method')}): {ds.attrs.get('message', run_status)}"
     elif not finite:
         status = "the run's samples are not all finite"
@@ -189,7 +193,7 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
         status = f"growth rate not resolved: |Re s| <= {RESOLVED:g} |s| (its error is relative to |s|)"
     else:
         status = "ok"
-    failed = run_status != 0 or not finite or not rms <= FIT_RMS
+    failed = contact_lost or run_status != 0 or not finite or not rms <= FIT_RMS
     resolved = status == "ok"
 
     def rel(meas: float, pred: float, scale: float) -> float:

@@ -138,6 +138,8 @@ class SettleRun:
     seconds: float
     jellett_drift: float
     axial_spin: float
+    event: str = "none"
+    event_time: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -151,7 +153,8 @@ class FinalState:
     kind : str
         ``"upright"``, ``"inverted"``, ``"tilted"`` (a steady state of the level), or after a run
         ``"rolling"`` (settled off every steady state: one of the no-slip continua of
-        ``fr_inv = 0`` or ``q = 0``) or ``"unsettled"`` (the time limit came first).
+        ``fr_inv = 0`` or ``q = 0``) or ``"unsettled"`` (the time limit came first), or ``"contact_lost"`` (the deciding run
+        reached a zero of the normal force: no final state of the model; ``event``, ``event_time``).
     method : str
         ``"jellett"`` (decided by ``J`` and ``E``) or ``"simulation"`` (a run decided).
     jellett : float
@@ -191,6 +194,8 @@ class FinalState:
     run: SettleRun | None
     parameters: dict[str, float] = field(default_factory=dict)
     initial_tilt: float = math.nan
+    event: str = "none"
+    event_time: float = math.nan
 
     def to_dataset(self) -> xr.Dataset:
         """The prediction as a CF Dataset (product ``final_state``): 0-d variables ``tilt``,
@@ -237,7 +242,8 @@ class FinalState:
         data.update(curve)
         attrs = product_attrs("final_state", "Final state of a sliding Tippe top", "stability.final_state",
                               self.parameters)
-        attrs.update(kind=self.kind, method=self.method, reason=self.reason, model="sliding")
+        attrs.update(kind=self.kind, method=self.method, reason=self.reason, model="sliding",
+                     event=self.event, event_time=self.event_time)
         if self.run is not None:
             for name, value in self.run.__dict__.items():
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
@@ -427,6 +433,12 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
                  f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
                  "simulation=False skips it)")
     tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
+    if run.event != "none":
+        return FinalState(tilt=tilt, kind=run.event, method="simulation", energy=energy,
+                          precession_rate=math.nan, axial_spin=run.axial_spin, state=None,
+                          reason=f"{reason}; a run decided: {run.event.replace('_', ' ')} at t = {run.event_time:.6g} "
+                                 f"(tilt {tilt:.6g} deg): the model does not hold beyond, no final state",
+                          run=run, event=run.event, event_time=run.event_time, **common)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
     if state is not None and run.settled:
@@ -485,6 +497,7 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
     n = 0
     t0 = time.perf_counter()
     j0 = None
+    event = "none"
     settled = False
     change = math.inf
     while t < t_max:
@@ -496,6 +509,10 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
         if j0 is None:
             j0 = float(ds.h_cg[0])
         pol = ds.polar_angle.values
+        if ds.attrs.get("event", "none") != "none":  # the model stops holding: the run ends there
+            event, t = ds.attrs["event"], t - length + float(ds.attrs["event_time"])
+            change, slip = float(np.max(pol) - np.min(pol)), float(ds.slip_speed[-1])
+            break
         if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
             change, slip = math.nan, math.nan
             break
@@ -509,6 +526,7 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
     run = SettleRun(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n,
                     seconds=time.perf_counter() - t0,
                     jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
-                    axial_spin=float(ds.spin[-1]))
+                    axial_spin=float(ds.spin[-1]), event=event,
+                    event_time=t if event != "none" else math.nan)
     ok = np.isfinite(pol)
     return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run

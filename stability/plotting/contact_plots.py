@@ -1,0 +1,61 @@
+"""Figures of where the model holds: a run's normal force and its event, a run's tilt up to the
+stick (computation in :mod:`stability.nonlinear.contact` and :func:`stability.simulate`)."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+import xarray as xr
+
+from ._layout import panels_or_new
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["plot_contact_run"]
+
+
+def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+    """A run (:func:`stability.simulate`) with its event: the normal force ``N(t)`` (with its
+    equilibrium value ``mu fr_inv`` and zero) and the tilt, the event marked (contact lost, or
+    the stick reached, with the stick's tilt as a line).
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        A sliding or rolling run (its attributes ``event``, ``event_time``, ``stick_tilt``).
+    axes : sequence of 2 Axes, optional
+
+    Returns
+    -------
+    (Figure, list of 2 Axes)
+    """
+    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
+    t = run.time.values
+    event = run.attrs.get("event", "none")
+    t_ev = float(run.attrs.get("event_time", math.nan))
+    ax = axes[0]
+    ax.plot(t, run.normal_force.values, color="C0", label="N(t)")
+    ax.axhline(run.attrs["mu"] * run.attrs["fr_inv"], color="0.5", ls=":", label=r"$\mu\,$Fr$^{-1}$ (equilibrium)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_ylabel("normal force N")
+    ax2 = axes[1]
+    ax2.plot(t, run.polar_angle.values, color="C1", label="tilt")
+    stick = float(run.attrs.get("stick_tilt", math.nan))
+    if np.isfinite(stick):
+        ax2.axhline(stick, color="C3", ls="--", label=f"stick touches ({stick:.4g}$^\\circ$)")
+    ax2.set_ylabel("tilt of k (degree)")
+    ax2.set_xlabel(r"time (units of $1/\Omega$)")
+    if event != "none":
+        what = "contact lost" if event == "contact_lost" else "stick reached"
+        for a in axes:
+            a.axvline(t_ev, color="C3", lw=0.8)
+        ax.plot([t_ev], [float(run.normal_force[-1])], "o", color="C3", label=f"{what}, t = {t_ev:.6g}")
+        ax2.plot([t_ev], [float(run.polar_angle[-1])], "o", color="C3")
+    ax.legend(fontsize="small")
+    ax2.legend(fontsize="small")
+    ax.set_title(f"{run.attrs.get('model', '')} run: event {event}", fontsize="medium")
+    return fig, axes
