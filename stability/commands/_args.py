@@ -281,7 +281,10 @@ def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bo
         unit = getattr(args, "unit", "rad/s")
         if unit not in SPIN_UNITS:
             raise InputError(f"--unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
-        nd = top_parameters(top, value, unit, getattr(args, "alpha_v", None), names=names)
+        alpha_v = getattr(args, "alpha_v", None)
+        if isinstance(alpha_v, str):
+            alpha_v = parse_values(alpha_v, name=FLAGS["alpha_v"])
+        nd = top_parameters(top, value, unit, alpha_v, names=names)
     else:
         if spin is not None:
             raise InputError(f"--spin {spin} is not used here (no spin-dependent parameter is fixed)")
