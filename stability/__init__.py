@@ -14,7 +14,8 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`steady_states`, :func:`final_state`, :func:`top_class`, :func:`class_atlas` - where the
   top goes: the steady tilted states on a Jellett level and their stability, the end of a
   motion, the high-spin classes (the branch of tilted states is
-  ``continuation.steady_branch``);
+  ``continuation.steady_branch``); :func:`bifurcation_diagram` - every steady state of a real top
+  against the equivalent upright spin in its unit (``stability.plotting.plot_bifurcation`` draws it);
 * :class:`TippeError` - the base of every exception the package raises on purpose
   (:mod:`stability.errors`; bad input is an :class:`InputError`, a ``ValueError``);
 * ``ds.tippe`` - on every dataset the package returns: ``ds.tippe.product`` (its global
@@ -51,6 +52,7 @@ _EXPORTS: dict[str, str] = {
     "class_atlas": ".steady.classes", "top_class": ".steady.classes",
     "FinalState": ".steady.final", "final_state": ".steady.final",
     "steady_states": ".steady.states",
+    "bifurcation_diagram": ".steady.diagram",
     "Top": ".top",
 }
 
@@ -60,7 +62,7 @@ __all__ = [
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
-    "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
+    "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "bifurcation_diagram",
 ]
 
 
@@ -68,7 +70,7 @@ __all__ = [
 #: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
 #: docstrings)
 _DATASETS = frozenset({"atlas", "open_atlas", "simulate", "validate", "coulomb_growth", "steady_states",
-                       "final_state", "class_atlas"})
+                       "final_state", "class_atlas", "bifurcation_diagram"})
 
 
 def __getattr__(name: str) -> Any:
