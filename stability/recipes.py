@@ -25,16 +25,40 @@ A ``kind = "critical_spin"`` recipe draws the critical spin rate (rpm) of a real
 ``[grid]`` (``q`` or ``sigma``), the others kept at the preset's values; see
 :func:`stability.critical_spin`.
 
+A real top instead of the nondimensional set (docs/your_top.md): a ``[top]`` table of SI values
+(``mass``, ``radius``, ``com_offset``, ``inertia_transverse``, ``inertia_axial``, optional ``g``,
+``mu_v``, ``mu_k``; or ``preset = "table1"``, :meth:`stability.Top.from_mapping`) gives ``q``,
+``sigma`` and ``mu`` (eq. 3), and ``spin`` (a number or a grid) with ``unit`` (default
+``"rad/s"``) gives ``fr_inv`` (eq. 3) and, with ``mu_v``, ``alpha_v`` (eq. 7); a ``[grid]``
+value of a parameter the top gives is refused. A grid of spins is a grid of ``fr_inv`` with
+the spin a coordinate along it::
+
+    title = "My top: growth rate against its spin"
+    kind = "lines"
+    x = "fr_inv"
+    spin = "5:20:31"
+    unit = "rev/s"
+    [grid]
+    alpha_v = 0.5
+    [top]
+    mass = 0.015
+    radius = 0.015
+    com_offset = -0.003
+    inertia_transverse = 1.3e-6
+    inertia_axial = 1.5e-6
+
 A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
 ``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.nonlinear.scene`);
 it has no grid.
 
 Steady states (:mod:`stability.steady`, docs/steady_states.md):
 
-* ``kind = "bifurcation"``: the bifurcation diagram of a preset top (``preset = "table1"``):
-  the tilt of every steady state against the equivalent upright spin in rpm, with the end
-  points of nonlinear runs launched upright (tilt 1 degree) at the spins ``runs_rpm``; ``[grid]``
-  holds ``alpha_v`` (a number);
+* ``kind = "bifurcation"``: the bifurcation diagram of a preset top (``preset = "table1"``) or
+  of a ``[top]``: the tilt of every steady state against the equivalent upright spin in
+  ``unit`` (default rpm), with the end points of nonlinear runs launched upright (tilt 1
+  degree) at the spins ``runs`` (in ``unit``; ``runs_rpm`` in rpm, kept for the older recipes;
+  :attr:`Recipe.runs_rpm` holds them converted to ``unit``); ``[grid]`` holds ``alpha_v`` (a
+  number; not with a ``mu_v`` in ``[top]``);
 * ``kind = "classes"``: the high-spin class map over ``[grid]`` ``q`` and ``sigma`` (1-D) at a
   scalar ``mu`` (:func:`stability.class_atlas`);
 * ``kind = "settle"``: the paper's run of Sec. 3(ii) at ``[grid] fr_inv`` (0.3 or 0.1)

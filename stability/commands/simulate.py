@@ -48,7 +48,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="initial velocity of the sphere's centre O, units of Omega R (sliding only; "
                         "default 0,0)")
     add_parameter_flags(p, _NAMES, kind="value", defaults={"mu": None},
-                        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0)",
+                        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)",
                                "mu": f" (default {DEFAULT_MU})"}
                         | {n: " (required unless a top is given)" for n in _REQUIRED})
     add_top_arguments(p, spin=True)
