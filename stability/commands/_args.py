@@ -177,7 +177,7 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
              if getattr(args, a, None) is not None}
     flag = {"g": "--g", "mu_v": "--mu-v", "mu_k": "--mu-k"}
     ways = ([f"--preset {preset}"] if preset else []) + ([f"--top {path}"] if path else []) \
-        + (["--" + si[0].replace("_", "-")] if si else [])
+        + ([", ".join("--" + n.replace("_", "-") for n in si)] if si else [])
     if len(ways) > 1:
         raise InputError(f"{' and '.join(ways)} conflict: give the top one way (--preset, --top FILE or its SI data)")
     if preset:
