@@ -115,12 +115,14 @@ def test_steady_si_equals_nondimensional(tmp_path, capsys):
 
 
 def test_simulate_si_with_mu_v(tmp_path, capsys):
-    """alpha_v from mu_v (eq. 7) and fr_inv from the spin in rpm land in the run's attributes."""
+    """alpha_v from mu_v and alpha_k from mu_K (eq. 7), fr_inv from the spin in rpm, land in the
+    run's attributes."""
     out = tmp_path / "run.nc"
-    assert main(["simulate", *SI, "--mu-v", "0.02", "--spin", "900", "--unit", "rpm", "--t-end", "1",
+    assert main(["simulate", *SI, "--mu-v", "0.02", "--mu-k", "0.3", "--spin", "900", "--unit", "rpm", "--t-end", "1",
                  "--omega", "0,0,1", "--k", "0.01,0,1", "-o", str(out)]) == 0
     capsys.readouterr()
     ref = hand(900 * 2 * math.pi / 60, mu_v=0.02)
+    ref["alpha_k"] = ref["mu"] * ref["fr_inv"] * 0.3
     with xr.open_dataset(out) as ds:
         for k, v in ref.items():
             assert float(ds.attrs[k]) == pytest.approx(v, rel=1e-13), k
@@ -189,6 +191,9 @@ def test_threshold_spin_reads_a_top_file(tmp_path, capsys):
     (["steady", "--preset", "table1", "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0.3"],
      ["--preset table1", "--fr-inv 0.3", "conflict"]),
     (["steady", *SI, "--mu-v", "0.02", "--spin", "15", "--alpha-v", "0.5"], ["--mu-v 0.02", "--alpha-v 0.5"]),
+    (["steady", *SI, "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0"], ["--mass", "--fr-inv 0.0", "conflict"]),
+    (["simulate", *SI, "--mu-k", "0.3", "--spin", "15", "--alpha-v", "0.5", "--alpha-k", "0", "--t-end", "1",
+      "--omega", "0,0,1", "--k", "0,0,1", "-o", "x.nc"], ["--mass", "--alpha-k 0.0", "conflict"]),
     (["steady", *SI, "--alpha-v", "0.5"], ["--mass", "needs --spin"]),
     (["steady", "--q", "-0.1", "--sigma", "1", "--alpha-v", "0.5", "--spin", "15"], ["--spin 15 needs a top"]),
     (["steady", "--mass", "0.015", "--spin", "15", "--alpha-v", "0.5"], ["--mass given without", "--radius"]),

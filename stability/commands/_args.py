@@ -259,7 +259,7 @@ def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bo
     source = _top_source(args)
     given = [n for n in names if n in TOP_PARAMETERS and getattr(args, n, None) is not None]
     if spin_needed:
-        given += [n for n in ("fr_inv", "alpha_k") if n in names and getattr(args, n, None) not in (None, 0.0)
+        given += [n for n in ("fr_inv", "alpha_k") if n in names and getattr(args, n, None) is not None
                   and (n == "fr_inv" or top.mu_k is not None)]
         if top.mu_v is not None and "alpha_v" in names and getattr(args, "alpha_v", None) is not None:
             raise InputError(f"--mu-v {top.mu_v:g} and --alpha-v {args.alpha_v} conflict: alpha_v = mu mu_v g / "
