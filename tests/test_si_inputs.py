@@ -202,6 +202,7 @@ def test_threshold_spin_reads_a_top_file(tmp_path, capsys):
     (["steady", "--q", "-0.1", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5", "--mu-v", "0.1"],
      ["--mu-v", "describe a real top"]),
     (["steady", *SI, "--spin", "15", "--unit", "rps", "--alpha-v", "0.5"], ["--unit", "rps"]),
+    (["steady", *SI, "--unit", "rev/s", "--alpha-v", "0.5"], ["--unit rev/s is the unit of --spin"]),
     (["atlas", *SI, "--mu-v", "0.02", "--spin", "5:20:4", "-o", "x.nc"], ["--spin 5:20:4", "--mu-v 0.02"]),
     (["simulate", *SI, "--spin", "15", "--alpha-v", "0.5", "--sigma", "1", "--t-end", "1", "--omega", "0,0,1",
       "--k", "0,0,1", "-o", "x.nc"], ["--mass", "--sigma 1.0", "conflict"]),

@@ -143,7 +143,7 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
         g.add_argument("--spin", metavar="VALUES" if grid else "VALUE",
                        help="spin rate Omega of the top, in --unit: "
                             + (_VALUES["values"] if grid else _VALUES["value"]))
-        g.add_argument("--unit", choices=list(SPIN_UNITS), default="rad/s", help="unit of --spin")
+        g.add_argument("--unit", choices=list(SPIN_UNITS), default=None, help="unit of --spin (default rad/s)")
     p.set_defaults(_top_spin=spin, _top_grid=grid)
 
 
@@ -249,6 +249,8 @@ def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bo
     names = [n for n in names if n not in tuple(skip)]
     top = top_from_args(args)
     spin = getattr(args, "spin", None)
+    if spin is None and getattr(args, "unit", None) is not None:
+        raise InputError(f"--unit {args.unit} is the unit of --spin: give --spin too (with a top)")
     if top is None:
         if spin is not None:
             raise InputError(f"--spin {spin} needs a top: give --mass ... (SI), --top FILE.toml or --preset")
@@ -278,7 +280,7 @@ def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bo
             raise InputError(f"--spin = {spin!r} must be one number here")
         from ..top import SPIN_UNITS
 
-        unit = getattr(args, "unit", "rad/s")
+        unit = getattr(args, "unit", None) or "rad/s"
         if unit not in SPIN_UNITS:
             raise InputError(f"--unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
         alpha_v = getattr(args, "alpha_v", None)

@@ -204,12 +204,13 @@ def _spin_coordinate(ds, args: argparse.Namespace):  # noqa: ANN001, ANN202
     if getattr(args, "spin", None) is None:
         return ds
     spin = parse_values(args.spin, name="--spin")
-    attrs = {"long_name": "spin rate Omega of the top", "units": args.unit,
+    unit = args.unit or "rad/s"
+    attrs = {"long_name": "spin rate Omega of the top", "units": unit,
              "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
     if np.ndim(spin) == 1:
         ds = ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
     else:
-        ds.attrs.update(spin=float(spin), spin_unit=args.unit)
+        ds.attrs.update(spin=float(spin), spin_unit=unit)
     return ds
 
 
