@@ -14,7 +14,8 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 * :func:`steady_states`, :func:`final_state`, :func:`top_class`, :func:`class_atlas` - where the
   top goes: the steady tilted states on a Jellett level and their stability, the end of a
   motion, the high-spin classes; :func:`steady_branch` - the branch of tilted states, traced
-  by the continuation engine;
+  by the continuation engine; :func:`bifurcation_diagram` - every steady state of a real top
+  against the equivalent upright spin in its unit (``stability.plotting.plot_bifurcation`` draws it);
 * :func:`neutral_curve`, :func:`fold_curve` - neutral and fold curves of the linear models,
   traced by the continuation engine (:mod:`continuation`, which knows nothing of tops);
 * :class:`TippeError` - the base of every exception the package raises on purpose
@@ -56,6 +57,7 @@ _EXPORTS: dict[str, str] = {
     "FinalState": ".steady.final", "final_state": ".steady.final",
     "steady_branch": ".steady.branch",
     "steady_states": ".steady.states",
+    "bifurcation_diagram": ".steady.diagram",
     "Top": ".top",
     "Stick": ".stick",
 }
@@ -66,7 +68,7 @@ __all__ = [
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
-    "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
+    "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "bifurcation_diagram",
     "neutral_curve", "fold_curve", "steady_branch",
 ]
 
@@ -75,7 +77,8 @@ __all__ = [
 #: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
 #: docstrings)
 _DATASETS = frozenset({"atlas", "open_atlas", "simulate", "validate", "coulomb_growth", "steady_states",
-                       "final_state", "class_atlas", "neutral_curve", "fold_curve", "steady_branch"})
+                       "final_state", "class_atlas", "neutral_curve", "fold_curve", "steady_branch",
+                       "bifurcation_diagram"})
 
 
 def __getattr__(name: str) -> Any:

@@ -25,16 +25,40 @@ A ``kind = "critical_spin"`` recipe draws the critical spin rate (rpm) of a real
 ``[grid]`` (``q`` or ``sigma``), the others kept at the preset's values; see
 :func:`stability.critical_spin`.
 
+A real top instead of the nondimensional set (docs/your_top.md): a ``[top]`` table of SI values
+(``mass``, ``radius``, ``com_offset``, ``inertia_transverse``, ``inertia_axial``, optional ``g``,
+``mu_v``, ``mu_k``; or ``preset = "table1"``, :meth:`stability.Top.from_mapping`) gives ``q``,
+``sigma`` and ``mu`` (eq. 3), and ``spin`` (a number or a grid) with ``unit`` (default
+``"rad/s"``) gives ``fr_inv`` (eq. 3) and, with ``mu_v``, ``alpha_v`` (eq. 7); a ``[grid]``
+value of a parameter the top gives is refused. A grid of spins is a grid of ``fr_inv`` with
+the spin a coordinate along it::
+
+    title = "My top: growth rate against its spin"
+    kind = "lines"
+    x = "fr_inv"
+    spin = "5:20:31"
+    unit = "rev/s"
+    [grid]
+    alpha_v = 0.5
+    [top]
+    mass = 0.015
+    radius = 0.015
+    com_offset = -0.003
+    inertia_transverse = 1.3e-6
+    inertia_axial = 1.5e-6
+
 A ``kind = "scene"`` recipe names instead one of the paper's nonlinear figures,
 ``figure = "fig5"`` ... ``"fig9"``, drawn from the runs of Sec. 3(ii) (:mod:`stability.nonlinear.scene`);
 it has no grid.
 
 Steady states (:mod:`stability.steady`, docs/steady_states.md):
 
-* ``kind = "bifurcation"``: the bifurcation diagram of a preset top (``preset = "table1"``):
-  the tilt of every steady state against the equivalent upright spin in rpm, with the end
-  points of nonlinear runs launched upright (tilt 1 degree) at the spins ``runs_rpm``; ``[grid]``
-  holds ``alpha_v`` (a number);
+* ``kind = "bifurcation"``: the bifurcation diagram of a preset top (``preset = "table1"``) or
+  of a ``[top]``: the tilt of every steady state against the equivalent upright spin in
+  ``unit`` (default rpm), with the end points of nonlinear runs launched upright (tilt 1
+  degree) at the spins ``runs`` (in ``unit``; ``runs_rpm`` in rpm, kept for the older recipes;
+  :attr:`Recipe.runs_rpm` holds them converted to ``unit``); ``[grid]`` holds ``alpha_v`` (a
+  number; not with a ``mu_v`` in ``[top]``);
 * ``kind = "classes"``: the high-spin class map over ``[grid]`` ``q`` and ``sigma`` (1-D) at a
   scalar ``mu`` (:func:`stability.class_atlas`);
 * ``kind = "settle"``: the paper's run of Sec. 3(ii) at ``[grid] fr_inv`` (0.3 or 0.1)
@@ -68,7 +92,7 @@ from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
-from .products import FLAG_MEANINGS, FLAG_VALUES, PRODUCT_ATTR
+from .products import PRODUCT_ATTR
 
 __all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
            "KINDS"]
@@ -81,7 +105,7 @@ STEADY_KINDS = ("bifurcation", "classes", "settle")
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
 _KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
-         "figure", "neutral", "preset", "runs_rpm", "t_end"}
+         "figure", "neutral", "preset", "runs_rpm", "t_end", "top", "spin", "unit", "runs"}
 
 
 @dataclass(frozen=True)
@@ -103,6 +127,9 @@ class Recipe:
     neutral: bool = False
     runs_rpm: tuple[float, ...] = ()
     t_end: float = 0.0
+    top: Any = None
+    spin: Any = None
+    unit: str = "rad/s"
     digest: str = field(default="", compare=False)
 
     @property
@@ -187,6 +214,7 @@ def load_recipe(path: str | Path) -> Recipe:
     if kind not in KINDS:
         raise RecipeError(f"{p}: kind = {kind!r} is not one of {', '.join(KINDS)}")
     digest = hashlib.sha256(raw_bytes + code_fingerprint().encode()).hexdigest()[:16]
+    top = _load_top(p, raw, kind)
     if kind == "scene":
         figure = raw.get("figure")
         if figure not in SCENE_FIGURES:
@@ -196,7 +224,7 @@ def load_recipe(path: str | Path) -> Recipe:
         return Recipe(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid={},
                       caption=str(raw.get("caption", "")), figure=figure, digest=digest)
     if kind in STEADY_KINDS:
-        return _load_steady(p, raw, kind, digest)
+        return _load_steady(p, raw, kind, digest, top)
     if "grid" not in raw:
         raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
@@ -206,7 +234,9 @@ def load_recipe(path: str | Path) -> Recipe:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
     if kind == "critical_spin":
         preset = raw.get("preset", "table1")
-        if preset not in PRESETS:
+        if top is not None:
+            preset = None
+        elif preset not in PRESETS:
             raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
         x = raw.get("x", "q")
         if x not in ("q", "sigma") or set(raw["grid"]) != {x}:
@@ -215,7 +245,7 @@ def load_recipe(path: str | Path) -> Recipe:
         if np.ndim(grid[x]) != 1:
             raise RecipeError(f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
         return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x,
-                      caption=str(raw.get("caption", "")), figure=preset, digest=digest)
+                      caption=str(raw.get("caption", "")), figure=preset, digest=digest, top=top)
     grid_raw = raw["grid"]
     if not isinstance(grid_raw, dict):
         raise RecipeError(f"{p}: [grid] must be a table of parameter values")
@@ -223,6 +253,7 @@ def load_recipe(path: str | Path) -> Recipe:
     if bad:
         raise RecipeError(f"{p}: grid has unknown parameters {', '.join(sorted(bad))} (allowed: {', '.join(PARAMETERS)})")
     grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
+    spin, unit = _top_grid(p, raw, top, grid, model)
     quantities = tuple(raw.get("quantities", ["growth_rate"]))
     for qn in quantities:
         if qn not in QUANTITIES:
@@ -240,7 +271,96 @@ def load_recipe(path: str | Path) -> Recipe:
                           f"({', '.join(wanted)})")
     return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x, y=y, family=family,
                   quantities=quantities, mask_unphysical=bool(raw.get("mask_unphysical", True)),
-                  caption=str(raw.get("caption", "")), neutral=bool(raw.get("neutral", False)), digest=digest)
+                  caption=str(raw.get("caption", "")), neutral=bool(raw.get("neutral", False)), digest=digest,
+                  top=top, spin=spin, unit=unit)
+
+
+def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
+    """The recipe's ``[top]`` table as a :class:`stability.Top` (None without one); a ``[top]``
+    beside ``preset``, or on a kind that takes no top, is refused; so are ``spin`` and ``unit``
+    without a ``[top]``."""
+    from .top import Top
+
+    if "top" not in raw:
+        for key in ("spin",):
+            if key in raw:
+                raise RecipeError(f"{p}: {key} = {raw[key]!r} needs a [top] table (the top's SI data)")
+        return None
+    if kind not in ("lines", "map", "models", "critical_spin", "bifurcation"):
+        raise RecipeError(f"{p}: a {kind} recipe takes no [top] table")
+    if "preset" in raw:
+        raise RecipeError(f"{p}: preset = {raw['preset']!r} and [top] conflict: give a preset or a [top] table "
+                          "(which may hold preset = ... itself), not both")
+    try:
+        return Top.from_mapping(raw["top"], source=f"{p} [top]")
+    except RecipeError:
+        raise
+    except ValueError as exc:  # InputError, DomainError: the top's own message, naming the file
+        raise RecipeError(str(exc) if str(p) in str(exc) else f"{p} [top]: {exc}") from None
+
+
+def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], model: str) -> tuple[Any, str]:
+    """Fold a ``[top]`` and its ``spin`` (in ``unit``) into the grid of a lines/map/models
+    recipe: q, sigma, mu from the top (eq. 3), fr_inv and (with ``mu_v``) alpha_v from the spin
+    (eqs. 3, 7). A grid value of a parameter the top gives is refused, naming both. A 1-D spin
+    is a 1-D grid of fr_inv (the spin is recorded as a coordinate along it)."""
+    from .top import SPIN_UNITS
+
+    unit = raw.get("unit", "rad/s")
+    if unit not in SPIN_UNITS:
+        raise RecipeError(f"{p}: unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+    if top is None:
+        if "unit" in raw:
+            raise RecipeError(f"{p}: unit = {unit!r} needs a [top] table and a spin")
+        return None, unit
+    given = [k for k in ("q", "sigma", "mu") if k in grid]
+    if "spin" in raw:
+        given += [k for k in ("fr_inv",) if k in grid]
+        if top.mu_v is not None and "alpha_v" in grid:
+            given.append("alpha_v")
+    if given:
+        raise RecipeError(f"{p}: [top] and grid.{given[0]} conflict: the top gives {given[0]} (eqs. 3, 7); "
+                          "give the top or the nondimensional value, not both")
+    grid.update(q=top.q, sigma=top.sigma, mu=top.mu)
+    if "spin" not in raw:
+        return None, unit
+    spin = _grid_value(p, "spin", raw["spin"])
+    if np.ndim(spin) > 1:
+        raise RecipeError(f"{p}: spin must be a number or a 1-D grid")
+    try:
+        nd = top.nondimensional(spin, unit, alpha_v=grid.get("alpha_v"))
+    except (ValueError, TypeError) as exc:
+        raise RecipeError(f"{p}: spin = {raw['spin']!r} {unit}: {exc}") from None
+    if np.ndim(nd.get("alpha_v", 0.0)) == 1 and np.ndim(nd["fr_inv"]) == 1:
+        raise RecipeError(f"{p}: a grid of spins and mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega would "
+                          "change along the spin grid, and an atlas holds one dimension per parameter; give "
+                          "grid.alpha_v (held fixed) instead of mu_v, or one spin")
+    grid.update({k: v for k, v in nd.items() if k in ("fr_inv", "alpha_v")})
+    return spin, unit
+
+
+def _recipe_top(recipe: Recipe) -> Any:
+    """The recipe's top: its ``[top]`` table, or its preset (default Table 1)."""
+    from .top import Top
+
+    return recipe.top if recipe.top is not None else getattr(Top, recipe.figure or "table1")()
+
+
+def _spin_coordinate(recipe: Recipe, ds: xr.Dataset) -> xr.Dataset:
+    """The spin of a recipe with a [top] (in its unit) on its atlas: a coordinate along fr_inv for a
+    grid of spins, attributes for one; and the top's SI data in the attributes."""
+    if recipe.top is None:
+        return ds
+    t = recipe.top
+    ds.attrs.update(mass_kg=t.mass, radius_m=t.radius, com_offset_m=t.com_offset,
+                    inertia_transverse_kg_m2=t.inertia_transverse, inertia_axial_kg_m2=t.inertia_axial, g=t.g)
+    if recipe.spin is None:
+        return ds
+    attrs = {"long_name": "spin rate Omega of the top", "units": recipe.unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    if np.ndim(recipe.spin) == 1 and "fr_inv" in ds.dims:
+        return ds.assign_coords(spin=("fr_inv", np.asarray(recipe.spin, dtype=float), attrs))
+    ds.attrs.update(spin=float(np.asarray(recipe.spin).ravel()[0]), spin_unit=recipe.unit)
+    return ds
 
 
 def find_recipes(directory: str | Path) -> list[Recipe]:
@@ -390,7 +510,8 @@ def compute(recipe: Recipe, *, force: bool = False,
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
 
         def make(model=model) -> xr.Dataset:
-            ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+            ds = _spin_coordinate(recipe, atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical,
+                                                **_grid_for(model, recipe.grid)))
             ds.attrs["recipe"] = recipe.path.name
             return ds
         out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
@@ -415,7 +536,7 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
     from .linear.critical import critical_spin
     from .top import Top
 
-    base = getattr(Top, recipe.figure or "table1")()
+    base = _recipe_top(recipe)
     x = recipe.x
     values = np.asarray(recipe.grid[x], dtype=float)
     out = {"upright": np.full(values.size, np.nan), "inverted": np.full(values.size, np.nan)}
@@ -435,7 +556,7 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
                                                            "comment": "spin rate above which the inverted top is stable"})},
         coords={x: (x, values, parameter_attrs(x))},
         attrs={"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin",
-               "model": recipe.model, "preset": recipe.figure,
+               "model": recipe.model, "preset": recipe.figure or "",
                "mass_kg": base.mass, "radius_m": base.radius, "q": base.q, "mu": base.mu, "sigma": base.sigma})
 
 
@@ -459,8 +580,6 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
 # ------------------------------------------------------------------------------------------
 #: the datasets each steady kind writes (the first is <name>.nc, the others <name>_<key>.nc)
 _STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("classes",), "settle": ("run",)}
-#: the bifurcation diagram's reference spin: J in units of A0 Omega_ref (any value gives the same figure)
-REFERENCE_RPM = 400.0
 
 
 def _steady_path(recipe: Recipe, key: str) -> Path:
@@ -468,7 +587,7 @@ def _steady_path(recipe: Recipe, key: str) -> Path:
         recipe.path.with_name(f"{recipe.name}_{key}.nc")
 
 
-def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str) -> Recipe:
+def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any = None) -> Recipe:
     """The steady kinds' keys (module docstring)."""
     grid_raw = raw.get("grid", {})
     if not isinstance(grid_raw, dict):
@@ -481,16 +600,30 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str) -> Recipe
     common = dict(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid=grid,
                   caption=str(raw.get("caption", "")), digest=digest)
     if kind == "bifurcation":
-        preset = raw.get("preset", "table1")
-        if preset not in PRESETS:
+        from .top import SPIN_UNITS
+
+        preset = None if top is not None else raw.get("preset", "table1")
+        if top is None and preset not in PRESETS:
             raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
-        runs = raw.get("runs_rpm", [])
+        unit = raw.get("unit", "rpm")
+        if unit not in SPIN_UNITS:
+            raise RecipeError(f"{p}: unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+        if "runs_rpm" in raw and "runs" in raw:
+            raise RecipeError(f"{p}: runs_rpm and runs conflict: give the launch spins once (runs, in unit)")
+        key = "runs" if "runs" in raw else "runs_rpm"
+        runs = raw.get(key, [])
         if not isinstance(runs, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0
                                                  for v in runs):
-            raise RecipeError(f"{p}: runs_rpm = {runs!r} must be a list of spin rates > 0 (rpm)")
+            raise RecipeError(f"{p}: {key} = {runs!r} must be a list of spin rates > 0 "
+                              f"({'rpm' if key == 'runs_rpm' else unit})")
+        runs = [float(v) * (SPIN_UNITS["rpm"] / SPIN_UNITS[unit] if key == "runs_rpm" else 1.0) for v in runs]
+        if "alpha_v" in grid and top is not None and top.mu_v is not None:
+            raise RecipeError(f"{p}: [top] mu_v and grid.alpha_v conflict: alpha_v follows from mu_v (eq. 7)")
         if np.ndim(grid.get("alpha_v", 0.5)) != 0 or not float(grid.get("alpha_v", 0.5)) > 0:
             raise RecipeError(f"{p}: grid.alpha_v must be one number > 0")
-        return Recipe(**common, figure=preset, runs_rpm=tuple(float(v) for v in runs))
+        return Recipe(**common, figure=preset, runs_rpm=tuple(runs), top=top, unit=unit)
+    if "spin" in raw or "unit" in raw:
+        raise RecipeError(f"{p}: a {kind} recipe takes no spin or unit")
     if kind == "classes":
         for k in ("q", "sigma"):
             if np.ndim(grid.get(k)) != 1:
@@ -511,102 +644,27 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str) -> Recipe
 
 
 def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
-    """The bifurcation diagram of a preset top (``kind = "bifurcation"``).
-
-    All three datasets share the abscissa ``spin_rpm``, the equivalent upright spin: the spin
-    of an upright launch (``omega = Omega K``) with the same Jellett integral. The branch is
-    traced at the ``fr_inv`` of :data:`REFERENCE_RPM` (J in units of ``A0 Omega_ref``); an
-    upright launch at ``Omega`` has ``J = sigma (1 + q) Omega / Omega_ref`` there, so
-    ``spin_rpm = J / (sigma (1 + q)) * REFERENCE_RPM``.
+    """The bifurcation diagram of the recipe's top (``kind = "bifurcation"``):
+    :func:`stability.steady.diagram.bifurcation_diagram` in the recipe's ``unit`` (default rpm)
+    with the runs launched upright at ``runs`` (``runs_rpm`` of the older recipes), and for the
+    Table 1 preset also the paper's Fr^-1 = 0.3 run of Sec. 3(ii).
 
     Returns
     -------
     dict
-        ``"branch"`` (:func:`stability.steady.branch.steady_branch` with ``spin_rpm``),
-        ``"vertical"`` (the flags of the upright and inverted states on a grid of ``spin_rpm``,
-        :func:`stability.steady_states`, branch points included), ``"runs"`` (launch spin,
-        equivalent spin, predicted and simulated end tilt of each run in ``runs_rpm``: upright
-        spin, axis tilted by 1 degree, integrated in chunks until the tilt moves less than 1e-3
-        degree per chunk, :func:`stability.steady.final.settle`; for the Table 1 top also the
-        paper's Fr^-1 = 0.3 run of Sec. 3(ii) from its printed state, ``paper_run = 1``).
+        ``"branch"``, ``"vertical"``, ``"runs"``, sharing the abscissa ``spin`` (the equivalent
+        upright spin, in ``unit``).
     """
-    import math
+    from .steady.diagram import bifurcation_diagram
 
-    from .nonlinear.runs import initial_state
-    from .steady.branch import branch_points, steady_branch
-    from .steady.family import upright_jellett
-    from .steady.final import chunk_length, final_state, settle
-    from .steady.states import steady_states
-    from .top import Top
-
-    top = getattr(Top, recipe.figure or "table1")()
-    alpha_v = float(recipe.grid.get("alpha_v", 0.5))
-    q, sigma, mu = top.q, top.sigma, top.mu
-    fr_ref = float(top.fr_inv(REFERENCE_RPM, unit="rpm"))
-    j_per_rpm = upright_jellett(q=q, sigma=sigma) / REFERENCE_RPM
-    bp = branch_points(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu)
-    bp_rpm = [v / j_per_rpm for v in bp.values() if math.isfinite(v)]
-    lo, hi = 0.75 * min(list(recipe.runs_rpm) + bp_rpm), 1.1 * max(list(recipe.runs_rpm) + bp_rpm)
-    branch = steady_branch(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett_max=hi * j_per_rpm,
-                           max_step=0.01)
-    branch["spin_rpm"] = branch.jellett / j_per_rpm
-    branch["spin_rpm"].attrs = {"long_name": "equivalent upright spin (launch spin of an upright top with this J)",
-                                "units": "min-1"}
-    extra = branch.where(branch.kind == "branch_point", drop=True).spin_rpm.values
-    rpm = np.unique(np.concatenate([np.linspace(lo, hi, 221), extra]))
-    flags = {"upright": [], "inverted": []}
-    for r in rpm:
-        ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=r * j_per_rpm)
-        for kind in flags:
-            flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    flag_attrs = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
-    vertical = xr.Dataset(
-        {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin", **flag_attrs})
-         for k, v in flags.items()},
-        coords={"spin_rpm": ("level", rpm, {"long_name": "equivalent upright spin", "units": "min-1"})})
-    rows = []
-    for r in recipe.runs_rpm:
-        fr = float(top.fr_inv(r, unit="rpm"))
-        th = math.radians(1.0)
-        start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
-        params = dict(q=q, sigma=sigma, fr_inv=fr, alpha_v=alpha_v, mu=mu)
-        pred = final_state(**params, **start, simulation=False)
-        chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
-        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, t_max=2e5,
-                             settle_tolerance=1e-3, rtol=1e-10)
-        rows.append((r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
-                     int(run.settled), 0))
-    if recipe.figure == "table1":  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
-        from .nonlinear.scene import INITIAL_CONDITIONS
-
-        ic = INITIAL_CONDITIONS[0.3]
-        params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
-        pred = final_state(**params, **ic)
-        end, _, run = settle(initial_state("sliding", **ic), params, chunk=chunk_length(pred.candidates, params, pred.jellett),
-                             t_max=2e5, settle_tolerance=1e-3, rtol=1e-10)
-        r = float(top.spin_rate(0.3)) * 60.0 / (2.0 * math.pi)
-        rows.append((r, abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
-                     int(run.settled), 1))
-    arr = np.array(rows, dtype=float).reshape(-1, 7)
-    unit = {"units": "1"}
-    runs = xr.Dataset(
-        {"launch_rpm": ("run", arr[:, 0], {"long_name": "launch spin", "units": "min-1"}),
-         "spin_rpm": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": "min-1"}),
-         "predicted_tilt": ("run", arr[:, 2], {"long_name": "final tilt predicted by Jellett's integral", "units": "degree"}),
-         "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
-         "t_end": ("run", arr[:, 4], {"long_name": "length of the run", **unit}),
-         "settled": ("run", arr[:, 5].astype(np.int8), {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"}),
-         "paper_run": ("run", arr[:, 6].astype(np.int8), {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) "
-                                                                          "(printed initial state, clockwise)"})},
-        coords={"run": ("run", np.arange(len(rows)))})
-    attrs = {"Conventions": "CF-1.10", "title": recipe.title, "preset": recipe.figure, "reference_rpm": REFERENCE_RPM,
-             "radius_m": top.radius, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v}
-    for ds in (vertical, runs):
-        ds.attrs.update(attrs)
-    branch.attrs.update(preset=recipe.figure, reference_rpm=REFERENCE_RPM, radius_m=top.radius)
-    for name in ("kind", "detail"):
-        branch[name] = branch[name].astype(str)
-    return {"branch": branch, "vertical": vertical, "runs": runs}
+    top = _recipe_top(recipe)
+    alpha_v = recipe.grid.get("alpha_v")
+    out = bifurcation_diagram(top, unit=recipe.unit, alpha_v=None if alpha_v is None and top.mu_v is not None
+                              else float(0.5 if alpha_v is None else alpha_v), runs=recipe.runs_rpm,
+                              paper_run=recipe.top is None and recipe.figure == "table1")
+    for ds in out.values():
+        ds.attrs.update(title=recipe.title, preset=recipe.figure or "")
+    return out
 
 
 def classes_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:

@@ -36,7 +36,7 @@ from .errors import DomainError, InputError
 from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
 from .stick import Stick
 
-__all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH"]
+__all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH", "PRESETS"]
 
 #: avoirdupois ounce and inch in SI
 OUNCE = 0.028349523125
@@ -44,6 +44,10 @@ INCH = 0.0254
 
 #: rad/s per unit of spin rate
 SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi}
+
+
+#: the named tops (classmethods of :class:`Top`)
+PRESETS = ("table1", "table1_measured")
 
 
 def _unit(unit: str) -> float:
@@ -244,6 +248,84 @@ class Top:
             a_g = a0 - m_ * d**2
         return cls(mass=mass, radius=radius, com_offset=float(d), inertia_transverse=float(a_g),
                    inertia_axial=float(sigma * a0), **kwargs)
+
+    @classmethod
+    def from_mapping(cls, data: Any, *, source: str = "top") -> "Top":
+        """A top from a mapping of SI values (a TOML ``[top]`` table, a dict).
+
+        Keys: the constructor's (``mass``, ``radius``, ``com_offset``, ``inertia_transverse``,
+        ``inertia_axial``, optional ``g``, ``mu_k``, ``mu_v``), or ``preset = "table1"`` /
+        ``"table1_measured"`` alone with only the optional keys beside it.
+
+        Parameters
+        ----------
+        data : mapping
+            The table.
+        source : str
+            What the table is called in messages (a file name and table, e.g. ``"top.toml [top]"``).
+
+        Raises
+        ------
+        InputError
+            An unknown or missing key, a non-number, or a preset with SI data beside it.
+        """
+        from collections.abc import Mapping
+
+        from .errors import InputError
+
+        if not isinstance(data, Mapping):
+            raise InputError(f"{source} must be a table of SI values, not {type(data).__name__}")
+        required = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
+        optional = ("g", "mu_k", "mu_v")
+        unknown = sorted(set(data) - {*required, *optional, "preset"})
+        if unknown:
+            raise InputError(f"{source}: unknown keys {', '.join(unknown)} (allowed: preset, "
+                             f"{', '.join(required + optional)})")
+        for k, v in data.items():
+            if k != "preset" and (isinstance(v, bool) or not isinstance(v, (int, float))):
+                raise InputError(f"{source}: {k} = {v!r} is not a number (SI units)")
+        extra = {k: float(data[k]) for k in optional if k in data}
+        if "preset" in data:
+            preset = data["preset"]
+            if preset not in PRESETS:
+                raise InputError(f"{source}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
+            clash = [k for k in required if k in data]
+            if clash:
+                raise InputError(f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
+                                 "preset or the top's SI data, not both")
+            return getattr(cls, preset)(**extra)
+        missing = [k for k in required if k not in data]
+        if missing:
+            raise InputError(f"{source}: missing {', '.join(missing)} (SI units), or give preset = "
+                             f"{' or '.join(repr(p) for p in PRESETS)}")
+        return cls(**{k: float(data[k]) for k in required}, **extra)
+
+    @classmethod
+    def from_toml(cls, path: Any) -> "Top":
+        """A top from the ``[top]`` table of a TOML file (keys of :meth:`from_mapping`).
+
+        Raises
+        ------
+        InputError
+            A file that is not valid TOML or has no ``[top]`` table, and every error of
+            :meth:`from_mapping`.
+        OSError
+            The file cannot be read.
+        """
+        import tomllib
+        from pathlib import Path
+
+        from .errors import InputError
+
+        p = Path(path)
+        try:
+            raw = tomllib.loads(p.read_bytes().decode())
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+            raise InputError(f"{p}: not valid TOML ({exc})") from None
+        if "top" not in raw:
+            raise InputError(f"{p}: no [top] table (give mass, radius, com_offset, inertia_transverse, "
+                             "inertia_axial in SI units under [top])")
+        return cls.from_mapping(raw["top"], source=f"{p} [top]")
 
     @classmethod
     def table1(cls, **kwargs: Any) -> "Top":

@@ -60,10 +60,10 @@ def test_final_without_simulation(capsys):
     (["steady", "--q", "0.9", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5"], "q = 0.9 is outside the physical domain"),
     (["steady", *TOP, "--branch", "--jellett", "1"], "--jellett is not used with --branch"),
     (["steady", *TOP, "--max-step", "0.1"], "only used with --branch"),
-    (["steady", "--q", "-0.1"], "the following arguments are required"),
+    (["steady", "--q", "-0.1"], "--sigma, --fr-inv, --alpha-v required (or a top in SI units"),
 ])
 def test_errors_are_one_line(argv, fragment, capsys):
-    if "required" in fragment or "comma list" in fragment:   # argparse's own errors exit at parsing
+    if "arguments are required" in fragment or "comma list" in fragment:   # argparse's own errors exit at parsing
         with pytest.raises(SystemExit) as exc:
             main(argv)
         assert exc.value.code == 2

@@ -164,7 +164,7 @@ def test_cli(capsys):
     assert main(["threshold", "sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5"]) == 0
     assert capsys.readouterr().out.startswith("sigma = 1.08577777777777")
     assert main(["threshold", "spin", "--mass", "1"]) == 2
-    assert "needs --preset" in capsys.readouterr().err
+    assert "--mass given without --radius" in capsys.readouterr().err
 
 
 def test_cli_neutral(tmp_path, capsys):

@@ -11,7 +11,7 @@ from ..grids.ranges import parse_values
 from ..parameters import DEFAULT_MU, DOMAIN
 
 __all__ = ["add_parameter_flags", "parameter_values", "parameter_help", "add_model_flag", "FLAGS",
-           "PARAMETER_HELP"]
+           "PARAMETER_HELP", "add_top_arguments", "top_from_args", "top_parameters", "apply_top", "TOP_FLAGS"]
 
 
 #: parameter name -> CLI flag
@@ -91,3 +91,217 @@ def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[s
             continue
         out[name] = parse_values(v, name=FLAGS[name]) if isinstance(v, str) else v
     return out
+
+
+# ------------------------------------------------------------------------------------------
+# a real top in SI units instead of the nondimensional parameters (docs/your_top.md)
+# ------------------------------------------------------------------------------------------
+#: the SI data of a top: Top's constructor keywords, in its order
+TOP_FLAGS = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
+TOP_HELP = {"mass": "mass M, kg", "radius": "radius R of the sphere, m",
+            "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
+            "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
+            "inertia_axial": "axial moment of inertia C, kg m^2"}
+#: the parameters a top gives whatever the spin (eq. 3), and those its spin gives (eqs. 3, 7)
+TOP_PARAMETERS = ("q", "sigma", "mu")
+SPIN_PARAMETERS = ("fr_inv", "alpha_v", "alpha_k")
+
+
+def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bool = False) -> None:
+    """The options of a real top in SI units: ``--preset``, ``--top FILE.toml``, ``--mass``,
+    ``--radius``, ``--com-offset``, ``--inertia-transverse``, ``--inertia-axial``, ``--g``,
+    ``--mu-v``, ``--mu-k``, and (``spin``) ``--spin`` with ``--unit``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+    spin : bool
+        Add ``--spin`` and ``--unit`` (the command needs fr_inv, and alpha_v for the sliding model).
+    grid : bool
+        ``--spin`` takes a range or list (an atlas, a validation) instead of one number.
+    """
+    from ..top import PRESETS, SPIN_UNITS
+
+    g = p.add_argument_group("a real top in SI units (instead of --q, --sigma, --mu"
+                             + (", --fr-inv and, with --mu-v, --alpha-v)" if spin else ")"))
+    g.add_argument("--preset", choices=list(PRESETS),
+                   help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1, as its simulations) or "
+                        "table1_measured (Table 1 taken literally)")
+    g.add_argument("--top", dest="top_file", metavar="FILE.toml",
+                   help="a TOML file with a [top] table: mass, radius, com_offset, inertia_transverse, "
+                        "inertia_axial (SI), optional g, mu_v, mu_k, or preset = \"table1\"")
+    for name in TOP_FLAGS:
+        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
+    g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2",
+                   help="gravity (default 9.80665)")
+    g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
+                   help="viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
+                        "(default: none, --alpha-v given)")
+    g.add_argument("--mu-k", dest="mu_k", type=float, metavar="MU_K",
+                   help="Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)")
+    if spin:
+        g.add_argument("--spin", metavar="VALUES" if grid else "VALUE",
+                       help="spin rate Omega of the top, in --unit: "
+                            + (_VALUES["values"] if grid else _VALUES["value"]))
+        g.add_argument("--unit", choices=list(SPIN_UNITS), default=None, help="unit of --spin (default rad/s)")
+    p.set_defaults(_top_spin=spin, _top_grid=grid)
+
+
+def _top_source(args: argparse.Namespace) -> str:
+    """How the command line gave its top, for messages: ``--preset table1``, ``--top F``, ``--mass``."""
+    if getattr(args, "preset", None):
+        return f"--preset {args.preset}"
+    if getattr(args, "top_file", None):
+        return f"--top {args.top_file}"
+    given = [n for n in TOP_FLAGS if getattr(args, n, None) is not None]
+    return "--" + given[0].replace("_", "-") if given else "the top"
+
+
+def top_from_args(args: argparse.Namespace):  # -> Top | None
+    """The :class:`stability.Top` of :func:`add_top_arguments`' options, or None if none was given.
+
+    Raises
+    ------
+    InputError
+        Two ways of giving the top at once, missing SI data, or ``--g``/``--mu-v``/``--mu-k``
+        without a top (one line, naming the options).
+    """
+    from dataclasses import replace
+
+    from ..errors import InputError
+    from ..top import Top
+
+    preset, path = getattr(args, "preset", None), getattr(args, "top_file", None)
+    si = [n for n in TOP_FLAGS if getattr(args, n, None) is not None]
+    extra = {k: getattr(args, a) for k, a in (("g", "gravity"), ("mu_v", "mu_v"), ("mu_k", "mu_k"))
+             if getattr(args, a, None) is not None}
+    flag = {"g": "--g", "mu_v": "--mu-v", "mu_k": "--mu-k"}
+    ways = ([f"--preset {preset}"] if preset else []) + ([f"--top {path}"] if path else []) \
+        + ([", ".join("--" + n.replace("_", "-") for n in si)] if si else [])
+    if len(ways) > 1:
+        raise InputError(f"{' and '.join(ways)} conflict: give the top one way (--preset, --top FILE or its SI data)")
+    if preset:
+        return getattr(Top, preset)(**extra)
+    if path:
+        top = Top.from_toml(path)
+        clash = [flag[k] for k in extra if getattr(top, k) is not None and k != "g"]
+        if clash or "g" in extra:
+            raise InputError(f"--top {path} and {', '.join(clash or ['--g'])} conflict: give g, mu_v, mu_k in the file")
+        return replace(top, **extra) if extra else top
+    if si:
+        missing = [n for n in TOP_FLAGS if n not in si]
+        if missing:
+            raise InputError(f"{', '.join('--' + n.replace('_', '-') for n in si)} given without "
+                             f"{', '.join('--' + n.replace('_', '-') for n in missing)}: a top in SI units needs all "
+                             "five (or --top FILE, or --preset)")
+        return Top(*(getattr(args, n) for n in TOP_FLAGS), **extra)
+    if extra:
+        raise InputError(f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., "
+                         "--top FILE or --preset)")
+    return None
+
+
+def top_parameters(top, spin=None, unit: str = "rad/s", alpha_v=None, *,  # noqa: ANN001
+                   names: Iterable[str] = (*TOP_PARAMETERS, "fr_inv", "alpha_v")) -> dict[str, object]:
+    """The nondimensional keywords of a top at a spin: ``q, sigma, mu`` (eq. 3) and, with a spin,
+    ``fr_inv`` (eq. 3) and ``alpha_v`` (eq. 7, from the top's ``mu_v`` or the ``alpha_v`` given),
+    ``alpha_k`` (eq. 7, with ``mu_k``); only those in ``names``.
+
+    The formulas are :meth:`stability.Top.nondimensional`'s; this selects and, without a spin,
+    keeps the spin-independent ones.
+    """
+    names = tuple(names)
+    if spin is None:
+        out = {"q": top.q, "sigma": top.sigma, "mu": top.mu}
+    else:
+        out = top.nondimensional(spin, unit, alpha_v=alpha_v if "alpha_v" in names else None)
+    return {k: v for k, v in out.items() if k in names}
+
+
+def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bool = True,
+              skip: Iterable[str] = (), required: Iterable[str] = ()):  # -> Top | None
+    """Fill ``args``' nondimensional parameters from the top of :func:`add_top_arguments`.
+
+    With a top, ``q``, ``sigma``, ``mu`` come from it and, when ``spin_needed``, ``fr_inv`` (and
+    ``alpha_v`` with ``--mu-v``, ``alpha_k`` with ``--mu-k``) from ``--spin`` in ``--unit``; a
+    nondimensional flag given beside the value the top gives is refused, naming both. Without a
+    top, ``--spin`` is refused and an unset ``mu`` takes :data:`stability.parameters.DEFAULT_MU`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    names : iterable of str
+        The nondimensional parameters the command takes (keys of :data:`FLAGS`, and ``alpha_k``).
+    spin_needed : bool
+        The command needs the spin-dependent parameters (False: e.g. ``fr_inv`` is traced).
+    skip : iterable of str
+        Parameters the command does not fix (traced ones), left alone.
+    required : iterable of str
+        Parameters that must have a value in the end (from their flag or the top); a missing
+        one is an error naming its flag and the top's options.
+
+    Returns
+    -------
+    Top or None
+    """
+    from ..errors import InputError
+
+    names = [n for n in names if n not in tuple(skip)]
+    top = top_from_args(args)
+    spin = getattr(args, "spin", None)
+    if spin is None and getattr(args, "unit", None) is not None:
+        raise InputError(f"--unit {args.unit} is the unit of --spin: give --spin too (with a top)")
+    if top is None:
+        if spin is not None:
+            raise InputError(f"--spin {spin} needs a top: give --mass ... (SI), --top FILE.toml or --preset")
+        if "mu" in names and getattr(args, "mu", None) is None:
+            args.mu = DEFAULT_MU
+        _require(args, required)
+        return None
+    source = _top_source(args)
+    given = [n for n in names if n in TOP_PARAMETERS and getattr(args, n, None) is not None]
+    if spin_needed:
+        given += [n for n in ("fr_inv", "alpha_k") if n in names and getattr(args, n, None) is not None
+                  and (n == "fr_inv" or top.mu_k is not None)]
+        if top.mu_v is not None and "alpha_v" in names and getattr(args, "alpha_v", None) is not None:
+            raise InputError(f"--mu-v {top.mu_v:g} and --alpha-v {args.alpha_v} conflict: alpha_v = mu mu_v g / "
+                             "Omega follows from mu_v and the spin (eq. 7); give one of them")
+    if given:
+        n = given[0]
+        flag = FLAGS.get(n, "--" + n.replace("_", "-"))
+        raise InputError(f"{source} and {flag} {getattr(args, n)} conflict: the top gives {n} "
+                         f"(eqs. 3, 7); give the top or {flag}, not both")
+    if spin_needed:
+        if spin is None:
+            raise InputError(f"{source} needs --spin VALUE (with --unit): the spin rate gives fr_inv "
+                             "= g / (Omega^2 R) and alpha_v = mu mu_v g / Omega")
+        value = parse_values(spin, name="--spin") if isinstance(spin, str) else spin
+        if not getattr(args, "_top_grid", False) and not isinstance(value, float):
+            raise InputError(f"--spin = {spin!r} must be one number here")
+        from ..top import SPIN_UNITS
+
+        unit = getattr(args, "unit", None) or "rad/s"
+        if unit not in SPIN_UNITS:
+            raise InputError(f"--unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+        alpha_v = getattr(args, "alpha_v", None)
+        if isinstance(alpha_v, str):
+            alpha_v = parse_values(alpha_v, name=FLAGS["alpha_v"])
+        nd = top_parameters(top, value, unit, alpha_v, names=names)
+    else:
+        if spin is not None:
+            raise InputError(f"--spin {spin} is not used here (no spin-dependent parameter is fixed)")
+        nd = top_parameters(top, names=names)
+    for k, v in nd.items():
+        setattr(args, k, v)
+    _require(args, required)
+    return top
+
+
+def _require(args: argparse.Namespace, required: Iterable[str]) -> None:
+    from ..errors import InputError
+
+    missing = [FLAGS.get(n, "--" + n.replace("_", "-")) for n in required if getattr(args, n, None) is None]
+    if missing:
+        spin = getattr(args, "_top_spin", False)
+        raise InputError(f"{', '.join(missing)} required (or a top in SI units: --mass ... / --top FILE.toml / "
+                         f"--preset{' with --spin' if spin else ''})")

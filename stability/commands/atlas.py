@@ -16,7 +16,8 @@ from ..models import DEPRECATED_NAMES, MODELS
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..errors import Interrupted
 from .. import interrupts
-from ._args import add_model_flag, add_parameter_flags, parameter_values
+from ..parameters import DEFAULT_MU
+from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -45,8 +46,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
                     "(--alpha-v then required).")
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
-                        extra={"alpha_v": " (sliding model only)"})
+    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), defaults={"mu": None},
+                        extra={"alpha_v": " (sliding model only)", "mu": f" (default {DEFAULT_MU})"}
+                        | {n: " (required unless a top is given)" for n in ("q", "fr_inv", "sigma")})
+    add_top_arguments(p, spin=True, grid=True)
     p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required")
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
     p.add_argument("--mask-unphysical", action="store_true",
@@ -114,8 +117,8 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     if args.plot:
         raise ValueError("--plot is not available with --chunks (the grid may not fit in memory); "
                          "plot a slice of the written file instead")
-    ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
-               chunks=parse_chunks(args.chunks), **values)
+    ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
+                                chunks=parse_chunks(args.chunks), **values), args)
     store = parts_directory(out)
     _check_space(out, args.model, values)
     if args.resume and store.is_dir():
@@ -179,6 +182,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
 
+    _apply_top(args)
     out = check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
@@ -189,7 +193,7 @@ def run(args: argparse.Namespace) -> int:
     if args.workers is not None or args.scheduler is not None or args.resume:
         raise ValueError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
     _check_space(out, args.model, values)
-    ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values)
+    ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values), args)
     if args.plot:
         from ..plotting import save_figure, style
 
@@ -213,6 +217,41 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"wrote {args.plot}")
     return 0
+
+
+def _apply_top(args: argparse.Namespace) -> None:
+    """A top in SI units (``--mass ... --spin``): its q, sigma, mu and the fr_inv (and alpha_v)
+    of its spin. A grid of spins is a grid of fr_inv with the spin as a coordinate along it; the
+    alpha_v of a top with ``--mu-v`` changes along that grid too (eq. 7), which an atlas (one
+    dimension per parameter) cannot hold: refused, give ``--alpha-v`` instead (held fixed)."""
+    import numpy as np
+
+    names = [n for n in ("q", "fr_inv", "sigma", "alpha_v", "mu") if n in MODELS[args.model].parameters]
+    top = apply_top(args, names, required=("q", "fr_inv", "sigma"))
+    if top is not None and np.ndim(args.fr_inv) == 1 and np.ndim(getattr(args, "alpha_v", None)) == 1:
+        raise ValueError(f"--spin {args.spin} (a grid) and --mu-v {top.mu_v:g}: alpha_v = mu mu_v g / Omega would "
+                         "change along the spin grid, and an atlas holds one dimension per parameter; give "
+                         "--alpha-v (held fixed) instead of --mu-v, or one spin")
+
+
+def _spin_coordinate(ds, args: argparse.Namespace):  # noqa: ANN001, ANN202
+    """With a top and its spin: the spin in ``--unit`` as a coordinate along ``fr_inv`` (or an
+    attribute for one spin), and the top's SI data in the attributes."""
+    import numpy as np
+
+    from ..grids.ranges import parse_values
+
+    if getattr(args, "spin", None) is None:
+        return ds
+    spin = parse_values(args.spin, name="--spin")
+    unit = args.unit or "rad/s"
+    attrs = {"long_name": "spin rate Omega of the top", "units": unit,
+             "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    if np.ndim(spin) == 1:
+        ds = ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
+    else:
+        ds.attrs.update(spin=float(spin), spin_unit=unit)
+    return ds
 
 
 def _check_plot_format(path: str) -> None:

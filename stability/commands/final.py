@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
-from .steady import FLAG_NAMES, add_top_flags
+from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
 __all__ = ["register", "run"]
 
@@ -47,6 +47,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe final``."""
     from ..steady.final import final_state
 
+    apply_top_flags(args)
     out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
     end = final_state(omega=args.omega, k=args.k, velocity=args.velocity, q=args.q, sigma=args.sigma,
                       fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu, simulation=args.simulation,

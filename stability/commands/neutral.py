@@ -7,7 +7,7 @@ import argparse
 from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
-from ._args import FLAGS, add_model_flag, add_parameter_flags
+from ._args import FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, apply_top
 
 __all__ = ["register", "run"]
 
@@ -34,6 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
                         extra={"mu": f" (default {DEFAULT_MU} unless traced)",
                                "alpha_v": " (sliding model only)"})
+    add_top_arguments(p, spin=True)
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
     p.add_argument("-o", "--output", metavar="FILE.nc", help="netCDF file to write (default: print only)")
@@ -47,6 +48,9 @@ def run(args: argparse.Namespace) -> int:
 
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     model = get_model(args.model)
+    traced = (args.x, args.y)
+    apply_top(args, [n for n in FLAGS if n in model.parameters],
+              spin_needed="fr_inv" not in traced, skip=traced)
     fixed = {}
     for name in model.parameters:
         v = getattr(args, name)

@@ -9,7 +9,8 @@ import sys
 
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
-from ._args import add_model_flag, add_parameter_flags
+from ..parameters import DEFAULT_MU
+from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top
 
 __all__ = ["register", "run"]
 
@@ -18,6 +19,8 @@ __all__ = ["register", "run"]
 #: tests/test_cli.py checks them against stability.nonlinear.integrators and simulate()'s defaults
 _METHODS = ("auto", "dopri5", "rk4", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 _SLIP_SCALE = 1e-4
+#: the nondimensional parameters simulate takes, and those needed without a top
+_NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
 
 
 def _vec(text: str) -> list[float]:
@@ -44,9 +47,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--velocity", type=_vec, default=None, metavar="V1,V2",
                    help="initial velocity of the sphere's centre O, units of Omega R (sliding only; "
                         "default 0,0)")
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
-                        required=("q", "fr_inv", "sigma"), kind="value", defaults={"alpha_k": 0.0},
-                        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only)"})
+    add_parameter_flags(p, _NAMES, kind="value", defaults={"mu": None},
+                        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)",
+                               "mu": f" (default {DEFAULT_MU})"}
+                        | {n: " (required unless a top is given)" for n in _REQUIRED})
+    add_top_arguments(p, spin=True)
     p.add_argument("--friction", choices=("isotropic", "componentwise"), default="isotropic",
                    help="Coulomb law: isotropic (along the slip, eq. 7) or componentwise (per component, "
                         "eq. 16)")
@@ -96,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
     from ..nonlinear.runs import check_run_memory, simulate
     from ..resources import format_bytes, simulate_file_bytes
 
+    apply_top(args, _NAMES if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"), required=_REQUIRED)
     out = check_output_path(args.output, overwrite=args.overwrite)
     n = _output_times(args.t_end, args.dt)
     if n is not None:
@@ -108,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
     show = args.progress if args.progress is not None else sys.stderr.isatty()
     ds = simulate(args.model, t_end=args.t_end, omega=args.omega, k=args.k, velocity=args.velocity,
                   q=args.q, fr_inv=args.fr_inv, sigma=args.sigma, alpha_v=args.alpha_v,
-                  alpha_k=args.alpha_k, mu=args.mu, friction=args.friction, normal=args.normal,
+                  alpha_k=0.0 if args.alpha_k is None else args.alpha_k, mu=args.mu, friction=args.friction, normal=args.normal,
                   slip_scale=args.slip_scale, method=args.method, rtol=args.rtol, atol=args.atol,
                   dt=args.dt, step=args.step, progress=show)
     write_dataset(ds, out, overwrite=args.overwrite)

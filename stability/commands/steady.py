@@ -7,17 +7,29 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
+from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
-from ._args import add_parameter_flags
+from ._args import add_parameter_flags, add_top_arguments, apply_top
 
-__all__ = ["register", "run", "FLAG_NAMES"]
+__all__ = ["register", "run", "FLAG_NAMES", "add_top_flags", "apply_top_flags"]
 
+
+#: the parameters of the sliding top's steady states, and those needed without a top
+_NAMES, _REQUIRED = ("q", "sigma", "fr_inv", "alpha_v", "mu"), ("q", "sigma", "fr_inv", "alpha_v")
 
 
 def add_top_flags(p: argparse.ArgumentParser) -> None:
-    """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required) and ``--mu`` (single numbers)."""
-    add_parameter_flags(p, ("q", "sigma", "fr_inv", "alpha_v", "mu"), kind="value",
-                        required=("q", "sigma", "fr_inv", "alpha_v"))
+    """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required unless a top is given) and
+    ``--mu`` (single numbers), or a real top in SI units with ``--spin`` (:func:`add_top_arguments`)."""
+    add_parameter_flags(p, _NAMES, kind="value", defaults={"mu": None},
+                        extra={n: " (required unless a top is given)" for n in _REQUIRED}
+                        | {"mu": f" (default {DEFAULT_MU})"})
+    add_top_arguments(p, spin=True)
+
+
+def apply_top_flags(args: argparse.Namespace) -> None:
+    """The nondimensional parameters from the flags or from the top and its spin (:func:`apply_top`)."""
+    apply_top(args, _NAMES, required=_REQUIRED)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -53,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("--jellett is not used with --branch (the branch runs over J); give one of them")
     if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
         raise ValueError("--jellett-max and --max-step are only used with --branch")
+    apply_top_flags(args)
     out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
     top = dict(q=args.q, sigma=args.sigma, fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu)
     if args.branch:

@@ -7,15 +7,9 @@ import argparse
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..top import Top
 from ..parameters import DEFAULT_MU
-from ._args import FLAGS, add_model_flag, add_parameter_flags
+from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, top_from_args
 
 __all__ = ["register", "run"]
-
-_TOP_FLAGS = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
-_TOP_HELP = {"mass": "mass M, kg", "radius": "radius R of the sphere, m",
-             "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
-             "inertia_transverse": "transverse moment of inertia about G, kg m^2",
-             "inertia_axial": "axial moment of inertia C, kg m^2"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -36,18 +30,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
     p.add_argument("--all", action="store_true", help="list every threshold in the range (default: the one "
                                                       "threshold, an error if there are several)")
-    g = p.add_argument_group("a real top (PARAM = spin), SI units")
-    g.add_argument("--preset", choices=["table1", "table1_measured"],
-                   help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1, as its simulations) or "
-                        "table1_measured (Table 1 taken literally)")
-    for name in _TOP_FLAGS:
-        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE",
-                       help=_TOP_HELP[name])
-    g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2",
-                   help="gravity (default 9.80665)")
-    g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
-                   help="viscous friction coefficient mu_v, s/m (alpha_v = mu mu_v g / Omega then scales "
-                        "as 1/spin; default: none, --alpha-v held fixed)")
+    add_top_arguments(p, spin=False)
+    g = p.add_argument_group("PARAM = spin")
     g.add_argument("--orientation", choices=["upright", "inverted", "both"], default=None,
                    help="which state: upright (as given), inverted (q -> -q) or both (default: both)")
     p.set_defaults(func=run)
@@ -56,35 +40,29 @@ def register(sub: argparse._SubParsersAction) -> None:
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
     def flag(name: str) -> str:
-        return "--g" if name == "gravity" else FLAGS.get(name, "--" + name.replace("_", "-"))
+        return {"gravity": "--g", "top_file": "--top"}.get(name, FLAGS.get(name, "--" + name.replace("_", "-")))
 
-    top_given = [n for n in (*_TOP_FLAGS, "gravity") if getattr(args, n) is not None]
+    top_given = [n for n in (*TOP_FLAGS, "gravity", "mu_k") if getattr(args, n) is not None]
     if args.param == "spin":
         unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
         unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
         if unused:
             raise ValueError(f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
                              "mu come from --preset or its SI data; the spin rate is what is searched)")
-        if args.preset and top_given:
-            raise ValueError(f"--preset {args.preset} and {', '.join(flag(n) for n in top_given)} "
-                             "conflict: give a preset or the top's SI data, not both")
         return
     unused = [flag(n) for n in top_given]
-    unused += [f"--{n.replace('_', '-')}" for n in ("preset", "mu_v", "orientation") if getattr(args, n) is not None]
+    unused += [flag(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
         raise ValueError(f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
                          f"'tippe threshold {args.param}' takes the nondimensional parameters")
 
 
 def _top(args: argparse.Namespace) -> Top:
-    if args.preset:
-        return getattr(Top, args.preset)(mu_v=args.mu_v)
-    missing = [n for n in _TOP_FLAGS if getattr(args, n) is None]
-    if missing:
-        raise ValueError("tippe threshold spin needs --preset or " + ", ".join(
-            "--" + n.replace("_", "-") for n in missing))
-    return Top(*(getattr(args, n) for n in _TOP_FLAGS), g=9.80665 if args.gravity is None else args.gravity,
-               mu_v=args.mu_v)
+    top = top_from_args(args)
+    if top is None:
+        raise ValueError("tippe threshold spin needs a top: --preset, --top FILE.toml or " + ", ".join(
+            "--" + n.replace("_", "-") for n in TOP_FLAGS))
+    return top
 
 
 def run(args: argparse.Namespace) -> int:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
-from ._args import add_model_flag, add_parameter_flags, parameter_values
+from ..parameters import DEFAULT_MU
+from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -42,8 +43,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "fit growth rate and frequency, and print them beside the predictions. "
                                    "Default model: sliding (--alpha-v then required).")
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="model (nonlinear, and its linearisation)")
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), required=("q", "fr_inv", "sigma"),
-                        extra={"alpha_v": " (sliding only; > 0 there)"})
+    add_parameter_flags(p, _COORDS, defaults={"mu": None},
+                        extra={"alpha_v": " (sliding only; > 0 there)", "mu": f" (default {DEFAULT_MU})"}
+                        | {n: " (required unless a top is given)" for n in ("q", "fr_inv", "sigma")})
+    add_top_arguments(p, spin=True, grid=True)
     p.add_argument("--amplitude", type=float, default=1e-4, metavar="A",
                    help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)")
     p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
@@ -57,6 +60,8 @@ def run(args: argparse.Namespace) -> int:
     from ..grids.netcdf import check_output_path, write_dataset
     from ..nonlinear.validation import validate
 
+    apply_top(args, _COORDS if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"),
+              required=("q", "fr_inv", "sigma"))
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     ds = validate(args.model, amplitude=args.amplitude, **values)

@@ -59,7 +59,7 @@ Polynomial building blocks (Horner's scheme, the quadratic formula, deflation, t
 square root and modulus, the real cube root) come from :mod:`stability.linear.roots`, where
 they are written once for every engine.
 
-Executions. Every loop is a :class:`continuation.jit.Twin`: its source, which loops over
+Executions. Every loop is a :class:`stability.jit.Twin`: its source, which loops over
 ``prange`` (the builtin ``range`` here) and indexes ``x[i][j]`` and ``len(x)`` only, runs on
 Python lists (interpreted) or on numpy arrays (compiled, serial or parallel; numba's
 ``prange`` in the parallel copy). The drivers choose the execution by
@@ -106,7 +106,7 @@ SERIAL_BELOW = 512
 COMPILE_SECONDS = 10.0
 
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
-#: serially, numba's ``prange`` in a parallel compilation (:class:`continuation.jit.Twin`)
+#: serially, numba's ``prange`` in a parallel compilation (:class:`stability.jit.Twin`)
 prange = range
 
 _U = 2.0**-53
@@ -122,7 +122,7 @@ _CB0, _CB1 = 0.3333211994662179, 0.05011247842998644
 _CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
 
 #: options of the compiled loops (numba's disk cache; the arithmetic options are
-#: :data:`continuation.jit.OPTIONS`)
+#: :data:`stability.jit.OPTIONS`)
 _CACHE = dict(cache=True)
 
 
@@ -558,7 +558,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     degree ``n``) and the domain bounds ``applies`` (:func:`stability.parameters.domain_applies`).
 
     Closures over ``formula``, ``n`` and ``applies``, run interpreted or compiled
-    (:class:`continuation.jit.Twin`, nothing is compiled here) with ``cache=True``: numba keys a
+    (:class:`stability.jit.Twin`, nothing is compiled here) with ``cache=True``: numba keys a
     closure's disk cache by its captured values, pickled (the formula by reference), so each
     model's loops are compiled once per machine. The loops call the kernel's helpers as globals
     (never captured: a captured ``njit`` dispatcher pickles differently in every process, and

@@ -27,7 +27,7 @@ import numpy as np
 
 from ..models import LinearModel, get_model
 from ..parameters import DEFAULT_MU, check_domain, check_flag
-from ..products import FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE
+from ..products import MARGINAL, STABLE, UNSTABLE
 from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
 

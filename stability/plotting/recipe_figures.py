@@ -99,7 +99,7 @@ def _steady_figure(recipe: Recipe, datasets: dict[str, xr.Dataset],
     """The steady-state figures (stability.recipes' bifurcation, classes and settle kinds)."""
     if recipe.kind == "bifurcation":
         fig, axes = panels_or_new(axes, 1, (7.4, 4.8))
-        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin_rpm",
+        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin",
                          ax=axes[0])
         return fig, axes
     if recipe.kind == "classes":

@@ -33,7 +33,8 @@ UNSTABLE_STYLE = dict(linestyle="--", linewidth=1.3, color="C3")
 #: abscissae a bifurcation diagram can use: variable of the branch -> axis label
 X_AXES = {"jellett": "Jellett's integral J (units A0 Omega)",
           "upright_equivalent_spin": "equivalent upright spin J / (sigma (1 + q)) (units of Omega)",
-          "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J"}
+          "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J",
+          "spin": "equivalent upright spin ({units}): the launch spin of an upright top with this J"}
 
 #: marker fill style of a steady state by its stability flag (0 stable, 1 marginal, 2 unstable)
 FILL_STYLES = {0: "full", 1: "left", 2: "none"}
@@ -182,29 +183,46 @@ def _pieces(x: np.ndarray, y: np.ndarray, stable: np.ndarray, marginal: np.ndarr
             start = i
 
 
-def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, runs: xr.Dataset | None = None,
-                     x: str = "jellett", ax: Axes | None = None) -> tuple[Figure, Axes]:
+def plot_bifurcation(branch: xr.Dataset | dict, *, vertical: xr.Dataset | None = None, runs: xr.Dataset | None = None,
+                     x: str | None = None, launch: object = None, ax: Axes | None = None) -> tuple[Figure, Axes]:
     """Tilt of every steady state against Jellett's integral (or an equivalent spin).
+
+    The diagram of a real top in the user's spin unit is
+    ``plot_bifurcation(stability.bifurcation_diagram(top, unit="rev/s"), launch=result)``.
 
     Parameters
     ----------
-    branch : xarray.Dataset
+    branch : xarray.Dataset or dict
         :func:`stability.steady_branch` (``tilt``, ``stability``, ``kind`` over ``point``,
-        and the abscissa ``x``).
+        and the abscissa ``x``), or the dict of :func:`stability.bifurcation_diagram`
+        (``"branch"``, ``"vertical"``, ``"runs"``; abscissa ``spin`` in its unit).
     vertical : xarray.Dataset, optional
         The vertical states along the same abscissa: ``x``, ``stability_upright``,
         ``stability_inverted`` over one dimension (the bifurcation recipe's ``*_vertical.nc``).
     runs : xarray.Dataset, optional
         End points of nonlinear runs: ``x`` and ``end_tilt`` over ``run`` (optionally
         ``predicted_tilt``).
-    x : str
-        The abscissa: a key of :data:`X_AXES` present in the datasets.
+    x : str, optional
+        The abscissa: a key of :data:`X_AXES` present in the datasets (default ``"spin"`` when
+        the branch has it, else ``"jellett"``).
+    launch : object, optional
+        A launch to mark, duck-typed: ``spin`` (rad/s) and ``end_tilt`` (degrees) (the result of
+        ``stability.launch``); drawn at its spin in the abscissa's unit (``x = "spin"`` only),
+        a vertical line at the launch's equivalent upright spin (with its ``tilt`` in degrees when
+        it has one, :func:`_mark_launch`) and a marker at the tilt where its run ends.
     ax : matplotlib.axes.Axes, optional
 
     Returns
     -------
     (Figure, Axes)
     """
+    if isinstance(branch, dict):
+        vertical = branch.get("vertical") if vertical is None else vertical
+        runs = branch.get("runs") if runs is None else runs
+        branch = branch["branch"]
+    if x is None:
+        x = "spin" if "spin" in branch else "jellett"
+    units = str(branch[x].attrs.get("units", "")) if x in branch else ""
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     xs = branch[x].values
     tilt = branch.tilt.values
@@ -238,7 +256,9 @@ def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, 
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
                 ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), xytext=(-210, -70),
                             textcoords="offset points", fontsize=7, arrowprops={"arrowstyle": "->", "linewidth": 0.6})
-    ax.set_xlabel(X_AXES.get(x, x), fontsize=9)
+    if launch is not None:
+        _mark_launch(ax, launch, x, units, float(branch.attrs.get("q", float("nan"))))
+    ax.set_xlabel(X_AXES.get(x, x).format(units=units), fontsize=9)
     ax.set_ylabel("tilt of the axis (deg): 0 upright, 180 inverted")
     ax.set_ylim(-8, 188)
     ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
@@ -248,6 +268,34 @@ def plot_bifurcation(branch: xr.Dataset, *, vertical: xr.Dataset | None = None, 
                  f"{a.get('alpha_v', float('nan')):g}", fontsize=9)
     ax.legend(fontsize=7, loc="best")
     return fig, ax
+
+
+def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None:
+    """A launch on the diagram: a dotted vertical line at its equivalent upright spin, a marker at
+    its end tilt.
+
+    A launch spun at ``n`` about its own axis tilted by ``theta`` has Jellett's integral
+    ``J = L . (G - Q) = C n R (cos theta + q)`` (angular momentum ``C n k``; from the contact
+    point Q = O - R K to G = O + q R k), and an upright launch at ``n'`` has ``C n' R (1 + q)``:
+    its equivalent upright spin is ``n (cos theta + q) / (1 + q)``. Without a ``tilt`` attribute
+    the launch is drawn at its spin (1.7e-4 relative to the right of it at 1 degree, q = -0.1).
+    """
+    import math
+
+    from ..errors import InputError
+    from ..top import SPIN_UNITS
+
+    if x != "spin" or units not in SPIN_UNITS:
+        raise InputError(f"a launch is drawn on a diagram against the spin (x = 'spin' with a spin unit); this one "
+                         f"is against {x!r}{f' ({units})' if units else ''}")
+    spin = float(getattr(launch, "spin")) / SPIN_UNITS[units]
+    tilt = getattr(launch, "tilt", None)
+    if tilt is not None and math.isfinite(q):
+        spin *= (math.cos(math.radians(float(tilt))) + q) / (1.0 + q)
+    end = float(getattr(launch, "end_tilt"))
+    ax.axvline(spin, color="C2", linestyle=":", linewidth=1.2, label=f"launch: {spin:.4g} {units}", zorder=4)
+    ax.plot([spin], [end], marker="P", markersize=11, color="C2", markeredgecolor="k", linestyle="none",
+            zorder=7, label=f"end of the launch's run: {end:.1f} deg")
 
 
 _CLASS_COLOURS = ListedColormap(["white", "#9ecae1", "#fdae6b", "#a1d99b"])

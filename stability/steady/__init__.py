@@ -17,6 +17,8 @@ module                 job
 ``final``              :func:`~stability.steady.final.final_state`
 ``classes``            :func:`~stability.steady.classes.top_class`,
                        :func:`~stability.steady.classes.class_atlas`
+``diagram``            :func:`~stability.steady.diagram.bifurcation_diagram` (a real top,
+                       against the equivalent upright spin in its unit)
 =====================  ===================================================================
 
 Imports layers 0-3 only. This ``__init__`` imports nothing (the public names are re-exported

@@ -1,0 +1,176 @@
+"""The bifurcation diagram of a real top: every steady state against the equivalent upright
+spin, in the user's spin unit (docs/your_top.md, docs/steady_states.md).
+
+The abscissa is the *equivalent upright spin*: the spin of an upright launch
+(``omega = Omega K``) with the same Jellett integral. The tilted family is traced once, at the
+``fr_inv`` of a reference spin ``Omega_ref`` (:data:`REFERENCE_RPM`), with ``J`` in units of
+``A0 Omega_ref``. Why one trace serves every spin: in units of ``A0 Omega_ref`` the steady
+states of a level ``J`` at ``fr_inv(Omega_ref)`` are those of the level ``J Omega_ref / Omega``
+at ``fr_inv(Omega)`` rescaled in time, because ``fr_inv ~ Omega^-2`` is exactly the
+rescaling of time (Sec. 2, eq. 3); an upright launch at ``Omega`` has
+``J = sigma (1 + q) Omega / Omega_ref`` (:func:`stability.steady.family.upright_jellett`), so the
+equivalent upright spin of a state of level ``J`` is ``J / (sigma (1 + q)) Omega_ref``. The
+viscous parameter ``alpha_v ~ Omega^-1`` (eq. 7) does not rescale with time in the same way;
+the positions of the steady states do not depend on it (no slip, no dissipation), and the
+stability of the vertical states does not either for ``alpha_v > 0`` (the threshold of the
+sliding model is independent of ``alpha_v``); the verdicts of the tilted states are those at
+the ``alpha_v`` of the reference spin, recorded in the attributes.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ..errors import InputError
+from ..top import SPIN_UNITS, Top
+
+__all__ = ["bifurcation_diagram", "REFERENCE_RPM"]
+
+#: the diagram's reference spin: J in units of A0 Omega_ref (any value gives the same figure)
+REFERENCE_RPM = 400.0
+
+
+def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, runs: Sequence[float] = (),
+                        tilt: float = 1.0, paper_run: bool = False, spin_range: Sequence[float] | None = None,
+                        points: int = 221) -> dict[str, xr.Dataset]:
+    """The bifurcation diagram of a top: its steady states against the equivalent upright spin.
+
+    Parameters
+    ----------
+    top : Top
+        The top (SI units).
+    unit : {"rad/s", "rpm", "rev/s", ...}
+        Spin unit of the abscissa, of ``runs`` and of ``spin_range``
+        (:data:`stability.top.SPIN_UNITS`).
+    alpha_v : float, optional
+        The viscous parameter when the top has no ``mu_v``; with ``mu_v``, the ``alpha_v`` of the
+        reference spin (eq. 7). Default 0.5 when neither is given (the paper's value; the
+        diagram's states and the vertical verdicts do not depend on it, module docstring).
+    runs : sequence of float
+        Launch spins (in ``unit``) of nonlinear runs launched upright, axis tilted by ``tilt``
+        degrees, integrated until they settle (:func:`stability.steady.final.settle`): their
+        end tilts are drawn on the diagram.
+    tilt : float
+        Initial tilt of those runs, degrees.
+    paper_run : bool
+        Also the paper's Fr^-1 = 0.3 run of Sec. 3(ii) from its printed state (the Table 1 top).
+    spin_range : (lo, hi), optional
+        The abscissa's range in ``unit`` (default: 0.75 x the lowest and 1.1 x the highest of
+        the branch points and ``runs``).
+    points : int
+        Levels at which the vertical states' stability is evaluated (branch points added).
+
+    Returns
+    -------
+    dict of xarray.Dataset
+        ``"branch"`` (:func:`stability.steady.branch.steady_branch` with the abscissa ``spin``),
+        ``"vertical"`` (``stability_upright``, ``stability_inverted`` on a grid of ``spin``,
+        :func:`stability.steady_states`), ``"runs"`` (``launch_spin``, ``spin``, ``predicted_tilt``,
+        ``end_tilt``, ``t_end``, ``settled``, ``paper_run`` over ``run``). ``spin`` has
+        ``units = unit``; every dataset has the attributes ``spin_unit``, ``reference_spin``
+        (in ``unit``), the top's ``q``, ``sigma``, ``mu``, ``alpha_v``, ``radius_m``, ``mass_kg``.
+
+    Raises
+    ------
+    InputError
+        An unknown unit, a run spin or range that is not > 0.
+    """
+    from ..nonlinear.runs import initial_state
+    from .branch import branch_points, steady_branch
+    from .family import upright_jellett
+    from .final import chunk_length, final_state, settle
+    from .states import steady_states
+
+    if unit not in SPIN_UNITS:
+        raise InputError(f"unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+    per_unit = SPIN_UNITS[unit]
+    runs = tuple(float(r) for r in runs)
+    if any(not (math.isfinite(r) and r > 0) for r in runs):
+        raise InputError(f"runs = {runs!r}: every launch spin must be a number > 0 ({unit})")
+    ref = REFERENCE_RPM * SPIN_UNITS["rpm"] / per_unit  # the reference spin in `unit`
+    if top.mu_v is not None:
+        if alpha_v is not None:
+            raise InputError(f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {top.mu_v:g} s/m; give one of them")
+        alpha_v = float(top.alpha_v(ref, unit))
+    alpha_v = 0.5 if alpha_v is None else float(alpha_v)
+    if not alpha_v > 0:
+        raise InputError(f"alpha_v = {alpha_v!r} is outside the allowed range: alpha_v > 0")
+    q, sigma, mu = top.q, top.sigma, top.mu
+    fr_ref = float(top.fr_inv(ref, unit))
+    j_per_unit = upright_jellett(q=q, sigma=sigma) / ref
+    bp = branch_points(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu)
+    bp_spin = [v / j_per_unit for v in bp.values() if math.isfinite(v)]
+    if spin_range is not None:
+        lo, hi = (float(v) for v in spin_range)
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+            raise InputError(f"spin_range = {tuple(spin_range)!r} must be (lo, hi) with 0 < lo < hi ({unit})")
+    else:
+        marks = list(runs) + bp_spin or [ref]
+        lo, hi = 0.75 * min(marks), 1.1 * max(marks)
+    branch = steady_branch(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett_max=hi * j_per_unit,
+                           max_step=0.01)
+    spin_attrs = {"long_name": "equivalent upright spin (launch spin of an upright top with this J)",
+                  "units": unit}
+    branch["spin"] = (branch.jellett / j_per_unit).assign_attrs(spin_attrs)
+    extra = branch.spin.values[branch.kind.values == "branch_point"]
+    spins = np.unique(np.concatenate([np.linspace(lo, hi, points), extra]))
+    flags: dict[str, list[int]] = {"upright": [], "inverted": []}
+    for s in spins:
+        ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=s * j_per_unit)
+        for kind in flags:
+            flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
+    flag_attrs = {"flag_values": np.array([0, 1, 2], dtype=np.int8), "flag_meanings": "stable marginal unstable"}
+    vertical = xr.Dataset(
+        {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin",
+                                                                   **flag_attrs})
+         for k, v in flags.items()},
+        coords={"spin": ("level", spins, spin_attrs)})
+    rows = []
+    th = math.radians(tilt)
+    for r in runs:
+        start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
+        params = top.nondimensional(r, unit, alpha_v=None if top.mu_v is not None else alpha_v, model="sliding")
+        params = {k: float(v) for k, v in params.items()}
+        pred = final_state(**params, **start, simulation=False)
+        chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
+        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, t_max=2e5,
+                             settle_tolerance=1e-3, rtol=1e-10)
+        rows.append((r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
+                     int(run.settled), 0))
+    if paper_run:  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
+        from ..nonlinear.scene import INITIAL_CONDITIONS
+
+        ic = INITIAL_CONDITIONS[0.3]
+        params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
+        pred = final_state(**params, **ic)
+        end, _, run = settle(initial_state("sliding", **ic), params, t_max=2e5, settle_tolerance=1e-3, rtol=1e-10,
+                             chunk=chunk_length(pred.candidates, params, pred.jellett))
+        r = float(top.spin_rate(0.3, unit))
+        rows.append((r, abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
+                     int(run.settled), 1))
+    arr = np.array(rows, dtype=float).reshape(-1, 7)
+    runs_ds = xr.Dataset(
+        {"launch_spin": ("run", arr[:, 0], {"long_name": "launch spin", "units": unit}),
+         "spin": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": unit}),
+         "predicted_tilt": ("run", arr[:, 2], {"long_name": "final tilt predicted by Jellett's integral",
+                                               "units": "degree"}),
+         "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
+         "t_end": ("run", arr[:, 4], {"long_name": "length of the run", "units": "1"}),
+         "settled": ("run", arr[:, 5].astype(np.int8),
+                     {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"}),
+         "paper_run": ("run", arr[:, 6].astype(np.int8),
+                       {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)"})},
+        coords={"run": ("run", np.arange(len(rows)))})
+    attrs = {"Conventions": "CF-1.10", "spin_unit": unit, "reference_spin": ref, "radius_m": top.radius,
+             "mass_kg": top.mass, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v, "initial_tilt_deg": float(tilt)}
+    for ds in (vertical, runs_ds):
+        ds.attrs.update(attrs)
+    branch.attrs.update(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)
+    for name in ("kind", "detail"):
+        branch[name] = branch[name].astype(str)
+    return {"branch": branch, "vertical": vertical, "runs": runs_ds}
