@@ -50,6 +50,7 @@ _EXPORTS: dict[str, str] = {
     "DEFAULT_MU": ".parameters", "PARAMETERS": ".parameters", "check_domain": ".parameters",
     "class_atlas": ".steady.classes", "top_class": ".steady.classes",
     "FinalState": ".steady.final", "final_state": ".steady.final",
+    "launch": ".launches.result", "Launch": ".launches.result", "flip_time": ".launches.flip",
     "steady_states": ".steady.states",
     "Top": ".top",
 }
@@ -60,7 +61,7 @@ __all__ = [
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
-    "steady_states", "final_state", "FinalState", "top_class", "class_atlas",
+    "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "launch", "Launch", "flip_time",
 ]
 
 

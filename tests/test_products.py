@@ -169,7 +169,8 @@ def test_registry_and_documentation_agree():
     registered figure is documented and importable from stability.plotting, and a new entry
     is one line (a callable works as well as a "module:function" string)."""
     documented = _documented()
-    assert set(documented) == set(MAKERS) | {"friction_cases"}
+    # launch has no figure yet; its attribute is checked in tests/test_launch.py
+    assert set(documented) == set(MAKERS) | {"friction_cases", "launch"}
     assert set(PLOTS) <= set(documented)
     for product in PLOTS:
         fn = plotting_function(product)
