@@ -91,3 +91,43 @@ def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[s
             continue
         out[name] = parse_values(v, name=FLAGS[name]) if isinstance(v, str) else v
     return out
+
+
+# --- a real top in SI units (issue 23; a minimal form, to be unified with the other commands') ---
+TOP_FIELDS = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
+_TOP_FIELD_HELP = {"mass": "mass M, kg", "radius": "radius R of the sphere, m",
+                   "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below O)",
+                   "inertia_transverse": "transverse moment of inertia about G, kg m^2",
+                   "inertia_axial": "axial moment of inertia C, kg m^2"}
+
+
+def add_top_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--preset`` or ``--mass --radius --com-offset --inertia-transverse --inertia-axial``
+    ``[--g --mu-v --mu-k]``: a top in SI units (:func:`top_from_args`)."""
+    g = parser.add_argument_group("the top, SI units (or --preset)")
+    g.add_argument("--preset", choices=["table1", "table1_measured"],
+                   help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1) or table1_measured")
+    for name in TOP_FIELDS:
+        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE",
+                       help=_TOP_FIELD_HELP[name])
+    g.add_argument("--g", dest="gravity", type=float, metavar="M/S2", help="gravity (default 9.80665)")
+    g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
+                   help="viscous friction coefficient mu_v, s/m (alpha_v = mu mu_v g / Omega, eq. 7)")
+    g.add_argument("--mu-k", dest="mu_k", type=float, metavar="COEFF", help="Coulomb friction coefficient mu_K")
+
+
+def top_from_args(args: argparse.Namespace, command: str):
+    """The :class:`stability.Top` of :func:`add_top_arguments`' flags."""
+    from ..top import Top
+
+    given = [n for n in (*TOP_FIELDS, "gravity") if getattr(args, n) is not None]
+    if args.preset:
+        if given:
+            raise ValueError(f"--preset {args.preset} and {', '.join('--' + n.replace('_', '-') for n in given)} "
+                             "conflict: give a preset or the top's SI data, not both")
+        return getattr(Top, args.preset)(mu_v=args.mu_v, mu_k=args.mu_k)
+    missing = [n for n in TOP_FIELDS if getattr(args, n) is None]
+    if missing:
+        raise ValueError(f"{command} needs --preset or " + ", ".join("--" + n.replace("_", "-") for n in missing))
+    return Top(*(getattr(args, n) for n in TOP_FIELDS), g=9.80665 if args.gravity is None else args.gravity,
+               mu_v=args.mu_v, mu_k=args.mu_k)

@@ -32,7 +32,7 @@ from ..products import PRODUCT_ATTR
 from ..top import SPIN_UNITS, Top, from_rad_per_s
 from .flip import launch_parameters, run_launch
 
-__all__ = ["Launch", "launch", "PRODUCT"]
+__all__ = ["Launch", "launch", "PRODUCT", "inverts_above"]
 
 #: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
 PRODUCT = "launch"
@@ -108,7 +108,7 @@ class Launch:
         p = self.parameters
         lines = [
             f"launch at {self._spin(self.spin, 'spin')}, axis tilted {self.tilt:g} degrees, centre at rest",
-            f"  the upright top becomes unstable above:           {self._spin(self.unstable_above, 'unstable_above')}",
+            f"  the upright top becomes unstable above:        {self._spin(self.unstable_above, 'unstable_above')}",
             f"  launched upright, it inverts completely above: {self._spin(self.inverts_above, 'inverts_above')}",
             f"  high-spin class: {self.top_class}",
             f"  ends: {self.end_kind} at {self.end_tilt:.4g} degrees (decided by {self.method})",
@@ -167,6 +167,25 @@ class Launch:
         return xr.Dataset(data, attrs=attrs)
 
 
+NEVER_INVERTS = "the tilted family does not reach the inverted state: this top never inverts completely"
+
+
+def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
+    """The launch spin (rad/s) above which the top launched upright inverts completely: the
+    upright-equivalent spin ``J_inv / (sigma (1 + q))`` of the inverted branch point
+    (:func:`stability.steady.branch.branch_points`, nondimensional with ``Omega = reference``
+    rad/s; the answer does not depend on the reference), None if the family does not reach it."""
+    from ..steady.branch import branch_points
+    from ..steady.family import upright_jellett
+
+    nd = top.nondimensional(reference, alpha_v=None if top.mu_v is not None else alpha_v, model="sliding")
+    nd = {k: float(nd[k]) for k in ("q", "sigma", "fr_inv", "alpha_v", "mu")}
+    j_inv = branch_points(**nd)["inverted"]
+    if not math.isfinite(j_inv):
+        return None
+    return j_inv / float(upright_jellett(q=nd["q"], sigma=nd["sigma"])) * reference
+
+
 def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None,
            model: str = "sliding") -> Launch:
     """What a top does when it is spun at ``spin`` (in ``unit``) with its axis tilted by ``tilt``.
@@ -191,9 +210,7 @@ def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha
         ``str()`` prints it in the caller's unit; ``.to_dataset()`` gives the Dataset.
     """
     from ..linear.critical import critical_spin
-    from ..steady.branch import branch_points
     from ..steady.classes import top_class
-    from ..steady.family import upright_jellett
     from ..steady.final import final_state
     from .flip import launch_state
 
@@ -206,12 +223,9 @@ def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha
     except ValueError as e:
         up = None
         reasons["unstable_above"] = str(e)
-    j_inv = branch_points(**nd)["inverted"]
-    if math.isfinite(j_inv):
-        inv: float | None = j_inv / float(upright_jellett(q=nd["q"], sigma=nd["sigma"])) * w
-    else:
-        inv = None
-        reasons["inverts_above"] = "the tilted family does not reach the inverted state: this top never inverts completely"
+    inv = inverts_above(top, w, nd["alpha_v"])
+    if inv is None:
+        reasons["inverts_above"] = NEVER_INVERTS
     start = launch_state(tilt)
     fs = final_state(omega=start["omega"], k=start["k"], velocity=start["velocity"], **nd)
     run = run_launch(params, tilt=tilt, end_tilt=fs.tilt if math.isfinite(fs.tilt) else None)
