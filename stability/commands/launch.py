@@ -18,7 +18,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
                     "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
                     "is unstable, the launch spin above which it inverts completely, its class, where it ends, "
-                    "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md).")
+                    "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md). Sliding model only.")
     add_top_arguments(p)
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
