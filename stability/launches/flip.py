@@ -122,7 +122,8 @@ def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, c
 
 def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float = 90.0, stop_at_crossing: bool = False,
                t_max: float = 2e5, chunk: float = 500.0, dt: float = 0.25, band: float = 1.0,
-               settle_tolerance: float = 1e-3, end_tilt: float | None = None, rtol: float = 1e-10) -> FlipRun:
+               settle_tolerance: float = 1e-3, end_tilt: float | None = None, rtol: float = 1e-10,
+               start: dict[str, Any] | None = None) -> FlipRun:
     """Integrate the launch state (module docstring) of a sliding top with the nondimensional
     ``params`` (``q, fr_inv, sigma, mu, alpha_v`` [, ``alpha_k``]) and locate its events.
 
@@ -130,7 +131,9 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
     moved by less than ``settle_tolerance`` degrees over a chunk, or ``t_max``, or (with
     ``stop_at_crossing``) the crossing. ``end_tilt`` (the predicted end, e.g. from
     :func:`stability.final_state`) sets the band of the settle time; without it, the run's last
-    tilt does.
+    tilt does. ``start`` (``omega``, ``k``, ``velocity`` as :func:`stability.simulate` takes
+    them) replaces the launch state, e.g. the paper's printed states of Sec. 3(ii); ``tilt`` is
+    then ignored.
     """
     tilt = as_scalar("tilt", tilt)
     if not 0.0 < tilt < 180.0:
@@ -144,6 +147,11 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
         raise DomainError(f"crossing = {crossing:g} degrees is outside the allowed range: 0 < crossing <= 180")
     t_max = check_positive("t_max", t_max)
     state = {**launch_state(tilt), "tilt": tilt}
+    if start is not None:
+        k0 = np.asarray(start["k"], dtype=float)
+        tilt = float(np.degrees(np.arccos(np.clip(k0[2] / np.linalg.norm(k0), -1.0, 1.0))))
+        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0]),
+                 "tilt": tilt}
     t = 0.0
     times, tilts = [np.array([0.0])], [np.array([tilt])]
     n_min = math.inf
