@@ -53,14 +53,14 @@ def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str
         raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
     check_choice("model", model, MODELS)
     w = check_launch_spin(spin, unit)
-    if top.mu_v is not None:
+    if top.mu_v is not None:  # an explicit alpha_v too is refused by Top.nondimensional
         source = f"eq. (7) from the top's mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega"
     elif alpha_v is not None:
         source = "given (alpha_v argument)"
     else:
         alpha_v = DEFAULT_ALPHA_V
         source = f"default {DEFAULT_ALPHA_V:g} (the paper's; the top has no mu_v and no alpha_v was given)"
-    params = top.nondimensional(w, alpha_v=None if top.mu_v is not None else alpha_v)
+    params = top.nondimensional(w, alpha_v=alpha_v)
     params = {k: float(v) for k, v in params.items()}
     return w, params, source
 
