@@ -143,3 +143,35 @@ def test_launch_agrees_with_a_long_simulate(nd, spin):
     else:
         assert float(ds.time[hit[0]]) == pytest.approx(res.flip_time * w, abs=0.1)
     assert res.top_class == stability.top_class(q=q, sigma=sigma)
+
+
+def test_inverts_above_only_for_the_inverting_class():
+    # a never_inverts top has an inverted branch point, but launched upright it stays up; a
+    # hanging top's family does not reach the inverted state (stability.top_class)
+    never = Top.from_nondimensional(mass=0.015, radius=0.015, q=-0.15, mu=2.28, sigma=1.4)
+    hangs = Top.from_nondimensional(mass=0.015, radius=0.015, q=-0.1, mu=2.28, sigma=0.8)
+    assert inverts_above(never, 50.0, 0.5) is None and inverts_above(hangs, 50.0, 0.5) is None
+
+
+def test_cli_launch_and_threshold(capsys):
+    # the top in SI: 15 g, 15 mm, G 3 mm below O, A_G = 1.3e-6, C = 1.5e-6 kg m^2;
+    # reference: the 8.51 rev/s, and the closed form n_inv (1 + alpha)/(1 - alpha)
+    from stability.cli import main
+
+    si = ["--mass", "0.015", "--radius", "0.015", "--com-offset", "-0.003", "--inertia-transverse", "1.3e-6",
+          "--inertia-axial", "1.5e-6"]
+    assert main(["threshold", "spin", *si, "--unit", "rev/s"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    inv = [ln for ln in out if ln.startswith("launched upright, it inverts completely above ")]
+    up = [ln for ln in out if ln.startswith("the upright top becomes unstable above ")]
+    assert len(inv) == 1 and len(up) == 1
+    top = Top(mass=0.015, radius=0.015, com_offset=-0.003, inertia_transverse=1.3e-6, inertia_axial=1.5e-6)
+    n_inv = stability.critical_spin(top, orientation="inverted").spin
+    assert float(inv[0].split()[-2]) == pytest.approx(n_inv * 1.2 / 0.8 / (2 * math.pi), rel=1e-9)
+    assert float(inv[0].split()[-2]) == pytest.approx(8.51, abs=0.005)
+    assert main(["launch", *si, "--spin", "15", "--unit", "rev/s"]) == 0
+    text = capsys.readouterr().out
+    assert "launch at 15 rev/s" in text and "inverts completely above: 8.51088 rev/s" in text
+    assert main(["launch", "--mass", "15", "--radius", "15", "--com-offset", "-3", "--inertia-transverse", "1.3e-6",
+                 "--inertia-axial", "1.5e-6", "--spin", "15"]) == 2
+    assert "radius looks like millimetres" in capsys.readouterr().err

@@ -158,7 +158,14 @@ def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
                                                         f"no spin ({found.reasons['upright']})"))
     ref = up.spin if up is not None else top.spin_rate(0.3)
     inv = inverts_above(top, ref, alpha_v)
-    print("launched upright, it inverts completely above " + (both(inv) if inv is not None else NEVER_INVERTS))
+    if inv is None:
+        from ..steady.classes import top_class
+
+        cls = top_class(q=top.q, sigma=top.sigma, mu=top.mu)
+        print("launched upright, it inverts completely above no spin: " + NEVER_INVERTS.get(
+            cls, "the tilted family does not reach the inverted state"))
+    else:
+        print("launched upright, it inverts completely above " + both(inv))
 
 
 def _interval(param: str, t) -> str:

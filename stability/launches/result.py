@@ -107,7 +107,7 @@ class Launch:
     def __str__(self) -> str:
         p = self.parameters
         lines = [
-            f"launch at {self._spin(self.spin, 'spin')}, axis tilted {self.tilt:g} degrees, centre at rest",
+            f"launch at {self._spin(self.spin, 'spin')}, axis tilted {self.tilt:g} deg from the vertical, centre at rest",
             f"  the upright top becomes unstable above:        {self._spin(self.unstable_above, 'unstable_above')}",
             f"  launched upright, it inverts completely above: {self._spin(self.inverts_above, 'inverts_above')}",
             f"  high-spin class: {self.top_class}",
@@ -167,17 +167,27 @@ class Launch:
         return xr.Dataset(data, attrs=attrs)
 
 
-NEVER_INVERTS = "the tilted family does not reach the inverted state: this top never inverts completely"
+NEVER_INVERTS = {
+    "hangs": "the tilted family does not reach the inverted state (class 'hangs'): launched upright, this top "
+             "never inverts completely",
+    "never_inverts": "the upright state is stable at high spin (class 'never_inverts'): launched upright, this top "
+                     "does not invert",
+}
 
 
 def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
     """The launch spin (rad/s) above which the top launched upright inverts completely: the
     upright-equivalent spin ``J_inv / (sigma (1 + q))`` of the inverted branch point
     (:func:`stability.steady.branch.branch_points`, nondimensional with ``Omega = reference``
-    rad/s; the answer does not depend on the reference), None if the family does not reach it."""
+    rad/s; the answer does not depend on the reference). None unless the top's high-spin class
+    (:func:`stability.top_class`) is ``"inverts"`` (the reason: :data:`NEVER_INVERTS`): a
+    ``"never_inverts"`` top has an inverted branch point too, but its upright launch stays up."""
     from ..steady.branch import branch_points
+    from ..steady.classes import top_class
     from ..steady.family import upright_jellett
 
+    if top_class(q=top.q, sigma=top.sigma, mu=top.mu) != "inverts":
+        return None
     nd = top.nondimensional(reference, alpha_v=None if top.mu_v is not None else alpha_v, model="sliding")
     nd = {k: float(nd[k]) for k in ("q", "sigma", "fr_inv", "alpha_v", "mu")}
     j_inv = branch_points(**nd)["inverted"]
@@ -223,23 +233,28 @@ def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha
     except ValueError as e:
         up = None
         reasons["unstable_above"] = str(e)
+    cls = str(top_class(q=nd["q"], sigma=nd["sigma"], mu=nd["mu"]))
     inv = inverts_above(top, w, nd["alpha_v"])
     if inv is None:
-        reasons["inverts_above"] = NEVER_INVERTS
+        reasons["inverts_above"] = NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
     start = launch_state(tilt)
     fs = final_state(omega=start["omega"], k=start["k"], velocity=start["velocity"], **nd)
     run = run_launch(params, tilt=tilt, end_tilt=fs.tilt if math.isfinite(fs.tilt) else None)
     if run.crossing_time is None:
         reasons["flip_time"] = run.reason.split("; ")[0]
-    if run.settle_time is None:
+    settle = run.settle_time
+    if fs.kind == "unsettled":
+        settle = None
+        reasons["settle_time"] = f"the end is not decided: {fs.reason}"
+    elif settle is None:
         reasons["settle_time"] = run.reason
     force_unit = top.inertia_centre * w * w / top.radius
     ev = run.attrs.get("event", "none")
     return Launch(spin=w, unit=unit, tilt=tilt, unstable_above=up, inverts_above=inv,
-                  top_class=str(top_class(q=nd["q"], sigma=nd["sigma"], mu=nd["mu"])),
+                  top_class=cls,
                   end_tilt=float(fs.tilt), end_kind=fs.kind, method=fs.method,
                   flip_time=None if run.crossing_time is None else run.crossing_time / w,
-                  settle_time=None if run.settle_time is None else run.settle_time / w,
+                  settle_time=None if settle is None else settle / w,
                   min_normal_force=run.min_normal_force * force_unit, min_normal_force_nd=run.min_normal_force,
                   parameters={k: nd[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v")}, alpha_v_source=source,
                   event=str(ev), event_time=(float(run.attrs["event_time"]) / w if "event_time" in run.attrs else None),
