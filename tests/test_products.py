@@ -62,6 +62,8 @@ MAKERS = {
     "final_state": lambda tmp: stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
                                                      **INITIAL_CONDITIONS[0.3]).to_dataset(),
     "top_classes": lambda tmp: stability.class_atlas(q=np.linspace(-0.6, 0.6, 25), sigma=np.linspace(0.05, 2.0, 20)),
+    "flip_time_map": lambda tmp: __import__("stability.launches.estimate", fromlist=["x"]).flip_time_map(
+        stability.Top.table1(), [8.0, 12.0], [5.0], t_max=3000.0),
 }
 
 
