@@ -35,6 +35,8 @@ MODELS = ("sliding",)
 #: the paper's viscous friction parameter (Fig. 3, Sec. 3(ii)), used when neither the top's
 #: mu_v nor an explicit alpha_v is given
 DEFAULT_ALPHA_V = 0.5
+#: tolerance of a launch run after its crossing (the settle time and the smallest normal force)
+TAIL_RTOL = 1e-8
 
 
 def launch_state(tilt: float) -> dict[str, list[float]]:
@@ -129,7 +131,9 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
 
     The run goes in chunks of ``chunk`` time units (output every ``dt``) until the tilt has
     moved by less than ``settle_tolerance`` degrees over a chunk, or ``t_max``, or (with
-    ``stop_at_crossing``) the crossing. ``end_tilt`` (the predicted end, e.g. from
+    ``stop_at_crossing``) the crossing, or (with ``end_tilt``) a whole chunk within half
+    ``band`` of ``end_tilt``; after the crossing at ``rtol`` no tighter than :data:`TAIL_RTOL`.
+    ``end_tilt`` (the predicted end, e.g. from
     :func:`stability.final_state`) sets the band of the settle time; without it, the run's last
     tilt does. ``start`` (``omega``, ``k``, ``velocity`` as :func:`stability.simulate` takes
     them) replaces the launch state, e.g. the paper's printed states of Sec. 3(ii); ``tilt`` is
@@ -161,8 +165,11 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
     while t < t_max:
         length = min(chunk, t_max - t)
         n = max(2, int(math.ceil(length / dt)))
+        # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
+        # numbers are read to the 1-degree band and the output step, not to 1e-10
+        r = rtol if crossed is None else max(rtol, TAIL_RTOL)
         ds = simulate("sliding", t_end=length, t_eval=np.linspace(0.0, length, n + 1), omega=state["omega"],
-                      k=state["k"], velocity=state["velocity"], rtol=rtol, atol=1e-3 * rtol, **params)
+                      k=state["k"], velocity=state["velocity"], rtol=r, atol=1e-3 * r, **params)
         attrs = dict(ds.attrs)
         pol = ds.polar_angle.values
         if not np.all(np.isfinite(pol)):
@@ -185,6 +192,9 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
             break
         if float(np.max(pol) - np.min(pol)) < settle_tolerance:
             settled = True
+            break
+        if end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * band:
+            settled = True  # a whole chunk within half the band of the predicted end
             break
     tt, pp = np.concatenate(times), np.concatenate(tilts)
     end = float(pp[-1]) if end_tilt is None else float(end_tilt)
