@@ -1,6 +1,6 @@
 """Flip-time estimates against the simulation, the cost of launch, and the flip-time map.
 
-Usage: python benchmarks/flip_estimates.py [--map N_SPINS N_TILTS] [--skip-map]
+Usage: python benchmarks/flip_estimates.py [--map N_SPINS N_TILTS] [--skip-map] [--launch-only]
 
 1. Error against cost (atlases/flip_estimates.png and .json): for the Table 1 top over launch
    spins and initial tilts, the time to 90 degrees by
@@ -82,6 +82,7 @@ def launch_cost():
         "inverts_above (branch point)": best(lambda: inverts_above(top, 2 * math.pi * 7.15, 0.5))[1],
         "final_state": best(lambda: final_state(omega=k, k=k, velocity=[0.0, 0.0], **p))[1],
         "run to settle (flip, settle, normal force)": best(lambda: run_launch(p, tilt=1.0, end_tilt=163.7))[1],
+        "the same run to the crossing only (flip_time)": best(lambda: run_launch(p, tilt=1.0, stop_at_crossing=True))[1],
     }
     return total, parts
 
@@ -99,7 +100,14 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--map", nargs=2, type=int, default=(80, 5), metavar=("N_SPINS", "N_TILTS"))
     ap.add_argument("--skip-map", action="store_true")
+    ap.add_argument("--launch-only", action="store_true", help="only item 2 (the cost of stability.launch)")
     args = ap.parse_args()
+    if args.launch_only:
+        total, parts = launch_cost()
+        print(f"stability.launch warm (Table 1, 7.15 rev/s): {total:.3f} s; parts:")
+        for k, v in parts.items():
+            print(f"  {k}: {v:.3f} s")
+        return
     from stability.plotting import save_figure, style
     from stability.plotting.launch_plots import plot_flip_estimates, plot_flip_time
 

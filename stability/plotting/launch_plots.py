@@ -47,9 +47,8 @@ def plot_flip_time(ds: xr.Dataset, *, ax: Axes | None = None, marks: Sequence[tu
     ax.set_yscale("log")
     ax.set_xlabel(f"launch spin ({ds.attrs.get('spin_unit', ds.spin.attrs.get('units', ''))})")
     ax.set_ylabel("time until the axis crosses 90 degrees (s)")
-    ax.set_title(f"q = {ds.attrs['q']:.3g}, mu = {ds.attrs['mu']:.3g}, sigma = {ds.attrs['sigma']:.3g}, "
-                 f"R = {1e3 * ds.attrs['radius_m']:.2f} mm; alpha_v {ds.attrs.get('alpha_v_source', '')[:40]}",
-                 fontsize=8)
+    ax.set_title(f"launched with the axis tilted, centre at rest: q = {ds.attrs['q']:.3g}, mu = {ds.attrs['mu']:.3g}, "
+                 f"sigma = {ds.attrs['sigma']:.3g}, R = {1e3 * ds.attrs['radius_m']:.2f} mm", fontsize=8)
     ax.legend(fontsize=7)
     return fig, ax
 
