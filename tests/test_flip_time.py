@@ -115,3 +115,31 @@ def test_flip_time_in_seconds_and_units():
 def test_no_flip_below_the_critical_spin():
     top = stability.Top.table1()
     assert stability.flip_time(top, 5.0, "rev/s", t_max=3000.0) is None
+
+
+@pytest.mark.parametrize("spin,tilt", [(8.0, 1.0), (12.0, 5.0), (20.0, 10.0)])
+def test_efold_estimate_within_its_stated_error(spin, tilt):
+    # reference: DOP853 on the independent rhs. The stated error of the e-folding estimate
+    # (docs/launch.md, benchmarks/flip_estimates.py): it underestimates, by at most 40 % over
+    # 6.5-20 rev/s and tilts 0.5-10 degrees
+    from stability.launches.estimate import efold_flip_time
+
+    params = stability.Top.table1().nondimensional(spin, "rev/s", alpha_v=0.5)
+    ref = _dop853_crossing(params, launch_state(tilt), 5000.0)
+    est = efold_flip_time(params, tilt)
+    assert 0.6 * ref < est < ref
+
+
+def test_flip_time_map():
+    # reference: the definitions (periods = t Omega / 2 pi) and DOP853 for one point; a spin
+    # below the critical spin (6.06 rev/s) never crosses: NaN, and no e-folding estimate there
+    from stability.launches.estimate import flip_time_map
+
+    top = stability.Top.table1()
+    ds = flip_time_map(top, [5.0, 12.0], [5.0], unit="rev/s", t_max=3000.0)
+    assert ds.attrs["tippe_stability_product"] == "flip_time_map"
+    assert np.isnan(ds.flip_time.values[0, 0]) and np.isnan(ds.flip_time_efold.values[0, 0])
+    assert ds.flip_periods.values[0, 1] == pytest.approx(ds.flip_time.values[0, 1] * 12.0, rel=1e-14)
+    params = top.nondimensional(12.0, "rev/s", alpha_v=0.5)
+    ref = _dop853_crossing(params, launch_state(5.0), 5000.0) / (2 * math.pi * 12.0)
+    assert ds.flip_time.values[0, 1] == pytest.approx(ref, rel=1e-6)

@@ -63,6 +63,6 @@ def plot_flip_estimates(records: Sequence[dict[str, Any]], *, ax: Axes | None = 
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("seconds per launch")
-    ax.set_ylabel("relative error of the flip time (reference: simulation, rtol 1e-12)")
+    ax.set_ylabel("relative error of the flip time")
     ax.legend(fontsize=8)
     return fig, ax
