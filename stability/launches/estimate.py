@@ -12,9 +12,22 @@ third order and makes (*) exact in the linear regime while keeping it finite at 
 It ignores (i) the projection of the launch state on the growing mode (the launch state
 excites the growing and the decaying precession modes alike, which delays the growth by a
 transient of a few ``1/g``), and (ii) the nonlinear slowing of the growth as the centre of mass
-rises. Its error against the simulation is charted by ``benchmarks/flip_estimates.py``
-(docs/launch.md): it is the default only for a rough answer; :func:`stability.flip_time` (the
-simulation) is the answer :func:`stability.launch` gives.
+rises.
+
+The projected estimate removes (i). In eq. (11)'s variables (fixed frame, complex:
+``omega = omega_1 + i omega_2``, ``Phi = l + i m`` the tilt of k, ``V`` the centre's velocity),
+the launch state is ``x0 = theta0 (1, 1, 0)`` to first order (``omega = k``, centre at rest).
+With ``M x' = A x`` (:meth:`stability.models.sliding.Sliding.matrices`),
+``M^-1 A = W diag(s) W^-1``, the growing mode's share of the tilt is
+``a0 = |(W^-1 x0)_lead W_{Phi, lead}|``, and the tilt follows ``a0 e^{g t}`` once the other
+modes have decayed, so
+
+    t_projected = t_efold + ln(theta0 / a0) / g                                          (**)
+
+(``theta0 / a0`` does not depend on ``theta0``: the model is linear). Its error against the
+simulation is charted by ``benchmarks/flip_estimates.py`` (docs/launch.md): a few per cent well
+above the critical spin, tens of per cent near it, where (ii) dominates;
+:func:`stability.flip_time` (the simulation) is the answer :func:`stability.launch` gives.
 """
 
 from __future__ import annotations
@@ -32,20 +45,37 @@ from ..products import PRODUCT_ATTR
 from ..top import Top, from_rad_per_s
 from .flip import launch_parameters, run_launch
 
-__all__ = ["efold_flip_time", "flip_time_map", "MAP_PRODUCT"]
+__all__ = ["efold_flip_time", "flip_time_map", "MAP_PRODUCT", "ESTIMATES"]
+
+#: the cheap estimates, by name (module docstring: (*) and (**))
+ESTIMATES = ("efold", "projected")
 
 #: the product attribute of :func:`flip_time_map` (docs/datasets.md)
 MAP_PRODUCT = "flip_time_map"
 
 
-def efold_flip_time(params: dict[str, float], tilt: float, crossing: float = 90.0) -> float | None:
-    """The e-folding estimate (*) of the module docstring, in units of ``1/Omega``; None where
-    the upright state does not grow (leading growth rate <= 0)."""
-    ev = eigenvalues("sliding", **{k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")})
+def efold_flip_time(params: dict[str, float], tilt: float, crossing: float = 90.0, *,
+                    estimate: str = "projected") -> float | None:
+    """The e-folding estimate, ``"efold"`` (*) or ``"projected"`` (**) of the module docstring,
+    in units of ``1/Omega``; None where the upright state does not grow (leading growth rate
+    <= 0)."""
+    from ..models import get_model
+    from ..parameters import check_choice
+
+    check_choice("estimate", estimate, ESTIMATES)
+    nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
+    ev = eigenvalues("sliding", **nd)
     g = float(np.max(ev.real))
     if not g > 0.0:
         return None
-    return math.log(math.tan(math.radians(crossing) / 2) / math.tan(math.radians(tilt) / 2)) / g
+    t = math.log(math.tan(math.radians(crossing) / 2) / math.tan(math.radians(tilt) / 2)) / g
+    if estimate == "efold":
+        return t
+    m, a = get_model("sliding").matrices(**nd)
+    s, w = np.linalg.eig(np.linalg.solve(m, a))
+    lead = int(np.argmax(s.real))
+    a0 = abs(np.linalg.solve(w, np.array([1.0, 1.0, 0.0], dtype=complex))[lead] * w[1, lead])
+    return t + math.log(1.0 / a0) / g
 
 
 def flip_time_map(top: Top, spins: Any, tilts: Any, *, unit: str = "rev/s", alpha_v: Any = None,
@@ -77,7 +107,7 @@ def flip_time_map(top: Top, spins: Any, tilts: Any, *, unit: str = "rev/s", alph
                 t_flip[i, j] = run.crossing_time / w
                 periods[i, j] = run.crossing_time / (2 * math.pi)
             if estimate:
-                e = efold_flip_time(params, float(th), crossing)
+                e = efold_flip_time(params, float(th), crossing, estimate="projected")
                 if e is not None:
                     t_est[i, j] = e / w
     seconds = time.perf_counter() - t0
@@ -86,7 +116,7 @@ def flip_time_map(top: Top, spins: Any, tilts: Any, *, unit: str = "rev/s", alph
             "flip_periods": (("tilt", "spin"), periods, {"long_name": f"spin periods until the axis crosses "
                                                                       f"{crossing:g} degrees", "units": "1"})}
     if estimate:
-        data["flip_time_efold"] = (("tilt", "spin"), t_est, {"long_name": "e-folding estimate of the flip time",
+        data["flip_time_efold"] = (("tilt", "spin"), t_est, {"long_name": "projected e-folding estimate of the flip time",
                                                              "units": "s"})
     units = {"rad/s": "rad s-1", "rev/s": "s-1", "Hz": "Hz", "rpm": "min-1"}[unit]
     coords = {"spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),
