@@ -52,7 +52,7 @@ _EXPORTS: dict[str, str] = {
     "FinalState": ".steady.final", "final_state": ".steady.final",
     "launch": ".launches.result", "Launch": ".launches.result", "flip_time": ".launches.flip",
     "steady_states": ".steady.states",
-    "Top": ".top",
+    "Top": ".top", "ImplausibleTopWarning": ".top",
 }
 
 __all__ = [
@@ -62,6 +62,7 @@ __all__ = [
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
     "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "launch", "Launch", "flip_time",
+    "ImplausibleTopWarning",
 ]
 
 

@@ -40,7 +40,7 @@ def plot_flip_time(ds: xr.Dataset, *, ax: Axes | None = None, marks: Sequence[tu
                           label=f"tilt {th:g} deg: simulation")
         if estimate and "flip_time_efold" in ds:
             ax.plot(spin, ds.flip_time_efold.values[i], ls=":", color=line.get_color(),
-                    label=f"tilt {th:g} deg: e-folding estimate")
+                    label=f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}")
     for s, t, label in marks:
         ax.plot([s], [t], marker="*", markersize=11, color="k", ls="none")
         ax.annotate(label, (s, t), textcoords="offset points", xytext=(6, 4), fontsize=8)
