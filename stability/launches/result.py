@@ -256,7 +256,7 @@ def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha
                   flip_time=None if run.crossing_time is None else run.crossing_time / w,
                   settle_time=None if settle is None else settle / w,
                   min_normal_force=run.min_normal_force * force_unit, min_normal_force_nd=run.min_normal_force,
-                  parameters={k: nd[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v")}, alpha_v_source=source,
+                  parameters={k: params[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v", "alpha_k") if k in params}, alpha_v_source=source,
                   event=str(ev), event_time=(float(run.attrs["event_time"]) / w if "event_time" in run.attrs else None),
                   event_tilt=(float(run.attrs["event_tilt"]) if "event_tilt" in run.attrs else None),
                   reasons=reasons)
