@@ -60,16 +60,19 @@ _EXPORTS: dict[str, str] = {
     "bifurcation_diagram": ".steady.diagram",
     "Top": ".top",
     "Stick": ".stick",
+    "launch": ".launches.result", "Launch": ".launches.result", "flip_time": ".launches.flip",
+    "ImplausibleTopWarning": ".top",
 }
 
 __all__ = [
     "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "InputError", "LinearModel", "MODELS", "PARAMETERS",
-    "TippeError", "Top", "Stick",
+    "TippeError", "Top",
     "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
     "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
     "threshold", "thresholds", "threshold_crossings", "critical_spin",
     "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "bifurcation_diagram",
     "neutral_curve", "fold_curve", "steady_branch",
+    "launch", "Launch", "flip_time", "ImplausibleTopWarning", "Stick",
 ]
 
 

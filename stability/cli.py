@@ -42,7 +42,7 @@ __all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED",
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
 COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "steady", "final",
-                             "warmup")
+                             "launch", "warmup")
 
 #: exit statuses: bad input or file (2), a failed computation or a bug (1), interrupted (130)
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130

@@ -27,7 +27,7 @@ give mu ~ 3.7, not the 2.28 it lists and the simulations use. Two presets are of
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -36,14 +36,51 @@ from .errors import DomainError, InputError
 from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
 from .stick import Stick
 
-__all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH", "PRESETS"]
+__all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH", "PRESETS", "to_rad_per_s", "from_rad_per_s", "check_launch_spin",
+           "PLAUSIBLE", "ImplausibleTopWarning"]
 
 #: avoirdupois ounce and inch in SI
 OUNCE = 0.028349523125
 INCH = 0.0254
 
-#: rad/s per unit of spin rate
-SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi}
+#: rad/s per unit of spin rate: the one table of spin units ("Hz" is rev/s)
+SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi,
+                                "Hz": 2.0 * math.pi}
+
+#: Plausible ranges of a real tippe top (docs/launch.md, "Plausible units"). Each row:
+#: quantity -> (refuse below, warn below, warn above, refuse above). Real tippe tops have
+#: R = 10-30 mm, M = 5-30 g, mu = M R^2 / A0 ~ 2-4, sigma = C / A0 ~ 0.6-1.4, |q| ~ 0.05-0.4;
+#: the warning band is an order of magnitude wider than that, the refusal band three or more
+#: (a unit slip g <-> kg is 1e3, mm <-> m 1e3, g mm^2 <-> kg m^2 1e9). Launch spins: a spin
+#: below 0.1 rev/s or above 1e4 rev/s is refused (:func:`check_launch_spin`).
+PLAUSIBLE: dict[str, tuple[float, float, float, float]] = {
+    "mass": (1e-5, 1e-3, 1.0, 1e3),                      # kg
+    "radius": (1e-4, 2e-3, 0.2, 10.0),                   # m
+    "mu": (1e-2, 0.1, 100.0, 1e4),
+    "sigma": (1e-3, 0.05, math.inf, math.inf),           # sigma <= 2 A_G / A0 < 2 (the domain)
+    "abs_q": (0.0, 1e-3, math.inf, math.inf),            # q = 0 (G at O) is an idealisation, kept
+}
+#: launch spins, rev/s: refuse below, refuse above
+LAUNCH_SPIN_REV_S: tuple[float, float] = (0.1, 1e4)
+
+_CAUSES = {
+    ("mass", "high"): "mass looks like grams: pass kilograms (15 g is 0.015)",
+    ("mass", "low"): "mass looks like tonnes or a slipped exponent: pass kilograms",
+    ("radius", "high"): "radius looks like millimetres: pass metres (15 mm is 0.015)",
+    ("radius", "low"): "radius looks like kilometres or a slipped exponent: pass metres",
+    ("mu", "low"): ("the inertias look too large for the mass and radius: pass kg m^2 (1 g mm^2 is 1e-9 kg m^2), "
+                    "the mass in kg and the radius in m"),
+    ("mu", "high"): ("the inertias look too small for the mass and radius: pass kg m^2, the mass in kg and the "
+                     "radius in m"),
+    ("sigma", "low"): ("the axial moment looks too small against the transverse one (or the offset of G too large): "
+                       "pass both moments in kg m^2 and com_offset in m"),
+    ("abs_q", "low"): "com_offset looks tiny against the radius: pass both in metres",
+}
+
+
+class ImplausibleTopWarning(UserWarning):
+    """A top whose SI data or derived parameters lie outside the ranges of real tippe tops but
+    within an order of magnitude or so of them (:data:`PLAUSIBLE`)."""
 
 
 #: the named tops (classmethods of :class:`Top`)
@@ -52,6 +89,30 @@ PRESETS = ("table1", "table1_measured")
 
 def _unit(unit: str) -> float:
     return SPIN_UNITS[check_choice("unit", unit, SPIN_UNITS)]
+
+
+def to_rad_per_s(spin: Any, unit: str) -> Any:
+    """A spin rate given in ``unit`` (:data:`SPIN_UNITS`) in rad/s."""
+    return spin * _unit(unit)
+
+
+def from_rad_per_s(spin: Any, unit: str) -> Any:
+    """A spin rate in rad/s expressed in ``unit`` (:data:`SPIN_UNITS`)."""
+    return spin / _unit(unit)
+
+
+def check_launch_spin(spin: Any, unit: str) -> float:
+    """A launch spin (one number, in ``unit``) in rad/s; refused (:class:`DomainError`) outside
+    0.1-1e4 rev/s (:data:`LAUNCH_SPIN_REV_S`), the message in the caller's unit and in rev/s."""
+    factor = _unit(unit)
+    w = as_scalar("spin", spin)
+    lo, hi = LAUNCH_SPIN_REV_S
+    rev = w * factor / (2.0 * math.pi)
+    if not lo <= rev <= hi:
+        raise DomainError(f"spin = {w:.6g} {unit} ({rev:.6g} rev/s) is outside the allowed range: "
+                          f"{lo:g} to {hi:g} rev/s ({lo * 2 * math.pi / factor:.6g} to {hi * 2 * math.pi / factor:.6g} "
+                          f"{unit}); is the unit right?")
+    return w * factor
 
 
 def _positive(name: str, value: Any) -> float:
@@ -93,6 +154,9 @@ class Top:
     stick : stability.Stick, optional
         The toy's stick and truncation (:mod:`stability.stick`): :meth:`stick_contact`,
         :meth:`on_stick`; refused if it does not fit the sphere.
+    plausible : bool, default True
+        Keyword only. Check the SI data against the ranges of real tippe tops
+        (:data:`PLAUSIBLE`: refused far off, :class:`ImplausibleTopWarning` in the grey zone).
     """
 
     mass: float
@@ -104,6 +168,9 @@ class Top:
     mu_k: float | None = None
     mu_v: float | None = None
     stick: Stick | None = None
+    #: check the SI data against real tippe tops (:data:`PLAUSIBLE`); False for a body that is
+    #: deliberately not one, such as the stick's tip of :meth:`on_stick`
+    plausible: bool = field(default=True, repr=False, compare=False, kw_only=True)
 
     def __post_init__(self) -> None:
         for name in ("mass", "radius", "inertia_transverse", "inertia_axial", "g"):
@@ -127,6 +194,39 @@ class Top:
         check_domain(**nd)
         if self.stick is not None:
             self.stick.check_fits(self.radius)
+        if self.plausible:
+            self._check_plausible()
+
+    def _check_plausible(self) -> None:
+        """Refuse a top orders of magnitude off real tippe tops, warn in the grey zone
+        (:data:`PLAUSIBLE`), with the SI data, the derived values and the likely cause."""
+        values = {"mass": self.mass, "radius": self.radius, "mu": self.mu, "sigma": self.sigma,
+                  "abs_q": abs(self.q)}
+        refuse, warn = [], []
+        for name, (r_lo, w_lo, w_hi, r_hi) in PLAUSIBLE.items():
+            v = values[name]
+            if name == "abs_q" and v == 0.0:
+                continue
+            side = "low" if v < w_lo else "high" if v > w_hi else None
+            if side is None:
+                continue
+            shown = "|q|" if name == "abs_q" else name
+            text = f"{shown} = {v:.3g} ({_CAUSES[(name, side)]})"
+            (refuse if (v < r_lo or v > r_hi) else warn).append(text)
+        if not refuse and not warn:
+            return
+        data = (f"mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = {self.com_offset:g} m, "
+                f"inertia_transverse = {self.inertia_transverse:g} kg m^2, inertia_axial = {self.inertia_axial:g} "
+                f"kg m^2 give q = {self.q:.3g}, mu = {self.mu:.3g}, sigma = {self.sigma:.3g}")
+        ranges = ("real tippe tops: mass 5-30 g, radius 10-30 mm, mu 2-4, sigma 0.6-1.4, |q| 0.05-0.4; "
+                  "SI units throughout")
+        if refuse:
+            raise DomainError(f"this top is outside the plausible range of real tops: {'; '.join(refuse + warn)}. "
+                              f"The data: {data}; {ranges}")
+        import warnings
+
+        warnings.warn(f"this top is unusual for a tippe top: {'; '.join(warn)}. The data: {data}; {ranges}",
+                      ImplausibleTopWarning, stacklevel=4)
 
     # -- spin-independent nondimensional parameters (eq. 3) --------------------------------
     @property
@@ -362,7 +462,8 @@ class Top:
         com_offset) / tip_radius > 0``; its "upright" state spins on the stick with G above the
         tip; :mod:`stability.stick`). Same mass, moments about G, gravity and friction; no stick."""
         st = self._stick()
-        return replace(self, radius=st.tip_radius, com_offset=st.tip_center - self.com_offset, stick=None)
+        return replace(self, radius=st.tip_radius, com_offset=st.tip_center - self.com_offset, stick=None,
+                       plausible=False)
 
     def _stick(self) -> Stick:
         if self.stick is None:

@@ -57,6 +57,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.grids", 3),
     ("stability.steady", 4),             # steady states, branch, final state, classes
     ("stability.recipes", 5),
+    ("stability.launches", 5),             # launch, flip_time: a real top launched (issue 23)
     ("stability.plotting", 6),
     ("stability.commands", 8),
     ("stability.cli", 8),

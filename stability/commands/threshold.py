@@ -32,6 +32,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                                                       "threshold, an error if there are several)")
     add_top_arguments(p, spin=False)
     g = p.add_argument_group("PARAM = spin")
+    g.add_argument("--unit", choices=["rad/s", "rpm", "rev/s", "Hz"], default=None,
+                   help="spin unit of the two launch readings (default rpm; rev/s is printed too)")
     g.add_argument("--orientation", choices=["upright", "inverted", "both"], default=None,
                    help="which state: upright (as given), inverted (q -> -q) or both (default: both)")
     p.set_defaults(func=run)
@@ -92,6 +94,8 @@ def run(args: argparse.Namespace) -> int:
                       f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
                       "cannot be decided inside it)")
         print(f"friction: {next(c for c in per.values() if c is not None).friction}")
+        if args.model == "sliding" and orientation == "both":
+            _launch_readings(top, found, alpha_v, args.unit or "rpm")
         return 0
     model = get_model(args.model)
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
@@ -116,6 +120,30 @@ def run(args: argparse.Namespace) -> int:
     t = _one_threshold(args.param, model, bracket, 257, fixed)
     print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
     return 0
+
+
+def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
+    """The two readings that must not be mixed up, each on its own line (issue 23)."""
+    from ..launches.result import NEVER_INVERTS, inverts_above
+    from ..top import from_rad_per_s
+
+    def both(w: float) -> str:
+        text = f"{from_rad_per_s(w, unit):.10g} {unit}"
+        return text if unit in ("rev/s", "Hz") else f"{text} = {from_rad_per_s(w, 'rev/s'):.10g} rev/s"
+
+    up = found.upright
+    print("the upright top becomes unstable above " + (both(up.spin) if up is not None else
+                                                        f"no spin ({found.reasons['upright']})"))
+    ref = up.spin if up is not None else top.spin_rate(0.3)
+    inv = inverts_above(top, ref, alpha_v)
+    if inv is None:
+        from ..steady.classes import top_class
+
+        cls = top_class(q=top.q, sigma=top.sigma, mu=top.mu)
+        print("launched upright, it inverts completely above no spin: " + NEVER_INVERTS.get(
+            cls, "the tilted family does not reach the inverted state"))
+    else:
+        print("launched upright, it inverts completely above " + both(inv))
 
 
 def _interval(param: str, t) -> str:

@@ -22,7 +22,7 @@ Functions (imported on first use, so that ``import stability`` does not import m
 * nonlinear runs: :func:`plot_run`, the paper's Figs. 5-9 (:mod:`stability.plotting.scene_plots`);
   a run's normal force and event (contact lost, stick reached): :func:`plot_contact_run`;
 * validation: :func:`plot_validation`, :func:`plot_coulomb_growth`;
-* a real top: :func:`plot_critical_spin`;
+* a real top: :func:`plot_critical_spin`, :func:`plot_flip_time`, :func:`plot_flip_estimates`;
 * steady states: :func:`plot_steady_states` (the states of a Jellett level on its effective
   potential), :func:`plot_final_state`, :func:`plot_bifurcation`, :func:`plot_class_map`,
   :func:`plot_settle`, :func:`plot_settle_approach`;
@@ -40,6 +40,7 @@ from typing import Any
 #: public name -> the module of this package that defines it
 _EXPORTS: dict[str, str] = {
     "plot_atlas": "figures", "atlas_figure": "figures",
+    "plot_flip_time": "launch_plots", "plot_flip_estimates": "launch_plots",
     "plot_growth_rate": "atlas_plots", "save_figure": "atlas_plots", "style": "atlas_plots",
     "plot_stability_map": "maps", "plot_neutral_curve": "maps", "plot_fold_curve": "maps", "growth_norm": "maps",
     "plot_run": "scene_plots",

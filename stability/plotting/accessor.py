@@ -35,6 +35,7 @@ __all__ = ["PLOTS", "TippeAccessor", "plotting_function"]
 #: callable ``f(ds, **kw) -> (Figure, Axes)``. A new product's figure is one entry here.
 PLOTS: dict[str, str | Callable[..., Any]] = {
     "atlas": "stability.plotting.figures:plot_atlas",
+    "flip_time_map": "stability.plotting.launch_plots:plot_flip_time",
     "neutral_curve": "stability.plotting.maps:plot_neutral_curve",
     "fold_curve": "stability.plotting.maps:plot_fold_curve",
     "nonlinear_run": "stability.plotting.scene_plots:plot_run",

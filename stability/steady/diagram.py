@@ -124,7 +124,7 @@ def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, run
         ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=s * j_per_unit)
         for kind in flags:
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    flag_attrs = {"flag_values": np.array([0, 1, 2], dtype=np.int8), "flag_meanings": "stable marginal unstable"}
+    flag_attrs = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
     vertical = xr.Dataset(
         {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin",
                                                                    **flag_attrs})

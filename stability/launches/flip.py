@@ -1,0 +1,267 @@
+"""Time until the axis of a launched top crosses a tilt, by event location on a nonlinear run.
+
+The launch state (issue 23), in the units of :func:`stability.simulate` (length R, time
+``1/Omega`` with ``Omega`` the launch spin): spun about its own axis, ``omega = k`` (spin 1),
+the axis tilted by ``tilt`` degrees from the vertical in the x-z plane,
+``k = (sin tilt, 0, cos tilt)``, the sphere's centre at rest (``V_O = 0``).
+
+Event location: the run is integrated in chunks (:func:`stability.simulate`, compiled
+Dormand-Prince 5(4) at the tolerance given) with output every ``dt`` time units; the first
+output at or beyond the crossing tilt brackets the event between two outputs, and Brent's
+method (:func:`scipy.optimize.brentq`, ``xtol = 1e-12`` time units) locates it on the run
+restarted from the output before (each evaluation integrates from that state to the trial
+time at the same tolerance, so the event is a root of the integrated solution, not of an
+interpolant). The nondimensional core (:func:`run_launch`) is reused by
+:func:`stability.launch`; :func:`flip_time` converts a top in SI units and a spin in any unit
+of :data:`stability.top.SPIN_UNITS`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..nonlinear.runs import simulate
+from ..parameters import as_scalar, check_choice, check_positive
+from ..top import Top, check_launch_spin
+
+__all__ = ["launch_state", "run_launch", "FlipRun", "flip_time", "launch_parameters", "MODELS"]
+
+#: the models a launch can be asked of (the launch state has the centre at rest: sliding only)
+MODELS = ("sliding",)
+#: the paper's viscous friction parameter (Fig. 3, Sec. 3(ii)), used when neither the top's
+#: mu_v nor an explicit alpha_v is given
+DEFAULT_ALPHA_V = 0.5
+#: tolerance of a launch run after its crossing (the settle time and the smallest normal force)
+TAIL_RTOL = 1e-8
+
+
+def launch_state(tilt: float) -> dict[str, list[float]]:
+    """``omega``, ``k``, ``velocity`` of the launch state (module docstring), tilt in degrees."""
+    th = math.radians(tilt)
+    k = [math.sin(th), 0.0, math.cos(th)]
+    return {"omega": list(k), "k": k, "velocity": [0.0, 0.0]}
+
+
+def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str
+                      ) -> tuple[float, dict[str, float], str]:
+    """The launch spin in rad/s, the nondimensional set at it (``Omega`` = the launch spin) and
+    where ``alpha_v`` came from: the top's ``mu_v`` by eq. (7) (``alpha_v = mu mu_v g / Omega``,
+    :meth:`stability.Top.alpha_v`), the explicit argument, or the paper's 0.5 by default."""
+    if not isinstance(top, Top):
+        raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
+    check_choice("model", model, MODELS)
+    w = check_launch_spin(spin, unit)
+    if top.mu_v is not None:  # an explicit alpha_v too is refused by Top.nondimensional
+        source = f"eq. (7) from the top's mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega"
+    elif alpha_v is not None:
+        source = "given (alpha_v argument)"
+    else:
+        alpha_v = DEFAULT_ALPHA_V
+        source = f"default {DEFAULT_ALPHA_V:g} (the paper's; the top has no mu_v and no alpha_v was given)"
+    params = top.nondimensional(w, alpha_v=alpha_v)
+    params = {k: float(v) for k, v in params.items()}
+    return w, params, source
+
+
+@dataclass(frozen=True)
+class FlipRun:
+    """A launch integrated until its tilt settles (nondimensional, :func:`run_launch`).
+
+    Attributes
+    ----------
+    crossing_time : float or None
+        First time the tilt reaches ``crossing`` degrees (units of ``1/Omega``), None if never.
+    settle_time : float or None
+        Time after which the tilt stays within ``band`` degrees of ``end_tilt``; None if the
+        run did not settle before ``t_max``.
+    end_tilt : float
+        Tilt at the end of the run, degrees.
+    settled : bool
+        The tilt moved by less than ``settle_tolerance`` over the last chunk.
+    t_end : float
+        Time integrated.
+    min_normal_force : float
+        Smallest normal force along the run (units ``A0 Omega^2 / R``; equilibrium value
+        ``mu fr_inv``).
+    max_tilt : float
+        Largest tilt along the run, degrees.
+    reason : str
+        Why ``crossing_time`` or ``settle_time`` is None ("" when both are found).
+    attrs : dict
+        The last chunk's ``simulate`` attributes (``method``, ..., and ``event`` where the model
+        reports contact events).
+    """
+
+    crossing_time: float | None
+    settle_time: float | None
+    end_tilt: float
+    settled: bool
+    t_end: float
+    min_normal_force: float
+    max_tilt: float
+    reason: str
+    attrs: dict
+
+
+def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, crossing: float,
+            rtol: float) -> float:
+    """The event time in ``[t0, t1]`` by Brent's method on runs restarted from the state ``y`` at t0."""
+    from scipy.optimize import brentq
+
+    def tilt_minus(t: float) -> float:
+        if t <= t0:
+            return float(y["tilt"]) - crossing
+        ds = simulate("sliding", t_end=t - t0, t_eval=np.array([0.0, t - t0]), omega=y["omega"], k=y["k"],
+                      velocity=y["velocity"], rtol=rtol, atol=1e-3 * rtol, **params)
+        return float(ds.polar_angle[-1]) - crossing
+
+    return float(brentq(tilt_minus, t0, t1, xtol=1e-12, rtol=8.9e-16, maxiter=200))
+
+
+def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float = 90.0, stop_at_crossing: bool = False,
+               t_max: float = 2e5, chunk: float = 500.0, dt: float = 0.25, band: float = 1.0,
+               settle_tolerance: float = 1e-3, end_tilt: float | None = None, rtol: float = 1e-10,
+               start: dict[str, Any] | None = None, stick_tilt: float | None = None) -> FlipRun:
+    """Integrate the launch state (module docstring) of a sliding top with the nondimensional
+    ``params`` (``q, fr_inv, sigma, mu, alpha_v`` [, ``alpha_k``]) and locate its events.
+
+    The run goes in chunks of ``chunk`` time units (output every ``dt``) until the tilt has
+    moved by less than ``settle_tolerance`` degrees over a chunk, or ``t_max``, or (with
+    ``stop_at_crossing``) the crossing, or (with ``end_tilt``) a whole chunk within half
+    ``band`` of ``end_tilt``; after the crossing at ``rtol`` no tighter than :data:`TAIL_RTOL`.
+    ``end_tilt`` (the predicted end, e.g. from
+    :func:`stability.final_state`) sets the band of the settle time; without it, the run's last
+    tilt does. ``start`` (``omega``, ``k``, ``velocity`` as :func:`stability.simulate` takes
+    them) replaces the launch state, e.g. the paper's printed states of Sec. 3(ii); ``tilt`` is
+    then ignored. ``stick_tilt`` (degrees, :meth:`stability.Top.stick_contact`) stops the run where
+    the stick touches the floor; a run also stops where the floor's normal force reaches zero
+    (:mod:`stability.nonlinear.contact`): ``attrs`` then holds ``event``, ``event_time`` (time
+    units from the launch) and ``event_tilt`` (degrees).
+    """
+    tilt = as_scalar("tilt", tilt)
+    if not 0.0 < tilt < 180.0:
+        from ..errors import DomainError
+
+        raise DomainError(f"tilt = {tilt:g} degrees is outside the allowed range: 0 < tilt < 180")
+    crossing = as_scalar("crossing", crossing)
+    if not 0.0 < crossing <= 180.0:
+        from ..errors import DomainError
+
+        raise DomainError(f"crossing = {crossing:g} degrees is outside the allowed range: 0 < crossing <= 180")
+    t_max = check_positive("t_max", t_max)
+    state = {**launch_state(tilt), "tilt": tilt}
+    if start is not None:
+        k0 = np.asarray(start["k"], dtype=float)
+        tilt = float(np.degrees(np.arccos(np.clip(k0[2] / np.linalg.norm(k0), -1.0, 1.0))))
+        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0]),
+                 "tilt": tilt}
+    t = 0.0
+    times, tilts = [np.array([0.0])], [np.array([tilt])]
+    n_min = math.inf
+    event_note = ""
+    crossed: float | None = None
+    settled = False
+    attrs: dict = {}
+    while t < t_max:
+        length = min(chunk, t_max - t)
+        n = max(2, int(math.ceil(length / dt)))
+        # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
+        # numbers are read to the 1-degree band and the output step, not to 1e-10
+        r = rtol if crossed is None else max(rtol, TAIL_RTOL)
+        ds = simulate("sliding", t_end=length, t_eval=np.linspace(0.0, length, n + 1), omega=state["omega"],
+                      k=state["k"], velocity=state["velocity"], rtol=r, atol=1e-3 * r, stick_tilt=stick_tilt,
+                      **params)
+        attrs = dict(ds.attrs)
+        pol = ds.polar_angle.values
+        if not np.all(np.isfinite(pol)):
+            raise RuntimeError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")
+        n_min = min(n_min, float(ds.normal_force.min()))
+        tt = t + ds.time.values
+        if crossed is None and (hit := np.nonzero(pol >= crossing)[0]).size and not (crossing <= tilt):
+            i = int(hit[0])
+            prev = {"omega": ds.omega.values[i - 1], "k": ds.k.values[i - 1],
+                    "velocity": ds.velocity.values[i - 1][:2], "tilt": pol[i - 1]}
+            crossed = float(t + ds.time.values[i - 1]) + _refine(prev, params, 0.0, float(ds.time.values[i] -
+                                                                                     ds.time.values[i - 1]),
+                                                            crossing, rtol)
+        times.append(tt[1:])
+        tilts.append(pol[1:])
+        t += length
+        state = {"omega": ds.omega.values[-1], "k": ds.k.values[-1] / np.linalg.norm(ds.k.values[-1]),
+                 "velocity": ds.velocity.values[-1][:2]}
+        if attrs.get("event", "none") != "none":  # the model stops holding: contact lost or stick reached
+            attrs.update(event_time=float(tt[-1]), event_tilt=float(pol[-1]))
+            event_note = (f"the run stops at t = {tt[-1]:.6g} time units: {attrs['event']} at tilt "
+                          f"{pol[-1]:.6g} degrees")
+            break
+        if stop_at_crossing and crossed is not None:
+            break
+        if float(np.max(pol) - np.min(pol)) < settle_tolerance:
+            settled = True
+            break
+        if end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * band:
+            settled = True  # a whole chunk within half the band of the predicted end
+            break
+    tt, pp = np.concatenate(times), np.concatenate(tilts)
+    end = float(pp[-1]) if end_tilt is None else float(end_tilt)
+    reasons = [event_note] if event_note else []
+    if crossed is None:
+        reasons.append(f"the axis never reaches {crossing:g} degrees (largest tilt {float(np.max(pp)):.4g} degrees "
+                       f"in {t:.6g} time units)")
+    settle_t: float | None = None
+    if settled:
+        out = np.nonzero(np.abs(pp - end) > band)[0]
+        if out.size == 0:
+            settle_t = 0.0
+        else:
+            i = int(out[-1])
+            if i + 1 < tt.size:  # linear interpolation of |tilt - end| = band between two outputs
+                a, b = abs(pp[i] - end) - band, abs(pp[i + 1] - end) - band
+                settle_t = float(tt[i] + a / (a - b) * (tt[i + 1] - tt[i]))
+            else:
+                settle_t = None
+                reasons.append("the tilt is not yet within the band at the end of the run")
+    elif not stop_at_crossing:
+        reasons.append(f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} "
+                       "spin periods)")
+    return FlipRun(crossing_time=crossed, settle_time=settle_t, end_tilt=float(pp[-1]), settled=settled, t_end=t,
+                   min_normal_force=n_min, max_tilt=float(np.max(pp)), reason="; ".join(reasons), attrs=attrs)
+
+
+def flip_time(top: Top, spin: Any, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None,
+              model: str = "sliding", crossing: float = 90.0, *, t_max: float = 2e5,
+              rtol: float = 1e-10) -> float | None:
+    """Seconds until the axis of a launched top first crosses ``crossing`` degrees.
+
+    Parameters
+    ----------
+    top : stability.Top
+        The top, SI units.
+    spin : float
+        Launch spin, in ``unit`` (0.1 to 1e4 rev/s).
+    unit : {"rad/s", "rev/s", "rpm", "Hz"}
+    tilt : float, default 1.0
+        Initial tilt of the axis, degrees (the launch state: module docstring).
+    alpha_v : float, optional
+        Viscous friction parameter (eq. 7) when the top has no ``mu_v``; default 0.5.
+    model : {"sliding"}
+    crossing : float, default 90.0
+        The tilt whose first crossing is timed, degrees.
+    t_max : float, default 2e5
+        Longest run, units of ``1/Omega`` (one spin period is ``2 pi``).
+    rtol : float, default 1e-10
+        Integrator tolerance.
+
+    Returns
+    -------
+    float or None
+        Seconds (``t / Omega``); None if the axis does not reach ``crossing`` within ``t_max``
+        (:func:`stability.launch` gives the reason).
+    """
+    w, params, _ = launch_parameters(top, spin, unit, alpha_v, model)
+    run = run_launch(params, tilt=tilt, crossing=crossing, stop_at_crossing=True, t_max=t_max, rtol=rtol)
+    return None if run.crossing_time is None else run.crossing_time / w
