@@ -97,7 +97,7 @@ def before_compiled_call(twin: Any, seconds: float) -> None:
     if twin.cached() is not False:
         return
     _STATE["noticed"] = True
-    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)
+    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice, on stderr)
 
 
 @contextlib.contextmanager

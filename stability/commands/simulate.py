@@ -86,7 +86,7 @@ def _output_times(t_end: float, dt: float) -> int | None:
     (``simulate`` then says why)."""
     if not (math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0) or t_end / dt > 1e8:
         return None
-    return int(math.ceil(t_end / dt - 1e-9)) + 1
+    return math.ceil(t_end / dt - 1e-9) + 1
 
 
 def run(args: argparse.Namespace) -> int:
@@ -115,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
     a = ds.attrs
     t = ds["time"].values
     tol = f"rtol {a['rtol']:g}" if a["method"] != "rk4" else f"step {args.step:g}"
-    rejected = f" ({a['nreject']} rejected)" if a["method"] not in ("rk4",) else ""
+    rejected = f" ({a['nreject']} rejected)" if a["method"] != "rk4" else ""
     print(f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
           f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
           f"{a['nfev']} evaluations, status: {a['message']}")

@@ -264,7 +264,7 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
     """
     require_atlas(ds)
     g, f = ds["growth_rate"], ds["frequency"]
-    bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
+    bound = ds.get("eigenvalue_error_bound")
     dims = list(ds["max_growth_rate"].dims)
     if g.ndim <= 1:
         drop: Any = False

@@ -550,7 +550,7 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
         def notes(text: str) -> None:
             warnings.warn(text, UserWarning, stacklevel=3)
     target = check_output_path(path, overwrite=overwrite)
-    dims = [d for d in ds["stability"].dims]
+    dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
     for d in dims:
