@@ -1,3 +1,7 @@
+#!/usr/bin/env -S uv run --script
+# /// script
+# dependencies = ["nox>=2025.2.9"]
+# ///
 """Developer tasks: ``nox -s tests``, ``nox -s lint``, ``nox -s typecheck``, ``nox -s docs``,
 ``nox -s bench-quick`` (``nox -l`` lists them). Each session builds its own virtualenv from the
 ``dev``/``docs`` dependency groups of pyproject.toml (PEP 735)."""
@@ -9,23 +13,22 @@ from pathlib import Path
 
 import nox
 
-nox.needs_version = ">=2024.4.15"
+nox.needs_version = ">=2025.2.9"
 nox.options.default_venv_backend = "uv|virtualenv"
-nox.options.sessions = ["lint", "typecheck", "tests"]
 
 ROOT = Path(__file__).parent
 PYPROJECT = nox.project.load_toml("pyproject.toml")
 PYTHONS = ["3.11", "3.12", "3.13"]
 
 
-@nox.session(python=PYTHONS)
+@nox.session(python=PYTHONS, default=True)
 def tests(session: nox.Session) -> None:
     """The README's test command: the installed (not editable) package, the whole suite."""
     session.install(".[test]")
     session.run("pytest", *session.posargs)
 
 
-@nox.session(reuse_venv=True)
+@nox.session(reuse_venv=True, default=True)
 def lint(session: nox.Session) -> None:
     """Ruff: the lint rules, then the formatter's check (the versions of the ``dev`` group).
 
@@ -37,14 +40,14 @@ def lint(session: nox.Session) -> None:
     session.run("ruff", "format", "--check", ".")
 
 
-@nox.session(reuse_venv=True)
+@nox.session(reuse_venv=True, default=True)
 def typecheck(session: nox.Session) -> None:
     """Mypy over the scope configured in pyproject.toml ([tool.mypy] files)."""
     session.install("-e", ".", *nox.project.dependency_groups(PYPROJECT, "dev"))
     session.run("mypy", *session.posargs)
 
 
-@nox.session(reuse_venv=True)
+@nox.session(reuse_venv=True, default=False)
 def docs(session: nox.Session) -> None:
     """The documentation site, warnings as errors, then every example in it run (doctest).
 
@@ -58,7 +61,7 @@ def docs(session: nox.Session) -> None:
     session.run("sphinx-build", *common, "-b", "doctest", "docs", "docs/_build/doctest", *session.posargs)
 
 
-@nox.session(name="bench-quick", reuse_venv=True)
+@nox.session(name="bench-quick", reuse_venv=True, default=False)
 def bench_quick(session: nox.Session) -> None:
     """The quick benchmark: a script in benchmarks/ if the tree has one, else ``tippe bench --quick``.
 
@@ -72,3 +75,7 @@ def bench_quick(session: nox.Session) -> None:
             session.run("python", str(script), "--quick", *session.posargs)
             return
     session.run("tippe", "bench", "--quick", *session.posargs)
+
+
+if __name__ == "__main__":
+    nox.main()
