@@ -56,7 +56,7 @@ def docs(session: nox.Session) -> None:
     session.install("-e", ".", *nox.project.dependency_groups(PYPROJECT, "docs"))
     shutil.rmtree(ROOT / "docs" / "_build", ignore_errors=True)
     shutil.rmtree(ROOT / "docs" / "generated", ignore_errors=True)
-    common = ["-W", "--keep-going", "-n", "-T"]
+    common = ["-W", "--keep-going", "-T"]
     session.run("sphinx-build", *common, "-b", "html", "docs", "docs/_build/html", *session.posargs)
     session.run("sphinx-build", *common, "-b", "doctest", "docs", "docs/_build/doctest", *session.posargs)
 

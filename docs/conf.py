@@ -17,6 +17,8 @@ git), so that they cannot fall behind the code:
 from __future__ import annotations
 
 import importlib
+import importlib.util
+import inspect
 import os
 from pathlib import Path
 
@@ -28,7 +30,7 @@ GENERATED = DOCS / "generated"
 
 project = "tippe-stability"
 author = "tippe-stability developers"
-copyright = "2026, tippe-stability developers"  # noqa: A001 (Sphinx's name)
+copyright = "2026, tippe-stability developers"
 release = importlib.import_module("stability._version").package_version()
 version = release
 
@@ -68,8 +70,12 @@ numpydoc_xref_param_type = False
 numpydoc_validation_checks = {"GL08"}
 # GL08 (an object without a docstring): the capability slots of LinearModel are class attributes
 # holding a model's compiled functions (documented in stability.models.base's module docstring)
-numpydoc_validation_exclude = {r"\.__init__$", r"\.__getattr__$", r"\.__dir__$",
-                               r"LinearModel\.point_(coefficients|derivatives)$"}
+numpydoc_validation_exclude = {
+    r"\.__init__$",
+    r"\.__getattr__$",
+    r"\.__dir__$",
+    r"LinearModel\.point_(coefficients|derivatives)$",
+}
 
 # no intersphinx: the build must not depend on the network (CI and offline machines alike)
 
@@ -105,48 +111,80 @@ def _write(path: Path, text: str) -> None:
         path.write_text(text)
 
 
+def _entry(module: object, package: str, name: str) -> str:
+    """The autosummary entry of one public name. Functions and classes are documented under
+    the package's name; a constant (a dict, a tuple, a float) is documented where it is
+    defined, where autodoc finds its ``#:`` comment (under the package's name it would only
+    show the docstring of its type)."""
+    obj = getattr(module, name)
+    if inspect.isclass(obj) or inspect.ismodule(obj) or callable(obj):
+        return name
+    home = importlib.util.resolve_name(module._EXPORTS[name], package)  # type: ignore[attr-defined]
+    return f"~{home.removeprefix(package + '.')}.{name}"
+
+
 def _api_page(package: str, title: str, intro: str) -> str:
     module = importlib.import_module(package)
     names = sorted(module.__all__, key=lambda n: (n.lower(), n))
-    rows = "\n".join(f"   {n}" for n in names)
+    rows = "\n".join(f"   {_entry(module, package, n)}" for n in names)
     underline = "=" * len(title)
-    return (f"{title}\n{underline}\n\n{intro}\n\n.. currentmodule:: {package}\n\n"
-            f".. autosummary::\n   :toctree: {package}\n   :nosignatures:\n\n{rows}\n")
+    return (
+        f"{title}\n{underline}\n\n{intro}\n\n.. currentmodule:: {package}\n\n"
+        f".. autosummary::\n   :toctree: {package}\n   :nosignatures:\n\n{rows}\n"
+    )
 
 
 def _gallery_page() -> str:
     atlases = ROOT / "atlases"
-    out = ["# Gallery\n",
-           "Every figure in `atlases/` with the recipe that draws it, included literally. Draw one "
-           "with `tippe figures atlases/<name>.toml` (the recipes are described in the "
-           "[user guide](../datasets.md)); the charts of the last section are drawn by the "
-           "benchmark suites (`tippe bench`) from the measurements stored beside them.\n"]
+    out = [
+        "# Gallery\n",
+        "Every figure in `atlases/` with the recipe that draws it, included literally. Draw one "
+        "with `tippe figures atlases/<name>.toml` (the recipes are described in the "
+        "[user guide](../datasets.md)); the charts of the last section are drawn by the "
+        "benchmark suites (`tippe bench`) from the measurements stored beside them.\n",
+    ]
     for png in sorted(atlases.glob("*.png")):
         recipe = png.with_suffix(".toml")
         data = png.with_suffix(".json")
         if not recipe.exists():
             continue
-        out.append(f"## {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n:width: 100%\n```\n\n"
-                   f"```{{literalinclude}} ../../atlases/{recipe.name}\n:language: toml\n:caption: atlases/{recipe.name}\n```\n")
+        out.append(
+            f"## {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n:width: 100%\n```\n\n"
+            f"```{{literalinclude}} ../../atlases/{recipe.name}\n:language: toml\n:caption: atlases/{recipe.name}\n```\n"
+        )
     charts = [p for p in sorted(atlases.glob("*.png")) if not p.with_suffix(".toml").exists()]
     if charts:
-        out.append("## Work-precision charts\n\nDrawn by the benchmark suites (docs/performance.md) "
-                   "from the JSON file of the same name in `atlases/`.\n")
+        out.append(
+            "## Work-precision charts\n\nDrawn by the benchmark suites (docs/performance.md) "
+            "from the JSON file of the same name in `atlases/`.\n"
+        )
         for png in charts:
             data = png.with_suffix(".json")
             src = f"`atlases/{data.name}`" if data.exists() else "no data file"
-            out.append(f"### {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n"
-                       f":width: 100%\n```\n\nData: {src}.\n")
+            out.append(
+                f"### {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n"
+                f":width: 100%\n```\n\nData: {src}.\n"
+            )
     return "\n".join(out)
 
 
-_write(GENERATED / "api" / "stability.rst",
-       _api_page("stability", "stability",
-                 "Every public name of the import package ``stability`` (``stability.__all__``; "
-                 "each is imported lazily from the module that defines it)."))
-_write(GENERATED / "api" / "continuation.rst",
-       _api_page("continuation", "continuation",
-                 "Every public name of the continuation engine ``continuation`` "
-                 "(``continuation.__all__``): the generic pseudo-arclength engine, and the "
-                 "facade to its clients in ``stability``."))
+_write(
+    GENERATED / "api" / "stability.rst",
+    _api_page(
+        "stability",
+        "stability",
+        "Every public name of the import package ``stability`` (``stability.__all__``; "
+        "each is imported lazily from the module that defines it).",
+    ),
+)
+_write(
+    GENERATED / "api" / "continuation.rst",
+    _api_page(
+        "continuation",
+        "continuation",
+        "Every public name of the continuation engine ``continuation`` "
+        "(``continuation.__all__``): the generic pseudo-arclength engine, and the "
+        "facade to its clients in ``stability``.",
+    ),
+)
 _write(GENERATED / "gallery.md", _gallery_page())
