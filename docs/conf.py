@@ -16,6 +16,7 @@ git), so that they cannot fall behind the code:
 
 from __future__ import annotations
 
+import doctest
 import importlib
 import importlib.util
 import inspect
@@ -86,10 +87,7 @@ import stability
 import continuation
 np.set_printoptions(precision=4, suppress=True)
 """
-doctest_default_flags = 0
-import doctest as _doctest  # noqa: E402
-
-doctest_default_flags = _doctest.ELLIPSIS | _doctest.NORMALIZE_WHITESPACE | _doctest.DONT_ACCEPT_TRUE_FOR_1
+doctest_default_flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE | doctest.DONT_ACCEPT_TRUE_FOR_1
 
 # --- HTML ------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
