@@ -137,8 +137,9 @@ def _gallery_page() -> str:
     out = [
         "# Gallery\n",
         "Every figure in `atlases/` with the recipe that draws it, included literally. Draw one "
-        "with `tippe figures atlases/<name>.toml` (the recipes are described in the "
-        "[user guide](../datasets.md)); the charts of the last section are drawn by the "
+        "with `tippe figures atlases/<name>.toml` (the recipe format is described in the "
+        "module docstring of `stability.recipes`; the datasets behind the figures in "
+        "[Datasets](../datasets.md)); the charts of the last section are drawn by the "
         "benchmark suites (`tippe bench`) from the measurements stored beside them.\n",
     ]
     for png in sorted(atlases.glob("*.png")):
