@@ -63,8 +63,9 @@ def engine(value: str | None = None) -> str:
     InputError
         A value that is not one of :data:`ENGINES` (the message names where it came from).
     """
-    if value is None and _STATE["using"] is not None:
-        return _STATE["using"]
+    using: str | None = _STATE["using"]
+    if value is None and using is not None:
+        return using
     if value is None:
         raw = os.environ.get(ENVIRONMENT, "").strip().lower()
         if raw in ("", "auto"):
