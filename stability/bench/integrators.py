@@ -147,7 +147,7 @@ def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]
     y0 = initial_state("sliding", ic["omega"], ic["k"], ic["velocity"])
-    t_eval = np.linspace(0.0, T_END, round(T_END / DT) + 1)
+    t_eval = np.linspace(0.0, T_END, int(round(T_END / DT)) + 1)
     args = (PAPER["q"], FR_INV, PAPER["sigma"], PAPER["mu"], ALPHA_V)
     r = solve_ivp(lambda t, y: sliding_rhs(t, y, *args), (0.0, T_END), y0, method="RK45", t_eval=t_eval,
                   rtol=rtol, atol=rtol * 1e-3)

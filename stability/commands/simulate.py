@@ -86,7 +86,7 @@ def _output_times(t_end: float, dt: float) -> int | None:
     (``simulate`` then says why)."""
     if not (math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0) or t_end / dt > 1e8:
         return None
-    return math.ceil(t_end / dt - 1e-9) + 1
+    return int(math.ceil(t_end / dt - 1e-9)) + 1
 
 
 def run(args: argparse.Namespace) -> int:

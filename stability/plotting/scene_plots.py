@@ -115,7 +115,7 @@ def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.
     for ax, every, tmax in ((ax1, arrow_every, t[-1]), (ax2, 1.0, zoom_periods * TWO_PI)):
         sel = t <= tmax
         ax.plot(x[sel], y[sel], color="C0", linewidth=1.0)
-        step = max(1, round(every / dt))
+        step = max(1, int(round(every / dt)))
         idx = np.arange(0, int(sel.sum()), step)
         ax.quiver(x[idx], y[idx], vx[idx], vy[idx], color="C1", angles="xy", width=0.003)
         ax.set_aspect("equal", adjustable="datalim")
