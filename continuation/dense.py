@@ -100,7 +100,7 @@ def dense(result: Any, n: int = 16) -> Any:
 
     if not isinstance(result, xr.Dataset):
         raise TypeError(f"dense needs a Branch or a neutral-curve Dataset, got {type(result).__name__}")
-    names = [k[len("tangent_"):] for k in result.data_vars if str(k).startswith("tangent_")]
+    names = [str(k)[len("tangent_"):] for k in result.data_vars if str(k).startswith("tangent_")]
     if not names:
         raise ValueError("the dataset has no tangent_<name> variables (not made by neutral_curve "
                          "or fold_curve?)")

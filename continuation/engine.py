@@ -174,7 +174,7 @@ def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
 
 
 def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
-    """Unit null vector of ``J`` (n, n+1), oriented so that ``t . t_ref > 0``.
+    """Unit null vector of ``J`` (n, n+1), oriented so that ``t @ t_ref > 0``.
 
     Parameters
     ----------
@@ -239,7 +239,7 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
 def correct(problem: ContinuationProblem, u_pred: np.ndarray, t: np.ndarray, anchor: np.ndarray,
             h: float, *, tol: float = 1e-13, max_iter: int = 12,
             scale: Sequence[float] | None = None) -> np.ndarray:
-    """Pseudo-arclength corrector: solve ``F(u) = 0``, ``t . (u - anchor) = h`` from ``u_pred``.
+    """Pseudo-arclength corrector: solve ``F(u) = 0``, ``t @ (u - anchor) = h`` from ``u_pred``.
 
     Raises
     ------

@@ -63,8 +63,9 @@ def engine(value: str | None = None) -> str:
     InputError
         A value that is not one of :data:`ENGINES` (the message names where it came from).
     """
-    if value is None and _STATE["using"] is not None:
-        return _STATE["using"]
+    using: str | None = _STATE["using"]
+    if value is None and using is not None:
+        return using
     if value is None:
         raw = os.environ.get(ENVIRONMENT, "").strip().lower()
         if raw in ("", "auto"):
@@ -97,7 +98,7 @@ def before_compiled_call(twin: Any, seconds: float) -> None:
     if twin.cached() is not False:
         return
     _STATE["noticed"] = True
-    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)
+    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice, on stderr)
 
 
 def announce(text: str) -> None:

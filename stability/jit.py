@@ -224,10 +224,7 @@ def in_disk_cache(disp: Any) -> bool | None:
             return False
         codegen = disp.targetctx.codegen()
         magic = codegen.magic_tuple()
-        for key in index:
-            if key[1] == magic and key[2] == cache._index_key(key[0], codegen)[2]:
-                return True
-        return False
+        return any(key[1] == magic and key[2] == cache._index_key(key[0], codegen)[2] for key in index)
     except Exception:  # private API: any change means "unknown", never a failure
         return None
 

@@ -369,7 +369,7 @@ _U_DOMAIN = 2.0**-53
 
 
 @register_jitable
-def _exact_margins(q, mu, sigma):
+def _exact_margins(q: Any, mu: Any, sigma: Any) -> tuple[Any, Any]:
     """``A_G = 1 - mu q^2`` and ``A_G - sigma/2`` as doubles whose signs are exact.
 
     ``q q = t + te``, ``mu t = u + ue``,
@@ -496,7 +496,7 @@ DOMAIN_ARGUMENTS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu", "a
 
 
 @register_jitable
-def domain_sides(q, fr_inv, sigma, alpha_v, mu, alpha_k):
+def domain_sides(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any, alpha_k: Any) -> tuple[Any, ...]:
     """The sides ``(lower, upper)`` of every bound of :data:`DOMAIN`, flat, in its order.
 
     Plain arithmetic (Python floats, numpy arrays, numba). The bounds through ``A_G`` have
@@ -509,7 +509,7 @@ def domain_sides(q, fr_inv, sigma, alpha_v, mu, alpha_k):
 
 
 @register_jitable
-def domain_sides_quick(q, fr_inv, sigma, alpha_v, mu, alpha_k):
+def domain_sides_quick(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any, alpha_k: Any) -> tuple[Any, ...]:
     """Sides of every bound of :data:`DOMAIN` with the *same signs* as :func:`domain_sides`
     (so :func:`inside_domain` decides the same), cheaply: the two bounds through ``A_G`` are
     decided by a plain floating-point comparison where its rounding cannot change the answer,
@@ -550,7 +550,7 @@ def domain_sides_quick(q, fr_inv, sigma, alpha_v, mu, alpha_k):
 
 
 @register_jitable
-def bound_holds(lower, upper, strict):
+def bound_holds(lower: Any, upper: Any, strict: bool) -> Any:
     """The test of one bound: ``lower < upper`` (strict) or ``lower <= upper``.
 
     Written as the sign of ``upper - lower``, which for finite floats is exactly the
@@ -563,7 +563,7 @@ def bound_holds(lower, upper, strict):
 
 
 @register_jitable
-def inside_domain(sides, applies):
+def inside_domain(sides: Any, applies: Any) -> Any:
     """All bounds of :data:`DOMAIN` whose ``applies[k]`` is true hold (compiled callers; every
     test evaluated, no short circuit)."""
     ok = True
@@ -604,7 +604,7 @@ def sigma_max(q: Any, mu: Any = DEFAULT_MU, *, _checked: bool = False) -> float 
         qa, ma = p["q"], p["mu"]
     s = 2.0 * inertia_g(qa, ma)  # within a few ulp of the bound
 
-    def holds(x):
+    def holds(x: Any) -> Any:
         return _exact_margins(qa, ma, x)[1] >= 0.0
 
     for _ in range(64):
@@ -688,7 +688,7 @@ def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
 _DOMAIN_BLOCK = 65536
 
 
-def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple) -> str:
+def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple[Any, ...]) -> str:
     """The message for the first point ``where`` violating ``b`` (value and bound printed with
     the digits it takes to tell them apart, :func:`fmt_against`)."""
     values = {k: float(p[k][where]) for k in b.involves}
@@ -886,8 +886,8 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
     if not vals:
         return None
     sides = domain_sides(*[vals.get(k, _ABSENT[k]) for k in DOMAIN_ARGUMENTS])
-    for k, (b, applies) in enumerate(zip(DOMAIN, domain_applies(vals))):
-        if applies and not bound_holds(sides[2 * k], sides[2 * k + 1], b.strict):
+    for i, (b, applies) in enumerate(zip(DOMAIN, domain_applies(vals))):
+        if applies and not bound_holds(sides[2 * i], sides[2 * i + 1], b.strict):
             return None
     return {k: np.asarray(x) for k, x in vals.items()}
 

@@ -73,6 +73,7 @@ version of the code is recomputed, never reused.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import importlib.util
@@ -544,10 +545,8 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
         nd = {"q": base.q, "mu": base.mu, "sigma": base.sigma, x: float(v)}
         top = Top.from_nondimensional(mass=base.mass, radius=base.radius, **nd)
         for orientation in out:
-            try:
+            with contextlib.suppress(ValueError):
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
-            except ValueError:
-                pass
     unit = {"units": "min-1"}
     return xr.Dataset(
         {"critical_spin_upright": (x, out["upright"], {"long_name": "upright critical spin", **unit,

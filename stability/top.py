@@ -183,7 +183,7 @@ class Top:
         # the nondimensional set must be representable and lie in the physical domain
         with np.errstate(all="ignore"):
             try:
-                nd = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
+                nd: dict[str, Any] = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
             except (OverflowError, ZeroDivisionError):
                 nd = {"q": math.nan}
         if not all(math.isfinite(v) for v in nd.values()):

@@ -132,7 +132,7 @@ def test_each_no_replace_fallback_keeps_the_contract(tmp_path, monkeypatch, disa
 
 def test_renameat2_is_used_here(tmp_path):
     """On this Linux machine the first primitive is available (glibc >= 2.28): one atomic step."""
-    if not os.uname().sysname == "Linux":
+    if os.uname().sysname != "Linux":
         pytest.skip("Linux only")
     src = tmp_path / "s"
     src.write_text("x")
@@ -179,9 +179,9 @@ def _writers():
     ds = stability.atlas("fixed_pivot", q=[0.1, 0.2], fr_inv=0.1, sigma=1.0)
 
     def save_figure(path, overwrite):
-        import matplotlib
+        import matplotlib as mpl
 
-        matplotlib.use("Agg")
+        mpl.use("Agg")
         import matplotlib.pyplot as plt
 
         from stability.plotting import save_figure as save

@@ -93,7 +93,7 @@ def test_state_vector_fast_path_agrees_with_the_general_path(value):
             return type(e).__name__, str(e).split(" = ")[0]
 
     class General(tuple):
-        pass
+        __slots__ = ()
 
     assert outcome(value) == outcome(General(value))
     if isinstance(value, np.ndarray) and outcome(value)[0] == "ok":

@@ -26,7 +26,7 @@ def test_bad_input_is_an_input_error_and_a_value_error(cls):
     assert issubclass(cls, errors.TippeError)
 
 
-@pytest.mark.parametrize("cls", (errors.ChunkError, errors.ConvergenceError))
+@pytest.mark.parametrize("cls", [errors.ChunkError, errors.ConvergenceError])
 def test_a_failure_to_compute_is_a_runtime_error_not_bad_input(cls):
     assert issubclass(cls, errors.TippeError) and issubclass(cls, RuntimeError)
     assert not issubclass(cls, ValueError) and not issubclass(cls, errors.InputError)

@@ -183,7 +183,7 @@ def test_neutral_curve_overlay_and_fold_marker():
     # the fold is located by continuation to ~1e-14 (docs/continuation.md); 1e-10 leaves margin
     assert abs(qf - (-1 + np.sqrt(1 - 1 / mu))) < 1e-10
     assert abs(sf - 2 * (mu - np.sqrt(mu * (mu - 1)))) < 1e-10
-    curve_line = [ln for ln in ax.get_lines() if ln.get_label() == "neutral curve (continued)"][0]
+    curve_line = next(ln for ln in ax.get_lines() if ln.get_label() == "neutral curve (continued)")
     assert np.array_equal(curve_line.get_xdata(), curve.q.values[curve.branch.values == curve.branch.values[0]])
 
 

@@ -24,6 +24,7 @@ after a checkpoint, 2.0-2.3 s through the watchdog).
 
 from __future__ import annotations
 
+import itertools
 import os
 import select
 import signal
@@ -253,5 +254,5 @@ def test_progress_reports_the_time_reached(monkeypatch):
     stability.simulate("sliding", t_end=20.0, omega=[0.02, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1, fr_inv=0.3,
                        sigma=1.5, alpha_v=0.5, dt=0.5, progress=times.append)
     assert len(times) > 3
-    assert all(b >= a for a, b in zip(times, times[1:]))
+    assert all(b >= a for a, b in itertools.pairwise(times))
     assert times[-1] == pytest.approx(20.0, rel=1e-12)

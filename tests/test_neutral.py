@@ -261,7 +261,7 @@ def test_special_points_zero_frequency_and_double_crossing():
 
 def test_dataset_format_and_netcdf_round_trip(curve_fr0, tmp_path):
     ds = curve_fr0
-    assert set(["q", "sigma", "frequency", "branch", "kind", "residual", "leading"]) <= set(ds.data_vars)
+    assert {"q", "sigma", "frequency", "branch", "kind", "residual", "leading"} <= set(ds.data_vars)
     assert ds.q.dims == ("point",)
     for v in ("q", "sigma", "frequency", "residual"):
         assert ds[v].attrs["units"] in ("1", "R", "Omega") and ds[v].attrs["long_name"]

@@ -302,7 +302,7 @@ def test_composite_division_engines_and_mpmath():
     rng = np.random.default_rng(45)
     mp.mp.dps = 40
     cs, ws = [], []
-    for j in range(300):
+    for _ in range(300):
         w = rng.uniform(-3, 3)
         a = mp.mpc(rng.uniform(1, 3), 0)
         b = mp.mpc(rng.normal(), rng.normal())

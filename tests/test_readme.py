@@ -42,7 +42,7 @@ def readme_blocks(text: str) -> list[tuple[str, int, str, str | None]]:
 def test_every_block_is_run_or_skipped_with_a_reason():
     blocks = readme_blocks(README.read_text())
     assert len(blocks) >= 5
-    for lang, line, body, skip in blocks:
+    for _lang, line, body, skip in blocks:
         if "pip install" in body or "python3 -m venv" in body:
             assert skip, f"README line {line}: a set-up block must carry <!-- readme-test: skip (...) -->"
     assert sum(skip is not None for *_, skip in blocks) == 2  # the set-up blocks only

@@ -111,7 +111,7 @@ def test_class_map_draws_the_closed_form_boundaries():
     ag = 1 - 2.28 * q * q
     solid = [ln for ln in ax.get_lines() if ln.get_linestyle() == "-" and len(ln.get_xdata()) == q.size]
     assert np.allclose(solid[0].get_ydata(), np.minimum(ag / (1 + q), 2 * ag))
-    dashed = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"][0]
+    dashed = next(ln for ln in ax.get_lines() if ln.get_linestyle() == "--")
     assert np.allclose(dashed.get_ydata(), (ag / (1 - q))[q < 0])
     assert any(c.get_hatch() == "///" for c in ax.collections)   # Hugenholtz's band
     assert len(ax.collections) >= 2                              # the map and the band

@@ -121,8 +121,8 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
         marker = "s" if base else ("*" if all_default else "o")
         if len(rs) == 1:
             r = rs[0]
-            label = f"{name}{' [default]' if r.default else ''}{' [baseline]' if base else ''}: " \
-                    f"{r.seconds_per_point:.3g} s, {_shown(r, x)}"
+            label = (f"{name}{' [default]' if r.default else ''}{' [baseline]' if base else ''}: "
+                     f"{r.seconds_per_point:.3g} s, {_shown(r, x)}")
         else:
             label = f"{name}{' [default]' if all_default else ''}{' [baseline]' if base else ''} ({len(rs)} settings)"
         pts = rs  # in the order measured (the settings' order)

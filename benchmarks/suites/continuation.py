@@ -41,6 +41,7 @@ estimate (the advice of :mod:`timeit`). The same rule for the continuation and t
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Hashable
 from typing import Any
@@ -138,7 +139,7 @@ def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
     fold = (max(abs(float(q[folds[0]]) - Q_STAR), abs(float(s[folds[0]]) - SIGMA_STAR)) if folds.size
             else math.inf)
     d = dense(ds, samples)
-    qq = np.concatenate([np.linspace(a, b, 20) for a, b in zip(q[:-1], q[1:])])
+    qq = np.concatenate([np.linspace(a, b, 20) for a, b in itertools.pairwise(q)])
     order = np.argsort(q)
     inner = (1.0 - MU * q * q) > 1e-6
     return {"points": int(ds.sizes["point"]), "point": float(np.max(np.abs(s - sigma_ref(q)))), "fold": fold,

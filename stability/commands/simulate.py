@@ -121,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
     a = ds.attrs
     t = ds["time"].values
     tol = f"rtol {a['rtol']:g}" if a["method"] != "rk4" else f"step {args.step:g}"
-    rejected = f" ({a['nreject']} rejected)" if a["method"] not in ("rk4",) else ""
+    rejected = f" ({a['nreject']} rejected)" if a["method"] != "rk4" else ""
     print(f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
           f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
           f"{a['nfev']} evaluations, status: {a['message']}")

@@ -266,7 +266,7 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
     if "growth_rate" not in ds:  # a map atlas file: the leading growth rate is what it stores
         return ds["leading_growth_rate"]
     g, f = ds["growth_rate"], ds["frequency"]
-    bound = ds["eigenvalue_error_bound"] if "eigenvalue_error_bound" in ds else None
+    bound = ds.get("eigenvalue_error_bound")
     dims = list(ds["max_growth_rate"].dims)
     if g.ndim <= 1:
         drop: Any = False

@@ -650,7 +650,7 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
                          f"{', '.join(map(str, COMPRESSIONS))}")
     float32 = check_flag("float32", float32)
     target = check_output_path(path, overwrite=overwrite)
-    dims = [d for d in ds["stability"].dims]
+    dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
     for d in dims:

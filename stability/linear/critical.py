@@ -38,6 +38,7 @@ the spin rate above which the upright state is unstable, or the inverted one sta
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from collections.abc import Mapping, Sequence
@@ -410,7 +411,7 @@ def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: 
     found = []
     decided = np.nonzero(state != UNDECIDED)[0]
     unstable = state == UNSTABLE
-    for i, j in zip(decided[:-1], decided[1:]):
+    for i, j in itertools.pairwise(decided):
         if unstable[i] != unstable[j]:
             k = i if unstable[i] else j
             w0 = _crossing_frequency(sign[k], estimate[k], ev[k])

@@ -85,7 +85,8 @@ def conservative_points(c: np.ndarray) -> np.ndarray:
     c = np.asarray(c, dtype=complex)
     n = c.shape[-1] - 1
     d = c * np.array([1.0, 1j, -1.0, -1j])[np.arange(n, -1, -1) % 4]
-    return np.all(d.imag == 0, axis=-1) | np.all(d.real == 0, axis=-1)
+    conservative: np.ndarray = np.all(d.imag == 0, axis=-1) | np.all(d.real == 0, axis=-1)
+    return conservative
 
 
 def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -107,7 +107,7 @@ def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any
     return out
 
 
-def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
+def _lapack(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     M, A = model.matrices(**p)
     ev = np.linalg.eigvals(np.linalg.solve(M, A))
     scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
@@ -119,7 +119,8 @@ def _lapack(model: LinearModel, p: dict[str, np.ndarray]):
     return ev, bound, np.zeros(ev.shape, dtype=bool)
 
 
-def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray, parallel: bool | None):
+def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray,
+            parallel: bool | None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """The compiled kernel over the whole grid (outside points: NaN, flag -1), or None if the
     model's degree is beyond it. A model that offers ``point_coefficients``
     (:mod:`stability.models.base`) has them formed in the kernel; any other passes its
@@ -163,8 +164,9 @@ def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, paralle
     reports such input."""
     if not kernel.accepts(m) or not isinstance(mask_unphysical, (bool, np.bool_)):
         return None
-    arrays = {k: _plain_float(v) for k, v in given.items()}
-    if any(v is None for v in arrays.values()):
+    plain = {k: _plain_float(v) for k, v in given.items()}
+    arrays = {k: v for k, v in plain.items() if v is not None}
+    if len(arrays) < len(plain):
         return None
     try:
         shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
@@ -181,7 +183,7 @@ def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, paralle
     return Spectrum(m, p, ev, bound, neutral, stab, out.inside)
 
 
-def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray):
+def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
     tol = neutral_tolerance(bound, scale)
     re = ev.real

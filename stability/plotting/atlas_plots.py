@@ -83,7 +83,7 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
         raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
     if mode not in MODES:
         raise ValueError(f"mode = {mode!r} is not known; choose one of {', '.join(MODES)}")
-    grid = [d for d in ds["max_growth_rate"].dims]
+    grid = list(ds["max_growth_rate"].dims)
     if x not in grid:
         raise ValueError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
     others = [d for d in grid if d != x]

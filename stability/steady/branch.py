@@ -60,6 +60,7 @@ from . import family, linearisation
 from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
+from .verdicts import flag_of
 
 #: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
 #: and the nonlinear right-hand side): measured 25 s of wall time on the 2-core machine
@@ -68,7 +69,6 @@ COMPILE_SECONDS = 25.0
 #: path (the notice's question; ``tippe warmup``)
 COMPILED_STEP = Compiled(kernels.step, linearisation._jacobians)
 PYTHON_STEP = Compiled(kernels.residual_and_jacobian, linearisation._jacobians)
-from .verdicts import flag_of
 
 __all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
 

@@ -307,8 +307,8 @@ def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate |
     """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if len(reach) == 1 and reach[0].stability == STABLE:
-        return reach[0], "one steady state of the Jellett level lies below the initial energy without being " \
-                         "unstable, and it is strictly stable"
+        return reach[0], ("one steady state of the Jellett level lies below the initial energy without being "
+                          "unstable, and it is strictly stable")
     n_st = sum(c.stability == STABLE for c in reach)
     n_mg = len(reach) - n_st
     reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
