@@ -21,8 +21,19 @@ import time
 
 import psutil
 
-GRID = ["--model", "sliding", "--q", "-0.6:0.6:1000", "--fr-inv", "0:3:100", "--sigma", "0.05:1.95:100",
-        "--alpha-v", "0.01:10:10", "--mask-unphysical"]
+GRID = [
+    "--model",
+    "sliding",
+    "--q",
+    "-0.6:0.6:1000",
+    "--fr-inv",
+    "0:3:100",
+    "--sigma",
+    "0.05:1.95:100",
+    "--alpha-v",
+    "0.01:10:10",
+    "--mask-unphysical",
+]
 CHUNKS = "q=20"
 
 
@@ -31,8 +42,20 @@ def main() -> int:
     ap.add_argument("--output", required=True)
     ap.add_argument("--chunks", default=CHUNKS)
     args, extra = ap.parse_known_args()
-    cmd = [sys.executable, "-m", "stability", "atlas", *GRID, "--chunks", args.chunks, "-o", args.output,
-           "--overwrite", "--no-progress", *extra]
+    cmd = [
+        sys.executable,
+        "-m",
+        "stability",
+        "atlas",
+        *GRID,
+        "--chunks",
+        args.chunks,
+        "-o",
+        args.output,
+        "--overwrite",
+        "--no-progress",
+        *extra,
+    ]
     t0 = time.perf_counter()
     proc = subprocess.Popen(cmd)
     ps = psutil.Process(proc.pid)
@@ -47,8 +70,10 @@ def main() -> int:
     wall = time.perf_counter() - t0
     child_max = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     size = os.path.getsize(args.output) / 1e9 if os.path.exists(args.output) else float("nan")
-    print(f"exit {proc.returncode}; wall {wall:.1f} s; peak RSS (sampled, process tree) {peak / 2**20:.0f} MB; "
-          f"ru_maxrss of the child {child_max:.0f} MB; file {size:.2f} GB; points 1e8; chunks {args.chunks}")
+    print(
+        f"exit {proc.returncode}; wall {wall:.1f} s; peak RSS (sampled, process tree) {peak / 2**20:.0f} MB; "
+        f"ru_maxrss of the child {child_max:.0f} MB; file {size:.2f} GB; points 1e8; chunks {args.chunks}"
+    )
     return proc.returncode
 
 

@@ -49,15 +49,24 @@ def measure(q_points: int, out_dir: str, layouts: list[str], rounds: int) -> dic
     import stability
     from stability.grids.chunked import write_atlas
 
-    grid = dict(q=np.linspace(-0.6, 0.6, q_points), fr_inv=np.linspace(0, 3, 100),
-                sigma=np.linspace(0.05, 1.95, 100), alpha_v=np.linspace(0.01, 10, 10))
+    grid = dict(
+        q=np.linspace(-0.6, 0.6, q_points),
+        fr_inv=np.linspace(0, 3, 100),
+        sigma=np.linspace(0.05, 1.95, 100),
+        alpha_v=np.linspace(0.01, 10, 10),
+    )
     n = q_points * 100 * 100 * 10
     stability.spectrum("sliding", q=0.1, fr_inv=0.1, sigma=1.0, alpha_v=0.5)  # load the compiled loop
 
     def bare() -> None:
         for i in range(0, q_points, 20):
-            part = dict(grid, q=grid["q"][i:i + 20].reshape(-1, 1, 1, 1), fr_inv=grid["fr_inv"].reshape(1, -1, 1, 1),
-                        sigma=grid["sigma"].reshape(1, 1, -1, 1), alpha_v=grid["alpha_v"].reshape(1, 1, 1, -1))
+            part = dict(
+                grid,
+                q=grid["q"][i : i + 20].reshape(-1, 1, 1, 1),
+                fr_inv=grid["fr_inv"].reshape(1, -1, 1, 1),
+                sigma=grid["sigma"].reshape(1, 1, -1, 1),
+                alpha_v=grid["alpha_v"].reshape(1, 1, 1, -1),
+            )
             stability.spectrum("sliding", mask_unphysical=True, **part)
 
     times: dict[str, list[float]] = {"bare spectra": []}
@@ -93,21 +102,38 @@ def main(argv: list[str] | None = None) -> None:
     layouts = a.layouts.split(",")
     if a.tree:
         env = dict(os.environ, PYTHONPATH=os.path.abspath(a.tree))
-        cmd = [sys.executable, os.path.abspath(__file__), "--q-points", str(a.q_points), "--out-dir",
-               os.path.abspath(a.out_dir), "--layouts", a.layouts, "--rounds", str(a.rounds), "--json"]
-        res = json.loads(subprocess.run(cmd, env=env, cwd="/tmp", capture_output=True, text=True,
-                                        check=True).stdout.strip().splitlines()[-1])
+        cmd = [
+            sys.executable,
+            os.path.abspath(__file__),
+            "--q-points",
+            str(a.q_points),
+            "--out-dir",
+            os.path.abspath(a.out_dir),
+            "--layouts",
+            a.layouts,
+            "--rounds",
+            str(a.rounds),
+            "--json",
+        ]
+        res = json.loads(
+            subprocess.run(cmd, env=env, cwd="/tmp", capture_output=True, text=True, check=True)
+            .stdout.strip()
+            .splitlines()[-1]
+        )
     else:
         res = measure(a.q_points, a.out_dir, layouts, a.rounds)
     if a.json:
         print(json.dumps(res))
         return
-    print(f"{res['points']:.0e} points; wall s (min / median over rounds), ratio to the bare spectra of the "
-          "same round (min / median), bytes per point on disk")
+    print(
+        f"{res['points']:.0e} points; wall s (min / median over rounds), ratio to the bare spectra of the "
+        "same round (min / median), bytes per point on disk"
+    )
     for k, v in res["times"].items():
         r = res["ratios"].get(k)
-        extra = (f"  x bare {min(r):.2f} / {statistics.median(r):.2f}  {res['bytes_per_point'][k]:6.2f} B/pt"
-                 if r else "")
+        extra = (
+            f"  x bare {min(r):.2f} / {statistics.median(r):.2f}  {res['bytes_per_point'][k]:6.2f} B/pt" if r else ""
+        )
         print(f"{k:16s} {min(v):7.2f} / {statistics.median(v):7.2f} s{extra}")
 
 

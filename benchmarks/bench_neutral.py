@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import argparse
 
-from suites.continuation import neutral_benchmark, format_tables
+from suites.continuation import format_tables, neutral_benchmark
 
 COLUMNS = (10, 15, 20, 25, 30, 40, 50, 60, 80, 100, 125, 150, 200, 300, 400)
 
@@ -20,10 +20,15 @@ COLUMNS = (10, 15, 20, 25, 30, 40, 50, 60, 80, 100, 125, 150, 200, 300, 400)
 def main(argv: list[str] | None = None) -> None:
     """Run :func:`suites.continuation.neutral_benchmark` and print its tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=7,
-                        help="rounds over all configurations (the minimum over all timed calls is kept)")
-    parser.add_argument("--min-time", type=float, default=0.5,
-                        help="seconds of timed calls per configuration, at least")
+    parser.add_argument(
+        "--repeat",
+        type=int,
+        default=7,
+        help="rounds over all configurations (the minimum over all timed calls is kept)",
+    )
+    parser.add_argument(
+        "--min-time", type=float, default=0.5, help="seconds of timed calls per configuration, at least"
+    )
     args = parser.parse_args(argv)
     print(format_tables(neutral_benchmark(repeat=args.repeat, columns=COLUMNS, min_time=args.min_time)))
 

@@ -23,8 +23,10 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     print(format_table(final_state_cases(repeat=args.repeat, quick=args.quick)))
     b = branch_measurements(repeat=max(args.repeat, 7))
-    print(f"\nbranch of the paper's top, {b['points']} points with spectra and flags "
-          "(time, largest relative error of lam vs the closed form):")
+    print(
+        f"\nbranch of the paper's top, {b['points']} points with spectra and flags "
+        "(time, largest relative error of lam vs the closed form):"
+    )
     for key in ("compiled", "python", "brentq"):
         print(f"  {key:<9} {b[key][0] * 1e3:8.2f} ms  {b[key][1]:.1e}")
     c = class_map_measurements(repeat=args.repeat, quick=args.quick)

@@ -26,8 +26,11 @@ def docstring_lines(source: str) -> set[int]:
     for node in ast.walk(ast.parse(source)):
         if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
             first = node.body[0]
-            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) \
-                    and isinstance(first.value.value, str):
+            if (
+                isinstance(first, ast.Expr)
+                and isinstance(first.value, ast.Constant)
+                and isinstance(first.value.value, str)
+            ):
                 lines.update(range(first.lineno, first.end_lineno + 1))
     return lines
 
@@ -35,8 +38,15 @@ def docstring_lines(source: str) -> set[int]:
 def code_lines(source: str) -> int:
     """Number of lines of ``source`` holding code (not blank, not only a comment or docstring)."""
     skip = docstring_lines(source)
-    ignored = (tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT, tokenize.DEDENT,
-               tokenize.ENCODING, tokenize.ENDMARKER)
+    ignored = (
+        tokenize.COMMENT,
+        tokenize.NL,
+        tokenize.NEWLINE,
+        tokenize.INDENT,
+        tokenize.DEDENT,
+        tokenize.ENCODING,
+        tokenize.ENDMARKER,
+    )
     seen: set[int] = set()
     for tok in tokenize.generate_tokens(io.StringIO(source).readline):
         if tok.type in ignored:
@@ -52,8 +62,7 @@ def count(paths: list[Path]) -> dict[str, int]:
     out = {}
     for p in paths:
         files = sorted(p.rglob("*.py")) if p.is_dir() else [p]
-        out[str(p.relative_to(ROOT) if p.is_relative_to(ROOT) else p)] = sum(
-            code_lines(f.read_text()) for f in files)
+        out[str(p.relative_to(ROOT) if p.is_relative_to(ROOT) else p)] = sum(code_lines(f.read_text()) for f in files)
     return out
 
 

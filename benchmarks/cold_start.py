@@ -39,19 +39,32 @@ from pathlib import Path
 CALLS: dict[str, tuple[str, tuple[str, ...]]] = {
     "import stability": ("pass", ("auto",)),
     "tippe --help": ("", ("auto",)),
-    "first eigenvalue": ('stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
-                         ("auto", "compiled")),
+    "first eigenvalue": (
+        'stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
+        ("auto", "compiled"),
+    ),
     "first threshold": ('stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)', ("auto", "compiled")),
-    "first critical spin": ('stability.critical_spin(stability.Top.table1(), orientation="upright")',
-                            ("auto", "compiled")),
-    "first neutral curve": ('stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))',
-                            ("auto", "compiled")),
-    "README atlas (181 x 3)": ('stability.atlas("sliding", q=np.linspace(-0.45, 0.45, 181), fr_inv=[0, 0.1, 0.3], '
-                               'sigma=1.0, alpha_v=0.5)', ("auto", "compiled")),
-    "spectrum of 10^5 points": ('stability.spectrum("sliding", q=np.linspace(-0.45, 0.45, 100_000), fr_inv=0.3, '
-                                'sigma=1.0, alpha_v=0.5)', ("auto",)),
-    "first simulate (t_end = 50)": ('stability.simulate("sliding", t_end=50.0, omega=[0, 0, 1], k=[1e-3, 0, 1], '
-                                    'q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)', ("auto",)),
+    "first critical spin": (
+        'stability.critical_spin(stability.Top.table1(), orientation="upright")',
+        ("auto", "compiled"),
+    ),
+    "first neutral curve": (
+        'stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))',
+        ("auto", "compiled"),
+    ),
+    "README atlas (181 x 3)": (
+        'stability.atlas("sliding", q=np.linspace(-0.45, 0.45, 181), fr_inv=[0, 0.1, 0.3], sigma=1.0, alpha_v=0.5)',
+        ("auto", "compiled"),
+    ),
+    "spectrum of 10^5 points": (
+        'stability.spectrum("sliding", q=np.linspace(-0.45, 0.45, 100_000), fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
+        ("auto",),
+    ),
+    "first simulate (t_end = 50)": (
+        'stability.simulate("sliding", t_end=50.0, omega=[0, 0, 1], k=[1e-3, 0, 1], '
+        "q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)",
+        ("auto",),
+    ),
 }
 
 _TEMPLATE = """
@@ -70,8 +83,9 @@ def measure(python: str, name: str, mode: str, cache: str, cwd: str) -> dict:
     """One fresh process: wall and CPU time of the process, the call's time inside it, whether
     it imported numba, and whether it printed the compile notice."""
     code, _ = CALLS[name]
-    argv = [python, "-m", "stability", "--help"] if name == "tippe --help" else [python, "-c",
-                                                                                 _TEMPLATE.format(code=code)]
+    argv = (
+        [python, "-m", "stability", "--help"] if name == "tippe --help" else [python, "-c", _TEMPLATE.format(code=code)]
+    )
     env = {**os.environ, "NUMBA_CACHE_DIR": cache, "TIPPE_KERNEL": mode}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
@@ -80,8 +94,11 @@ def measure(python: str, name: str, mode: str, cache: str, cwd: str) -> dict:
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if out.returncode != 0:
         raise RuntimeError(f"{name} ({mode}) failed:\n{out.stderr}")
-    row = {"wall": wall, "cpu": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
-           "notice": "compiling kernels" in out.stderr}
+    row = {
+        "wall": wall,
+        "cpu": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
+        "notice": "compiling kernels" in out.stderr,
+    }
     if name != "tippe --help":
         row.update(json.loads(out.stdout.strip().splitlines()[-1]))
     return row
@@ -94,27 +111,39 @@ def run_table(python: str, repeat: int, names: list[str]) -> dict:
     with tempfile.TemporaryDirectory(prefix="tippe-cold-") as tmp:
         warm = os.path.join(tmp, "warm-cache")
         t = time.perf_counter()
-        subprocess.run([python, "-m", "stability", "warmup"], check=True, capture_output=True, cwd=tmp,
-                       env={**os.environ, "NUMBA_CACHE_DIR": warm})
+        subprocess.run(
+            [python, "-m", "stability", "warmup"],
+            check=True,
+            capture_output=True,
+            cwd=tmp,
+            env={**os.environ, "NUMBA_CACHE_DIR": warm},
+        )
         results["warmup_seconds"] = time.perf_counter() - t
         for name in names:
             for mode in CALLS[name][1]:
                 for state in ("cold", "warm"):
                     rows = []
                     for k in range(repeat):
-                        cache = os.path.join(tmp, f"cold-{name}-{mode}-{k}".replace(" ", "_")) if state == "cold" else warm
+                        cache = (
+                            os.path.join(tmp, f"cold-{name}-{mode}-{k}".replace(" ", "_")) if state == "cold" else warm
+                        )
                         rows.append(measure(python, name, mode, cache, tmp))
                         if state == "cold":
                             shutil.rmtree(cache, ignore_errors=True)
-                    best = {key: min(r[key] for r in rows) for key in ("wall", "cpu", *(("call",) if "call" in rows[0]
-                                                                                       else ()))}
+                    best = {
+                        key: min(r[key] for r in rows)
+                        for key in ("wall", "cpu", *(("call",) if "call" in rows[0] else ()))
+                    }
                     best["notice"] = any(r["notice"] for r in rows)
                     best["numba"] = any(r.get("numba", False) for r in rows)
                     results.setdefault(name, {}).setdefault(mode, {})[state] = best
-                    print(f"{name:30s} {mode:9s} {state}: process {best['wall']:6.2f} s wall, {best['cpu']:6.2f} s CPU"
-                          + (f"; the call {best['call']:6.3f} s" if "call" in best else "")
-                          + ("; numba imported" if best["numba"] else "") + ("; compile notice" if best["notice"] else ""),
-                          flush=True)
+                    print(
+                        f"{name:30s} {mode:9s} {state}: process {best['wall']:6.2f} s wall, {best['cpu']:6.2f} s CPU"
+                        + (f"; the call {best['call']:6.3f} s" if "call" in best else "")
+                        + ("; numba imported" if best["numba"] else "")
+                        + ("; compile notice" if best["notice"] else ""),
+                        flush=True,
+                    )
     return results
 
 
@@ -133,22 +162,34 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3, help="runs per measurement (the minimum is kept)")
     parser.add_argument("--python", default=sys.executable, help="the interpreter to measure (default: this one)")
-    parser.add_argument("--fresh-venv", action="store_true",
-                        help="install the package into a new temporary venv and measure that (no dask)")
+    parser.add_argument(
+        "--fresh-venv",
+        action="store_true",
+        help="install the package into a new temporary venv and measure that (no dask)",
+    )
     parser.add_argument("--calls", nargs="*", default=list(CALLS), help="which calls (default: all)")
     parser.add_argument("--json", help="also write the results as JSON")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="tippe-venv-") as tmp:
         python = fresh_venv(Path(__file__).resolve().parent.parent, tmp) if args.fresh_venv else args.python
-        extras = subprocess.run([python, "-c", "import importlib.util as u; print(u.find_spec('dask') is not None)"],
-                                capture_output=True, text=True, check=True).stdout.strip()
-        print(f"interpreter {python}; dask installed: {extras}; {os.cpu_count()} cores; "
-              f"load average {os.getloadavg()[0]:.2f}", flush=True)
+        extras = subprocess.run(
+            [python, "-c", "import importlib.util as u; print(u.find_spec('dask') is not None)"],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        print(
+            f"interpreter {python}; dask installed: {extras}; {os.cpu_count()} cores; "
+            f"load average {os.getloadavg()[0]:.2f}",
+            flush=True,
+        )
         results = run_table(python, args.repeat, args.calls)
         results["dask_installed"] = extras == "True"
         results["load_average_after"] = os.getloadavg()[0]
-        print(f"tippe warmup (cold cache): {results['warmup_seconds']:.1f} s; load average now "
-              f"{results['load_average_after']:.2f}")
+        print(
+            f"tippe warmup (cold cache): {results['warmup_seconds']:.1f} s; load average now "
+            f"{results['load_average_after']:.2f}"
+        )
     if args.json:
         Path(args.json).write_text(json.dumps(results, indent=1))
 

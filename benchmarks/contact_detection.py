@@ -16,8 +16,8 @@ Usage: python benchmarks/contact_detection.py
 from __future__ import annotations
 
 import numpy as np
-
 from stability.bench.timing import best_times
+
 from stability.nonlinear.integrators import integrate
 from stability.nonlinear.runs import initial_state, model_parameter_vector
 from stability.nonlinear.scene import INITIAL_CONDITIONS
@@ -29,8 +29,8 @@ def _case(model, t_end, method, omega, k, velocity=None, **params):
     t_eval = np.linspace(0.0, t_end, int(t_end / 0.1) + 1)
 
     def run(watch):
-        return lambda: integrate(model, y0, t_eval, p, method=method, rtol=1e-9, atol=1e-12,
-                                 watch_contact=watch)
+        return lambda: integrate(model, y0, t_eval, p, method=method, rtol=1e-9, atol=1e-12, watch_contact=watch)
+
     return run
 
 
@@ -39,30 +39,65 @@ def main() -> None:
     ic = INITIAL_CONDITIONS[0.3]
     k_lost = np.array([0.3, 0.0, 1.0]) / np.hypot(0.3, 1.0)
     cases = {
-        "paper Fr^-1 = 0.3, sliding, dopri5, t = 1000 (contact holds)":
-            _case("sliding", 1000.0, "dopri5", ic["omega"], ic["k"], ic.get("velocity"), q=-0.1, fr_inv=0.3,
-                  sigma=1.0, alpha_v=0.5),
-        "paper Fr^-1 = 0.3, rolling, dopri5, t = 1000 (contact holds)":
-            _case("rolling", 1000.0, "dopri5", ic["omega"], ic["k"], None, q=-0.1, fr_inv=0.3, sigma=1.0),
-        "Coulomb alpha_k = 0.05, sliding, LSODA, t = 200 (contact holds)":
-            _case("sliding", 200.0, "LSODA", ic["omega"], ic["k"], ic.get("velocity"), q=-0.1, fr_inv=0.3,
-                  sigma=1.0, alpha_v=0.5, alpha_k=0.05),
+        "paper Fr^-1 = 0.3, sliding, dopri5, t = 1000 (contact holds)": _case(
+            "sliding",
+            1000.0,
+            "dopri5",
+            ic["omega"],
+            ic["k"],
+            ic.get("velocity"),
+            q=-0.1,
+            fr_inv=0.3,
+            sigma=1.0,
+            alpha_v=0.5,
+        ),
+        "paper Fr^-1 = 0.3, rolling, dopri5, t = 1000 (contact holds)": _case(
+            "rolling", 1000.0, "dopri5", ic["omega"], ic["k"], None, q=-0.1, fr_inv=0.3, sigma=1.0
+        ),
+        "Coulomb alpha_k = 0.05, sliding, LSODA, t = 200 (contact holds)": _case(
+            "sliding",
+            200.0,
+            "LSODA",
+            ic["omega"],
+            ic["k"],
+            ic.get("velocity"),
+            q=-0.1,
+            fr_inv=0.3,
+            sigma=1.0,
+            alpha_v=0.5,
+            alpha_k=0.05,
+        ),
     }
     for name, run in cases.items():
         times, res = best_times({"watched": run(True), "unwatched": run(False)}, repeat=7)
         assert np.isnan(res["watched"].event_time)
-        print(f"{name}: watched {times['watched'] * 1e3:.3f} ms, unwatched {times['unwatched'] * 1e3:.3f} ms, "
-              f"ratio {times['watched'] / times['unwatched']:.3f}")
+        print(
+            f"{name}: watched {times['watched'] * 1e3:.3f} ms, unwatched {times['unwatched'] * 1e3:.3f} ms, "
+            f"ratio {times['watched'] / times['unwatched']:.3f}"
+        )
     # the reproducer: watched to its event, unwatched to the same time
-    lost = _case("sliding", 50.0, "dopri5", [2.0, 0.0, 1.0], k_lost, [0.0, 0.0], q=-0.1, fr_inv=0.05,
-                 sigma=1.0, alpha_v=0.5)(True)
+    lost = _case(
+        "sliding", 50.0, "dopri5", [2.0, 0.0, 1.0], k_lost, [0.0, 0.0], q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5
+    )(True)
     t_ev = lost().event_time
-    same = _case("sliding", float(t_ev), "dopri5", [2.0, 0.0, 1.0], k_lost, [0.0, 0.0], q=-0.1, fr_inv=0.05,
-                 sigma=1.0, alpha_v=0.5)(False)
+    same = _case(
+        "sliding",
+        float(t_ev),
+        "dopri5",
+        [2.0, 0.0, 1.0],
+        k_lost,
+        [0.0, 0.0],
+        q=-0.1,
+        fr_inv=0.05,
+        sigma=1.0,
+        alpha_v=0.5,
+    )(False)
     times, _ = best_times({"watched": lost, "unwatched": same}, repeat=15)
-    print(f"reproducer (contact lost at t = {t_ev:.12g}): watched to the event {times['watched'] * 1e6:.1f} us, "
-          f"unwatched to the same time {times['unwatched'] * 1e6:.1f} us, "
-          f"ratio {times['watched'] / times['unwatched']:.3f}")
+    print(
+        f"reproducer (contact lost at t = {t_ev:.12g}): watched to the event {times['watched'] * 1e6:.1f} us, "
+        f"unwatched to the same time {times['unwatched'] * 1e6:.1f} us, "
+        f"ratio {times['watched'] / times['unwatched']:.3f}"
+    )
 
 
 if __name__ == "__main__":

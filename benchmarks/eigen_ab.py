@@ -36,6 +36,7 @@ def child(points: int, repeat: int) -> dict:
     import numpy as np
 
     import stability
+
     try:  # the suites live beside the package now (benchmarks/suites); older trees installed them
         from stability.bench.eigen import domain_sample
     except ImportError:
@@ -86,15 +87,30 @@ def main(argv: list[str] | None = None) -> None:
             if tree is None:
                 continue
             env = dict(os.environ, PYTHONPATH=os.path.abspath(tree))
-            out = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", "--points", str(a.points),
-                                  "--repeat", str(a.repeat)], env=env, capture_output=True, text=True, check=True,
-                                 cwd="/tmp")
+            out = subprocess.run(
+                [
+                    sys.executable,
+                    os.path.abspath(__file__),
+                    "--child",
+                    "--points",
+                    str(a.points),
+                    "--repeat",
+                    str(a.repeat),
+                ],
+                env=env,
+                capture_output=True,
+                text=True,
+                check=True,
+                cwd="/tmp",
+            )
             res = json.loads(out.stdout.strip().splitlines()[-1])
             runs[label].append(res)
             print(f"round {r} {label}: " + ", ".join(f"{k} {v:.1f}" for k, v in res.items()), flush=True)
     keys = list((runs["B"] or runs["A"])[0])
-    print(f"\n{'method':28s} {'A min':>8s} {'A med':>8s} {'B min':>8s} {'B med':>8s} {'B/A min':>8s} {'B/A med':>8s}"
-          "   (ns per point; 'x numpy': ratio)")
+    print(
+        f"\n{'method':28s} {'A min':>8s} {'A med':>8s} {'B min':>8s} {'B med':>8s} {'B/A min':>8s} {'B/A med':>8s}"
+        "   (ns per point; 'x numpy': ratio)"
+    )
     for k in keys:
         row = []
         for label in ("A", "B"):

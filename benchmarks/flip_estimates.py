@@ -33,8 +33,8 @@ from stability.launches.flip import run_launch
 from stability.top import Top
 
 ATLASES = Path(__file__).resolve().parent.parent / "atlases"
-SPINS = (6.5, 7.15, 8.0, 9.0, 10.0, 12.0, 15.0, 20.0)   # rev/s; the upright top is unstable above 6.06
-TILTS = (0.5, 1.0, 3.0, 10.0)                             # degrees
+SPINS = (6.5, 7.15, 8.0, 9.0, 10.0, 12.0, 15.0, 20.0)  # rev/s; the upright top is unstable above 6.06
+TILTS = (0.5, 1.0, 3.0, 10.0)  # degrees
 RTOLS = (1e-10, 1e-8, 1e-6)
 
 
@@ -58,18 +58,33 @@ def error_cost():
                 continue
             for rtol in RTOLS:
                 run, sec = best(lambda: run_launch(params, tilt=th, stop_at_crossing=True, t_max=2e4, rtol=rtol))
-                records.append(dict(method=f"simulation rtol {rtol:g}", spin_rev_s=s, tilt=th, seconds=sec,
-                                    rel_error=abs(run.crossing_time - ref) / ref))
+                records.append(
+                    dict(
+                        method=f"simulation rtol {rtol:g}",
+                        spin_rev_s=s,
+                        tilt=th,
+                        seconds=sec,
+                        rel_error=abs(run.crossing_time - ref) / ref,
+                    )
+                )
             for name, how in (("e-folding (eq. 11)", "efold"), ("projected e-folding (eq. 11)", "projected")):
                 est, sec = best(lambda: efold_flip_time(params, th, estimate=how), repeat=5)
-                records.append(dict(method=name, spin_rev_s=s, tilt=th, seconds=sec,
-                                    rel_error=abs(est - ref) / ref, signed_error=(est - ref) / ref))
+                records.append(
+                    dict(
+                        method=name,
+                        spin_rev_s=s,
+                        tilt=th,
+                        seconds=sec,
+                        rel_error=abs(est - ref) / ref,
+                        signed_error=(est - ref) / ref,
+                    )
+                )
     return records
 
 
 def launch_cost():
-    from stability.linear.critical import critical_spin
     from stability.launches.result import inverts_above
+    from stability.linear.critical import critical_spin
     from stability.steady.final import final_state
 
     top = Top.table1()
@@ -83,7 +98,9 @@ def launch_cost():
         "inverts_above (branch point)": best(lambda: inverts_above(top, 2 * math.pi * 7.15, 0.5))[1],
         "final_state": best(lambda: final_state(omega=k, k=k, velocity=[0.0, 0.0], **p))[1],
         "run to settle (flip, settle, normal force)": best(lambda: run_launch(p, tilt=1.0, end_tilt=163.7))[1],
-        "the same run to the crossing only (flip_time)": best(lambda: run_launch(p, tilt=1.0, stop_at_crossing=True))[1],
+        "the same run to the crossing only (flip_time)": best(lambda: run_launch(p, tilt=1.0, stop_at_crossing=True))[
+            1
+        ],
     }
     return total, parts
 
@@ -117,21 +134,34 @@ def main():
     summary = {}
     for m in dict.fromkeys(r["method"] for r in records):
         rs = [r for r in records if r["method"] == m]
-        summary[m] = dict(max_rel_error=max(r["rel_error"] for r in rs),
-                          median_rel_error=float(np.median([r["rel_error"] for r in rs])),
-                          median_seconds=float(np.median([r["seconds"] for r in rs])))
-        print(f"{m:>24}: error max {summary[m]['max_rel_error']:.2e} median {summary[m]['median_rel_error']:.2e}, "
-              f"median {summary[m]['median_seconds'] * 1e3:.3g} ms per launch")
+        summary[m] = dict(
+            max_rel_error=max(r["rel_error"] for r in rs),
+            median_rel_error=float(np.median([r["rel_error"] for r in rs])),
+            median_seconds=float(np.median([r["seconds"] for r in rs])),
+        )
+        print(
+            f"{m:>24}: error max {summary[m]['max_rel_error']:.2e} median {summary[m]['median_rel_error']:.2e}, "
+            f"median {summary[m]['median_seconds'] * 1e3:.3g} ms per launch"
+        )
     total, parts = launch_cost()
     print(f"stability.launch warm (Table 1, 7.15 rev/s): {total:.3f} s; parts:")
     for k, v in parts.items():
         print(f"  {k}: {v:.3f} s")
-    out = dict(spins_rev_s=SPINS, tilts_deg=TILTS, records=records, summary=summary,
-               launch_seconds=total, launch_parts=parts, command="python benchmarks/flip_estimates.py")
+    out = dict(
+        spins_rev_s=SPINS,
+        tilts_deg=TILTS,
+        records=records,
+        summary=summary,
+        launch_seconds=total,
+        launch_parts=parts,
+        command="python benchmarks/flip_estimates.py",
+    )
     with style():
         fig, ax = plot_flip_estimates(records)
-        ax.set_title("time to 90 deg, Table 1 top, 6.5-20 rev/s, tilts 0.5-10 deg; reference: simulation at rtol 1e-12",
-                     fontsize=8)
+        ax.set_title(
+            "time to 90 deg, Table 1 top, 6.5-20 rev/s, tilts 0.5-10 deg; reference: simulation at rtol 1e-12",
+            fontsize=8,
+        )
         save_figure(fig, ATLASES / "flip_estimates.png")
     if not args.skip_map:
         ds, sec = the_map(*args.map)
@@ -139,9 +169,14 @@ def main():
         print(f"flip-time map: {n} launches in {sec:.1f} s ({sec / n * 1e3:.0f} ms each)")
         out.update(map_launches=n, map_seconds=sec)
         top = Top.table1()
-        marks = [(7.15, 78 / 7.15, "paper, Fr^-1 = 0.3: ~78 periods"),
-                 (float(top.spin_rate(0.1, "rev/s")), 41 / float(top.spin_rate(0.1, "rev/s")),
-                  "paper, Fr^-1 = 0.1: ~41 periods")]
+        marks = [
+            (7.15, 78 / 7.15, "paper, Fr^-1 = 0.3: ~78 periods"),
+            (
+                float(top.spin_rate(0.1, "rev/s")),
+                41 / float(top.spin_rate(0.1, "rev/s")),
+                "paper, Fr^-1 = 0.1: ~41 periods",
+            ),
+        ]
         with style():
             fig, ax = plot_flip_time(ds, marks=marks)
             save_figure(fig, ATLASES / "flip_time_toy.png")

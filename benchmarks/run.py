@@ -36,11 +36,12 @@ from typing import Any
 if __package__ in (None, ""):  # run as a script: its folder holds the suites
     sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from stability.grids.netcdf import atomic_output, check_output_path  # noqa: E402
-from suites import SUITES  # noqa: E402
-from suites.records import WorkPrecision, peak_memory_mb  # noqa: E402
+from suites import SUITES
+from suites.records import WorkPrecision, peak_memory_mb
 
-__all__ = ["main", "parser", "run", "run_suite", "summary_lines", "ATLASES"]
+from stability.grids.netcdf import atomic_output, check_output_path
+
+__all__ = ["ATLASES", "main", "parser", "run", "run_suite", "summary_lines"]
 
 #: the committed charts: where a full run writes by default
 ATLASES = Path(__file__).resolve().parent.parent / "atlases"
@@ -51,29 +52,39 @@ def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="benchmarks/run.py",
         description="Work-precision benchmarks: the eigenvalue methods on a large batch of points over the "
-                    "physical domain against mpmath at 50 digits (eigen), the continuation's step settings "
-                    "against the exact fold of the neutral curve (continuation), the integrators of the "
-                    "nonlinear runs against a tight DOP853 reference (integrators), the steady states "
-                    "(steady). Writes a chart (PNG) and a JSON summary per suite and prints the speed "
-                    "ratios against the baselines.")
-    p.add_argument("--suite", choices=[*SUITES, "all"], default="all",
-                   help="suite to run (default: all, each in its own process)")
+        "physical domain against mpmath at 50 digits (eigen), the continuation's step settings "
+        "against the exact fold of the neutral curve (continuation), the integrators of the "
+        "nonlinear runs against a tight DOP853 reference (integrators), the steady states "
+        "(steady). Writes a chart (PNG) and a JSON summary per suite and prints the speed "
+        "ratios against the baselines.",
+    )
+    p.add_argument(
+        "--suite", choices=[*SUITES, "all"], default="all", help="suite to run (default: all, each in its own process)"
+    )
     p.add_argument("--quick", action="store_true", help=f"small configurations ({_quick_help()})")
-    p.add_argument("--points", type=float, default=None, metavar="N",
-                   help="eigen: batch size for the timings (default 1e6)")
+    p.add_argument(
+        "--points", type=float, default=None, metavar="N", help="eigen: batch size for the timings (default 1e6)"
+    )
     p.add_argument("--reference-points", type=int, default=None, help="eigen: mpmath sample size (default 1000)")
-    p.add_argument("--loop-points", type=int, default=None, help="eigen: points timed for the per-point loop "
-                   "(default 20000)")
-    p.add_argument("--repeat", type=int, default=None, help="timed repeats, the best kept (eigen 5, "
-                   "continuation 5, integrators 3)")
-    p.add_argument("--out-dir", default=None, metavar="DIR",
-                   help="directory for the charts and the summaries (created if missing; default: atlases/ "
-                        "of the repository, or a new temporary folder with --quick)")
+    p.add_argument(
+        "--loop-points", type=int, default=None, help="eigen: points timed for the per-point loop (default 20000)"
+    )
+    p.add_argument(
+        "--repeat", type=int, default=None, help="timed repeats, the best kept (eigen 5, continuation 5, integrators 3)"
+    )
+    p.add_argument(
+        "--out-dir",
+        default=None,
+        metavar="DIR",
+        help="directory for the charts and the summaries (created if missing; default: atlases/ "
+        "of the repository, or a new temporary folder with --quick)",
+    )
     return p
 
 
 def _quick_help() -> str:
     """What ``--quick`` runs, from each suite's :attr:`~suites.records.Suite.quick`."""
+
     def shown(k: str, v: Any) -> str:
         return "fewer settings" if k == "quick" else f"{k.replace('_', ' ')} {v:g}"
 
@@ -84,8 +95,7 @@ def _error(r: WorkPrecision, key: str) -> float:
     return r.error if key == "error" else float(r.extra.get(key, float("inf")))
 
 
-def summary_lines(results: list[WorkPrecision], unit: str = "point",
-                  compare_at: tuple[str, ...] = ()) -> list[str]:
+def summary_lines(results: list[WorkPrecision], unit: str = "point", compare_at: tuple[str, ...] = ()) -> list[str]:
     """One line per measurement: time per unit of work, error, and speed ratios against the
     baselines of the same panel.
 
@@ -135,16 +145,23 @@ def _options(args: argparse.Namespace, name: str) -> dict[str, Any]:
     """Keyword arguments for a suite's run function: the ones it names, from the flags (with
     ``--quick``, the suite's :attr:`~suites.records.Suite.quick` where no flag gives one)."""
     suite = SUITES[name]
-    given = {"points": None if args.points is None else int(args.points),
-             "reference_points": args.reference_points, "loop_points": args.loop_points, "repeat": args.repeat,
-             "quick": None}
+    given = {
+        "points": None if args.points is None else int(args.points),
+        "reference_points": args.reference_points,
+        "loop_points": args.loop_points,
+        "repeat": args.repeat,
+        "quick": None,
+    }
     if args.quick:
         given = {k: suite.quick.get(k) if v is None else v for k, v in given.items()}
     accepted = inspect.signature(suite.run).parameters
     # every option the suite takes, with its default where no flag gave one (so that the chart
     # and the JSON record the configuration actually run)
-    return {k: given[k] if given.get(k) is not None else p.default for k, p in accepted.items()
-            if k in given and (given.get(k) is not None or p.default is not inspect.Parameter.empty)}
+    return {
+        k: given[k] if given.get(k) is not None else p.default
+        for k, p in accepted.items()
+        if k in given and (given.get(k) is not None or p.default is not inspect.Parameter.empty)
+    }
 
 
 def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPrecision]:
@@ -170,21 +187,29 @@ def run_suite(name: str, out_dir: Path, options: dict[str, Any]) -> list[WorkPre
     js = check_output_path(out_dir / f"work_precision_{name}.json", overwrite=True)
     results = suite.run(**options)
     peak = peak_memory_mb()
-    from stability.plotting import save_figure, style
-
     from suites.charts import suite_figure, verdict
 
-    cond = ", ".join(f"{k.replace('_', ' ')} {v:g}" if not isinstance(v, bool) else k
-                     for k, v in options.items() if v is not False)
+    from stability.plotting import save_figure, style
+
+    cond = ", ".join(
+        f"{k.replace('_', ' ')} {v:g}" if not isinstance(v, bool) else k for k, v in options.items() if v is not False
+    )
     subtitle = f"{cond + '; ' if cond else ''}{os.cpu_count()} cores; peak memory {peak:.0f} MB"
     with style():
         fig, _ = suite_figure(suite, results, subtitle=subtitle)
     save_figure(fig, png)
-    info = {"suite": name, **options, "cores": os.cpu_count(), "machine": platform.machine(),
-            "python": platform.python_version(), "peak_memory_mb": peak,
-            "verdict": [verdict([r for r in results if r.panel == p.select], p.target)
-                        for p in suite.panels if p.target is not None],
-            "results": [r.as_dict() for r in results]}
+    info = {
+        "suite": name,
+        **options,
+        "cores": os.cpu_count(),
+        "machine": platform.machine(),
+        "python": platform.python_version(),
+        "peak_memory_mb": peak,
+        "verdict": [
+            verdict([r for r in results if r.panel == p.select], p.target) for p in suite.panels if p.target is not None
+        ],
+        "results": [r.as_dict() for r in results],
+    }
     with atomic_output(js, overwrite=True) as tmp:
         Path(tmp).write_text(json.dumps(info, indent=1))
     print(f"== {name}: {suite.title}")
@@ -222,8 +247,10 @@ def run(args: argparse.Namespace, out_dir: Path) -> int:
                 cmd += ["--" + flag.replace("_", "-"), repr(getattr(args, flag))]
         done = subprocess.run(cmd)
         if done.returncode != 0:
-            print(f"benchmarks/run.py: suite {name} failed (exit {done.returncode}); the suites before it are "
-                  "written", file=sys.stderr)
+            print(
+                f"benchmarks/run.py: suite {name} failed (exit {done.returncode}); the suites before it are written",
+                file=sys.stderr,
+            )
             return done.returncode
     return 0
 
@@ -254,8 +281,9 @@ def _check_sizes(args: argparse.Namespace) -> None:
         if value is None:
             continue
         flag = "--" + name.replace("_", "-")
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and float(value).is_integer()
-                and lo <= value <= hi):
+        if not (
+            isinstance(value, (int, float)) and math.isfinite(value) and float(value).is_integer() and lo <= value <= hi
+        ):
             raise ValueError(f"{flag} = {value!r} is outside the allowed range: an integer in [{lo}, {hi:g}]")
 
 

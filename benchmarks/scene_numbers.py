@@ -11,8 +11,10 @@ from stability.nonlinear.scene import PAPER_NUMBERS, friction_cases, scene_numbe
 def main() -> None:
     for fr in (0.3, 0.1):
         n = scene_numbers(fr)
-        print(f"fr_inv = {fr}: crossing after {n['crossing_periods']:.2f} spin periods "
-              f"(paper {PAPER_NUMBERS['crossing_periods'][fr]:.0f}); run took {n['seconds']:.3f} s")
+        print(
+            f"fr_inv = {fr}: crossing after {n['crossing_periods']:.2f} spin periods "
+            f"(paper {PAPER_NUMBERS['crossing_periods'][fr]:.0f}); run took {n['seconds']:.3f} s"
+        )
         for k, v in n.items():
             print(f"    {k:34s} {v: .6g}")
     for scheme in ("adaptive", "fixed_step"):

@@ -48,8 +48,9 @@ def boundary_points(n: int = 2000, seed: int = 3) -> dict[str, np.ndarray]:
 
 
 def snapshot(points: int) -> dict[str, np.ndarray]:
-    import stability
     from stability.bench.eigen import domain_sample
+
+    import stability
 
     out = {}
     for name, p, mask in (("sample", domain_sample(points, seed=0), False), ("boundary", boundary_points(), True)):

@@ -14,7 +14,6 @@ import math
 
 import numpy as np
 
-import continuation
 import stability
 from stability.nonlinear import rolling, sliding
 from stability.nonlinear.parameters import pack
@@ -33,8 +32,15 @@ def random_tops(n, seed):
         mu = MU if rng.random() < 0.7 else rng.uniform(0.5, 5.0)
         qm = min(0.45, 0.95 / math.sqrt(mu))
         q = rng.uniform(-qm, qm)
-        out.append(dict(q=q, sigma=rng.uniform(0.05, 2 * (1 - mu * q * q)), fr_inv=rng.uniform(0.01, 2.0),
-                        alpha_v=math.exp(rng.uniform(math.log(0.05), math.log(5.0))), mu=mu))
+        out.append(
+            dict(
+                q=q,
+                sigma=rng.uniform(0.05, 2 * (1 - mu * q * q)),
+                fr_inv=rng.uniform(0.01, 2.0),
+                alpha_v=math.exp(rng.uniform(math.log(0.05), math.log(5.0))),
+                mu=mu,
+            )
+        )
     return out, rng
 
 
@@ -44,8 +50,9 @@ def residuals() -> None:
     n = 0
     for t in tops:
         c = rng.uniform(-1, 1)
-        lam = family.precession_rate(c, q=t["q"], sigma=t["sigma"], fr_inv=t["fr_inv"], mu=t["mu"],
-                                     sign=rng.choice([-1.0, 1.0]))
+        lam = family.precession_rate(
+            c, q=t["q"], sigma=t["sigma"], fr_inv=t["fr_inv"], mu=t["mu"], sign=rng.choice([-1.0, 1.0])
+        )
         if not math.isfinite(lam):
             continue
         y = family.state_vector(math.acos(c), lam, t["q"], phi=rng.uniform(0, 2 * np.pi))
@@ -56,8 +63,10 @@ def residuals() -> None:
         f = rolling.rhs(0.0, np.concatenate([y[:6], [0.0, 0.0]]), p)[:6] - lam * g[:6]
         worst["rolling"] = max(worst["rolling"], np.max(np.abs(f)) / max(1.0, lam * lam))
         n += 1
-    print(f"A. {n} closed-form steady states, residual of the compiled rhs in the precessing frame / max(1, lam^2): "
-          f"sliding {worst['sliding']:.1e}, rolling {worst['rolling']:.1e}")
+    print(
+        f"A. {n} closed-form steady states, residual of the compiled rhs in the precessing frame / max(1, lam^2): "
+        f"sliding {worst['sliding']:.1e}, rolling {worst['rolling']:.1e}"
+    )
 
 
 def vertical_and_tilted() -> None:
@@ -68,16 +77,24 @@ def vertical_and_tilted() -> None:
         ds = stability.steady_states(jellett=rng.uniform(0.2, 3.0) * rng.choice([-1, 1]), **t)
         for i in np.nonzero(ds.kind.values != "tilted")[0]:
             s = ds.isel(state=i)
-            ref = stability.spectrum("sliding", q=float(s.equivalent_q), fr_inv=float(s.equivalent_fr_inv),
-                                     sigma=t["sigma"], alpha_v=float(s.equivalent_alpha_v), mu=t["mu"])
+            ref = stability.spectrum(
+                "sliding",
+                q=float(s.equivalent_q),
+                fr_inv=float(s.equivalent_fr_inv),
+                sigma=t["sigma"],
+                alpha_v=float(s.equivalent_alpha_v),
+                mu=t["mu"],
+            )
             lin = ref.eigenvalues * abs(float(s.omega_vertical))
             both = np.sort_complex(np.concatenate([lin, lin.conj()]))
             got = np.sort_complex(s.mode_growth_rate.values + 1j * s.mode_frequency.values)
             worst = max(worst, np.max(np.abs(got - both)) / max(1.0, np.max(np.abs(both))))
             agree += int(s.stability) == int(ref.stability)
             total += 1
-    print(f"B. vertical states: 6 eigenvalues vs eq. (11) at the equivalent spin (x |n|, and conjugates): "
-          f"max diff / max(1, |s|) {worst:.1e}; verdicts equal {agree}/{total}")
+    print(
+        f"B. vertical states: 6 eigenvalues vs eq. (11) at the equivalent spin (x |n|, and conjugates): "
+        f"max diff / max(1, |s|) {worst:.1e}; verdicts equal {agree}/{total}"
+    )
     tops, rng = random_tops(2000, 4)
     agree = total = 0
     max_complex = -np.inf
@@ -103,30 +120,45 @@ def vertical_and_tilted() -> None:
                 cplx = ev[i][np.abs(ev[i].imag) > 1e-9]
                 if cplx.size:
                     max_complex = max(max_complex, cplx.real.max() / scale[i])
-    print(f"C. tilted states: reduced-Jacobian verdict = energy criterion (sign of U_J'') in {agree}/{total}; "
-          f"largest Re of a complex mode at an energetically stable state / ||A||: {max_complex:.1e} (no Hopf)")
+    print(
+        f"C. tilted states: reduced-Jacobian verdict = energy criterion (sign of U_J'') in {agree}/{total}; "
+        f"largest Re of a complex mode at an energetically stable state / ||A||: {max_complex:.1e} (no Hopf)"
+    )
 
 
 def branches() -> None:
-    cases = [(-0.1, 1.0, 0.3), (-0.3, 0.5, 0.1), (0.2, 0.7, 0.3), (-0.2, 1.3, 0.5), (-0.15, 1.12, 0.3),
-             (-0.295, 1.107, 1 / MU)]
+    cases = [
+        (-0.1, 1.0, 0.3),
+        (-0.3, 0.5, 0.1),
+        (0.2, 0.7, 0.3),
+        (-0.2, 1.3, 0.5),
+        (-0.15, 1.12, 0.3),
+        (-0.295, 1.107, 1 / MU),
+    ]
     worst = fold = 0.0
     for q, sigma, fr in cases:
         ds = stability.steady_branch(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5)
         c = np.cos(np.radians(ds.tilt.values))
         inner = ds.kind.values != "branch_point"
         lam = family.precession_rate(c, q=q, sigma=sigma, fr_inv=fr, mu=MU)
-        worst = max(worst, np.max(np.abs(ds.precession_rate.values[inner] - lam[inner]) / lam[inner]),
-                    np.max(np.abs(ds.jellett.values[inner] - lam[inner] * family.d_of_c(c[inner], q, sigma, MU))
-                           / ds.jellett.values[inner]))
+        worst = max(
+            worst,
+            np.max(np.abs(ds.precession_rate.values[inner] - lam[inner]) / lam[inner]),
+            np.max(
+                np.abs(ds.jellett.values[inner] - lam[inner] * family.d_of_c(c[inner], q, sigma, MU))
+                / ds.jellett.values[inner]
+            ),
+        )
         f = np.cos(np.radians(ds.tilt.values[ds.kind.values == "fold"]))
         ref = [x for x in family.fold_cosines(q, sigma, MU) if -1 < x < 1]
         for x in f:
             fold = max(fold, min(abs(x - r) for r in ref))
         kinds = [f"{k} {float(t):.4f}" for k, t in zip(ds.kind.values, ds.tilt.values) if k]
         print(f"   q={q:+.3f} sigma={sigma} fr_inv={fr:.4g}: {ds.sizes['point']} points, {', '.join(kinds)}")
-    print(f"D. traced branches vs the closed form (lam, J): max relative difference {worst:.1e}; folds vs "
-          f"c0 -+ sqrt(D(c0)/(3a)): {fold:.1e} in cos(tilt)")
+    print(
+        f"D. traced branches vs the closed form (lam, J): max relative difference {worst:.1e}; folds vs "
+        f"c0 -+ sqrt(D(c0)/(3a)): {fold:.1e} in cos(tilt)"
+    )
     rng = np.random.default_rng(7)
     worst = 0.0
     n = 0
@@ -139,23 +171,29 @@ def branches() -> None:
             if not math.isfinite(bp[orient]):
                 continue
             spin = bp[orient] / (sigma * (1 + sgn * q))
-            th = min(stability.thresholds("fr_inv", q=sgn * q, sigma=sigma, alpha_v=0.5), key=lambda v: abs(v - fr / spin ** 2))
-            worst = max(worst, abs(th - fr / spin ** 2) / th)
+            th = min(
+                stability.thresholds("fr_inv", q=sgn * q, sigma=sigma, alpha_v=0.5), key=lambda v: abs(v - fr / spin**2)
+            )
+            worst = max(worst, abs(th - fr / spin**2) / th)
             n += 1
     top = stability.Top.table1()
     out = []
     for orient, sgn in (("upright", 1.0), ("inverted", -1.0)):
         cs = stability.critical_spin(top, orientation=orient)
         j = branch_points(q=top.q, sigma=top.sigma, fr_inv=cs.fr_inv, mu=top.mu)[orient]
-        out.append(f"{orient} {cs.rpm:.4f} rpm: J_b / (sigma (1 {'+' if sgn > 0 else '-'} q)) = "
-                   f"{j / (top.sigma * (1 + sgn * top.q)):.15f}")
+        out.append(
+            f"{orient} {cs.rpm:.4f} rpm: J_b / (sigma (1 {'+' if sgn > 0 else '-'} q)) = "
+            f"{j / (top.sigma * (1 + sgn * top.q)):.15f}"
+        )
     print(f"E. {n} branch points (nonlinear rhs) vs stability.thresholds (eq. 11): max relative difference {worst:.1e}")
     print(f"   Table 1 top at its critical spins: {'; '.join(out)}")
     fr = float(top.fr_inv(1.0, unit="rpm"))
     bp = branch_points(q=top.q, sigma=top.sigma, fr_inv=fr, mu=top.mu)
     rpm = {k: v / (top.sigma * (1 + top.q)) for k, v in bp.items()}
-    print(f"   launch spins of the branch points (upright launch, J = sigma (1 + q) Omega): upright "
-          f"{rpm['upright']:.4f} rpm, inverted {rpm['inverted']:.4f} rpm; between them the top hangs")
+    print(
+        f"   launch spins of the branch points (upright launch, J = sigma (1 + q) Omega): upright "
+        f"{rpm['upright']:.4f} rpm, inverted {rpm['inverted']:.4f} rpm; between them the top hangs"
+    )
 
 
 def classes_and_paper() -> None:
@@ -167,16 +205,22 @@ def classes_and_paper() -> None:
     gamma = (1 - MU * q * q) / sigma
     hug = (q < 0) & (1 + q < gamma) & (gamma < 1 - q)
     counts = {str(k): int(v) for k, v in zip(*np.unique(names[inside], return_counts=True))}
-    print(f"F. 1e6 random tops: {counts}; 'inverts' vs Hugenholtz 1 - alpha < A_G/C < 1 + alpha: "
-          f"{int(np.sum((names == 'inverts')[inside] != hug[inside]))} mismatches")
+    print(
+        f"F. 1e6 random tops: {counts}; 'inverts' vs Hugenholtz 1 - alpha < A_G/C < 1 + alpha: "
+        f"{int(np.sum((names == 'inverts')[inside] != hug[inside]))} mismatches"
+    )
     for fr in (0.3, 0.1):
         end = stability.final_state(q=-0.1, sigma=1.0, fr_inv=fr, alpha_v=0.5, **INITIAL_CONDITIONS[fr])
         jinv = family.branch_point_jellett("inverted", q=-0.1, sigma=1.0, fr_inv=fr, mu=MU)
-        cands = ", ".join(f"{c.kind} {c.tilt:.6f} E={c.energy:.7f} {('stable', 'marginal', 'unstable')[c.stability]}"
-                          for c in end.candidates)
-        print(f"G. paper run Fr^-1 = {fr}: J0 = {end.jellett:.7f}, |J_inv| = {jinv:.7f}; ends {end.kind} at "
-              f"{end.tilt:.6f} deg ({end.method}), axial spin {end.axial_spin:.5f}, energy {end.energy:.7f}; "
-              f"candidates: {cands}")
+        cands = ", ".join(
+            f"{c.kind} {c.tilt:.6f} E={c.energy:.7f} {('stable', 'marginal', 'unstable')[c.stability]}"
+            for c in end.candidates
+        )
+        print(
+            f"G. paper run Fr^-1 = {fr}: J0 = {end.jellett:.7f}, |J_inv| = {jinv:.7f}; ends {end.kind} at "
+            f"{end.tilt:.6f} deg ({end.method}), axial spin {end.axial_spin:.5f}, energy {end.energy:.7f}; "
+            f"candidates: {cands}"
+        )
 
 
 def main() -> None:

@@ -113,9 +113,9 @@ def _dataset(out: dict, name: str, ds) -> None:
     for k in list(ds.data_vars) + list(ds.coords):
         v = ds[k].values
         out[f"{name}/{k}"] = v.astype(str) if v.dtype.kind in "OU" else v
-    out[f"{name}/attrs"] = np.array(json.dumps({k: str(v) for k, v in ds.attrs.items()
-                                                if k not in ("history", "date_created")},
-                                               sort_keys=True))
+    out[f"{name}/attrs"] = np.array(
+        json.dumps({k: str(v) for k, v in ds.attrs.items() if k not in ("history", "date_created")}, sort_keys=True)
+    )
 
 
 def _branch(out: dict, name: str, br) -> None:
@@ -123,8 +123,9 @@ def _branch(out: dict, name: str, br) -> None:
         out[f"{name}/{k}"] = getattr(br, k)
     out[f"{name}/kinds"] = np.array(br.kinds)
     out[f"{name}/details"] = np.array(br.details)
-    out[f"{name}/meta"] = np.array([str(br.closed), *br.end_reasons, str(br.n_newton),
-                                    str(br.n_residual), str(br.n_jacobian)])
+    out[f"{name}/meta"] = np.array(
+        [str(br.closed), *br.end_reasons, str(br.n_newton), str(br.n_residual), str(br.n_jacobian)]
+    )
 
 
 def snapshot() -> dict:
@@ -152,9 +153,13 @@ def snapshot() -> dict:
         ("sigma_frinv", "sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5), {}),
         ("q_frinv", "q", "fr_inv", dict(sigma=1.0, alpha_v=0.5), {}),
         ("sigma_alphav", "sigma", "alpha_v", dict(q=-0.1, fr_inv=0.3), {}),
-        ("start_at_fold", "q", "sigma", dict(fr_inv=0.0, alpha_v=0.5),
-         dict(start=[(-1 + np.sqrt(1 - 1 / 2.28), 2 * (2.28 - np.sqrt(2.28 * 1.28)),
-                      1 / np.sqrt(1 - 1 / 2.28))])),
+        (
+            "start_at_fold",
+            "q",
+            "sigma",
+            dict(fr_inv=0.0, alpha_v=0.5),
+            dict(start=[(-1 + np.sqrt(1 - 1 / 2.28), 2 * (2.28 - np.sqrt(2.28 * 1.28)), 1 / np.sqrt(1 - 1 / 2.28))]),
+        ),
         ("start_zero_mode", "q", "sigma", dict(fr_inv=0.3, alpha_v=0.5), dict(start=[(0.0, 0.5, 0.0)])),
     ]
     for name, x, y, fixed, kw in sliding:
@@ -163,16 +168,34 @@ def snapshot() -> dict:
             _dataset(out, f"neutral/{name}/{'compiled' if compiled else 'python'}", ds)
     _dataset(out, "neutral/fixed_pivot", neutral_curve("fixed_pivot", "q", "sigma", fixed=dict(fr_inv=0.05)))
     _dataset(out, "neutral/rolling", neutral_curve("rolling", "q", "sigma", fixed=dict(fr_inv=0.3)))
-    _dataset(out, "neutral/sliding_alpha_v_0", neutral_curve("sliding", "q", "sigma",
-                                                             fixed=dict(fr_inv=0.3, alpha_v=0.0)))
-    _dataset(out, "fold/q_sigma_frinv", fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma",
-                                                   fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                                                   z_range=(0.0, 0.3), max_step=0.1))
-    _dataset(out, "fold/q_sigma_alphav", fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma",
-                                                    fixed=dict(fr_inv=0.1, alpha_v=0.5)))
+    _dataset(
+        out, "neutral/sliding_alpha_v_0", neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.0))
+    )
+    _dataset(
+        out,
+        "fold/q_sigma_frinv",
+        fold_curve(
+            "sliding",
+            "q",
+            "sigma",
+            "fr_inv",
+            fold_in="sigma",
+            fixed=dict(fr_inv=0.0, alpha_v=0.5),
+            z_range=(0.0, 0.3),
+            max_step=0.1,
+        ),
+    )
+    _dataset(
+        out,
+        "fold/q_sigma_alphav",
+        fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma", fixed=dict(fr_inv=0.1, alpha_v=0.5)),
+    )
 
-    _branch(out, "engine/circle", trace(Circle(), [np.cos(0.3), np.sin(0.3)], fold_components=(0, 1),
-                                        max_angle=0.15, max_step=0.3))
+    _branch(
+        out,
+        "engine/circle",
+        trace(Circle(), [np.cos(0.3), np.sin(0.3)], fold_components=(0, 1), max_angle=0.15, max_step=0.3),
+    )
     _branch(out, "engine/circle_coarse", trace(Circle(), [1.0, 0.0], max_angle=0.4, max_step=1.0, step=0.1))
     _branch(out, "engine/cubic", trace_both(Cubic(), [0.0, 0.0], fold_components=(0,), max_step=0.1))
     u0 = project(Hopf(), [1.1, 0.1, 1.6])
@@ -181,8 +204,9 @@ def snapshot() -> dict:
     _branch(out, "engine/lines", trace(Lines(), [-1.0, -1.0], max_points=200, max_arclength=2.5))
     _branch(out, "engine/line_test", trace_both(LineWithTest(), [0.0, 0.0], max_step=0.3))
     seen: list = []
-    _branch(out, "engine/callback", trace(Circle(), [1.0, 0.0],
-                                          callback=lambda u, t, k: seen.append(k) or len(seen) < 5))
+    _branch(
+        out, "engine/callback", trace(Circle(), [1.0, 0.0], callback=lambda u, t, k: seen.append(k) or len(seen) < 5)
+    )
 
     # derived: dense output and nonlinear runs (listed apart)
     ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
@@ -191,8 +215,7 @@ def snapshot() -> dict:
     from stability import simulate
 
     for model, kw in (("sliding", dict(alpha_v=0.5)), ("rolling", {}), ("fixed_pivot", {})):
-        r = simulate(model, t_end=60.0, omega=[0.05, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1,
-                     fr_inv=0.3, sigma=1.0, **kw)
+        r = simulate(model, t_end=60.0, omega=[0.05, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.0, **kw)
         for k in r.data_vars:
             if r[k].dtype.kind == "f":
                 out[f"derived/simulate_{model}/{k}"] = r[k].values
@@ -209,15 +232,17 @@ def compare(a_path: str, b_path: str) -> int:
             bad.append((k, "missing in one"))
             continue
         x, y = a[k], b[k]
-        same = x.shape == y.shape and x.dtype == y.dtype and (
-            np.array_equal(x, y) if x.dtype.kind in "OUSb" else
-            np.array_equal(x.view(np.uint8), y.view(np.uint8)))  # bit for bit, NaN and -0.0 too
+        same = (
+            x.shape == y.shape
+            and x.dtype == y.dtype
+            and (np.array_equal(x, y) if x.dtype.kind in "OUSb" else np.array_equal(x.view(np.uint8), y.view(np.uint8)))
+        )  # bit for bit, NaN and -0.0 too
         if not k.startswith("derived/"):
             n_main += 1
             if not same:
                 bad.append((k, "differs"))
         elif not same:
-            d = (np.nanmax(np.abs(x - y)) if x.shape == y.shape else np.inf)
+            d = np.nanmax(np.abs(x - y)) if x.shape == y.shape else np.inf
             print(f"derived {k}: differs, max |difference| {d:.2e} (max |value| {np.nanmax(np.abs(x)):.2e})")
         else:
             print(f"derived {k}: identical")

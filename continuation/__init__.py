@@ -28,18 +28,35 @@ from typing import Any
 
 #: public name -> the module that defines it (imported on first use)
 _EXPORTS: dict[str, str] = {
-    "dense": ".dense", "hermite_samples": ".dense",
+    "dense": ".dense",
+    "hermite_samples": ".dense",
     **dict.fromkeys(("Branch", "TraceOptions", "correct", "project", "tangent", "trace", "trace_both"), ".engine"),
     "ConvergenceError": ".errors",
-    "fold_test": ".events", "locate": ".events",
+    "fold_test": ".events",
+    "locate": ".events",
     "hermite": ".interpolation",
-    "ContinuationProblem": ".problem", "StepResult": ".problem", "finite_difference_jacobian": ".problem",
+    "ContinuationProblem": ".problem",
+    "StepResult": ".problem",
+    "finite_difference_jacobian": ".problem",
 }
 
 __all__ = [
-    "Branch", "TraceOptions", "StepResult", "ConvergenceError", "ContinuationProblem", "correct", "finite_difference_jacobian",
-    "fold_test", "locate", "project", "tangent", "trace", "trace_both", "dense", "hermite",
+    "Branch",
+    "ContinuationProblem",
+    "ConvergenceError",
+    "StepResult",
+    "TraceOptions",
+    "correct",
+    "dense",
+    "finite_difference_jacobian",
+    "fold_test",
+    "hermite",
     "hermite_samples",
+    "locate",
+    "project",
+    "tangent",
+    "trace",
+    "trace_both",
 ]
 
 

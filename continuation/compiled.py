@@ -35,15 +35,26 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 import numba
+import numpy as np
 from numba.extending import overload, register_jitable
 
 from . import interpolation, linalg
 
-__all__ = ["solve_det", "tangent_det", "predict", "corrector_update", "norm", "solve_dense", "EPS", "FLOOR",
-           "CONTINUE", "CONVERGED", "POLISH", "FAILED"]
+__all__ = [
+    "CONTINUE",
+    "CONVERGED",
+    "EPS",
+    "FAILED",
+    "FLOOR",
+    "POLISH",
+    "corrector_update",
+    "norm",
+    "predict",
+    "solve_dense",
+    "solve_det",
+    "tangent_det",
+]
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 
@@ -54,13 +65,21 @@ njit = numba.njit
 def register() -> None:
     """Register the building blocks of :mod:`continuation.linalg` and
     :mod:`continuation.interpolation` with numba (run once, when this module is imported)."""
-    for fn in (linalg.lu_solve, linalg._lu_solve_loop, linalg._lu_solve3, linalg.tangent_det,
-               interpolation.hermite_eval, interpolation.predict):
+    for fn in (
+        linalg.lu_solve,
+        linalg._lu_solve_loop,
+        linalg._lu_solve3,
+        linalg.tangent_det,
+        interpolation.hermite_eval,
+        interpolation.predict,
+    ):
         register_jitable(fn)
     options = {k: _JIT[k] for k in ("fastmath", "nogil", "error_model")}
-    for fn, impl in ((linalg.solve_det, linalg._solve_det_compiled),
-                     (linalg.bordered_solve, linalg._bordered_solve_compiled),
-                     (linalg.norm, linalg._norm_compiled)):
+    for fn, impl in (
+        (linalg.solve_det, linalg._solve_det_compiled),
+        (linalg.bordered_solve, linalg._bordered_solve_compiled),
+        (linalg.norm, linalg._norm_compiled),
+    ):
         overload(fn, jit_options=options)(impl)
 
 
@@ -100,9 +119,19 @@ solve_dense = njit(cache=True)(linalg._solve_dense)
 
 
 @njit(**_JIT)
-def corrector_update(it: int, max_iter: int, v: np.ndarray, start: np.ndarray, f: np.ndarray,
-                     J: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float, tol: float,
-                     polish: bool) -> tuple[int, np.ndarray, float]:
+def corrector_update(
+    it: int,
+    max_iter: int,
+    v: np.ndarray,
+    start: np.ndarray,
+    f: np.ndarray,
+    J: np.ndarray,
+    t_plane: np.ndarray,
+    anchor: np.ndarray,
+    h: float,
+    tol: float,
+    polish: bool,
+) -> tuple[int, np.ndarray, float]:
     """One iteration of ``engine._newton`` given ``f = F(v)`` and ``J = dF/dv`` (scaled).
 
     Returns ``(action, dv, ||f||)``:

@@ -48,8 +48,7 @@ def hermite_samples(points: np.ndarray, tangents: np.ndarray, n: int = 16) -> np
     P = np.asarray(points, dtype=float)
     T = np.asarray(tangents, dtype=float)
     if P.ndim != 2 or T.shape != P.shape:
-        raise ValueError(f"points and tangents must have the same shape (m, dim), got "
-                         f"{P.shape} and {T.shape}")
+        raise ValueError(f"points and tangents must have the same shape (m, dim), got {P.shape} and {T.shape}")
     if int(n) < 1:
         raise ValueError(f"n = {n!r}; use n >= 1")
     n = int(n)
@@ -63,8 +62,7 @@ def hermite_samples(points: np.ndarray, tangents: np.ndarray, n: int = 16) -> np
     t1 = T[1:] * np.where(np.einsum("ij,ij->i", T[1:], chord) < 0, -1.0, 1.0)[:, None]
     # (segment, sample, dim): the Hermite curve of each segment at tau = 0, 1/n, ..., (n-1)/n
     tau = (np.arange(n) / n)[None, :, None]
-    out = hermite_eval(P[:-1, None, :], t0[:, None, :], P[1:, None, :], t1[:, None, :], tau,
-                       d[:, None, None])
+    out = hermite_eval(P[:-1, None, :], t0[:, None, :], P[1:, None, :], t1[:, None, :], tau, d[:, None, None])
     return np.concatenate([out.reshape(-1, P.shape[1]), P[-1:]], axis=0)
 
 
@@ -100,10 +98,9 @@ def dense(result: Any, n: int = 16) -> Any:
 
     if not isinstance(result, xr.Dataset):
         raise TypeError(f"dense needs a Branch or a neutral-curve Dataset, got {type(result).__name__}")
-    names = [str(k)[len("tangent_"):] for k in result.data_vars if str(k).startswith("tangent_")]
+    names = [str(k)[len("tangent_") :] for k in result.data_vars if str(k).startswith("tangent_")]
     if not names:
-        raise ValueError("the dataset has no tangent_<name> variables (not made by neutral_curve "
-                         "or fold_curve?)")
+        raise ValueError("the dataset has no tangent_<name> variables (not made by neutral_curve or fold_curve?)")
     P = np.stack([result[k].values for k in names], axis=1)
     T = np.stack([result[f"tangent_{k}"].values for k in names], axis=1)
     br = result["branch"].values if "branch" in result else np.zeros(len(P), int)

@@ -47,10 +47,11 @@ from . import interpolation
 from .errors import ConvergenceError
 from .events import locate
 from .interpolation import hermite
-from .linalg import bordered_det, bordered_solve, norm as _norm, tangent_det
+from .linalg import bordered_det, bordered_solve, tangent_det
+from .linalg import norm as _norm
 from .problem import ContinuationProblem, StepResult, finite_difference_jacobian, problem_dimension
 
-__all__ = ["Branch", "TraceOptions", "trace", "trace_both", "correct", "project", "tangent", "hermite"]
+__all__ = ["Branch", "TraceOptions", "correct", "hermite", "project", "tangent", "trace", "trace_both"]
 
 EPS = float(np.finfo(float).eps)
 #: a residual this small is at the rounding floor: no polishing step
@@ -192,9 +193,17 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
 # ------------------------------------------------------------------------------------------
 # Newton's method: the corrector and the projection onto the curve
 # ------------------------------------------------------------------------------------------
-def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.ndarray | None,
-            h: float, tol: float, max_iter: int, max_move: float, polish: bool = True
-            ) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
+def _newton(
+    sp: _Scaled,
+    v: np.ndarray,
+    t_plane: np.ndarray | None,
+    anchor: np.ndarray | None,
+    h: float,
+    tol: float,
+    max_iter: int,
+    max_move: float,
+    polish: bool = True,
+) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
     """Newton on ``[F; t_plane . (v - anchor) - h]`` (minimum-norm Newton if ``t_plane`` is None).
 
     Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``; skipped when
@@ -236,9 +245,17 @@ def _newton(sp: _Scaled, v: np.ndarray, t_plane: np.ndarray | None, anchor: np.n
     return v, False, max_iter, None
 
 
-def correct(problem: ContinuationProblem, u_pred: np.ndarray, t: np.ndarray, anchor: np.ndarray,
-            h: float, *, tol: float = 1e-13, max_iter: int = 12,
-            scale: Sequence[float] | None = None) -> np.ndarray:
+def correct(
+    problem: ContinuationProblem,
+    u_pred: np.ndarray,
+    t: np.ndarray,
+    anchor: np.ndarray,
+    h: float,
+    *,
+    tol: float = 1e-13,
+    max_iter: int = 12,
+    scale: Sequence[float] | None = None,
+) -> np.ndarray:
     """Pseudo-arclength corrector: solve ``F(u) = 0``, ``t @ (u - anchor) = h`` from ``u_pred``.
 
     Raises
@@ -248,15 +265,30 @@ def correct(problem: ContinuationProblem, u_pred: np.ndarray, t: np.ndarray, anc
     """
     sc = np.ones(len(u_pred)) if scale is None else np.asarray(scale, float)
     sp = _Scaled(problem, sc)
-    v, ok, _, _ = _newton(sp, np.asarray(u_pred, float) / sc, np.asarray(t, float),
-                          np.asarray(anchor, float) / sc, h, tol, max_iter, np.inf)
+    v, ok, _, _ = _newton(
+        sp,
+        np.asarray(u_pred, float) / sc,
+        np.asarray(t, float),
+        np.asarray(anchor, float) / sc,
+        h,
+        tol,
+        max_iter,
+        np.inf,
+    )
     if not ok:
         raise ConvergenceError(f"the corrector did not converge to ||F|| <= {tol:g}")
     return v * sc
 
 
-def project(problem: ContinuationProblem, u0: np.ndarray, *, tol: float = 1e-13, max_iter: int = 30,
-            scale: Sequence[float] | None = None, max_move: float = np.inf) -> np.ndarray:
+def project(
+    problem: ContinuationProblem,
+    u0: np.ndarray,
+    *,
+    tol: float = 1e-13,
+    max_iter: int = 30,
+    scale: Sequence[float] | None = None,
+    max_move: float = np.inf,
+) -> np.ndarray:
     """Nearest point of the curve by minimum-norm (Gauss-)Newton steps from ``u0``.
 
     Raises
@@ -382,8 +414,10 @@ class TraceOptions:
 
     def __post_init__(self) -> None:
         if not (0 < self.min_step <= self.step <= self.max_step):
-            raise ValueError(f"steps must satisfy 0 < min_step <= step <= max_step, got "
-                             f"{self.min_step}, {self.step}, {self.max_step}")
+            raise ValueError(
+                f"steps must satisfy 0 < min_step <= step <= max_step, got "
+                f"{self.min_step}, {self.step}, {self.max_step}"
+            )
         object.__setattr__(self, "fold_components", tuple(int(i) for i in self.fold_components))
         if self.scale is not None:
             object.__setattr__(self, "scale", tuple(float(x) for x in np.ravel(self.scale)))
@@ -411,10 +445,18 @@ class _Tracer:
     and Jacobian evaluations in ``sp``). Arguments: those of :func:`trace`, checked there.
     """
 
-    def __init__(self, problem: ContinuationProblem, u0: np.ndarray, sc: np.ndarray, o: TraceOptions, *,
-                 direction: int, tangent0: Sequence[float] | None,
-                 callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
-                 project_start: bool):
+    def __init__(
+        self,
+        problem: ContinuationProblem,
+        u0: np.ndarray,
+        sc: np.ndarray,
+        o: TraceOptions,
+        *,
+        direction: int,
+        tangent0: Sequence[float] | None,
+        callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
+        project_start: bool,
+    ):
         self.sp = _Scaled(problem, sc)
         self.sc = sc
         self.h, self.min_step, self.max_step, self.grow = o.step, o.min_step, o.max_step, o.grow
@@ -445,8 +487,9 @@ class _Tracer:
         self.known: list[tuple[float, np.ndarray, np.ndarray]] = []
         self._start(u0, direction, tangent0, project_start, o.start_slack)
 
-    def _start(self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None,
-               project_start: bool, start_slack: float) -> None:
+    def _start(
+        self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool, start_slack: float
+    ) -> None:
         """The start point: on the curve, inside the constraints, with its tangent and tests."""
         sp, sc, tol = self.sp, self.sc, self.tol
         v = u0 / sc
@@ -454,16 +497,16 @@ class _Tracer:
             v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
             self.n_newton += it
             if not ok:
-                raise ConvergenceError(f"the start point {u0} is not on the curve (||F|| > {tol:g} "
-                                       "after 30 Newton steps)")
+                raise ConvergenceError(
+                    f"the start point {u0} is not on the curve (||F|| > {tol:g} after 30 Newton steps)"
+                )
         g0 = sp.constraints(v)
         # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
         # errors) may sit a few ulp outside it: that is "on the boundary"
         g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
         if np.any(g0 < 0):
             j = int(np.argmin(g0))
-            raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} "
-                             f"(value {g0[j]:.3g} < 0)")
+            raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} (value {g0[j]:.3g} < 0)")
         if tangent0 is None:
             t = tangent(sp.jacobian(v))
         else:
@@ -501,8 +544,7 @@ class _Tracer:
         the tangent predictor next) or failed at ``min_step`` (the branch ends)."""
         v, t, h = self.v, self.t, self.h
         prev = self.prev
-        guess = self.predictor(v, t, *(prev if prev is not None else (v, t)),
-                               prev is not None and self.use_hermite, h)
+        guess = self.predictor(v, t, *(prev if prev is not None else (v, t)), prev is not None and self.use_hermite, h)
         v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.max_iter, 2.0 * h + 1e-12)
         self.n_newton += it
         angle = 0.0
@@ -519,8 +561,9 @@ class _Tracer:
         self.use_hermite = True
         return _Step(h, v_new, t_new, bp_new, extra, it, angle)
 
-    def _correct(self, guess: np.ndarray, h: float, max_it: int, max_move: float
-                 ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
+    def _correct(
+        self, guess: np.ndarray, h: float, max_it: int, max_move: float
+    ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
         """Corrector from ``guess`` on the plane ``t . (v' - v) = h`` of the current point, then
         the tangent and ``det [J; t^T]`` at the solution: the problem's compiled step if it has
         one, else :func:`_newton` and :func:`_tangent_det`. Returns ``(v', ok, iterations, t',
@@ -598,8 +641,7 @@ class _Tracer:
         self.h = min(max(self.h * factor, self.min_step), self.max_step)
 
     # --- boundary handling (constraints) ---------------------------------------------------
-    def _boundary(self, s: _Step, g_new: np.ndarray
-                  ) -> tuple[_Event | None, np.ndarray, np.ndarray]:
+    def _boundary(self, s: _Step, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
         """Where the step leaves the constraints, if it does: ``(stop, v_b, t_b)``, the
         boundary point that ends the branch (None if none) and the end of the part of the step
         that counts (the boundary point, or the new point).
@@ -623,8 +665,16 @@ class _Tracer:
                 hs, vs, ts = found
             else:
                 try:
-                    hs, vs, ts = locate(self._point_on_step, lambda vv, tt, j=j: sp.constraints(vv)[j],
-                                        0.0, h_b, float(g[j]), float(g_b[j]), (self.v, self.t), at_b)
+                    hs, vs, ts = locate(
+                        self._point_on_step,
+                        lambda vv, tt, j=j: sp.constraints(vv)[j],
+                        0.0,
+                        h_b,
+                        float(g[j]),
+                        float(g_b[j]),
+                        (self.v, self.t),
+                        at_b,
+                    )
                 except (ConvergenceError, ValueError):
                     hs, vs, ts = h_b, at_b[0], at_b[1]
             # j is violated at the current stop point, so its zero comes first (ties included)
@@ -635,8 +685,9 @@ class _Tracer:
                 h_b, at_b, g_b = hs, (vs, ts), g_s
         return stop, at_b[0], at_b[1]
 
-    def _boundary_point(self, s: _Step, j: int, h_b: float, ga: float, gb: float
-                        ) -> tuple[float, np.ndarray, np.ndarray] | None:
+    def _boundary_point(
+        self, s: _Step, j: int, h_b: float, ga: float, gb: float
+    ) -> tuple[float, np.ndarray, np.ndarray] | None:
         """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
         the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
         for the linear and quadratic bounds of a box or a domain) from the Hermite point at the
@@ -662,8 +713,7 @@ class _Tracer:
                 # once: the bounds are linear or quadratic and the start is within O(h^4) of the
                 # point, so a fixed gradient converges as fast (the accuracy is set by the
                 # residual tests above, not by the gradient)
-                grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta)
-                                 for e in eye])
+                grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta) for e in eye])
             try:
                 du = _bordered_solve(JJ, grad, f, gj)
             except np.linalg.LinAlgError:
@@ -681,8 +731,9 @@ class _Tracer:
         return None
 
     # --- event location: folds, test functions, branch points -------------------------------
-    def _special_points(self, s: _Step, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray,
-                        tests_new: np.ndarray) -> tuple[list[_Event], list[tuple[str, str]]]:
+    def _special_points(
+        self, s: _Step, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray, tests_new: np.ndarray
+    ) -> tuple[list[_Event], list[tuple[str, str]]]:
         """The special points strictly inside the step (up to the boundary ``v_b`` if ``stop``),
         located, and ``at_new``: the ``(kind, detail)`` of the tests that are exactly 0.0 at the
         new point.
@@ -717,8 +768,7 @@ class _Tracer:
             if at_start and abs(pa) <= floor and abs(pb) > floor:
                 kinds[0], details[0] = "test", sp.test_names[k]
             elif pa * pb < 0:
-                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k],
-                                   pa, pb))
+                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k], pa, pb))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append(("test", sp.test_names[k]))
         if self.detect_branch_points:
@@ -726,8 +776,7 @@ class _Tracer:
             if at_start and abs(bp) <= floor and abs(bp_b) > floor:
                 kinds[0], details[0] = "branch_point", ""
             elif bp * bp_b < 0:
-                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt),
-                                   bp, bp_b))
+                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), bp, bp_b))
             elif bp_b == 0.0 and abs(bp) > floor and stop is None:
                 at_new.append(("branch_point", ""))
         h_b = s.h if stop is None else stop.h
@@ -735,8 +784,7 @@ class _Tracer:
         for kind, name, phi, pa, pb in candidates:
             if max(abs(pa), abs(pb)) > floor:
                 try:
-                    hs, vs, ts = locate(self._point_on_step, phi, 0.0, h_b, pa, pb,
-                                        (self.v, self.t), (v_b, t_b))
+                    hs, vs, ts = locate(self._point_on_step, phi, 0.0, h_b, pa, pb, (self.v, self.t), (v_b, t_b))
                 except (ConvergenceError, ValueError):
                     continue  # a special point that cannot be located is not reported
                 # a special point at the end of the branch (within 1e-6 of the last step) is
@@ -754,15 +802,21 @@ class _Tracer:
             return None
         v, v_start = self.v, self.v_start
         # the distance to the segment is at least |v_start - v| - seg: most steps stop here
-        dist, lam = ((np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9
-                     else _segment_distance(v_start, v, s.v))
+        dist, lam = (np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9 else _segment_distance(v_start, v, s.v)
         if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (s.v - v) @ self.t_start > 0:
             return lam * s.h
         return None
 
     # --- the points kept ---------------------------------------------------------------------
-    def _append(self, s: _Step, events: list[_Event], stop: _Event | None, close_at: float | None,
-                at_new: list[tuple[str, str]], seg: float) -> bool:
+    def _append(
+        self,
+        s: _Step,
+        events: list[_Event],
+        stop: _Event | None,
+        close_at: float | None,
+        at_new: list[tuple[str, str]],
+        seg: float,
+    ) -> bool:
         """Append the step's points: the special points before the branch ends (at a boundary
         or closure), then the end point or the new point; True if the branch ended."""
         events.sort(key=lambda e: e.h)
@@ -791,8 +845,9 @@ class _Tracer:
             return True
         return False
 
-    def _add(self, v: np.ndarray, t: np.ndarray, kind: str, detail: str, seg: float | None = None,
-             call: bool = True) -> bool | None:
+    def _add(
+        self, v: np.ndarray, t: np.ndarray, kind: str, detail: str, seg: float | None = None, call: bool = True
+    ) -> bool | None:
         """Append an accepted point (``seg``: its chord from the last one, if known) and tell the
         callback; returns what the callback returned."""
         self.pts.append(v)
@@ -810,14 +865,30 @@ class _Tracer:
         P = np.array(self.pts) * self.sc
         T = np.array(self.tans) * self.sc  # the unscaled unit tangents, all at once
         T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
-        return Branch(P, T, np.array(self.arc), self.kinds, self.details, self.closed, [self.end],
-                      self.n_newton, self.sp.n_residual, self.sp.n_jacobian)
+        return Branch(
+            P,
+            T,
+            np.array(self.arc),
+            self.kinds,
+            self.details,
+            self.closed,
+            [self.end],
+            self.n_newton,
+            self.sp.n_residual,
+            self.sp.n_jacobian,
+        )
 
 
-def trace(problem: ContinuationProblem, u0: Sequence[float], options: TraceOptions | None = None, *,
-          direction: int = 1, tangent0: Sequence[float] | None = None,
-          callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
-          project_start: bool = True) -> Branch:
+def trace(
+    problem: ContinuationProblem,
+    u0: Sequence[float],
+    options: TraceOptions | None = None,
+    *,
+    direction: int = 1,
+    tangent0: Sequence[float] | None = None,
+    callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
+    project_start: bool = True,
+) -> Branch:
     """Trace one direction of the curve through ``u0``.
 
     Parameters
@@ -851,12 +922,18 @@ def trace(problem: ContinuationProblem, u0: Sequence[float], options: TraceOptio
     sc = np.ones(u0.size) if o.scale is None else np.asarray(o.scale, float)
     if sc.shape != u0.shape or np.any(sc <= 0):
         raise ValueError(f"scale must be {u0.size} positive numbers, got {o.scale!r}")
-    return _Tracer(problem, u0, sc, o, direction=direction, tangent0=tangent0, callback=callback,
-                   project_start=project_start).run()
+    return _Tracer(
+        problem, u0, sc, o, direction=direction, tangent0=tangent0, callback=callback, project_start=project_start
+    ).run()
 
 
-def trace_both(problem: ContinuationProblem, u0: Sequence[float], options: TraceOptions | None = None, *,
-               callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None) -> Branch:
+def trace_both(
+    problem: ContinuationProblem,
+    u0: Sequence[float],
+    options: TraceOptions | None = None,
+    *,
+    callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None = None,
+) -> Branch:
     """Trace the curve through ``u0`` in both directions and join the two halves.
 
     Parameters
@@ -887,6 +964,15 @@ def trace_both(problem: ContinuationProblem, u0: Sequence[float], options: Trace
     details = bwd.details[::-1] + fwd.details[1:]
     if bwd.kinds[0] == "start" and fwd.kinds[0] != "start":  # the start is a special point
         kinds[len(bwd.kinds) - 1], details[len(bwd.kinds) - 1] = fwd.kinds[0], fwd.details[0]
-    return Branch(pts, tans, arc, kinds, details, False, [bwd.end_reasons[0], fwd.end_reasons[0]],
-                  fwd.n_newton + bwd.n_newton, fwd.n_residual + bwd.n_residual,
-                  fwd.n_jacobian + bwd.n_jacobian)
+    return Branch(
+        pts,
+        tans,
+        arc,
+        kinds,
+        details,
+        False,
+        [bwd.end_reasons[0], fwd.end_reasons[0]],
+        fwd.n_newton + bwd.n_newton,
+        fwd.n_residual + bwd.n_residual,
+        fwd.n_jacobian + bwd.n_jacobian,
+    )

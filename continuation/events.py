@@ -23,7 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["locate", "fold_test"]
+__all__ = ["fold_test", "locate"]
 
 
 def fold_test(component: int) -> Callable[[np.ndarray, np.ndarray], float]:
@@ -31,11 +31,17 @@ def fold_test(component: int) -> Callable[[np.ndarray, np.ndarray], float]:
     return lambda u, t: float(t[component])
 
 
-def locate(point: Callable[[float], tuple[np.ndarray, np.ndarray]],
-           phi: Callable[[np.ndarray, np.ndarray], float], h_a: float, h_b: float,
-           phi_a: float, phi_b: float, at_a: tuple[np.ndarray, np.ndarray],
-           at_b: tuple[np.ndarray, np.ndarray], rel_tol: float = 1e-14
-           ) -> tuple[float, np.ndarray, np.ndarray]:
+def locate(
+    point: Callable[[float], tuple[np.ndarray, np.ndarray]],
+    phi: Callable[[np.ndarray, np.ndarray], float],
+    h_a: float,
+    h_b: float,
+    phi_a: float,
+    phi_b: float,
+    at_a: tuple[np.ndarray, np.ndarray],
+    at_b: tuple[np.ndarray, np.ndarray],
+    rel_tol: float = 1e-14,
+) -> tuple[float, np.ndarray, np.ndarray]:
     """Locate the zero of a test function between two points of a curve.
 
     Parameters
@@ -82,8 +88,7 @@ def locate(point: Callable[[float], tuple[np.ndarray, np.ndarray]],
     from scipy.optimize import brentq  # here, not at import: a branch without events never pays for it
 
     width = abs(h_b - h_a)
-    h = brentq(f, h_a, h_b, xtol=rel_tol * width + 1e-300, rtol=4.5 * np.finfo(float).eps,
-               maxiter=200)
+    h = brentq(f, h_a, h_b, xtol=rel_tol * width + 1e-300, rtol=4.5 * np.finfo(float).eps, maxiter=200)
     if h not in cache:
         cache[h] = at_a if h == h_a else at_b if h == h_b else point(h)
     u, t = cache[h]

@@ -23,6 +23,8 @@ registered them (``numba.extending.register_jitable``).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .linalg import norm
@@ -30,7 +32,7 @@ from .linalg import norm
 __all__ = ["hermite", "hermite_eval", "predict"]
 
 
-def hermite_eval(p0, t0, p1, t1, tau, d):
+def hermite_eval(p0: Any, t0: Any, p1: Any, t1: Any, tau: Any, d: Any) -> Any:
     """``H(tau)`` (module docstring) for a given chord length ``d``.
 
     Scalars or arrays that broadcast (numpy rules; compiled: scalars ``tau`` and ``d``): e.g.
@@ -40,12 +42,10 @@ def hermite_eval(p0, t0, p1, t1, tau, d):
     """
     t2 = tau * tau
     t3 = t2 * tau
-    return ((2 * t3 - 3 * t2 + 1) * p0 + ((t3 - 2 * t2 + tau) * d) * t0
-            + (3 * t2 - 2 * t3) * p1 + ((t3 - t2) * d) * t1)
+    return (2 * t3 - 3 * t2 + 1) * p0 + ((t3 - 2 * t2 + tau) * d) * t0 + (3 * t2 - 2 * t3) * p1 + ((t3 - t2) * d) * t1
 
 
-def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray,
-            tau: np.ndarray | float) -> np.ndarray:
+def hermite(p0: np.ndarray, t0: np.ndarray, p1: np.ndarray, t1: np.ndarray, tau: np.ndarray | float) -> np.ndarray:
     """Cubic Hermite curve through ``p0`` (unit tangent ``t0``) and ``p1`` (``t1``).
 
     Parametrised by ``tau`` in [0, 1] (values outside extrapolate) with the chord length

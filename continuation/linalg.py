@@ -46,9 +46,15 @@ import math
 
 import numpy as np
 
-
-__all__ = ["lu_solve", "solve_det", "bordered_solve", "bordered_det", "tangent_det", "norm",
-           "PYTHON_LU_MAX"]
+__all__ = [
+    "PYTHON_LU_MAX",
+    "bordered_det",
+    "bordered_solve",
+    "lu_solve",
+    "norm",
+    "solve_det",
+    "tangent_det",
+]
 
 #: largest system that the Python faces solve with :func:`lu_solve`; larger ones go to LAPACK
 PYTHON_LU_MAX = 4
@@ -221,11 +227,11 @@ def _solve_det_compiled(G, b):
         x = b.copy()
         ok, d = lu_solve(A, x)
         return ok, x, d
+
     return impl
 
 
-def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float
-                   ) -> tuple[bool, np.ndarray, float]:
+def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tuple[bool, np.ndarray, float]:
     """Solve the bordered system ``[J; c^T] x = [f; r]`` (:func:`lu_solve`): ``(ok, x, det)``.
 
     The engine's systems: the corrector's Newton step (``c`` the tangent, ``r`` the distance
@@ -265,6 +271,7 @@ def _bordered_solve_compiled(J, c, f, r):
         x[n] = r
         ok, d = lu_solve(G, x)
         return ok, x, d
+
     return impl
 
 
@@ -295,6 +302,7 @@ def _norm_compiled(x):
         for i in range(x.shape[0]):
             s += x[i] * x[i]
         return math.sqrt(s)
+
     return impl
 
 

@@ -129,8 +129,9 @@ class ContinuationProblem(Protocol):
         """Return ``F(u)``, shape ``(n,)``."""
 
 
-def finite_difference_jacobian(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray,
-                               f0: np.ndarray | None = None, rel_step: float = 6e-6) -> np.ndarray:
+def finite_difference_jacobian(
+    residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray, f0: np.ndarray | None = None, rel_step: float = 6e-6
+) -> np.ndarray:
     """Central-difference Jacobian of ``residual`` at ``u``.
 
     Parameters
@@ -163,6 +164,8 @@ def problem_dimension(problem: ContinuationProblem, u: np.ndarray) -> int:
     """Number of equations ``n`` of ``problem`` (checked against ``u``, which has ``n + 1``)."""
     f = np.asarray(problem.residual(np.asarray(u, dtype=float)))
     if f.ndim != 1 or f.size + 1 != np.size(u):
-        raise ValueError(f"the residual at a point of {np.size(u)} unknowns has shape {f.shape}; "
-                         f"a curve needs {np.size(u) - 1} equations")
+        raise ValueError(
+            f"the residual at a point of {np.size(u)} unknowns has shape {f.shape}; "
+            f"a curve needs {np.size(u) - 1} equations"
+        )
     return f.size

@@ -43,45 +43,103 @@ from typing import Any
 _EXPORTS: dict[str, str] = {
     **dict.fromkeys(("AtlasFileError", "ChunkError", "DomainError", "InputError", "TippeError"), ".errors"),
     "atlas": ".grids.atlases",
-    "open_atlas": ".grids.netcdf", "write_dataset": ".grids.netcdf",
-    "friction_loop": ".linear.control_forms", "state_space": ".linear.control_forms",
+    "open_atlas": ".grids.netcdf",
+    "write_dataset": ".grids.netcdf",
+    "friction_loop": ".linear.control_forms",
+    "state_space": ".linear.control_forms",
     **dict.fromkeys(("critical_spin", "threshold", "threshold_crossings", "thresholds"), ".linear.critical"),
-    "eigenvalues": ".linear.spectra", "spectrum": ".linear.spectra",
-    "MODELS": ".models", "LinearModel": ".models", "get_model": ".models",
+    "eigenvalues": ".linear.spectra",
+    "spectrum": ".linear.spectra",
+    "MODELS": ".models",
+    "LinearModel": ".models",
+    "get_model": ".models",
     **dict.fromkeys(("fold_curve", "neutral_curve"), ".linear.neutral_curves"),
     "jacobian_eigenvalues": ".nonlinear.jacobian",
     "simulate": ".nonlinear.runs",
-    "coulomb_growth": ".nonlinear.validation", "validate": ".nonlinear.validation",
-    "DEFAULT_MU": ".parameters", "PARAMETERS": ".parameters", "check_domain": ".parameters",
-    "class_atlas": ".steady.classes", "top_class": ".steady.classes",
-    "FinalState": ".steady.final", "final_state": ".steady.final",
+    "coulomb_growth": ".nonlinear.validation",
+    "validate": ".nonlinear.validation",
+    "DEFAULT_MU": ".parameters",
+    "PARAMETERS": ".parameters",
+    "check_domain": ".parameters",
+    "class_atlas": ".steady.classes",
+    "top_class": ".steady.classes",
+    "FinalState": ".steady.final",
+    "final_state": ".steady.final",
     "steady_branch": ".steady.branch",
     "steady_states": ".steady.states",
     "bifurcation_diagram": ".steady.diagram",
     "Top": ".top",
     "Stick": ".stick",
-    "launch": ".launches.result", "Launch": ".launches.result", "flip_time": ".launches.flip",
+    "launch": ".launches.result",
+    "Launch": ".launches.result",
+    "flip_time": ".launches.flip",
     "ImplausibleTopWarning": ".top",
 }
 
 __all__ = [
-    "AtlasFileError", "ChunkError", "DEFAULT_MU", "DomainError", "InputError", "LinearModel", "MODELS", "PARAMETERS",
-    "TippeError", "Top",
-    "atlas", "check_domain", "eigenvalues", "friction_loop", "get_model", "open_atlas",
-    "spectrum", "state_space", "write_dataset", "simulate", "jacobian_eigenvalues", "validate", "coulomb_growth",
-    "threshold", "thresholds", "threshold_crossings", "critical_spin",
-    "steady_states", "final_state", "FinalState", "top_class", "class_atlas", "bifurcation_diagram",
-    "neutral_curve", "fold_curve", "steady_branch",
-    "launch", "Launch", "flip_time", "ImplausibleTopWarning", "Stick",
+    "DEFAULT_MU",
+    "MODELS",
+    "PARAMETERS",
+    "AtlasFileError",
+    "ChunkError",
+    "DomainError",
+    "FinalState",
+    "ImplausibleTopWarning",
+    "InputError",
+    "Launch",
+    "LinearModel",
+    "Stick",
+    "TippeError",
+    "Top",
+    "atlas",
+    "bifurcation_diagram",
+    "check_domain",
+    "class_atlas",
+    "coulomb_growth",
+    "critical_spin",
+    "eigenvalues",
+    "final_state",
+    "flip_time",
+    "fold_curve",
+    "friction_loop",
+    "get_model",
+    "jacobian_eigenvalues",
+    "launch",
+    "neutral_curve",
+    "open_atlas",
+    "simulate",
+    "spectrum",
+    "state_space",
+    "steady_branch",
+    "steady_states",
+    "threshold",
+    "threshold_crossings",
+    "thresholds",
+    "top_class",
+    "validate",
+    "write_dataset",
 ]
 
 
 #: the public functions that return datasets: handing one out registers ``ds.tippe``
 #: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
 #: docstrings)
-_DATASETS = frozenset({"atlas", "open_atlas", "simulate", "validate", "coulomb_growth", "steady_states",
-                       "final_state", "class_atlas", "neutral_curve", "fold_curve", "steady_branch",
-                       "bifurcation_diagram"})
+_DATASETS = frozenset(
+    {
+        "atlas",
+        "open_atlas",
+        "simulate",
+        "validate",
+        "coulomb_growth",
+        "steady_states",
+        "final_state",
+        "class_atlas",
+        "neutral_curve",
+        "fold_curve",
+        "steady_branch",
+        "bifurcation_diagram",
+    }
+)
 
 
 def __getattr__(name: str) -> Any:
@@ -139,7 +197,7 @@ def _register_accessor() -> None:
             loader.exec_module = exec_module  # type: ignore[method-assign]
             return spec
 
-    sys.meta_path.insert(0, _AfterXarray)  # type: ignore[arg-type]
+    sys.meta_path.insert(0, _AfterXarray)
 
 
 _register_accessor()

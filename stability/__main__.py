@@ -1,4 +1,5 @@
 """``python -m stability`` runs the ``tippe`` command line."""
+
 import sys
 
 from .cli import main

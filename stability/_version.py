@@ -9,7 +9,7 @@ from __future__ import annotations
 import functools
 from importlib.metadata import PackageNotFoundError, version
 
-__all__ = ["package_version", "DISTRIBUTION"]
+__all__ = ["DISTRIBUTION", "package_version"]
 
 #: the distribution's name (PyPI); the import packages are ``stability`` and ``continuation``
 DISTRIBUTION = "tippe-stability"

@@ -38,11 +38,21 @@ import warnings
 from collections.abc import Collection, Sequence
 from typing import NoReturn
 
-__all__ = ["main", "COMMANDS", "EXIT_USAGE", "EXIT_FAILURE", "EXIT_INTERRUPTED", "KEYWORD_FLAGS", "render_message"]
+__all__ = ["COMMANDS", "EXIT_FAILURE", "EXIT_INTERRUPTED", "EXIT_USAGE", "KEYWORD_FLAGS", "main", "render_message"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
-COMMANDS: tuple[str, ...] = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "steady", "final",
-                             "launch", "warmup")
+COMMANDS: tuple[str, ...] = (
+    "atlas",
+    "figures",
+    "simulate",
+    "validate",
+    "neutral",
+    "threshold",
+    "steady",
+    "final",
+    "launch",
+    "warmup",
+)
 
 #: exit statuses: bad input or file (2), a failed computation or a bug (1), interrupted (130)
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130
@@ -81,6 +91,7 @@ def render_message(text: str, flags: Collection[str] | None = None) -> str:
     -------
     str
     """
+
     def with_flag(m: re.Match[str]) -> str:
         flag = KEYWORD_FLAGS[m.group(1)]
         if (flags is not None and flag not in flags) or flag in text:
@@ -104,6 +115,7 @@ def _parameters_as_flags(text: str, flags: Collection[str]) -> str:
     ``fixed must give fr_inv`` (the neutral curve's ``fixed=`` dict) -> ``give --fr-inv``.
     Formulas (``1 - mu q^2``) are left as they are: only a name beside ``=`` or a comparison
     is a parameter's value or bound."""
+
     def flag_of(kw: str) -> str | None:
         flag = "--" + kw.replace("_", "-")
         return flag if flag in flags else None
@@ -137,8 +149,13 @@ class HelpFormatter(argparse.HelpFormatter):
     def _get_help_string(self, action: argparse.Action) -> str:
         text = action.help or ""
         default = action.default
-        if ("default" in text or default is None or default is argparse.SUPPRESS or isinstance(default, bool)
-                or not action.option_strings):
+        if (
+            "default" in text
+            or default is None
+            or default is argparse.SUPPRESS
+            or isinstance(default, bool)
+            or not action.option_strings
+        ):
             return text
         return f"{text} (default: %(default)s)"
 
@@ -154,7 +171,7 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
 
-    def parse_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201 - argparse's signature
+    def parse_args(self, args=None, namespace=None):
         """As argparse's, but arguments left over are reported by the subcommand that got them
         (its own help and ``did you mean``), not by ``tippe``."""
         ns, extras = self.parse_known_args(args, namespace)
@@ -163,7 +180,7 @@ class _Parser(argparse.ArgumentParser):
             (sub or self).unrecognized(extras)
         return ns
 
-    def parse_known_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201
+    def parse_known_args(self, args=None, namespace=None):
         """A subcommand checks its options first: a mistyped one is reported before a missing
         required one (``tippe final --alpha_v 0.5``: did you mean --alpha-v)."""
         if self._subparsers is None and args is not None:
@@ -221,8 +238,7 @@ def _join_negative_values(argv: list[str]) -> list[str]:
     i = 0
     while i < len(argv):
         a = argv[i]
-        if (a.startswith("--") and "=" not in a and i + 1 < len(argv)
-                and _NEGATIVE_VALUE.match(argv[i + 1])):
+        if a.startswith("--") and "=" not in a and i + 1 < len(argv) and _NEGATIVE_VALUE.match(argv[i + 1]):
             out.append(f"{a}={argv[i + 1]}")
             i += 2
             continue
@@ -237,8 +253,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     ver = package_version()
     parser = _Parser(
-        prog="tippe", description="Linear stability and bifurcation analysis of the Tippe top.",
-        epilog="Errors are reported on one line; add --debug (or set TIPPE_DEBUG=1) for a traceback.")
+        prog="tippe",
+        description="Linear stability and bifurcation analysis of the Tippe top.",
+        epilog="Errors are reported on one line; add --debug (or set TIPPE_DEBUG=1) for a traceback.",
+    )
     parser.add_argument("--version", action="version", version=f"tippe-stability {ver}")
     parser.add_argument("--debug", action="store_true", help="show the traceback of any error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -326,7 +344,7 @@ def _stdout_broken() -> bool:
     return True
 
 
-def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the module stability.interrupts
+def _main(argv: Sequence[str] | None, interrupts) -> int:
     from continuation.errors import ConvergenceError
 
     from .errors import Interrupted, TippeError
@@ -362,8 +380,11 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the 
             return EXIT_USAGE
         done = interrupts.committed()
         if done:  # the output is complete; only the report on stdout was lost
-            print(f"{prog}: wrote {', '.join(repr(f) for f in done)}; the report on stdout could not be printed "
-                  "(its reader closed the pipe)", file=sys.stderr)
+            print(
+                f"{prog}: wrote {', '.join(repr(f) for f in done)}; the report on stdout could not be printed "
+                "(its reader closed the pipe)",
+                file=sys.stderr,
+            )
             return 0
         return EXIT_FAILURE
     except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
@@ -379,8 +400,11 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:  # noqa: ANN001 - the 
     except Exception as exc:  # a bug: still one line unless asked
         if debug:
             raise
-        print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
-              "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)", file=sys.stderr)
+        print(
+            f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+            "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)",
+            file=sys.stderr,
+        )
         return EXIT_FAILURE
 
 
@@ -391,7 +415,7 @@ def _model_name_warnings_as_lines(prog: str) -> None:
     warnings.filterwarnings("default", message="model '", category=DeprecationWarning)
     previous = warnings.showwarning
 
-    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ANN001
+    def show(message, category, filename, lineno, file=None, line=None):
         if issubclass(category, (FutureWarning, DeprecationWarning)) and str(message).startswith("model '"):
             print(f"{prog}: warning: {_one_line(message)}", file=sys.stderr)
             return

@@ -35,9 +35,22 @@ from __future__ import annotations
 
 from continuation.errors import ConvergenceError as _EngineConvergenceError
 
-__all__ = ["TippeError", "InputError", "DomainError", "ParameterTypeError", "AtlasFileError", "RecipeError",
-           "ResumeError", "ResourceError", "OutputWriteError", "ChunkError", "ConvergenceError", "Interrupted",
-           "MissingExtraError", "require_extra"]
+__all__ = [
+    "AtlasFileError",
+    "ChunkError",
+    "ConvergenceError",
+    "DomainError",
+    "InputError",
+    "Interrupted",
+    "MissingExtraError",
+    "OutputWriteError",
+    "ParameterTypeError",
+    "RecipeError",
+    "ResourceError",
+    "ResumeError",
+    "TippeError",
+    "require_extra",
+]
 
 
 class TippeError(Exception):
@@ -133,6 +146,9 @@ def require_extra(module: str, extra: str, feature: str) -> None:
     except (ImportError, ValueError):
         found = False
     if not found:
-        raise MissingExtraError(f"{feature} needs {module}, which is not installed; install the package with "
-                                f"its {extra!r} extra: pip install 'tippe-stability[{extra}]' "
-                                f"(from a clone: pip install '.[{extra}]')", name=module)
+        raise MissingExtraError(
+            f"{feature} needs {module}, which is not installed; install the package with "
+            f"its {extra!r} extra: pip install 'tippe-stability[{extra}]' "
+            f"(from a clone: pip install '.[{extra}]')",
+            name=module,
+        )

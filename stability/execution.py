@@ -34,8 +34,18 @@ from typing import Any
 
 from .errors import InputError
 
-__all__ = ["ENVIRONMENT", "ENGINES", "PYTHON_BELOW", "NOTICE", "engine", "use_compiled", "before_compiled_call",
-           "announce", "quiet", "using"]
+__all__ = [
+    "ENGINES",
+    "ENVIRONMENT",
+    "NOTICE",
+    "PYTHON_BELOW",
+    "announce",
+    "before_compiled_call",
+    "engine",
+    "quiet",
+    "use_compiled",
+    "using",
+]
 
 #: the environment variable that forces an execution
 ENVIRONMENT = "TIPPE_KERNEL"
@@ -48,8 +58,10 @@ ENGINES = ("auto", "python", "compiled")
 PYTHON_BELOW = 4096
 
 #: the line printed on stderr, once per process, before a compilation (``{seconds}``: an estimate)
-NOTICE = ("tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
-          "(cached for later runs; `tippe warmup` compiles them all)")
+NOTICE = (
+    "tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
+    "(cached for later runs; `tippe warmup` compiles them all)"
+)
 
 _STATE: dict[str, Any] = {"noticed": False, "quiet": 0, "using": None}
 
@@ -71,12 +83,16 @@ def engine(value: str | None = None) -> str:
         if raw in ("", "auto"):
             return "auto"
         if raw not in ENGINES:
-            raise InputError(f"the environment variable {ENVIRONMENT} = {raw!r} is not known; "
-                             f"set it to one of {', '.join(ENGINES)} (or unset it)")
+            raise InputError(
+                f"the environment variable {ENVIRONMENT} = {raw!r} is not known; "
+                f"set it to one of {', '.join(ENGINES)} (or unset it)"
+            )
         return raw
     if value not in ENGINES:
-        raise InputError(f"engine = {value!r} is not known; choose one of {', '.join(ENGINES)} "
-                         f"or None (the environment variable {ENVIRONMENT}, default auto)")
+        raise InputError(
+            f"engine = {value!r} is not known; choose one of {', '.join(ENGINES)} "
+            f"or None (the environment variable {ENVIRONMENT}, default auto)"
+        )
     return value
 
 
@@ -105,7 +121,7 @@ def announce(text: str) -> None:
     """Say on stderr, before a long computation starts, what it will cost (one line; nothing
     while :func:`quiet` is active): the same channel as :data:`NOTICE`."""
     if not _STATE["quiet"]:
-        print(f"tippe-stability: {text}", file=sys.stderr, flush=True)
+        print(f"tippe-stability: {text}", file=sys.stderr, flush=True)  # noqa: T201 (the notice channel)
 
 
 @contextlib.contextmanager

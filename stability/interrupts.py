@@ -44,8 +44,23 @@ import threading
 import time
 from collections.abc import Iterator
 
-__all__ = ["install", "uninstall", "deferred", "checkpoint", "pending", "received", "Temporary",
-           "committed", "set_label", "set_kept", "mark_reported", "hold_until_exit", "label", "WATCHDOG_SECONDS", "SIGNALS"]
+__all__ = [
+    "SIGNALS",
+    "WATCHDOG_SECONDS",
+    "Temporary",
+    "checkpoint",
+    "committed",
+    "deferred",
+    "hold_until_exit",
+    "install",
+    "label",
+    "mark_reported",
+    "pending",
+    "received",
+    "set_kept",
+    "set_label",
+    "uninstall",
+]
 
 #: seconds between the first signal and the emergency exit of the command line
 WATCHDOG_SECONDS = 2.0
@@ -58,16 +73,16 @@ class _State:
     """The module's state (one per process)."""
 
     def __init__(self) -> None:
-        self.pending: int | None = None      # the first signal received and not yet cleared
-        self.count = 0                      # signals received since it
-        self.mode: str | None = None        # "cli", "library" or None (nothing installed)
-        self.depth = 0                      # nesting of install()/deferred()
+        self.pending: int | None = None  # the first signal received and not yet cleared
+        self.count = 0  # signals received since it
+        self.mode: str | None = None  # "cli", "library" or None (nothing installed)
+        self.depth = 0  # nesting of install()/deferred()
         self.previous: dict[int, object] = {}
         self.wakeup_previous: int | None = None
         self.pipe: tuple[int, int] | None = None
         self.label = "tippe"
-        self.kept = ""                      # what an interrupted command keeps (chunks), for the message
-        self.reported = False               # the command line has printed its interruption line
+        self.kept = ""  # what an interrupted command keeps (chunks), for the message
+        self.reported = False  # the command line has printed its interruption line
         self.temporaries: dict[int, Temporary] = {}
         self.committed: list[str] = []
 
@@ -76,6 +91,7 @@ _state = _State()
 
 
 # --- the flag ----------------------------------------------------------------------------------
+
 
 def pending() -> int | None:
     """The signal number received and not yet cleared, or None."""
@@ -119,6 +135,7 @@ def _handler(signum: int, frame: object) -> None:
 
 
 # --- installing --------------------------------------------------------------------------------
+
 
 def _main_thread() -> bool:
     return threading.current_thread() is threading.main_thread()
@@ -231,6 +248,7 @@ def deferred() -> Iterator[None]:
 
 
 # --- temporary files and what was written ------------------------------------------------------
+
 
 class Temporary:
     """A file being written under a temporary name, for the emergency exit.
@@ -364,8 +382,11 @@ def _watchdog(r: int) -> None:
         outcome = _wait(r, WATCHDOG_SECONDS)
         if outcome == "stop":
             return
-        why = (f"{_name(_state.pending)} received twice" if outcome == "signal" else
-               f"{_name(_state.pending)}; stopped {WATCHDOG_SECONDS:g} s after the signal")
+        why = (
+            f"{_name(_state.pending)} received twice"
+            if outcome == "signal"
+            else f"{_name(_state.pending)}; stopped {WATCHDOG_SECONDS:g} s after the signal"
+        )
         _emergency_exit(why)
     except OSError:
         return

@@ -51,8 +51,17 @@ import types
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["OPTIONS", "register_jitable", "overload", "activate", "active", "njit", "Twin", "source_stamp",
-           "in_disk_cache"]
+__all__ = [
+    "OPTIONS",
+    "Twin",
+    "activate",
+    "active",
+    "in_disk_cache",
+    "njit",
+    "overload",
+    "register_jitable",
+    "source_stamp",
+]
 
 #: numba options of the compiled code of the package (module docstring)
 OPTIONS: dict[str, Any] = dict(fastmath=False, nogil=True, error_model="numpy")
@@ -83,6 +92,7 @@ def register_jitable(fn: Callable | None = None, **options: Any) -> Callable:
     Used as numba's (``@register_jitable`` or ``@register_jitable(**options)``); returns the
     function itself, so that it runs as plain Python when called from Python.
     """
+
     def mark(f: Callable) -> Callable:
         entry = ("jitable", f, options)
         if _NUMBA is not None:
@@ -97,6 +107,7 @@ def register_jitable(fn: Callable | None = None, **options: Any) -> Callable:
 def overload(python_fn: Callable, jit_options: dict[str, Any] | None = None) -> Callable:
     """:func:`numba.extending.overload`, deferred until compiled code is wanted: ``impl``
     (the decorated typing function) stands for ``python_fn`` in compiled code."""
+
     def mark(impl: Callable) -> Callable:
         entry = ("overload", python_fn, impl, dict(jit_options or {}))
         if _NUMBA is not None:
@@ -132,6 +143,7 @@ def active() -> bool:
 def njit(fn: Callable | None = None, **options: Any) -> Any:
     """:func:`numba.njit` after :func:`activate`, with the disk cache stamped by
     :func:`source_stamp` when ``cache=True``; for modules whose only purpose is compiled code."""
+
     def make(f: Callable) -> Any:
         disp = activate().njit(**options)(f)
         if options.get("cache"):
@@ -144,7 +156,7 @@ def njit(fn: Callable | None = None, **options: Any) -> Any:
 # ------------------------------------------------------------------------------------------
 # the disk cache
 # ------------------------------------------------------------------------------------------
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _all_sources(root: str) -> tuple[tuple[str, bytes], ...]:
     """``(path, contents)`` of every ``.py`` file under ``root``, sorted by path."""
     out = []
@@ -181,7 +193,7 @@ def _package_root(filename: str) -> str:
     return folder
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def source_stamp(filename: str) -> bytes:
     """The stamp of numba's disk cache for a function defined in ``filename``: a SHA-256 of that
     file, of every source file of its top-level package and of this one that registers
@@ -288,8 +300,13 @@ class Twin:
             numba = activate()
             f = self.python
             if self.parallel:
-                f = types.FunctionType(f.__code__, {**f.__globals__, "prange": numba.prange}, f.__name__ + "_parallel",
-                                       f.__defaults__, f.__closure__)
+                f = types.FunctionType(
+                    f.__code__,
+                    {**f.__globals__, "prange": numba.prange},
+                    f.__name__ + "_parallel",
+                    f.__defaults__,
+                    f.__closure__,
+                )
                 f.__qualname__ = self.python.__qualname__ + "_parallel"
                 f.__doc__ = self.python.__doc__
                 f.__module__ = self.python.__module__
@@ -313,4 +330,3 @@ class Twin:
     def __call__(self, *args: Any) -> Any:
         """The compiled execution (compiled, or loaded from the disk cache, on first call)."""
         return self.dispatcher(*args)
-

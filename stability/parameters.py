@@ -71,33 +71,33 @@ from .errors import DomainError, ParameterTypeError
 from .models.inertia import inertia_g, two_product
 
 __all__ = [
-    "PARAMETERS",
-    "DEFAULT_MU",
-    "LONG_NAMES",
-    "UNITS",
     "COMMENTS",
-    "parameter_attrs",
     "COMPUTABLE_RANGE",
+    "DEFAULT_MU",
     "DOMAIN",
+    "LONG_NAMES",
+    "PARAMETERS",
+    "UNITS",
     "Bound",
-    "domain_sides",
-    "domain_sides_quick",
-    "sigma_max",
-    "fmt_against",
-    "bound_holds",
-    "inside_domain",
-    "domain_applies",
-    "domain_text",
-    "domain_range",
     "as_parameter",
     "as_scalar",
+    "bound_holds",
+    "check_choice",
     "check_domain",
-    "check_positive",
     "check_flag",
     "check_integer",
-    "check_choice",
     "check_interval",
+    "check_positive",
+    "domain_applies",
     "domain_mask",
+    "domain_range",
+    "domain_sides",
+    "domain_sides_quick",
+    "domain_text",
+    "fmt_against",
+    "inside_domain",
+    "parameter_attrs",
+    "sigma_max",
 ]
 
 #: Canonical order of the linear-analysis parameters (also the dimension order of atlases).
@@ -121,7 +121,7 @@ UNITS: dict[str, str] = {"q": "R", "fr_inv": "1", "sigma": "1", "alpha_v": "1", 
 #: what each parameter is, beyond its short long_name (the ``comment`` attribute)
 COMMENTS: dict[str, str] = {
     "q": "offset of the centre of mass G from the sphere's centre O along the symmetry axis, "
-         "G = O + q R k, in units of the radius R (q < 0: G below O)",
+    "G = O + q R k, in units of the radius R (q < 0: G below O)",
     "fr_inv": "g / (Omega^2 R), eq. (3)",
     "sigma": "axial to transverse moment of inertia about the sphere's centre, C / A0, eq. (3)",
     "alpha_v": "viscous friction parameter mu Omega R Fr^-1 mu_v, eq. (7)",
@@ -151,15 +151,19 @@ COMPUTABLE_MAX = 1e30
 
 #: name -> (smallest, largest) magnitude accepted (the computable range, module docstring)
 COMPUTABLE_RANGE: dict[str, tuple[float, float]] = {
-    "q": (0.0, COMPUTABLE_MAX), "fr_inv": (0.0, COMPUTABLE_MAX), "sigma": (0.0, COMPUTABLE_MAX),
-    "alpha_v": (0.0, COMPUTABLE_MAX), "alpha_k": (0.0, COMPUTABLE_MAX), "mu": (1e-30, COMPUTABLE_MAX),
+    "q": (0.0, COMPUTABLE_MAX),
+    "fr_inv": (0.0, COMPUTABLE_MAX),
+    "sigma": (0.0, COMPUTABLE_MAX),
+    "alpha_v": (0.0, COMPUTABLE_MAX),
+    "alpha_k": (0.0, COMPUTABLE_MAX),
+    "mu": (1e-30, COMPUTABLE_MAX),
 }
 
 
 def _show(value: Any, width: int = 60) -> str:
     """A short ``repr`` of a user's value for a message."""
     text = repr(value)
-    return text if len(text) <= width else text[:width - 3] + "..."
+    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def as_parameter(name: str, value: Any) -> np.ndarray:
@@ -187,8 +191,9 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
     if value is None:
         raise ParameterTypeError(f"{name} is required (got None); give a real number or an array of reals")
     if isinstance(value, (str, bytes, bool, np.bool_)):
-        raise ParameterTypeError(f"{name} = {_show(value)} is a {type(value).__name__}; "
-                        f"{name} must be a real number or an array of reals")
+        raise ParameterTypeError(
+            f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be a real number or an array of reals"
+        )
     if isinstance(value, numbers.Number) and not isinstance(value, numbers.Real):
         raise ParameterTypeError(f"{name} = {_show(value)} is {type(value).__name__}; {name} must be real")
     if isinstance(value, np.ma.MaskedArray):
@@ -196,8 +201,9 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
     try:
         arr = np.asarray(value)
     except Exception:  # ragged lists and the like
-        raise ParameterTypeError(f"{name} = {_show(value)} is not a rectangular array; "
-                        f"{name} must be a real number or an array of reals") from None
+        raise ParameterTypeError(
+            f"{name} = {_show(value)} is not a rectangular array; {name} must be a real number or an array of reals"
+        ) from None
     if arr.dtype.kind == "O":
         arr = _integers_as_floats(name, value, arr)
     if arr.dtype.kind not in "iuf":
@@ -221,9 +227,11 @@ def _unmasked(name: str, value: np.ma.MaskedArray) -> np.ndarray:
         where = np.argwhere(mask)
         first = tuple(int(i) for i in where[0]) if mask.ndim else ()
         index = first[0] if len(first) == 1 else first
-        raise DomainError(f"{name} is a masked array with {int(mask.sum())} masked entr"
-                          f"{'y' if mask.sum() == 1 else 'ies'} (the first at index {index}); the values "
-                          f"under a mask are not used: pass {name}.compressed() or {name}.filled(value)")
+        raise DomainError(
+            f"{name} is a masked array with {int(mask.sum())} masked entr"
+            f"{'y' if mask.sum() == 1 else 'ies'} (the first at index {index}); the values "
+            f"under a mask are not used: pass {name}.compressed() or {name}.filled(value)"
+        )
     return np.ma.getdata(value)
 
 
@@ -239,8 +247,11 @@ def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
     a :class:`DomainError` naming the first integer too large for a double. Other object arrays
     are returned unchanged (their dtype is refused by the caller)."""
     items = arr.reshape(-1)
-    if items.size == 0 or not all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_))
-                                  for v in items) or not any(isinstance(v, numbers.Integral) for v in items):
+    if (
+        items.size == 0
+        or not all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_)) for v in items)
+        or not any(isinstance(v, numbers.Integral) for v in items)
+    ):
         return arr
     out = np.empty(arr.shape, dtype=np.float64)
     flat = out.reshape(-1)
@@ -248,9 +259,11 @@ def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
         try:
             flat[i] = float(v)
         except OverflowError:
-            raise DomainError(f"{name} = {_integer_text(int(v))} is outside the computable range: "
-                              f"{computable_range_text(name)} "
-                              "(it does not even fit a double)") from None
+            raise DomainError(
+                f"{name} = {_integer_text(int(v))} is outside the computable range: "
+                f"{computable_range_text(name)} "
+                "(it does not even fit a double)"
+            ) from None
     return out
 
 
@@ -278,6 +291,7 @@ def fmt_against(value: float, bound: float) -> tuple[str, str]:
 
 
 # --- the physical domain: one table ---------------------------------------------------------
+
 
 class Bound(NamedTuple):
     """One bound of the physical domain, ``lower < upper`` (strict) or ``lower <= upper``.
@@ -479,13 +493,15 @@ DOMAIN: tuple[Bound, ...] = (
     Bound("alpha_v", ("alpha_v",), False, "alpha_v >= 0"),
     Bound("alpha_k", ("alpha_k",), False, "alpha_k >= 0"),
     # exact (module docstring): the sides are 0 and A_G with its exact sign
-    Bound("q", ("q", "mu"), True, "1 - mu q^2 > 0", lambda v: math.copysign(_q_largest(v), v["q"]), _q_limit,
-          _q_interval),
+    Bound(
+        "q", ("q", "mu"), True, "1 - mu q^2 > 0", lambda v: math.copysign(_q_largest(v), v["q"]), _q_limit, _q_interval
+    ),
     Bound("sigma", ("sigma",), True, "sigma > 0"),
     # equality (a flat disc) is allowed; exact, without slack (module docstring): the sides are 0
     # and 2 (A_G - sigma/2) with its exact sign
-    Bound("sigma", ("sigma", "q", "mu"), False, "sigma <= 2 (1 - mu q^2)", _sigma_largest, _sigma_limit,
-          _sigma_interval),
+    Bound(
+        "sigma", ("sigma", "q", "mu"), False, "sigma <= 2 (1 - mu q^2)", _sigma_largest, _sigma_limit, _sigma_interval
+    ),
 )
 
 #: the column ``strict`` of :data:`DOMAIN` as constants for compiled callers
@@ -668,8 +684,11 @@ def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
     applies = domain_applies(p)
     if all(np.ndim(v) == 0 for v in p.values()):
         sides = domain_sides(*[float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS])
-        return [(b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict)))
-                for k, b in enumerate(DOMAIN) if applies[k]]
+        return [
+            (b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict)))
+            for k, b in enumerate(DOMAIN)
+            if applies[k]
+        ]
     # arrays: in blocks, so that the few dozen temporaries of the exact margins stay small
     shape = np.broadcast_shapes(*(np.shape(v) for v in p.values()))
     flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in p.items()}
@@ -724,7 +743,7 @@ def domain_mask(**params: Any) -> np.ndarray:
 
 
 @register_jitable
-def outside_range(x, lo, hi):
+def outside_range(x: Any, lo: Any, hi: Any) -> Any:
     """Whether ``x`` (a float, an array, or a number in compiled code) lies outside the range
     ``lo <= |x| <= hi`` of magnitudes (``|x| < lo`` counts only for ``x > 0``; NaN is outside).
     The one home of the computable-range test (:data:`COMPUTABLE_RANGE`), without branches so
@@ -761,8 +780,10 @@ def _check_computable(p: Mapping[str, np.ndarray]) -> None:
             else:
                 v_text, lo_text = fmt_against(val, lo)
                 rng = f"{lo_text} <= {name} <= {hi:g}"
-            raise DomainError(f"{name} = {v_text} is outside the computable range: {rng} "
-                              "(beyond it the eigenvalues overflow double precision)")
+            raise DomainError(
+                f"{name} = {v_text} is outside the computable range: {rng} "
+                "(beyond it the eigenvalues overflow double precision)"
+            )
 
 
 def as_scalar(name: str, value: Any) -> float:
@@ -801,8 +822,9 @@ def check_positive(name: str, value: Any, *, strict: bool = True, unit: str = ""
     v = as_scalar(name, value)
     if (v <= 0) if strict else (v < 0):
         u = f" {unit}" if unit else ""
-        raise DomainError(f"{name} = {fmt_against(v, 0.0)[0]}{u} is outside the allowed range: "
-                          f"{name} {'>' if strict else '>='} 0")
+        raise DomainError(
+            f"{name} = {fmt_against(v, 0.0)[0]}{u} is outside the allowed range: {name} {'>' if strict else '>='} 0"
+        )
     return v
 
 
@@ -830,20 +852,41 @@ def check_flag(name: str, value: Any) -> bool:
 def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
     """An integer (Python or numpy, not bool) in ``[minimum, maximum]``; the message names the
     bounds (a huge integer by its number of digits)."""
-    top = None if maximum is None else (str(maximum) if maximum < 10**5 or f"{maximum:.0e}" != f"{maximum:.1e}".replace(".0e", "e")
-                                        else f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e"))
-    both = (f" in [{minimum}, {top}]" if minimum is not None and maximum is not None
-            else f" >= {minimum}" if minimum is not None else f" <= {top}" if maximum is not None else "")
+    top = (
+        None
+        if maximum is None
+        else (
+            str(maximum)
+            if maximum < 10**5 or f"{maximum:.0e}" != f"{maximum:.1e}".replace(".0e", "e")
+            else f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
+        )
+    )
+    both = (
+        f" in [{minimum}, {top}]"
+        if minimum is not None and maximum is not None
+        else f" >= {minimum}"
+        if minimum is not None
+        else f" <= {top}"
+        if maximum is not None
+        else ""
+    )
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
         if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
         else:
-            raise ParameterTypeError(f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be an integer{both}")
+            raise ParameterTypeError(
+                f"{name} = {_show(value)} is a {type(value).__name__}; {name} must be an integer{both}"
+            )
     v = int(value)
     if (minimum is not None and v < minimum) or (maximum is not None and v > maximum):
         shown = _integer_text(v) if len(str(abs(v))) > 18 else str(v)
-        rng = (f"{minimum} <= {name} <= {top}" if minimum is not None and maximum is not None
-               else f"{name} >= {minimum}" if minimum is not None else f"{name} <= {top}")
+        rng = (
+            f"{minimum} <= {name} <= {top}"
+            if minimum is not None and maximum is not None
+            else f"{name} >= {minimum}"
+            if minimum is not None
+            else f"{name} <= {top}"
+        )
         raise DomainError(f"{name} = {shown} is outside the allowed range: {rng}")
     return v
 
@@ -877,7 +920,7 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
     for k, v in params.items():
         if type(v) not in _PLAIN or k not in COMPUTABLE_RANGE:
             return None
-        if type(v) is int and not -2**53 <= v <= 2**53:
+        if type(v) is int and not -(2**53) <= v <= 2**53:
             return None
         x = float(v)
         if outside_computable(k, x):  # NaN too
@@ -892,8 +935,9 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
     return {k: np.asarray(x) for k, x in vals.items()}
 
 
-def check_domain(*, mask: bool = False, scalar: bool = False, maskable: bool = True,
-                 **params: Any) -> tuple[dict[str, np.ndarray], np.ndarray]:
+def check_domain(
+    *, mask: bool = False, scalar: bool = False, maskable: bool = True, **params: Any
+) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """Validate parameters against the physical domain.
 
     Parameters
@@ -948,9 +992,9 @@ def check_domain(*, mask: bool = False, scalar: bool = False, maskable: bool = T
                 where = tuple(int(i[0]) for i in np.nonzero(bad)) if bad.ndim else ()
                 msg = _describe(bound, p, where)
                 if bad.size > 1:
-                    msg += (f" ({int(bad.sum())} of {bad.size} grid points violate it; "
-                            + ("pass mask_unphysical=True to compute the rest)" if maskable
-                               else "every point must lie inside)"))
+                    msg += f" ({int(bad.sum())} of {bad.size} grid points violate it; " + (
+                        "pass mask_unphysical=True to compute the rest)" if maskable else "every point must lie inside)"
+                    )
                 raise DomainError(msg)
             inside &= ~bad
     return p, inside

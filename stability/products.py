@@ -18,7 +18,7 @@ dataset (``linear``, ``nonlinear``, ``grids``, ``recipes``), so it lives below t
 
 from __future__ import annotations
 
-__all__ = ["PRODUCT_ATTR", "STABLE", "MARGINAL", "UNSTABLE", "FLAG_VALUES", "FLAG_MEANINGS", "FLAG_NAMES"]
+__all__ = ["FLAG_MEANINGS", "FLAG_NAMES", "FLAG_VALUES", "MARGINAL", "PRODUCT_ATTR", "STABLE", "UNSTABLE"]
 
 #: global attribute naming which product of this package a dataset is
 PRODUCT_ATTR = "tippe_stability_product"

@@ -87,16 +87,23 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .grids.atlases import atlas
 from .errors import AtlasFileError, RecipeError
+from .grids.atlases import atlas
 from .grids.netcdf import check_output_path, open_atlas, write_dataset
 from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
 
-__all__ = ["Recipe", "load_recipe", "find_recipes", "compute", "check_outputs", "output_paths",
-           "KINDS"]
+__all__ = [
+    "KINDS",
+    "Recipe",
+    "check_outputs",
+    "compute",
+    "find_recipes",
+    "load_recipe",
+    "output_paths",
+]
 
 #: what a recipe can draw
 KINDS = ("lines", "map", "models", "scene", "critical_spin", "bifurcation", "classes", "settle")
@@ -105,8 +112,27 @@ STEADY_KINDS = ("bifurcation", "classes", "settle")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
-_KEYS = {"title", "kind", "model", "x", "y", "family", "quantities", "mask_unphysical", "grid", "caption",
-         "figure", "neutral", "preset", "runs_rpm", "t_end", "top", "spin", "unit", "runs"}
+_KEYS = {
+    "title",
+    "kind",
+    "model",
+    "x",
+    "y",
+    "family",
+    "quantities",
+    "mask_unphysical",
+    "grid",
+    "caption",
+    "figure",
+    "neutral",
+    "preset",
+    "runs_rpm",
+    "t_end",
+    "top",
+    "spin",
+    "unit",
+    "runs",
+}
 
 
 @dataclass(frozen=True)
@@ -222,8 +248,16 @@ def load_recipe(path: str | Path) -> Recipe:
             raise RecipeError(f"{p}: figure = {figure!r} is not one of {', '.join(SCENE_FIGURES)}")
         if "grid" in raw:
             raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
-        return Recipe(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid={},
-                      caption=str(raw.get("caption", "")), figure=figure, digest=digest)
+        return Recipe(
+            path=p,
+            title=str(raw["title"]),
+            kind=kind,
+            model="sliding",
+            grid={},
+            caption=str(raw.get("caption", "")),
+            figure=figure,
+            digest=digest,
+        )
     if kind in STEADY_KINDS:
         return _load_steady(p, raw, kind, digest, top)
     if "grid" not in raw:
@@ -245,14 +279,26 @@ def load_recipe(path: str | Path) -> Recipe:
         grid = {x: _grid_value(p, x, raw["grid"][x])}
         if np.ndim(grid[x]) != 1:
             raise RecipeError(f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
-        return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x,
-                      caption=str(raw.get("caption", "")), figure=preset, digest=digest, top=top)
+        return Recipe(
+            path=p,
+            title=str(raw["title"]),
+            kind=kind,
+            model=model,
+            grid=grid,
+            x=x,
+            caption=str(raw.get("caption", "")),
+            figure=preset,
+            digest=digest,
+            top=top,
+        )
     grid_raw = raw["grid"]
     if not isinstance(grid_raw, dict):
         raise RecipeError(f"{p}: [grid] must be a table of parameter values")
     bad = set(grid_raw) - set(PARAMETERS)
     if bad:
-        raise RecipeError(f"{p}: grid has unknown parameters {', '.join(sorted(bad))} (allowed: {', '.join(PARAMETERS)})")
+        raise RecipeError(
+            f"{p}: grid has unknown parameters {', '.join(sorted(bad))} (allowed: {', '.join(PARAMETERS)})"
+        )
     grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
     spin, unit = _top_grid(p, raw, top, grid, model)
     quantities = tuple(raw.get("quantities", ["growth_rate"]))
@@ -268,12 +314,27 @@ def load_recipe(path: str | Path) -> Recipe:
         if name not in arrays:
             raise RecipeError(f"{p}: {name!r} must be a 1-D grid (a list or 'start:stop:num') for kind = {kind!r}")
     if sorted(arrays) != sorted(wanted):
-        raise RecipeError(f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws "
-                          f"({', '.join(wanted)})")
-    return Recipe(path=p, title=str(raw["title"]), kind=kind, model=model, grid=grid, x=x, y=y, family=family,
-                  quantities=quantities, mask_unphysical=bool(raw.get("mask_unphysical", True)),
-                  caption=str(raw.get("caption", "")), neutral=bool(raw.get("neutral", False)), digest=digest,
-                  top=top, spin=spin, unit=unit)
+        raise RecipeError(
+            f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws ({', '.join(wanted)})"
+        )
+    return Recipe(
+        path=p,
+        title=str(raw["title"]),
+        kind=kind,
+        model=model,
+        grid=grid,
+        x=x,
+        y=y,
+        family=family,
+        quantities=quantities,
+        mask_unphysical=bool(raw.get("mask_unphysical", True)),
+        caption=str(raw.get("caption", "")),
+        neutral=bool(raw.get("neutral", False)),
+        digest=digest,
+        top=top,
+        spin=spin,
+        unit=unit,
+    )
 
 
 def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
@@ -290,8 +351,10 @@ def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
     if kind not in ("lines", "map", "models", "critical_spin", "bifurcation"):
         raise RecipeError(f"{p}: a {kind} recipe takes no [top] table")
     if "preset" in raw:
-        raise RecipeError(f"{p}: preset = {raw['preset']!r} and [top] conflict: give a preset or a [top] table "
-                          "(which may hold preset = ... itself), not both")
+        raise RecipeError(
+            f"{p}: preset = {raw['preset']!r} and [top] conflict: give a preset or a [top] table "
+            "(which may hold preset = ... itself), not both"
+        )
     try:
         return Top.from_mapping(raw["top"], source=f"{p} [top]")
     except RecipeError:
@@ -320,8 +383,10 @@ def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], mode
         if top.mu_v is not None and "alpha_v" in grid:
             given.append("alpha_v")
     if given:
-        raise RecipeError(f"{p}: [top] and grid.{given[0]} conflict: the top gives {given[0]} (eqs. 3, 7); "
-                          "give the top or the nondimensional value, not both")
+        raise RecipeError(
+            f"{p}: [top] and grid.{given[0]} conflict: the top gives {given[0]} (eqs. 3, 7); "
+            "give the top or the nondimensional value, not both"
+        )
     grid.update(q=top.q, sigma=top.sigma, mu=top.mu)
     if "spin" not in raw:
         return None, unit
@@ -333,9 +398,11 @@ def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], mode
     except (ValueError, TypeError) as exc:
         raise RecipeError(f"{p}: spin = {raw['spin']!r} {unit}: {exc}") from None
     if np.ndim(nd.get("alpha_v", 0.0)) == 1 and np.ndim(nd["fr_inv"]) == 1:
-        raise RecipeError(f"{p}: a grid of spins and mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega would "
-                          "change along the spin grid, and an atlas holds one dimension per parameter; give "
-                          "grid.alpha_v (held fixed) instead of mu_v, or one spin")
+        raise RecipeError(
+            f"{p}: a grid of spins and mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega would "
+            "change along the spin grid, and an atlas holds one dimension per parameter; give "
+            "grid.alpha_v (held fixed) instead of mu_v, or one spin"
+        )
     grid.update({k: v for k, v in nd.items() if k in ("fr_inv", "alpha_v")})
     return spin, unit
 
@@ -353,11 +420,21 @@ def _spin_coordinate(recipe: Recipe, ds: xr.Dataset) -> xr.Dataset:
     if recipe.top is None:
         return ds
     t = recipe.top
-    ds.attrs.update(mass_kg=t.mass, radius_m=t.radius, com_offset_m=t.com_offset,
-                    inertia_transverse_kg_m2=t.inertia_transverse, inertia_axial_kg_m2=t.inertia_axial, g=t.g)
+    ds.attrs.update(
+        mass_kg=t.mass,
+        radius_m=t.radius,
+        com_offset_m=t.com_offset,
+        inertia_transverse_kg_m2=t.inertia_transverse,
+        inertia_axial_kg_m2=t.inertia_axial,
+        g=t.g,
+    )
     if recipe.spin is None:
         return ds
-    attrs = {"long_name": "spin rate Omega of the top", "units": recipe.unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    attrs = {
+        "long_name": "spin rate Omega of the top",
+        "units": recipe.unit,
+        "comment": "fr_inv = g / (Omega^2 R) (eq. 3)",
+    }
     if np.ndim(recipe.spin) == 1 and "fr_inv" in ds.dims:
         return ds.assign_coords(spin=("fr_inv", np.asarray(recipe.spin, dtype=float), attrs))
     ds.attrs.update(spin=float(np.asarray(recipe.spin).ravel()[0]), spin_unit=recipe.unit)
@@ -374,9 +451,15 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in grid.items() if k in takes}
 
 
-def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: bool,
-            reader: Callable[[Path], xr.Dataset],
-            log: list[tuple[Path, str, float]] | None = None) -> xr.Dataset:
+def _cached(
+    path: Path,
+    digest: str,
+    make: Callable[[], xr.Dataset],
+    *,
+    force: bool,
+    reader: Callable[[Path], xr.Dataset],
+    log: list[tuple[Path, str, float]] | None = None,
+) -> xr.Dataset:
     """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
 
     A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
@@ -385,15 +468,18 @@ def _cached(path: Path, digest: str, make: Callable[[], xr.Dataset], *, force: b
         try:
             ds = reader(path)
         except (AtlasFileError, OSError, ValueError) as exc:
-            raise RecipeError(f"{path} exists and was not written by a recipe ({exc}); remove it or "
-                              "pass force=True to replace it") from None
+            raise RecipeError(
+                f"{path} exists and was not written by a recipe ({exc}); remove it or pass force=True to replace it"
+            ) from None
         if ds.attrs.get("recipe_digest") == digest:
             if log is not None:
                 log.append((path, "reused", 0.0))
             return ds
         if "recipe_digest" not in ds.attrs:
-            raise RecipeError(f"{path} exists and was not written by a recipe (it has no recipe_digest "
-                              "attribute); remove it or pass force=True to replace it")
+            raise RecipeError(
+                f"{path} exists and was not written by a recipe (it has no recipe_digest "
+                "attribute); remove it or pass force=True to replace it"
+            )
     start = time.perf_counter()
     ds = make()
     ds.attrs["recipe_digest"] = digest
@@ -452,15 +538,20 @@ def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
         runs["rolling"] = ("rolling", lambda: scene.run(0.3, model="rolling"))
         for j, (ak, av) in enumerate(scene.FRICTION_CASES, start=1):
             label = f"({j}) $\\alpha_K$ = {ak:g}, $\\alpha_v$ = {av:g}"
-            runs[f"case{j}"] = (label, lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av,
-                                                                      t_end=1500.0, dt=0.5))
-            runs[f"case{j}_paper_scheme"] = (label, lambda ak=ak, av=av: scene.run(
-                0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5, **paper))
+            runs[f"case{j}"] = (
+                label,
+                lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5),
+            )
+            runs[f"case{j}_paper_scheme"] = (
+                label,
+                lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5, **paper),
+            )
     return runs
 
 
-def compute(recipe: Recipe, *, force: bool = False,
-            log: list[tuple[Path, str, float]] | None = None) -> dict[str, xr.Dataset]:
+def compute(
+    recipe: Recipe, *, force: bool = False, log: list[tuple[Path, str, float]] | None = None
+) -> dict[str, xr.Dataset]:
     """Compute (or reuse from disk) the recipe's datasets.
 
     A dataset on disk is reused when its ``recipe_digest`` attribute equals the recipe's;
@@ -490,35 +581,59 @@ def compute(recipe: Recipe, *, force: bool = False,
             if not made:
                 made.update(_STEADY_MAKERS[recipe.kind](recipe))
             return made[key]
+
         for key in _STEADY_PARTS[recipe.kind]:
-            out[key] = _cached(_steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log,
-                               reader=_read)
+            out[key] = _cached(
+                _steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log, reader=_read
+            )
         return out
     if recipe.kind == "critical_spin":
-        out[recipe.model] = _cached(recipe.dataset_path, recipe.digest, lambda: critical_spin_dataset(recipe),
-                                    force=force, log=log, reader=_read)
+        out[recipe.model] = _cached(
+            recipe.dataset_path,
+            recipe.digest,
+            lambda: critical_spin_dataset(recipe),
+            force=force,
+            log=log,
+            reader=_read,
+        )
         return out
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
+
             def made(make=make, label=label) -> xr.Dataset:
                 ds = make()
                 ds.attrs["label"] = label
                 return ds
-            out[key] = _cached(recipe.path.with_name(f"{recipe.name}_{key}.nc"), recipe.digest, made,
-                               force=force, log=log, reader=_read)
+
+            out[key] = _cached(
+                recipe.path.with_name(f"{recipe.name}_{key}.nc"),
+                recipe.digest,
+                made,
+                force=force,
+                log=log,
+                reader=_read,
+            )
         return out
     for model in recipe.models():
         path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
 
         def make(model=model) -> xr.Dataset:
-            ds = _spin_coordinate(recipe, atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical,
-                                                **_grid_for(model, recipe.grid)))
+            ds = _spin_coordinate(
+                recipe, atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+            )
             ds.attrs["recipe"] = recipe.path.name
             return ds
+
         out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
         if recipe.neutral:
-            out[f"{model}_neutral"] = _cached(path.with_name(path.stem + "_neutral.nc"), recipe.digest,
-                                              lambda model=model: _neutral(recipe, model), force=force, log=log, reader=_read)
+            out[f"{model}_neutral"] = _cached(
+                path.with_name(path.stem + "_neutral.nc"),
+                recipe.digest,
+                lambda model=model: _neutral(recipe, model),
+                force=force,
+                log=log,
+                reader=_read,
+            )
     return out
 
 
@@ -549,14 +664,40 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
     unit = {"units": "min-1"}
     return xr.Dataset(
-        {"critical_spin_upright": (x, out["upright"], {"long_name": "upright critical spin", **unit,
-                                                         "comment": "spin rate above which the upright top is unstable"}),
-         "critical_spin_inverted": (x, out["inverted"], {"long_name": "inverted critical spin", **unit,
-                                                           "comment": "spin rate above which the inverted top is stable"})},
+        {
+            "critical_spin_upright": (
+                x,
+                out["upright"],
+                {
+                    "long_name": "upright critical spin",
+                    **unit,
+                    "comment": "spin rate above which the upright top is unstable",
+                },
+            ),
+            "critical_spin_inverted": (
+                x,
+                out["inverted"],
+                {
+                    "long_name": "inverted critical spin",
+                    **unit,
+                    "comment": "spin rate above which the inverted top is stable",
+                },
+            ),
+        },
         coords={x: (x, values, parameter_attrs(x))},
-        attrs={"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin",
-               "model": recipe.model, "preset": recipe.figure or "",
-               "mass_kg": base.mass, "radius_m": base.radius, "q": base.q, "mu": base.mu, "sigma": base.sigma})
+        attrs={
+            "Conventions": "CF-1.10",
+            "title": recipe.title,
+            PRODUCT_ATTR: "critical_spin",
+            "model": recipe.model,
+            "preset": recipe.figure or "",
+            "mass_kg": base.mass,
+            "radius_m": base.radius,
+            "q": base.q,
+            "mu": base.mu,
+            "sigma": base.sigma,
+        },
+    )
 
 
 def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
@@ -566,8 +707,14 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
     grid = _grid_for(model, recipe.grid)
     fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}
     xs, ys = np.asarray(grid[recipe.x]), np.asarray(grid[recipe.y or ""])
-    ds = neutral_curve(MODELS[model], recipe.x, recipe.y, fixed=fixed,
-                       x_range=(float(xs.min()), float(xs.max())), y_range=(float(ys.min()), float(ys.max())))
+    ds = neutral_curve(
+        MODELS[model],
+        recipe.x,
+        recipe.y,
+        fixed=fixed,
+        x_range=(float(xs.min()), float(xs.max())),
+        y_range=(float(ys.min()), float(ys.max())),
+    )
     for name in ("kind", "detail"):
         if name in ds:
             ds[name] = ds[name].astype(str)
@@ -582,8 +729,11 @@ _STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("cla
 
 
 def _steady_path(recipe: Recipe, key: str) -> Path:
-    return recipe.dataset_path if key == _STEADY_PARTS[recipe.kind][0] else \
-        recipe.path.with_name(f"{recipe.name}_{key}.nc")
+    return (
+        recipe.dataset_path
+        if key == _STEADY_PARTS[recipe.kind][0]
+        else recipe.path.with_name(f"{recipe.name}_{key}.nc")
+    )
 
 
 def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any = None) -> Recipe:
@@ -594,10 +744,19 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any 
     allowed = {"bifurcation": {"alpha_v"}, "classes": {"q", "sigma", "mu"}, "settle": {"fr_inv"}}[kind]
     bad = set(grid_raw) - allowed
     if bad:
-        raise RecipeError(f"{p}: a {kind} recipe's grid takes {', '.join(sorted(allowed))}, not {', '.join(sorted(bad))}")
+        raise RecipeError(
+            f"{p}: a {kind} recipe's grid takes {', '.join(sorted(allowed))}, not {', '.join(sorted(bad))}"
+        )
     grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
-    common = dict(path=p, title=str(raw["title"]), kind=kind, model="sliding", grid=grid,
-                  caption=str(raw.get("caption", "")), digest=digest)
+    common = dict(
+        path=p,
+        title=str(raw["title"]),
+        kind=kind,
+        model="sliding",
+        grid=grid,
+        caption=str(raw.get("caption", "")),
+        digest=digest,
+    )
     if kind == "bifurcation":
         from .top import SPIN_UNITS
 
@@ -611,10 +770,12 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any 
             raise RecipeError(f"{p}: runs_rpm and runs conflict: give the launch spins once (runs, in unit)")
         key = "runs" if "runs" in raw else "runs_rpm"
         runs = raw.get(key, [])
-        if not isinstance(runs, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0
-                                                 for v in runs):
-            raise RecipeError(f"{p}: {key} = {runs!r} must be a list of spin rates > 0 "
-                              f"({'rpm' if key == 'runs_rpm' else unit})")
+        if not isinstance(runs, list) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0 for v in runs
+        ):
+            raise RecipeError(
+                f"{p}: {key} = {runs!r} must be a list of spin rates > 0 ({'rpm' if key == 'runs_rpm' else unit})"
+            )
         runs = [float(v) * (SPIN_UNITS["rpm"] / SPIN_UNITS[unit] if key == "runs_rpm" else 1.0) for v in runs]
         if "alpha_v" in grid and top is not None and top.mu_v is not None:
             raise RecipeError(f"{p}: [top] mu_v and grid.alpha_v conflict: alpha_v follows from mu_v (eq. 7)")
@@ -635,8 +796,10 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any 
     from .nonlinear.scene import INITIAL_CONDITIONS
 
     if np.ndim(fr) != 0 or float(fr) not in INITIAL_CONDITIONS:
-        raise RecipeError(f"{p}: grid.fr_inv = {fr!r} must be one of {', '.join(map(str, INITIAL_CONDITIONS))} "
-                          "(the paper's runs of Sec. 3(ii))")
+        raise RecipeError(
+            f"{p}: grid.fr_inv = {fr!r} must be one of {', '.join(map(str, INITIAL_CONDITIONS))} "
+            "(the paper's runs of Sec. 3(ii))"
+        )
     if not isinstance(t_end, (int, float)) or isinstance(t_end, bool) or not t_end > 0:
         raise RecipeError(f"{p}: t_end = {t_end!r} must be a number > 0")
     return Recipe(**common, t_end=float(t_end))
@@ -658,9 +821,13 @@ def bifurcation_datasets(recipe: Recipe) -> dict[str, xr.Dataset]:
 
     top = _recipe_top(recipe)
     alpha_v = recipe.grid.get("alpha_v")
-    out = bifurcation_diagram(top, unit=recipe.unit, alpha_v=None if alpha_v is None and top.mu_v is not None
-                              else float(0.5 if alpha_v is None else alpha_v), runs=recipe.runs_rpm,
-                              paper_run=recipe.top is None and recipe.figure == "table1")
+    out = bifurcation_diagram(
+        top,
+        unit=recipe.unit,
+        alpha_v=None if alpha_v is None and top.mu_v is not None else float(0.5 if alpha_v is None else alpha_v),
+        runs=recipe.runs_rpm,
+        paper_run=recipe.top is None and recipe.figure == "table1",
+    )
     for ds in out.values():
         ds.attrs.update(title=recipe.title, preset=recipe.figure or "")
     return out
@@ -688,11 +855,20 @@ def settle_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
     end = final_state(fr_inv=fr, alpha_v=0.5, **scene.PAPER, **scene.INITIAL_CONDITIONS[fr])
     states = steady_states(fr_inv=fr, alpha_v=0.5, **scene.PAPER, jellett=end.jellett)
     rate = float(states.growth_rate[np.argmin(np.abs(states.tilt.values - end.tilt))])
-    run.attrs.update(predicted_tilt=end.tilt, predicted_kind=end.kind, predicted_method=end.method,
-                     predicted_axial_spin=end.axial_spin, predicted_growth_rate=rate, jellett=end.jellett,
-                     label=f"Fr$^{{-1}}$ = {fr:g}")
+    run.attrs.update(
+        predicted_tilt=end.tilt,
+        predicted_kind=end.kind,
+        predicted_method=end.method,
+        predicted_axial_spin=end.axial_spin,
+        predicted_growth_rate=rate,
+        jellett=end.jellett,
+        label=f"Fr$^{{-1}}$ = {fr:g}",
+    )
     return {"run": run}
 
 
 _STEADY_MAKERS: dict[str, Callable[[Recipe], dict[str, xr.Dataset]]] = {
-    "bifurcation": bifurcation_datasets, "classes": classes_dataset, "settle": settle_dataset}
+    "bifurcation": bifurcation_datasets,
+    "classes": classes_dataset,
+    "settle": settle_dataset,
+}

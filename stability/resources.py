@@ -28,13 +28,31 @@ import math
 import os
 import re
 
-__all__ = ["memory_limit", "check_memory", "format_bytes", "HEADROOM", "SIMULATE_BYTES_PER_TIME",
-           "SIMULATE_FILE_BYTES_PER_TIME", "ATLAS_BYTES_PER_POINT_MODE", "ATLAS_BYTES_PER_POINT",
-           "ATLAS_FILE_BYTES_PER_POINT_MODE", "ATLAS_FILE_BYTES_PER_POINT", "ATLAS_CHECK_BYTES_PER_POINT",
-           "THRESHOLD_BYTES_PER_SAMPLE",
-           "START_GRID_BYTES_PER_POINT", "CLASS_ATLAS_BYTES_PER_POINT", "ATLAS_BLOCK_BYTES_PER_POINT",
-           "simulate_bytes", "simulate_file_bytes", "atlas_bytes", "atlas_file_bytes", "check_threshold_samples",
-           "check_start_grid", "check_class_atlas", "ENV_LIMIT"]
+__all__ = [
+    "ATLAS_BLOCK_BYTES_PER_POINT",
+    "ATLAS_BYTES_PER_POINT",
+    "ATLAS_BYTES_PER_POINT_MODE",
+    "ATLAS_CHECK_BYTES_PER_POINT",
+    "ATLAS_FILE_BYTES_PER_POINT",
+    "ATLAS_FILE_BYTES_PER_POINT_MODE",
+    "CLASS_ATLAS_BYTES_PER_POINT",
+    "ENV_LIMIT",
+    "HEADROOM",
+    "SIMULATE_BYTES_PER_TIME",
+    "SIMULATE_FILE_BYTES_PER_TIME",
+    "START_GRID_BYTES_PER_POINT",
+    "THRESHOLD_BYTES_PER_SAMPLE",
+    "atlas_bytes",
+    "atlas_file_bytes",
+    "check_class_atlas",
+    "check_memory",
+    "check_start_grid",
+    "check_threshold_samples",
+    "format_bytes",
+    "memory_limit",
+    "simulate_bytes",
+    "simulate_file_bytes",
+]
 
 #: environment variable overriding the memory limit (bytes)
 ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
@@ -94,8 +112,22 @@ START_GRID_BYTES_PER_POINT = 340.0
 #: margins took their products from models.inertia.two_product, whose temporaries die sooner)
 CLASS_ATLAS_BYTES_PER_POINT = 140.0
 
-_SUFFIX = {"": 1.0, "k": 1e3, "m": 1e6, "g": 1e9, "t": 1e12, "kib": 2.0**10, "mib": 2.0**20, "gib": 2.0**30,
-           "tib": 2.0**40, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "b": 1.0}
+_SUFFIX = {
+    "": 1.0,
+    "k": 1e3,
+    "m": 1e6,
+    "g": 1e9,
+    "t": 1e12,
+    "kib": 2.0**10,
+    "mib": 2.0**20,
+    "gib": 2.0**30,
+    "tib": 2.0**40,
+    "kb": 1e3,
+    "mb": 1e6,
+    "gb": 1e9,
+    "tb": 1e12,
+    "b": 1.0,
+}
 
 
 def format_bytes(n: float) -> str:
@@ -225,8 +257,15 @@ def memory_limit() -> tuple[float, str]:
     env = _env_limit()
     if env is not None:
         return env, f"the limit {ENV_LIMIT}"
-    found = [(v, s) for v, s in ((_meminfo("MemAvailable"), "MemAvailable"), (_cgroup_room(), "the cgroup limit"),
-                                 (_rlimit_room(), "the process limit ulimit -v / -d")) if v is not None]
+    found = [
+        (v, s)
+        for v, s in (
+            (_meminfo("MemAvailable"), "MemAvailable"),
+            (_cgroup_room(), "the cgroup limit"),
+            (_rlimit_room(), "the process limit ulimit -v / -d"),
+        )
+        if v is not None
+    ]
     if not found:
         try:
             found = [(float(os.sysconf("SC_AVPHYS_PAGES")) * os.sysconf("SC_PAGE_SIZE"), "free physical memory")]
@@ -261,8 +300,10 @@ def check_memory(nbytes: float, *, what: str, parameter: str, way_out: str) -> N
     if nbytes > limit:
         from .errors import ResourceError
 
-        raise ResourceError(f"{what} would need about {format_bytes(nbytes)} of memory (set by {parameter}); about "
-                            f"{format_bytes(limit)} is available ({source}); {way_out}")
+        raise ResourceError(
+            f"{what} would need about {format_bytes(nbytes)} of memory (set by {parameter}); about "
+            f"{format_bytes(limit)} is available ({source}); {way_out}"
+        )
 
 
 def simulate_bytes(model: str, n_times: int) -> float:
@@ -280,29 +321,41 @@ def atlas_bytes(n_modes: int, n_points: float, block_points: float, *, domain_ch
     most ``block_points``; ``domain_check``: the whole grid's domain is checked first (without
     ``mask_unphysical``)."""
     n = float(n_points)
-    stored = (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * n \
-        + ATLAS_BLOCK_BYTES_PER_POINT * min(n, float(block_points))
+    stored = (ATLAS_BYTES_PER_POINT_MODE * n_modes + ATLAS_BYTES_PER_POINT) * n + ATLAS_BLOCK_BYTES_PER_POINT * min(
+        n, float(block_points)
+    )
     return max(stored, ATLAS_CHECK_BYTES_PER_POINT * n) if domain_check else stored
 
 
 def check_threshold_samples(samples: int) -> None:
     """Refuse a threshold search (``threshold``, ``thresholds``, ``critical_spin``) whose
     ``samples`` cannot fit in memory."""
-    check_memory(THRESHOLD_BYTES_PER_SAMPLE * float(samples), what=f"a threshold search over {samples} samples",
-                 parameter="samples", way_out="use fewer samples (the default is 257; each crossing is refined "
-                                             "between two samples)")
+    check_memory(
+        THRESHOLD_BYTES_PER_SAMPLE * float(samples),
+        what=f"a threshold search over {samples} samples",
+        parameter="samples",
+        way_out="use fewer samples (the default is 257; each crossing is refined between two samples)",
+    )
 
 
 def check_start_grid(nx: int, ny: int) -> None:
     """Refuse a neutral curve whose start grid ``nx x ny`` cannot fit in memory."""
-    check_memory(START_GRID_BYTES_PER_POINT * float(nx) * float(ny), what=f"a start grid of {nx} x {ny} points",
-                 parameter="grid", way_out="use a coarser grid (the default is 25 x 25), or give start points")
+    check_memory(
+        START_GRID_BYTES_PER_POINT * float(nx) * float(ny),
+        what=f"a start grid of {nx} x {ny} points",
+        parameter="grid",
+        way_out="use a coarser grid (the default is 25 x 25), or give start points",
+    )
 
 
 def check_class_atlas(n_points: int) -> None:
     """Refuse a class atlas of ``n_points`` grid points that cannot fit in memory."""
-    check_memory(CLASS_ATLAS_BYTES_PER_POINT * float(n_points), what=f"a class atlas of {n_points} grid points",
-                 parameter="the grid's ranges", way_out="use fewer points, or compute it in slices of q")
+    check_memory(
+        CLASS_ATLAS_BYTES_PER_POINT * float(n_points),
+        what=f"a class atlas of {n_points} grid points",
+        parameter="the grid's ranges",
+        way_out="use fewer points, or compute it in slices of q",
+    )
 
 
 def atlas_file_bytes(n_modes: int, n_points: float) -> float:

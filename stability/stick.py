@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from .errors import DomainError
 from .parameters import as_scalar, check_positive
 
-__all__ = ["Stick", "STICK_PARTS"]
+__all__ = ["STICK_PARTS", "Stick"]
 
 #: the part of the stick that touches the floor first
 STICK_PARTS = ("tip", "rim")
@@ -85,15 +85,21 @@ class Stick:
             come out of the body).
         """
         if not self.tip_radius < radius:
-            raise DomainError(f"tip_radius = {self.tip_radius:.6g} m is outside the allowed range: "
-                              f"tip_radius < radius = {radius:.6g} m (the tip is smaller than the sphere)")
+            raise DomainError(
+                f"tip_radius = {self.tip_radius:.6g} m is outside the allowed range: "
+                f"tip_radius < radius = {radius:.6g} m (the tip is smaller than the sphere)"
+            )
         if not -radius < self.truncation < radius:
-            raise DomainError(f"truncation = {self.truncation:.6g} m is outside the allowed range: "
-                              f"-radius < truncation < radius = {radius:.6g} m (the plane cuts the sphere)")
+            raise DomainError(
+                f"truncation = {self.truncation:.6g} m is outside the allowed range: "
+                f"-radius < truncation < radius = {radius:.6g} m (the plane cuts the sphere)"
+            )
         if not self.tip_center - self.tip_radius > self.truncation:
-            raise DomainError(f"tip_center = {self.tip_center:.6g} m is outside the allowed range: "
-                              f"tip_center > truncation + tip_radius = {self.truncation + self.tip_radius:.6g} m "
-                              "(the tip lies wholly beyond the truncation plane: the stick fits the sphere)")
+            raise DomainError(
+                f"tip_center = {self.tip_center:.6g} m is outside the allowed range: "
+                f"tip_center > truncation + tip_radius = {self.truncation + self.tip_radius:.6g} m "
+                "(the tip lies wholly beyond the truncation plane: the stick fits the sphere)"
+            )
 
     def contact_tilts(self, radius: float) -> tuple[float, float]:
         """``(theta_tip, theta_rim)`` in degrees (module docstring); ``theta_tip`` is NaN when the

@@ -36,16 +36,25 @@ from .errors import DomainError, InputError
 from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
 from .stick import Stick
 
-__all__ = ["Top", "SPIN_UNITS", "OUNCE", "INCH", "PRESETS", "to_rad_per_s", "from_rad_per_s", "check_launch_spin",
-           "PLAUSIBLE", "ImplausibleTopWarning"]
+__all__ = [
+    "INCH",
+    "OUNCE",
+    "PLAUSIBLE",
+    "PRESETS",
+    "SPIN_UNITS",
+    "ImplausibleTopWarning",
+    "Top",
+    "check_launch_spin",
+    "from_rad_per_s",
+    "to_rad_per_s",
+]
 
 #: avoirdupois ounce and inch in SI
 OUNCE = 0.028349523125
 INCH = 0.0254
 
 #: rad/s per unit of spin rate: the one table of spin units ("Hz" is rev/s)
-SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi,
-                                "Hz": 2.0 * math.pi}
+SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi, "Hz": 2.0 * math.pi}
 
 #: Plausible ranges of a real tippe top (docs/launch.md, "Plausible units"). Each row:
 #: quantity -> (refuse below, warn below, warn above, refuse above). Real tippe tops have
@@ -54,11 +63,11 @@ SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/
 #: (a unit slip g <-> kg is 1e3, mm <-> m 1e3, g mm^2 <-> kg m^2 1e9). Launch spins: a spin
 #: below 0.1 rev/s or above 1e4 rev/s is refused (:func:`check_launch_spin`).
 PLAUSIBLE: dict[str, tuple[float, float, float, float]] = {
-    "mass": (1e-5, 1e-3, 1.0, 1e3),                      # kg
-    "radius": (1e-4, 2e-3, 0.2, 10.0),                   # m
+    "mass": (1e-5, 1e-3, 1.0, 1e3),  # kg
+    "radius": (1e-4, 2e-3, 0.2, 10.0),  # m
     "mu": (1e-2, 0.1, 100.0, 1e4),
-    "sigma": (1e-3, 0.05, math.inf, math.inf),           # sigma <= 2 A_G / A0 < 2 (the domain)
-    "abs_q": (0.0, 1e-3, math.inf, math.inf),            # q = 0 (G at O) is an idealisation, kept
+    "sigma": (1e-3, 0.05, math.inf, math.inf),  # sigma <= 2 A_G / A0 < 2 (the domain)
+    "abs_q": (0.0, 1e-3, math.inf, math.inf),  # q = 0 (G at O) is an idealisation, kept
 }
 #: launch spins, rev/s: refuse below, refuse above
 LAUNCH_SPIN_REV_S: tuple[float, float] = (0.1, 1e4)
@@ -68,12 +77,17 @@ _CAUSES = {
     ("mass", "low"): "mass looks like tonnes or a slipped exponent: pass kilograms",
     ("radius", "high"): "radius looks like millimetres: pass metres (15 mm is 0.015)",
     ("radius", "low"): "radius looks like kilometres or a slipped exponent: pass metres",
-    ("mu", "low"): ("the inertias look too large for the mass and radius: pass kg m^2 (1 g mm^2 is 1e-9 kg m^2), "
-                    "the mass in kg and the radius in m"),
-    ("mu", "high"): ("the inertias look too small for the mass and radius: pass kg m^2, the mass in kg and the "
-                     "radius in m"),
-    ("sigma", "low"): ("the axial moment looks too small against the transverse one (or the offset of G too large): "
-                       "pass both moments in kg m^2 and com_offset in m"),
+    ("mu", "low"): (
+        "the inertias look too large for the mass and radius: pass kg m^2 (1 g mm^2 is 1e-9 kg m^2), "
+        "the mass in kg and the radius in m"
+    ),
+    ("mu", "high"): (
+        "the inertias look too small for the mass and radius: pass kg m^2, the mass in kg and the radius in m"
+    ),
+    ("sigma", "low"): (
+        "the axial moment looks too small against the transverse one (or the offset of G too large): "
+        "pass both moments in kg m^2 and com_offset in m"
+    ),
     ("abs_q", "low"): "com_offset looks tiny against the radius: pass both in metres",
 }
 
@@ -109,9 +123,11 @@ def check_launch_spin(spin: Any, unit: str) -> float:
     lo, hi = LAUNCH_SPIN_REV_S
     rev = w * factor / (2.0 * math.pi)
     if not lo <= rev <= hi:
-        raise DomainError(f"spin = {w:.6g} {unit} ({rev:.6g} rev/s) is outside the allowed range: "
-                          f"{lo:g} to {hi:g} rev/s ({lo * 2 * math.pi / factor:.6g} to {hi * 2 * math.pi / factor:.6g} "
-                          f"{unit}); is the unit right?")
+        raise DomainError(
+            f"spin = {w:.6g} {unit} ({rev:.6g} rev/s) is outside the allowed range: "
+            f"{lo:g} to {hi:g} rev/s ({lo * 2 * math.pi / factor:.6g} to {hi * 2 * math.pi / factor:.6g} "
+            f"{unit}); is the unit right?"
+        )
     return w * factor
 
 
@@ -187,10 +203,12 @@ class Top:
             except (OverflowError, ZeroDivisionError):
                 nd = {"q": math.nan}
         if not all(math.isfinite(v) for v in nd.values()):
-            raise DomainError(f"the nondimensional parameters of this top are not finite numbers "
-                              f"(mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = "
-                              f"{self.com_offset:g} m, inertias {self.inertia_transverse:g}, "
-                              f"{self.inertia_axial:g} kg m^2); give SI values of a real top")
+            raise DomainError(
+                f"the nondimensional parameters of this top are not finite numbers "
+                f"(mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = "
+                f"{self.com_offset:g} m, inertias {self.inertia_transverse:g}, "
+                f"{self.inertia_axial:g} kg m^2); give SI values of a real top"
+            )
         check_domain(**nd)
         if self.stick is not None:
             self.stick.check_fits(self.radius)
@@ -200,9 +218,9 @@ class Top:
     def _check_plausible(self) -> None:
         """Refuse a top orders of magnitude off real tippe tops, warn in the grey zone
         (:data:`PLAUSIBLE`), with the SI data, the derived values and the likely cause."""
-        values = {"mass": self.mass, "radius": self.radius, "mu": self.mu, "sigma": self.sigma,
-                  "abs_q": abs(self.q)}
-        refuse, warn = [], []
+        values = {"mass": self.mass, "radius": self.radius, "mu": self.mu, "sigma": self.sigma, "abs_q": abs(self.q)}
+        refuse: list[str] = []
+        warn: list[str] = []
         for name, (r_lo, w_lo, w_hi, r_hi) in PLAUSIBLE.items():
             v = values[name]
             if name == "abs_q" and v == 0.0:
@@ -215,18 +233,26 @@ class Top:
             (refuse if (v < r_lo or v > r_hi) else warn).append(text)
         if not refuse and not warn:
             return
-        data = (f"mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = {self.com_offset:g} m, "
-                f"inertia_transverse = {self.inertia_transverse:g} kg m^2, inertia_axial = {self.inertia_axial:g} "
-                f"kg m^2 give q = {self.q:.3g}, mu = {self.mu:.3g}, sigma = {self.sigma:.3g}")
-        ranges = ("real tippe tops: mass 5-30 g, radius 10-30 mm, mu 2-4, sigma 0.6-1.4, |q| 0.05-0.4; "
-                  "SI units throughout")
+        data = (
+            f"mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = {self.com_offset:g} m, "
+            f"inertia_transverse = {self.inertia_transverse:g} kg m^2, inertia_axial = {self.inertia_axial:g} "
+            f"kg m^2 give q = {self.q:.3g}, mu = {self.mu:.3g}, sigma = {self.sigma:.3g}"
+        )
+        ranges = (
+            "real tippe tops: mass 5-30 g, radius 10-30 mm, mu 2-4, sigma 0.6-1.4, |q| 0.05-0.4; SI units throughout"
+        )
         if refuse:
-            raise DomainError(f"this top is outside the plausible range of real tops: {'; '.join(refuse + warn)}. "
-                              f"The data: {data}; {ranges}")
+            raise DomainError(
+                f"this top is outside the plausible range of real tops: {'; '.join(refuse + warn)}. "
+                f"The data: {data}; {ranges}"
+            )
         import warnings
 
-        warnings.warn(f"this top is unusual for a tippe top: {'; '.join(warn)}. The data: {data}; {ranges}",
-                      ImplausibleTopWarning, stacklevel=4)
+        warnings.warn(
+            f"this top is unusual for a tippe top: {'; '.join(warn)}. The data: {data}; {ranges}",
+            ImplausibleTopWarning,
+            stacklevel=4,
+        )
 
     # -- spin-independent nondimensional parameters (eq. 3) --------------------------------
     @property
@@ -260,8 +286,10 @@ class Top:
         """Spin rate (in ``unit``) at which the inverse Froude number is ``fr_inv`` (> 0)."""
         f = as_parameter("fr_inv", fr_inv)
         if np.any(f <= 0):
-            raise DomainError(f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
-                             "(fr_inv = 0 is an infinite spin)")
+            raise DomainError(
+                f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
+                "(fr_inv = 0 is an infinite spin)"
+            )
         out = np.sqrt(self.g / (f * self.radius)) / _unit(unit)
         return float(out) if out.ndim == 0 else out
 
@@ -279,8 +307,9 @@ class Top:
             raise ValueError("mu_k is not set on this Top; give mu_k to compute alpha_k")
         return self.mu * self.fr_inv(spin, unit) * self.mu_k
 
-    def nondimensional(self, spin: Any, unit: str = "rad/s", *, alpha_v: Any = None,
-                       model: Any = None) -> dict[str, Any]:
+    def nondimensional(
+        self, spin: Any, unit: str = "rad/s", *, alpha_v: Any = None, model: Any = None
+    ) -> dict[str, Any]:
         """The nondimensional parameters at a spin rate: q, fr_inv, sigma, mu (+ alpha_v, alpha_k).
 
         Parameters
@@ -306,12 +335,13 @@ class Top:
             ``alpha_k`` (when ``mu_k`` is set), so that
             ``eigenvalues("sliding", **top.nondimensional(w, alpha_v=0.5))`` works.
         """
-        out: dict[str, Any] = {"q": self.q, "fr_inv": self.fr_inv(spin, unit),
-                               "sigma": self.sigma, "mu": self.mu}
+        out: dict[str, Any] = {"q": self.q, "fr_inv": self.fr_inv(spin, unit), "sigma": self.sigma, "mu": self.mu}
         if self.mu_v is not None:
             if alpha_v is not None:
-                raise TypeError(f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {self.mu_v:g} "
-                                "s/m, from which alpha_v follows (eq. 7); give one of them")
+                raise TypeError(
+                    f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {self.mu_v:g} "
+                    "s/m, from which alpha_v follows (eq. 7); give one of them"
+                )
             out["alpha_v"] = self.alpha_v(spin, unit)
         elif alpha_v is not None:
             a = as_parameter("alpha_v", alpha_v)
@@ -325,18 +355,21 @@ class Top:
 
             m = get_model(model)
             if "alpha_v" in m.parameters and "alpha_v" not in out:
-                raise TypeError(f"the {m.name} model needs alpha_v, and this Top has no mu_v: pass "
-                                "alpha_v=... or build the Top with mu_v=... (s/m)")
+                raise TypeError(
+                    f"the {m.name} model needs alpha_v, and this Top has no mu_v: pass "
+                    "alpha_v=... or build the Top with mu_v=... (s/m)"
+                )
             out = {k: v for k, v in out.items() if k in m.parameters}
         return out
 
-    def inverted(self) -> "Top":
+    def inverted(self) -> Top:
         """The same top standing on its stick: the offset of G reversed (q -> -q)."""
         return replace(self, com_offset=-self.com_offset)
 
     @classmethod
-    def from_nondimensional(cls, *, mass: float, radius: float, q: float, mu: float, sigma: float,
-                            **kwargs: Any) -> "Top":
+    def from_nondimensional(
+        cls, *, mass: float, radius: float, q: float, mu: float, sigma: float, **kwargs: Any
+    ) -> Top:
         """Build a top from its mass and radius and the nondimensional q, mu, sigma (eq. 3)."""
         mass, radius = check_positive("mass", mass), check_positive("radius", radius)
         p, _ = check_domain(scalar=True, q=q, sigma=sigma, mu=mu)
@@ -346,11 +379,17 @@ class Top:
             a0 = m_ * r_**2 / mu
             d = q * r_
             a_g = a0 - m_ * d**2
-        return cls(mass=mass, radius=radius, com_offset=float(d), inertia_transverse=float(a_g),
-                   inertia_axial=float(sigma * a0), **kwargs)
+        return cls(
+            mass=mass,
+            radius=radius,
+            com_offset=float(d),
+            inertia_transverse=float(a_g),
+            inertia_axial=float(sigma * a0),
+            **kwargs,
+        )
 
     @classmethod
-    def from_mapping(cls, data: Any, *, source: str = "top") -> "Top":
+    def from_mapping(cls, data: Any, *, source: str = "top") -> Top:
         """A top from a mapping of SI values (a TOML ``[top]`` table, a dict).
 
         Keys: the constructor's (``mass``, ``radius``, ``com_offset``, ``inertia_transverse``,
@@ -379,8 +418,9 @@ class Top:
         optional = ("g", "mu_k", "mu_v")
         unknown = sorted(set(data) - {*required, *optional, "preset"})
         if unknown:
-            raise InputError(f"{source}: unknown keys {', '.join(unknown)} (allowed: preset, "
-                             f"{', '.join(required + optional)})")
+            raise InputError(
+                f"{source}: unknown keys {', '.join(unknown)} (allowed: preset, {', '.join(required + optional)})"
+            )
         for k, v in data.items():
             if k != "preset" and (isinstance(v, bool) or not isinstance(v, (int, float))):
                 raise InputError(f"{source}: {k} = {v!r} is not a number (SI units)")
@@ -391,17 +431,23 @@ class Top:
                 raise InputError(f"{source}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
             clash = [k for k in required if k in data]
             if clash:
-                raise InputError(f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
-                                 "preset or the top's SI data, not both")
-            return getattr(cls, preset)(**extra)
+                raise InputError(
+                    f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
+                    "preset or the top's SI data, not both"
+                )
+            named: Top = getattr(cls, preset)(**extra)
+            return named
         missing = [k for k in required if k not in data]
         if missing:
-            raise InputError(f"{source}: missing {', '.join(missing)} (SI units), or give preset = "
-                             f"{' or '.join(repr(p) for p in PRESETS)}")
-        return cls(**{k: float(data[k]) for k in required}, **extra)
+            raise InputError(
+                f"{source}: missing {', '.join(missing)} (SI units), or give preset = "
+                f"{' or '.join(repr(p) for p in PRESETS)}"
+            )
+        top: Top = cls(**{k: float(data[k]) for k in required}, **extra)  # type: ignore[arg-type]
+        return top
 
     @classmethod
-    def from_toml(cls, path: Any) -> "Top":
+    def from_toml(cls, path: Any) -> Top:
         """A top from the ``[top]`` table of a TOML file (keys of :meth:`from_mapping`).
 
         Raises
@@ -423,27 +469,33 @@ class Top:
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
             raise InputError(f"{p}: not valid TOML ({exc})") from None
         if "top" not in raw:
-            raise InputError(f"{p}: no [top] table (give mass, radius, com_offset, inertia_transverse, "
-                             "inertia_axial in SI units under [top])")
+            raise InputError(
+                f"{p}: no [top] table (give mass, radius, com_offset, inertia_transverse, "
+                "inertia_axial in SI units under [top])"
+            )
         return cls.from_mapping(raw["top"], source=f"{p} [top]")
 
     @classmethod
-    def table1(cls, **kwargs: Any) -> "Top":
+    def table1(cls, **kwargs: Any) -> Top:
         """The paper's toy top as its simulations use it: q = -0.1, mu = 2.28, sigma = 1.
 
         Mass 0.64 oz, radius 0.6366 in (Sec. 3(ii)); see the module docstring for why the
         inertias are derived from the nondimensional set rather than read off Table 1.
         """
-        return cls.from_nondimensional(mass=0.64 * OUNCE, radius=0.6366 * INCH,
-                                       q=-0.1, mu=2.28, sigma=1.0, **kwargs)
+        return cls.from_nondimensional(mass=0.64 * OUNCE, radius=0.6366 * INCH, q=-0.1, mu=2.28, sigma=1.0, **kwargs)
 
     @classmethod
-    def table1_measured(cls, **kwargs: Any) -> "Top":
+    def table1_measured(cls, **kwargs: Any) -> Top:
         """Table 1's measured entries taken literally (gives mu ~ 3.7, not the listed 2.28)."""
         r = 0.63 * INCH
-        return cls(mass=0.64 * OUNCE, radius=r, com_offset=-0.094 * r,
-                   inertia_transverse=0.066 * OUNCE * INCH**2,
-                   inertia_axial=0.066 * OUNCE * INCH**2, **kwargs)
+        return cls(
+            mass=0.64 * OUNCE,
+            radius=r,
+            com_offset=-0.094 * r,
+            inertia_transverse=0.066 * OUNCE * INCH**2,
+            inertia_axial=0.066 * OUNCE * INCH**2,
+            **kwargs,
+        )
 
     def stick_contact(self) -> tuple[float, str]:
         """The tilt (degrees) at which the stick first touches the floor, and the part that
@@ -456,17 +508,20 @@ class Top:
         """
         return self._stick().contact(self.radius)
 
-    def on_stick(self) -> "Top":
+    def on_stick(self) -> Top:
         """The top standing on its stick's tip: a sphere of radius ``tip_radius`` with G at
         ``tip_center - com_offset`` from its centre, away from the stick (``q = (tip_center -
         com_offset) / tip_radius > 0``; its "upright" state spins on the stick with G above the
         tip; :mod:`stability.stick`). Same mass, moments about G, gravity and friction; no stick."""
         st = self._stick()
-        return replace(self, radius=st.tip_radius, com_offset=st.tip_center - self.com_offset, stick=None,
-                       plausible=False)
+        return replace(
+            self, radius=st.tip_radius, com_offset=st.tip_center - self.com_offset, stick=None, plausible=False
+        )
 
     def _stick(self) -> Stick:
         if self.stick is None:
-            raise InputError("this Top has no stick; build it with stick=stability.Stick(tip_center, "
-                             "tip_radius, truncation) (metres)")
+            raise InputError(
+                "this Top has no stick; build it with stick=stability.Stick(tip_center, "
+                "tip_radius, truncation) (metres)"
+            )
         return self.stick

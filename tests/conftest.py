@@ -32,16 +32,21 @@ def _install() -> tuple[bool, Path | None]:
     """(editable, source directory of an editable install) of the installed tippe-stability."""
     # the metadata of the install, not a stale tippe_stability.egg-info of the tree (which
     # `python -m pytest` would find first, through the current directory on sys.path)
-    found = [d for d in metadata.distributions(name="tippe-stability")
-             if Path(str(d.locate_file(""))).resolve() != REPOSITORY]
+    found = [
+        d
+        for d in metadata.distributions(name="tippe-stability")
+        if Path(str(d.locate_file(""))).resolve() != REPOSITORY
+    ]
     if not found:
-        raise SystemExit("tests/conftest.py: tippe-stability is not installed in this Python "
-                         f"({sys.executable}); install it first: pip install '.[test]'")
+        raise SystemExit(
+            "tests/conftest.py: tippe-stability is not installed in this Python "
+            f"({sys.executable}); install it first: pip install '.[test]'"
+        )
     dist = found[0]
     info = json.loads(dist.read_text("direct_url.json") or "{}")
     editable = bool(info.get("dir_info", {}).get("editable", False))
     url = str(info.get("url", ""))
-    source = Path(url[len("file://"):]).resolve() if editable and url.startswith("file://") else None
+    source = Path(url[len("file://") :]).resolve() if editable and url.startswith("file://") else None
     return editable, source
 
 
@@ -50,7 +55,7 @@ if not _EDITABLE:  # `python -m pytest` puts the current directory first: it wou
     sys.path[:] = [p for p in sys.path if Path(p or os.getcwd()).resolve() != REPOSITORY]
 
 
-def pytest_sessionstart(session) -> None:  # noqa: ANN001
+def pytest_sessionstart(session) -> None:
     """Fail at once if the tests would not exercise the installed package."""
     import pytest
 
@@ -60,13 +65,19 @@ def pytest_sessionstart(session) -> None:  # noqa: ANN001
     # the tree's own package directory (a venv inside the repository, as the README makes, is an install)
     inside = here.parent == REPOSITORY / "stability"
     if _EDITABLE and _SOURCE is not None and _SOURCE != REPOSITORY:
-        pytest.exit(f"tests/conftest.py: tippe-stability is installed editable from {_SOURCE}, not from "
-                    f"this repository ({REPOSITORY}): these tests would test that tree; reinstall "
-                    "with pip install -e . from here, or use this repository's venv", returncode=4)
+        pytest.exit(
+            f"tests/conftest.py: tippe-stability is installed editable from {_SOURCE}, not from "
+            f"this repository ({REPOSITORY}): these tests would test that tree; reinstall "
+            "with pip install -e . from here, or use this repository's venv",
+            returncode=4,
+        )
     if not _EDITABLE and inside:
-        pytest.exit(f"tests/conftest.py: stability was imported from the source tree ({here}), not from "
-                    "the installed package; run `pytest` (not `python -m pytest`, which puts the current "
-                    "directory first on sys.path), or `python -P -m pytest`", returncode=4)
+        pytest.exit(
+            f"tests/conftest.py: stability was imported from the source tree ({here}), not from "
+            "the installed package; run `pytest` (not `python -m pytest`, which puts the current "
+            "directory first on sys.path), or `python -P -m pytest`",
+            returncode=4,
+        )
 
 
 import numpy as np  # noqa: E402
@@ -121,11 +132,13 @@ def mp_sliding_eigenvalues(q, fr_inv, sigma, alpha_v, mu, dps: int = 50) -> list
         q, F, sg, a, m = (mp.mpf(float(v)) for v in (q, fr_inv, sigma, alpha_v, mu))
         i = mp.mpc(0, 1)
         M = mp.matrix([[1, 0, i * m * q], [0, 1, 0], [-i * q, 0, 1]])
-        A = mp.matrix([
-            [-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a],
-            [-i, i, 0],
-            [-(q + i * a / m), q, -a / m],
-        ])
+        A = mp.matrix(
+            [
+                [-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a],
+                [-i, i, 0],
+                [-(q + i * a / m), q, -a / m],
+            ]
+        )
         return list(mp.eig(M**-1 * A, left=False, right=False))
 
 

@@ -40,14 +40,14 @@ PACKAGES = ("stability", "continuation")
 #: (module or package prefix, layer); the longest matching prefix decides. Mirrors the table in
 #: docs/architecture.md. Imports may go to the same or a lower layer only.
 LAYERS: tuple[tuple[str, int], ...] = (
-    ("continuation", 0),                 # the generic engine (its __init__ is a facade, below)
+    ("continuation", 0),  # the generic engine (its __init__ is a facade, below)
     ("stability._version", 0),
     ("stability.errors", 0),
     ("stability.products", 0),
     ("stability.execution", 0),
-    ("stability.jit", 0),                # one source, two executions (numba on demand)
-    ("stability.interrupts", 0),         # signals as flags, checkpoints, temporary files
-    ("stability.resources", 0),          # memory estimates and limits
+    ("stability.jit", 0),  # one source, two executions (numba on demand)
+    ("stability.interrupts", 0),  # signals as flags, checkpoints, temporary files
+    ("stability.resources", 0),  # memory estimates and limits
     ("stability.parameters", 1),
     ("stability.models", 1),
     ("stability.top", 1),
@@ -55,9 +55,9 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.linear", 2),
     ("stability.nonlinear", 3),
     ("stability.grids", 3),
-    ("stability.steady", 4),             # steady states, branch, final state, classes
+    ("stability.steady", 4),  # steady states, branch, final state, classes
     ("stability.recipes", 5),
-    ("stability.launches", 5),             # launch, flip_time: a real top launched (issue 23)
+    ("stability.launches", 5),  # launch, flip_time: a real top launched (issue 23)
     ("stability.plotting", 6),
     ("stability.commands", 8),
     ("stability.cli", 8),
@@ -95,7 +95,8 @@ def layer(name: str) -> int | None:
 
 def _is_type_checking(test: ast.expr) -> bool:
     return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
-        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
 
 
 def _import_nodes(tree: ast.AST):
@@ -116,8 +117,9 @@ def _lazy_exports(tree: ast.Module, package: str) -> set[str]:
     string values that start with "." (relative to ``package``) or with a package's name."""
     out = set()
     for node in tree.body:
-        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(
-            node, ast.AnnAssign) else []
+        targets = (
+            node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
+        )
         if not any(isinstance(t, ast.Name) and t.id == "_EXPORTS" for t in targets) or node.value is None:
             continue
         values = node.value.values if isinstance(node.value, ast.Dict) else [node.value]
@@ -144,7 +146,7 @@ def imports_of(name: str) -> set[str]:
         else:
             if node.level:
                 parts = package.split(".")
-                base = ".".join(parts[:len(parts) - node.level + 1])
+                base = ".".join(parts[: len(parts) - node.level + 1])
                 base = f"{base}.{node.module}" if node.module else base
             else:
                 base = node.module
@@ -165,9 +167,17 @@ GRAPH = {name: imports_of(name) for name in MODULES}
 def test_the_walk_finds_the_packages():
     """A sanity check of the walk itself: the facades, a few modules of each layer, the lazy
     facade import of continuation/__init__ and a function-level import are seen."""
-    for name in ("stability", "continuation", "stability.errors", "stability.linear.kernel",
-                 "stability.grids.atlases", "stability.nonlinear.runs", "stability.steady.final",
-                 "stability.commands.atlas", "continuation.engine"):
+    for name in (
+        "stability",
+        "continuation",
+        "stability.errors",
+        "stability.linear.kernel",
+        "stability.grids.atlases",
+        "stability.nonlinear.runs",
+        "stability.steady.final",
+        "stability.commands.atlas",
+        "continuation.engine",
+    ):
         assert name in MODULES
     assert "continuation.engine" in GRAPH["continuation"]  # lazy, in _EXPORTS
     assert "stability.linear.spectra" in GRAPH["stability"]  # lazy, in _EXPORTS
@@ -182,15 +192,23 @@ def test_every_module_has_a_layer():
 
 
 def test_no_import_goes_up_a_layer():
-    upward = sorted(f"{a} (layer {layer(a)}) imports {b} (layer {layer(b)})"
-                    for a, targets in GRAPH.items() for b in targets
-                    if layer(a) is not None and layer(b) is not None and layer(b) > layer(a))
+    upward = sorted(
+        f"{a} (layer {layer(a)}) imports {b} (layer {layer(b)})"
+        for a, targets in GRAPH.items()
+        for b in targets
+        if layer(a) is not None and layer(b) is not None and layer(b) > layer(a)
+    )
     assert not upward, "imports of a higher layer:\n" + "\n".join(upward)
 
 
 def test_the_engine_does_not_import_stability():
-    bad = sorted(f"{a} imports {b}" for a, targets in GRAPH.items() if a.split(".")[0] == "continuation"
-                 for b in targets if b.split(".")[0] == "stability")
+    bad = sorted(
+        f"{a} imports {b}"
+        for a, targets in GRAPH.items()
+        if a.split(".")[0] == "continuation"
+        for b in targets
+        if b.split(".")[0] == "stability"
+    )
     assert not bad, "continuation (its __init__ included) must not import stability:\n" + "\n".join(bad)
 
 
@@ -200,14 +218,16 @@ def test_using_the_engine_imports_nothing_of_stability():
     import subprocess
     import sys
 
-    code = ("import sys, numpy as np, continuation\n"
-            "class Circle:\n"
-            "    def residual(self, u): return np.array([u[0] ** 2 + u[1] ** 2 - 1.0])\n"
-            "    def jacobian(self, u): return np.array([[2 * u[0], 2 * u[1]]])\n"
-            "br = continuation.trace(Circle(), [1.0, 0.0])\n"
-            "continuation.dense(br, 4)\n"
-            "assert br.closed, br.end_reasons\n"
-            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'stability'))\n")
+    code = (
+        "import sys, numpy as np, continuation\n"
+        "class Circle:\n"
+        "    def residual(self, u): return np.array([u[0] ** 2 + u[1] ** 2 - 1.0])\n"
+        "    def jacobian(self, u): return np.array([[2 * u[0], 2 * u[1]]])\n"
+        "br = continuation.trace(Circle(), [1.0, 0.0])\n"
+        "continuation.dense(br, 4)\n"
+        "assert br.closed, br.end_reasons\n"
+        "print(sorted(m for m in sys.modules if m.split('.')[0] == 'stability'))\n"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
@@ -285,9 +305,13 @@ def test_no_bench_code_in_the_installed_package():
 
     named = sorted(m for m in MODULES if any(w in m for w in ("bench", "work_precision", "timing")))
     assert not named, f"benchmark modules in the installed package: {named}"
-    users = sorted(m for m in MODULES for node in _import_nodes(ast.parse(pathlib.Path(MODULES[m][0]).read_text()))
-                   for a in (node.names if isinstance(node, ast.Import) else [ast.alias(node.module or "")])
-                   if a.name.split(".")[0] in ("suites", "run", "benchmarks"))
+    users = sorted(
+        m
+        for m in MODULES
+        for node in _import_nodes(ast.parse(pathlib.Path(MODULES[m][0]).read_text()))
+        for a in (node.names if isinstance(node, ast.Import) else [ast.alias(node.module or "")])
+        if a.name.split(".")[0] in ("suites", "run", "benchmarks")
+    )
     assert not users, f"installed modules importing the benchmark suites: {users}"
     assert "bench" not in COMMANDS
 
@@ -315,9 +339,24 @@ def test_trace_takes_one_options_object():
 
 
 #: the built-in exceptions the package raises only through its own hierarchy (stability/errors.py)
-BUILTIN_ERRORS = frozenset({"ValueError", "TypeError", "RuntimeError", "OSError", "KeyError", "IndexError",
-                            "FileExistsError", "FileNotFoundError", "ArithmeticError", "OverflowError",
-                            "ZeroDivisionError", "NotImplementedError", "AttributeError", "LookupError"})
+BUILTIN_ERRORS = frozenset(
+    {
+        "ValueError",
+        "TypeError",
+        "RuntimeError",
+        "OSError",
+        "KeyError",
+        "IndexError",
+        "FileExistsError",
+        "FileNotFoundError",
+        "ArithmeticError",
+        "OverflowError",
+        "ZeroDivisionError",
+        "NotImplementedError",
+        "AttributeError",
+        "LookupError",
+    }
+)
 
 
 def bare_builtin_raises(source: str) -> list[tuple[int, str]]:
@@ -347,9 +386,11 @@ def bare_raises_in_stability() -> dict[str, list[tuple[int, str]]]:
 
 def test_the_bare_raise_checker():
     """The checker on a small source of known content (no assertion on the package yet)."""
-    src = ("def f(x):\n    raise ValueError('a')\n\ndef g():\n    raise TypeError\n\n"
-           "def h(e):\n    try:\n        pass\n    except Exception as exc:\n        raise\n"
-           "    raise DomainError('b')\n")
+    src = (
+        "def f(x):\n    raise ValueError('a')\n\ndef g():\n    raise TypeError\n\n"
+        "def h(e):\n    try:\n        pass\n    except Exception as exc:\n        raise\n"
+        "    raise DomainError('b')\n"
+    )
     assert bare_builtin_raises(src) == [(2, "ValueError"), (5, "TypeError")]
     assert isinstance(bare_raises_in_stability(), dict)
 
@@ -360,6 +401,5 @@ def test_no_hook_into_numba():
     deferred registrations run when it compiles, or when ``stability.jit.activate()`` is called."""
     from importlib import metadata
 
-    hooks = [ep for ep in metadata.entry_points(group="numba_extensions")
-             if ep.value.split(".")[0] in PACKAGES]
+    hooks = [ep for ep in metadata.entry_points(group="numba_extensions") if ep.value.split(".")[0] in PACKAGES]
     assert not hooks, hooks

@@ -18,8 +18,7 @@ from stability.errors import AtlasFileError
 
 @pytest.fixture
 def ds():
-    return stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 41), fr_inv=[0.0, 0.1, 0.3],
-                           sigma=1.0, alpha_v=0.5)
+    return stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 41), fr_inv=[0.0, 0.1, 0.3], sigma=1.0, alpha_v=0.5)
 
 
 def test_shape_coordinates_and_values(ds):
@@ -45,7 +44,7 @@ def test_cf_attributes(ds):
     for name in list(ds.data_vars) + ["q", "fr_inv", "sigma", "alpha_v", "mu", "mode"]:
         assert "long_name" in ds[name].attrs, name
     for name in ("growth_rate", "frequency", "max_growth_rate", "leading_growth_rate"):
-        assert ds[name].attrs["units"] == "Omega"   # rates in units of the spin rate
+        assert ds[name].attrs["units"] == "Omega"  # rates in units of the spin rate
     assert ds.q.attrs["units"] == "R"
     for name in ("fr_inv", "sigma"):
         assert ds[name].attrs["units"] == "1"
@@ -59,7 +58,7 @@ def test_stability_flag_at_zero_gravity(ds):
     below (1 - mu q^2)/(1 + q): a mode grows, unstable (closed form in test_spectra_reference)."""
     st = ds.stability.sel(fr_inv=0.0)
     q = ds.q.values
-    grows = 1.0 < (1 - 2.28 * q**2) / (1 + q)
+    grows = (1 - 2.28 * q**2) / (1 + q) > 1.0
     assert (st.values[(q > 1e-12) & ~grows] == 1).all()
     assert (st.values[grows & (q < -1e-12)] == 2).all()
     assert (st.values != 2)[~grows].all()
@@ -85,6 +84,7 @@ def test_failed_write_leaves_no_file(ds, tmp_path, monkeypatch):
     def boom(ds, path):
         open(path, "wb").write(b"CDF\x01 partial")
         raise RuntimeError("disk full")
+
     monkeypatch.setattr(netcdf, "_to_netcdf", boom)
     with pytest.raises(RuntimeError, match="disk full"):
         stability.write_dataset(ds, tmp_path / "atlas.nc")

@@ -22,8 +22,9 @@ from stability.cli import main
 from stability.errors import InputError
 from stability.grids.chunked import write_atlas
 
-GRID = dict(q=np.linspace(-0.6, 0.6, 31), fr_inv=np.linspace(0.0, 3.0, 7), sigma=np.linspace(0.05, 1.95, 9),
-            alpha_v=[0.1, 1.0])
+GRID = dict(
+    q=np.linspace(-0.6, 0.6, 31), fr_inv=np.linspace(0.0, 3.0, 7), sigma=np.linspace(0.05, 1.95, 9), alpha_v=[0.1, 1.0]
+)
 
 
 @pytest.fixture(scope="module")
@@ -110,9 +111,31 @@ def test_bad_choices_are_named(tmp_path, reference):
 @pytest.mark.parametrize("chunks", [[], ["--chunks", "q=5"]])
 def test_cli_map_file(tmp_path, reference, chunks):
     out = tmp_path / "m.nc"
-    rc = main(["atlas", "--model", "sliding", "--q", "-0.6:0.6:31", "--fr-inv", "0:3:7", "--sigma", "0.05:1.95:9",
-               "--alpha-v", "0.1,1.0", "--mask-unphysical", "--variables", "map", "--compression", "zstd",
-               "--float32", "--no-progress", *chunks, "-o", str(out)])
+    rc = main(
+        [
+            "atlas",
+            "--model",
+            "sliding",
+            "--q",
+            "-0.6:0.6:31",
+            "--fr-inv",
+            "0:3:7",
+            "--sigma",
+            "0.05:1.95:9",
+            "--alpha-v",
+            "0.1,1.0",
+            "--mask-unphysical",
+            "--variables",
+            "map",
+            "--compression",
+            "zstd",
+            "--float32",
+            "--no-progress",
+            *chunks,
+            "-o",
+            str(out),
+        ]
+    )
     assert rc == 0
     read = stability.open_atlas(out)
     assert set(read.data_vars) == {"leading_growth_rate", "stability"}
@@ -123,9 +146,9 @@ def test_cli_map_file(tmp_path, reference, chunks):
 def test_map_file_draws_the_same_stability_map(tmp_path, reference):
     """The map file draws the stability map of the full atlas: the same colour array (the leading
     growth rate, bit for bit in float64) over the same plane."""
-    import matplotlib
+    import matplotlib as mpl
 
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     import matplotlib.pyplot as plt
 
     from stability.plotting.figures import plot_atlas

@@ -12,18 +12,24 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_same_atlas
 
 import stability
 import stability.grids.schema as schema
 from stability.errors import AtlasFileError, ResourceError
 from stability.grids.schema import require_atlas
-from conftest import assert_same_atlas
 
 
 @pytest.fixture(scope="module")
 def good() -> xr.Dataset:
-    return stability.atlas("sliding", q=np.linspace(-0.8, 0.6, 15), fr_inv=[0.0, 0.3], sigma=[0.5, 1.0, 1.9],
-                           alpha_v=0.5, mask_unphysical=True)
+    return stability.atlas(
+        "sliding",
+        q=np.linspace(-0.8, 0.6, 15),
+        fr_inv=[0.0, 0.3],
+        sigma=[0.5, 1.0, 1.9],
+        alpha_v=0.5,
+        mask_unphysical=True,
+    )
 
 
 def _set(ds, name, values):
@@ -42,20 +48,27 @@ def _mutants(good: xr.Dataset) -> list[tuple[str, xr.Dataset, str]]:
     def add(label, ds, fragment):
         out.append((label, ds, fragment))
 
-    add("stability as floats", _set(good, "stability", stab.astype(np.float64) + 0.5),
-        "variable 'stability' has dtype float64; an atlas stores it as integer flags")
+    add(
+        "stability as floats",
+        _set(good, "stability", stab.astype(np.float64) + 0.5),
+        "variable 'stability' has dtype float64; an atlas stores it as integer flags",
+    )
     s = stab.copy()
     s[tuple(inside)] = 7
     add("stability flag 7", _set(good, "stability", s), "variable 'stability' holds 7, outside its flags")
-    add("stability on a foreign dimension",
+    add(
+        "stability on a foreign dimension",
         good.assign(stability=(("foo", "fr_inv", "sigma"), stab)).drop_vars("physical"),
-        "variable 'growth_rate' has dimensions")
-    add("growth_rate of strings", _set(good, "growth_rate", g.astype(str)),
-        "variable 'growth_rate' has dtype <U")
+        "variable 'growth_rate' has dimensions",
+    )
+    add("growth_rate of strings", _set(good, "growth_rate", g.astype(str)), "variable 'growth_rate' has dtype <U")
     m = good["max_growth_rate"].values.copy()
     m[tuple(inside)] += 1e-3
-    add("max_growth_rate not mode 0", _set(good, "max_growth_rate", m),
-        "variable 'max_growth_rate' differs from growth_rate of mode 0")
+    add(
+        "max_growth_rate not mode 0",
+        _set(good, "max_growth_rate", m),
+        "variable 'max_growth_rate' differs from growth_rate of mode 0",
+    )
     gg = g.copy()
     gg[tuple(inside)] = np.nan
     add("NaN inside the domain", _set(good, "growth_rate", gg), "variable 'growth_rate' has NaN where")
@@ -68,10 +81,16 @@ def _mutants(good: xr.Dataset) -> list[tuple[str, xr.Dataset, str]]:
     b = good["eigenvalue_error_bound"].values.copy()
     b[tuple(inside)] = -1.0
     add("negative bound", _set(good, "eigenvalue_error_bound", b), "'eigenvalue_error_bound' has negative values")
-    add("frequency without mode", good.assign(frequency=good["frequency"].isel(mode=0)),
-        "variable 'frequency' has dimensions")
-    add("integer growth_rate", _set(good, "growth_rate", np.zeros(g.shape, dtype=np.int32)),
-        "variable 'growth_rate' has dtype int32")
+    add(
+        "frequency without mode",
+        good.assign(frequency=good["frequency"].isel(mode=0)),
+        "variable 'frequency' has dimensions",
+    )
+    add(
+        "integer growth_rate",
+        _set(good, "growth_rate", np.zeros(g.shape, dtype=np.int32)),
+        "variable 'growth_rate' has dtype int32",
+    )
     bad = good.copy()
     bad["stability"].attrs["flag_values"] = np.array([0, 1, 2, 3], dtype=np.int8)
     add("other flag_values", bad, "variable 'stability' has flag_values [0, 1, 2, 3]")

@@ -12,18 +12,22 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_resume_completes, assert_same_atlas
 
 import stability
 from stability.cli import main
 from stability.errors import DomainError, ResumeError
 from stability.grids.chunked import parts_directory, write_atlas
 from stability.grids.cluster import dask_client
-from conftest import assert_resume_completes, assert_same_atlas
 
-GRID = dict(q=np.linspace(-0.6, 0.6, 31), fr_inv=[0.0, 0.1, 0.3, 1.0], sigma=np.linspace(0.2, 1.2, 5),
-            alpha_v=0.5, mask_unphysical=True)
+GRID = dict(
+    q=np.linspace(-0.6, 0.6, 31),
+    fr_inv=[0.0, 0.1, 0.3, 1.0],
+    sigma=np.linspace(0.2, 1.2, 5),
+    alpha_v=0.5,
+    mask_unphysical=True,
+)
 CHUNKS = {"q": 8, "sigma": 2}  # 4 x 1 x 3 = 12 chunks, ragged at the ends
-
 
 
 @pytest.fixture(scope="module")
@@ -92,15 +96,62 @@ def test_resume_refuses_a_store_of_another_atlas(tmp_path, monkeypatch):
 
 def test_cli_chunks_and_errors(tmp_path, capsys, reference):
     out = tmp_path / "a.nc"
-    rc = main(["atlas", "--q", "-0.6:0.6:31", "--fr-inv", "0,0.1,0.3,1", "--sigma", "0.2:1.2:5", "--alpha-v", "0.5",
-               "--mask-unphysical", "--chunks", "q=8,sigma=2", "--resume", "-o", str(out)])
+    rc = main(
+        [
+            "atlas",
+            "--q",
+            "-0.6:0.6:31",
+            "--fr-inv",
+            "0,0.1,0.3,1",
+            "--sigma",
+            "0.2:1.2:5",
+            "--alpha-v",
+            "0.5",
+            "--mask-unphysical",
+            "--chunks",
+            "q=8,sigma=2",
+            "--resume",
+            "-o",
+            str(out),
+        ]
+    )
     assert rc == 0 and "in chunks" in capsys.readouterr().out
     assert_same_atlas(stability.open_atlas(out), reference)
-    rc = main(["atlas", "--q", "0.1", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "--workers", "2",
-               "-o", str(tmp_path / "b.nc")])
+    rc = main(
+        [
+            "atlas",
+            "--q",
+            "0.1",
+            "--fr-inv",
+            "0.1",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "--workers",
+            "2",
+            "-o",
+            str(tmp_path / "b.nc"),
+        ]
+    )
     assert rc == 2 and "give --chunks too" in capsys.readouterr().err
-    rc = main(["atlas", "--q", "0.1", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "--chunks", "x=3",
-               "-o", str(tmp_path / "b.nc")])
+    rc = main(
+        [
+            "atlas",
+            "--q",
+            "0.1",
+            "--fr-inv",
+            "0.1",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "--chunks",
+            "x=3",
+            "-o",
+            str(tmp_path / "b.nc"),
+        ]
+    )
     assert rc == 2 and "not grid dimensions" in capsys.readouterr().err
 
 
@@ -133,9 +184,30 @@ def test_two_worker_local_cluster(tmp_path, reference):
         client.run_on_scheduler(_write_scheduler_file, path=str(sched))
         with dask_client(scheduler=str(sched)) as other:
             assert other.scheduler.address == client.scheduler.address
-        assert main(["atlas", "--q", "-0.6:0.6:31", "--fr-inv", "0,0.1,0.3,1", "--sigma", "0.2:1.2:5",
-                     "--alpha-v", "0.5", "--mask-unphysical", "--chunks", "q=8,sigma=2", "--no-progress",
-                     "--scheduler", str(sched), "-o", str(tmp_path / "c.nc")]) == 0
+        assert (
+            main(
+                [
+                    "atlas",
+                    "--q",
+                    "-0.6:0.6:31",
+                    "--fr-inv",
+                    "0,0.1,0.3,1",
+                    "--sigma",
+                    "0.2:1.2:5",
+                    "--alpha-v",
+                    "0.5",
+                    "--mask-unphysical",
+                    "--chunks",
+                    "q=8,sigma=2",
+                    "--no-progress",
+                    "--scheduler",
+                    str(sched),
+                    "-o",
+                    str(tmp_path / "c.nc"),
+                ]
+            )
+            == 0
+        )
     assert_same_atlas(stability.open_atlas(tmp_path / "a.nc"), reference)
     assert_same_atlas(stability.open_atlas(tmp_path / "b.nc"), reference)
     assert_same_atlas(stability.open_atlas(tmp_path / "c.nc"), reference)

@@ -33,21 +33,39 @@ def test_parse_values():
 def test_atlas_command(tmp_path, capsys):
     out = tmp_path / "atlas.nc"
     png = tmp_path / "atlas.png"
-    rc = main(["atlas", "--model", "sliding", "--q", "-0.6:0.6:25", "--fr-inv", "0,0.1,0.3", "--sigma", "1",
-               "--alpha-v", "0.5", "--mask-unphysical", "-o", str(out), "--plot", str(png)])
+    rc = main(
+        [
+            "atlas",
+            "--model",
+            "sliding",
+            "--q",
+            "-0.6:0.6:25",
+            "--fr-inv",
+            "0,0.1,0.3",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "--mask-unphysical",
+            "-o",
+            str(out),
+            "--plot",
+            str(png),
+        ]
+    )
     assert rc == 0
     assert "wrote" in capsys.readouterr().out
     ds = stability.open_atlas(out)
-    ref = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 25), fr_inv=[0, 0.1, 0.3], sigma=1.0,
-                          alpha_v=0.5, mask_unphysical=True)
+    ref = stability.atlas(
+        "sliding", q=np.linspace(-0.6, 0.6, 25), fr_inv=[0, 0.1, 0.3], sigma=1.0, alpha_v=0.5, mask_unphysical=True
+    )
     xr.testing.assert_allclose(ds.drop_attrs(), ref.drop_attrs(), rtol=0, atol=0)
     assert png.stat().st_size > 10_000
 
 
 def test_refused_grid_leaves_no_file(tmp_path, capsys):
     out = tmp_path / "atlas.nc"
-    rc = main(["atlas", "--q", "-0.6:0.6:25", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5",
-               "-o", str(out)])
+    rc = main(["atlas", "--q", "-0.6:0.6:25", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "-o", str(out)])
     err = capsys.readouterr().err
     assert rc == 2
     assert err.count("\n") == 1 and "sigma = 1 is outside the physical domain" in err
@@ -55,15 +73,45 @@ def test_refused_grid_leaves_no_file(tmp_path, capsys):
 
 
 def test_unwritable_output_fails_before_computing(tmp_path, capsys):
-    rc = main(["atlas", "--q", "0.1", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5",
-               "-o", str(tmp_path / "no" / "such" / "dir.nc")])
+    rc = main(
+        [
+            "atlas",
+            "--q",
+            "0.1",
+            "--fr-inv",
+            "0.1",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(tmp_path / "no" / "such" / "dir.nc"),
+        ]
+    )
     assert rc == 2 and "does not exist" in capsys.readouterr().err
 
 
 def test_python_m_stability_no_traceback(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "stability", "atlas", "--q", "0.1", "--fr-inv", "nan",
-                        "--sigma", "1", "--alpha-v", "0.5", "-o", str(tmp_path / "a.nc")],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "stability",
+            "atlas",
+            "--q",
+            "0.1",
+            "--fr-inv",
+            "nan",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(tmp_path / "a.nc"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 2
     assert "Traceback" not in r.stderr and "--fr-inv = nan is not finite" in r.stderr
 
@@ -84,17 +132,29 @@ def _library_messages(tmp_path):
     ds = stability.atlas("fixed_pivot", q=0.1, fr_inv=0.1, sigma=1.0)
     cases = [
         (FileExistsError, lambda: stability.write_dataset(ds, existing), "pass overwrite=True to replace it"),
-        (stability.DomainError, lambda: stability.atlas("sliding", q=[0.1, 0.9], fr_inv=0.0, sigma=1.0, alpha_v=0.5),
-         "pass mask_unphysical=True to compute the rest"),
-        (ValueError, lambda: dask_client(workers=1, scheduler="tcp://x:1").__enter__(),
-         "pass workers=N for a local cluster or scheduler=ADDRESS for an existing one, not both"),
+        (
+            stability.DomainError,
+            lambda: stability.atlas("sliding", q=[0.1, 0.9], fr_inv=0.0, sigma=1.0, alpha_v=0.5),
+            "pass mask_unphysical=True to compute the rest",
+        ),
+        (
+            ValueError,
+            lambda: dask_client(workers=1, scheduler="tcp://x:1").__enter__(),
+            "pass workers=N for a local cluster or scheduler=ADDRESS for an existing one, not both",
+        ),
     ]
     recipe = tmp_path / "r.toml"
-    recipe.write_text('title = "x"\nkind = "lines"\nx = "q"\n[grid]\nq = "0:0.2:3"\nfr_inv = 0.1\nsigma = 1.0\n'
-                      'alpha_v = 0.5\n')
+    recipe.write_text(
+        'title = "x"\nkind = "lines"\nx = "q"\n[grid]\nq = "0:0.2:3"\nfr_inv = 0.1\nsigma = 1.0\nalpha_v = 0.5\n'
+    )
     xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(tmp_path / "r.nc")  # a file no recipe wrote
-    cases.append((stability.errors.RecipeError, lambda: recipes.compute(recipes.load_recipe(recipe)),
-                  "remove it or pass force=True to replace it"))
+    cases.append(
+        (
+            stability.errors.RecipeError,
+            lambda: recipes.compute(recipes.load_recipe(recipe)),
+            "remove it or pass force=True to replace it",
+        )
+    )
     return cases
 
 
@@ -107,13 +167,35 @@ def test_library_messages_name_keywords_not_flags(tmp_path):
         assert fragment in msg and not _FLAG.search(msg), msg
 
 
-@pytest.mark.parametrize("argv, fragment", [
-    (["atlas", "--q", "0.1,0.9", "--fr-inv", "0", "--sigma", "1", "--alpha-v", "0.5"],
-     "pass mask_unphysical=True (--mask-unphysical) to compute the rest"),
-    (["atlas", "--q", "0.1,0.2", "--fr-inv", "0", "--sigma", "1", "--alpha-v", "0.5", "--chunks", "1",
-      "--workers", "1", "--scheduler", "tcp://x:1"],
-     "pass workers=N (--workers) for a local cluster or scheduler=ADDRESS (--scheduler) for an existing one"),
-])
+@pytest.mark.parametrize(
+    "argv, fragment",
+    [
+        (
+            ["atlas", "--q", "0.1,0.9", "--fr-inv", "0", "--sigma", "1", "--alpha-v", "0.5"],
+            "pass mask_unphysical=True (--mask-unphysical) to compute the rest",
+        ),
+        (
+            [
+                "atlas",
+                "--q",
+                "0.1,0.2",
+                "--fr-inv",
+                "0",
+                "--sigma",
+                "1",
+                "--alpha-v",
+                "0.5",
+                "--chunks",
+                "1",
+                "--workers",
+                "1",
+                "--scheduler",
+                "tcp://x:1",
+            ],
+            "pass workers=N (--workers) for a local cluster or scheduler=ADDRESS (--scheduler) for an existing one",
+        ),
+    ],
+)
 def test_command_line_shows_the_flags(argv, fragment, tmp_path, capsys):
     """The same messages through ``tippe``: the keyword followed by the command's flag, on the one
     error line (--overwrite and --force: tests/test_files.py)."""
@@ -159,9 +241,14 @@ def test_no_library_message_names_a_flag():
             continue
         path = importlib.util.find_spec(info.name).origin
         tree = ast.parse(Path(path).read_text(), path)
-        docstrings = {id(n.body[0].value) for n in ast.walk(tree)
-                      if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
-                      and n.body and isinstance(n.body[0], ast.Expr) and isinstance(n.body[0].value, ast.Constant)}
+        docstrings = {
+            id(n.body[0].value)
+            for n in ast.walk(tree)
+            if isinstance(n, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+            and n.body
+            and isinstance(n.body[0], ast.Expr)
+            and isinstance(n.body[0].value, ast.Constant)
+        }
         for const in ast.walk(tree):
             if isinstance(const, ast.Constant) and isinstance(const.value, str) and id(const) not in docstrings:
                 for flag in re.findall(r"(?<![\w-])--[a-z][a-z-]*", const.value):

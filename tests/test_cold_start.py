@@ -31,9 +31,9 @@ import numpy as np
 import pytest
 
 import stability
-from stability.jit import Twin
 from stability import execution
 from stability.errors import InputError
+from stability.jit import Twin
 from stability.linear import kernel
 from stability.linear.roots import axis_growth_many, cbrt, quadratic_roots_many
 
@@ -155,8 +155,7 @@ def test_spectrum_same_bits_in_every_execution(monkeypatch):
     every model (the sliding model's fused kernel, the others' coefficient kernel)."""
     rng = np.random.default_rng(157)
     q = rng.uniform(-0.5, 0.5, 300)
-    for model, extra in (("sliding", dict(alpha_v=0.5)), ("rolling_eq8", {}), ("fixed_pivot", {}),
-                         ("rolling", {})):
+    for model, extra in (("sliding", dict(alpha_v=0.5)), ("rolling_eq8", {}), ("fixed_pivot", {}), ("rolling", {})):
         out = {}
         for mode in ("python", "compiled"):
             monkeypatch.setenv(execution.ENVIRONMENT, mode)
@@ -217,24 +216,35 @@ def test_no_float_power_in_the_shared_source():
     for root in roots:
         for path in sorted(root.rglob("*.py")):
             tree = ast.parse(path.read_text(), str(path))
-            shared = [f for f in ast.walk(tree) if isinstance(f, ast.FunctionDef) and (
-                path.name == "kernel.py" and path.parent.name == "linear"
-                or any("register_jitable" in ast.unparse(d) for d in f.decorator_list))]
+            shared = [
+                f
+                for f in ast.walk(tree)
+                if isinstance(f, ast.FunctionDef)
+                and (
+                    (path.name == "kernel.py" and path.parent.name == "linear")
+                    or any("register_jitable" in ast.unparse(d) for d in f.decorator_list)
+                )
+            ]
             for f in shared:
                 for node in ast.walk(f):
-                    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and not isinstance(
-                            node.left, ast.Constant):
+                    if (
+                        isinstance(node, ast.BinOp)
+                        and isinstance(node.op, ast.Pow)
+                        and not isinstance(node.left, ast.Constant)
+                    ):
                         found.append(f"{path.name}:{node.lineno} {ast.unparse(node)}")
     assert not found, found
 
 
 # --- the rule and its message ---------------------------------------------------------------
 
+
 def test_engine_rule_and_its_errors(monkeypatch):
     """The execution asked for (stability.execution.engine and use_compiled): the argument wins,
     then TIPPE_KERNEL, then auto; auto runs interpreted below PYTHON_BELOW points unless the
     compiled loop is in memory. A value that is not known is refused with its name and the
     allowed ones."""
+
     class Stub:
         def __init__(self, in_memory):
             self._m = in_memory
@@ -246,20 +256,29 @@ def test_engine_rule_and_its_errors(monkeypatch):
     small, large = execution.PYTHON_BELOW - 1, execution.PYTHON_BELOW
     assert not execution.use_compiled(Stub(False), small) and execution.use_compiled(Stub(False), large)
     assert execution.use_compiled(Stub(True), 1)
-    assert execution.use_compiled(Stub(False), 1, "compiled") and not execution.use_compiled(Stub(True), large, "python")
+    assert execution.use_compiled(Stub(False), 1, "compiled") and not execution.use_compiled(
+        Stub(True), large, "python"
+    )
     monkeypatch.setenv(execution.ENVIRONMENT, "Python")
     assert not execution.use_compiled(Stub(True), large)
     assert execution.use_compiled(Stub(False), 1, "compiled")
     monkeypatch.setenv(execution.ENVIRONMENT, "numba")
-    with pytest.raises(InputError, match=r"TIPPE_KERNEL = 'numba' is not known; set it to one of auto, python, compiled"):
+    with pytest.raises(
+        InputError, match=r"TIPPE_KERNEL = 'numba' is not known; set it to one of auto, python, compiled"
+    ):
         execution.engine()
     with pytest.raises(InputError, match=r"engine = 'fast' is not known; choose one of auto, python, compiled"):
         stability.linear.kernel.coefficient_spectrum(np.ones((2, 3)), engine="fast")
 
 
 def _run(code: str, env: dict | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True, text=True,
-                          timeout=300, env={**os.environ, **(env or {})})
+    return subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, **(env or {})},
+    )
 
 
 def test_compile_notice_once_per_process_and_only_if_not_cached(tmp_path):
@@ -361,6 +380,7 @@ def test_steady_compile_notice_once_cold_and_never_warm(tmp_path):
 
 # --- what a fresh process imports -----------------------------------------------------------
 
+
 def test_import_stability_imports_nothing_heavy():
     """``import stability`` and ``import continuation`` (the lazy facades) import none of numba,
     scipy, xarray, matplotlib, dask, pandas; the command line's parser neither numba nor xarray."""
@@ -377,20 +397,26 @@ def test_import_stability_imports_nothing_heavy():
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
 
 
-@pytest.mark.parametrize("call, absent", [
-    ('stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
-    ('stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
-    ('stability.critical_spin(stability.Top.table1(), orientation="upright")', ("numba", "scipy", "xarray")),
-    ('stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))', ("numba",)),
-    ('stability.spectrum("sliding", q=np.linspace(-0.4, 0.4, 5000), fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
-     ("numba",)),
-])
+@pytest.mark.parametrize(
+    "call, absent",
+    [
+        ('stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
+        ('stability.threshold("sigma", q=-0.2, fr_inv=0.0, alpha_v=0.5)', ("numba", "scipy", "xarray")),
+        ('stability.critical_spin(stability.Top.table1(), orientation="upright")', ("numba", "scipy", "xarray")),
+        ('stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))', ("numba",)),
+        (
+            'stability.spectrum("sliding", q=np.linspace(-0.4, 0.4, 5000), fr_inv=0.3, sigma=1.0, alpha_v=0.5)',
+            ("numba",),
+        ),
+    ],
+)
 def test_a_first_call_compiles_nothing(call, absent):
     """A first eigenvalue, threshold, critical spin and neutral curve in a fresh process run
     interpreted: numba is not imported (nor scipy or xarray where the call needs none). The
     last case is a large request with TIPPE_KERNEL=python, which forces the interpreter."""
     env = {execution.ENVIRONMENT: "python"} if "5000" in call else {execution.ENVIRONMENT: "auto"}
-    out = _run(f"""
+    out = _run(
+        f"""
         import sys
         import numpy as np
         import continuation, stability
@@ -398,7 +424,9 @@ def test_a_first_call_compiles_nothing(call, absent):
         loaded = [m for m in {absent!r} if m in sys.modules]
         assert not loaded, loaded
         print("ok")
-    """, env)
+    """,
+        env,
+    )
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
     assert out.stderr == ""
 
@@ -433,8 +461,14 @@ def test_warmup_covers_every_loop_and_lists_its_steps(capsys):
     todo = steps()
     twins = {id(t) for _, _, ts in todo for t in ts}
     sliding = kernel._model_kernels(stability.get_model("sliding"))
-    expected = [*sliding.checked, *sliding.masked, *kernel._COEFFICIENT_LOOPS, quadratic_roots_many,
-                neutrality._other_roots_many, axis_growth_many]
+    expected = [
+        *sliding.checked,
+        *sliding.masked,
+        *kernel._COEFFICIENT_LOOPS,
+        quadratic_roots_many,
+        neutrality._other_roots_many,
+        axis_growth_many,
+    ]
     assert all(id(t) in twins for t in expected)
     assert main(["warmup", "--list"]) == 0
     assert capsys.readouterr().out.splitlines() == [what for what, _, _ in todo]

@@ -17,10 +17,10 @@ Issue 13, items 4 and 7. References:
 from __future__ import annotations
 
 import multiprocessing
-import sys
 import os
 import socket
 import stat
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -45,6 +45,7 @@ def _tagged(i: int, n: int = 50) -> xr.Dataset:
 
 
 # --- the race ------------------------------------------------------------------------------------
+
 
 def _race_writer(path: str, i: int, barrier, results) -> None:
     """Runs in a spawned process: wait for every writer, then write dataset i to ``path``."""
@@ -96,8 +97,11 @@ def test_concurrent_writers_exactly_one_wins(tmp_path):
 def test_file_created_during_the_run_is_not_replaced(tmp_path):
     """Deterministic: another process creates the target between the start and the commit."""
     path = tmp_path / "a.nc"
-    with pytest.raises(FileExistsError, match=r"was created by another process while this run was computing; "
-                                              r"nothing was written \(pass overwrite=True"):
+    with pytest.raises(
+        FileExistsError,
+        match=r"was created by another process while this run was computing; "
+        r"nothing was written \(pass overwrite=True",
+    ):
         with atomic_output(path) as tmp:
             Path(tmp).write_text("mine")
             path.write_text("theirs")
@@ -153,6 +157,7 @@ def test_temporary_names_are_unique_hidden_and_keep_the_suffix(tmp_path):
 
 # --- non-regular targets -------------------------------------------------------------------------
 
+
 def _make(kind: str, path: Path) -> str:
     """Create a non-regular file of ``kind`` at ``path``; return the kind's words."""
     if kind == "fifo":
@@ -192,9 +197,11 @@ def _writers():
         finally:
             plt.close(fig)
 
-    return {"write_dataset": lambda p, o: stability.write_dataset(ds, p, overwrite=o),
-            "write_atlas": lambda p, o: write_atlas(ds, p, overwrite=o),
-            "save_figure": save_figure}
+    return {
+        "write_dataset": lambda p, o: stability.write_dataset(ds, p, overwrite=o),
+        "write_atlas": lambda p, o: write_atlas(ds, p, overwrite=o),
+        "save_figure": save_figure,
+    }
 
 
 @pytest.mark.parametrize("kind", ["fifo", "socket", "symlink", "chardev"])
@@ -229,8 +236,22 @@ def test_overwrite_is_checked_again_at_commit(tmp_path):
 def test_cli_refuses_non_regular_output_before_computing(tmp_path, capsys, kind):
     path = tmp_path / "out.nc"
     words = _make(kind, path)
-    rc = main(["atlas", "--q", "0.1,0.2", "--fr-inv", "0.1", "--sigma", "1", "--alpha-v", "0.5", "-o", str(path),
-               "--overwrite"])
+    rc = main(
+        [
+            "atlas",
+            "--q",
+            "0.1,0.2",
+            "--fr-inv",
+            "0.1",
+            "--sigma",
+            "1",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(path),
+            "--overwrite",
+        ]
+    )
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and f"is {words}; only a regular file can be replaced" in err
 

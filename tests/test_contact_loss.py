@@ -34,7 +34,7 @@ def _accelerations(y, q, fr, sg, av, mu):
     i_g = a_g * np.eye(3) + (sg - a_g) * np.outer(k, k)
     vc = np.array([v[0] - w[1], v[1] + w[0], 0.0])
     f = -av * vc
-    r = -K - q * k                                     # from G to the contact point
+    r = -K - q * k  # from G to the contact point
     wk = np.dot(w, k)
     # unknowns x = (omega' (3), b1, b2, N)
     a = np.zeros((6, 6))
@@ -65,33 +65,47 @@ def _reference(omega, k, q, fr, sg, av, t_end):
 
     n.terminal = True
     n.direction = -1
-    return solve_ivp(f, (0.0, t_end), y0, method="DOP853", rtol=1e-11, atol=1e-13, events=n,
-                     dense_output=True)
+    return solve_ivp(f, (0.0, t_end), y0, method="DOP853", rtol=1e-11, atol=1e-13, events=n, dense_output=True)
 
 
 def test_default_mu_is_the_reference_mu():
     from stability.parameters import DEFAULT_MU
+
     assert DEFAULT_MU == MU
 
 
-@pytest.mark.parametrize("omega, k, fr, lost", [
-    ([2.0, 0.0, 1.0], [0.3, 0.0, 1.0], 0.05, True),      # the issue's reproducer
-    ([4.0, 0.0, 1.0], [0.3, 0.0, 1.0], 0.05, True),
-    ([0.5, 0.0, 1.0], [0.2, 0.0, 1.0], 0.3, False),      # a gentle launch: contact holds
-])
+@pytest.mark.parametrize(
+    "omega, k, fr, lost",
+    [
+        ([2.0, 0.0, 1.0], [0.3, 0.0, 1.0], 0.05, True),  # the issue's reproducer
+        ([4.0, 0.0, 1.0], [0.3, 0.0, 1.0], 0.05, True),
+        ([0.5, 0.0, 1.0], [0.2, 0.0, 1.0], 0.3, False),  # a gentle launch: contact holds
+    ],
+)
 def test_contact_loss_time_against_independent_dop853(omega, k, fr, lost):
     t_end = 20.0
     ref = _reference(omega, k, -0.1, fr, 1.0, 0.5, t_end)
-    ds = simulate("sliding", t_end=t_end, q=-0.1, fr_inv=fr, sigma=1.0, alpha_v=0.5, omega=omega,
-                  k=_unit(k), velocity=[0, 0], rtol=1e-11, atol=1e-13)
+    ds = simulate(
+        "sliding",
+        t_end=t_end,
+        q=-0.1,
+        fr_inv=fr,
+        sigma=1.0,
+        alpha_v=0.5,
+        omega=omega,
+        k=_unit(k),
+        velocity=[0, 0],
+        rtol=1e-11,
+        atol=1e-13,
+    )
     if lost:
         assert ref.t_events[0].size == 1
         t_ref = ref.t_events[0][0]
         assert ds.attrs["event"] == "contact_lost"
         assert ds.attrs["status"] == 0
         assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
-        assert float(ds.time[-1]) == ds.attrs["event_time"]      # the last sample is the event
-        assert abs(float(ds.normal_force[-1])) < 1e-9             # N = 0 there (to the event's root)
+        assert float(ds.time[-1]) == ds.attrs["event_time"]  # the last sample is the event
+        assert abs(float(ds.normal_force[-1])) < 1e-9  # N = 0 there (to the event's root)
     else:
         assert ref.t_events[0].size == 0
         assert ds.attrs["event"] == "none" and np.isnan(ds.attrs["event_time"])
@@ -113,11 +127,29 @@ def test_rolling_run_stops_at_contact_loss():
 
 def test_continue_is_refused_naming_what_is_missing():
     with pytest.raises(InputError, match="on_contact_loss.*flight phase"):
-        simulate("sliding", t_end=1, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
-                 k=_unit([0.3, 0, 1]), on_contact_loss="continue")
+        simulate(
+            "sliding",
+            t_end=1,
+            q=-0.1,
+            fr_inv=0.05,
+            sigma=1,
+            alpha_v=0.5,
+            omega=[2, 0, 1],
+            k=_unit([0.3, 0, 1]),
+            on_contact_loss="continue",
+        )
     with pytest.raises(InputError, match="on_contact_loss = 'fly'"):
-        simulate("sliding", t_end=1, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
-                 k=_unit([0.3, 0, 1]), on_contact_loss="fly")
+        simulate(
+            "sliding",
+            t_end=1,
+            q=-0.1,
+            fr_inv=0.05,
+            sigma=1,
+            alpha_v=0.5,
+            omega=[2, 0, 1],
+            k=_unit([0.3, 0, 1]),
+            on_contact_loss="fly",
+        )
 
 
 def test_final_state_run_reports_the_contact_loss():
@@ -136,15 +168,26 @@ def test_final_state_run_reports_the_contact_loss():
     assert run.t_end == run.event_time
 
 
-@pytest.mark.parametrize("method, extra", [("rk4", {"step": 2e-3}), ("DOP853", {}), ("LSODA", {}),
-                                           ("Radau", {})])
+@pytest.mark.parametrize("method, extra", [("rk4", {"step": 2e-3}), ("DOP853", {}), ("LSODA", {}), ("Radau", {})])
 def test_every_integrator_locates_the_event(method, extra):
     """Each integrator's own location (rk4: Hermite cubic; scipy: dense output and Brent) against
     the independent DOP853 event. Tolerance: 1e-6 relative (rk4 at step 2e-3 has a global error
     ~1e-10 here; LSODA's and Radau's global errors are ~100-1000 rtol, with rtol 1e-11)."""
     t_ref = _reference([2.0, 0.0, 1.0], [0.3, 0, 1], -0.1, 0.05, 1.0, 0.5, 20.0).t_events[0][0]
-    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
-                  k=_unit([0.3, 0, 1]), method=method, rtol=1e-11, atol=1e-13, **extra)
+    ds = simulate(
+        "sliding",
+        t_end=5,
+        q=-0.1,
+        fr_inv=0.05,
+        sigma=1,
+        alpha_v=0.5,
+        omega=[2, 0, 1],
+        k=_unit([0.3, 0, 1]),
+        method=method,
+        rtol=1e-11,
+        atol=1e-13,
+        **extra,
+    )
     assert ds.attrs["event"] == "contact_lost" and ds.attrs["status"] == 0
     assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
     assert float(ds.time[-1]) == ds.attrs["event_time"]
@@ -182,8 +225,20 @@ def test_run_stops_at_the_stick_against_independent_dop853():
     tilt.terminal = True
     ref = solve_ivp(f, (0.0, 1000.0), y0, method="DOP853", rtol=1e-10, atol=1e-12, events=tilt)
     t_ref = ref.t_events[0][0]
-    ds = simulate("sliding", t_end=1000, q=-0.1, fr_inv=0.3, sigma=1, alpha_v=0.5, stick_tilt=131.2,
-                  rtol=1e-10, atol=1e-12, omega=ic["omega"], k=k0, velocity=ic["velocity"])
+    ds = simulate(
+        "sliding",
+        t_end=1000,
+        q=-0.1,
+        fr_inv=0.3,
+        sigma=1,
+        alpha_v=0.5,
+        stick_tilt=131.2,
+        rtol=1e-10,
+        atol=1e-12,
+        omega=ic["omega"],
+        k=k0,
+        velocity=ic["velocity"],
+    )
     assert ds.attrs["event"] == "stick_contact" and ds.attrs["status"] == 0
     assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
     assert abs(float(ds.polar_angle[-1]) - 131.2) < 1e-9
@@ -192,16 +247,16 @@ def test_run_stops_at_the_stick_against_independent_dop853():
 
 def test_stick_tilt_is_checked():
     with pytest.raises(ValueError, match="stick_tilt"):
-        simulate("sliding", t_end=1, q=-0.1, fr_inv=0.3, sigma=1, alpha_v=0.5, omega=[0, 0, 1], k=[0, 0, 1],
-                 stick_tilt=190.0)
+        simulate(
+            "sliding", t_end=1, q=-0.1, fr_inv=0.3, sigma=1, alpha_v=0.5, omega=[0, 0, 1], k=[0, 0, 1], stick_tilt=190.0
+        )
 
 
 def test_contact_figure_marks_the_event():
     """The figure draws N(t) as the run has it and marks the event at the run's event time."""
     from stability.plotting import plot_contact_run
 
-    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1],
-                  k=_unit([0.3, 0, 1]))
+    ds = simulate("sliding", t_end=5, q=-0.1, fr_inv=0.05, sigma=1, alpha_v=0.5, omega=[2, 0, 1], k=_unit([0.3, 0, 1]))
     fig, axes = plot_contact_run(ds)
     assert len(axes) == 2
     line = axes[0].lines[0]

@@ -516,7 +516,8 @@ def test_python_path_compiles_nothing():
         "assert br.closed\n"
         "assert 'continuation.compiled' not in sys.modules\n"
         "assert 'numba' not in sys.modules\n"
-        "print('ok')\n")
+        "print('ok')\n"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"

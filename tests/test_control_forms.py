@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import mp_sliding_eigenvalues
 
 import stability
-from conftest import mp_sliding_eigenvalues
 
 
 def _same_set(a, b, tol):
@@ -25,8 +25,12 @@ def _same_set(a, b, tol):
         b.pop(k)
 
 
-POINTS = [(-0.1, 0.3, 1.0, 0.5, 2.28), (0.2, 1.0, 0.8, 2.0, 2.28), (-0.3, 0.0, 1.1, 0.05, 3.0),
-          (0.35, 2.5, 0.3, 5.0, 1.5)]
+POINTS = [
+    (-0.1, 0.3, 1.0, 0.5, 2.28),
+    (0.2, 1.0, 0.8, 2.0, 2.28),
+    (-0.3, 0.0, 1.1, 0.05, 3.0),
+    (0.35, 2.5, 0.3, 5.0, 1.5),
+]
 
 
 @pytest.mark.parametrize("q,fr_inv,sigma,alpha_v,mu", POINTS)

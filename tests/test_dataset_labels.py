@@ -8,12 +8,12 @@ import matplotlib as mpl
 
 mpl.use("Agg")
 
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from conftest import mp_sliding_eigenvalues
 
-import stability  # noqa: E402
-from conftest import mp_sliding_eigenvalues  # noqa: E402
+import stability
 
 #: xarray labels an axis "long_name [units]" and wraps the label beyond 30 characters
 #: (xarray.plot.utils.label_from_attrs)
@@ -27,8 +27,9 @@ def atlas_fr0():
 
 @pytest.fixture(scope="module")
 def run():
-    return stability.simulate("sliding", t_end=5.0, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1, fr_inv=0.3,
-                              sigma=1.0, alpha_v=0.5)
+    return stability.simulate(
+        "sliding", t_end=5.0, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5
+    )
 
 
 def _too_long(ds):
@@ -80,12 +81,12 @@ def test_leading_growth_rate_leaves_out_the_structural_zero_mode(atlas_fr0):
     ds = atlas_fr0
     lead = ds.leading_growth_rate
     assert lead.dims == ds.max_growth_rate.dims and lead.attrs["units"] == "Omega"
-    assert (ds.max_growth_rate == 0).sum() > 3          # the flat part the issue complains about
+    assert (ds.max_growth_rate == 0).sum() > 3  # the flat part the issue complains about
     for j, q in enumerate(ds.q.values):
         ev = [complex(z) for z in mp_sliding_eigenvalues(q, 0.0, 1.0, 0.5, 2.28)]
         ref = max(z.real for z in ev if abs(z) > 1e-30)
         assert abs(float(lead[j]) - ref) < 1e-12, (q, float(lead[j]), ref)
-    assert (lead < 0).sum() > 3                           # not flat where the other modes decay
+    assert (lead < 0).sum() > 3  # not flat where the other modes decay
 
 
 def test_leading_growth_rate_survives_files_and_chunks(atlas_fr0, tmp_path):
@@ -122,8 +123,9 @@ def test_steady_products_long_names_are_short():
     products = {
         "steady_states": stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
         "steady_branch": stability.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
-        "final_state": stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
-                                             **INITIAL_CONDITIONS[0.3]).to_dataset(),
+        "final_state": stability.final_state(
+            q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **INITIAL_CONDITIONS[0.3]
+        ).to_dataset(),
         "class_atlas": stability.class_atlas(q=np.linspace(-0.6, 0.6, 5), sigma=np.linspace(0.01, 2, 4)),
     }
     for name, ds in products.items():

@@ -6,6 +6,7 @@ execution of the same :data:`DOMAIN` table, and the exact rational test of the s
 accept/refuse decision, same doubles returned, the same message on refusal: the fast path never
 refuses, it hands over), so there is no tolerance.
 """
+
 from fractions import Fraction
 
 import numpy as np
@@ -31,10 +32,10 @@ def _points():
         top = float(P.sigma_max(q, mu))
         for sigma in (top, np.nextafter(top, 3.0), np.nextafter(top, 0.0)):
             yield dict(q=q, sigma=float(sigma), fr_inv=0.3, alpha_v=0.5, mu=mu)
-    yield dict(q=0, sigma=1, fr_inv=0, alpha_v=0)          # Python ints
-    yield dict(q=10**400, sigma=1.0)                         # overflowing int: general path
+    yield dict(q=0, sigma=1, fr_inv=0, alpha_v=0)  # Python ints
+    yield dict(q=10**400, sigma=1.0)  # overflowing int: general path
     yield dict(q=float("nan"), sigma=1.0)
-    yield dict(q=0.1, sigma=1.0, fr_inv=1e31)                # outside the computable range
+    yield dict(q=0.1, sigma=1.0, fr_inv=1e31)  # outside the computable range
 
 
 @pytest.mark.parametrize("kw", list(_points()))
@@ -50,7 +51,7 @@ def test_fast_path_agrees_with_the_general_path(kw):
     except (DomainError, TypeError, OverflowError, ValueError) as e:
         got = (type(e), str(e))
     if isinstance(kw.get("q"), int) and abs(kw["q"]) > 2**53:
-        assert got is not None and "q" in got[1]     # refused by name, whatever the path
+        assert got is not None and "q" in got[1]  # refused by name, whatever the path
         return
     assert got == ref
     if ref is None:
@@ -72,13 +73,31 @@ def test_sigma_bound_exact_on_the_fast_path(q):
         P.check_domain(scalar=True, q=q, sigma=float(np.nextafter(top, 3.0)), mu=mu)
 
 
-@pytest.mark.parametrize("value", [(0.0, 0.0, 5.0), [0.01, 0, 0.99995], (1, 2, 3), (1e30, -1e30, 0.0),
-                                   (1e31, 0.0, 0.0), (0.0, float("nan"), 1.0), (10**400, 0, 0), (1.0, 2.0),
-                                   (1.0, 2.0, 3.0, 4.0), [np.float64(0.1), 0.0, np.float64(1.0)],
-                                   (np.float64(1e31), 0.0, 0.0), np.array([0.01, 0.0, 0.99995]),
-                                   np.array([1e30, -1e30, 0.0]), np.array([0.0, np.inf, 1.0]),
-                                   np.array([0.0, np.nan, 1.0]), np.array([1.0, 2.0]), np.zeros(4),
-                                   np.zeros((1, 3)), np.array([1, 2, 3]), np.array([1.0, 2.0, 3.0], np.float32)])
+@pytest.mark.parametrize(
+    "value",
+    [
+        (0.0, 0.0, 5.0),
+        [0.01, 0, 0.99995],
+        (1, 2, 3),
+        (1e30, -1e30, 0.0),
+        (1e31, 0.0, 0.0),
+        (0.0, float("nan"), 1.0),
+        (10**400, 0, 0),
+        (1.0, 2.0),
+        (1.0, 2.0, 3.0, 4.0),
+        [np.float64(0.1), 0.0, np.float64(1.0)],
+        (np.float64(1e31), 0.0, 0.0),
+        np.array([0.01, 0.0, 0.99995]),
+        np.array([1e30, -1e30, 0.0]),
+        np.array([0.0, np.inf, 1.0]),
+        np.array([0.0, np.nan, 1.0]),
+        np.array([1.0, 2.0]),
+        np.zeros(4),
+        np.zeros((1, 3)),
+        np.array([1, 2, 3]),
+        np.array([1.0, 2.0, 3.0], np.float32),
+    ],
+)
 def test_state_vector_fast_path_agrees_with_the_general_path(value):
     """simulate's / final_state's state vectors given as a tuple or list of plain numbers (float,
     int, numpy.float64) or as a 1-D float64 array take a fast path; the reference is the same

@@ -53,23 +53,27 @@ def test_a_neutral_start_that_does_not_converge_raises_the_packages_convergence_
     """Newton's method cannot reach a backward error of 1e-300: the package reports the start
     point with its own ConvergenceError (a TippeError and the engine's class)."""
     with pytest.raises(errors.ConvergenceError, match=r"start point \(q, sigma, w\) = \(0\.1, 0\.5, 3\)"):
-        stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                                   start=[(0.1, 0.5, 3.0)], tol=1e-300)
+        stability.neutral_curve(
+            "sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.1, 0.5, 3.0)], tol=1e-300
+        )
 
 
 NEUTRAL = ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"]
 
 
-@pytest.mark.parametrize("exc,status", [
-    (continuation.ConvergenceError("the corrector did not converge"), 1),
-    (errors.ConvergenceError("the corrector did not converge"), 1),
-    (errors.ChunkError("chunk chunk-0 failed"), 1),
-    (errors.DomainError("q = 2 is outside the physical domain"), 2),
-    (errors.InputError("a bad value"), 2),
-    (ValueError("a bad value"), 2),
-    (errors.ParameterTypeError("a str"), 2),
-    (errors.Interrupted("nothing was kept"), 130),
-])
+@pytest.mark.parametrize(
+    "exc,status",
+    [
+        (continuation.ConvergenceError("the corrector did not converge"), 1),
+        (errors.ConvergenceError("the corrector did not converge"), 1),
+        (errors.ChunkError("chunk chunk-0 failed"), 1),
+        (errors.DomainError("q = 2 is outside the physical domain"), 2),
+        (errors.InputError("a bad value"), 2),
+        (ValueError("a bad value"), 2),
+        (errors.ParameterTypeError("a str"), 2),
+        (errors.Interrupted("nothing was kept"), 130),
+    ],
+)
 def test_cli_exit_status_by_kind_of_error(monkeypatch, capsys, exc, status):
     """One line on stderr; 2 for bad input, 1 for a failure to compute, 130 for an interruption."""
     import stability.linear.neutral_curves as nc

@@ -14,6 +14,7 @@ import sys
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_resume_completes, assert_same_atlas
 
 import stability
 import stability.grids.chunked as dist
@@ -21,14 +22,26 @@ from stability.cli import main
 from stability.errors import ChunkError
 from stability.grids.chunked import parts_directory, write_atlas
 from stability.grids.cluster import dask_client
-from conftest import assert_resume_completes, assert_same_atlas
 
-GRID = dict(q=np.linspace(-0.5, 0.5, 12), fr_inv=[0.0, 0.3], sigma=np.linspace(0.4, 1.2, 4), alpha_v=0.5,
-            mask_unphysical=True)
+GRID = dict(
+    q=np.linspace(-0.5, 0.5, 12), fr_inv=[0.0, 0.3], sigma=np.linspace(0.4, 1.2, 4), alpha_v=0.5, mask_unphysical=True
+)
 CHUNKS = {"q": 4, "sigma": 2}  # 3 x 1 x 2 = 6 chunks
-ARGS = ["atlas", "--q", "-0.5:0.5:12", "--fr-inv", "0,0.3", "--sigma", "0.4:1.2:4", "--alpha-v", "0.5",
-        "--mask-unphysical", "--chunks", "q=4,sigma=2", "--no-progress"]
-
+ARGS = [
+    "atlas",
+    "--q",
+    "-0.5:0.5:12",
+    "--fr-inv",
+    "0,0.3",
+    "--sigma",
+    "0.4:1.2:4",
+    "--alpha-v",
+    "0.5",
+    "--mask-unphysical",
+    "--chunks",
+    "q=4,sigma=2",
+    "--no-progress",
+]
 
 
 @pytest.fixture(scope="module")
@@ -80,8 +93,11 @@ def test_exception_without_resume_says_nothing_was_kept(tmp_path, monkeypatch):
     out = tmp_path / "a.nc"
     compute, _ = _failing_at(0, ValueError("bad block"))
     monkeypatch.setattr(dist, "_compute_block", compute)
-    with pytest.raises(ChunkError, match=r"chunk chunk-0-0-0 \(q\[0:4\], fr_inv\[0:2\], sigma\[0:2\]\) failed: "
-                                         r"ValueError: bad block; .*no chunks were kept .*resume=True \(--resume\)"):
+    with pytest.raises(
+        ChunkError,
+        match=r"chunk chunk-0-0-0 \(q\[0:4\], fr_inv\[0:2\], sigma\[0:2\]\) failed: "
+        r"ValueError: bad block; .*no chunks were kept .*resume=True \(--resume\)",
+    ):
         write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out)
     assert list(tmp_path.iterdir()) == []
 
@@ -121,6 +137,7 @@ def test_cli_interrupt_exit_130_one_line_no_partial_file(tmp_path, monkeypatch, 
 
 
 # --- on a real two-worker LocalCluster ----------------------------------------------------------
+
 
 def _raise_on_chunk(spec, sl):
     """Runs on a worker: fail the chunk starting at q = 4, sigma = 2."""
@@ -197,9 +214,27 @@ def test_sigterm_mid_run_leaves_no_partial_file_and_keeps_chunks(tmp_path):
     import time
 
     out = tmp_path / "r.nc"
-    cmd = [sys.executable, "-m", "stability", "atlas", "--q", "-0.6:0.6:400", "--fr-inv", "0:3:100",
-           "--sigma", "0.1:1.2:50", "--alpha-v", "0.1,1", "--mask-unphysical", "--chunks", "q=10",
-           "--resume", "--no-progress", "-o", str(out)]
+    cmd = [
+        sys.executable,
+        "-m",
+        "stability",
+        "atlas",
+        "--q",
+        "-0.6:0.6:400",
+        "--fr-inv",
+        "0:3:100",
+        "--sigma",
+        "0.1:1.2:50",
+        "--alpha-v",
+        "0.1,1",
+        "--mask-unphysical",
+        "--chunks",
+        "q=10",
+        "--resume",
+        "--no-progress",
+        "-o",
+        str(out),
+    ]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     parts = parts_directory(out)
     deadline = time.monotonic() + 120

@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 import stability
+from stability.errors import RecipeError
 from stability.grids.atlases import leading_growth_rate
 from stability.linear.modes import principal_mode, track_modes
 from stability.plotting import plot_growth_rate, style
 from stability.plotting.maps import plot_stability_map
 from stability.plotting.recipe_figures import recipe_figure
-from stability.errors import RecipeError
 from stability.recipes import compute, find_recipes, load_recipe
 
 ATLASES = Path(__file__).resolve().parents[1] / "atlases"
@@ -76,8 +76,9 @@ def test_principal_mode_and_map_colour_skip_the_structural_zero():
     assert np.array_equal(ax.get_lines()[0].get_ydata(), s.real)
     # an atlas that crosses fr_inv = 0 keeps the zero mode on that line (it continues into the
     # small mode of real part -1.57e-2 fr_inv^2 at q = -0.1: a colour jump there would be false)
-    cross = stability.atlas("sliding", q=-0.1, fr_inv=np.linspace(0, 0.2, 5), sigma=np.linspace(1.1, 1.9, 5),
-                            alpha_v=0.5)
+    cross = stability.atlas(
+        "sliding", q=-0.1, fr_inv=np.linspace(0, 0.2, 5), sigma=np.linspace(1.1, 1.9, 5), alpha_v=0.5
+    )
     assert np.array_equal(leading_growth_rate(cross).values, cross.max_growth_rate.values)
 
 
@@ -94,8 +95,14 @@ def test_lines_carry_the_data():
 
 
 def test_map_draws_the_neutral_contour():
-    ds = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 61), fr_inv=0.0,
-                         sigma=np.linspace(0.05, 1.9, 38), alpha_v=0.5, mask_unphysical=True)
+    ds = stability.atlas(
+        "sliding",
+        q=np.linspace(-0.6, 0.6, 61),
+        fr_inv=0.0,
+        sigma=np.linspace(0.05, 1.9, 38),
+        alpha_v=0.5,
+        mask_unphysical=True,
+    )
     fig, ax = plot_stability_map(ds, "q", "sigma")
     assert ax.get_xlabel() == "q" and ax.get_ylabel() == r"$\sigma$"
     # the neutral contour approximates sigma = (1 - mu q^2)/(1 + q) (closed form, docs/models.md)
@@ -112,8 +119,15 @@ def test_map_draws_the_neutral_contour():
 
 def test_all_recipes_load():
     recipes = find_recipes(ATLASES)
-    assert {r.name for r in recipes} >= {"fig3ab", "fig3cd", "fig4", "map_q_sigma", "map_q_fr_inv",
-                                         "map_sigma_fr_inv", "models_q_fr_inv"}
+    assert {r.name for r in recipes} >= {
+        "fig3ab",
+        "fig3cd",
+        "fig4",
+        "map_q_sigma",
+        "map_q_fr_inv",
+        "map_sigma_fr_inv",
+        "models_q_fr_inv",
+    }
 
 
 def test_recipe_compute_reuse_and_draw(tmp_path):
@@ -151,15 +165,20 @@ def test_recipe_cache_invalidated_by_other_code(tmp_path, monkeypatch):
     assert r.dataset_path.stat().st_mtime_ns != mtime
 
 
-@pytest.mark.parametrize("text,msg", [
-    ('title = "x"\nkind = "pie"\n[grid]\nq = 0.1', "kind = 'pie' is not one of"),
-    ('title = "x"\nkind = "lines"\n[grid]\nq = 0.1\nfr_inv = 0.0\nsigma = 1.0\nalpha_v = 0.5',
-     "'q' must be a 1-D grid"),
-    ('title = "x"\nkind = "lines"\ncolour = 1\n[grid]\nq = "0:1:3"', "unknown keys colour"),
-    ('kind = "lines"\n[grid]\nq = "0:1:3"', "the key 'title' is required"),
-    ('title = "x"\nkind = "lines"\n[grid]\nq = "0:1"', "grid.q = '0:1'"),
-    ('title = "x" kind', "not valid TOML"),
-])
+@pytest.mark.parametrize(
+    "text,msg",
+    [
+        ('title = "x"\nkind = "pie"\n[grid]\nq = 0.1', "kind = 'pie' is not one of"),
+        (
+            'title = "x"\nkind = "lines"\n[grid]\nq = 0.1\nfr_inv = 0.0\nsigma = 1.0\nalpha_v = 0.5',
+            "'q' must be a 1-D grid",
+        ),
+        ('title = "x"\nkind = "lines"\ncolour = 1\n[grid]\nq = "0:1:3"', "unknown keys colour"),
+        ('kind = "lines"\n[grid]\nq = "0:1:3"', "the key 'title' is required"),
+        ('title = "x"\nkind = "lines"\n[grid]\nq = "0:1"', "grid.q = '0:1'"),
+        ('title = "x" kind', "not valid TOML"),
+    ],
+)
 def test_bad_recipes(tmp_path, text, msg):
     p = tmp_path / "bad.toml"
     p.write_text(text)
@@ -174,8 +193,14 @@ def test_neutral_curve_overlay_and_fold_marker():
 
     mu = 2.28
     curve = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=mu))
-    ds = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 25), fr_inv=0.0, sigma=np.linspace(0.05, 1.9, 20),
-                         alpha_v=0.5, mask_unphysical=True)
+    ds = stability.atlas(
+        "sliding",
+        q=np.linspace(-0.6, 0.6, 25),
+        fr_inv=0.0,
+        sigma=np.linspace(0.05, 1.9, 20),
+        alpha_v=0.5,
+        mask_unphysical=True,
+    )
     fig, ax = plot_stability_map(ds, "q", "sigma", curve=curve)
     folds = [ln for ln in ax.get_lines() if ln.get_label() == "fold"]
     assert len(folds) == 1
@@ -194,11 +219,11 @@ def test_every_branch_of_a_leading_neutral_curve_is_solid():
     second branch drawn without an explicit style came out dashed, like a non-leading part."""
     import stability
 
-    curve = stability.neutral_curve("sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5),
-                                       x_range=(-0.4, 0.4), y_range=(0.0, 1.0))
+    curve = stability.neutral_curve(
+        "sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5), x_range=(-0.4, 0.4), y_range=(0.0, 1.0)
+    )
     assert len(np.unique(curve.branch.values)) == 2 and bool(curve.leading.all())
-    ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 9), fr_inv=np.linspace(0, 1, 5), sigma=1.0,
-                         alpha_v=0.5)
+    ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 9), fr_inv=np.linspace(0, 1, 5), sigma=1.0, alpha_v=0.5)
     with style():
         fig, ax = plot_stability_map(ds, "q", "fr_inv", curve=curve)
     drawn = [ln for ln in ax.get_lines() if ln.get_linestyle() != "None"]  # markers have none

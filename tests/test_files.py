@@ -27,21 +27,33 @@ def atlas_file(tmp_path_factory) -> Path:
     return stability.write_dataset(ds, tmp_path_factory.mktemp("a") / "atlas.nc")
 
 
-@pytest.mark.parametrize("make,fragment", [
-    (lambda p, good: None, "does not exist"),
-    (lambda p, good: p.write_bytes(good.read_bytes()[: good.stat().st_size // 2]),
-     "is not a readable netCDF file: it cannot be read to the end (truncated or damaged"),
-    (lambda p, good: xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(p),
-     "is not an atlas of tippe-stability: it has no global attribute 'tippe_stability_product' (written by "
-     "another program"),
-    (lambda p, good: stability.write_dataset(stability.open_atlas(good).assign_attrs(
-        tippe_stability_product="neutral_curve"), p),
-     "is not an atlas: it is a 'neutral_curve' file of tippe-stability (open it with xarray.open_dataset)"),
-    (lambda p, good: p.write_text("plain text"), "is not a readable netCDF file (it does not start with a netCDF"),
-    (lambda p, good: p.write_bytes(b""), "is empty (0 bytes)"),
-    (lambda p, good: stability.write_dataset(stability.open_atlas(good).drop_vars("frequency"), p),
-     "is not a complete atlas: missing variables frequency"),
-])
+@pytest.mark.parametrize(
+    "make,fragment",
+    [
+        (lambda p, good: None, "does not exist"),
+        (
+            lambda p, good: p.write_bytes(good.read_bytes()[: good.stat().st_size // 2]),
+            "is not a readable netCDF file: it cannot be read to the end (truncated or damaged",
+        ),
+        (
+            lambda p, good: xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(p),
+            "is not an atlas of tippe-stability: it has no global attribute 'tippe_stability_product' (written by "
+            "another program",
+        ),
+        (
+            lambda p, good: stability.write_dataset(
+                stability.open_atlas(good).assign_attrs(tippe_stability_product="neutral_curve"), p
+            ),
+            "is not an atlas: it is a 'neutral_curve' file of tippe-stability (open it with xarray.open_dataset)",
+        ),
+        (lambda p, good: p.write_text("plain text"), "is not a readable netCDF file (it does not start with a netCDF"),
+        (lambda p, good: p.write_bytes(b""), "is empty (0 bytes)"),
+        (
+            lambda p, good: stability.write_dataset(stability.open_atlas(good).drop_vars("frequency"), p),
+            "is not a complete atlas: missing variables frequency",
+        ),
+    ],
+)
 def test_open_atlas_bad_files(tmp_path, atlas_file, make, fragment):
     p = tmp_path / "x.nc"
     make(p, atlas_file)
@@ -78,17 +90,47 @@ def _unwritable_directory(tmp_path):
     pytest.skip("no unwritable directory available to root on this machine")
 
 
-@pytest.mark.parametrize("command,module,func,argv", [
-    ("atlas", "stability.grids.atlases", "atlas", ATLAS),  # commands import it in run()
-    ("atlas --chunks", "stability.grids.atlases", "atlas", [*ATLAS, "--chunks", "1"]),
-    ("simulate", "stability.nonlinear.runs", "simulate",
-     ["simulate", "--t-end", "1", "--omega", "0,0,1", "--k", "0,0,1", "--q", "-0.1", "--fr-inv", "0.3",
-      "--sigma", "1", "--alpha-v", "0.5"]),
-    ("validate", "stability.nonlinear.validation", "validate",
-     ["validate", "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"]),
-    ("neutral", "stability.linear.neutral_curves", "neutral_curve",
-     ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"]),
-])
+@pytest.mark.parametrize(
+    "command,module,func,argv",
+    [
+        ("atlas", "stability.grids.atlases", "atlas", ATLAS),  # commands import it in run()
+        ("atlas --chunks", "stability.grids.atlases", "atlas", [*ATLAS, "--chunks", "1"]),
+        (
+            "simulate",
+            "stability.nonlinear.runs",
+            "simulate",
+            [
+                "simulate",
+                "--t-end",
+                "1",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0,0,1",
+                "--q",
+                "-0.1",
+                "--fr-inv",
+                "0.3",
+                "--sigma",
+                "1",
+                "--alpha-v",
+                "0.5",
+            ],
+        ),
+        (
+            "validate",
+            "stability.nonlinear.validation",
+            "validate",
+            ["validate", "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"],
+        ),
+        (
+            "neutral",
+            "stability.linear.neutral_curves",
+            "neutral_curve",
+            ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0", "--alpha-v", "0.5"],
+        ),
+    ],
+)
 @pytest.mark.parametrize("problem", ["missing directory", "unwritable directory", "existing file"])
 def test_outputs_checked_before_computing(tmp_path, monkeypatch, capsys, command, module, func, argv, problem):
     import importlib
@@ -152,20 +194,22 @@ def test_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
 
 def test_recipes_regenerate_their_own_outputs_and_refuse_foreign_files(tmp_path, capsys):
     recipe = tmp_path / "tiny.toml"
-    recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
-                      '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
+    recipe.write_text(
+        'title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
+        '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n'
+    )
     capsys.readouterr()
-    assert main(["figures", str(recipe)]) == 0           # fresh
+    assert main(["figures", str(recipe)]) == 0  # fresh
     png, nc = tmp_path / "tiny.png", tmp_path / "tiny.nc"
     assert png.is_file() and nc.is_file()
     out = capsys.readouterr().out  # what it did with the dataset is said (issue 15 item 8)
     assert re.search(rf"tiny: computed {re.escape(str(nc))} \(\d+\.\d s\)", out) and "reused" not in out
     assert f"tiny: wrote {png}" in out
-    assert main(["figures", str(recipe)]) == 0           # second run: reuses the dataset, redraws the PNG
+    assert main(["figures", str(recipe)]) == 0  # second run: reuses the dataset, redraws the PNG
     out = capsys.readouterr().out
     assert f"tiny: reused {nc}" in out and "computed" not in out and f"tiny: wrote {png}" in out
     recipe.write_text(recipe.read_text().replace("0.2:5", "0.2:7"))
-    assert main(["figures", str(recipe)]) == 0           # stale dataset: replaced (it is the recipe's own)
+    assert main(["figures", str(recipe)]) == 0  # stale dataset: replaced (it is the recipe's own)
     assert f"tiny: computed {nc}" in capsys.readouterr().out
     assert stability.open_atlas(nc).sizes["q"] == 7
     capsys.readouterr()
@@ -183,8 +227,10 @@ def test_figures_output_directory_checked_before_computing(tmp_path, monkeypatch
     import stability.recipes as recipes  # tippe figures imports compute from here in its run()
 
     recipe = tmp_path / "tiny.toml"
-    recipe.write_text('title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
-                      '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n')
+    recipe.write_text(
+        'title = "tiny"\nkind = "lines"\nmodel = "fixed_pivot"\nx = "q"\n\n'
+        '[grid]\nq = "-0.2:0.2:5"\nfr_inv = 0.1\nsigma = 1.0\n'
+    )
     (tmp_path / "tiny.png").mkdir()  # the output path is taken by a directory
     monkeypatch.setattr(recipes, "compute", _never)
     assert main(["figures", str(recipe)]) == 2

@@ -11,14 +11,12 @@ mpmath at 40 digits.
 
 from __future__ import annotations
 
-
 import mpmath
 import numpy as np
 import pytest
 
 from continuation import ConvergenceError
-from stability import neutral_curve
-from stability import threshold, threshold_crossings, thresholds
+from stability import neutral_curve, threshold, threshold_crossings, thresholds
 from stability.models.base import LinearModel
 
 MU = 2.28
@@ -49,8 +47,9 @@ def test_stepping_through_a_fold_locates_it_exactly(max_step, max_angle):
     1e-13 leaves a margin of ~100 (the issue asks 1e-10).
     """
     q_star, s_star = fold_reference()
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                       max_step=max_step, max_angle=max_angle)
+    ds = neutral_curve(
+        "sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), max_step=max_step, max_angle=max_angle
+    )
     fold = ds.where(ds.kind == "fold", drop=True)
     assert fold.detail.values.tolist() == ["fold in sigma"]
     assert abs(float(fold.sigma[0]) - float(s_star)) <= 4 * 2.0**-52
@@ -68,8 +67,13 @@ def test_start_exactly_at_the_fold():
     Reference and tolerance as in the previous test.
     """
     q_star, s_star = fold_reference()
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                       start=[(float(q_star), float(s_star), float(1 / (1 + q_star)))])
+    ds = neutral_curve(
+        "sliding",
+        "q",
+        "sigma",
+        fixed=dict(fr_inv=0.0, alpha_v=0.5),
+        start=[(float(q_star), float(s_star), float(1 / (1 + q_star)))],
+    )
     fold = ds.where(ds.kind == "fold", drop=True)
     assert fold.sizes["point"] == 1
     assert abs(float(fold.q[0]) - float(q_star)) <= 1e-13
@@ -121,8 +125,15 @@ def test_bogdanov_takens_point_of_a_real_oscillator():
     are located to 1e-14 of a step in arclength, and sigma is quadratic, w and the branch-point
     test linear in the arclength there: 1e-12 for all.
     """
-    ds = neutral_curve(RealOscillator(), "q", "sigma", fixed=dict(fr_inv=0.0, mu=1.0),
-                       x_range=(-0.5, 0.5), y_range=(0.5, 1.5), start=[(0.0, 0.75, 0.5)])
+    ds = neutral_curve(
+        RealOscillator(),
+        "q",
+        "sigma",
+        fixed=dict(fr_inv=0.0, mu=1.0),
+        x_range=(-0.5, 0.5),
+        y_range=(0.5, 1.5),
+        start=[(0.0, 0.75, 0.5)],
+    )
     q, s, w = ds.q.values, ds.sigma.values, ds.frequency.values
     assert np.max(np.abs(q)) <= 1e-13
     assert np.max(np.abs(s - (1 - w * w))) <= 1e-13
@@ -148,8 +159,7 @@ def test_zero_mode_that_touches_the_axis_ends_the_branch_flagged():
     minimum-norm Newton to a backward error of 1e-13, which allows |q| up to ~1e-9 along the
     degenerate direction (the residual is quadratic in q there).
     """
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                       start=[(0.0, 0.5, 0.0)])
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.0, 0.5, 0.0)])
     assert ds.sizes["point"] >= 1
     assert np.max(np.abs(ds.q.values)) <= 1e-8 and np.max(np.abs(ds.frequency.values)) <= 1e-8
     assert float(ds.residual.max()) <= 1e-13
@@ -197,8 +207,7 @@ def test_branch_ends_cleanly_at_the_domain_edges():
 
 def test_branch_ends_at_a_requested_range_as_endpoint():
     """A range that cuts the curve: the branch ends exactly on the bound, kind endpoint."""
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                       x_range=(-0.3, 0.2))
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), x_range=(-0.3, 0.2))
     ends = ds.isel(point=[0, -1])
     assert ends.kind.values.tolist() == ["endpoint", "endpoint"]
     assert sorted(ends.q.values.tolist()) == [-0.3, 0.2]
@@ -212,8 +221,7 @@ def test_start_far_off_the_curve_converges_to_it():
     """Newton's method from far away (minimum-norm steps, no limit on the move for a start the
     user gives) may converge to some point of a neutral curve; whatever it converges to must
     satisfy the condition, and here it is the main curve (w = 1/(1 + q))."""
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                       start=[(0.5, 1.9, 3.0)])
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.5, 1.9, 3.0)])
     q, s, w = ds.q.values, ds.sigma.values, ds.frequency.values
     assert ds.sizes["point"] > 10
     assert np.max(np.abs(w - 1 / (1 + q))) <= 1e-13
@@ -225,11 +233,9 @@ def test_start_that_does_not_converge_is_a_clear_error():
     used to give an empty dataset silently; now it is an error naming the start, where it
     went and the bounds it violates."""
     with pytest.raises(ValueError, match=r"start point \(q, sigma, w\) = \(0\.3, 0\.2, -5\).*outside"):
-        neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                      start=[(0.3, 0.2, -5.0)])
+        neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.3, 0.2, -5.0)])
     with pytest.raises((ConvergenceError, ValueError), match="start point"):
-        neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                      start=[(0.3, 0.2, 1e6)])
+        neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.3, 0.2, 1e6)])
 
 
 def test_start_on_a_non_leading_mode_is_flagged():
@@ -239,8 +245,7 @@ def test_start_on_a_non_leading_mode_is_flagged():
     (0.05, 0.7) with w = 1 Newton finds the main curve, and ``leading`` (no other mode grows:
     the other roots of p(s)/(s - i w), closed form for the quadratic) is checked against LAPACK
     eigenvalues at every point."""
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5),
-                       start=[(0.05, 0.7, 1.0)])
+    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5), start=[(0.05, 0.7, 1.0)])
     from stability import eigenvalues
 
     for k in range(0, ds.sizes["point"], 5):
@@ -310,8 +315,13 @@ def test_start_on_the_fold_reported_once_whatever_its_last_bits(ulps):
     q0 = float(q_star)
     for _ in range(abs(ulps)):
         q0 = np.nextafter(q0, np.inf if ulps > 0 else -np.inf)
-    ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                       start=[(q0, float(s_star), float(1 / (1 + q_star)))])
+    ds = neutral_curve(
+        "sliding",
+        "q",
+        "sigma",
+        fixed=dict(fr_inv=0.0, alpha_v=0.5),
+        start=[(q0, float(s_star), float(1 / (1 + q_star)))],
+    )
     fold = ds.where(ds.kind == "fold", drop=True)
     assert fold.sizes["point"] == 1
     assert abs(float(fold.q[0]) - float(q_star)) <= 1e-13

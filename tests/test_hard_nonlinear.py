@@ -24,9 +24,9 @@ import pytest
 
 from stability import simulate
 
-TILTED = dict(omega=[0.05, -0.02, 1.0], k=[np.sin(0.5), 0.0, np.cos(0.5)])   # 28.6 degrees
+TILTED = dict(omega=[0.05, -0.02, 1.0], k=[np.sin(0.5), 0.0, np.cos(0.5)])  # 28.6 degrees
 W = np.array(TILTED["omega"])
-ROLLING_START = dict(velocity=[W[1], -W[0]])       # V0 = -K x omega: slip V_c = 0 exactly
+ROLLING_START = dict(velocity=[W[1], -W[0]])  # V0 = -K x omega: slip V_c = 0 exactly
 PAR = dict(q=-0.1, fr_inv=0.5, sigma=1.0)
 T_LONG = 1e4
 
@@ -54,19 +54,21 @@ def test_long_run_drift_is_the_integrators(model):
     kw = dict(velocity=[0.03, -0.01], alpha_v=0.0) if model == "sliding" else {}
     drifts = {}
     for rtol in (1e-8, 1e-10):
-        ds = simulate(model, t_end=T_LONG, dt=1.0, **TILTED, **PAR, **kw, rtol=rtol,
-                      atol=rtol * 1e-3, method="dopri5")
+        ds = simulate(model, t_end=T_LONG, dt=1.0, **TILTED, **PAR, **kw, rtol=rtol, atol=rtol * 1e-3, method="dopri5")
         assert ds.attrs["status"] == 0
-        d = {"|k|": _drift(np.linalg.norm(ds.k.values, axis=1)), "energy": _drift(ds.energy.values),
-             "h_cg": _drift(ds.h_cg.values)}
+        d = {
+            "|k|": _drift(np.linalg.norm(ds.k.values, axis=1)),
+            "energy": _drift(ds.energy.values),
+            "h_cg": _drift(ds.h_cg.values),
+        }
         if model == "sliding":
             d["momentum"] = max(_drift(ds.momentum.values[:, 0]), _drift(ds.momentum.values[:, 1]))
         for name, v in d.items():
             assert v <= 0.1 * T_LONG * rtol, (rtol, name, v)
         drifts[rtol] = d
-        assert float(np.ptp(ds.polar_angle.values)) > 1.0     # a nutating motion, not a rest state
+        assert float(np.ptp(ds.polar_angle.values)) > 1.0  # a nutating motion, not a rest state
     for name in drifts[1e-8]:
-        if name != "momentum":     # momentum sits near round-off already (1e-12)
+        if name != "momentum":  # momentum sits near round-off already (1e-12)
             assert drifts[1e-10][name] * 30 < drifts[1e-8][name], name
 
 
@@ -89,8 +91,20 @@ def test_coulomb_at_zero_slip_is_the_regularised_stick(law, rolling_reference):
     a_k = 0.5
     devs = []
     for eps in (1e-3, 1e-4):
-        ds = simulate("sliding", t_end=20.0, dt=0.05, **TILTED, **ROLLING_START, **PAR, alpha_v=0.0,
-                      alpha_k=a_k, slip_scale=eps, friction=law, rtol=1e-10, atol=1e-13)
+        ds = simulate(
+            "sliding",
+            t_end=20.0,
+            dt=0.05,
+            **TILTED,
+            **ROLLING_START,
+            **PAR,
+            alpha_v=0.0,
+            alpha_k=a_k,
+            slip_scale=eps,
+            friction=law,
+            rtol=1e-10,
+            atol=1e-13,
+        )
         assert ds.attrs["status"] == 0 and ds.attrs["method"] == "LSODA"
         assert np.isfinite(ds.k.values).all() and np.isfinite(ds.friction.values).all()
         assert float(ds.slip_speed[0]) < 1e-15
@@ -113,8 +127,9 @@ def test_stiff_viscous_friction_default_copes(rolling_reference):
     measured |k - k_rolling| = 6.48e-5, 6.48e-6 (so 0.0648 / alpha_v) and 7.2e-8 at 1e6, where
     the integrator's own error (~T rtol = 2e-9 .. 1e-8) and the 1/alpha_v term are comparable."""
     for a in (1e3, 1e4, 1e6):
-        ds = simulate("sliding", t_end=20.0, dt=0.05, **TILTED, **ROLLING_START, **PAR, alpha_v=a,
-                      rtol=1e-10, atol=1e-13)
+        ds = simulate(
+            "sliding", t_end=20.0, dt=0.05, **TILTED, **ROLLING_START, **PAR, alpha_v=a, rtol=1e-10, atol=1e-13
+        )
         assert ds.attrs["status"] == 0 and ds.attrs["method"] == "LSODA"
         assert ds.attrs["nfev"] < 20_000
         dev = float(np.max(np.abs(ds.k.values - rolling_reference.k.values)))
@@ -129,8 +144,9 @@ def test_moderately_stiff_run_keeps_the_explicit_method_and_its_accuracy():
     Linear regime, tilt 1e-3, 50 time units: measured relative error of the final tilt 3e-10
     for "auto" at the default rtol 1e-9 (LSODA at the same rtol: 8.5e-7); the bound 1e-8
     leaves 30x for platform differences and fails for LSODA."""
-    run = dict(t_end=50.0, dt=1.0, omega=[0.0, 0.0, 1.0], k=[1e-3, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.0,
-               alpha_v=100.0)
+    run = dict(
+        t_end=50.0, dt=1.0, omega=[0.0, 0.0, 1.0], k=[1e-3, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=100.0
+    )
     ref = simulate("sliding", **run, method="DOP853", rtol=1e-13, atol=1e-17)
     ds = simulate("sliding", **run)
     assert ds.attrs["method"] == "dopri5" and ds.attrs["status"] == 0
@@ -146,11 +162,12 @@ def test_explicit_method_on_stiff_run_is_reported_not_hung(method):
     scipy methods ignored max_steps (solve_ivp has no such limit)."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = simulate("sliding", t_end=200.0, **TILTED, velocity=[-0.02, -0.05], **PAR, alpha_v=1e4,
-                      method=method, max_steps=3000)
+        ds = simulate(
+            "sliding", t_end=200.0, **TILTED, velocity=[-0.02, -0.05], **PAR, alpha_v=1e4, method=method, max_steps=3000
+        )
     assert ds.attrs["status"] == -1
     assert "maximum number of steps" in ds.attrs["message"]
     assert any(issubclass(w.category, RuntimeWarning) for w in caught)
     ok = np.isfinite(ds.k.values).all(axis=1)
     assert ok[0] and not ok[-1]
-    assert np.all(ok[: int(ok.sum())])                # finite up to the stop, NaN after
+    assert np.all(ok[: int(ok.sum())])  # finite up to the stop, NaN after

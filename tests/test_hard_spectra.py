@@ -19,14 +19,14 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
-
-import stability
-from stability.models.inertia import transverse_inertia_g
-from stability.parameters import sigma_max
-from stability.linear.modes import ambiguous_steps, track_modes
-from stability.linear.roots import inclusion_radius
 from conftest import mp_polyroots, mp_sliding_eigenvalues
 from test_spectra_reference import _match
+
+import stability
+from stability.linear.modes import ambiguous_steps, track_modes
+from stability.linear.roots import inclusion_radius
+from stability.models.inertia import transverse_inertia_g
+from stability.parameters import sigma_max
 
 MU = 2.28
 CASES = []
@@ -93,6 +93,7 @@ def test_fast_slip_mode_runs_to_infinity_at_singular_mass_matrix():
 
 METHODS = ("kernel", "polynomial", "lapack")
 
+
 def _poly_reference(q, fr_inv, sigma, alpha_v, mu=MU) -> list:
     """Roots of ``mu det(s M - A)`` of eq. (11) at 60 digits (coefficients typed from the
     paper's matrices: c3 = mu A_G, c2 = alpha_v A_C - i mu sigma, c1 = -mu^2 q fr_inv
@@ -153,8 +154,9 @@ def test_exact_collision_is_marginal_not_a_sign():
     (the structural zero root is exact)."""
     for method in ("kernel", "polynomial"):
         for fac in (1 - 4e-16, 1.0, 1 + 4e-16):
-            sp = stability.spectrum("sliding", q=Q_C, fr_inv=FR_C * fac, sigma=SIGMA_C, alpha_v=0.0,
-                                    mu=MU, method=method)
+            sp = stability.spectrum(
+                "sliding", q=Q_C, fr_inv=FR_C * fac, sigma=SIGMA_C, alpha_v=0.0, mu=MU, method=method
+            )
             assert sp.stability == stability.linear.spectra.MARGINAL
             assert sp.neutral.all()
 
@@ -176,7 +178,7 @@ def test_frictionless_limit_splitting_asymptotics():
         s = stability.eigenvalues("sliding", q=Q_C, fr_inv=FR_C, sigma=SIGMA_C, alpha_v=a, mu=MU)
         for pred in (z + d, z - d):
             assert np.min(np.abs(s - pred)) <= 2 * a
-        assert s[0].real == pytest.approx(abs(d.real), abs=2 * a)   # growth ~ sqrt(alpha_v)
+        assert s[0].real == pytest.approx(abs(d.real), abs=2 * a)  # growth ~ sqrt(alpha_v)
 
 
 # Eq. (8)'s discriminant: the fixed-pivot top is unstable iff 4 kappa > sigma_hat^2, i.e.
@@ -261,8 +263,16 @@ def test_random_hard_points_bound_is_honest(seed, kind):
         ref = _poly_reference(**p)
         for m in ("kernel", "polynomial"):
             sub = sps[m]
-            one = type("S", (), dict(eigenvalues=sub.eigenvalues[j], error_bound=sub.error_bound[j],
-                                     neutral=sub.neutral[j], stability=sub.stability[j]))
+            one = type(
+                "S",
+                (),
+                dict(
+                    eigenvalues=sub.eigenvalues[j],
+                    error_bound=sub.error_bound[j],
+                    neutral=sub.neutral[j],
+                    stability=sub.stability[j],
+                ),
+            )
             assert_right_or_flagged(one, ref)
         for r, rad in zip(sps["lapack"].eigenvalues[j], radius[j]):
             assert min(float(abs(mp.mpc(complex(r)) - x)) for x in ref) <= rad
@@ -279,8 +289,7 @@ def test_inclusion_radius_flags_what_lapack_gets_wrong():
         scale = np.abs(sp.eigenvalues).max()
         neutral = np.abs(sp.eigenvalues.real) <= 4 * bound + 16 * 2.0**-53 * scale
         stab = 2 if (sp.eigenvalues.real > 4 * bound + 16 * 2.0**-53 * scale).any() else int(neutral.any())
-        fixed = type("S", (), dict(eigenvalues=sp.eigenvalues, error_bound=bound, neutral=neutral,
-                                   stability=stab))
+        fixed = type("S", (), dict(eigenvalues=sp.eigenvalues, error_bound=bound, neutral=neutral, stability=stab))
         assert_right_or_flagged(fixed, _poly_reference(**case))
 
 
@@ -301,11 +310,12 @@ def test_mode_labels_continuous_through_frictionless_collision(alpha_v):
     assert (ev[:, 0].real > 0).all() and (ev[:, 1:].real < 0).all()
     rng = np.random.default_rng(0)
     shuffled = np.array([row[rng.permutation(3)] for row in ev])
-    for tracked in (track_modes(shuffled),
-                    track_modes(shuffled, path=f, solve=lambda t: stability.eigenvalues(
-                        "sliding", fr_inv=t, **kw))):
+    for tracked in (
+        track_modes(shuffled),
+        track_modes(shuffled, path=f, solve=lambda t: stability.eigenvalues("sliding", fr_inv=t, **kw)),
+    ):
         c = int(np.argmax(tracked[0].real))
         assert (tracked[:, c].real > 0).all()
     amb = ambiguous_steps(ev)
-    assert amb[np.abs(f - FR_C) < 0.05 * FR_C].any()          # measured: steps 10 and 11
+    assert amb[np.abs(f - FR_C) < 0.05 * FR_C].any()  # measured: steps 10 and 11
     assert not amb[np.abs(f - FR_C) > 0.15 * FR_C].any()

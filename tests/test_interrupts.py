@@ -45,11 +45,40 @@ pytestmark = pytest.mark.skipif(os.name != "posix", reason="POSIX signals")
 #: the longest a process may take from the signal to its exit (module docstring)
 BOUND = WATCHDOG_SECONDS + 2.0
 
-SIMULATE = ["simulate", "--t-end", "4000", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1",
-            "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5", "--method", "rk4", "--step", "1e-4",
-            "--dt", "10"]
-ATLAS = ["atlas", "--q=-0.5:0.5:200", "--sigma", "0.5:1.9:200", "--fr-inv", "0.3", "--alpha-v", "0.5",
-         "--mask-unphysical"]
+SIMULATE = [
+    "simulate",
+    "--t-end",
+    "4000",
+    "--omega",
+    "0.02,0,1",
+    "--k",
+    "0.05,0,1",
+    "--q",
+    "-0.1",
+    "--fr-inv",
+    "0.3",
+    "--sigma",
+    "1.5",
+    "--alpha-v",
+    "0.5",
+    "--method",
+    "rk4",
+    "--step",
+    "1e-4",
+    "--dt",
+    "10",
+]
+ATLAS = [
+    "atlas",
+    "--q=-0.5:0.5:200",
+    "--sigma",
+    "0.5:1.9:200",
+    "--fr-inv",
+    "0.3",
+    "--alpha-v",
+    "0.5",
+    "--mask-unphysical",
+]
 
 INJECT = textwrap.dedent("""
     import os, signal, sys, time
@@ -86,8 +115,14 @@ def _env() -> dict[str, str]:
 
 
 def _tippe(args: list[str], cwd: Path, **kw) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "stability", *args], cwd=cwd, env=_env(),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)
+    return subprocess.Popen(
+        [sys.executable, "-m", "stability", *args],
+        cwd=cwd,
+        env=_env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        **kw,
+    )
 
 
 def _check_ended(proc: subprocess.Popen, sent: float | None, cwd: Path, output: str) -> str:
@@ -160,13 +195,20 @@ def test_ctrl_c_during_start_up_prints_one_line(tmp_path, delay):
     _check_ended(proc, sent, tmp_path, "s.nc")
 
 
-@pytest.mark.parametrize("module,n,signame", [("atlases", 5, "SIGINT"), ("atlases", 5, "SIGTERM"),
-                                              ("netcdf", 3, "SIGINT"), ("netcdf", 40, "SIGTERM")])
+@pytest.mark.parametrize(
+    "module,n,signame",
+    [("atlases", 5, "SIGINT"), ("atlases", 5, "SIGTERM"), ("netcdf", 3, "SIGINT"), ("netcdf", 40, "SIGTERM")],
+)
 def test_signal_at_a_safe_point_of_each_phase(tmp_path, module, n, signame):
     """Fault injection: the signal arrives at the N-th interruption point of the atlas's block
     loop (computing) or of the netCDF slab writer (the temporary file is half written, item 8)."""
-    proc = subprocess.Popen([sys.executable, "-c", INJECT, module, str(n), signame, "ok", *ATLAS, "-o", "a.nc"],
-                            cwd=tmp_path, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", INJECT, module, str(n), signame, "ok", *ATLAS, "-o", "a.nc"],
+        cwd=tmp_path,
+        env=_env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     _check_ended(proc, None, tmp_path, "a.nc")
 
 
@@ -174,8 +216,13 @@ def test_signal_at_a_safe_point_of_each_phase(tmp_path, module, n, signame):
 def test_a_stuck_main_thread_is_ended_by_the_watchdog(tmp_path, module):
     """The main thread does not come back to Python after the signal (a C call, a lock): the
     watchdog removes the temporary file and exits 130 about WATCHDOG_SECONDS later."""
-    proc = subprocess.Popen([sys.executable, "-c", INJECT, module, "3", "SIGINT", "stuck", *ATLAS, "-o", "a.nc"],
-                            cwd=tmp_path, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", INJECT, module, "3", "SIGINT", "stuck", *ATLAS, "-o", "a.nc"],
+        cwd=tmp_path,
+        env=_env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     err = _check_ended(proc, None, tmp_path, "a.nc")
     assert "stopped 2 s after the signal" in err
 
@@ -183,8 +230,13 @@ def test_a_stuck_main_thread_is_ended_by_the_watchdog(tmp_path, module):
 def test_a_second_signal_ends_at_once(tmp_path):
     """Two signals: the emergency exit does not wait for the watchdog."""
     script = INJECT.replace("time.sleep(60)", "os.kill(os.getpid(), signal.SIGTERM); time.sleep(60)")
-    proc = subprocess.Popen([sys.executable, "-c", script, "netcdf", "3", "SIGINT", "stuck", *ATLAS, "-o", "a.nc"],
-                            cwd=tmp_path, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script, "netcdf", "3", "SIGINT", "stuck", *ATLAS, "-o", "a.nc"],
+        cwd=tmp_path,
+        env=_env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     err = _check_ended(proc, None, tmp_path, "a.nc")
     assert "received twice" in err
 
@@ -216,6 +268,7 @@ def test_library_call_keeps_a_foreign_handler(tmp_path):
 
 # --- the compiled integrators in slices ------------------------------------------------------------
 
+
 @pytest.mark.parametrize("method", ["dopri5", "rk4"])
 def test_a_run_cut_into_slices_is_bitwise_the_same_run(monkeypatch, method):
     """Reference: the same run in one slice (one compiled call for the whole run, as before the
@@ -224,8 +277,17 @@ def test_a_run_cut_into_slices_is_bitwise_the_same_run(monkeypatch, method):
     import stability
     import stability.nonlinear.integrators as integ
 
-    kw = dict(t_end=30.0, omega=[0.02, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1, fr_inv=0.3, sigma=1.5,
-              alpha_v=0.5, method=method, dt=0.1)
+    kw = dict(
+        t_end=30.0,
+        omega=[0.02, 0.0, 1.0],
+        k=[0.05, 0.0, 1.0],
+        q=-0.1,
+        fr_inv=0.3,
+        sigma=1.5,
+        alpha_v=0.5,
+        method=method,
+        dt=0.1,
+    )
     if method == "rk4":
         kw["step"] = 1e-3
     runs = []
@@ -251,8 +313,18 @@ def test_progress_reports_the_time_reached(monkeypatch):
     original = integ.dopri5
     monkeypatch.setattr(integ, "dopri5", lambda *a, **k: original(*a, **{**k, "budget": 50}))
     times: list[float] = []
-    stability.simulate("sliding", t_end=20.0, omega=[0.02, 0.0, 1.0], k=[0.05, 0.0, 1.0], q=-0.1, fr_inv=0.3,
-                       sigma=1.5, alpha_v=0.5, dt=0.5, progress=times.append)
+    stability.simulate(
+        "sliding",
+        t_end=20.0,
+        omega=[0.02, 0.0, 1.0],
+        k=[0.05, 0.0, 1.0],
+        q=-0.1,
+        fr_inv=0.3,
+        sigma=1.5,
+        alpha_v=0.5,
+        dt=0.5,
+        progress=times.append,
+    )
     assert len(times) > 3
     assert all(b >= a for a, b in itertools.pairwise(times))
     assert times[-1] == pytest.approx(20.0, rel=1e-12)

@@ -26,12 +26,11 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
+from conftest import mp_sliding_eigenvalues, random_domain_points
 
 import stability
 from stability.linear import kernel
 from stability.linear.spectra import MARGINAL, STABLE, UNSTABLE
-
-from conftest import mp_sliding_eigenvalues, random_domain_points
 
 mp.mp.dps = 50
 RTOL = 1e-13
@@ -157,8 +156,9 @@ def test_neutral_curve_is_flagged_not_guessed():
     the structural zero root is exactly zero."""
     mu = 2.28
     q = np.linspace(-0.4, 0.4, 40)
-    sp = stability.spectrum("sliding", method="kernel", q=q, fr_inv=0.0, sigma=(1 - mu * q * q) / (1 + q),
-                            alpha_v=0.7, mu=mu)
+    sp = stability.spectrum(
+        "sliding", method="kernel", q=q, fr_inv=0.0, sigma=(1 - mu * q * q) / (1 + q), alpha_v=0.7, mu=mu
+    )
     assert (sp.eigenvalues == 0).any(axis=-1).all()
     assert (sp.stability == MARGINAL).all()
 
@@ -204,8 +204,7 @@ def test_lapack_cross_check_of_flags():
 def test_masked_points_and_polish_none():
     """Points outside the domain get NaN and flag -1; without polishing (Cardano only) the
     roots are still roots, to the accuracy the work-precision chart reports."""
-    sp = stability.spectrum("sliding", q=np.array([0.1, 0.9]), fr_inv=0.3, sigma=1.0, alpha_v=0.5,
-                            mask_unphysical=True)
+    sp = stability.spectrum("sliding", q=np.array([0.1, 0.9]), fr_inv=0.3, sigma=1.0, alpha_v=0.5, mask_unphysical=True)
     assert sp.stability[1] == -1 and np.isnan(sp.eigenvalues[1]).all()
     p = random_domain_points(200, seed=26)
     raw = kernel.sliding_spectrum(*(p[k] for k in NAMES), polish=0)
@@ -270,8 +269,13 @@ def test_fused_domain_test_agrees_with_check_domain():
     rng = np.random.default_rng(30)
     n = 20000
     mu = rng.uniform(-1.0, 6.0, n)
-    box = {"q": rng.uniform(-1.5, 1.5, n), "fr_inv": rng.uniform(-0.5, 3.0, n), "sigma": rng.uniform(-0.5, 2.5, n),
-           "alpha_v": rng.uniform(-0.5, 10.0, n), "mu": mu}
+    box = {
+        "q": rng.uniform(-1.5, 1.5, n),
+        "fr_inv": rng.uniform(-0.5, 3.0, n),
+        "sigma": rng.uniform(-0.5, 2.5, n),
+        "alpha_v": rng.uniform(-0.5, 10.0, n),
+        "mu": mu,
+    }
     edge = _bound_points()
     m = edge["q"].size
     p = {k: np.concatenate([edge[k], box[k]]) for k in NAMES}

@@ -22,7 +22,6 @@ launch spin that inverts is ``lambda_thres / (I3 R (1 - alpha))``.
 """
 
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -36,8 +35,9 @@ from stability.top import Top
 
 def rutstam_top():
     m, r = 0.020, 0.020
-    return Top(mass=m, radius=r, com_offset=-0.3 * r, inertia_transverse=0.376 * m * r * r,
-               inertia_axial=0.4 * m * r * r)
+    return Top(
+        mass=m, radius=r, com_offset=-0.3 * r, inertia_transverse=0.376 * m * r * r, inertia_axial=0.4 * m * r * r
+    )
 
 
 def test_rutstam_threshold():
@@ -115,9 +115,20 @@ def test_bad_launch(spin, unit):
 
 
 # three tops, one per high-spin class (stability.top_class), each at spins around its thresholds
-CASES = [((-0.1, 1.0), 5.0), ((-0.1, 1.0), 6.6), ((-0.1, 1.0), 8.0), ((-0.1, 1.0), 12.0),
-         ((-0.15, 1.4), 5.0), ((-0.15, 1.4), 9.0), ((-0.15, 1.4), 15.0), ((-0.15, 1.4), 25.0),
-         ((-0.1, 0.8), 3.0), ((-0.1, 0.8), 6.0), ((-0.1, 0.8), 10.0), ((-0.1, 0.8), 20.0)]
+CASES = [
+    ((-0.1, 1.0), 5.0),
+    ((-0.1, 1.0), 6.6),
+    ((-0.1, 1.0), 8.0),
+    ((-0.1, 1.0), 12.0),
+    ((-0.15, 1.4), 5.0),
+    ((-0.15, 1.4), 9.0),
+    ((-0.15, 1.4), 15.0),
+    ((-0.15, 1.4), 25.0),
+    ((-0.1, 0.8), 3.0),
+    ((-0.1, 0.8), 6.0),
+    ((-0.1, 0.8), 10.0),
+    ((-0.1, 0.8), 20.0),
+]
 
 
 @pytest.mark.parametrize("nd,spin", CASES)
@@ -133,8 +144,9 @@ def test_launch_agrees_with_a_long_simulate(nd, spin):
     t_end = max(4000.0, 2 * w * (res.settle_time or 0.0))
     th = math.radians(1.0)
     k = [math.sin(th), 0.0, math.cos(th)]
-    ds = stability.simulate("sliding", t_end=t_end, dt=0.05, omega=k, k=k, velocity=[0.0, 0.0], rtol=1e-10,
-                            atol=1e-13, **res.parameters)
+    ds = stability.simulate(
+        "sliding", t_end=t_end, dt=0.05, omega=k, k=k, velocity=[0.0, 0.0], rtol=1e-10, atol=1e-13, **res.parameters
+    )
     pol = ds.polar_angle.values
     assert pol[-1] == pytest.approx(res.end_tilt, abs=0.5)
     hit = np.nonzero(pol >= 90.0)[0]
@@ -158,8 +170,18 @@ def test_cli_launch_and_threshold(capsys):
     # reference: the issue's 8.51 rev/s, and the closed form n_inv (1 + alpha)/(1 - alpha)
     from stability.cli import main
 
-    si = ["--mass", "0.015", "--radius", "0.015", "--com-offset", "-0.003", "--inertia-transverse", "1.3e-6",
-          "--inertia-axial", "1.5e-6"]
+    si = [
+        "--mass",
+        "0.015",
+        "--radius",
+        "0.015",
+        "--com-offset",
+        "-0.003",
+        "--inertia-transverse",
+        "1.3e-6",
+        "--inertia-axial",
+        "1.5e-6",
+    ]
     assert main(["threshold", "spin", *si, "--unit", "rev/s"]) == 0
     out = capsys.readouterr().out.splitlines()
     inv = [ln for ln in out if ln.startswith("launched upright, it inverts completely above ")]
@@ -172,6 +194,24 @@ def test_cli_launch_and_threshold(capsys):
     assert main(["launch", *si, "--spin", "15", "--unit", "rev/s"]) == 0
     text = capsys.readouterr().out
     assert "launch at 15 rev/s" in text and "inverts completely above: 8.51088 rev/s" in text
-    assert main(["launch", "--mass", "15", "--radius", "15", "--com-offset", "-3", "--inertia-transverse", "1.3e-6",
-                 "--inertia-axial", "1.5e-6", "--spin", "15"]) == 2
+    assert (
+        main(
+            [
+                "launch",
+                "--mass",
+                "15",
+                "--radius",
+                "15",
+                "--com-offset",
+                "-3",
+                "--inertia-transverse",
+                "1.3e-6",
+                "--inertia-axial",
+                "1.5e-6",
+                "--spin",
+                "15",
+            ]
+        )
+        == 2
+    )
     assert "radius looks like millimetres" in capsys.readouterr().err

@@ -33,8 +33,9 @@ def test_zero_gravity_unstable_where_a_mode_grows():
 def test_stable_point():
     # q = 0.1, fr_inv = 0.3: every mode decays (checked against the lapack path's signs)
     sp = stability.spectrum("sliding", q=0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
-    ref = np.linalg.eigvals(np.linalg.solve(*stability.get_model("sliding").matrices(
-        q=0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)))
+    ref = np.linalg.eigvals(
+        np.linalg.solve(*stability.get_model("sliding").matrices(q=0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28))
+    )
     assert (ref.real < -1e-4).all()
     assert sp.stability == STABLE
 
@@ -70,8 +71,7 @@ def test_neutral_line_at_zero_gravity_right_or_flagged():
         sg = (1 - mu * q * q) / (1 + q)
         ref = _poly_reference(q, 0.0, sg, 0.5, mu)
         for method in ("kernel", "polynomial", "lapack"):
-            sp = stability.spectrum("sliding", q=q, fr_inv=0.0, sigma=sg, alpha_v=0.5, mu=mu,
-                                    method=method)
+            sp = stability.spectrum("sliding", q=q, fr_inv=0.0, sigma=sg, alpha_v=0.5, mu=mu, method=method)
             assert_right_or_flagged(sp, ref)
-            near = np.argsort(np.abs(sp.eigenvalues.real))[1]   # [0] is the structural zero
+            near = np.argsort(np.abs(sp.eigenvalues.real))[1]  # [0] is the structural zero
             assert sp.neutral[near] or abs(sp.eigenvalues[near].real) > sp.error_bound[near]

@@ -27,8 +27,11 @@ def test_integer_overflow_names_the_parameter():
     """q = 10**400 does not fit a double: a DomainError naming q, its size and the computable
     range (was: OverflowError from numpy), alone or in a list with floats."""
     for q in (10**400, [0.1, 10**400], -(10**400)):
-        with pytest.raises(DomainError, match=r"^q = -?1e\+400 \(an integer of 401 digits\) is outside the "
-                                              r"computable range: \|q\| <= 1e\+30"):
+        with pytest.raises(
+            DomainError,
+            match=r"^q = -?1e\+400 \(an integer of 401 digits\) is outside the "
+            r"computable range: \|q\| <= 1e\+30",
+        ):
             stability.spectrum("sliding", q=q, sigma=1.0, **P)
 
 
@@ -39,11 +42,14 @@ def test_scalar_where_a_scalar_is_meant_and_counts_bounded():
         stability.threshold("sigma", q=-0.1, samples=10**12, **P)
 
 
-@pytest.mark.parametrize("text, fragment", [
-    ("inf:0:3", "--q = 'inf:0:3': 'inf' is not finite"),
-    ("0,nan", "--q = '0,nan': 'nan' is not finite"),
-    ("-1e308:1e308:3", r"--q = '-1e308:1e308:3': the step .* overflows"),
-])
+@pytest.mark.parametrize(
+    "text, fragment",
+    [
+        ("inf:0:3", "--q = 'inf:0:3': 'inf' is not finite"),
+        ("0,nan", "--q = '0,nan': 'nan' is not finite"),
+        ("-1e308:1e308:3", r"--q = '-1e308:1e308:3': the step .* overflows"),
+    ],
+)
 def test_parse_values_refuses_non_finite_ends_without_numpy_warnings(text, fragment, capsys, tmp_path):
     """Was: numpy's overflow/invalid warnings, then "q = nan". Exit 2, the flag named, no file."""
     out = tmp_path / "a.nc"
@@ -72,8 +78,11 @@ def test_one_ulp_outside_a_bound_reads_differently():
     b = 1 / math.sqrt(2.28)
     q_out = math.nextafter(b, 1.0) if 1 - Fraction(2.28) * Fraction(math.nextafter(b, 1.0)) ** 2 <= 0 else None
     q_out = q_out or math.nextafter(math.nextafter(b, 1.0), 1.0)
-    with pytest.raises(DomainError, match=r"^q = (\S+) is outside the physical domain: 1 - mu q\^2 > 0.*"
-                                          r"the largest \|q\| allowed at mu = 2.28 is (\S+)\)") as err:
+    with pytest.raises(
+        DomainError,
+        match=r"^q = (\S+) is outside the physical domain: 1 - mu q\^2 > 0.*"
+        r"the largest \|q\| allowed at mu = 2.28 is (\S+)\)",
+    ) as err:
         check_domain(scalar=True, q=q_out, mu=2.28, sigma=0.1, **P)
     shown_q, shown_bound = str(err.value).split()[2], str(err.value).rstrip(")").split()[-1]
     assert shown_q != shown_bound and float(shown_q) == q_out
@@ -86,8 +95,11 @@ def test_sigma_bound_is_exact(seed):
     refuses the next one, and the kernel's fused test (spectrum, mask_unphysical) agrees. Also a
     bound that is exact in doubles (q = 0.5, mu = 2: sigma = 1) is accepted, one ulp more refused."""
     rng = np.random.default_rng(seed)
-    cases = [(0.5, 2.0)] + [(float(q), float(mu)) for q, mu in
-                            zip(rng.uniform(-0.6, 0.6, 40), rng.uniform(0.5, 2.7, 40)) if mu * q * q < 0.999]
+    cases = [(0.5, 2.0)] + [
+        (float(q), float(mu))
+        for q, mu in zip(rng.uniform(-0.6, 0.6, 40), rng.uniform(0.5, 2.7, 40))
+        if mu * q * q < 0.999
+    ]
     for q, mu in cases:
         exact = 2 * (1 - Fraction(mu) * Fraction(q) ** 2)
         sm = float(sigma_max(q, mu))

@@ -29,8 +29,11 @@ def _caught(fn):
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")
         out = fn()
-    return out, [w for w in rec if issubclass(w.category, (FutureWarning, DeprecationWarning))
-                 and str(w.message).startswith("model '")]
+    return out, [
+        w
+        for w in rec
+        if issubclass(w.category, (FutureWarning, DeprecationWarning)) and str(w.message).startswith("model '")
+    ]
 
 
 def test_registry_names():
@@ -73,14 +76,17 @@ def test_cli_prints_the_warning_on_one_line(fresh, capsys):
 def test_the_package_own_lookups_are_silent(fresh, tmp_path, capsys):
     """simulate("rolling"), validate("rolling") (nonlinear names, unchanged) and `tippe figures`
     on a recipe drawing every linear model look "rolling" up without the FutureWarning."""
-    _, caught = _caught(lambda: stability.simulate("rolling", t_end=1.0, omega=[0, 0, 1], k=[0.01, 0, 1],
-                                                   q=-0.1, fr_inv=0.3, sigma=1.0))
+    _, caught = _caught(
+        lambda: stability.simulate("rolling", t_end=1.0, omega=[0, 0, 1], k=[0.01, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.0)
+    )
     assert caught == []
     ds, caught = _caught(lambda: stability.validate("rolling", q=0.2, fr_inv=1.5, sigma=1.0))
     assert caught == [] and ds.attrs["linear_model"] == "rolling"
     recipe = tmp_path / "m.toml"
-    recipe.write_text('title = "m"\nkind = "models"\nx = "q"\ny = "fr_inv"\nmask_unphysical = true\n\n'
-                      '[grid]\nq = "-0.3:0.3:7"\nfr_inv = "0:1:5"\nsigma = 1.0\nalpha_v = 0.5\n')
+    recipe.write_text(
+        'title = "m"\nkind = "models"\nx = "q"\ny = "fr_inv"\nmask_unphysical = true\n\n'
+        '[grid]\nq = "-0.3:0.3:7"\nfr_inv = "0:1:5"\nsigma = 1.0\nalpha_v = 0.5\n'
+    )
     rc, caught = _caught(lambda: main(["figures", str(recipe)]))
     assert rc == 0 and caught == [] and "warning" not in capsys.readouterr().err
     assert models._ROLLING_WARNED is False

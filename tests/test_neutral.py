@@ -98,8 +98,7 @@ def test_dense_output_against_the_closed_form(curve_fr0):
     e_fine = np.max(np.abs(s - sigma_closed(q, 0.0)))
     assert e_fine <= 2e-6
     assert np.max(np.abs(w - 1 / (1 + q))) <= 2e-6
-    coarse = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                           max_step=0.1, max_angle=0.2)
+    coarse = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), max_step=0.1, max_angle=0.2)
     dc = dense(coarse, 32)
     e_coarse = np.max(np.abs(dc.sigma.values - sigma_closed(dc.q.values, 0.0)))
     assert 8 <= e_coarse / e_fine <= 32
@@ -114,8 +113,13 @@ def test_sliding_analytic_coefficients_match_the_model():
     model = get_model("sliding")
     rng = np.random.default_rng(7)
     for _ in range(20):
-        p = dict(q=rng.uniform(-0.6, 0.6), fr_inv=rng.uniform(0, 3), sigma=rng.uniform(0, 2),
-                 alpha_v=rng.uniform(0, 3), mu=MU)
+        p = dict(
+            q=rng.uniform(-0.6, 0.6),
+            fr_inv=rng.uniform(0, 3),
+            sigma=rng.uniform(0, 2),
+            alpha_v=rng.uniform(0, 3),
+            mu=MU,
+        )
         c, dc = sliding_coefficients(**p)
         assert np.array_equal(np.array(c), model.coefficients(**p))
         for name in p:
@@ -149,8 +153,12 @@ def test_sliding_against_mpmath_bisection():
 
     def leading(q, s):
         q, s, mu = mp.mpf(q), mp.mpf(s), mp.mpf(MU)
-        c = [mu * (1 - mu * q * q), a * (1 + mu * (1 + 2 * q)) - 1j * mu * s,
-             -mu * mu * q * f - 1j * a * (s + mu * (1 + q)), -mu * a * q * f]
+        c = [
+            mu * (1 - mu * q * q),
+            a * (1 + mu * (1 + 2 * q)) - 1j * mu * s,
+            -mu * mu * q * f - 1j * a * (s + mu * (1 + q)),
+            -mu * a * q * f,
+        ]
         return max(mp.re(r) for r in mp_polyroots(c, maxsteps=200, extraprec=60))
 
     idx = np.linspace(3, ds.sizes["point"] - 4, 4).astype(int)
@@ -241,8 +249,9 @@ class TwoModes(LinearModel):
 
 
 def test_special_points_zero_frequency_and_double_crossing():
-    ds = neutral_curve(TwoModes(), "q", "sigma", fixed=dict(fr_inv=0.0, mu=1.0),
-                       x_range=(-0.5, 0.5), y_range=(0.1, 1.5))
+    ds = neutral_curve(
+        TwoModes(), "q", "sigma", fixed=dict(fr_inv=0.0, mu=1.0), x_range=(-0.5, 0.5), y_range=(0.1, 1.5)
+    )
     zf = ds.where(ds.kind == "zero_frequency", drop=True)
     dc = ds.where(ds.kind == "double_crossing", drop=True)
     # each branch sees the double crossing at (0, 0.5): mode 1 (w = -0.5) and mode 2 (w = 2)
@@ -279,8 +288,16 @@ def test_dataset_format_and_netcdf_round_trip(curve_fr0, tmp_path):
 def test_fold_continued_in_fr_inv():
     """The largest unstable sigma as fr_inv varies: at the fold d sigma/dq = 0, i.e.
     mu f (1 + 2q) (1 + q)^2 = mu q^2 + 2 mu q + 1 (from the closed form of sigma)."""
-    ds = fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma",
-                    fixed=dict(fr_inv=0.0, alpha_v=0.5), z_range=(0.0, 0.3), max_step=0.1)
+    ds = fold_curve(
+        "sliding",
+        "q",
+        "sigma",
+        "fr_inv",
+        fold_in="sigma",
+        fixed=dict(fr_inv=0.0, alpha_v=0.5),
+        z_range=(0.0, 0.3),
+        max_step=0.1,
+    )
     q, s, f = ds.q.values, ds.sigma.values, ds.fr_inv.values
     assert f.min() == 0.0 and f.max() == pytest.approx(0.3, abs=1e-15)
     g = MU * f * (1 + 2 * q) * (1 + q) ** 2 - (MU * q * q + 2 * MU * q + 1)
@@ -316,8 +333,13 @@ def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
     planes = [("q", "sigma"), ("q", "fr_inv"), ("sigma", "alpha_v"), ("q", "mu"), ("fr_inv", "sigma")]
     for k in range(200):
         free = planes[k % 5]
-        p = dict(q=rng.uniform(-0.6, 0.6), fr_inv=rng.uniform(0, 3) if k % 3 else 0.0,
-                 sigma=rng.uniform(0, 2), alpha_v=rng.uniform(0.1, 3), mu=rng.uniform(1, 3))
+        p = dict(
+            q=rng.uniform(-0.6, 0.6),
+            fr_inv=rng.uniform(0, 3) if k % 3 else 0.0,
+            sigma=rng.uniform(0, 2),
+            alpha_v=rng.uniform(0.1, 3),
+            mu=rng.uniform(1, 3),
+        )
         cond = NeutralCondition("sliding", free, {n: v for n, v in p.items() if n not in free}, compiled=True)
         assert cond._compiled is not None
         sliding_crossing_residual, sliding_crossing_other_growth = cond.kernels.residual, cond.kernels.other_growth
@@ -331,12 +353,15 @@ def test_compiled_twins_of_the_sliding_condition_are_bit_identical():
         assert sliding_crossing_other_growth(*cond._compiled, np.array([*vals, w])) == max(z.real for z in r)
 
 
-@pytest.mark.parametrize("x, y, fixed", [
-    ("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5)),
-    ("q", "sigma", dict(fr_inv=0.3, alpha_v=0.5)),
-    ("q", "sigma", dict(fr_inv=0.3, alpha_v=1e3)),
-    ("sigma", "alpha_v", dict(q=-0.1, fr_inv=0.3)),
-])
+@pytest.mark.parametrize(
+    "x, y, fixed",
+    [
+        ("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5)),
+        ("q", "sigma", dict(fr_inv=0.3, alpha_v=0.5)),
+        ("q", "sigma", dict(fr_inv=0.3, alpha_v=1e3)),
+        ("sigma", "alpha_v", dict(q=-0.1, fr_inv=0.3)),
+    ],
+)
 def test_compiled_path_gives_the_python_curve(x, y, fixed):
     """The compiled corrector (stability.linear.neutral_compiled) against the engine's Python path
     on the same problem: a second implementation of the same equations, so the same points,
@@ -358,8 +383,12 @@ def test_compiled_path_gives_the_python_curve(x, y, fixed):
     rng = {x: (0.0, 1.0), y: (0.0, 1.0)}
     assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=True).compiled_step is not None
     assert NeutralProblem("sliding", x, y, fixed | {"mu": MU}, rng, compiled=False).compiled_step is None
-    assert NeutralProblem("rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)},
-                          compiled=True).compiled_step is None
+    assert (
+        NeutralProblem(
+            "rolling", "q", "sigma", dict(fr_inv=0.3, mu=MU), {"q": (0, 1), "sigma": (0, 1)}, compiled=True
+        ).compiled_step
+        is None
+    )
 
 
 def test_compiled_step_returns_the_problems_constraints_and_test_functions():
@@ -440,8 +469,15 @@ def test_no_false_double_crossing_as_fr_inv_goes_to_zero():
         # the corner q = 0, fr_inv = 0 of the (q, fr_inv) plane: on q ~ 0 the small root's real
         # part is ~(q fr_inv)^2, below rounding; at fr_inv = 0 it is an exact zero (Re s = 0, no
         # sign). Removing exact zeros there made the test jump to the next mode and report one.
-        ds3 = neutral_curve("sliding", "q", "fr_inv", fixed=dict(sigma=1.0, alpha_v=0.5), x_range=(-0.468, 0.468),
-                            y_range=(0.0, 2.0), compiled=compiled)
+        ds3 = neutral_curve(
+            "sliding",
+            "q",
+            "fr_inv",
+            fixed=dict(sigma=1.0, alpha_v=0.5),
+            x_range=(-0.468, 0.468),
+            y_range=(0.0, 2.0),
+            compiled=compiled,
+        )
         assert "double_crossing" not in set(ds3.kind.values)
         assert list(ds3.kind.values).count("branch_point") >= 1 and "fold" in set(ds3.kind.values)
     # the small root at the regular point nearest fr_inv = 0 on the curve: other_roots vs mpmath
@@ -450,8 +486,12 @@ def test_no_false_double_crossing_as_fr_inv_goes_to_zero():
     f, sigma, w = float(ds.fr_inv[k]), float(ds.sigma[k]), float(ds.frequency[k])
     mp = mpmath.mp
     mp.dps = 50
-    c = [MU * (1 - MU * 0.01), 0.5 * (1 + MU * 0.8) - 1j * MU * sigma,
-         -MU * MU * (-0.1) * f - 0.5j * (sigma + MU * 0.9), -MU * 0.5 * (-0.1) * f]
+    c = [
+        MU * (1 - MU * 0.01),
+        0.5 * (1 + MU * 0.8) - 1j * MU * sigma,
+        -MU * MU * (-0.1) * f - 0.5j * (sigma + MU * 0.9),
+        -MU * 0.5 * (-0.1) * f,
+    ]
     ref = [r for r in mp_polyroots([mp.mpc(z) for z in c], maxsteps=200, extraprec=200) if abs(r - 1j * w) > 1e-3]
     assert all(mp.re(r) < 0 for r in ref)
     coeffs, _ = sliding_coefficients(q=-0.1, fr_inv=f, sigma=sigma, alpha_v=0.5, mu=MU)

@@ -58,7 +58,8 @@ def test_genuinely_empty_curve_warns_and_says_why():
     signs are decided everywhere (unstable throughout): an empty dataset with a UserWarning and
     the attribute note."""
     with pytest.warns(UserWarning, match="no neutral curve crosses the ranges"):
-        ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=1e12),
-                           x_range=(0.3, 0.5), y_range=(0.1, 0.5))
+        ds = neutral_curve(
+            "sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=1e12), x_range=(0.3, 0.5), y_range=(0.1, 0.5)
+        )
     assert ds.sizes["point"] == 0
     assert "number of growing modes is the same" in ds.attrs["note"]

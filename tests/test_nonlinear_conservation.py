@@ -20,7 +20,7 @@ from scipy.integrate import simpson
 
 from stability import simulate
 
-TILTED = dict(omega=[0.05, -0.02, 1.0], k=[np.sin(0.5), 0.0, np.cos(0.5)])   # 28.6 degrees
+TILTED = dict(omega=[0.05, -0.02, 1.0], k=[np.sin(0.5), 0.0, np.cos(0.5)])  # 28.6 degrees
 
 
 def _drift(x: np.ndarray) -> float:
@@ -30,10 +30,20 @@ def _drift(x: np.ndarray) -> float:
 def test_frictionless_sliding_conserves_energy_and_horizontal_momentum():
     runs = {}
     for rtol in (1e-7, 1e-10):
-        runs[rtol] = simulate("sliding", t_end=200.0, **TILTED, velocity=[0.03, -0.01], q=-0.1,
-                              fr_inv=0.5, sigma=1.0, alpha_v=0.0, rtol=rtol, atol=rtol * 1e-3)
+        runs[rtol] = simulate(
+            "sliding",
+            t_end=200.0,
+            **TILTED,
+            velocity=[0.03, -0.01],
+            q=-0.1,
+            fr_inv=0.5,
+            sigma=1.0,
+            alpha_v=0.0,
+            rtol=rtol,
+            atol=rtol * 1e-3,
+        )
     ds = runs[1e-10]
-    assert float(np.ptp(ds.polar_angle.values)) > 5.0          # a real nutating motion, not a rest state
+    assert float(np.ptp(ds.polar_angle.values)) > 5.0  # a real nutating motion, not a rest state
     assert _drift(ds.energy.values) < 1e-7
     assert _drift(ds.momentum.values[:, 0]) < 1e-7
     assert _drift(ds.momentum.values[:, 1]) < 1e-7
@@ -50,9 +60,23 @@ FRICTION_CASES = [
 
 
 def _run(friction, normal, alpha_k, t_end, dt):
-    return simulate("sliding", t_end=t_end, dt=dt, **TILTED, velocity=[0.2, 0.05], q=-0.1,
-                    fr_inv=0.3, sigma=1.0, alpha_v=0.5, alpha_k=alpha_k, friction=friction,
-                    normal=normal, method="dopri5", rtol=1e-10, atol=1e-13)
+    return simulate(
+        "sliding",
+        t_end=t_end,
+        dt=dt,
+        **TILTED,
+        velocity=[0.2, 0.05],
+        q=-0.1,
+        fr_inv=0.3,
+        sigma=1.0,
+        alpha_v=0.5,
+        alpha_k=alpha_k,
+        friction=friction,
+        normal=normal,
+        method="dopri5",
+        rtol=1e-10,
+        atol=1e-13,
+    )
 
 
 @pytest.mark.parametrize("friction,normal,alpha_k", FRICTION_CASES)
@@ -76,27 +100,25 @@ def test_sliding_with_friction_balances_energy(friction, normal, alpha_k):
     v = ds.velocity.values
     w = ds.omega.values
     slip = np.column_stack([v[:, 0] - w[:, 1], v[:, 1] + w[:, 0]])
-    assert float(ds.slip_speed.min()) > 1e-2 or alpha_k == 0.0     # before sticking
+    assert float(ds.slip_speed.min()) > 1e-2 or alpha_k == 0.0  # before sticking
     power = np.einsum("ij,ij->i", ds.friction.values[:, :2], slip)
-    assert np.all(power <= 1e-15)                        # friction never feeds energy in
+    assert np.all(power <= 1e-15)  # friction never feeds energy in
     dissipated = simpson(power, x=ds.time.values)
     change = float(ds.energy[-1] - ds.energy[0])
-    assert change < -1e-3                                # the run does dissipate
+    assert change < -1e-3  # the run does dissipate
     assert abs(change - dissipated) < 1e-6 * abs(change)
 
 
 def test_rolling_conserves_energy_and_h_cg():
-    ds = simulate("rolling", t_end=200.0, **TILTED, q=-0.1, fr_inv=0.5, sigma=1.0,
-                  rtol=1e-10, atol=1e-13)
+    ds = simulate("rolling", t_end=200.0, **TILTED, q=-0.1, fr_inv=0.5, sigma=1.0, rtol=1e-10, atol=1e-13)
     assert float(np.ptp(ds.polar_angle.values)) > 1.0
     assert _drift(ds.energy.values) < 1e-7
     assert _drift(ds.h_cg.values) < 1e-7
-    assert float(np.max(ds.slip_speed)) < 1e-12         # V_c = 0 holds by construction
+    assert float(np.max(ds.slip_speed)) < 1e-12  # V_c = 0 holds by construction
 
 
 def test_fixed_pivot_conserves_energy_spin_and_vertical_momentum():
-    ds = simulate("fixed_pivot", t_end=200.0, **TILTED, q=-0.1, fr_inv=0.5, sigma=1.0,
-                  rtol=1e-10, atol=1e-13)
+    ds = simulate("fixed_pivot", t_end=200.0, **TILTED, q=-0.1, fr_inv=0.5, sigma=1.0, rtol=1e-10, atol=1e-13)
     assert _drift(ds.energy.values) < 1e-7
     assert _drift(ds.spin.values) < 1e-7
     assert _drift(ds.angular_momentum_vertical.values) < 1e-7
@@ -111,8 +133,7 @@ def test_rolling_is_the_large_friction_limit_of_sliding():
     roll = simulate("rolling", **kw, rtol=1e-11, atol=1e-14)
     diffs = []
     for alpha_v in (200.0, 400.0):
-        sl = simulate("sliding", **kw, velocity=[w[1], -w[0]], alpha_v=alpha_v, method="Radau",
-                      rtol=1e-10, atol=1e-13)
+        sl = simulate("sliding", **kw, velocity=[w[1], -w[0]], alpha_v=alpha_v, method="Radau", rtol=1e-10, atol=1e-13)
         diffs.append(float(np.max(np.abs(sl.k.values - roll.k.values))))
     assert diffs[1] < diffs[0]
     assert diffs[0] / diffs[1] == pytest.approx(2.0, rel=0.1)
@@ -131,9 +152,19 @@ def test_sliding_keeps_jellett_to_integrator_tolerance_over_long_runs():
 
     drift = {}
     for rtol in (1e-7, 1e-9):
-        ds = simulate("sliding", t_end=4000.0, dt=10.0, q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5,
-                      rtol=rtol, atol=1e-3 * rtol, **INITIAL_CONDITIONS[0.3])
-        assert float(ds.polar_angle[-1]) > 160.0                # the top has risen
+        ds = simulate(
+            "sliding",
+            t_end=4000.0,
+            dt=10.0,
+            q=-0.1,
+            fr_inv=0.3,
+            sigma=1.0,
+            alpha_v=0.5,
+            rtol=rtol,
+            atol=1e-3 * rtol,
+            **INITIAL_CONDITIONS[0.3],
+        )
+        assert float(ds.polar_angle[-1]) > 160.0  # the top has risen
         j = ds.h_cg.values
         drift[rtol] = float(np.max(np.abs(j - j[0]))) / abs(float(j[0]))
         assert drift[rtol] < 2.0 * rtol * 4.0

@@ -15,13 +15,13 @@ import itertools
 
 import numpy as np
 import pytest
+from conftest import random_domain_points
 
 import stability
 from stability import jacobian_eigenvalues
-from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear import reference, rolling, sliding
+from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear.parameters import pack
-from conftest import random_domain_points
 
 
 def _match(a: np.ndarray, b: np.ndarray) -> float:
@@ -33,11 +33,14 @@ def _separation(a: np.ndarray) -> float:
     return min(abs(x - y) for x, y in itertools.combinations(a, 2))
 
 
-@pytest.mark.parametrize("nonlinear,linear,with_alpha", [
-    ("sliding", "sliding", True),
-    ("fixed_pivot", "fixed_pivot", False),
-    ("rolling", "rolling", False),
-])
+@pytest.mark.parametrize(
+    "nonlinear,linear,with_alpha",
+    [
+        ("sliding", "sliding", True),
+        ("fixed_pivot", "fixed_pivot", False),
+        ("rolling", "rolling", False),
+    ],
+)
 def test_jacobian_matches_linear_operator(nonlinear, linear, with_alpha):
     pts = random_domain_points(25, seed=4, alpha_v=with_alpha)
     for j in range(25):
@@ -72,11 +75,11 @@ def test_sliding_polynomial_tends_to_first_principles_rolling():
     i.e. exactly O(1/alpha_v)."""
     q, fr_inv, sigma, mu = -0.13, 0.8, 1.1, 2.28
     a_c = 1 + mu * (1 + 2 * q)
-    target = np.concatenate([[0.0], a_c * stability.MODELS["rolling"].coefficients(
-        q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)])
+    target = np.concatenate(
+        [[0.0], a_c * stability.MODELS["rolling"].coefficients(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)]
+    )
     for alpha_v in (1e3, 1e6):
-        c = stability.MODELS["sliding"].coefficients(q=q, fr_inv=fr_inv, sigma=sigma,
-                                                     alpha_v=alpha_v, mu=mu) / alpha_v
+        c = stability.MODELS["sliding"].coefficients(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu) / alpha_v
         rest = np.array([mu * (1 - mu * q * q), -1j * mu * sigma, -mu * mu * q * fr_inv, 0.0])
         np.testing.assert_allclose(c - rest / alpha_v, target, rtol=0, atol=1e-14)
 
@@ -94,7 +97,7 @@ def test_first_principles_rolling_contract():
     c = m.coefficients(**pts)
     s = np.exp(1j * np.linspace(0, 6, 10)) * 1.7
     det = np.linalg.det(s[:, None, None] * M - A)
-    np.testing.assert_allclose(det, c[:, 0] * s ** 2 + c[:, 1] * s + c[:, 2], rtol=1e-13, atol=1e-13)
+    np.testing.assert_allclose(det, c[:, 0] * s**2 + c[:, 1] * s + c[:, 2], rtol=1e-13, atol=1e-13)
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
@@ -110,8 +113,9 @@ def test_compiled_rhs_matches_numpy_reference(seed):
         b = reference.sliding_rhs(0.0, y, **pr, law=law)
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-12)
     rp = dict(q=0.15, fr_inv=0.7, sigma=0.9, mu=2.0)
-    np.testing.assert_allclose(rolling.rhs(0.0, y[:8], pack(**rp)),
-                               reference.rolling_rhs(0.0, y[:8], **rp), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        rolling.rhs(0.0, y[:8], pack(**rp)), reference.rolling_rhs(0.0, y[:8], **rp), rtol=0, atol=1e-12
+    )
 
 
 def test_jacobian_refuses_bad_input():

@@ -32,8 +32,10 @@ import sys
 import mpmath as mp
 import numpy as np
 import pytest
+from conftest import mp_polyroots, random_domain_points
 from numba import njit
 from numba.extending import register_jitable
+from test_kernel import NAMES, _bound_points
 
 import stability
 import stability.jit
@@ -45,9 +47,6 @@ from stability.models import LinearModel
 from stability.models.inertia import inertia_g, transverse_inertia_g, two_product
 from stability.models.sliding import coefficient_parts, derivative_parts
 from stability.parameters import DOMAIN, domain_applies, domain_mask, domain_sides, inside_domain
-
-from conftest import mp_polyroots, random_domain_points
-from test_kernel import NAMES, _bound_points
 
 # numba code of one's own that calls the package's formulas: register them first (the package
 # installs no hook into numba; stability/jit.py)
@@ -76,6 +75,7 @@ def _sample() -> dict[str, np.ndarray]:
 
 
 # --- eq. (11): coefficients and derivatives ----------------------------------------------------
+
 
 @njit(cache=False)
 def _compiled_derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
@@ -134,7 +134,6 @@ def test_inertia_g_same_bits_in_every_engine_near_the_edge():
         assert py == float(arr[j]) == _compiled_inertia_g(qs[j], mus[j])
 
 
-
 @njit(cache=False)
 def _compiled_two_product(a, b):
     return two_product(a, b)
@@ -157,7 +156,9 @@ def test_two_product_exact_in_every_engine():
         assert Fraction(x) * Fraction(y) == Fraction(p) + Fraction(e)
         assert (p, e) == (float(p_arr[j]), float(e_arr[j])) == _compiled_two_product(x, y)
 
+
 # --- the domain table --------------------------------------------------------------------------
+
 
 def test_domain_table_same_decision_in_every_engine():
     """Engine agreement: the domain table's test of a point from Python floats
@@ -191,8 +192,13 @@ def test_domain_table_states_the_documented_domain():
 
     rng = np.random.default_rng(42)
     n = 2000
-    p = {"q": rng.uniform(-1.5, 1.5, n), "fr_inv": rng.uniform(-0.5, 3.0, n), "sigma": rng.uniform(-0.5, 2.5, n),
-         "alpha_v": rng.uniform(-0.5, 5.0, n), "mu": rng.uniform(-1.0, 6.0, n)}
+    p = {
+        "q": rng.uniform(-1.5, 1.5, n),
+        "fr_inv": rng.uniform(-0.5, 3.0, n),
+        "sigma": rng.uniform(-0.5, 2.5, n),
+        "alpha_v": rng.uniform(-0.5, 5.0, n),
+        "mu": rng.uniform(-1.0, 6.0, n),
+    }
     mask = domain_mask(**p)
     checked = 0
     for j in range(n):
@@ -206,8 +212,14 @@ def test_domain_table_states_the_documented_domain():
         checked += 1
     assert checked > 1900 and 0.05 < mask.mean() < 0.5
     inside = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
-    violate = {"mu > 0": dict(mu=-1.0), "fr_inv >= 0": dict(fr_inv=-1.0), "alpha_v >= 0": dict(alpha_v=-1.0),
-               "1 - mu q^2 > 0": dict(q=0.9), "sigma > 0": dict(sigma=-1.0), "sigma <= 2 (1 - mu q^2)": dict(sigma=1.99)}
+    violate = {
+        "mu > 0": dict(mu=-1.0),
+        "fr_inv >= 0": dict(fr_inv=-1.0),
+        "alpha_v >= 0": dict(alpha_v=-1.0),
+        "1 - mu q^2 > 0": dict(q=0.9),
+        "sigma > 0": dict(sigma=-1.0),
+        "sigma <= 2 (1 - mu q^2)": dict(sigma=1.99),
+    }
     for b in DOMAIN:
         if b.parameter == "alpha_k":
             continue
@@ -222,19 +234,27 @@ def test_margins_same_bits_python_and_compiled():
     from stability.linear.neutral_curves import NeutralProblem, _constraint_values
 
     rng = np.random.default_rng(43)
-    for x, y, fixed in (("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5, mu=2.28)),
-                        ("q", "mu", dict(fr_inv=0.3, sigma=0.5, alpha_v=0.5)),
-                        ("sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5, mu=2.28))):
+    for x, y, fixed in (
+        ("q", "sigma", dict(fr_inv=0.0, alpha_v=0.5, mu=2.28)),
+        ("q", "mu", dict(fr_inv=0.3, sigma=0.5, alpha_v=0.5)),
+        ("sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5, mu=2.28)),
+    ):
         prob = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=True)
         assert prob._compiled is not None
         for _ in range(200):
-            u = np.array([rng.uniform(-0.7, 0.7) if x == "q" else rng.uniform(0, 2.2), rng.uniform(-0.01, 2.5),
-                          rng.uniform(-2, 2)])
+            u = np.array(
+                [
+                    rng.uniform(-0.7, 0.7) if x == "q" else rng.uniform(0, 2.2),
+                    rng.uniform(-0.01, 2.5),
+                    rng.uniform(-2, 2),
+                ]
+            )
             ours = _constraint_values(prob._constraints, prob.params(u))
             np.testing.assert_array_equal(prob.constraints(u), ours)
 
 
 # --- polynomial building blocks (stability/linear/roots.py) ------------------------------------
+
 
 def _quadratics(n: int, seed: int) -> np.ndarray:
     """Random quadratics (n, 3): general complex, conservative with real and with complex nu
@@ -255,7 +275,7 @@ def _quadratics(n: int, seed: int) -> np.ndarray:
         elif kind == 3:
             a, b, k = z(), z() * scale, 0j
         else:
-            a, b, k = complex(1.0, 0), complex(0, 2 * scale), complex(-scale**2 * (1 + 1e-6 * rng.normal()), 0)
+            a, b, k = complex(1.0, 0), complex(0, 2 * scale), complex(-(scale**2) * (1 + 1e-6 * rng.normal()), 0)
         rows.append((a, b, k))
     return np.array(rows, dtype=complex)
 
@@ -350,13 +370,17 @@ def test_horner_engines_and_mpmath():
         assert py == _compiled_horner(c[j], s[j])
         x = mp.mpc(complex(s[j]))
         coeffs = [mp.mpc(complex(v)) for v in c[j]]
-        ref = [sum(coeffs[k] * x ** (3 - k) for k in range(4)),
-               sum((3 - k) * coeffs[k] * x ** (2 - k) for k in range(3)),
-               sum((3 - k) * (2 - k) * coeffs[k] * x ** (1 - k) for k in range(2))]
+        ref = [
+            sum(coeffs[k] * x ** (3 - k) for k in range(4)),
+            sum((3 - k) * coeffs[k] * x ** (2 - k) for k in range(3)),
+            sum((3 - k) * (2 - k) * coeffs[k] * x ** (1 - k) for k in range(2)),
+        ]
         a = abs(complex(s[j]))
-        scales = [sum(abs(c[j, k]) * a ** (3 - k) for k in range(4)),
-                  sum((3 - k) * abs(c[j, k]) * a ** (2 - k) for k in range(3)),
-                  sum((3 - k) * (2 - k) * abs(c[j, k]) * a ** (1 - k) for k in range(2))]
+        scales = [
+            sum(abs(c[j, k]) * a ** (3 - k) for k in range(4)),
+            sum((3 - k) * abs(c[j, k]) * a ** (2 - k) for k in range(3)),
+            sum((3 - k) * (2 - k) * abs(c[j, k]) * a ** (1 - k) for k in range(2)),
+        ]
         for engine in (py, tuple(complex(x[j]) for x in batch)):
             for got, want, sc in zip(engine, ref, scales):
                 assert abs(mp.mpc(got) - want) <= 10 * U * sc
@@ -393,8 +417,11 @@ def test_other_modes_batched_path_divides_composite():
         ours = cond.other_modes_many(np.array([[sigma, f]]), np.array([wk]))[0]
         small = ours[np.argmin(np.abs(ours))]
         c = stability.get_model("sliding").coefficients(q=q, fr_inv=f, sigma=sigma, alpha_v=alpha_v, mu=mu)
-        ref = [r for r in mp_polyroots([mp.mpc(complex(z)) for z in c], maxsteps=400, extraprec=400)
-               if abs(r - 1j * wk) > 1e-3]
+        ref = [
+            r
+            for r in mp_polyroots([mp.mpc(complex(z)) for z in c], maxsteps=400, extraprec=400)
+            if abs(r - 1j * wk) > 1e-3
+        ]
         small_ref = min(ref, key=abs)
         re_ref = float(mp.re(small_ref))
         assert re_ref < 0
@@ -427,12 +454,15 @@ def test_compiled_closures_have_the_same_cache_key_in_every_process():
     that refers to one), that pickle would differ in every process: each process would compile
     the kernel again (seconds) and the cache index would grow. Reference: the same hashes
     computed in two fresh processes (no compilation happens here)."""
-    runs = [subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
-            for _ in range(2)]
+    runs = [
+        subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
+        for _ in range(2)
+    ]
     assert runs[0] == runs[1] and len(runs[0].splitlines()) == 13
 
 
 # --- models added through the registry only ----------------------------------------------------
+
 
 class PivotAtCentre(LinearModel):
     """Toy: a heavy symmetric top on a pivot at the sphere's centre O (h = q, eq. 9's form with

@@ -16,16 +16,19 @@ from stability.parameters import check_domain
 GOOD = dict(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5, mu=2.28)
 
 
-@pytest.mark.parametrize("name,value,fragment", [
-    ("mu", 0.0, "mu > 0"),
-    ("mu", -1.0, "mu > 0"),
-    ("fr_inv", -0.01, "fr_inv >= 0"),
-    ("alpha_v", -1e-9, "alpha_v >= 0"),
-    ("q", 0.7, "1 - mu q^2 > 0"),
-    ("q", -0.7, "1 - mu q^2 > 0"),
-    ("sigma", 0.0, "sigma > 0"),
-    ("sigma", 1.96, "sigma <= 2 (1 - mu q^2)"),
-])
+@pytest.mark.parametrize(
+    "name,value,fragment",
+    [
+        ("mu", 0.0, "mu > 0"),
+        ("mu", -1.0, "mu > 0"),
+        ("fr_inv", -0.01, "fr_inv >= 0"),
+        ("alpha_v", -1e-9, "alpha_v >= 0"),
+        ("q", 0.7, "1 - mu q^2 > 0"),
+        ("q", -0.7, "1 - mu q^2 > 0"),
+        ("sigma", 0.0, "sigma > 0"),
+        ("sigma", 1.96, "sigma <= 2 (1 - mu q^2)"),
+    ],
+)
 def test_each_bound_names_parameter_value_and_bound(name, value, fragment):
     with pytest.raises(DomainError) as exc:
         stability.eigenvalues("sliding", **{**GOOD, name: value})

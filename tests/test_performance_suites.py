@@ -25,7 +25,6 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-
 import run as bench
 from run import main
 from suites import CROSSING_TARGET, FOLD_TARGET, GROWTH_TARGET, SUITES
@@ -55,8 +54,9 @@ def test_continuation_suite_errors_against_the_closed_form():
     O(step^4): at max_step 0.2 it is ~1e-4 (docs/continuation.md), asserted below 1e-3. The
     columns' spline fold is limited by the column spacing (~3e-6 at N = 25): asserted between
     1e-8 and 1e-3, i.e. worse than the continuation's fold by orders of magnitude, as measured."""
-    res = pc.continuation_work_precision(repeat=1, settings=((0.2, 0.3),), columns=(10, 25), min_time=0.0,
-                                         equal_accuracy=False)
+    res = pc.continuation_work_precision(
+        repeat=1, settings=((0.2, 0.3),), columns=(10, 25), min_time=0.0, equal_accuracy=False
+    )
     assert [r.series for r in res] == ["continuation", "brentq per column", "brentq per column"]
     cont, c10, c25 = res
     assert cont.error <= 1e-13 < FOLD_TARGET
@@ -84,8 +84,15 @@ def test_neutral_benchmark_tiny_against_the_closed_form():
     * turning back: columns at fixed sigma cross the curve twice for 0.86 < sigma < sigma*, and
       those are missed (crossings - found = 2 x the number of such columns), while the
       continuation has points there."""
-    b = pc.neutral_benchmark(repeat=1, settings=((0.2, 0.3),), columns=(10, 25), python_path=False,
-                             turning_back=40, method="kernel", min_time=0.0)
+    b = pc.neutral_benchmark(
+        repeat=1,
+        settings=((0.2, 0.3),),
+        columns=(10, 25),
+        python_path=False,
+        turning_back=40,
+        method="kernel",
+        min_time=0.0,
+    )
     (c,) = b["continuation"].values()
     assert c["point"] <= 1e-13 and c["fold"] <= 1e-13 < FOLD_TARGET and c["check"] <= 1e-12
     assert 1e-6 < c["dense"] < 1e-3 and c["upper"] >= 3
@@ -248,8 +255,9 @@ def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(pc, "SETTINGS", ((0.05, 0.1),))
     monkeypatch.setattr(pc, "COLUMNS", (10, 25))
     # the suite runs under execution.using("compiled") (a decorator): its defaults are the wrapped function's
-    monkeypatch.setattr(pc.continuation_work_precision.__wrapped__, "__defaults__",
-                        (5, False, ((0.05, 0.1),), (10, 25), 0.0, False))
+    monkeypatch.setattr(
+        pc.continuation_work_precision.__wrapped__, "__defaults__", (5, False, ((0.05, 0.1),), (10, 25), 0.0, False)
+    )
     assert main(["--suite", "continuation", "--repeat", "1", "--out-dir", str(tmp_path)]) == 0
     js = tmp_path / "work_precision_continuation.json"
     info = json.loads(js.read_text())
@@ -275,8 +283,10 @@ def test_bench_continuation_chart_json_atomic(tmp_path, capsys, monkeypatch):
     else:
         assert rc != 0 and "disk full" in capsys.readouterr().err
     assert json.loads(js.read_text()) == info
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["work_precision_continuation.json",
-                                                         "work_precision_continuation.png"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "work_precision_continuation.json",
+        "work_precision_continuation.png",
+    ]
 
 
 def test_verdict_names_default_and_fastest():
@@ -290,13 +300,16 @@ def test_verdict_names_default_and_fastest():
     assert verdict([a, b], 1e-13) == "default: mine; nothing reaches error <= 1e-13"
 
 
-@pytest.mark.parametrize("argv, message", [
-    (["--points", "nan"], "--points = nan is outside the allowed range: an integer in [100, 1e+08]"),
-    (["--points", "inf"], "--points = inf is outside the allowed range"),
-    (["--suite", "eigen", "--points", "-5"], "--points = -5.0 is outside the allowed range"),
-    (["--repeat", "0"], "--repeat = 0 is outside the allowed range: an integer in [1, 1000]"),
-    (["--reference-points", "5"], "--reference-points = 5 is outside the allowed range"),
-])
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--points", "nan"], "--points = nan is outside the allowed range: an integer in [100, 1e+08]"),
+        (["--points", "inf"], "--points = inf is outside the allowed range"),
+        (["--suite", "eigen", "--points", "-5"], "--points = -5.0 is outside the allowed range"),
+        (["--repeat", "0"], "--repeat = 0 is outside the allowed range: an integer in [1, 1000]"),
+        (["--reference-points", "5"], "--reference-points = 5 is outside the allowed range"),
+    ],
+)
 def test_bench_sizes_are_checked_before_running(argv, message, tmp_path, capsys):
     """Sizes are checked first, with the flag, its value and the range (they used to surface as
     numpy's "negative dimensions" or an OverflowError)."""
@@ -332,7 +345,7 @@ def test_quick_never_writes_over_the_committed_charts(tmp_path, monkeypatch):
     quick = bench.output_directory(bench.parser().parse_args(["--quick"]))
     assert quick.parent == tmp_path and quick.is_dir() and not any(quick.iterdir())
     assert bench.output_directory(bench.parser().parse_args([])) == bench.ATLASES
-    assert bench.ATLASES == Path(__file__).resolve().parent.parent / "atlases"
+    assert Path(__file__).resolve().parent.parent / "atlases" == bench.ATLASES
     given = bench.parser().parse_args(["--quick", "--out-dir", str(tmp_path / "x")])
     assert bench.output_directory(given) == tmp_path / "x"
 
@@ -344,8 +357,22 @@ def test_bench_eigen_writes_chart_and_summary(tmp_path, capsys):
     from suites.charts import work_precision_figure
 
     rtol = 1e-13  # the kernel's target against mpmath (tests/test_kernel.py: RTOL)
-    rc = main(["--suite", "eigen", "--points", "3000", "--reference-points", "30", "--loop-points", "50",
-               "--repeat", "1", "--out-dir", str(tmp_path)])
+    rc = main(
+        [
+            "--suite",
+            "eigen",
+            "--points",
+            "3000",
+            "--reference-points",
+            "30",
+            "--loop-points",
+            "50",
+            "--repeat",
+            "1",
+            "--out-dir",
+            str(tmp_path),
+        ]
+    )
     assert rc == 0
     assert "x scipy loop" in capsys.readouterr().out
     info = json.loads((tmp_path / "work_precision_eigen.json").read_text())

@@ -44,32 +44,43 @@ def _critical_spin(tmp_path: Path) -> xr.Dataset:
 
 #: product -> a small dataset of it, made by the package's own function
 MAKERS = {
-    "atlas": lambda tmp: stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 9), fr_inv=0.0,
-                                         sigma=np.linspace(0.2, 1.8, 5), alpha_v=0.5, mask_unphysical=True),
-    "neutral_curve": lambda tmp: stability.neutral_curve("sliding", "q", "sigma",
-                                                            fixed=dict(fr_inv=0.0, alpha_v=0.5)),
-    "fold_curve": lambda tmp: stability.fold_curve("sliding", "q", "sigma", "fr_inv", fold_in="sigma",
-                                                      fixed=dict(fr_inv=0.0, alpha_v=0.5), z_range=(0.0, 0.3)),
-    "nonlinear_run": lambda tmp: stability.simulate("sliding", t_end=5.0, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1,
-                                                    fr_inv=0.3, sigma=1.0, alpha_v=0.5),
-    "validation": lambda tmp: stability.validate("sliding", q=[-0.1, 0.1], fr_inv=0.3, sigma=1.0, alpha_v=0.5,
-                                                 n_efold=1.0),
+    "atlas": lambda tmp: stability.atlas(
+        "sliding",
+        q=np.linspace(-0.4, 0.4, 9),
+        fr_inv=0.0,
+        sigma=np.linspace(0.2, 1.8, 5),
+        alpha_v=0.5,
+        mask_unphysical=True,
+    ),
+    "neutral_curve": lambda tmp: stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5)),
+    "fold_curve": lambda tmp: stability.fold_curve(
+        "sliding", "q", "sigma", "fr_inv", fold_in="sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), z_range=(0.0, 0.3)
+    ),
+    "nonlinear_run": lambda tmp: stability.simulate(
+        "sliding", t_end=5.0, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5
+    ),
+    "validation": lambda tmp: stability.validate(
+        "sliding", q=[-0.1, 0.1], fr_inv=0.3, sigma=1.0, alpha_v=0.5, n_efold=1.0
+    ),
     "coulomb_growth": lambda tmp: stability.coulomb_growth(q=-0.1, fr_inv=0.3, sigma=1.0, alpha_k=0.2, t_end=60.0),
     "critical_spin": _critical_spin,
-    "steady_states": lambda tmp: stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
-                                                         jellett=-0.9001185873),
+    "steady_states": lambda tmp: stability.steady_states(
+        q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, jellett=-0.9001185873
+    ),
     "steady_branch": lambda tmp: stability.steady_branch(q=-0.2, sigma=1.3, fr_inv=0.5, alpha_v=0.5),
-    "final_state": lambda tmp: stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5,
-                                                     **INITIAL_CONDITIONS[0.3]).to_dataset(),
+    "final_state": lambda tmp: stability.final_state(
+        q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **INITIAL_CONDITIONS[0.3]
+    ).to_dataset(),
     "top_classes": lambda tmp: stability.class_atlas(q=np.linspace(-0.6, 0.6, 25), sigma=np.linspace(0.05, 2.0, 20)),
     "flip_time_map": lambda tmp: __import__("stability.launches.estimate", fromlist=["x"]).flip_time_map(
-        stability.Top.table1(), [8.0, 12.0], [5.0], t_max=3000.0),
+        stability.Top.table1(), [8.0, 12.0], [5.0], t_max=3000.0
+    ),
 }
 
 
 def _documented() -> dict[str, str]:
     """Product -> the function named for it, from the table of docs/datasets.md."""
-    rows = re.findall(r"^\| `([a-z_]+)` \| (.+?) \|", DOCS.read_text(), flags=re.M)
+    rows = re.findall(r"^\| `([a-z_]+)` \| (.+?) \|", DOCS.read_text(), flags=re.MULTILINE)
     return dict(rows)
 
 
@@ -82,16 +93,35 @@ def _artists(fig: Figure) -> list:
     out = [fig._suptitle.get_text() if fig._suptitle is not None else None]
     for ax in fig.axes:
         legend = ax.get_legend()
-        out.append({
-            "titles": [ax.get_title(loc=loc) for loc in ("left", "center", "right")],
-            "labels": (ax.get_xlabel(), ax.get_ylabel()), "scales": (ax.get_xscale(), ax.get_yscale()),
-            "lines": [(ln.get_label(), ln.get_linestyle(), ln.get_marker(), ln.get_color(), ln.get_linewidth(),
-                       _bytes(ln.get_xdata()), _bytes(ln.get_ydata())) for ln in ax.get_lines()],
-            "collections": [(type(c).__name__, _bytes(c.get_offsets()),
-                             None if c.get_array() is None else _bytes(c.get_array()),
-                             [_bytes(p.vertices) for p in c.get_paths()]) for c in ax.collections],
-            "legend": None if legend is None else [t.get_text() for t in legend.get_texts()],
-        })
+        out.append(
+            {
+                "titles": [ax.get_title(loc=loc) for loc in ("left", "center", "right")],
+                "labels": (ax.get_xlabel(), ax.get_ylabel()),
+                "scales": (ax.get_xscale(), ax.get_yscale()),
+                "lines": [
+                    (
+                        ln.get_label(),
+                        ln.get_linestyle(),
+                        ln.get_marker(),
+                        ln.get_color(),
+                        ln.get_linewidth(),
+                        _bytes(ln.get_xdata()),
+                        _bytes(ln.get_ydata()),
+                    )
+                    for ln in ax.get_lines()
+                ],
+                "collections": [
+                    (
+                        type(c).__name__,
+                        _bytes(c.get_offsets()),
+                        None if c.get_array() is None else _bytes(c.get_array()),
+                        [_bytes(p.vertices) for p in c.get_paths()],
+                    )
+                    for c in ax.collections
+                ],
+                "legend": None if legend is None else [t.get_text() for t in legend.get_texts()],
+            }
+        )
     return out
 
 
@@ -148,8 +178,11 @@ def test_missing_or_unknown_product_is_a_clear_error():
     with pytest.raises(InputError, match="this dataset has no global attribute 'tippe_stability_product'"):
         ds.tippe.plot()
     ds.attrs[PRODUCT_ATTR] = "pie_chart"
-    with pytest.raises(InputError, match=r"tippe_stability_product = 'pie_chart': no figure is registered "
-                                         r"for this product \(products with a figure: atlas, coulomb_growth"):
+    with pytest.raises(
+        InputError,
+        match=r"tippe_stability_product = 'pie_chart': no figure is registered "
+        r"for this product \(products with a figure: atlas, coulomb_growth",
+    ):
         ds.tippe.plot()
     # a new Dataset from a product's variables has none of its attributes: the message says so
     with pytest.raises(InputError, match="attributes were dropped"):
@@ -208,7 +241,9 @@ def test_import_stability_does_not_import_matplotlib():
     """The accessor is registered when the facade hands out a function that returns datasets
     (``import stability`` itself imports neither xarray nor matplotlib), without importing
     matplotlib (the plotting functions are imported when a figure is drawn)."""
-    code = ("import sys, stability; assert 'xarray' not in sys.modules; stability.open_atlas; "
-            "import xarray; assert 'matplotlib' not in sys.modules; "
-            "assert hasattr(xarray.Dataset({}), 'tippe')")
+    code = (
+        "import sys, stability; assert 'xarray' not in sys.modules; stability.open_atlas; "
+        "import xarray; assert 'matplotlib' not in sys.modules; "
+        "assert hasattr(xarray.Dataset({}), 'tippe')"
+    )
     subprocess.run([sys.executable, "-c", code], check=True)

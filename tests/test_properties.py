@@ -42,15 +42,19 @@ def sliding_points(draw, alpha_v=True):
 
 
 def _det3(m):
-    return (m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1])
-            - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
-            + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0]))
+    return (
+        m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1])
+        - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
+        + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0])
+    )
 
 
 def _perm3(m):
-    return (m[0, 0] * (m[1, 1] * m[2, 2] + m[1, 2] * m[2, 1])
-            + m[0, 1] * (m[1, 0] * m[2, 2] + m[1, 2] * m[2, 0])
-            + m[0, 2] * (m[1, 0] * m[2, 1] + m[1, 1] * m[2, 0]))
+    return (
+        m[0, 0] * (m[1, 1] * m[2, 2] + m[1, 2] * m[2, 1])
+        + m[0, 1] * (m[1, 0] * m[2, 2] + m[1, 2] * m[2, 0])
+        + m[0, 2] * (m[1, 0] * m[2, 1] + m[1, 1] * m[2, 0])
+    )
 
 
 @settings(max_examples=200, deadline=None)
@@ -94,6 +98,7 @@ def test_real_form_has_spectrum_and_conjugate(p):
 
 # --- hard regions, mirror symmetry, continuity (issue 7) ----------------------------------------
 
+
 @st.composite
 def hard_points(draw):
     """The physical domain with its hard corners weighted in: A_G down to 1e-12, alpha_v from
@@ -121,8 +126,7 @@ def test_right_or_flagged_over_hard_regions(p, method):
 
 
 @settings(max_examples=60, deadline=None)
-@given(sliding_points(), st.sampled_from(["q", "fr_inv", "sigma", "alpha_v", "mu"]),
-       st.floats(-9.0, -3.0))
+@given(sliding_points(), st.sampled_from(["q", "fr_inv", "sigma", "alpha_v", "mu"]), st.floats(-9.0, -3.0))
 def test_spectrum_continuous_along_a_parameter(p, name, log_h):
     """Elsner's theorem (Bhatia, Matrix Analysis, VIII.1): the optimal matching distance of
     the spectra of n x n matrices B and B' is at most
@@ -134,8 +138,9 @@ def test_spectrum_continuous_along_a_parameter(p, name, log_h):
 
     p2 = dict(p)
     p2[name] = p[name] * (1 + 10**log_h) if p[name] != 0 else 10**log_h
-    if name in ("q", "mu", "sigma") and not (p2["mu"] * p2["q"] ** 2 < 1
-                                           and p2["sigma"] <= 2 * (1 - p2["mu"] * p2["q"] ** 2)):
+    if name in ("q", "mu", "sigma") and not (
+        p2["mu"] * p2["q"] ** 2 < 1 and p2["sigma"] <= 2 * (1 - p2["mu"] * p2["q"] ** 2)
+    ):
         p2[name] = p[name] * (1 - 10**log_h)
     mats = []
     for pp in (p, p2):
@@ -147,7 +152,7 @@ def test_spectrum_continuous_along_a_parameter(p, name, log_h):
     s2 = stability.eigenvalues("sliding", **p2)
     n1, n2 = np.linalg.norm(mats[0], 2), np.linalg.norm(mats[1], 2)
     elsner = 4 * 2 ** (-1 / 3) * (n1 + n2) ** (2 / 3) * np.linalg.norm(mats[0] - mats[1], 2) ** (1 / 3)
-    slack = 1e-12 * (n1 + n2)            # the two spectra's own round-off
+    slack = 1e-12 * (n1 + n2)  # the two spectra's own round-off
     best = min(np.max(np.abs(s1 - s2[list(perm)])) for perm in permutations(range(3)))
     assert best <= elsner + slack
 
@@ -161,11 +166,18 @@ def nonlinear_points(draw):
     az = draw(st.floats(0.0, 2 * np.pi))
     w = [draw(st.floats(-0.2, 0.2)), draw(st.floats(-0.2, 0.2)), draw(st.floats(0.5, 1.5))]
     v = [draw(st.floats(-0.2, 0.2)), draw(st.floats(-0.2, 0.2))]
-    return dict(q=q, sigma=sigma, mu=mu, fr_inv=draw(st.floats(0.05, 2.0)),
-                alpha_v=draw(st.floats(0.0, 2.0)), alpha_k=draw(st.sampled_from([0.0, 0.3])),
-                friction=draw(st.sampled_from(["isotropic", "componentwise"])),
-                omega=w, k=[np.sin(tilt) * np.cos(az), np.sin(tilt) * np.sin(az), np.cos(tilt)],
-                velocity=v)
+    return dict(
+        q=q,
+        sigma=sigma,
+        mu=mu,
+        fr_inv=draw(st.floats(0.05, 2.0)),
+        alpha_v=draw(st.floats(0.0, 2.0)),
+        alpha_k=draw(st.sampled_from([0.0, 0.3])),
+        friction=draw(st.sampled_from(["isotropic", "componentwise"])),
+        omega=w,
+        k=[np.sin(tilt) * np.cos(az), np.sin(tilt) * np.sin(az), np.cos(tilt)],
+        velocity=v,
+    )
 
 
 @settings(max_examples=15, deadline=None)

@@ -32,8 +32,9 @@ def readme_blocks(text: str) -> list[tuple[str, int, str, str | None]]:
             while not lines[j].startswith("```"):
                 j += 1
             marker = _SKIP.search(lines[i - 1]) if i > 0 else None
-            out.append((m.group(1), i + 1, "\n".join(lines[i + 1:j]),
-                        (marker.group("why") or "marked") if marker else None))
+            out.append(
+                (m.group(1), i + 1, "\n".join(lines[i + 1 : j]), (marker.group("why") or "marked") if marker else None)
+            )
             i = j
         i += 1
     return out
@@ -56,10 +57,9 @@ def test_readme_examples_run_in_sequence_twice(tmp_path):
     for rnd in (1, 2):
         for lang, line, body, _ in blocks:
             if lang == "python":
-                cmd = [sys.executable, "-P", "-c", body]   # -P: the temporary directory is not on sys.path
+                cmd = [sys.executable, "-P", "-c", body]  # -P: the temporary directory is not on sys.path
             else:
                 cmd = ["bash", "-e", "-c", body]
             done = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=900)
-            assert done.returncode == 0, (f"round {rnd}: README line {line} ({lang}) failed:\n"
-                                          f"{done.stderr[-2000:]}")
+            assert done.returncode == 0, f"round {rnd}: README line {line} ({lang}) failed:\n{done.stderr[-2000:]}"
     assert {"atlas.nc", "atlas_cli.nc", "atlas_cli.png", "map.png"} <= {p.name for p in tmp_path.iterdir()}

@@ -14,11 +14,17 @@ def test_accessor_registered_whatever_the_import_order(tmp_path):
     file written by xarray alone, opened by xarray alone, in a fresh interpreter, with
     ``import stability`` before or after ``import xarray``."""
     path = tmp_path / "run.nc"
-    _run("import numpy as np, xarray as xr; xr.Dataset({'a': ('x', np.zeros(2))}, "
-         f"attrs={{'tippe_stability_product': 'simulate'}}).to_netcdf({str(path)!r})", tmp_path)
+    _run(
+        "import numpy as np, xarray as xr; xr.Dataset({'a': ('x', np.zeros(2))}, "
+        f"attrs={{'tippe_stability_product': 'simulate'}}).to_netcdf({str(path)!r})",
+        tmp_path,
+    )
     for first, second in (("stability", "xarray as xr"), ("xarray as xr", "stability")):
-        out = _run(f"import {first}; import {second}; import xarray as xr; "
-                   f"print(xr.open_dataset({str(path)!r}).tippe.product)", tmp_path)
+        out = _run(
+            f"import {first}; import {second}; import xarray as xr; "
+            f"print(xr.open_dataset({str(path)!r}).tippe.product)",
+            tmp_path,
+        )
         assert out.strip() == "simulate"
 
 
@@ -48,8 +54,12 @@ def test_cli_mistyped_option_and_messages_in_cli_names(capsys):
     assert stop.value.code == 2
     err = capsys.readouterr().err
     assert "did you mean --alpha-v" in err and "usage: tippe final" in err and "arguments are required" not in err
-    assert main(["final", "--q", "0", "--sigma", "0.8", "--fr-inv", "0.3", "--alpha-v", "-1", "--omega=0,0,1",
-                 "--k=0,0,1"]) == 2
+    assert (
+        main(
+            ["final", "--q", "0", "--sigma", "0.8", "--fr-inv", "0.3", "--alpha-v", "-1", "--omega=0,0,1", "--k=0,0,1"]
+        )
+        == 2
+    )
     err = capsys.readouterr().err
     assert "--alpha-v = -1 is outside the physical domain: --alpha-v >= 0" in err and "alpha_v" not in err
     assert main(["neutral", "--x", "q", "--y", "sigma", "--alpha-v", "0.5"]) == 2
@@ -66,8 +76,9 @@ def test_atlas_plot_of_a_2d_grid_is_a_map():
     import stability
     from stability.commands.atlas import MAX_LINES, plot_figure
 
-    ds = stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 21), sigma=np.linspace(0.5, 1.5, MAX_LINES + 5),
-                         fr_inv=0.3, alpha_v=0.5)
+    ds = stability.atlas(
+        "sliding", q=np.linspace(-0.3, 0.3, 21), sigma=np.linspace(0.5, 1.5, MAX_LINES + 5), fr_inv=0.3, alpha_v=0.5
+    )
     fig = plot_figure(ds, "q")
     assert len(fig.axes[0].lines) < MAX_LINES and (fig.axes[0].images or fig.axes[0].collections)
     few = plot_figure(ds.isel(sigma=slice(0, 3)), "q")
@@ -79,12 +90,16 @@ def test_a_signal_after_the_last_check_is_reported_not_fatal(tmp_path):
     is reported as the others are (exit 130, one line: the flag was set before the hold), or,
     during the interpreter's shutdown (which restores the default handlers: exit 143 and no
     line before), waits behind the block and the process ends with its own status."""
-    code = ("import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
-            "os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); print(interrupts.hold_until_exit())")
+    code = (
+        "import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
+        "os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); print(interrupts.hold_until_exit())"
+    )
     assert _run(code, tmp_path).strip() == "True"
-    code = ("import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
-            "print(interrupts.hold_until_exit()); os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); "
-            "print('alive')")
+    code = (
+        "import os, signal, time; from stability import interrupts; interrupts.install('tippe x'); "
+        "print(interrupts.hold_until_exit()); os.kill(os.getpid(), signal.SIGTERM); time.sleep(0.05); "
+        "print('alive')"
+    )
     assert _run(code, tmp_path).split() == ["False", "alive"]
 
 

@@ -23,8 +23,17 @@ def _closed_form_error(ds, q, sigma, fr_inv, mu=2.28):
     return float(np.max(np.abs(j / ds.jellett.values[1:-1] - 1.0)))
 
 
-@pytest.mark.parametrize("q, sigma, fr_inv", [(-0.1, 1.0, 1e-12), (1e-12, 0.8, 0.3), (-0.1, 1.0, 1e16),
-                                              (-0.1, 1.0, 1e30), (-1e-40, 1.2, 0.3), (1e-60, 0.8, 0.3)])
+@pytest.mark.parametrize(
+    "q, sigma, fr_inv",
+    [
+        (-0.1, 1.0, 1e-12),
+        (1e-12, 0.8, 0.3),
+        (-0.1, 1.0, 1e16),
+        (-0.1, 1.0, 1e30),
+        (-1e-40, 1.2, 0.3),
+        (1e-60, 0.8, 0.3),
+    ],
+)
 @pytest.mark.parametrize("compiled", [True, False])
 def test_branch_points_on_the_closed_form_at_every_scale(q, sigma, fr_inv, compiled):
     """Every traced point (the first step included) lies on S3-S4's J(c) to 1e-12 relative:
@@ -49,14 +58,19 @@ def test_branch_scale_invariance():
     assert list(a.kind.values) == list(b.kind.values)
 
 
-@pytest.mark.parametrize("kw, name", [(dict(q=1e-300), "q"), (dict(q=-5e-324), "q"), (dict(sigma=1e-170), "sigma"),
-                                      (dict(fr_inv=1e120), "fr_inv")])
+@pytest.mark.parametrize(
+    "kw, name",
+    [(dict(q=1e-300), "q"), (dict(q=-5e-324), "q"), (dict(sigma=1e-170), "sigma"), (dict(fr_inv=1e120), "fr_inv")],
+)
 def test_scales_that_do_not_fit_a_double_are_refused(kw, name):
     """Beyond SCALE_RANGE a square underflows or overflows: every steady entry point refuses,
     naming the parameter (never a ZeroDivisionError, an empty branch or a missed state)."""
     p = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5) | kw
-    for call in (lambda: continuation.steady_branch(**p), lambda: stability.steady_states(**p),
-                 lambda: stability.final_state(**p, omega=[0.1, 0, 1], k=[0, 0, 1])):
+    for call in (
+        lambda: continuation.steady_branch(**p),
+        lambda: stability.steady_states(**p),
+        lambda: stability.final_state(**p, omega=[0.1, 0, 1], k=[0, 0, 1]),
+    ):
         with pytest.raises(DomainError, match=name):
             call()
     with pytest.raises(DomainError, match="parameter jellett"):
@@ -93,9 +107,9 @@ def test_branch_point_growth_rate_is_eq11s():
 
 
 def _atlas_file(tmp_path):
-    ds = stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 13), fr_inv=np.linspace(0.0, 1.0, 11), sigma=1.0,
-                         alpha_v=0.5)
-    return ds
+    return stability.atlas(
+        "sliding", q=np.linspace(-0.3, 0.3, 13), fr_inv=np.linspace(0.0, 1.0, 11), sigma=1.0, alpha_v=0.5
+    )
 
 
 def test_open_atlas_checks_its_flags_against_its_own_growth_rates(tmp_path):
@@ -158,8 +172,10 @@ def test_class_boundary_exactly_and_next_to_it():
         continuation.steady_branch(q=-0.1, sigma=sigma * (1 - 1e-10), fr_inv=0.3, alpha_v=0.5)
 
 
-@pytest.mark.parametrize("kw, name", [(dict(jellett_max=1e150), "jellett_max"), (dict(max_step=1e-300), "max_step"),
-                                      (dict(max_angle=0.0), "max_angle")])
+@pytest.mark.parametrize(
+    "kw, name",
+    [(dict(jellett_max=1e150), "jellett_max"), (dict(max_step=1e-300), "max_step"), (dict(max_angle=0.0), "max_angle")],
+)
 def test_branch_options_refused_by_their_own_names(kw, name):
     """Item 8: options outside their range are refused naming the option (not the engine's
     min_step, not 'SVD did not converge')."""
@@ -171,8 +187,7 @@ def test_a_stiff_deciding_run_says_its_cost_first(capsys):
     """Item 9: a deciding run that is stiff (alpha_v = 1e8: LSODA) announces on stderr, before
     it starts, its cost per time unit and the bound t_max puts on it; a non-stiff one says
     nothing. (The cost is a measured constant, docs/hard_cases.md: no timing here.)"""
-    end = stability.final_state(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=1e8, omega=[0.1, 0, 1], k=[0, 0, 1],
-                                t_max=50.0)
+    end = stability.final_state(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=1e8, omega=[0.1, 0, 1], k=[0, 0, 1], t_max=50.0)
     err = capsys.readouterr().err
     assert end.method == "simulation" and "stiff" in err and "t_max = 50" in err
     stability.final_state(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=0.5, omega=[0.1, 0, 1], k=[0, 0, 1], t_max=50.0)

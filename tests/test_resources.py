@@ -87,8 +87,11 @@ MEASURE = textwrap.dedent("""
 #: (kind, size, estimate of the package for that size)
 CASES = [
     ("simulate", 200_000, lambda n: resources.simulate_bytes("sliding", n)),
-    ("atlas", 1000 * 1000, lambda n: resources.atlas_bytes(get_model("sliding").n_modes, n, BLOCK_POINTS,
-                                                           domain_check=True)),
+    (
+        "atlas",
+        1000 * 1000,
+        lambda n: resources.atlas_bytes(get_model("sliding").n_modes, n, BLOCK_POINTS, domain_check=True),
+    ),
     ("atlas_masked", 1000 * 1000, lambda n: resources.atlas_bytes(get_model("sliding").n_modes, n, BLOCK_POINTS)),
     ("threshold", 200_000, lambda n: resources.THRESHOLD_BYTES_PER_SAMPLE * n),
     ("start_grid", 700 * 700, lambda n: resources.START_GRID_BYTES_PER_POINT * n),
@@ -99,8 +102,7 @@ CASES = [
 @pytest.mark.skipif(not os.path.exists("/proc/self/clear_refs"), reason="Linux peak-RSS reset")
 @pytest.mark.parametrize("kind,size,estimate", CASES, ids=[c[0] for c in CASES])
 def test_estimate_matches_the_measured_peak(kind, size, estimate):
-    r = subprocess.run([sys.executable, "-c", MEASURE, kind, str(size)], capture_output=True, text=True,
-                       timeout=600)
+    r = subprocess.run([sys.executable, "-c", MEASURE, kind, str(size)], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr[-3000:]
     grown = json.loads(r.stdout.strip().splitlines()[-1])["grown"]
     ratio = estimate(size) / grown
@@ -109,6 +111,7 @@ def test_estimate_matches_the_measured_peak(kind, size, estimate):
 
 
 # --- the limit and the refusals ------------------------------------------------------------------
+
 
 @pytest.mark.skipif(not os.path.exists("/proc/meminfo"), reason="Linux /proc/meminfo")
 def test_limit_is_a_fraction_of_mem_available(monkeypatch):
@@ -122,8 +125,7 @@ def test_limit_is_a_fraction_of_mem_available(monkeypatch):
     assert "80%" in source
 
 
-@pytest.mark.parametrize("text,value", [("2e9", 2e9), ("500M", 500e6), ("8G", 8e9), ("1GiB", 2.0**30),
-                                        ("123", 123.0)])
+@pytest.mark.parametrize("text,value", [("2e9", 2e9), ("500M", 500e6), ("8G", 8e9), ("1GiB", 2.0**30), ("123", 123.0)])
 def test_env_limit_syntax(monkeypatch, text, value):
     monkeypatch.setenv(resources.ENV_LIMIT, text)
     assert resources.memory_limit() == (value, f"the limit {resources.ENV_LIMIT}")
@@ -138,23 +140,45 @@ def test_env_limit_garbage_is_named(monkeypatch):
 LIMIT = 50e6
 
 
-@pytest.mark.parametrize("call,fragments", [
-    (lambda: stability.simulate("sliding", t_end=2e5, dt=0.1, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1,
-                                fr_inv=0.3, sigma=1.5, alpha_v=0.5),
-     ["2000001 output times", "t_end", "dt"]),
-    (lambda: stability.atlas("sliding", q=np.linspace(-0.3, 0.3, 3000), sigma=np.linspace(1.0, 1.6, 3000),
-                             fr_inv=0.3, alpha_v=0.5),
-     ["9000000", "chunk"]),
-    (lambda: stability.thresholds("sigma", q=-0.1, fr_inv=0.3, alpha_v=0.5, samples=10**6),
-     ["1000000 samples", "samples"]),
-    (lambda: neutral_curve("sliding", "q", "sigma", fixed={"fr_inv": 0.3, "alpha_v": 0.5},
-                                     grid=(2000, 2000)),
-     ["2000 x 2000", "grid"]),
-    (lambda: stability.class_atlas(q=np.linspace(-0.3, 0.3, 2000), sigma=np.linspace(1.0, 1.6, 2000)),
-     ["4000000 grid points"]),
-    (lambda: parse_values("0:1:100000000", name="q"),
-     ["q = '0:1:100000000' (100000000 values)", "fewer points"]),
-], ids=["simulate", "atlas", "thresholds", "neutral_curve", "class_atlas", "parse_values"])
+@pytest.mark.parametrize(
+    "call,fragments",
+    [
+        (
+            lambda: stability.simulate(
+                "sliding",
+                t_end=2e5,
+                dt=0.1,
+                omega=[0.02, 0, 1],
+                k=[0.05, 0, 1],
+                q=-0.1,
+                fr_inv=0.3,
+                sigma=1.5,
+                alpha_v=0.5,
+            ),
+            ["2000001 output times", "t_end", "dt"],
+        ),
+        (
+            lambda: stability.atlas(
+                "sliding", q=np.linspace(-0.3, 0.3, 3000), sigma=np.linspace(1.0, 1.6, 3000), fr_inv=0.3, alpha_v=0.5
+            ),
+            ["9000000", "chunk"],
+        ),
+        (
+            lambda: stability.thresholds("sigma", q=-0.1, fr_inv=0.3, alpha_v=0.5, samples=10**6),
+            ["1000000 samples", "samples"],
+        ),
+        (
+            lambda: neutral_curve("sliding", "q", "sigma", fixed={"fr_inv": 0.3, "alpha_v": 0.5}, grid=(2000, 2000)),
+            ["2000 x 2000", "grid"],
+        ),
+        (
+            lambda: stability.class_atlas(q=np.linspace(-0.3, 0.3, 2000), sigma=np.linspace(1.0, 1.6, 2000)),
+            ["4000000 grid points"],
+        ),
+        (lambda: parse_values("0:1:100000000", name="q"), ["q = '0:1:100000000' (100000000 values)", "fewer points"]),
+    ],
+    ids=["simulate", "atlas", "thresholds", "neutral_curve", "class_atlas", "parse_values"],
+)
 def test_requests_above_the_limit_are_refused_with_estimate_and_way_out(monkeypatch, call, fragments):
     """Each entry point refuses at once (before allocating: measured below for simulate) with the
     estimate, the limit's source and the parameter."""
@@ -201,8 +225,27 @@ def test_refusal_happens_before_allocating():
 
 def test_cli_refusal_exit_2_one_line(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv(resources.ENV_LIMIT, "100M")
-    status = main(["simulate", "--t-end", "1e6", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1",
-                   "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5", "-o", str(tmp_path / "s.nc")])
+    status = main(
+        [
+            "simulate",
+            "--t-end",
+            "1e6",
+            "--omega",
+            "0.02,0,1",
+            "--k",
+            "0.05,0,1",
+            "--q",
+            "-0.1",
+            "--fr-inv",
+            "0.3",
+            "--sigma",
+            "1.5",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(tmp_path / "s.nc"),
+        ]
+    )
     err = capsys.readouterr().err
     assert status == 2
     assert len(err.strip().splitlines()) == 1 and "would need about" in err and "dt" in err, err
@@ -211,14 +254,34 @@ def test_cli_refusal_exit_2_one_line(tmp_path, monkeypatch, capsys):
 
 # --- issue 15 item 4: tippe simulate says what it wrote and warns before a large output -----------
 
+
 def test_simulate_says_what_it_wrote(tmp_path, capsys):
     """The report against the file itself: its size on disk, its first and last time, its
     number of output times."""
     import xarray as xr
 
     out = tmp_path / "s.nc"
-    status = main(["simulate", "--t-end", "5", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1",
-                   "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5", "-o", str(out)])
+    status = main(
+        [
+            "simulate",
+            "--t-end",
+            "5",
+            "--omega",
+            "0.02,0,1",
+            "--k",
+            "0.05,0,1",
+            "--q",
+            "-0.1",
+            "--fr-inv",
+            "0.3",
+            "--sigma",
+            "1.5",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(out),
+        ]
+    )
     assert status == 0
     text = capsys.readouterr()
     assert text.err == ""
@@ -243,9 +306,29 @@ def test_simulate_warns_before_a_large_output(tmp_path, monkeypatch, capsys):
         raise RuntimeError("not run")
 
     monkeypatch.setattr(runs, "simulate", boom)
-    status = main(["simulate", "--t-end", "100", "--dt", "0.1", "--omega", "0.02,0,1", "--k", "0.05,0,1",
-                   "--q", "-0.1", "--fr-inv", "0.3", "--sigma", "1.5", "--alpha-v", "0.5",
-                   "-o", str(tmp_path / "s.nc")])
+    status = main(
+        [
+            "simulate",
+            "--t-end",
+            "100",
+            "--dt",
+            "0.1",
+            "--omega",
+            "0.02,0,1",
+            "--k",
+            "0.05,0,1",
+            "--q",
+            "-0.1",
+            "--fr-inv",
+            "0.3",
+            "--sigma",
+            "1.5",
+            "--alpha-v",
+            "0.5",
+            "-o",
+            str(tmp_path / "s.nc"),
+        ]
+    )
     err = capsys.readouterr().err
     assert status == 1
     assert "warning: the output will be about" in err and "1001 output times" in err

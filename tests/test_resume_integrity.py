@@ -15,15 +15,16 @@ import shutil
 
 import numpy as np
 import pytest
+from conftest import assert_same_atlas
 
 import stability
 import stability.grids.chunked as dist
 from stability.errors import ChunkError, ResumeError
 from stability.grids.chunked import parts_directory, write_atlas
-from conftest import assert_same_atlas
 
-GRID = dict(q=np.linspace(-0.6, 0.6, 13), fr_inv=[0.0, 0.3], sigma=np.linspace(0.2, 1.2, 4), alpha_v=0.5,
-            mask_unphysical=True)
+GRID = dict(
+    q=np.linspace(-0.6, 0.6, 13), fr_inv=[0.0, 0.3], sigma=np.linspace(0.2, 1.2, 4), alpha_v=0.5, mask_unphysical=True
+)
 CHUNKS = {"q": 4, "sigma": 2}  # 4 x 1 x 2 = 8 chunks
 
 
@@ -117,8 +118,15 @@ def _damage(kind: str, store, tmp_path, monkeypatch):
     raise AssertionError(kind)
 
 
-REFUSED = ["wrong shape (broadcastable)", "wrong dtype", "flag out of range", "NaN inconsistent",
-           "edited by one ulp", "two files swapped", "copied from another store"]
+REFUSED = [
+    "wrong shape (broadcastable)",
+    "wrong dtype",
+    "flag out of range",
+    "NaN inconsistent",
+    "edited by one ulp",
+    "two files swapped",
+    "copied from another store",
+]
 RECOMPUTED = ["journal line missing", "truncated file"]
 
 
@@ -174,8 +182,9 @@ def test_a_second_run_on_the_same_store_fails_at_once(tmp_path, monkeypatch):
     out = tmp_path / "a.nc"
     _interrupted_store(out, monkeypatch)
     ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
-    holder = dist._Store(parts_directory(out), dist._identity(ds, CHUNKS | {"fr_inv": 2}), ["q", "fr_inv", "sigma"],
-                         print)
+    holder = dist._Store(
+        parts_directory(out), dist._identity(ds, CHUNKS | {"fr_inv": 2}), ["q", "fr_inv", "sigma"], print
+    )
     holder.open()
     try:
         with pytest.raises(ResumeError, match=rf"another run \(pid {os.getpid()}\) is using this chunk store"):
@@ -196,6 +205,8 @@ def test_a_wrongly_computed_block_is_never_broadcast(tmp_path, monkeypatch):
         return {k: v[(slice(0, 1),) * v.ndim] for k, v in block.items()}
 
     monkeypatch.setattr(dist, "_compute_block", small)
-    with pytest.raises(ChunkError, match=r"has growth_rate of shape \(1, 1, 1, 1\); this chunk of the grid has shape \(4, 2, 2, 3\)"):
+    with pytest.raises(
+        ChunkError, match=r"has growth_rate of shape \(1, 1, 1, 1\); this chunk of the grid has shape \(4, 2, 2, 3\)"
+    ):
         write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []

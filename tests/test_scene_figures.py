@@ -13,9 +13,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from stability.errors import RecipeError
 from stability.plotting import style
 from stability.plotting.recipe_figures import recipe_figure
-from stability.errors import RecipeError
 from stability.recipes import compute, load_recipe
 
 ATLASES = Path(__file__).resolve().parents[1] / "atlases"

@@ -29,8 +29,18 @@ ATLASES = Path(__file__).resolve().parents[1] / "atlases"
 
 #: the issue's top: 15 g, R = 15 mm, G 3 mm below O, A_G = 1.3e-6, C = 1.5e-6 kg m^2
 M, R, D, AG, C, G = 0.015, 0.015, -0.003, 1.3e-6, 1.5e-6, 9.80665
-SI = ["--mass", "0.015", "--radius", "0.015", "--com-offset", "-0.003", "--inertia-transverse", "1.3e-6",
-      "--inertia-axial", "1.5e-6"]
+SI = [
+    "--mass",
+    "0.015",
+    "--radius",
+    "0.015",
+    "--com-offset",
+    "-0.003",
+    "--inertia-transverse",
+    "1.3e-6",
+    "--inertia-axial",
+    "1.5e-6",
+]
 REV = 2.0 * math.pi  # rad/s per rev/s
 
 
@@ -62,8 +72,9 @@ def one_line_error(capsys, argv):
 
 # ---------------------------------------------------------------- the top in a table / file
 def test_from_mapping_gives_eq3():
-    top = stability.Top.from_mapping({"mass": M, "radius": R, "com_offset": D, "inertia_transverse": AG,
-                                      "inertia_axial": C, "mu_v": 0.01})
+    top = stability.Top.from_mapping(
+        {"mass": M, "radius": R, "com_offset": D, "inertia_transverse": AG, "inertia_axial": C, "mu_v": 0.01}
+    )
     ref = hand(15 * REV, mu_v=0.01)
     for k in ("q", "mu", "sigma"):
         assert getattr(top, k) == pytest.approx(ref[k], rel=1e-14)
@@ -75,19 +86,24 @@ def test_from_mapping_gives_eq3():
 
 def test_from_toml(tmp_path):
     f = tmp_path / "mytop.toml"
-    f.write_text("[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\n"
-                 "inertia_axial = 1.5e-6\ng = 9.81\n")
+    f.write_text(
+        "[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\n"
+        "inertia_axial = 1.5e-6\ng = 9.81\n"
+    )
     top = stability.Top.from_toml(f)
     assert (top.mass, top.radius, top.com_offset, top.g) == (M, R, D, 9.81)
 
 
-@pytest.mark.parametrize("table, fragment", [
-    ({"mass": M}, "missing radius, com_offset, inertia_transverse, inertia_axial"),
-    ({"preset": "table1", "mass": M}, "preset = 'table1' and mass conflict"),
-    ({"preset": "table2"}, "preset = 'table2' is not one of table1, table1_measured"),
-    ({"preset": "table1", "weight": 1.0}, "unknown keys weight"),
-    ({"preset": "table1", "mu_v": "0.01"}, "mu_v = '0.01' is not a number"),
-])
+@pytest.mark.parametrize(
+    "table, fragment",
+    [
+        ({"mass": M}, "missing radius, com_offset, inertia_transverse, inertia_axial"),
+        ({"preset": "table1", "mass": M}, "preset = 'table1' and mass conflict"),
+        ({"preset": "table2"}, "preset = 'table2' is not one of table1, table1_measured"),
+        ({"preset": "table1", "weight": 1.0}, "unknown keys weight"),
+        ({"preset": "table1", "mu_v": "0.01"}, "mu_v = '0.01' is not a number"),
+    ],
+)
 def test_from_mapping_refusals(table, fragment):
     with pytest.raises(InputError, match=fragment):
         stability.Top.from_mapping(table)
@@ -118,8 +134,31 @@ def test_simulate_si_with_mu_v(tmp_path, capsys):
     """alpha_v from mu_v and alpha_k from mu_K (eq. 7), fr_inv from the spin in rpm, land in the
     run's attributes."""
     out = tmp_path / "run.nc"
-    assert main(["simulate", *SI, "--mu-v", "0.02", "--mu-k", "0.3", "--spin", "900", "--unit", "rpm", "--t-end", "1",
-                 "--omega", "0,0,1", "--k", "0.01,0,1", "-o", str(out)]) == 0
+    assert (
+        main(
+            [
+                "simulate",
+                *SI,
+                "--mu-v",
+                "0.02",
+                "--mu-k",
+                "0.3",
+                "--spin",
+                "900",
+                "--unit",
+                "rpm",
+                "--t-end",
+                "1",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0.01,0,1",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     capsys.readouterr()
     ref = hand(900 * 2 * math.pi / 60, mu_v=0.02)
     ref["alpha_k"] = ref["mu"] * ref["fr_inv"] * 0.3
@@ -142,8 +181,14 @@ def test_atlas_spin_grid_is_a_spin_coordinate(tmp_path, capsys):
     ref = hand()
     for k in ("q", "sigma", "mu"):
         assert float(ds[k]) == pytest.approx(ref[k], rel=1e-14)
-    nd = stability.atlas("sliding", q=ref["q"], sigma=ref["sigma"], mu=ref["mu"],
-                         fr_inv=[hand(s * REV)["fr_inv"] for s in spins], alpha_v=0.5)
+    nd = stability.atlas(
+        "sliding",
+        q=ref["q"],
+        sigma=ref["sigma"],
+        mu=ref["mu"],
+        fr_inv=[hand(s * REV)["fr_inv"] for s in spins],
+        alpha_v=0.5,
+    )
     np.testing.assert_allclose(ds.max_growth_rate.values, nd.max_growth_rate.values, rtol=1e-12, atol=1e-15)
 
 
@@ -154,31 +199,84 @@ def test_validate_and_final_take_a_preset(capsys):
     text = capsys.readouterr().out
     r = 0.6366 * 0.0254
     for s in (10, 15):
-        assert f"fr_inv = {G / ((s * REV)**2 * r):.6g}" in text
+        assert f"fr_inv = {G / ((s * REV) ** 2 * r):.6g}" in text
     assert "q = -0.1" in text
-    assert main(["final", "--preset", "table1", "--spin", "15", "--unit", "rev/s", "--alpha-v", "0.5",
-                 "--omega", "0,0,1", "--k", "0.0174524,0,0.9998477", "--no-simulation"]) == 0
+    assert (
+        main(
+            [
+                "final",
+                "--preset",
+                "table1",
+                "--spin",
+                "15",
+                "--unit",
+                "rev/s",
+                "--alpha-v",
+                "0.5",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0.0174524,0,0.9998477",
+                "--no-simulation",
+            ]
+        )
+        == 0
+    )
     si = capsys.readouterr().out
-    nd = dict(q=-0.1, sigma=1.0, mu=2.28, fr_inv=G / ((15 * REV)**2 * r))
-    assert main(["final", *nd_flags(nd), "--alpha-v", "0.5", "--omega", "0,0,1", "--k", "0.0174524,0,0.9998477",
-                 "--no-simulation"]) == 0
+    nd = dict(q=-0.1, sigma=1.0, mu=2.28, fr_inv=G / ((15 * REV) ** 2 * r))
+    assert (
+        main(
+            [
+                "final",
+                *nd_flags(nd),
+                "--alpha-v",
+                "0.5",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0.0174524,0,0.9998477",
+                "--no-simulation",
+            ]
+        )
+        == 0
+    )
     assert capsys.readouterr().out.splitlines()[0] == si.splitlines()[0]
 
 
 def test_neutral_takes_a_top_for_the_fixed_parameters(capsys):
     """The top fixes what is not traced: tracing (q, sigma), fr_inv and mu come from the top."""
-    assert main(["neutral", *SI, "--spin", "15", "--unit", "rev/s", "--alpha-v", "0.5", "--x", "q", "--y", "sigma"]) == 0
+    assert (
+        main(["neutral", *SI, "--spin", "15", "--unit", "rev/s", "--alpha-v", "0.5", "--x", "q", "--y", "sigma"]) == 0
+    )
     si = capsys.readouterr().out
     ref = hand(15 * REV)
-    assert main(["neutral", "--fr-inv", repr(ref["fr_inv"]), "--mu", repr(ref["mu"]), "--alpha-v", "0.5",
-                 "--x", "q", "--y", "sigma"]) == 0
+    assert (
+        main(
+            [
+                "neutral",
+                "--fr-inv",
+                repr(ref["fr_inv"]),
+                "--mu",
+                repr(ref["mu"]),
+                "--alpha-v",
+                "0.5",
+                "--x",
+                "q",
+                "--y",
+                "sigma",
+            ]
+        )
+        == 0
+    )
     assert capsys.readouterr().out == si
 
 
 def test_threshold_spin_reads_a_top_file(tmp_path, capsys):
     f = tmp_path / "mytop.toml"
-    f.write_text("[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\n"
-                 "inertia_axial = 1.5e-6\n")
+    f.write_text(
+        "[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\n"
+        "inertia_axial = 1.5e-6\n"
+    )
     assert main(["threshold", "spin", "--top", str(f)]) == 0
     a = capsys.readouterr().out
     assert main(["threshold", "spin", *SI]) == 0
@@ -186,27 +284,74 @@ def test_threshold_spin_reads_a_top_file(tmp_path, capsys):
 
 
 # ---------------------------------------------------------------- the CLI's one-line refusals
-@pytest.mark.parametrize("argv, fragments", [
-    (["steady", *SI, "--spin", "15", "--alpha-v", "0.5", "--q", "-0.1"], ["--mass", "--q -0.1", "conflict"]),
-    (["steady", "--preset", "table1", "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0.3"],
-     ["--preset table1", "--fr-inv 0.3", "conflict"]),
-    (["steady", *SI, "--mu-v", "0.02", "--spin", "15", "--alpha-v", "0.5"], ["--mu-v 0.02", "--alpha-v 0.5"]),
-    (["steady", *SI, "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0"], ["--mass", "--fr-inv 0.0", "conflict"]),
-    (["simulate", *SI, "--mu-k", "0.3", "--spin", "15", "--alpha-v", "0.5", "--alpha-k", "0", "--t-end", "1",
-      "--omega", "0,0,1", "--k", "0,0,1", "-o", "x.nc"], ["--mass", "--alpha-k 0.0", "conflict"]),
-    (["steady", *SI, "--alpha-v", "0.5"], ["--mass", "needs --spin"]),
-    (["steady", "--q", "-0.1", "--sigma", "1", "--alpha-v", "0.5", "--spin", "15"], ["--spin 15 needs a top"]),
-    (["steady", "--mass", "0.015", "--spin", "15", "--alpha-v", "0.5"], ["--mass given without", "--radius"]),
-    (["steady", "--preset", "table1", *SI, "--spin", "15", "--alpha-v", "0.5"], ["--preset table1 and --mass"]),
-    (["steady", *SI, "--spin", "5:20:3", "--alpha-v", "0.5"], ["--spin = '5:20:3' must be one number"]),
-    (["steady", "--q", "-0.1", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5", "--mu-v", "0.1"],
-     ["--mu-v", "describe a real top"]),
-    (["steady", *SI, "--spin", "15", "--unit", "rps", "--alpha-v", "0.5"], ["--unit", "rps"]),
-    (["steady", *SI, "--unit", "rev/s", "--alpha-v", "0.5"], ["--unit rev/s is the unit of --spin"]),
-    (["atlas", *SI, "--mu-v", "0.02", "--spin", "5:20:4", "-o", "x.nc"], ["--spin 5:20:4", "--mu-v 0.02"]),
-    (["simulate", *SI, "--spin", "15", "--alpha-v", "0.5", "--sigma", "1", "--t-end", "1", "--omega", "0,0,1",
-      "--k", "0,0,1", "-o", "x.nc"], ["--mass", "--sigma 1.0", "conflict"]),
-])
+@pytest.mark.parametrize(
+    "argv, fragments",
+    [
+        (["steady", *SI, "--spin", "15", "--alpha-v", "0.5", "--q", "-0.1"], ["--mass", "--q -0.1", "conflict"]),
+        (
+            ["steady", "--preset", "table1", "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0.3"],
+            ["--preset table1", "--fr-inv 0.3", "conflict"],
+        ),
+        (["steady", *SI, "--mu-v", "0.02", "--spin", "15", "--alpha-v", "0.5"], ["--mu-v 0.02", "--alpha-v 0.5"]),
+        (["steady", *SI, "--spin", "15", "--alpha-v", "0.5", "--fr-inv", "0"], ["--mass", "--fr-inv 0.0", "conflict"]),
+        (
+            [
+                "simulate",
+                *SI,
+                "--mu-k",
+                "0.3",
+                "--spin",
+                "15",
+                "--alpha-v",
+                "0.5",
+                "--alpha-k",
+                "0",
+                "--t-end",
+                "1",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0,0,1",
+                "-o",
+                "x.nc",
+            ],
+            ["--mass", "--alpha-k 0.0", "conflict"],
+        ),
+        (["steady", *SI, "--alpha-v", "0.5"], ["--mass", "needs --spin"]),
+        (["steady", "--q", "-0.1", "--sigma", "1", "--alpha-v", "0.5", "--spin", "15"], ["--spin 15 needs a top"]),
+        (["steady", "--mass", "0.015", "--spin", "15", "--alpha-v", "0.5"], ["--mass given without", "--radius"]),
+        (["steady", "--preset", "table1", *SI, "--spin", "15", "--alpha-v", "0.5"], ["--preset table1 and --mass"]),
+        (["steady", *SI, "--spin", "5:20:3", "--alpha-v", "0.5"], ["--spin = '5:20:3' must be one number"]),
+        (
+            ["steady", "--q", "-0.1", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5", "--mu-v", "0.1"],
+            ["--mu-v", "describe a real top"],
+        ),
+        (["steady", *SI, "--spin", "15", "--unit", "rps", "--alpha-v", "0.5"], ["--unit", "rps"]),
+        (["steady", *SI, "--unit", "rev/s", "--alpha-v", "0.5"], ["--unit rev/s is the unit of --spin"]),
+        (["atlas", *SI, "--mu-v", "0.02", "--spin", "5:20:4", "-o", "x.nc"], ["--spin 5:20:4", "--mu-v 0.02"]),
+        (
+            [
+                "simulate",
+                *SI,
+                "--spin",
+                "15",
+                "--alpha-v",
+                "0.5",
+                "--sigma",
+                "1",
+                "--t-end",
+                "1",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0,0,1",
+                "-o",
+                "x.nc",
+            ],
+            ["--mass", "--sigma 1.0", "conflict"],
+        ),
+    ],
+)
 def test_cli_refusals_are_one_line(argv, fragments, capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     err = one_line_error(capsys, argv)
@@ -220,7 +365,7 @@ def test_cli_top_file_errors(tmp_path, capsys):
     err = one_line_error(capsys, ["steady", "--top", str(f), "--spin", "15", "--alpha-v", "0.5"])
     assert "bad.toml [top]: missing com_offset" in err
     good = tmp_path / "good.toml"
-    good.write_text("[top]\npreset = \"table1\"\n")
+    good.write_text('[top]\npreset = "table1"\n')
     err = one_line_error(capsys, ["steady", "--top", str(good), "--mass", "0.015", "--spin", "15", "--alpha-v", "0.5"])
     assert f"--top {good} and --mass conflict" in err
 
@@ -232,13 +377,17 @@ def _recipe(tmp_path, text, name="mine.toml"):
     return p
 
 
-TOP_TABLE = ("[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\n"
-             "inertia_axial = 1.5e-6\n")
+TOP_TABLE = (
+    "[top]\nmass = 0.015\nradius = 0.015\ncom_offset = -0.003\ninertia_transverse = 1.3e-6\ninertia_axial = 1.5e-6\n"
+)
 
 
 def test_recipe_with_top_and_spin_grid(tmp_path):
-    p = _recipe(tmp_path, 'title = "growth rate of my top against its spin"\nkind = "lines"\nx = "fr_inv"\n'
-                          'spin = "5:20:7"\nunit = "rev/s"\n[grid]\nalpha_v = 0.5\n' + TOP_TABLE)
+    p = _recipe(
+        tmp_path,
+        'title = "growth rate of my top against its spin"\nkind = "lines"\nx = "fr_inv"\n'
+        'spin = "5:20:7"\nunit = "rev/s"\n[grid]\nalpha_v = 0.5\n' + TOP_TABLE,
+    )
     r = load_recipe(p)
     spins = np.linspace(5, 20, 7)
     ref = hand()
@@ -250,17 +399,28 @@ def test_recipe_with_top_and_spin_grid(tmp_path):
     assert ds.attrs["mass_kg"] == M
 
 
-@pytest.mark.parametrize("text, fragment", [
-    ('kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\n[grid]\nalpha_v = 0.5\nq = -0.1\n' + TOP_TABLE,
-     r"\[top\] and grid.q conflict"),
-    ('kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\n[grid]\nalpha_v = 0.5\nfr_inv = 0.1\n' + TOP_TABLE,
-     r"\[top\] and grid.fr_inv conflict"),
-    ('kind = "lines"\nx = "q"\nspin = 10\n[grid]\nq = "-0.3:0.3:5"\nsigma = 1\nfr_inv = 0.1\n',
-     r"spin = 10 needs a \[top\]"),
-    ('kind = "bifurcation"\npreset = "table1"\n' + TOP_TABLE, r"preset = 'table1' and \[top\] conflict"),
-    ('kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\nunit = "rev/s"\n[grid]\n' + TOP_TABLE + "mu_v = 0.02\n",
-     "alpha_v = mu mu_v g / Omega would change along the spin grid"),
-])
+@pytest.mark.parametrize(
+    "text, fragment",
+    [
+        (
+            'kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\n[grid]\nalpha_v = 0.5\nq = -0.1\n' + TOP_TABLE,
+            r"\[top\] and grid.q conflict",
+        ),
+        (
+            'kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\n[grid]\nalpha_v = 0.5\nfr_inv = 0.1\n' + TOP_TABLE,
+            r"\[top\] and grid.fr_inv conflict",
+        ),
+        (
+            'kind = "lines"\nx = "q"\nspin = 10\n[grid]\nq = "-0.3:0.3:5"\nsigma = 1\nfr_inv = 0.1\n',
+            r"spin = 10 needs a \[top\]",
+        ),
+        ('kind = "bifurcation"\npreset = "table1"\n' + TOP_TABLE, r"preset = 'table1' and \[top\] conflict"),
+        (
+            'kind = "lines"\nx = "fr_inv"\nspin = "5:20:7"\nunit = "rev/s"\n[grid]\n' + TOP_TABLE + "mu_v = 0.02\n",
+            "alpha_v = mu mu_v g / Omega would change along the spin grid",
+        ),
+    ],
+)
 def test_recipe_top_refusals(tmp_path, text, fragment):
     with pytest.raises(RecipeError, match=fragment):
         load_recipe(_recipe(tmp_path, 'title = "t"\n' + text))
@@ -276,6 +436,7 @@ def test_existing_recipes_load_unchanged():
 # ---------------------------------------------------------------- the bifurcation diagram of any top
 class _Launch:
     """The duck type plot_bifurcation takes (the launch helper's result has these attributes)."""
+
     spin = 15 * REV
     end_tilt = 179.0
 
@@ -290,9 +451,9 @@ def test_bifurcation_of_any_top_in_rev_per_s(diagram):
     """The upright line is solid up to the critical spin and dashed above it, at the critical spin
     of stability.critical_spin converted to rev/s here (rad/s / 2 pi); the reference is the linear
     threshold (a different method from the branch's continuation), hence 1e-6 relative."""
-    import matplotlib
+    import matplotlib as mpl
 
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     from stability.plotting import plot_bifurcation
 
     top, d = diagram
@@ -319,9 +480,9 @@ def test_bifurcation_launch_with_tilt_is_at_its_equivalent_spin(diagram):
     """A launch with a ``tilt`` is drawn at its equivalent upright spin n (cos t + q)/(1 + q)
     (J = C n R (cos t + q), docstring of _mark_launch), here checked against J computed from
     L = C n k and the lever G - Q with vectors."""
-    import matplotlib
+    import matplotlib as mpl
 
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     from stability.plotting import plot_bifurcation
 
     _, d = diagram
@@ -333,22 +494,25 @@ def test_bifurcation_launch_with_tilt_is_at_its_equivalent_spin(diagram):
     t = math.radians(10.0)
     k = np.array([math.sin(t), 0, math.cos(t)])
     q = D / R
-    j = C * 15 * np.dot(k, np.array([0, 0, R]) + q * R * k)   # L . (G - Q)
+    j = C * 15 * np.dot(k, np.array([0, 0, R]) + q * R * k)  # L . (G - Q)
     j_up = C * np.dot([0, 0, 1], np.array([0, 0, R]) + q * R * np.array([0, 0, 1]))  # per rev/s, upright
-    x = [ln for ln in ax.get_lines() if ln.get_marker() == "P"][0].get_xdata()[0]
+    x = next(ln for ln in ax.get_lines() if ln.get_marker() == "P").get_xdata()[0]
     assert x == pytest.approx(j / j_up, rel=1e-13)
 
 
 def test_bifurcation_recipe_with_top(tmp_path):
-    p = _recipe(tmp_path, 'title = "my top"\nkind = "bifurcation"\nunit = "rev/s"\n[grid]\nalpha_v = 0.5\n'
-                + TOP_TABLE, name="bif.toml")
+    p = _recipe(
+        tmp_path,
+        'title = "my top"\nkind = "bifurcation"\nunit = "rev/s"\n[grid]\nalpha_v = 0.5\n' + TOP_TABLE,
+        name="bif.toml",
+    )
     r = load_recipe(p)
     assert r.unit == "rev/s" and r.top.mass == M
+    import matplotlib as mpl
+
     from stability.plotting.recipe_figures import recipe_figure
 
-    import matplotlib
-
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     datasets = compute(r)
     fig, axes = recipe_figure(r, datasets)
     assert "rev/s" in axes[0].get_xlabel()

@@ -21,9 +21,9 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
+from conftest import mp_sliding_eigenvalues
 
 import stability
-from conftest import mp_sliding_eigenvalues
 
 mp.mp.dps = 50
 RTOL = 1e-12
@@ -159,8 +159,9 @@ def test_rolling_is_first_principles_and_the_stiff_limit_of_sliding(domain_point
     by O(1/alpha_v) (the third runs off to -alpha_v A_C / (mu A_G))."""
     p = domain_points(200, seed=29, alpha_v=False)
     s = stability.eigenvalues("rolling", **p)
-    worst = max(_match(s[j], _rolling_reference(*(p[k][j] for k in ("q", "fr_inv", "sigma", "mu"))))
-                for j in range(200))
+    worst = max(
+        _match(s[j], _rolling_reference(*(p[k][j] for k in ("q", "fr_inv", "sigma", "mu")))) for j in range(200)
+    )
     assert worst <= RTOL, worst
     for j in range(20):
         pt = [p[k][j] for k in ("q", "fr_inv", "sigma", "mu")]
@@ -172,5 +173,7 @@ def test_rolling_is_first_principles_and_the_stiff_limit_of_sliding(domain_point
     # rolls with s = 0 and i from first principles, s = 0 and i / (1 + mu) as printed
     mu = 2.28
     assert _match(stability.eigenvalues("rolling", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu), [mp.mpc(0, 1), 0]) < 1e-14
-    assert _match(stability.eigenvalues("rolling_eq8", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu),
-                  [mp.mpc(0, 1) / (1 + mu), 0]) < 1e-14
+    assert (
+        _match(stability.eigenvalues("rolling_eq8", q=0.0, fr_inv=0.4, sigma=1.0, mu=mu), [mp.mpc(0, 1) / (1 + mu), 0])
+        < 1e-14
+    )

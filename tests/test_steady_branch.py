@@ -30,8 +30,14 @@ MU = 2.28
 #: (q, sigma, fr_inv): upright -> inverted (the paper's top); upright -> J_max (hangs);
 #: inverted -> J_max with no fold (q > 0); inverted -> fold -> J_max (two never_inverts tops);
 #: upright -> fold -> inverted (hysteresis type)
-CASES = [(-0.1, 1.0, 0.3), (-0.3, 0.5, 0.1), (0.2, 0.7, 0.3), (-0.2, 1.3, 0.5), (-0.15, 1.12, 0.3),
-         (-0.295, 1.107, 1.0 / MU)]
+CASES = [
+    (-0.1, 1.0, 0.3),
+    (-0.3, 0.5, 0.1),
+    (0.2, 0.7, 0.3),
+    (-0.2, 1.3, 0.5),
+    (-0.15, 1.12, 0.3),
+    (-0.295, 1.107, 1.0 / MU),
+]
 
 
 @pytest.fixture(scope="module")
@@ -52,8 +58,12 @@ def test_traced_branch_equals_the_closed_form(branches, case):
     lam = family.precession_rate(c, q=q, sigma=sigma, fr_inv=fr, mu=MU)
     J = lam * family.d_of_c(c, q, sigma, MU)
     E = family.effective_potential(c, J, q=q, sigma=sigma, fr_inv=fr, mu=MU)
-    for got, ref in ((ds.precession_rate.values, lam), (ds.jellett.values, J), (ds.energy.values, E),
-                     (ds.axial_spin.values, lam * (c + q))):
+    for got, ref in (
+        (ds.precession_rate.values, lam),
+        (ds.jellett.values, J),
+        (ds.energy.values, E),
+        (ds.axial_spin.values, lam * (c + q)),
+    ):
         assert np.max(np.abs(got[inner] - ref[inner]) / np.abs(ref[inner])) < 1e-12
 
 
@@ -88,8 +98,8 @@ def test_branch_points_are_eq11_thresholds():
             n = bp[orient] / (sigma * (1 + sgn * q))
             ths = stability.thresholds("fr_inv", q=sgn * q, sigma=sigma, alpha_v=0.5)
             assert len(ths) >= 1
-            th = min(ths, key=lambda v: abs(v - fr / n ** 2))
-            assert abs(th - fr / n ** 2) <= 1e-10 * th
+            th = min(ths, key=lambda v: abs(v - fr / n**2))
+            assert abs(th - fr / n**2) <= 1e-10 * th
             checked += 1
     assert checked >= 12
 
@@ -124,14 +134,16 @@ def test_ends_and_events(branches):
         assert "stability_change" not in ds.kind.values
         folds = ds.where(ds.kind == "fold", drop=True)
         ref = [c for c in family.fold_cosines(case[0], case[1], MU) if -1 < c < 1]
-        ref = [c for c in ref if float(np.cos(np.radians(ds.tilt.min()))) >= c >= float(np.cos(np.radians(ds.tilt.max())))]
+        ref = [
+            c for c in ref if float(np.cos(np.radians(ds.tilt.min()))) >= c >= float(np.cos(np.radians(ds.tilt.max())))
+        ]
         assert folds.sizes["point"] == len(ref), case
         for c, f in zip(sorted(ref), sorted(np.cos(np.radians(folds.tilt.values)))):
             assert f == pytest.approx(c, abs=1e-10)
         assert np.all(folds.stability.values == 1)
         flags = ds.stability.values
         changes = np.nonzero(np.diff(flags))[0]
-        for i in changes:     # every change of flag touches a marginal point (a fold or a branch point)
+        for i in changes:  # every change of flag touches a marginal point (a fold or a branch point)
             assert 1 in (flags[i], flags[i + 1])
         decided = flags != 1
         assert np.array_equal(ds.stability_jacobian.values[decided], flags[decided])
@@ -172,15 +184,18 @@ def test_branch_dataset_attributes(branches):
     assert ds.stability.attrs["flag_meanings"] == "stable marginal unstable"
 
 
-@pytest.mark.parametrize("kw,exc,fragment", [
-    (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: 0.0001 <= max_step"),
-    (dict(jellett_max=-1.0), ValueError, "jellett_max = -1 is outside the allowed range"),
-    (dict(jellett_max=0.5), ValueError, "jellett_max = 0.5 is outside the allowed range: jellett_max > 0.762438"),
-    (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),
-    (dict(q=0.9), ValueError, "q = 0.9 is outside the physical domain"),
-    (dict(alpha_v=None), TypeError, "alpha_v is required"),
-    (dict(compiled="yes"), TypeError, "compiled = 'yes' is a str"),
-])
+@pytest.mark.parametrize(
+    "kw,exc,fragment",
+    [
+        (dict(max_step=0.0), ValueError, "max_step = 0 is outside the allowed range: 0.0001 <= max_step"),
+        (dict(jellett_max=-1.0), ValueError, "jellett_max = -1 is outside the allowed range"),
+        (dict(jellett_max=0.5), ValueError, "jellett_max = 0.5 is outside the allowed range: jellett_max > 0.762438"),
+        (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),
+        (dict(q=0.9), ValueError, "q = 0.9 is outside the physical domain"),
+        (dict(alpha_v=None), TypeError, "alpha_v is required"),
+        (dict(compiled="yes"), TypeError, "compiled = 'yes' is a str"),
+    ],
+)
 def test_bad_input(kw, exc, fragment):
     args = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     args.update(kw)

@@ -100,7 +100,9 @@ def test_inversion_threshold_of_rauch_wojciechowski_and_rutstam_is_the_inverted_
         if not 1 + alpha - gamma > 0:
             continue
         rr = math.sqrt(MU * fr * sigma * alpha * (1 + alpha) ** 4 / (1 + alpha - gamma))
-        assert family.branch_point_jellett("inverted", q=q, sigma=sigma, fr_inv=fr, mu=MU) == pytest.approx(rr, rel=1e-12)
+        assert family.branch_point_jellett("inverted", q=q, sigma=sigma, fr_inv=fr, mu=MU) == pytest.approx(
+            rr, rel=1e-12
+        )
         assert branch_points(q=q, sigma=sigma, fr_inv=fr)["inverted"] == pytest.approx(rr, rel=1e-12)
         checked += 1
 
@@ -130,8 +132,9 @@ def test_classes_agree_with_the_energy_principle_at_high_finite_spin():
             continue
         fr = 1e-8 * (si * (1 + qi)) ** 2 / MU
         th = 1e-3
-        end = stability.final_state(q=qi, sigma=si, fr_inv=fr, alpha_v=0.5, omega=[0, 0, 1],
-                                    k=[math.sin(th), 0, math.cos(th)], simulation=False)
+        end = stability.final_state(
+            q=qi, sigma=si, fr_inv=fr, alpha_v=0.5, omega=[0, 0, 1], k=[math.sin(th), 0, math.cos(th)], simulation=False
+        )
         cls = stability.top_class(q=qi, sigma=si)
         if cls == "never_inverts" and qi < 0 and end.method == "simulation":
             assert "bistable" in end.reason
@@ -171,16 +174,22 @@ def test_a_million_tops():
     assert names.shape == (1_000_000,) and names.dtype.kind == "U"
 
 
-@pytest.mark.parametrize("call,exc,fragment", [
-    (lambda: stability.top_class(q=0.9, sigma=1.0), DomainError, "q = 0.9 is outside the physical domain"),
-    (lambda: stability.top_class(q=-0.1, sigma=3.0), DomainError, "sigma = 3 is outside the physical domain"),
-    (lambda: stability.top_class(q="a", sigma=1.0), TypeError, "q = 'a' is a str"),
-    (lambda: stability.top_class(q=[0.1, 0.2], sigma=[1.0, 1.0, 1.0]), DomainError, "do not broadcast"),
-    (lambda: stability.top_class(q=-0.1, sigma=1.0, mask_unphysical=1), TypeError, "mask_unphysical = 1"),
-    (lambda: stability.class_atlas(q=[[0.1]], sigma=1.0), TypeError, "q must be a number or a 1-D array"),
-    (lambda: stability.class_atlas(q=-0.1, sigma=[1.0, 3.0], mask_unphysical=False), DomainError,
-     "sigma = 3 is outside the physical domain"),
-])
+@pytest.mark.parametrize(
+    "call,exc,fragment",
+    [
+        (lambda: stability.top_class(q=0.9, sigma=1.0), DomainError, "q = 0.9 is outside the physical domain"),
+        (lambda: stability.top_class(q=-0.1, sigma=3.0), DomainError, "sigma = 3 is outside the physical domain"),
+        (lambda: stability.top_class(q="a", sigma=1.0), TypeError, "q = 'a' is a str"),
+        (lambda: stability.top_class(q=[0.1, 0.2], sigma=[1.0, 1.0, 1.0]), DomainError, "do not broadcast"),
+        (lambda: stability.top_class(q=-0.1, sigma=1.0, mask_unphysical=1), TypeError, "mask_unphysical = 1"),
+        (lambda: stability.class_atlas(q=[[0.1]], sigma=1.0), TypeError, "q must be a number or a 1-D array"),
+        (
+            lambda: stability.class_atlas(q=-0.1, sigma=[1.0, 3.0], mask_unphysical=False),
+            DomainError,
+            "sigma = 3 is outside the physical domain",
+        ),
+    ],
+)
 def test_bad_input(call, exc, fragment):
     with pytest.raises(exc, match=fragment):
         call()

@@ -29,8 +29,25 @@ def test_steady_prints_the_states_and_writes_them(tmp_path, capsys):
 
 def test_steady_branch(tmp_path, capsys):
     out = tmp_path / "branch.nc"
-    assert main(["steady", "--q", "-0.2", "--sigma", "1.3", "--fr-inv", "0.5", "--alpha-v", "0.5", "--branch",
-                 "-o", str(out)]) == 0
+    assert (
+        main(
+            [
+                "steady",
+                "--q",
+                "-0.2",
+                "--sigma",
+                "1.3",
+                "--fr-inv",
+                "0.5",
+                "--alpha-v",
+                "0.5",
+                "--branch",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     text = capsys.readouterr().out
     assert "fold" in text and "98.904667" in text and "inverted spin" in text
     with xr.open_dataset(out) as ds:
@@ -47,23 +64,48 @@ def test_final_prints_the_prediction(tmp_path, capsys):
 
 
 def test_final_without_simulation(capsys):
-    assert main(["final", "--omega", "0,0,1", "--k", "0.17,0,0.985", "--q", "0", "--sigma", "0.8", "--fr-inv", "0.3",
-                 "--alpha-v", "0.5", "--no-simulation"]) == 0
+    assert (
+        main(
+            [
+                "final",
+                "--omega",
+                "0,0,1",
+                "--k",
+                "0.17,0,0.985",
+                "--q",
+                "0",
+                "--sigma",
+                "0.8",
+                "--fr-inv",
+                "0.3",
+                "--alpha-v",
+                "0.5",
+                "--no-simulation",
+            ]
+        )
+        == 0
+    )
     assert "final state: undecided" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("argv,fragment", [
-    (["final", "--omega", "0,0,1", "--k", "0,0,1", *TOP[:-1], "0"], "--alpha-v = 0 is outside the allowed range"),
-    (["final", "--omega", "0,0,1", "--k", "0,0,1.2", *TOP], "k is the unit symmetry axis"),
-    (["final", "--omega", "0,0", "--k", "0,0,1", *TOP], "--omega must be a vector of 3 components"),
-    (["final", "--omega", "a,b,c", "--k", "0,0,1", *TOP], "is not a comma list of numbers"),
-    (["steady", "--q", "0.9", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5"], "q = 0.9 is outside the physical domain"),
-    (["steady", *TOP, "--branch", "--jellett", "1"], "--jellett is not used with --branch"),
-    (["steady", *TOP, "--max-step", "0.1"], "only used with --branch"),
-    (["steady", "--q", "-0.1"], "--sigma, --fr-inv, --alpha-v required (or a top in SI units"),
-])
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (["final", "--omega", "0,0,1", "--k", "0,0,1", *TOP[:-1], "0"], "--alpha-v = 0 is outside the allowed range"),
+        (["final", "--omega", "0,0,1", "--k", "0,0,1.2", *TOP], "k is the unit symmetry axis"),
+        (["final", "--omega", "0,0", "--k", "0,0,1", *TOP], "--omega must be a vector of 3 components"),
+        (["final", "--omega", "a,b,c", "--k", "0,0,1", *TOP], "is not a comma list of numbers"),
+        (
+            ["steady", "--q", "0.9", "--sigma", "1", "--fr-inv", "0.3", "--alpha-v", "0.5"],
+            "q = 0.9 is outside the physical domain",
+        ),
+        (["steady", *TOP, "--branch", "--jellett", "1"], "--jellett is not used with --branch"),
+        (["steady", *TOP, "--max-step", "0.1"], "only used with --branch"),
+        (["steady", "--q", "-0.1"], "--sigma, --fr-inv, --alpha-v required (or a top in SI units"),
+    ],
+)
 def test_errors_are_one_line(argv, fragment, capsys):
-    if "arguments are required" in fragment or "comma list" in fragment:   # argparse's own errors exit at parsing
+    if "arguments are required" in fragment or "comma list" in fragment:  # argparse's own errors exit at parsing
         with pytest.raises(SystemExit) as exc:
             main(argv)
         assert exc.value.code == 2

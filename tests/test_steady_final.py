@@ -40,20 +40,50 @@ LONG_RUNS = [
     ("paper Fr^-1 = 0.1, printed state: inverts", dict(PAPER, fr_inv=0.1), INITIAL_CONDITIONS[0.1], "inverted", 22000),
     ("paper top, slow spin: stays upright", dict(PAPER, fr_inv=0.6), tilted_start(8.0, 1.0, 0.02), "upright", 1300),
     ("hangs class q=-0.3 s=0.5", dict(q=-0.3, sigma=0.5, fr_inv=0.1, alpha_v=0.5), tilted_start(3.0), "tilted", 15000),
-    ("hangs class, alpha_v = 1", dict(q=-0.2, sigma=0.6, fr_inv=0.3, alpha_v=1.0), tilted_start(10.0, 1.2, -0.03),
-     "tilted", 5600),
-    ("inverts class at finite spin: hangs", dict(q=-0.3, sigma=0.7, fr_inv=0.2, alpha_v=0.5), tilted_start(5.0),
-     "tilted", 6200),
-    ("never_inverts, G above O: stays upright", dict(q=0.2, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-     tilted_start(15.0, 1.0, 0.03), "upright", 1400),
+    (
+        "hangs class, alpha_v = 1",
+        dict(q=-0.2, sigma=0.6, fr_inv=0.3, alpha_v=1.0),
+        tilted_start(10.0, 1.2, -0.03),
+        "tilted",
+        5600,
+    ),
+    (
+        "inverts class at finite spin: hangs",
+        dict(q=-0.3, sigma=0.7, fr_inv=0.2, alpha_v=0.5),
+        tilted_start(5.0),
+        "tilted",
+        6200,
+    ),
+    (
+        "never_inverts, G above O: stays upright",
+        dict(q=0.2, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+        tilted_start(15.0, 1.0, 0.03),
+        "upright",
+        1400,
+    ),
     ("hangs, G above O", dict(q=0.3, sigma=0.9, fr_inv=0.5, alpha_v=0.5), tilted_start(5.0), "tilted", 400),
-    ("inverts class, spin 1.5: hangs at 37.5 deg", dict(q=-0.25, sigma=0.9, fr_inv=1.0, alpha_v=0.5),
-     tilted_start(5.0, 1.5), "tilted", 800),
-    ("paper top clockwise from 60 deg: back upright", dict(PAPER, fr_inv=0.3),
-     tilted_start(60.0, -1.0, 0.1, (0.0, 0.05)), "upright", 2200),
+    (
+        "inverts class, spin 1.5: hangs at 37.5 deg",
+        dict(q=-0.25, sigma=0.9, fr_inv=1.0, alpha_v=0.5),
+        tilted_start(5.0, 1.5),
+        "tilted",
+        800,
+    ),
+    (
+        "paper top clockwise from 60 deg: back upright",
+        dict(PAPER, fr_inv=0.3),
+        tilted_start(60.0, -1.0, 0.1, (0.0, 0.05)),
+        "upright",
+        2200,
+    ),
     ("paper top started inverted, slow: falls upright", dict(PAPER, fr_inv=1.0), tilted_start(175.0), "upright", 900),
-    ("inverts class, fast: inverts", dict(q=-0.3, sigma=0.7, fr_inv=0.02, alpha_v=0.5), tilted_start(5.0),
-     "inverted", 34800),
+    (
+        "inverts class, fast: inverts",
+        dict(q=-0.3, sigma=0.7, fr_inv=0.02, alpha_v=0.5),
+        tilted_start(5.0),
+        "inverted",
+        34800,
+    ),
     ("fr_inv = 0, hangs at c0", dict(q=-0.3, sigma=0.5, fr_inv=0.0, alpha_v=0.5), tilted_start(5.0), "tilted", 18800),
 ]
 
@@ -74,7 +104,7 @@ def test_long_run_ends_at_the_predicted_tilt(name, params, start, kind, t_end):
     # J kept by the run: |dJ/J| grows like rtol per 1000 time units (tests/test_nonlinear_conservation.py);
     # up to 35000 units at rtol 1e-9, measured <= 2e-7
     assert float(run.h_cg[-1]) == pytest.approx(pred.jellett, rel=1e-6)
-    if kind == "tilted":   # the end spin is the steady state's omega . k (S1)
+    if kind == "tilted":  # the end spin is the steady state's omega . k (S1)
         assert float(run.spin[-1]) == pytest.approx(pred.axial_spin, abs=1e-3)
 
 
@@ -91,14 +121,17 @@ def test_the_paper_run_hangs_at_166_degrees_with_spin_0801():
     assert inverted.stability == 2 and inverted.energy > end.energy
     at_01 = stability.final_state(fr_inv=0.1, **PAPER, **INITIAL_CONDITIONS[0.1])
     assert (at_01.kind, at_01.tilt) == ("inverted", 180.0)
-    assert at_01.energy == pytest.approx(0.5855, abs=1e-4)   # docs/nonlinear.md's end energy at Fr^-1 = 0.1
+    assert at_01.energy == pytest.approx(0.5855, abs=1e-4)  # docs/nonlinear.md's end energy at Fr^-1 = 0.1
 
 
-@pytest.mark.parametrize("params,start,why", [
-    (dict(q=-0.1, sigma=1.2, fr_inv=0.3, alpha_v=0.5), tilted_start(20.0, 1.0, 0.05, (0.05, 0.0)), "bistable"),
-    (dict(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=0.5), tilted_start(10.0), "fr_inv = 0 or q = 0"),
-    (dict(q=-0.1, sigma=1.2, fr_inv=0.0, alpha_v=0.5), tilted_start(10.0), "fr_inv = 0 or q = 0"),
-])
+@pytest.mark.parametrize(
+    "params,start,why",
+    [
+        (dict(q=-0.1, sigma=1.2, fr_inv=0.3, alpha_v=0.5), tilted_start(20.0, 1.0, 0.05, (0.05, 0.0)), "bistable"),
+        (dict(q=0.0, sigma=0.8, fr_inv=0.3, alpha_v=0.5), tilted_start(10.0), "fr_inv = 0 or q = 0"),
+        (dict(q=-0.1, sigma=1.2, fr_inv=0.0, alpha_v=0.5), tilted_start(10.0), "fr_inv = 0 or q = 0"),
+    ],
+)
 def test_levels_jellett_cannot_decide_go_to_simulation(params, start, why):
     """Two stable candidates (a never_inverts top with q < 0: upright and inverted both stable),
     or marginal ones next to continua of rolling motions (q = 0, fr_inv = 0): method "simulation"."""
@@ -134,13 +167,13 @@ def test_final_state_dataset():
 
 # --- the stability flag against perturbed runs -------------------------------------------
 PERTURBED = [  # (q, sigma, fr_inv, kind, J or the cosine of the tilted state)
-    (-0.2, 1.3, 0.5, "tilted", -0.6),       # stable, beyond the fold
-    (-0.2, 1.3, 0.5, "tilted", 0.3),        # unstable, before the fold
-    (-0.15, 1.12, 0.3, "tilted", 0.0),      # unstable
-    (-0.25, 0.9, 1.0, "tilted", 0.79),      # stable
-    (-0.1, 1.0, 0.3, "upright", 0.9),       # the paper's top at spin 1: unstable
-    (-0.1, 1.0, 0.3, "upright", 0.6),       # spun slowly: stable
-    (0.2, 1.0, 0.3, "upright", 1.2),        # G above O, fast: stable
+    (-0.2, 1.3, 0.5, "tilted", -0.6),  # stable, beyond the fold
+    (-0.2, 1.3, 0.5, "tilted", 0.3),  # unstable, before the fold
+    (-0.15, 1.12, 0.3, "tilted", 0.0),  # unstable
+    (-0.25, 0.9, 1.0, "tilted", 0.79),  # stable
+    (-0.1, 1.0, 0.3, "upright", 0.9),  # the paper's top at spin 1: unstable
+    (-0.1, 1.0, 0.3, "upright", 0.6),  # spun slowly: stable
+    (0.2, 1.0, 0.3, "upright", 1.2),  # G above O, fast: stable
 ]
 
 
@@ -164,8 +197,20 @@ def test_perturbed_runs_return_or_leave_as_flagged(q, sigma, fr, kind, where):
     assert flag in (0, 2)
     y1 = y + 1e-5 * np.random.default_rng(0).normal(size=8)
     T = 12.0 / abs(g)
-    run = stability.simulate("sliding", t_end=T, t_eval=np.linspace(0, T, 401), omega=y1[0:3], k=y1[3:6],
-                             velocity=y1[6:8], q=q, fr_inv=fr, sigma=sigma, alpha_v=0.5, rtol=1e-11, atol=1e-14)
+    run = stability.simulate(
+        "sliding",
+        t_end=T,
+        t_eval=np.linspace(0, T, 401),
+        omega=y1[0:3],
+        k=y1[3:6],
+        velocity=y1[6:8],
+        q=q,
+        fr_inv=fr,
+        sigma=sigma,
+        alpha_v=0.5,
+        rtol=1e-11,
+        atol=1e-14,
+    )
     ref = stability.steady_states(q=q, sigma=sigma, fr_inv=fr, alpha_v=0.5, jellett=float(run.h_cg[0]))
     same = ref.kind.values == kind
     ref_tilt = float(ref.tilt.values[same][np.argmin(np.abs(ref.tilt.values[same] - float(s.tilt)))])
@@ -178,22 +223,25 @@ def test_perturbed_runs_return_or_leave_as_flagged(q, sigma, fr, kind, where):
 GOOD = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, omega=[0.0, 0.0, 1.0], k=[0.01, 0.0, 1.0])
 
 
-@pytest.mark.parametrize("kw,exc,fragment", [
-    (dict(alpha_v=0.0), ValueError, r"alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0"),
-    (dict(k=[0.0, 0.0, 1.05]), ValueError, r"k = \[0.0, 0.0, 1.05\] has length 1.05; k is the unit symmetry axis"),
-    (dict(k=[0.0, 1.0]), ValueError, r"k = \[0.0, 1.0\] has shape \(2,\); k must be a vector of 3 components"),
-    (dict(k=[[0.0, 0.0, 1.0]]), ValueError, r"has shape \(1, 3\); k must be a vector of 3 components"),
-    (dict(omega=[0.0, float("nan"), 1.0]), ValueError, "omega = nan is not finite"),
-    (dict(omega="up"), TypeError, "omega = 'up' is a str"),
-    (dict(velocity=[0.0, 0.0, 0.1]), ValueError, "the vertical component must be 0"),
-    (dict(q=0.8), ValueError, "q = 0.8 is outside the physical domain"),
-    (dict(sigma=[1.0, 1.1]), TypeError, "sigma must be a single number here"),
-    (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),
-    (dict(t_max=-1.0), ValueError, "t_max = -1 is outside the allowed range: t_max > 0"),
-    (dict(simulation="no"), TypeError, "simulation = 'no' is a str"),
-])
+@pytest.mark.parametrize(
+    "kw,exc,fragment",
+    [
+        (dict(alpha_v=0.0), ValueError, r"alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0"),
+        (dict(k=[0.0, 0.0, 1.05]), ValueError, r"k = \[0.0, 0.0, 1.05\] has length 1.05; k is the unit symmetry axis"),
+        (dict(k=[0.0, 1.0]), ValueError, r"k = \[0.0, 1.0\] has shape \(2,\); k must be a vector of 3 components"),
+        (dict(k=[[0.0, 0.0, 1.0]]), ValueError, r"has shape \(1, 3\); k must be a vector of 3 components"),
+        (dict(omega=[0.0, float("nan"), 1.0]), ValueError, "omega = nan is not finite"),
+        (dict(omega="up"), TypeError, "omega = 'up' is a str"),
+        (dict(velocity=[0.0, 0.0, 0.1]), ValueError, "the vertical component must be 0"),
+        (dict(q=0.8), ValueError, "q = 0.8 is outside the physical domain"),
+        (dict(sigma=[1.0, 1.1]), TypeError, "sigma must be a single number here"),
+        (dict(model="rolling"), ValueError, "model = 'rolling' is not known; choose one of sliding"),
+        (dict(t_max=-1.0), ValueError, "t_max = -1 is outside the allowed range: t_max > 0"),
+        (dict(simulation="no"), TypeError, "simulation = 'no' is a str"),
+    ],
+)
 def test_bad_input(kw, exc, fragment):
-    args = dict(GOOD, q=0.0, sigma=0.8) if "t_max" in kw else dict(GOOD)   # t_max is checked when a run is needed
+    args = dict(GOOD, q=0.0, sigma=0.8) if "t_max" in kw else dict(GOOD)  # t_max is checked when a run is needed
     args.update(kw)
     with pytest.raises(exc, match=fragment):
         stability.final_state(**args)

@@ -12,8 +12,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import math
-
 import mpmath
 import numpy as np
 import pytest
@@ -22,8 +20,15 @@ import xarray as xr
 import stability
 from stability.errors import RecipeError
 from stability.nonlinear.scene import INITIAL_CONDITIONS
-from stability.plotting.steady_plots import (FILL_STYLES, plot_bifurcation, plot_class_map, plot_final_state,
-                                             plot_settle, plot_settle_approach, plot_steady_states)
+from stability.plotting.steady_plots import (
+    FILL_STYLES,
+    plot_bifurcation,
+    plot_class_map,
+    plot_final_state,
+    plot_settle,
+    plot_settle_approach,
+    plot_steady_states,
+)
 from stability.recipes import compute, find_recipes, load_recipe, output_paths
 
 ATLASES = Path(__file__).resolve().parents[1] / "atlases"
@@ -41,7 +46,7 @@ def potential_reference(tilts_deg, jellett, *, q, sigma, fr_inv, mu=MU):
     out = []
     with mpmath.workdps(30):
         q_, s_, f_, m_, j_ = (mpmath.mpf(x) for x in (q, sigma, fr_inv, mu, jellett))
-        a_g = 1 - m_ * q_ ** 2
+        a_g = 1 - m_ * q_**2
         for t in tilts_deg:
             th = mpmath.radians(mpmath.mpf(float(t)))
             k = mpmath.matrix([mpmath.sin(th), 0, mpmath.cos(th)])
@@ -56,8 +61,10 @@ def potential_reference(tilts_deg, jellett, *, q, sigma, fr_inv, mu=MU):
 
 def _state_markers(ax):
     """The single-point markers of the states (circles), by tilt."""
-    return sorted((ln for ln in ax.get_lines() if ln.get_marker() == "o" and len(ln.get_xdata()) == 1),
-                  key=lambda ln: ln.get_xdata()[0])
+    return sorted(
+        (ln for ln in ax.get_lines() if ln.get_marker() == "o" and len(ln.get_xdata()) == 1),
+        key=lambda ln: ln.get_xdata()[0],
+    )
 
 
 @pytest.fixture(scope="module")
@@ -87,14 +94,18 @@ def test_bifurcation_lines_follow_the_flags(fold_branch):
     assert np.allclose(markers["D"].get_ydata(), fold.tilt.values)
     bp = fold_branch.where(fold_branch.kind == "branch_point", drop=True)
     assert np.allclose(markers["o"].get_ydata(), bp.tilt.values)
-    assert "|" in markers    # the cut at jellett_max
+    assert "|" in markers  # the cut at jellett_max
 
 
 def test_bifurcation_with_vertical_states_and_runs(fold_branch):
     x = fold_branch.jellett.values
-    vertical = xr.Dataset({"stability_upright": ("level", np.array([0, 0, 1, 2, 2], np.int8)),
-                           "stability_inverted": ("level", np.array([2, 2, 1, 0, 0], np.int8))},
-                          coords={"jellett": ("level", np.linspace(x.min(), x.max(), 5))})
+    vertical = xr.Dataset(
+        {
+            "stability_upright": ("level", np.array([0, 0, 1, 2, 2], np.int8)),
+            "stability_inverted": ("level", np.array([2, 2, 1, 0, 0], np.int8)),
+        },
+        coords={"jellett": ("level", np.linspace(x.min(), x.max(), 5))},
+    )
     runs = xr.Dataset({"end_tilt": ("run", [0.0, 120.0]), "jellett": ("run", [x.min(), x.max()])})
     _, ax = plot_bifurcation(fold_branch, vertical=vertical, runs=runs)
     flat = [ln for ln in ax.get_lines() if len(ln.get_ydata()) > 1 and np.ptp(ln.get_ydata()) == 0]
@@ -113,8 +124,8 @@ def test_class_map_draws_the_closed_form_boundaries():
     assert np.allclose(solid[0].get_ydata(), np.minimum(ag / (1 + q), 2 * ag))
     dashed = next(ln for ln in ax.get_lines() if ln.get_linestyle() == "--")
     assert np.allclose(dashed.get_ydata(), (ag / (1 - q))[q < 0])
-    assert any(c.get_hatch() == "///" for c in ax.collections)   # Hugenholtz's band
-    assert len(ax.collections) >= 2                              # the map and the band
+    assert any(c.get_hatch() == "///" for c in ax.collections)  # Hugenholtz's band
+    assert len(ax.collections) >= 2  # the map and the band
 
 
 def test_settle_plots_mark_the_predicted_tilt():
@@ -125,7 +136,7 @@ def test_settle_plots_mark_the_predicted_tilt():
     assert len(level) == 1 and set(level[0].get_ydata()) == {166.0}
     _, ax2 = plot_settle_approach(run, predicted_tilt=166.0, rate=-1 / 300)
     dist, ref = ax2.get_lines()[:2]
-    assert np.allclose(dist.get_ydata()[1:], ref.get_ydata()[1:], rtol=1e-9)   # exp(g t) through the data
+    assert np.allclose(dist.get_ydata()[1:], ref.get_ydata()[1:], rtol=1e-9)  # exp(g t) through the data
 
 
 def test_steady_recipes_load():
@@ -142,8 +153,9 @@ def test_bifurcation_recipe_compute_and_draw(tmp_path):
     from stability.plotting.recipe_figures import recipe_figure
 
     path = tmp_path / "bif.toml"
-    path.write_text('title = "t"\nkind = "bifurcation"\npreset = "table1_measured"\nruns_rpm = [300]\n'
-                    '[grid]\nalpha_v = 0.5\n')
+    path.write_text(
+        'title = "t"\nkind = "bifurcation"\npreset = "table1_measured"\nruns_rpm = [300]\n[grid]\nalpha_v = 0.5\n'
+    )
     r = load_recipe(path)
     ds = compute(r)
     assert set(ds) == {"branch", "vertical", "runs"}
@@ -151,19 +163,25 @@ def test_bifurcation_recipe_compute_and_draw(tmp_path):
     assert float(runs.end_tilt[0]) == pytest.approx(float(runs.predicted_tilt[0]), abs=0.05)
     mtime = r.dataset_path.stat().st_mtime_ns
     compute(r)
-    assert r.dataset_path.stat().st_mtime_ns == mtime    # reused
+    assert r.dataset_path.stat().st_mtime_ns == mtime  # reused
     with style():
         fig, _ = recipe_figure(r, ds)
     assert fig.axes[0].get_xlabel().startswith("equivalent upright spin (rpm)")
 
 
-@pytest.mark.parametrize("text,msg", [
-    ('title = "x"\nkind = "bifurcation"\nruns_rpm = [-1]\n', "runs_rpm = \\[-1\\] must be a list of spin rates > 0"),
-    ('title = "x"\nkind = "bifurcation"\n[grid]\nq = 0.1\n', "grid takes alpha_v, not q"),
-    ('title = "x"\nkind = "classes"\n[grid]\nq = 0.1\nsigma = "0:1:3"\n', "needs grid.q as a 1-D grid"),
-    ('title = "x"\nkind = "settle"\n[grid]\nfr_inv = 0.2\n', "grid.fr_inv = 0.2 must be one of 0.3, 0.1"),
-    ('title = "x"\nkind = "settle"\nt_end = -5\n', "t_end = -5 must be a number > 0"),
-])
+@pytest.mark.parametrize(
+    "text,msg",
+    [
+        (
+            'title = "x"\nkind = "bifurcation"\nruns_rpm = [-1]\n',
+            "runs_rpm = \\[-1\\] must be a list of spin rates > 0",
+        ),
+        ('title = "x"\nkind = "bifurcation"\n[grid]\nq = 0.1\n', "grid takes alpha_v, not q"),
+        ('title = "x"\nkind = "classes"\n[grid]\nq = 0.1\nsigma = "0:1:3"\n', "needs grid.q as a 1-D grid"),
+        ('title = "x"\nkind = "settle"\n[grid]\nfr_inv = 0.2\n', "grid.fr_inv = 0.2 must be one of 0.3, 0.1"),
+        ('title = "x"\nkind = "settle"\nt_end = -5\n', "t_end = -5 must be a number > 0"),
+    ],
+)
 def test_bad_steady_recipes(tmp_path, text, msg):
     p = tmp_path / "r.toml"
     p.write_text(text)
@@ -184,7 +202,9 @@ def test_steady_states_carry_the_effective_potential():
     assert np.max(np.abs(ds.effective_potential.values / ref - 1)) < 1e-14
     tilted = ds.isel(state=1)
     t = float(tilted.tilt)
-    around = potential_reference([t - 0.25, t, t + 0.25], -0.9001185873, **{k: PAPER[k] for k in ("q", "sigma", "fr_inv")})
+    around = potential_reference(
+        [t - 0.25, t, t + 0.25], -0.9001185873, **{k: PAPER[k] for k in ("q", "sigma", "fr_inv")}
+    )
     assert around[1] < around[0] and around[1] < around[2] and int(tilted.stability) == 0
     assert float(tilted.energy) == pytest.approx(around[1], rel=1e-14)
 
@@ -201,7 +221,7 @@ def test_steady_states_figure_marks_every_state_on_the_curve():
     markers = _state_markers(ax)
     assert [ln.get_xdata()[0] for ln in markers] == list(ds.tilt.values)
     assert [ln.get_ydata()[0] for ln in markers] == list(ds.energy.values)
-    assert [ln.get_fillstyle() for ln in markers] == ["none", "full", "none"]   # unstable, stable, unstable
+    assert [ln.get_fillstyle() for ln in markers] == ["none", "full", "none"]  # unstable, stable, unstable
     assert [ln.get_label() for ln in markers] == ["upright: unstable", "tilted 166 deg: stable", "inverted: unstable"]
     assert sorted(t.get_text() for t in ax.texts) == ["inverted", "tilted", "upright"]
     assert "J = -0.900119" in ax.get_title() and ax.get_xlabel().startswith("tilt of the axis (deg)")
@@ -258,8 +278,16 @@ def test_final_state_figure():
 def test_final_state_figure_without_an_end():
     """A bistable level with simulation=False: method "simulation", kind "undecided", no end
     marker; the two stable states are filled, the unstable tilted one between them open."""
-    end = stability.final_state(q=-0.1, sigma=1.2, fr_inv=0.3, alpha_v=0.5, omega=[0.1, 0.0, 1.0],
-                                k=[0.34, 0.0, 0.94], velocity=[0.05, 0.0], simulation=False)
+    end = stability.final_state(
+        q=-0.1,
+        sigma=1.2,
+        fr_inv=0.3,
+        alpha_v=0.5,
+        omega=[0.1, 0.0, 1.0],
+        k=[0.34, 0.0, 0.94],
+        velocity=[0.05, 0.0],
+        simulation=False,
+    )
     assert end.method == "simulation" and end.kind == "undecided"
     _, ax = plot_final_state(end.to_dataset())
     assert not [ln for ln in ax.get_lines() if ln.get_marker() == "*"]
@@ -269,8 +297,11 @@ def test_final_state_figure_without_an_end():
 
 def test_class_map_needs_a_q_sigma_grid():
     ds = stability.class_atlas(q=np.linspace(-0.5, 0.5, 5), sigma=np.linspace(0.1, 1.5, 4), mu=[2.0, 2.28])
-    with pytest.raises(ValueError, match=r"the class map is drawn over \(q, sigma\); this dataset's grid is "
-                                         r"\(q, sigma, mu\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"the class map is drawn over \(q, sigma\); this dataset's grid is "
+        r"\(q, sigma, mu\)",
+    ):
         ds.tippe.plot()
     fig, _ = ds.sel(mu=2.28).tippe.plot()
     assert fig.axes

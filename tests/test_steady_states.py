@@ -23,8 +23,13 @@ import stability
 from stability.nonlinear import rolling, sliding
 from stability.nonlinear.parameters import pack
 from stability.steady import family
-from stability.steady.linearisation import (ROTATION, modes_verdict, neutral_covectors, precessing_jacobians,
-                                            reduced_spectrum)
+from stability.steady.linearisation import (
+    ROTATION,
+    modes_verdict,
+    neutral_covectors,
+    precessing_jacobians,
+    reduced_spectrum,
+)
 
 MU = 2.28
 
@@ -39,8 +44,15 @@ def random_tops(n, seed, fr_max=2.0):
         qm = min(0.45, 0.95 / math.sqrt(mu))
         q = rng.uniform(-qm, qm)
         sigma = rng.uniform(0.05, 2.0 * (1.0 - mu * q * q))
-        out.append(dict(q=q, sigma=sigma, fr_inv=rng.uniform(0.01, fr_max),
-                        alpha_v=math.exp(rng.uniform(math.log(0.05), math.log(5.0))), mu=mu))
+        out.append(
+            dict(
+                q=q,
+                sigma=sigma,
+                fr_inv=rng.uniform(0.01, fr_max),
+                alpha_v=math.exp(rng.uniform(math.log(0.05), math.log(5.0))),
+                mu=mu,
+            )
+        )
     return out, rng
 
 
@@ -69,8 +81,9 @@ def test_closed_form_states_solve_the_sliding_and_rolling_equations():
             lam = rng.uniform(-3, 3)
         else:
             c = rng.uniform(-1, 1)
-            lam = family.precession_rate(c, q=t["q"], sigma=t["sigma"], fr_inv=t["fr_inv"], mu=t["mu"],
-                                         sign=rng.choice([-1.0, 1.0]))
+            lam = family.precession_rate(
+                c, q=t["q"], sigma=t["sigma"], fr_inv=t["fr_inv"], mu=t["mu"], sign=rng.choice([-1.0, 1.0])
+            )
             if not math.isfinite(lam):
                 continue
         y = family.state_vector(math.acos(c), lam, t["q"], phi=rng.uniform(0, 2 * np.pi))
@@ -115,7 +128,7 @@ def test_steady_states_integrals_match_the_closed_forms():
 def test_default_level_is_the_upright_spin_and_states_are_ordered_by_tilt():
     ds = stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     assert ds.attrs["tippe_stability_product"] == "steady_states"
-    assert float(ds.jellett[0]) == pytest.approx(0.9, rel=1e-15)       # sigma (1 + q), spin 1
+    assert float(ds.jellett[0]) == pytest.approx(0.9, rel=1e-15)  # sigma (1 + q), spin 1
     assert list(ds.kind.values) == ["upright", "tilted", "inverted"]
     assert np.all(np.diff(ds.tilt.values) > 0)
     up = ds.isel(state=0)
@@ -137,8 +150,14 @@ def test_vertical_states_agree_with_eq11_at_the_equivalent_spin():
         for i in np.nonzero(ds.kind.values != "tilted")[0]:
             s = ds.isel(state=i)
             n = float(s.omega_vertical)
-            ref = stability.spectrum("sliding", q=float(s.equivalent_q), fr_inv=float(s.equivalent_fr_inv),
-                                     sigma=t["sigma"], alpha_v=float(s.equivalent_alpha_v), mu=t["mu"])
+            ref = stability.spectrum(
+                "sliding",
+                q=float(s.equivalent_q),
+                fr_inv=float(s.equivalent_fr_inv),
+                sigma=t["sigma"],
+                alpha_v=float(s.equivalent_alpha_v),
+                mu=t["mu"],
+            )
             lin = ref.eigenvalues * abs(n)
             both = np.sort_complex(np.concatenate([lin, lin.conj()]))
             got = np.sort_complex(s.mode_growth_rate.values + 1j * s.mode_frequency.values)
@@ -200,9 +219,13 @@ def test_the_three_structural_neutral_directions():
         l1, l2 = neutral_covectors(y, q=t["q"], sigma=t["sigma"], mu=t["mu"])
         for i in range(len(cs)):
             a = np.linalg.norm(A[i])
-            T = np.linalg.svd(l1[i][None])[2][1:].T      # basis of ker l1
-            worst = max(worst, np.abs(l1[i] @ A[i]).max() / a, np.abs(l2[i] @ A[i] @ T).max() / a,
-                        np.abs(A[i] @ (ROTATION @ y[i])).max() / a)
+            T = np.linalg.svd(l1[i][None])[2][1:].T  # basis of ker l1
+            worst = max(
+                worst,
+                np.abs(l1[i] @ A[i]).max() / a,
+                np.abs(l2[i] @ A[i] @ T).max() / a,
+                np.abs(A[i] @ (ROTATION @ y[i])).max() / a,
+            )
             small = np.sort(np.abs(np.linalg.eigvals(A[i])))[:3] / a
             assert small[0] < 1e-13 and small[2] < 1e-6
     assert worst < 1e-13
@@ -225,8 +248,13 @@ def test_structural_zeros_are_marginal(q, fr_inv):
                 assert float(s.tilt) == pytest.approx(math.degrees(math.acos(c0)), abs=1e-12)
                 assert int(s.stability) == (0 if float(s.energy_test) > 0 else 2)
             continue
-        ref = stability.spectrum("sliding", q=float(s.equivalent_q), fr_inv=float(s.equivalent_fr_inv),
-                                 sigma=float(ds.attrs["sigma"]), alpha_v=float(s.equivalent_alpha_v))
+        ref = stability.spectrum(
+            "sliding",
+            q=float(s.equivalent_q),
+            fr_inv=float(s.equivalent_fr_inv),
+            sigma=float(ds.attrs["sigma"]),
+            alpha_v=float(s.equivalent_alpha_v),
+        )
         assert int(s.stability) == int(ref.stability)
         assert int(s.stability) in (1, 2)
 
@@ -255,15 +283,18 @@ def test_without_friction_no_state_is_asymptotically_stable():
     assert np.all(ds.n_neutral.values >= 1)
 
 
-@pytest.mark.parametrize("kw,exc,fragment", [
-    (dict(jellett=float("nan")), ValueError, "jellett = nan is not finite"),
-    (dict(jellett="1"), TypeError, "jellett = '1' is a str"),
-    (dict(jellett=[1.0, 2.0]), TypeError, "jellett must be a single number here"),
-    (dict(sigma=2.5), ValueError, "sigma = 2.5 is outside the physical domain"),
-    (dict(fr_inv=-0.1), ValueError, "fr_inv = -0.1 is outside the physical domain: fr_inv >= 0"),
-    (dict(alpha_v=None), TypeError, "alpha_v is required"),
-    (dict(model="fixed_pivot"), ValueError, "model = 'fixed_pivot' is not known; choose one of sliding"),
-])
+@pytest.mark.parametrize(
+    "kw,exc,fragment",
+    [
+        (dict(jellett=float("nan")), ValueError, "jellett = nan is not finite"),
+        (dict(jellett="1"), TypeError, "jellett = '1' is a str"),
+        (dict(jellett=[1.0, 2.0]), TypeError, "jellett must be a single number here"),
+        (dict(sigma=2.5), ValueError, "sigma = 2.5 is outside the physical domain"),
+        (dict(fr_inv=-0.1), ValueError, "fr_inv = -0.1 is outside the physical domain: fr_inv >= 0"),
+        (dict(alpha_v=None), TypeError, "alpha_v is required"),
+        (dict(model="fixed_pivot"), ValueError, "model = 'fixed_pivot' is not known; choose one of sliding"),
+    ],
+)
 def test_bad_input(kw, exc, fragment):
     args = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     args.update(kw)

@@ -46,9 +46,13 @@ def test_fr_inv_threshold(q, sigma):
     # kappa = ||c||_1 max(1, |w|)^3 / (|dp/dfr_inv| |fr_inv|), dp/dfr_inv = -mu^2 q (i w) - mu alpha_v q
     # (the numerator sigma - (1 - mu q^2)/(1 + q) cancels, so kappa ~ 10-50 here); allow 8 u kappa
     w, a = 1 / (1 + qm), mpmath.mpf("0.5")
-    c = [MU * (1 - MU * qm * qm), a * (1 + MU * (1 + 2 * qm)) - 1j * MU * sm,
-         -MU * MU * qm * ref - 1j * a * (sm + MU * (1 + qm)), -MU * a * qm * ref]
-    kappa = sum(abs(x) for x in c) * max(1, w) ** 3 / (abs(-MU**2 * qm * 1j * w - MU * a * qm) * ref)
+    c = [
+        MU * (1 - MU * qm * qm),
+        a * (1 + MU * (1 + 2 * qm)) - 1j * MU * sm,
+        -MU * MU * qm * ref - 1j * a * (sm + MU * (1 + qm)),
+        -MU * a * qm * ref,
+    ]
+    kappa = sum(abs(x) for x in c) * max(1, w) ** 3 / (abs(-(MU**2) * qm * 1j * w - MU * a * qm) * ref)
     assert len(found) == 1
     assert abs(found[0].value - float(ref)) <= 8 * 2.0**-53 * float(kappa) * float(ref)
     assert close(found[0].frequency, 1 / (1 + qm))  # the slip-free frequency 1/(1+q)
@@ -169,8 +173,26 @@ def test_cli(capsys):
 
 def test_cli_neutral(tmp_path, capsys):
     out = tmp_path / "c.nc"
-    assert main(["neutral", "--model", "sliding", "--x", "q", "--y", "sigma", "--fr-inv", "0",
-                 "--alpha-v", "0.5", "-o", str(out)]) == 0
+    assert (
+        main(
+            [
+                "neutral",
+                "--model",
+                "sliding",
+                "--x",
+                "q",
+                "--y",
+                "sigma",
+                "--fr-inv",
+                "0",
+                "--alpha-v",
+                "0.5",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
     text = capsys.readouterr().out
     assert "fold" in text and "1.1433349593" in text and out.exists()
     assert main(["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0"]) == 2
@@ -207,14 +229,28 @@ def test_bracket_outside_the_domain_names_the_end_not_a_grid_option():
     assert "mask_unphysical" not in str(exc.value)
 
 
-@pytest.mark.parametrize("argv, names", [
-    (["spin", "--preset", "table1", "--mass", "5", "--radius", "1"], "--preset table1 and --mass, --radius conflict"),
-    (["spin", "--preset", "table1", "--q", "0.3", "--sigma", "1.5"], "--q, --sigma: not used by 'tippe threshold spin'"),
-    (["spin", "--preset", "table1", "--bracket", "0:1"], "--bracket: not used"),
-    (["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--mass", "3"], "--mass: only used with PARAM = spin"),
-    (["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--orientation", "upright"],
-     "--orientation: only used with PARAM = spin"),
-])
+@pytest.mark.parametrize(
+    "argv, names",
+    [
+        (
+            ["spin", "--preset", "table1", "--mass", "5", "--radius", "1"],
+            "--preset table1 and --mass, --radius conflict",
+        ),
+        (
+            ["spin", "--preset", "table1", "--q", "0.3", "--sigma", "1.5"],
+            "--q, --sigma: not used by 'tippe threshold spin'",
+        ),
+        (["spin", "--preset", "table1", "--bracket", "0:1"], "--bracket: not used"),
+        (
+            ["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--mass", "3"],
+            "--mass: only used with PARAM = spin",
+        ),
+        (
+            ["sigma", "--q", "-0.1", "--fr-inv", "0", "--alpha-v", "0.5", "--orientation", "upright"],
+            "--orientation: only used with PARAM = spin",
+        ),
+    ],
+)
 def test_threshold_cli_refuses_options_it_would_ignore(argv, names, capsys):
     """An option the chosen PARAM does not use is an error (exit 2, one line naming it): before,
     `--preset table1 --mass 5` printed the preset's critical spin as if --mass were not there."""

@@ -39,7 +39,7 @@ import numpy as np
 import pytest
 
 import stability
-from stability import critical_spin, threshold, threshold_crossings, thresholds
+from stability import critical_spin, threshold, threshold_crossings
 from stability.linear.growth import growth
 from stability.linear.spectra import STABLE, UNSTABLE
 
@@ -91,9 +91,13 @@ def test_fr_inv_threshold_at_every_alpha_v(alpha_v):
     q, s, a = mpmath.mpf("-0.1"), mpmath.mpf(1), mpmath.mpf(alpha_v)
     ref = (s - (1 - MU * q * q) / (1 + q)) / (MU * q * (1 + q))
     w = 1 / (1 + q)
-    c = [MU * (1 - MU * q * q), a * (1 + MU * (1 + 2 * q)) - 1j * MU * s,
-         -MU * MU * q * ref - 1j * a * (s + MU * (1 + q)), -MU * a * q * ref]
-    kappa = sum(abs(x) for x in c) * w**3 / (abs(-MU**2 * q * 1j * w - MU * a * q) * ref)
+    c = [
+        MU * (1 - MU * q * q),
+        a * (1 + MU * (1 + 2 * q)) - 1j * MU * s,
+        -MU * MU * q * ref - 1j * a * (s + MU * (1 + q)),
+        -MU * a * q * ref,
+    ]
+    kappa = sum(abs(x) for x in c) * w**3 / (abs(-(MU**2) * q * 1j * w - MU * a * q) * ref)
     (t,) = threshold_crossings("fr_inv", q=-0.1, sigma=1.0, alpha_v=alpha_v)
     assert t.exact
     assert abs(t.value - float(ref)) <= 8 * U * float(kappa) * float(ref)

@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 import stability
-
 from stability import Top
 from stability.top import INCH, OUNCE
 
@@ -82,14 +81,19 @@ def test_inverted():
     assert t.inverted().mu == t.mu  # A0 = A_G + M d^2 does not depend on the sign of d
     assert t.inverted().sigma == t.sigma
 
-@pytest.mark.parametrize("field,value,msg", [
-    ("mass", -1.0, "mass = -1 is outside the allowed range: mass > 0"),
-    ("radius", 0.0, "radius = 0 is outside"),
-    ("inertia_axial", float("nan"), "inertia_axial = nan is not finite"),
-])
+
+@pytest.mark.parametrize(
+    "field,value,msg",
+    [
+        ("mass", -1.0, "mass = -1 is outside the allowed range: mass > 0"),
+        ("radius", 0.0, "radius = 0 is outside"),
+        ("inertia_axial", float("nan"), "inertia_axial = nan is not finite"),
+    ],
+)
 def test_bad_top(field, value, msg):
-    kw = dict(mass=0.64 * OUNCE, radius=0.6366 * INCH, com_offset=-0.06 * INCH,
-              inertia_transverse=1e-6, inertia_axial=1e-6)
+    kw = dict(
+        mass=0.64 * OUNCE, radius=0.6366 * INCH, com_offset=-0.06 * INCH, inertia_transverse=1e-6, inertia_axial=1e-6
+    )
     kw[field] = value
     with pytest.raises(ValueError, match=msg):
         Top(**kw)

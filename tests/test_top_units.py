@@ -10,12 +10,12 @@ import warnings
 import pytest
 
 from stability.errors import DomainError
-from stability.top import (SPIN_UNITS, ImplausibleTopWarning, Top, check_launch_spin, from_rad_per_s,
-                           to_rad_per_s)
+from stability.top import SPIN_UNITS, ImplausibleTopWarning, Top, check_launch_spin, from_rad_per_s, to_rad_per_s
 
 
-@pytest.mark.parametrize("unit,rad_per_unit", [("rad/s", 1.0), ("rev/s", 2 * math.pi), ("Hz", 2 * math.pi),
-                                               ("rpm", 2 * math.pi / 60)])
+@pytest.mark.parametrize(
+    "unit,rad_per_unit", [("rad/s", 1.0), ("rev/s", 2 * math.pi), ("Hz", 2 * math.pi), ("rpm", 2 * math.pi / 60)]
+)
 def test_spin_units_by_definition(unit, rad_per_unit):
     # reference: the unit's definition; exact to rounding of one product (1 ulp)
     assert to_rad_per_s(3.0, unit) == pytest.approx(3.0 * rad_per_unit, rel=2e-16)
@@ -53,12 +53,19 @@ def test_real_tops_pass_silently():
         Top(mass=0.015, radius=0.015, com_offset=-0.003, inertia_transverse=1.3e-6, inertia_axial=1.5e-6)
         Top.table1()
         Top.table1_measured()
-        Top(mass=0.02, radius=0.02, com_offset=-0.006, inertia_transverse=0.376 * 0.02 * 0.02**2,
-            inertia_axial=0.4 * 0.02 * 0.02**2)
+        Top(
+            mass=0.02,
+            radius=0.02,
+            com_offset=-0.006,
+            inertia_transverse=0.376 * 0.02 * 0.02**2,
+            inertia_axial=0.4 * 0.02 * 0.02**2,
+        )
 
 
 @pytest.mark.parametrize("spin,unit", [(0.05, "rev/s"), (2e4, "Hz"), (3.0, "rpm"), (1e5, "rad/s")])
 def test_launch_spin_range(spin, unit):
-    with pytest.raises(DomainError, match=rf"spin = {spin:g} {unit} .* is outside the allowed range: 0.1 to 10000 rev/s"):
+    with pytest.raises(
+        DomainError, match=rf"spin = {spin:g} {unit} .* is outside the allowed range: 0.1 to 10000 rev/s"
+    ):
         check_launch_spin(spin, unit)
     assert check_launch_spin(7.15, "rev/s") == pytest.approx(7.15 * 2 * math.pi, rel=1e-16)

@@ -18,10 +18,12 @@ from stability import validate
 from stability.nonlinear.validation import coulomb_growth
 
 # a spread across the domain: both signs of q, fr_inv 0..3, alpha_v 0.05..5, stable and unstable
-SPREAD = dict(q=[-0.3, -0.1, 0.1, 0.3, -0.1, 0.2, 0.1, -0.45],
-              fr_inv=[0.0, 0.3, 1.0, 3.0, 2.0, 0.5, 0.0, 1.5],
-              sigma=[1.0, 1.0, 1.0, 1.0, 1.0, 0.7, 1.0, 1.05],
-              alpha_v=[0.05, 0.5, 5.0, 0.5, 0.05, 2.0, 0.5, 1.0])
+SPREAD = dict(
+    q=[-0.3, -0.1, 0.1, 0.3, -0.1, 0.2, 0.1, -0.45],
+    fr_inv=[0.0, 0.3, 1.0, 3.0, 2.0, 0.5, 0.0, 1.5],
+    sigma=[1.0, 1.0, 1.0, 1.0, 1.0, 0.7, 1.0, 1.05],
+    alpha_v=[0.05, 0.5, 5.0, 0.5, 0.05, 2.0, 0.5, 1.0],
+)
 
 
 def test_sliding_growth_rates_and_frequencies_within_target():
@@ -52,7 +54,7 @@ def test_rolling_runs_follow_first_principles_not_eq8_as_printed():
     fr_inv = 1.5 (its discriminant, tests/test_thresholds.py), where the rolling sphere is neutral."""
     ds = validate("rolling", q=[-0.1, 0.2], fr_inv=[0.3, 1.5], sigma=1.0)
     assert float(ds.frequency_error_jacobian.max()) < 1e-4
-    assert float(ds.frequency_error.max()) < 1e-4          # the registered operator is the Jacobian's
+    assert float(ds.frequency_error.max()) < 1e-4  # the registered operator is the Jacobian's
     assert abs(float(ds.predicted_growth_rate[1])) < 1e-12 and abs(float(ds.measured_growth_rate[1])) < 1e-6
     eq8 = stability.eigenvalues("rolling_eq8", q=0.2, fr_inv=1.5, sigma=1.0)
     assert eq8.real.max() > 0.3
@@ -95,11 +97,14 @@ def test_atlas_subset_is_validated_on_its_whole_grid():
     operator of eq. (11) at each point (the Dataset's predicted_*); short runs (1 e-fold)
     agree to 1e-6 relative (measured 8e-9 .. 2.4e-8), every sign right."""
     sub = stability.atlas("sliding", q=[-0.1, 0.1], fr_inv=[0.3, 1.0], sigma=1.0, alpha_v=0.5)
-    ds = stability.validate("sliding", q=sub.q, fr_inv=sub.fr_inv, sigma=sub.sigma, alpha_v=sub.alpha_v,
-                            n_efold=1.0)
+    ds = stability.validate("sliding", q=sub.q, fr_inv=sub.fr_inv, sigma=sub.sigma, alpha_v=sub.alpha_v, n_efold=1.0)
     assert ds.sizes["point"] == 4
-    assert sorted(zip(ds.q.values.tolist(), ds.fr_inv.values.tolist())) == [(-0.1, 0.3), (-0.1, 1.0), (0.1, 0.3),
-                                                                             (0.1, 1.0)]
+    assert sorted(zip(ds.q.values.tolist(), ds.fr_inv.values.tolist())) == [
+        (-0.1, 0.3),
+        (-0.1, 1.0),
+        (0.1, 0.3),
+        (0.1, 1.0),
+    ]
     assert bool(ds.sign_agrees.all()) and float(ds.growth_rate_error.max()) < 1e-6
 
 

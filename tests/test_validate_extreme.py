@@ -83,7 +83,7 @@ def test_a_measurement_that_is_nan_is_never_resolved(monkeypatch):
     def broken(*a, **k):
         ds = real(*a, **k)
         vals = ds.k.values.copy()
-        vals[len(vals) // 2:] = np.nan
+        vals[len(vals) // 2 :] = np.nan
         return ds.assign(k=(ds.k.dims, vals))
 
     monkeypatch.setattr(v, "simulate", broken)

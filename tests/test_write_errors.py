@@ -35,8 +35,23 @@ from stability.grids.outputs import TEMPORARY_PREFIX, check_free_space, close_qu
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
 
 TIPPE = [sys.executable, "-m", "stability"]
-SIM = ["simulate", "--t-end", "10", "--omega", "0.02,0,1", "--k", "0.05,0,1", "--q", "-0.1", "--fr-inv", "0.3",
-       "--sigma", "1", "--alpha-v", "0.5"]
+SIM = [
+    "simulate",
+    "--t-end",
+    "10",
+    "--omega",
+    "0.02,0,1",
+    "--k",
+    "0.05,0,1",
+    "--q",
+    "-0.1",
+    "--fr-inv",
+    "0.3",
+    "--sigma",
+    "1",
+    "--alpha-v",
+    "0.5",
+]
 ATLAS = ["atlas", "--q=-0.6:0.6:31", "--fr-inv", "0:1:4", "--sigma", "1", "--alpha-v", "0.5", "--mask-unphysical"]
 
 
@@ -51,18 +66,23 @@ def _run_limited(argv: list[str], limit: int, cwd: Path) -> subprocess.Completed
     return subprocess.run([*TIPPE, *argv], cwd=cwd, preexec_fn=limited, capture_output=True, text=True, timeout=300)
 
 
-@pytest.mark.parametrize("name,argv,limit", [
-    ("simulate", SIM, 40_000),                             # estimate 2.7 kB; the file ~ 50 kB
-    ("atlas", ATLAS, 12_000),                              # estimate 10 kB; the file ~ 35 kB
-    ("atlas --chunks --resume", [*ATLAS, "--chunks", "4", "--resume", "--no-progress"], 12_000),
-    ("neutral", ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0.3", "--alpha-v", "0.5"], 10_000),
-])
+@pytest.mark.parametrize(
+    "name,argv,limit",
+    [
+        ("simulate", SIM, 40_000),  # estimate 2.7 kB; the file ~ 50 kB
+        ("atlas", ATLAS, 12_000),  # estimate 10 kB; the file ~ 35 kB
+        ("atlas --chunks --resume", [*ATLAS, "--chunks", "4", "--resume", "--no-progress"], 12_000),
+        ("neutral", ["neutral", "--x", "q", "--y", "sigma", "--fr-inv", "0.3", "--alpha-v", "0.5"], 10_000),
+    ],
+)
 def test_file_size_limit_names_file_and_cause(tmp_path, name, argv, limit):
     r = _run_limited([*argv, "-o", "out.nc"], limit, tmp_path)
     assert r.returncode == 2, r.stderr
     assert r.stderr.count("\n") == 1, r.stderr
-    assert (f"error: cannot write 'out.nc': file size limit (ulimit -f) of {limit} bytes reached" in r.stderr
-            and "nothing was written" in r.stderr), r.stderr
+    assert (
+        f"error: cannot write 'out.nc': file size limit (ulimit -f) of {limit} bytes reached" in r.stderr
+        and "nothing was written" in r.stderr
+    ), r.stderr
     assert not (tmp_path / "out.nc").exists()
     assert _leftovers(tmp_path) == []
 
@@ -70,8 +90,10 @@ def test_file_size_limit_names_file_and_cause(tmp_path, name, argv, limit):
 def test_output_above_the_limit_is_refused_before_computing(tmp_path):
     r = _run_limited([*SIM[:2], "1000", *SIM[3:], "-o", "out.nc"], 200_000, tmp_path)
     assert r.returncode == 2 and r.stderr.count("\n") == 1
-    assert ("cannot write 'out.nc': the output needs about 2.48 MB, above the file size limit (ulimit -f) of "
-            "200000 bytes; nothing was written") in r.stderr
+    assert (
+        "cannot write 'out.nc': the output needs about 2.48 MB, above the file size limit (ulimit -f) of "
+        "200000 bytes; nothing was written"
+    ) in r.stderr
     assert list(tmp_path.iterdir()) == []
 
 
@@ -88,8 +110,9 @@ def test_disk_full_while_saving_a_chunk_names_the_chunk_file(tmp_path, monkeypat
         return real(f, **arrays)
 
     monkeypatch.setattr(dist.np, "savez", savez)
-    ds = stability.atlas("sliding", q=np.linspace(-0.4, 0.4, 8), fr_inv=[0.0, 0.3], sigma=1.0, alpha_v=0.5,
-                         chunks={"q": 4})
+    ds = stability.atlas(
+        "sliding", q=np.linspace(-0.4, 0.4, 8), fr_inv=[0.0, 0.3], sigma=1.0, alpha_v=0.5, chunks={"q": 4}
+    )
     with pytest.raises(OutputWriteError) as err:
         write_atlas(ds, out, resume=True)
     chunk = parts_directory(out) / "chunk-1-0.npz"
@@ -117,8 +140,10 @@ def test_library_error_without_errno_is_diagnosed(tmp_path, monkeypatch):
     with pytest.raises(OutputWriteError) as err:
         stability.write_dataset(xr.Dataset({"x": ("t", np.arange(3.0))}), tmp_path / "a.nc")
     assert err.value.errno == errno.ENOSPC
-    assert str(err.value) == (f"cannot write '{tmp_path / 'a.nc'}': no space left on the file system holding "
-                              f"'{tmp_path}' (3.07 kB free) (NetCDF: HDF error); nothing was written")
+    assert str(err.value) == (
+        f"cannot write '{tmp_path / 'a.nc'}': no space left on the file system holding "
+        f"'{tmp_path}' (3.07 kB free) (NetCDF: HDF error); nothing was written"
+    )
     monkeypatch.undo()
     assert list(tmp_path.iterdir()) == []
 
@@ -128,8 +153,11 @@ def test_free_space_checked_before_computing(tmp_path, monkeypatch):
         f_bavail, f_frsize, f_flag = 3, 1024, 0
 
     monkeypatch.setattr(outputs.os, "statvfs", lambda d: Small())
-    with pytest.raises(OutputWriteError, match=r"the output needs about 80 MB and the file system holding .* has "
-                                               r"3.07 kB free; nothing was written"):
+    with pytest.raises(
+        OutputWriteError,
+        match=r"the output needs about 80 MB and the file system holding .* has "
+        r"3.07 kB free; nothing was written",
+    ):
         check_free_space(tmp_path / "a.nc", 80e6)
     check_free_space(tmp_path / "a.nc", 3000)
 
@@ -162,8 +190,9 @@ def test_a_closed_stdout_after_the_write_is_not_an_error(tmp_path):
     """E10: ``tippe atlas ... | <reader that exits at once>``: the file is complete, so the
     command says so on stderr and exits 0 (it used to say "[Errno 32] Broken pipe", exit 2).
     Reference for "complete": the file read back equals the atlas computed in this process."""
-    proc = subprocess.Popen([*TIPPE, *ATLAS, "-o", "p.nc"], cwd=tmp_path, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [*TIPPE, *ATLAS, "-o", "p.nc"], cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
     proc.stdout.close()  # the reader goes away before the report is printed
     err = proc.stderr.read()
     proc.wait(timeout=300)
@@ -171,7 +200,13 @@ def test_a_closed_stdout_after_the_write_is_not_an_error(tmp_path):
     assert "wrote 'p.nc'" in err and "could not be printed" in err and len(err.strip().splitlines()) == 1
     with xr.open_dataset(tmp_path / "p.nc") as ds:
         got = ds.load()
-    ref = stability.atlas("sliding", q=np.linspace(-0.6, 0.6, 31), fr_inv=np.linspace(0, 1, 4), sigma=1.0,
-                          alpha_v=0.5, mask_unphysical=True)
+    ref = stability.atlas(
+        "sliding",
+        q=np.linspace(-0.6, 0.6, 31),
+        fr_inv=np.linspace(0, 1, 4),
+        sigma=1.0,
+        alpha_v=0.5,
+        mask_unphysical=True,
+    )
     xr.testing.assert_identical(got.drop_attrs(), ref.drop_attrs())
     assert _leftovers(tmp_path) == []

@@ -37,8 +37,20 @@ from .records import Panel, Suite, WorkPrecision, peak_memory_mb
 from .steady import BRANCH_TARGET, FINAL_TARGET
 from .timing import best_times
 
-__all__ = ["SUITES", "EIGEN_TARGET", "FOLD_TARGET", "CROSSING_TARGET", "GROWTH_TARGET", "FINAL_TARGET", "BRANCH_TARGET",
-           "WorkPrecision", "Panel", "Suite", "best_times", "peak_memory_mb"]
+__all__ = [
+    "BRANCH_TARGET",
+    "CROSSING_TARGET",
+    "EIGEN_TARGET",
+    "FINAL_TARGET",
+    "FOLD_TARGET",
+    "GROWTH_TARGET",
+    "SUITES",
+    "Panel",
+    "Suite",
+    "WorkPrecision",
+    "best_times",
+    "peak_memory_mb",
+]
 
 #: name -> :class:`Suite`, in the order ``python benchmarks/run.py`` (``--suite all``) runs them; a new suite
 #: is a module of this package with its ``SUITE``, and one entry here

@@ -19,11 +19,10 @@ from typing import TYPE_CHECKING
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-
 if TYPE_CHECKING:  # annotations only: the charts take any objects with these attributes
     from .records import Suite, WorkPrecision
 
-__all__ = ["work_precision_figure", "suite_figure", "verdict"]
+__all__ = ["suite_figure", "verdict", "work_precision_figure"]
 
 _FLOOR = 1e-17  # an error of exactly 0 (or below) is drawn at the floor
 
@@ -62,8 +61,13 @@ def verdict(results: Sequence[WorkPrecision], target: float | None) -> str:
         E.g. ``"default: kernel; fastest at error <= 1e-13: the default"``.
     """
     default = next((r for r in results if r.default), None)
-    name = "none marked" if default is None else f"{default.method} ({default.setting})" if default.setting \
+    name = (
+        "none marked"
+        if default is None
+        else f"{default.method} ({default.setting})"
+        if default.setting
         else default.method
+    )
     text = f"default: {name}"
     if target is None:
         return text
@@ -72,20 +76,31 @@ def verdict(results: Sequence[WorkPrecision], target: float | None) -> str:
         return text + f"; nothing reaches error <= {target:g}"
     if default is not None and default.error > target:
         return text + f" MISSES error <= {target:g}; fastest there: {best.method} {best.setting}".rstrip()
-    if best is default or (default is not None and (best.series or best.method) == (default.series or default.method)
-                           and best.seconds_per_point >= 0.8 * default.seconds_per_point):
+    if best is default or (
+        default is not None
+        and (best.series or best.method) == (default.series or default.method)
+        and best.seconds_per_point >= 0.8 * default.seconds_per_point
+    ):
         # a setting of the default's own method within timing noise of it counts as the default
         if best is default:
             return text + f"; fastest at error <= {target:g}: the default"
-        return text + (f"; fastest at error <= {target:g}: the default's method, {best.setting} "
-                       f"({default.seconds_per_point / best.seconds_per_point:.2f}x: within timing noise)")
+        return text + (
+            f"; fastest at error <= {target:g}: the default's method, {best.setting} "
+            f"({default.seconds_per_point / best.seconds_per_point:.2f}x: within timing noise)"
+        )
     return text + f"; fastest at error <= {target:g}: {best.method} {best.setting}".rstrip()
 
 
-def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | None = None,
-                          title: str = "", xlabel: str = "error against the reference",
-                          ylabel: str = "wall time per point [s]", x: str = "error",
-                          ax: Axes | None = None) -> tuple[Figure, Axes]:
+def work_precision_figure(
+    results: Sequence[WorkPrecision],
+    *,
+    target: float | None = None,
+    title: str = "",
+    xlabel: str = "error against the reference",
+    ylabel: str = "wall time per point [s]",
+    x: str = "error",
+    ax: Axes | None = None,
+) -> tuple[Figure, Axes]:
     """Draw time per unit of work (y) against error (x), both logarithmic.
 
     Parameters
@@ -121,31 +136,59 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
         marker = "s" if base else ("*" if all_default else "o")
         if len(rs) == 1:
             r = rs[0]
-            label = (f"{name}{' [default]' if r.default else ''}{' [baseline]' if base else ''}: "
-                     f"{r.seconds_per_point:.3g} s, {_shown(r, x)}")
+            label = (
+                f"{name}{' [default]' if r.default else ''}{' [baseline]' if base else ''}: "
+                f"{r.seconds_per_point:.3g} s, {_shown(r, x)}"
+            )
         else:
             label = f"{name}{' [default]' if all_default else ''}{' [baseline]' if base else ''} ({len(rs)} settings)"
         pts = rs  # in the order measured (the settings' order)
-        ax.plot([_x(r, x) for r in pts], [r.seconds_per_point for r in pts], marker=marker,
-                markersize=13 if all_default else 6, linestyle="-" if len(rs) > 1 else "none",
-                linewidth=0.8, color=colour, markerfacecolor="none" if base else colour, markeredgecolor=colour,
-                label=label)
+        ax.plot(
+            [_x(r, x) for r in pts],
+            [r.seconds_per_point for r in pts],
+            marker=marker,
+            markersize=13 if all_default else 6,
+            linestyle="-" if len(rs) > 1 else "none",
+            linewidth=0.8,
+            color=colour,
+            markerfacecolor="none" if base else colour,
+            markeredgecolor=colour,
+            label=label,
+        )
         if len(rs) > 1 and x == "error":
             for r in pts:
-                ax.annotate(r.setting, (_x(r, x), r.seconds_per_point), xytext=(3, 3), textcoords="offset points",
-                            fontsize=5, color=colour)
+                ax.annotate(
+                    r.setting,
+                    (_x(r, x), r.seconds_per_point),
+                    xytext=(3, 3),
+                    textcoords="offset points",
+                    fontsize=5,
+                    color=colour,
+                )
         if default and not all_default:
             d = default[0]
-            ax.plot([_x(d, x)], [d.seconds_per_point], marker="*", markersize=15, linestyle="none", color=colour,
-                    markeredgecolor="k", label=f"{d.method} [default] ({d.setting}): {d.seconds_per_point:.3g} s, "
-                                               f"{_shown(d, x)}")
+            ax.plot(
+                [_x(d, x)],
+                [d.seconds_per_point],
+                marker="*",
+                markersize=15,
+                linestyle="none",
+                color=colour,
+                markeredgecolor="k",
+                label=f"{d.method} [default] ({d.setting}): {d.seconds_per_point:.3g} s, {_shown(d, x)}",
+            )
     if target is not None:
         ax.axvline(target, color="0.4", linestyle="--", linewidth=0.8)
         best = _fastest(results, target)
         if best is not None:
-            ax.annotate(f"fastest at error <= {target:g}: {best.method} {best.setting}".rstrip(),
-                        (_x(best, x), best.seconds_per_point), xytext=(14, 8), textcoords="offset points",
-                        fontsize=7, arrowprops={"arrowstyle": "-", "color": "0.5", "linewidth": 0.5})
+            ax.annotate(
+                f"fastest at error <= {target:g}: {best.method} {best.setting}".rstrip(),
+                (_x(best, x), best.seconds_per_point),
+                xytext=(14, 8),
+                textcoords="offset points",
+                fontsize=7,
+                arrowprops={"arrowstyle": "-", "color": "0.5", "linewidth": 0.5},
+            )
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(xlabel, fontsize=8)
@@ -161,8 +204,9 @@ def work_precision_figure(results: Sequence[WorkPrecision], *, target: float | N
     return fig, ax
 
 
-def suite_figure(suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "",
-                 axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+def suite_figure(
+    suite: Suite, results: Sequence[WorkPrecision], *, subtitle: str = "", axes: Sequence[Axes] | None = None
+) -> tuple[Figure, list[Axes]]:
     """The chart of one suite: one panel per :class:`~suites.records.Panel`, the title
     naming the default and the fastest method at the required accuracy (:func:`verdict`).
 

@@ -49,13 +49,33 @@ from typing import Any
 import numpy as np
 
 from stability import execution
+
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
-__all__ = ["MU", "ALPHA_V", "Q_STAR", "SIGMA_STAR", "FOLD_TARGET", "SETTINGS", "COLUMNS", "sigma_ref",
-           "trace", "continuation_errors", "fastest_method", "leading_growth_rate", "leading_growth_rate_roots",
-           "columns_in_sigma", "columns_in_q", "column_errors", "columns_for_accuracy",
-           "neutral_benchmark", "format_tables", "continuation_work_precision", "SUITE"]
+__all__ = [
+    "ALPHA_V",
+    "COLUMNS",
+    "FOLD_TARGET",
+    "MU",
+    "Q_STAR",
+    "SETTINGS",
+    "SIGMA_STAR",
+    "SUITE",
+    "column_errors",
+    "columns_for_accuracy",
+    "columns_in_q",
+    "columns_in_sigma",
+    "continuation_errors",
+    "continuation_work_precision",
+    "fastest_method",
+    "format_tables",
+    "leading_growth_rate",
+    "leading_growth_rate_roots",
+    "neutral_benchmark",
+    "sigma_ref",
+    "trace",
+]
 
 #: required accuracy of the fold's coordinates (q*, sigma*) (the issue)
 FOLD_TARGET = 1e-10
@@ -107,8 +127,15 @@ def trace(max_step: float, max_angle: float, compiled: bool = True) -> Any:
     from stability.linear.neutral_curves import neutral_curve
 
     _check_setting(max_step, max_angle)
-    return neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
-                         max_step=max_step, max_angle=max_angle, compiled=compiled)
+    return neutral_curve(
+        "sliding",
+        "q",
+        "sigma",
+        fixed=dict(fr_inv=0.0, alpha_v=ALPHA_V, mu=MU),
+        max_step=max_step,
+        max_angle=max_angle,
+        compiled=compiled,
+    )
 
 
 def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
@@ -136,17 +163,20 @@ def continuation_errors(ds: Any, samples: int = 32) -> dict[str, float]:
     q, s = ds.q.values, ds.sigma.values
     kinds = ds.kind.values
     folds = np.nonzero(kinds == "fold")[0]
-    fold = (max(abs(float(q[folds[0]]) - Q_STAR), abs(float(s[folds[0]]) - SIGMA_STAR)) if folds.size
-            else math.inf)
+    fold = max(abs(float(q[folds[0]]) - Q_STAR), abs(float(s[folds[0]]) - SIGMA_STAR)) if folds.size else math.inf
     d = dense(ds, samples)
     qq = np.concatenate([np.linspace(a, b, 20) for a, b in itertools.pairwise(q)])
     order = np.argsort(q)
     inner = (1.0 - MU * q * q) > 1e-6
-    return {"points": int(ds.sizes["point"]), "point": float(np.max(np.abs(s - sigma_ref(q)))), "fold": fold,
-            "polyline": float(np.max(np.abs(np.interp(qq, q[order], s[order]) - sigma_ref(qq)))),
-            "dense": float(np.max(np.abs(d.sigma.values - sigma_ref(d.q.values)))),
-            "check": float(np.max(np.abs(ds.check_growth_rate.values[inner]))),
-            "upper": int(np.count_nonzero(s > 0.86))}
+    return {
+        "points": int(ds.sizes["point"]),
+        "point": float(np.max(np.abs(s - sigma_ref(q)))),
+        "fold": fold,
+        "polyline": float(np.max(np.abs(np.interp(qq, q[order], s[order]) - sigma_ref(qq)))),
+        "dense": float(np.max(np.abs(d.sigma.values - sigma_ref(d.q.values)))),
+        "check": float(np.max(np.abs(ds.check_growth_rate.values[inner]))),
+        "upper": int(np.count_nonzero(s > 0.86)),
+    }
 
 
 def fastest_method() -> str:
@@ -156,9 +186,16 @@ def fastest_method() -> str:
     sample of ``number = 50``), the methods one after the other."""
     from stability.linear.spectra import spectrum
 
-    times, _ = best_times({m: lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V,
-                                                   mu=MU, method=m)
-                           for m in ("kernel", "polynomial", "lapack")}, 1, number=50, warmup="round", keep=False)
+    times, _ = best_times(
+        {
+            m: lambda m=m: spectrum("sliding", q=0.1, fr_inv=0.0, sigma=0.5, alpha_v=ALPHA_V, mu=MU, method=m)
+            for m in ("kernel", "polynomial", "lapack")
+        },
+        1,
+        number=50,
+        warmup="round",
+        keep=False,
+    )
     return min(times, key=times.get)
 
 
@@ -251,14 +288,17 @@ def column_errors(pts: np.ndarray) -> dict[str, float]:
     spline = CubicSpline(q, s)
     crit = spline.derivative().roots(extrapolate=False)
     k = int(np.argmax(spline(crit)))
-    return {"point": float(np.max(np.abs(s - sigma_ref(q)))),
-            "linear": float(np.max(np.abs(np.interp(qq, q, s) - sigma_ref(qq)))),
-            "cubic": float(np.max(np.abs(spline(qq) - sigma_ref(qq)))),
-            "fold": max(abs(float(crit[k]) - Q_STAR), abs(float(spline(crit[k])) - SIGMA_STAR))}
+    return {
+        "point": float(np.max(np.abs(s - sigma_ref(q)))),
+        "linear": float(np.max(np.abs(np.interp(qq, q, s) - sigma_ref(qq)))),
+        "cubic": float(np.max(np.abs(spline(qq) - sigma_ref(qq)))),
+        "fold": max(abs(float(crit[k]) - Q_STAR), abs(float(spline(crit[k])) - SIGMA_STAR)),
+    }
 
 
-def columns_for_accuracy(target: float, leading: Callable[[float, float], float] = leading_growth_rate_roots,
-                         n_max: int = 2000) -> int:
+def columns_for_accuracy(
+    target: float, leading: Callable[[float, float], float] = leading_growth_rate_roots, n_max: int = 2000
+) -> int:
     """The smallest column count whose spline error is at most ``target``.
 
     Bisection for the first ``N`` with ``cubic <= target`` (the error falls like ``N^-4``),
@@ -290,10 +330,16 @@ def columns_for_accuracy(target: float, leading: Callable[[float, float], float]
 
 
 @execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
-def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...] = SETTINGS,
-                      columns: tuple[int, ...] = COLUMNS, python_path: bool = True,
-                      equal_accuracy: bool = True, turning_back: int = 200,
-                      method: str | None = None, min_time: float = 0.5) -> dict[str, Any]:
+def neutral_benchmark(
+    repeat: int = 7,
+    settings: tuple[tuple[float, float], ...] = SETTINGS,
+    columns: tuple[int, ...] = COLUMNS,
+    python_path: bool = True,
+    equal_accuracy: bool = True,
+    turning_back: int = 200,
+    method: str | None = None,
+    min_time: float = 0.5,
+) -> dict[str, Any]:
     """The whole comparison in one run.
 
     Parameters
@@ -352,18 +398,28 @@ def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...]
             fns.setdefault(("B", n), lambda n=n: columns_in_sigma(n, leading_growth_rate_roots))
     best, res = best_times(fns, repeat, min_time)
 
-    out: dict[str, Any] = {"method": method, "repeat": repeat, "min_time": min_time, "continuation": {}, "python": None,
-                           "columns": {}, "equal": {}, "turning_back": None}
+    out: dict[str, Any] = {
+        "method": method,
+        "repeat": repeat,
+        "min_time": min_time,
+        "continuation": {},
+        "python": None,
+        "columns": {},
+        "equal": {},
+        "turning_back": None,
+    }
     for st in settings:
         out["continuation"][st] = dict(continuation_errors(res[("cont", st)]), time=best[("cont", st)])
     if python_path:
         out["python"] = dict(continuation_errors(res[("python", settings[0])]), time=best[("python", settings[0])])
     for n in columns:
-        out["columns"][n] = dict(column_errors(res[("A", n)]), time_A=best[("A", n)], time_B=best[("B", n)],
-                                 found=len(res[("A", n)]))
+        out["columns"][n] = dict(
+            column_errors(res[("A", n)]), time_A=best[("A", n)], time_B=best[("B", n)], found=len(res[("A", n)])
+        )
     for st, n in equal_n.items():
-        out["equal"][st] = dict(column_errors(res[("A", n)]), N=n, time_A=best[("A", n)], time_B=best[("B", n)],
-                                found=len(res[("A", n)]))
+        out["equal"][st] = dict(
+            column_errors(res[("A", n)]), N=n, time_A=best[("A", n)], time_B=best[("B", n)], found=len(res[("A", n)])
+        )
     if turning_back:
         out["turning_back"] = columns_in_q(turning_back, lead_a)
     return out
@@ -372,53 +428,74 @@ def neutral_benchmark(repeat: int = 7, settings: tuple[tuple[float, float], ...]
 def format_tables(b: dict[str, Any]) -> str:
     """The tables of :func:`neutral_benchmark`: continuation, columns, equal accuracy, turning back."""
     ms = 1e3
-    lines = [f"sliding model, (q, sigma) plane, fr_inv = 0, alpha_v = {ALPHA_V}, mu = {MU}",
-             f"wall time: minimum over {b['repeat']} rounds of consecutive calls, >= {b['min_time']:g} s per "
-             "configuration, each block after a warm-up call",
-             f"[A]: stability.spectrum(method={b['method']!r}), [B]: numpy.roots", "",
-             "continuation (whole neutral_curve call)",
-             f"{'max_step':>8} {'max_angle':>9} {'points':>6} {'time ms':>8} {'point err':>9} {'fold err':>9} "
-             f"{'polyline':>9} {'dense err':>9} {'|check|':>8}"]
+    lines = [
+        f"sliding model, (q, sigma) plane, fr_inv = 0, alpha_v = {ALPHA_V}, mu = {MU}",
+        f"wall time: minimum over {b['repeat']} rounds of consecutive calls, >= {b['min_time']:g} s per "
+        "configuration, each block after a warm-up call",
+        f"[A]: stability.spectrum(method={b['method']!r}), [B]: numpy.roots",
+        "",
+        "continuation (whole neutral_curve call)",
+        f"{'max_step':>8} {'max_angle':>9} {'points':>6} {'time ms':>8} {'point err':>9} {'fold err':>9} "
+        f"{'polyline':>9} {'dense err':>9} {'|check|':>8}",
+    ]
 
     def row(st: tuple[float, float], e: dict[str, float], note: str = "") -> str:
-        return (f"{st[0]:>8} {st[1]:>9} {e['points']:>6} {e['time'] * ms:>8.2f} {e['point']:>9.1e} "
-                f"{e['fold']:>9.1e} {e['polyline']:>9.1e} {e['dense']:>9.1e} {e['check']:>8.1e}{note}")
+        return (
+            f"{st[0]:>8} {st[1]:>9} {e['points']:>6} {e['time'] * ms:>8.2f} {e['point']:>9.1e} "
+            f"{e['fold']:>9.1e} {e['polyline']:>9.1e} {e['dense']:>9.1e} {e['check']:>8.1e}{note}"
+        )
 
     for st, e in b["continuation"].items():
         lines.append(row(st, e))
     if b["python"] is not None:
         lines.append(row(next(iter(b["continuation"])), b["python"], "  (Python path, compiled=False)"))
-    lines += ["", f"columns (brentq per column, xtol = {XTOL:g})",
-              f"{'N':>5} {'found':>5} {'A ms':>8} {'B ms':>8} {'point err':>9} {'fold err':>9} "
-              f"{'linear':>9} {'cubic':>9}"]
+    lines += [
+        "",
+        f"columns (brentq per column, xtol = {XTOL:g})",
+        f"{'N':>5} {'found':>5} {'A ms':>8} {'B ms':>8} {'point err':>9} {'fold err':>9} {'linear':>9} {'cubic':>9}",
+    ]
     for n, e in b["columns"].items():
-        lines.append(f"{n:>5} {e['found']:>5} {e['time_A'] * ms:>8.1f} {e['time_B'] * ms:>8.1f} "
-                     f"{e['point']:>9.1e} {e['fold']:>9.1e} {e['linear']:>9.1e} {e['cubic']:>9.1e}")
+        lines.append(
+            f"{n:>5} {e['found']:>5} {e['time_A'] * ms:>8.1f} {e['time_B'] * ms:>8.1f} "
+            f"{e['point']:>9.1e} {e['fold']:>9.1e} {e['linear']:>9.1e} {e['cubic']:>9.1e}"
+        )
     if b["equal"]:
-        lines += ["", "equal accuracy of the whole curve (N: the smallest column count whose cubic spline is "
-                  "as accurate as the continuation's dense output)",
-                  f"{'max_step':>8} {'dense err':>9} {'cont ms':>8} {'N':>5} {'spline':>9} {'A ms':>8} "
-                  f"{'A/cont':>7} {'B ms':>8} {'B/cont':>7}"]
+        lines += [
+            "",
+            "equal accuracy of the whole curve (N: the smallest column count whose cubic spline is "
+            "as accurate as the continuation's dense output)",
+            f"{'max_step':>8} {'dense err':>9} {'cont ms':>8} {'N':>5} {'spline':>9} {'A ms':>8} "
+            f"{'A/cont':>7} {'B ms':>8} {'B/cont':>7}",
+        ]
         for st, q in b["equal"].items():
             c = b["continuation"][st]
-            lines.append(f"{st[0]:>8} {c['dense']:>9.1e} {c['time'] * ms:>8.2f} {q['N']:>5} {q['cubic']:>9.1e} "
-                         f"{q['time_A'] * ms:>8.1f} {q['time_A'] / c['time']:>7.1f} {q['time_B'] * ms:>8.1f} "
-                         f"{q['time_B'] / c['time']:>7.1f}")
+            lines.append(
+                f"{st[0]:>8} {c['dense']:>9.1e} {c['time'] * ms:>8.2f} {q['N']:>5} {q['cubic']:>9.1e} "
+                f"{q['time_A'] * ms:>8.1f} {q['time_A'] / c['time']:>7.1f} {q['time_B'] * ms:>8.1f} "
+                f"{q['time_B'] / c['time']:>7.1f}"
+            )
     if b["turning_back"] is not None:
         crossings, found = b["turning_back"]
         c = next(iter(b["continuation"].values()))
-        lines += ["", f"turning back: columns at fixed sigma in [0.05, 1.95] cross the curve {crossings} times; "
-                  f"brentq per column finds {found} ({crossings - found} missed: the columns with two crossings, "
-                  f"0.86 < sigma < {SIGMA_STAR:.4f}); continuation (first setting) traces that part with "
-                  f"{c['upper']} points and the fold"]
+        lines += [
+            "",
+            f"turning back: columns at fixed sigma in [0.05, 1.95] cross the curve {crossings} times; "
+            f"brentq per column finds {found} ({crossings - found} missed: the columns with two crossings, "
+            f"0.86 < sigma < {SIGMA_STAR:.4f}); continuation (first setting) traces that part with "
+            f"{c['upper']} points and the fold",
+        ]
     return "\n".join(lines)
 
 
 @execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
-def continuation_work_precision(repeat: int = 5, quick: bool = False,
-                                settings: tuple[tuple[float, float], ...] = SETTINGS,
-                                columns: tuple[int, ...] = COLUMNS, min_time: float = 0.5,
-                                equal_accuracy: bool = True) -> list[WorkPrecision]:
+def continuation_work_precision(
+    repeat: int = 5,
+    quick: bool = False,
+    settings: tuple[tuple[float, float], ...] = SETTINGS,
+    columns: tuple[int, ...] = COLUMNS,
+    min_time: float = 0.5,
+    equal_accuracy: bool = True,
+) -> list[WorkPrecision]:
     """Work-precision points of the continuation settings and of the brentq baseline [A]
     (:func:`neutral_benchmark`, without the Python path and the turning-back count).
 
@@ -453,36 +530,77 @@ def continuation_work_precision(repeat: int = 5, quick: bool = False,
         repeat = min(repeat, 2)
         min_time = min(min_time, 0.1)
         columns = tuple(n for n in columns if n <= 100)
-    b = neutral_benchmark(repeat, settings, columns, python_path=False, equal_accuracy=equal_accuracy and not quick,
-                          turning_back=0, min_time=min_time)
+    b = neutral_benchmark(
+        repeat,
+        settings,
+        columns,
+        python_path=False,
+        equal_accuracy=equal_accuracy and not quick,
+        turning_back=0,
+        min_time=min_time,
+    )
     results = []
     for st, e in b["continuation"].items():
-        results.append(WorkPrecision(
-            "continuation", e["time"], e["fold"], 1, default=st == DEFAULT_SETTING, series="continuation",
-            setting=f"max_step {st[0]:g}, max_angle {st[1]:g}",
-            note="continuation.neutral_curve, the whole call (start, both directions, fold, edges)",
-            extra={"curve_error": e["dense"], "points": e["points"], "point_error": e["point"],
-                   "max_step": st[0], "max_angle": st[1]}))
+        results.append(
+            WorkPrecision(
+                "continuation",
+                e["time"],
+                e["fold"],
+                1,
+                default=st == DEFAULT_SETTING,
+                series="continuation",
+                setting=f"max_step {st[0]:g}, max_angle {st[1]:g}",
+                note="continuation.neutral_curve, the whole call (start, both directions, fold, edges)",
+                extra={
+                    "curve_error": e["dense"],
+                    "points": e["points"],
+                    "point_error": e["point"],
+                    "max_step": st[0],
+                    "max_angle": st[1],
+                },
+            )
+        )
     cols = dict(b["columns"])
     for e in b["equal"].values():
         cols.setdefault(e["N"], e)
     for n, e in sorted(cols.items()):
-        results.append(WorkPrecision(
-            "brentq per column", e["time_A"], e["fold"], 1, baseline=True, series="brentq per column",
-            setting=f"N = {n}",
-            note=f"scipy.optimize.brentq in sigma per column q_j (xtol 1e-14) on stability.spectrum "
-                 f"(method {b['method']!r}), cubic spline, fold its maximum",
-            extra={"curve_error": e["cubic"], "points": e["found"], "point_error": e["point"], "columns": n}))
+        results.append(
+            WorkPrecision(
+                "brentq per column",
+                e["time_A"],
+                e["fold"],
+                1,
+                baseline=True,
+                series="brentq per column",
+                setting=f"N = {n}",
+                note=f"scipy.optimize.brentq in sigma per column q_j (xtol 1e-14) on stability.spectrum "
+                f"(method {b['method']!r}), cubic spline, fold its maximum",
+                extra={"curve_error": e["cubic"], "points": e["found"], "point_error": e["point"], "columns": n},
+            )
+        )
     return results
 
 
 #: the suite: ``python benchmarks/run.py --suite continuation``
 SUITE = Suite(
-    "continuation", continuation_work_precision,
+    "continuation",
+    continuation_work_precision,
     "neutral curve of the sliding model in (q, sigma), fr_inv = 0, alpha_v = 0.5, mu = 2.28: "
     "continuation vs brentq per column",
-    (Panel("error of the located fold (q*, sigma*) vs closed form", "wall time per traced curve [s]",
-           target=FOLD_TARGET),
-     Panel("largest error of the curve (dense output / spline) vs closed form", "wall time per traced curve [s]",
-           x="curve_error", title="the curve between the points: Hermite dense output vs cubic spline")),
-    unit="curve", compare_at=("error", "curve_error"), quick={"quick": True})
+    (
+        Panel(
+            "error of the located fold (q*, sigma*) vs closed form",
+            "wall time per traced curve [s]",
+            target=FOLD_TARGET,
+        ),
+        Panel(
+            "largest error of the curve (dense output / spline) vs closed form",
+            "wall time per traced curve [s]",
+            x="curve_error",
+            title="the curve between the points: Hermite dense output vs cubic spline",
+        ),
+    ),
+    unit="curve",
+    compare_at=("error", "curve_error"),
+    quick={"quick": True},
+)

@@ -24,10 +24,11 @@ import numpy as np
 
 from stability import execution
 from stability.models import get_model
+
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
-__all__ = ["domain_sample", "eigen_reference", "eigen_errors", "eigen_work_precision", "EIGEN_TARGET", "SUITE"]
+__all__ = ["EIGEN_TARGET", "SUITE", "domain_sample", "eigen_errors", "eigen_reference", "eigen_work_precision"]
 
 #: largest relative error per eigenvalue the issue requires
 EIGEN_TARGET = 1e-13
@@ -61,9 +62,9 @@ def eigen_reference(p: dict[str, np.ndarray], digits: int = 50) -> list[list[com
         for j in range(p["q"].size):
             q, F, sg, a, m = (mp.mpf(float(p[k][j])) for k in _NAMES)
             M = mp.matrix([[1, 0, i * m * q], [0, 1, 0], [-i * q, 0, 1]])
-            A = mp.matrix([[-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a],
-                           [-i, i, 0],
-                           [-(q + i * a / m), q, -a / m]])
+            A = mp.matrix(
+                [[-a + i * (sg - 1), i * (-(sg - 1) + m * q * F), i * a], [-i, i, 0], [-(q + i * a / m), q, -a / m]]
+            )
             out.append(list(mp.eig(M**-1 * A, left=False, right=False)))
     return out
 
@@ -96,8 +97,9 @@ def eigen_errors(ev: np.ndarray, reference: list[list]) -> np.ndarray:
 
 
 @execution.using("compiled")  # the compiled paths are measured (docs/performance.md)
-def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, loop_points: int = 20_000,
-                         repeat: int = 5, seed: int = 0) -> list[WorkPrecision]:
+def eigen_work_precision(
+    points: int = 1_000_000, reference_points: int = 1000, loop_points: int = 20_000, repeat: int = 5, seed: int = 0
+) -> list[WorkPrecision]:
     """Work-precision points of the eigenvalue methods on the sliding model.
 
     Parameters
@@ -147,37 +149,75 @@ def eigen_work_precision(points: int = 1_000_000, reference_points: int = 1000, 
     }
     best, _ = best_times(group, repeat, warmup="first", keep=False)
     M = A = group = None  # free the baselines' matrices before the cross-checks
-    best.update(best_times({f"spectrum({m})": lambda m=m: spectrum("sliding", method=m, **big)
-                            for m in ("lapack", "polynomial")}, repeat, warmup="first", keep=False)[0])
+    best.update(
+        best_times(
+            {f"spectrum({m})": lambda m=m: spectrum("sliding", method=m, **big) for m in ("lapack", "polynomial")},
+            repeat,
+            warmup="first",
+            keep=False,
+        )[0]
+    )
     errors = {
         "scipy loop": loop(Ms, As, reference_points),
         "batched LAPACK": np.linalg.eigvals(np.linalg.solve(Ms, As)),
-        **{f"spectrum({m})": spectrum("sliding", method=m, **small).eigenvalues
-           for m in ("lapack", "polynomial", "kernel")},
+        **{
+            f"spectrum({m})": spectrum("sliding", method=m, **small).eigenvalues
+            for m in ("lapack", "polynomial", "kernel")
+        },
         "kernel alone": kernel.sliding_spectrum(*(small[k] for k in _NAMES), polish=3)[0],
         "kernel alone, no polishing": kernel.sliding_spectrum(*(small[k] for k in _NAMES), polish=0)[0],
     }
-    notes = {"scipy loop": "scipy.linalg.eig(A, M) per point",
-             "batched LAPACK": "numpy.linalg.eigvals(solve(M, A)), whole batch"}
-    for name in ("scipy loop", "batched LAPACK", "spectrum(lapack)", "spectrum(polynomial)", "spectrum(kernel)",
-                 "kernel alone", "kernel alone, no polishing"):
+    notes = {
+        "scipy loop": "scipy.linalg.eig(A, M) per point",
+        "batched LAPACK": "numpy.linalg.eigvals(solve(M, A)), whole batch",
+    }
+    for name in (
+        "scipy loop",
+        "batched LAPACK",
+        "spectrum(lapack)",
+        "spectrum(polynomial)",
+        "spectrum(kernel)",
+        "kernel alone",
+        "kernel alone, no polishing",
+    ):
         err = eigen_errors(errors[name], ref).max()
         n = n_loop if name == "scipy loop" else points
         if name in notes:
             results.append(WorkPrecision(name, best[name] / n, err, n, baseline=True, note=notes[name]))
         elif name.startswith("spectrum"):
-            results.append(WorkPrecision(name, best[name] / n, err, n, default=name == f"spectrum({DEFAULT_METHOD})",
-                                         note="package path: domain check, bounds, decision"))
+            results.append(
+                WorkPrecision(
+                    name,
+                    best[name] / n,
+                    err,
+                    n,
+                    default=name == f"spectrum({DEFAULT_METHOD})",
+                    note="package path: domain check, bounds, decision",
+                )
+            )
         else:
-            results.append(WorkPrecision(name, best[name] / n, err, n, component=True,
-                                         note="stability.linear.kernel.sliding_spectrum, from the parameters, "
-                                              "no domain check"))
+            results.append(
+                WorkPrecision(
+                    name,
+                    best[name] / n,
+                    err,
+                    n,
+                    component=True,
+                    note="stability.linear.kernel.sliding_spectrum, from the parameters, no domain check",
+                )
+            )
     return results
 
 
 #: the suite: ``python benchmarks/run.py --suite eigen``
 SUITE = Suite(
-    "eigen", eigen_work_precision, "eigenvalues of the sliding model (eq. 11) over the physical domain",
-    (Panel("largest relative error per eigenvalue vs mpmath, 50 digits", "wall time per point [s]",
-           target=EIGEN_TARGET),),
-    quick={"points": 100_000, "reference_points": 200, "loop_points": 2000, "repeat": 1})
+    "eigen",
+    eigen_work_precision,
+    "eigenvalues of the sliding model (eq. 11) over the physical domain",
+    (
+        Panel(
+            "largest relative error per eigenvalue vs mpmath, 50 digits", "wall time per point [s]", target=EIGEN_TARGET
+        ),
+    ),
+    quick={"points": 100_000, "reference_points": 200, "loop_points": 2000, "repeat": 1},
+)

@@ -40,12 +40,25 @@ from typing import Any
 import numpy as np
 
 from stability import execution
+
 from .records import Panel, Suite, WorkPrecision
 from .timing import best_times
 
-__all__ = ["FR_INV", "T_END", "crossing_run", "numpy_rhs_crossing_run", "stiff_run", "growth_run",
-           "integrator_work_precision", "CROSSING_TARGET", "GROWTH_TARGET", "TOLERANCES", "RK4_STEPS",
-           "STIFF_ALPHA_V", "SUITE"]
+__all__ = [
+    "CROSSING_TARGET",
+    "FR_INV",
+    "GROWTH_TARGET",
+    "RK4_STEPS",
+    "STIFF_ALPHA_V",
+    "SUITE",
+    "TOLERANCES",
+    "T_END",
+    "crossing_run",
+    "growth_run",
+    "integrator_work_precision",
+    "numpy_rhs_crossing_run",
+    "stiff_run",
+]
 
 #: required accuracy of the 90-degree crossing time, in time units 1/Omega: the level at which
 #: docs/nonlinear.md calls the scene's run converged (2e-7 from rtol 1e-9 to 1e-13)
@@ -68,7 +81,12 @@ TOLERANCES: dict[str, tuple[float, ...]] = {
     "BDF": (1e-4, 1e-6, 1e-8),
 }
 QUICK_TOLERANCES: dict[str, tuple[float, ...]] = {
-    "dopri5": (1e-6, 1e-9), "RK45": (1e-6,), "DOP853": (1e-7,), "LSODA": (1e-7,), "Radau": (1e-5,), "BDF": (1e-5,),
+    "dopri5": (1e-6, 1e-9),
+    "RK45": (1e-6,),
+    "DOP853": (1e-7,),
+    "LSODA": (1e-7,),
+    "Radau": (1e-5,),
+    "BDF": (1e-5,),
 }
 #: steps of the paper's fixed-step RK4 (and the quick subset)
 RK4_STEPS: tuple[float, ...] = (0.4, 0.2, 0.1, 0.05, 0.025)
@@ -95,9 +113,17 @@ GROWTH_TOLERANCES: dict[str, tuple[float, ...]] = {
 QUICK_GROWTH_TOLERANCES: dict[str, tuple[float, ...]] = {"dopri5": (1e-7, 1e-9), "RK45": (1e-7,), "LSODA": (1e-7,)}
 VALIDATE_RTOL = 1e-11
 
-_LABEL = {"dopri5": "dopri5 (compiled)", "RK45": "scipy RK45", "DOP853": "scipy DOP853", "LSODA": "scipy LSODA",
-          "Radau": "scipy Radau", "BDF": "scipy BDF", "rk4": "RK4 fixed step (paper)",
-          "numpy": "scipy RK45 + numpy RHS", "auto": "simulate default (auto)"}
+_LABEL = {
+    "dopri5": "dopri5 (compiled)",
+    "RK45": "scipy RK45",
+    "DOP853": "scipy DOP853",
+    "LSODA": "scipy LSODA",
+    "Radau": "scipy Radau",
+    "BDF": "scipy BDF",
+    "rk4": "RK4 fixed step (paper)",
+    "numpy": "scipy RK45 + numpy RHS",
+    "auto": "simulate default (auto)",
+}
 
 
 def _check_tol(rtol: float) -> None:
@@ -105,8 +131,9 @@ def _check_tol(rtol: float) -> None:
         raise ValueError(f"rtol = {rtol!r} must be a float in (0, 1)")
 
 
-def crossing_run(method: str, rtol: float = DEFAULT_RTOL, atol: float | None = None,
-                 step: float | None = None) -> tuple[float, int]:
+def crossing_run(
+    method: str, rtol: float = DEFAULT_RTOL, atol: float | None = None, step: float | None = None
+) -> tuple[float, int]:
     """The paper's ``fr_inv = 0.3`` run: 90-degree crossing time and right-hand-side evaluations.
 
     Parameters
@@ -125,12 +152,23 @@ def crossing_run(method: str, rtol: float = DEFAULT_RTOL, atol: float | None = N
     (float, int)
         Crossing time (units of ``1/Omega``; NaN if the axis never reaches 90 degrees) and nfev.
     """
-    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
     from stability.nonlinear.runs import simulate
+    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
 
     _check_tol(rtol)
-    ds = simulate("sliding", t_end=T_END, dt=DT, fr_inv=FR_INV, alpha_v=ALPHA_V, **PAPER, **INITIAL_CONDITIONS[FR_INV],
-                  method=method, rtol=rtol, atol=rtol * 1e-3 if atol is None else atol, step=step)
+    ds = simulate(
+        "sliding",
+        t_end=T_END,
+        dt=DT,
+        fr_inv=FR_INV,
+        alpha_v=ALPHA_V,
+        **PAPER,
+        **INITIAL_CONDITIONS[FR_INV],
+        method=method,
+        rtol=rtol,
+        atol=rtol * 1e-3 if atol is None else atol,
+        step=step,
+    )
     return crossing_time(ds), int(ds.attrs["nfev"])
 
 
@@ -141,16 +179,23 @@ def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     from scipy.integrate import solve_ivp
 
     from stability.nonlinear.reference import sliding_rhs
-    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
     from stability.nonlinear.runs import initial_state
+    from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
 
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]
     y0 = initial_state("sliding", ic["omega"], ic["k"], ic["velocity"])
     t_eval = np.linspace(0.0, T_END, int(round(T_END / DT)) + 1)
     args = (PAPER["q"], FR_INV, PAPER["sigma"], PAPER["mu"], ALPHA_V)
-    r = solve_ivp(lambda t, y: sliding_rhs(t, y, *args), (0.0, T_END), y0, method="RK45", t_eval=t_eval,
-                  rtol=rtol, atol=rtol * 1e-3)
+    r = solve_ivp(
+        lambda t, y: sliding_rhs(t, y, *args),
+        (0.0, T_END),
+        y0,
+        method="RK45",
+        t_eval=t_eval,
+        rtol=rtol,
+        atol=rtol * 1e-3,
+    )
     k = r.y[3:6].T  # the state's axis k (stability.nonlinear.sliding.STATE), polar angle as simulate()
     polar = np.degrees(np.arccos(np.clip(k[:, 2] / np.linalg.norm(k, axis=1), -1.0, 1.0)))
     return crossing_time(xr.Dataset({"polar_angle": ("time", polar)}, coords={"time": r.t})), int(r.nfev)
@@ -178,8 +223,21 @@ def stiff_run(method: str, alpha_v: float, rtol: float = 1e-6) -> tuple[float, i
     if not (isinstance(alpha_v, float) and alpha_v > 0):
         raise ValueError(f"alpha_v = {alpha_v!r} must be a float > 0")
     _check_tol(rtol)
-    ds = simulate("sliding", t_end=200.0, dt=1.0, omega=[0.0, 0.0, 1.0], k=[1e-3, 0.0, 1.0], q=-0.1, fr_inv=FR_INV,
-                  sigma=1.0, alpha_v=alpha_v, method=method, rtol=rtol, atol=rtol * 1e-3, max_steps=20_000_000)
+    ds = simulate(
+        "sliding",
+        t_end=200.0,
+        dt=1.0,
+        omega=[0.0, 0.0, 1.0],
+        k=[1e-3, 0.0, 1.0],
+        q=-0.1,
+        fr_inv=FR_INV,
+        sigma=1.0,
+        alpha_v=alpha_v,
+        method=method,
+        rtol=rtol,
+        atol=rtol * 1e-3,
+        max_steps=20_000_000,
+    )
     return float(np.hypot(*ds.k.values[-1, :2])), int(ds.attrs["nfev"]), int(ds.attrs["status"])
 
 
@@ -202,8 +260,17 @@ def growth_run(method: str, rtol: float = VALIDATE_RTOL) -> float:
     from stability.nonlinear.validation import validate
 
     _check_tol(rtol)
-    ds = validate("sliding", q=PAPER["q"], fr_inv=FR_INV, sigma=PAPER["sigma"], mu=PAPER["mu"], alpha_v=ALPHA_V,
-                  method=method, rtol=rtol, atol=rtol * 1e-4)
+    ds = validate(
+        "sliding",
+        q=PAPER["q"],
+        fr_inv=FR_INV,
+        sigma=PAPER["sigma"],
+        mu=PAPER["mu"],
+        alpha_v=ALPHA_V,
+        method=method,
+        rtol=rtol,
+        atol=rtol * 1e-4,
+    )
     return float(ds.measured_growth_rate[0])
 
 
@@ -244,9 +311,18 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
     results = []
 
     def point(method: str, label: str, t: float, tc: float, nfev: int, setting: str, **kw: Any) -> None:
-        results.append(WorkPrecision(label, t, abs(tc - reference) if np.isfinite(tc) else np.inf, 1,
-                                     series=label, setting=setting,
-                                     extra={"nfev": nfev, "crossing_time": tc, "reference": reference}, **kw))
+        results.append(
+            WorkPrecision(
+                label,
+                t,
+                abs(tc - reference) if np.isfinite(tc) else np.inf,
+                1,
+                series=label,
+                setting=setting,
+                extra={"nfev": nfev, "crossing_time": tc, "reference": reference},
+                **kw,
+            )
+        )
 
     def reps(t_first: float) -> int:
         return 1 if t_first > 2.0 else repeat
@@ -256,18 +332,41 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
             t, (tc, nfev) = _timed(lambda: crossing_run(method, rtol), 1)
             if reps(t) > 1:
                 t, (tc, nfev) = _timed(lambda: crossing_run(method, rtol), reps(t))
-            point(method, _LABEL[method], t, tc, nfev, f"rtol {rtol:g}",
-                  note=f"simulate(method={method!r}), atol = 1e-3 rtol")
+            point(
+                method,
+                _LABEL[method],
+                t,
+                tc,
+                nfev,
+                f"rtol {rtol:g}",
+                note=f"simulate(method={method!r}), atol = 1e-3 rtol",
+            )
     t, (tc, nfev) = _timed(lambda: crossing_run("auto", DEFAULT_RTOL, DEFAULT_ATOL), repeat)
-    point("auto", _LABEL["dopri5"], t, tc, nfev, "simulate() defaults, rtol 1e-9",
-          default=True, note="simulate() with its defaults (method auto -> dopri5 here)")
+    point(
+        "auto",
+        _LABEL["dopri5"],
+        t,
+        tc,
+        nfev,
+        "simulate() defaults, rtol 1e-9",
+        default=True,
+        note="simulate() with its defaults (method auto -> dopri5 here)",
+    )
     for h in steps:
         t, (tc, nfev) = _timed(lambda: crossing_run("rk4", step=h), repeat)
         point("rk4", _LABEL["rk4"], t, tc, nfev, f"h {h:g}", baseline=True, note="the paper's fixed-step RK4")
     for rtol in NUMPY_RHS_TOLERANCES[:1] if quick else NUMPY_RHS_TOLERANCES:
         t, (tc, nfev) = _timed(lambda: numpy_rhs_crossing_run(rtol), 1)
-        point("numpy", _LABEL["numpy"], t, tc, nfev, f"rtol {rtol:g}", baseline=True,
-              note="solve_ivp(RK45) on the numpy right-hand side: what a user writes first")
+        point(
+            "numpy",
+            _LABEL["numpy"],
+            t,
+            tc,
+            nfev,
+            f"rtol {rtol:g}",
+            baseline=True,
+            note="solve_ivp(RK45) on the numpy right-hand side: what a user writes first",
+        )
 
     alphas = QUICK_STIFF_ALPHA_V if quick else STIFF_ALPHA_V
     methods = ("dopri5", "RK45", "DOP853", "LSODA", "Radau", "BDF", "auto")
@@ -277,11 +376,20 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
             if method in ("RK45", "DOP853") and a > STIFF_EXPLICIT_SCIPY_MAX:
                 continue
             t, (tilt, nfev, status) = _timed(lambda: stiff_run(method, a), 1)
-            results.append(WorkPrecision(
-                _LABEL[method], t, abs(tilt - ref_tilt) / ref_tilt if status >= 0 else np.inf, 1,
-                default=method == "auto", series=_LABEL[method], setting=f"alpha_v {a:g}", panel="stiff",
-                note="linear-regime run, 200 time units, rtol 1e-6; error: final tilt vs Radau rtol 1e-10",
-                extra={"alpha_v": a, "nfev": nfev, "status": status}))
+            results.append(
+                WorkPrecision(
+                    _LABEL[method],
+                    t,
+                    abs(tilt - ref_tilt) / ref_tilt if status >= 0 else np.inf,
+                    1,
+                    default=method == "auto",
+                    series=_LABEL[method],
+                    setting=f"alpha_v {a:g}",
+                    panel="stiff",
+                    note="linear-regime run, 200 time units, rtol 1e-6; error: final tilt vs Radau rtol 1e-10",
+                    extra={"alpha_v": a, "nfev": nfev, "status": status},
+                )
+            )
 
     g_ref = growth_run("DOP853", 1e-13)
     for method, tols in (QUICK_GROWTH_TOLERANCES if quick else GROWTH_TOLERANCES).items():
@@ -289,29 +397,66 @@ def integrator_work_precision(repeat: int = 3, quick: bool = False) -> list[Work
             t, g = _timed(lambda: growth_run(method, rtol), 1)
             if reps(t) > 1:
                 t, g = _timed(lambda: growth_run(method, rtol), reps(t))
-            results.append(WorkPrecision(
-                _LABEL[method], t, abs(g - g_ref) / abs(g_ref), 1, series=_LABEL[method], setting=f"rtol {rtol:g}",
-                panel="growth", baseline=method == "RK45",
-                note="validate(method=...), atol = 1e-4 rtol; error: fitted growth rate vs DOP853 rtol 1e-13",
-                extra={"growth_rate": g, "reference": g_ref}))
+            results.append(
+                WorkPrecision(
+                    _LABEL[method],
+                    t,
+                    abs(g - g_ref) / abs(g_ref),
+                    1,
+                    series=_LABEL[method],
+                    setting=f"rtol {rtol:g}",
+                    panel="growth",
+                    baseline=method == "RK45",
+                    note="validate(method=...), atol = 1e-4 rtol; error: fitted growth rate vs DOP853 rtol 1e-13",
+                    extra={"growth_rate": g, "reference": g_ref},
+                )
+            )
     t, g = _timed(lambda: growth_run("dopri5", VALIDATE_RTOL), repeat)
-    results.append(WorkPrecision(
-        _LABEL["dopri5"], t, abs(g - g_ref) / abs(g_ref), 1, series=_LABEL["dopri5"],
-        setting="validate() defaults, rtol 1e-11", panel="growth", default=True,
-        note="validate() with its defaults (dopri5, rtol 1e-11, atol 1e-15)",
-        extra={"growth_rate": g, "reference": g_ref}))
+    results.append(
+        WorkPrecision(
+            _LABEL["dopri5"],
+            t,
+            abs(g - g_ref) / abs(g_ref),
+            1,
+            series=_LABEL["dopri5"],
+            setting="validate() defaults, rtol 1e-11",
+            panel="growth",
+            default=True,
+            note="validate() with its defaults (dopri5, rtol 1e-11, atol 1e-15)",
+            extra={"growth_rate": g, "reference": g_ref},
+        )
+    )
     return results
 
 
 #: the suite: ``python benchmarks/run.py --suite integrators``
 SUITE = Suite(
-    "integrators", integrator_work_precision,
+    "integrators",
+    integrator_work_precision,
     "nonlinear sliding top, the paper's Fr^-1 = 0.3 run (Sec. 3(ii)), the stiff slip mode and a validation "
     "run: integrators",
-    (Panel("error of the 90-degree crossing time vs DOP853 rtol 1e-13 [1/Omega]", "wall time per run [s]",
-           target=CROSSING_TARGET),
-     Panel("alpha_v (stiff slip mode, linear regime, 200 time units, rtol 1e-6)", "wall time per run [s]",
-           x="alpha_v", select="stiff", title="cost against stiffness: explicit methods' time grows like alpha_v"),
-     Panel("relative error of the fitted growth rate vs DOP853 rtol 1e-13", "wall time per validation run [s]",
-           select="growth", target=GROWTH_TARGET, title="validate(): growth rate fitted to a run (4 e-folds)")),
-    unit="run", compare_at=("error",), quick={"quick": True})
+    (
+        Panel(
+            "error of the 90-degree crossing time vs DOP853 rtol 1e-13 [1/Omega]",
+            "wall time per run [s]",
+            target=CROSSING_TARGET,
+        ),
+        Panel(
+            "alpha_v (stiff slip mode, linear regime, 200 time units, rtol 1e-6)",
+            "wall time per run [s]",
+            x="alpha_v",
+            select="stiff",
+            title="cost against stiffness: explicit methods' time grows like alpha_v",
+        ),
+        Panel(
+            "relative error of the fitted growth rate vs DOP853 rtol 1e-13",
+            "wall time per validation run [s]",
+            select="growth",
+            target=GROWTH_TARGET,
+            title="validate(): growth rate fitted to a run (4 e-folds)",
+        ),
+    ),
+    unit="run",
+    compare_at=("error",),
+    quick={"quick": True},
+)

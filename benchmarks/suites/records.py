@@ -15,7 +15,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-__all__ = ["WorkPrecision", "Panel", "Suite", "peak_memory_mb"]
+__all__ = ["Panel", "Suite", "WorkPrecision", "peak_memory_mb"]
 
 
 @dataclass(frozen=True)

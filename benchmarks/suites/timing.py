@@ -34,15 +34,21 @@ import time
 from collections.abc import Callable, Hashable, Mapping
 from typing import Any
 
-__all__ = ["best_times", "WARMUPS"]
+__all__ = ["WARMUPS", "best_times"]
 
 #: the warm-up rules of :func:`best_times`
 WARMUPS = ("first", "round", "none")
 
 
-def best_times(fns: Mapping[Hashable, Callable[[], Any]], repeat: int, min_time: float = 0.0, *,
-               number: int = 1, warmup: str = "round",
-               keep: bool = True) -> tuple[dict[Hashable, float], dict[Hashable, Any]]:
+def best_times(
+    fns: Mapping[Hashable, Callable[[], Any]],
+    repeat: int,
+    min_time: float = 0.0,
+    *,
+    number: int = 1,
+    warmup: str = "round",
+    keep: bool = True,
+) -> tuple[dict[Hashable, float], dict[Hashable, Any]]:
     """Minimum wall time per call of each function, and its last result (module docstring).
 
     Parameters

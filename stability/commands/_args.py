@@ -10,8 +10,19 @@ from collections.abc import Iterable
 from ..grids.ranges import parse_values
 from ..parameters import DEFAULT_MU, DOMAIN
 
-__all__ = ["add_parameter_flags", "parameter_values", "parameter_help", "add_model_flag", "FLAGS",
-           "PARAMETER_HELP", "add_top_arguments", "top_from_args", "top_parameters", "apply_top", "TOP_FLAGS"]
+__all__ = [
+    "FLAGS",
+    "PARAMETER_HELP",
+    "TOP_FLAGS",
+    "add_model_flag",
+    "add_parameter_flags",
+    "add_top_arguments",
+    "apply_top",
+    "parameter_help",
+    "parameter_values",
+    "top_from_args",
+    "top_parameters",
+]
 
 
 #: parameter name -> CLI flag
@@ -38,10 +49,15 @@ def parameter_help(name: str, *, kind: str = "value", extra: str = "") -> str:
     return f"{text}{extra}: {_VALUES[kind]}".replace("%", "%%")
 
 
-def add_parameter_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, names: Iterable[str], *,
-                        required: Iterable[str] = (), kind: str = "values",
-                        defaults: dict[str, object] | None = None,
-                        extra: dict[str, str] | None = None) -> None:
+def add_parameter_flags(
+    p: argparse.ArgumentParser | argparse._ArgumentGroup,
+    names: Iterable[str],
+    *,
+    required: Iterable[str] = (),
+    kind: str = "values",
+    defaults: dict[str, object] | None = None,
+    extra: dict[str, str] | None = None,
+) -> None:
     """Add ``--q``, ``--fr-inv``, ... with their help (what, unit, domain, default).
 
     Parameters
@@ -64,22 +80,38 @@ def add_parameter_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, na
     defaults = {"mu": DEFAULT_MU, **(defaults or {})}
     for name in names:
         flag = FLAGS.get(name, "--" + name.replace("_", "-"))
-        p.add_argument(flag, dest=name, metavar="VALUES" if kind == "values" else "VALUE",
-                       type=float if kind == "value" else None, required=name in required,
-                       default=defaults.get(name),
-                       help=parameter_help(name, kind=kind, extra=(extra or {}).get(name, ""))
-                       + ("; required" if name in required else ""))
+        p.add_argument(
+            flag,
+            dest=name,
+            metavar="VALUES" if kind == "values" else "VALUE",
+            type=float if kind == "value" else None,
+            required=name in required,
+            default=defaults.get(name),
+            help=parameter_help(name, kind=kind, extra=(extra or {}).get(name, ""))
+            + ("; required" if name in required else ""),
+        )
 
 
-def add_model_flag(p: argparse.ArgumentParser, models: Iterable[str], default: str = "sliding", *,
-                   what: str = "linear model", deprecated: dict[str, str] | None = None) -> None:
+def add_model_flag(
+    p: argparse.ArgumentParser,
+    models: Iterable[str],
+    default: str = "sliding",
+    *,
+    what: str = "linear model",
+    deprecated: dict[str, str] | None = None,
+) -> None:
     """``--model`` with its choices and default listed in the help; ``deprecated`` (old name ->
     new name) are accepted too (the library warns) and named as such."""
     models = list(models)
     deprecated = deprecated or {}
     old = "; ".join(f"{o}: deprecated name of {n}" for o, n in deprecated.items())
-    p.add_argument("--model", choices=[*models, *deprecated], default=default, metavar="MODEL",
-                   help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""))
+    p.add_argument(
+        "--model",
+        choices=[*models, *deprecated],
+        default=default,
+        metavar="MODEL",
+        help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""),
+    )
 
 
 def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, object]:
@@ -98,10 +130,13 @@ def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[s
 # ------------------------------------------------------------------------------------------
 #: the SI data of a top: Top's constructor keywords, in its order
 TOP_FLAGS = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
-TOP_HELP = {"mass": "mass M, kg", "radius": "radius R of the sphere, m",
-            "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
-            "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
-            "inertia_axial": "axial moment of inertia C, kg m^2"}
+TOP_HELP = {
+    "mass": "mass M, kg",
+    "radius": "radius R of the sphere, m",
+    "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
+    "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
+    "inertia_axial": "axial moment of inertia C, kg m^2",
+}
 #: the parameters a top gives whatever the spin (eq. 3), and those its spin gives (eqs. 3, 7)
 TOP_PARAMETERS = ("q", "sigma", "mu")
 SPIN_PARAMETERS = ("fr_inv", "alpha_v", "alpha_k")
@@ -122,27 +157,47 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
     """
     from ..top import PRESETS, SPIN_UNITS
 
-    g = p.add_argument_group("a real top in SI units (instead of --q, --sigma, --mu"
-                             + (", --fr-inv and, with --mu-v, --alpha-v)" if spin else ")"))
-    g.add_argument("--preset", choices=list(PRESETS),
-                   help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1, as its simulations) or "
-                        "table1_measured (Table 1 taken literally)")
-    g.add_argument("--top", dest="top_file", metavar="FILE.toml",
-                   help="a TOML file with a [top] table: mass, radius, com_offset, inertia_transverse, "
-                        "inertia_axial (SI), optional g, mu_v, mu_k, or preset = \"table1\"")
+    g = p.add_argument_group(
+        "a real top in SI units (instead of --q, --sigma, --mu"
+        + (", --fr-inv and, with --mu-v, --alpha-v)" if spin else ")")
+    )
+    g.add_argument(
+        "--preset",
+        choices=list(PRESETS),
+        help="the paper's toy top: table1 (q = -0.1, mu = 2.28, sigma = 1, as its simulations) or "
+        "table1_measured (Table 1 taken literally)",
+    )
+    g.add_argument(
+        "--top",
+        dest="top_file",
+        metavar="FILE.toml",
+        help="a TOML file with a [top] table: mass, radius, com_offset, inertia_transverse, "
+        'inertia_axial (SI), optional g, mu_v, mu_k, or preset = "table1"',
+    )
     for name in TOP_FLAGS:
         g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
-    g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2",
-                   help="gravity (default 9.80665)")
-    g.add_argument("--mu-v", dest="mu_v", type=float, metavar="S/M",
-                   help="viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
-                        "(default: none, --alpha-v given)")
-    g.add_argument("--mu-k", dest="mu_k", type=float, metavar="MU_K",
-                   help="Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)")
+    g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2", help="gravity (default 9.80665)")
+    g.add_argument(
+        "--mu-v",
+        dest="mu_v",
+        type=float,
+        metavar="S/M",
+        help="viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
+        "(default: none, --alpha-v given)",
+    )
+    g.add_argument(
+        "--mu-k",
+        dest="mu_k",
+        type=float,
+        metavar="MU_K",
+        help="Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)",
+    )
     if spin:
-        g.add_argument("--spin", metavar="VALUES" if grid else "VALUE",
-                       help="spin rate Omega of the top, in --unit: "
-                            + (_VALUES["values"] if grid else _VALUES["value"]))
+        g.add_argument(
+            "--spin",
+            metavar="VALUES" if grid else "VALUE",
+            help="spin rate Omega of the top, in --unit: " + (_VALUES["values"] if grid else _VALUES["value"]),
+        )
         g.add_argument("--unit", choices=list(SPIN_UNITS), default=None, help="unit of --spin (default rad/s)")
     p.set_defaults(_top_spin=spin, _top_grid=grid)
 
@@ -173,11 +228,17 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
 
     preset, path = getattr(args, "preset", None), getattr(args, "top_file", None)
     si = [n for n in TOP_FLAGS if getattr(args, n, None) is not None]
-    extra = {k: getattr(args, a) for k, a in (("g", "gravity"), ("mu_v", "mu_v"), ("mu_k", "mu_k"))
-             if getattr(args, a, None) is not None}
+    extra = {
+        k: getattr(args, a)
+        for k, a in (("g", "gravity"), ("mu_v", "mu_v"), ("mu_k", "mu_k"))
+        if getattr(args, a, None) is not None
+    }
     flag = {"g": "--g", "mu_v": "--mu-v", "mu_k": "--mu-k"}
-    ways = ([f"--preset {preset}"] if preset else []) + ([f"--top {path}"] if path else []) \
+    ways = (
+        ([f"--preset {preset}"] if preset else [])
+        + ([f"--top {path}"] if path else [])
         + ([", ".join("--" + n.replace("_", "-") for n in si)] if si else [])
+    )
     if len(ways) > 1:
         raise InputError(f"{' and '.join(ways)} conflict: give the top one way (--preset, --top FILE or its SI data)")
     if preset:
@@ -191,18 +252,22 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
     if si:
         missing = [n for n in TOP_FLAGS if n not in si]
         if missing:
-            raise InputError(f"{', '.join('--' + n.replace('_', '-') for n in si)} given without "
-                             f"{', '.join('--' + n.replace('_', '-') for n in missing)}: a top in SI units needs all "
-                             "five (or --top FILE, or --preset)")
+            raise InputError(
+                f"{', '.join('--' + n.replace('_', '-') for n in si)} given without "
+                f"{', '.join('--' + n.replace('_', '-') for n in missing)}: a top in SI units needs all "
+                "five (or --top FILE, or --preset)"
+            )
         return Top(*(getattr(args, n) for n in TOP_FLAGS), **extra)
     if extra:
-        raise InputError(f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., "
-                         "--top FILE or --preset)")
+        raise InputError(
+            f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., --top FILE or --preset)"
+        )
     return None
 
 
-def top_parameters(top, spin=None, unit: str = "rad/s", alpha_v=None, *,  # noqa: ANN001
-                   names: Iterable[str] = (*TOP_PARAMETERS, "fr_inv", "alpha_v")) -> dict[str, object]:
+def top_parameters(
+    top, spin=None, unit: str = "rad/s", alpha_v=None, *, names: Iterable[str] = (*TOP_PARAMETERS, "fr_inv", "alpha_v")
+) -> dict[str, object]:
     """The nondimensional keywords of a top at a spin: ``q, sigma, mu`` (eq. 3) and, with a spin,
     ``fr_inv`` (eq. 3) and ``alpha_v`` (eq. 7, from the top's ``mu_v`` or the ``alpha_v`` given),
     ``alpha_k`` (eq. 7, with ``mu_k``); only those in ``names``.
@@ -218,8 +283,14 @@ def top_parameters(top, spin=None, unit: str = "rad/s", alpha_v=None, *,  # noqa
     return {k: v for k, v in out.items() if k in names}
 
 
-def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bool = True,
-              skip: Iterable[str] = (), required: Iterable[str] = ()):  # -> Top | None
+def apply_top(
+    args: argparse.Namespace,
+    names: Iterable[str],
+    *,
+    spin_needed: bool = True,
+    skip: Iterable[str] = (),
+    required: Iterable[str] = (),
+):  # -> Top | None
     """Fill ``args``' nondimensional parameters from the top of :func:`add_top_arguments`.
 
     With a top, ``q``, ``sigma``, ``mu`` come from it and, when ``spin_needed``, ``fr_inv`` (and
@@ -261,20 +332,29 @@ def apply_top(args: argparse.Namespace, names: Iterable[str], *, spin_needed: bo
     source = _top_source(args)
     given = [n for n in names if n in TOP_PARAMETERS and getattr(args, n, None) is not None]
     if spin_needed:
-        given += [n for n in ("fr_inv", "alpha_k") if n in names and getattr(args, n, None) is not None
-                  and (n == "fr_inv" or top.mu_k is not None)]
+        given += [
+            n
+            for n in ("fr_inv", "alpha_k")
+            if n in names and getattr(args, n, None) is not None and (n == "fr_inv" or top.mu_k is not None)
+        ]
         if top.mu_v is not None and "alpha_v" in names and getattr(args, "alpha_v", None) is not None:
-            raise InputError(f"--mu-v {top.mu_v:g} and --alpha-v {args.alpha_v} conflict: alpha_v = mu mu_v g / "
-                             "Omega follows from mu_v and the spin (eq. 7); give one of them")
+            raise InputError(
+                f"--mu-v {top.mu_v:g} and --alpha-v {args.alpha_v} conflict: alpha_v = mu mu_v g / "
+                "Omega follows from mu_v and the spin (eq. 7); give one of them"
+            )
     if given:
         n = given[0]
         flag = FLAGS.get(n, "--" + n.replace("_", "-"))
-        raise InputError(f"{source} and {flag} {getattr(args, n)} conflict: the top gives {n} "
-                         f"(eqs. 3, 7); give the top or {flag}, not both")
+        raise InputError(
+            f"{source} and {flag} {getattr(args, n)} conflict: the top gives {n} "
+            f"(eqs. 3, 7); give the top or {flag}, not both"
+        )
     if spin_needed:
         if spin is None:
-            raise InputError(f"{source} needs --spin VALUE (with --unit): the spin rate gives fr_inv "
-                             "= g / (Omega^2 R) and alpha_v = mu mu_v g / Omega")
+            raise InputError(
+                f"{source} needs --spin VALUE (with --unit): the spin rate gives fr_inv "
+                "= g / (Omega^2 R) and alpha_v = mu mu_v g / Omega"
+            )
         value = parse_values(spin, name="--spin") if isinstance(spin, str) else spin
         if not getattr(args, "_top_grid", False) and not isinstance(value, float):
             raise InputError(f"--spin = {spin!r} must be one number here")
@@ -303,5 +383,7 @@ def _require(args: argparse.Namespace, required: Iterable[str]) -> None:
     missing = [FLAGS.get(n, "--" + n.replace("_", "-")) for n in required if getattr(args, n, None) is None]
     if missing:
         spin = getattr(args, "_top_spin", False)
-        raise InputError(f"{', '.join(missing)} required (or a top in SI units: --mass ... / --top FILE.toml / "
-                         f"--preset{' with --spin' if spin else ''})")
+        raise InputError(
+            f"{', '.join(missing)} required (or a top in SI units: --mass ... / --top FILE.toml / "
+            f"--preset{' with --spin' if spin else ''})"
+        )

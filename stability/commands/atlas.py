@@ -11,11 +11,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..grids.netcdf import check_output_path, write_dataset
-from ..models import DEPRECATED_NAMES, MODELS
-from ..linear.spectra import DEFAULT_METHOD, METHODS
-from ..errors import Interrupted
 from .. import interrupts
+from ..errors import Interrupted
+from ..grids.netcdf import check_output_path, write_dataset
+from ..linear.spectra import DEFAULT_METHOD, METHODS
+from ..models import DEPRECATED_NAMES, MODELS
 from ..parameters import DEFAULT_MU
 from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
@@ -26,7 +26,7 @@ __all__ = ["register", "run"]
 MAX_LINES = 10
 
 
-def plot_figure(ds, x: str):  # noqa: ANN001, ANN201 - xarray and matplotlib are imported late
+def plot_figure(ds, x: str):
     """The figure of ``--plot``: growth rate and frequency against ``x``, one line per value of a
     second grid dimension, or, with more than :data:`MAX_LINES` values there, the stability map
     over the two (as the recipes draw a 2-D grid)."""
@@ -41,47 +41,91 @@ def plot_figure(ds, x: str):  # noqa: ANN001, ANN201 - xarray and matplotlib are
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``atlas`` subcommand."""
     p = sub.add_parser(
-        "atlas", help="eigenvalues of a linear model over a parameter grid -> netCDF",
+        "atlas",
+        help="eigenvalues of a linear model over a parameter grid -> netCDF",
         description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
-                    "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
-                    "(--alpha-v then required).")
+        "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
+        "(--alpha-v then required).",
+    )
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
-    add_parameter_flags(p, ("q", "fr_inv", "sigma", "alpha_v", "mu"), defaults={"mu": None},
-                        extra={"alpha_v": " (sliding model only)", "mu": f" (default {DEFAULT_MU})"}
-                        | {n: " (required unless a top is given)" for n in ("q", "fr_inv", "sigma")})
+    add_parameter_flags(
+        p,
+        ("q", "fr_inv", "sigma", "alpha_v", "mu"),
+        defaults={"mu": None},
+        extra={"alpha_v": " (sliding model only)", "mu": f" (default {DEFAULT_MU})"}
+        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+    )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required")
+    p.add_argument(
+        "-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required"
+    )
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
-    p.add_argument("--mask-unphysical", action="store_true",
-                   help="mask grid points outside the physical domain (NaN) instead of refusing the grid")
-    p.add_argument("--method", choices=list(METHODS), default=DEFAULT_METHOD,
-                   help="eigenvalue method: kernel (compiled closed-form roots of the characteristic "
-                        "polynomial, polished, with error bounds; the fastest at full accuracy), polynomial "
-                        "(companion-matrix eigenvalues + Newton), lapack (numpy.linalg.eigvals of the "
-                        "operator); the last two are slower cross-checks")
-    p.add_argument("--plot", metavar="PNG", help="also draw the leading growth rate and frequency against --x "
-                   f"(one line per value of a second grid dimension; with more than {MAX_LINES} values there, "
-                   "the stability map over the two)")
+    p.add_argument(
+        "--mask-unphysical",
+        action="store_true",
+        help="mask grid points outside the physical domain (NaN) instead of refusing the grid",
+    )
+    p.add_argument(
+        "--method",
+        choices=list(METHODS),
+        default=DEFAULT_METHOD,
+        help="eigenvalue method: kernel (compiled closed-form roots of the characteristic "
+        "polynomial, polished, with error bounds; the fastest at full accuracy), polynomial "
+        "(companion-matrix eigenvalues + Newton), lapack (numpy.linalg.eigvals of the "
+        "operator); the last two are slower cross-checks",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="PNG",
+        help="also draw the leading growth rate and frequency against --x "
+        f"(one line per value of a second grid dimension; with more than {MAX_LINES} values there, "
+        "the stability map over the two)",
+    )
     p.add_argument("--x", default="q", help="abscissa of the --plot (a grid dimension: q, fr_inv, sigma, alpha_v, mu)")
     f = p.add_argument_group("what the file stores")
-    f.add_argument("--variables", choices=("all", "map"), default="all",
-                   help="all: every variable (all modes, for a study; default); map: the leading growth rate "
-                        "and the stability flag only, the smallest file that draws a stability map")
-    f.add_argument("--compression", choices=("none", "zlib", "zstd"), default="none",
-                   help="lossless compression of the data variables (netCDF4 filters; default none)")
-    f.add_argument("--float32", action="store_true",
-                   help="store growth rates, frequencies and bounds as float32 (relative error <= 2^-24, "
-                        "stated in the variables' attributes; the flags are decided in float64)")
+    f.add_argument(
+        "--variables",
+        choices=("all", "map"),
+        default="all",
+        help="all: every variable (all modes, for a study; default); map: the leading growth rate "
+        "and the stability flag only, the smallest file that draws a stability map",
+    )
+    f.add_argument(
+        "--compression",
+        choices=("none", "zlib", "zstd"),
+        default="none",
+        help="lossless compression of the data variables (netCDF4 filters; default none)",
+    )
+    f.add_argument(
+        "--float32",
+        action="store_true",
+        help="store growth rates, frequencies and bounds as float32 (relative error <= 2^-24, "
+        "stated in the variables' attributes; the flags are decided in float64)",
+    )
     g = p.add_argument_group("large grids (dask)")
-    g.add_argument("--chunks", metavar="SIZES",
-                   help="compute and write chunk by chunk: one size for every grid dimension (e.g. 100) "
-                        "or sizes by dimension (e.g. q=100,sigma=50; the others whole) (default: the whole "
-                        "grid at once)")
-    g.add_argument("--workers", type=int, metavar="N", help="run the chunks on a local dask cluster of N processes (default: in this process)")
-    g.add_argument("--scheduler", metavar="ADDRESS|FILE",
-                   help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file")
-    g.add_argument("--resume", action="store_true",
-                   help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run")
+    g.add_argument(
+        "--chunks",
+        metavar="SIZES",
+        help="compute and write chunk by chunk: one size for every grid dimension (e.g. 100) "
+        "or sizes by dimension (e.g. q=100,sigma=50; the others whole) (default: the whole "
+        "grid at once)",
+    )
+    g.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="run the chunks on a local dask cluster of N processes (default: in this process)",
+    )
+    g.add_argument(
+        "--scheduler",
+        metavar="ADDRESS|FILE",
+        help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file",
+    )
+    g.add_argument(
+        "--resume",
+        action="store_true",
+        help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
+    )
     g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
     p.set_defaults(func=run)
 
@@ -104,8 +148,10 @@ def parse_chunks(text: str) -> int | dict[str, int]:
             out[k.strip().replace("-", "_")] = int(v)
         return out
     except ValueError:
-        raise ValueError(f"--chunks = {text!r} is not a size or a list dim=size,... (sizes are integers "
-                         ">= 1, e.g. 100 or q=100,sigma=50)") from None
+        raise ValueError(
+            f"--chunks = {text!r} is not a size or a list dim=size,... (sizes are integers "
+            ">= 1, e.g. 100 or q=100,sigma=50)"
+        ) from None
 
 
 def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
@@ -115,10 +161,20 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     from ..grids.cluster import dask_client
 
     if args.plot:
-        raise ValueError("--plot is not available with --chunks (the grid may not fit in memory); "
-                         "plot a slice of the written file instead")
-    ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method,
-                                chunks=parse_chunks(args.chunks), **values), args)
+        raise ValueError(
+            "--plot is not available with --chunks (the grid may not fit in memory); "
+            "plot a slice of the written file instead"
+        )
+    ds = _spin_coordinate(
+        atlas(
+            args.model,
+            mask_unphysical=args.mask_unphysical,
+            method=args.method,
+            chunks=parse_chunks(args.chunks),
+            **values,
+        ),
+        args,
+    )
     store = parts_directory(out)
     _check_space(out, args.model, values)
     if args.resume and store.is_dir():
@@ -131,14 +187,25 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
 
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
-            write_atlas(ds, out, overwrite=args.overwrite, client=client, resume=args.resume,
-                        progress=not args.no_progress and sys.stderr.isatty(), notes=note, **_layout(args))
+            write_atlas(
+                ds,
+                out,
+                overwrite=args.overwrite,
+                client=client,
+                resume=args.resume,
+                progress=not args.no_progress and sys.stderr.isatty(),
+                notes=note,
+                **_layout(args),
+            )
     except KeyboardInterrupt:
         if args.resume:
-            raise Interrupted(f"no output file was written; the finished chunks are kept in {store}; "
-                              "rerun the same command to continue") from None
-        raise Interrupted("no output file was written and no chunks were kept (run with --resume to "
-                          "keep them across an interruption)") from None
+            raise Interrupted(
+                f"no output file was written; the finished chunks are kept in {store}; "
+                "rerun the same command to continue"
+            ) from None
+        raise Interrupted(
+            "no output file was written and no chunks were kept (run with --resume to keep them across an interruption)"
+        ) from None
     import xarray as xr
 
     kinds = (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
@@ -148,12 +215,14 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
         n0 = var.shape[0] if var.ndim else 1
         step = max(1, int(2e7 // max(1, var.size // n0)))
         for i in range(0, n0, step):
-            flags = var[i:i + step].values if var.ndim else var.values
+            flags = var[i : i + step].values if var.ndim else var.values
             for name, flag in kinds:
                 counts[name] += int((flags == flag).sum())
     grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    print(f"wrote {out}: {args.model} model, grid {grid} in chunks; "
-          + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
+    print(
+        f"wrote {out}: {args.model} model, grid {grid} in chunks; "
+        + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
+    )
     return 0
 
 
@@ -161,11 +230,14 @@ def _layout(args: argparse.Namespace | None) -> dict:
     """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags (None: the defaults)."""
     if args is None:
         return {"variables": "all", "compression": None, "float32": False}
-    return {"variables": args.variables, "compression": None if args.compression == "none" else args.compression,
-            "float32": bool(args.float32)}
+    return {
+        "variables": args.variables,
+        "compression": None if args.compression == "none" else args.compression,
+        "float32": bool(args.float32),
+    }
 
 
-def _check_space(out, model: str, values: dict) -> None:  # noqa: ANN001
+def _check_space(out, model: str, values: dict) -> None:
     """Refuse, before computing, an atlas whose file cannot fit on its file system."""
     import numpy as np
 
@@ -209,11 +281,12 @@ def run(args: argparse.Namespace) -> int:
         from ..grids.chunked import write_atlas
 
         write_atlas(ds, out, overwrite=args.overwrite, **layout)
-    counts = {name: int((ds.stability == flag).sum()) for name, flag in
-              (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))}
+    counts = {
+        name: int((ds.stability == flag).sum())
+        for name, flag in (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
+    }
     grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    print(f"wrote {out}: {args.model} model, grid {grid}; "
-          + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
+    print(f"wrote {out}: {args.model} model, grid {grid}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
     if args.plot:
         print(f"wrote {args.plot}")
     return 0
@@ -229,12 +302,14 @@ def _apply_top(args: argparse.Namespace) -> None:
     names = [n for n in ("q", "fr_inv", "sigma", "alpha_v", "mu") if n in MODELS[args.model].parameters]
     top = apply_top(args, names, required=("q", "fr_inv", "sigma"))
     if top is not None and np.ndim(args.fr_inv) == 1 and np.ndim(getattr(args, "alpha_v", None)) == 1:
-        raise ValueError(f"--spin {args.spin} (a grid) and --mu-v {top.mu_v:g}: alpha_v = mu mu_v g / Omega would "
-                         "change along the spin grid, and an atlas holds one dimension per parameter; give "
-                         "--alpha-v (held fixed) instead of --mu-v, or one spin")
+        raise ValueError(
+            f"--spin {args.spin} (a grid) and --mu-v {top.mu_v:g}: alpha_v = mu mu_v g / Omega would "
+            "change along the spin grid, and an atlas holds one dimension per parameter; give "
+            "--alpha-v (held fixed) instead of --mu-v, or one spin"
+        )
 
 
-def _spin_coordinate(ds, args: argparse.Namespace):  # noqa: ANN001, ANN202
+def _spin_coordinate(ds, args: argparse.Namespace):
     """With a top and its spin: the spin in ``--unit`` as a coordinate along ``fr_inv`` (or an
     attribute for one spin), and the top's SI data in the attributes."""
     import numpy as np
@@ -245,8 +320,7 @@ def _spin_coordinate(ds, args: argparse.Namespace):  # noqa: ANN001, ANN202
         return ds
     spin = parse_values(args.spin, name="--spin")
     unit = args.unit or "rad/s"
-    attrs = {"long_name": "spin rate Omega of the top", "units": unit,
-             "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    attrs = {"long_name": "spin rate Omega of the top", "units": unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
     if np.ndim(spin) == 1:
         ds = ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
     else:
@@ -264,6 +338,7 @@ def _check_plot_format(path: str) -> None:
     known = FigureCanvasBase.get_supported_filetypes()
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix not in known:
-        raise ValueError(f"--plot = {path!r}: the format {('.' + suffix) if suffix else '(no suffix)'} is not "
-                         f"known to matplotlib; the allowed suffixes are {', '.join('.' + k for k in sorted(known))}")
-
+        raise ValueError(
+            f"--plot = {path!r}: the format {('.' + suffix) if suffix else '(no suffix)'} is not "
+            f"known to matplotlib; the allowed suffixes are {', '.join('.' + k for k in sorted(known))}"
+        )

@@ -21,24 +21,56 @@ def _vec(text: str) -> list[float]:
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``final`` subcommand."""
     p = sub.add_parser(
-        "final", help="predicted final state of a sliding top (Jellett's integral, or a run)",
+        "final",
+        help="predicted final state of a sliding top (Jellett's integral, or a run)",
         description="Where the motion of a sliding top from a given state ends: the steady states of its "
-                    "Jellett level below its initial energy decide it when exactly one is stable (method "
-                    "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
-                    "arguments as in tippe simulate (fixed frame, K up). Sliding model only.")
-    p.add_argument("--omega", type=_vec, required=True, metavar="W1,W2,W3",
-                   help="initial angular velocity (units of the spin rate); required")
-    p.add_argument("--k", type=_vec, required=True, metavar="K1,K2,K3",
-                   help="initial symmetry axis, within 1 %% of unit length (normalised); required")
-    p.add_argument("--velocity", type=_vec, default=None, metavar="V1,V2",
-                   help="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)")
+        "Jellett level below its initial energy decide it when exactly one is stable (method "
+        "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
+        "arguments as in tippe simulate (fixed frame, K up). Sliding model only.",
+    )
+    p.add_argument(
+        "--omega",
+        type=_vec,
+        required=True,
+        metavar="W1,W2,W3",
+        help="initial angular velocity (units of the spin rate); required",
+    )
+    p.add_argument(
+        "--k",
+        type=_vec,
+        required=True,
+        metavar="K1,K2,K3",
+        help="initial symmetry axis, within 1 %% of unit length (normalised); required",
+    )
+    p.add_argument(
+        "--velocity",
+        type=_vec,
+        default=None,
+        metavar="V1,V2",
+        help="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)",
+    )
     add_top_flags(p)
-    p.add_argument("--no-simulation", dest="simulation", action="store_false",
-                   help="do not run a simulation when Jellett's integral does not decide (default: run one)")
-    p.add_argument("--t-max", dest="t_max", type=float, default=2e5, metavar="T",
-                   help="time limit of a deciding run, units of 1/Omega (default 2e5)")
-    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
-                   help="write the prediction and its candidate table as netCDF (default: print only)")
+    p.add_argument(
+        "--no-simulation",
+        dest="simulation",
+        action="store_false",
+        help="do not run a simulation when Jellett's integral does not decide (default: run one)",
+    )
+    p.add_argument(
+        "--t-max",
+        dest="t_max",
+        type=float,
+        default=2e5,
+        metavar="T",
+        help="time limit of a deciding run, units of 1/Omega (default 2e5)",
+    )
+    p.add_argument(
+        "-o",
+        "--output",
+        default=None,
+        metavar="FILE.nc",
+        help="write the prediction and its candidate table as netCDF (default: print only)",
+    )
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
@@ -49,19 +81,32 @@ def run(args: argparse.Namespace) -> int:
 
     apply_top_flags(args)
     out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
-    end = final_state(omega=args.omega, k=args.k, velocity=args.velocity, q=args.q, sigma=args.sigma,
-                      fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu, simulation=args.simulation,
-                      t_max=args.t_max)
+    end = final_state(
+        omega=args.omega,
+        k=args.k,
+        velocity=args.velocity,
+        q=args.q,
+        sigma=args.sigma,
+        fr_inv=args.fr_inv,
+        alpha_v=args.alpha_v,
+        mu=args.mu,
+        simulation=args.simulation,
+        t_max=args.t_max,
+    )
     print(f"final state: {end.kind}, tilt {end.tilt:.6f} deg (method: {end.method})")
-    print(f"Jellett's integral J = {end.jellett:.12g}, initial energy {end.initial_energy:.10g}, "
-          f"final energy {end.energy:.10g}")
+    print(
+        f"Jellett's integral J = {end.jellett:.12g}, initial energy {end.initial_energy:.10g}, "
+        f"final energy {end.energy:.10g}"
+    )
     if end.kind == "tilted":
         print(f"precession rate {end.precession_rate:.10g}, axial spin omega . k = {end.axial_spin:.10g}")
     print(f"why: {end.reason}")
     print(f"steady states of the level: {'kind':<9} {'tilt (deg)':>12} {'energy':>14} {'stability':>10} reachable")
     for c in end.candidates:
-        print(f"{'':28}{c.kind:<9} {c.tilt:12.6f} {c.energy:14.10g} {FLAG_NAMES[c.stability]:>10} "
-              f"{'yes' if c.reachable else 'no'}")
+        print(
+            f"{'':28}{c.kind:<9} {c.tilt:12.6f} {c.energy:14.10g} {FLAG_NAMES[c.stability]:>10} "
+            f"{'yes' if c.reachable else 'no'}"
+        )
     if out is not None:
         write_dataset(end.to_dataset(), out, overwrite=args.overwrite)
         print(f"wrote {out}")

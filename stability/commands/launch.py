@@ -14,18 +14,25 @@ def register(sub: argparse._SubParsersAction) -> None:
     from ..top import SPIN_UNITS
 
     p = sub.add_parser(
-        "launch", help="what a real top does when you spin it: thresholds, end, flip and settle times",
+        "launch",
+        help="what a real top does when you spin it: thresholds, end, flip and settle times",
         description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
-                    "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
-                    "is unstable, the launch spin above which it inverts completely, its class, where it ends, "
-                    "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md). Sliding model only.")
+        "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
+        "is unstable, the launch spin above which it inverts completely, its class, where it ends, "
+        "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md). Sliding model only.",
+    )
     add_top_arguments(p, spin=False)
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
     g.add_argument("--unit", choices=list(SPIN_UNITS), default="rev/s", help="unit of --spin (default rev/s)")
     g.add_argument("--tilt", type=float, default=1.0, metavar="DEG", help="initial tilt of the axis (default 1)")
-    g.add_argument("--alpha-v", dest="alpha_v", type=float, metavar="VALUE",
-                   help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)")
+    g.add_argument(
+        "--alpha-v",
+        dest="alpha_v",
+        type=float,
+        metavar="VALUE",
+        help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)",
+    )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
     g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")
     p.set_defaults(func=run)
@@ -39,8 +46,10 @@ def run(args: argparse.Namespace) -> int:
     if top is None:
         from ..errors import InputError
 
-        raise InputError("tippe launch needs a top: --preset, --top FILE.toml or --mass, --radius, --com-offset, "
-                         "--inertia-transverse, --inertia-axial")
+        raise InputError(
+            "tippe launch needs a top: --preset, --top FILE.toml or --mass, --radius, --com-offset, "
+            "--inertia-transverse, --inertia-axial"
+        )
     res = launch(top, args.spin, unit=args.unit, tilt=args.tilt, alpha_v=args.alpha_v, model=args.model)
     print(res)
     if args.output:

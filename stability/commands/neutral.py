@@ -23,17 +23,23 @@ def _pair(text: str, name: str) -> tuple[float, float]:
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``neutral`` subcommand."""
     p = sub.add_parser(
-        "neutral", help="neutral curves of a linear model in a parameter plane -> netCDF",
+        "neutral",
+        help="neutral curves of a linear model in a parameter plane -> netCDF",
         description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
-                    "(Re s = 0) in the plane of two parameters, print the special points (folds, "
-                    "zero-frequency and double crossings, domain edges) and write the curves. Give the "
-                    "parameters other than --x and --y. Default model: sliding (--alpha-v then required).")
+        "(Re s = 0) in the plane of two parameters, print the special points (folds, "
+        "zero-frequency and double crossings, domain edges) and write the curves. Give the "
+        "parameters other than --x and --y. Default model: sliding (--alpha-v then required).",
+    )
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter; required")
     p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter; required")
-    add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
-                        extra={"mu": f" (default {DEFAULT_MU} unless traced)",
-                               "alpha_v": " (sliding model only)"})
+    add_parameter_flags(
+        p,
+        FLAGS,
+        kind="value",
+        defaults={"mu": None},
+        extra={"mu": f" (default {DEFAULT_MU} unless traced)", "alpha_v": " (sliding model only)"},
+    )
     add_top_arguments(p, spin=True)
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
@@ -49,8 +55,7 @@ def run(args: argparse.Namespace) -> int:
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     model = get_model(args.model)
     traced = (args.x, args.y)
-    apply_top(args, [n for n in FLAGS if n in model.parameters],
-              spin_needed="fr_inv" not in traced, skip=traced)
+    apply_top(args, [n for n in FLAGS if n in model.parameters], spin_needed="fr_inv" not in traced, skip=traced)
     fixed = {}
     for name in model.parameters:
         v = getattr(args, name)
@@ -67,15 +72,19 @@ def run(args: argparse.Namespace) -> int:
     yr_ = _pair(args.y_range, "--y-range") if args.y_range else None
     ds = neutral_curve(model, args.x, args.y, fixed=fixed, x_range=xr_, y_range=yr_)
     special = ds.where(ds.kind != "regular", drop=True) if ds.sizes["point"] else ds
-    print(f"{model.name}: {ds.sizes['point']} points on {len(set(ds.branch.values.tolist()))} "
-          f"branch(es) in the ({args.x}, {args.y}) plane; form {ds.attrs['form']}; "
-          f"largest residual {float(ds.residual.max()) if ds.sizes['point'] else 0:.1e}")
+    print(
+        f"{model.name}: {ds.sizes['point']} points on {len(set(ds.branch.values.tolist()))} "
+        f"branch(es) in the ({args.x}, {args.y}) plane; form {ds.attrs['form']}; "
+        f"largest residual {float(ds.residual.max()) if ds.sizes['point'] else 0:.1e}"
+    )
     if special.sizes["point"]:
         print(f"{'branch':>6}  {'kind':<16} {args.x:>18} {args.y:>18} {'frequency':>18}  detail")
         for k in range(special.sizes["point"]):
-            print(f"{int(special.branch[k]):>6}  {str(special.kind.values[k]):<16} "
-                  f"{float(special[args.x][k]):>18.12g} {float(special[args.y][k]):>18.12g} "
-                  f"{float(special.frequency[k]):>18.12g}  {special.detail.values[k]}")
+            print(
+                f"{int(special.branch[k]):>6}  {special.kind.values[k]!s:<16} "
+                f"{float(special[args.x][k]):>18.12g} {float(special[args.y][k]):>18.12g} "
+                f"{float(special.frequency[k]):>18.12g}  {special.detail.values[k]}"
+            )
     if out is not None:
         write_dataset(ds, out, overwrite=args.overwrite)
         print(f"wrote {out}")

@@ -32,52 +32,112 @@ def _vec(text: str) -> list[float]:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` subcommand."""
-    p = sub.add_parser("simulate", help="integrate a nonlinear model -> netCDF",
-                       description="Integrate the sliding, rolling or fixed-pivot top from a given "
-                                   "state and write the run (omega, k, energy, forces, ...) as netCDF. "
-                                   "Default model: sliding (--alpha-v then required). Times are in "
-                                   "units of 1/Omega (one spin period is 2 pi), rates in units of Omega.")
+    p = sub.add_parser(
+        "simulate",
+        help="integrate a nonlinear model -> netCDF",
+        description="Integrate the sliding, rolling or fixed-pivot top from a given "
+        "state and write the run (omega, k, energy, forces, ...) as netCDF. "
+        "Default model: sliding (--alpha-v then required). Times are in "
+        "units of 1/Omega (one spin period is 2 pi), rates in units of Omega.",
+    )
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="nonlinear model")
-    p.add_argument("--t-end", type=float, required=True, metavar="T",
-                   help="final time, units of 1/Omega (> 0); required")
-    p.add_argument("--omega", type=_vec, required=True, metavar="W1,W2,W3",
-                   help="initial angular velocity, fixed frame, units of Omega; required")
-    p.add_argument("--k", type=_vec, required=True, metavar="K1,K2,K3",
-                   help="initial symmetry axis, fixed frame (normalised); required")
-    p.add_argument("--velocity", type=_vec, default=None, metavar="V1,V2",
-                   help="initial velocity of the sphere's centre O, units of Omega R (sliding only; "
-                        "default 0,0)")
-    add_parameter_flags(p, _NAMES, kind="value", defaults={"mu": None},
-                        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)",
-                               "mu": f" (default {DEFAULT_MU})"}
-                        | {n: " (required unless a top is given)" for n in _REQUIRED})
+    p.add_argument(
+        "--t-end", type=float, required=True, metavar="T", help="final time, units of 1/Omega (> 0); required"
+    )
+    p.add_argument(
+        "--omega",
+        type=_vec,
+        required=True,
+        metavar="W1,W2,W3",
+        help="initial angular velocity, fixed frame, units of Omega; required",
+    )
+    p.add_argument(
+        "--k",
+        type=_vec,
+        required=True,
+        metavar="K1,K2,K3",
+        help="initial symmetry axis, fixed frame (normalised); required",
+    )
+    p.add_argument(
+        "--velocity",
+        type=_vec,
+        default=None,
+        metavar="V1,V2",
+        help="initial velocity of the sphere's centre O, units of Omega R (sliding only; default 0,0)",
+    )
+    add_parameter_flags(
+        p,
+        _NAMES,
+        kind="value",
+        defaults={"mu": None},
+        extra={
+            "alpha_v": " (sliding only; required there)",
+            "alpha_k": " (sliding only; default 0.0)",
+            "mu": f" (default {DEFAULT_MU})",
+        }
+        | dict.fromkeys(_REQUIRED, " (required unless a top is given)"),
+    )
     add_top_arguments(p, spin=True)
-    p.add_argument("--friction", choices=("isotropic", "componentwise"), default="isotropic",
-                   help="Coulomb law: isotropic (along the slip, eq. 7) or componentwise (per component, "
-                        "eq. 16)")
-    p.add_argument("--normal", choices=("equilibrium", "actual"), default="equilibrium",
-                   help="friction proportional to the equilibrium normal force (the paper's law) or to "
-                        "the actual N(t)")
-    p.add_argument("--slip-scale", type=float, default=_SLIP_SCALE, metavar="S",
-                   help="regularisation scale of the Coulomb term, units of Omega R (> 0)")
-    p.add_argument("--method", choices=_METHODS, default="auto",
-                   help="integrator: auto (dopri5, or LSODA when the slip mode is stiff: large alpha_v, "
-                        "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
-                        "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA")
-    p.add_argument("--rtol", type=float, default=1e-9, metavar="R",
-                   help="relative tolerance of the adaptive integrators (0 < R < 1)")
-    p.add_argument("--atol", type=float, default=1e-12, metavar="A",
-                   help="absolute tolerance of the adaptive integrators (0 < A < 1)")
-    p.add_argument("--dt", type=float, default=0.1, metavar="DT",
-                   help="output interval, units of 1/Omega (> 0)")
-    p.add_argument("--step", type=float, default=None, metavar="H",
-                   help="step of --method rk4 (required there), first step of the adaptive methods, "
-                        "units of 1/Omega (default: chosen by the integrator)")
+    p.add_argument(
+        "--friction",
+        choices=("isotropic", "componentwise"),
+        default="isotropic",
+        help="Coulomb law: isotropic (along the slip, eq. 7) or componentwise (per component, eq. 16)",
+    )
+    p.add_argument(
+        "--normal",
+        choices=("equilibrium", "actual"),
+        default="equilibrium",
+        help="friction proportional to the equilibrium normal force (the paper's law) or to the actual N(t)",
+    )
+    p.add_argument(
+        "--slip-scale",
+        type=float,
+        default=_SLIP_SCALE,
+        metavar="S",
+        help="regularisation scale of the Coulomb term, units of Omega R (> 0)",
+    )
+    p.add_argument(
+        "--method",
+        choices=_METHODS,
+        default="auto",
+        help="integrator: auto (dopri5, or LSODA when the slip mode is stiff: large alpha_v, "
+        "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
+        "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
+    )
+    p.add_argument(
+        "--rtol",
+        type=float,
+        default=1e-9,
+        metavar="R",
+        help="relative tolerance of the adaptive integrators (0 < R < 1)",
+    )
+    p.add_argument(
+        "--atol",
+        type=float,
+        default=1e-12,
+        metavar="A",
+        help="absolute tolerance of the adaptive integrators (0 < A < 1)",
+    )
+    p.add_argument("--dt", type=float, default=0.1, metavar="DT", help="output interval, units of 1/Omega (> 0)")
+    p.add_argument(
+        "--step",
+        type=float,
+        default=None,
+        metavar="H",
+        help="step of --method rk4 (required there), first step of the adaptive methods, "
+        "units of 1/Omega (default: chosen by the integrator)",
+    )
     p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write; required")
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--progress", action="store_true", dest="progress", default=None,
-                   help="show a progress bar (default: when stderr is a terminal and the run takes over a second)")
+    g.add_argument(
+        "--progress",
+        action="store_true",
+        dest="progress",
+        default=None,
+        help="show a progress bar (default: when stderr is a terminal and the run takes over a second)",
+    )
     g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -109,20 +169,42 @@ def run(args: argparse.Namespace) -> int:
         size = simulate_file_bytes(args.model, n)
         check_free_space(out, size)
         if size > WARN_BYTES:
-            print(f"tippe simulate: warning: the output will be about {format_bytes(size)} ({n} output times at "
-                  f"--dt {args.dt:g}); use a larger --dt or a shorter --t-end for a smaller file", file=sys.stderr)
+            print(
+                f"tippe simulate: warning: the output will be about {format_bytes(size)} ({n} output times at "
+                f"--dt {args.dt:g}); use a larger --dt or a shorter --t-end for a smaller file",
+                file=sys.stderr,
+            )
     show = args.progress if args.progress is not None else sys.stderr.isatty()
-    ds = simulate(args.model, t_end=args.t_end, omega=args.omega, k=args.k, velocity=args.velocity,
-                  q=args.q, fr_inv=args.fr_inv, sigma=args.sigma, alpha_v=args.alpha_v,
-                  alpha_k=0.0 if args.alpha_k is None else args.alpha_k, mu=args.mu, friction=args.friction, normal=args.normal,
-                  slip_scale=args.slip_scale, method=args.method, rtol=args.rtol, atol=args.atol,
-                  dt=args.dt, step=args.step, progress=show)
+    ds = simulate(
+        args.model,
+        t_end=args.t_end,
+        omega=args.omega,
+        k=args.k,
+        velocity=args.velocity,
+        q=args.q,
+        fr_inv=args.fr_inv,
+        sigma=args.sigma,
+        alpha_v=args.alpha_v,
+        alpha_k=0.0 if args.alpha_k is None else args.alpha_k,
+        mu=args.mu,
+        friction=args.friction,
+        normal=args.normal,
+        slip_scale=args.slip_scale,
+        method=args.method,
+        rtol=args.rtol,
+        atol=args.atol,
+        dt=args.dt,
+        step=args.step,
+        progress=show,
+    )
     write_dataset(ds, out, overwrite=args.overwrite)
     a = ds.attrs
     t = ds["time"].values
     tol = f"rtol {a['rtol']:g}" if a["method"] != "rk4" else f"step {args.step:g}"
     rejected = f" ({a['nreject']} rejected)" if a["method"] != "rk4" else ""
-    print(f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
-          f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
-          f"{a['nfev']} evaluations, status: {a['message']}")
+    print(
+        f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
+        f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
+        f"{a['nfev']} evaluations, status: {a['message']}"
+    )
     return 0

@@ -11,7 +11,7 @@ from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import add_parameter_flags, add_top_arguments, apply_top
 
-__all__ = ["register", "run", "FLAG_NAMES", "add_top_flags", "apply_top_flags"]
+__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
 
 
 #: the parameters of the sliding top's steady states, and those needed without a top
@@ -21,9 +21,13 @@ _NAMES, _REQUIRED = ("q", "sigma", "fr_inv", "alpha_v", "mu"), ("q", "sigma", "f
 def add_top_flags(p: argparse.ArgumentParser) -> None:
     """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required unless a top is given) and
     ``--mu`` (single numbers), or a real top in SI units with ``--spin`` (:func:`add_top_arguments`)."""
-    add_parameter_flags(p, _NAMES, kind="value", defaults={"mu": None},
-                        extra={n: " (required unless a top is given)" for n in _REQUIRED}
-                        | {"mu": f" (default {DEFAULT_MU})"})
+    add_parameter_flags(
+        p,
+        _NAMES,
+        kind="value",
+        defaults={"mu": None},
+        extra=dict.fromkeys(_REQUIRED, " (required unless a top is given)") | {"mu": f" (default {DEFAULT_MU})"},
+    )
     add_top_arguments(p, spin=True)
 
 
@@ -35,23 +39,49 @@ def apply_top_flags(args: argparse.Namespace) -> None:
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``steady`` subcommand."""
     p = sub.add_parser(
-        "steady", help="steady (tilted) states on a Jellett level, or the branch of tilted states",
+        "steady",
+        help="steady (tilted) states on a Jellett level, or the branch of tilted states",
         description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
-                    "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
-                    "the family of tilted states traced against J by continuation, with its branch points and "
-                    "folds. Sliding model only. Units: simulate's (J in A0 Omega). docs/steady_states.md.")
+        "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
+        "the family of tilted states traced against J by continuation, with its branch points and "
+        "folds. Sliding model only. Units: simulate's (J in A0 Omega). docs/steady_states.md.",
+    )
     add_top_flags(p)
-    p.add_argument("--jellett", type=float, default=None, metavar="J",
-                   help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))")
-    p.add_argument("--branch", action="store_true",
-                   help="trace the branch of tilted states against J instead (--jellett is then not used)")
-    p.add_argument("--jellett-max", dest="jellett_max", type=float, default=None, metavar="J",
-                   help="with --branch: where a branch running to J = infinity is cut (default 10 x J at its "
-                        "branch point)")
-    p.add_argument("--max-step", dest="max_step", type=float, default=0.02, metavar="H",
-                   help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)")
-    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
-                   help="write the states (or the branch) as netCDF (default: print only)")
+    p.add_argument(
+        "--jellett",
+        type=float,
+        default=None,
+        metavar="J",
+        help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))",
+    )
+    p.add_argument(
+        "--branch",
+        action="store_true",
+        help="trace the branch of tilted states against J instead (--jellett is then not used)",
+    )
+    p.add_argument(
+        "--jellett-max",
+        dest="jellett_max",
+        type=float,
+        default=None,
+        metavar="J",
+        help="with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)",
+    )
+    p.add_argument(
+        "--max-step",
+        dest="max_step",
+        type=float,
+        default=0.02,
+        metavar="H",
+        help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
+    )
+    p.add_argument(
+        "-o",
+        "--output",
+        default=None,
+        metavar="FILE.nc",
+        help="write the states (or the branch) as netCDF (default: print only)",
+    )
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
@@ -74,26 +104,36 @@ def run(args: argparse.Namespace) -> int:
         if n == 0:
             print(f"no tilted steady states: {ds.attrs.get('note', '')}")
         else:
-            print(f"branch of tilted states: {n} points, from the {ds.attrs['start']} branch point "
-                  f"(ends: {ds.attrs['ends']})")
+            print(
+                f"branch of tilted states: {n} points, from the {ds.attrs['start']} branch point "
+                f"(ends: {ds.attrs['ends']})"
+            )
             print(f"{'kind':<14} {'tilt (deg)':>12} {'J':>14} {'precession':>12} {'stability':>10}  detail")
             for i in range(n):
                 kind = str(ds.kind.values[i])
                 if kind != "regular":
-                    print(f"{kind:<14} {float(ds.tilt[i]):12.6f} {float(ds.jellett[i]):14.10g} "
-                          f"{float(ds.precession_rate[i]):12.6g} {FLAG_NAMES[int(ds.stability[i])]:>10}  "
-                          f"{ds.detail.values[i]}")
+                    print(
+                        f"{kind:<14} {float(ds.tilt[i]):12.6f} {float(ds.jellett[i]):14.10g} "
+                        f"{float(ds.precession_rate[i]):12.6g} {FLAG_NAMES[int(ds.stability[i])]:>10}  "
+                        f"{ds.detail.values[i]}"
+                    )
     else:
         ds = steady_states(**top, jellett=args.jellett)
-        print(f"steady states at J = {ds.attrs['jellett']:.12g} (q = {args.q:g}, sigma = {args.sigma:g}, "
-              f"fr_inv = {args.fr_inv:g}, alpha_v = {args.alpha_v:g}, mu = {args.mu:g})")
-        print(f"{'kind':<9} {'tilt (deg)':>12} {'precession':>12} {'axial spin':>12} {'energy':>12} "
-              f"{'growth rate':>12} {'stability':>10}")
+        print(
+            f"steady states at J = {ds.attrs['jellett']:.12g} (q = {args.q:g}, sigma = {args.sigma:g}, "
+            f"fr_inv = {args.fr_inv:g}, alpha_v = {args.alpha_v:g}, mu = {args.mu:g})"
+        )
+        print(
+            f"{'kind':<9} {'tilt (deg)':>12} {'precession':>12} {'axial spin':>12} {'energy':>12} "
+            f"{'growth rate':>12} {'stability':>10}"
+        )
         for i in range(ds.sizes["state"]):
             s = ds.isel(state=i)
-            print(f"{str(s.kind.values):<9} {float(s.tilt):12.6f} {float(s.precession_rate):12.6g} "
-                  f"{float(s.axial_spin):12.6g} {float(s.energy):12.8g} {float(s.growth_rate):12.4g} "
-                  f"{FLAG_NAMES[int(s.stability)]:>10}")
+            print(
+                f"{s.kind.values!s:<9} {float(s.tilt):12.6f} {float(s.precession_rate):12.6g} "
+                f"{float(s.axial_spin):12.6g} {float(s.energy):12.8g} {float(s.growth_rate):12.4g} "
+                f"{FLAG_NAMES[int(s.stability)]:>10}"
+            )
     if out is not None:
         write_dataset(ds, out, overwrite=args.overwrite)
         print(f"wrote {out}")

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 
 from ..models import DEPRECATED_NAMES, MODELS, get_model
-from ..top import Top
 from ..parameters import DEFAULT_MU
+from ..top import Top
 from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, top_from_args
 
 __all__ = ["register", "run"]
@@ -15,32 +15,51 @@ __all__ = ["register", "run"]
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``threshold`` subcommand."""
     p = sub.add_parser(
-        "threshold", help="threshold of one parameter, or the critical spin of a real top",
+        "threshold",
+        help="threshold of one parameter, or the critical spin of a real top",
         description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
-                    "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
-                    "rate above which the upright state is unstable and the inverted one stable. "
-                    "Default model: sliding.")
-    p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM",
-                   help="q, fr_inv, sigma, alpha_v, mu or spin")
+        "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
+        "rate above which the upright state is unstable and the inverted one stable. "
+        "Default model: sliding.",
+    )
+    p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM", help="q, fr_inv, sigma, alpha_v, mu or spin")
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
-    add_parameter_flags(p, FLAGS, kind="value", defaults={"mu": None},
-                        extra={"mu": f" (default {DEFAULT_MU})",
-                               "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no "
-                                          "--mu-v; default 0.5 there)"})
+    add_parameter_flags(
+        p,
+        FLAGS,
+        kind="value",
+        defaults={"mu": None},
+        extra={
+            "mu": f" (default {DEFAULT_MU})",
+            "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)",
+        },
+    )
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
-    p.add_argument("--all", action="store_true", help="list every threshold in the range (default: the one "
-                                                      "threshold, an error if there are several)")
+    p.add_argument(
+        "--all",
+        action="store_true",
+        help="list every threshold in the range (default: the one threshold, an error if there are several)",
+    )
     add_top_arguments(p, spin=False)
     g = p.add_argument_group("PARAM = spin")
-    g.add_argument("--unit", choices=["rad/s", "rpm", "rev/s", "Hz"], default=None,
-                   help="spin unit of the two launch readings (default rpm; rev/s is printed too)")
-    g.add_argument("--orientation", choices=["upright", "inverted", "both"], default=None,
-                   help="which state: upright (as given), inverted (q -> -q) or both (default: both)")
+    g.add_argument(
+        "--unit",
+        choices=["rad/s", "rpm", "rev/s", "Hz"],
+        default=None,
+        help="spin unit of the two launch readings (default rpm; rev/s is printed too)",
+    )
+    g.add_argument(
+        "--orientation",
+        choices=["upright", "inverted", "both"],
+        default=None,
+        help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
+    )
     p.set_defaults(func=run)
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
+
     def flag(name: str) -> str:
         return {"gravity": "--g", "top_file": "--top"}.get(name, FLAGS.get(name, "--" + name.replace("_", "-")))
 
@@ -49,21 +68,27 @@ def _refuse_unused(args: argparse.Namespace) -> None:
         unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
         unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
         if unused:
-            raise ValueError(f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
-                             "mu come from --preset or its SI data; the spin rate is what is searched)")
+            raise ValueError(
+                f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
+                "mu come from --preset or its SI data; the spin rate is what is searched)"
+            )
         return
     unused = [flag(n) for n in top_given]
     unused += [flag(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
-        raise ValueError(f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
-                         f"'tippe threshold {args.param}' takes the nondimensional parameters")
+        raise ValueError(
+            f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
+            f"'tippe threshold {args.param}' takes the nondimensional parameters"
+        )
 
 
 def _top(args: argparse.Namespace) -> Top:
     top = top_from_args(args)
     if top is None:
-        raise ValueError("tippe threshold spin needs a top: --preset, --top FILE.toml or " + ", ".join(
-            "--" + n.replace("_", "-") for n in TOP_FLAGS))
+        raise ValueError(
+            "tippe threshold spin needs a top: --preset, --top FILE.toml or "
+            + ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
+        )
     return top
 
 
@@ -87,12 +112,16 @@ def run(args: argparse.Namespace) -> int:
                 print(f"{o:>8}: no critical spin: {found.reasons[o]}")
                 continue
             state = "unstable" if c.unstable_above else "stable"
-            print(f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
-                  f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})")
+            print(
+                f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
+                f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})"
+            )
             if not c.exact:
-                print(f"{'':>8}  an interval, not a value: the change of stability lies between "
-                      f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
-                      "cannot be decided inside it)")
+                print(
+                    f"{'':>8}  an interval, not a value: the change of stability lies between "
+                    f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
+                    "cannot be decided inside it)"
+                )
         print(f"friction: {next(c for c in per.values() if c is not None).friction}")
         if args.model == "sliding" and orientation == "both":
             _launch_readings(top, found, alpha_v, args.unit or "rpm")
@@ -114,8 +143,10 @@ def run(args: argparse.Namespace) -> int:
         if not found:
             print(f"no threshold in {args.param}")
         for t in found:
-            print(f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
-                  + _interval(args.param, t))
+            print(
+                f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
+                + _interval(args.param, t)
+            )
         return 0
     t = _one_threshold(args.param, model, bracket, 257, fixed)
     print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
@@ -132,16 +163,20 @@ def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
         return text if unit in ("rev/s", "Hz") else f"{text} = {from_rad_per_s(w, 'rev/s'):.10g} rev/s"
 
     up = found.upright
-    print("the upright top becomes unstable above " + (both(up.spin) if up is not None else
-                                                        f"no spin ({found.reasons['upright']})"))
+    print(
+        "the upright top becomes unstable above "
+        + (both(up.spin) if up is not None else f"no spin ({found.reasons['upright']})")
+    )
     ref = up.spin if up is not None else top.spin_rate(0.3)
     inv = inverts_above(top, ref, alpha_v)
     if inv is None:
         from ..steady.classes import top_class
 
         cls = top_class(q=top.q, sigma=top.sigma, mu=top.mu)
-        print("launched upright, it inverts completely above no spin: " + NEVER_INVERTS.get(
-            cls, "the tilted family does not reach the inverted state"))
+        print(
+            "launched upright, it inverts completely above no spin: "
+            + NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
+        )
     else:
         print("launched upright, it inverts completely above " + both(inv))
 
@@ -150,5 +185,7 @@ def _interval(param: str, t) -> str:
     """What the CLI adds to a threshold known only to an interval (``Threshold.exact`` False)."""
     if t.exact:
         return ""
-    return (f"\n  an interval, not a value: the change of stability lies in {param} in [{t.lower!r}, {t.upper!r}] "
-            "(the sign of the growth rate cannot be decided inside it)")
+    return (
+        f"\n  an interval, not a value: the change of stability lies in {param} in [{t.lower!r}, {t.upper!r}] "
+        "(the sign of the growth rate cannot be decided inside it)"
+    )

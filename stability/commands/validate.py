@@ -24,11 +24,12 @@ def format_points(ds) -> str:
     for j in range(ds.sizes["point"]):
         pt = ds.isel(point=j)
         params = ", ".join(f"{k} = {float(pt[k]):.6g}" for k in _COORDS if k in pt.coords)
-        lines += [f"point {j}: {params}",
-                  f"  {'':<12} {'Jacobian':>13} {'measured':>13} {'rel. error':>10}"]
+        lines += [f"point {j}: {params}", f"  {'':<12} {'Jacobian':>13} {'measured':>13} {'rel. error':>10}"]
         for label, key in (("growth rate", "growth_rate"), ("frequency", "frequency")):
-            lines.append(f"  {label:<12} {float(pt['jacobian_' + key]):>13.6g} "
-                         f"{float(pt['measured_' + key]):>13.6g} {float(pt[key + '_error']):>10.2g}")
+            lines.append(
+                f"  {label:<12} {float(pt['jacobian_' + key]):>13.6g} "
+                f"{float(pt['measured_' + key]):>13.6g} {float(pt[key + '_error']):>10.2g}"
+            )
         lines.append(f"  {'sign agrees':<12} {'yes' if bool(pt['sign_agrees']) else 'NO'}")
         if "status" in pt and str(pt["status"].values) != "ok":
             lines.append(f"  {'status':<12} {pt['status'].values}")
@@ -37,20 +38,33 @@ def format_points(ds) -> str:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``validate`` subcommand."""
-    p = sub.add_parser("validate", help="check linear growth rates against nonlinear runs",
-                       description="For each point (values broadcast together), perturb the upright "
-                                   "spin along the leading eigenvector, integrate the nonlinear model, "
-                                   "fit growth rate and frequency, and print them beside the predictions. "
-                                   "Default model: sliding (--alpha-v then required).")
+    p = sub.add_parser(
+        "validate",
+        help="check linear growth rates against nonlinear runs",
+        description="For each point (values broadcast together), perturb the upright "
+        "spin along the leading eigenvector, integrate the nonlinear model, "
+        "fit growth rate and frequency, and print them beside the predictions. "
+        "Default model: sliding (--alpha-v then required).",
+    )
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="model (nonlinear, and its linearisation)")
-    add_parameter_flags(p, _COORDS, defaults={"mu": None},
-                        extra={"alpha_v": " (sliding only; > 0 there)", "mu": f" (default {DEFAULT_MU})"}
-                        | {n: " (required unless a top is given)" for n in ("q", "fr_inv", "sigma")})
+    add_parameter_flags(
+        p,
+        _COORDS,
+        defaults={"mu": None},
+        extra={"alpha_v": " (sliding only; > 0 there)", "mu": f" (default {DEFAULT_MU})"}
+        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+    )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument("--amplitude", type=float, default=1e-4, metavar="A",
-                   help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)")
-    p.add_argument("-o", "--output", default=None, metavar="FILE.nc",
-                   help="also write the Dataset as netCDF (default: print only)")
+    p.add_argument(
+        "--amplitude",
+        type=float,
+        default=1e-4,
+        metavar="A",
+        help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)",
+    )
+    p.add_argument(
+        "-o", "--output", default=None, metavar="FILE.nc", help="also write the Dataset as netCDF (default: print only)"
+    )
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
     p.set_defaults(func=run)
 
@@ -60,8 +74,9 @@ def run(args: argparse.Namespace) -> int:
     from ..grids.netcdf import check_output_path, write_dataset
     from ..nonlinear.validation import validate
 
-    apply_top(args, _COORDS if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"),
-              required=("q", "fr_inv", "sigma"))
+    apply_top(
+        args, _COORDS if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"), required=("q", "fr_inv", "sigma")
+    )
     out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
     ds = validate(args.model, amplitude=args.amplitude, **values)

@@ -23,12 +23,15 @@ __all__ = ["register", "run", "steps"]
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``warmup`` subcommand."""
-    p = sub.add_parser("warmup", help="compile every compiled kernel now (numba's disk cache) and report the times",
-                       description="Compile (or load from numba's disk cache) every compiled path: the spectral "
-                                   "kernel's loops, the batched root finders and growth-rate signs, the neutral "
-                                   "curves' corrector, the steady states and their branch, the integrators. Later "
-                                   "processes then load them instead of compiling (a first call "
-                                   "with a large grid, or a first simulate, would otherwise compile for seconds).")
+    p = sub.add_parser(
+        "warmup",
+        help="compile every compiled kernel now (numba's disk cache) and report the times",
+        description="Compile (or load from numba's disk cache) every compiled path: the spectral "
+        "kernel's loops, the batched root finders and growth-rate signs, the neutral "
+        "curves' corrector, the steady states and their branch, the integrators. Later "
+        "processes then load them instead of compiling (a first call "
+        "with a large grid, or a first simulate, would otherwise compile for seconds).",
+    )
     p.add_argument("--list", action="store_true", help="list the steps without running them")
     p.set_defaults(func=run)
 
@@ -47,51 +50,112 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     from ..steady import branch, final, states
 
     sliding = kernel._model_kernels(get_model("sliding"))
-    p = dict(q=np.linspace(-0.4, 0.4, 64), fr_inv=np.full(64, 0.3), sigma=np.ones(64), alpha_v=np.full(64, 0.5),
-             mu=np.full(64, 2.28))
+    p = dict(
+        q=np.linspace(-0.4, 0.4, 64),
+        fr_inv=np.full(64, 0.3),
+        sigma=np.ones(64),
+        alpha_v=np.full(64, 0.5),
+        mu=np.full(64, 2.28),
+    )
     c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
     out: list[tuple[str, Callable[[], object], list]] = []
     for parallel in (False, True):
         kind = "parallel" if parallel else "serial"
-        out.append((f"eigenvalue kernel, sliding model, domain test fused ({kind})",
-                    lambda parallel=parallel: kernel.checked_model_spectrum("sliding", p, engine="compiled",
-                                                                            parallel=parallel),
-                    [sliding.checked[int(parallel)]]))
-        out.append((f"eigenvalue kernel, sliding model, masked ({kind})",
-                    lambda parallel=parallel: kernel.model_spectrum("sliding", p, engine="compiled",
-                                                                    parallel=parallel),
-                    [sliding.masked[int(parallel)]]))
-        out.append((f"eigenvalue kernel on coefficients, other models ({kind})",
-                    lambda parallel=parallel: kernel.coefficient_spectrum(c, engine="compiled", parallel=parallel),
-                    [kernel._COEFFICIENT_LOOPS[int(parallel)]]))
-    out.append(("batched quadratic formula (method='polynomial')",
-                lambda: roots.quadratic_roots_many(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
-                [roots.quadratic_roots_many]))
-    out.append(("batched other modes of the neutral condition",
-                lambda: neutrality._other_roots_many(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
-                [neutrality._other_roots_many]))
-    out.append(("neutral curves: compiled corrector (sliding model)",
-                lambda: neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5),
-                                   compiled=True),
-                []))
-    out.append(("growth-rate signs of every mode (batched; the atlases' leading growth rate)",
-                lambda: growth("sliding", **p),
-                [roots.axis_growth_many]))
-    out.append(("steady states and the final state (sliding model)",
-                lambda: (states.steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                         final.final_state("sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0],
-                                           velocity=[0.0, 0.0], q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)),
-                [states.COMPILED, final.COMPILED]))
-    out.append(("branch of tilted states: compiled step (sliding model)",
-                lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                [branch.COMPILED_STEP]))
+        out.append(
+            (
+                f"eigenvalue kernel, sliding model, domain test fused ({kind})",
+                lambda parallel=parallel: kernel.checked_model_spectrum(
+                    "sliding", p, engine="compiled", parallel=parallel
+                ),
+                [sliding.checked[int(parallel)]],
+            )
+        )
+        out.append(
+            (
+                f"eigenvalue kernel, sliding model, masked ({kind})",
+                lambda parallel=parallel: kernel.model_spectrum("sliding", p, engine="compiled", parallel=parallel),
+                [sliding.masked[int(parallel)]],
+            )
+        )
+        out.append(
+            (
+                f"eigenvalue kernel on coefficients, other models ({kind})",
+                lambda parallel=parallel: kernel.coefficient_spectrum(c, engine="compiled", parallel=parallel),
+                [kernel._COEFFICIENT_LOOPS[int(parallel)]],
+            )
+        )
+    out.append(
+        (
+            "batched quadratic formula (method='polynomial')",
+            lambda: roots.quadratic_roots_many(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
+            [roots.quadratic_roots_many],
+        )
+    )
+    out.append(
+        (
+            "batched other modes of the neutral condition",
+            lambda: neutrality._other_roots_many(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
+            [neutrality._other_roots_many],
+        )
+    )
+    out.append(
+        (
+            "neutral curves: compiled corrector (sliding model)",
+            lambda: neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), compiled=True),
+            [],
+        )
+    )
+    out.append(
+        (
+            "growth-rate signs of every mode (batched; the atlases' leading growth rate)",
+            lambda: growth("sliding", **p),
+            [roots.axis_growth_many],
+        )
+    )
+    out.append(
+        (
+            "steady states and the final state (sliding model)",
+            lambda: (
+                states.steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                final.final_state(
+                    "sliding",
+                    omega=[0.0, 0.0, 1.0],
+                    k=[0.05, 0.0, 1.0],
+                    velocity=[0.0, 0.0],
+                    q=-0.1,
+                    sigma=1.0,
+                    fr_inv=0.3,
+                    alpha_v=0.5,
+                ),
+            ),
+            [states.COMPILED, final.COMPILED],
+        )
+    )
+    out.append(
+        (
+            "branch of tilted states: compiled step (sliding model)",
+            lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+            [branch.COMPILED_STEP],
+        )
+    )
     for name in NONLINEAR_MODELS:
-        out.append((f"integrator, {name} model",
-                    lambda name=name: simulate(name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1,
-                                               fr_inv=0.3, sigma=1.0,
-                                               **(dict(alpha_v=0.5) if name == "sliding" else {})),
-                    []))
+        out.append(
+            (
+                f"integrator, {name} model",
+                lambda name=name: simulate(
+                    name,
+                    t_end=0.5,
+                    omega=[0, 0, 1],
+                    k=[1e-3, 0, 1],
+                    q=-0.1,
+                    fr_inv=0.3,
+                    sigma=1.0,
+                    **(dict(alpha_v=0.5) if name == "sliding" else {}),
+                ),
+                [],
+            )
+        )
     return out
 
 
@@ -112,9 +176,16 @@ def run(args: argparse.Namespace) -> int:
             t0 = time.perf_counter()
             call()
             dt = time.perf_counter() - t0
-            how = ("loaded from the disk cache" if before and all(before) else "compiled" if before
-                   else "compiled or loaded")
+            how = (
+                "loaded from the disk cache"
+                if before and all(before)
+                else "compiled"
+                if before
+                else "compiled or loaded"
+            )
             print(f"{what}: {dt:.1f} s ({how})", flush=True)
-    print(f"warmup: {time.perf_counter() - start:.1f} s; numba's cache: "
-          f"{os.environ.get('NUMBA_CACHE_DIR') or 'the __pycache__ folders of the installed package'}")
+    print(
+        f"warmup: {time.perf_counter() - start:.1f} s; numba's cache: "
+        f"{os.environ.get('NUMBA_CACHE_DIR') or 'the __pycache__ folders of the installed package'}"
+    )
     return 0

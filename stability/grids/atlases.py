@@ -11,7 +11,7 @@ structural zero mode left out).
 
 from __future__ import annotations
 
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from itertools import product
 from typing import Any
 
@@ -19,28 +19,41 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
+from ..errors import require_extra
+from ..interrupts import checkpoint, deferred
 from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
-from ..errors import require_extra
-from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from ..resources import atlas_bytes, check_memory
 from .leading import leading, zero_everywhere
 from .schema import require_atlas
 
-__all__ = ["atlas", "leading_growth_rate", "TIME_CONVENTION", "MARGINAL_RULE"]
+__all__ = ["MARGINAL_RULE", "TIME_CONVENTION", "atlas", "leading_growth_rate"]
 
-TIME_CONVENTION = ("x ~ exp(s t), t in units of 1/Omega, components in the non-rotating frame; "
-                   "growth_rate = Re s, frequency = Im s, in units of the spin rate Omega")
-MARGINAL_RULE = ("a mode is neutral if Re s = 0 by structure (exact zero root, or real root nu of a "
-                 "conservative p(i nu)) or |Re s| <= 4 e + 16 u max|s| (e: the root's error bound, "
-                 "u = 2^-53); unstable if a mode grows beyond that, stable if all decay beyond it")
+TIME_CONVENTION = (
+    "x ~ exp(s t), t in units of 1/Omega, components in the non-rotating frame; "
+    "growth_rate = Re s, frequency = Im s, in units of the spin rate Omega"
+)
+MARGINAL_RULE = (
+    "a mode is neutral if Re s = 0 by structure (exact zero root, or real root nu of a "
+    "conservative p(i nu)) or |Re s| <= 4 e + 16 u max|s| (e: the root's error bound, "
+    "u = 2^-53); unstable if a mode grows beyond that, stable if all decay beyond it"
+)
 
 
-def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU,
-          mask_unphysical: bool = False, method: str = DEFAULT_METHOD,
-          chunks: int | dict[str, int] | None = None) -> xr.Dataset:
+def atlas(
+    model: str,
+    *,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    mu: Any = DEFAULT_MU,
+    mask_unphysical: bool = False,
+    method: str = DEFAULT_METHOD,
+    chunks: int | dict[str, int] | None = None,
+) -> xr.Dataset:
     """Spectra of a linear model over a grid of parameters, as an xarray Dataset.
 
     Parameters
@@ -97,16 +110,19 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         require_extra("dask", "cluster", "an atlas in chunks (chunks=)")
         from .chunked import lazy_spectra
 
-        growth, freq, bound, stab, inside = lazy_spectra(m, values, dims, chunks, mask_unphysical=mask_unphysical,
-                                                         method=method)
+        growth, freq, bound, stab, inside = lazy_spectra(
+            m, values, dims, chunks, mask_unphysical=mask_unphysical, method=method
+        )
     else:
         full = tuple(values[d].size for d in dims)
         n_points = int(np.prod(full, dtype=np.int64))
-        check_memory(atlas_bytes(m.n_modes, n_points, BLOCK_POINTS, domain_check=not mask_unphysical),
-                     what=f"atlas: {n_points} grid points ({' x '.join(f'{d}({n})' for d, n in zip(dims, full))})",
-                     parameter="the grid's ranges",
-                     way_out="pass chunks=100 (or another chunk size) to compute and write it chunk by chunk, "
-                             "or use fewer points")
+        check_memory(
+            atlas_bytes(m.n_modes, n_points, BLOCK_POINTS, domain_check=not mask_unphysical),
+            what=f"atlas: {n_points} grid points ({' x '.join(f'{d}({n})' for d, n in zip(dims, full))})",
+            parameter="the grid's ranges",
+            way_out="pass chunks=100 (or another chunk size) to compute and write it chunk by chunk, "
+            "or use fewer points",
+        )
         growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, grid, full, mask_unphysical, method)
 
     mdims = (*dims, "mode")
@@ -116,33 +132,66 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         if k in values:
             attrs = parameter_attrs(k)
             coords[k] = (k, values[k], attrs) if values[k].ndim == 1 else ((), float(values[k]), attrs)
-    coords["mode"] = ("mode", np.arange(m.n_modes),
-                      {"long_name": "mode", "comment": "mode index, modes sorted by decreasing growth rate"})
+    coords["mode"] = (
+        "mode",
+        np.arange(m.n_modes),
+        {"long_name": "mode", "comment": "mode index, modes sorted by decreasing growth rate"},
+    )
     data_vars = {
-        "growth_rate": (mdims, growth,
-                        {"long_name": "growth rate Re s", **rate,
-                         "comment": "growth rate of each mode, x ~ exp(s t), in units of the spin rate"}),
-        "frequency": (mdims, freq,
-                      {"long_name": "frequency Im s", **rate,
-                       "comment": "frequency of each mode, fixed frame, in units of the spin rate"}),
-        "eigenvalue_error_bound": (mdims, bound,
-                                   {"long_name": "error bound of s", **rate,
-                                    "comment": "absolute error bound of each eigenvalue s"}),
-        "max_growth_rate": (tuple(dims), growth[..., 0].copy(),
-                            {"long_name": "max growth rate", **rate,
-                             "comment": "largest growth rate max Re s over every mode, the structural "
-                                        "s = 0 mode included (leading_growth_rate leaves it out)"}),
-        "stability": (tuple(dims), stab,
-                      {"long_name": "stability",
-                       "flag_values": np.array([-1, STABLE, MARGINAL, UNSTABLE], dtype=np.int8),
-                       "flag_meanings": "outside_domain " + FLAG_MEANINGS,
-                       "comment": "linear stability of the upright spin; " + MARGINAL_RULE}),
-        "physical": (tuple(dims), inside,
-                     {"long_name": "in physical domain",
-                      "flag_values": np.array([0, 1], dtype=np.int8),
-                      "flag_meanings": "outside_domain inside_domain",
-                      "comment": "the point lies in the physical domain: 1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), "
-                                 "mu > 0, fr_inv >= 0, alpha_v >= 0"}),
+        "growth_rate": (
+            mdims,
+            growth,
+            {
+                "long_name": "growth rate Re s",
+                **rate,
+                "comment": "growth rate of each mode, x ~ exp(s t), in units of the spin rate",
+            },
+        ),
+        "frequency": (
+            mdims,
+            freq,
+            {
+                "long_name": "frequency Im s",
+                **rate,
+                "comment": "frequency of each mode, fixed frame, in units of the spin rate",
+            },
+        ),
+        "eigenvalue_error_bound": (
+            mdims,
+            bound,
+            {"long_name": "error bound of s", **rate, "comment": "absolute error bound of each eigenvalue s"},
+        ),
+        "max_growth_rate": (
+            tuple(dims),
+            growth[..., 0].copy(),
+            {
+                "long_name": "max growth rate",
+                **rate,
+                "comment": "largest growth rate max Re s over every mode, the structural "
+                "s = 0 mode included (leading_growth_rate leaves it out)",
+            },
+        ),
+        "stability": (
+            tuple(dims),
+            stab,
+            {
+                "long_name": "stability",
+                "flag_values": np.array([-1, STABLE, MARGINAL, UNSTABLE], dtype=np.int8),
+                "flag_meanings": "outside_domain " + FLAG_MEANINGS,
+                "comment": "linear stability of the upright spin; " + MARGINAL_RULE,
+            },
+        ),
+        "physical": (
+            tuple(dims),
+            inside,
+            {
+                "long_name": "in physical domain",
+                "flag_values": np.array([0, 1], dtype=np.int8),
+                "flag_meanings": "outside_domain inside_domain",
+                "comment": "the point lies in the physical domain: 1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), "
+                "mu > 0, fr_inv >= 0, alpha_v >= 0",
+            },
+        ),
     }
     attrs: dict[str, Any] = {
         "Conventions": "CF-1.10",
@@ -156,7 +205,7 @@ def atlas(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, m
         "eigenvalue_method": method,
         "mask_unphysical": int(mask_unphysical),
         "source": f"tippe-stability {package_version()}",
-        "history": f"{datetime.now(timezone.utc).isoformat(timespec='seconds')} stability.atlas",
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} stability.atlas",
         "parameters": " ".join(values),
         "grid_dimensions": " ".join(dims),
     }
@@ -179,17 +228,24 @@ def _blocks(dims: list[str], full: tuple[int, ...]) -> list[dict[str, slice]]:
     if not dims:
         return [{}]
     k = 0
-    while int(np.prod(full[k + 1:], dtype=np.int64)) > BLOCK_POINTS:
+    while int(np.prod(full[k + 1 :], dtype=np.int64)) > BLOCK_POINTS:
         k += 1
-    rows = max(1, BLOCK_POINTS // int(np.prod(full[k + 1:], dtype=np.int64)))
+    rows = max(1, BLOCK_POINTS // int(np.prod(full[k + 1 :], dtype=np.int64)))
     ranges = [[slice(i, i + 1) for i in range(full[j])] for j in range(k)]
     ranges.append([slice(i, min(i + rows, full[k])) for i in range(0, full[k], rows)])
     ranges.extend([[slice(0, full[j])] for j in range(k + 1, len(dims))])
     return [dict(zip(dims, combo)) for combo in product(*ranges)]
 
 
-def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], grid: dict[str, np.ndarray],
-                       full: tuple[int, ...], mask: bool, method: str) -> tuple[np.ndarray, ...]:
+def _spectra_in_blocks(
+    m: Any,
+    values: dict[str, np.ndarray],
+    dims: list[str],
+    grid: dict[str, np.ndarray],
+    full: tuple[int, ...],
+    mask: bool,
+    method: str,
+) -> tuple[np.ndarray, ...]:
     """Growth rate, frequency, bound (grid + mode), stability and physical flags (int8) of the
     whole grid, computed block by block (:func:`_blocks`) with an interruption point between
     blocks. Each point's arithmetic does not depend on the block it is in, so the values are
@@ -198,9 +254,13 @@ def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], g
     if int(np.prod(full, dtype=np.int64)) <= BLOCK_POINTS:
         sp = spectrum(m, mask_unphysical=mask, method=method, **grid)
         ev = np.broadcast_to(sp.eigenvalues, full + (n,))
-        return (ev.real.copy(), ev.imag.copy(), np.broadcast_to(sp.error_bound, full + (n,)).copy(),
-                np.broadcast_to(sp.stability, full).astype(np.int8),
-                np.broadcast_to(sp.inside, full).astype(np.int8))
+        return (
+            ev.real.copy(),
+            ev.imag.copy(),
+            np.broadcast_to(sp.error_bound, full + (n,)).copy(),
+            np.broadcast_to(sp.stability, full).astype(np.int8),
+            np.broadcast_to(sp.inside, full).astype(np.int8),
+        )
     if not mask:
         check_domain(mask=False, **grid)  # the whole grid refused at once, as one call would
     growth = np.empty(full + (n,))
@@ -213,8 +273,15 @@ def _spectra_in_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], g
     return growth, freq, bound, stab, inside
 
 
-def _fill_blocks(m: Any, values: dict[str, np.ndarray], dims: list[str], full: tuple[int, ...], mask: bool,
-                 method: str, arrays: tuple[np.ndarray, ...]) -> None:
+def _fill_blocks(
+    m: Any,
+    values: dict[str, np.ndarray],
+    dims: list[str],
+    full: tuple[int, ...],
+    mask: bool,
+    method: str,
+    arrays: tuple[np.ndarray, ...],
+) -> None:
     """The loop of :func:`_spectra_in_blocks`: one spectrum per block, an interruption point
     before each."""
     growth, freq, bound, stab, inside = arrays
@@ -271,8 +338,10 @@ def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:
     if g.ndim <= 1:
         drop: Any = False
     elif g.chunks is None:  # in memory: decided block by block, so its temporaries stay block-sized
-        parts = [zero_everywhere(*(None if x is None else x.isel(sl) for x in (g, f, bound)))
-                 for sl in _blocks(dims, tuple(ds.sizes[d] for d in dims))]
+        parts = [
+            zero_everywhere(*(None if x is None else x.isel(sl) for x in (g, f, bound)))
+            for sl in _blocks(dims, tuple(ds.sizes[d] for d in dims))
+        ]
         drop = all(bool(e) for e, _ in parts) and any(bool(a) for _, a in parts)
     else:
         everywhere, any_inside = zero_everywhere(g, f, bound)

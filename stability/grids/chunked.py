@@ -43,14 +43,14 @@ import xarray as xr
 
 from ..errors import ChunkError, InputError, ResumeError
 from ..interrupts import Temporary, checkpoint, deferred
-from .leading import leading, zero_everywhere
-from .schema import MAP_VARIABLES, STORED_ATTR
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
+from .leading import leading, zero_everywhere
 from .outputs import TEMPORARY_PREFIX, atomic_output, check_output_path, close_quietly, temporary_name, write_error
+from .schema import MAP_VARIABLES, STORED_ATTR
 
-__all__ = ["lazy_spectra", "normalize_chunks", "write_atlas", "parts_directory", "VARIABLE_CHOICES", "COMPRESSIONS"]
+__all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
 _BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
@@ -80,13 +80,14 @@ def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[
     if isinstance(chunks, dict):
         unknown = [k for k in chunks if k not in dims]
         if unknown:
-            raise ValueError(f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
-                             f"(the grid has {', '.join(dims) or 'none'})")
-        out = {d: check_integer(f"chunks[{d!r}]", chunks[d], minimum=1) if d in chunks else sizes[d]
-               for d in dims}
+            raise ValueError(
+                f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
+                f"(the grid has {', '.join(dims) or 'none'})"
+            )
+        out = {d: check_integer(f"chunks[{d!r}]", chunks[d], minimum=1) if d in chunks else sizes[d] for d in dims}
     else:
         size = check_integer("chunks", chunks, minimum=1)
-        out = {d: size for d in dims}
+        out = dict.fromkeys(dims, size)
     return {d: min(v, sizes[d]) for d, v in out.items()}
 
 
@@ -112,8 +113,9 @@ def _check_grid_domain(values: dict[str, np.ndarray], dims: list[str], mask: boo
             check_domain(mask=False, **{k: values[k]})
 
 
-def _block_spectra(*args: np.ndarray, model: LinearModel, names: tuple[str, ...], mask: bool,
-                   method: str) -> tuple[np.ndarray, ...]:
+def _block_spectra(
+    *args: np.ndarray, model: LinearModel, names: tuple[str, ...], mask: bool, method: str
+) -> tuple[np.ndarray, ...]:
     """Spectra of one chunk: growth rate, frequency, bound, flag, physical."""
     from ..linear.spectra import spectrum
 
@@ -125,18 +127,32 @@ def _block_spectra(*args: np.ndarray, model: LinearModel, names: tuple[str, ...]
         # the usual case (a chunk of a grid): views of the fresh, writable arrays, no copies (a
         # writer that keeps only a map never reads most of them; copying them cost a quarter
         # of a map's writing time)
-        return (sp.eigenvalues.real, sp.eigenvalues.imag, sp.error_bound,
-                np.broadcast_to(sp.stability, shape).astype(np.int8),
-                np.broadcast_to(sp.inside, shape).astype(np.int8))
-    ev = np.broadcast_to(sp.eigenvalues, shape + (n,))
-    return (np.ascontiguousarray(ev.real), np.ascontiguousarray(ev.imag),
-            np.broadcast_to(sp.error_bound, shape + (n,)).copy(),
+        return (
+            sp.eigenvalues.real,
+            sp.eigenvalues.imag,
+            sp.error_bound,
             np.broadcast_to(sp.stability, shape).astype(np.int8),
-            np.broadcast_to(sp.inside, shape).astype(np.int8))
+            np.broadcast_to(sp.inside, shape).astype(np.int8),
+        )
+    ev = np.broadcast_to(sp.eigenvalues, shape + (n,))
+    return (
+        np.ascontiguousarray(ev.real),
+        np.ascontiguousarray(ev.imag),
+        np.broadcast_to(sp.error_bound, shape + (n,)).copy(),
+        np.broadcast_to(sp.stability, shape).astype(np.int8),
+        np.broadcast_to(sp.inside, shape).astype(np.int8),
+    )
 
 
-def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[str],
-                 chunks: int | dict[str, int], *, mask_unphysical: bool, method: str) -> tuple:
+def lazy_spectra(
+    model: LinearModel,
+    values: dict[str, np.ndarray],
+    dims: list[str],
+    chunks: int | dict[str, int],
+    *,
+    mask_unphysical: bool,
+    method: str,
+) -> tuple:
     """Dask-backed spectra over a grid (see module docstring).
 
     Parameters
@@ -173,7 +189,8 @@ def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[s
         inputs.append(xr.DataArray(v, dims=(k,)).chunk({k: ch[k]}) if v.ndim == 1 else xr.DataArray(v))
     n = model.n_modes
     out = xr.apply_ufunc(
-        _block_spectra, *inputs,
+        _block_spectra,
+        *inputs,
         kwargs=dict(model=model, names=names, mask=mask_unphysical, method=method),
         input_core_dims=[[]] * len(inputs),
         output_core_dims=[["mode"], ["mode"], ["mode"], [], []],
@@ -196,9 +213,12 @@ def lazy_spectra(model: LinearModel, values: dict[str, np.ndarray], dims: list[s
 
 #: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
 _BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
-    "growth_rate": (np.dtype(np.float64), True), "frequency": (np.dtype(np.float64), True),
-    "eigenvalue_error_bound": (np.dtype(np.float64), True), "stability": (np.dtype(np.int8), False),
-    "physical": (np.dtype(np.int8), False)}
+    "growth_rate": (np.dtype(np.float64), True),
+    "frequency": (np.dtype(np.float64), True),
+    "eigenvalue_error_bound": (np.dtype(np.float64), True),
+    "stability": (np.dtype(np.int8), False),
+    "physical": (np.dtype(np.int8), False),
+}
 
 #: format of the chunk store (manifest, journal, digests); a store of another format is refused
 STORE_FORMAT = 2
@@ -224,17 +244,25 @@ def _stored(ds: xr.Dataset, variables: str) -> list[str]:
 
 def _float32_attrs() -> dict[str, Any]:
     """What a float32 variable says about its rounding (:func:`write_atlas`)."""
-    return {"storage_dtype": "float32",
-            "storage_relative_error": FLOAT32_ROUNDING,
-            "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
-                               "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
-                               "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
-                               "that would round to zero, a subnormal or infinity is refused), and the "
-                               "stability flag was decided in float64 before it"}
+    return {
+        "storage_dtype": "float32",
+        "storage_relative_error": FLOAT32_ROUNDING,
+        "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
+        "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
+        "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
+        "that would round to zero, a subnormal or infinity is refused), and the "
+        "stability flag was decided in float64 before it",
+    }
 
 
-def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], stored: list[str] | None = None,
-                     compression: str | None = None, float32: bool = False) -> None:
+def _create_skeleton(
+    ds: xr.Dataset,
+    path: str,
+    chunk_shape: dict[str, int],
+    stored: list[str] | None = None,
+    compression: str | None = None,
+    float32: bool = False,
+) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
     data variables (``stored``; default all) defined (chunked like the dataset, compressed as
     asked, floating ones as float32 if asked) but not yet written."""
@@ -243,8 +271,9 @@ def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], sto
     if stored is None:
         stored = list(ds.data_vars)
     scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
-    filters: dict[str, Any] = {} if compression is None else {"compression": compression, "complevel": 1,
-                                                               "shuffle": True}
+    filters: dict[str, Any] = (
+        {} if compression is None else {"compression": compression, "complevel": 1, "shuffle": True}
+    )
     with close_quietly(netCDF4.Dataset(path, "w", format="NETCDF4")) as nc:
         for d, n in ds.sizes.items():
             if d == "mode" and not any("mode" in ds[k].dims for k in stored):
@@ -262,8 +291,15 @@ def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], sto
             dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype
             fill = dtype.type(np.nan) if dtype.kind == "f" else None
             cs = [chunk_shape.get(d, ds.sizes[d]) for d in v.dims]
-            var = nc.createVariable(k, dtype, v.dims, fill_value=fill, chunksizes=cs or None,
-                                    contiguous=not cs and not filters, **(filters if cs else {}))
+            var = nc.createVariable(
+                k,
+                dtype,
+                v.dims,
+                fill_value=fill,
+                chunksizes=cs or None,
+                contiguous=not cs and not filters,
+                **(filters if cs else {}),
+            )
             attrs = dict(v.attrs)
             if scalar_coords:
                 attrs["coordinates"] = " ".join(scalar_coords)
@@ -297,9 +333,11 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
         bad = x[np.isfinite(x)]
     if bad.size:
         x = float(bad[0])
-        raise InputError(f"float32=True: {name} = {x!r} is outside the normal range of float32 "
-                         f"({float(tiny)!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
-                         "change it beyond the stated bound: write with float32=False")
+        raise InputError(
+            f"float32=True: {name} = {x!r} is outside the normal range of float32 "
+            f"({float(tiny)!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
+            "change it beyond the stated bound: write with float32=False"
+        )
     return w
 
 
@@ -316,8 +354,7 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
         h.update(k.encode())
         h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
     keep = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
-    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape,
-            **{k: str(ds.attrs.get(k)) for k in keep}}
+    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **{k: str(ds.attrs.get(k)) for k in keep}}
 
 
 class _Store:
@@ -349,36 +386,46 @@ class _Store:
         store = self.path
         existed = store.exists()
         if existed and not store.is_dir():
-            raise ResumeError(f"cannot resume: {str(store)!r} exists and is not a directory (not a chunk store "
-                              "of this package); remove it or choose another output")
+            raise ResumeError(
+                f"cannot resume: {str(store)!r} exists and is not a directory (not a chunk store "
+                "of this package); remove it or choose another output"
+            )
         store.mkdir(exist_ok=True)
         self._lock()
         manifest = store / "manifest.json"
         others = [p.name for p in store.iterdir() if p.name != "lock" and not p.name.startswith(TEMPORARY_PREFIX)]
         if not manifest.is_file():
             if others:
-                raise ResumeError(f"cannot resume: {str(store)!r} exists but has no manifest.json (not a chunk "
-                                  "store of this package); remove it or choose another output")
+                raise ResumeError(
+                    f"cannot resume: {str(store)!r} exists but has no manifest.json (not a chunk "
+                    "store of this package); remove it or choose another output"
+                )
             import uuid
 
             self.store_id = uuid.uuid4().hex
-            _write_json_atomically(store, "manifest.json", {"format": STORE_FORMAT, "store_id": self.store_id,
-                                                            "identity": self.ident})
+            _write_json_atomically(
+                store, "manifest.json", {"format": STORE_FORMAT, "store_id": self.store_id, "identity": self.ident}
+            )
             return set()
         try:
             old = json.loads(manifest.read_text())
             if not isinstance(old, dict):
                 raise ValueError
         except (ValueError, UnicodeDecodeError, OSError):
-            raise ResumeError(f"cannot resume: {str(manifest)!r} is not a readable manifest; remove "
-                              f"{str(store)!r} to start afresh") from None
+            raise ResumeError(
+                f"cannot resume: {str(manifest)!r} is not a readable manifest; remove {str(store)!r} to start afresh"
+            ) from None
         if old.get("format") != STORE_FORMAT or not isinstance(old.get("identity"), dict):
-            raise ResumeError(f"cannot resume from {str(store)!r}: it was written by an older version of the "
-                              "package (no chunk journal to check its chunks against); remove it to start afresh")
+            raise ResumeError(
+                f"cannot resume from {str(store)!r}: it was written by an older version of the "
+                "package (no chunk journal to check its chunks against); remove it to start afresh"
+            )
         diff = [k for k in self.ident if old["identity"].get(k) != json.loads(json.dumps(self.ident[k]))]
         if diff:
-            raise ResumeError(f"cannot resume from {str(store)!r}: it was written for a different atlas "
-                              f"({', '.join(diff)} differ); remove it to start afresh")
+            raise ResumeError(
+                f"cannot resume from {str(store)!r}: it was written for a different atlas "
+                f"({', '.join(diff)} differ); remove it to start afresh"
+            )
         self.store_id = str(old.get("store_id", ""))
         self.journal = self._read_journal()
         return {p.stem for p in store.glob("chunk-*.npz")}
@@ -399,8 +446,10 @@ class _Store:
             with contextlib.suppress(OSError, ValueError):
                 holder = os.pread(fd, 64, 0).decode().strip()
             os.close(fd)
-            raise ResumeError(f"cannot resume from {str(self.path)!r}: another run{f' (pid {holder})' if holder else ''} "
-                              "is using this chunk store; wait for it to end, or write to another output") from None
+            raise ResumeError(
+                f"cannot resume from {str(self.path)!r}: another run{f' (pid {holder})' if holder else ''} "
+                "is using this chunk store; wait for it to end, or write to another output"
+            ) from None
         except OSError:  # no locks on this file system: no early warning, the commit still decides
             pass
         with contextlib.suppress(OSError):
@@ -471,7 +520,9 @@ class _Store:
                 tmp.done(committed=False)
         self.journal[name] = digest
 
-    def load(self, name: str, sl: dict[str, slice], shape: tuple[int, ...], n_modes: int) -> dict[str, np.ndarray] | None:
+    def load(
+        self, name: str, sl: dict[str, slice], shape: tuple[int, ...], n_modes: int
+    ) -> dict[str, np.ndarray] | None:
         """A kept chunk, checked; None (computed again, and said so) if its file cannot be read
         or the journal does not know it."""
         path = self.path / f"{name}.npz"
@@ -486,13 +537,21 @@ class _Store:
             self.notes(f"{path} cannot be read: computed again")
             return None
         stored = block.pop("_digest", None)
-        _check_block(block, shape, n_modes, lambda text: ResumeError(
-            f"cannot resume: chunk file {str(path)!r} {text}; delete it to have it computed again, or delete "
-            f"{str(self.path)!r}"))
+        _check_block(
+            block,
+            shape,
+            n_modes,
+            lambda text: ResumeError(
+                f"cannot resume: chunk file {str(path)!r} {text}; delete it to have it computed again, or delete "
+                f"{str(self.path)!r}"
+            ),
+        )
         if stored is None or str(stored) != recorded or self.digest(name, sl, block) != recorded:
-            raise ResumeError(f"cannot resume: chunk file {str(path)!r} does not match what this run recorded for "
-                              f"{name} (edited, swapped or from another run); delete it to have it computed again, or "
-                              f"delete {str(self.path)!r}")
+            raise ResumeError(
+                f"cannot resume: chunk file {str(path)!r} does not match what this run recorded for "
+                f"{name} (edited, swapped or from another run); delete it to have it computed again, or "
+                f"delete {str(self.path)!r}"
+            )
         _check_values(block, lambda text: ResumeError(f"cannot resume: chunk file {str(path)!r} {text}"))
         return block
 
@@ -503,8 +562,9 @@ def _write_json_atomically(directory: Path, name: str, data: Any) -> None:
     os.replace(tmp, directory / name)
 
 
-def _check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int,
-                 error: Callable[[str], Exception]) -> None:
+def _check_block(
+    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
+) -> None:
     """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
     if set(block) != set(_BLOCK_LAYOUT):
         raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
@@ -544,9 +604,14 @@ def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) 
 def _spec(ds: xr.Dataset, dims: list[str]) -> dict[str, Any]:
     """What computing a chunk needs, read from an atlas's coordinates and attributes."""
     names = str(ds.attrs["parameters"]).split()
-    return {"model": str(ds.attrs["model"]), "method": str(ds.attrs["eigenvalue_method"]),
-            "mask": bool(int(ds.attrs["mask_unphysical"])), "names": names, "dims": dims,
-            "values": {k: np.asarray(ds.coords[k].values, dtype=np.float64) for k in names}}
+    return {
+        "model": str(ds.attrs["model"]),
+        "method": str(ds.attrs["eigenvalue_method"]),
+        "mask": bool(int(ds.attrs["mask_unphysical"])),
+        "names": names,
+        "dims": dims,
+        "values": {k: np.asarray(ds.coords[k].values, dtype=np.float64) for k in names},
+    }
 
 
 def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
@@ -562,8 +627,13 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
             shape[dims.index(k)] = -1
             v = v[sl[k]].reshape(shape)
         args.append(v)
-    out = _block_spectra(*args, model=get_model(spec["model"], warn=False), names=tuple(spec["names"]), mask=spec["mask"],
-                         method=spec["method"])
+    out = _block_spectra(
+        *args,
+        model=get_model(spec["model"], warn=False),
+        names=tuple(spec["names"]),
+        mask=spec["mask"],
+        method=spec["method"],
+    )
     return dict(zip(_BLOCK_VARIABLES, out))
 
 
@@ -577,10 +647,20 @@ def _slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     return out
 
 
-def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, client: Any = None,
-                resume: bool = False, progress: bool | Callable[[int, int], None] = False,
-                window: int | None = None, notes: Callable[[str], None] | None = None, variables: str = "all",
-                compression: str | None = None, float32: bool = False) -> Path:
+def write_atlas(
+    ds: xr.Dataset,
+    path: str | os.PathLike,
+    *,
+    overwrite: bool = False,
+    client: Any = None,
+    resume: bool = False,
+    progress: bool | Callable[[int, int], None] = False,
+    window: int | None = None,
+    notes: Callable[[str], None] | None = None,
+    variables: str = "all",
+    compression: str | None = None,
+    float32: bool = False,
+) -> Path:
     """Write an atlas (lazy or not) to netCDF chunk by chunk, atomically.
 
     Parameters
@@ -641,13 +721,16 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
         raise TypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
     if notes is None:
+
         def notes(text: str) -> None:
             warnings.warn(text, UserWarning, stacklevel=3)
+
     if variables not in VARIABLE_CHOICES:
         raise InputError(f"variables = {variables!r} is not a choice; choose one of {', '.join(VARIABLE_CHOICES)}")
     if compression not in COMPRESSIONS:
-        raise InputError(f"compression = {compression!r} is not a choice; choose one of "
-                         f"{', '.join(map(str, COMPRESSIONS))}")
+        raise InputError(
+            f"compression = {compression!r} is not a choice; choose one of {', '.join(map(str, COMPRESSIONS))}"
+        )
     float32 = check_flag("float32", float32)
     target = check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
@@ -668,8 +751,22 @@ def write_atlas(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fa
                 done = store.open()
             else:
                 done = set()
-            _write_chunks(ds, target, overwrite, expected, dims, n_modes, chunk_shape, blocks, done, store, client,
-                          window, report, _Layout(_stored(ds, variables), compression, float32))
+            _write_chunks(
+                ds,
+                target,
+                overwrite,
+                expected,
+                dims,
+                n_modes,
+                chunk_shape,
+                blocks,
+                done,
+                store,
+                client,
+                window,
+                report,
+                _Layout(_stored(ds, variables), compression, float32),
+            )
             if store is not None:
                 shutil.rmtree(store.path, ignore_errors=True)
     finally:
@@ -699,8 +796,13 @@ class _Leading:
     chunk had a point inside, the same. The values are those of deciding on the whole grid
     first, bit for bit."""
 
-    def __init__(self, nc: Any, dims: list[str], again: Callable[[str, dict[str, slice]], dict[str, np.ndarray]],
-                 cast: Callable[[str, np.ndarray], np.ndarray]) -> None:
+    def __init__(
+        self,
+        nc: Any,
+        dims: list[str],
+        again: Callable[[str, dict[str, slice]], dict[str, np.ndarray]],
+        cast: Callable[[str, np.ndarray], np.ndarray],
+    ) -> None:
         self.nc, self.dims, self.again, self.cast = nc, dims, again, cast
         self.active = "leading_growth_rate" in nc.variables
         self.dropping, self.any_inside, self.provisional = True, False, []
@@ -735,16 +837,30 @@ class _Leading:
         if self.dropping:
             self.provisional.append((name, sl))
         self.nc.variables["leading_growth_rate"][tuple(sl[d] for d in self.dims)] = self.cast(
-            "leading_growth_rate", np.ascontiguousarray(value))
+            "leading_growth_rate", np.ascontiguousarray(value)
+        )
 
     def close(self) -> None:
         if self.active and self.dropping and not self.any_inside:
             self._undo()
 
 
-def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float, dims: list[str], n_modes: int,
-                  chunk_shape: dict[str, int], blocks: list, done: set[str], store: _Store | None, client: Any,
-                  window: int | None, report: "_progress", layout: _Layout | None = None) -> None:
+def _write_chunks(
+    ds: xr.Dataset,
+    target: Path,
+    overwrite: bool,
+    expected: float,
+    dims: list[str],
+    n_modes: int,
+    chunk_shape: dict[str, int],
+    blocks: list,
+    done: set[str],
+    store: _Store | None,
+    client: Any,
+    window: int | None,
+    report: _progress,
+    layout: _Layout | None = None,
+) -> None:
     """The body of :func:`write_atlas`: skeleton, kept chunks, computed chunks, commit."""
     import netCDF4
 
@@ -773,8 +889,14 @@ def _write_chunks(ds: xr.Dataset, target: Path, overwrite: bool, expected: float
             def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
                 shape = tuple(sl[d].stop - sl[d].start for d in dims)
                 if fresh:
-                    _check_block(block, shape, n_modes, lambda text: ChunkError(
-                        f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"))
+                    _check_block(
+                        block,
+                        shape,
+                        n_modes,
+                        lambda text: ChunkError(
+                            f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"
+                        ),
+                    )
                     if store is not None:
                         store.save(name, sl, block, target)
                 idx = tuple(sl[d] for d in dims)
@@ -819,16 +941,27 @@ class _Failure:
         where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
         cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
         if self.store is not None:
-            kept = (f"{done} of {self.total} chunks are kept in {self.store}; rerun the same command "
-                    "(resume=True, --resume) to compute only the others")
+            kept = (
+                f"{done} of {self.total} chunks are kept in {self.store}; rerun the same command "
+                "(resume=True, --resume) to compute only the others"
+            )
         else:
-            kept = (f"no chunks were kept ({done} of {self.total} had been computed); use "
-                    "resume=True (--resume) to keep finished chunks across a failure")
+            kept = (
+                f"no chunks were kept ({done} of {self.total} had been computed); use "
+                "resume=True (--resume) to keep finished chunks across a failure"
+            )
         return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {kept}")
 
 
-def _run_on_cluster(client: Any, spec: dict[str, Any], todo: list, put: Callable, window: int | None,
-                    failed: _Failure, report: "_progress") -> None:
+def _run_on_cluster(
+    client: Any,
+    spec: dict[str, Any],
+    todo: list,
+    put: Callable,
+    window: int | None,
+    failed: _Failure,
+    report: _progress,
+) -> None:
     """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's

@@ -42,14 +42,15 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         None when neither is given: chunks are computed in this process.
     """
     if workers is not None and scheduler is not None:
-        raise ValueError(f"workers = {workers!r} and scheduler = {scheduler!r} were both given: pass workers=N "
-                         "for a local cluster or scheduler=ADDRESS for an existing one, not both")
+        raise ValueError(
+            f"workers = {workers!r} and scheduler = {scheduler!r} were both given: pass workers=N "
+            "for a local cluster or scheduler=ADDRESS for an existing one, not both"
+        )
     if workers is None and scheduler is None:
         yield None
         return
     if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
-        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a "
-                        "scheduler file")
+        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a scheduler file")
     require_extra("distributed", "cluster", "workers= or scheduler= (a dask cluster)")
     from distributed import Client, LocalCluster
 
@@ -57,9 +58,17 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         workers = check_integer("workers", workers, minimum=1)
         if workers > 1024:
             raise ValueError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                          dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
-                Client(cluster) as client:
+        with (
+            LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=True,
+                host="127.0.0.1",
+                dashboard_address=None,
+                silence_logs=logging.CRITICAL,
+            ) as cluster,
+            Client(cluster) as client,
+        ):
             yield client
         return
     scheduler = str(scheduler)
@@ -68,14 +77,17 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
     else:
         path = Path(scheduler)
         if not path.is_file():
-            raise FileNotFoundError(f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an "
-                                    "existing scheduler file")
+            raise FileNotFoundError(
+                f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an existing scheduler file"
+            )
         try:
             info = json.loads(path.read_text())
             address = info["address"]
         except (ValueError, KeyError, TypeError, UnicodeDecodeError):
-            raise ValueError(f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
-                             "'address', as written by `dask scheduler --scheduler-file`)") from None
+            raise ValueError(
+                f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
+                "'address', as written by `dask scheduler --scheduler-file`)"
+            ) from None
         client = _connect(scheduler, scheduler_file=str(path), address=address)
     with client:
         yield client
@@ -90,5 +102,6 @@ def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
             return Client(timeout="20s", **kwargs)
         return Client(address, timeout="20s")
     except (OSError, TimeoutError) as exc:
-        raise ConnectionError(f"cannot reach the dask scheduler {what!r} (address {address}): "
-                              f"{type(exc).__name__}: {exc}") from None
+        raise ConnectionError(
+            f"cannot reach the dask scheduler {what!r} (address {address}): {type(exc).__name__}: {exc}"
+        ) from None

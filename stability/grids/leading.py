@@ -24,15 +24,15 @@ import xarray as xr
 
 from ..linear.modes import structural_zeros
 
-__all__ = ["zero_everywhere", "leading", "ATTRS"]
+__all__ = ["ATTRS", "leading", "zero_everywhere"]
 
 #: the attributes of the ``leading_growth_rate`` variable
 ATTRS: dict[str, str] = {
     "long_name": "leading growth rate",
     "units": "Omega",
     "comment": "max Re s over the modes that are not structurally zero: the s = 0 mode (at "
-               "Fr^-1 = 0) is left out where every point of the grid inside the domain has it; "
-               "units of the spin rate; equals max_growth_rate elsewhere",
+    "Fr^-1 = 0) is left out where every point of the grid inside the domain has it; "
+    "units of the spin rate; equals max_growth_rate elsewhere",
 }
 
 
@@ -41,8 +41,9 @@ def _zeros(growth: xr.DataArray, frequency: xr.DataArray, bound: xr.DataArray | 
     return xr.apply_ufunc(lambda *a: structural_zeros(*a), *args, dask="parallelized", output_dtypes=[bool])
 
 
-def zero_everywhere(growth: xr.DataArray, frequency: xr.DataArray,
-                    bound: xr.DataArray | None = None) -> tuple[Any, Any]:
+def zero_everywhere(
+    growth: xr.DataArray, frequency: xr.DataArray, bound: xr.DataArray | None = None
+) -> tuple[Any, Any]:
     """For one part of an atlas (dimension ``mode`` last or anywhere): whether every point inside
     the domain has a structural zero mode, and whether any point is inside (0-d, lazy for dask).
     The zero mode is left out of the whole atlas iff the first holds for every part and the
@@ -52,8 +53,9 @@ def zero_everywhere(growth: xr.DataArray, frequency: xr.DataArray,
     return (zero.any("mode") | ~inside).all(), inside.any()
 
 
-def leading(growth: xr.DataArray, frequency: xr.DataArray, bound: xr.DataArray | None,
-            max_growth: xr.DataArray, *, drop: Any) -> xr.DataArray:
+def leading(
+    growth: xr.DataArray, frequency: xr.DataArray, bound: xr.DataArray | None, max_growth: xr.DataArray, *, drop: Any
+) -> xr.DataArray:
     """The leading growth rate over the grid, given the decision ``drop`` (leave the structural
     zero mode out, a bool or a 0-d array); NaN outside the domain. Works on numpy- and
     dask-backed arrays alike."""

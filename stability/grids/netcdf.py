@@ -32,8 +32,16 @@ from .schema import ATLAS_VARIABLES, require_atlas, required_variables, validate
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["atomic_output", "check_output_path", "write_dataset", "open_atlas", "PRODUCT_ATTR",
-           "require_atlas", "SLAB_BYTES", "ATLAS_VARIABLES"]
+__all__ = [
+    "ATLAS_VARIABLES",
+    "PRODUCT_ATTR",
+    "SLAB_BYTES",
+    "atomic_output",
+    "check_output_path",
+    "open_atlas",
+    "require_atlas",
+    "write_dataset",
+]
 
 #: largest piece of a variable written in one call (an interruption point between pieces)
 SLAB_BYTES = 16 * 2**20
@@ -57,21 +65,27 @@ def _slab_writer() -> Any:
             checkpoint()
             if region:
                 return super().add(source, target, region)
-            if hasattr(source, "chunks") and getattr(source, "chunks", None) is not None \
-                    and hasattr(source, "compute") and getattr(source, "ndim", 0) >= 1:
+            if (
+                hasattr(source, "chunks")
+                and getattr(source, "chunks", None) is not None
+                and hasattr(source, "compute")
+                and getattr(source, "ndim", 0) >= 1
+            ):
                 from dask.local import get_sync
 
                 start = 0
                 for rows in source.chunks[0]:
                     checkpoint()
-                    target[start:start + rows, ...] = np.asarray(source[start:start + rows].compute(scheduler=get_sync))
+                    target[start : start + rows, ...] = np.asarray(
+                        source[start : start + rows].compute(scheduler=get_sync)
+                    )
                     start += rows
                 return None
             if isinstance(source, np.ndarray) and source.ndim >= 1 and source.nbytes > SLAB_BYTES:
                 step = _slab_rows(source.shape, source.itemsize)
                 for i in range(0, source.shape[0], step):
                     checkpoint()
-                    target[i:i + step, ...] = source[i:i + step]
+                    target[i : i + step, ...] = source[i : i + step]
                 return None
             return super().add(source, target, region)
 
@@ -166,16 +180,21 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
     try:
         product = ds.attrs.get(PRODUCT_ATTR)
         if product is None:
-            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global "
-                                 f"attribute {PRODUCT_ATTR!r} (written by another program, or by xarray "
-                                 "directly; stability.atlas and tippe atlas set it)")
+            raise AtlasFileError(
+                f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global "
+                f"attribute {PRODUCT_ATTR!r} (written by another program, or by xarray "
+                "directly; stability.atlas and tippe atlas set it)"
+            )
         if product != "atlas":
-            raise AtlasFileError(f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
-                                 "tippe-stability (open it with xarray.open_dataset)")
+            raise AtlasFileError(
+                f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
+                "tippe-stability (open it with xarray.open_dataset)"
+            )
         missing = [v for v in required_variables(ds) if v not in ds]
         if missing:
-            raise AtlasFileError(f"atlas file {str(p)!r} is not a complete atlas: missing variables "
-                                 f"{', '.join(missing)}")
+            raise AtlasFileError(
+                f"atlas file {str(p)!r} is not a complete atlas: missing variables {', '.join(missing)}"
+            )
         try:
             validate_atlas(ds, lambda text: AtlasFileError(f"atlas file {str(p)!r} is not a valid atlas: {text}"))
         except AtlasFileError:
@@ -183,16 +202,24 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
         except Exception as exc:  # a slab that cannot be read: the file is damaged past its header
             raise _unreadable(p, exc) from None
         if ds.attrs.get("model") == "rolling" and ds.attrs.get("model_equations") == "(8)-(9)":
-            warnings.warn(f"atlas file {str(p)!r} was written by {ds.attrs.get('source', 'an older version')}: "
-                          "its model 'rolling' is eq. (8) as printed, which is now called 'rolling_eq8' "
-                          "('rolling' is now the rolling top from first principles)", FutureWarning, stacklevel=2)
+            warnings.warn(
+                f"atlas file {str(p)!r} was written by {ds.attrs.get('source', 'an older version')}: "
+                "its model 'rolling' is eq. (8) as printed, which is now called 'rolling_eq8' "
+                "('rolling' is now the rolling top from first principles)",
+                FutureWarning,
+                stacklevel=2,
+            )
         if chunks is not None:
             return ds.chunk(chunks)
         from ..resources import check_memory
 
-        check_memory(float(ds.nbytes), what=f"open_atlas({str(p)!r})", parameter="the file's size",
-                     way_out="pass chunks= (e.g. chunks=1000) to open it lazily, or select a slice with "
-                             "xarray.open_dataset(path).isel(...)")
+        check_memory(
+            float(ds.nbytes),
+            what=f"open_atlas({str(p)!r})",
+            parameter="the file's size",
+            way_out="pass chunks= (e.g. chunks=1000) to open it lazily, or select a slice with "
+            "xarray.open_dataset(path).isel(...)",
+        )
         try:
             loaded = ds.load()
         except Exception as exc:
@@ -242,7 +269,10 @@ def _unreadable(p: Path, exc: BaseException) -> AtlasFileError:
     with open(p, "rb") as f:
         head = f.read(8)
     if head.startswith((b"\x89HDF", b"CDF")):
-        return AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to the end "
-                              f"(truncated or damaged: {type(exc).__name__}: {' '.join(str(exc).split())[:120]})")
-    return AtlasFileError(f"atlas file {str(p)!r} is not a readable netCDF file (it does not start with a netCDF "
-                          "or HDF5 signature)")
+        return AtlasFileError(
+            f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to the end "
+            f"(truncated or damaged: {type(exc).__name__}: {' '.join(str(exc).split())[:120]})"
+        )
+    return AtlasFileError(
+        f"atlas file {str(p)!r} is not a readable netCDF file (it does not start with a netCDF or HDF5 signature)"
+    )

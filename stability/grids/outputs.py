@@ -49,8 +49,17 @@ from typing import Any
 from ..errors import OutputWriteError, TippeError
 from ..interrupts import Temporary, checkpoint
 
-__all__ = ["atomic_output", "check_output_path", "check_free_space", "commit", "write_error", "describe_kind",
-           "temporary_name", "close_quietly", "TEMPORARY_PREFIX"]
+__all__ = [
+    "TEMPORARY_PREFIX",
+    "atomic_output",
+    "check_free_space",
+    "check_output_path",
+    "close_quietly",
+    "commit",
+    "describe_kind",
+    "temporary_name",
+    "write_error",
+]
 
 #: temporary files are ``<dir>/.tippe-tmp-XXXXXXXX-<name>``: hidden, unique, and ending with the
 #: target's name, so that their suffix is the target's (a figure's format is read off it)
@@ -67,18 +76,31 @@ if hasattr(errno, "EDQUOT"):
     _WRITE_ERRNOS[errno.EDQUOT] = "disk quota exceeded on the file system holding {dir}"
 
 #: errors of the no-replace primitives that mean "not supported here": try the next one
-_UNSUPPORTED = {errno.EINVAL, errno.ENOSYS, errno.EPERM, errno.EXDEV, errno.EMLINK,
-                getattr(errno, "ENOTSUP", errno.EINVAL), getattr(errno, "EOPNOTSUPP", errno.EINVAL)}
+_UNSUPPORTED = {
+    errno.EINVAL,
+    errno.ENOSYS,
+    errno.EPERM,
+    errno.EXDEV,
+    errno.EMLINK,
+    getattr(errno, "ENOTSUP", errno.EINVAL),
+    getattr(errno, "EOPNOTSUPP", errno.EINVAL),
+}
 
 
 # --- what a path is ------------------------------------------------------------------------------
 
+
 def describe_kind(mode: int) -> str:
     """What a file mode is, in words: ``"a FIFO (named pipe)"``, ``"a symbolic link"``, ..."""
-    for test, text in ((stat.S_ISREG, "a regular file"), (stat.S_ISDIR, "a directory"),
-                       (stat.S_ISLNK, "a symbolic link"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
-                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-                       (stat.S_ISSOCK, "a socket")):
+    for test, text in (
+        (stat.S_ISREG, "a regular file"),
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISLNK, "a symbolic link"),
+        (stat.S_ISFIFO, "a FIFO (named pipe)"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    ):
         if test(mode):
             return text
     return "not a regular file"
@@ -103,8 +125,10 @@ def _refuse_existing(p: Path, st: os.stat_result, overwrite: bool) -> None:
     if stat.S_ISDIR(st.st_mode):
         raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
     if not stat.S_ISREG(st.st_mode):
-        raise FileExistsError(f"output path {str(p)!r} is {describe_kind(st.st_mode)}; only a regular file can be "
-                              "replaced: remove it or choose another name")
+        raise FileExistsError(
+            f"output path {str(p)!r} is {describe_kind(st.st_mode)}; only a regular file can be "
+            "replaced: remove it or choose another name"
+        )
     if not overwrite:
         raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
 
@@ -140,8 +164,9 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     try:
         fd, probe = tempfile.mkstemp(prefix=TEMPORARY_PREFIX, suffix=".probe", dir=parent)
     except OSError as exc:
-        raise PermissionError(f"output directory {str(parent)!r} of {str(p)!r} is not writable "
-                              f"({exc.strerror})") from None
+        raise PermissionError(
+            f"output directory {str(parent)!r} of {str(p)!r} is not writable ({exc.strerror})"
+        ) from None
     os.close(fd)
     os.unlink(probe)
     return p
@@ -176,13 +201,20 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
     except (OSError, AttributeError):
         free = None
     if free is not None and nbytes > free:
-        raise OutputWriteError(f"cannot write {str(p)!r}: the output needs about {_fmt_bytes(nbytes)} and the file "
-                               f"system holding {str(d)!r} has {_fmt_bytes(free)} free; nothing was written",
-                               errno.ENOSPC, str(p))
+        raise OutputWriteError(
+            f"cannot write {str(p)!r}: the output needs about {_fmt_bytes(nbytes)} and the file "
+            f"system holding {str(d)!r} has {_fmt_bytes(free)} free; nothing was written",
+            errno.ENOSPC,
+            str(p),
+        )
     limit = _fsize_limit()
     if limit is not None and nbytes > limit:
-        raise OutputWriteError(f"cannot write {str(p)!r}: the output needs about {_fmt_bytes(nbytes)}, above the file "
-                               f"size limit (ulimit -f) of {limit} bytes; nothing was written", errno.EFBIG, str(p))
+        raise OutputWriteError(
+            f"cannot write {str(p)!r}: the output needs about {_fmt_bytes(nbytes)}, above the file "
+            f"size limit (ulimit -f) of {limit} bytes; nothing was written",
+            errno.EFBIG,
+            str(p),
+        )
 
 
 def _fsize_limit() -> int | None:
@@ -196,6 +228,7 @@ def _fsize_limit() -> int | None:
 
 
 # --- the commit --------------------------------------------------------------------------------
+
 
 def _noreplace_call() -> Any:
     """``(function, flags)`` of the system's atomic no-replace rename, or None."""
@@ -302,8 +335,10 @@ def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
             try:
                 _rename_noreplace(tmp.path, str(target))
             except FileExistsError:
-                raise FileExistsError(f"output file {str(target)!r} was created by another process while this run was "
-                                      "computing; nothing was written (pass overwrite=True to replace it)") from None
+                raise FileExistsError(
+                    f"output file {str(target)!r} was created by another process while this run was "
+                    "computing; nothing was written (pass overwrite=True to replace it)"
+                ) from None
     except BaseException:
         tmp.state = "writing"
         raise
@@ -325,8 +360,9 @@ def _remove(tmp: Temporary) -> None:
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, *, overwrite: bool = False,
-                  expected_bytes: float | None = None) -> Iterator[str]:
+def atomic_output(
+    path: str | os.PathLike, *, overwrite: bool = False, expected_bytes: float | None = None
+) -> Iterator[str]:
     """Yield a temporary file name next to ``path``; commit it to ``path`` only on success.
 
     Parameters
@@ -366,6 +402,7 @@ def atomic_output(path: str | os.PathLike, *, overwrite: bool = False,
 
 # --- translating write errors --------------------------------------------------------------------
 
+
 def _chain(exc: BaseException) -> Iterator[BaseException]:
     seen = set()
     e: BaseException | None = exc
@@ -379,11 +416,14 @@ def _is_library_write_error(exc: BaseException) -> bool:
     """netCDF4 and h5 report a failed write as a RuntimeError "NetCDF: ..." (no errno)."""
     text = str(exc)
     return (type(exc) is RuntimeError and ("NetCDF" in text or "HDF" in text)) or type(exc).__name__ in (
-        "HDF5ExtError", "NetCDF4Error")
+        "HDF5ExtError",
+        "NetCDF4Error",
+    )
 
 
-def write_error(exc: BaseException, target: Path, tmp: str | None = None,
-                what: str | None = None) -> OutputWriteError | None:
+def write_error(
+    exc: BaseException, target: Path, tmp: str | None = None, what: str | None = None
+) -> OutputWriteError | None:
     """The :class:`~stability.errors.OutputWriteError` for a failure while writing ``target``,
     or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
     are passed on as they are).
@@ -408,8 +448,12 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None,
             found = e
             break
     library = any(_is_library_write_error(e) for e in _chain(exc))
-    own_file = isinstance(exc, OSError) and exc.filename is not None and tmp is not None and \
-        os.path.abspath(str(exc.filename)) == os.path.abspath(tmp)
+    own_file = (
+        isinstance(exc, OSError)
+        and exc.filename is not None
+        and tmp is not None
+        and os.path.abspath(str(exc.filename)) == os.path.abspath(tmp)
+    )
     if found is None and not library and not own_file:
         return None
     name = what or str(target)

@@ -36,8 +36,9 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
         except ValueError:
             raise ValueError(f"{name} = {text!r}: {part.strip()!r} is not a number; give {forms}") from None
         if finite and not np.isfinite(v):
-            raise ValueError(f"{name} = {text!r}: {part.strip()!r} is not finite (it reads as {v}); "
-                             f"{name} must be a finite number")
+            raise ValueError(
+                f"{name} = {text!r}: {part.strip()!r} is not finite (it reads as {v}); {name} must be a finite number"
+            )
         return v
 
     if ":" in t:
@@ -48,17 +49,20 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
         try:
             num = int(parts[2])
         except ValueError:
-            raise ValueError(f"{name} = {text!r}: the number of points {parts[2].strip()!r} is not an "
-                             "integer; give start:stop:num with num >= 1") from None
+            raise ValueError(
+                f"{name} = {text!r}: the number of points {parts[2].strip()!r} is not an "
+                "integer; give start:stop:num with num >= 1"
+            ) from None
         if num < 1:
             raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num >= 1")
         if num > 10**9:
             raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num <= 1e9")
         if num > 1 and not np.isfinite((stop - start) / (num - 1)):
-            raise ValueError(f"{name} = {text!r}: the step (stop - start)/(num - 1) overflows a double; "
-                             f"{name} must have |stop - start| <= 1.7e308")
-        check_memory(8.0 * num, what=f"{name} = {text!r} ({num} values)", parameter=name,
-                     way_out="give fewer points")
+            raise ValueError(
+                f"{name} = {text!r}: the step (stop - start)/(num - 1) overflows a double; "
+                f"{name} must have |stop - start| <= 1.7e308"
+            )
+        check_memory(8.0 * num, what=f"{name} = {text!r} ({num} values)", parameter=name, way_out="give fewer points")
         return np.linspace(start, stop, num)
     if "," in t:
         vals = [number(v) for v in t.split(",") if v.strip()]

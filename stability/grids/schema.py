@@ -39,7 +39,6 @@ variable and the rule ("variable 'stability' has dtype float64; an atlas stores 
 from __future__ import annotations
 
 from collections.abc import Callable
-
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -47,8 +46,16 @@ import numpy as np
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["validate_atlas", "require_atlas", "required_variables", "ATLAS_VARIABLES", "MAP_VARIABLES",
-           "STORED_ATTR", "FLAG_VALUES", "SLAB_POINTS"]
+__all__ = [
+    "ATLAS_VARIABLES",
+    "FLAG_VALUES",
+    "MAP_VARIABLES",
+    "SLAB_POINTS",
+    "STORED_ATTR",
+    "require_atlas",
+    "required_variables",
+    "validate_atlas",
+]
 
 #: the variables every atlas has
 ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
@@ -86,12 +93,16 @@ def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     import xarray as xr  # here: importing the checks imports no xarray (tippe --help)
 
     if not isinstance(ds, xr.Dataset):
-        raise TypeError(f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
-                        "stability.atlas or stability.open_atlas")
+        raise TypeError(
+            f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
+            "stability.atlas or stability.open_atlas"
+        )
     missing = [v for v in required_variables(ds) if v not in ds]
     if missing:
-        raise ValueError(f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
-                         f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)")
+        raise ValueError(
+            f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
+            f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)"
+        )
     validate_atlas(ds, lambda text: ValueError(f"{name} is not a valid atlas: {text}"))
     return ds
 
@@ -129,9 +140,11 @@ def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exc
         modal = v in _MODAL
         want = set(grid) | ({"mode"} if modal else set())
         if set(var.dims) != want or var.ndim != len(want):
-            raise error(f"variable {v!r} has dimensions {var.dims}; an atlas has {v} on "
-                        f"{tuple(grid) + (('mode',) if modal else ())} (the dimensions of 'stability'"
-                        f"{' and mode' if modal else ''})")
+            raise error(
+                f"variable {v!r} has dimensions {var.dims}; an atlas has {v} on "
+                f"{tuple(grid) + (('mode',) if modal else ())} (the dimensions of 'stability'"
+                f"{' and mode' if modal else ''})"
+            )
         kind = var.dtype.kind
         if v in ("stability", "physical"):
             if kind not in "iu":
@@ -140,12 +153,16 @@ def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exc
             raise error(f"variable {v!r} has dtype {var.dtype}; an atlas stores it as floating-point numbers")
     flags = ds["stability"].attrs.get("flag_values")
     if flags is not None and [int(f) for f in np.atleast_1d(flags)] != list(FLAG_VALUES):
-        raise error(f"variable 'stability' has flag_values {[int(f) for f in np.atleast_1d(flags)]}; an atlas's flags are "
-                    f"{list(FLAG_VALUES)} (outside the domain, stable, marginal, unstable)")
+        raise error(
+            f"variable 'stability' has flag_values {[int(f) for f in np.atleast_1d(flags)]}; an atlas's flags are "
+            f"{list(FLAG_VALUES)} (outside the domain, stable, marginal, unstable)"
+        )
     meanings = ds["stability"].attrs.get("flag_meanings")
     if meanings is not None and str(meanings).split() != list(FLAG_MEANINGS):
-        raise error(f"variable 'stability' has flag_meanings {str(meanings)!r}; an atlas's flags mean "
-                    f"{' '.join(FLAG_MEANINGS)!r} (for {list(FLAG_VALUES)})")
+        raise error(
+            f"variable 'stability' has flag_meanings {str(meanings)!r}; an atlas's flags mean "
+            f"{' '.join(FLAG_MEANINGS)!r} (for {list(FLAG_VALUES)})"
+        )
     for d in grid:
         if d not in ds.coords or ds[d].dims != (d,):
             raise error(f"grid dimension {d!r} has no coordinate of its own name")
@@ -159,8 +176,7 @@ def _structure(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Exc
         from ..models import MODELS
 
         if str(model) not in MODELS:
-            raise error(f"its attribute model = {model!r} is not a linear model of this package "
-                        f"({', '.join(MODELS)})")
+            raise error(f"its attribute model = {model!r} is not a linear model of this package ({', '.join(MODELS)})")
         n = MODELS[str(model)].n_modes
         if "mode" in ds.dims and ds.sizes["mode"] != n:
             raise error(f"it has {ds.sizes['mode']} modes; the {model} model has {n}")
@@ -191,33 +207,44 @@ def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Except
             if not np.isin(phys, (0, 1)).all():
                 raise error(f"variable 'physical' holds {_example(phys[~np.isin(phys, (0, 1))])}, not a flag 0 or 1")
             if not np.array_equal(phys == 0, outside):
-                raise error("variables 'physical' and 'stability' disagree: physical == 0 must hold exactly where "
-                            "stability == -1 (outside the domain)")
+                raise error(
+                    "variables 'physical' and 'stability' disagree: physical == 0 must hold exactly where "
+                    "stability == -1 (outside the domain)"
+                )
         for v in (m for m in _MODAL if m in part):
             a = part[v].transpose(*grid, "mode").values
             nan = np.isnan(a)
             if not (nan.all(axis=-1) == outside).all() or not (nan.any(axis=-1) == outside).all():
-                raise error(f"variable {v!r} has NaN where 'stability' is not -1, or a number where it is -1 "
-                            "(NaN marks exactly the points outside the domain)")
+                raise error(
+                    f"variable {v!r} has NaN where 'stability' is not -1, or a number where it is -1 "
+                    "(NaN marks exactly the points outside the domain)"
+                )
             if v == "eigenvalue_error_bound" and (a < 0).any():  # NaN < 0 is False: no copy of the numbers
                 raise error("variable 'eigenvalue_error_bound' has negative values; a bound is >= 0")
         if "leading_growth_rate" in part:
             lead = part["leading_growth_rate"].transpose(*grid).values
             if not np.array_equal(np.isnan(lead), outside):
-                raise error("variable 'leading_growth_rate' has NaN where 'stability' is not -1, or a number where "
-                            "it is -1 (NaN marks exactly the points outside the domain)")
+                raise error(
+                    "variable 'leading_growth_rate' has NaN where 'stability' is not -1, or a number where "
+                    "it is -1 (NaN marks exactly the points outside the domain)"
+                )
         if "growth_rate" not in part or "max_growth_rate" not in part:
             continue  # a map atlas
         g0 = part["growth_rate"].transpose(*grid, "mode").values[..., 0]
         mx = part["max_growth_rate"].transpose(*grid).values
         if not np.array_equal(g0, mx, equal_nan=True):
-            raise error("variable 'max_growth_rate' differs from growth_rate of mode 0 (the modes are sorted by "
-                        "decreasing growth rate)")
+            raise error(
+                "variable 'max_growth_rate' differs from growth_rate of mode 0 (the modes are sorted by "
+                "decreasing growth rate)"
+            )
         # the flags against the stored numbers (the rule of stability.linear.spectra: a mode is
         # neutral within tol >= its bound, so a stable point has max Re s < -bound_0 and an
         # unstable one max Re s > 0, whatever the rest of the rule)
-        b0 = (part["eigenvalue_error_bound"].transpose(*grid, "mode").values[..., 0]
-              if "eigenvalue_error_bound" in part else np.zeros_like(mx))
+        b0 = (
+            part["eigenvalue_error_bound"].transpose(*grid, "mode").values[..., 0]
+            if "eigenvalue_error_bound" in part
+            else np.zeros_like(mx)
+        )
         bad_s = (stab == 0) & ~(mx + b0 < 0)
         bad_u = (stab == 2) & ~(mx > 0)
         n_stable_bad += int(bad_s.sum())
@@ -229,10 +256,12 @@ def _values(ds: xr.Dataset, grid: tuple[str, ...], error: Callable[[str], Except
             first_bad["stability"] = int(stab[tuple(idx)])
     if n_stable_bad or n_unstable_bad:
         where = ", ".join(f"{k} = {v:.6g}" for k, v in first_bad.items())
-        raise error(f"its flags disagree with its own growth rates: {n_stable_bad} points flagged stable (0) have "
-                    f"max_growth_rate >= -eigenvalue_error_bound and {n_unstable_bad} flagged unstable (2) have "
-                    f"max_growth_rate <= 0 (first: {where}); the file was edited or damaged. Recompute it "
-                    "(stability.atlas or tippe atlas), or read the numbers alone with xarray.open_dataset")
+        raise error(
+            f"its flags disagree with its own growth rates: {n_stable_bad} points flagged stable (0) have "
+            f"max_growth_rate >= -eigenvalue_error_bound and {n_unstable_bad} flagged unstable (2) have "
+            f"max_growth_rate <= 0 (first: {where}); the file was edited or damaged. Recompute it "
+            "(stability.atlas or tippe atlas), or read the numbers alone with xarray.open_dataset"
+        )
 
 
 def _example(values: np.ndarray) -> str:

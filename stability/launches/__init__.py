@@ -8,4 +8,4 @@ points, classes) and converts between a top in SI units and the nondimensional s
 from .flip import FlipRun, flip_time, launch_state, run_launch
 from .result import Launch, launch
 
-__all__ = ["launch", "Launch", "flip_time", "run_launch", "launch_state", "FlipRun"]
+__all__ = ["FlipRun", "Launch", "flip_time", "launch", "launch_state", "run_launch"]

@@ -45,7 +45,7 @@ from ..products import PRODUCT_ATTR
 from ..top import Top, from_rad_per_s
 from .flip import launch_parameters, run_launch
 
-__all__ = ["efold_flip_time", "flip_time_map", "MAP_PRODUCT", "ESTIMATES"]
+__all__ = ["ESTIMATES", "MAP_PRODUCT", "efold_flip_time", "flip_time_map"]
 
 #: the cheap estimates, by name (module docstring: (*) and (**))
 ESTIMATES = ("efold", "projected")
@@ -54,8 +54,9 @@ ESTIMATES = ("efold", "projected")
 MAP_PRODUCT = "flip_time_map"
 
 
-def efold_flip_time(params: dict[str, float], tilt: float, crossing: float = 90.0, *,
-                    estimate: str = "projected") -> float | None:
+def efold_flip_time(
+    params: dict[str, float], tilt: float, crossing: float = 90.0, *, estimate: str = "projected"
+) -> float | None:
     """The e-folding estimate, ``"efold"`` (*) or ``"projected"`` (**) of the module docstring,
     in units of ``1/Omega``; None where the upright state does not grow (leading growth rate
     <= 0)."""
@@ -78,8 +79,17 @@ def efold_flip_time(params: dict[str, float], tilt: float, crossing: float = 90.
     return t + math.log(1.0 / a0) / g
 
 
-def flip_time_map(top: Top, spins: Any, tilts: Any, *, unit: str = "rev/s", alpha_v: Any = None,
-                  crossing: float = 90.0, t_max: float = 2e4, estimate: bool = True) -> xr.Dataset:
+def flip_time_map(
+    top: Top,
+    spins: Any,
+    tilts: Any,
+    *,
+    unit: str = "rev/s",
+    alpha_v: Any = None,
+    crossing: float = 90.0,
+    t_max: float = 2e4,
+    estimate: bool = True,
+) -> xr.Dataset:
     """Time to ``crossing`` degrees (s) of launches of ``top`` over ``spins`` (in ``unit``) and
     initial ``tilts`` (degrees): :func:`stability.launches.flip.run_launch` per point (NaN where
     the axis does not reach it within ``t_max`` time units), and the e-folding estimate.
@@ -111,19 +121,44 @@ def flip_time_map(top: Top, spins: Any, tilts: Any, *, unit: str = "rev/s", alph
                 if e is not None:
                     t_est[i, j] = e / w
     seconds = time.perf_counter() - t0
-    data = {"flip_time": (("tilt", "spin"), t_flip, {"long_name": f"time until the axis crosses {crossing:g} degrees",
-                                                     "units": "s"}),
-            "flip_periods": (("tilt", "spin"), periods, {"long_name": f"spin periods until the axis crosses "
-                                                                      f"{crossing:g} degrees", "units": "1"})}
+    data = {
+        "flip_time": (
+            ("tilt", "spin"),
+            t_flip,
+            {"long_name": f"time until the axis crosses {crossing:g} degrees", "units": "s"},
+        ),
+        "flip_periods": (
+            ("tilt", "spin"),
+            periods,
+            {"long_name": f"spin periods until the axis crosses {crossing:g} degrees", "units": "1"},
+        ),
+    }
     if estimate:
-        data["flip_time_efold"] = (("tilt", "spin"), t_est, {"long_name": "projected e-folding estimate of the flip time",
-                                                             "units": "s"})
+        data["flip_time_efold"] = (
+            ("tilt", "spin"),
+            t_est,
+            {"long_name": "projected e-folding estimate of the flip time", "units": "s"},
+        )
     units = {"rad/s": "rad s-1", "rev/s": "s-1", "Hz": "Hz", "rpm": "min-1"}[unit]
-    coords = {"spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),
-              "tilt": ("tilt", tilts, {"long_name": "initial tilt of the axis", "units": "degree"})}
-    attrs = {"Conventions": "CF-1.10", PRODUCT_ATTR: MAP_PRODUCT, "title": "flip time of launches of a real top",
-             "source": f"tippe-stability {package_version()}", "q": top.q, "mu": top.mu, "sigma": top.sigma,
-             "radius_m": top.radius, "mass_kg": top.mass, "alpha_v_source": source, "crossing_deg": crossing,
-             "t_max": t_max, "seconds": seconds, "spin_unit": unit,
-             "spin_rev_s_per_unit": float(from_rad_per_s(1.0, "rev/s") / from_rad_per_s(1.0, unit))}
+    coords = {
+        "spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),
+        "tilt": ("tilt", tilts, {"long_name": "initial tilt of the axis", "units": "degree"}),
+    }
+    attrs = {
+        "Conventions": "CF-1.10",
+        PRODUCT_ATTR: MAP_PRODUCT,
+        "title": "flip time of launches of a real top",
+        "source": f"tippe-stability {package_version()}",
+        "q": top.q,
+        "mu": top.mu,
+        "sigma": top.sigma,
+        "radius_m": top.radius,
+        "mass_kg": top.mass,
+        "alpha_v_source": source,
+        "crossing_deg": crossing,
+        "t_max": t_max,
+        "seconds": seconds,
+        "spin_unit": unit,
+        "spin_rev_s_per_unit": float(from_rad_per_s(1.0, "rev/s") / from_rad_per_s(1.0, unit)),
+    }
     return xr.Dataset(data, coords=coords, attrs=attrs)

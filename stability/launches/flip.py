@@ -28,7 +28,7 @@ from ..nonlinear.runs import simulate
 from ..parameters import as_scalar, check_choice, check_positive
 from ..top import Top, check_launch_spin
 
-__all__ = ["launch_state", "run_launch", "FlipRun", "flip_time", "launch_parameters", "MODELS"]
+__all__ = ["MODELS", "FlipRun", "flip_time", "launch_parameters", "launch_state", "run_launch"]
 
 #: the models a launch can be asked of (the launch state has the centre at rest: sliding only)
 MODELS = ("sliding",)
@@ -46,8 +46,7 @@ def launch_state(tilt: float) -> dict[str, list[float]]:
     return {"omega": list(k), "k": k, "velocity": [0.0, 0.0]}
 
 
-def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str
-                      ) -> tuple[float, dict[str, float], str]:
+def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) -> tuple[float, dict[str, float], str]:
     """The launch spin in rad/s, the nondimensional set at it (``Omega`` = the launch spin) and
     where ``alpha_v`` came from: the top's ``mu_v`` by eq. (7) (``alpha_v = mu mu_v g / Omega``,
     :meth:`stability.Top.alpha_v`), the explicit argument, or the paper's 0.5 by default."""
@@ -107,25 +106,45 @@ class FlipRun:
     attrs: dict
 
 
-def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, crossing: float,
-            rtol: float) -> float:
+def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, crossing: float, rtol: float) -> float:
     """The event time in ``[t0, t1]`` by Brent's method on runs restarted from the state ``y`` at t0."""
     from scipy.optimize import brentq
 
     def tilt_minus(t: float) -> float:
         if t <= t0:
             return float(y["tilt"]) - crossing
-        ds = simulate("sliding", t_end=t - t0, t_eval=np.array([0.0, t - t0]), omega=y["omega"], k=y["k"],
-                      velocity=y["velocity"], rtol=rtol, atol=1e-3 * rtol, **params)
+        ds = simulate(
+            "sliding",
+            t_end=t - t0,
+            t_eval=np.array([0.0, t - t0]),
+            omega=y["omega"],
+            k=y["k"],
+            velocity=y["velocity"],
+            rtol=rtol,
+            atol=1e-3 * rtol,
+            **params,
+        )
         return float(ds.polar_angle[-1]) - crossing
 
     return float(brentq(tilt_minus, t0, t1, xtol=1e-12, rtol=8.9e-16, maxiter=200))
 
 
-def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float = 90.0, stop_at_crossing: bool = False,
-               t_max: float = 2e5, chunk: float = 500.0, dt: float = 0.25, band: float = 1.0,
-               settle_tolerance: float = 1e-3, end_tilt: float | None = None, rtol: float = 1e-10,
-               start: dict[str, Any] | None = None, stick_tilt: float | None = None) -> FlipRun:
+def run_launch(
+    params: dict[str, float],
+    *,
+    tilt: float = 1.0,
+    crossing: float = 90.0,
+    stop_at_crossing: bool = False,
+    t_max: float = 2e5,
+    chunk: float = 500.0,
+    dt: float = 0.25,
+    band: float = 1.0,
+    settle_tolerance: float = 1e-3,
+    end_tilt: float | None = None,
+    rtol: float = 1e-10,
+    start: dict[str, Any] | None = None,
+    stick_tilt: float | None = None,
+) -> FlipRun:
     """Integrate the launch state (module docstring) of a sliding top with the nondimensional
     ``params`` (``q, fr_inv, sigma, mu, alpha_v`` [, ``alpha_k``]) and locate its events.
 
@@ -157,8 +176,7 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
     if start is not None:
         k0 = np.asarray(start["k"], dtype=float)
         tilt = float(np.degrees(np.arccos(np.clip(k0[2] / np.linalg.norm(k0), -1.0, 1.0))))
-        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0]),
-                 "tilt": tilt}
+        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0]), "tilt": tilt}
     t = 0.0
     times, tilts = [np.array([0.0])], [np.array([tilt])]
     n_min = math.inf
@@ -172,9 +190,18 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
         # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
         # numbers are read to the 1-degree band and the output step, not to 1e-10
         r = rtol if crossed is None else max(rtol, TAIL_RTOL)
-        ds = simulate("sliding", t_end=length, t_eval=np.linspace(0.0, length, n + 1), omega=state["omega"],
-                      k=state["k"], velocity=state["velocity"], rtol=r, atol=1e-3 * r, stick_tilt=stick_tilt,
-                      **params)
+        ds = simulate(
+            "sliding",
+            t_end=length,
+            t_eval=np.linspace(0.0, length, n + 1),
+            omega=state["omega"],
+            k=state["k"],
+            velocity=state["velocity"],
+            rtol=r,
+            atol=1e-3 * r,
+            stick_tilt=stick_tilt,
+            **params,
+        )
         attrs = dict(ds.attrs)
         pol = ds.polar_angle.values
         if not np.all(np.isfinite(pol)):
@@ -183,20 +210,26 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
         tt = t + ds.time.values
         if crossed is None and (hit := np.nonzero(pol >= crossing)[0]).size and not (crossing <= tilt):
             i = int(hit[0])
-            prev = {"omega": ds.omega.values[i - 1], "k": ds.k.values[i - 1],
-                    "velocity": ds.velocity.values[i - 1][:2], "tilt": pol[i - 1]}
-            crossed = float(t + ds.time.values[i - 1]) + _refine(prev, params, 0.0, float(ds.time.values[i] -
-                                                                                     ds.time.values[i - 1]),
-                                                            crossing, rtol)
+            prev = {
+                "omega": ds.omega.values[i - 1],
+                "k": ds.k.values[i - 1],
+                "velocity": ds.velocity.values[i - 1][:2],
+                "tilt": pol[i - 1],
+            }
+            crossed = float(t + ds.time.values[i - 1]) + _refine(
+                prev, params, 0.0, float(ds.time.values[i] - ds.time.values[i - 1]), crossing, rtol
+            )
         times.append(tt[1:])
         tilts.append(pol[1:])
         t += length
-        state = {"omega": ds.omega.values[-1], "k": ds.k.values[-1] / np.linalg.norm(ds.k.values[-1]),
-                 "velocity": ds.velocity.values[-1][:2]}
+        state = {
+            "omega": ds.omega.values[-1],
+            "k": ds.k.values[-1] / np.linalg.norm(ds.k.values[-1]),
+            "velocity": ds.velocity.values[-1][:2],
+        }
         if attrs.get("event", "none") != "none":  # the model stops holding: contact lost or stick reached
             attrs.update(event_time=float(tt[-1]), event_tilt=float(pol[-1]))
-            event_note = (f"the run stops at t = {tt[-1]:.6g} time units: {attrs['event']} at tilt "
-                          f"{pol[-1]:.6g} degrees")
+            event_note = f"the run stops at t = {tt[-1]:.6g} time units: {attrs['event']} at tilt {pol[-1]:.6g} degrees"
             break
         if stop_at_crossing and crossed is not None:
             break
@@ -210,8 +243,10 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
     end = float(pp[-1]) if end_tilt is None else float(end_tilt)
     reasons = [event_note] if event_note else []
     if crossed is None:
-        reasons.append(f"the axis never reaches {crossing:g} degrees (largest tilt {float(np.max(pp)):.4g} degrees "
-                       f"in {t:.6g} time units)")
+        reasons.append(
+            f"the axis never reaches {crossing:g} degrees (largest tilt {float(np.max(pp)):.4g} degrees "
+            f"in {t:.6g} time units)"
+        )
     settle_t: float | None = None
     if settled:
         out = np.nonzero(np.abs(pp - end) > band)[0]
@@ -226,15 +261,34 @@ def run_launch(params: dict[str, float], *, tilt: float = 1.0, crossing: float =
                 settle_t = None
                 reasons.append("the tilt is not yet within the band at the end of the run")
     elif not stop_at_crossing:
-        reasons.append(f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} "
-                       "spin periods)")
-    return FlipRun(crossing_time=crossed, settle_time=settle_t, end_tilt=float(pp[-1]), settled=settled, t_end=t,
-                   min_normal_force=n_min, max_tilt=float(np.max(pp)), reason="; ".join(reasons), attrs=attrs)
+        reasons.append(
+            f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} spin periods)"
+        )
+    return FlipRun(
+        crossing_time=crossed,
+        settle_time=settle_t,
+        end_tilt=float(pp[-1]),
+        settled=settled,
+        t_end=t,
+        min_normal_force=n_min,
+        max_tilt=float(np.max(pp)),
+        reason="; ".join(reasons),
+        attrs=attrs,
+    )
 
 
-def flip_time(top: Top, spin: Any, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None,
-              model: str = "sliding", crossing: float = 90.0, *, t_max: float = 2e5,
-              rtol: float = 1e-10) -> float | None:
+def flip_time(
+    top: Top,
+    spin: Any,
+    unit: str = "rad/s",
+    tilt: float = 1.0,
+    alpha_v: Any = None,
+    model: str = "sliding",
+    crossing: float = 90.0,
+    *,
+    t_max: float = 2e5,
+    rtol: float = 1e-10,
+) -> float | None:
     """Seconds until the axis of a launched top first crosses ``crossing`` degrees.
 
     Parameters

@@ -29,10 +29,10 @@ import xarray as xr
 
 from .._version import package_version
 from ..products import PRODUCT_ATTR
-from ..top import SPIN_UNITS, Top, from_rad_per_s
+from ..top import Top, from_rad_per_s
 from .flip import launch_parameters, run_launch
 
-__all__ = ["Launch", "launch", "PRODUCT", "inverts_above"]
+__all__ = ["PRODUCT", "Launch", "inverts_above", "launch"]
 
 #: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
 PRODUCT = "launch"
@@ -120,17 +120,21 @@ class Launch:
             f"  alpha_v: {self.alpha_v_source}",
         ]
         if self.event != "none":
-            lines.append(f"  WHERE THE MODEL STOPS: {self.reasons.get('end', self.event)}; the run stops there "
-                         f"({self.event} at {self.event_time:.4g} s, tilt {self.event_tilt:.4g} degrees)")
+            lines.append(
+                f"  WHERE THE MODEL STOPS: {self.reasons.get('end', self.event)}; the run stops there "
+                f"({self.event} at {self.event_time:.4g} s, tilt {self.event_tilt:.4g} degrees)"
+            )
         return "\n".join(lines)
 
     def __repr__(self) -> str:
         def s(v: float | None) -> str:
             return "None" if v is None else f"{from_rad_per_s(v, self.unit):.6g} {self.unit}"
 
-        return (f"Launch(spin={s(self.spin)}, tilt={self.tilt:g} deg, unstable_above={s(self.unstable_above)}, "
-                f"inverts_above={s(self.inverts_above)}, top_class={self.top_class!r}, end={self.end_kind} "
-                f"{self.end_tilt:.4g} deg, flip_time={self.flip_time!r} s, settle_time={self.settle_time!r} s)")
+        return (
+            f"Launch(spin={s(self.spin)}, tilt={self.tilt:g} deg, unstable_above={s(self.unstable_above)}, "
+            f"inverts_above={s(self.inverts_above)}, top_class={self.top_class!r}, end={self.end_kind} "
+            f"{self.end_tilt:.4g} deg, flip_time={self.flip_time!r} s, settle_time={self.settle_time!r} s)"
+        )
 
     def to_dataset(self) -> xr.Dataset:
         """The answer as a CF Dataset of 0-d variables (product ``launch``, docs/datasets.md);
@@ -146,23 +150,37 @@ class Launch:
         data = {
             "spin": var(self.spin, "launch spin", "rad s-1", "spin"),
             "initial_tilt": var(self.tilt, "initial tilt of the axis", "degree", "tilt"),
-            "unstable_above": var(self.unstable_above, "spin above which the upright top is unstable", "rad s-1",
-                                  "unstable_above"),
-            "inverts_above": var(self.inverts_above, "launch spin above which the top inverts completely", "rad s-1",
-                                 "inverts_above"),
+            "unstable_above": var(
+                self.unstable_above, "spin above which the upright top is unstable", "rad s-1", "unstable_above"
+            ),
+            "inverts_above": var(
+                self.inverts_above, "launch spin above which the top inverts completely", "rad s-1", "inverts_above"
+            ),
             "end_tilt": var(self.end_tilt, "tilt where the launch ends", "degree", "end_tilt"),
             "flip_time": var(self.flip_time, "time until the axis first crosses 90 degrees", "s", "flip_time"),
-            "settle_time": var(self.settle_time, "time until the tilt stays within 1 degree of its end", "s",
-                               "settle_time"),
-            "min_normal_force": var(self.min_normal_force, "smallest normal force along the run", "N",
-                                    "min_normal_force"),
-            "min_normal_force_nd": var(self.min_normal_force_nd, "smallest normal force along the run", "A0 Omega2 R-1",
-                                       "min_normal_force_nd"),
+            "settle_time": var(
+                self.settle_time, "time until the tilt stays within 1 degree of its end", "s", "settle_time"
+            ),
+            "min_normal_force": var(
+                self.min_normal_force, "smallest normal force along the run", "N", "min_normal_force"
+            ),
+            "min_normal_force_nd": var(
+                self.min_normal_force_nd, "smallest normal force along the run", "A0 Omega2 R-1", "min_normal_force_nd"
+            ),
         }
-        attrs = {"Conventions": "CF-1.10", PRODUCT_ATTR: PRODUCT, "title": "launch of a real top",
-                 "source": f"tippe-stability {package_version()}", "unit": self.unit, "top_class": self.top_class,
-                 "end_kind": self.end_kind, "method": self.method, "alpha_v_source": self.alpha_v_source,
-                 "event": self.event, **{k: float(v) for k, v in self.parameters.items()}}
+        attrs = {
+            "Conventions": "CF-1.10",
+            PRODUCT_ATTR: PRODUCT,
+            "title": "launch of a real top",
+            "source": f"tippe-stability {package_version()}",
+            "unit": self.unit,
+            "top_class": self.top_class,
+            "end_kind": self.end_kind,
+            "method": self.method,
+            "alpha_v_source": self.alpha_v_source,
+            "event": self.event,
+            **{k: float(v) for k, v in self.parameters.items()},
+        }
         if self.event_time is not None:
             attrs.update(event_time=float(self.event_time), event_tilt=float(self.event_tilt))
         return xr.Dataset(data, attrs=attrs)
@@ -170,9 +188,9 @@ class Launch:
 
 NEVER_INVERTS = {
     "hangs": "the tilted family does not reach the inverted state (class 'hangs'): launched upright, this top "
-             "never inverts completely",
+    "never inverts completely",
     "never_inverts": "the upright state is stable at high spin (class 'never_inverts'): launched upright, this top "
-                     "does not invert",
+    "does not invert",
 }
 
 
@@ -197,8 +215,9 @@ def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
     return j_inv / float(upright_jellett(q=nd["q"], sigma=nd["sigma"])) * reference
 
 
-def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None,
-           model: str = "sliding") -> Launch:
+def launch(
+    top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None, model: str = "sliding"
+) -> Launch:
     """What a top does when it is spun at ``spin`` (in ``unit``) with its axis tilted by ``tilt``.
 
     Parameters
@@ -253,17 +272,31 @@ def launch(top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha
     force_unit = top.inertia_centre * w * w / top.radius
     ev = str(run.attrs.get("event", "none"))
     if ev != "none":  # the run stopped where the model stops holding: its end is not the prediction's
-        reasons["end"] = (f"the motion reaches its stick at {run.attrs['event_tilt']:.4g} degrees after "
-                          f"{run.attrs['event_time'] / w:.3g} s" if ev == "stick_contact" else
-                          f"the sphere leaves the floor (normal force zero) at {run.attrs['event_tilt']:.4g} "
-                          f"degrees after {run.attrs['event_time'] / w:.3g} s: the sliding model no longer holds")
-    return Launch(spin=w, unit=unit, tilt=tilt, unstable_above=up, inverts_above=inv,
-                  top_class=cls,
-                  end_tilt=float(fs.tilt), end_kind=fs.kind, method=fs.method,
-                  flip_time=None if run.crossing_time is None else run.crossing_time / w,
-                  settle_time=None if settle is None else settle / w,
-                  min_normal_force=run.min_normal_force * force_unit, min_normal_force_nd=run.min_normal_force,
-                  parameters={k: params[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v", "alpha_k") if k in params}, alpha_v_source=source,
-                  event=str(ev), event_time=float(run.attrs["event_time"]) / w if ev != "none" else None,
-                  event_tilt=float(run.attrs["event_tilt"]) if ev != "none" else None,
-                  reasons=reasons)
+        reasons["end"] = (
+            f"the motion reaches its stick at {run.attrs['event_tilt']:.4g} degrees after "
+            f"{run.attrs['event_time'] / w:.3g} s"
+            if ev == "stick_contact"
+            else f"the sphere leaves the floor (normal force zero) at {run.attrs['event_tilt']:.4g} "
+            f"degrees after {run.attrs['event_time'] / w:.3g} s: the sliding model no longer holds"
+        )
+    return Launch(
+        spin=w,
+        unit=unit,
+        tilt=tilt,
+        unstable_above=up,
+        inverts_above=inv,
+        top_class=cls,
+        end_tilt=float(fs.tilt),
+        end_kind=fs.kind,
+        method=fs.method,
+        flip_time=None if run.crossing_time is None else run.crossing_time / w,
+        settle_time=None if settle is None else settle / w,
+        min_normal_force=run.min_normal_force * force_unit,
+        min_normal_force_nd=run.min_normal_force,
+        parameters={k: params[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v", "alpha_k") if k in params},
+        alpha_v_source=source,
+        event=str(ev),
+        event_time=float(run.attrs["event_time"]) / w if ev != "none" else None,
+        event_tilt=float(run.attrs["event_tilt"]) if ev != "none" else None,
+        reasons=reasons,
+    )

@@ -23,14 +23,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..models import get_model
-from ..parameters import DEFAULT_MU
+from ..parameters import DEFAULT_MU, check_domain
 from .spectra import model_parameters
-from ..parameters import check_domain
 
 if TYPE_CHECKING:  # python-control takes ~1 s to import: loaded on first use
     import control
 
-__all__ = ["real_form", "state_space", "friction_loop"]
+__all__ = ["friction_loop", "real_form", "state_space"]
 
 
 def real_form(a: np.ndarray) -> np.ndarray:
@@ -48,8 +47,9 @@ def _state_names(state: tuple[str, ...]) -> list[str]:
     return [f"Re {s}" for s in state] + [f"Im {s}" for s in state]
 
 
-def state_space(model: str, *, q: float, fr_inv: float, sigma: float, alpha_v: float | None = None,
-                mu: float = DEFAULT_MU) -> control.StateSpace:
+def state_space(
+    model: str, *, q: float, fr_inv: float, sigma: float, alpha_v: float | None = None, mu: float = DEFAULT_MU
+) -> control.StateSpace:
     """The model's operator ``M^-1 A`` as a real python-control StateSpace (no inputs).
 
     Parameters
@@ -72,12 +72,12 @@ def state_space(model: str, *, q: float, fr_inv: float, sigma: float, alpha_v: f
     names = _state_names(m.state)
     import control
 
-    return control.ss(a, np.zeros((n2, 0)), np.eye(n2), np.zeros((n2, 0)),
-                      states=names, outputs=names, name=m.name)
+    return control.ss(a, np.zeros((n2, 0)), np.eye(n2), np.zeros((n2, 0)), states=names, outputs=names, name=m.name)
 
 
-def friction_loop(*, q: float, fr_inv: float, sigma: float, alpha_v: float,
-                  mu: float = DEFAULT_MU) -> tuple[control.StateSpace, np.ndarray, control.StateSpace]:
+def friction_loop(
+    *, q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float = DEFAULT_MU
+) -> tuple[control.StateSpace, np.ndarray, control.StateSpace]:
     """The sliding model's friction as feedback: plant, gain and closed loop.
 
     Parameters
@@ -101,8 +101,15 @@ def friction_loop(*, q: float, fr_inv: float, sigma: float, alpha_v: float,
     M, A0, B, C = m.friction_plant(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     import control
 
-    plant = control.ss(real_form(np.linalg.solve(M, A0)), real_form(np.linalg.solve(M, B)),
-                       real_form(C), np.zeros((2, 2)), states=_state_names(m.state),
-                       inputs=["f_1", "f_2"], outputs=["V_c1", "V_c2"], name="frictionless_sliding")
+    plant = control.ss(
+        real_form(np.linalg.solve(M, A0)),
+        real_form(np.linalg.solve(M, B)),
+        real_form(C),
+        np.zeros((2, 2)),
+        states=_state_names(m.state),
+        inputs=["f_1", "f_2"],
+        outputs=["V_c1", "V_c2"],
+        name="frictionless_sliding",
+    )
     gain = p["alpha_v"] * np.eye(2)
     return plant, gain, control.feedback(plant, gain)

@@ -47,17 +47,34 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..models import LinearModel, get_model
-from .neutrality import NeutralCondition
 from ..errors import DomainError
-from ..parameters import (DEFAULT_MU, as_scalar, check_choice, check_domain, check_flag,
-                          check_integer, fmt_against, sigma_max)
+from ..models import LinearModel, get_model
+from ..parameters import (
+    DEFAULT_MU,
+    as_scalar,
+    check_choice,
+    check_domain,
+    check_flag,
+    check_integer,
+    fmt_against,
+    sigma_max,
+)
 from ..resources import check_threshold_samples
 from .growth import GROWS, UNDECIDED, growth
+from .neutrality import NeutralCondition
 from .spectra import MARGINAL, STABLE, UNSTABLE
 
-__all__ = ["Threshold", "threshold", "thresholds", "threshold_crossings", "critical_spin", "CriticalSpin",
-           "CriticalSpins", "default_bracket", "UPPER_BOUND"]
+__all__ = [
+    "UPPER_BOUND",
+    "CriticalSpin",
+    "CriticalSpins",
+    "Threshold",
+    "critical_spin",
+    "default_bracket",
+    "threshold",
+    "threshold_crossings",
+    "thresholds",
+]
 
 #: upper end of the default bracket of the parameters without a finite physical bound
 UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
@@ -108,12 +125,14 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
     return (0.0, UPPER_BOUND[param])
 
 
-def _setup(param: str, model: str | LinearModel, bracket: Sequence[float] | None,
-           fixed: Mapping[str, Any]) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
+def _setup(
+    param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
+) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
     m = get_model(model)
     if not isinstance(param, str) or param not in m.parameters:
-        raise ValueError(f"param = {param!r} is not a parameter of model {m.name!r}; "
-                         f"choose one of {', '.join(m.parameters)}")
+        raise ValueError(
+            f"param = {param!r} is not a parameter of model {m.name!r}; choose one of {', '.join(m.parameters)}"
+        )
     fx = {k: v for k, v in fixed.items() if v is not None}
     if param in fx:
         raise TypeError(f"{param} is the parameter searched and cannot also be given a value")
@@ -205,8 +224,9 @@ def _ulps(lo: float, hi: float) -> float:
     return (hi - lo) / float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
 
 
-def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float,
-            unstable_a: bool, w_start: float) -> Threshold:
+def _polish(
+    m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float, unstable_a: bool, w_start: float
+) -> Threshold:
     """Locate the threshold between decided samples ``a`` (unstable: ``unstable_a``) and ``b``
     (the other state); ``w_start``: the crossing mode's frequency at the unstable one."""
     cond = NeutralCondition(m, (param,), fx, samples=np.array([[a], [b]]))
@@ -269,9 +289,14 @@ def _polish(m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: fl
     return Threshold(float(value), float(w), side, float(lo), float(hi), bool(exact))
 
 
-def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
-                        bracket: Sequence[float] | None = None, samples: int = 257,
-                        **fixed: Any) -> list[Threshold]:
+def threshold_crossings(
+    param: str,
+    *,
+    model: str | LinearModel = "sliding",
+    bracket: Sequence[float] | None = None,
+    samples: int = 257,
+    **fixed: Any,
+) -> list[Threshold]:
     """Every change of stability as ``param`` varies: value, neutral frequency and unstable side.
 
     The records behind :func:`thresholds` (which returns their values only); the method is the
@@ -317,8 +342,15 @@ def threshold_crossings(param: str, *, model: str | LinearModel = "sliding",
     return _search(m, fx, param, lo, hi, samples)[0]
 
 
-def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Sequence[float] | None = None,
-               samples: int = 257, return_details: bool | None = None, **fixed: Any) -> np.ndarray:
+def thresholds(
+    param: str,
+    *,
+    model: str | LinearModel = "sliding",
+    bracket: Sequence[float] | None = None,
+    samples: int = 257,
+    return_details: bool | None = None,
+    **fixed: Any,
+) -> np.ndarray:
     """All values of ``param`` at which the leading growth rate changes sign, sorted.
 
     Parameters
@@ -352,9 +384,13 @@ def thresholds(param: str, *, model: str | LinearModel = "sliding", bracket: Seq
     """
     if return_details is not None:
         return_details = check_flag("return_details", return_details)
-        warnings.warn("thresholds(return_details=...) is deprecated and will be removed in the next release: "
-                      "thresholds() returns the values; threshold_crossings() returns the Threshold records "
-                      "(value, frequency, unstable side)", DeprecationWarning, stacklevel=2)
+        warnings.warn(
+            "thresholds(return_details=...) is deprecated and will be removed in the next release: "
+            "thresholds() returns the values; threshold_crossings() returns the Threshold records "
+            "(value, frequency, unstable side)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
     found = threshold_crossings(param, model=model, bracket=bracket, samples=samples, **fixed)
     _inexact_warning(found, param)
     if return_details:  # the deprecated return type, until the keyword is removed
@@ -368,8 +404,9 @@ def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) 
     return np.max(_states(m, fx, param, x).estimate, axis=-1)
 
 
-def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray,
-                  state: np.ndarray, g: np.ndarray) -> list[tuple[float, float, float]]:
+def _hidden_pairs(
+    m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray, state: np.ndarray, g: np.ndarray
+) -> list[tuple[float, float, float]]:
     """Pairs of crossings between two samples (a neutral curve folding back there).
 
     Where the growth estimate ``g`` of the decided, not unstable samples has a local maximum
@@ -385,7 +422,7 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
     for k in range(1, len(x) - 1):
         if not (quiet[k - 1] and quiet[k] and quiet[k + 1]) or not (g[k] >= g[k - 1] and g[k] >= g[k + 1]):
             continue
-        if not np.all(np.isfinite(g[k - 1:k + 2])) or g[k] >= 0:
+        if not np.all(np.isfinite(g[k - 1 : k + 2])) or g[k] >= 0:
             continue
         rise = max(g[k] - g[k - 1], g[k] - g[k + 1])
         if -g[k] > 4.0 * rise:  # far below zero for its curvature: no crossing nearby
@@ -393,9 +430,12 @@ def _hidden_pairs(m: LinearModel, fx: Mapping[str, float], param: str, x: np.nda
         a, b = float(x[k - 1]), float(x[k + 1])
         from scipy.optimize import minimize_scalar  # here: most thresholds never refine (0.5 s import)
 
-        res = minimize_scalar(lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
-                              bounds=(a, b), method="bounded",
-                              options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))})
+        res = minimize_scalar(
+            lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))},
+        )
         if -res.fun > 0:
             out.append((a, float(res.x), b))
     return out
@@ -433,9 +473,12 @@ def _inexact_warning(found: Sequence[Threshold], param: str) -> None:
     loose = [t for t in found if not t.exact]
     if loose:
         listed = ", ".join(f"[{t.lower!r}, {t.upper!r}]" for t in loose)
-        warnings.warn(f"{len(loose)} threshold(s) in {param} known only to an interval (the sign of the growth "
-                      f"rate could not be decided inside it; the value given is its midpoint): {listed}",
-                      UserWarning, stacklevel=3)
+        warnings.warn(
+            f"{len(loose)} threshold(s) in {param} known only to an interval (the sign of the growth "
+            f"rate could not be decided inside it; the value given is its midpoint): {listed}",
+            UserWarning,
+            stacklevel=3,
+        )
 
 
 def _no_threshold_state(state: np.ndarray) -> str:
@@ -443,20 +486,44 @@ def _no_threshold_state(state: np.ndarray) -> str:
     n = state.size
     undecided = int((state == UNDECIDED).sum())
     if undecided == n:
-        return ("within rounding of neutral at every sample (the sign of the leading growth rate "
-                "cannot be decided anywhere; marginal to working precision)")
+        return (
+            "within rounding of neutral at every sample (the sign of the leading growth rate "
+            "cannot be decided anywhere; marginal to working precision)"
+        )
     if undecided:
         rest = state[state != UNDECIDED]
-        what = ("unstable" if (rest == UNSTABLE).all() else "stable" if (rest == STABLE).all()
-                else "marginal (neutrally stable)" if (rest == MARGINAL).all() else "stable or marginal")
-        return (f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
-                f"decided at {undecided} of {n} samples)")
-    return ("unstable" if (state == UNSTABLE).all() else "stable" if (state == STABLE).all()
-            else "marginal (neutrally stable)" if (state == MARGINAL).all() else "stable or marginal")
+        what = (
+            "unstable"
+            if (rest == UNSTABLE).all()
+            else "stable"
+            if (rest == STABLE).all()
+            else "marginal (neutrally stable)"
+            if (rest == MARGINAL).all()
+            else "stable or marginal"
+        )
+        return (
+            f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
+            f"decided at {undecided} of {n} samples)"
+        )
+    return (
+        "unstable"
+        if (state == UNSTABLE).all()
+        else "stable"
+        if (state == STABLE).all()
+        else "marginal (neutrally stable)"
+        if (state == MARGINAL).all()
+        else "stable or marginal"
+    )
 
 
-def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequence[float] | None = None,
-              samples: int = 257, **fixed: Any) -> float:
+def threshold(
+    param: str,
+    *,
+    model: str | LinearModel = "sliding",
+    bracket: Sequence[float] | None = None,
+    samples: int = 257,
+    **fixed: Any,
+) -> float:
     """The value of ``param`` at which the leading growth rate changes sign.
 
     Parameters
@@ -500,8 +567,9 @@ def threshold(param: str, *, model: str | LinearModel = "sliding", bracket: Sequ
     return t.value
 
 
-def _one_threshold(param: str, model: str | LinearModel, bracket: Sequence[float] | None, samples: Any,
-                   fixed: Mapping[str, Any]) -> Threshold:
+def _one_threshold(
+    param: str, model: str | LinearModel, bracket: Sequence[float] | None, samples: Any, fixed: Mapping[str, Any]
+) -> Threshold:
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
@@ -510,12 +578,16 @@ def _one_threshold(param: str, model: str | LinearModel, bracket: Sequence[float
     found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
-        raise ValueError(f"no threshold in {param}: the {m.name} model is {_no_threshold_state(state)} "
-                         f"throughout {param} in [{lo:.6g}, {hi:.6g}] ({given})")
+        raise ValueError(
+            f"no threshold in {param}: the {m.name} model is {_no_threshold_state(state)} "
+            f"throughout {param} in [{lo:.6g}, {hi:.6g}] ({given})"
+        )
     if len(found) > 1:
         listed = ", ".join(f"{t.value:.12g} (unstable {t.unstable_side})" for t in found)
-        raise ValueError(f"{len(found)} thresholds in {param} in [{lo:.6g}, {hi:.6g}] ({given}): "
-                         f"{listed}; pass bracket=(lo, hi) around one, or use stability.thresholds")
+        raise ValueError(
+            f"{len(found)} thresholds in {param} in [{lo:.6g}, {hi:.6g}] ({given}): "
+            f"{listed}; pass bracket=(lo, hi) around one, or use stability.thresholds"
+        )
     return found[0]
 
 
@@ -616,9 +688,15 @@ class CriticalSpins(NamedTuple):
     reasons: dict[str, str]
 
 
-def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: str = "upright", *,
-                  alpha_v: float = 0.5, fr_inv_range: Sequence[float] = (1e-6, 1e4),
-                  samples: int = 257) -> CriticalSpin | CriticalSpins:
+def critical_spin(
+    top: Any,
+    model: str | LinearModel = "sliding",
+    orientation: str = "upright",
+    *,
+    alpha_v: float = 0.5,
+    fr_inv_range: Sequence[float] = (1e-6, 1e4),
+    samples: int = 257,
+) -> CriticalSpin | CriticalSpins:
     """The spin rate above which a real top is unstable (upright) or stable (inverted).
 
     Friction assumption (sliding model, eq. 11): if the top has a viscous coefficient
@@ -676,8 +754,7 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
         reasons: dict[str, str] = {}
         for o in ("upright", "inverted"):
             try:
-                found_[o] = critical_spin(top, model, o, alpha_v=alpha_v, fr_inv_range=fr_inv_range,
-                                          samples=samples)
+                found_[o] = critical_spin(top, model, o, alpha_v=alpha_v, fr_inv_range=fr_inv_range, samples=samples)
             except _NoTransition as e:
                 found_[o], reasons[o] = None, str(e)
         if len(reasons) == 2:
@@ -699,14 +776,15 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
         if t.mu_v is not None:
             k = t.mu * t.mu_v * math.sqrt(t.g * t.radius)
             m = _SpinScaled(base, k)
-            friction = (f"viscous, mu_v = {t.mu_v:g} s/m: alpha_v = mu mu_v g / Omega "
-                        f"= {k:.6g} sqrt(fr_inv)")
+            friction = f"viscous, mu_v = {t.mu_v:g} s/m: alpha_v = mu mu_v g / Omega = {k:.6g} sqrt(fr_inv)"
         else:
             a = as_scalar("alpha_v", alpha_v)
             check_domain(scalar=True, alpha_v=a)
             fixed["alpha_v"] = a
-            friction = (f"viscous, alpha_v = {a:g} held fixed (no mu_v given); the threshold of the "
-                        "sliding model is the same for every alpha_v > 0")
+            friction = (
+                f"viscous, alpha_v = {a:g} held fixed (no mu_v given); the threshold of the "
+                "sliding model is the same for every alpha_v > 0"
+            )
     else:
         friction = f"none: the {base.name} model has no friction parameter"
     found, state = _search(m, fixed, "fr_inv", lo, hi, int(samples))
@@ -716,15 +794,23 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
         if undecided == state.size:
             what = "within rounding of neutral (the sign of its leading growth rate cannot be decided)"
         else:
-            what = "unstable" if (state == UNSTABLE).all() else (
-                "unstable wherever the sign can be decided" if (state[state != UNDECIDED] == UNSTABLE).all()
-                else "not unstable (stable or neutrally stable)")
+            what = (
+                "unstable"
+                if (state == UNSTABLE).all()
+                else (
+                    "unstable wherever the sign can be decided"
+                    if (state[state != UNDECIDED] == UNSTABLE).all()
+                    else "not unstable (stable or neutrally stable)"
+                )
+            )
             if undecided:
                 what += f" (the sign cannot be decided at {undecided} of {state.size} samples)"
         s_lo, s_hi = t.spin_rate(hi), t.spin_rate(lo)
-        raise _NoTransition(f"the {orientation} {base.name} top is {what} at every spin from "
-                         f"{s_lo:.6g} to {s_hi:.6g} rad/s ({s_lo * 60 / (2 * math.pi):.6g} to "
-                         f"{s_hi * 60 / (2 * math.pi):.6g} rpm); no critical spin there")
+        raise _NoTransition(
+            f"the {orientation} {base.name} top is {what} at every spin from "
+            f"{s_lo:.6g} to {s_hi:.6g} rad/s ({s_lo * 60 / (2 * math.pi):.6g} to "
+            f"{s_hi * 60 / (2 * math.pi):.6g} rpm); no critical spin there"
+        )
     th = found[0]  # smallest fr_inv = highest spin
     _inexact_warning([th], "fr_inv (the critical spin)")
     spin = float(t.spin_rate(th.value))
@@ -732,7 +818,16 @@ def critical_spin(top: Any, model: str | LinearModel = "sliding", orientation: s
     if "alpha_v" in base.parameters:
         a_v = float(fixed["alpha_v"]) if "alpha_v" in fixed else float(t.alpha_v(spin))
     interval = (float(t.spin_rate(th.upper)), float(t.spin_rate(th.lower)))
-    return CriticalSpin(orientation=orientation, spin=spin, rpm=spin * 60.0 / (2.0 * math.pi),
-                        fr_inv=th.value, frequency=th.frequency,
-                        unstable_above=(th.unstable_side == "below"), alpha_v=a_v,
-                        friction=friction, transitions=tuple(spins), exact=th.exact, spin_interval=interval)
+    return CriticalSpin(
+        orientation=orientation,
+        spin=spin,
+        rpm=spin * 60.0 / (2.0 * math.pi),
+        fr_inv=th.value,
+        frequency=th.frequency,
+        unstable_above=(th.unstable_side == "below"),
+        alpha_v=a_v,
+        friction=friction,
+        transitions=tuple(spins),
+        exact=th.exact,
+        spin_interval=interval,
+    )

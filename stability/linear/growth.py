@@ -44,8 +44,18 @@ from ..models import LinearModel, get_model
 from .roots import axis_growth_many
 from .spectra import MARGINAL, STABLE, UNSTABLE, Spectrum, spectrum
 
-__all__ = ["DECAYS", "NEUTRAL", "GROWS", "UNRESOLVED", "UNDECIDED", "Growth", "growth", "mode_signs",
-           "point_states", "conservative_points"]
+__all__ = [
+    "DECAYS",
+    "GROWS",
+    "NEUTRAL",
+    "UNDECIDED",
+    "UNRESOLVED",
+    "Growth",
+    "conservative_points",
+    "growth",
+    "mode_signs",
+    "point_states",
+]
 
 #: mode codes of :func:`mode_signs`
 DECAYS, NEUTRAL, GROWS, UNRESOLVED = -1, 0, 1, 2
@@ -127,8 +137,7 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     with np.errstate(invalid="ignore"):
         own = np.abs(re) > 4.0 * flat_e
         by_g = ~own & (np.abs(g) > 4.0 * eg)
-    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | (
-        (re == 0) & conservative_points(flat_c)[:, None])
+    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | ((re == 0) & conservative_points(flat_c)[:, None])
     sign = np.full(flat_r.shape, UNRESOLVED, dtype=np.int8)
     sign[own] = np.where(re[own] > 0, GROWS, DECAYS)
     sign[by_g] = np.where(g[by_g] > 0, GROWS, DECAYS)
@@ -143,13 +152,18 @@ def point_states(sign: np.ndarray) -> np.ndarray:
     some mode grows, else ``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some
     mode is neutral by structure, else ``STABLE``."""
     sign = np.asarray(sign)
-    return np.where((sign == GROWS).any(axis=-1), UNSTABLE,
-                    np.where((sign == UNRESOLVED).any(axis=-1), UNDECIDED,
-                             np.where((sign == NEUTRAL).any(axis=-1), MARGINAL, STABLE))).astype(np.int8)
+    return np.where(
+        (sign == GROWS).any(axis=-1),
+        UNSTABLE,
+        np.where(
+            (sign == UNRESOLVED).any(axis=-1), UNDECIDED, np.where((sign == NEUTRAL).any(axis=-1), MARGINAL, STABLE)
+        ),
+    ).astype(np.int8)
 
 
-def growth(model: str | LinearModel, *, mask_unphysical: bool = True, parallel: bool | None = None,
-           **params: Any) -> Growth:
+def growth(
+    model: str | LinearModel, *, mask_unphysical: bool = True, parallel: bool | None = None, **params: Any
+) -> Growth:
     """Spectra of ``model`` at ``params`` (:func:`stability.spectrum`, the kernel) with the sign
     of every mode's growth rate decided against its own scale (module docstring).
 
@@ -176,8 +190,7 @@ def growth(model: str | LinearModel, *, mask_unphysical: bool = True, parallel: 
     state = np.full(shape, -1, dtype=np.int8)
     if sp.inside.any():
         inside = sp.inside
-        c = np.asarray(m.coefficients(**{k: np.asarray(v)[inside] for k, v in sp.params.items()}),
-                       dtype=complex)
+        c = np.asarray(m.coefficients(**{k: np.asarray(v)[inside] for k, v in sp.params.items()}), dtype=complex)
         s, est = mode_signs(c, sp.eigenvalues[inside], sp.error_bound[inside])
         sign[inside], estimate[inside] = s, est
         state[inside] = point_states(s)

@@ -90,10 +90,23 @@ from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_domain
 from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
-__all__ = ["accepts", "model_spectrum", "checked_model_spectrum", "model_domain", "model_coefficients",
-           "sliding_spectrum", "checked_sliding_spectrum", "sliding_domain", "sliding_coefficients",
-           "coefficient_spectrum", "KernelSpectrum", "CheckedSpectrum", "MAX_DEGREE", "SERIAL_BELOW",
-           "COMPILE_SECONDS"]
+__all__ = [
+    "COMPILE_SECONDS",
+    "MAX_DEGREE",
+    "SERIAL_BELOW",
+    "CheckedSpectrum",
+    "KernelSpectrum",
+    "accepts",
+    "checked_model_spectrum",
+    "checked_sliding_spectrum",
+    "coefficient_spectrum",
+    "model_coefficients",
+    "model_domain",
+    "model_spectrum",
+    "sliding_coefficients",
+    "sliding_domain",
+    "sliding_spectrum",
+]
 
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
@@ -146,6 +159,7 @@ class KernelSpectrum(NamedTuple):
 
 
 # --- scalar helpers (compiled into the loops) ---------------------------------------------------------
+
 
 @register_jitable
 def _finite(z):
@@ -466,6 +480,7 @@ def _mark_outside(n, ev, bd, neutral):
 
 # --- the domain test, compiled from the domain table of stability.parameters ------------------
 
+
 @register_jitable
 def _refused(x, lo, hi):
     """``x`` is not finite or outside the computable range ``lo <= |x| <= hi`` (``|x| < lo``
@@ -487,8 +502,13 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     of ``check_domain``'s numpy test, decided cheaply where a plain comparison suffices)
     (NaN fails). Every test is evaluated (``|``, no short circuit): the point is inside nearly
     always, and the branches cost more."""
-    bad = (_refused(q, lim[0], lim[1]) | _refused(fr_inv, lim[2], lim[3]) | _refused(sigma, lim[4], lim[5])
-           | _refused(alpha_v, lim[6], lim[7]) | _refused(mu, lim[8], lim[9]))
+    bad = (
+        _refused(q, lim[0], lim[1])
+        | _refused(fr_inv, lim[2], lim[3])
+        | _refused(sigma, lim[4], lim[5])
+        | _refused(alpha_v, lim[6], lim[7])
+        | _refused(mu, lim[8], lim[9])
+    )
     out = not inside_domain(domain_sides_quick(q, fr_inv, sigma, alpha_v, mu, 0.0), applies)
     return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
 
@@ -517,17 +537,25 @@ _COEFFICIENT_LOOPS = (Twin(_coefficient_loop, **_CACHE), Twin(_coefficient_loop,
 
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
 
+
 @register_jitable
 def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
     ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
     if len(parts) == 8:
-        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]),
-                      complex(parts[6], parts[7]), 3, polish)
+        return _solve(
+            complex(parts[0], parts[1]),
+            complex(parts[2], parts[3]),
+            complex(parts[4], parts[5]),
+            complex(parts[6], parts[7]),
+            3,
+            polish,
+        )
     if len(parts) == 6:
-        return _solve(complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), 0j, 2,
-                      polish)
+        return _solve(
+            complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), 0j, 2, polish
+        )
     return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
 
 
@@ -535,8 +563,12 @@ def _solve_parts(parts, polish):
 def _complex_parts(parts):
     """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
     if len(parts) == 8:
-        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), complex(
-            parts[6], parts[7])
+        return (
+            complex(parts[0], parts[1]),
+            complex(parts[2], parts[3]),
+            complex(parts[4], parts[5]),
+            complex(parts[6], parts[7]),
+        )
     if len(parts) == 6:
         return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
     return complex(parts[0], parts[1]), complex(parts[2], parts[3])
@@ -630,16 +662,23 @@ def accepts(model: LinearModel) -> bool:
 def _require_kernels(model: LinearModel) -> _Kernels:
     kernels = _model_kernels(model)
     if kernels is None:
-        raise ValueError(f"model {model.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
-                         "(stability.models.base); use coefficient_spectrum on its coefficients")
+        raise ValueError(
+            f"model {model.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
+            "(stability.models.base); use coefficient_spectrum on its coefficients"
+        )
     return kernels
 
 
 # --- drivers ----------------------------------------------------------------------------------
 
+
 def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    return (np.empty((npts, n), dtype=np.complex128), np.empty((npts, n)),
-            np.empty((npts, n), dtype=np.bool_), np.empty(npts, dtype=np.int8))
+    return (
+        np.empty((npts, n), dtype=np.complex128),
+        np.empty((npts, n)),
+        np.empty((npts, n), dtype=np.bool_),
+        np.empty(npts, dtype=np.int8),
+    )
 
 
 def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
@@ -658,8 +697,14 @@ def _serial(npts: int, parallel: bool | None) -> bool:
     return (npts < SERIAL_BELOW) if parallel is None else not parallel
 
 
-def _run(loops: tuple[Twin, Twin], npts: int, parallel: bool | None, engine: str | None,
-         inputs: list[Any], outputs: tuple[np.ndarray, ...]) -> None:
+def _run(
+    loops: tuple[Twin, Twin],
+    npts: int,
+    parallel: bool | None,
+    engine: str | None,
+    inputs: list[Any],
+    outputs: tuple[np.ndarray, ...],
+) -> None:
     """``loop(*inputs, *outputs)`` for one of ``loops`` (serial, parallel) in one execution.
 
     The loop: the serial one if :func:`_serial`. The execution: compiled if
@@ -688,8 +733,15 @@ def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
     return [params[n] if n in model.parameters else 0.0 for n in PARAMETERS]
 
 
-def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: np.ndarray | None = None, *,
-                   polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
+def model_spectrum(
+    model: str | LinearModel,
+    params: Mapping[str, Any],
+    inside: np.ndarray | None = None,
+    *,
+    polish: int = 3,
+    parallel: bool | None = None,
+    engine: str | None = None,
+) -> KernelSpectrum:
     """Sorted eigenvalues, error bounds and the stability decision of a model whose coefficients
     the kernel forms itself (``point_coefficients``), without a domain check.
 
@@ -726,19 +778,41 @@ def model_spectrum(model: str | LinearModel, params: Mapping[str, Any], inside: 
     ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     n = kernels.n
     ev, bd, nt, st = _outputs(npts, n)
-    _run(kernels.masked, npts, parallel, engine, [*(a for pair in flat for a in pair), ins, int(polish)],
-         (ev, bd, nt, st))
-    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
-                          st.reshape(shape))
+    _run(
+        kernels.masked,
+        npts,
+        parallel,
+        engine,
+        [*(a for pair in flat for a in pair), ins, int(polish)],
+        (ev, bd, nt, st),
+    )
+    return KernelSpectrum(
+        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
+    )
 
 
-def sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                     mu: np.ndarray, inside: np.ndarray | None = None, *,
-                     polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
+def sliding_spectrum(
+    q: np.ndarray,
+    fr_inv: np.ndarray,
+    sigma: np.ndarray,
+    alpha_v: np.ndarray,
+    mu: np.ndarray,
+    inside: np.ndarray | None = None,
+    *,
+    polish: int = 3,
+    parallel: bool | None = None,
+    engine: str | None = None,
+) -> KernelSpectrum:
     """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
     kernel of the benchmarks)."""
-    return model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), inside,
-                          polish=polish, parallel=parallel, engine=engine)
+    return model_spectrum(
+        "sliding",
+        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
+        inside,
+        polish=polish,
+        parallel=parallel,
+        engine=engine,
+    )
 
 
 class CheckedSpectrum(NamedTuple):
@@ -788,8 +862,14 @@ def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
     return np.ascontiguousarray(np.broadcast_to(y, shape)).reshape(-1), 1
 
 
-def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], *, polish: int = 3,
-                           parallel: bool | None = None, engine: str | None = None) -> CheckedSpectrum:
+def checked_model_spectrum(
+    model: str | LinearModel,
+    params: Mapping[str, Any],
+    *,
+    polish: int = 3,
+    parallel: bool | None = None,
+    engine: str | None = None,
+) -> CheckedSpectrum:
     """A model's spectrum with the physical domain tested in the same pass.
 
     The domain test is :func:`stability.parameters.check_domain`'s, point by point (the table
@@ -832,22 +912,42 @@ def checked_model_spectrum(model: str | LinearModel, params: Mapping[str, Any], 
     n = kernels.n
     ev, bd, nt, st = _outputs(npts, n)
     where = np.empty(npts, dtype=np.int8)
-    _run(kernels.checked, npts, parallel, engine, [*(a for pair in flat for a in pair), _computable_limits(),
-                                                   int(polish)], (ev, bd, nt, st, where))
+    _run(
+        kernels.checked,
+        npts,
+        parallel,
+        engine,
+        [*(a for pair in flat for a in pair), _computable_limits(), int(polish)],
+        (ev, bd, nt, st, where),
+    )
     inside = where == _INSIDE
     n_out = npts - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
-                          st.reshape(shape))
+    spec = KernelSpectrum(
+        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
+    )
     return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
 
 
-def checked_sliding_spectrum(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                             mu: np.ndarray, *, polish: int = 3, parallel: bool | None = None,
-                             engine: str | None = None) -> CheckedSpectrum:
+def checked_sliding_spectrum(
+    q: np.ndarray,
+    fr_inv: np.ndarray,
+    sigma: np.ndarray,
+    alpha_v: np.ndarray,
+    mu: np.ndarray,
+    *,
+    polish: int = 3,
+    parallel: bool | None = None,
+    engine: str | None = None,
+) -> CheckedSpectrum:
     """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
-    return checked_model_spectrum("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-                                  polish=polish, parallel=parallel, engine=engine)
+    return checked_model_spectrum(
+        "sliding",
+        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
+        polish=polish,
+        parallel=parallel,
+        engine=engine,
+    )
 
 
 def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine: str | None = None) -> np.ndarray:
@@ -878,19 +978,28 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     return code.reshape(shape)
 
 
-def sliding_domain(q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, alpha_v: np.ndarray,
-                   mu: np.ndarray, *, engine: str | None = None) -> np.ndarray:
+def sliding_domain(
+    q: np.ndarray,
+    fr_inv: np.ndarray,
+    sigma: np.ndarray,
+    alpha_v: np.ndarray,
+    mu: np.ndarray,
+    *,
+    engine: str | None = None,
+) -> np.ndarray:
     """:func:`model_domain` of the sliding model, parameters by position."""
     return model_domain("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), engine=engine)
 
 
-def model_coefficients(model: str | LinearModel, q: float, fr_inv: float, sigma: float, alpha_v: float,
-                       mu: float) -> tuple[complex, ...]:
+def model_coefficients(
+    model: str | LinearModel, q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float
+) -> tuple[complex, ...]:
     """The coefficients at one point as the compiled kernel forms them (highest power first):
     the numba execution of the model's ``point_coefficients`` (tests compare it, bit for bit,
     with the model's numpy :meth:`~stability.models.base.LinearModel.coefficients`)."""
-    return _require_kernels(get_model(model)).coefficients(float(q), float(fr_inv), float(sigma), float(alpha_v),
-                                                           float(mu))
+    return _require_kernels(get_model(model)).coefficients(
+        float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu)
+    )
 
 
 def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float) -> tuple[complex, ...]:
@@ -898,8 +1007,14 @@ def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, 
     return model_coefficients("sliding", q, fr_inv, sigma, alpha_v, mu)
 
 
-def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
-                         polish: int = 3, parallel: bool | None = None, engine: str | None = None) -> KernelSpectrum:
+def coefficient_spectrum(
+    c: np.ndarray,
+    inside: np.ndarray | None = None,
+    *,
+    polish: int = 3,
+    parallel: bool | None = None,
+    engine: str | None = None,
+) -> KernelSpectrum:
     """The kernel on given coefficients ``c`` (..., n+1), highest power first, ``1 <= n <= 3``.
 
     Parameters
@@ -930,5 +1045,6 @@ def coefficient_spectrum(c: np.ndarray, inside: np.ndarray | None = None, *,
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
     _run(_COEFFICIENT_LOOPS, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
-    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)),
-                          st.reshape(shape))
+    return KernelSpectrum(
+        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
+    )

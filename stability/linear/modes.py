@@ -23,12 +23,12 @@ arbitrary by nature; the bisection stops at ``max_depth`` and keeps the best mat
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from itertools import permutations
-from typing import Callable
 
 import numpy as np
 
-__all__ = ["track_modes", "principal_mode", "ambiguous_steps", "structural_zeros"]
+__all__ = ["ambiguous_steps", "principal_mode", "structural_zeros", "track_modes"]
 
 
 def _match(pred: np.ndarray, cur: np.ndarray, perms: list[list[int]]) -> tuple[np.ndarray, bool]:
@@ -67,9 +67,13 @@ def ambiguous_steps(eigenvalues: np.ndarray) -> np.ndarray:
     return out
 
 
-def track_modes(eigenvalues: np.ndarray, *, path: np.ndarray | None = None,
-                solve: Callable[[float], np.ndarray] | None = None,
-                max_depth: int = 40) -> np.ndarray:
+def track_modes(
+    eigenvalues: np.ndarray,
+    *,
+    path: np.ndarray | None = None,
+    solve: Callable[[float], np.ndarray] | None = None,
+    max_depth: int = 40,
+) -> np.ndarray:
     """Reorder eigenvalues along a path so that each column is one continuous branch.
 
     Parameters
@@ -93,8 +97,10 @@ def track_modes(eigenvalues: np.ndarray, *, path: np.ndarray | None = None,
     """
     ev = np.array(eigenvalues, dtype=complex, copy=True)
     if ev.ndim != 2 or ev.shape[1] < 1:
-        raise ValueError(f"eigenvalues has shape {ev.shape}; it must be (points, modes): one row of "
-                         "eigenvalues per point of the path")
+        raise ValueError(
+            f"eigenvalues has shape {ev.shape}; it must be (points, modes): one row of "
+            "eigenvalues per point of the path"
+        )
     m, n = ev.shape
     if solve is not None and path is None:
         raise ValueError("track_modes: solve needs the path parameter values (path=)")
@@ -151,8 +157,9 @@ def principal_mode(eigenvalues: np.ndarray) -> np.ndarray:
     return tracked[:, int(np.argmax(top))]
 
 
-def structural_zeros(growth_rate: np.ndarray, frequency: np.ndarray,
-                     error_bound: np.ndarray | None = None) -> np.ndarray:
+def structural_zeros(
+    growth_rate: np.ndarray, frequency: np.ndarray, error_bound: np.ndarray | None = None
+) -> np.ndarray:
     """Modes that are structurally zero: ``s = 0`` exactly (and an error bound of exactly 0,
     which the spectra give only to roots known by structure), e.g. the sliding top's zero root
     at ``fr_inv = 0`` (eq. 11)."""

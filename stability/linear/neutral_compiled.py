@@ -24,14 +24,14 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-from stability.jit import OPTIONS, njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
+from stability.jit import OPTIONS, njit
 
 from ..parameters import domain_sides
 from .neutrality import CrossingKernels
 
-__all__ = ["step_kernel", "constraint_values", "CONSTRAINT_CODES"]
+__all__ = ["CONSTRAINT_CODES", "constraint_values", "step_kernel"]
 
 _JIT = dict(OPTIONS, cache=True)
 
@@ -42,8 +42,9 @@ CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
 
 
 @njit(**_JIT)
-def constraint_values(point: np.ndarray, free_index: np.ndarray, u: np.ndarray,
-                      codes: np.ndarray, index: np.ndarray, a: np.ndarray) -> np.ndarray:
+def constraint_values(
+    point: np.ndarray, free_index: np.ndarray, u: np.ndarray, codes: np.ndarray, index: np.ndarray, a: np.ndarray
+) -> np.ndarray:
     """The problem's constraints at ``u`` (problem variables), ``>= 0`` inside, from rows
     ``(code, index, a)`` (:data:`CONSTRAINT_CODES`): the same source and operations as their
     Python evaluation in :meth:`stability.linear.neutral_curves.NeutralProblem.constraints`."""
@@ -77,8 +78,7 @@ def _step_kernel(residual_into: Callable[..., None], other_growth_of: Callable[.
     :mod:`stability.linear.kernel`)."""
 
     @njit(**_JIT)
-    def step(point, free_index, ncoef, codes, index, a, guess, t_plane, anchor, h, scale, tol, max_iter,
-             max_move):
+    def step(point, free_index, ncoef, codes, index, a, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
         """Corrector and tangent of one continuation step (the engine's ``_newton`` with
         polishing, then ``_tangent_det``), and the problem's constraints and test functions at
         the new point (so that the engine's loop makes no further call for them).
@@ -153,4 +153,3 @@ def _step_kernel(residual_into: Callable[..., None], other_growth_of: Callable[.
         return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests
 
     return step
-

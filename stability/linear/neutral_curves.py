@@ -62,11 +62,25 @@ from continuation.problem import StepResult
 
 from .. import execution
 from .._version import package_version
-from ..models import LinearModel, get_model
 from ..errors import ConvergenceError, DomainError
-from ..parameters import (DEFAULT_MU, DOMAIN, LONG_NAMES, PARAMETERS, as_scalar, check_choice, check_domain,
-                          check_flag, check_integer, check_positive, domain_range, domain_sides, domain_text,
-                          fmt_against, parameter_attrs)
+from ..models import LinearModel, get_model
+from ..parameters import (
+    DEFAULT_MU,
+    DOMAIN,
+    LONG_NAMES,
+    PARAMETERS,
+    as_scalar,
+    check_choice,
+    check_domain,
+    check_flag,
+    check_integer,
+    check_positive,
+    domain_range,
+    domain_sides,
+    domain_text,
+    fmt_against,
+    parameter_attrs,
+)
 from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
@@ -75,13 +89,17 @@ from .neutrality import NeutralCondition, crossing_kernels
 from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
 from .spectra import spectrum
 
-__all__ = ["neutral_curve", "fold_curve", "NeutralProblem", "FoldProblem", "DEFAULT_RANGES"]
+__all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neutral_curve"]
 
 #: default ends of the ranges where the physical domain sets none (its bounds come from the table
 #: :data:`stability.parameters.DOMAIN`, :func:`stability.parameters.domain_range`: ``|q| < 1/sqrt(mu)``,
 #: ``0 < sigma <= 2 (1 - mu q^2)``, or ``<= 2`` where q or mu is traced; ``q`` here only for a traced mu)
 DEFAULT_RANGES: dict[str, tuple[float, float]] = {
-    "fr_inv": (0.0, 10.0), "alpha_v": (0.0, 10.0), "mu": (0.0, 10.0), "q": (-1.0, 1.0)}
+    "fr_inv": (0.0, 10.0),
+    "alpha_v": (0.0, 10.0),
+    "mu": (0.0, 10.0),
+    "q": (-1.0, 1.0),
+}
 
 #: the largest coarse grid for start points, per axis (the spectra of its points are held in memory)
 MAX_GRID = 2000
@@ -103,8 +121,9 @@ _KIND_DETAIL = {
 
 def _check_name(name: str, what: str, model: LinearModel) -> str:
     if not isinstance(name, str) or name not in model.parameters:
-        raise ValueError(f"{what} = {name!r} is not a parameter of model {model.name!r}; "
-                         f"choose one of {', '.join(model.parameters)}")
+        raise ValueError(
+            f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
+        )
     return name
 
 
@@ -119,8 +138,7 @@ def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[st
         if name in free:
             raise ValueError(f"{name} is traced (x or y) and cannot also be fixed")
         if name not in model.parameters:
-            raise TypeError(f"model {model.name!r} takes no parameter {name} "
-                            f"(it takes {', '.join(model.parameters)})")
+            raise TypeError(f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})")
     missing = [n for n in model.parameters if n not in free and n not in out]
     if missing:
         raise TypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
@@ -148,15 +166,18 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     return lo, hi
 
 
-def _outside_domain_error(model: LinearModel, x: str, y: str, ranges: Mapping[str, tuple[float, float]],
-                          fixed: Mapping[str, float]) -> DomainError:
+def _outside_domain_error(
+    model: LinearModel, x: str, y: str, ranges: Mapping[str, tuple[float, float]], fixed: Mapping[str, float]
+) -> DomainError:
     """Ranges that miss the physical domain (no point of the start atlas's grid over them lies
     inside): tracing there finds nothing, and an empty dataset would look like "no neutral
     curve" rather than the input error it is."""
     fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
-    return DomainError(f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
-                       f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
-                       f"({domain_text(model.parameters)})")
+    return DomainError(
+        f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
+        f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
+        f"({domain_text(model.parameters)})"
+    )
 
 
 class Constraint(NamedTuple):
@@ -188,8 +209,9 @@ class Constraint(NamedTuple):
     bound: tuple[str, float] | None
 
 
-def _constraints(model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]],
-                 margin: float) -> list[Constraint]:
+def _constraints(
+    model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]], margin: float
+) -> list[Constraint]:
     """The bounds of the domain table that involve a free parameter (and only parameters of the
     model), strict ones as ``>= margin``, then the requested ranges."""
     f = set(free)
@@ -255,9 +277,18 @@ class NeutralProblem:
     test_function_names = ("frequency", "other_modes")
     compiled_step: Callable[..., tuple] | None = None
 
-    def __init__(self, model: str | LinearModel, x: str, y: str, fixed: Mapping[str, float],
-                 ranges: Mapping[str, tuple[float, float]], edge_margin: float = 1e-9,
-                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool | None = None):
+    def __init__(
+        self,
+        model: str | LinearModel,
+        x: str,
+        y: str,
+        fixed: Mapping[str, float],
+        ranges: Mapping[str, tuple[float, float]],
+        edge_margin: float = 1e-9,
+        samples: np.ndarray | None = None,
+        form: str | None = None,
+        compiled: bool | None = None,
+    ):
         self.model = get_model(model)
         self.names = (x, y)
         self.fixed = dict(fixed)
@@ -277,19 +308,32 @@ class NeutralProblem:
                 *self.cond._compiled,
                 np.array([CONSTRAINT_CODES[c.code] for c in self._constraints], dtype=np.int64),
                 np.array([c.index for c in self._constraints], dtype=np.int64),
-                np.array([c.a for c in self._constraints], dtype=float))
+                np.array([c.a for c in self._constraints], dtype=float),
+            )
             self._step_kernel = step_kernel(kernels)
             self._rj_kernel = kernels.residual_and_jacobian
             self._growth_kernel = kernels.other_growth
             self.compiled_step = self._compiled_step
 
-    def _compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
-                       scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> StepResult:
+    def _compiled_step(
+        self,
+        guess: np.ndarray,
+        t_plane: np.ndarray,
+        anchor: np.ndarray,
+        h: float,
+        scale: np.ndarray,
+        tol: float,
+        max_iter: int,
+        max_move: float,
+    ) -> StepResult:
         """The engine's hook (:mod:`continuation.problem`): the step of
         :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
-        return StepResult(*self._step_kernel(*self._compiled, guess, t_plane, anchor, float(h), scale,
-                                             float(tol), int(max_iter), float(max_move)))
+        return StepResult(
+            *self._step_kernel(
+                *self._compiled, guess, t_plane, anchor, float(h), scale, float(tol), int(max_iter), float(max_move)
+            )
+        )
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         """All parameters at ``u``."""
@@ -374,9 +418,19 @@ class FoldProblem:
 
     test_function_names: tuple[str, ...] = ()
 
-    def __init__(self, model: str | LinearModel, x: str, y: str, z: str, fold_in: str,
-                 fixed: Mapping[str, float], ranges: Mapping[str, tuple[float, float]],
-                 edge_margin: float = 1e-9, samples: np.ndarray | None = None, form: str | None = None):
+    def __init__(
+        self,
+        model: str | LinearModel,
+        x: str,
+        y: str,
+        z: str,
+        fold_in: str,
+        fixed: Mapping[str, float],
+        ranges: Mapping[str, tuple[float, float]],
+        edge_margin: float = 1e-9,
+        samples: np.ndarray | None = None,
+        form: str | None = None,
+    ):
         self.model = get_model(model)
         self.names = (x, y, z)
         self.fixed = dict(fixed)
@@ -438,8 +492,14 @@ class _Guesses(NamedTuple):
     decided: int
 
 
-def _atlas_guesses(model: LinearModel, x: str, y: str, fixed: Mapping[str, float],
-                   ranges: Mapping[str, tuple[float, float]], grid: tuple[int, int]) -> _Guesses:
+def _atlas_guesses(
+    model: LinearModel,
+    x: str,
+    y: str,
+    fixed: Mapping[str, float],
+    ranges: Mapping[str, tuple[float, float]],
+    grid: tuple[int, int],
+) -> _Guesses:
     """Guesses ``(x, y, w)`` on grid edges where the number of growing modes changes (the
     modes' signs of :mod:`stability.linear.growth`; points with an undecided sign are left
     out)."""
@@ -579,16 +639,16 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> 
         else:
             kinds.append("regular")
             details.append("")
-    for end, k in zip(br.end_reasons if len(br.end_reasons) == 2 else [None] + br.end_reasons,
-                      (0, m - 1)):
+    for end, k in zip(br.end_reasons if len(br.end_reasons) == 2 else [None] + br.end_reasons, (0, m - 1)):
         if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
             kinds[k] = "endpoint"
             details[k] = f"continuation stopped: {end.replace('_', ' ')}"
     return {"kind": kinds, "detail": details}
 
 
-def _check_points(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
-                  cols: Sequence[np.ndarray], w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _check_points(
+    model: LinearModel, names: Sequence[str], fixed: Mapping[str, float], cols: Sequence[np.ndarray], w: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Independent check: Re of the LAPACK eigenvalue of ``M^-1 A`` nearest to ``i w``, and its
     error bound.
 
@@ -615,65 +675,123 @@ def _check_points(model: LinearModel, names: Sequence[str], fixed: Mapping[str, 
         ev, scale = sp.eigenvalues, None
     k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
     near = np.take_along_axis(ev, k[:, None], -1)
-    radius = inclusion_radius(model.coefficients(**{n: np.broadcast_to(np.asarray(v, float), w.shape)
-                                                    for n, v in p.items()}), near)[:, 0]
+    radius = inclusion_radius(
+        model.coefficients(**{n: np.broadcast_to(np.asarray(v, float), w.shape) for n, v in p.items()}), near
+    )[:, 0]
     if scale is not None:
         radius = np.maximum(radius, 8 * model.n_modes * UNIT_ROUNDOFF * scale)
     return near[:, 0].real, radius
 
 
-def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float],
-             points: np.ndarray, freq_col: int, branch: np.ndarray, kinds: list[str],
-             details: list[str], residual: np.ndarray, leading: np.ndarray | None,
-             attrs: Mapping[str, Any], tangents: np.ndarray | None = None) -> xr.Dataset:
+def _dataset(
+    model: LinearModel,
+    names: Sequence[str],
+    fixed: Mapping[str, float],
+    points: np.ndarray,
+    freq_col: int,
+    branch: np.ndarray,
+    kinds: list[str],
+    details: list[str],
+    residual: np.ndarray,
+    leading: np.ndarray | None,
+    attrs: Mapping[str, Any],
+    tangents: np.ndarray | None = None,
+) -> xr.Dataset:
     data: dict[str, Any] = {}
     cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
     for n, c in zip(names, cols):
         data[n] = ("point", c, _var_attrs(n))
     w = points[:, freq_col] if len(points) else np.zeros(0)
-    data["frequency"] = ("point", w, {
-        "long_name": "neutral frequency", "units": "Omega",
-        "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate"})
+    data["frequency"] = (
+        "point",
+        w,
+        {
+            "long_name": "neutral frequency",
+            "units": "Omega",
+            "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
+        },
+    )
     if tangents is None:
         tangents = np.zeros_like(points)
     order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = ("point", tangents[:, i], {
-            "long_name": f"tangent, {n}", "units": "1",
-            "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-                       "branch; continuation.dense interpolates with it)"})
-    data["branch"] = ("point", branch.astype(np.int32), {"long_name": "branch",
-                                                          "comment": "index of the traced branch"})
-    data["kind"] = ("point", np.array(kinds, dtype=object), {
-        "long_name": "kind of point",
-        "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint"})
+        data[f"tangent_{n}"] = (
+            "point",
+            tangents[:, i],
+            {
+                "long_name": f"tangent, {n}",
+                "units": "1",
+                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+                "branch; continuation.dense interpolates with it)",
+            },
+        )
+    data["branch"] = (
+        "point",
+        branch.astype(np.int32),
+        {"long_name": "branch", "comment": "index of the traced branch"},
+    )
+    data["kind"] = (
+        "point",
+        np.array(kinds, dtype=object),
+        {
+            "long_name": "kind of point",
+            "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint",
+        },
+    )
     data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
-    data["residual"] = ("point", residual, {
-        "long_name": "backward error", "units": "1",
-        "comment": "relative backward error of the neutral condition: the larger of its two rows, "
-                   "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
-                   "(stability.linear.neutrality)"})
+    data["residual"] = (
+        "point",
+        residual,
+        {
+            "long_name": "backward error",
+            "units": "1",
+            "comment": "relative backward error of the neutral condition: the larger of its two rows, "
+            "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
+            "(stability.linear.neutrality)",
+        },
+    )
     if leading is not None:
-        data["leading"] = ("point", leading, {
-            "long_name": "traced mode leads",
-            "comment": "the traced mode is the leading one (the curve is the stability boundary)"})
+        data["leading"] = (
+            "point",
+            leading,
+            {
+                "long_name": "traced mode leads",
+                "comment": "the traced mode is the leading one (the curve is the stability boundary)",
+            },
+        )
     if len(points):
         check, check_bound = _check_points(model, names, fixed, cols, w)
     else:
         check, check_bound = np.zeros(0), np.zeros(0)
-    data["check_growth_rate"] = ("point", check, {
-        "long_name": "check: LAPACK Re s", "units": "Omega",
-        "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
-                   "(zero within check_bound on a neutral curve)"})
-    data["check_bound"] = ("point", check_bound, {
-        "long_name": "check error bound", "units": "Omega",
-        "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
-                   "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
-                   "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)"})
+    data["check_growth_rate"] = (
+        "point",
+        check,
+        {
+            "long_name": "check: LAPACK Re s",
+            "units": "Omega",
+            "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
+            "(zero within check_bound on a neutral curve)",
+        },
+    )
+    data["check_bound"] = (
+        "point",
+        check_bound,
+        {
+            "long_name": "check error bound",
+            "units": "Omega",
+            "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
+            "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
+            "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
+        },
+    )
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
     variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
-    ds_attrs = {"Conventions": "CF-1.10", "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
-                "model": model.name, "equations": model.equations}
+    ds_attrs = {
+        "Conventions": "CF-1.10",
+        "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
+        "model": model.name,
+        "equations": model.equations,
+    }
     ds_attrs.update({k: float(v) for k, v in fixed.items()})
     ds_attrs["fixed"] = ", ".join(sorted(fixed))
     ds_attrs.update(attrs)
@@ -683,8 +801,7 @@ def _dataset(model: LinearModel, names: Sequence[str], fixed: Mapping[str, float
 _POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
 
 
-def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any],
-                   direct: bool = True) -> xr.Dataset:
+def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any], direct: bool = True) -> xr.Dataset:
     """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
     coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
 
@@ -698,8 +815,10 @@ def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, A
     positions = np.arange(n)
     if direct:
         index = PandasIndex(pd.Index(positions), "point")
-        coords = xr.Coordinates(index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}),
-                                indexes={"point": index})
+        coords = xr.Coordinates(
+            index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}),
+            indexes={"point": index},
+        )
     else:
         coords = {"point": xr.IndexVariable(("point",), positions, _POINT_ATTRS)}
     return xr.Dataset(variables, coords=coords, attrs=attrs)
@@ -708,12 +827,25 @@ def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, A
 # ------------------------------------------------------------------------------------------
 # public functions
 # ------------------------------------------------------------------------------------------
-def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[str, Any],
-                  x_range: Sequence[float] | None = None, y_range: Sequence[float] | None = None,
-                  start: Sequence[Sequence[float]] | None = None, grid: tuple[int, int] = (25, 25),
-                  step: float | None = None, max_step: float = 0.05, max_angle: float = CURVE_MAX_ANGLE,
-                  max_points: int = 4000, tol: float = 1e-13, edge_margin: float = 1e-9,
-                  form: str | None = None, compiled: bool | None = None) -> xr.Dataset:
+def neutral_curve(
+    model: str | LinearModel,
+    x: str,
+    y: str,
+    *,
+    fixed: Mapping[str, Any],
+    x_range: Sequence[float] | None = None,
+    y_range: Sequence[float] | None = None,
+    start: Sequence[Sequence[float]] | None = None,
+    grid: tuple[int, int] = (25, 25),
+    step: float | None = None,
+    max_step: float = 0.05,
+    max_angle: float = CURVE_MAX_ANGLE,
+    max_points: int = 4000,
+    tol: float = 1e-13,
+    edge_margin: float = 1e-9,
+    form: str | None = None,
+    compiled: bool | None = None,
+) -> xr.Dataset:
     """Trace the neutral curves of a linear model in the plane of two parameters.
 
     Parameters
@@ -799,7 +931,7 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
     compiled = None if compiled is None else check_flag("compiled", compiled)
     if form is not None:
         form = check_choice("form", form, ("crossing", "collision"))
-    if (isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2):
+    if isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2:
         raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
     check_start_grid(*grid)
@@ -818,14 +950,21 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
                 f"the start grid ({grid[0]} x {grid[1]} points over {x}_range = {_pair(ranges[x])} and "
                 f"{y}_range = {_pair(ranges[y])}) could not decide the sign of a growth rate at any of its "
                 f"{found.inside} points inside the domain (every point has a mode within rounding of neutral); "
-                "pass start=[(x, y), ...] near the curve, or other ranges")
+                "pass start=[(x, y), ...] near the curve, or other ranges"
+            )
         guesses = found.points
         if not guesses:
-            note = (f"no neutral curve crosses the ranges: the number of growing modes is the same at all "
-                    f"{found.decided} points of the {grid[0]} x {grid[1]} start grid where every sign is decided"
-                    + (f" ({found.inside - found.decided} points inside the domain have a mode within rounding "
-                       "of neutral and were left out)" if found.decided < found.inside else "")
-                    + "; a closed curve inside one grid cell is not found this way: pass start= or a finer grid")
+            note = (
+                f"no neutral curve crosses the ranges: the number of growing modes is the same at all "
+                f"{found.decided} points of the {grid[0]} x {grid[1]} start grid where every sign is decided"
+                + (
+                    f" ({found.inside - found.decided} points inside the domain have a mode within rounding "
+                    "of neutral and were left out)"
+                    if found.decided < found.inside
+                    else ""
+                )
+                + "; a closed curve inside one grid cell is not found this way: pass start= or a finer grid"
+            )
     else:
         guesses = []
         if isinstance(start, (str, bytes)) or not hasattr(start, "__iter__"):
@@ -843,8 +982,11 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
                 # the mode nearest the axis, structural zeros (s = 0 exactly, bound 0: the
                 # sliding top's zero root at fr_inv = 0) excepted: they are neutral everywhere
                 dist = np.where(structural_zeros(ev.real, ev.imag, sp0.error_bound), np.inf, np.abs(ev.real))
-                s.append(float(ev[int(np.nanargmin(dist))].imag) if np.isfinite(dist).any()
-                         else float(ev[np.nanargmin(np.abs(ev.real))].imag))
+                s.append(
+                    float(ev[int(np.nanargmin(dist))].imag)
+                    if np.isfinite(dist).any()
+                    else float(ev[np.nanargmin(np.abs(ev.real))].imag)
+                )
             if len(s) != 3:
                 raise ValueError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))
@@ -876,23 +1018,42 @@ def neutral_curve(model: str | LinearModel, x: str, y: str, *, fixed: Mapping[st
             raise ValueError(
                 f"start point ({x}, {y}, w) = ({g[0]:g}, {g[1]:g}, {g[2]:g}) converged to the neutral "
                 f"point ({u[0]:.6g}, {u[1]:.6g}, {u[2]:.6g}), outside the ranges or the physical "
-                f"domain ({'; '.join(bad)})")
+                f"domain ({'; '.join(bad)})"
+            )
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(prob, u, TraceOptions(fold_components=(0, 1), scale=scale, step=step, max_step=max_step,
-                                              max_angle=max_angle, max_points=max_points, tol=tol))
+        br = trace_both(
+            prob,
+            u,
+            TraceOptions(
+                fold_components=(0, 1),
+                scale=scale,
+                step=step,
+                max_step=max_step,
+                max_angle=max_angle,
+                max_points=max_points,
+                tol=tol,
+            ),
+        )
         branches.append(br)
         if start is None:
-            skip[i + 1:] |= _near_branch_mask(G[i + 1:], br.points / scale, cell)
+            skip[i + 1 :] |= _near_branch_mask(G[i + 1 :], br.points / scale, cell)
     if not branches and note is None:
-        note = (f"no neutral curve traced: none of the {len(guesses)} start guesses of the start grid "
-                f"converged to a neutral point (backward error <= {tol:g}) inside the ranges; pass start= "
-                "near the curve")
+        note = (
+            f"no neutral curve traced: none of the {len(guesses)} start guesses of the start grid "
+            f"converged to a neutral point (backward error <= {tol:g}) inside the ranges; pass start= "
+            "near the curve"
+        )
     attrs = {
         PRODUCT_ATTR: "neutral_curve",
-        "x": x, "y": y, "form": prob.cond.form, "deflated_zero_roots": prob.cond.deflate,
-        f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]),
-        "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane"}
+        "x": x,
+        "y": y,
+        "form": prob.cond.form,
+        "deflated_zero_roots": prob.cond.deflate,
+        f"{x}_range": list(ranges[x]),
+        f"{y}_range": list(ranges[y]),
+        "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane",
+    }
     if note is not None:
         attrs["note"] = note
         warnings.warn(note, UserWarning, stacklevel=2)
@@ -903,8 +1064,15 @@ def _pair(r: tuple[float, float]) -> str:
     return f"({r[0]:g}, {r[1]:g})"
 
 
-def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], prob: Any,
-              branches: list[Branch], freq_col: int, attrs: Mapping[str, Any]) -> xr.Dataset:
+def _assemble(
+    m: LinearModel,
+    names: Sequence[str],
+    fixed: Mapping[str, float],
+    prob: Any,
+    branches: list[Branch],
+    freq_col: int,
+    attrs: Mapping[str, Any],
+) -> xr.Dataset:
     pts, tans, bidx, kinds, details, resid = [], [], [], [], [], []
     for b, br in enumerate(branches):
         rec = _branch_records(br, prob, [*names[:freq_col], "frequency", *names[freq_col:]], len(names) + 1)
@@ -928,11 +1096,24 @@ def _assemble(m: LinearModel, names: Sequence[str], fixed: Mapping[str, float], 
     return _dataset(m, names, fixed, P, freq_col, B, kinds, details, resid, lead, attrs, T)
 
 
-def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str,
-               fixed: Mapping[str, Any], x_range: Sequence[float] | None = None,
-               y_range: Sequence[float] | None = None, z_range: Sequence[float] | None = None,
-               step: float = 0.01, max_step: float = 0.05, max_angle: float = CURVE_MAX_ANGLE,
-               max_points: int = 4000, tol: float = 1e-12, edge_margin: float = 1e-9) -> xr.Dataset:
+def fold_curve(
+    model: str | LinearModel,
+    x: str,
+    y: str,
+    z: str,
+    *,
+    fold_in: str,
+    fixed: Mapping[str, Any],
+    x_range: Sequence[float] | None = None,
+    y_range: Sequence[float] | None = None,
+    z_range: Sequence[float] | None = None,
+    step: float = 0.01,
+    max_step: float = 0.05,
+    max_angle: float = CURVE_MAX_ANGLE,
+    max_points: int = 4000,
+    tol: float = 1e-12,
+    edge_margin: float = 1e-9,
+) -> xr.Dataset:
     """Follow the folds of the ``(x, y)`` neutral curves as a third parameter ``z`` varies.
 
     The folds of the curve at ``z = fixed[z]`` (extrema of ``fold_in``, one of ``x`` and
@@ -975,14 +1156,22 @@ def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str
     fx = dict(fixed)
     z0 = fx.pop(z)
     full = _fixed_parameters(m, (x, y), {**fx, z: z0})
-    plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, step=step,
-                          max_step=max_step, max_angle=max_angle, max_points=max_points,
-                          edge_margin=edge_margin)
+    plane = neutral_curve(
+        m,
+        x,
+        y,
+        fixed=full,
+        x_range=x_range,
+        y_range=y_range,
+        step=step,
+        max_step=max_step,
+        max_angle=max_angle,
+        max_points=max_points,
+        edge_margin=edge_margin,
+    )
     rest = {k: v for k, v in full.items() if k != z}
-    ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full),
-              z: _check_range(z, z_range, full)}
-    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0,
-                      ranges[z][1] - ranges[z][0]])
+    ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full), z: _check_range(z, z_range, full)}
+    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0, ranges[z][1] - ranges[z][0]])
     rng = np.random.default_rng(12345)
     lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
     samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
@@ -993,13 +1182,38 @@ def fold_curve(model: str | LinearModel, x: str, y: str, z: str, *, fold_in: str
         u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(prob, u, TraceOptions(fold_components=(3,), scale=scale, step=step, max_step=max_step,
-                                              max_angle=max_angle, max_points=max_points, tol=tol))
+        br = trace_both(
+            prob,
+            u,
+            TraceOptions(
+                fold_components=(3,),
+                scale=scale,
+                step=step,
+                max_step=max_step,
+                max_angle=max_angle,
+                max_points=max_points,
+                tol=tol,
+            ),
+        )
         branches.append(br)
     # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
-    return _assemble(m, (x, y, z), rest, prob, branches, 2, {
-        PRODUCT_ATTR: "fold_curve",
-        "x": x, "y": y, "z": z, "fold_in": fold_in, "form": prob.cond.form,
-        f"{x}_range": list(ranges[x]), f"{y}_range": list(ranges[y]), f"{z}_range": list(ranges[z]),
-        "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model "
-                 f"as {z} varies"})
+    return _assemble(
+        m,
+        (x, y, z),
+        rest,
+        prob,
+        branches,
+        2,
+        {
+            PRODUCT_ATTR: "fold_curve",
+            "x": x,
+            "y": y,
+            "z": z,
+            "fold_in": fold_in,
+            "form": prob.cond.form,
+            f"{x}_range": list(ranges[x]),
+            f"{y}_range": list(ranges[y]),
+            f"{z}_range": list(ranges[z]),
+            "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model as {z} varies",
+        },
+    )

@@ -101,8 +101,14 @@ from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
-__all__ = ["NeutralCondition", "conservative_phase", "other_roots", "crossing_kernels", "CrossingKernels",
-           "twins_in_memory"]
+__all__ = [
+    "CrossingKernels",
+    "NeutralCondition",
+    "conservative_phase",
+    "crossing_kernels",
+    "other_roots",
+    "twins_in_memory",
+]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
 _WEIGHTS = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0
@@ -241,16 +247,25 @@ class NeutralCondition:
         The compiled twins (:func:`crossing_kernels`), or None.
     """
 
-    def __init__(self, model: str | LinearModel, free: Sequence[str], fixed: Mapping[str, float],
-                 samples: np.ndarray | None = None, form: str | None = None, compiled: bool | None = None):
+    def __init__(
+        self,
+        model: str | LinearModel,
+        free: Sequence[str],
+        fixed: Mapping[str, float],
+        samples: np.ndarray | None = None,
+        form: str | None = None,
+        compiled: bool | None = None,
+    ):
         self.model = get_model(model)
         self.free = tuple(free)
         self.fixed = {k: float(v) for k, v in fixed.items()}
         missing = set(self.model.parameters) - set(self.free) - set(self.fixed)
         extra = (set(self.free) | set(self.fixed)) - set(self.model.parameters)
         if missing or extra:
-            raise TypeError(f"model {self.model.name!r} takes {', '.join(self.model.parameters)}; "
-                            f"missing {sorted(missing)}, unknown {sorted(extra)}")
+            raise TypeError(
+                f"model {self.model.name!r} takes {', '.join(self.model.parameters)}; "
+                f"missing {sorted(missing)}, unknown {sorted(extra)}"
+            )
         if samples is None:
             samples = np.full((1, len(self.free)), 0.1)
         samples = np.atleast_2d(np.asarray(samples, dtype=float))
@@ -272,8 +287,10 @@ class NeutralCondition:
         if form not in ("crossing", "collision"):
             raise ValueError(f"form = {form!r}; use 'crossing' or 'collision'")
         if form == "collision" and self.phase is None:
-            raise ValueError(f"model {self.model.name!r} with {self.fixed} is not conservative; "
-                             "the collision form needs p(i w) = e^(i theta) P(w) with P real")
+            raise ValueError(
+                f"model {self.model.name!r} with {self.fixed} is not conservative; "
+                "the collision form needs p(i w) = e^(i theta) P(w) with P real"
+            )
         self.form = form
         self.degree = n - self.deflate
         self._ncoef = self.degree + 1
@@ -293,11 +310,13 @@ class NeutralCondition:
                 compiled = twins_in_memory(self.model)
             if self.form == "crossing" and compiled and self._ncoef - 2 <= 2:
                 self.kernels = crossing_kernels(self._formula, self._derivative, int(self.model.n_modes))
-                self._compiled = (np.array(self._point, dtype=float),
-                                  np.array(self._free_index, dtype=np.int64), int(self._ncoef))
+                self._compiled = (
+                    np.array(self._point, dtype=float),
+                    np.array(self._free_index, dtype=np.int64),
+                    int(self._ncoef),
+                )
 
-    def _scalar(self, values: Sequence[float], derivatives: bool
-                ) -> tuple[list[complex], list[list[complex]] | None]:
+    def _scalar(self, values: Sequence[float], derivatives: bool) -> tuple[list[complex], list[list[complex]] | None]:
         """Deflated coefficients at one point (list) and ``dc/d free`` (one list per free)."""
         if self._analytic:
             p = self._point.copy()
@@ -346,11 +365,11 @@ class NeutralCondition:
         h = _REL_H * np.maximum(1.0, np.abs(values))
         pts = np.repeat(values[None, :], 1 + 4 * k, axis=0)
         for i in range(k):
-            pts[1 + 4 * i: 5 + 4 * i, i] += _STENCIL * h[i]
+            pts[1 + 4 * i : 5 + 4 * i, i] += _STENCIL * h[i]
         c = self.coefficients(pts)
         dc = np.empty((k, c.shape[-1]), dtype=complex)
         for i in range(k):
-            dc[i] = _WEIGHTS @ c[1 + 4 * i: 5 + 4 * i] / h[i]
+            dc[i] = _WEIGHTS @ c[1 + 4 * i : 5 + 4 * i] / h[i]
         return c[0], dc
 
     # -- the equations --------------------------------------------------------------------
@@ -360,8 +379,9 @@ class NeutralCondition:
         d = c * _i_power(np.arange(n, -1, -1))
         return d.real if self.phase == 0 else d.imag
 
-    def residual_and_jacobian(self, values: np.ndarray, w: float, jacobian: bool = True
-                              ) -> tuple[np.ndarray, np.ndarray | None]:
+    def residual_and_jacobian(
+        self, values: np.ndarray, w: float, jacobian: bool = True
+    ) -> tuple[np.ndarray, np.ndarray | None]:
         """``F`` (2,) and ``dF/d(free..., w)`` (2, len(free)+1) at one point."""
         crossing = self.form == "crossing"
         c, dc = self._scalar(values, jacobian or crossing)
@@ -705,5 +725,6 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
                 out[i, j] = roots[j]
         return out
 
-    return CrossingKernels(residual_into, other_growth_of, residual, residual_and_jacobian, other_growth,
-                           residuals, other_modes_many)
+    return CrossingKernels(
+        residual_into, other_growth_of, residual, residual_and_jacobian, other_growth, residuals, other_modes_many
+    )

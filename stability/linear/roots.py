@@ -87,9 +87,25 @@ from stability.jit import OPTIONS, Twin, overload, register_jitable
 
 from .. import execution
 
-__all__ = ["PolynomialRoots", "polynomial_roots", "horner", "horner_scheme", "inclusion_radius", "modulus",
-           "csqrt", "cbrt", "quadratic_roots", "quadratic_roots_many", "divide_root", "deflate_cubic_backward",
-           "axis_norms", "axis_growth", "axis_growth_many", "root_bound", "neutral_tolerance"]
+__all__ = [
+    "PolynomialRoots",
+    "axis_growth",
+    "axis_growth_many",
+    "axis_norms",
+    "cbrt",
+    "csqrt",
+    "deflate_cubic_backward",
+    "divide_root",
+    "horner",
+    "horner_scheme",
+    "inclusion_radius",
+    "modulus",
+    "neutral_tolerance",
+    "polynomial_roots",
+    "quadratic_roots",
+    "quadratic_roots_many",
+    "root_bound",
+]
 
 UNIT_ROUNDOFF = 2.0**-53
 
@@ -155,6 +171,7 @@ def cbrt(x):
 def _cbrt_compiled(x):
     def impl(x):
         return np.cbrt(x)
+
     return impl
 
 
@@ -394,17 +411,21 @@ def axis_growth(c, ncoef, w):
     # Newton's step delta = g + i h from i w (p'(i w) = B' - i A')
     g = (B * dA - A * dB) / den
     h = -(A * dA + B * dB) / den
-    eg = ((eB * abs(dA) + abs(B) * edA + eA * abs(dB) + abs(A) * edB
-           + 3.0 * u * (abs(B * dA) + abs(A * dB))) / den + abs(g) * (eden + u))
-    eh = ((eA * abs(dA) + abs(A) * edA + eB * abs(dB) + abs(B) * edB
-           + 3.0 * u * (abs(A * dA) + abs(B * dB))) / den + abs(h) * (eden + u))
+    eg = (
+        eB * abs(dA) + abs(B) * edA + eA * abs(dB) + abs(A) * edB + 3.0 * u * (abs(B * dA) + abs(A * dB))
+    ) / den + abs(g) * (eden + u)
+    eh = (
+        eA * abs(dA) + abs(A) * edA + eB * abs(dB) + abs(B) * edB + 3.0 * u * (abs(A * dA) + abs(B * dB))
+    ) / den + abs(h) * (eden + u)
     # c2 = p''/(2 p') = cr + i ci, with p''(i w) = -(A'' + i B'')
     cr = -(ddA * dB - ddB * dA) / (2.0 * den)
     ci = -(ddA * dA + ddB * dB) / (2.0 * den)
-    ecr = ((eddA * abs(dB) + abs(ddA) * edB + eddB * abs(dA) + abs(ddB) * edA
-            + 3.0 * u * (abs(ddA * dB) + abs(ddB * dA))) / (2.0 * den) + abs(cr) * (eden + u))
-    eci = ((eddA * abs(dA) + abs(ddA) * edA + eddB * abs(dB) + abs(ddB) * edB
-            + 3.0 * u * (abs(ddA * dA) + abs(ddB * dB))) / (2.0 * den) + abs(ci) * (eden + u))
+    ecr = (
+        eddA * abs(dB) + abs(ddA) * edB + eddB * abs(dA) + abs(ddB) * edA + 3.0 * u * (abs(ddA * dB) + abs(ddB * dA))
+    ) / (2.0 * den) + abs(cr) * (eden + u)
+    eci = (
+        eddA * abs(dA) + abs(ddA) * edA + eddB * abs(dB) + abs(ddB) * edB + 3.0 * u * (abs(ddA * dA) + abs(ddB * dB))
+    ) / (2.0 * den) + abs(ci) * (eden + u)
     step = math.sqrt(g * g + h * h) + eg + eh
     c2 = math.sqrt(cr * cr + ci * ci)
     if c2 * step > 0.25:
@@ -412,9 +433,13 @@ def axis_growth(c, ncoef, w):
     # Chebyshev's correction -Re(c2 delta^2), and its error with the real and imaginary parts
     # kept apart: cr and g are small together where the rows' scales differ (module docstring)
     corr = -cr * (g * g - h * h) + 2.0 * ci * g * h
-    ecorr = (abs(cr) * (2.0 * abs(g) * eg + eg * eg + 2.0 * abs(h) * eh + eh * eh) + ecr * abs(g * g - h * h)
-             + 2.0 * abs(ci) * (abs(g) * eh + abs(h) * eg + eg * eh) + 2.0 * eci * abs(g * h)
-             + 4.0 * u * (abs(cr) * (g * g + h * h) + 2.0 * abs(ci * g * h)))
+    ecorr = (
+        abs(cr) * (2.0 * abs(g) * eg + eg * eg + 2.0 * abs(h) * eh + eh * eh)
+        + ecr * abs(g * g - h * h)
+        + 2.0 * abs(ci) * (abs(g) * eh + abs(h) * eg + eg * eh)
+        + 2.0 * eci * abs(g * h)
+        + 4.0 * u * (abs(cr) * (g * g + h * h) + 2.0 * abs(ci * g * h))
+    )
     # Chebyshev's third-order error (2 |c2|^2 + |c3|) |e0|^3 with |e0| <= 2 |delta|, c3 = p'''/(6 p')
     c3 = math.sqrt(dddA * dddA + dddB * dddB) / (6.0 * math.sqrt(den))
     third = (2.0 * c2 * c2 + c3) * 8.0 * step * step * step
@@ -550,8 +575,13 @@ def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         roots = np.empty((m, 2), dtype=complex)
         exact = np.empty((m, 2), dtype=bool)
         execution.before_compiled_call(quadratic_roots_many, 2.0)
-        quadratic_roots_many(np.ascontiguousarray(flat[:, 0]), np.ascontiguousarray(flat[:, 1]),
-                             np.ascontiguousarray(flat[:, 2]), roots, exact)
+        quadratic_roots_many(
+            np.ascontiguousarray(flat[:, 0]),
+            np.ascontiguousarray(flat[:, 1]),
+            np.ascontiguousarray(flat[:, 2]),
+            roots,
+            exact,
+        )
     else:
         out = [[0j, 0j] for _ in range(m)]
         ex = [[False, False] for _ in range(m)]

@@ -31,8 +31,16 @@ from ..products import MARGINAL, STABLE, UNSTABLE
 from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
 
-__all__ = ["Spectrum", "spectrum", "eigenvalues", "STABLE", "MARGINAL", "UNSTABLE", "METHODS",
-           "DEFAULT_METHOD"]
+__all__ = [
+    "DEFAULT_METHOD",
+    "MARGINAL",
+    "METHODS",
+    "STABLE",
+    "UNSTABLE",
+    "Spectrum",
+    "eigenvalues",
+    "spectrum",
+]
 
 
 #: eigenvalue methods: "kernel" (default: the compiled one-pass kernel of stability.linear.kernel,
@@ -99,8 +107,7 @@ def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any
                 raise TypeError(f"{name} is required for model {model.name!r}")
             out[name] = value
         elif value is not None:
-            raise TypeError(f"model {model.name!r} takes no parameter {name} "
-                            f"(it takes {', '.join(model.parameters)})")
+            raise TypeError(f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})")
     for name in model.parameters:
         if name not in out:
             raise TypeError(f"{name} is required for model {model.name!r}")
@@ -119,8 +126,9 @@ def _lapack(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, n
     return ev, bound, np.zeros(ev.shape, dtype=bool)
 
 
-def _kernel(m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray,
-            parallel: bool | None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+def _kernel(
+    m: LinearModel, p: dict[str, np.ndarray], inside: np.ndarray, parallel: bool | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
     """The compiled kernel over the whole grid (outside points: NaN, flag -1), or None if the
     model's degree is beyond it. A model that offers ``point_coefficients``
     (:mod:`stability.models.base`) has them formed in the kernel; any other passes its
@@ -144,8 +152,9 @@ def _plain_float(value: Any) -> np.ndarray | None:
     array, or a Python or numpy real scalar that is not a bool); None for anything else (which
     then goes through :func:`~stability.parameters.as_parameter` and its messages)."""
     if isinstance(value, np.ndarray):  # not a masked array: as_parameter checks its mask
-        return (value if value.dtype == np.float64 and value.size > 0 and not isinstance(value, np.ma.MaskedArray)
-                else None)
+        return (
+            value if value.dtype == np.float64 and value.size > 0 and not isinstance(value, np.ma.MaskedArray) else None
+        )
     if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
         try:
             return np.asarray(value, dtype=np.float64)
@@ -193,9 +202,18 @@ def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray) -> tuple[np.
     return neutral, stab.astype(np.int8)
 
 
-def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
-             alpha_v: Any = None, mu: Any = DEFAULT_MU, mask_unphysical: bool = False,
-             method: str = DEFAULT_METHOD, parallel: bool | None = None) -> Spectrum:
+def spectrum(
+    model: str | LinearModel,
+    *,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    mu: Any = DEFAULT_MU,
+    mask_unphysical: bool = False,
+    method: str = DEFAULT_METHOD,
+    parallel: bool | None = None,
+) -> Spectrum:
     """Eigenvalues, error bounds and the stability decision over a parameter grid.
 
     Parameters
@@ -260,8 +278,16 @@ def spectrum(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     return Spectrum(m, p, ev, bound, neutral, stab, inside)
 
 
-def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
-                alpha_v: Any = None, mu: Any = DEFAULT_MU, method: str = DEFAULT_METHOD) -> np.ndarray:
+def eigenvalues(
+    model: str | LinearModel,
+    *,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    mu: Any = DEFAULT_MU,
+    method: str = DEFAULT_METHOD,
+) -> np.ndarray:
     """Eigenvalues ``s`` of a linear model, ``x ~ exp(s t)``.
 
     Parameters
@@ -297,5 +323,4 @@ def eigenvalues(model: str | LinearModel, *, q: Any, fr_inv: Any, sigma: Any,
     >>> s.shape
     (3,)
     """
-    return spectrum(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu,
-                    method=method).eigenvalues
+    return spectrum(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu, method=method).eigenvalues

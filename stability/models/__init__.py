@@ -20,11 +20,11 @@ import warnings
 
 from .base import LinearModel
 from .fixed_pivot import FixedPivot
-from .rolling_eq8 import RollingEq8
 from .rolling import Rolling
+from .rolling_eq8 import RollingEq8
 from .sliding import Sliding
 
-__all__ = ["LinearModel", "MODELS", "DEPRECATED_NAMES", "get_model"]
+__all__ = ["DEPRECATED_NAMES", "MODELS", "LinearModel", "get_model"]
 
 #: name -> model instance
 MODELS: dict[str, LinearModel] = {m.name: m for m in (FixedPivot(), Rolling(), RollingEq8(), Sliding())}
@@ -67,15 +67,22 @@ def get_model(model: str | LinearModel, *, warn: bool = True) -> LinearModel:
         return model
     if isinstance(model, str) and model in DEPRECATED_NAMES:
         new = DEPRECATED_NAMES[model]
-        warnings.warn(f"model {model!r} is deprecated and will be removed in the next release: it is now "
-                      f"called {new!r} (the rolling top from first principles)", DeprecationWarning,
-                      stacklevel=_caller_stacklevel())
+        warnings.warn(
+            f"model {model!r} is deprecated and will be removed in the next release: it is now "
+            f"called {new!r} (the rolling top from first principles)",
+            DeprecationWarning,
+            stacklevel=_caller_stacklevel(),
+        )
         return MODELS[new]
     if not isinstance(model, str) or model not in MODELS:
         raise ValueError(f"model = {model!r} is not a known model; choose one of {', '.join(MODELS)}")
     if model == "rolling" and warn and not _ROLLING_WARNED:
         _ROLLING_WARNED = True
-        warnings.warn("model 'rolling' is now the rolling top from first principles (eqs. 1, 2, 4, 5 "
-                      "linearised); in tippe-stability 0.1.0 it was eq. (8) as printed, which is "
-                      "now 'rolling_eq8'", FutureWarning, stacklevel=_caller_stacklevel())
+        warnings.warn(
+            "model 'rolling' is now the rolling top from first principles (eqs. 1, 2, 4, 5 "
+            "linearised); in tippe-stability 0.1.0 it was eq. (8) as printed, which is "
+            "now 'rolling_eq8'",
+            FutureWarning,
+            stacklevel=_caller_stacklevel(),
+        )
     return MODELS[model]

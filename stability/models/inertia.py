@@ -28,7 +28,7 @@ import numpy as np
 
 from stability.jit import register_jitable
 
-__all__ = ["two_product", "inertia_g", "inertia_contact", "transverse_inertia_g", "transverse_inertia_contact"]
+__all__ = ["inertia_contact", "inertia_g", "transverse_inertia_contact", "transverse_inertia_g", "two_product"]
 
 _SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp)
 

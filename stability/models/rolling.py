@@ -48,8 +48,7 @@ class Rolling(LinearModel):
 
     def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
         """``A_C``, the gyroscopic coefficient ``gamma`` and the stiffness ``kappa``."""
-        q, fr_inv, sigma, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
+        q, fr_inv, sigma, mu = np.broadcast_arrays(*(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
         a_c = contact_transverse_inertia(q, mu)
         return {"A_C": a_c, "gamma": (sigma + mu * (1.0 + q)) / a_c, "kappa": mu * fr_inv * q / a_c}
 

@@ -25,10 +25,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .inertia import transverse_inertia_contact
 from .base import LinearModel
+from .inertia import transverse_inertia_contact
 
-__all__ = ["SecondOrderTop", "contact_transverse_inertia", "gyroscopic_state_form", "gyroscopic_coefficients"]
+__all__ = ["SecondOrderTop", "contact_transverse_inertia", "gyroscopic_coefficients", "gyroscopic_state_form"]
 
 
 #: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.models.inertia)

@@ -97,10 +97,16 @@ def coefficient_parts(q, fr_inv, sigma, alpha_v, mu):
     """
     a_g = inertia_g(q, mu)
     a_c = inertia_contact(q, mu, a_g)
-    return (mu * a_g, 0.0,
-            alpha_v * a_c, -(mu * sigma),
-            -mu * mu * q * fr_inv, -(alpha_v * (sigma + mu * (1.0 + q))),
-            -mu * alpha_v * q * fr_inv, 0.0)
+    return (
+        mu * a_g,
+        0.0,
+        alpha_v * a_c,
+        -(mu * sigma),
+        -mu * mu * q * fr_inv,
+        -(alpha_v * (sigma + mu * (1.0 + q))),
+        -mu * alpha_v * q * fr_inv,
+        0.0,
+    )
 
 
 @register_jitable
@@ -108,22 +114,46 @@ def derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
     """Exact derivatives of :func:`coefficient_parts` by parameter ``k`` (0 ``q``, 1 ``fr_inv``,
     2 ``sigma``, 3 ``alpha_v``, 4 ``mu``; module docstring), in the same layout."""
     if k == 0:
-        return (-2.0 * mu * mu * q, 0.0, 2.0 * mu * alpha_v, 0.0,
-                -mu * mu * fr_inv, -alpha_v * mu, -mu * alpha_v * fr_inv, 0.0)
+        return (
+            -2.0 * mu * mu * q,
+            0.0,
+            2.0 * mu * alpha_v,
+            0.0,
+            -mu * mu * fr_inv,
+            -alpha_v * mu,
+            -mu * alpha_v * fr_inv,
+            0.0,
+        )
     if k == 1:
         return (0.0, 0.0, 0.0, 0.0, -mu * mu * q, 0.0, -mu * alpha_v * q, 0.0)
     if k == 2:
         return (0.0, 0.0, 0.0, -mu, 0.0, -alpha_v, 0.0, 0.0)
     if k == 3:
-        return (0.0, 0.0, inertia_contact(q, mu, inertia_g(q, mu)), 0.0,
-                0.0, -(sigma + mu * (1.0 + q)), -mu * q * fr_inv, 0.0)
-    return (1.0 - 2.0 * mu * q * q, 0.0, alpha_v * (1.0 + 2.0 * q), -sigma,
-            -2.0 * mu * q * fr_inv, -alpha_v * (1.0 + q), -alpha_v * q * fr_inv, 0.0)
+        return (
+            0.0,
+            0.0,
+            inertia_contact(q, mu, inertia_g(q, mu)),
+            0.0,
+            0.0,
+            -(sigma + mu * (1.0 + q)),
+            -mu * q * fr_inv,
+            0.0,
+        )
+    return (
+        1.0 - 2.0 * mu * q * q,
+        0.0,
+        alpha_v * (1.0 + 2.0 * q),
+        -sigma,
+        -2.0 * mu * q * fr_inv,
+        -alpha_v * (1.0 + q),
+        -alpha_v * q * fr_inv,
+        0.0,
+    )
 
 
-def scalar_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float,
-                        derivatives: bool = True, which=None
-                        ) -> tuple[list[complex], dict[str, list[complex]] | None]:
+def scalar_coefficients(
+    q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float, derivatives: bool = True, which=None
+) -> tuple[list[complex], dict[str, list[complex]] | None]:
     """Eq. (11)'s coefficients at one point as Python complex numbers, and their derivatives.
 
     The Python-float engine of :func:`coefficient_parts` and :func:`derivative_parts` (the same
@@ -189,7 +219,8 @@ class Sliding(LinearModel):
     def matrices(self, *, q, fr_inv, sigma, alpha_v, mu):
         """``M`` and ``A`` of eq. (11)."""
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu)))
+            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
+        )
         A = np.zeros(q.shape + (3, 3), dtype=complex)
         A[..., 0, 0] = -alpha_v + 1j * (sigma - 1)
         A[..., 0, 1] = 1j * (-(sigma - 1) + mu * q * fr_inv)
@@ -204,7 +235,8 @@ class Sliding(LinearModel):
     def coefficients(self, *, q, fr_inv, sigma, alpha_v, mu):
         """``mu det(s M - A)``, highest power first (:func:`coefficient_parts` on arrays)."""
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu)))
+            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
+        )
         parts = coefficient_parts(q, fr_inv, sigma, alpha_v, mu)
         c = np.empty(q.shape + (4,), dtype=complex)
         for j in range(4):

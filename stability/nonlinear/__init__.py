@@ -28,11 +28,10 @@ without a cycle.
 from __future__ import annotations
 
 import importlib
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
-from typing import Callable
 
-__all__ = ["NonlinearModel", "NONLINEAR_MODELS", "get_nonlinear_model"]
+__all__ = ["NONLINEAR_MODELS", "NonlinearModel", "get_nonlinear_model"]
 
 
 @dataclass(frozen=True)
@@ -77,12 +76,27 @@ class NonlinearModel:
 #: name -> (module, equations, parameters, transverse index pairs, linear model): what the registry
 #: knows before the model's compiled module is imported (:class:`NonlinearModel`)
 _MODELS: dict[str, tuple[str, str, tuple[str, ...], tuple[tuple[int, int], ...], str]] = {
-    "sliding": ("sliding", "(1), (2), (4), (5), (7)/(16)", ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
-                ((0, 1), (3, 4), (6, 7)), "sliding"),
-    "rolling": ("rolling", "(1), (2), (4), (5) with V_c = 0", ("q", "fr_inv", "sigma", "mu"), ((0, 1), (3, 4)),
-                "rolling"),
-    "fixed_pivot": ("fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", ("q", "fr_inv", "sigma", "mu"),
-                    ((0, 1), (3, 4)), "fixed_pivot"),
+    "sliding": (
+        "sliding",
+        "(1), (2), (4), (5), (7)/(16)",
+        ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
+        ((0, 1), (3, 4), (6, 7)),
+        "sliding",
+    ),
+    "rolling": (
+        "rolling",
+        "(1), (2), (4), (5) with V_c = 0",
+        ("q", "fr_inv", "sigma", "mu"),
+        ((0, 1), (3, 4)),
+        "rolling",
+    ),
+    "fixed_pivot": (
+        "fixed_pivot",
+        "(2), (4) about the pivot; (8)-(9) with h = 1 + q",
+        ("q", "fr_inv", "sigma", "mu"),
+        ((0, 1), (3, 4)),
+        "fixed_pivot",
+    ),
 }
 
 
@@ -97,8 +111,9 @@ class _Registry(Mapping[str, NonlinearModel]):
         if name not in self._built:
             module, equations, parameters, transverse, linear_model = _MODELS[name]
             mod = importlib.import_module(f"{__name__}.{module}")
-            self._built[name] = NonlinearModel(name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters,
-                                               transverse, linear_model)
+            self._built[name] = NonlinearModel(
+                name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters, transverse, linear_model
+            )
         return self._built[name]
 
     def __iter__(self) -> Iterator[str]:
@@ -124,6 +139,5 @@ def get_nonlinear_model(model: str) -> NonlinearModel:
         If there is no such model; the message lists the names.
     """
     if not isinstance(model, str) or model not in NONLINEAR_MODELS:
-        raise ValueError(f"model = {model!r} is not a nonlinear model; choose one of "
-                         f"{', '.join(NONLINEAR_MODELS)}")
+        raise ValueError(f"model = {model!r} is not a nonlinear model; choose one of {', '.join(NONLINEAR_MODELS)}")
     return NONLINEAR_MODELS[model]

@@ -47,12 +47,15 @@ def check_on_contact_loss(value: str) -> str:
         An unknown value, or ``"continue"``.
     """
     if value not in ON_CONTACT_LOSS:
-        raise InputError(f"on_contact_loss = {value!r} is not known; choose one of "
-                         f"{', '.join(map(repr, ON_CONTACT_LOSS))}")
+        raise InputError(
+            f"on_contact_loss = {value!r} is not known; choose one of {', '.join(map(repr, ON_CONTACT_LOSS))}"
+        )
     if value == "continue":
-        raise InputError("on_contact_loss = 'continue' is not available: it needs a flight phase "
-                         "(free fall of the rigid body with its spin, the height of O as a new state) "
-                         "and a landing impact law (e.g. Newton's restitution at the contact point), "
-                         "neither of which is built yet; use on_contact_loss = 'stop' (the default), "
-                         "which ends the run where the normal force reaches zero")
+        raise InputError(
+            "on_contact_loss = 'continue' is not available: it needs a flight phase "
+            "(free fall of the rigid body with its spin, the height of O as a new state) "
+            "and a landing impact law (e.g. Newton's restitution at the contact point), "
+            "neither of which is built yet; use on_contact_loss = 'stop' (the default), "
+            "which ends the run where the normal force reaches zero"
+        )
     return value

@@ -18,12 +18,13 @@ Linearisation: ``A_C Phi'' - i sigma Phi' - mu fr_inv (1 + q) Phi = 0``, eq. (8)
 from __future__ import annotations
 
 import numpy as np
+
 from stability.jit import njit
 
+from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
-from .parameters import FR_INV, MU, Q, SIGMA
 
-__all__ = ["STATE", "rhs", "contact_forces"]
+__all__ = ["STATE", "contact_forces", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3")

@@ -27,10 +27,11 @@ when the slip actually comes near zero.
 
 from __future__ import annotations
 
-from stability.jit import njit
 import numpy as np
 
-__all__ = ["FRICTION_LAWS", "NORMAL_FORCE", "DEFAULT_SLIP_SCALE", "traction"]
+from stability.jit import njit
+
+__all__ = ["DEFAULT_SLIP_SCALE", "FRICTION_LAWS", "NORMAL_FORCE", "traction"]
 
 #: names of the Coulomb laws, in the code used by the compiled kernels
 FRICTION_LAWS: dict[str, int] = {"isotropic": 0, "componentwise": 1}

@@ -32,20 +32,29 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from stability.jit import njit
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 from scipy.optimize import brentq
 
-from stability.jit import Compiled
+from stability.jit import Compiled, njit
 
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint
-from .kernels import CODES, rhs as _model_rhs
+from .kernels import CODES
+from .kernels import rhs as _model_rhs
 from .parameters import FR_INV, MU, Q
 from .vectors import cross
 
-__all__ = ["Solution", "integrate", "dopri5", "rk4", "dopri5_slice", "rk4_slice", "COMPILED_METHODS",
-           "SCIPY_METHODS", "SLICE_STEPS"]
+__all__ = [
+    "COMPILED_METHODS",
+    "SCIPY_METHODS",
+    "SLICE_STEPS",
+    "Solution",
+    "dopri5",
+    "dopri5_slice",
+    "integrate",
+    "rk4",
+    "rk4_slice",
+]
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
@@ -53,29 +62,38 @@ METHODS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": 
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
-_A = np.array([
-    [0, 0, 0, 0, 0],
-    [1 / 5, 0, 0, 0, 0],
-    [3 / 40, 9 / 40, 0, 0, 0],
-    [44 / 45, -56 / 15, 32 / 9, 0, 0],
-    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
-    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+_A = np.array(
+    [
+        [0, 0, 0, 0, 0],
+        [1 / 5, 0, 0, 0, 0],
+        [3 / 40, 9 / 40, 0, 0, 0],
+        [44 / 45, -56 / 15, 32 / 9, 0, 0],
+        [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
+        [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+    ]
+)
 _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
 _E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
-_P = np.array([
-    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
-    [0, 0, 0, 0],
-    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
-    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
-    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
-    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
-    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+_P = np.array(
+    [
+        [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+        [0, 0, 0, 0],
+        [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+        [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+        [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+        [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+        [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
+    ]
+)
 
 #: status codes of the compiled integrators
 SUCCESS, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE = 0, -1, -2, -3
-STATUS_MESSAGES = {SUCCESS: "success", MAX_STEPS: "maximum number of steps reached",
-                   STEP_TOO_SMALL: "step size fell below the round-off level",
-                   NOT_FINITE: "the solution became non-finite"}
+STATUS_MESSAGES = {
+    SUCCESS: "success",
+    MAX_STEPS: "maximum number of steps reached",
+    STEP_TOO_SMALL: "step size fell below the round-off level",
+    NOT_FINITE: "the solution became non-finite",
+}
 
 
 @dataclass(frozen=True)
@@ -440,7 +458,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
                 y[i] = yn[i]
                 k[0, i] = k[6, i]
             naccept += 1
-            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en ** -0.2))
+            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en**-0.2))
             if rejected:
                 fac = min(1.0, fac)
             rejected = False
@@ -448,7 +466,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         else:
             nreject += 1
             rejected = True
-            h *= max(0.2, 0.9 * en ** -0.2)
+            h *= max(0.2, 0.9 * en**-0.2)
     fs[_T] = t
     fs[_H] = h
     cnt[_J] = j
@@ -584,8 +602,21 @@ def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
             return
 
 
-def dopri5(code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget: int = SLICE_STEPS, progress=None,
-           watch: bool = False, c_stick: float = -2.0):
+def dopri5(
+    code,
+    y0,
+    t_eval,
+    p,
+    rtol,
+    atol,
+    h_init,
+    max_steps,
+    *,
+    budget: int = SLICE_STEPS,
+    progress=None,
+    watch: bool = False,
+    c_stick: float = -2.0,
+):
     """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
     :func:`dopri5_slice` called in slices of ``budget`` steps.
 
@@ -619,8 +650,9 @@ def _event(cnt, fs, y):
     return int(cnt[_STATUS]), None
 
 
-def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False,
-        c_stick: float = -2.0):
+def rk4(
+    code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False, c_stick: float = -2.0
+):
     """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
     slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status, event)`` (``event``
     as in :func:`dopri5`)."""
@@ -640,13 +672,13 @@ def rk4(code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, wat
     return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, *_event(cnt, fs, y)
 
 
-def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False,
-           c_stick=-2.0):
+def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False, c_stick=-2.0):
     """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
     ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``; an
     interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps. With
     ``watch``, the normal force is checked after every step and the run stops at its first
     zero, located on the step's dense output by Brent's method (as ``solve_ivp``'s events)."""
+
     def fun(t, yy):
         return _model_rhs(code, t, yy, p)
 
@@ -681,8 +713,13 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         t_new = solver.t
         if watch and n_of(t_new, solver.y) <= 0.0:
             dense = solver.dense_output()
-            t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15,
-                          rtol=4 * np.finfo(float).eps)
+            t_ev = brentq(
+                lambda tt, dense=dense: n_of(tt, dense(tt)),
+                solver.t_old,
+                t_new,
+                xtol=1e-15,
+                rtol=4 * np.finfo(float).eps,
+            )
             y_ev = dense(t_ev)
             for _ in range(64):  # the first time N <= 0 (Brent's answer may be just before it)
                 if n_of(t_ev, y_ev) <= 0.0 or t_ev >= t_new:
@@ -714,11 +751,21 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
 COMPILE_SECONDS = 20.0
 
 
-def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
-              method: str = "dopri5", rtol: float = 1e-9, atol: float = 1e-12,
-              step: float | None = None, max_steps: int = 10_000_000,
-              progress: Callable[[float], None] | None = None, watch_contact: bool = False,
-              stick_tilt: float | None = None) -> Solution:
+def integrate(
+    model: str,
+    y0: np.ndarray,
+    t_eval: np.ndarray,
+    p: np.ndarray,
+    *,
+    method: str = "dopri5",
+    rtol: float = 1e-9,
+    atol: float = 1e-12,
+    step: float | None = None,
+    max_steps: int = 10_000_000,
+    progress: Callable[[float], None] | None = None,
+    watch_contact: bool = False,
+    stick_tilt: float | None = None,
+) -> Solution:
     """Integrate a nonlinear model and return its states at ``t_eval``.
 
     Parameters
@@ -763,26 +810,48 @@ def integrate(model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, *,
     if method in COMPILED_METHODS:
         before_compiled_call(Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
     if method == "dopri5":
-        y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, float(rtol), float(atol),
-                                         float(step or 0.0), int(max_steps), progress=progress,
-                                         watch=watch_contact, c_stick=c_stick)
+        y, nfev, na, nr, st, ev = dopri5(
+            code,
+            y0,
+            t_eval,
+            p,
+            float(rtol),
+            float(atol),
+            float(step or 0.0),
+            int(max_steps),
+            progress=progress,
+            watch=watch_contact,
+            c_stick=c_stick,
+        )
     elif method == "rk4":
         if step is None or not step > 0:
             raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact,
-                                      c_stick=c_stick)
+        y, nfev, na, nr, st, ev = rk4(
+            code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact, c_stick=c_stick
+        )
     elif method in SCIPY_METHODS:
-        y, nfev, na, nr, st, ev = _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress,
-                                         watch_contact, c_stick)
+        y, nfev, na, nr, st, ev = _scipy(
+            code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress, watch_contact, c_stick
+        )
     else:
-        raise ValueError(f"method = {method!r} is not known; choose one of "
-                         f"{', '.join(COMPILED_METHODS + SCIPY_METHODS)}")
+        raise ValueError(
+            f"method = {method!r} is not known; choose one of {', '.join(COMPILED_METHODS + SCIPY_METHODS)}"
+        )
     if ev is not None:
         t_ev, y_ev, rows = ev
         rows = rows - 1 if rows > 0 and t_eval[rows - 1] >= t_ev else rows  # an event at an output time
         # which watched quantity reached zero: the stick's gap, or else the normal force
         gap = event_value(y_ev, y_ev, p, 0, c_stick)
         kind = "stick_contact" if gap <= 0.0 else "contact_lost"
-        return Solution(np.append(t_eval[:rows], t_ev), np.vstack([y[:rows], y_ev[None, :]]), int(nfev),
-                        int(na), int(nr), int(st), method, t_ev, kind)
+        return Solution(
+            np.append(t_eval[:rows], t_ev),
+            np.vstack([y[:rows], y_ev[None, :]]),
+            int(nfev),
+            int(na),
+            int(nr),
+            int(st),
+            method,
+            t_ev,
+            kind,
+        )
     return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)

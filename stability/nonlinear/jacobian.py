@@ -22,8 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from . import get_nonlinear_model
 from ..parameters import DEFAULT_MU
+from . import get_nonlinear_model
 
 __all__ = ["jacobian_eigenvalues", "transverse_jacobian", "upright_state"]
 
@@ -39,8 +39,9 @@ def upright_state(model: str) -> np.ndarray:
     return y
 
 
-def transverse_jacobian(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
-                        mu: Any = DEFAULT_MU) -> tuple[np.ndarray, float]:
+def transverse_jacobian(
+    model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU
+) -> tuple[np.ndarray, float]:
     """Complex transverse Jacobian ``A`` at the upright spin, and its departure from C-linearity.
 
     Parameters
@@ -60,8 +61,7 @@ def transverse_jacobian(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v:
     from .runs import model_parameter_vector
 
     m = get_nonlinear_model(model)
-    _, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v,
-                                  alpha_k=0.0, mu=mu)
+    _, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=0.0, mu=mu)
     y0 = upright_state(m.name).astype(complex)
     re = [i for i, _ in m.transverse]
     im = [j for _, j in m.transverse]
@@ -77,8 +77,9 @@ def transverse_jacobian(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v:
     return A, float(np.max(np.abs(J - model_form)))
 
 
-def jacobian_eigenvalues(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
-                         mu: Any = DEFAULT_MU) -> np.ndarray:
+def jacobian_eigenvalues(
+    model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU
+) -> np.ndarray:
     """Eigenvalues of a nonlinear model's Jacobian at the upright spin (transverse variables).
 
     Parameters

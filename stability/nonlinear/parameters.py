@@ -9,12 +9,22 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Q", "FR_INV", "SIGMA", "MU", "ALPHA_V", "ALPHA_K", "EPSILON", "LAW", "NORMAL", "pack"]
+__all__ = ["ALPHA_K", "ALPHA_V", "EPSILON", "FR_INV", "LAW", "MU", "NORMAL", "SIGMA", "Q", "pack"]
 
 Q, FR_INV, SIGMA, MU, ALPHA_V, ALPHA_K, EPSILON, LAW, NORMAL = range(9)
 
 
-def pack(*, q: float, fr_inv: float, sigma: float, mu: float, alpha_v: float = 0.0,
-         alpha_k: float = 0.0, epsilon: float = 1e-4, law: int = 0, normal: int = 0) -> np.ndarray:
+def pack(
+    *,
+    q: float,
+    fr_inv: float,
+    sigma: float,
+    mu: float,
+    alpha_v: float = 0.0,
+    alpha_k: float = 0.0,
+    epsilon: float = 1e-4,
+    law: int = 0,
+    normal: int = 0,
+) -> np.ndarray:
     """Return the parameter vector of the kernels (see module docstring)."""
     return np.array([q, fr_inv, sigma, mu, alpha_v, alpha_k, epsilon, law, normal], dtype=np.float64)

@@ -24,12 +24,20 @@ registered with numba (:func:`centre_velocity`, :func:`energy_terms`) or compile
 from __future__ import annotations
 
 import numpy as np
+
 from stability.jit import njit, register_jitable
 
 from ..models.inertia import inertia_g
 
-__all__ = ["energy_parts", "energy_terms", "h_cg", "jellett_integral", "centre_of_mass_velocity",
-           "centre_velocity", "ENERGY_PARTS"]
+__all__ = [
+    "ENERGY_PARTS",
+    "centre_of_mass_velocity",
+    "centre_velocity",
+    "energy_parts",
+    "energy_terms",
+    "h_cg",
+    "jellett_integral",
+]
 
 #: the names of :func:`energy_parts` (the order of :func:`energy_terms`)
 ENERGY_PARTS = ("kinetic_translational", "kinetic_spin", "kinetic_transverse", "potential", "energy")
@@ -47,8 +55,12 @@ def centre_of_mass_velocity(omega: np.ndarray, k: np.ndarray, v0: np.ndarray, ar
     """``V_G = V0 + arm omega x k`` (arm = q from O, 1 + q from the pivot), shape (n, 3)
     (:func:`centre_velocity` on the columns; ``numpy.cross`` costs ~30 us of set-up on a few rows)."""
     w, kk, v = np.asarray(omega), np.asarray(k), np.asarray(v0)
-    return np.stack(centre_velocity(w[..., 0], w[..., 1], w[..., 2], kk[..., 0], kk[..., 1], kk[..., 2],
-                                    v[..., 0], v[..., 1], v[..., 2], arm), axis=-1)
+    return np.stack(
+        centre_velocity(
+            w[..., 0], w[..., 1], w[..., 2], kk[..., 0], kk[..., 1], kk[..., 2], v[..., 0], v[..., 1], v[..., 2], arm
+        ),
+        axis=-1,
+    )
 
 
 @register_jitable
@@ -67,8 +79,17 @@ def energy_terms(w0, w1, w2, k0, k1, k2, g0, g1, g2, z_g, q, fr_inv, sigma, mu):
     return translational, spin, transverse, potential, ((translational + spin) + transverse) + potential
 
 
-def energy_parts(omega: np.ndarray, k: np.ndarray, v_g: np.ndarray, z_g: np.ndarray, *,
-                 q: float, fr_inv: float, sigma: float, mu: float) -> dict[str, np.ndarray]:
+def energy_parts(
+    omega: np.ndarray,
+    k: np.ndarray,
+    v_g: np.ndarray,
+    z_g: np.ndarray,
+    *,
+    q: float,
+    fr_inv: float,
+    sigma: float,
+    mu: float,
+) -> dict[str, np.ndarray]:
     """Kinetic (translational, spin, transverse) and potential energy, and their sum.
 
     Parameters
@@ -86,8 +107,22 @@ def energy_parts(omega: np.ndarray, k: np.ndarray, v_g: np.ndarray, z_g: np.ndar
         ``energy``.
     """
     w, kk, g = np.asarray(omega), np.asarray(k), np.asarray(v_g)
-    terms = energy_terms(w[:, 0], w[:, 1], w[:, 2], kk[:, 0], kk[:, 1], kk[:, 2], g[:, 0], g[:, 1], g[:, 2],
-                         np.asarray(z_g), q, fr_inv, sigma, mu)
+    terms = energy_terms(
+        w[:, 0],
+        w[:, 1],
+        w[:, 2],
+        kk[:, 0],
+        kk[:, 1],
+        kk[:, 2],
+        g[:, 0],
+        g[:, 1],
+        g[:, 2],
+        np.asarray(z_g),
+        q,
+        fr_inv,
+        sigma,
+        mu,
+    )
     return dict(zip(ENERGY_PARTS, terms))
 
 
@@ -118,5 +153,10 @@ def h_cg(omega: np.ndarray, k: np.ndarray, *, q: float, sigma: float, mu: float)
     omega = np.asarray(omega)
     k = np.asarray(k)
     dtype = np.result_type(omega, k, float)
-    return _h_cg_rows(np.ascontiguousarray(omega, dtype=dtype), np.ascontiguousarray(k, dtype=dtype),
-                      float(q), float(sigma), float(mu))
+    return _h_cg_rows(
+        np.ascontiguousarray(omega, dtype=dtype),
+        np.ascontiguousarray(k, dtype=dtype),
+        float(q),
+        float(sigma),
+        float(mu),
+    )

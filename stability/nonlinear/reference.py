@@ -25,7 +25,7 @@ import numpy as np
 
 from .friction import traction
 
-__all__ = ["sliding_rhs", "rolling_rhs"]
+__all__ = ["rolling_rhs", "sliding_rhs"]
 
 _K = np.array([0.0, 0.0, 1.0])
 _P = np.diag([1.0, 1.0, 0.0])
@@ -36,9 +36,18 @@ def _linear_operator(fun) -> np.ndarray:
     return np.column_stack([fun(e) for e in np.eye(3)])
 
 
-def sliding_rhs(t: float, y: np.ndarray, q: float, fr_inv: float, sigma: float, mu: float,
-                alpha_v: float, alpha_k: float = 0.0, epsilon: float = 1e-4,
-                law: int = 0) -> np.ndarray:
+def sliding_rhs(
+    t: float,
+    y: np.ndarray,
+    q: float,
+    fr_inv: float,
+    sigma: float,
+    mu: float,
+    alpha_v: float,
+    alpha_k: float = 0.0,
+    epsilon: float = 1e-4,
+    law: int = 0,
+) -> np.ndarray:
     """``y'`` of the sliding sphere (state as :data:`stability.nonlinear.sliding.STATE`)."""
     w, k = y[0:3], y[3:6]
     v0 = np.array([y[6], y[7], 0.0])
@@ -47,23 +56,29 @@ def sliding_rhs(t: float, y: np.ndarray, q: float, fr_inv: float, sigma: float, 
     i0 = np.eye(3) + (sigma - 1.0) * np.outer(k, k)
     cen = np.cross(w, np.cross(w, k))
     L = _linear_operator(lambda a: i0 @ a + mu * q * q * np.cross(_P @ np.cross(a, k), k))
-    rhs = (-(sigma - 1.0) * (k @ w) * np.cross(w, k) + q * np.cross(_P @ f, k)
-           - mu * q * q * np.cross(_P @ cen, k) - mu * q * fr_inv * np.cross(k, _K) - np.cross(_K, f))
+    rhs = (
+        -(sigma - 1.0) * (k @ w) * np.cross(w, k)
+        + q * np.cross(_P @ f, k)
+        - mu * q * q * np.cross(_P @ cen, k)
+        - mu * q * fr_inv * np.cross(k, _K)
+        - np.cross(_K, f)
+    )
     wd = np.linalg.solve(L, rhs)
     vd = _P @ (f / mu - q * (np.cross(wd, k) + cen))
     return np.concatenate([wd, np.cross(w, k), vd[:2], v0[:2]])
 
 
-def rolling_rhs(t: float, y: np.ndarray, q: float, fr_inv: float, sigma: float,
-                mu: float) -> np.ndarray:
+def rolling_rhs(t: float, y: np.ndarray, q: float, fr_inv: float, sigma: float, mu: float) -> np.ndarray:
     """``y'`` of the rolling sphere (state as :data:`stability.nonlinear.rolling.STATE`)."""
     w, k = y[0:3], y[3:6]
     i0 = np.eye(3) + (sigma - 1.0) * np.outer(k, k)
     cen = np.cross(w, np.cross(w, k))
-    L = _linear_operator(lambda a: i0 @ a + mu * q * np.cross(np.cross(_K, a), k)
-                         + mu * np.cross(_K, -np.cross(_K, a) + q * np.cross(a, k)))
-    rhs = (-(sigma - 1.0) * (k @ w) * np.cross(w, k) - mu * q * fr_inv * np.cross(k, _K)
-           - mu * q * np.cross(_K, cen))
+    L = _linear_operator(
+        lambda a: (
+            i0 @ a + mu * q * np.cross(np.cross(_K, a), k) + mu * np.cross(_K, -np.cross(_K, a) + q * np.cross(a, k))
+        )
+    )
+    rhs = -(sigma - 1.0) * (k @ w) * np.cross(w, k) - mu * q * fr_inv * np.cross(k, _K) - mu * q * np.cross(_K, cen)
     wd = np.linalg.solve(L, rhs)
     v0 = -np.cross(_K, w)
     return np.concatenate([wd, np.cross(w, k), v0[:2]])

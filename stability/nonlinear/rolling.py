@@ -26,14 +26,14 @@ has the gyroscopic coefficient ``sigma`` instead of ``sigma + mu (1 + q)``.
 from __future__ import annotations
 
 import numpy as np
-from stability.jit import njit
 
 from continuation.compiled import solve_dense
+from stability.jit import njit
 
+from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
-from .parameters import FR_INV, MU, Q, SIGMA
 
-__all__ = ["STATE", "rhs", "contact_forces"]
+__all__ = ["STATE", "contact_forces", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")

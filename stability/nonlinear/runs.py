@@ -23,20 +23,29 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
+from ..errors import InputError
 from ..interrupts import deferred
+from ..parameters import (
+    COMPUTABLE_MAX,
+    DEFAULT_MU,
+    LONG_NAMES,
+    as_parameter,
+    check_choice,
+    check_domain,
+    check_integer,
+    check_interval,
+    check_positive,
+)
 from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
-from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from ..errors import InputError
 from .contact import check_on_contact_loss
+from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
-from ..parameters import (COMPUTABLE_MAX, DEFAULT_MU, LONG_NAMES, as_parameter, check_choice, check_domain,
-                         check_integer, check_interval, check_positive)
 
-__all__ = ["simulate", "STIFF_RATE", "initial_state", "model_parameter_vector", "check_run_memory"]
+__all__ = ["STIFF_RATE", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA: where the measured costs of
 #: the compiled dopri5 (held to steps ~3.3 / rate by stability) and of LSODA cross, below which
@@ -53,8 +62,11 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
     # fast paths (a state vector is checked on every final_state / simulate call; the general
     # path costs ~15 us): a tuple or list of plain numbers, or a 1-D float64 array, that passes
     # every test below (NaN fails the range) and comes out as the same doubles
-    if type(value) in (tuple, list) and len(value) in n and all(
-            type(x) in _PLAIN_COMPONENT and -COMPUTABLE_MAX <= x <= COMPUTABLE_MAX for x in value):
+    if (
+        type(value) in (tuple, list)
+        and len(value) in n
+        and all(type(x) in _PLAIN_COMPONENT and -COMPUTABLE_MAX <= x <= COMPUTABLE_MAX for x in value)
+    ):
         return np.array(value, dtype=float)
     if type(value) is np.ndarray and value.dtype == np.float64 and value.ndim == 1 and value.size in n:
         arr = value.copy()
@@ -63,18 +75,30 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
     sizes = " or ".join(map(str, n))
     arr = as_parameter(name, value)  # type, emptiness and finiteness, with the standard messages
     if arr.ndim != 1 or arr.size not in n:
-        raise ValueError(f"{name} = {value!r:.60} has shape {arr.shape}; {name} must be a vector of "
-                         f"{sizes} components (fixed frame I, J, K)")
+        raise ValueError(
+            f"{name} = {value!r:.60} has shape {arr.shape}; {name} must be a vector of "
+            f"{sizes} components (fixed frame I, J, K)"
+        )
     if np.max(np.abs(arr)) > COMPUTABLE_MAX:
-        raise ValueError(f"{name} = {value!r:.60} is outside the computable range: every |component| <= "
-                         f"{COMPUTABLE_MAX:g}")
+        raise ValueError(
+            f"{name} = {value!r:.60} is outside the computable range: every |component| <= {COMPUTABLE_MAX:g}"
+        )
     return arr
 
 
-def model_parameter_vector(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
-                           alpha_k: Any = 0.0, mu: Any = DEFAULT_MU, friction: str = "isotropic",
-                           normal: str = "equilibrium",
-                           slip_scale: float = DEFAULT_SLIP_SCALE) -> tuple[dict[str, float], np.ndarray]:
+def model_parameter_vector(
+    model: str,
+    *,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    alpha_k: Any = 0.0,
+    mu: Any = DEFAULT_MU,
+    friction: str = "isotropic",
+    normal: str = "equilibrium",
+    slip_scale: float = DEFAULT_SLIP_SCALE,
+) -> tuple[dict[str, float], np.ndarray]:
     """Check the physical parameters of a nonlinear model and pack them for the kernels.
 
     Returns
@@ -107,17 +131,25 @@ def model_parameter_vector(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha
     check_choice("friction", friction, FRICTION_LAWS)
     check_choice("normal", normal, NORMAL_FORCE)
     if normal == "actual" and params["fr_inv"] == 0.0:
-        raise ValueError("normal = 'actual' needs fr_inv > 0 (friction proportional to "
-                         "N(t) / (mu fr_inv)); got fr_inv = 0")
+        raise ValueError(
+            "normal = 'actual' needs fr_inv > 0 (friction proportional to N(t) / (mu fr_inv)); got fr_inv = 0"
+        )
     slip_scale = check_positive("slip_scale", slip_scale)
-    vec = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"],
-               alpha_v=params.get("alpha_v", 0.0), alpha_k=params.get("alpha_k", 0.0),
-               epsilon=float(slip_scale), law=FRICTION_LAWS[friction], normal=NORMAL_FORCE[normal])
+    vec = pack(
+        q=params["q"],
+        fr_inv=params["fr_inv"],
+        sigma=params["sigma"],
+        mu=params["mu"],
+        alpha_v=params.get("alpha_v", 0.0),
+        alpha_k=params.get("alpha_k", 0.0),
+        epsilon=float(slip_scale),
+        law=FRICTION_LAWS[friction],
+        normal=NORMAL_FORCE[normal],
+    )
     return params, vec
 
 
-def initial_state(model: str, omega: Any, k: Any, velocity: Any = None,
-                  position: Any = None) -> np.ndarray:
+def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position: Any = None) -> np.ndarray:
     """Initial state vector of a model from ``omega``, ``k`` and (sliding) the centre velocity.
 
     ``k`` is normalised (the paper's printed initial conditions have ``|k|`` off 1 in the
@@ -130,21 +162,22 @@ def initial_state(model: str, omega: Any, k: Any, velocity: Any = None,
     kv = _vector("k", k, (3,))
     nk = float(np.linalg.norm(kv))
     if abs(nk - 1.0) > 1e-2:
-        raise ValueError(f"k = {k!r} has length {nk:.6g}; k is the unit symmetry axis "
-                         "(|k| must be within 1 % of 1)")
+        raise ValueError(f"k = {k!r} has length {nk:.6g}; k is the unit symmetry axis (|k| must be within 1 % of 1)")
     kv = kv / nk
     parts = [w, kv]
     if m.name == "sliding":
         v = np.zeros(2) if velocity is None else _vector("velocity", velocity, (2, 3))
         if v.size == 3:
             if abs(v[2]) > 1e-12:
-                raise ValueError(f"velocity = {velocity!r}: the vertical component must be 0 "
-                                 "(the centre stays at height R)")
+                raise ValueError(
+                    f"velocity = {velocity!r}: the vertical component must be 0 (the centre stays at height R)"
+                )
             v = v[:2]
         parts.append(v)
     elif velocity is not None:
-        raise ValueError(f"velocity = {velocity!r}: model {m.name!r} determines the centre's "
-                         "velocity from the rotation; give none")
+        raise ValueError(
+            f"velocity = {velocity!r}: model {m.name!r} determines the centre's velocity from the rotation; give none"
+        )
     if m.has_translation:
         parts.append(np.zeros(2) if position is None else _vector("position", position, (2,)))
     return np.concatenate(parts)
@@ -176,8 +209,10 @@ def check_run_memory(model: str, n_times: int, *, t_end: float, dt: float | None
         suggestion = float(f"{t_end / fit:.2g}")
         while t_end / suggestion + 1 > fit:
             suggestion *= 1.25
-        way_out = (f"give a larger dt (dt = {suggestion:.2g} gives {int(np.ceil(t_end / suggestion)) + 1} output "
-                   "times), or a shorter t_end and continue from the run's last state")
+        way_out = (
+            f"give a larger dt (dt = {suggestion:.2g} gives {int(np.ceil(t_end / suggestion)) + 1} output "
+            "times), or a shorter t_end and continue from the run's last state"
+        )
     else:
         what = f"simulate: {n_times} output times (t_eval)"
         parameter = "the length of t_eval"
@@ -185,8 +220,9 @@ def check_run_memory(model: str, n_times: int, *, t_end: float, dt: float | None
     check_memory(need, what=what, parameter=parameter, way_out=way_out)
 
 
-def _progress(how: bool | Callable[[float], None], t_end: float) -> tuple[Callable[[float], None] | None,
-                                                                           Callable[[], None]]:
+def _progress(
+    how: bool | Callable[[float], None], t_end: float
+) -> tuple[Callable[[float], None] | None, Callable[[], None]]:
     """``(report(t), close())``: a tqdm bar over the time (True), the caller's function, or nothing."""
     if callable(how):
         return how, lambda: None
@@ -194,8 +230,14 @@ def _progress(how: bool | Callable[[float], None], t_end: float) -> tuple[Callab
         return None, lambda: None
     from tqdm import tqdm
 
-    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False, delay=1.0,
-               bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]")
+    bar = tqdm(
+        total=t_end,
+        unit="t",
+        desc="simulate",
+        leave=False,
+        delay=1.0,
+        bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]",
+    )
 
     def report(t: float) -> None:
         bar.update(max(0.0, min(t_end, float(t)) - bar.n))
@@ -207,13 +249,33 @@ def _attrs(long_name: str, units: str = _ONE, **extra: str) -> dict[str, str]:
     return {"long_name": long_name, "units": units, **extra}
 
 
-def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = None,
-             q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, alpha_k: Any = 0.0,
-             mu: Any = DEFAULT_MU, friction: str = "isotropic", normal: str = "equilibrium",
-             slip_scale: float = DEFAULT_SLIP_SCALE, method: str = "auto", rtol: float = 1e-9,
-             atol: float = 1e-12, dt: float = 0.1, t_eval: Any = None, step: float | None = None,
-             max_steps: int = 50_000_000, progress: bool | Callable[[float], None] = False,
-             on_contact_loss: str = "stop", stick_tilt: float | None = None) -> xr.Dataset:
+def simulate(
+    model: str,
+    *,
+    t_end: float,
+    omega: Any,
+    k: Any,
+    velocity: Any = None,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    alpha_k: Any = 0.0,
+    mu: Any = DEFAULT_MU,
+    friction: str = "isotropic",
+    normal: str = "equilibrium",
+    slip_scale: float = DEFAULT_SLIP_SCALE,
+    method: str = "auto",
+    rtol: float = 1e-9,
+    atol: float = 1e-12,
+    dt: float = 0.1,
+    t_eval: Any = None,
+    step: float | None = None,
+    max_steps: int = 50_000_000,
+    progress: bool | Callable[[float], None] = False,
+    on_contact_loss: str = "stop",
+    stick_tilt: float | None = None,
+) -> xr.Dataset:
     """Integrate a nonlinear model of the top from a given state.
 
     Parameters
@@ -304,9 +366,18 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     True
     """
     m = get_nonlinear_model(model)
-    params, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v,
-                                       alpha_k=alpha_k, mu=mu, friction=friction, normal=normal,
-                                       slip_scale=slip_scale)
+    params, p = model_parameter_vector(
+        m.name,
+        q=q,
+        fr_inv=fr_inv,
+        sigma=sigma,
+        alpha_v=alpha_v,
+        alpha_k=alpha_k,
+        mu=mu,
+        friction=friction,
+        normal=normal,
+        slip_scale=slip_scale,
+    )
     t_end = check_positive("t_end", t_end)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     atol = check_interval("atol", atol, 0.0, 1.0)
@@ -317,14 +388,21 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
         dt = check_positive("dt", dt)
         n = int(np.ceil(t_end / dt - 1e-9))
         if n > 10**8:
-            raise ValueError(f"dt = {dt:.6g} gives {n} output times up to t_end = {t_end:.6g}; "
-                             "the allowed range is t_end / dt <= 1e8")
+            raise ValueError(
+                f"dt = {dt:.6g} gives {n} output times up to t_end = {t_end:.6g}; "
+                "the allowed range is t_end / dt <= 1e8"
+            )
         check_run_memory(m.name, n + 1, t_end=t_end, dt=dt)
         t_eval = np.linspace(0.0, float(t_end), n + 1)
     else:
         t_eval = as_parameter("t_eval", t_eval)
-        if (t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0 or np.any(np.diff(t_eval) <= 0)
-                or not np.isclose(t_eval[-1], t_end)):
+        if (
+            t_eval.ndim != 1
+            or t_eval.size < 2
+            or t_eval[0] != 0.0
+            or np.any(np.diff(t_eval) <= 0)
+            or not np.isclose(t_eval[-1], t_end)
+        ):
             raise ValueError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
         check_run_memory(m.name, t_eval.size, t_end=t_end, dt=None)
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
@@ -342,26 +420,49 @@ def simulate(model: str, *, t_end: float, omega: Any, k: Any, velocity: Any = No
     watched = m.has_translation and params["fr_inv"] > 0.0
     try:
         with deferred():
-            sol = integrate(m.name, y0, t_eval, p, method=method, rtol=rtol, atol=atol, step=step,
-                            max_steps=max_steps, progress=report, watch_contact=watched,
-                            stick_tilt=stick_tilt)
+            sol = integrate(
+                m.name,
+                y0,
+                t_eval,
+                p,
+                method=method,
+                rtol=rtol,
+                atol=atol,
+                step=step,
+                max_steps=max_steps,
+                progress=report,
+                watch_contact=watched,
+                stick_tilt=stick_tilt,
+            )
     finally:
         close()
     if sol.status < 0:
-        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning,
-                      stacklevel=2)
+        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning, stacklevel=2)
     ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
-    ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss,
-                    contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
-    ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept,
-                    nreject=sol.nreject, status=sol.status, message=sol.message,
-                    friction_law=friction if m.name == "sliding" else "none (constraint force)",
-                    normal_force_scaling=normal, slip_scale=float(slip_scale))
+    ds.attrs.update(
+        event=sol.event,
+        event_time=sol.event_time,
+        on_contact_loss=on_contact_loss,
+        contact_watched=int(watched),
+        stick_tilt=float("nan") if stick_tilt is None else stick_tilt,
+    )
+    ds.attrs.update(
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        nfev=sol.nfev,
+        naccept=sol.naccept,
+        nreject=sol.nreject,
+        status=sol.status,
+        message=sol.message,
+        friction_law=friction if m.name == "sliding" else "none (constraint force)",
+        normal_force_scaling=normal,
+        slip_scale=float(slip_scale),
+    )
     return ds
 
 
-def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[str, float],
-                       p: np.ndarray) -> xr.Dataset:
+def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[str, float], p: np.ndarray) -> xr.Dataset:
     """Build the output Dataset of :func:`simulate` from the states of a run."""
     m = get_nonlinear_model(model)
     q, fr_inv, sigma, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
@@ -372,28 +473,40 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
     forces = np.full((n, 3), np.nan)
     if good.any():
         forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
-    comp = {"long_name": "component",
-            "comment": "component along I, J, K of the fixed frame F_a (K up)"}
+    comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
-    coords = {"time": ("time", t, _attrs("time", "1/Omega", axis="T",
-                                          comment="in units of 1/Omega; one spin period is 2 pi")),
-              "axis": ("axis", np.array([1, 2, 3]), comp)}
+    coords = {
+        "time": (
+            "time",
+            t,
+            _attrs("time", "1/Omega", axis="T", comment="in units of 1/Omega; one spin period is 2 pi"),
+        ),
+        "axis": ("axis", np.array([1, 2, 3]), comp),
+    }
     data: dict[str, tuple] = {
-        "omega": (("time", "axis"), omega, _attrs("angular velocity", "Omega",
-                                                  comment="in units of the spin rate Omega")),
+        "omega": (
+            ("time", "axis"),
+            omega,
+            _attrs("angular velocity", "Omega", comment="in units of the spin rate Omega"),
+        ),
         "k": (("time", "axis"), k, _attrs("symmetry axis k", _ONE, comment="unit vector along the symmetry axis")),
     }
     wk = np.einsum("ij,ij->i", omega, k)
     kn = np.linalg.norm(k, axis=1)
     with np.errstate(invalid="ignore"):
         polar = np.degrees(np.arccos(np.clip(k[:, 2] / kn, -1.0, 1.0)))
-    data["polar_angle"] = ("time", polar, _attrs("polar angle of k", "degree",
-                                                 comment="angle of k from the upward vertical K"))
+    data["polar_angle"] = (
+        "time",
+        polar,
+        _attrs("polar angle of k", "degree", comment="angle of k from the upward vertical K"),
+    )
     data["spin"] = ("time", wk, _attrs("spin", "Omega", comment="omega . k, in units of the spin rate Omega"))
-    data["transverse_rate"] = ("time", np.hypot(omega[:, 0], omega[:, 1]),
-                               _attrs("transverse rate", "Omega",
-                                      comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"))
+    data["transverse_rate"] = (
+        "time",
+        np.hypot(omega[:, 0], omega[:, 1]),
+        _attrs("transverse rate", "Omega", comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"),
+    )
     if m.has_translation:
         if m.name == "sliding":
             v0 = np.column_stack([y[:, 6], y[:, 7], np.zeros(n)])
@@ -403,52 +516,86 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
             x0 = np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
         v_g = v0 + q * np.cross(omega, k)
         z_g = 1.0 + q * k[:, 2]
-        data["velocity"] = (("time", "axis"), v0, _attrs("velocity of O", "Omega R",
-                                                         comment="velocity of the sphere's centre O"))
-        data["position"] = (("time", "axis"), x0, _attrs("position of O", "R",
-                                                         comment="position of the sphere's centre O; the "
-                                                                 "plane is at height 0"))
-        data["momentum"] = (("time", "axis"), mu * v_g, _attrs("momentum mu V_G", _ONE,
-                                                               comment="linear momentum mu V_G"))
-        data["h_cg"] = ("time", h_cg(omega, k, q=q, sigma=sigma, mu=mu),
-                        _attrs("h_cg, eq. (10)", "A0 Omega",
-                               comment="angular momentum about G along r_cg = q k + K, eq. (10)"))
+        data["velocity"] = (
+            ("time", "axis"),
+            v0,
+            _attrs("velocity of O", "Omega R", comment="velocity of the sphere's centre O"),
+        )
+        data["position"] = (
+            ("time", "axis"),
+            x0,
+            _attrs("position of O", "R", comment="position of the sphere's centre O; the plane is at height 0"),
+        )
+        data["momentum"] = (
+            ("time", "axis"),
+            mu * v_g,
+            _attrs("momentum mu V_G", _ONE, comment="linear momentum mu V_G"),
+        )
+        data["h_cg"] = (
+            "time",
+            h_cg(omega, k, q=q, sigma=sigma, mu=mu),
+            _attrs("h_cg, eq. (10)", "A0 Omega", comment="angular momentum about G along r_cg = q k + K, eq. (10)"),
+        )
         slip = np.column_stack([v0[:, 0] - omega[:, 1], v0[:, 1] + omega[:, 0], np.zeros(n)])
-        data["slip_speed"] = ("time", np.linalg.norm(slip, axis=1),
-                              _attrs("slip speed", "Omega R",
-                                     comment="speed of the contact point |V_c|, eq. (5)"))
+        data["slip_speed"] = (
+            "time",
+            np.linalg.norm(slip, axis=1),
+            _attrs("slip speed", "Omega R", comment="speed of the contact point |V_c|, eq. (5)"),
+        )
         f = np.column_stack([forces[:, 0], forces[:, 1], np.zeros(n)])
-        data["friction"] = (("time", "axis"), f, _attrs(
-            "friction force", _ONE, comment="tangential contact force" + (
-                " (friction law)" if m.name == "sliding" else " needed to keep rolling")))
-        data["friction_magnitude"] = ("time", np.hypot(f[:, 0], f[:, 1]),
-                                      _attrs("friction magnitude", _ONE,
-                                             comment="magnitude of the tangential contact force"))
-        data["normal_force"] = ("time", forces[:, 2], _attrs("normal force N", _ONE,
-                                                             comment="normal contact force; equilibrium "
-                                                                     "value mu fr_inv"))
+        data["friction"] = (
+            ("time", "axis"),
+            f,
+            _attrs(
+                "friction force",
+                _ONE,
+                comment="tangential contact force"
+                + (" (friction law)" if m.name == "sliding" else " needed to keep rolling"),
+            ),
+        )
+        data["friction_magnitude"] = (
+            "time",
+            np.hypot(f[:, 0], f[:, 1]),
+            _attrs("friction magnitude", _ONE, comment="magnitude of the tangential contact force"),
+        )
+        data["normal_force"] = (
+            "time",
+            forces[:, 2],
+            _attrs("normal force N", _ONE, comment="normal contact force; equilibrium value mu fr_inv"),
+        )
     else:
         v_g = (1.0 + q) * np.cross(omega, k)
         z_g = (1.0 + q) * k[:, 2]
-        data["reaction"] = (("time", "axis"), forces, _attrs("pivot force", _ONE,
-                                                             comment="force of the pivot on the top"))
+        data["reaction"] = (
+            ("time", "axis"),
+            forces,
+            _attrs("pivot force", _ONE, comment="force of the pivot on the top"),
+        )
         a_c = 1.0 + mu * (1.0 + 2.0 * q)
         l_p = a_c * omega + (sigma - a_c) * wk[:, None] * k
-        data["angular_momentum_vertical"] = ("time", l_p[:, 2], _attrs(
-            "L_z about the pivot", "A0 Omega", comment="vertical angular momentum about the pivot"))
-    names = {"kinetic_translational": ("translational KE", "kinetic energy of translation of G"),
-             "kinetic_spin": ("spin KE", "rotational kinetic energy of the spin about G"),
-             "kinetic_transverse": ("transverse KE", "rotational kinetic energy of the transverse rotation about G"),
-             "potential": ("potential energy", "potential energy mu fr_inv z_G"),
-             "energy": ("energy", "total energy")}
-    for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma,
-                                  mu=mu).items():
+        data["angular_momentum_vertical"] = (
+            "time",
+            l_p[:, 2],
+            _attrs("L_z about the pivot", "A0 Omega", comment="vertical angular momentum about the pivot"),
+        )
+    names = {
+        "kinetic_translational": ("translational KE", "kinetic energy of translation of G"),
+        "kinetic_spin": ("spin KE", "rotational kinetic energy of the spin about G"),
+        "kinetic_transverse": ("transverse KE", "rotational kinetic energy of the transverse rotation about G"),
+        "potential": ("potential energy", "potential energy mu fr_inv z_G"),
+        "energy": ("energy", "total energy"),
+    }
+    for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu).items():
         short, what = names[name]
         data[name] = ("time", val, _attrs(short, "A0 Omega^2", comment=f"{what}, in units of A0 Omega^2"))
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model",
-                    source=f"stability.simulate (tippe-stability {package_version()})", model=m.name,
-                    equations=m.equations)
+    ds.attrs.update(
+        Conventions="CF-1.10",
+        title=f"Tippe top, nonlinear {m.name} model",
+        source=f"stability.simulate (tippe-stability {package_version()})",
+        model=m.name,
+        equations=m.equations,
+    )
     ds.attrs[PRODUCT_ATTR] = "nonlinear_run"
     for name, val in params.items():
         ds.attrs[name] = val

@@ -21,8 +21,15 @@ import xarray as xr
 from ..products import PRODUCT_ATTR
 from .runs import simulate
 
-__all__ = ["PAPER", "INITIAL_CONDITIONS", "FRICTION_CASES", "run", "crossing_time",
-           "scene_numbers", "friction_cases"]
+__all__ = [
+    "FRICTION_CASES",
+    "INITIAL_CONDITIONS",
+    "PAPER",
+    "crossing_time",
+    "friction_cases",
+    "run",
+    "scene_numbers",
+]
 
 #: the paper's parameters of Sec. 3(ii)
 PAPER = dict(q=-0.1, sigma=1.0, mu=2.28)
@@ -40,16 +47,26 @@ FRICTION_CASES: tuple[tuple[float, float], ...] = ((0.0, 0.5), (0.5, 0.5), (0.5,
 PAPER_NUMBERS = {"crossing_periods": {0.3: 78.0, 0.1: 41.0}, "peak_transverse_rate": 0.12}
 
 
-def run(fr_inv: float = 0.3, *, model: str = "sliding", alpha_v: float = 0.5, alpha_k: float = 0.0,
-        t_end: float = 1200.0, dt: float = 0.05, **kw) -> xr.Dataset:
+def run(
+    fr_inv: float = 0.3,
+    *,
+    model: str = "sliding",
+    alpha_v: float = 0.5,
+    alpha_k: float = 0.0,
+    t_end: float = 1200.0,
+    dt: float = 0.05,
+    **kw,
+) -> xr.Dataset:
     """A run of Sec. 3(ii) from the printed initial conditions (``fr_inv`` 0.3 or 0.1).
 
     ``model="rolling"`` starts the rolling sphere from the same ``omega`` and ``k`` (its
     velocity follows from the constraint). Extra keywords go to :func:`stability.simulate`.
     """
     if fr_inv not in INITIAL_CONDITIONS:
-        raise ValueError(f"fr_inv = {fr_inv!r}: the paper gives initial conditions for "
-                         f"{', '.join(map(str, INITIAL_CONDITIONS))} only")
+        raise ValueError(
+            f"fr_inv = {fr_inv!r}: the paper gives initial conditions for "
+            f"{', '.join(map(str, INITIAL_CONDITIONS))} only"
+        )
     ic = dict(INITIAL_CONDITIONS[fr_inv])
     friction = {}
     if model == "sliding":
@@ -88,14 +105,18 @@ def scene_numbers(fr_inv: float = 0.3, **kw) -> dict[str, float]:
     ds = run(fr_inv, **kw)
     wall = time.perf_counter() - t0
     tc = crossing_time(ds)
-    out = {"crossing_periods": tc / (2 * np.pi), "crossing_time": tc,
-           "spin_start": float(ds.spin[0]), "spin_end": float(ds.spin[-1]),
-           "peak_transverse_rate": float(ds.transverse_rate.max()),
-           "transverse_rate_at_crossing": float(ds.transverse_rate.interp(time=tc)),
-           "min_slip_speed_before_crossing": float(ds.slip_speed.sel(time=slice(0, tc)).min()),
-           "min_slip_speed": float(ds.slip_speed.min()),
-           "centre_excursion": float(np.max(np.hypot(ds.position[:, 0], ds.position[:, 1]))),
-           "seconds": wall}
+    out = {
+        "crossing_periods": tc / (2 * np.pi),
+        "crossing_time": tc,
+        "spin_start": float(ds.spin[0]),
+        "spin_end": float(ds.spin[-1]),
+        "peak_transverse_rate": float(ds.transverse_rate.max()),
+        "transverse_rate_at_crossing": float(ds.transverse_rate.interp(time=tc)),
+        "min_slip_speed_before_crossing": float(ds.slip_speed.sel(time=slice(0, tc)).min()),
+        "min_slip_speed": float(ds.slip_speed.min()),
+        "centre_excursion": float(np.max(np.hypot(ds.position[:, 0], ds.position[:, 1]))),
+        "seconds": wall,
+    }
     for part in ("kinetic_translational", "kinetic_spin", "kinetic_transverse", "potential", "energy"):
         out[f"{part}_start"] = float(ds[part][0])
         out[f"{part}_end"] = float(ds[part][-1])
@@ -105,8 +126,9 @@ def scene_numbers(fr_inv: float = 0.3, **kw) -> dict[str, float]:
     return out
 
 
-def friction_cases(fr_inv: float = 0.3, *, t_end: float = 1500.0, scheme: str = "adaptive",
-                   step: float = 0.1) -> xr.Dataset:
+def friction_cases(
+    fr_inv: float = 0.3, *, t_end: float = 1500.0, scheme: str = "adaptive", step: float = 0.1
+) -> xr.Dataset:
     """The four friction cases of Fig. 9(b): crossing time, largest polar angle, slip.
 
     ``scheme="adaptive"`` integrates the regularised law to tolerance (``method="auto"``);
@@ -119,19 +141,43 @@ def friction_cases(fr_inv: float = 0.3, *, t_end: float = 1500.0, scheme: str = 
         if scheme == "fixed_step":
             kw = dict(method="rk4", step=step, friction="componentwise", slip_scale=1e-12)
         ds = run(fr_inv, alpha_v=alpha_v, alpha_k=alpha_k, t_end=t_end, dt=0.5, **kw)
-        rows.append((crossing_time(ds) / (2 * np.pi), float(ds.polar_angle.max()),
-                     float(np.median(ds.slip_speed.values)), float(ds.slip_speed.min())))
+        rows.append(
+            (
+                crossing_time(ds) / (2 * np.pi),
+                float(ds.polar_angle.max()),
+                float(np.median(ds.slip_speed.values)),
+                float(ds.slip_speed.min()),
+            )
+        )
     r = np.array(rows)
     case = np.arange(1, len(FRICTION_CASES) + 1)
     return xr.Dataset(
-        {"crossing_periods": ("case", r[:, 0], {"long_name": "time of the 90-degree crossing", "units": "1",
-                                                 "comment": "in spin periods 2 pi / Omega; NaN if none"}),
-         "max_polar_angle": ("case", r[:, 1], {"long_name": "largest polar angle of k", "units": "degree"}),
-         "median_slip_speed": ("case", r[:, 2], {"long_name": "median sliding speed", "units": "1"}),
-         "min_slip_speed": ("case", r[:, 3], {"long_name": "smallest sliding speed", "units": "1"})},
-        coords={"case": ("case", case, {"long_name": "friction case of Fig. 9(b)", "units": "1"}),
-                "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
-                "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"})},
-        attrs={"Conventions": "CF-1.10", "title": "friction cases of Fig. 9(b)", PRODUCT_ATTR: "friction_cases",
-               "fr_inv": fr_inv,
-               "scheme": scheme, "step": step if scheme == "fixed_step" else 0.0, **PAPER})
+        {
+            "crossing_periods": (
+                "case",
+                r[:, 0],
+                {
+                    "long_name": "time of the 90-degree crossing",
+                    "units": "1",
+                    "comment": "in spin periods 2 pi / Omega; NaN if none",
+                },
+            ),
+            "max_polar_angle": ("case", r[:, 1], {"long_name": "largest polar angle of k", "units": "degree"}),
+            "median_slip_speed": ("case", r[:, 2], {"long_name": "median sliding speed", "units": "1"}),
+            "min_slip_speed": ("case", r[:, 3], {"long_name": "smallest sliding speed", "units": "1"}),
+        },
+        coords={
+            "case": ("case", case, {"long_name": "friction case of Fig. 9(b)", "units": "1"}),
+            "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
+            "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"}),
+        },
+        attrs={
+            "Conventions": "CF-1.10",
+            "title": "friction cases of Fig. 9(b)",
+            PRODUCT_ATTR: "friction_cases",
+            "fr_inv": fr_inv,
+            "scheme": scheme,
+            "step": step if scheme == "fixed_step" else 0.0,
+            **PAPER,
+        },
+    )

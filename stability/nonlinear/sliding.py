@@ -29,15 +29,15 @@ Linearisation about ``omega = k = K`` (spin +1) is eq. (11) (``stability.models.
 from __future__ import annotations
 
 import numpy as np
-from stability.jit import njit
 
 from continuation.compiled import solve_dense
+from stability.jit import njit
 
-from .vectors import cross
 from .friction import traction
-from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q, SIGMA
+from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, SIGMA, Q
+from .vectors import cross
 
-__all__ = ["STATE", "rhs", "contact_forces"]
+__all__ = ["STATE", "contact_forces", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_1", "X_2")
@@ -51,14 +51,14 @@ def _solve(y, p):
     k0, k1, k2 = y[3], y[4], y[5]
     v0, v1 = y[6], y[7]
     kw = k0 * w0 + k1 * w1 + k2 * w2
-    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)                 # omega x k = k'
-    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)                 # omega x (omega x k)
+    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k = k'
+    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
     g1, g2 = traction(v0 - w1, v1 + w0, p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
     a = np.zeros((6, 6), y.dtype)
     b = np.zeros(6, y.dtype)
     s1 = sg - 1.0
     kk = (k0, k1, k2)
-    for i in range(3):                                         # I0 omega'
+    for i in range(3):  # I0 omega'
         a[i, i] = 1.0
         for j in range(3):
             a[i, j] += s1 * kk[i] * kk[j]

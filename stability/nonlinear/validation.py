@@ -55,18 +55,18 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..products import PRODUCT_ATTR
-from .jacobian import transverse_jacobian, upright_state
-from . import get_nonlinear_model
-from .integrators import SCIPY_METHODS
-from ..parameters import DEFAULT_MU, check_domain, parameter_attrs, check_choice, check_interval, check_positive
-from .runs import simulate
 from ..linear.modes import structural_zeros
 from ..linear.roots import UNIT_ROUNDOFF
 from ..linear.spectra import eigenvalues, spectrum
 from ..models import MODELS
+from ..parameters import DEFAULT_MU, check_choice, check_domain, check_interval, check_positive, parameter_attrs
+from ..products import PRODUCT_ATTR
+from . import get_nonlinear_model
+from .integrators import SCIPY_METHODS
+from .jacobian import transverse_jacobian, upright_state
+from .runs import simulate
 
-__all__ = ["validate", "coulomb_growth", "leading_mode", "jacobian_modes", "RESOLVED", "FIT_RMS"]
+__all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "jacobian_modes", "leading_mode", "validate"]
 
 #: a growth rate is compared relatively where |Re s| > RESOLVED |s|
 RESOLVED: float = 1e-3
@@ -134,9 +134,17 @@ def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     return float(g_fit[0]), float(w), rms
 
 
-def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: float,
-               n_periods: float, max_time: float, rtol: float, atol: float,
-               method: str = "auto") -> dict[str, Any]:
+def _one_point(
+    model: str,
+    params: dict[str, float],
+    amplitude: float,
+    n_efold: float,
+    n_periods: float,
+    max_time: float,
+    rtol: float,
+    atol: float,
+    method: str = "auto",
+) -> dict[str, Any]:
     m = get_nonlinear_model(model)
     lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
     # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
@@ -155,7 +163,7 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
         if not np.all(np.isfinite(y)) or not np.any(y):
             break
         x = y / np.linalg.norm(y)
-    v = x / x[1] * amplitude          # |Phi| = amplitude, Phi real at t = 0
+    v = x / x[1] * amplitude  # |Phi| = amplitude, Phi real at t = 0
     # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
     # model since "rolling" is the first-principles one, issue 15): the same mode
     s_lin = s
@@ -171,9 +179,18 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
-        ds = simulate(model, t_end=t_end, t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3],
-                      k=y[3:6], velocity=velocity, rtol=rtol, atol=atol, method=method,
-                      **{k: v for k, v in params.items() if k != "alpha_k"})
+        ds = simulate(
+            model,
+            t_end=t_end,
+            t_eval=np.linspace(0.0, t_end, n_samples),
+            omega=y[0:3],
+            k=y[3:6],
+            velocity=velocity,
+            rtol=rtol,
+            atol=atol,
+            method=method,
+            **{k: v for k, v in params.items() if k != "alpha_k"},
+        )
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
     growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
@@ -181,8 +198,10 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     finite = bool(np.all(np.isfinite(phi)))
     contact_lost = ds.attrs.get("event", "none") != "none"
     if contact_lost:
-        status = (f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the "
-                  "model does not hold beyond)")
+        status = (
+            f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the "
+            "model does not hold beyond)"
+        )
     elif run_status != 0:
         status = f"integration failed ({ds.attrs.get('method')}): {ds.attrs.get('message', run_status)}"
     elif not finite:
@@ -206,14 +225,19 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
     else:
         agrees = bool(abs(g) <= RESOLVED * abs(s))
     return {
-        "predicted_growth_rate": s_lin.real, "predicted_frequency": s_lin.imag,
-        "jacobian_growth_rate": s_jac.real, "jacobian_frequency": s_jac.imag,
-        "jacobian_bound": jac_bound, "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
-        "measured_growth_rate": g, "measured_frequency": w,
+        "predicted_growth_rate": s_lin.real,
+        "predicted_frequency": s_lin.imag,
+        "jacobian_growth_rate": s_jac.real,
+        "jacobian_frequency": s_jac.imag,
+        "jacobian_bound": jac_bound,
+        "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
+        "measured_growth_rate": g,
+        "measured_frequency": w,
         "growth_rate_error": rel(g, s_lin.real, abs(s_lin)) if growth_resolved else abs(g - s_lin.real) / abs(s_lin),
         "frequency_error": rel(w, s_lin.imag, abs(s_lin)),
-        "growth_rate_error_jacobian": (rel(g, s_jac.real, abs(s_jac)) if growth_resolved
-                                       else abs(g - s_jac.real) / abs(s_jac)),
+        "growth_rate_error_jacobian": (
+            rel(g, s_jac.real, abs(s_jac)) if growth_resolved else abs(g - s_jac.real) / abs(s_jac)
+        ),
         "frequency_error_jacobian": rel(w, s_jac.imag, abs(s_jac)),
         "resolved": bool(resolved),
         "sign_agrees": agrees,
@@ -227,37 +251,70 @@ def _one_point(model: str, params: dict[str, float], amplitude: float, n_efold: 
 
 #: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
-    "predicted_growth_rate": ("predicted growth rate", "Omega",
-                              "growth rate Re s of the registered linear operator"),
-    "predicted_frequency": ("predicted frequency", "Omega",
-                            "frequency Im s of the registered linear operator (fixed frame)"),
+    "predicted_growth_rate": ("predicted growth rate", "Omega", "growth rate Re s of the registered linear operator"),
+    "predicted_frequency": (
+        "predicted frequency",
+        "Omega",
+        "frequency Im s of the registered linear operator (fixed frame)",
+    ),
     "jacobian_growth_rate": ("Jacobian growth rate", "Omega", "growth rate Re s of the nonlinear model's Jacobian"),
-    "jacobian_frequency": ("Jacobian frequency", "Omega",
-                           "frequency Im s of the nonlinear model's Jacobian (fixed frame)"),
+    "jacobian_frequency": (
+        "Jacobian frequency",
+        "Omega",
+        "frequency Im s of the nonlinear model's Jacobian (fixed frame)",
+    ),
     "measured_growth_rate": ("measured growth rate", "Omega", "growth rate fitted to log|Phi(t)| of the nonlinear run"),
-    "measured_frequency": ("measured frequency", "Omega", "frequency fitted to the phase of Phi(t) of the nonlinear run"),
-    "growth_rate_error": ("growth error (linear)", "1",
-                          "relative error of the measured growth rate against the linear operator "
-                          "(relative to |s| where the growth rate is not resolved)"),
-    "frequency_error": ("frequency error (linear)", "1",
-                        "relative error of the measured frequency against the linear operator"),
-    "growth_rate_error_jacobian": ("growth error (Jacobian)", "1",
-                                   "relative error of the measured growth rate against the Jacobian "
-                                   "(relative to |s| where the growth rate is not resolved)"),
-    "frequency_error_jacobian": ("frequency error (Jacobian)", "1",
-                                 "relative error of the measured frequency against the Jacobian"),
-    "jacobian_bound": ("Jacobian error bound", "Omega",
-                       "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
-                       "(absolute: ~u of the largest mode)"),
-    "jacobian_resolved": ("Jacobian resolved", None,
-                          "the Jacobian's growth rate exceeds four times its error bound (else compare "
-                          "with predicted_growth_rate, from the spectral kernel)"),
-    "resolved": ("growth resolved", None,
-                 "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
-                 "samples are finite and log|Phi| fits a straight line (see status)"),
-    "sign_agrees": ("sign agrees", None,
-                    "sign of the measured growth rate agrees with the linearisation's (neutral where the "
-                    "growth rate is unresolved; False where the run failed)"),
+    "measured_frequency": (
+        "measured frequency",
+        "Omega",
+        "frequency fitted to the phase of Phi(t) of the nonlinear run",
+    ),
+    "growth_rate_error": (
+        "growth error (linear)",
+        "1",
+        "relative error of the measured growth rate against the linear operator "
+        "(relative to |s| where the growth rate is not resolved)",
+    ),
+    "frequency_error": (
+        "frequency error (linear)",
+        "1",
+        "relative error of the measured frequency against the linear operator",
+    ),
+    "growth_rate_error_jacobian": (
+        "growth error (Jacobian)",
+        "1",
+        "relative error of the measured growth rate against the Jacobian "
+        "(relative to |s| where the growth rate is not resolved)",
+    ),
+    "frequency_error_jacobian": (
+        "frequency error (Jacobian)",
+        "1",
+        "relative error of the measured frequency against the Jacobian",
+    ),
+    "jacobian_bound": (
+        "Jacobian error bound",
+        "Omega",
+        "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
+        "(absolute: ~u of the largest mode)",
+    ),
+    "jacobian_resolved": (
+        "Jacobian resolved",
+        None,
+        "the Jacobian's growth rate exceeds four times its error bound (else compare "
+        "with predicted_growth_rate, from the spectral kernel)",
+    ),
+    "resolved": (
+        "growth resolved",
+        None,
+        "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
+        "samples are finite and log|Phi| fits a straight line (see status)",
+    ),
+    "sign_agrees": (
+        "sign agrees",
+        None,
+        "sign of the measured growth rate agrees with the linearisation's (neutral where the "
+        "growth rate is unresolved; False where the run failed)",
+    ),
     "duration": ("duration", "1/Omega", "length of the run"),
     "final_tilt": ("final tilt |Phi|", "1", "tilt |Phi| at the end of the run"),
     "fit_rms": ("fit RMS residual", "1", "RMS residual of the straight-line fit of log|Phi(t)|"),
@@ -265,10 +322,22 @@ _VAR_ATTRS = {
 }
 
 
-def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None,
-             mu: Any = DEFAULT_MU, amplitude: float = 1e-4, n_efold: float = 4.0,
-             n_periods: float = 10.0, max_time: float = 3000.0, rtol: float = 1e-11,
-             atol: float = 1e-15, method: str = "auto") -> xr.Dataset:
+def validate(
+    model: str,
+    *,
+    q: Any,
+    fr_inv: Any,
+    sigma: Any,
+    alpha_v: Any = None,
+    mu: Any = DEFAULT_MU,
+    amplitude: float = 1e-4,
+    n_efold: float = 4.0,
+    n_periods: float = 10.0,
+    max_time: float = 3000.0,
+    rtol: float = 1e-11,
+    atol: float = 1e-15,
+    method: str = "auto",
+) -> xr.Dataset:
     """Compare linear growth rates and frequencies with short nonlinear runs.
 
     Parameters
@@ -321,8 +390,9 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     given = {"q": q, "fr_inv": fr_inv, "sigma": sigma, "mu": mu}
     if m.name == "sliding":
         if alpha_v is None:
-            raise TypeError("alpha_v is required for model 'sliding' (alpha_v > 0; for Coulomb "
-                            "friction alone use coulomb_growth)")
+            raise TypeError(
+                "alpha_v is required for model 'sliding' (alpha_v > 0; for Coulomb friction alone use coulomb_growth)"
+            )
         given["alpha_v"] = alpha_v
     elif alpha_v is not None:
         raise TypeError(f"model {m.name!r} takes no parameter alpha_v")
@@ -333,9 +403,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
     arrays, _ = check_domain(maskable=False, **given)
     flat = {k: np.ravel(v) for k, v in arrays.items()}
     if m.name == "sliding" and np.any(flat["alpha_v"] == 0):
-        raise ValueError("alpha_v = 0 has no exponential mode to validate (frictionless, or "
-                         "Coulomb only); the allowed range here is alpha_v > 0 (coulomb_growth "
-                         "handles alpha_k > 0)")
+        raise ValueError(
+            "alpha_v = 0 has no exponential mode to validate (frictionless, or "
+            "Coulomb only); the allowed range here is alpha_v > 0 (coulomb_growth "
+            "handles alpha_k > 0)"
+        )
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1)
     n_efold = check_positive("n_efold", n_efold)
     n_periods = check_positive("n_periods", n_periods)
@@ -349,8 +421,11 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         row = _one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol, method)
         if row.pop("_failed"):
             where = ", ".join(f"{k} = {v:g}" for k, v in pt.items())
-            warnings.warn(f"validate({m.name!r}): point {j} ({where}): {row['status']}; its measurement is not "
-                          "resolved", RuntimeWarning, stacklevel=2)
+            warnings.warn(
+                f"validate({m.name!r}): point {j} ({where}): {row['status']}; its measurement is not resolved",
+                RuntimeWarning,
+                stacklevel=2,
+            )
         rows.append(row)
     data = {}
     for name in rows[0]:
@@ -362,19 +437,41 @@ def validate(model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None
         data[name] = ("point", vals, attrs)
     coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(Conventions="CF-1.10", title=f"validation of the linear {m.name} model by nonlinear runs",
-                    source="stability.validate", model=m.name, linear_model=m.linear_model,
-                    jacobian_of=f"nonlinear {m.name} model ({m.equations})", amplitude=amplitude,
-                    n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method,
-                    convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega")
+    ds.attrs.update(
+        Conventions="CF-1.10",
+        title=f"validation of the linear {m.name} model by nonlinear runs",
+        source="stability.validate",
+        model=m.name,
+        linear_model=m.linear_model,
+        jacobian_of=f"nonlinear {m.name} model ({m.equations})",
+        amplitude=amplitude,
+        n_efold=n_efold,
+        n_periods=n_periods,
+        rtol=rtol,
+        atol=atol,
+        method=method,
+        convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega",
+    )
     ds.attrs[PRODUCT_ATTR] = "validation"
     return ds
 
 
-def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
-                   mu: float = DEFAULT_MU, amplitude: float = 0.05, t_end: float = 600.0,
-                   scheme: str = "adaptive", step: float = 0.1, friction: str = "isotropic",
-                   slip_scale: float = 1e-4, rtol: float = 1e-8, atol: float = 1e-11) -> xr.Dataset:
+def coulomb_growth(
+    *,
+    q: float,
+    fr_inv: float,
+    sigma: float,
+    alpha_k: float,
+    mu: float = DEFAULT_MU,
+    amplitude: float = 0.05,
+    t_end: float = 600.0,
+    scheme: str = "adaptive",
+    step: float = 0.1,
+    friction: str = "isotropic",
+    slip_scale: float = 1e-4,
+    rtol: float = 1e-8,
+    atol: float = 1e-11,
+) -> xr.Dataset:
     """Coulomb friction alone (``alpha_v = 0``): how the tilt grows, and whether it is exponential.
 
     The run starts on the upright spin plus the leading mode of the viscous model at
@@ -414,9 +511,20 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
     i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
     k = [v[1].real, v[1].imag, np.sqrt(1 - abs(v[1]) ** 2)]
-    run = dict(t_end=t_end, dt=t_end / 3000, omega=[v[0].real, v[0].imag, 1.0], k=k,
-               velocity=[v[2].real, v[2].imag], q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=0.0,
-               alpha_k=alpha_k, mu=mu, friction=friction)
+    run = dict(
+        t_end=t_end,
+        dt=t_end / 3000,
+        omega=[v[0].real, v[0].imag, 1.0],
+        k=k,
+        velocity=[v[2].real, v[2].imag],
+        q=q,
+        fr_inv=fr_inv,
+        sigma=sigma,
+        alpha_v=0.0,
+        alpha_k=alpha_k,
+        mu=mu,
+        friction=friction,
+    )
     if scheme == "adaptive":
         ds = simulate("sliding", **run, slip_scale=slip_scale, method="LSODA", rtol=rtol, atol=atol)
     else:
@@ -430,20 +538,35 @@ def coulomb_growth(*, q: float, fr_inv: float, sigma: float, alpha_k: float,
     res_a = float(np.sqrt(np.mean((np.polyval(pa, t) / tilt - 1) ** 2)))
     s_stick = eigenvalues("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k / slip_scale, mu=mu)
     out = xr.Dataset(
-        {"tilt": ("time", tilt, {"long_name": "tilt |Phi| = |k_1 + i k_2|", "units": "1"}),
-         "slip_speed": ds.slip_speed},
-        coords={"time": ds.time})
+        {
+            "tilt": ("time", tilt, {"long_name": "tilt |Phi| = |k_1 + i k_2|", "units": "1"}),
+            "slip_speed": ds.slip_speed,
+        },
+        coords={"time": ds.time},
+    )
     out.attrs.update(
-        Conventions="CF-1.10", title="Coulomb friction alone: growth of the tilt",
-        source="stability.nonlinear.validation.coulomb_growth", q=q, fr_inv=fr_inv, sigma=sigma, mu=mu,
-        alpha_k=alpha_k, alpha_v=0.0, friction=friction, amplitude=amplitude, scheme=scheme,
-        step=step if scheme == "fixed_step" else 0.0, slip_scale=slip_scale,
-        exponential_residual=res_e, algebraic_residual=res_a,
-        growth=("none" if abs(tilt[-1] / tilt[0] - 1) < 1e-2
-                else "algebraic" if res_a < res_e else "exponential"),
-        algebraic_slope=float(pa[0]), exponential_rate=float(pe[0]),
+        Conventions="CF-1.10",
+        title="Coulomb friction alone: growth of the tilt",
+        source="stability.nonlinear.validation.coulomb_growth",
+        q=q,
+        fr_inv=fr_inv,
+        sigma=sigma,
+        mu=mu,
+        alpha_k=alpha_k,
+        alpha_v=0.0,
+        friction=friction,
+        amplitude=amplitude,
+        scheme=scheme,
+        step=step if scheme == "fixed_step" else 0.0,
+        slip_scale=slip_scale,
+        exponential_residual=res_e,
+        algebraic_residual=res_a,
+        growth=("none" if abs(tilt[-1] / tilt[0] - 1) < 1e-2 else "algebraic" if res_a < res_e else "exponential"),
+        algebraic_slope=float(pa[0]),
+        exponential_rate=float(pe[0]),
         median_slip_speed=float(np.median(ds.slip_speed.values)),
         sticking_growth_rate=float(np.max(s_stick.real)),
-        final_tilt=float(tilt[-1]))
+        final_tilt=float(tilt[-1]),
+    )
     out.attrs[PRODUCT_ATTR] = "coulomb_growth"
     return out

@@ -11,8 +11,9 @@ from matplotlib.figure import Figure
 __all__ = ["axes_or_new", "panels_or_new"]
 
 
-def axes_or_new(ax: Axes | None, *, figsize: tuple[float, float] | None = None, layout: str | None = None,
-                **subplot_kw: Any) -> tuple[Figure, Axes]:
+def axes_or_new(
+    ax: Axes | None, *, figsize: tuple[float, float] | None = None, layout: str | None = None, **subplot_kw: Any
+) -> tuple[Figure, Axes]:
     """``ax`` and its figure, or a new figure (``figsize``, ``layout``) with one Axes
     (``Figure.add_subplot(**subplot_kw)``, e.g. ``projection="3d"``)."""
     if ax is None:
@@ -21,8 +22,9 @@ def axes_or_new(ax: Axes | None, *, figsize: tuple[float, float] | None = None, 
     return ax.figure, ax
 
 
-def panels_or_new(axes: Sequence[Axes] | None, n: int, figsize: tuple[float, float], *, row: bool = False,
-                  **subplots_kw: Any) -> tuple[Figure, list[Axes]]:
+def panels_or_new(
+    axes: Sequence[Axes] | None, n: int, figsize: tuple[float, float], *, row: bool = False, **subplots_kw: Any
+) -> tuple[Figure, list[Axes]]:
     """The caller's ``n`` Axes and their figure, or a new figure (constrained layout) of ``n``
     panels in a column (a row if ``row``; ``Figure.subplots(**subplots_kw)``, e.g.
     ``sharex=True``).

@@ -59,8 +59,10 @@ def plotting_function(product: str) -> Callable[..., Any]:
     """
     entry = PLOTS.get(product)
     if entry is None:
-        raise InputError(f"{PRODUCT_ATTR} = {product!r}: no figure is registered for this product "
-                         f"(products with a figure: {', '.join(sorted(PLOTS))})")
+        raise InputError(
+            f"{PRODUCT_ATTR} = {product!r}: no figure is registered for this product "
+            f"(products with a figure: {', '.join(sorted(PLOTS))})"
+        )
     if callable(entry):
         return entry
     module, _, name = entry.partition(":")
@@ -101,8 +103,10 @@ class TippeAccessor:
         """
         product = self.product
         if product is None:
-            raise InputError(f"this dataset has no global attribute {PRODUCT_ATTR!r}, so ds.tippe.plot() cannot "
-                             "tell which figure to draw: it was not made by tippe-stability, or its attributes "
-                             "were dropped (keep_attrs=False, or a new Dataset built from its variables); call a "
-                             "plotting function of stability.plotting directly")
+            raise InputError(
+                f"this dataset has no global attribute {PRODUCT_ATTR!r}, so ds.tippe.plot() cannot "
+                "tell which figure to draw: it was not made by tippe-stability, or its attributes "
+                "were dropped (keep_attrs=False, or a new Dataset built from its variables); call a "
+                "plotting function of stability.plotting directly"
+            )
         return plotting_function(product)(self._ds, **kw)

@@ -17,7 +17,7 @@ from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
 from ._layout import axes_or_new
 
-__all__ = ["plot_growth_rate", "save_figure", "style", "STYLE_FILE"]
+__all__ = ["STYLE_FILE", "plot_growth_rate", "save_figure", "style"]
 
 STYLE_FILE = Path(__file__).with_name("tippe.mplstyle")
 
@@ -50,8 +50,9 @@ def _fmt(v: float) -> str:
     return f"{v:g}"
 
 
-def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_rate",
-                     mode: str = "principal", ax: Axes | None = None) -> tuple[Figure, Axes]:
+def plot_growth_rate(
+    ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_rate", mode: str = "principal", ax: Axes | None = None
+) -> tuple[Figure, Axes]:
     """Plot a mode's growth rate (or frequency) against ``x``, one line per family.
 
     Parameters
@@ -77,8 +78,10 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
     """
     require_atlas(ds)
     if "growth_rate" not in ds:
-        raise ValueError("ds is a map atlas (atlas_variables = 'map': leading_growth_rate and stability only); "
-                         "growth rates and frequencies per mode need an atlas written with variables='all'")
+        raise ValueError(
+            "ds is a map atlas (atlas_variables = 'map': leading_growth_rate and stability only); "
+            "growth rates and frequencies per mode need an atlas written with variables='all'"
+        )
     if quantity not in QUANTITIES:
         raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
     if mode not in MODES:
@@ -98,16 +101,19 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
             line = s.sel({fam: v}).transpose(x, "mode").values
             ax.plot(ds[x].values, _line(line, quantity, mode), label=f"{SYMBOLS.get(fam, fam)} = {_fmt(v)}")
     else:
-        ax.plot(ds[x].values, _line(s.transpose(x, "mode").values, quantity, mode),
-                label=ds.attrs.get("model", ""))
+        ax.plot(ds[x].values, _line(s.transpose(x, "mode").values, quantity, mode), label=ds.attrs.get("model", ""))
     if quantity == "growth_rate":
         ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
     ax.set_xlabel(SYMBOLS.get(x, x))
     ax.set_ylabel(label)
-    fixed = [f"{SYMBOLS.get(k, k)} = {_fmt(float(ds[k]))}" for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")
-             if k in ds.coords and ds[k].ndim == 0]
-    ax.set_title(f"{ds.attrs.get('model', '')} model, eq. {ds.attrs.get('model_equations', '')}: "
-                 + ", ".join(fixed), fontsize=9)
+    fixed = [
+        f"{SYMBOLS.get(k, k)} = {_fmt(float(ds[k]))}"
+        for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")
+        if k in ds.coords and ds[k].ndim == 0
+    ]
+    ax.set_title(
+        f"{ds.attrs.get('model', '')} model, eq. {ds.attrs.get('model_equations', '')}: " + ", ".join(fixed), fontsize=9
+    )
     ax.legend()
     return fig, ax
 
@@ -115,11 +121,14 @@ def plot_growth_rate(ds: xr.Dataset, x: str = "q", *, quantity: str = "growth_ra
 #: the resolution to which drawn data are rounded before a figure is saved: this fraction of
 #: the axis span (lines) or of the colour range (maps); ~1e-9, far below a pixel and far above
 #: the rounding-level differences of the numbers between machines
-QUANTUM = 2.0 ** -30
+QUANTUM = 2.0**-30
 
 #: metadata that would make the same figure's bytes differ between matplotlib versions or runs
-_NO_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None},
-                "svg": {"Creator": None, "Date": None}}
+_NO_METADATA = {
+    "png": {"Software": None},
+    "pdf": {"Creator": None, "Producer": None, "CreationDate": None},
+    "svg": {"Creator": None, "Date": None},
+}
 
 
 def _rounded(values: np.ndarray, span: float) -> np.ndarray:
@@ -152,7 +161,11 @@ def settle_data(fig: Figure) -> None:
             if arr is None or np.asarray(arr).dtype.kind != "f":
                 continue
             norm = getattr(artist, "norm", None)
-            lo, hi = (norm.vmin, norm.vmax) if norm is not None and norm.vmin is not None else (np.nanmin(arr), np.nanmax(arr))
+            lo, hi = (
+                (norm.vmin, norm.vmax)
+                if norm is not None and norm.vmin is not None
+                else (np.nanmin(arr), np.nanmax(arr))
+            )
             rounded = _rounded(np.ma.getdata(arr), abs(float(hi) - float(lo)))
             artist.set_array(np.ma.array(rounded, mask=np.ma.getmask(arr)) if np.ma.isMaskedArray(arr) else rounded)
 

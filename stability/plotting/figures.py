@@ -17,8 +17,7 @@ from .maps import plot_stability_map
 __all__ = ["atlas_figure", "plot_atlas"]
 
 
-def atlas_figure(ds: xr.Dataset, x: str = "q", *,
-                 axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+def atlas_figure(ds: xr.Dataset, x: str = "q", *, axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
     """Two panels: leading growth rate and its frequency against ``x`` (as in Fig. 3a-b).
 
     Parameters
@@ -43,8 +42,9 @@ def atlas_figure(ds: xr.Dataset, x: str = "q", *,
     return fig, [ax1, ax2]
 
 
-def plot_atlas(ds: xr.Dataset, x: str | None = None, y: str | None = None, *, ax: Axes | None = None,
-               **kw: Any) -> tuple[Figure, Axes]:
+def plot_atlas(
+    ds: xr.Dataset, x: str | None = None, y: str | None = None, *, ax: Axes | None = None, **kw: Any
+) -> tuple[Figure, Axes]:
     """The figure of an atlas chosen by its grid (what ``ds.tippe.plot()`` draws for an atlas).
 
     One grid dimension: the growth rate against it (:func:`~stability.plotting.atlas_plots.plot_growth_rate`);
@@ -77,5 +77,7 @@ def plot_atlas(ds: xr.Dataset, x: str | None = None, y: str | None = None, *, ax
         x = grid[0] if x is None else x
         y = next((d for d in grid if d != x), grid[1]) if y is None else y
         return plot_stability_map(ds, x, y, ax=ax, **kw)
-    raise ValueError(f"the atlas has {len(grid)} grid dimensions ({', '.join(grid) or 'none'}); its figure "
-                     "needs one (a line plot) or two (a stability map): select the others first (ds.sel(...))")
+    raise ValueError(
+        f"the atlas has {len(grid)} grid dimensions ({', '.join(grid) or 'none'}); its figure "
+        "needs one (a line plot) or two (a stability map): select the others first (ds.sel(...))"
+    )

@@ -5,18 +5,18 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ._layout import axes_or_new
 
-__all__ = ["plot_flip_time", "plot_flip_estimates"]
+__all__ = ["plot_flip_estimates", "plot_flip_time"]
 
 
-def plot_flip_time(ds: xr.Dataset, *, ax: Axes | None = None, marks: Sequence[tuple[float, float, str]] = (),
-                   estimate: bool = True) -> tuple[Figure, Axes]:
+def plot_flip_time(
+    ds: xr.Dataset, *, ax: Axes | None = None, marks: Sequence[tuple[float, float, str]] = (), estimate: bool = True
+) -> tuple[Figure, Axes]:
     """Time to 90 degrees (s) against launch spin, one line per initial tilt.
 
     Parameters
@@ -36,19 +36,28 @@ def plot_flip_time(ds: xr.Dataset, *, ax: Axes | None = None, marks: Sequence[tu
     fig, ax = axes_or_new(ax)
     spin = ds.spin.values
     for i, th in enumerate(ds.tilt.values):
-        (line,) = ax.plot(spin, ds.flip_time.values[i], marker="o", markersize=2.5,
-                          label=f"tilt {th:g} deg: simulation")
+        (line,) = ax.plot(
+            spin, ds.flip_time.values[i], marker="o", markersize=2.5, label=f"tilt {th:g} deg: simulation"
+        )
         if estimate and "flip_time_efold" in ds:
-            ax.plot(spin, ds.flip_time_efold.values[i], ls=":", color=line.get_color(),
-                    label=f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}")
+            ax.plot(
+                spin,
+                ds.flip_time_efold.values[i],
+                ls=":",
+                color=line.get_color(),
+                label=f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}",
+            )
     for s, t, label in marks:
         ax.plot([s], [t], marker="*", markersize=11, color="k", ls="none")
         ax.annotate(label, (s, t), textcoords="offset points", xytext=(6, 4), fontsize=8)
     ax.set_yscale("log")
     ax.set_xlabel(f"launch spin ({ds.attrs.get('spin_unit', ds.spin.attrs.get('units', ''))})")
     ax.set_ylabel("time until the axis crosses 90 degrees (s)")
-    ax.set_title(f"launched with the axis tilted, centre at rest: q = {ds.attrs['q']:.3g}, mu = {ds.attrs['mu']:.3g}, "
-                 f"sigma = {ds.attrs['sigma']:.3g}, R = {1e3 * ds.attrs['radius_m']:.2f} mm", fontsize=8)
+    ax.set_title(
+        f"launched with the axis tilted, centre at rest: q = {ds.attrs['q']:.3g}, mu = {ds.attrs['mu']:.3g}, "
+        f"sigma = {ds.attrs['sigma']:.3g}, R = {1e3 * ds.attrs['radius_m']:.2f} mm",
+        fontsize=8,
+    )
     ax.legend(fontsize=7)
     return fig, ax
 

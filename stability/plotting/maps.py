@@ -13,7 +13,7 @@ from ..grids.atlases import leading_growth_rate
 from ..parameters import SYMBOLS
 from ._layout import axes_or_new
 
-__all__ = ["plot_stability_map", "plot_neutral_curve", "plot_fold_curve", "growth_norm", "NEUTRAL_STYLE"]
+__all__ = ["NEUTRAL_STYLE", "growth_norm", "plot_fold_curve", "plot_neutral_curve", "plot_stability_map"]
 
 #: the neutral curve's line: contrasting with the cividis colour map, also in grey
 NEUTRAL_STYLE = dict(colors="#D55E00", linewidths=2.0)
@@ -34,9 +34,16 @@ def growth_norm(*growth_rates: np.ndarray) -> TwoSlopeNorm:
     return TwoSlopeNorm(vcenter=0.0, vmin=min(vmin, -1e-12), vmax=max(vmax, 1e-12))
 
 
-def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None,
-                       colorbar: bool = True, norm: TwoSlopeNorm | None = None,
-                       curve: xr.Dataset | None = None) -> tuple[Figure, Axes]:
+def plot_stability_map(
+    ds: xr.Dataset,
+    x: str,
+    y: str,
+    *,
+    ax: Axes | None = None,
+    colorbar: bool = True,
+    norm: TwoSlopeNorm | None = None,
+    curve: xr.Dataset | None = None,
+) -> tuple[Figure, Axes]:
     """Colour the leading growth rate over the (x, y) plane and draw where it is zero.
 
     Parameters
@@ -76,8 +83,7 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
     finite = z[np.isfinite(z)]
     norm = norm or growth_norm(z)
     has_both_signs = (finite < 0).any() and (finite > 0).any()
-    mesh = ax.pcolormesh(ds[x].values, ds[y].values, z, cmap="cividis", norm=norm, shading="auto",
-                         rasterized=True)
+    mesh = ax.pcolormesh(ds[x].values, ds[y].values, z, cmap="cividis", norm=norm, shading="auto", rasterized=True)
     if curve is not None:
         plot_neutral_curve(curve, ax=ax)
     elif has_both_signs:
@@ -102,12 +108,22 @@ def plot_stability_map(ds: xr.Dataset, x: str, y: str, *, ax: Axes | None = None
 
 
 #: marker of each special-point kind of a continued neutral curve
-SPECIAL_MARKERS = {"fold": ("^", "fold"), "zero_frequency": ("D", "w = 0"),
-                   "double_crossing": ("o", "double crossing"), "branch_point": ("s", "branch point")}
+SPECIAL_MARKERS = {
+    "fold": ("^", "fold"),
+    "zero_frequency": ("D", "w = 0"),
+    "double_crossing": ("o", "double crossing"),
+    "branch_point": ("s", "branch point"),
+}
 
 
-def plot_neutral_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
-                       label: str = "neutral curve (continued)") -> tuple[Figure, Axes]:
+def plot_neutral_curve(
+    curve: xr.Dataset,
+    *,
+    ax: Axes | None = None,
+    x: str | None = None,
+    y: str | None = None,
+    label: str = "neutral curve (continued)",
+) -> tuple[Figure, Axes]:
     """Draw a continued neutral curve (:func:`stability.neutral_curve`) and its special points.
 
     Parameters
@@ -133,8 +149,14 @@ def plot_neutral_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | No
     return _draw_curve(curve, ax, x, y, label)
 
 
-def plot_fold_curve(curve: xr.Dataset, *, ax: Axes | None = None, x: str | None = None, y: str | None = None,
-                    label: str = "fold curve (continued)") -> tuple[Figure, Axes]:
+def plot_fold_curve(
+    curve: xr.Dataset,
+    *,
+    ax: Axes | None = None,
+    x: str | None = None,
+    y: str | None = None,
+    label: str = "fold curve (continued)",
+) -> tuple[Figure, Axes]:
     """Draw a continued fold curve (:func:`stability.fold_curve`): where a neutral curve's
     fold sits as a third parameter varies.
 
@@ -171,18 +193,33 @@ def _draw_curve(curve: xr.Dataset, ax: Axes | None, x: str, y: str, label: str) 
         lead = curve["leading"].values[sel] if "leading" in curve else np.ones(sel.sum(), bool)
         solid = np.where(lead, ys, np.nan)
         dashed = np.where(lead, np.nan, ys)
-        ax.plot(xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, linestyle="-",
-                label=label if first else None)  # explicit: the style cycles line styles
+        ax.plot(
+            xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, linestyle="-", label=label if first else None
+        )  # explicit: the style cycles line styles
         if np.isfinite(dashed).any():
-            ax.plot(xs, dashed, color=NEUTRAL_STYLE["colors"], linewidth=1.2, linestyle="--",
-                    label="neutral, not the leading mode" if first else None)
+            ax.plot(
+                xs,
+                dashed,
+                color=NEUTRAL_STYLE["colors"],
+                linewidth=1.2,
+                linestyle="--",
+                label="neutral, not the leading mode" if first else None,
+            )
         first = False
     kinds = curve["kind"].values.astype(str) if "kind" in curve else np.array([], dtype=str)
     for kind, (marker, text) in SPECIAL_MARKERS.items():
         sel = kinds == kind
         if sel.any():
-            ax.plot(curve[x].values[sel], curve[y].values[sel], linestyle="none", marker=marker,
-                    markersize=7, markerfacecolor="white", markeredgecolor="black", label=text)
+            ax.plot(
+                curve[x].values[sel],
+                curve[y].values[sel],
+                linestyle="none",
+                marker=marker,
+                markersize=7,
+                markerfacecolor="white",
+                markeredgecolor="black",
+                label=text,
+            )
     ax.set_xlabel(SYMBOLS.get(x, x))
     ax.set_ylabel(SYMBOLS.get(y, y))
     ax.legend(loc="best", fontsize=8)

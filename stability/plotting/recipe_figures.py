@@ -20,8 +20,9 @@ from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_se
 __all__ = ["recipe_figure"]
 
 
-def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset], *,
-                  axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+def recipe_figure(
+    recipe: Recipe, datasets: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None
+) -> tuple[Figure, list[Axes]]:
     """The figure of ``recipe`` drawn from ``datasets`` (model name -> atlas), titled with the
     recipe's title.
 
@@ -60,23 +61,32 @@ def recipe_figure(recipe: Recipe, datasets: dict[str, xr.Dataset], *,
                 ax.set_xlabel("")
     elif recipe.kind == "map":
         fig, axes = panels_or_new(axes, 1, (6.4, 4.8))
-        plot_stability_map(datasets[recipe.model], recipe.x, recipe.y, ax=axes[0],
-                           curve=datasets.get(f"{recipe.model}_neutral"))
+        plot_stability_map(
+            datasets[recipe.model], recipe.x, recipe.y, ax=axes[0], curve=datasets.get(f"{recipe.model}_neutral")
+        )
     else:  # models side by side
         names = [k for k in datasets if not k.endswith("_neutral")]
         fig, axes = panels_or_new(axes, len(names), (4.2 * len(names), 4.0), row=True, sharey=True)
         norm = growth_norm(*(leading_growth_rate(datasets[k]).values for k in names))
         for ax, name in zip(axes, names):
-            plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=name == names[-1], norm=norm,
-                               curve=datasets.get(f"{name}_neutral"))
+            plot_stability_map(
+                datasets[name],
+                recipe.x,
+                recipe.y,
+                ax=ax,
+                colorbar=name == names[-1],
+                norm=norm,
+                curve=datasets.get(f"{name}_neutral"),
+            )
             if name != names[0]:
                 ax.set_ylabel("")
     fig.suptitle(recipe.title, fontsize=10)
     return fig, axes
 
 
-def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset],
-                  axes: Sequence[Axes] | None) -> tuple[Figure, list[Axes]]:
+def _scene_figure(
+    figure: str | None, runs: dict[str, xr.Dataset], axes: Sequence[Axes] | None
+) -> tuple[Figure, list[Axes]]:
     """One of Figs. 5-9 from the runs of :func:`stability.recipes.scene_runs`."""
     main = runs["fr_inv_0.3"]
     if figure == "fig5":
@@ -94,13 +104,13 @@ def _scene_figure(figure: str | None, runs: dict[str, xr.Dataset],
     return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1], axes=axes)
 
 
-def _steady_figure(recipe: Recipe, datasets: dict[str, xr.Dataset],
-                   axes: Sequence[Axes] | None) -> tuple[Figure, list[Axes]]:
+def _steady_figure(
+    recipe: Recipe, datasets: dict[str, xr.Dataset], axes: Sequence[Axes] | None
+) -> tuple[Figure, list[Axes]]:
     """The steady-state figures (stability.recipes' bifurcation, classes and settle kinds)."""
     if recipe.kind == "bifurcation":
         fig, axes = panels_or_new(axes, 1, (7.4, 4.8))
-        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin",
-                         ax=axes[0])
+        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin", ax=axes[0])
         return fig, axes
     if recipe.kind == "classes":
         fig, axes = panels_or_new(axes, 1, (6.8, 5.0))
@@ -109,6 +119,7 @@ def _steady_figure(recipe: Recipe, datasets: dict[str, xr.Dataset],
     run = datasets["run"]
     fig, axes = panels_or_new(axes, 2, (7.4, 5.6))
     plot_settle(run, predicted_tilt=run.attrs["predicted_tilt"], label=run.attrs.get("label", ""), ax=axes[0])
-    plot_settle_approach(run, predicted_tilt=run.attrs["predicted_tilt"], rate=run.attrs.get("predicted_growth_rate"),
-                         ax=axes[1])
+    plot_settle_approach(
+        run, predicted_tilt=run.attrs["predicted_tilt"], rate=run.attrs.get("predicted_growth_rate"), ax=axes[1]
+    )
     return fig, axes

@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 
 from ._layout import axes_or_new, panels_or_new
 
-__all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "plot_run", "SCENE_FIGURES"]
+__all__ = ["SCENE_FIGURES", "fig5", "fig6", "fig7", "fig8", "fig9", "plot_run"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -85,9 +85,13 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     """
     fig, ax = axes_or_new(ax, figsize=(6.4, 4.2), layout="constrained")
     t = _periods(run)
-    parts = [("energy", "total"), ("kinetic_spin", "spin (about G)"),
-             ("kinetic_transverse", "transverse rotation"), ("kinetic_translational", "translation of G"),
-             ("potential", "potential")]
+    parts = [
+        ("energy", "total"),
+        ("kinetic_spin", "spin (about G)"),
+        ("kinetic_transverse", "transverse rotation"),
+        ("kinetic_translational", "translation of G"),
+        ("potential", "potential"),
+    ]
     for name, label in parts:
         ax.plot(t, run[name].values, label=label)
     ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
@@ -96,8 +100,9 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     return fig, ax
 
 
-def fig7(run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0,
-         axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+def fig7(
+    run: xr.Dataset, *, arrow_every: float = 5.0, zoom_periods: float = 10.0, axes: Sequence[Axes] | None = None
+) -> tuple[Figure, list[Axes]]:
     """Fig. 7: the locus of the sphere's centre, (a) whole and (b) magnified start.
 
     Arrows show the centre's velocity every ``arrow_every`` time units (the paper's
@@ -156,7 +161,7 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     if ax is not None and getattr(ax, "name", "") != "3d":
         raise ValueError("ax must be a 3-D Axes (projection='3d') for Fig. 8")
     fig, ax = axes_or_new(ax, figsize=(5.6, 5.2), layout="constrained", projection="3d")
-    u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
+    u, v = np.mgrid[0 : 2 * np.pi : 40j, 0 : np.pi : 20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.25)
     pol = run.polar_angle.values
     past = np.nonzero(pol >= until_angle)[0]
@@ -177,14 +182,23 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     ax.set_zlabel("$K_3$")
     ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"drawn from the start until the polar angle reaches {until_angle:g} deg; "
-                 f"the run ends at {float(pol[-1]):.3f} deg", fontsize=9)
+    ax.set_title(
+        f"drawn from the start until the polar angle reaches {until_angle:g} deg; "
+        f"the run ends at {float(pol[-1]):.3f} deg",
+        fontsize=9,
+    )
     return fig, ax
 
 
-def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
-         paper_scheme: dict[str, xr.Dataset], slip_case: str, *,
-         axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+def fig9(
+    sliding: xr.Dataset,
+    rolling: xr.Dataset,
+    cases: dict[str, xr.Dataset],
+    paper_scheme: dict[str, xr.Dataset],
+    slip_case: str,
+    *,
+    axes: Sequence[Axes] | None = None,
+) -> tuple[Figure, list[Axes]]:
     """Fig. 9: (a) friction, sliding vs rolling; (b) polar angle for the friction cases;
     (c) sliding speed of one case.
 
@@ -214,26 +228,49 @@ def fig9(sliding: xr.Dataset, rolling: xr.Dataset, cases: dict[str, xr.Dataset],
     # the axis is scaled to the run after the first two periods and the peak is named
     later = _periods(sliding) > 2.0
     peak = float(np.nanmax(sliding.friction_magnitude.values))
-    top = 1.25 * float(np.nanmax(np.concatenate([sliding.friction_magnitude.values[later],
-                                                  rolling.friction_magnitude.values])))
+    top = 1.25 * float(
+        np.nanmax(np.concatenate([sliding.friction_magnitude.values[later], rolling.friction_magnitude.values]))
+    )
     if peak > top:
         ax1.set_ylim(0.0, top)
-        ax1.annotate(f"initial slip transient, peak {peak:.3g} (off scale)", xy=(0.0, top), xytext=(0.06, 0.93),
-                     textcoords="axes fraction", fontsize=7, va="top")
+        ax1.annotate(
+            f"initial slip transient, peak {peak:.3g} (off scale)",
+            xy=(0.0, top),
+            xytext=(0.06, 0.93),
+            textcoords="axes fraction",
+            fontsize=7,
+            va="top",
+        )
     ax1.legend(loc="upper right")
     markers = ("o", "s", "^", "D", "v", "P")
     for j, (label, ds) in enumerate(cases.items()):
         # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
-        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle="-", linewidth=0.8,
-                 marker=markers[j % len(markers)], markevery=(0.03 * (j + 1), 0.12), markersize=4,
-                 label=label)
+        ax2.plot(
+            _periods(ds),
+            ds.polar_angle.values,
+            color=f"C{j}",
+            linestyle="-",
+            linewidth=0.8,
+            marker=markers[j % len(markers)],
+            markevery=(0.03 * (j + 1), 0.12),
+            markersize=4,
+            label=label,
+        )
     for j, (label, ds) in enumerate(paper_scheme.items()):
-        ax2.plot(_periods(ds), ds.polar_angle.values, color=f"C{j}", linestyle=":", linewidth=1.0,
-                 label=f"{label}, paper's scheme")
+        ax2.plot(
+            _periods(ds),
+            ds.polar_angle.values,
+            color=f"C{j}",
+            linestyle=":",
+            linewidth=1.0,
+            label=f"{label}, paper's scheme",
+        )
     ax2.set_ylabel("polar angle of $k$ (deg)")
     ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
-    for ds, style, label in ((cases[slip_case], "-", "integrated to tolerance"),
-                             (paper_scheme[slip_case], ":", "paper's scheme (RK4, sign law)")):
+    for ds, style, label in (
+        (cases[slip_case], "-", "integrated to tolerance"),
+        (paper_scheme[slip_case], ":", "paper's scheme (RK4, sign law)"),
+    ):
         ax3.semilogy(_periods(ds), np.maximum(ds.slip_speed.values, 1e-12), linestyle=style, label=label)
     ax3.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
     ax3.legend(fontsize=8)

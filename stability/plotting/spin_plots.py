@@ -27,14 +27,21 @@ def plot_critical_spin(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figur
     """
     fig, ax = axes_or_new(ax)
     (x,) = ds["critical_spin_upright"].dims
-    ax.plot(ds[x].values, ds["critical_spin_upright"].values, marker="o", markersize=3,
-            label="upright: unstable above")
-    ax.plot(ds[x].values, ds["critical_spin_inverted"].values, marker="s", markersize=3,
-            label="inverted (q -> -q): stable above")
+    ax.plot(ds[x].values, ds["critical_spin_upright"].values, marker="o", markersize=3, label="upright: unstable above")
+    ax.plot(
+        ds[x].values,
+        ds["critical_spin_inverted"].values,
+        marker="s",
+        markersize=3,
+        label="inverted (q -> -q): stable above",
+    )
     ax.set_xlabel(SYMBOLS.get(x, x) + ("  (upright offset; inverted: -q)" if x == "q" else ""))
     ax.set_ylabel("critical spin rate (rpm)")
     fixed = ", ".join(f"{SYMBOLS.get(k, k)} = {ds.attrs[k]:.3g}" for k in ("q", "sigma", "mu") if k != x)
-    ax.set_title(f"{ds.attrs.get('preset', '')} top, R = {1e3 * ds.attrs['radius_m']:.2f} mm, {fixed}, "
-                 f"{ds.attrs.get('model', '')} model", fontsize=9)
+    ax.set_title(
+        f"{ds.attrs.get('preset', '')} top, R = {1e3 * ds.attrs['radius_m']:.2f} mm, {fixed}, "
+        f"{ds.attrs.get('model', '')} model",
+        fontsize=9,
+    )
     ax.legend()
     return fig, ax

@@ -22,8 +22,19 @@ from ..parameters import SYMBOLS
 from ..products import FLAG_NAMES
 from ._layout import axes_or_new
 
-__all__ = ["plot_steady_states", "plot_final_state", "plot_bifurcation", "plot_class_map", "plot_settle",
-           "plot_settle_approach", "STABLE_STYLE", "UNSTABLE_STYLE", "X_AXES", "FILL_STYLES", "FLAG_COLOURS"]
+__all__ = [
+    "FILL_STYLES",
+    "FLAG_COLOURS",
+    "STABLE_STYLE",
+    "UNSTABLE_STYLE",
+    "X_AXES",
+    "plot_bifurcation",
+    "plot_class_map",
+    "plot_final_state",
+    "plot_settle",
+    "plot_settle_approach",
+    "plot_steady_states",
+]
 
 #: size of a new figure (inches)
 FIGSIZE = (6.4, 4.6)
@@ -31,10 +42,12 @@ FIGSIZE = (6.4, 4.6)
 STABLE_STYLE = dict(linestyle="-", linewidth=2.0, color="C0")
 UNSTABLE_STYLE = dict(linestyle="--", linewidth=1.3, color="C3")
 #: abscissae a bifurcation diagram can use: variable of the branch -> axis label
-X_AXES = {"jellett": "Jellett's integral J (units A0 Omega)",
-          "upright_equivalent_spin": "equivalent upright spin J / (sigma (1 + q)) (units of Omega)",
-          "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J",
-          "spin": "equivalent upright spin ({units}): the launch spin of an upright top with this J"}
+X_AXES = {
+    "jellett": "Jellett's integral J (units A0 Omega)",
+    "upright_equivalent_spin": "equivalent upright spin J / (sigma (1 + q)) (units of Omega)",
+    "spin_rpm": "equivalent upright spin (rpm): the launch spin of an upright top with this J",
+    "spin": "equivalent upright spin ({units}): the launch spin of an upright top with this J",
+}
 
 #: marker fill style of a steady state by its stability flag (0 stable, 1 marginal, 2 unstable)
 FILL_STYLES = {0: "full", 1: "left", 2: "none"}
@@ -42,31 +55,65 @@ FILL_STYLES = {0: "full", 1: "left", 2: "none"}
 FLAG_COLOURS = {0: STABLE_STYLE["color"], 1: "0.35", 2: UNSTABLE_STYLE["color"]}
 _TILT_LABEL = "tilt of the axis (deg): 0 upright, 180 inverted"
 
-_MARKERS = {"branch_point": dict(marker="o", markersize=7, color="k", markerfacecolor="w", linestyle="none",
-                                 label="branch point (on a vertical state)"),
-            "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
-            "stability_change": dict(marker="X", markersize=7, color="m", linestyle="none", label="stability change"),
-            "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)")}
-
+_MARKERS = {
+    "branch_point": dict(
+        marker="o",
+        markersize=7,
+        color="k",
+        markerfacecolor="w",
+        linestyle="none",
+        label="branch point (on a vertical state)",
+    ),
+    "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
+    "stability_change": dict(marker="X", markersize=7, color="m", linestyle="none", label="stability change"),
+    "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)"),
+}
 
 
 def _parameters_text(attrs: dict) -> str:
     """``q = .., sigma = .., Fr^-1 = .., alpha_v = ..`` from a dataset's attributes."""
-    return ", ".join(f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}" for name in ("q", "sigma", "fr_inv", "alpha_v")
-                     if name in attrs)
+    return ", ".join(
+        f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}"
+        for name in ("q", "sigma", "fr_inv", "alpha_v")
+        if name in attrs
+    )
 
 
-def _level(ax: Axes, tilt_grid: np.ndarray, potential: np.ndarray, tilts: np.ndarray, energies: np.ndarray,
-           flags: np.ndarray, kinds: np.ndarray, tilt_range: tuple[float, float] | None) -> None:
+def _level(
+    ax: Axes,
+    tilt_grid: np.ndarray,
+    potential: np.ndarray,
+    tilts: np.ndarray,
+    energies: np.ndarray,
+    flags: np.ndarray,
+    kinds: np.ndarray,
+    tilt_range: tuple[float, float] | None,
+) -> None:
     """The curve ``U_J(tilt)`` and every steady state on it, marked by its flag and labelled by kind."""
     ax.plot(tilt_grid, potential, color="k", linewidth=1.2, label=r"effective potential $U_J$(tilt)")
     for tilt, energy, flag, kind in zip(tilts, energies, flags, kinds):
         flag, kind = int(flag), str(kind)
         where = f"{kind} {tilt:.4g} deg" if kind == "tilted" else kind
-        ax.plot([tilt], [energy], linestyle="none", marker="o", markersize=9, markeredgewidth=1.5,
-                fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag], zorder=5, label=f"{where}: {FLAG_NAMES[flag]}")
-        ax.annotate(kind, (tilt, energy), xytext=(0, -15) if kind == "tilted" else (0, 9), textcoords="offset points",
-                    ha="center", fontsize=8)
+        ax.plot(
+            [tilt],
+            [energy],
+            linestyle="none",
+            marker="o",
+            markersize=9,
+            markeredgewidth=1.5,
+            fillstyle=FILL_STYLES[flag],
+            color=FLAG_COLOURS[flag],
+            zorder=5,
+            label=f"{where}: {FLAG_NAMES[flag]}",
+        )
+        ax.annotate(
+            kind,
+            (tilt, energy),
+            xytext=(0, -15) if kind == "tilted" else (0, 9),
+            textcoords="offset points",
+            ha="center",
+            fontsize=8,
+        )
     ax.set_xlabel(_TILT_LABEL)
     ax.set_ylabel(r"$U_J = J^2/(2D) + \mu\,$Fr$^{-1}(1 + q\cos\theta)$ (units $A_0\Omega^2$)", fontsize=9)
     if tilt_range is None:
@@ -82,8 +129,9 @@ def _level(ax: Axes, tilt_grid: np.ndarray, potential: np.ndarray, tilts: np.nda
             ax.set_ylim(u_lo - pad, u_hi + 2 * pad)
 
 
-def plot_steady_states(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
-                       ) -> tuple[Figure, Axes]:
+def plot_steady_states(
+    ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
+) -> tuple[Figure, Axes]:
     """Every steady state of one Jellett level on its effective potential.
 
     The steady states of the level ``J`` are the critical points of ``U_J(c) = J^2 / (2 D(c))
@@ -107,16 +155,27 @@ def plot_steady_states(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tu
     (Figure, Axes)
     """
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
-    _level(ax, ds.tilt_grid.values, ds.effective_potential.values, ds.tilt.values, ds.energy.values,
-           ds.stability.values, ds.kind.values, tilt_range)
-    ax.set_title(f"steady states on the Jellett level J = {float(ds.attrs['jellett']):.6g}: "
-                 f"{_parameters_text(ds.attrs)}", fontsize=9)
+    _level(
+        ax,
+        ds.tilt_grid.values,
+        ds.effective_potential.values,
+        ds.tilt.values,
+        ds.energy.values,
+        ds.stability.values,
+        ds.kind.values,
+        tilt_range,
+    )
+    ax.set_title(
+        f"steady states on the Jellett level J = {float(ds.attrs['jellett']):.6g}: {_parameters_text(ds.attrs)}",
+        fontsize=9,
+    )
     ax.legend(fontsize=7, loc="best")
     return fig, ax
 
 
-def plot_final_state(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
-                     ) -> tuple[Figure, Axes]:
+def plot_final_state(
+    ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tuple[float, float] | None = None
+) -> tuple[Figure, Axes]:
     """Where a motion ends, on the effective potential of its Jellett level.
 
     The motion keeps ``J`` and loses energy, and ``E >= U_J(tilt)`` always: it ends on a steady
@@ -142,22 +201,56 @@ def plot_final_state(ds: xr.Dataset, *, ax: Axes | None = None, tilt_range: tupl
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     grid, u = ds.tilt_grid.values, ds.effective_potential.values
     e0 = float(ds.initial_energy)
-    ax.fill_between(grid, u, e0, where=u <= e0, interpolate=True, facecolor="C2", alpha=0.15, linewidth=0.0,
-                    label=r"$U_J \leq E_0$: reachable")
+    ax.fill_between(
+        grid,
+        u,
+        e0,
+        where=u <= e0,
+        interpolate=True,
+        facecolor="C2",
+        alpha=0.15,
+        linewidth=0.0,
+        label=r"$U_J \leq E_0$: reachable",
+    )
     ax.axhline(e0, color="C2", linestyle="--", linewidth=1.0, label=f"initial energy E0 = {e0:.8g}")
-    _level(ax, grid, u, ds.candidate_tilt.values, ds.candidate_energy.values, ds.candidate_stability.values,
-           ds.candidate_kind.values, tilt_range)
-    ax.plot([float(ds.initial_tilt)], [e0], linestyle="none", marker="x", markersize=8, color="C2",
-            label=f"initial state, tilt {float(ds.initial_tilt):.4g} deg")
+    _level(
+        ax,
+        grid,
+        u,
+        ds.candidate_tilt.values,
+        ds.candidate_energy.values,
+        ds.candidate_stability.values,
+        ds.candidate_kind.values,
+        tilt_range,
+    )
+    ax.plot(
+        [float(ds.initial_tilt)],
+        [e0],
+        linestyle="none",
+        marker="x",
+        markersize=8,
+        color="C2",
+        label=f"initial state, tilt {float(ds.initial_tilt):.4g} deg",
+    )
     tilt, kind, method = float(ds.tilt), str(ds.attrs["kind"]), str(ds.attrs["method"])
     if np.isfinite(tilt):
-        ax.plot([tilt], [float(ds.energy)], linestyle="none", marker="*", markersize=22, color="gold",
-                markeredgecolor="k", zorder=4, label=f"end: {kind}, tilt {tilt:.6g} deg")
+        ax.plot(
+            [tilt],
+            [float(ds.energy)],
+            linestyle="none",
+            marker="*",
+            markersize=22,
+            color="gold",
+            markeredgecolor="k",
+            zorder=4,
+            label=f"end: {kind}, tilt {tilt:.6g} deg",
+        )
         end = f"{kind} at {tilt:.6g} deg"
     else:
         end = kind
-    ax.set_title(f"final state (method: {method}): {end}; J = {float(ds.jellett):.6g}\n"
-                 f"{_parameters_text(ds.attrs)}", fontsize=9)
+    ax.set_title(
+        f"final state (method: {method}): {end}; J = {float(ds.jellett):.6g}\n{_parameters_text(ds.attrs)}", fontsize=9
+    )
     ax.legend(fontsize=7, loc="best")
     return fig, ax
 
@@ -179,12 +272,19 @@ def _pieces(x: np.ndarray, y: np.ndarray, stable: np.ndarray, marginal: np.ndarr
     start = 0
     for i in range(1, n):
         if i == n - 1 or verdict[i] != verdict[start]:
-            yield x[start:i + 1], y[start:i + 1], verdict[start]
+            yield x[start : i + 1], y[start : i + 1], verdict[start]
             start = i
 
 
-def plot_bifurcation(branch: xr.Dataset | dict, *, vertical: xr.Dataset | None = None, runs: xr.Dataset | None = None,
-                     x: str | None = None, launch: object = None, ax: Axes | None = None) -> tuple[Figure, Axes]:
+def plot_bifurcation(
+    branch: xr.Dataset | dict,
+    *,
+    vertical: xr.Dataset | None = None,
+    runs: xr.Dataset | None = None,
+    x: str | None = None,
+    launch: object = None,
+    ax: Axes | None = None,
+) -> tuple[Figure, Axes]:
     """Tilt of every steady state against Jellett's integral (or an equivalent spin).
 
     The diagram of a real top in the user's spin unit is
@@ -249,13 +349,28 @@ def plot_bifurcation(branch: xr.Dataset | dict, *, vertical: xr.Dataset | None =
         if sel.any():
             ax.plot(xs[sel], tilt[sel], **style, zorder=5)
     if runs is not None and runs.sizes.get("run", 0):
-        ax.plot(runs[x].values, runs.end_tilt.values, marker="*", markersize=11, color="C2", linestyle="none",
-                markeredgecolor="k", zorder=6, label="end of a nonlinear run")
+        ax.plot(
+            runs[x].values,
+            runs.end_tilt.values,
+            marker="*",
+            markersize=11,
+            color="C2",
+            linestyle="none",
+            markeredgecolor="k",
+            zorder=6,
+            label="end of a nonlinear run",
+        )
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
-                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), xytext=(-210, -70),
-                            textcoords="offset points", fontsize=7, arrowprops={"arrowstyle": "->", "linewidth": 0.6})
+                ax.annotate(
+                    f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg",
+                    (xi, yi),
+                    xytext=(-210, -70),
+                    textcoords="offset points",
+                    fontsize=7,
+                    arrowprops={"arrowstyle": "->", "linewidth": 0.6},
+                )
     if launch is not None:
         _mark_launch(ax, launch, x, units, float(branch.attrs.get("q", float("nan"))))
     ax.set_xlabel(X_AXES.get(x, x).format(units=units), fontsize=9)
@@ -263,9 +378,12 @@ def plot_bifurcation(branch: xr.Dataset | dict, *, vertical: xr.Dataset | None =
     ax.set_ylim(-8, 188)
     ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
     a = branch.attrs
-    ax.set_title(f"q = {a.get('q', float('nan')):g}, {SYMBOLS['sigma']} = {a.get('sigma', float('nan')):g}, "
-                 f"{SYMBOLS['mu']} = {a.get('mu', float('nan')):g}, {SYMBOLS['alpha_v']} = "
-                 f"{a.get('alpha_v', float('nan')):g}", fontsize=9)
+    ax.set_title(
+        f"q = {a.get('q', float('nan')):g}, {SYMBOLS['sigma']} = {a.get('sigma', float('nan')):g}, "
+        f"{SYMBOLS['mu']} = {a.get('mu', float('nan')):g}, {SYMBOLS['alpha_v']} = "
+        f"{a.get('alpha_v', float('nan')):g}",
+        fontsize=9,
+    )
     ax.legend(fontsize=7, loc="best")
     return fig, ax
 
@@ -286,23 +404,35 @@ def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None
     from ..top import SPIN_UNITS
 
     if x != "spin" or units not in SPIN_UNITS:
-        raise InputError(f"a launch is drawn on a diagram against the spin (x = 'spin' with a spin unit); this one "
-                         f"is against {x!r}{f' ({units})' if units else ''}")
-    spin = float(getattr(launch, "spin")) / SPIN_UNITS[units]
+        raise InputError(
+            f"a launch is drawn on a diagram against the spin (x = 'spin' with a spin unit); this one "
+            f"is against {x!r}{f' ({units})' if units else ''}"
+        )
+    spin = float(launch.spin) / SPIN_UNITS[units]
     tilt = getattr(launch, "tilt", None)
     if tilt is not None and math.isfinite(q):
         spin *= (math.cos(math.radians(float(tilt))) + q) / (1.0 + q)
-    end = float(getattr(launch, "end_tilt"))
+    end = float(launch.end_tilt)
     ax.axvline(spin, color="C2", linestyle=":", linewidth=1.2, label=f"launch: {spin:.4g} {units}", zorder=4)
-    ax.plot([spin], [end], marker="P", markersize=11, color="C2", markeredgecolor="k", linestyle="none",
-            zorder=7, label=f"end of the launch's run: {end:.1f} deg")
+    ax.plot(
+        [spin],
+        [end],
+        marker="P",
+        markersize=11,
+        color="C2",
+        markeredgecolor="k",
+        linestyle="none",
+        zorder=7,
+        label=f"end of the launch's run: {end:.1f} deg",
+    )
 
 
 _CLASS_COLOURS = ListedColormap(["white", "#9ecae1", "#fdae6b", "#a1d99b"])
 
 
-def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float, float] | None = (-0.1, 1.0)
-                   ) -> tuple[Figure, Axes]:
+def plot_class_map(
+    ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float, float] | None = (-0.1, 1.0)
+) -> tuple[Figure, Axes]:
     """The high-spin classes over ``(q, sigma)`` with the closed-form boundaries.
 
     Parameters
@@ -324,9 +454,11 @@ def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float,
         If the dataset's grid is not ``(q, sigma)`` (select the other dimensions first).
     """
     if set(ds.top_class.dims) != {"q", "sigma"}:
-        raise ValueError(f"the class map is drawn over (q, sigma); this dataset's grid is "
-                         f"({', '.join(map(str, ds.top_class.dims)) or 'none'}): give class_atlas 1-D grids of q and "
-                         "sigma, or select the other dimensions first (ds.sel(...))")
+        raise ValueError(
+            f"the class map is drawn over (q, sigma); this dataset's grid is "
+            f"({', '.join(map(str, ds.top_class.dims)) or 'none'}): give class_atlas 1-D grids of q and "
+            "sigma, or select the other dimensions first (ds.sel(...))"
+        )
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     q, sigma = ds.q.values, ds.sigma.values
     code = ds.top_class.transpose("sigma", "q").values
@@ -336,12 +468,19 @@ def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float,
     top = ds.sigma_domain.values
     ax.plot(q, np.minimum(b1, top), color="k", linewidth=1.2, label=r"$\sigma = A_G/(1+q)$: never inverts above")
     neg = q < 0
-    ax.plot(q[neg], b2[neg], color="k", linewidth=1.2, linestyle="--",
-            label=r"$\sigma = A_G/(1-q)$: hangs below")
+    ax.plot(q[neg], b2[neg], color="k", linewidth=1.2, linestyle="--", label=r"$\sigma = A_G/(1-q)$: hangs below")
     ax.plot(q, top, color="0.4", linewidth=0.8, linestyle=":", label=r"$\sigma = 2 A_G$ (domain)")
     band = neg & np.isfinite(b2)
-    ax.fill_between(q[band], b2[band], np.minimum(b1, top)[band], facecolor="none", edgecolor="0.25",
-                    hatch="///", linewidth=0.0, label=r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$")
+    ax.fill_between(
+        q[band],
+        b2[band],
+        np.minimum(b1, top)[band],
+        facecolor="none",
+        edgecolor="0.25",
+        hatch="///",
+        linewidth=0.0,
+        label=r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$",
+    )
     if mark is not None:
         ax.plot([mark[0]], [mark[1]], marker="*", markersize=12, color="k", linestyle="none", label="the paper's top")
     handles, labels = ax.get_legend_handles_labels()
@@ -357,8 +496,9 @@ def plot_class_map(ds: xr.Dataset, *, ax: Axes | None = None, mark: tuple[float,
     return fig, ax
 
 
-def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = None, label: str = "",
-                periods: bool = True) -> tuple[Figure, Axes]:
+def plot_settle(
+    run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = None, label: str = "", periods: bool = True
+) -> tuple[Figure, Axes]:
     """The polar angle of a run against time, with the predicted final tilt as a line.
 
     Parameters
@@ -380,8 +520,13 @@ def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = Non
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values / (2 * np.pi) if periods else run.time.values
     ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
-    ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2,
-               label=f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)")
+    ax.axhline(
+        predicted_tilt,
+        color="C3",
+        linestyle="--",
+        linewidth=1.2,
+        label=f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)",
+    )
     ax.axhline(180.0, color="0.5", linestyle=":", linewidth=0.8, label="complete inversion (180 deg)")
     ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
     ax.set_ylabel("polar angle of the axis (deg)")
@@ -389,8 +534,9 @@ def plot_settle(run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = Non
     return fig, ax
 
 
-def plot_settle_approach(run: xr.Dataset, *, predicted_tilt: float, rate: float | None = None,
-                         ax: Axes | None = None, periods: bool = True) -> tuple[Figure, Axes]:
+def plot_settle_approach(
+    run: xr.Dataset, *, predicted_tilt: float, rate: float | None = None, ax: Axes | None = None, periods: bool = True
+) -> tuple[Figure, Axes]:
     """Distance of the polar angle from the predicted final tilt against time (log scale).
 
     Parameters
@@ -417,8 +563,14 @@ def plot_settle_approach(run: xr.Dataset, *, predicted_tilt: float, rate: float 
     ax.semilogy(tt, dist, color="C0", linewidth=0.8, label="|polar angle - predicted tilt|")
     if rate is not None and rate < 0:
         ref = dist[-1] * np.exp(rate * (t - t[-1]))
-        ax.semilogy(tt, ref, color="C3", linestyle="--", linewidth=1.0,
-                    label=f"exp(g t), g = {rate:.3g}: the end state's slowest mode")
+        ax.semilogy(
+            tt,
+            ref,
+            color="C3",
+            linestyle="--",
+            linewidth=1.0,
+            label=f"exp(g t), g = {rate:.3g}: the end state's slowest mode",
+        )
     for level, style in ((0.05, ":"), (0.01, "-.")):
         ax.axhline(level, color="0.4", linestyle=style, linewidth=0.8, label=f"{level:g} deg")
     ax.set_ylim(max(1e-6, float(np.nanmin(dist[dist > 0])) / 3 if np.any(dist > 0) else 1e-6), 200.0)

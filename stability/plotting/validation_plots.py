@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 
 from ._layout import axes_or_new, panels_or_new
 
-__all__ = ["plot_validation", "plot_coulomb_growth"]
+__all__ = ["plot_coulomb_growth", "plot_validation"]
 
 _VALIDATION = ("predicted_growth_rate", "jacobian_growth_rate", "measured_growth_rate")
 _COULOMB = ("tilt", "slip_speed")
@@ -46,16 +46,26 @@ def plot_validation(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, 
     fig, ax = axes_or_new(ax)
     measured = ds["measured_growth_rate"].values
     model = ds.attrs.get("model", "")
-    ax.plot(ds["jacobian_growth_rate"].values, measured, marker="o", linestyle="none",
-            label="Jacobian of the nonlinear model")
-    ax.plot(ds["predicted_growth_rate"].values, measured, marker="s", markerfacecolor="none", linestyle="none",
-            label=f"linear operator ({model})")
+    ax.plot(
+        ds["jacobian_growth_rate"].values,
+        measured,
+        marker="o",
+        linestyle="none",
+        label="Jacobian of the nonlinear model",
+    )
+    ax.plot(
+        ds["predicted_growth_rate"].values,
+        measured,
+        marker="s",
+        markerfacecolor="none",
+        linestyle="none",
+        label=f"linear operator ({model})",
+    )
     values = np.concatenate([ds[v].values for v in _VALIDATION])
     values = values[np.isfinite(values)]
     if values.size:
         lo, hi = float(values.min()), float(values.max())
-        ax.plot([lo, hi], [lo, hi], color="0.4", linewidth=0.8, linestyle="-", zorder=0,
-                label="measured = predicted")
+        ax.plot([lo, hi], [lo, hi], color="0.4", linewidth=0.8, linestyle="-", zorder=0, label="measured = predicted")
     ax.set_xlabel("predicted growth rate Re $s$ / $\\Omega$")
     ax.set_ylabel("growth rate fitted to the run / $\\Omega$")
     ax.set_title(f"{ds.attrs.get('title', '')}: {ds.sizes.get('point', 1)} points", fontsize=9)
@@ -86,9 +96,16 @@ def plot_coulomb_growth(ds: xr.Dataset, *, axes: Sequence[Axes] | None = None) -
     ax2.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
     ax2.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
     a = ds.attrs
-    fits = ", ".join(f"{name} fit {a[key]:.2g}" for name, key in (("exponential", "exponential_residual"),
-                                                                 ("algebraic", "algebraic_residual")) if key in a)
-    ax1.set_title(f"(a) {a.get('scheme', '')} scheme: growth {a.get('growth', 'not classified')}"
-                  + (f" (RMS residuals: {fits})" if fits else ""), loc="left", fontsize=8)
+    fits = ", ".join(
+        f"{name} fit {a[key]:.2g}"
+        for name, key in (("exponential", "exponential_residual"), ("algebraic", "algebraic_residual"))
+        if key in a
+    )
+    ax1.set_title(
+        f"(a) {a.get('scheme', '')} scheme: growth {a.get('growth', 'not classified')}"
+        + (f" (RMS residuals: {fits})" if fits else ""),
+        loc="left",
+        fontsize=8,
+    )
     ax2.set_title("(b)", loc="left", fontsize=9)
     return fig, [ax1, ax2]

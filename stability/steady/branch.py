@@ -70,7 +70,7 @@ COMPILE_SECONDS = 25.0
 COMPILED_STEP = Compiled(kernels.step, linearisation._jacobians)
 PYTHON_STEP = Compiled(kernels.residual_and_jacobian, linearisation._jacobians)
 
-__all__ = ["SteadyBranchProblem", "steady_branch", "KINDS", "branch_points", "points_dataset"]
+__all__ = ["KINDS", "SteadyBranchProblem", "branch_points", "points_dataset", "steady_branch"]
 
 #: the smallest max_step (a branch is ~pi / max_step points, within the trace's 100000)
 MIN_MAX_STEP = 1e-4
@@ -109,8 +109,14 @@ class SteadyBranchProblem:
 
     test_function_names = ("jellett_fold",)
 
-    def __init__(self, params: dict[str, float], p: np.ndarray, jellett_max: float = math.inf,
-                 jellett_min: float = 0.0, model: str = "sliding"):
+    def __init__(
+        self,
+        params: dict[str, float],
+        p: np.ndarray,
+        jellett_max: float = math.inf,
+        jellett_min: float = 0.0,
+        model: str = "sliding",
+    ):
         m = get_nonlinear_model(model)
         self.params = dict(params)
         self.p = p
@@ -132,8 +138,9 @@ class SteadyBranchProblem:
 
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
-        r, rt, rl = kernels.residual_and_jacobian(float(u[0]), float(u[1]), self.p, self.q, self.code,
-                                                  self.n_full, self.weight)
+        r, rt, rl = kernels.residual_and_jacobian(
+            float(u[0]), float(u[1]), self.p, self.q, self.code, self.n_full, self.weight
+        )
         return np.array([r]), np.array([[rt, rl]])
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -158,8 +165,9 @@ class SteadyBranchProblem:
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """``[theta, pi - theta, jellett_max - |J|(, |J| - jellett_min)]``, ``>= 0`` on the branch."""
-        return kernels.constraint_values(float(u[0]), self.jellett(u)[0], self.jellett_max, self.jellett_min,
-                                         self.degenerate)
+        return kernels.constraint_values(
+            float(u[0]), self.jellett(u)[0], self.jellett_max, self.jellett_min, self.degenerate
+        )
 
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
         """``[d(log |J|)/ds]``: zero at a fold of the family in ``J`` (relative to ``J``, so that
@@ -167,14 +175,41 @@ class SteadyBranchProblem:
         j, g = self.jellett(u)
         return np.array([(g[0] * t[0] + g[1] * t[1]) / abs(j)])
 
-    def compiled_step(self, guess: np.ndarray, t_plane: np.ndarray, anchor: np.ndarray, h: float,
-                      scale: np.ndarray, tol: float, max_iter: int, max_move: float) -> StepResult:
+    def compiled_step(
+        self,
+        guess: np.ndarray,
+        t_plane: np.ndarray,
+        anchor: np.ndarray,
+        h: float,
+        scale: np.ndarray,
+        tol: float,
+        max_iter: int,
+        max_move: float,
+    ) -> StepResult:
         """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
         (corrector, tangent, constraints and test function in one compiled call)."""
-        return StepResult(*kernels.step(self.p, self.q, self.params["sigma"], self.params["mu"], self.code,
-                                        self.n_full, self.degenerate, self.weight, float(self.jellett_max),
-                                        float(self.jellett_min), guess, t_plane, anchor, float(h), scale,
-                                        float(tol), int(max_iter), float(max_move)))
+        return StepResult(
+            *kernels.step(
+                self.p,
+                self.q,
+                self.params["sigma"],
+                self.params["mu"],
+                self.code,
+                self.n_full,
+                self.degenerate,
+                self.weight,
+                float(self.jellett_max),
+                float(self.jellett_min),
+                guess,
+                t_plane,
+                anchor,
+                float(h),
+                scale,
+                float(tol),
+                int(max_iter),
+                float(max_move),
+            )
+        )
 
     # --- start points -------------------------------------------------------------------
     def branch_point(self, orientation: str) -> float | None:
@@ -193,8 +228,7 @@ class SteadyBranchProblem:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
-            _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full,
-                                                     w)
+            _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full, w)
             r = self.divided_residual(theta, lam)
             step = r / (rl / lam * (lam * lam + w))
             lam -= step
@@ -227,8 +261,7 @@ def _kind_of(kind: str, detail: str) -> str:
     return "regular"
 
 
-def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU
-                  ) -> dict[str, float]:
+def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU) -> dict[str, float]:
     """Jellett's integral ``|J|`` at the branch points of the tilted family, located on the
     nonlinear right-hand side (:meth:`SteadyBranchProblem.branch_point`), NaN where the family
     does not reach the state. Keys ``"upright"``, ``"inverted"``."""
@@ -242,9 +275,19 @@ def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: An
     return out
 
 
-def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any,
-                  mu: Any = DEFAULT_MU, jellett_max: Any = None, max_step: Any = 0.02,
-                  max_angle: Any = CURVE_MAX_ANGLE, compiled: bool = True) -> xr.Dataset:
+def steady_branch(
+    model: str = "sliding",
+    *,
+    q: Any,
+    sigma: Any,
+    fr_inv: Any,
+    alpha_v: Any,
+    mu: Any = DEFAULT_MU,
+    jellett_max: Any = None,
+    max_step: Any = 0.02,
+    max_angle: Any = CURVE_MAX_ANGLE,
+    compiled: bool = True,
+) -> xr.Dataset:
     """The family of tilted steady states, traced by continuation against Jellett's integral.
 
     Parameters
@@ -299,16 +342,25 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
     check_scales(params, jmax, jellett_name="jellett_max")
     before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
     prob = SteadyBranchProblem(params, p)
-    attrs = product_attrs("steady_branch", "Tilted steady states of the sliding Tippe top against Jellett's integral",
-                          "continuation.steady_branch", params, removed_neutral=True)
+    attrs = product_attrs(
+        "steady_branch",
+        "Tilted steady states of the sliding Tippe top against Jellett's integral",
+        "continuation.steady_branch",
+        params,
+        removed_neutral=True,
+    )
     attrs["model"] = "sliding"
-    options = TraceOptions(step=min(max_step, 0.02), max_step=max_step, max_angle=max_angle, max_points=100000,
-                           compiled=compiled)
+    options = TraceOptions(
+        step=min(max_step, 0.02), max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled
+    )
     if prob.degenerate:
         theta0 = prob.degenerate_tilt()
         if theta0 is None:
-            return _empty(attrs, "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
-                                 "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)")
+            return _empty(
+                attrs,
+                "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
+                "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)",
+            )
         j_unit = abs(prob.jellett(np.array([theta0, 0.0]))[0])  # J is linear in lam: J(lam = 1)
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
@@ -337,8 +389,10 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
         if jmax is not None and not jmax > j_b:
-            raise DomainError(f"jellett_max = {jmax:.6g} is outside the allowed range: jellett_max > {j_b:.6g}, "
-                              f"the Jellett integral at the {start} branch point where the family starts")
+            raise DomainError(
+                f"jellett_max = {jmax:.6g} is outside the allowed range: jellett_max > {j_b:.6g}, "
+                f"the Jellett integral at the {start} branch point where the family starts"
+            )
         prob.jellett_max = 10.0 * j_b if jmax is None else jmax
         br = trace(prob, [theta_b, math.log(lam_b)], options, tangent0=t0, project_start=False)
         pts = br.points.copy()
@@ -366,18 +420,28 @@ def steady_branch(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
         a_g = family.a_g(q, mu)
         why = []
         if abs(math.sin(pts[-1, 0])) < 1e-4:
-            why.append(f"the family stays within {abs(math.sin(pts[-1, 0])):.2g} rad of the vertical state, where the "
-                       "residual (divided by sin(tilt)) loses ~u / sin(tilt) of its digits: sigma (1 + q) = "
-                       f"{sigma * (1 + q):.17g} and sigma (1 - q) = {sigma * (1 - q):.17g} against A_G = {a_g:.17g} "
-                       "(a high-spin class boundary is sigma (1 +- q) = A_G)")
+            why.append(
+                f"the family stays within {abs(math.sin(pts[-1, 0])):.2g} rad of the vertical state, where the "
+                "residual (divided by sin(tilt)) loses ~u / sin(tilt) of its digits: sigma (1 + q) = "
+                f"{sigma * (1 + q):.17g} and sigma (1 - q) = {sigma * (1 - q):.17g} against A_G = {a_g:.17g} "
+                "(a high-spin class boundary is sigma (1 +- q) = A_G)"
+            )
         if a_g < 1e-8:
             why.append(f"A_G = 1 - mu q^2 = {a_g:.3g} is near the domain edge, where the mass matrix is singular")
-        raise ConvergenceError(f"steady_branch: the continuation failed after {len(pts)} points "
-                               f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
-                               + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J "
-                                  "there" if why else ""))
-    attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max,
-                 n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
+        raise ConvergenceError(
+            f"steady_branch: the continuation failed after {len(pts)} points "
+            f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
+            + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J there" if why else "")
+        )
+    attrs.update(
+        start=start,
+        ends=", ".join(ends),
+        jellett_max=prob.jellett_max,
+        n_newton=work[0],
+        n_residual=work[1],
+        n_jacobian=work[2],
+        degenerate=int(prob.degenerate),
+    )
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
@@ -386,8 +450,9 @@ def _empty(attrs: dict[str, Any], note: str) -> xr.Dataset:
     return points_dataset(None, np.zeros((0, 2)), [], [], attrs)
 
 
-def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str],
-                   attrs: dict[str, Any]) -> xr.Dataset:
+def points_dataset(
+    prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str], attrs: dict[str, Any]
+) -> xr.Dataset:
     """Spectra, flags and the Dataset of points ``(theta, log lam)`` of the family (traced, or
     solved otherwise, e.g. by the benchmark's baseline), with their kinds and details."""
     n = len(pts)
@@ -410,8 +475,9 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
         for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
             y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
         spins = family.omega_vertical(c, lam, q)
-        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, q=q, sigma=sigma,
-                                                        fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+        ev, growth, bound, n_neutral, jac = state_modes(
+            y, lam, vertical, c, spins, prob.p, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
+        )
         J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
         axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
         for i in range(n):
@@ -423,29 +489,79 @@ def points_dataset(prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: lis
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
-        "tilt": ("point", np.degrees(theta), var_attrs("polar angle of the axis k from the upward vertical", DEGREE, short="tilt")),
-        "jellett": ("point", J, var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J")),
-        "precession_rate": ("point", lam, var_attrs("precession rate of the axis about the vertical", "Omega",
-                                                    short="precession rate", comment="at a branch point: spin / (1 + q cos(tilt))")),
+        "tilt": (
+            "point",
+            np.degrees(theta),
+            var_attrs("polar angle of the axis k from the upward vertical", DEGREE, short="tilt"),
+        ),
+        "jellett": (
+            "point",
+            J,
+            var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"),
+        ),
+        "precession_rate": (
+            "point",
+            lam,
+            var_attrs(
+                "precession rate of the axis about the vertical",
+                "Omega",
+                short="precession rate",
+                comment="at a branch point: spin / (1 + q cos(tilt))",
+            ),
+        ),
         "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
         "energy": ("point", E, var_attrs("total energy", "A0 Omega^2", short="energy")),
-        "upright_equivalent_spin": ("point", J / j_upright, var_attrs(
-            "spin of the upright state with the same J, J / (sigma (1 + q))", "Omega",
-            short="upright-equiv. spin")),
-        "growth_rate": ("point", growth, var_attrs(
-            "leading growth rate of the linearisation (frame precessing with the state), structural "
-            "neutral directions removed", "Omega", short="leading growth rate")),
-        "growth_rate_bound": ("point", bound, var_attrs(
-            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
-            "point; tilted states: 1e3 u ||A||_F)", "Omega", short="growth rate bound")),
-        "n_neutral": ("point", np.asarray(n_neutral, dtype=np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
+        "upright_equivalent_spin": (
+            "point",
+            J / j_upright,
+            var_attrs(
+                "spin of the upright state with the same J, J / (sigma (1 + q))", "Omega", short="upright-equiv. spin"
+            ),
+        ),
+        "growth_rate": (
+            "point",
+            growth,
+            var_attrs(
+                "leading growth rate of the linearisation (frame precessing with the state), structural "
+                "neutral directions removed",
+                "Omega",
+                short="leading growth rate",
+            ),
+        ),
+        "growth_rate_bound": (
+            "point",
+            bound,
+            var_attrs(
+                "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
+                "point; tilted states: 1e3 u ||A||_F)",
+                "Omega",
+                short="growth rate bound",
+            ),
+        ),
+        "n_neutral": (
+            "point",
+            np.asarray(n_neutral, dtype=np.int8),
+            var_attrs("number of physical modes neutral within rounding", short="neutral modes"),
+        ),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
-        "stability_jacobian": ("point", np.asarray(jac, dtype=np.int8), flag_attrs(
-            "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
-            "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points")),
-        "kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of point", "comment": "branch_point, fold, "
-                                                                    "stability_change, end, or regular"}),
+        "stability_jacobian": (
+            "point",
+            np.asarray(jac, dtype=np.int8),
+            flag_attrs(
+                "Jacobian verdict",
+                comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
+                "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points",
+            ),
+        ),
+        "kind": (
+            "point",
+            np.array(kinds, dtype=str),
+            {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"},
+        ),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
-    return xr.Dataset(data, coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
-                      attrs=attrs)
+    return xr.Dataset(
+        data,
+        coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
+        attrs=attrs,
+    )

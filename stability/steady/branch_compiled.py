@@ -22,15 +22,24 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from stability.jit import OPTIONS, njit
 
 from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
+from stability.jit import OPTIONS, njit
 
 from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import jellett_integral
 from .family import state_core
 
-__all__ = ["component", "divided", "residual_and_jacobian", "jellett", "constraint_values", "step", "H", "residual_weight"]
+__all__ = [
+    "H",
+    "component",
+    "constraint_values",
+    "divided",
+    "jellett",
+    "residual_and_jacobian",
+    "residual_weight",
+    "step",
+]
 
 _JIT = dict(OPTIONS, cache=True)
 
@@ -88,8 +97,9 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
         r_l = (component(theta + 0j, lam * (1.0 + 1j * H), p, q, code, n_full) / s).imag / (H * lam)
     else:
         d = 1e-6 * lam  # relative to lam (of the family's scale, any size)
-        r_l = (divided(theta, lam + d, p, q, code, n_full)[0]
-               - divided(theta, lam - d, p, q, code, n_full)[0]) / (2.0 * d)
+        r_l = (divided(theta, lam + d, p, q, code, n_full)[0] - divided(theta, lam - d, p, q, code, n_full)[0]) / (
+            2.0 * d
+        )
     sc = lam * lam + weight
     return r / sc, r_t / sc, lam * (r_l / sc - r * 2.0 * lam / (sc * sc))
 
@@ -135,8 +145,26 @@ def _scaled(v, scale, p, q, code, n_full, weight, F, J):
 
 
 @njit(**_JIT)
-def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, guess, t_plane, anchor, h, scale, tol,
-         max_iter, max_move):
+def step(
+    p,
+    q,
+    sigma,
+    mu,
+    code,
+    n_full,
+    degenerate,
+    weight,
+    jmax,
+    jmin,
+    guess,
+    t_plane,
+    anchor,
+    h,
+    scale,
+    tol,
+    max_iter,
+    max_move,
+):
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
     constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""

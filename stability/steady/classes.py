@@ -36,7 +36,7 @@ from ..resources import check_class_atlas
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
 
-__all__ = ["CLASSES", "CLASS_CODES", "OUTSIDE", "class_codes", "top_class", "class_boundaries", "class_atlas"]
+__all__ = ["CLASSES", "CLASS_CODES", "OUTSIDE", "class_atlas", "class_boundaries", "class_codes", "top_class"]
 
 #: class names by code
 CLASSES: tuple[str, ...] = ("never_inverts", "inverts", "hangs")
@@ -59,8 +59,8 @@ def class_codes(q: np.ndarray, sigma: np.ndarray, mu: np.ndarray) -> tuple[np.nd
     upright launch, for checked, broadcast parameter arrays (no domain mask applied).
 
     The tilt is 0 (never_inverts), 180 (inverts) or ``arccos(c0)`` (hangs)."""
-    p1 = family.p_of_c(1.0, q, sigma, mu)      # sigma (1 + q) - A_G
-    pm1 = family.p_of_c(-1.0, q, sigma, mu)    # A_G - sigma (1 - q)
+    p1 = family.p_of_c(1.0, q, sigma, mu)  # sigma (1 + q) - A_G
+    pm1 = family.p_of_c(-1.0, q, sigma, mu)  # A_G - sigma (1 - q)
     up_unstable = (p1 < 0) | ((p1 == 0) & (q > 0))
     inv_stable = (pm1 < 0) | ((pm1 == 0) & (q > 0))
     code = np.where(~up_unstable, 0, np.where(inv_stable, 1, 2)).astype(np.int8)
@@ -115,8 +115,11 @@ def class_boundaries(q: Any, mu: Any = DEFAULT_MU) -> dict[str, np.ndarray]:
     """
     q = as_parameter("q", q)
     mu = as_parameter("mu", mu)
-    return {"never_inverts": family.sigma_of_c0(1.0, q, mu), "hangs": np.where(q < 0, family.sigma_of_c0(-1.0, q, mu), np.nan),
-            "domain": _sigma_domain(q, mu)}
+    return {
+        "never_inverts": family.sigma_of_c0(1.0, q, mu),
+        "hangs": np.where(q < 0, family.sigma_of_c0(-1.0, q, mu), np.nan),
+        "domain": _sigma_domain(q, mu),
+    }
 
 
 def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bool = True) -> xr.Dataset:
@@ -156,32 +159,46 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
         attrs = parameter_attrs(k)
         coords[k] = (k, v, attrs) if v.ndim == 1 else ((), float(v), attrs)
     data: dict[str, Any] = {
-        "top_class": (tuple(dims), code, {
-            "long_name": "high-spin class",
-            "flag_values": np.array([OUTSIDE, 0, 1, 2], dtype=np.int8),
-            "flag_meanings": "outside_domain " + " ".join(CLASSES),
-            "comment": "high-spin class of the top (launched near upright with a large spin); never_inverts: sigma (1 + q) > A_G; inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: "
-                       "otherwise (ties: the class of every large finite spin)"}),
-        "high_spin_tilt": (tuple(dims), tilt, var_attrs(
-            "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))", DEGREE,
-            short="high-spin end tilt")),
+        "top_class": (
+            tuple(dims),
+            code,
+            {
+                "long_name": "high-spin class",
+                "flag_values": np.array([OUTSIDE, 0, 1, 2], dtype=np.int8),
+                "flag_meanings": "outside_domain " + " ".join(CLASSES),
+                "comment": "high-spin class of the top (launched near upright with a large spin); never_inverts: sigma (1 + q) > A_G; inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: "
+                "otherwise (ties: the class of every large finite spin)",
+            },
+        ),
+        "high_spin_tilt": (
+            tuple(dims),
+            tilt,
+            var_attrs(
+                "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))",
+                DEGREE,
+                short="high-spin end tilt",
+            ),
+        ),
     }
     bdims = tuple(d for d in dims if d in ("q", "mu"))
     if bdims:
         grid = np.meshgrid(*(values[d] for d in bdims), indexing="ij")
-        qg, mg = (grid[bdims.index(k)] if k in bdims else np.broadcast_to(values[k], grid[0].shape)
-                  for k in ("q", "mu"))
+        qg, mg = (
+            grid[bdims.index(k)] if k in bdims else np.broadcast_to(values[k], grid[0].shape) for k in ("q", "mu")
+        )
         with np.errstate(invalid="ignore", divide="ignore"):
             ok = family.a_g(qg, mg) > 0
             b = class_boundaries(qg, mg)
-        for name, short, text in (("never_inverts", "sigma, never_inverts above",
-                                   "boundary sigma = A_G / (1 + q): never_inverts above"),
-                                  ("hangs", "sigma, hangs below", "boundary sigma = A_G / (1 - q), q < 0: hangs "
-                                                                  "below, inverts above"),
-                                  ("domain", "sigma, domain top", "top of the physical domain, sigma = 2 A_G")):
+        for name, short, text in (
+            ("never_inverts", "sigma, never_inverts above", "boundary sigma = A_G / (1 + q): never_inverts above"),
+            ("hangs", "sigma, hangs below", "boundary sigma = A_G / (1 - q), q < 0: hangs below, inverts above"),
+            ("domain", "sigma, domain top", "top of the physical domain, sigma = 2 A_G"),
+        ):
             data[f"sigma_{name}"] = (bdims, np.where(ok, b[name], np.nan), var_attrs(text, short=short))
     attrs = product_attrs("top_classes", "High-spin classes of sliding tops", "stability.class_atlas")
     attrs["grid_dimensions"] = " ".join(dims)
-    attrs["literature"] = ("inverts <=> 1 - alpha < A_G/C < 1 + alpha (alpha = -q): Hugenholtz's condition; "
-                           "never_inverts / inverts / hangs: groups I / II / III of Ueda, Sasaki and Watanabe (2005)")
+    attrs["literature"] = (
+        "inverts <=> 1 - alpha < A_G/C < 1 + alpha (alpha = -q): Hugenholtz's condition; "
+        "never_inverts / inverts / hangs: groups I / II / III of Ueda, Sasaki and Watanabe (2005)"
+    )
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -27,17 +27,26 @@ import numpy as np
 import xarray as xr
 
 from ..errors import InputError
+from ..products import FLAG_MEANINGS, FLAG_VALUES
 from ..top import SPIN_UNITS, Top
 
-__all__ = ["bifurcation_diagram", "REFERENCE_RPM"]
+__all__ = ["REFERENCE_RPM", "bifurcation_diagram"]
 
 #: the diagram's reference spin: J in units of A0 Omega_ref (any value gives the same figure)
 REFERENCE_RPM = 400.0
 
 
-def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, runs: Sequence[float] = (),
-                        tilt: float = 1.0, paper_run: bool = False, spin_range: Sequence[float] | None = None,
-                        points: int = 221) -> dict[str, xr.Dataset]:
+def bifurcation_diagram(
+    top: Top,
+    *,
+    unit: str = "rpm",
+    alpha_v: Any = None,
+    runs: Sequence[float] = (),
+    tilt: float = 1.0,
+    paper_run: bool = False,
+    spin_range: Sequence[float] | None = None,
+    points: int = 221,
+) -> dict[str, xr.Dataset]:
     """The bifurcation diagram of a top: its steady states against the equivalent upright spin.
 
     Parameters
@@ -95,7 +104,9 @@ def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, run
     ref = REFERENCE_RPM * SPIN_UNITS["rpm"] / per_unit  # the reference spin in `unit`
     if top.mu_v is not None:
         if alpha_v is not None:
-            raise InputError(f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {top.mu_v:g} s/m; give one of them")
+            raise InputError(
+                f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {top.mu_v:g} s/m; give one of them"
+            )
         alpha_v = float(top.alpha_v(ref, unit))
     alpha_v = 0.5 if alpha_v is None else float(alpha_v)
     if not alpha_v > 0:
@@ -112,10 +123,10 @@ def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, run
     else:
         marks = list(runs) + bp_spin or [ref]
         lo, hi = 0.75 * min(marks), 1.1 * max(marks)
-    branch = steady_branch(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett_max=hi * j_per_unit,
-                           max_step=0.01)
-    spin_attrs = {"long_name": "equivalent upright spin (launch spin of an upright top with this J)",
-                  "units": unit}
+    branch = steady_branch(
+        q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett_max=hi * j_per_unit, max_step=0.01
+    )
+    spin_attrs = {"long_name": "equivalent upright spin (launch spin of an upright top with this J)", "units": unit}
     branch["spin"] = (branch.jellett / j_per_unit).assign_attrs(spin_attrs)
     extra = branch.spin.values[branch.kind.values == "branch_point"]
     spins = np.unique(np.concatenate([np.linspace(lo, hi, points), extra]))
@@ -126,10 +137,16 @@ def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, run
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
     flag_attrs = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
     vertical = xr.Dataset(
-        {f"stability_{k}": ("level", np.array(v, dtype=np.int8), {"long_name": f"stability of the {k} spin",
-                                                                   **flag_attrs})
-         for k, v in flags.items()},
-        coords={"spin": ("level", spins, spin_attrs)})
+        {
+            f"stability_{k}": (
+                "level",
+                np.array(v, dtype=np.int8),
+                {"long_name": f"stability of the {k} spin", **flag_attrs},
+            )
+            for k, v in flags.items()
+        },
+        coords={"spin": ("level", spins, spin_attrs)},
+    )
     rows = []
     th = math.radians(tilt)
     for r in runs:
@@ -138,36 +155,75 @@ def bifurcation_diagram(top: Top, *, unit: str = "rpm", alpha_v: Any = None, run
         params = {k: float(v) for k, v in params.items()}
         pred = final_state(**params, **start, simulation=False)
         chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
-        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, t_max=2e5,
-                             settle_tolerance=1e-3, rtol=1e-10)
-        rows.append((r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
-                     int(run.settled), 0))
+        end, _, run = settle(
+            initial_state("sliding", **start), params, chunk=chunk, t_max=2e5, settle_tolerance=1e-3, rtol=1e-10
+        )
+        rows.append(
+            (r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), 0)
+        )
     if paper_run:  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
         from ..nonlinear.scene import INITIAL_CONDITIONS
 
         ic = INITIAL_CONDITIONS[0.3]
         params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
         pred = final_state(**params, **ic)
-        end, _, run = settle(initial_state("sliding", **ic), params, t_max=2e5, settle_tolerance=1e-3, rtol=1e-10,
-                             chunk=chunk_length(pred.candidates, params, pred.jellett))
+        end, _, run = settle(
+            initial_state("sliding", **ic),
+            params,
+            t_max=2e5,
+            settle_tolerance=1e-3,
+            rtol=1e-10,
+            chunk=chunk_length(pred.candidates, params, pred.jellett),
+        )
         r = float(top.spin_rate(0.3, unit))
-        rows.append((r, abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end,
-                     int(run.settled), 1))
+        rows.append(
+            (
+                r,
+                abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r,
+                pred.tilt,
+                end,
+                run.t_end,
+                int(run.settled),
+                1,
+            )
+        )
     arr = np.array(rows, dtype=float).reshape(-1, 7)
     runs_ds = xr.Dataset(
-        {"launch_spin": ("run", arr[:, 0], {"long_name": "launch spin", "units": unit}),
-         "spin": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": unit}),
-         "predicted_tilt": ("run", arr[:, 2], {"long_name": "final tilt predicted by Jellett's integral",
-                                               "units": "degree"}),
-         "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
-         "t_end": ("run", arr[:, 4], {"long_name": "length of the run", "units": "1"}),
-         "settled": ("run", arr[:, 5].astype(np.int8),
-                     {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"}),
-         "paper_run": ("run", arr[:, 6].astype(np.int8),
-                       {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)"})},
-        coords={"run": ("run", np.arange(len(rows)))})
-    attrs = {"Conventions": "CF-1.10", "spin_unit": unit, "reference_spin": ref, "radius_m": top.radius,
-             "mass_kg": top.mass, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v, "initial_tilt_deg": float(tilt)}
+        {
+            "launch_spin": ("run", arr[:, 0], {"long_name": "launch spin", "units": unit}),
+            "spin": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": unit}),
+            "predicted_tilt": (
+                "run",
+                arr[:, 2],
+                {"long_name": "final tilt predicted by Jellett's integral", "units": "degree"},
+            ),
+            "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
+            "t_end": ("run", arr[:, 4], {"long_name": "length of the run", "units": "1"}),
+            "settled": (
+                "run",
+                arr[:, 5].astype(np.int8),
+                {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"},
+            ),
+            "paper_run": (
+                "run",
+                arr[:, 6].astype(np.int8),
+                {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)"},
+            ),
+        },
+        coords={"run": ("run", np.arange(len(rows)))},
+    )
+    attrs = {
+        "Conventions": "CF-1.10",
+        "spin_unit": unit,
+        "reference_spin": ref,
+        "radius_m": top.radius,
+        "mass_kg": top.mass,
+        "q": q,
+        "sigma": sigma,
+        "mu": mu,
+        "alpha_v": alpha_v,
+        "initial_tilt_deg": float(tilt),
+    }
     for ds in (vertical, runs_ds):
         ds.attrs.update(attrs)
     branch.attrs.update(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)

@@ -52,16 +52,46 @@ import math
 from typing import Any
 
 import numpy as np
+
 from stability.jit import njit, register_jitable
 
 from ..models.inertia import inertia_g, transverse_inertia_g
 
-__all__ = ["a_g", "detuning", "d_of_c", "p_of_c", "c0", "c0_point", "sigma_of_c0", "degenerate_cosine", "precession_rate",
-           "jellett_of_c", "effective_potential", "potential_slope", "potential_curvature", "axial_spin",
-           "omega_vertical", "vertical_jellett", "upright_jellett", "vertical_spin", "equivalent_point",
-           "branch_point_jellett", "fold_cosines", "family_interval", "level_quartic", "tilted_roots",
-           "tilted_cosines", "energy_test_at", "energy_test", "level_states", "LEVEL_COLUMNS", "state_vector",
-           "vertical_state", "state_core", "ORIENTATIONS"]
+__all__ = [
+    "LEVEL_COLUMNS",
+    "ORIENTATIONS",
+    "a_g",
+    "axial_spin",
+    "branch_point_jellett",
+    "c0",
+    "c0_point",
+    "d_of_c",
+    "degenerate_cosine",
+    "detuning",
+    "effective_potential",
+    "energy_test",
+    "energy_test_at",
+    "equivalent_point",
+    "family_interval",
+    "fold_cosines",
+    "jellett_of_c",
+    "level_quartic",
+    "level_states",
+    "omega_vertical",
+    "p_of_c",
+    "potential_curvature",
+    "potential_slope",
+    "precession_rate",
+    "sigma_of_c0",
+    "state_core",
+    "state_vector",
+    "tilted_cosines",
+    "tilted_roots",
+    "upright_jellett",
+    "vertical_jellett",
+    "vertical_spin",
+    "vertical_state",
+]
 
 #: the two vertical states: name -> cos(theta)
 ORIENTATIONS: dict[str, float] = {"upright": 1.0, "inverted": -1.0}
@@ -394,8 +424,9 @@ def energy_test_at(c, vertical, jellett, q, sigma, fr_inv, mu):
     return j2 * (4.0 * p * p - a * d) / (d * d * d), j2 * (4.0 * p * p + abs(a) * d) / (d * d * d)
 
 
-def energy_test(kind: str, c: float, jellett: float, *, q: float, sigma: float, fr_inv: float,
-                mu: float) -> tuple[float, float]:
+def energy_test(
+    kind: str, c: float, jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float
+) -> tuple[float, float]:
     """The energy criterion of stability (S8) of a state of ``kind`` ("upright", "inverted",
     "tilted"; the vertical ones at ``c = +-1``): :func:`energy_test_at`.
 
@@ -483,7 +514,7 @@ def state_core(theta, lam, q, phi, y):
     y[3] = k0
     y[4] = k1
     y[5] = k2
-    y[6] = w1   # (omega x K)_1 = omega_2
+    y[6] = w1  # (omega x K)_1 = omega_2
     y[7] = -w0  # (omega x K)_2 = -omega_1
 
 
@@ -492,8 +523,7 @@ def state_vector(theta: Any, lam: Any, q: float, phi: Any = 0.0) -> np.ndarray:
 
     Vertical states: ``theta = 0`` or ``pi`` with ``lam = n / (1 +- q)`` gives ``omega = n K``.
     """
-    theta, lam, phi = np.broadcast_arrays(np.asarray(theta, float), np.asarray(lam, float),
-                                          np.asarray(phi, float))
+    theta, lam, phi = np.broadcast_arrays(np.asarray(theta, float), np.asarray(lam, float), np.asarray(phi, float))
     out = np.empty(theta.shape + (8,))
     flat = out.reshape(-1, 8)
     for i, (t, la, ph) in enumerate(zip(theta.ravel(), lam.ravel(), phi.ravel())):

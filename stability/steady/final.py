@@ -43,8 +43,7 @@ from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import state_modes
-from .products import (DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters,
-                       var_attrs)
+from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
@@ -54,8 +53,18 @@ COMPILE_SECONDS = 6.0
 #: the compiled functions every prediction runs (the notice's question; ``tippe warmup``)
 COMPILED = Compiled(family.level_states, point_integrals)
 
-__all__ = ["final_state", "final_state_from", "FinalState", "Candidate", "SettleRun", "candidates", "predict", "settle",
-           "chunk_length", "MATCH_DEG"]
+__all__ = [
+    "MATCH_DEG",
+    "Candidate",
+    "FinalState",
+    "SettleRun",
+    "candidates",
+    "chunk_length",
+    "final_state",
+    "final_state_from",
+    "predict",
+    "settle",
+]
 
 #: a run's end tilt within this of a steady state (degrees) is that state
 MATCH_DEG = 0.05
@@ -208,52 +217,124 @@ class FinalState:
         n = len(cands)
         ends = [c is self.state for c in cands]
         data = {
-            "tilt": ((), self.tilt, var_attrs("final polar angle of the axis from the upward vertical", DEGREE, short="final tilt")),
-            "initial_tilt": ((), self.initial_tilt, var_attrs("initial polar angle of the axis", DEGREE, short="initial tilt")),
-            "jellett": ((), self.jellett, var_attrs("Jellett's integral J = (K + q k) . I_G omega of the motion",
-                                                    "A0 Omega", short="Jellett's J")),
+            "tilt": (
+                (),
+                self.tilt,
+                var_attrs("final polar angle of the axis from the upward vertical", DEGREE, short="final tilt"),
+            ),
+            "initial_tilt": (
+                (),
+                self.initial_tilt,
+                var_attrs("initial polar angle of the axis", DEGREE, short="initial tilt"),
+            ),
+            "jellett": (
+                (),
+                self.jellett,
+                var_attrs(
+                    "Jellett's integral J = (K + q k) . I_G omega of the motion", "A0 Omega", short="Jellett's J"
+                ),
+            ),
             "initial_energy": ((), self.initial_energy, var_attrs("initial energy", "A0 Omega^2")),
             "energy": ((), self.energy, var_attrs("energy of the final state", "A0 Omega^2", short="final energy")),
-            "precession_rate": ((), self.precession_rate, var_attrs("precession rate of the final state", "Omega", short="precession rate")),
-            "axial_spin": ((), self.axial_spin, var_attrs("spin about the axis of the final state, omega . k", "Omega", short="axial spin")),
-            "candidate_kind": ("candidate", np.array([c.kind for c in cands], dtype=str),
-                               {"long_name": "kind of state", "comment": "kind of the steady state of the level"}),
-            "candidate_tilt": ("candidate", np.array([c.tilt for c in cands]), var_attrs("tilt of the steady state", DEGREE, short="tilt")),
-            "candidate_energy": ("candidate", np.array([c.energy for c in cands]), var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J")),
-            "candidate_precession_rate": ("candidate", np.array([c.precession_rate for c in cands]),
-                                          var_attrs("precession rate of the steady state (NaN: vertical)", "Omega",
-                                                    short="precession rate")),
-            "candidate_axial_spin": ("candidate", np.array([c.axial_spin for c in cands]),
-                                     var_attrs("spin about the axis of the steady state, omega . k", "Omega",
-                                               short="axial spin")),
-            "candidate_stability": ("candidate", np.array([c.stability for c in cands], dtype=np.int8),
-                                    flag_attrs("stability of the steady state")),
-            "candidate_energy_test": ("candidate", np.array([c.energy_test for c in cands]),
-                                      var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion")),
-            "candidate_reachable": ("candidate", np.array([c.reachable for c in cands], dtype=np.int8),
-                                    {"long_name": "U_J <= initial energy", "flag_values": np.array([0, 1], np.int8),
-                                     "flag_meanings": "unreachable reachable"}),
-            "candidate_is_final": ("candidate", np.array(ends, dtype=np.int8),
-                                   {"long_name": "final state", "comment": "the motion ends on this state", "flag_values": np.array([0, 1], np.int8),
-                                    "flag_meanings": "no yes"}),
+            "precession_rate": (
+                (),
+                self.precession_rate,
+                var_attrs("precession rate of the final state", "Omega", short="precession rate"),
+            ),
+            "axial_spin": (
+                (),
+                self.axial_spin,
+                var_attrs("spin about the axis of the final state, omega . k", "Omega", short="axial spin"),
+            ),
+            "candidate_kind": (
+                "candidate",
+                np.array([c.kind for c in cands], dtype=str),
+                {"long_name": "kind of state", "comment": "kind of the steady state of the level"},
+            ),
+            "candidate_tilt": (
+                "candidate",
+                np.array([c.tilt for c in cands]),
+                var_attrs("tilt of the steady state", DEGREE, short="tilt"),
+            ),
+            "candidate_energy": (
+                "candidate",
+                np.array([c.energy for c in cands]),
+                var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"),
+            ),
+            "candidate_precession_rate": (
+                "candidate",
+                np.array([c.precession_rate for c in cands]),
+                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
+            ),
+            "candidate_axial_spin": (
+                "candidate",
+                np.array([c.axial_spin for c in cands]),
+                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
+            ),
+            "candidate_stability": (
+                "candidate",
+                np.array([c.stability for c in cands], dtype=np.int8),
+                flag_attrs("stability of the steady state"),
+            ),
+            "candidate_energy_test": (
+                "candidate",
+                np.array([c.energy_test for c in cands]),
+                var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"),
+            ),
+            "candidate_reachable": (
+                "candidate",
+                np.array([c.reachable for c in cands], dtype=np.int8),
+                {
+                    "long_name": "U_J <= initial energy",
+                    "flag_values": np.array([0, 1], np.int8),
+                    "flag_meanings": "unreachable reachable",
+                },
+            ),
+            "candidate_is_final": (
+                "candidate",
+                np.array(ends, dtype=np.int8),
+                {
+                    "long_name": "final state",
+                    "comment": "the motion ends on this state",
+                    "flag_values": np.array([0, 1], np.int8),
+                    "flag_meanings": "no yes",
+                },
+            ),
         }
         p = self.parameters
         curve, curve_coords = potential_curve(self.jellett, q=p["q"], sigma=p["sigma"], fr_inv=p["fr_inv"], mu=p["mu"])
         data.update(curve)
-        attrs = product_attrs("final_state", "Final state of a sliding Tippe top", "stability.final_state",
-                              self.parameters)
-        attrs.update(kind=self.kind, method=self.method, reason=self.reason, model="sliding",
-                     event=self.event, event_time=self.event_time)
+        attrs = product_attrs(
+            "final_state", "Final state of a sliding Tippe top", "stability.final_state", self.parameters
+        )
+        attrs.update(
+            kind=self.kind,
+            method=self.method,
+            reason=self.reason,
+            model="sliding",
+            event=self.event,
+            event_time=self.event_time,
+        )
         if self.run is not None:
             for name, value in self.run.__dict__.items():
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
-        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(n), {"long_name": "candidate",
-                                                                                  "comment": "index of the steady state"}),
-                                        **curve_coords}, attrs=attrs)
+        return xr.Dataset(
+            data,
+            coords={
+                "candidate": (
+                    "candidate",
+                    np.arange(n),
+                    {"long_name": "candidate", "comment": "index of the steady state"},
+                ),
+                **curve_coords,
+            },
+            attrs=attrs,
+        )
 
 
-def candidates(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
-               mu: float) -> tuple[Candidate, ...]:
+def candidates(
+    jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
+) -> tuple[Candidate, ...]:
     """Every steady state of the level ``J`` with its energy, flag and reachability (``U_J <= E0``).
 
     The closed forms in one compiled call (:func:`stability.steady.family.level_states`): no
@@ -267,13 +348,24 @@ def candidates(jellett: float, initial_energy: float, *, q: float, sigma: float,
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
         kind = "upright" if i == 0 else "inverted" if i == last else "tilted"
         tilt = 0.0 if i == 0 else 180.0 if i == last else math.degrees(math.acos(c))
-        out.append(Candidate(kind, tilt, u, lam, axial, flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v),
-                             test, u <= E0 + tol))
+        out.append(
+            Candidate(
+                kind,
+                tilt,
+                u,
+                lam,
+                axial,
+                flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v),
+                test,
+                u <= E0 + tol,
+            )
+        )
     return tuple(out)
 
 
-def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float,
-            mu: float) -> tuple[Candidate | None, str, tuple[Candidate, ...]]:
+def predict(
+    jellett: float, initial_energy: float, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
+) -> tuple[Candidate | None, str, tuple[Candidate, ...]]:
     """The decision of the Jellett method from the integrals ``(J0, E0)``, in floats: the steady
     state the motion ends on (None if ``J`` and ``E`` do not decide), the reason, and the
     candidate table (:func:`candidates`). No input checks: :func:`final_state` does them."""
@@ -282,8 +374,9 @@ def predict(jellett: float, initial_energy: float, *, q: float, sigma: float, fr
     return end, reason, cands
 
 
-def start_note(cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float,
-               gravity: float) -> str:
+def start_note(
+    cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float, gravity: float
+) -> str:
     """``"; the start is itself ..."`` if the initial state is one of the level's steady states,
     else ``""``.
 
@@ -297,8 +390,10 @@ def start_note(cands: tuple[Candidate, ...], initial_energy: float, initial_tilt
         if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
             flag = ("stable", "marginal", "unstable")[c.stability]
             if c.stability == UNSTABLE:
-                return (f"; the start is itself a steady state (the {c.kind} one, {flag}), where the top stays "
-                        "forever: the end given is where any perturbation of it leads")
+                return (
+                    f"; the start is itself a steady state (the {c.kind} one, {flag}), where the top stays "
+                    "forever: the end given is where any perturbation of it leads"
+                )
             return f"; the start is itself a steady state (the {c.kind} one, {flag}): the top stays there"
     return ""
 
@@ -307,25 +402,42 @@ def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate |
     """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if len(reach) == 1 and reach[0].stability == STABLE:
-        return reach[0], ("one steady state of the Jellett level lies below the initial energy without being "
-                          "unstable, and it is strictly stable")
+        return reach[0], (
+            "one steady state of the Jellett level lies below the initial energy without being "
+            "unstable, and it is strictly stable"
+        )
     n_st = sum(c.stability == STABLE for c in reach)
     n_mg = len(reach) - n_st
     reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
     if n_st >= 2:
         reason += " (bistable: the energy cannot tell which one the motion reaches)"
     if degenerate and n_mg:
-        reason += (" (fr_inv = 0 or q = 0: the normal force has no moment about G at a no-slip state, and "
-                   "continua of rolling motions next to the marginal states are steady too, so J and E do not "
-                   "fix the end)")
+        reason += (
+            " (fr_inv = 0 or q = 0: the normal force has no moment about G at a no-slip state, and "
+            "continua of rolling motions next to the marginal states are steady too, so J and E do not "
+            "fix the end)"
+        )
     elif n_mg:
         reason += " (a marginal state: the level is at a fold or a branch point)"
     return None, reason
 
 
-def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = None, q: Any, sigma: Any,
-                fr_inv: Any, alpha_v: Any, mu: Any = DEFAULT_MU, simulation: bool = True, t_max: Any = 2e5,
-                settle_tolerance: Any = 1e-4, rtol: Any = 1e-10) -> FinalState:
+def final_state(
+    model: str = "sliding",
+    *,
+    omega: Any,
+    k: Any,
+    velocity: Any = None,
+    q: Any,
+    sigma: Any,
+    fr_inv: Any,
+    alpha_v: Any,
+    mu: Any = DEFAULT_MU,
+    simulation: bool = True,
+    t_max: Any = 2e5,
+    settle_tolerance: Any = 1e-4,
+    rtol: Any = 1e-10,
+) -> FinalState:
     """The predicted end of the motion of a sliding top (simulate's state arguments).
 
     Parameters
@@ -378,17 +490,25 @@ def final_state(model: str = "sliding", *, omega: Any, k: Any, velocity: Any = N
     params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     if alpha_v == 0.0:
-        raise DomainError("alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
-                          "friction the energy is conserved and the motion has no final state)")
+        raise DomainError(
+            "alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
+            "friction the energy is conserved and the motion has no final state)"
+        )
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     before_compiled_call(COMPILED, COMPILE_SECONDS)
-    return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance,
-                            rtol=rtol)
+    return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
 
 
-def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: bool = True, t_max: Any = 2e5,
-                     settle_tolerance: Any = 1e-4, rtol: Any = 1e-10) -> FinalState:
+def final_state_from(
+    y: np.ndarray,
+    params: dict[str, float],
+    *,
+    simulation: bool = True,
+    t_max: Any = 2e5,
+    settle_tolerance: Any = 1e-4,
+    rtol: Any = 1e-10,
+) -> FinalState:
     """:func:`final_state` after its input checks: from a checked state and checked parameters.
 
     What the steady layer itself does per call: ``J0`` and ``E0`` of the state
@@ -416,29 +536,59 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
     reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     if end is not None:
-        return FinalState(tilt=end.tilt, kind=end.kind, method="jellett", energy=end.energy,
-                          precession_rate=end.precession_rate, axial_spin=end.axial_spin, state=end,
-                          reason=reason, run=None, **common)
+        return FinalState(
+            tilt=end.tilt,
+            kind=end.kind,
+            method="jellett",
+            energy=end.energy,
+            precession_rate=end.precession_rate,
+            axial_spin=end.axial_spin,
+            state=end,
+            reason=reason,
+            run=None,
+            **common,
+        )
     if not simulation:
-        return FinalState(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan,
-                          precession_rate=math.nan, axial_spin=math.nan, state=None,
-                          reason=reason + "; no run (simulation=False)", run=None, **common)
+        return FinalState(
+            tilt=math.nan,
+            kind="undecided",
+            method="simulation",
+            energy=math.nan,
+            precession_rate=math.nan,
+            axial_spin=math.nan,
+            state=None,
+            reason=reason + "; no run (simulation=False)",
+            run=None,
+            **common,
+        )
     t_max = check_positive("t_max", t_max)
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
     chunk = chunk_length(cands, params, J0)
     if _auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
-        announce(f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
-                 f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
-                 f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
-                 "simulation=False skips it)")
+        announce(
+            f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
+            f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
+            f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
+            "simulation=False skips it)"
+        )
     tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
     if run.event != "none":
-        return FinalState(tilt=tilt, kind=run.event, method="simulation", energy=energy,
-                          precession_rate=math.nan, axial_spin=run.axial_spin, state=None,
-                          reason=f"{reason}; a run decided: {run.event.replace('_', ' ')} at t = {run.event_time:.6g} "
-                                 f"(tilt {tilt:.6g} deg): the model does not hold beyond, no final state",
-                          run=run, event=run.event, event_time=run.event_time, **common)
+        return FinalState(
+            tilt=tilt,
+            kind=run.event,
+            method="simulation",
+            energy=energy,
+            precession_rate=math.nan,
+            axial_spin=run.axial_spin,
+            state=None,
+            reason=f"{reason}; a run decided: {run.event.replace('_', ' ')} at t = {run.event_time:.6g} "
+            f"(tilt {tilt:.6g} deg): the model does not hold beyond, no final state",
+            run=run,
+            event=run.event,
+            event_time=run.event_time,
+            **common,
+        )
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
     if state is not None and run.settled:
@@ -447,14 +597,23 @@ def final_state_from(y: np.ndarray, params: dict[str, float], *, simulation: boo
         kind = "rolling"
     else:
         kind = "unsettled"
-    how = "settled" if run.settled else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
-    return FinalState(tilt=tilt, kind=kind, method="simulation",
-                      energy=state.energy if state is not None and run.settled else energy,
-                      precession_rate=state.precession_rate if state is not None and run.settled else math.nan,
-                      axial_spin=state.axial_spin if state is not None and run.settled else run.axial_spin,
-                      state=state if run.settled else None,
-                      reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, "
-                             f"{run.seconds:.2g} s)", run=run, **common)
+    how = (
+        "settled"
+        if run.settled
+        else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
+    )
+    return FinalState(
+        tilt=tilt,
+        kind=kind,
+        method="simulation",
+        energy=state.energy if state is not None and run.settled else energy,
+        precession_rate=state.precession_rate if state is not None and run.settled else math.nan,
+        axial_spin=state.axial_spin if state is not None and run.settled else run.axial_spin,
+        state=state if run.settled else None,
+        reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)",
+        run=run,
+        **common,
+    )
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
@@ -480,14 +639,33 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
             vert.append(True)
         cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
     p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    growth = state_modes(np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p, q=q,
-                         sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
+    growth = state_modes(
+        np.array(ys),
+        np.array(lams),
+        np.array(vert),
+        np.array(cos_),
+        np.array(spins),
+        p,
+        q=q,
+        sigma=sigma,
+        fr_inv=params["fr_inv"],
+        alpha_v=params["alpha_v"],
+        mu=mu,
+    )[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
 
-def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: float, settle_tolerance: float,
-           rtol: float, samples: int = 20) -> tuple[float, float, SettleRun]:
+def settle(
+    y0: np.ndarray,
+    params: dict[str, float],
+    *,
+    chunk: float,
+    t_max: float,
+    settle_tolerance: float,
+    rtol: float,
+    samples: int = 20,
+) -> tuple[float, float, SettleRun]:
     """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
     tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
     ``t_max`` (or a failed integration: then unsettled, tilt NaN). Returns the end tilt (degrees),
@@ -502,8 +680,17 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
     change = math.inf
     while t < t_max:
         length = min(chunk, t_max - t)
-        ds = simulate("sliding", t_end=length, t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk,
-                      velocity=v, rtol=rtol, atol=1e-3 * rtol, **params)
+        ds = simulate(
+            "sliding",
+            t_end=length,
+            t_eval=np.linspace(0.0, length, samples + 1),
+            omega=w,
+            k=kk,
+            velocity=v,
+            rtol=rtol,
+            atol=1e-3 * rtol,
+            **params,
+        )
         n += 1
         t += length
         if j0 is None:
@@ -523,10 +710,17 @@ def settle(y0: np.ndarray, params: dict[str, float], *, chunk: float, t_max: flo
         if change < settle_tolerance and slip < 1e-6:
             settled = True
             break
-    run = SettleRun(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n,
-                    seconds=time.perf_counter() - t0,
-                    jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
-                    axial_spin=float(ds.spin[-1]), event=event,
-                    event_time=t if event != "none" else math.nan)
+    run = SettleRun(
+        t_end=t,
+        settled=settled,
+        tilt_change=change,
+        slip_speed=slip,
+        chunks=n,
+        seconds=time.perf_counter() - t0,
+        jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
+        axial_spin=float(ds.spin[-1]),
+        event=event,
+        event_time=t if event != "none" else math.nan,
+    )
     ok = np.isfinite(pol)
     return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run

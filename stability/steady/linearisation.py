@@ -46,31 +46,43 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from stability.jit import njit
 
 from ..errors import InputError
 from ..linear.spectra import spectrum
 from ..nonlinear import get_nonlinear_model
-from ..nonlinear.kernels import CODES, rhs as model_rhs
+from ..nonlinear.kernels import CODES
+from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import h_cg
 
-__all__ = ["vertical_spectrum", "state_modes", "REMOVED_NEUTRAL", "ROTATION", "NEUTRAL_FACTOR", "precessing_jacobians", "neutral_covectors",
-           "reduced_spectrum", "modes_verdict", "reduced_state_size"]
+__all__ = [
+    "NEUTRAL_FACTOR",
+    "REMOVED_NEUTRAL",
+    "ROTATION",
+    "modes_verdict",
+    "neutral_covectors",
+    "precessing_jacobians",
+    "reduced_spectrum",
+    "reduced_state_size",
+    "state_modes",
+    "vertical_spectrum",
+]
 
 #: the structural neutral directions removed before the growth rate is taken
 REMOVED_NEUTRAL: dict[str, str] = {
     "k_norm": "|k|^2 is an integral of k' = omega x k on all of R^8 (left null vector (0, k, 0)); "
-              "the |k| direction is not physical",
+    "the |k| direction is not physical",
     "jellett": "Jellett's J = (K + q k) . I_G omega is conserved by every contact force (left null "
-               "vector grad J on |k| = 1); its right partner is the family direction (the steady state "
-               "at a neighbouring J)",
+    "vector grad J on |k| = 1); its right partner is the family direction (the steady state "
+    "at a neighbouring J)",
     "rotation": "symmetry about the vertical K: the orbit direction G y of a tilted state (A G y = 0; "
-                "absent at the vertical states, which are invariant)",
+    "absent at the vertical states, which are invariant)",
 }
 
 #: a mode is neutral if |Re s| <= NEUTRAL_FACTOR * u * ||A||_F
 NEUTRAL_FACTOR = 1e3
-_U = 2.0 ** -53
+_U = 2.0**-53
 _H = 1e-30
 
 #: the generator of rotations about K on (omega, k, V0_h): G y = (K x omega, K x k, K x V0)
@@ -166,9 +178,17 @@ def neutral_covectors(y: np.ndarray, *, q: float, sigma: float, mu: float) -> tu
     return l1, l2
 
 
-def reduced_spectrum(y: np.ndarray, lam: np.ndarray, vertical: np.ndarray, p: np.ndarray, *,
-                     q: float, sigma: float, mu: float, model: str = "sliding"
-                     ) -> tuple[np.ndarray, np.ndarray]:
+def reduced_spectrum(
+    y: np.ndarray,
+    lam: np.ndarray,
+    vertical: np.ndarray,
+    p: np.ndarray,
+    *,
+    q: float,
+    sigma: float,
+    mu: float,
+    model: str = "sliding",
+) -> tuple[np.ndarray, np.ndarray]:
     """The physical eigenvalues of steady states, the structural zeros removed.
 
     Parameters
@@ -238,8 +258,9 @@ def modes_verdict(ev: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.nda
     return growth, neutral.sum(-1), verdict
 
 
-def vertical_spectrum(cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma: float, fr_inv: float,
-                      alpha_v: float, mu: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def vertical_spectrum(
+    cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The spectrum of vertical states from eq. (11): the one home of their growth rates.
 
     The vertical state ``c = +-1`` with spin ``n`` has ``|n|`` times the spectrum of eq. (11)
@@ -283,9 +304,20 @@ def vertical_spectrum(cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma
     return ev, bound, n_neutral, verdict
 
 
-def state_modes(y: np.ndarray, lam: np.ndarray, vertical: np.ndarray, cosines: np.ndarray, spins: np.ndarray,
-                p: np.ndarray, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def state_modes(
+    y: np.ndarray,
+    lam: np.ndarray,
+    vertical: np.ndarray,
+    cosines: np.ndarray,
+    spins: np.ndarray,
+    p: np.ndarray,
+    *,
+    q: float,
+    sigma: float,
+    fr_inv: float,
+    alpha_v: float,
+    mu: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues, leading growth rate, its error bound, neutral count and verdict of steady
     states: tilted ones from the reduced Jacobian (:func:`reduced_spectrum`,
     :func:`modes_verdict`; bound ``NEUTRAL_FACTOR u ||A||_F``), vertical ones from eq. (11)
@@ -296,8 +328,9 @@ def state_modes(y: np.ndarray, lam: np.ndarray, vertical: np.ndarray, cosines: n
     bound = NEUTRAL_FACTOR * _U * np.asarray(scale, float)
     idx = np.nonzero(vertical)[0]
     if idx.size:
-        ev_v, b_v, nn_v, ver_v = vertical_spectrum(np.asarray(cosines)[idx], np.asarray(spins)[idx], q=q,
-                                                   sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+        ev_v, b_v, nn_v, ver_v = vertical_spectrum(
+            np.asarray(cosines)[idx], np.asarray(spins)[idx], q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
+        )
         ok = ver_v >= 0
         j = idx[ok]
         ev[j], bound[j], n_neutral[j], verdict[j] = ev_v[ok], b_v[ok], nn_v[ok], ver_v[ok]

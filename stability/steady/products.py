@@ -24,9 +24,19 @@ from . import family
 from .linearisation import REMOVED_NEUTRAL
 from .verdicts import FLAG_MEANINGS, FLAG_VALUES, RULE
 
-__all__ = ["MODELS", "sliding_parameters", "check_scales", "SCALE_RANGE",
-           "product_attrs", "var_attrs", "flag_attrs", "potential_curve", "UNITLESS",
-           "DEGREE", "TILT_GRID_POINTS"]
+__all__ = [
+    "DEGREE",
+    "MODELS",
+    "SCALE_RANGE",
+    "TILT_GRID_POINTS",
+    "UNITLESS",
+    "check_scales",
+    "flag_attrs",
+    "potential_curve",
+    "product_attrs",
+    "sliding_parameters",
+    "var_attrs",
+]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
 MODELS = ("sliding",)
@@ -37,8 +47,9 @@ DEGREE = "degree"
 TILT_GRID_POINTS = 721
 
 
-def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any, mu: Any, kernel: bool = True
-                       ) -> tuple[dict[str, float], np.ndarray | None]:
+def sliding_parameters(
+    model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any, mu: Any, kernel: bool = True
+) -> tuple[dict[str, float], np.ndarray | None]:
     """Check ``model`` and the parameters (single numbers in the physical domain).
 
     Parameters
@@ -68,9 +79,11 @@ def sliding_parameters(model: Any, *, q: Any, sigma: Any, fr_inv: Any, alpha_v: 
         A missing or non-real parameter, or an array where a number is needed.
     """
     if not isinstance(model, str) or model not in MODELS:
-        raise InputError(f"model = {model!r:.60} is not known; choose one of {', '.join(MODELS)} (the rolling "
-                         "sphere has the same steady states, but it conserves energy: no final state, and no "
-                         "steady state of it is asymptotically stable)")
+        raise InputError(
+            f"model = {model!r:.60} is not known; choose one of {', '.join(MODELS)} (the rolling "
+            "sphere has the same steady states, but it conserves energy: no final state, and no "
+            "steady state of it is asymptotically stable)"
+        )
     if not kernel:
         checked, _ = check_domain(scalar=True, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu, alpha_v=alpha_v)
         return {name: float(v) for name, v in checked.items()}, None
@@ -102,20 +115,35 @@ def check_scales(params: dict[str, float], jellett: float | None = None, *, jell
     """
     lo, hi = SCALE_RANGE
     q, sigma, fr_inv, mu = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
-    checks = [("sigma", sigma, "sigma", ""), ("mu", mu, "mu", ""),
-              ("mu fr_inv", mu * fr_inv, "fr_inv", f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"),
-              ("mu fr_inv |q|", mu * fr_inv * abs(q), "q" if abs(q) < 1e-3 else "fr_inv",
-               f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
-               "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0")]
+    checks = [
+        ("sigma", sigma, "sigma", ""),
+        ("mu", mu, "mu", ""),
+        ("mu fr_inv", mu * fr_inv, "fr_inv", f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"),
+        (
+            "mu fr_inv |q|",
+            mu * fr_inv * abs(q),
+            "q" if abs(q) < 1e-3 else "fr_inv",
+            f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
+            "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0",
+        ),
+    ]
     if jellett is not None:
-        checks += [(f"|{jellett_name}|", abs(jellett), jellett_name, ""),
-                   (f"|{jellett_name}| / sigma", abs(jellett) / sigma, jellett_name,
-                    f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states")]
+        checks += [
+            (f"|{jellett_name}|", abs(jellett), jellett_name, ""),
+            (
+                f"|{jellett_name}| / sigma",
+                abs(jellett) / sigma,
+                jellett_name,
+                f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
+            ),
+        ]
     for label, value, name, why in checks:
         if value != 0.0 and not lo <= value <= hi:
-            raise DomainError(f"{label} = {value:.6g} is outside the steady layer's range [{lo:g}, {hi:g}] "
-                              f"(parameter {name}{'; ' + why if why else ''}): its square would underflow or "
-                              "overflow a double")
+            raise DomainError(
+                f"{label} = {value:.6g} is outside the steady layer's range [{lo:g}, {hi:g}] "
+                f"(parameter {name}{'; ' + why if why else ''}): its square would underflow or "
+                "overflow a double"
+            )
 
 
 def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None, **extra: Any) -> dict[str, Any]:
@@ -130,17 +158,26 @@ def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
     """CF flag attributes of a stability variable (0 stable, 1 marginal, 2 unstable)."""
-    return {"long_name": long_name, "flag_values": np.array(FLAG_VALUES, dtype=np.int8),
-            "flag_meanings": FLAG_MEANINGS, "comment": comment}
+    return {
+        "long_name": long_name,
+        "flag_values": np.array(FLAG_VALUES, dtype=np.int8),
+        "flag_meanings": FLAG_MEANINGS,
+        "comment": comment,
+    }
 
 
-def product_attrs(product: str, title: str, function: str, params: dict[str, float] | None = None,
-                  removed_neutral: bool = False) -> dict[str, Any]:
+def product_attrs(
+    product: str, title: str, function: str, params: dict[str, float] | None = None, removed_neutral: bool = False
+) -> dict[str, Any]:
     """Global attributes: CF conventions, the product name, the source and the parameters."""
-    attrs: dict[str, Any] = {"Conventions": "CF-1.10", "title": title, PRODUCT_ATTR: product,
-                             "source": f"{function} (tippe-stability {package_version()})",
-                             "units_convention": "length R, time 1/Omega, inertia A0, energy A0 Omega^2, "
-                                                 "Jellett's integral A0 Omega (simulate's units)"}
+    attrs: dict[str, Any] = {
+        "Conventions": "CF-1.10",
+        "title": title,
+        PRODUCT_ATTR: product,
+        "source": f"{function} (tippe-stability {package_version()})",
+        "units_convention": "length R, time 1/Omega, inertia A0, energy A0 Omega^2, "
+        "Jellett's integral A0 Omega (simulate's units)",
+    }
     for name, value in (params or {}).items():
         attrs[name] = float(value)
         attrs[f"{name}_long_name"] = LONG_NAMES[name]
@@ -148,15 +185,18 @@ def product_attrs(product: str, title: str, function: str, params: dict[str, flo
         attrs["removed_neutral"] = ", ".join(REMOVED_NEUTRAL)
         for name, text in REMOVED_NEUTRAL.items():
             attrs[f"removed_neutral_{name}"] = text
-        attrs["frame"] = ("tilted states: the frame precessing with the state at its precession rate; "
-                          "vertical states: the fixed frame (their spectrum is eq. (11)'s at the "
-                          "equivalent spin, times |n|)")
+        attrs["frame"] = (
+            "tilted states: the frame precessing with the state at its precession rate; "
+            "vertical states: the fixed frame (their spectrum is eq. (11)'s at the "
+            "equivalent spin, times |n|)"
+        )
         attrs["stability_rule"] = RULE
     return attrs
 
 
-def potential_curve(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float
-                    ) -> tuple[dict[str, Any], dict[str, Any]]:
+def potential_curve(
+    jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float
+) -> tuple[dict[str, Any], dict[str, Any]]:
     """The effective potential of the level ``J`` against the tilt, for the figures.
 
     ``U_J(c) = J^2 / (2 D(c)) + mu fr_inv (1 + q c)`` (S5;
@@ -173,11 +213,27 @@ def potential_curve(jellett: float, *, q: float, sigma: float, fr_inv: float, mu
     """
     grid = np.linspace(0.0, 180.0, TILT_GRID_POINTS)
     u = family.effective_potential(np.cos(np.radians(grid)), jellett, q, sigma, fr_inv, mu)
-    data = {"effective_potential": ("tilt_grid", u, var_attrs(
-        "effective potential U_J of the Jellett level", "A0 Omega^2", short="U_J of the level", comment=(
-            "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
-            "a lower bound of the energy of every state of the level with this tilt, "
-            "reached at the steady states (its critical points and the two ends)")))}
-    coords = {"tilt_grid": ("tilt_grid", grid, var_attrs("tilt at which U_J is sampled (0 upright, 180 inverted)",
-                                                         DEGREE, short="tilt"))}
+    data = {
+        "effective_potential": (
+            "tilt_grid",
+            u,
+            var_attrs(
+                "effective potential U_J of the Jellett level",
+                "A0 Omega^2",
+                short="U_J of the level",
+                comment=(
+                    "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
+                    "a lower bound of the energy of every state of the level with this tilt, "
+                    "reached at the steady states (its critical points and the two ends)"
+                ),
+            ),
+        )
+    }
+    coords = {
+        "tilt_grid": (
+            "tilt_grid",
+            grid,
+            var_attrs("tilt at which U_J is sampled (0 upright, 180 inverted)", DEGREE, short="tilt"),
+        )
+    }
     return data, coords

@@ -27,14 +27,23 @@ from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integr
 from ..parameters import DEFAULT_MU, as_scalar
 from . import family, linearisation
 from .linearisation import state_modes
-from .products import DEGREE, UNITLESS, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
+from .products import (
+    DEGREE,
+    UNITLESS,
+    check_scales,
+    flag_attrs,
+    potential_curve,
+    product_attrs,
+    sliding_parameters,
+    var_attrs,
+)
 from .verdicts import flag_of
 
 #: the first call's compilation on a cold numba cache (the level's closed forms, the integrals,
 #: the linearisations and the nonlinear right-hand side they use): measured 18 s of wall time
 COMPILE_SECONDS = 20.0
 
-__all__ = ["steady_states", "state_integrals", "point_integrals", "upright_jellett"]
+__all__ = ["point_integrals", "state_integrals", "steady_states", "upright_jellett"]
 
 #: Jellett's integral of the upright spin 1 (:func:`stability.steady.family.upright_jellett`)
 upright_jellett = family.upright_jellett
@@ -55,8 +64,9 @@ def _integrals(y, q, sigma, fr_inv, mu):
     jel = np.empty(n)
     energy = np.empty(n)
     for i in range(n):
-        jel[i], energy[i] = _integrals_of(y[i, 0], y[i, 1], y[i, 2], y[i, 3], y[i, 4], y[i, 5], y[i, 6], y[i, 7],
-                                          q, sigma, fr_inv, mu)
+        jel[i], energy[i] = _integrals_of(
+            y[i, 0], y[i, 1], y[i, 2], y[i, 3], y[i, 4], y[i, 5], y[i, 6], y[i, 7], q, sigma, fr_inv, mu
+        )
     return jel, energy
 
 
@@ -73,8 +83,9 @@ def point_integrals(y, q, sigma, fr_inv, mu):
 COMPILED = Compiled(family.level_states, _integrals, linearisation._jacobians)
 
 
-def state_integrals(y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu: float
-                    ) -> tuple[np.ndarray, np.ndarray]:
+def state_integrals(
+    y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Jellett's integral and the energy of states ``(omega, k, V0_h)`` (shape ``(n, 8)`` or
     ``(8,)``), by the nonlinear layer's formulas (:func:`~stability.nonlinear.quantities.jellett_integral`,
     :func:`~stability.nonlinear.quantities.energy_terms`, the ones :func:`stability.simulate`
@@ -83,8 +94,9 @@ def state_integrals(y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu:
     return _integrals(y, float(q), float(sigma), float(fr_inv), float(mu))
 
 
-def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any,
-                  mu: Any = DEFAULT_MU, jellett: Any = None) -> xr.Dataset:
+def steady_states(
+    model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any, mu: Any = DEFAULT_MU, jellett: Any = None
+) -> xr.Dataset:
     """Every steady state (upright, inverted, each tilted one) on one Jellett level.
 
     Parameters
@@ -152,59 +164,150 @@ def steady_states(model: str = "sliding", *, q: Any, sigma: Any, fr_inv: Any, al
             y[i] = family.vertical_state(kind, spin[i])
         else:
             y[i] = family.state_vector(math.acos(cosines[i]), lam[i], q)
-    ev, growth, bound, n_neutral, jac = state_modes(y, np.nan_to_num(lam), vertical, cosines, spin, p, q=q,
-                                                    sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
-    flags = np.array([flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v))
-                      for k, t, s, v in zip(kinds, tests, scales, jac)], dtype=np.int8)
+    ev, growth, bound, n_neutral, jac = state_modes(
+        y, np.nan_to_num(lam), vertical, cosines, spin, p, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
+    )
+    flags = np.array(
+        [
+            flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v))
+            for k, t, s, v in zip(kinds, tests, scales, jac)
+        ],
+        dtype=np.int8,
+    )
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     with np.errstate(divide="ignore", invalid="ignore"):
         q_eq, fr_eq, av_eq = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
-    eq = {"equivalent_fr_inv": np.where(vertical, fr_eq, np.nan),
-          "equivalent_alpha_v": np.where(vertical, av_eq, np.nan),
-          "equivalent_q": np.where(vertical, q_eq, np.nan)}
+    eq = {
+        "equivalent_fr_inv": np.where(vertical, fr_eq, np.nan),
+        "equivalent_alpha_v": np.where(vertical, av_eq, np.nan),
+        "equivalent_q": np.where(vertical, q_eq, np.nan),
+    }
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
     data = {
-        "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"}),
-        "tilt": ("state", np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))),
-                 var_attrs("polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE, short="tilt")),
-        "precession_rate": ("state", lam, var_attrs(
-            "precession rate of the axis about the vertical (NaN for the vertical states)", "Omega",
-            short="precession rate", comment="units of the spin rate Omega (simulate's time unit 1/Omega)")),
+        "kind": (
+            "state",
+            np.array(kinds, dtype=str),
+            {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"},
+        ),
+        "tilt": (
+            "state",
+            np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))),
+            var_attrs(
+                "polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE, short="tilt"
+            ),
+        ),
+        "precession_rate": (
+            "state",
+            lam,
+            var_attrs(
+                "precession rate of the axis about the vertical (NaN for the vertical states)",
+                "Omega",
+                short="precession rate",
+                comment="units of the spin rate Omega (simulate's time unit 1/Omega)",
+            ),
+        ),
         "axial_spin": ("state", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
-        "omega_vertical": ("state", y[:, 2], var_attrs("vertical component of the angular velocity, omega . K", "Omega", short="vertical omega")),
+        "omega_vertical": (
+            "state",
+            y[:, 2],
+            var_attrs("vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"),
+        ),
         "energy": ("state", energy, var_attrs("total energy of the state", "A0 Omega^2", short="energy")),
-        "jellett": ("state", jel, var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J")),
-        "growth_rate": ("state", growth, var_attrs(
-            "leading growth rate of the linearisation about the state (frame precessing with it), "
-            "structural neutral directions removed", "Omega", short="leading growth rate")),
-        "growth_rate_bound": ("state", bound, var_attrs(
-            "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
-            "point; tilted states: 1e3 u ||A||_F)", "Omega", short="growth rate bound")),
-        "n_neutral": ("state", n_neutral.astype(np.int8), var_attrs("number of physical modes neutral within rounding", short="neutral modes")),
+        "jellett": (
+            "state",
+            jel,
+            var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"),
+        ),
+        "growth_rate": (
+            "state",
+            growth,
+            var_attrs(
+                "leading growth rate of the linearisation about the state (frame precessing with it), "
+                "structural neutral directions removed",
+                "Omega",
+                short="leading growth rate",
+            ),
+        ),
+        "growth_rate_bound": (
+            "state",
+            bound,
+            var_attrs(
+                "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
+                "point; tilted states: 1e3 u ||A||_F)",
+                "Omega",
+                short="growth rate bound",
+            ),
+        ),
+        "n_neutral": (
+            "state",
+            n_neutral.astype(np.int8),
+            var_attrs("number of physical modes neutral within rounding", short="neutral modes"),
+        ),
         "stability": ("state", flags, flag_attrs("stability of the steady state")),
-        "stability_jacobian": ("state", jac, flag_attrs(
-            "Jacobian verdict", comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
-            "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for vertical ones")),
-        "energy_test": ("state", tests, var_attrs(
-            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
-            short="energy criterion")),
-        "mode_growth_rate": (("state", "mode"), ev.real, var_attrs("growth rate Re s of each physical mode", "Omega", short="growth rate Re s")),
-        "mode_frequency": (("state", "mode"), ev.imag, var_attrs(
-            "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
-            "Omega", short="frequency Im s")),
+        "stability_jacobian": (
+            "state",
+            jac,
+            flag_attrs(
+                "Jacobian verdict",
+                comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
+                "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for vertical ones",
+            ),
+        ),
+        "energy_test": (
+            "state",
+            tests,
+            var_attrs(
+                "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
+                short="energy criterion",
+            ),
+        ),
+        "mode_growth_rate": (
+            ("state", "mode"),
+            ev.real,
+            var_attrs("growth rate Re s of each physical mode", "Omega", short="growth rate Re s"),
+        ),
+        "mode_frequency": (
+            ("state", "mode"),
+            ev.imag,
+            var_attrs(
+                "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
+                "Omega",
+                short="frequency Im s",
+            ),
+        ),
     }
     for name, values in eq.items():
-        data[name] = ("state", values, var_attrs(f"{name.split('_', 1)[1]} of eq. (11) at the equivalent spin "
-                                                  "(vertical states)", "R" if name == "equivalent_q" else UNITLESS,
-                                                  short=f"equivalent {name.split('_', 1)[1]}"))
+        data[name] = (
+            "state",
+            values,
+            var_attrs(
+                f"{name.split('_', 1)[1]} of eq. (11) at the equivalent spin (vertical states)",
+                "R" if name == "equivalent_q" else UNITLESS,
+                short=f"equivalent {name.split('_', 1)[1]}",
+            ),
+        )
     curve, curve_coords = potential_curve(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     data.update(curve)
-    coords = {"state": ("state", np.arange(n), {"long_name": "state", "comment": "index of the steady state"}),
-              "mode": ("mode", np.arange(6), {"long_name": "mode", "comment": "index of the physical mode, by "
-                                              "decreasing growth rate (tilted states have 5: the 6th is NaN)"}),
-              **curve_coords}
-    attrs = product_attrs("steady_states", "Steady states of the sliding Tippe top on one Jellett level",
-                          "stability.steady_states", params, removed_neutral=True)
+    coords = {
+        "state": ("state", np.arange(n), {"long_name": "state", "comment": "index of the steady state"}),
+        "mode": (
+            "mode",
+            np.arange(6),
+            {
+                "long_name": "mode",
+                "comment": "index of the physical mode, by "
+                "decreasing growth rate (tilted states have 5: the 6th is NaN)",
+            },
+        ),
+        **curve_coords,
+    }
+    attrs = product_attrs(
+        "steady_states",
+        "Steady states of the sliding Tippe top on one Jellett level",
+        "stability.steady_states",
+        params,
+        removed_neutral=True,
+    )
     attrs["model"] = "sliding"
     attrs["jellett"] = J
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -27,17 +27,28 @@ from __future__ import annotations
 
 from ..products import FLAG_MEANINGS, FLAG_VALUES, MARGINAL, STABLE, UNSTABLE
 
-__all__ = ["STABLE", "MARGINAL", "UNSTABLE", "FLAG_VALUES", "FLAG_MEANINGS", "REL_TOL", "structural_zero",
-           "flag_of", "RULE"]
+__all__ = [
+    "FLAG_MEANINGS",
+    "FLAG_VALUES",
+    "MARGINAL",
+    "REL_TOL",
+    "RULE",
+    "STABLE",
+    "UNSTABLE",
+    "flag_of",
+    "structural_zero",
+]
 
 #: relative tolerance of the energy test (a test below it in magnitude is marginal)
 REL_TOL = 1e-12
 
 #: the rule in words (datasets carry it as an attribute)
-RULE = ("energy criterion (strict minimum of U_J = J^2/(2 D) + mu fr_inv (1 + q c) on the Jellett level: "
-        "stable; maximum: unstable; |test| <= 1e-12 of its terms: marginal); structural zeros "
-        "(fr_inv = 0 or q = 0 at the vertical states, q = 0 at the tilted state) marginal; alpha_v = 0: "
-        "the reduced Jacobian's verdict with stable demoted to marginal")
+RULE = (
+    "energy criterion (strict minimum of U_J = J^2/(2 D) + mu fr_inv (1 + q c) on the Jellett level: "
+    "stable; maximum: unstable; |test| <= 1e-12 of its terms: marginal); structural zeros "
+    "(fr_inv = 0 or q = 0 at the vertical states, q = 0 at the tilted state) marginal; alpha_v = 0: "
+    "the reduced Jacobian's verdict with stable demoted to marginal"
+)
 
 
 def structural_zero(kind: str, *, q: float, fr_inv: float) -> bool:
@@ -49,8 +60,16 @@ def structural_zero(kind: str, *, q: float, fr_inv: float) -> bool:
     return fr_inv == 0.0 or q == 0.0
 
 
-def flag_of(kind: str, test: float, scale: float, *, q: float, fr_inv: float, alpha_v: float,
-            jacobian_verdict: int | None = None) -> int:
+def flag_of(
+    kind: str,
+    test: float,
+    scale: float,
+    *,
+    q: float,
+    fr_inv: float,
+    alpha_v: float,
+    jacobian_verdict: int | None = None,
+) -> int:
     """The stability flag (0 stable, 1 marginal, 2 unstable) of one steady state.
 
     Parameters
