@@ -9,7 +9,6 @@
 from __future__ import annotations
 
 import shutil
-import subprocess
 from pathlib import Path
 
 import nox
@@ -20,8 +19,6 @@ nox.options.default_venv_backend = "uv|virtualenv"
 ROOT = Path(__file__).parent
 PYPROJECT = nox.project.load_toml("pyproject.toml")
 PYTHONS = ["3.11", "3.12", "3.13"]
-#: where the quick benchmark may live once it has left the installed package (in this order)
-BENCH_SCRIPTS = ("bench.py", "bench_quick.py", "quick.py", "run.py", "work_precision.py")
 
 
 @nox.session(python=PYTHONS, default=True)
@@ -66,29 +63,12 @@ def docs(session: nox.Session) -> None:
 
 @nox.session(name="bench-quick", reuse_venv=True, default=False)
 def bench_quick(session: nox.Session) -> None:
-    """The quick benchmark, its charts and summaries written to the session's temporary directory.
-
-    The benchmark suites are moving from the installed package into benchmarks/: the session
-    looks the entry point up when it runs (the command ``tippe bench --quick`` while the
-    installed package has it, else the first of :data:`BENCH_SCRIPTS` found in benchmarks/), so
-    that it follows the move without an edit.
-    """
+    """The quick work-precision run (benchmarks/run.py --quick): charts and summaries written to
+    the session's temporary directory, never over the committed charts in atlases/."""
     session.install(".")
-    out = session.create_tmp()
-    tippe = Path(session.bin) / "tippe"
-    has_command = (
-        tippe.exists()
-        and subprocess.run([str(tippe), "bench", "--help"], capture_output=True, check=False).returncode == 0
+    session.run(
+        "python", str(ROOT / "benchmarks" / "run.py"), "--quick", "--out-dir", session.create_tmp(), *session.posargs
     )
-    if has_command:
-        session.run("tippe", "bench", "--quick", "--out-dir", out, *session.posargs)
-        return
-    for name in BENCH_SCRIPTS:
-        script = ROOT / "benchmarks" / name
-        if script.is_file():
-            session.run("python", str(script), "--quick", *session.posargs)
-            return
-    session.error(f"no quick benchmark: neither `tippe bench` nor benchmarks/{{{','.join(BENCH_SCRIPTS)}}}")
 
 
 if __name__ == "__main__":

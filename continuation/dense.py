@@ -87,7 +87,8 @@ def dense(result: Any, n: int = 16) -> Any:
     Examples
     --------
     >>> import continuation
-    >>> ds = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
+    >>> import stability  # a client of the engine: the tippe top's neutral curves
+    >>> ds = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5))
     >>> curve = continuation.dense(ds, 8)
     >>> curve.sizes["sample"] == 8 * (ds.sizes["point"] - 1) + 1
     True

@@ -92,27 +92,27 @@ class StepResult(NamedTuple):
     """What a problem's ``compiled_step`` returns (module docstring, item ``compiled_step``):
     one corrector solve and the tangent at its point, in the engine's scaled variables."""
 
-    #: whether Newton's method converged
+    #: Whether Newton's method converged.
     ok: bool
-    #: Newton iterations taken
+    #: Newton iterations taken.
     iterations: int
-    #: evaluations of the residual together with the Jacobian
+    #: Evaluations of the residual together with the Jacobian.
     n_residual_and_jacobian: int
-    #: evaluations of the residual alone
+    #: Evaluations of the residual alone.
     n_residual: int
-    #: the point reached (scaled), shape (n+1,)
+    #: The point reached (scaled), shape (n+1,).
     v: np.ndarray
-    #: the scaled Jacobian the tangent came from
+    #: The scaled Jacobian the tangent came from.
     jacobian: np.ndarray
-    #: False: the bordered matrix was singular (the engine takes the tangent from the SVD)
+    #: False: the bordered matrix was singular (the engine takes the tangent from the SVD).
     tangent_ok: bool
-    #: the unit tangent at ``v``
+    #: The unit tangent at ``v``.
     tangent: np.ndarray
-    #: the branch-point test ``det [J; t^T]``
+    #: The branch-point test ``det [J; t^T]``.
     det: float
-    #: optional: the problem's constraints at the point (then ``tests`` too)
+    #: Optional: the problem's constraints at the point (then ``tests`` too).
     constraints: np.ndarray | None = None
-    #: optional: the problem's test functions at the point
+    #: Optional: the problem's test functions at the point.
     tests: np.ndarray | None = None
 
 

@@ -60,6 +60,8 @@ class Stick:
     truncation : float
         Signed distance from O to the truncation plane (on the stick's side positive).
 
+    Notes
+    -----
     Whether the stick fits its sphere is checked against the sphere's radius
     (:meth:`check_fits`, called by :class:`stability.Top`).
     """

@@ -184,8 +184,8 @@ class Top:
     mu_k: float | None = None
     mu_v: float | None = None
     stick: Stick | None = None
-    #: check the SI data against real tippe tops (:data:`PLAUSIBLE`); False for a body that is
-    #: deliberately not one, such as the stick's tip of :meth:`on_stick`
+    #: Check the SI data against real tippe tops (:data:`PLAUSIBLE`); False for a body that is
+    #: deliberately not one, such as the stick's tip of :meth:`on_stick`.
     plausible: bool = field(default=True, repr=False, compare=False, kw_only=True)
 
     def __post_init__(self) -> None:

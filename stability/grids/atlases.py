@@ -21,10 +21,10 @@ import xarray as xr
 from .._version import package_version
 from ..errors import require_extra
 from ..interrupts import checkpoint, deferred
-from ..linear.spectra import DEFAULT_METHOD, FLAG_MEANINGS, MARGINAL, STABLE, UNSTABLE, model_parameters, spectrum
+from ..linear.spectra import DEFAULT_METHOD, model_parameters, spectrum
 from ..models import get_model
 from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
-from ..products import PRODUCT_ATTR
+from ..products import FLAG_MEANINGS, MARGINAL, PRODUCT_ATTR, STABLE, UNSTABLE
 from ..resources import atlas_bytes, check_memory
 from .leading import leading, zero_everywhere
 from .schema import require_atlas

@@ -315,7 +315,7 @@ def steady_branch(
         same tilts and stability), ``precession_rate``, ``axial_spin``, ``energy``,
         ``upright_equivalent_spin`` (``J / (sigma (1 + q))``: the upright spin with this
         ``J``), ``growth_rate``, ``n_neutral``, ``stability`` (flag), ``stability_jacobian``,
-        ``kind`` ("branch_point", "fold", "stability_change", "end" or "regular" for an ordinary point, as :func:`continuation.neutral_curve`)
+        ``kind`` ("branch_point", "fold", "stability_change", "end" or "regular" for an ordinary point, as :func:`stability.neutral_curve`)
         and ``detail``; attributes: the parameters, ``start`` (the branch point traced from),
         ``ends``, ``jellett_max``, the engine's work counts. No points if the family does not
         exist (attribute ``note`` says why).

@@ -322,7 +322,7 @@ def state_modes(
     states: tilted ones from the reduced Jacobian (:func:`reduced_spectrum`,
     :func:`modes_verdict`; bound ``NEUTRAL_FACTOR u ||A||_F``), vertical ones from eq. (11)
     (:func:`vertical_spectrum`; the Jacobian's only where eq. (11) cannot be evaluated).
-    What :func:`stability.steady_states` and :func:`continuation.steady_branch` report."""
+    What :func:`stability.steady_states` and :func:`stability.steady_branch` report."""
     ev, scale = reduced_spectrum(y, lam, vertical, p, q=q, sigma=sigma, mu=mu)
     growth, n_neutral, verdict = modes_verdict(ev, scale)
     bound = NEUTRAL_FACTOR * _U * np.asarray(scale, float)
