@@ -215,3 +215,22 @@ def test_cli_launch_and_threshold(capsys):
         == 2
     )
     assert "radius looks like millimetres" in capsys.readouterr().err
+
+
+def test_launch_of_a_top_with_a_stick_stops_where_the_stick_touches():
+    """A launch of the toy with a stick reports the stick's contact and stops there.
+
+    Reference: the closed-form tilt at which the stick's tip touches the floor
+    (``Top.stick_contact``, tested against mpmath in tests/test_stick.py); the run's stop is
+    located on the integrator's interpolant, so its tilt agrees to the integrator's tolerance
+    (1e-6 degree is far above rtol 1e-10 on angles of order 1 rad, far below any physical
+    meaning). The answer must not report the sphere model's 163.7 degrees as where the toy ends.
+    """
+    top = stability.Top.table1(stick=stability.Stick(0.02, 0.003, 0.012))
+    tilt, part = top.stick_contact()
+    ans = stability.launch(top, 7.15, unit="rev/s")
+    assert ans.event == "stick_contact" and part == "tip"
+    assert abs(ans.event_tilt - tilt) < 1e-6
+    assert ans.flip_time is not None and ans.flip_time < ans.event_time
+    assert ans.settle_time is None
+    assert "reaches its stick" in str(ans)

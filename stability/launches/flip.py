@@ -260,7 +260,7 @@ def run_launch(
             else:
                 settle_t = None
                 reasons.append("the tilt is not yet within the band at the end of the run")
-    elif not stop_at_crossing:
+    elif not stop_at_crossing and not event_note:
         reasons.append(
             f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} spin periods)"
         )

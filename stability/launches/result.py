@@ -111,7 +111,12 @@ class Launch:
             f"  the upright top becomes unstable above:        {self._spin(self.unstable_above, 'unstable_above')}",
             f"  launched upright, it inverts completely above: {self._spin(self.inverts_above, 'inverts_above')}",
             f"  high-spin class: {self.top_class}",
-            f"  ends: {self.end_kind} at {self.end_tilt:.4g} degrees (decided by {self.method})",
+            (
+                f"  ends: {self.reasons['end']} (the sphere model alone would end {self.end_kind} at "
+                f"{self.end_tilt:.4g} degrees, by {self.method})"
+                if self.event != "none"
+                else f"  ends: {self.end_kind} at {self.end_tilt:.4g} degrees (decided by {self.method})"
+            ),
             f"  time to 90 degrees: {self._time(self.flip_time, 'flip_time')}",
             f"  settles (within 1 degree of its end) after: {self._time(self.settle_time, 'settle_time')}",
             f"  smallest normal force: {self.min_normal_force:.4g} N ({self.min_normal_force_nd:.4g} A0 Omega^2/R; "
