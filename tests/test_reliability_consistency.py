@@ -31,10 +31,10 @@ def test_accessor_registered_whatever_the_import_order(tmp_path):
 def test_one_name_for_an_ordinary_point():
     """Item 13: neutral_curve and steady_branch both call an ordinary point "regular" (the
     engine's name), never ""."""
-    import continuation
+    import stability
 
-    nc = continuation.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5))
-    br = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    nc = stability.neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.3, alpha_v=0.5))
+    br = stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     for ds in (nc, br):
         kinds = set(ds.kind.values.astype(str))
         assert "regular" in kinds and "" not in kinds

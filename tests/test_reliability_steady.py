@@ -41,7 +41,7 @@ def test_branch_points_on_the_closed_form_at_every_scale(q, sigma, fr_inv, compi
     lam^2 + mu fr_inv |q|), so a 1e-13 residual means 1e-13 of the terms at every scale
     (the reproducers had 1e-5 to 1e-4 before: the first step accepted uncorrected); the
     compiled step and the engine's Python path alike."""
-    ds = continuation.steady_branch(q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=0.5, compiled=compiled)
+    ds = stability.steady_branch(q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=0.5, compiled=compiled)
     assert ds.sizes["point"] > 100
     assert _closed_form_error(ds, q, sigma, fr_inv) < 1e-12
 
@@ -50,8 +50,8 @@ def test_branch_scale_invariance():
     """J^2 / (mu fr_inv) is a function of q, sigma, mu, c only: the tilts of the branch at
     fr_inv = 1e20 equal those at 0.3 (the same trace in log lam shifted by a constant), and
     J scales by sqrt(1e20 / 0.3). Tolerance: 1e-9 deg (rounding of the trace's steps)."""
-    a = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-    b = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=1e20, alpha_v=0.5)
+    a = stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    b = stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=1e20, alpha_v=0.5)
     assert a.sizes["point"] == b.sizes["point"]
     np.testing.assert_allclose(b.tilt.values, a.tilt.values, atol=1e-9)
     np.testing.assert_allclose(b.jellett.values, a.jellett.values * math.sqrt(1e20 / 0.3), rtol=1e-12)
@@ -67,7 +67,7 @@ def test_scales_that_do_not_fit_a_double_are_refused(kw, name):
     naming the parameter (never a ZeroDivisionError, an empty branch or a missed state)."""
     p = dict(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5) | kw
     for call in (
-        lambda: continuation.steady_branch(**p),
+        lambda: stability.steady_branch(**p),
         lambda: stability.steady_states(**p),
         lambda: stability.final_state(**p, omega=[0.1, 0, 1], k=[0, 0, 1]),
     ):
@@ -99,7 +99,7 @@ def test_branch_point_growth_rate_is_eq11s():
     """A branch's first point (the vertical state where the family leaves it) carries eq. (11)'s
     growth rate at its equivalent point, as stability.eigenvalues gives it; at a branch point
     eq. (11) is neutral (the neutral curve), so |growth| is within its bound."""
-    ds = continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
+    ds = stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
     n = float(ds.precession_rate[0]) * (1 - 0.1)  # spin = lam (1 + q c), c = 1
     s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3 / n**2, sigma=1.0, alpha_v=0.5 / n) * n
     assert float(ds.growth_rate[0]) == pytest.approx(float(s.real.max()), abs=1e-12)
@@ -165,11 +165,11 @@ def test_class_boundary_exactly_and_next_to_it():
     from stability.models.inertia import inertia_g
 
     sigma = inertia_g(-0.1, 2.28) / 0.9
-    ds = continuation.steady_branch(q=-0.1, sigma=sigma, fr_inv=0.3, alpha_v=0.5)
+    ds = stability.steady_branch(q=-0.1, sigma=sigma, fr_inv=0.3, alpha_v=0.5)
     assert ds.attrs["start"] == "inverted" and ds.sizes["point"] > 100
     assert _closed_form_error(ds, -0.1, sigma, 0.3) < 1e-12
     with pytest.raises(ConvergenceError, match="class boundary"):
-        continuation.steady_branch(q=-0.1, sigma=sigma * (1 - 1e-10), fr_inv=0.3, alpha_v=0.5)
+        stability.steady_branch(q=-0.1, sigma=sigma * (1 - 1e-10), fr_inv=0.3, alpha_v=0.5)
 
 
 @pytest.mark.parametrize(
@@ -180,7 +180,7 @@ def test_branch_options_refused_by_their_own_names(kw, name):
     """Item 8: options outside their range are refused naming the option (not the engine's
     min_step, not 'SVD did not converge')."""
     with pytest.raises(DomainError, match=name):
-        continuation.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **kw)
+        stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **kw)
 
 
 def test_a_stiff_deciding_run_says_its_cost_first(capsys):
