@@ -11,7 +11,6 @@ import math
 import numpy as np
 import pytest
 
-import continuation
 import stability
 from stability.errors import DomainError
 from stability.steady import family
