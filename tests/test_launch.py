@@ -234,3 +234,16 @@ def test_launch_of_a_top_with_a_stick_stops_where_the_stick_touches():
     assert ans.flip_time is not None and ans.flip_time < ans.event_time
     assert ans.settle_time is None
     assert "reaches its stick" in str(ans)
+
+
+def test_cli_launch_plot_draws_the_diagram_with_the_launch(tmp_path, capsys):
+    """``tippe launch --plot``: the top's bifurcation diagram with the launch marked. The drawing
+    itself (the launch at its equivalent spin, the critical spin where the upright line changes
+    style) is tested by its artists in tests/test_si_inputs.py; here: the command writes a PNG
+    and says where."""
+    from stability.cli import main
+
+    out = tmp_path / "launch.png"
+    assert main(["launch", "--preset", "table1", "--spin", "7.15", "--unit", "rev/s", "--plot", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert f"drawn: {out}" in capsys.readouterr().out

@@ -35,6 +35,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
     g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")
+    g.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="also draw the top's bifurcation diagram in --unit, the launch and its end marked",
+    )
     p.set_defaults(func=run)
 
 
@@ -52,9 +57,30 @@ def run(args: argparse.Namespace) -> int:
         )
     res = launch(top, args.spin, unit=args.unit, tilt=args.tilt, alpha_v=args.alpha_v, model=args.model)
     print(res)
+    if args.plot:
+        _plot(top, res, args)
     if args.output:
         from ..grids.netcdf import write_dataset
 
         write_dataset(res.to_dataset(), args.output)
         print(f"written: {args.output}")
     return 0
+
+
+def _plot(top, res, args: argparse.Namespace) -> None:
+    """The bifurcation diagram of ``top`` around the launch (:func:`stability.bifurcation_diagram`,
+    :func:`stability.plotting.plot_bifurcation`), written to ``args.plot``."""
+    from ..grids.outputs import check_output_path
+    from ..plotting.atlas_plots import save_figure
+    from ..plotting.steady_plots import plot_bifurcation
+    from ..steady.diagram import bifurcation_diagram
+    from ..top import from_rad_per_s
+
+    check_output_path(args.plot, overwrite=True)
+    marks = [v for v in (res.spin, res.unstable_above, res.inverts_above) if v is not None]
+    lo, hi = (from_rad_per_s(v, args.unit) for v in (0.75 * min(marks), 1.25 * max(marks)))
+    alpha_v = None if top.mu_v is not None else res.parameters["alpha_v"]
+    diagram = bifurcation_diagram(top, unit=args.unit, alpha_v=alpha_v, spin_range=(lo, hi))
+    fig, _ = plot_bifurcation(diagram, launch=res)
+    save_figure(fig, args.plot)
+    print(f"drawn: {args.plot}")
