@@ -48,6 +48,7 @@ __all__ = [
     "RecipeError",
     "ResourceError",
     "ResumeError",
+    "RunError",
     "TippeError",
     "require_extra",
 ]
@@ -107,6 +108,10 @@ class ChunkError(TippeError, RuntimeError):
     ``resume=True`` the chunks finished before the failure stay in ``<output>.parts/`` and a
     rerun computes only the others. The original exception is the ``__cause__``.
     """
+
+
+class RunError(TippeError, RuntimeError):
+    """A nonlinear run failed (its integrator stopped before the end it was asked for)."""
 
 
 class ConvergenceError(TippeError, _EngineConvergenceError):

@@ -67,7 +67,7 @@ import numpy as np
 
 from stability.jit import register_jitable
 
-from .errors import DomainError, ParameterTypeError
+from .errors import DomainError, InputError, ParameterTypeError
 from .models.inertia import inertia_g, two_product
 
 __all__ = [
@@ -895,7 +895,7 @@ def check_choice(name: str, value: Any, choices: Iterable[str]) -> str:
     """One of ``choices`` (strings); the message lists them."""
     options = list(choices)
     if not isinstance(value, str) or value not in options:
-        raise ValueError(f"{name} = {_show(value)} is not known; choose one of {', '.join(options)}")
+        raise InputError(f"{name} = {_show(value)} is not known; choose one of {', '.join(options)}")
     return value
 
 

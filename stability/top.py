@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import DomainError, InputError
+from .errors import DomainError, InputError, ParameterTypeError
 from .parameters import as_parameter, as_scalar, check_choice, check_domain, check_positive
 from .stick import Stick
 
@@ -296,7 +296,7 @@ class Top:
     def alpha_v(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Viscous friction parameter ``mu mu_v g / Omega`` (eq. 7); needs ``mu_v``."""
         if self.mu_v is None:
-            raise ValueError("mu_v is not set on this Top; give mu_v (s/m) to compute alpha_v")
+            raise InputError("mu_v is not set on this Top; give mu_v (s/m) to compute alpha_v")
         w = _spin(spin, unit)
         out = self.mu * self.mu_v * self.g / w
         return float(out) if out.ndim == 0 else out
@@ -304,7 +304,7 @@ class Top:
     def alpha_k(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Coulomb friction parameter ``mu fr_inv mu_K`` (eq. 7); needs ``mu_k``."""
         if self.mu_k is None:
-            raise ValueError("mu_k is not set on this Top; give mu_k to compute alpha_k")
+            raise InputError("mu_k is not set on this Top; give mu_k to compute alpha_k")
         return self.mu * self.fr_inv(spin, unit) * self.mu_k
 
     def nondimensional(
@@ -338,7 +338,7 @@ class Top:
         out: dict[str, Any] = {"q": self.q, "fr_inv": self.fr_inv(spin, unit), "sigma": self.sigma, "mu": self.mu}
         if self.mu_v is not None:
             if alpha_v is not None:
-                raise TypeError(
+                raise ParameterTypeError(
                     f"alpha_v = {alpha_v!r} conflicts with this Top's mu_v = {self.mu_v:g} "
                     "s/m, from which alpha_v follows (eq. 7); give one of them"
                 )
@@ -355,7 +355,7 @@ class Top:
 
             m = get_model(model)
             if "alpha_v" in m.parameters and "alpha_v" not in out:
-                raise TypeError(
+                raise ParameterTypeError(
                     f"the {m.name} model needs alpha_v, and this Top has no mu_v: pass "
                     "alpha_v=... or build the Top with mu_v=... (s/m)"
                 )

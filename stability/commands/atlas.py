@@ -12,7 +12,7 @@ import argparse
 import sys
 
 from .. import interrupts
-from ..errors import Interrupted
+from ..errors import InputError, Interrupted
 from ..grids.netcdf import check_output_path, write_dataset
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
@@ -148,7 +148,7 @@ def parse_chunks(text: str) -> int | dict[str, int]:
             out[k.strip().replace("-", "_")] = int(v)
         return out
     except ValueError:
-        raise ValueError(
+        raise InputError(
             f"--chunks = {text!r} is not a size or a list dim=size,... (sizes are integers "
             ">= 1, e.g. 100 or q=100,sigma=50)"
         ) from None
@@ -161,7 +161,7 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     from ..grids.cluster import dask_client
 
     if args.plot:
-        raise ValueError(
+        raise InputError(
             "--plot is not available with --chunks (the grid may not fit in memory); "
             "plot a slice of the written file instead"
         )
@@ -263,7 +263,7 @@ def run(args: argparse.Namespace) -> int:
     if args.chunks is not None:
         return _run_chunked(args, out, values)
     if args.workers is not None or args.scheduler is not None or args.resume:
-        raise ValueError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
+        raise InputError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
     _check_space(out, args.model, values)
     ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values), args)
     if args.plot:
@@ -302,7 +302,7 @@ def _apply_top(args: argparse.Namespace) -> None:
     names = [n for n in ("q", "fr_inv", "sigma", "alpha_v", "mu") if n in MODELS[args.model].parameters]
     top = apply_top(args, names, required=("q", "fr_inv", "sigma"))
     if top is not None and np.ndim(args.fr_inv) == 1 and np.ndim(getattr(args, "alpha_v", None)) == 1:
-        raise ValueError(
+        raise InputError(
             f"--spin {args.spin} (a grid) and --mu-v {top.mu_v:g}: alpha_v = mu mu_v g / Omega would "
             "change along the spin grid, and an atlas holds one dimension per parameter; give "
             "--alpha-v (held fixed) instead of --mu-v, or one spin"
@@ -338,7 +338,7 @@ def _check_plot_format(path: str) -> None:
     known = FigureCanvasBase.get_supported_filetypes()
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix not in known:
-        raise ValueError(
+        raise InputError(
             f"--plot = {path!r}: the format {('.' + suffix) if suffix else '(no suffix)'} is not "
             f"known to matplotlib; the allowed suffixes are {', '.join('.' + k for k in sorted(known))}"
         )

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..errors import InputError
+
 __all__ = ["register", "run"]
 
 
@@ -44,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
         if path.is_dir():
             found = find_recipes(path)
             if not found:
-                raise ValueError(f"no recipes (*.toml) in {str(path)!r}")
+                raise InputError(f"no recipes (*.toml) in {str(path)!r}")
             recipes.extend(found)
         else:
             recipes.append(load_recipe(path))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..errors import InputError
 from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
@@ -16,7 +17,7 @@ def _pair(text: str, name: str) -> tuple[float, float]:
     try:
         lo, hi = (float(v) for v in text.split(":"))
     except ValueError:
-        raise ValueError(f"{name} = {text!r} must be lo:hi (two numbers)") from None
+        raise InputError(f"{name} = {text!r} must be lo:hi (two numbers)") from None
     return lo, hi
 
 
@@ -61,13 +62,13 @@ def run(args: argparse.Namespace) -> int:
         v = getattr(args, name)
         if name in (args.x, args.y):
             if v is not None:
-                raise ValueError(f"{FLAGS[name]} is traced (--x/--y) and cannot also be fixed")
+                raise InputError(f"{FLAGS[name]} is traced (--x/--y) and cannot also be fixed")
             continue
         if v is not None:
             fixed[name] = v
     for name in FLAGS:
         if name not in model.parameters and getattr(args, name) is not None:
-            raise ValueError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")
+            raise InputError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")
     xr_ = _pair(args.x_range, "--x-range") if args.x_range else None
     yr_ = _pair(args.y_range, "--y-range") if args.y_range else None
     ds = neutral_curve(model, args.x, args.y, fixed=fixed, x_range=xr_, y_range=yr_)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..errors import InputError
 from ..grids.netcdf import check_output_path, write_dataset
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
@@ -92,9 +93,9 @@ def run(args: argparse.Namespace) -> int:
     from ..steady.states import steady_states
 
     if args.branch and args.jellett is not None:
-        raise ValueError("--jellett is not used with --branch (the branch runs over J); give one of them")
+        raise InputError("--jellett is not used with --branch (the branch runs over J); give one of them")
     if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
-        raise ValueError("--jellett-max and --max-step are only used with --branch")
+        raise InputError("--jellett-max and --max-step are only used with --branch")
     apply_top_flags(args)
     out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
     top = dict(q=args.q, sigma=args.sigma, fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu)

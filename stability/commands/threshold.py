@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
 from ..top import Top
@@ -68,7 +69,7 @@ def _refuse_unused(args: argparse.Namespace) -> None:
         unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
         unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
         if unused:
-            raise ValueError(
+            raise InputError(
                 f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
                 "mu come from --preset or its SI data; the spin rate is what is searched)"
             )
@@ -76,7 +77,7 @@ def _refuse_unused(args: argparse.Namespace) -> None:
     unused = [flag(n) for n in top_given]
     unused += [flag(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
-        raise ValueError(
+        raise InputError(
             f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
             f"'tippe threshold {args.param}' takes the nondimensional parameters"
         )
@@ -85,7 +86,7 @@ def _refuse_unused(args: argparse.Namespace) -> None:
 def _top(args: argparse.Namespace) -> Top:
     top = top_from_args(args)
     if top is None:
-        raise ValueError(
+        raise InputError(
             "tippe threshold spin needs a top: --preset, --top FILE.toml or "
             + ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
         )
@@ -129,15 +130,15 @@ def run(args: argparse.Namespace) -> int:
     model = get_model(args.model)
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
-        raise ValueError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")
+        raise InputError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")
     bracket = None
     if args.bracket:
         try:
             bracket = tuple(float(v) for v in args.bracket.split(":"))
         except ValueError:
-            raise ValueError(f"--bracket = {args.bracket!r} must be lo:hi") from None
+            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi") from None
         if len(bracket) != 2:
-            raise ValueError(f"--bracket = {args.bracket!r} must be lo:hi")
+            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi")
     if args.all:
         found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
         if not found:

@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
-from ..errors import require_extra
+from ..errors import ParameterTypeError, require_extra
 from ..interrupts import checkpoint, deferred
 from ..linear.spectra import DEFAULT_METHOD, model_parameters, spectrum
 from ..models import get_model
@@ -96,7 +96,7 @@ def atlas(
     values = {k: as_parameter(k, v) for k, v in given.items()}
     for k, v in values.items():
         if v.ndim > 1:
-            raise TypeError(f"{k} must be a scalar or a 1-D array for an atlas, got shape {v.shape}")
+            raise ParameterTypeError(f"{k} must be a scalar or a 1-D array for an atlas, got shape {v.shape}")
     dims = [k for k in PARAMETERS if k in values and values[k].ndim == 1]
     grid = {}
     for k, v in values.items():

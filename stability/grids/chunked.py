@@ -41,7 +41,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, InputError, ResumeError
+from ..errors import ChunkError, InputError, ParameterTypeError, ResumeError
 from ..interrupts import Temporary, checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
@@ -80,7 +80,7 @@ def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[
     if isinstance(chunks, dict):
         unknown = [k for k in chunks if k not in dims]
         if unknown:
-            raise ValueError(
+            raise InputError(
                 f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
                 f"(the grid has {', '.join(dims) or 'none'})"
             )
@@ -178,7 +178,7 @@ def lazy_spectra(
     from ..linear.spectra import METHODS
 
     if method not in METHODS:
-        raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
+        raise InputError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
     sizes = {d: values[d].size for d in dims}
     ch = normalize_chunks(chunks, dims, sizes)
     _check_grid_domain(values, dims, mask_unphysical)
@@ -410,7 +410,7 @@ class _Store:
         try:
             old = json.loads(manifest.read_text())
             if not isinstance(old, dict):
-                raise ValueError
+                raise InputError("not a JSON object")
         except (ValueError, UnicodeDecodeError, OSError):
             raise ResumeError(
                 f"cannot resume: {str(manifest)!r} is not a readable manifest; remove {str(store)!r} to start afresh"
@@ -719,7 +719,7 @@ def write_atlas(
     if window is not None:
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
-        raise TypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
+        raise ParameterTypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
     if notes is None:
 
         def notes(text: str) -> None:

@@ -17,7 +17,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from ..errors import require_extra
+from ..errors import InputError, ParameterTypeError, require_extra
 from ..parameters import check_integer
 
 __all__ = ["dask_client"]
@@ -42,7 +42,7 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         None when neither is given: chunks are computed in this process.
     """
     if workers is not None and scheduler is not None:
-        raise ValueError(
+        raise InputError(
             f"workers = {workers!r} and scheduler = {scheduler!r} were both given: pass workers=N "
             "for a local cluster or scheduler=ADDRESS for an existing one, not both"
         )
@@ -50,14 +50,16 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         yield None
         return
     if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
-        raise TypeError(f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a scheduler file")
+        raise ParameterTypeError(
+            f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a scheduler file"
+        )
     require_extra("distributed", "cluster", "workers= or scheduler= (a dask cluster)")
     from distributed import Client, LocalCluster
 
     if workers is not None:
         workers = check_integer("workers", workers, minimum=1)
         if workers > 1024:
-            raise ValueError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
+            raise InputError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
         with (
             LocalCluster(
                 n_workers=workers,
@@ -84,7 +86,7 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
             info = json.loads(path.read_text())
             address = info["address"]
         except (ValueError, KeyError, TypeError, UnicodeDecodeError):
-            raise ValueError(
+            raise InputError(
                 f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
                 "'address', as written by `dask scheduler --scheduler-file`)"
             ) from None

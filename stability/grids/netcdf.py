@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import AtlasFileError
+from ..errors import AtlasFileError, ParameterTypeError
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
 from .outputs import atomic_output, check_output_path, describe_kind
@@ -145,7 +145,7 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     import xarray as xr  # here: checking an output path imports no xarray (tippe --help)
 
     if not isinstance(ds, xr.Dataset):
-        raise TypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
+        raise ParameterTypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
     with deferred(), atomic_output(path, overwrite=overwrite, expected_bytes=float(ds.nbytes)) as tmp:
         _to_netcdf(ds, tmp)
     return Path(path)
@@ -234,7 +234,7 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
 def _atlas_path(path: object) -> str:
     """Check that ``path`` names a readable regular file; say what it is otherwise."""
     if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
-        raise TypeError(f"atlas path = {path!r} must be a file name (a non-empty str or path-like)")
+        raise ParameterTypeError(f"atlas path = {path!r} must be a file name (a non-empty str or path-like)")
     p = str(path)
     try:
         st = os.stat(p)

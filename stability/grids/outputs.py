@@ -46,7 +46,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from ..errors import OutputWriteError, TippeError
+from ..errors import OutputWriteError, ParameterTypeError, TippeError
 from ..interrupts import Temporary, checkpoint
 
 __all__ = [
@@ -116,7 +116,7 @@ def _lstat(p: Path) -> os.stat_result | None:
 def _as_path(what: str, path: object) -> Path:
     """A non-empty path-like as a Path, or a TypeError naming ``what``."""
     if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
-        raise TypeError(f"{what} = {path!r} must be a file name (a non-empty str or path-like)")
+        raise ParameterTypeError(f"{what} = {path!r} must be a file name (a non-empty str or path-like)")
     return Path(path)
 
 
@@ -148,7 +148,7 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     """
     p = _as_path("output path", path)
     if not isinstance(overwrite, bool):
-        raise TypeError(f"overwrite = {overwrite!r} must be True or False")
+        raise ParameterTypeError(f"overwrite = {overwrite!r} must be True or False")
     st = _lstat(p)
     if st is not None:
         _refuse_existing(p, st, overwrite)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
 from ..resources import check_memory
 
 __all__ = ["parse_values"]
@@ -28,15 +29,15 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
     forms = "a number, a comma list (0,0.1,0.3) or start:stop:num (-0.6:0.6:241, num >= 1)"
     t = str(text).strip()
     if not t:
-        raise ValueError(f"{name} = {text!r} is empty; give {forms}")
+        raise InputError(f"{name} = {text!r} is empty; give {forms}")
 
     def number(part: str, finite: bool = True) -> float:
         try:
             v = float(part)
         except ValueError:
-            raise ValueError(f"{name} = {text!r}: {part.strip()!r} is not a number; give {forms}") from None
+            raise InputError(f"{name} = {text!r}: {part.strip()!r} is not a number; give {forms}") from None
         if finite and not np.isfinite(v):
-            raise ValueError(
+            raise InputError(
                 f"{name} = {text!r}: {part.strip()!r} is not finite (it reads as {v}); {name} must be a finite number"
             )
         return v
@@ -44,21 +45,21 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
     if ":" in t:
         parts = t.split(":")
         if len(parts) != 3:
-            raise ValueError(f"{name} = {text!r} has {len(parts)} fields; give {forms}")
+            raise InputError(f"{name} = {text!r} has {len(parts)} fields; give {forms}")
         start, stop = number(parts[0]), number(parts[1])
         try:
             num = int(parts[2])
         except ValueError:
-            raise ValueError(
+            raise InputError(
                 f"{name} = {text!r}: the number of points {parts[2].strip()!r} is not an "
                 "integer; give start:stop:num with num >= 1"
             ) from None
         if num < 1:
-            raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num >= 1")
+            raise InputError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num >= 1")
         if num > 10**9:
-            raise ValueError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num <= 1e9")
+            raise InputError(f"{name} = {text!r}: the number of points is {num}; the allowed range is num <= 1e9")
         if num > 1 and not np.isfinite((stop - start) / (num - 1)):
-            raise ValueError(
+            raise InputError(
                 f"{name} = {text!r}: the step (stop - start)/(num - 1) overflows a double; "
                 f"{name} must have |stop - start| <= 1.7e308"
             )
@@ -67,6 +68,6 @@ def parse_values(text: str, *, name: str = "value") -> float | np.ndarray:
     if "," in t:
         vals = [number(v) for v in t.split(",") if v.strip()]
         if not vals:
-            raise ValueError(f"{name} = {text!r} is empty; give {forms}")
+            raise InputError(f"{name} = {text!r} is empty; give {forms}")
         return np.array(vals)
     return number(t, finite=False)  # one number: the parameter check names it ("q = inf is not finite")

@@ -43,6 +43,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..errors import InputError, ParameterTypeError
+
 if TYPE_CHECKING:
     import xarray as xr
 
@@ -93,13 +95,13 @@ def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
     import xarray as xr  # here: importing the checks imports no xarray (tippe --help)
 
     if not isinstance(ds, xr.Dataset):
-        raise TypeError(
+        raise ParameterTypeError(
             f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
             "stability.atlas or stability.open_atlas"
         )
     missing = [v for v in required_variables(ds) if v not in ds]
     if missing:
-        raise ValueError(
+        raise InputError(
             f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
             f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)"
         )

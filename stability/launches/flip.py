@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ParameterTypeError, RunError
 from ..nonlinear.runs import simulate
 from ..parameters import as_scalar, check_choice, check_positive
 from ..top import Top, check_launch_spin
@@ -51,7 +52,7 @@ def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) 
     where ``alpha_v`` came from: the top's ``mu_v`` by eq. (7) (``alpha_v = mu mu_v g / Omega``,
     :meth:`stability.Top.alpha_v`), the explicit argument, or the paper's 0.5 by default."""
     if not isinstance(top, Top):
-        raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
+        raise ParameterTypeError(f"top must be a stability.Top, got {type(top).__name__}")
     check_choice("model", model, MODELS)
     w = check_launch_spin(spin, unit)
     if top.mu_v is not None:  # an explicit alpha_v too is refused by Top.nondimensional
@@ -205,7 +206,7 @@ def run_launch(
         attrs = dict(ds.attrs)
         pol = ds.polar_angle.values
         if not np.all(np.isfinite(pol)):
-            raise RuntimeError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")
+            raise RunError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")
         n_min = min(n_min, float(ds.normal_force.min()))
         tt = t + ds.time.values
         if crossed is None and (hit := np.nonzero(pol >= crossing)[0]).size and not (crossing <= tilt):

@@ -47,7 +47,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import DomainError
+from ..errors import DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
@@ -130,31 +130,31 @@ def _setup(
 ) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
     m = get_model(model)
     if not isinstance(param, str) or param not in m.parameters:
-        raise ValueError(
+        raise InputError(
             f"param = {param!r} is not a parameter of model {m.name!r}; choose one of {', '.join(m.parameters)}"
         )
     fx = {k: v for k, v in fixed.items() if v is not None}
     if param in fx:
-        raise TypeError(f"{param} is the parameter searched and cannot also be given a value")
+        raise ParameterTypeError(f"{param} is the parameter searched and cannot also be given a value")
     if "mu" in m.parameters and param != "mu":
         fx.setdefault("mu", DEFAULT_MU)
     for k in fx:
         if k not in m.parameters:
-            raise TypeError(f"model {m.name!r} takes no parameter {k} (it takes {', '.join(m.parameters)})")
+            raise ParameterTypeError(f"model {m.name!r} takes no parameter {k} (it takes {', '.join(m.parameters)})")
     missing = [k for k in m.parameters if k != param and k not in fx]
     if missing:
-        raise TypeError(f"{', '.join(missing)} required for a threshold in {param} of model {m.name!r}")
+        raise ParameterTypeError(f"{', '.join(missing)} required for a threshold in {param} of model {m.name!r}")
     p, _ = check_domain(scalar=True, **fx)
     fx = {k: float(v) for k, v in p.items()}
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:
         if isinstance(bracket, (str, bytes)) or not hasattr(bracket, "__len__") or len(bracket) != 2:
-            raise TypeError(f"bracket = {bracket!r} must be a pair (lo, hi) of real numbers")
+            raise ParameterTypeError(f"bracket = {bracket!r} must be a pair (lo, hi) of real numbers")
         lo, hi = (as_scalar("bracket", v) for v in bracket)
         if not lo < hi:
             a, b = fmt_against(lo, hi)
-            raise ValueError(f"bracket = ({a}, {b}) is outside the allowed range: lo < hi")
+            raise InputError(f"bracket = ({a}, {b}) is outside the allowed range: lo < hi")
         for end in (lo, hi):  # each end on its own: a grid's hint (mask_unphysical) does not apply
             try:
                 check_domain(scalar=True, **{**fx, param: end})
@@ -578,13 +578,13 @@ def _one_threshold(
     found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
-        raise ValueError(
+        raise InputError(
             f"no threshold in {param}: the {m.name} model is {_no_threshold_state(state)} "
             f"throughout {param} in [{lo:.6g}, {hi:.6g}] ({given})"
         )
     if len(found) > 1:
         listed = ", ".join(f"{t.value:.12g} (unstable {t.unstable_side})" for t in found)
-        raise ValueError(
+        raise InputError(
             f"{len(found)} thresholds in {param} in [{lo:.6g}, {hi:.6g}] ({given}): "
             f"{listed}; pass bracket=(lo, hi) around one, or use stability.thresholds"
         )
@@ -747,7 +747,7 @@ def critical_spin(
     from ..top import Top
 
     if not isinstance(top, Top):
-        raise TypeError(f"top must be a stability.Top, got {type(top).__name__}")
+        raise ParameterTypeError(f"top must be a stability.Top, got {type(top).__name__}")
     check_choice("orientation", orientation, ("upright", "inverted", "both"))
     if orientation == "both":
         found_: dict[str, CriticalSpin | None] = {}
@@ -758,12 +758,12 @@ def critical_spin(
             except _NoTransition as e:
                 found_[o], reasons[o] = None, str(e)
         if len(reasons) == 2:
-            raise ValueError("; ".join(reasons.values()))
+            raise InputError("; ".join(reasons.values()))
         return CriticalSpins(upright=found_["upright"], inverted=found_["inverted"], reasons=reasons)
     samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
     check_threshold_samples(samples)
     if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
-        raise TypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
+        raise ParameterTypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)
     if not 0 < lo < hi:
         raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")

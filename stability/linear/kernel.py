@@ -86,6 +86,7 @@ import numpy as np
 from stability.jit import Twin, register_jitable
 
 from .. import execution
+from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_domain
 from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
@@ -599,7 +600,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     local ``register_jitable`` helper compiled half as fast again).
     """
     if not 1 <= n <= MAX_DEGREE:
-        raise ValueError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
+        raise InputError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
 
     def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
@@ -662,7 +663,7 @@ def accepts(model: LinearModel) -> bool:
 def _require_kernels(model: LinearModel) -> _Kernels:
     kernels = _model_kernels(model)
     if kernels is None:
-        raise ValueError(
+        raise InputError(
             f"model {model.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
             "(stability.models.base); use coefficient_spectrum on its coefficients"
         )
@@ -729,7 +730,7 @@ def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
     arguments of ``point_coefficients``); ``0.0`` for those the model does not take."""
     missing = [n for n in model.parameters if n not in params]
     if missing:
-        raise TypeError(f"model {model.name!r} needs {', '.join(missing)}")
+        raise ParameterTypeError(f"model {model.name!r} needs {', '.join(missing)}")
     return [params[n] if n in model.parameters else 0.0 for n in PARAMETERS]
 
 
@@ -1036,9 +1037,9 @@ def coefficient_spectrum(
     c = np.asarray(c, dtype=np.complex128)
     n = c.shape[-1] - 1
     if not 1 <= n <= MAX_DEGREE:
-        raise ValueError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
+        raise InputError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
     if np.any(c[..., 0] == 0):
-        raise ValueError("leading coefficient is zero (singular mass matrix)")
+        raise InputError("leading coefficient is zero (singular mass matrix)")
     shape = c.shape[:-1]
     flat = np.ascontiguousarray(c.reshape(-1, n + 1))
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)

@@ -28,6 +28,8 @@ from itertools import permutations
 
 import numpy as np
 
+from ..errors import InputError
+
 __all__ = ["ambiguous_steps", "principal_mode", "structural_zeros", "track_modes"]
 
 
@@ -97,13 +99,13 @@ def track_modes(
     """
     ev = np.array(eigenvalues, dtype=complex, copy=True)
     if ev.ndim != 2 or ev.shape[1] < 1:
-        raise ValueError(
+        raise InputError(
             f"eigenvalues has shape {ev.shape}; it must be (points, modes): one row of "
             "eigenvalues per point of the path"
         )
     m, n = ev.shape
     if solve is not None and path is None:
-        raise ValueError("track_modes: solve needs the path parameter values (path=)")
+        raise InputError("track_modes: solve needs the path parameter values (path=)")
     perms = [list(p) for p in permutations(range(n))]
 
     def bridge(ta: float, ea: np.ndarray, tb: float, eb: np.ndarray, depth: int) -> np.ndarray:

@@ -62,7 +62,7 @@ from continuation.problem import StepResult
 
 from .. import execution
 from .._version import package_version
-from ..errors import ConvergenceError, DomainError
+from ..errors import ConvergenceError, DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
@@ -121,7 +121,7 @@ _KIND_DETAIL = {
 
 def _check_name(name: str, what: str, model: LinearModel) -> str:
     if not isinstance(name, str) or name not in model.parameters:
-        raise ValueError(
+        raise InputError(
             f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
         )
     return name
@@ -130,18 +130,20 @@ def _check_name(name: str, what: str, model: LinearModel) -> str:
 def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
     """Validate the fixed parameters (all the model's others; mu defaults to 2.28)."""
     if not isinstance(fixed, Mapping):
-        raise TypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
+        raise ParameterTypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
     out = dict(fixed)
     if "mu" not in free and "mu" not in out:
         out["mu"] = DEFAULT_MU
     for name in out:
         if name in free:
-            raise ValueError(f"{name} is traced (x or y) and cannot also be fixed")
+            raise InputError(f"{name} is traced (x or y) and cannot also be fixed")
         if name not in model.parameters:
-            raise TypeError(f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})")
+            raise ParameterTypeError(
+                f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
+            )
     missing = [n for n in model.parameters if n not in free and n not in out]
     if missing:
-        raise TypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
+        raise ParameterTypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
     p, _ = check_domain(scalar=True, **out)
     return {k: float(v) for k, v in p.items()}
 
@@ -158,11 +160,11 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     if rng is None:
         return _default_range(name, fixed)
     if isinstance(rng, (str, bytes)) or not hasattr(rng, "__len__") or len(rng) != 2:
-        raise TypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
+        raise ParameterTypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
     lo, hi = (as_scalar(f"{name}_range", v) for v in rng)  # finite reals, or a named error
     if not lo < hi:
         a, b = fmt_against(lo, hi)
-        raise ValueError(f"{name}_range = ({a}, {b}) is outside the allowed range: lo < hi")
+        raise InputError(f"{name}_range = ({a}, {b}) is outside the allowed range: lo < hi")
     return lo, hi
 
 
@@ -920,7 +922,7 @@ def neutral_curve(
     x = _check_name(x, "x", m)
     y = _check_name(y, "y", m)
     if x == y:
-        raise ValueError(f"x and y must be two different parameters, got {x!r} twice")
+        raise InputError(f"x and y must be two different parameters, got {x!r} twice")
     fixed = _fixed_parameters(m, (x, y), fixed)
     max_step = check_positive("max_step", max_step)
     step = max_step if step is None else check_positive("step", step)
@@ -932,7 +934,7 @@ def neutral_curve(
     if form is not None:
         form = check_choice("form", form, ("crossing", "collision"))
     if isinstance(grid, (str, bytes)) or not hasattr(grid, "__len__") or len(grid) != 2:
-        raise TypeError(f"grid = {grid!r} must be a pair of integers >= 2")
+        raise ParameterTypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
     check_start_grid(*grid)
     ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
@@ -946,7 +948,7 @@ def neutral_curve(
     if start is None:
         found = _atlas_guesses(m, x, y, fixed, ranges, grid)
         if found.decided == 0:
-            raise ValueError(
+            raise InputError(
                 f"the start grid ({grid[0]} x {grid[1]} points over {x}_range = {_pair(ranges[x])} and "
                 f"{y}_range = {_pair(ranges[y])}) could not decide the sign of a growth rate at any of its "
                 f"{found.inside} points inside the domain (every point has a mode within rounding of neutral); "
@@ -968,17 +970,17 @@ def neutral_curve(
     else:
         guesses = []
         if isinstance(start, (str, bytes)) or not hasattr(start, "__iter__"):
-            raise TypeError(f"start = {start!r} must be a sequence of points (x, y) or (x, y, w)")
+            raise ParameterTypeError(f"start = {start!r} must be a sequence of points (x, y) or (x, y, w)")
         for s in start:
             if isinstance(s, (str, bytes)) or not hasattr(s, "__len__") or len(s) not in (2, 3):
-                raise ValueError(f"start point {s!r}: a start point has 2 or 3 values (x, y[, w])")
+                raise InputError(f"start point {s!r}: a start point has 2 or 3 values (x, y[, w])")
             s = [as_scalar("start", v) for v in s]
             if len(s) == 2:
                 p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
                 sp0 = spectrum(m, mask_unphysical=True, **p)
                 ev = sp0.eigenvalues
                 if np.isnan(ev).all():
-                    raise ValueError(f"start point {x} = {s[0]:g}, {y} = {s[1]:g} is outside the physical domain")
+                    raise InputError(f"start point {x} = {s[0]:g}, {y} = {s[1]:g} is outside the physical domain")
                 # the mode nearest the axis, structural zeros (s = 0 exactly, bound 0: the
                 # sliding top's zero root at fr_inv = 0) excepted: they are neutral everywhere
                 dist = np.where(structural_zeros(ev.real, ev.imag, sp0.error_bound), np.inf, np.abs(ev.real))
@@ -988,10 +990,10 @@ def neutral_curve(
                     else float(ev[np.nanargmin(np.abs(ev.real))].imag)
                 )
             if len(s) != 3:
-                raise ValueError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
+                raise InputError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))
         if not guesses:
-            raise ValueError("start = [] is empty: give at least one point, or None for starts from an atlas")
+            raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
@@ -1015,7 +1017,7 @@ def neutral_curve(
             if start is None:
                 continue
             bad = [n for n, gv in zip(prob.constraint_names, prob.constraints(u)) if gv < 0]
-            raise ValueError(
+            raise InputError(
                 f"start point ({x}, {y}, w) = ({g[0]:g}, {g[1]:g}, {g[2]:g}) converged to the neutral "
                 f"point ({u[0]:.6g}, {u[1]:.6g}, {u[2]:.6g}), outside the ranges or the physical "
                 f"domain ({'; '.join(bad)})"
@@ -1149,10 +1151,10 @@ def fold_curve(
     m = get_model(model)
     x, y, z = (_check_name(n, w_, m) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
     if len({x, y, z}) != 3:
-        raise ValueError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
+        raise InputError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
     check_choice("fold_in", fold_in, (x, y))
     if not isinstance(fixed, Mapping) or z not in fixed:
-        raise TypeError(f"fixed must give the start value of z = {z!r}")
+        raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
     fx = dict(fixed)
     z0 = fx.pop(z)
     full = _fixed_parameters(m, (x, y), {**fx, z: z0})

@@ -97,6 +97,7 @@ from stability.jit import OPTIONS, Twin, njit, register_jitable
 from stability.jit import active as jit_active
 
 from .. import execution
+from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
@@ -262,7 +263,7 @@ class NeutralCondition:
         missing = set(self.model.parameters) - set(self.free) - set(self.fixed)
         extra = (set(self.free) | set(self.fixed)) - set(self.model.parameters)
         if missing or extra:
-            raise TypeError(
+            raise ParameterTypeError(
                 f"model {self.model.name!r} takes {', '.join(self.model.parameters)}; "
                 f"missing {sorted(missing)}, unknown {sorted(extra)}"
             )
@@ -285,9 +286,9 @@ class NeutralCondition:
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
         if form not in ("crossing", "collision"):
-            raise ValueError(f"form = {form!r}; use 'crossing' or 'collision'")
+            raise InputError(f"form = {form!r}; use 'crossing' or 'collision'")
         if form == "collision" and self.phase is None:
-            raise ValueError(
+            raise InputError(
                 f"model {self.model.name!r} with {self.fixed} is not conservative; "
                 "the collision form needs p(i w) = e^(i theta) P(w) with P real"
             )

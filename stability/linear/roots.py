@@ -86,6 +86,7 @@ import numpy as np
 from stability.jit import OPTIONS, Twin, overload, register_jitable
 
 from .. import execution
+from ..errors import InputError
 
 __all__ = [
     "PolynomialRoots",
@@ -626,9 +627,9 @@ def polynomial_roots(c: np.ndarray) -> PolynomialRoots:
     c = np.asarray(c, dtype=complex)
     n = c.shape[-1] - 1
     if n < 1:
-        raise ValueError(f"polynomial degree must be >= 1, got {n}")
+        raise InputError(f"polynomial degree must be >= 1, got {n}")
     if np.any(c[..., 0] == 0):
-        raise ValueError("leading coefficient is zero (singular mass matrix)")
+        raise InputError("leading coefficient is zero (singular mass matrix)")
     flat = c.reshape(-1, n + 1)
     roots = np.zeros((flat.shape[0], n), dtype=complex)
     bound = np.zeros((flat.shape[0], n))

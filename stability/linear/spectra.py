@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import DEFAULT_MU, check_domain, check_flag
 from ..products import MARGINAL, STABLE, UNSTABLE
@@ -104,13 +105,15 @@ def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any
     for name, value in given.items():
         if name in model.parameters:
             if value is None:
-                raise TypeError(f"{name} is required for model {model.name!r}")
+                raise ParameterTypeError(f"{name} is required for model {model.name!r}")
             out[name] = value
         elif value is not None:
-            raise TypeError(f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})")
+            raise ParameterTypeError(
+                f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
+            )
     for name in model.parameters:
         if name not in out:
-            raise TypeError(f"{name} is required for model {model.name!r}")
+            raise ParameterTypeError(f"{name} is required for model {model.name!r}")
     return out
 
 
@@ -241,7 +244,7 @@ def spectrum(
     """
     m = get_model(model)
     if method not in METHODS:
-        raise ValueError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
+        raise InputError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
     given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     if parallel is not None:
         parallel = check_flag("parallel", parallel)

@@ -18,6 +18,7 @@ import os
 import sys
 import warnings
 
+from ..errors import InputError
 from .base import LinearModel
 from .fixed_pivot import FixedPivot
 from .rolling import Rolling
@@ -75,7 +76,7 @@ def get_model(model: str | LinearModel, *, warn: bool = True) -> LinearModel:
         )
         return MODELS[new]
     if not isinstance(model, str) or model not in MODELS:
-        raise ValueError(f"model = {model!r} is not a known model; choose one of {', '.join(MODELS)}")
+        raise InputError(f"model = {model!r} is not a known model; choose one of {', '.join(MODELS)}")
     if model == "rolling" and warn and not _ROLLING_WARNED:
         _ROLLING_WARNED = True
         warnings.warn(

@@ -76,6 +76,7 @@ import numpy as np
 
 from stability.jit import register_jitable
 
+from ..errors import InputError
 from .base import LinearModel
 from .inertia import inertia_contact, inertia_g
 
@@ -182,7 +183,7 @@ def scalar_coefficients(
     dc: dict[str, list[complex]] = {}
     for name in PARAMETER_ORDER if which is None else which:
         if name not in PARAMETER_ORDER:
-            raise ValueError(f"{name!r} is not a parameter of eq. (11); use {', '.join(PARAMETER_ORDER)}")
+            raise InputError(f"{name!r} is not a parameter of eq. (11); use {', '.join(PARAMETER_ORDER)}")
         dc[name] = _assemble(derivative_parts(*point, PARAMETER_ORDER.index(name)))
     return c, dc
 

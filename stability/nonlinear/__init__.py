@@ -31,6 +31,8 @@ import importlib
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 
+from ..errors import InputError
+
 __all__ = ["NONLINEAR_MODELS", "NonlinearModel", "get_nonlinear_model"]
 
 
@@ -139,5 +141,5 @@ def get_nonlinear_model(model: str) -> NonlinearModel:
         If there is no such model; the message lists the names.
     """
     if not isinstance(model, str) or model not in NONLINEAR_MODELS:
-        raise ValueError(f"model = {model!r} is not a nonlinear model; choose one of {', '.join(NONLINEAR_MODELS)}")
+        raise InputError(f"model = {model!r} is not a nonlinear model; choose one of {', '.join(NONLINEAR_MODELS)}")
     return NONLINEAR_MODELS[model]

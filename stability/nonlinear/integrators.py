@@ -37,6 +37,7 @@ from scipy.optimize import brentq
 
 from stability.jit import Compiled, njit
 
+from ..errors import InputError
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint
 from .kernels import CODES
@@ -825,7 +826,7 @@ def integrate(
         )
     elif method == "rk4":
         if step is None or not step > 0:
-            raise ValueError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
+            raise InputError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
         y, nfev, na, nr, st, ev = rk4(
             code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact, c_stick=c_stick
         )
@@ -834,7 +835,7 @@ def integrate(
             code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress, watch_contact, c_stick
         )
     else:
-        raise ValueError(
+        raise InputError(
             f"method = {method!r} is not known; choose one of {', '.join(COMPILED_METHODS + SCIPY_METHODS)}"
         )
     if ev is not None:

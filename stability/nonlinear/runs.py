@@ -23,7 +23,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import package_version
-from ..errors import InputError
+from ..errors import InputError, ParameterTypeError
 from ..interrupts import deferred
 from ..parameters import (
     COMPUTABLE_MAX,
@@ -75,12 +75,12 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
     sizes = " or ".join(map(str, n))
     arr = as_parameter(name, value)  # type, emptiness and finiteness, with the standard messages
     if arr.ndim != 1 or arr.size not in n:
-        raise ValueError(
+        raise InputError(
             f"{name} = {value!r:.60} has shape {arr.shape}; {name} must be a vector of "
             f"{sizes} components (fixed frame I, J, K)"
         )
     if np.max(np.abs(arr)) > COMPUTABLE_MAX:
-        raise ValueError(
+        raise InputError(
             f"{name} = {value!r:.60} is outside the computable range: every |component| <= {COMPUTABLE_MAX:g}"
         )
     return arr
@@ -119,19 +119,19 @@ def model_parameter_vector(
     given = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
     if m.name == "sliding":
         if alpha_v is None:
-            raise TypeError("alpha_v is required for model 'sliding' (alpha_v >= 0)")
+            raise ParameterTypeError("alpha_v is required for model 'sliding' (alpha_v >= 0)")
         given.update(alpha_v=alpha_v, alpha_k=alpha_k)
     else:
         if alpha_v is not None:
-            raise TypeError(f"model {m.name!r} takes no parameter alpha_v (no friction law)")
+            raise ParameterTypeError(f"model {m.name!r} takes no parameter alpha_v (no friction law)")
         if alpha_k is not None and np.any(as_parameter("alpha_k", alpha_k) != 0):
-            raise TypeError(f"model {m.name!r} takes no parameter alpha_k (no friction law)")
+            raise ParameterTypeError(f"model {m.name!r} takes no parameter alpha_k (no friction law)")
     p, _ = check_domain(scalar=True, **given)
     params = {name: float(v) for name, v in p.items()}
     check_choice("friction", friction, FRICTION_LAWS)
     check_choice("normal", normal, NORMAL_FORCE)
     if normal == "actual" and params["fr_inv"] == 0.0:
-        raise ValueError(
+        raise InputError(
             "normal = 'actual' needs fr_inv > 0 (friction proportional to N(t) / (mu fr_inv)); got fr_inv = 0"
         )
     slip_scale = check_positive("slip_scale", slip_scale)
@@ -162,20 +162,20 @@ def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position
     kv = _vector("k", k, (3,))
     nk = float(np.linalg.norm(kv))
     if abs(nk - 1.0) > 1e-2:
-        raise ValueError(f"k = {k!r} has length {nk:.6g}; k is the unit symmetry axis (|k| must be within 1 % of 1)")
+        raise InputError(f"k = {k!r} has length {nk:.6g}; k is the unit symmetry axis (|k| must be within 1 % of 1)")
     kv = kv / nk
     parts = [w, kv]
     if m.name == "sliding":
         v = np.zeros(2) if velocity is None else _vector("velocity", velocity, (2, 3))
         if v.size == 3:
             if abs(v[2]) > 1e-12:
-                raise ValueError(
+                raise InputError(
                     f"velocity = {velocity!r}: the vertical component must be 0 (the centre stays at height R)"
                 )
             v = v[:2]
         parts.append(v)
     elif velocity is not None:
-        raise ValueError(
+        raise InputError(
             f"velocity = {velocity!r}: model {m.name!r} determines the centre's velocity from the rotation; give none"
         )
     if m.has_translation:
@@ -388,7 +388,7 @@ def simulate(
         dt = check_positive("dt", dt)
         n = int(np.ceil(t_end / dt - 1e-9))
         if n > 10**8:
-            raise ValueError(
+            raise InputError(
                 f"dt = {dt:.6g} gives {n} output times up to t_end = {t_end:.6g}; "
                 "the allowed range is t_end / dt <= 1e8"
             )
@@ -403,7 +403,7 @@ def simulate(
             or np.any(np.diff(t_eval) <= 0)
             or not np.isclose(t_eval[-1], t_end)
         ):
-            raise ValueError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
+            raise InputError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
         check_run_memory(m.name, t_eval.size, t_end=t_end, dt=None)
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":

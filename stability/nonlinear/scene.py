@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..errors import InputError
 from ..products import PRODUCT_ATTR
 from .runs import simulate
 
@@ -63,7 +64,7 @@ def run(
     velocity follows from the constraint). Extra keywords go to :func:`stability.simulate`.
     """
     if fr_inv not in INITIAL_CONDITIONS:
-        raise ValueError(
+        raise InputError(
             f"fr_inv = {fr_inv!r}: the paper gives initial conditions for "
             f"{', '.join(map(str, INITIAL_CONDITIONS))} only"
         )

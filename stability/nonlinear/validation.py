@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from ..errors import InputError, ParameterTypeError
 from ..linear.modes import structural_zeros
 from ..linear.roots import UNIT_ROUNDOFF
 from ..linear.spectra import eigenvalues, spectrum
@@ -390,12 +391,12 @@ def validate(
     given = {"q": q, "fr_inv": fr_inv, "sigma": sigma, "mu": mu}
     if m.name == "sliding":
         if alpha_v is None:
-            raise TypeError(
+            raise ParameterTypeError(
                 "alpha_v is required for model 'sliding' (alpha_v > 0; for Coulomb friction alone use coulomb_growth)"
             )
         given["alpha_v"] = alpha_v
     elif alpha_v is not None:
-        raise TypeError(f"model {m.name!r} takes no parameter alpha_v")
+        raise ParameterTypeError(f"model {m.name!r} takes no parameter alpha_v")
     named = {k: v for k, v in given.items() if isinstance(v, xr.DataArray)}
     if named:  # an atlas subset: broadcast by dimension name (the grid of the subset)
         for k, v in zip(named, xr.broadcast(*named.values())):
@@ -403,7 +404,7 @@ def validate(
     arrays, _ = check_domain(maskable=False, **given)
     flat = {k: np.ravel(v) for k, v in arrays.items()}
     if m.name == "sliding" and np.any(flat["alpha_v"] == 0):
-        raise ValueError(
+        raise InputError(
             "alpha_v = 0 has no exponential mode to validate (frictionless, or "
             "Coulomb only); the allowed range here is alpha_v > 0 (coulomb_growth "
             "handles alpha_k > 0)"

@@ -8,6 +8,8 @@ from typing import Any
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError
+
 __all__ = ["axes_or_new", "panels_or_new"]
 
 
@@ -37,7 +39,7 @@ def panels_or_new(
     if axes is not None:
         axes = list(axes)
         if len(axes) != n:
-            raise ValueError(f"axes has {len(axes)} Axes; this figure draws {n} panels")
+            raise InputError(f"axes has {len(axes)} Axes; this figure draws {n} panels")
         return axes[0].figure, axes
     fig = Figure(figsize=figsize, layout="constrained")
     grid = fig.subplots(1 if row else n, n if row else 1, squeeze=False, **subplots_kw)

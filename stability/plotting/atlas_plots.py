@@ -12,6 +12,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ..grids.netcdf import atomic_output, require_atlas
 from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
@@ -78,20 +79,20 @@ def plot_growth_rate(
     """
     require_atlas(ds)
     if "growth_rate" not in ds:
-        raise ValueError(
+        raise InputError(
             "ds is a map atlas (atlas_variables = 'map': leading_growth_rate and stability only); "
             "growth rates and frequencies per mode need an atlas written with variables='all'"
         )
     if quantity not in QUANTITIES:
-        raise ValueError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
+        raise InputError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
     if mode not in MODES:
-        raise ValueError(f"mode = {mode!r} is not known; choose one of {', '.join(MODES)}")
+        raise InputError(f"mode = {mode!r} is not known; choose one of {', '.join(MODES)}")
     grid = list(ds["max_growth_rate"].dims)
     if x not in grid:
-        raise ValueError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
+        raise InputError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
     others = [d for d in grid if d != x]
     if len(others) > 1:
-        raise ValueError(f"the atlas has grid dimensions {', '.join(grid)}; select all but {x!r} and one family first")
+        raise InputError(f"the atlas has grid dimensions {', '.join(grid)}; select all but {x!r} and one family first")
     fig, ax = axes_or_new(ax)
     label = QUANTITIES[quantity]
     s = ds["growth_rate"] + 1j * ds["frequency"]

@@ -9,6 +9,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ..grids.netcdf import require_atlas
 from ._layout import panels_or_new
 from .atlas_plots import plot_growth_rate
@@ -71,13 +72,13 @@ def plot_atlas(
     grid = list(ds["stability"].dims)
     if len(grid) == 1:
         if y is not None:
-            raise ValueError(f"y = {y!r}: the atlas has one grid dimension ({grid[0]}); a line plot has no y")
+            raise InputError(f"y = {y!r}: the atlas has one grid dimension ({grid[0]}); a line plot has no y")
         return plot_growth_rate(ds, grid[0] if x is None else x, ax=ax, **kw)
     if len(grid) == 2:
         x = grid[0] if x is None else x
         y = next((d for d in grid if d != x), grid[1]) if y is None else y
         return plot_stability_map(ds, x, y, ax=ax, **kw)
-    raise ValueError(
+    raise InputError(
         f"the atlas has {len(grid)} grid dimensions ({', '.join(grid) or 'none'}); its figure "
         "needs one (a line plot) or two (a stability map): select the others first (ds.sel(...))"
     )

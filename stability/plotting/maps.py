@@ -9,6 +9,7 @@ from matplotlib.axes import Axes
 from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ..grids.atlases import leading_growth_rate
 from ..parameters import SYMBOLS
 from ._layout import axes_or_new
@@ -77,7 +78,7 @@ def plot_stability_map(
     """
     g = leading_growth_rate(ds)  # checks that ds is an atlas
     if set(g.dims) != {x, y}:
-        raise ValueError(f"the atlas has grid dimensions {', '.join(g.dims)}; a map needs exactly {x!r} and {y!r}")
+        raise InputError(f"the atlas has grid dimensions {', '.join(g.dims)}; a map needs exactly {x!r} and {y!r}")
     fig, ax = axes_or_new(ax)
     z = g.transpose(y, x).values
     finite = z[np.isfinite(z)]

@@ -8,6 +8,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ..grids.atlases import leading_growth_rate
 from ..recipes import Recipe
 from . import scene_plots
@@ -93,7 +94,7 @@ def _scene_figure(
         return scene_plots.fig5({runs[k].attrs["label"]: runs[k] for k in ("fr_inv_0.3", "fr_inv_0.1")}, axes=axes)
     if figure in ("fig6", "fig8"):  # one panel
         if axes is not None and len(axes) != 1:
-            raise ValueError(f"axes has {len(axes)} Axes; this figure draws 1 panel")
+            raise InputError(f"axes has {len(axes)} Axes; this figure draws 1 panel")
         draw = scene_plots.fig6 if figure == "fig6" else scene_plots.fig8
         fig, ax = draw(main, ax=None if axes is None else axes[0])
         return fig, [ax]

@@ -15,6 +15,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ._layout import axes_or_new, panels_or_new
 
 __all__ = ["SCENE_FIGURES", "fig5", "fig6", "fig7", "fig8", "fig9", "plot_run"]
@@ -159,7 +160,7 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     if ax is not None and getattr(ax, "name", "") != "3d":
-        raise ValueError("ax must be a 3-D Axes (projection='3d') for Fig. 8")
+        raise InputError("ax must be a 3-D Axes (projection='3d') for Fig. 8")
     fig, ax = axes_or_new(ax, figsize=(5.6, 5.2), layout="constrained", projection="3d")
     u, v = np.mgrid[0 : 2 * np.pi : 40j, 0 : np.pi : 20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.25)

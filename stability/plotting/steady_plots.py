@@ -18,6 +18,7 @@ from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
+from ..errors import InputError
 from ..parameters import SYMBOLS
 from ..products import FLAG_NAMES
 from ._layout import axes_or_new
@@ -454,7 +455,7 @@ def plot_class_map(
         If the dataset's grid is not ``(q, sigma)`` (select the other dimensions first).
     """
     if set(ds.top_class.dims) != {"q", "sigma"}:
-        raise ValueError(
+        raise InputError(
             f"the class map is drawn over (q, sigma); this dataset's grid is "
             f"({', '.join(map(str, ds.top_class.dims)) or 'none'}): give class_atlas 1-D grids of q and "
             "sigma, or select the other dimensions first (ds.sel(...))"

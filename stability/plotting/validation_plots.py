@@ -9,6 +9,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..errors import InputError, ParameterTypeError
 from ._layout import axes_or_new, panels_or_new
 
 __all__ = ["plot_coulomb_growth", "plot_validation"]
@@ -19,10 +20,10 @@ _COULOMB = ("tilt", "slip_speed")
 
 def _require(ds: object, names: Sequence[str], made_by: str) -> xr.Dataset:
     if not isinstance(ds, xr.Dataset):
-        raise TypeError(f"ds is a {type(ds).__name__}; it must be an xarray.Dataset from {made_by}")
+        raise ParameterTypeError(f"ds is a {type(ds).__name__}; it must be an xarray.Dataset from {made_by}")
     missing = [v for v in names if v not in ds]
     if missing:
-        raise ValueError(f"ds has no {', '.join(missing)}: it is not a dataset of {made_by}")
+        raise InputError(f"ds has no {', '.join(missing)}: it is not a dataset of {made_by}")
     return ds
 
 

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from ..errors import ParameterTypeError
 from ..parameters import DEFAULT_MU, DOMAIN, as_parameter, check_domain, check_flag, domain_sides, parameter_attrs
 from ..resources import check_class_atlas
 from . import family
@@ -144,7 +145,7 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
     for name, v in (("q", q), ("sigma", sigma), ("mu", mu)):
         arr = as_parameter(name, v)
         if arr.ndim > 1:
-            raise TypeError(f"{name} must be a number or a 1-D array here, got shape {arr.shape}")
+            raise ParameterTypeError(f"{name} must be a number or a 1-D array here, got shape {arr.shape}")
         values[name] = arr
     dims = [k for k, v in values.items() if v.ndim == 1]
     check_class_atlas(int(np.prod([values[d].size for d in dims], dtype=np.int64)))

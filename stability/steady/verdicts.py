@@ -25,6 +25,7 @@ fold or a branch point, or a level that touches one.
 
 from __future__ import annotations
 
+from ..errors import InputError
 from ..products import FLAG_MEANINGS, FLAG_VALUES, MARGINAL, STABLE, UNSTABLE
 
 __all__ = [
@@ -83,7 +84,7 @@ def flag_of(
     """
     if alpha_v == 0.0:
         if jacobian_verdict is None:
-            raise ValueError("alpha_v = 0: the flag needs the Jacobian's verdict (no dissipation)")
+            raise InputError("alpha_v = 0: the flag needs the Jacobian's verdict (no dissipation)")
         return MARGINAL if jacobian_verdict == STABLE else int(jacobian_verdict)
     tol = REL_TOL * scale
     if test < -tol:
