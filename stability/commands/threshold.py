@@ -7,7 +7,7 @@ import argparse
 from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
-from ..top import Top
+from ..top import SPIN_UNITS, Top
 from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, top_from_args
 
 __all__ = ["register", "run"]
@@ -45,7 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     g = p.add_argument_group("PARAM = spin")
     g.add_argument(
         "--unit",
-        choices=["rad/s", "rpm", "rev/s", "Hz"],
+        choices=list(SPIN_UNITS),
         default=None,
         help="spin unit of the two launch readings (default rpm; rev/s is printed too)",
     )
