@@ -48,6 +48,7 @@ LAYERS: tuple[tuple[str, int], ...] = (
     ("stability.jit", 0),  # one source, two executions (numba on demand)
     ("stability.interrupts", 0),  # signals as flags, checkpoints, temporary files
     ("stability.resources", 0),  # memory estimates and limits
+    ("stability.files", 0),  # output files and their atomic commit (grids, plotting, benchmarks)
     ("stability.parameters", 1),
     ("stability.models", 1),
     ("stability.top", 1),

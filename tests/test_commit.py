@@ -1,4 +1,4 @@
-"""The one commit primitive (stability.grids.outputs): exactly one winner, regular files only.
+"""The one commit primitive (stability.files): exactly one winner, regular files only.
 
 Issue 13, items 4 and 7. References:
 
@@ -6,8 +6,8 @@ Issue 13, items 4 and 7. References:
   once; the reference for the file's content is the winner's own in-memory dataset (each
   dataset is tagged), and the invariant is the contract: exactly one returns, the others get
   ``FileExistsError``, no temporary file remains;
-* the no-replace primitives: each fallback is forced by disabling the ones above it, and the
-  same contract is checked (target unchanged, the loser's temporary removed);
+* the no-replace commit (``os.link``): called directly, the same contract is checked (target
+  unchanged, the temporary left to its owner);
 * non-regular targets: a FIFO, a UNIX socket, a symbolic link, and a character device when
   ``mknod`` is permitted (created in the test's directory, never /dev/null), with and without
   ``overwrite``, through every writer and the command line; the reference is the path's own
@@ -28,10 +28,9 @@ import pytest
 import xarray as xr
 
 import stability
-import stability.grids.outputs as outputs
 from stability.cli import main
 from stability.grids.chunked import write_atlas
-from stability.grids.outputs import TEMPORARY_PREFIX, atomic_output, temporary_name
+from stability.files import TEMPORARY_PREFIX, atomic_output, temporary_name
 
 pytestmark = pytest.mark.skipif(os.name != "posix", reason="POSIX file semantics")
 
@@ -109,42 +108,24 @@ def test_file_created_during_the_run_is_not_replaced(tmp_path):
     assert _leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("disabled", [0, 1, 2], ids=["renameat2", "link", "exclusive-create"])
-def test_each_no_replace_fallback_keeps_the_contract(tmp_path, monkeypatch, disabled):
-    """The primitive actually used is the first one not disabled; each refuses an existing
-    target and commits to a new name."""
-    methods = list(outputs.NOREPLACE_METHODS)
-    for k in range(disabled):
-        methods[k] = lambda src, dst: False  # "not supported here" (EINVAL, EPERM, ...)
-    used = []
-    for k in range(disabled, len(methods)):
-        real = methods[k]
-        methods[k] = (lambda real: lambda src, dst: used.append(real.__name__) or real(src, dst))(real)
-    monkeypatch.setattr(outputs, "NOREPLACE_METHODS", tuple(methods))
-    path = tmp_path / "b.txt"
-    with atomic_output(path) as tmp:
-        Path(tmp).write_text("first")
-    assert path.read_text() == "first"
-    with pytest.raises(FileExistsError):
-        with atomic_output(tmp_path / "c.txt") as tmp:
-            Path(tmp).write_text("second")
-            (tmp_path / "c.txt").write_text("other")
-    assert (tmp_path / "c.txt").read_text() == "other"
+def test_the_commit_links_and_refuses_an_existing_target(tmp_path):
+    """The one no-replace commit, ``os.link`` then ``unlink``: called directly on a complete
+    temporary, it commits to a new name; with the target created meanwhile it refuses, leaves the
+    target as it was and the temporary in place for the caller (atomic_output) to remove."""
+    from stability.files import commit
+    from stability.interrupts import Temporary
+
+    tmp = Temporary(temporary_name(tmp_path / "d"), str(tmp_path / "d"))
+    Path(tmp.path).write_text("x")
+    commit(tmp, tmp_path / "d", overwrite=False)
+    assert (tmp_path / "d").read_text() == "x" and tmp.state == "committed"
     assert _leftovers(tmp_path) == []
-    assert used and used[0] == ("_rename_noreplace_syscall", "_link_noreplace", "_exclusive_noreplace")[disabled]
-
-
-def test_renameat2_is_used_here(tmp_path):
-    """On this Linux machine the first primitive is available (glibc >= 2.28): one atomic step."""
-    if os.uname().sysname != "Linux":
-        pytest.skip("Linux only")
-    src = tmp_path / "s"
-    src.write_text("x")
-    assert outputs._rename_noreplace_syscall(str(src), str(tmp_path / "d"))
-    src.write_text("y")
-    with pytest.raises(FileExistsError):
-        outputs._rename_noreplace_syscall(str(src), str(tmp_path / "d"))
-    assert (tmp_path / "d").read_text() == "x"
+    tmp = Temporary(temporary_name(tmp_path / "d"), str(tmp_path / "d"))
+    Path(tmp.path).write_text("y")
+    with pytest.raises(FileExistsError, match="created by another process"):
+        commit(tmp, tmp_path / "d", overwrite=False)
+    assert (tmp_path / "d").read_text() == "x" and tmp.state == "writing"
+    os.unlink(tmp.path)
 
 
 def test_temporary_names_are_unique_hidden_and_keep_the_suffix(tmp_path):

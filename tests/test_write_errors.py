@@ -27,10 +27,10 @@ import xarray as xr
 
 import stability
 import stability.grids.chunked as dist
-import stability.grids.outputs as outputs
+import stability.files as outputs
 from stability.errors import OutputWriteError
 from stability.grids.chunked import parts_directory, write_atlas
-from stability.grids.outputs import TEMPORARY_PREFIX, check_free_space, close_quietly
+from stability.files import TEMPORARY_PREFIX, check_free_space, close_quietly
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
 

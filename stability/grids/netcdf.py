@@ -1,13 +1,12 @@
 """Datasets on disk: netCDF writing in bounded slabs, and reading an atlas back with checks.
 
 * :func:`write_dataset` writes any dataset of the package through
-  :func:`stability.grids.outputs.atomic_output` (a temporary file committed only when complete;
-  no partial file; an existing file kept unless ``overwrite=True``; the refusal holds at the
-  moment of the commit). Large numeric variables are written in slabs of at most
-  :data:`SLAB_BYTES` along their first dimension, with an interruption point between slabs, so
-  that Ctrl-C or SIGTERM is acted on within one slab (a fraction of a second) whatever the size;
-  xarray does the encoding, so the file is the one ``to_netcdf`` writes (same variables,
-  attributes and data types).
+  :func:`stability.files.atomic_output` (a temporary file committed only when complete; no
+  partial file; an existing file kept unless ``overwrite=True``; the refusal holds at the moment
+  of the commit) with xarray's public ``to_netcdf``. Large variables are written in slabs of at
+  most :data:`SLAB_BYTES` along their first dimension (as dask arrays, ``compute=False``), with an
+  interruption point between slabs, so that Ctrl-C or SIGTERM is acted on within one slab (a
+  fraction of a second) whatever the size.
 * :func:`open_atlas` reads an atlas back and checks it with
   :func:`stability.grids.schema.validate_atlas`, slab by slab, before loading it; a file larger
   than the memory available is refused unless opened lazily (``chunks=``).
@@ -15,18 +14,18 @@
 
 from __future__ import annotations
 
-import contextlib
+import importlib.util
 import os
 import warnings
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import AtlasFileError, ParameterTypeError
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
-from .outputs import atomic_output, check_output_path, describe_kind
+from ..files import atomic_output, check_output_path, describe_kind
 from .schema import ATLAS_VARIABLES, require_atlas, required_variables, validate_atlas
 
 if TYPE_CHECKING:
@@ -43,78 +42,42 @@ __all__ = [
     "write_dataset",
 ]
 
-#: largest piece of a variable written in one call (an interruption point between pieces)
+#: largest piece of a variable written in one step (an interruption point between pieces)
 SLAB_BYTES = 16 * 2**20
 
 
-def _slab_rows(shape: tuple[int, ...], itemsize: int) -> int:
-    """Rows (along the first dimension) of at most :data:`SLAB_BYTES`; at least one."""
-    row = itemsize * int(np.prod(shape[1:], dtype=np.int64))
-    return max(1, SLAB_BYTES // max(1, row))
+def _checked(block: np.ndarray) -> np.ndarray:
+    """A slab on its way to the file: the interruption point between slabs."""
+    checkpoint()
+    return block
 
 
-def _slab_writer() -> Any:
-    """xarray's array writer, writing every large array in slabs with an interruption point
-    before each (and computing a dask array one row of blocks at a time, in this thread)."""
-    from xarray.backends.common import ArrayWriter
+def _in_slabs(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with every data variable above :data:`SLAB_BYTES` (and every dask-backed one) as a
+    dask array of slabs along its first dimension, each passing :func:`_checked`."""
+    import dask.array as da
 
-    class SlabWriter(ArrayWriter):
-        __slots__ = ()
-
-        def add(self, source: Any, target: Any, region: Any = None) -> None:
-            checkpoint()
-            if region:
-                return super().add(source, target, region)
-            if (
-                hasattr(source, "chunks")
-                and getattr(source, "chunks", None) is not None
-                and hasattr(source, "compute")
-                and getattr(source, "ndim", 0) >= 1
-            ):
-                from dask.local import get_sync
-
-                start = 0
-                for rows in source.chunks[0]:
-                    checkpoint()
-                    target[start : start + rows, ...] = np.asarray(
-                        source[start : start + rows].compute(scheduler=get_sync)
-                    )
-                    start += rows
-                return None
-            if isinstance(source, np.ndarray) and source.ndim >= 1 and source.nbytes > SLAB_BYTES:
-                step = _slab_rows(source.shape, source.itemsize)
-                for i in range(0, source.shape[0], step):
-                    checkpoint()
-                    target[i : i + step, ...] = source[i : i + step]
-                return None
-            return super().add(source, target, region)
-
-    return SlabWriter()
+    out = ds.copy()
+    for name, v in ds.data_vars.items():
+        if v.ndim and (v.chunks is not None or v.nbytes > SLAB_BYTES):
+            rows = max(1, SLAB_BYTES * v.shape[0] // max(1, v.nbytes))
+            data = v.data if v.chunks is not None else da.from_array(v.values, chunks=(rows, *v.shape[1:]))
+            out[name] = v.copy(data=da.map_blocks(_checked, data, dtype=v.dtype))
+    return out
 
 
 def _to_netcdf(ds: xr.Dataset, tmp: str) -> None:
-    """``ds.to_netcdf(tmp, format="NETCDF4")`` through xarray's own encoding and store (so the file
-    is the one ``to_netcdf`` writes), with :func:`_slab_writer`."""
-    from xarray.backends import NetCDF4DataStore
-
-    try:
-        from xarray.backends.writers import dump_to_store
-    except ImportError:  # xarray before 2025: the same function in backends.api
-        from xarray.backends.api import dump_to_store
-    from xarray.backends import netCDF4_
-
-    writer = _slab_writer()
-    # the lock xarray takes for netCDF4-python, without the per-file write lock whose choice
-    # imports dask.distributed (0.7 s) to ask for a scheduler: the temporary file has one writer
-    store = NetCDF4DataStore.open(tmp, mode="w", format="NETCDF4", lock=netCDF4_.NETCDF4_PYTHON_LOCK)
-    try:
-        dump_to_store(ds, store, writer, unlimited_dims=ds.encoding.get("unlimited_dims"))
-        writer.sync()
-    except BaseException:
-        with contextlib.suppress(Exception):  # a close error never replaces the first one
-            store.close()
-        raise
-    store.close()
+    """``ds.to_netcdf(tmp)`` (xarray's public writer: the file is the one it writes). A large
+    dataset goes slab by slab (:func:`_in_slabs`, ``compute=False`` then dask's synchronous
+    scheduler, in this thread), so that a signal is acted on between slabs and a lazy (dask)
+    variable is never held whole in memory; without dask it is written in one call."""
+    checkpoint()
+    large = any(v.chunks is not None or v.nbytes > SLAB_BYTES for v in ds.data_vars.values())
+    if large and importlib.util.find_spec("dask") is not None:
+        _in_slabs(ds).to_netcdf(tmp, format="NETCDF4", compute=False).compute(scheduler="synchronous")
+    else:
+        ds.to_netcdf(tmp, format="NETCDF4")
+    checkpoint()
 
 
 def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False) -> Path:

@@ -1,0 +1,397 @@
+"""Output files: the one way the package writes a file, and what it refuses.
+
+Layer 0 (docs/architecture.md): the standard library, the error hierarchy and the signal flag.
+
+Every writer (netCDF datasets, chunk-wise atlases, figures, benchmark records) goes through
+:func:`atomic_output`: the content is written under a unique temporary name in the target's
+directory and committed by :func:`commit` only when complete.
+
+* **No partial file.** Any exception or interruption removes the temporary file; the temporary
+  is registered with :mod:`stability.interrupts`, whose emergency exit removes it too.
+* **Exactly one winner** (``overwrite=False``). The refusal to replace an existing file holds at
+  the moment of the commit, not only at the start: the commit is ``os.link(tmp, target)``, which
+  fails atomically if ``target`` exists (POSIX, NFS and NTFS alike), then ``os.unlink(tmp)``. Two
+  runs writing the same new name at once: one commits, the other gets ``FileExistsError`` ("...
+  was created by another process while this run was computing; nothing was written"). A file
+  system without hard links (vfat) cannot give that guarantee: the commit is refused with an
+  error naming it (``overwrite=True`` still works there).
+* **Only a regular file is replaced** (``overwrite=True``, ``os.replace``): a target that is a
+  FIFO, a device, a socket, a directory or a symbolic link is refused, with or without
+  ``overwrite`` (``os.lstat``: a link is not followed), before computing and again just before
+  the commit.
+* **A failed write names the file and the cause** (:func:`write_error`): the first ``OSError``
+  with an error number in the exception's chain (ENOSPC, EFBIG, EDQUOT, EROFS, EIO), otherwise a
+  diagnosis made when the failure happens (free space, the file size limit ``ulimit -f``, a
+  read-only mount): ``OutputWriteError`` "cannot write 'a.nc': file size limit (ulimit -f) of
+  1000000 bytes reached (NetCDF: HDF error); nothing was written". Clean-up errors never replace
+  the first error.
+* **Space is checked first** where the size is known (:func:`check_free_space`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import stat
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from .errors import OutputWriteError, ParameterTypeError, TippeError
+from .interrupts import Temporary, checkpoint
+
+__all__ = [
+    "TEMPORARY_PREFIX",
+    "atomic_output",
+    "check_free_space",
+    "check_output_path",
+    "close_quietly",
+    "commit",
+    "describe_kind",
+    "format_bytes",
+    "temporary_name",
+    "write_error",
+]
+
+#: temporary files are ``<dir>/.tippe-tmp-XXXXXXXX-<name>``: hidden, unique, and ending with the
+#: target's name, so that their suffix is the target's (a figure's format is read off it)
+TEMPORARY_PREFIX = ".tippe-tmp-"
+
+#: error numbers that mean "the file could not be written" -> the cause as the message says it
+_WRITE_ERRNOS: dict[int, str] = {
+    errno.ENOSPC: "no space left on the file system holding {dir}",
+    errno.EFBIG: "file size limit reached",
+    errno.EROFS: "the file system holding {dir} is read-only",
+    errno.EIO: "input/output error on the file system holding {dir}",
+}
+if hasattr(errno, "EDQUOT"):
+    _WRITE_ERRNOS[errno.EDQUOT] = "disk quota exceeded on the file system holding {dir}"
+
+_KINDS = (
+    (stat.S_ISREG, "a regular file"),
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISLNK, "a symbolic link"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def describe_kind(mode: int) -> str:
+    """What a file mode is, in words: ``"a FIFO (named pipe)"``, ``"a symbolic link"``, ..."""
+    return next((text for test, text in _KINDS if test(mode)), "not a regular file")
+
+
+def format_bytes(n: float) -> str:
+    """``1234567`` -> ``"1.23 MB"`` (decimal units)."""
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{float(n):.0f} bytes"
+
+
+def _lstat(p: Path) -> os.stat_result | None:
+    try:
+        return os.lstat(p)
+    except (FileNotFoundError, NotADirectoryError):  # the directory's problem is reported next
+        return None
+
+
+def _directory(p: Path) -> Path:
+    return p.parent if str(p.parent) else Path(".")
+
+
+def _refuse_existing(p: Path, st: os.stat_result, overwrite: bool) -> None:
+    """Refuse an existing ``p`` unless it is a regular file and ``overwrite``."""
+    if stat.S_ISDIR(st.st_mode):
+        raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
+    if not stat.S_ISREG(st.st_mode):
+        raise FileExistsError(
+            f"output path {str(p)!r} is {describe_kind(st.st_mode)}; only a regular file can be "
+            "replaced: remove it or choose another name"
+        )
+    if not overwrite:
+        raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
+
+
+def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Path:
+    """Fail early (before any computation) if ``path`` cannot be written.
+
+    Raises
+    ------
+    FileExistsError
+        ``path`` exists and ``overwrite`` is False; or it exists and is not a regular file (a
+        FIFO, a device, a socket, a symbolic link: refused even with ``overwrite``).
+    IsADirectoryError
+        ``path`` is a directory.
+    FileNotFoundError, NotADirectoryError, PermissionError
+        The directory does not exist, is not one, or is not writable.
+    """
+    if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+        raise ParameterTypeError(f"output path = {path!r} must be a file name (a non-empty str or path-like)")
+    if not isinstance(overwrite, bool):
+        raise ParameterTypeError(f"overwrite = {overwrite!r} must be True or False")
+    p = Path(path)
+    st = _lstat(p)
+    if st is not None:
+        _refuse_existing(p, st, overwrite)
+    parent = _directory(p)
+    if not parent.exists():
+        raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
+    if not parent.is_dir():
+        raise NotADirectoryError(f"output directory {str(parent)!r} of {str(p)!r} is not a directory")
+    # permission bits do not tell everything (root, read-only mounts, pseudo file systems):
+    # create and remove a probe file, which is what writing will need
+    try:
+        os.unlink(temporary_name(p))
+    except OSError as exc:
+        raise PermissionError(
+            f"output directory {str(parent)!r} of {str(p)!r} is not writable ({exc.strerror})"
+        ) from None
+    return p
+
+
+def _fsize_limit() -> int | None:
+    """The file size limit (``ulimit -f``, ``RLIMIT_FSIZE``) in bytes, or None."""
+    try:
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_FSIZE)
+    except (ImportError, OSError, ValueError):
+        return None
+    return None if soft == resource.RLIM_INFINITY or soft < 0 else int(soft)
+
+
+def _free_space(d: Path) -> float | None:
+    try:
+        vfs = os.statvfs(d)
+    except (OSError, AttributeError):
+        return None
+    return float(vfs.f_bavail * vfs.f_frsize)
+
+
+def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
+    """Refuse, before computing, an output of about ``nbytes`` that cannot fit: the free space of
+    the file system holding ``path`` (``statvfs``, space available to this user) and the file
+    size limit (``ulimit -f``). Unknown limits are not checked.
+
+    Raises
+    ------
+    OutputWriteError
+        With ``errno`` ENOSPC or EFBIG, naming the file, the size and the limit.
+    """
+    p, d = str(path), _directory(Path(path))
+    free, limit = _free_space(d), _fsize_limit()
+    if free is not None and nbytes > free:
+        raise OutputWriteError(
+            f"cannot write {p!r}: the output needs about {format_bytes(nbytes)} and the file "
+            f"system holding {str(d)!r} has {format_bytes(free)} free; nothing was written",
+            errno.ENOSPC,
+            p,
+        )
+    if limit is not None and nbytes > limit:
+        raise OutputWriteError(
+            f"cannot write {p!r}: the output needs about {format_bytes(nbytes)}, above the file "
+            f"size limit (ulimit -f) of {limit} bytes; nothing was written",
+            errno.EFBIG,
+            p,
+        )
+
+
+# --- the commit --------------------------------------------------------------------------------
+
+
+def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
+    """Rename the complete temporary file ``tmp`` to ``target``: the last interruption point.
+
+    With ``overwrite=False`` the commit refuses an existing target atomically (``os.link``);
+    with ``overwrite=True`` it replaces only a regular file (``os.replace``).
+
+    Raises
+    ------
+    FileExistsError
+        The target appeared meanwhile (another process), or is not a regular file.
+    KeyboardInterrupt
+        A signal is pending (:func:`stability.interrupts.checkpoint`): nothing is committed.
+    """
+    checkpoint()
+    tmp.state = "committing"
+    try:
+        if overwrite:
+            st = _lstat(target)
+            if st is not None:
+                _refuse_existing(target, st, True)
+            os.replace(tmp.path, target)
+        else:
+            try:
+                os.link(tmp.path, target)
+            except FileExistsError:
+                raise FileExistsError(
+                    f"output file {str(target)!r} was created by another process while this run was "
+                    "computing; nothing was written (pass overwrite=True to replace it)"
+                ) from None
+            except OSError as exc:
+                if exc.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.ENOSYS):
+                    raise
+                raise OutputWriteError(
+                    f"cannot write {str(target)!r}: the file system holding it has no hard links, which "
+                    "the commit that never replaces a file needs; pass overwrite=True (nothing was written)",
+                    exc.errno,
+                    str(target),
+                ) from None
+            os.unlink(tmp.path)
+    except BaseException:
+        tmp.state = "writing"
+        raise
+    tmp.done(committed=True)
+
+
+def temporary_name(target: Path) -> str:
+    """Create an empty, unique temporary file next to ``target``; return its name."""
+    fd, name = tempfile.mkstemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=_directory(target))
+    os.close(fd)
+    return name
+
+
+@contextlib.contextmanager
+def atomic_output(
+    path: str | os.PathLike, *, overwrite: bool = False, expected_bytes: float | None = None
+) -> Iterator[str]:
+    """Yield a temporary file name next to ``path``; commit it to ``path`` only on success.
+
+    Parameters
+    ----------
+    path : path-like
+        The output file (checked by :func:`check_output_path`).
+    overwrite : bool
+        Replace an existing regular file.
+    expected_bytes : float, optional
+        The output's expected size, checked against the free space first
+        (:func:`check_free_space`).
+
+    The temporary file is removed on any exception, including an interruption; an error while
+    writing is translated by :func:`write_error`. The final file gets the usual permissions
+    (umask).
+    """
+    p = check_output_path(path, overwrite=overwrite)
+    if expected_bytes is not None:
+        check_free_space(p, expected_bytes)
+    tmp = Temporary(temporary_name(p), str(p))
+    try:
+        try:
+            yield tmp.path
+        except BaseException as exc:
+            translated = write_error(exc, p, tmp.path)
+            if translated is not None:
+                raise translated from exc
+            raise
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp.path, 0o666 & ~umask)
+        commit(tmp, p, overwrite=overwrite)
+    finally:
+        if tmp.state != "committed":
+            with contextlib.suppress(OSError):  # an error here never replaces the one being handled
+                os.unlink(tmp.path)
+            tmp.done(committed=False)
+
+
+# --- translating write errors --------------------------------------------------------------------
+
+
+def _chain(exc: BaseException) -> Iterator[BaseException]:
+    seen = set()
+    e: BaseException | None = exc
+    while e is not None and id(e) not in seen:
+        seen.add(id(e))
+        yield e
+        e = e.__cause__ or e.__context__
+
+
+def _is_library_write_error(exc: BaseException) -> bool:
+    """netCDF4 and h5 report a failed write as a RuntimeError "NetCDF: ..." (no errno)."""
+    text = str(exc)
+    return (type(exc) is RuntimeError and ("NetCDF" in text or "HDF" in text)) or type(exc).__name__ in (
+        "HDF5ExtError",
+        "NetCDF4Error",
+    )
+
+
+def write_error(
+    exc: BaseException, target: Path, tmp: str | None = None, what: str | None = None
+) -> OutputWriteError | None:
+    """The :class:`~stability.errors.OutputWriteError` for a failure while writing ``target``,
+    or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
+    are passed on as they are).
+
+    Parameters
+    ----------
+    exc : BaseException
+    target : Path
+        The output file (named in the message).
+    tmp : str, optional
+        The temporary file being written (its size is compared with the file size limit).
+    what : str, optional
+        The file named in the message, if not ``target`` (a chunk file of a chunk store).
+    """
+    if isinstance(exc, (KeyboardInterrupt, SystemExit, GeneratorExit, OutputWriteError)):
+        return None
+    if isinstance(exc, TippeError) and not isinstance(exc, OSError):
+        return None
+    found = next((e for e in _chain(exc) if isinstance(e, OSError) and e.errno in _WRITE_ERRNOS), None)
+    library = any(_is_library_write_error(e) for e in _chain(exc))
+    own_file = (
+        isinstance(exc, OSError)
+        and exc.filename is not None
+        and tmp is not None
+        and os.path.abspath(str(exc.filename)) == os.path.abspath(tmp)
+    )
+    if found is None and not library and not own_file:
+        return None
+    name = what or str(target)
+    d = str(_directory(Path(target)))
+    detail = " ".join(str(exc).split())[:160]
+    limit = _fsize_limit()
+    if found is not None:
+        code = found.errno
+        cause = _WRITE_ERRNOS[code].format(dir=repr(d))
+        if code == errno.EFBIG and limit is not None:
+            cause = f"file size limit (ulimit -f) of {limit} bytes reached"
+    else:
+        code, cause = _diagnose(d, tmp, limit)
+    return OutputWriteError(f"cannot write {name!r}: {cause} ({detail}); nothing was written", code, name)
+
+
+def _diagnose(directory: str, tmp: str | None, limit: int | None) -> tuple[int | None, str]:
+    """The probable cause of a write failure that carries no error number, found now."""
+    with contextlib.suppress(OSError, AttributeError):
+        if os.statvfs(directory).f_flag & getattr(os, "ST_RDONLY", 1):
+            return errno.EROFS, f"the file system holding {directory!r} is read-only"
+    free = _free_space(Path(directory))
+    if free is not None and free < 1_000_000:
+        return errno.ENOSPC, f"no space left on the file system holding {directory!r} ({format_bytes(free)} free)"
+    if limit is not None:
+        size = 0
+        with contextlib.suppress(OSError, TypeError):
+            size = os.path.getsize(tmp) if tmp else 0
+        if size + 1_000_000 >= limit:
+            return errno.EFBIG, f"file size limit (ulimit -f) of {limit} bytes reached"
+    return None, "the netCDF/HDF5 library reported an error"
+
+
+@contextlib.contextmanager
+def close_quietly(handle: Any) -> Iterator[Any]:
+    """``with close_quietly(netCDF4.Dataset(...)) as nc``: closed at the end; if the block
+    raised, an error of the close (HDF5 flushes on close, and fails again on a full disk) is
+    dropped so that the first error is the one reported; on success a close error is raised
+    (a failed flush is a failed write)."""
+    try:
+        yield handle
+    except BaseException:
+        with contextlib.suppress(Exception):
+            handle.close()
+        raise
+    handle.close()
