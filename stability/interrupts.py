@@ -35,6 +35,7 @@ import signal
 import sys
 import threading
 from collections.abc import Iterator
+from types import SimpleNamespace
 
 __all__ = [
     "SIGNALS",
@@ -57,21 +58,21 @@ __all__ = [
 SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
 
-class _State:
-    """The module's state (one per process)."""
-
-    pending: int | None = None  # the first signal received and not yet cleared
-    mode: str | None = None  # "cli", "library" or None (nothing installed)
-    depth = 0  # nesting of install()/deferred()
-    previous: dict[int, object] = {}
-    label = "tippe"
-    kept = ""  # what an interrupted command keeps (chunks), for the message
-    reported = False  # the command line has printed its interruption line
-    temporaries: dict[int, Temporary] = {}
-    committed: list[str] = []
-
-
-_state = _State()
+#: the module's state (one per process): the first signal received and not yet cleared; the mode
+#: ("cli", "library" or None: nothing installed) and its nesting; the handlers replaced; the
+#: program name and what an interrupted command keeps (chunks), for the emergency exit's line;
+#: whether the command line has printed its own line; the files being written, and those committed
+_state = SimpleNamespace(
+    pending=None,
+    mode=None,
+    depth=0,
+    previous={},
+    label="tippe",
+    kept="",
+    reported=False,
+    temporaries={},
+    committed=[],
+)
 
 
 def pending() -> int | None:
@@ -171,8 +172,10 @@ def deferred() -> Iterator[None]:
     at once.
     """
     st = _state
-    if st.mode == "cli" or not _main_thread() or (
-        st.mode is None and signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    if (
+        st.mode == "cli"
+        or not _main_thread()
+        or (st.mode is None and signal.getsignal(signal.SIGINT) is not signal.default_int_handler)
     ):
         yield
         return
@@ -268,7 +271,11 @@ def _emergency_exit(why: str) -> None:
         with contextlib.suppress(Exception):
             child.terminate()
     if not st.reported:
-        what = "after " + ", ".join(map(repr, written)) + " was written (complete)" if written else "no output file was written"
+        what = (
+            "after " + ", ".join(map(repr, written)) + " was written (complete)"
+            if written
+            else "no output file was written"
+        )
         kept = f"; {st.kept}" if st.kept and not written else ""
         with contextlib.suppress(OSError):
             os.write(2, f"{st.label}: interrupted ({why}); {what}{kept}\n".encode(errors="replace"))

@@ -71,6 +71,7 @@ _PER_MODE, _PER_POINT, _BLOCK, _DOMAIN_CHECK = 24.0, 18.0, 90.0, 45.0
 #: tilts)
 _THRESHOLD_SAMPLE, _START_GRID_POINT, _CLASS_ATLAS_POINT = 1250.0, 340.0, 140.0
 
+
 def _env_limit() -> float | None:
     """``TIPPE_MEMORY_LIMIT`` in bytes (``2e9``, ``500M``, ``8G``, ``1GiB``), or None if unset."""
     text = os.environ.get(ENV_LIMIT, "").strip()

@@ -29,8 +29,8 @@ import xarray as xr
 
 import stability
 from stability.cli import main
-from stability.grids.chunked import write_atlas
 from stability.files import TEMPORARY_PREFIX, atomic_output, temporary_name
+from stability.grids.chunked import write_atlas
 
 pytestmark = pytest.mark.skipif(os.name != "posix", reason="POSIX file semantics")
 

@@ -26,11 +26,11 @@ import pytest
 import xarray as xr
 
 import stability
-import stability.grids.chunked as dist
 import stability.files as outputs
+import stability.grids.chunked as dist
 from stability.errors import OutputWriteError
-from stability.grids.chunked import parts_directory, write_atlas
 from stability.files import TEMPORARY_PREFIX, check_free_space, close_quietly
+from stability.grids.chunked import parts_directory, write_atlas
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
 

@@ -23,9 +23,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import AtlasFileError, ParameterTypeError
+from ..files import atomic_output, check_output_path, describe_kind
 from ..interrupts import checkpoint, deferred
 from ..products import PRODUCT_ATTR
-from ..files import atomic_output, check_output_path, describe_kind
 from .schema import ATLAS_VARIABLES, require_atlas, required_variables, validate_atlas
 
 if TYPE_CHECKING:
