@@ -39,7 +39,7 @@ if __package__ in (None, ""):  # run as a script: its folder holds the suites
 from suites import SUITES
 from suites.records import WorkPrecision, peak_memory_mb
 
-from stability.grids.netcdf import atomic_output, check_output_path
+from stability.files import atomic_output, check_output_path
 
 __all__ = ["ATLASES", "main", "parser", "run", "run_suite", "summary_lines"]
 

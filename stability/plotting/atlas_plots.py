@@ -13,7 +13,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..errors import InputError
-from ..grids.netcdf import atomic_output, require_atlas
+from ..files import atomic_output
+from ..grids.netcdf import require_atlas
 from ..linear.modes import principal_mode
 from ..parameters import SYMBOLS
 from ._layout import axes_or_new
