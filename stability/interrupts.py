@@ -47,7 +47,6 @@ __all__ = [
     "install",
     "label",
     "mark_reported",
-    "pending",
     "received",
     "set_kept",
     "set_label",
@@ -73,11 +72,6 @@ _state = SimpleNamespace(
     temporaries={},
     committed=[],
 )
-
-
-def pending() -> int | None:
-    """The signal number received and not yet cleared, or None."""
-    return _state.pending
 
 
 def received() -> bool:
