@@ -438,3 +438,21 @@ def test_no_hook_into_numba():
 
     hooks = [ep for ep in metadata.entry_points(group="numba_extensions") if ep.value.split(".")[0] in PACKAGES]
     assert not hooks, hooks
+
+
+def test_no_ctypes_and_no_private_xarray():
+    """Issue 22, move 2: no module imports ``ctypes`` (a system call by hand) or xarray's
+    internals (``xarray.backends``, ``xarray.core``: its private ``ArrayWriter``,
+    ``dump_to_store``); files are written through ``Dataset.to_netcdf`` and ``os``."""
+    bad = []
+    for name, (path, _) in MODULES.items():
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        for node in _import_nodes(tree):
+            mods = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+            bad += [
+                (name, m)
+                for m in mods
+                if m.split(".")[0] == "ctypes" or m.startswith(("xarray.backends", "xarray.core"))
+            ]
+    assert not bad, bad
