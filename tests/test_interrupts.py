@@ -19,7 +19,8 @@ How the moments are hit:
 
 Time bound: the work between two checkpoints is cut small (slices of the integration, blocks of
 the grid, slabs of the file), so a process ends within a second or two of the signal; the test
-allows :data:`BOUND` on this shared, loaded machine (measured: 0.1-0.5 s, docs/hard_cases.md).
+allows :data:`BOUND` on this shared, loaded machine (measured: 0.01-0.30 s, docs/hard_cases.md);
+start-up, whose imports hold no safe point, :data:`START_UP_BOUND`.
 """
 
 from __future__ import annotations
@@ -43,6 +44,13 @@ pytestmark = pytest.mark.skipif(os.name != "posix", reason="POSIX signals")
 
 #: the longest a process may take from the signal to its exit (module docstring)
 BOUND = 2.0
+
+#: the same during start-up: importing a command's modules and numba's first load of a cached
+#: kernel hold no safe point (importlib's and llvmlite's own code, where raising is what
+#: crashed before); measured from the command line's first safe point to the integration's first:
+#: 0.9 s + 0.8 s (the first slice's cache load) on this machine, up to 3.1 s under the load of
+#: eight parallel test runs; the bound the tests had before the flag design (a 2 s watchdog + 2 s)
+START_UP_BOUND = 4.0
 
 SIMULATE = [
     "simulate",
@@ -124,7 +132,7 @@ def _tippe(args: list[str], cwd: Path, **kw) -> subprocess.Popen:
     )
 
 
-def _check_ended(proc: subprocess.Popen, sent: float | None, cwd: Path, output: str) -> str:
+def _check_ended(proc: subprocess.Popen, sent: float | None, cwd: Path, output: str, bound: float = BOUND) -> str:
     """Wait for the end; the contract of the module docstring. Returns stderr. ``sent``: when the
     signal was sent, or None if the process says it (a line ``SENT <time.monotonic()>``)."""
     try:
@@ -143,7 +151,7 @@ def _check_ended(proc: subprocess.Popen, sent: float | None, cwd: Path, output: 
     lines = [ln for ln in err.splitlines() if ln.strip() and "\r" not in ln and "%|" not in ln]
     assert len(lines) == 1 and "interrupted" in lines[0], err
     print(f"ended {took:.2f} s after the signal")
-    assert took <= BOUND, f"ended {took:.2f} s after the signal (bound {BOUND} s)"
+    assert took <= bound, f"ended {took:.2f} s after the signal (bound {bound} s)"
     assert not (cwd / output).exists(), "a partial or complete output after an interruption"
     assert [p.name for p in cwd.iterdir() if p.name.startswith(TEMPORARY_PREFIX)] == []
     return err
@@ -192,7 +200,7 @@ def test_ctrl_c_during_start_up_prints_one_line(tmp_path, delay):
     assert proc.poll() is None
     sent = time.monotonic()
     proc.send_signal(signal.SIGINT)
-    _check_ended(proc, sent, tmp_path, "s.nc")
+    _check_ended(proc, sent, tmp_path, "s.nc", START_UP_BOUND)
 
 
 @pytest.mark.parametrize(

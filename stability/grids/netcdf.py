@@ -47,22 +47,36 @@ SLAB_BYTES = 16 * 2**20
 
 
 def _checked(block: np.ndarray) -> np.ndarray:
-    """A slab on its way to the file: the interruption point between slabs."""
+    """A slab of a dask variable on its way to the file: the interruption point between slabs."""
     checkpoint()
     return block
 
 
+class _Slabs:
+    """A numpy array as dask reads it, slab by slab, with an interruption point before each (not
+    an array itself: ``dask.array.from_array`` would copy an array whole)."""
+
+    def __init__(self, values: np.ndarray) -> None:
+        self.values, self.shape, self.dtype, self.ndim = values, values.shape, values.dtype, values.ndim
+
+    def __getitem__(self, key: object) -> np.ndarray:
+        checkpoint()
+        return self.values[key]
+
+
 def _in_slabs(ds: xr.Dataset) -> xr.Dataset:
     """``ds`` with every data variable above :data:`SLAB_BYTES` (and every dask-backed one) as a
-    dask array of slabs along its first dimension, each passing :func:`_checked`."""
+    dask array of slabs along its first dimension, each read after an interruption point."""
     import dask.array as da
 
-    out = ds.copy()
+    out = ds.copy(deep=False)
     for name, v in ds.data_vars.items():
-        if v.ndim and (v.chunks is not None or v.nbytes > SLAB_BYTES):
-            rows = max(1, SLAB_BYTES * v.shape[0] // max(1, v.nbytes))
-            data = v.data if v.chunks is not None else da.from_array(v.values, chunks=(rows, *v.shape[1:]))
-            out[name] = v.copy(data=da.map_blocks(_checked, data, dtype=v.dtype))
+        if v.chunks is not None:
+            out[name] = v.copy(deep=False, data=da.map_blocks(_checked, v.data, dtype=v.dtype))
+        elif v.ndim and v.nbytes > SLAB_BYTES:
+            rows = max(1, SLAB_BYTES * v.shape[0] // v.nbytes)
+            slabs = da.from_array(_Slabs(v.values), chunks=(rows, *v.shape[1:]), name=False, meta=v.values[:0])
+            out[name] = v.copy(deep=False, data=slabs)
     return out
 
 
