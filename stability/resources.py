@@ -52,8 +52,8 @@ ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
 HEADROOM = 0.8
 
 #: simulate, bytes per output time: the run's dataset stores 31 float64 per time for the sliding
-#: and rolling tops (omega, k, velocity, position, momentum, friction: 12 vectors' components and
-#: scalars, and the time), 19 for fixed_pivot; the peak adds the integrator's own output array
+#: and rolling tops (six 3-vectors: omega, k, velocity, position, momentum, friction; 12 scalars
+#: and the time), 19 for fixed_pivot; the peak adds the integrator's own output array
 #: and the derived quantities' temporaries (about 1.6 x the stored values)
 SIMULATE_FILE_BYTES_PER_TIME: dict[str, float] = {"sliding": 248.0, "rolling": 248.0, "fixed_pivot": 152.0}
 SIMULATE_BYTES_PER_TIME: dict[str, float] = {k: 1.6 * v for k, v in SIMULATE_FILE_BYTES_PER_TIME.items()}
