@@ -128,6 +128,27 @@ def test_the_commit_links_and_refuses_an_existing_target(tmp_path):
     os.unlink(tmp.path)
 
 
+def test_a_file_system_without_hard_links_is_named(tmp_path, monkeypatch):
+    """``link`` refused as on vfat (EPERM): the commit without overwrite cannot keep its promise
+    there and says so (an OutputWriteError naming the file and the way out); nothing is left
+    behind. With overwrite=True (``os.replace``) the write goes through."""
+    import errno
+
+    from stability.errors import OutputWriteError
+
+    def no_links(src, dst):
+        raise OSError(errno.EPERM, "Operation not permitted", src)
+
+    monkeypatch.setattr(os, "link", no_links)
+    with pytest.raises(OutputWriteError, match=r"cannot write .*a\.txt.*no hard links.*overwrite=True"):
+        with atomic_output(tmp_path / "a.txt") as tmp:
+            Path(tmp).write_text("x")
+    assert list(tmp_path.iterdir()) == []
+    with atomic_output(tmp_path / "a.txt", overwrite=True) as tmp:
+        Path(tmp).write_text("y")
+    assert (tmp_path / "a.txt").read_text() == "y" and _leftovers(tmp_path) == []
+
+
 def test_temporary_names_are_unique_hidden_and_keep_the_suffix(tmp_path):
     names = {temporary_name(tmp_path / "fig.png") for _ in range(50)}
     assert len(names) == 50
