@@ -106,6 +106,14 @@ PARAMETERS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu")
 #: The paper's scaled mass (Table 1 and Sec. 3).
 DEFAULT_MU: float = 2.28
 
+#: upper ends of the default ranges of the parameters the physical domain leaves unbounded above,
+#: one home for both uses: threshold's default bracket (sampled uniform + geometric, so a wide end
+#: is cheap; at 10 it misses fr_inv thresholds of tilted-state branch points above 10) and
+#: neutral_curve's default window (WINDOW_UPPER_BOUND, a 25 x 25 uniform start grid: at 1e3 its
+#: points are 42 apart in fr_inv and the branch point at (q, fr_inv) = (0, 1/mu) is missed)
+UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
+WINDOW_UPPER_BOUND = 10.0
+
 LONG_NAMES: dict[str, str] = {
     "q": "centre-of-mass offset q",
     "fr_inv": "inverse Froude number",

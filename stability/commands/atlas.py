@@ -17,7 +17,7 @@ from ..grids.netcdf import check_output_path, write_dataset
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -56,10 +56,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
     )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument(
-        "-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required"
+    add_output_flags(
+        p,
+        "netCDF file to write (atomically); required",
+        required=True,
+        overwrite="replace an existing output file (and --plot file)",
     )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
     p.add_argument(
         "--mask-unphysical",
         action="store_true",

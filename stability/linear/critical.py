@@ -51,6 +51,7 @@ from ..errors import DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
+    UPPER_BOUND,
     as_scalar,
     check_choice,
     check_domain,
@@ -75,10 +76,6 @@ __all__ = [
     "threshold_crossings",
     "thresholds",
 ]
-
-#: upper end of the default bracket of the parameters without a finite physical bound
-UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
-
 
 #: the largest number of samples a threshold search takes (three grids of this many points)
 MAX_SAMPLES = 10**6
@@ -109,8 +106,8 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
 
     ``q``: ``mu q^2 <= 1 - sigma/2`` (from ``sigma <= 2 (1 - mu q^2)``); ``sigma``:
     ``(0, sigma_max(q, mu)]`` (:func:`stability.parameters.sigma_max`, the exact bound
-    ``2 (1 - mu q^2)`` rounded down); ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at 1e3;
-    ``fr_inv``, ``alpha_v``: ``[0, 1e3]``.
+    ``2 (1 - mu q^2)`` rounded down); ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at
+    :data:`stability.parameters.UPPER_BOUND` (1e3); ``fr_inv``, ``alpha_v``: ``[0, 1e3]`` likewise.
     """
     shrink = 1e-12
     if param == "q":

@@ -69,6 +69,8 @@ from ..parameters import (
     DOMAIN,
     LONG_NAMES,
     PARAMETERS,
+    UPPER_BOUND,
+    WINDOW_UPPER_BOUND,
     as_scalar,
     check_choice,
     check_domain,
@@ -94,10 +96,9 @@ __all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neu
 #: default ends of the ranges where the physical domain sets none (its bounds come from the table
 #: :data:`stability.parameters.DOMAIN`, :func:`stability.parameters.domain_range`: ``|q| < 1/sqrt(mu)``,
 #: ``0 < sigma <= 2 (1 - mu q^2)``, or ``<= 2`` where q or mu is traced; ``q`` here only for a traced mu)
+#: closed at :data:`stability.parameters.WINDOW_UPPER_BOUND`, beside threshold's wider bracket
 DEFAULT_RANGES: dict[str, tuple[float, float]] = {
-    "fr_inv": (0.0, 10.0),
-    "alpha_v": (0.0, 10.0),
-    "mu": (0.0, 10.0),
+    **dict.fromkeys(UPPER_BOUND, (0.0, WINDOW_UPPER_BOUND)),
     "q": (-1.0, 1.0),
 }
 
