@@ -407,87 +407,43 @@ def _exact_margins(q: Any, mu: Any, sigma: Any) -> tuple[Any, Any]:
     t, te = two_product(q, q)
     u, ue = two_product(mu, t)
     v, ve = two_product(mu, te)
-    # 1 - u: two-sum -> (x1, x0)
-    x1 = 1.0 - u
-    bb = x1 - 1.0
-    x0 = (1.0 - (x1 - bb)) + (-u - bb)
-    # + (-ue): [h0, h1, h2]
-    s = -ue + x0
-    bb = s - (-ue)
-    h0 = (-ue - (s - bb)) + (x0 - bb)
-    Q = s
-    s = Q + x1
-    bb = s - Q
-    h1 = (Q - (s - bb)) + (x1 - bb)
-    h2 = s
-    # + (-v): [k0, k1, k2, k3]
-    s = -v + h0
-    bb = s - (-v)
-    k0 = (-v - (s - bb)) + (h0 - bb)
-    Q = s
-    s = Q + h1
-    bb = s - Q
-    k1 = (Q - (s - bb)) + (h1 - bb)
-    Q = s
-    s = Q + h2
-    bb = s - Q
-    k2 = (Q - (s - bb)) + (h2 - bb)
-    k3 = s
-    # + (-ve): [m0, ..., m4] = A_G
-    s = -ve + k0
-    bb = s - (-ve)
-    m0 = (-ve - (s - bb)) + (k0 - bb)
-    Q = s
-    s = Q + k1
-    bb = s - Q
-    m1 = (Q - (s - bb)) + (k1 - bb)
-    Q = s
-    s = Q + k2
-    bb = s - Q
-    m2 = (Q - (s - bb)) + (k2 - bb)
-    Q = s
-    s = Q + k3
-    bb = s - Q
-    m3 = (Q - (s - bb)) + (k3 - bb)
-    m4 = s
-    top = m0
-    top = m1 + (m1 == 0.0) * top
-    top = m2 + (m2 == 0.0) * top
-    top = m3 + (m3 == 0.0) * top
-    top = m4 + (m4 == 0.0) * top
-    val = (((m0 + m1) + m2) + m3) + m4
-    a_g = val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
-    # + (-sigma/2): [n0, ..., n5] = A_G - sigma/2
-    hs = -(0.5 * sigma)
-    s = hs + m0
-    bb = s - hs
-    n0 = (hs - (s - bb)) + (m0 - bb)
-    Q = s
-    s = Q + m1
-    bb = s - Q
-    n1 = (Q - (s - bb)) + (m1 - bb)
-    Q = s
-    s = Q + m2
-    bb = s - Q
-    n2 = (Q - (s - bb)) + (m2 - bb)
-    Q = s
-    s = Q + m3
-    bb = s - Q
-    n3 = (Q - (s - bb)) + (m3 - bb)
-    Q = s
-    s = Q + m4
-    bb = s - Q
-    n4 = (Q - (s - bb)) + (m4 - bb)
-    n5 = s
-    top = n0
-    top = n1 + (n1 == 0.0) * top
-    top = n2 + (n2 == 0.0) * top
-    top = n3 + (n3 == 0.0) * top
-    top = n4 + (n4 == 0.0) * top
-    top = n5 + (n5 == 0.0) * top
-    val = ((((n0 + n1) + n2) + n3) + n4) + n5
-    room = val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
-    return a_g, room
+    # 1 - u, then + (-ue), + (-v), + (-ve) (grow-expansion: components from the smallest)
+    x1, x0 = _two_sum(1.0, -u)
+    Q, h0 = _two_sum(-ue, x0)
+    h2, h1 = _two_sum(Q, x1)
+    Q, k0 = _two_sum(-v, h0)
+    Q, k1 = _two_sum(Q, h1)
+    k3, k2 = _two_sum(Q, h2)
+    Q, m0 = _two_sum(-ve, k0)
+    Q, m1 = _two_sum(Q, k1)
+    Q, m2 = _two_sum(Q, k2)
+    m4, m3 = _two_sum(Q, k3)  # [m0, ..., m4] = A_G
+    Q, n0 = _two_sum(-(0.5 * sigma), m0)
+    Q, n1 = _two_sum(Q, m1)
+    Q, n2 = _two_sum(Q, m2)
+    Q, n3 = _two_sum(Q, m3)
+    n5, n4 = _two_sum(Q, m4)  # [n0, ..., n5] = A_G - sigma/2
+    return _expansion_value((m0, m1, m2, m3, m4)), _expansion_value((n0, n1, n2, n3, n4, n5))
+
+
+@register_jitable
+def _two_sum(a: Any, b: Any) -> tuple[Any, Any]:
+    """``s + e = a + b`` exactly, ``s = fl(a + b)`` (Knuth's two-sum)."""
+    s = a + b
+    bb = s - a
+    return s, (a - (s - bb)) + (b - bb)
+
+
+@register_jitable
+def _expansion_value(e: tuple) -> Any:
+    """The sum of the expansion ``e`` from its smallest component, replaced by its largest
+    nonzero component where the rounding of the sum loses that component's sign."""
+    top = e[0]
+    val = e[0]
+    for c in e[1:]:
+        top = c + (c == 0.0) * top
+        val = val + c
+    return val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
 
 
 #: The physical domain, one row per bound, in the order a violation is reported. Row ``k``
