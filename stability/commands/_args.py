@@ -170,9 +170,8 @@ TOP_HELP = {
     "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
     "inertia_axial": "axial moment of inertia C, kg m^2",
 }
-#: the parameters a top gives whatever the spin (eq. 3), and those its spin gives (eqs. 3, 7)
+#: the parameters a top gives whatever the spin (eq. 3)
 TOP_PARAMETERS = ("q", "sigma", "mu")
-SPIN_PARAMETERS = ("fr_inv", "alpha_v", "alpha_k")
 
 
 def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bool = False) -> None:

@@ -69,13 +69,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="friction proportional to the equilibrium normal force (the paper's law) or to the actual N(t)",
     )
     p.add_argument(
-        "--slip-scale",
-        type=float,
-        default=_SLIP_SCALE,
-        metavar="S",
-        help="regularisation scale of the Coulomb term, units of Omega R (> 0)",
-    )
-    p.add_argument(
         "--method",
         choices=_METHODS,
         default="auto",
@@ -83,21 +76,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
         "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
     )
-    p.add_argument(
-        "--rtol",
-        type=float,
-        default=1e-9,
-        metavar="R",
-        help="relative tolerance of the adaptive integrators (0 < R < 1)",
-    )
-    p.add_argument(
-        "--atol",
-        type=float,
-        default=1e-12,
-        metavar="A",
-        help="absolute tolerance of the adaptive integrators (0 < A < 1)",
-    )
-    p.add_argument("--dt", type=float, default=0.1, metavar="DT", help="output interval, units of 1/Omega (> 0)")
+    for flag, default, metavar, text in (
+        ("--slip-scale", _SLIP_SCALE, "S", "regularisation scale of the Coulomb term, units of Omega R (> 0)"),
+        ("--rtol", 1e-9, "R", "relative tolerance of the adaptive integrators (0 < R < 1)"),
+        ("--atol", 1e-12, "A", "absolute tolerance of the adaptive integrators (0 < A < 1)"),
+        ("--dt", 0.1, "DT", "output interval, units of 1/Omega (> 0)"),
+    ):
+        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
     p.add_argument(
         "--step",
         type=float,
