@@ -877,8 +877,8 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
     evaluated in Python floats); ``None`` otherwise, and the general path then decides and
     words the message. It accepts nothing the general path refuses (the same tests on the same
     doubles) and never refuses: a point that fails any test goes to the general path.
-    About 20x faster than the general path on one point (a single point is what
-    ``final_state``, ``steady_states`` and ``simulate`` check).
+    A single point is what ``final_state``, ``steady_states`` and ``simulate`` check (what
+    this path saves them: docs/performance.md, the final-state table).
     """
     vals: dict[str, float] = {}
     for k, v in params.items():
