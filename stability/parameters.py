@@ -88,6 +88,7 @@ __all__ = [
     "check_integer",
     "check_interval",
     "check_positive",
+    "check_range",
     "domain_applies",
     "domain_mask",
     "domain_range",
@@ -790,6 +791,17 @@ def check_positive(name: str, value: Any, *, strict: bool = True, unit: str = ""
             f"{name} = {fmt_against(v, 0.0)[0]}{u} is outside the allowed range: {name} {'>' if strict else '>='} 0"
         )
     return v
+
+
+def check_range(name: str, value: Any) -> tuple[float, float]:
+    """A pair ``(lo, hi)`` of finite reals with ``lo < hi``; the messages name ``name``."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise ParameterTypeError(f"{name} = {value!r} must be a pair (lo, hi) of real numbers")
+    lo, hi = (as_scalar(name, v) for v in value)
+    if not lo < hi:
+        a, b = fmt_against(lo, hi)
+        raise InputError(f"{name} = ({a}, {b}) is outside the allowed range: lo < hi")
+    return lo, hi
 
 
 def check_interval(name: str, value: Any, lo: float, hi: float, *, closed: str = "neither") -> float:

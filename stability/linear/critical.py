@@ -57,6 +57,7 @@ from ..parameters import (
     check_domain,
     check_flag,
     check_integer,
+    check_range,
     fmt_against,
     sigma_max,
 )
@@ -146,12 +147,7 @@ def _setup(
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:
-        if isinstance(bracket, (str, bytes)) or not hasattr(bracket, "__len__") or len(bracket) != 2:
-            raise ParameterTypeError(f"bracket = {bracket!r} must be a pair (lo, hi) of real numbers")
-        lo, hi = (as_scalar("bracket", v) for v in bracket)
-        if not lo < hi:
-            a, b = fmt_against(lo, hi)
-            raise InputError(f"bracket = ({a}, {b}) is outside the allowed range: lo < hi")
+        lo, hi = check_range("bracket", bracket)
         for end in (lo, hi):  # each end on its own: a grid's hint (mask_unphysical) does not apply
             try:
                 check_domain(scalar=True, **{**fx, param: end})

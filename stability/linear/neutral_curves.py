@@ -77,10 +77,10 @@ from ..parameters import (
     check_flag,
     check_integer,
     check_positive,
+    check_range,
     domain_range,
     domain_sides,
     domain_text,
-    fmt_against,
     parameter_attrs,
 )
 from ..products import PRODUCT_ATTR
@@ -160,13 +160,7 @@ def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
     if rng is None:
         return _default_range(name, fixed)
-    if isinstance(rng, (str, bytes)) or not hasattr(rng, "__len__") or len(rng) != 2:
-        raise ParameterTypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
-    lo, hi = (as_scalar(f"{name}_range", v) for v in rng)  # finite reals, or a named error
-    if not lo < hi:
-        a, b = fmt_against(lo, hi)
-        raise InputError(f"{name}_range = ({a}, {b}) is outside the allowed range: lo < hi")
-    return lo, hi
+    return check_range(f"{name}_range", rng)
 
 
 def _outside_domain_error(

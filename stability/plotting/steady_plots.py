@@ -365,7 +365,7 @@ def plot_bifurcation(
     if launch is not None:
         _mark_launch(ax, launch, x, units, float(branch.attrs.get("q", float("nan"))))
     ax.set_xlabel(X_AXES.get(x, x).format(units=units), fontsize=9)
-    ax.set_ylabel("tilt of the axis (deg): 0 upright, 180 inverted")
+    ax.set_ylabel(_TILT_LABEL)
     ax.set_ylim(-8, 188)
     ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
     a = branch.attrs
