@@ -23,12 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["fold_test", "locate"]
-
-
-def fold_test(component: int) -> Callable[[np.ndarray, np.ndarray], float]:
-    """Test function of a fold in ``u[component]``: the tangent's component."""
-    return lambda u, t: float(t[component])
+__all__ = ["locate"]
 
 
 def locate(

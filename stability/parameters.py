@@ -88,6 +88,7 @@ __all__ = [
     "check_integer",
     "check_interval",
     "check_positive",
+    "check_range",
     "domain_applies",
     "domain_mask",
     "domain_range",
@@ -105,6 +106,14 @@ PARAMETERS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu")
 
 #: The paper's scaled mass (Table 1 and Sec. 3).
 DEFAULT_MU: float = 2.28
+
+#: upper ends of the default ranges of the parameters the physical domain leaves unbounded above,
+#: one home for both uses: threshold's default bracket (sampled uniform + geometric, so a wide end
+#: is cheap; at 10 it misses fr_inv thresholds of tilted-state branch points above 10) and
+#: neutral_curve's default window (WINDOW_UPPER_BOUND, a 25 x 25 uniform start grid: at 1e3 its
+#: points are 42 apart in fr_inv and the branch point at (q, fr_inv) = (0, 1/mu) is missed)
+UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
+WINDOW_UPPER_BOUND = 10.0
 
 LONG_NAMES: dict[str, str] = {
     "q": "centre-of-mass offset q",
@@ -399,87 +408,43 @@ def _exact_margins(q: Any, mu: Any, sigma: Any) -> tuple[Any, Any]:
     t, te = two_product(q, q)
     u, ue = two_product(mu, t)
     v, ve = two_product(mu, te)
-    # 1 - u: two-sum -> (x1, x0)
-    x1 = 1.0 - u
-    bb = x1 - 1.0
-    x0 = (1.0 - (x1 - bb)) + (-u - bb)
-    # + (-ue): [h0, h1, h2]
-    s = -ue + x0
-    bb = s - (-ue)
-    h0 = (-ue - (s - bb)) + (x0 - bb)
-    Q = s
-    s = Q + x1
-    bb = s - Q
-    h1 = (Q - (s - bb)) + (x1 - bb)
-    h2 = s
-    # + (-v): [k0, k1, k2, k3]
-    s = -v + h0
-    bb = s - (-v)
-    k0 = (-v - (s - bb)) + (h0 - bb)
-    Q = s
-    s = Q + h1
-    bb = s - Q
-    k1 = (Q - (s - bb)) + (h1 - bb)
-    Q = s
-    s = Q + h2
-    bb = s - Q
-    k2 = (Q - (s - bb)) + (h2 - bb)
-    k3 = s
-    # + (-ve): [m0, ..., m4] = A_G
-    s = -ve + k0
-    bb = s - (-ve)
-    m0 = (-ve - (s - bb)) + (k0 - bb)
-    Q = s
-    s = Q + k1
-    bb = s - Q
-    m1 = (Q - (s - bb)) + (k1 - bb)
-    Q = s
-    s = Q + k2
-    bb = s - Q
-    m2 = (Q - (s - bb)) + (k2 - bb)
-    Q = s
-    s = Q + k3
-    bb = s - Q
-    m3 = (Q - (s - bb)) + (k3 - bb)
-    m4 = s
-    top = m0
-    top = m1 + (m1 == 0.0) * top
-    top = m2 + (m2 == 0.0) * top
-    top = m3 + (m3 == 0.0) * top
-    top = m4 + (m4 == 0.0) * top
-    val = (((m0 + m1) + m2) + m3) + m4
-    a_g = val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
-    # + (-sigma/2): [n0, ..., n5] = A_G - sigma/2
-    hs = -(0.5 * sigma)
-    s = hs + m0
-    bb = s - hs
-    n0 = (hs - (s - bb)) + (m0 - bb)
-    Q = s
-    s = Q + m1
-    bb = s - Q
-    n1 = (Q - (s - bb)) + (m1 - bb)
-    Q = s
-    s = Q + m2
-    bb = s - Q
-    n2 = (Q - (s - bb)) + (m2 - bb)
-    Q = s
-    s = Q + m3
-    bb = s - Q
-    n3 = (Q - (s - bb)) + (m3 - bb)
-    Q = s
-    s = Q + m4
-    bb = s - Q
-    n4 = (Q - (s - bb)) + (m4 - bb)
-    n5 = s
-    top = n0
-    top = n1 + (n1 == 0.0) * top
-    top = n2 + (n2 == 0.0) * top
-    top = n3 + (n3 == 0.0) * top
-    top = n4 + (n4 == 0.0) * top
-    top = n5 + (n5 == 0.0) * top
-    val = ((((n0 + n1) + n2) + n3) + n4) + n5
-    room = val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
-    return a_g, room
+    # 1 - u, then + (-ue), + (-v), + (-ve) (grow-expansion: components from the smallest)
+    x1, x0 = _two_sum(1.0, -u)
+    Q, h0 = _two_sum(-ue, x0)
+    h2, h1 = _two_sum(Q, x1)
+    Q, k0 = _two_sum(-v, h0)
+    Q, k1 = _two_sum(Q, h1)
+    k3, k2 = _two_sum(Q, h2)
+    Q, m0 = _two_sum(-ve, k0)
+    Q, m1 = _two_sum(Q, k1)
+    Q, m2 = _two_sum(Q, k2)
+    m4, m3 = _two_sum(Q, k3)  # [m0, ..., m4] = A_G
+    Q, n0 = _two_sum(-(0.5 * sigma), m0)
+    Q, n1 = _two_sum(Q, m1)
+    Q, n2 = _two_sum(Q, m2)
+    Q, n3 = _two_sum(Q, m3)
+    n5, n4 = _two_sum(Q, m4)  # [n0, ..., n5] = A_G - sigma/2
+    return _expansion_value((m0, m1, m2, m3, m4)), _expansion_value((n0, n1, n2, n3, n4, n5))
+
+
+@register_jitable
+def _two_sum(a: Any, b: Any) -> tuple[Any, Any]:
+    """``s + e = a + b`` exactly, ``s = fl(a + b)`` (Knuth's two-sum)."""
+    s = a + b
+    bb = s - a
+    return s, (a - (s - bb)) + (b - bb)
+
+
+@register_jitable
+def _expansion_value(e: tuple) -> Any:
+    """The sum of the expansion ``e`` from its smallest component, replaced by its largest
+    nonzero component where the rounding of the sum loses that component's sign."""
+    top = e[0]
+    val = e[0]
+    for c in e[1:]:
+        top = c + (c == 0.0) * top
+        val = val + c
+    return val + ((val * top <= 0.0) & (top != 0.0)) * (top - val)
 
 
 #: The physical domain, one row per bound, in the order a violation is reported. Row ``k``
@@ -828,6 +793,17 @@ def check_positive(name: str, value: Any, *, strict: bool = True, unit: str = ""
     return v
 
 
+def check_range(name: str, value: Any) -> tuple[float, float]:
+    """A pair ``(lo, hi)`` of finite reals with ``lo < hi``; the messages name ``name``."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise ParameterTypeError(f"{name} = {value!r} must be a pair (lo, hi) of real numbers")
+    lo, hi = (as_scalar(name, v) for v in value)
+    if not lo < hi:
+        a, b = fmt_against(lo, hi)
+        raise InputError(f"{name} = ({a}, {b}) is outside the allowed range: lo < hi")
+    return lo, hi
+
+
 def check_interval(name: str, value: Any, lo: float, hi: float, *, closed: str = "neither") -> float:
     """A single finite number inside ``(lo, hi)``; ``closed`` in {"neither", "left", "right", "both"}."""
     v = as_scalar(name, value)
@@ -913,8 +889,8 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
     evaluated in Python floats); ``None`` otherwise, and the general path then decides and
     words the message. It accepts nothing the general path refuses (the same tests on the same
     doubles) and never refuses: a point that fails any test goes to the general path.
-    About 20x faster than the general path on one point (a single point is what
-    ``final_state``, ``steady_states`` and ``simulate`` check).
+    A single point is what ``final_state``, ``steady_states`` and ``simulate`` check (what
+    this path saves them: docs/performance.md, the final-state table).
     """
     vals: dict[str, float] = {}
     for k, v in params.items():

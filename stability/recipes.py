@@ -242,24 +242,16 @@ def load_recipe(path: str | Path) -> Recipe:
         raise RecipeError(f"{p}: kind = {kind!r} is not one of {', '.join(KINDS)}")
     digest = hashlib.sha256(raw_bytes + code_fingerprint().encode()).hexdigest()[:16]
     top = _load_top(p, raw, kind)
+    common = dict(path=p, title=str(raw["title"]), kind=kind, caption=str(raw.get("caption", "")), digest=digest)
     if kind == "scene":
         figure = raw.get("figure")
         if figure not in SCENE_FIGURES:
             raise RecipeError(f"{p}: figure = {figure!r} is not one of {', '.join(SCENE_FIGURES)}")
         if "grid" in raw:
             raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
-        return Recipe(
-            path=p,
-            title=str(raw["title"]),
-            kind=kind,
-            model="sliding",
-            grid={},
-            caption=str(raw.get("caption", "")),
-            figure=figure,
-            digest=digest,
-        )
+        return Recipe(**common, model="sliding", grid={}, figure=figure)
     if kind in STEADY_KINDS:
-        return _load_steady(p, raw, kind, digest, top)
+        return _load_steady(p, raw, kind, common, top)
     if "grid" not in raw:
         raise RecipeError(f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
@@ -279,18 +271,7 @@ def load_recipe(path: str | Path) -> Recipe:
         grid = {x: _grid_value(p, x, raw["grid"][x])}
         if np.ndim(grid[x]) != 1:
             raise RecipeError(f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
-        return Recipe(
-            path=p,
-            title=str(raw["title"]),
-            kind=kind,
-            model=model,
-            grid=grid,
-            x=x,
-            caption=str(raw.get("caption", "")),
-            figure=preset,
-            digest=digest,
-            top=top,
-        )
+        return Recipe(**common, model=model, grid=grid, x=x, figure=preset, top=top)
     grid_raw = raw["grid"]
     if not isinstance(grid_raw, dict):
         raise RecipeError(f"{p}: [grid] must be a table of parameter values")
@@ -318,9 +299,7 @@ def load_recipe(path: str | Path) -> Recipe:
             f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws ({', '.join(wanted)})"
         )
     return Recipe(
-        path=p,
-        title=str(raw["title"]),
-        kind=kind,
+        **common,
         model=model,
         grid=grid,
         x=x,
@@ -328,9 +307,7 @@ def load_recipe(path: str | Path) -> Recipe:
         family=family,
         quantities=quantities,
         mask_unphysical=bool(raw.get("mask_unphysical", True)),
-        caption=str(raw.get("caption", "")),
         neutral=bool(raw.get("neutral", False)),
-        digest=digest,
         top=top,
         spin=spin,
         unit=unit,
@@ -736,8 +713,8 @@ def _steady_path(recipe: Recipe, key: str) -> Path:
     )
 
 
-def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any = None) -> Recipe:
-    """The steady kinds' keys (module docstring)."""
+def _load_steady(p: Path, raw: dict[str, Any], kind: str, common: dict[str, Any], top: Any = None) -> Recipe:
+    """The steady kinds' keys (module docstring); ``common``: the keywords of every kind."""
     grid_raw = raw.get("grid", {})
     if not isinstance(grid_raw, dict):
         raise RecipeError(f"{p}: [grid] must be a table of parameter values")
@@ -748,15 +725,7 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, digest: str, top: Any 
             f"{p}: a {kind} recipe's grid takes {', '.join(sorted(allowed))}, not {', '.join(sorted(bad))}"
         )
     grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
-    common = dict(
-        path=p,
-        title=str(raw["title"]),
-        kind=kind,
-        model="sliding",
-        grid=grid,
-        caption=str(raw.get("caption", "")),
-        digest=digest,
-    )
+    common = dict(common, model="sliding", grid=grid)
     if kind == "bifurcation":
         from .top import SPIN_UNITS
 

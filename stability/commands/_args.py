@@ -15,9 +15,12 @@ __all__ = [
     "PARAMETER_HELP",
     "TOP_FLAGS",
     "add_model_flag",
+    "add_output_flags",
     "add_parameter_flags",
+    "add_state_flags",
     "add_top_arguments",
     "apply_top",
+    "comma_floats",
     "parameter_help",
     "parameter_values",
     "top_from_args",
@@ -114,6 +117,36 @@ def add_model_flag(
     )
 
 
+def add_output_flags(
+    p: argparse.ArgumentParser,
+    help: str,
+    *,
+    required: bool = False,
+    overwrite: str = "replace an existing output file (default: refuse)",
+) -> None:
+    """``-o/--output FILE.nc`` (``help`` says what is written) and ``--overwrite``."""
+    p.add_argument("-o", "--output", required=required, default=None, metavar="FILE.nc", help=help)
+    p.add_argument("--overwrite", action="store_true", help=overwrite)
+
+
+def comma_floats(text: str) -> list[float]:
+    """A comma list of numbers (``--omega 0,0,1``), or an argparse error naming the text."""
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a comma list of numbers") from None
+
+
+def add_state_flags(p: argparse.ArgumentParser, *, omega: str, k: str, velocity: str) -> None:
+    """The initial state as comma lists: ``--omega`` and ``--k`` (required), ``--velocity``."""
+    for flag, metavar, text, required in (
+        ("--omega", "W1,W2,W3", omega + "; required", True),
+        ("--k", "K1,K2,K3", k + "; required", True),
+        ("--velocity", "V1,V2", velocity, False),
+    ):
+        p.add_argument(flag, type=comma_floats, required=required, default=None, metavar=metavar, help=text)
+
+
 def parameter_values(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, object]:
     """Parsed values of the parameter flags that were given."""
     out: dict[str, object] = {}
@@ -137,9 +170,8 @@ TOP_HELP = {
     "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
     "inertia_axial": "axial moment of inertia C, kg m^2",
 }
-#: the parameters a top gives whatever the spin (eq. 3), and those its spin gives (eqs. 3, 7)
+#: the parameters a top gives whatever the spin (eq. 3)
 TOP_PARAMETERS = ("q", "sigma", "mu")
-SPIN_PARAMETERS = ("fr_inv", "alpha_v", "alpha_k")
 
 
 def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bool = False) -> None:

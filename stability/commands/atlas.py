@@ -17,7 +17,8 @@ from ..grids.netcdf import check_output_path, write_dataset
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from ..products import FLAG_NAMES
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -56,10 +57,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
     )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument(
-        "-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write (atomically); required"
+    add_output_flags(
+        p,
+        "netCDF file to write (atomically); required",
+        required=True,
+        overwrite="replace an existing output file (and --plot file)",
     )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (and --plot file)")
     p.add_argument(
         "--mask-unphysical",
         action="store_true",
@@ -208,22 +211,27 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
         ) from None
     import xarray as xr
 
-    kinds = (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
-    counts = dict.fromkeys((name for name, _ in kinds), 0)
+    counts = dict.fromkeys(_COUNTED.values(), 0)
     with xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
         var = f["stability"]
         n0 = var.shape[0] if var.ndim else 1
         step = max(1, int(2e7 // max(1, var.size // n0)))
         for i in range(0, n0, step):
             flags = var[i : i + step].values if var.ndim else var.values
-            for name, flag in kinds:
+            for flag, name in _COUNTED.items():
                 counts[name] += int((flags == flag).sum())
-    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    print(
-        f"wrote {out}: {args.model} model, grid {grid} in chunks; "
-        + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
-    )
+    print(_summary(out, args.model, ds, counts, " in chunks"))
     return 0
+
+
+#: the flags an atlas's summary counts, in its order (-1: outside the domain)
+_COUNTED = {**FLAG_NAMES, -1: "outside domain"}
+
+
+def _summary(out, model: str, ds, counts: dict[str, int], how: str = "") -> str:
+    """The line that says what was written: the model, the grid and the points of each flag."""
+    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
+    return f"wrote {out}: {model} model, grid {grid}{how}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
 
 
 def _layout(args: argparse.Namespace | None) -> dict:
@@ -281,12 +289,7 @@ def run(args: argparse.Namespace) -> int:
         from ..grids.chunked import write_atlas
 
         write_atlas(ds, out, overwrite=args.overwrite, **layout)
-    counts = {
-        name: int((ds.stability == flag).sum())
-        for name, flag in (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
-    }
-    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    print(f"wrote {out}: {args.model} model, grid {grid}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v))
+    print(_summary(out, args.model, ds, {name: int((ds.stability == flag).sum()) for flag, name in _COUNTED.items()}))
     if args.plot:
         print(f"wrote {args.plot}")
     return 0

@@ -6,16 +6,10 @@ from __future__ import annotations
 import argparse
 
 from ..grids.netcdf import check_output_path, write_dataset
+from ._args import add_output_flags, add_state_flags
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
 __all__ = ["register", "run"]
-
-
-def _vec(text: str) -> list[float]:
-    try:
-        return [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma list of numbers") from None
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -28,26 +22,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
         "arguments as in tippe simulate (fixed frame, K up). Sliding model only.",
     )
-    p.add_argument(
-        "--omega",
-        type=_vec,
-        required=True,
-        metavar="W1,W2,W3",
-        help="initial angular velocity (units of the spin rate); required",
-    )
-    p.add_argument(
-        "--k",
-        type=_vec,
-        required=True,
-        metavar="K1,K2,K3",
-        help="initial symmetry axis, within 1 %% of unit length (normalised); required",
-    )
-    p.add_argument(
-        "--velocity",
-        type=_vec,
-        default=None,
-        metavar="V1,V2",
-        help="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)",
+    add_state_flags(
+        p,
+        omega="initial angular velocity (units of the spin rate)",
+        k="initial symmetry axis, within 1 %% of unit length (normalised)",
+        velocity="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)",
     )
     add_top_flags(p)
     p.add_argument(
@@ -64,14 +43,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="T",
         help="time limit of a deciding run, units of 1/Omega (default 2e5)",
     )
-    p.add_argument(
-        "-o",
-        "--output",
-        default=None,
-        metavar="FILE.nc",
-        help="write the prediction and its candidate table as netCDF (default: print only)",
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    add_output_flags(p, "write the prediction and its candidate table as netCDF (default: print only)")
     p.set_defaults(func=run)
 
 

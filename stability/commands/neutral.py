@@ -8,7 +8,7 @@ from ..errors import InputError
 from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
-from ._args import FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, apply_top
+from ._args import FLAGS, add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top
 
 __all__ = ["register", "run"]
 
@@ -44,8 +44,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_top_arguments(p, spin=True)
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
-    p.add_argument("-o", "--output", metavar="FILE.nc", help="netCDF file to write (default: print only)")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    add_output_flags(p, "netCDF file to write (default: print only)")
     p.set_defaults(func=run)
 
 

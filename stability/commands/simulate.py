@@ -10,7 +10,7 @@ import sys
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_state_flags, add_top_arguments, apply_top
 
 __all__ = ["register", "run"]
 
@@ -21,13 +21,6 @@ _METHODS = ("auto", "dopri5", "rk4", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 _SLIP_SCALE = 1e-4
 #: the nondimensional parameters simulate takes, and those needed without a top
 _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
-
-
-def _vec(text: str) -> list[float]:
-    try:
-        return [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma list of numbers") from None
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -44,26 +37,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--t-end", type=float, required=True, metavar="T", help="final time, units of 1/Omega (> 0); required"
     )
-    p.add_argument(
-        "--omega",
-        type=_vec,
-        required=True,
-        metavar="W1,W2,W3",
-        help="initial angular velocity, fixed frame, units of Omega; required",
-    )
-    p.add_argument(
-        "--k",
-        type=_vec,
-        required=True,
-        metavar="K1,K2,K3",
-        help="initial symmetry axis, fixed frame (normalised); required",
-    )
-    p.add_argument(
-        "--velocity",
-        type=_vec,
-        default=None,
-        metavar="V1,V2",
-        help="initial velocity of the sphere's centre O, units of Omega R (sliding only; default 0,0)",
+    add_state_flags(
+        p,
+        omega="initial angular velocity, fixed frame, units of Omega",
+        k="initial symmetry axis, fixed frame (normalised)",
+        velocity="initial velocity of the sphere's centre O, units of Omega R (sliding only; default 0,0)",
     )
     add_parameter_flags(
         p,
@@ -91,13 +69,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="friction proportional to the equilibrium normal force (the paper's law) or to the actual N(t)",
     )
     p.add_argument(
-        "--slip-scale",
-        type=float,
-        default=_SLIP_SCALE,
-        metavar="S",
-        help="regularisation scale of the Coulomb term, units of Omega R (> 0)",
-    )
-    p.add_argument(
         "--method",
         choices=_METHODS,
         default="auto",
@@ -105,21 +76,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
         "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
     )
-    p.add_argument(
-        "--rtol",
-        type=float,
-        default=1e-9,
-        metavar="R",
-        help="relative tolerance of the adaptive integrators (0 < R < 1)",
-    )
-    p.add_argument(
-        "--atol",
-        type=float,
-        default=1e-12,
-        metavar="A",
-        help="absolute tolerance of the adaptive integrators (0 < A < 1)",
-    )
-    p.add_argument("--dt", type=float, default=0.1, metavar="DT", help="output interval, units of 1/Omega (> 0)")
+    for flag, default, metavar, text in (
+        ("--slip-scale", _SLIP_SCALE, "S", "regularisation scale of the Coulomb term, units of Omega R (> 0)"),
+        ("--rtol", 1e-9, "R", "relative tolerance of the adaptive integrators (0 < R < 1)"),
+        ("--atol", 1e-12, "A", "absolute tolerance of the adaptive integrators (0 < A < 1)"),
+        ("--dt", 0.1, "DT", "output interval, units of 1/Omega (> 0)"),
+    ):
+        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
     p.add_argument(
         "--step",
         type=float,
@@ -128,8 +91,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="step of --method rk4 (required there), first step of the adaptive methods, "
         "units of 1/Omega (default: chosen by the integrator)",
     )
-    p.add_argument("-o", "--output", required=True, metavar="FILE.nc", help="netCDF file to write; required")
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    add_output_flags(p, "netCDF file to write; required", required=True)
     g = p.add_mutually_exclusive_group()
     g.add_argument(
         "--progress",

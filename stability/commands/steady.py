@@ -10,7 +10,7 @@ from ..errors import InputError
 from ..grids.netcdf import check_output_path, write_dataset
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
-from ._args import add_parameter_flags, add_top_arguments, apply_top
+from ._args import add_output_flags, add_parameter_flags, add_top_arguments, apply_top
 
 __all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
 
@@ -76,14 +76,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="H",
         help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
     )
-    p.add_argument(
-        "-o",
-        "--output",
-        default=None,
-        metavar="FILE.nc",
-        help="write the states (or the branch) as netCDF (default: print only)",
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
     p.set_defaults(func=run)
 
 

@@ -6,7 +6,7 @@ import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -62,10 +62,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="A",
         help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)",
     )
-    p.add_argument(
-        "-o", "--output", default=None, metavar="FILE.nc", help="also write the Dataset as netCDF (default: print only)"
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace an existing output file (default: refuse)")
+    add_output_flags(p, "also write the Dataset as netCDF (default: print only)")
     p.set_defaults(func=run)
 
 

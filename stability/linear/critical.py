@@ -51,11 +51,13 @@ from ..errors import DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
+    UPPER_BOUND,
     as_scalar,
     check_choice,
     check_domain,
     check_flag,
     check_integer,
+    check_range,
     fmt_against,
     sigma_max,
 )
@@ -75,10 +77,6 @@ __all__ = [
     "threshold_crossings",
     "thresholds",
 ]
-
-#: upper end of the default bracket of the parameters without a finite physical bound
-UPPER_BOUND: dict[str, float] = {"fr_inv": 1e3, "alpha_v": 1e3, "mu": 1e3}
-
 
 #: the largest number of samples a threshold search takes (three grids of this many points)
 MAX_SAMPLES = 10**6
@@ -109,8 +107,8 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
 
     ``q``: ``mu q^2 <= 1 - sigma/2`` (from ``sigma <= 2 (1 - mu q^2)``); ``sigma``:
     ``(0, sigma_max(q, mu)]`` (:func:`stability.parameters.sigma_max`, the exact bound
-    ``2 (1 - mu q^2)`` rounded down); ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at 1e3;
-    ``fr_inv``, ``alpha_v``: ``[0, 1e3]``.
+    ``2 (1 - mu q^2)`` rounded down); ``mu``: ``(0, (1 - sigma/2) / q^2]`` capped at
+    :data:`stability.parameters.UPPER_BOUND` (1e3); ``fr_inv``, ``alpha_v``: ``[0, 1e3]`` likewise.
     """
     shrink = 1e-12
     if param == "q":
@@ -149,12 +147,7 @@ def _setup(
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:
-        if isinstance(bracket, (str, bytes)) or not hasattr(bracket, "__len__") or len(bracket) != 2:
-            raise ParameterTypeError(f"bracket = {bracket!r} must be a pair (lo, hi) of real numbers")
-        lo, hi = (as_scalar("bracket", v) for v in bracket)
-        if not lo < hi:
-            a, b = fmt_against(lo, hi)
-            raise InputError(f"bracket = ({a}, {b}) is outside the allowed range: lo < hi")
+        lo, hi = check_range("bracket", bracket)
         for end in (lo, hi):  # each end on its own: a grid's hint (mask_unphysical) does not apply
             try:
                 check_domain(scalar=True, **{**fx, param: end})

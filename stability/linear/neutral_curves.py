@@ -69,16 +69,18 @@ from ..parameters import (
     DOMAIN,
     LONG_NAMES,
     PARAMETERS,
+    UPPER_BOUND,
+    WINDOW_UPPER_BOUND,
     as_scalar,
     check_choice,
     check_domain,
     check_flag,
     check_integer,
     check_positive,
+    check_range,
     domain_range,
     domain_sides,
     domain_text,
-    fmt_against,
     parameter_attrs,
 )
 from ..products import PRODUCT_ATTR
@@ -94,10 +96,9 @@ __all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neu
 #: default ends of the ranges where the physical domain sets none (its bounds come from the table
 #: :data:`stability.parameters.DOMAIN`, :func:`stability.parameters.domain_range`: ``|q| < 1/sqrt(mu)``,
 #: ``0 < sigma <= 2 (1 - mu q^2)``, or ``<= 2`` where q or mu is traced; ``q`` here only for a traced mu)
+#: closed at :data:`stability.parameters.WINDOW_UPPER_BOUND`, beside threshold's wider bracket
 DEFAULT_RANGES: dict[str, tuple[float, float]] = {
-    "fr_inv": (0.0, 10.0),
-    "alpha_v": (0.0, 10.0),
-    "mu": (0.0, 10.0),
+    **dict.fromkeys(UPPER_BOUND, (0.0, WINDOW_UPPER_BOUND)),
     "q": (-1.0, 1.0),
 }
 
@@ -159,13 +160,7 @@ def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
     if rng is None:
         return _default_range(name, fixed)
-    if isinstance(rng, (str, bytes)) or not hasattr(rng, "__len__") or len(rng) != 2:
-        raise ParameterTypeError(f"{name}_range = {rng!r} must be a pair (lo, hi) of real numbers")
-    lo, hi = (as_scalar(f"{name}_range", v) for v in rng)  # finite reals, or a named error
-    if not lo < hi:
-        a, b = fmt_against(lo, hi)
-        raise InputError(f"{name}_range = ({a}, {b}) is outside the allowed range: lo < hi")
-    return lo, hi
+    return check_range(f"{name}_range", rng)
 
 
 def _outside_domain_error(

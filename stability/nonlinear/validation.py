@@ -505,9 +505,10 @@ def coulomb_growth(
     check_choice("scheme", scheme, ("adaptive", "fixed_step"))
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
     t_end = check_positive("t_end", t_end)
-    A, _ = transverse_jacobian("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k, mu=mu)
+    top = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    A, _ = transverse_jacobian("sliding", **top, alpha_v=alpha_k)
     ev, vec = np.linalg.eig(A)
-    lead = spectrum("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k, mu=mu)
+    lead = spectrum("sliding", **top, alpha_v=alpha_k)
     s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
     i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
@@ -518,12 +519,9 @@ def coulomb_growth(
         omega=[v[0].real, v[0].imag, 1.0],
         k=k,
         velocity=[v[2].real, v[2].imag],
-        q=q,
-        fr_inv=fr_inv,
-        sigma=sigma,
+        **top,
         alpha_v=0.0,
         alpha_k=alpha_k,
-        mu=mu,
         friction=friction,
     )
     if scheme == "adaptive":
@@ -537,7 +535,7 @@ def coulomb_growth(
     pa = np.polyfit(t, tilt, 1)
     res_e = float(np.sqrt(np.mean((np.exp(np.polyval(pe, t)) / tilt - 1) ** 2)))
     res_a = float(np.sqrt(np.mean((np.polyval(pa, t) / tilt - 1) ** 2)))
-    s_stick = eigenvalues("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_k / slip_scale, mu=mu)
+    s_stick = eigenvalues("sliding", **top, alpha_v=alpha_k / slip_scale)
     out = xr.Dataset(
         {
             "tilt": ("time", tilt, {"long_name": "tilt |Phi| = |k_1 + i k_2|", "units": "1"}),
@@ -549,10 +547,7 @@ def coulomb_growth(
         Conventions="CF-1.10",
         title="Coulomb friction alone: growth of the tilt",
         source="stability.nonlinear.validation.coulomb_growth",
-        q=q,
-        fr_inv=fr_inv,
-        sigma=sigma,
-        mu=mu,
+        **top,
         alpha_k=alpha_k,
         alpha_v=0.0,
         friction=friction,

@@ -350,17 +350,7 @@ def plot_bifurcation(
         if sel.any():
             ax.plot(xs[sel], tilt[sel], **style, zorder=5)
     if runs is not None and runs.sizes.get("run", 0):
-        ax.plot(
-            runs[x].values,
-            runs.end_tilt.values,
-            marker="*",
-            markersize=11,
-            color="C2",
-            linestyle="none",
-            markeredgecolor="k",
-            zorder=6,
-            label="end of a nonlinear run",
-        )
+        ax.plot(runs[x].values, runs.end_tilt.values, marker="*", **_END_MARK, zorder=6, label="end of a nonlinear run")
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
@@ -375,7 +365,7 @@ def plot_bifurcation(
     if launch is not None:
         _mark_launch(ax, launch, x, units, float(branch.attrs.get("q", float("nan"))))
     ax.set_xlabel(X_AXES.get(x, x).format(units=units), fontsize=9)
-    ax.set_ylabel("tilt of the axis (deg): 0 upright, 180 inverted")
+    ax.set_ylabel(_TILT_LABEL)
     ax.set_ylim(-8, 188)
     ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
     a = branch.attrs
@@ -387,6 +377,10 @@ def plot_bifurcation(
     )
     ax.legend(fontsize=7, loc="best")
     return fig, ax
+
+
+#: the marker style of where a run ends (a nonlinear run's, a launch's) on the diagram
+_END_MARK = {"markersize": 11, "color": "C2", "markeredgecolor": "k", "linestyle": "none"}
 
 
 def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None:
@@ -415,17 +409,7 @@ def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None
         spin *= (math.cos(math.radians(float(tilt))) + q) / (1.0 + q)
     end = float(launch.end_tilt)
     ax.axvline(spin, color="C2", linestyle=":", linewidth=1.2, label=f"launch: {spin:.4g} {units}", zorder=4)
-    ax.plot(
-        [spin],
-        [end],
-        marker="P",
-        markersize=11,
-        color="C2",
-        markeredgecolor="k",
-        linestyle="none",
-        zorder=7,
-        label=f"end of the launch's run: {end:.1f} deg",
-    )
+    ax.plot([spin], [end], marker="P", **_END_MARK, zorder=7, label=f"end of the launch's run: {end:.1f} deg")
 
 
 _CLASS_COLOURS = ListedColormap(["white", "#9ecae1", "#fdae6b", "#a1d99b"])

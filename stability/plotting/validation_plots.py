@@ -47,21 +47,11 @@ def plot_validation(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, 
     fig, ax = axes_or_new(ax)
     measured = ds["measured_growth_rate"].values
     model = ds.attrs.get("model", "")
-    ax.plot(
-        ds["jacobian_growth_rate"].values,
-        measured,
-        marker="o",
-        linestyle="none",
-        label="Jacobian of the nonlinear model",
-    )
-    ax.plot(
-        ds["predicted_growth_rate"].values,
-        measured,
-        marker="s",
-        markerfacecolor="none",
-        linestyle="none",
-        label=f"linear operator ({model})",
-    )
+    for name, style, label in (
+        ("jacobian_growth_rate", {"marker": "o"}, "Jacobian of the nonlinear model"),
+        ("predicted_growth_rate", {"marker": "s", "markerfacecolor": "none"}, f"linear operator ({model})"),
+    ):
+        ax.plot(ds[name].values, measured, linestyle="none", label=label, **style)
     values = np.concatenate([ds[v].values for v in _VALIDATION])
     values = values[np.isfinite(values)]
     if values.size:

@@ -72,15 +72,12 @@ __all__ = [
     "energy_test",
     "energy_test_at",
     "equivalent_point",
-    "family_interval",
     "fold_cosines",
     "jellett_of_c",
     "level_quartic",
     "level_states",
     "omega_vertical",
     "p_of_c",
-    "potential_curvature",
-    "potential_slope",
     "precession_rate",
     "sigma_of_c0",
     "state_core",
@@ -194,21 +191,6 @@ def effective_potential(c, jellett, q, sigma, fr_inv, mu):
 
 
 @register_jitable
-def potential_slope(c, jellett, q, sigma, fr_inv, mu):
-    """``U_J'(c) = -J^2 P / D^2 + mu fr_inv q``; zero at the tilted states (S3 with S4)."""
-    d = d_of_c(c, q, sigma, mu)
-    return -jellett * jellett * p_of_c(c, q, sigma, mu) / (d * d) + mu * fr_inv * q
-
-
-@register_jitable
-def potential_curvature(c, jellett, q, sigma, mu):
-    """``U_J''(c) = J^2 (4 P^2 - a D) / D^3`` at a tilted state (S8; ``U_J' = 0`` used)."""
-    d = d_of_c(c, q, sigma, mu)
-    p = p_of_c(c, q, sigma, mu)
-    return jellett * jellett * (4.0 * p * p - detuning(q, sigma, mu) * d) / (d * d * d)
-
-
-@register_jitable
 def axial_spin(c, lam, q):
     """``omega . k = lam (c + q)`` on a steady state (S1)."""
     return lam * (c + q)
@@ -286,30 +268,6 @@ def fold_cosines(q, sigma, mu):
         return math.nan, math.nan
     r = math.sqrt(dc0 / (3.0 * a))
     return cc - r, cc + r
-
-
-def family_interval(q: float, sigma: float, fr_inv: float, mu: float) -> tuple[float, float, str, str] | None:
-    """Where the tilted family exists: ``(c_lo, c_hi, end_lo, end_hi)`` or None.
-
-    ``fr_inv > 0`` and ``q != 0``: the interval of ``[-1, 1]`` where ``q P(c) > 0`` (one
-    interval: ``P`` is linear); its ends are ``"inverted"`` (``c = -1``), ``"upright"``
-    (``c = 1``) or ``"infinity"`` (``c0``, where ``J -> inf``). ``fr_inv = 0`` or ``q = 0``:
-    the single cosine :func:`degenerate_cosine` at every ``J``, ends ``"vertical_line"``;
-    None if it is outside ``(-1, 1)`` or undefined (``q = 0``, ``sigma = A_G``).
-    """
-    if fr_inv == 0.0 or q == 0.0:
-        cc = degenerate_cosine(q, sigma, mu)
-        return (cc, cc, "vertical_line", "vertical_line") if -1.0 < cc < 1.0 else None
-    lo, hi, elo, ehi = -1.0, 1.0, "inverted", "upright"
-    cc = c0_point(q, sigma, mu)
-    if -1.0 < cc < 1.0:
-        if q * detuning(q, sigma, mu) > 0:  # P = a (c - c0) has the sign of q above c0
-            lo, elo = cc, "infinity"
-        else:
-            hi, ehi = cc, "infinity"
-    elif q * p_of_c(0.0, q, sigma, mu) <= 0:
-        return None
-    return lo, hi, elo, ehi
 
 
 @register_jitable

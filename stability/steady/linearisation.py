@@ -64,7 +64,6 @@ __all__ = [
     "neutral_covectors",
     "precessing_jacobians",
     "reduced_spectrum",
-    "reduced_state_size",
     "state_modes",
     "vertical_spectrum",
 ]
@@ -92,12 +91,6 @@ for _i in (0, 3):
     ROTATION[_i + 1, _i] = 1.0
 ROTATION[6, 7] = -1.0
 ROTATION[7, 6] = 1.0
-
-
-def reduced_state_size(model: str) -> int:
-    """Size of the state without the cyclic position (8 for the sliding sphere)."""
-    m = get_nonlinear_model(model)
-    return len(m.state) - 2 if m.has_translation else len(m.state)
 
 
 @njit(cache=True)
