@@ -429,10 +429,14 @@ def _mode(r, e, x, floor):
 
 
 @register_jitable
-def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
+def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
     """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
-    compare-exchanges by selects, no data-dependent branches), write them to ``ev``, ``bd``,
-    ``neutral``; return the stability flag (module docstring, step 6)."""
+    compare-exchanges by selects, no data-dependent branches), write them to row ``i`` of
+    ``ev``, ``bd``, ``neutral``; return the stability flag (module docstring, step 6).
+
+    The rows are written through the whole arrays (``ev[i][j]``), not through row views passed
+    in (``ev[i]``): a view made per point in the loop and handed to this function cost ~30 ns per
+    point (a seventh of the loop on one thread; benchmarks/kernel_pieces.py)."""
     if n >= 2:
         s = _before(r1, r0)
         r0, r1 = _swap(s, r0, r1)
@@ -453,22 +457,31 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     if n == 3:
         scale2 = max(scale2, _mod2(r2))
     floor = 16.0 * _U * math.sqrt(scale2)
-    nt, grows = _mode(r0, e0, x0, floor)
-    ev[0], bd[0], neutral[0] = r0, e0, nt
-    anyneutral = nt
+    # every decision first, then the writes, then the flag by arithmetic (no branch on data)
+    nt0, grows = _mode(r0, e0, x0, floor)
+    anyneutral = nt0
+    nt1 = nt2 = False
     if n >= 2:
-        nt, g = _mode(r1, e1, x1, floor)
-        ev[1], bd[1], neutral[1] = r1, e1, nt
-        anyneutral |= nt
-        grows |= g
+        nt1, g1 = _mode(r1, e1, x1, floor)
+        anyneutral = anyneutral | nt1
+        grows = grows | g1
     if n == 3:
-        nt, g = _mode(r2, e2, x2, floor)
-        ev[2], bd[2], neutral[2] = r2, e2, nt
-        anyneutral |= nt
-        grows |= g
-    if grows:
-        return _UNSTABLE
-    return _MARGINAL if anyneutral else _STABLE
+        nt2, g2 = _mode(r2, e2, x2, floor)
+        anyneutral = anyneutral | nt2
+        grows = grows | g2
+    ev[i][0] = r0
+    bd[i][0] = e0
+    neutral[i][0] = nt0
+    if n >= 2:
+        ev[i][1] = r1
+        bd[i][1] = e1
+        neutral[i][1] = nt1
+    if n == 3:
+        ev[i][2] = r2
+        bd[i][2] = e2
+        neutral[i][2] = nt2
+    # _UNSTABLE if any mode grows, else _MARGINAL if any is neutral, else _STABLE
+    return max(_UNSTABLE * int(grows), _MARGINAL * int(anyneutral))
 
 
 @register_jitable
@@ -529,7 +542,7 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
         else:
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
 
 #: :func:`_coefficient_loop`, serial and parallel
@@ -617,7 +630,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 stab[i] = _OUTSIDE
                 continue
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(formula(qi, fi, si, ai, mi), polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
@@ -628,7 +641,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 continue
             parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(parts, polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
