@@ -887,10 +887,12 @@ def checked_model_spectrum(
     """A model's spectrum with the physical domain tested in the same pass.
 
     The domain test is :func:`stability.parameters.check_domain`'s, point by point (the table
-    :data:`stability.parameters.DOMAIN` compiled: the same ``A_G`` bit for bit, the same
-    comparisons; ``tests/test_kernel.py`` checks that they agree on and a few ulps around every
-    bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``, ``1 - mu q^2 > 0``,
-    ``0 < sigma <= 2 (1 - mu q^2) (1 + 8 u)`` (those of the model's parameters), and every
+    :data:`stability.parameters.DOMAIN` compiled: the same decisions, the two bounds through
+    ``A_G`` decided exactly for the doubles given by
+    :func:`~stability.parameters.domain_sides_quick`; ``tests/test_kernel.py`` checks that they
+    agree on and a few ulps around every bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``,
+    ``1 - mu q^2 > 0``, ``0 < sigma <= 2 (1 - mu q^2)`` exactly, with no slack (those of the
+    model's parameters), and every
     parameter finite and in the computable range (:data:`stability.parameters.COMPUTABLE_RANGE`).
     The kernel only reports; raising (with the canonical message) is left to the caller, which
     calls ``check_domain`` when ``n_outside > 0``.
