@@ -428,15 +428,16 @@ def _mode(r, e, x, floor):
     return nt, (r.real > tol) & (not nt)
 
 
-@register_jitable
+@register_jitable(inline="always")
 def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
     """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
     compare-exchanges by selects, no data-dependent branches), write them to row ``i`` of
     ``ev``, ``bd``, ``neutral``; return the stability flag (module docstring, step 6).
 
-    The rows are written through the whole arrays (``ev[i][j]``), not through row views passed
-    in (``ev[i]``): a view made per point in the loop and handed to this function cost ~30 ns per
-    point (a seventh of the loop on one thread; benchmarks/kernel_pieces.py)."""
+    Compiled into the loop's body (``inline="always"``) and writing the rows through the whole
+    arrays (``ev[i][j]``): called as a function with row views (``ev[i]``) made per point, the
+    arrays' passing and reference counting cost ~25-30 ns per point, a sixth of the loop on one
+    thread (benchmarks/kernel_pieces.py, docs/performance.md)."""
     if n >= 2:
         s = _before(r1, r0)
         r0, r1 = _swap(s, r0, r1)
