@@ -511,7 +511,7 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
     :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
     ``_NOT_FINITE`` (a parameter not finite or outside the computable range ``lim``, the pairs
-    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, an array of 10 floats, ``hi`` finite: refused
+    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, a tuple of 10 floats, ``hi`` finite: refused
     whatever the mask). The bounds are :func:`stability.parameters.inside_domain` on
     :func:`stability.parameters.domain_sides_quick` (the signs of ``domain_sides``, the source
     of ``check_domain``'s numpy test, decided cheaply where a plain comparison suffices)
@@ -620,11 +620,14 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
         :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
         (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
-        (No reduction variables, which slowed the loop by ~15%: the driver counts.)"""
+        (No reduction variables, which slowed the loop by ~15%: the driver counts. The limits
+        are read into a tuple once: an array handed to the domain test per point is passed and
+        reference-counted at every call.)"""
+        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(stab)):
             qi, mi = q[i * sq], mu[i * sm]
             fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-            code = _domain_code(qi, fi, si, ai, mi, lim, applies)
+            code = _domain_code(qi, fi, si, ai, mi, lt, applies)
             where[i] = code
             if code != _INSIDE:
                 _mark_outside(n, ev[i], bd[i], neutral[i])
@@ -646,8 +649,9 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
+        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(code)):
-            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
+            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lt, applies)
 
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
