@@ -13,9 +13,9 @@ line before, from the kernel's own building blocks (:mod:`stability.linear.kerne
 * ``+ sort and decision``: :func:`~stability.linear.kernel._decide` writing the outputs, the whole
   loop of :func:`stability.linear.kernel.sliding_spectrum` without the mask test.
 
-The differences between consecutive lines are the pieces' costs (ns per point, one thread, best
-of ``--repeat`` calls; the lines run interleaved ``--rounds`` times so that a burst of load from
-other users hits them alike, and the minimum over rounds is reported)::
+The differences between consecutive lines are the pieces' costs (ns per point of the calling
+thread's CPU time, ``time.thread_time``, which does not count the time spent waiting for a core
+on a loaded machine; best of ``--repeat`` calls, the lines interleaved ``--rounds`` times)::
 
     python benchmarks/kernel_pieces.py --points 400000 --rounds 3
 
@@ -122,9 +122,9 @@ def main(argv: list[str] | None = None) -> None:
     for _ in range(a.rounds):
         for k, f in lines.items():
             for _ in range(a.repeat):
-                t = time.perf_counter()
+                t = time.thread_time()
                 f()
-                best[k] = min(best[k], time.perf_counter() - t)
+                best[k] = min(best[k], time.thread_time() - t)
     prev = 0.0
     print(f"{'loop':24s} {'ns/point':>9s} {'piece':>7s}   ({n} points, one thread)")
     for k, v in best.items():
