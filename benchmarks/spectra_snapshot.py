@@ -48,7 +48,11 @@ def boundary_points(n: int = 2000, seed: int = 3) -> dict[str, np.ndarray]:
 
 
 def snapshot(points: int) -> dict[str, np.ndarray]:
-    from stability.bench.eigen import domain_sample
+    try:  # the suites live beside the package now (benchmarks/suites); older trees installed them
+        from stability.bench.eigen import domain_sample
+    except ImportError:
+        sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parent))
+        from suites.eigen import domain_sample
 
     import stability
 

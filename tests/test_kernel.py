@@ -325,3 +325,29 @@ def test_fused_path_equals_general_path():
     for ours, theirs in zip((sp.eigenvalues, sp.error_bound, sp.neutral, sp.stability), ref):
         assert np.array_equal(ours, theirs, equal_nan=ours.dtype.kind in "fc")
     assert all(v.shape == inside.shape for v in sp.params.values())
+
+
+@pytest.mark.parametrize("engine", ["python", "compiled"])
+def test_flag_from_modes_of_known_polynomials(engine):
+    """The stability flag from the modes' decisions (the decision's arithmetic form): polynomials
+    written from chosen roots, ``prod_k (s - r_k)`` expanded by hand (closed form, exact in
+    binary for these small integers and halves), degrees 1 to 3: all roots in the left half
+    plane -> stable; a root exactly at 0 (``c0 = 0``, a structural zero) and none to the right
+    -> marginal; one to the right -> unstable, also when another mode is neutral (growth
+    outranks neutrality)."""
+    cases = [
+        ([1, 2], STABLE),  # s + 2
+        ([1, -0.5], UNSTABLE),  # s - 1/2
+        ([1, 3, 2], STABLE),  # (s + 1)(s + 2)
+        ([1, 1, 0], MARGINAL),  # s (s + 1)
+        ([1, -1, 0], UNSTABLE),  # s (s - 1)
+        ([1, 6, 11, 6], STABLE),  # (s + 1)(s + 2)(s + 3)
+        ([1, 3, 2, 0], MARGINAL),  # s (s + 1)(s + 2)
+        ([1, 0, -1, 0], UNSTABLE),  # s (s - 1)(s + 1): neutral and growing modes together
+    ]
+    for coefficients, flag in cases:
+        sp = kernel.coefficient_spectrum(np.array([coefficients], dtype=complex), engine=engine)
+        assert sp.stability[0] == flag, (coefficients, sp)
+        n_zero = int(coefficients[-1] == 0)
+        assert sp.neutral[0].sum() == n_zero
+        assert (sp.eigenvalues[0] == 0).sum() == n_zero

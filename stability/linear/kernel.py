@@ -428,11 +428,16 @@ def _mode(r, e, x, floor):
     return nt, (r.real > tol) & (not nt)
 
 
-@register_jitable
-def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
+@register_jitable(inline="always")
+def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
     """Sort the ``n`` modes (stable, by decreasing Re s then Im s: a network of
-    compare-exchanges by selects, no data-dependent branches), write them to ``ev``, ``bd``,
-    ``neutral``; return the stability flag (module docstring, step 6)."""
+    compare-exchanges by selects, no data-dependent branches), write them to row ``i`` of
+    ``ev``, ``bd``, ``neutral``; return the stability flag (module docstring, step 6).
+
+    Compiled into the loop's body (``inline="always"``) and writing the rows through the whole
+    arrays (``ev[i][j]``): called as a function with row views (``ev[i]``) made per point, the
+    arrays' passing and reference counting cost ~25-30 ns per point, a sixth of the loop on one
+    thread (benchmarks/kernel_pieces.py, docs/performance.md)."""
     if n >= 2:
         s = _before(r1, r0)
         r0, r1 = _swap(s, r0, r1)
@@ -453,22 +458,31 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral):
     if n == 3:
         scale2 = max(scale2, _mod2(r2))
     floor = 16.0 * _U * math.sqrt(scale2)
-    nt, grows = _mode(r0, e0, x0, floor)
-    ev[0], bd[0], neutral[0] = r0, e0, nt
-    anyneutral = nt
+    # every decision first, then the writes, then the flag by arithmetic (no branch on data)
+    nt0, grows = _mode(r0, e0, x0, floor)
+    anyneutral = nt0
+    nt1 = nt2 = False
     if n >= 2:
-        nt, g = _mode(r1, e1, x1, floor)
-        ev[1], bd[1], neutral[1] = r1, e1, nt
-        anyneutral |= nt
-        grows |= g
+        nt1, g1 = _mode(r1, e1, x1, floor)
+        anyneutral = anyneutral | nt1
+        grows = grows | g1
     if n == 3:
-        nt, g = _mode(r2, e2, x2, floor)
-        ev[2], bd[2], neutral[2] = r2, e2, nt
-        anyneutral |= nt
-        grows |= g
-    if grows:
-        return _UNSTABLE
-    return _MARGINAL if anyneutral else _STABLE
+        nt2, g2 = _mode(r2, e2, x2, floor)
+        anyneutral = anyneutral | nt2
+        grows = grows | g2
+    ev[i][0] = r0
+    bd[i][0] = e0
+    neutral[i][0] = nt0
+    if n >= 2:
+        ev[i][1] = r1
+        bd[i][1] = e1
+        neutral[i][1] = nt1
+    if n == 3:
+        ev[i][2] = r2
+        bd[i][2] = e2
+        neutral[i][2] = nt2
+    # _UNSTABLE if any mode grows, else _MARGINAL if any is neutral, else _STABLE
+    return max(_UNSTABLE * int(grows), _MARGINAL * int(anyneutral))
 
 
 @register_jitable
@@ -497,7 +511,7 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
     :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
     ``_NOT_FINITE`` (a parameter not finite or outside the computable range ``lim``, the pairs
-    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, an array of 10 floats, ``hi`` finite: refused
+    ``lo, hi`` for q, fr_inv, sigma, alpha_v, mu, a tuple of 10 floats, ``hi`` finite: refused
     whatever the mask). The bounds are :func:`stability.parameters.inside_domain` on
     :func:`stability.parameters.domain_sides_quick` (the signs of ``domain_sides``, the source
     of ``check_domain``'s numpy test, decided cheaply where a plain comparison suffices)
@@ -529,7 +543,7 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
         else:
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
 
 #: :func:`_coefficient_loop`, serial and parallel
@@ -606,18 +620,21 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
         :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
         (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
-        (No reduction variables, which slowed the loop by ~15%: the driver counts.)"""
+        (No reduction variables, which slowed the loop by ~15%: the driver counts. The limits
+        are read into a tuple once: an array handed to the domain test per point is passed and
+        reference-counted at every call.)"""
+        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(stab)):
             qi, mi = q[i * sq], mu[i * sm]
             fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-            code = _domain_code(qi, fi, si, ai, mi, lim, applies)
+            code = _domain_code(qi, fi, si, ai, mi, lt, applies)
             where[i] = code
             if code != _INSIDE:
                 _mark_outside(n, ev[i], bd[i], neutral[i])
                 stab[i] = _OUTSIDE
                 continue
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(formula(qi, fi, si, ai, mi), polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
@@ -628,12 +645,13 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 continue
             parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(parts, polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev[i], bd[i], neutral[i])
+            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
+        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(code)):
-            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
+            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lt, applies)
 
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
@@ -874,10 +892,12 @@ def checked_model_spectrum(
     """A model's spectrum with the physical domain tested in the same pass.
 
     The domain test is :func:`stability.parameters.check_domain`'s, point by point (the table
-    :data:`stability.parameters.DOMAIN` compiled: the same ``A_G`` bit for bit, the same
-    comparisons; ``tests/test_kernel.py`` checks that they agree on and a few ulps around every
-    bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``, ``1 - mu q^2 > 0``,
-    ``0 < sigma <= 2 (1 - mu q^2) (1 + 8 u)`` (those of the model's parameters), and every
+    :data:`stability.parameters.DOMAIN` compiled: the same decisions, the two bounds through
+    ``A_G`` decided exactly for the doubles given by
+    :func:`~stability.parameters.domain_sides_quick`; ``tests/test_kernel.py`` checks that they
+    agree on and a few ulps around every bound): ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``,
+    ``1 - mu q^2 > 0``, ``0 < sigma <= 2 (1 - mu q^2)`` exactly, with no slack (those of the
+    model's parameters), and every
     parameter finite and in the computable range (:data:`stability.parameters.COMPUTABLE_RANGE`).
     The kernel only reports; raising (with the canonical message) is left to the caller, which
     calls ``check_domain`` when ``n_outside > 0``.
