@@ -125,8 +125,8 @@ def test_rolling_run_stops_at_contact_loss():
     assert float(ds.normal_force.min()) > -1e-9
 
 
-def test_continue_is_refused_naming_what_is_missing():
-    with pytest.raises(InputError, match="on_contact_loss.*flight phase"):
+def test_continue_is_refused_with_the_papers_friction_law():
+    with pytest.raises(InputError, match="on_contact_loss = .continue. is not available for normal = .equilibrium."):
         simulate(
             "sliding",
             t_end=1,

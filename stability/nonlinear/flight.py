@@ -32,27 +32,34 @@ method to round-off. The flight cannot last longer than ``T_max``, the positive 
 ``z_G0 + |q| - 1 + v_Gz t - fr_inv t^2 / 2`` (since ``h <= z_G + |q| - 1``), which bounds the
 grid.
 
-Impact law (perfectly plastic, ``e = 0``)
------------------------------------------
+Which runs fly
+--------------
+Only the sliding model with friction proportional to the normal force (``normal="actual"``,
+Coulomb's proportionality, eq. 6): its friction vanishes with ``N`` at the take-off, so the
+free motion starts where the constrained one ends (``h'' = 0``) and the sphere rises,
+``h ~ c tau^3``. The paper's law (7) at the equilibrium normal force keeps its full traction
+as ``N`` reaches 0, and so does the rolling constraint: dropping it at the take-off turns the
+top into the floor at once (``h''(0+) < 0``, measured ``-0.04`` for the issue's reproducer);
+such runs refuse ``"continue"`` (:func:`stability.nonlinear.runs.simulate`).
+
+Impact law (perfectly plastic, ``e = 0``, frictionless)
+-------------------------------------------------------
 At the landing an impulse ``P`` acts at the contact point C (``r = C - G = -K - q k``):
 ``Delta v_G = P / mu``, ``I_G Delta omega = r x P``, and C's velocity after the impact is
 ``v_C+ = v_C- + W P`` with the Delassus matrix ``W = 1/mu - [r]_x I_G^-1 [r]_x``
 (Glocker, *Set-Valued Force Laws*, Springer 2001, ch. 7; Brogliato, *Nonsmooth Mechanics*,
 3rd ed., Springer 2016, ch. 4; Pfeiffer and Glocker, *Multibody Dynamics with Unilateral
-Contacts*, Wiley 1996, for the plastic Newton law ``v_C+ . K = 0``):
+Contacts*, Wiley 1996, for the plastic Newton law ``v_C+ . K = 0``). Frictionless,
+``P = Lambda K`` with ``v_C+ . K = 0``:
 
-* sliding model: frictionless, ``P = Lambda K`` with ``v_C+ . K = 0``,
-  ``Lambda = -(v_C- . K) / (1/mu + (r x K) . I_G^-1 (r x K))``. The paper's friction law (7),
-  taken at the equilibrium normal force (``normal="equilibrium"``), is a bounded force, so it
-  gives no impulse over an impact of zero duration: the frictionless impact is that law's
-  impact. It conserves the horizontal momentum, ``L_G . K``, the angular momentum about C, and
-  Jellett's integral ``(K + q k) . L_G`` (eq. 10; ``Delta L_G = r x P`` is normal to ``r``);
-* rolling model: the rolling constraint holds again after the impact, ``v_C+ = 0`` (a plastic
-  impact in all three directions, infinite friction): ``P = -W^-1 v_C-``. It conserves the
-  angular momentum about C and Jellett's integral, not the horizontal momentum.
+    Lambda = -(v_C- . K) / (1/mu + (r x K) . I_G^-1 (r x K)).
 
-Both dissipate energy (reported per landing). ``normal="actual"`` (friction proportional to
-``N``, so impulsive at an impact) has no impact law here and is refused with ``"continue"``.
+The friction impulse of the landing is neglected (the law proportional to ``N`` would give a
+tangential impulse ``-(alpha_v v_C,h + alpha_k e_v) Lambda / (mu fr_inv)`` integrated through
+the impact, a Darboux-Keller problem not built here). The frictionless impact conserves the
+horizontal momentum, ``L_G . K``, the angular momentum about C, and Jellett's integral
+``(K + q k) . L_G`` (eq. 10; ``Delta L_G = r x P`` is normal to ``r``), and dissipates the
+energy ``Lambda^2 / (2 (1/mu + (r x K) . I_G^-1 (r x K)))`` (reported per landing).
 """
 
 from __future__ import annotations
@@ -79,7 +86,6 @@ __all__ = [
 #: the impact law of each model (the text of a run's attribute ``impact_law``)
 IMPACT_LAWS = {
     "sliding": "perfectly plastic (e = 0), frictionless: a vertical impulse at the contact point",
-    "rolling": "perfectly plastic (e = 0) with no slip after: the contact point stops (rolling constraint)",
 }
 
 _K = np.array([0.0, 0.0, 1.0])
@@ -249,7 +255,7 @@ def landing_time(f: Flight) -> float:
 _RTOL = 4.0 * np.finfo(float).eps
 
 
-def impact(model: str, f: Flight, tau: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, Landing]:
+def impact(f: Flight, tau: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, Landing]:
     """The plastic impact at the landing ``tau`` after the take-off (module docstring).
 
     Returns
@@ -267,14 +273,9 @@ def impact(model: str, f: Flight, tau: float) -> tuple[np.ndarray, np.ndarray, n
     r = -_K - f.q * k
     v_g = v_o + f.q * np.cross(w, k)
     v_c = v_g + np.cross(w, r)
-    if model == "sliding":
-        rk = np.cross(r, _K)
-        lam = -v_c[2] / (1.0 / f.mu + rk @ np.linalg.solve(i_g, rk))
-        p_imp = lam * _K
-    else:
-        s = np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
-        w_mat = np.eye(3) / f.mu - s @ np.linalg.solve(i_g, s)
-        p_imp = -np.linalg.solve(w_mat, v_c)
+    rk = np.cross(r, _K)
+    lam = -v_c[2] / (1.0 / f.mu + rk @ np.linalg.solve(i_g, rk))
+    p_imp = lam * _K
     v_g_new = v_g + p_imp / f.mu
     w_new = w + np.linalg.solve(i_g, np.cross(r, p_imp))
     v_c_new = v_g_new + np.cross(w_new, r)
@@ -393,7 +394,7 @@ def run_with_flights(integrate, model: str, y0: np.ndarray, t_eval: np.ndarray, 
             ys.append(np.vstack([model_state(model, w[i], k[i], v_o[i], x_o[i]) for i in range(inside.size)]))
         if t_land >= t_eval[-1]:
             break  # still in the air at the end
-        w, k, v_o, landing = impact(model, f, tau)
+        w, k, v_o, landing = impact(f, tau)
         x_o = flight_motion(f, np.array([tau]))[2][0]
         landings.append(Landing(t_land, landing.impulse, landing.contact_velocity_before, landing.contact_velocity_after, landing.energy_loss))
         y = model_state(model, w, k, v_o, x_o)
