@@ -321,11 +321,15 @@ def simulate(
         A progress bar on stderr (True; shown once the run has taken a second), or
         ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
         default.
-    on_contact_loss : {"stop"}, default "stop"
-        The sliding and rolling runs end at the first zero of the normal force
+    on_contact_loss : {"stop", "continue"}, default "stop"
+        ``"stop"``: the sliding and rolling runs end at the first zero of the normal force
         (:mod:`stability.nonlinear.contact`): the last sample is the event, ``attrs["event"]``
         is ``"contact_lost"`` and ``attrs["event_time"]`` its time (``"none"`` and NaN when the
-        contact holds to ``t_end``). ``"continue"`` (a flight phase) is refused: not built.
+        contact holds to ``t_end``). ``"continue"`` (sliding model with ``normal="actual"``
+        only): the top flies (closed form), lands with a plastic frictionless impact and goes
+        on on the floor (:mod:`stability.nonlinear.flight`); ``event_time`` is the first
+        take-off, the variables ``contact`` and ``height`` and the attributes
+        ``takeoff_times``, ``landing_times`` and ``impact_*`` record the phases.
         Not watched at ``fr_inv = 0`` (no gravity: ``N`` is 0 at equilibrium and its sign says
         nothing) nor for the fixed pivot: ``attrs["contact_watched"] = 0``.
     stick_tilt : float, optional
