@@ -78,7 +78,7 @@ def main() -> None:
         arms = {"watched": run(True), "unwatched": run(False)}
         if "LSODA" in name:  # scipy's path: batched check (default) against one check per step
             arms["watched every step"] = run(True, 1)
-        times, res = best_times(arms, repeat=7)
+        times, res = best_times(arms, repeat=21)
         assert np.isnan(res["watched"].event_time)
         extra = ""
         if "watched every step" in times:
