@@ -169,3 +169,18 @@ def test_continue_refused_where_the_take_off_is_not_smooth(kw, match):
         simulate(
             t_end=1, q=Q, fr_inv=FR, sigma=SG, omega=[2, 0, 1], k=_unit([0.3, 0, 1]), on_contact_loss="continue", **kw
         )
+
+
+def test_flight_figure_marks_the_phases():
+    """The figure draws N(t) and the height as the run has them, a line at every take-off and
+    landing time of the run's attributes."""
+    from stability.plotting import plot_flight_run
+
+    ds = _run()
+    fig, axes = plot_flight_run(ds)
+    assert len(axes) == 2
+    np.testing.assert_array_equal(axes[0].lines[0].get_ydata(), ds.normal_force.values)
+    np.testing.assert_array_equal(axes[1].lines[0].get_ydata(), ds.height.values)
+    marked = sorted(ln.get_xdata()[0] for ln in axes[1].lines[2:])
+    expected = sorted(np.concatenate([ds.attrs["takeoff_times"], ds.attrs["landing_times"]]))
+    np.testing.assert_array_equal(marked, expected)
