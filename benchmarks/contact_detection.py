@@ -45,7 +45,7 @@ def _case(model, t_end, method, omega, k, velocity=None, **params):
 def _cpu_best(arms, repeat):
     """Minimum CPU seconds of this process per call of each arm (interleaved rounds): on a shared
     machine the CPU time of the process is steadier than the wall time."""
-    best = {name: np.inf for name in arms}
+    best = dict.fromkeys(arms, np.inf)
     for _ in range(repeat):
         for name, fn in arms.items():
             t0 = time.process_time()

@@ -246,9 +246,7 @@ def landing_time(f: Flight) -> float:
         pts = np.concatenate([[first], pts])
     h = landing_height(f, pts)
     j = int(np.nonzero(h <= 0.0)[0][0])  # h(T_max) < 0: there is one, and h(pts[0]) > 0
-    return float(
-        brentq(lambda t: landing_height(f, np.array([t]))[0], pts[j - 1], pts[j], xtol=1e-300, rtol=_RTOL)
-    )
+    return float(brentq(lambda t: landing_height(f, np.array([t]))[0], pts[j - 1], pts[j], xtol=1e-300, rtol=_RTOL))
 
 
 #: Brent's relative tolerance: scipy's smallest, 4 machine epsilons
@@ -348,7 +346,9 @@ def _centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.column_stack([y[:, 1], -y[:, 0], np.zeros(n)]), np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
 
 
-def run_with_flights(integrate, model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, params: dict, **kw) -> HybridRun:
+def run_with_flights(
+    integrate, model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, params: dict, **kw
+) -> HybridRun:
     """Integrate on the floor until the contact is lost, fly (closed form) to the landing, apply
     the impact (module docstring) and go on with the same model, up to ``t_eval[-1]``.
 
@@ -396,7 +396,15 @@ def run_with_flights(integrate, model: str, y0: np.ndarray, t_eval: np.ndarray, 
             break  # still in the air at the end
         w, k, v_o, landing = impact(f, tau)
         x_o = flight_motion(f, np.array([tau]))[2][0]
-        landings.append(Landing(t_land, landing.impulse, landing.contact_velocity_before, landing.contact_velocity_after, landing.energy_loss))
+        landings.append(
+            Landing(
+                t_land,
+                landing.impulse,
+                landing.contact_velocity_before,
+                landing.contact_velocity_after,
+                landing.energy_loss,
+            )
+        )
         y = model_state(model, w, k, v_o, x_o)
         seg = np.concatenate([[t_land], t_eval[t_eval > t_land]])
     return HybridRun(

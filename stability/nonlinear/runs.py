@@ -414,6 +414,11 @@ def simulate(
     if method == "auto":
         method = _auto_method(m.name, params)
     check_on_contact_loss(on_contact_loss)
+    if on_contact_loss == "continue" and stick_tilt is not None:
+        raise InputError(
+            f"stick_tilt = {stick_tilt!r} with on_contact_loss = 'continue': the stick is not watched in "
+            "flight (not built); give one of them"
+        )
     if on_contact_loss == "continue" and (m.name != "sliding" or normal != "actual"):
         why = (
             f"model {m.name!r}: its contact force does not vanish with N (the rolling constraint needs a "

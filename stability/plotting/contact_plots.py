@@ -96,10 +96,10 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
             a.axvline(tt, color="C3", lw=0.8, ls="-", label="take-off" if (i == 0 and a is ax) else None)
     for i, tt in enumerate(downs):
         for a in axes:
-            a.axvline(tt, color="C2", lw=0.8, ls="--", label="landing (plastic impact)" if (i == 0 and a is ax) else None)
+            a.axvline(
+                tt, color="C2", lw=0.8, ls="--", label="landing (plastic impact)" if (i == 0 and a is ax) else None
+            )
     ax.legend(fontsize="small")
     ax2.legend(fontsize="small")
-    ax.set_title(
-        f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium"
-    )
+    ax.set_title(f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium")
     return fig, axes
