@@ -184,3 +184,43 @@ def test_flight_figure_marks_the_phases():
     marked = sorted(ln.get_xdata()[0] for ln in axes[1].lines[2:])
     expected = sorted(np.concatenate([ds.attrs["takeoff_times"], ds.attrs["landing_times"]]))
     np.testing.assert_array_equal(marked, expected)
+
+
+def _skew(a):
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _normal_force_actual(y, av=0.5):
+    """N from Newton for G and Euler about G with friction proportional to N,
+    f = N (-alpha_v V_c) / (mu fr_inv) (independent of the package; the law normal="actual")."""
+    w, k, v = y[0:3], y[3:6], y[6:8]
+    a_g = 1.0 - MU * Q * Q
+    i_g = a_g * np.eye(3) + (SG - a_g) * np.outer(k, k)
+    g = -av * np.array([v[0] - w[1], v[1] + w[0], 0.0]) / (MU * FR)  # friction per unit N
+    r = -K - Q * k
+    a = np.zeros((6, 6))
+    b = np.zeros(6)
+    a[0:3, 0:3] = i_g
+    a[0:3, 5] = -(np.cross(r, K) + np.cross(r, g))
+    b[0:3] = -(SG - a_g) * (w @ k) * np.cross(w, k)
+    a[3:6, 0:3] = -MU * Q * _skew(k)
+    a[3, 3] = a[4, 4] = MU
+    a[3:6, 5] = -(K + g)
+    b[3:6] = -MU * FR * K - MU * Q * np.cross(w, np.cross(w, k))
+    return np.linalg.solve(a, b)[5]
+
+
+def test_normal_force_of_the_continued_run_against_the_vertical_equation():
+    """On the floor (before, between and after the flights) N of the run equals the independent
+    vertical equation at the run's own states, to 1e-12 (two 6 x 6 solves' round-off); in flight 0."""
+    ds = _run()
+    on = ds.contact.values == 1
+    y = np.column_stack([ds.omega.values, ds.k.values, ds.velocity.values[:, :2]])[on]
+    n_ref = np.array([_normal_force_actual(s) for s in y])
+    np.testing.assert_allclose(ds.normal_force.values[on], n_ref, rtol=0, atol=1e-12)
+    assert np.all(ds.normal_force.values[~on] == 0.0)
+
+
+def test_continue_refuses_a_stick():
+    with pytest.raises(InputError, match="stick_tilt.*not watched in flight"):
+        _run(stick_tilt=120.0)
