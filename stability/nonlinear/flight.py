@@ -77,6 +77,7 @@ __all__ = [
     "Landing",
     "body_state",
     "flight_motion",
+    "floor_centre",
     "impact",
     "landing_height",
     "landing_time",
@@ -160,12 +161,7 @@ def body_state(model: str, y: np.ndarray, *, q: float, fr_inv: float, sigma: flo
     """The flight that starts from the model state ``y`` (sliding: ``omega, k, V_h, X_h``;
     rolling: ``omega, k, X_h``) with O at height 1 (the take-off)."""
     w, k = np.array(y[0:3], float), np.array(y[3:6], float)
-    if model == "sliding":
-        v_o = np.array([y[6], y[7], 0.0])
-        x_o = np.array([y[8], y[9], 1.0])
-    else:
-        v_o = np.array([w[1], -w[0], 0.0])
-        x_o = np.array([y[6], y[7], 1.0])
+    v_o, x_o = (a[0] for a in floor_centre(model, np.asarray(y, float)[None, :]))
     a_g = float(inertia_g(q, mu))
     return Flight(
         x_g=x_o + q * k,
@@ -339,7 +335,10 @@ class HybridRun:
     event_time: float = float("nan")
 
 
-def _centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def floor_centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Velocity and position of O, shape (n, 3) each, from the model states ``y`` (n rows) on the
+    floor (O at height 1): sliding ``V_h, X_h`` from the state; rolling ``V0 = (omega_2, -omega_1,
+    0)`` (eq. 5, ``V_c = 0``)."""
     n = y.shape[0]
     if model == "sliding":
         return np.column_stack([y[:, 6], y[:, 7], np.zeros(n)]), np.column_stack([y[:, 8], y[:, 9], np.ones(n)])
@@ -367,7 +366,7 @@ def run_with_flights(
     while True:
         sol = integrate(model, y, seg, p, watch_contact=True, **kw)
         nfev, naccept, nreject = nfev + sol.nfev, naccept + sol.naccept, nreject + sol.nreject
-        v_o, x_o = _centre(model, sol.y)
+        v_o, x_o = floor_centre(model, sol.y)
         on = np.ones(sol.t.size, np.int8)
         if sol.event == "contact_lost" and sol.t.size == 1:
             on[0] = 0  # landed and left again at once (N < 0 just after the impact): no contact force

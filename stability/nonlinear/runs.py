@@ -40,7 +40,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .contact import check_on_contact_loss
-from .flight import IMPACT_LAWS, HybridRun, run_with_flights
+from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
 from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, integrate
 from .parameters import pack
@@ -583,14 +583,7 @@ def trajectory_dataset(
         _attrs("transverse rate", "Omega", comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"),
     )
     if m.has_translation:
-        if centre is not None:
-            v0, x0 = centre
-        elif m.name == "sliding":
-            v0 = np.column_stack([y[:, 6], y[:, 7], np.zeros(n)])
-            x0 = np.column_stack([y[:, 8], y[:, 9], np.ones(n)])
-        else:
-            v0 = np.column_stack([omega[:, 1], -omega[:, 0], np.zeros(n)])
-            x0 = np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
+        v0, x0 = centre if centre is not None else floor_centre(m.name, y)
         v_g = v0 + q * np.cross(omega, k)
         z_g = x0[:, 2] + q * k[:, 2]
         data["velocity"] = (
