@@ -22,8 +22,8 @@ run of a model with a contact point ends at the first zero of ``N(t)`` (the even
 A dip of ``N`` below zero that starts and ends within one step is not seen (the steps follow
 the motion to the tolerance, so such a dip is shorter than a step).
 
-A flight phase after the loss of contact (``on_contact_loss="continue"``) is not built: the run
-refuses it (:func:`check_on_contact_loss`), naming what is missing.
+``on_contact_loss="continue"`` goes on after the loss of contact with a free flight and a
+plastic landing (:mod:`stability.nonlinear.flight`), then on the floor again.
 """
 
 from __future__ import annotations
@@ -39,23 +39,15 @@ ON_CONTACT_LOSS = ("stop", "continue")
 
 
 def check_on_contact_loss(value: str) -> str:
-    """Check ``on_contact_loss``; ``"continue"`` is refused (the flight phase is not built).
+    """Check ``on_contact_loss`` (:data:`ON_CONTACT_LOSS`).
 
     Raises
     ------
     stability.errors.InputError
-        An unknown value, or ``"continue"``.
+        An unknown value.
     """
     if value not in ON_CONTACT_LOSS:
         raise InputError(
             f"on_contact_loss = {value!r} is not known; choose one of {', '.join(map(repr, ON_CONTACT_LOSS))}"
-        )
-    if value == "continue":
-        raise InputError(
-            "on_contact_loss = 'continue' is not available: it needs a flight phase "
-            "(free fall of the rigid body with its spin, the height of O as a new state) "
-            "and a landing impact law (e.g. Newton's restitution at the contact point), "
-            "neither of which is built yet; use on_contact_loss = 'stop' (the default), "
-            "which ends the run where the normal force reaches zero"
         )
     return value

@@ -211,6 +211,56 @@ def event_value_at(code, t, y, p, watch, c_stick):
     return event_value(y, _model_rhs(code, t, y, p), p, watch, c_stick)
 
 
+#: accepted steps of a scipy solver per batched check of the normal force (:func:`first_event`):
+#: one compiled call per batch instead of one per step (a call's dispatch, ~1 us, outweighs the
+#: 6 x 6 solve); ``python benchmarks/contact_detection.py`` measures it against 1 (every step)
+WATCH_BATCH = 64
+
+
+@njit(cache=True, nogil=True)
+def first_event(code, ts, ys, p, watch, c_stick):
+    """The index of the first row of ``ys`` (states at the times ``ts``) where
+    :func:`event_value` is <= 0, or -1: one compiled call for a batch of scipy's steps."""
+    for i in range(ts.shape[0]):
+        if event_value_at(code, ts[i], ys[i], p, watch, c_stick) <= 0.0:
+            return i
+    return -1
+
+
+def _locate_dense(solver, n_of):
+    """The first zero of ``n_of`` in a scipy solver's last step (``> 0`` at ``t_old``, ``<= 0`` at
+    ``t``): Brent's method on the step's dense output (as ``solve_ivp``'s events), then the first
+    representable time with ``N <= 0``."""
+    dense = solver.dense_output()
+    t_new = solver.t
+    t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+    y_ev = dense(t_ev)
+    for _ in range(64):  # the first time N <= 0 (Brent's answer may be just before it)
+        if n_of(t_ev, y_ev) <= 0.0 or t_ev >= t_new:
+            break
+        t_ev = min(t_new, np.nextafter(t_ev, np.inf))
+        y_ev = dense(t_ev)
+    return float(t_ev), np.asarray(y_ev, dtype=float)
+
+
+def _relocate(make_solver, n_of, t_a, y_a, t_b, y_b, max_steps):
+    """The first zero of ``n_of`` after ``t_a`` (``> 0`` there, ``<= 0`` at ``t_b``) when a batch
+    found it in a step whose dense output is gone: the same method restarted from the accepted
+    state ``(t_a, y_a)`` at the run's tolerances, watched at every step, located by
+    :func:`_locate_dense` (the event time carries the integrator's error only). Should the
+    restart not see the zero (a graze shorter than its steps), ``(t_b, y_b)`` is the event."""
+    solver = make_solver(t_a, y_a)
+    for _ in range(max_steps):
+        solver.step()
+        if solver.status == "failed":
+            break
+        if n_of(solver.t, solver.y) <= 0.0:
+            return _locate_dense(solver, n_of)
+        if solver.status == "finished" or solver.t > t_b + (t_b - t_a):
+            break
+    return float(t_b), np.asarray(y_b, dtype=float)
+
+
 @njit(cache=True, nogil=True)
 def _dopri5_dense(y, k, h, th, res):
     for i in range(y.shape[0]):
@@ -677,8 +727,10 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     """A scipy ``OdeSolver`` stepped as ``solve_ivp`` does (same steps, dense output at
     ``t_eval``), but stopped after ``max_steps`` accepted steps with status ``MAX_STEPS``; an
     interruption point (and a progress report) every :data:`SCIPY_REPORT_STEPS` steps. With
-    ``watch``, the normal force is checked after every step and the run stops at its first
-    zero, located on the step's dense output by Brent's method (as ``solve_ivp``'s events)."""
+    ``watch``, the normal force is checked at every accepted step, in batches of
+    :data:`WATCH_BATCH` steps (:func:`first_event`), and the run stops at its first zero,
+    located on the step's dense output by Brent's method (as ``solve_ivp``'s events; a step
+    before the last of its batch is integrated again from its start, :func:`_relocate`)."""
 
     def fun(t, yy):
         return _model_rhs(code, t, yy, p)
@@ -698,6 +750,29 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     event = None
     if watch and n_of(t_eval[0], y0) <= 0.0:
         return y, 1, 0, 0, status, (float(t_eval[0]), np.array(y0, dtype=float), 1)
+    # the accepted steps not yet checked (scipy returns a new state array per step), and the last
+    # checked one (N > 0 there)
+    pend_t: list[float] = []
+    pend_y: list[np.ndarray] = []
+    ok_t, ok_y = float(t_eval[0]), np.array(y0, dtype=float)
+
+    def check(last_step: bool):
+        """The event among the pending steps, or None; they are checked after."""
+        nonlocal ok_t, ok_y
+        i = int(first_event(code, np.array(pend_t), np.array(pend_y), p, w, c_stick))
+        if i < 0:
+            ok_t, ok_y = pend_t[-1], pend_y[-1]
+            pend_t.clear(), pend_y.clear()
+            return None
+        if last_step and i == len(pend_t) - 1:  # the solver's own last step: its dense output
+            return _locate_dense(solver, n_of)
+        t_a, y_a = (pend_t[i - 1], pend_y[i - 1]) if i > 0 else (ok_t, ok_y)
+
+        def make(t0, y_start):
+            return METHODS[method](fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
+
+        return _relocate(make, n_of, t_a, y_a, pend_t[i], pend_y[i], max_steps)
+
     while j < t_eval.size:
         if steps >= max_steps:
             status = MAX_STEPS
@@ -712,29 +787,14 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
             status = STEP_TOO_SMALL if message and "step size" in message else NOT_FINITE
             break
         t_new = solver.t
-        if watch and n_of(t_new, solver.y) <= 0.0:
-            dense = solver.dense_output()
-            t_ev = brentq(
-                lambda tt, dense=dense: n_of(tt, dense(tt)),
-                solver.t_old,
-                t_new,
-                xtol=1e-15,
-                rtol=4 * np.finfo(float).eps,
-            )
-            y_ev = dense(t_ev)
-            for _ in range(64):  # the first time N <= 0 (Brent's answer may be just before it)
-                if n_of(t_ev, y_ev) <= 0.0 or t_ev >= t_new:
+        if watch:
+            pend_t.append(t_new)
+            pend_y.append(solver.y)
+            if len(pend_t) >= WATCH_BATCH:
+                ev = check(True)
+                if ev is not None:
+                    event = ev
                     break
-                t_ev = min(t_new, np.nextafter(t_ev, np.inf))
-                y_ev = dense(t_ev)
-            k = j
-            while k < t_eval.size and t_eval[k] < t_ev:
-                k += 1
-            if k > j:
-                y[j:k] = dense(t_eval[j:k]).T
-                j = k
-            event = (float(t_ev), np.asarray(y_ev, dtype=float), j)
-            break
         k = j
         while k < t_eval.size and t_eval[k] <= t_new:
             k += 1
@@ -744,6 +804,17 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         if solver.status == "finished" and j < t_eval.size:
             y[j:] = solver.y
             j = t_eval.size
+    if watch and event is None and pend_t:
+        # the steps since the last batch (the run's end, or its failure: an event before it wins)
+        event = check(status == SUCCESS)
+        if event is not None:
+            status = SUCCESS
+    if event is not None:
+        t_ev, y_ev = event
+        # the outputs before the event are the run's; those at or after it are dropped
+        j = int(np.searchsorted(t_eval, t_ev, side="left"))
+        y[j:] = np.nan
+        event = (t_ev, y_ev, j)
     return y, int(solver.nfev), steps, 0, status, event
 
 

@@ -40,8 +40,9 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
 from .contact import check_on_contact_loss
+from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .integrators import COMPILED_METHODS, SCIPY_METHODS, integrate
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
@@ -320,11 +321,15 @@ def simulate(
         A progress bar on stderr (True; shown once the run has taken a second), or
         ``progress(t)`` with the time reached, every few milliseconds of integration; silent by
         default.
-    on_contact_loss : {"stop"}, default "stop"
-        The sliding and rolling runs end at the first zero of the normal force
+    on_contact_loss : {"stop", "continue"}, default "stop"
+        ``"stop"``: the sliding and rolling runs end at the first zero of the normal force
         (:mod:`stability.nonlinear.contact`): the last sample is the event, ``attrs["event"]``
         is ``"contact_lost"`` and ``attrs["event_time"]`` its time (``"none"`` and NaN when the
-        contact holds to ``t_end``). ``"continue"`` (a flight phase) is refused: not built.
+        contact holds to ``t_end``). ``"continue"`` (sliding model with ``normal="actual"``
+        only): the top flies (closed form), lands with a plastic frictionless impact and goes
+        on on the floor (:mod:`stability.nonlinear.flight`); ``event_time`` is the first
+        take-off, the variables ``contact`` and ``height`` and the attributes
+        ``takeoff_times``, ``landing_times`` and ``impact_*`` record the phases.
         Not watched at ``fr_inv = 0`` (no gravity: ``N`` is 0 at equilibrium and its sign says
         nothing) nor for the fixed pivot: ``attrs["contact_watched"] = 0``.
     stick_tilt : float, optional
@@ -409,6 +414,25 @@ def simulate(
     if method == "auto":
         method = _auto_method(m.name, params)
     check_on_contact_loss(on_contact_loss)
+    if on_contact_loss == "continue" and stick_tilt is not None:
+        raise InputError(
+            f"stick_tilt = {stick_tilt!r} with on_contact_loss = 'continue': the stick is not watched in "
+            "flight (not built); give one of them"
+        )
+    if on_contact_loss == "continue" and (m.name != "sliding" or normal != "actual"):
+        why = (
+            f"model {m.name!r}: its contact force does not vanish with N (the rolling constraint needs a "
+            "traction as N reaches 0), so the top cannot leave the floor smoothly"
+            if m.name != "sliding"
+            else "normal = 'equilibrium': the paper's friction law keeps its full force as N reaches 0, so a "
+            "free top would turn into the floor at once"
+        )
+        if not m.has_translation:
+            why = f"model {m.name!r}: it has no floor to leave"
+        raise InputError(
+            f"on_contact_loss = 'continue' is not available for {why}; use model = 'sliding' with "
+            "normal = 'actual' (friction proportional to N, zero at the take-off), or on_contact_loss = 'stop'"
+        )
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
         if not m.has_translation:
@@ -418,27 +442,60 @@ def simulate(
     # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
     # says nothing there, the contact is the model's assumption; not watched (attrs say so)
     watched = m.has_translation and params["fr_inv"] > 0.0
+    flights = None
     try:
         with deferred():
-            sol = integrate(
-                m.name,
-                y0,
-                t_eval,
-                p,
-                method=method,
-                rtol=rtol,
-                atol=atol,
-                step=step,
-                max_steps=max_steps,
-                progress=report,
-                watch_contact=watched,
-                stick_tilt=stick_tilt,
-            )
+            if on_contact_loss == "continue" and watched:
+                flights = run_with_flights(
+                    integrate,
+                    m.name,
+                    y0,
+                    t_eval,
+                    p,
+                    params,
+                    method=method,
+                    rtol=rtol,
+                    atol=atol,
+                    step=step,
+                    max_steps=max_steps,
+                    progress=report,
+                    stick_tilt=stick_tilt,
+                )
+                sol = Solution(
+                    flights.t,
+                    flights.y,
+                    flights.nfev,
+                    flights.naccept,
+                    flights.nreject,
+                    flights.status,
+                    method,
+                    flights.event_time,
+                    flights.event,
+                )
+            else:
+                sol = integrate(
+                    m.name,
+                    y0,
+                    t_eval,
+                    p,
+                    method=method,
+                    rtol=rtol,
+                    atol=atol,
+                    step=step,
+                    max_steps=max_steps,
+                    progress=report,
+                    watch_contact=watched,
+                    stick_tilt=stick_tilt,
+                )
     finally:
         close()
+    message = sol.message if flights is None else flights.message
     if sol.status < 0:
-        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning, stacklevel=2)
-    ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+        warnings.warn(f"simulate({m.name!r}): integration stopped: {message}", RuntimeWarning, stacklevel=2)
+    if flights is None:
+        ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    else:
+        ds = flight_dataset(m.name, flights, params, p)
     ds.attrs.update(
         event=sol.event,
         event_time=sol.event_time,
@@ -454,7 +511,7 @@ def simulate(
         naccept=sol.naccept,
         nreject=sol.nreject,
         status=sol.status,
-        message=sol.message,
+        message=message,
         friction_law=friction if m.name == "sliding" else "none (constraint force)",
         normal_force_scaling=normal,
         slip_scale=float(slip_scale),
@@ -462,17 +519,35 @@ def simulate(
     return ds
 
 
-def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[str, float], p: np.ndarray) -> xr.Dataset:
-    """Build the output Dataset of :func:`simulate` from the states of a run."""
+def trajectory_dataset(
+    model: str,
+    t: np.ndarray,
+    y: np.ndarray,
+    params: dict[str, float],
+    p: np.ndarray,
+    *,
+    centre: tuple[np.ndarray, np.ndarray] | None = None,
+    contact: np.ndarray | None = None,
+) -> xr.Dataset:
+    """Build the output Dataset of :func:`simulate` from the states of a run.
+
+    ``centre = (v_o, x_o)`` (shape (n, 3) each) and ``contact`` (1 on the floor, 0 in flight)
+    describe a run with flights (:func:`stability.nonlinear.flight.run_with_flights`): in
+    flight the contact forces are 0 and O's height and vertical velocity are the free motion's.
+    """
     m = get_nonlinear_model(model)
     q, fr_inv, sigma, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
     omega = y[:, 0:3]
     k = y[:, 3:6]
     n = t.size
     good = np.isfinite(y).all(axis=1)
+    if contact is not None:
+        good &= contact == 1
     forces = np.full((n, 3), np.nan)
     if good.any():
         forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
+    if contact is not None:
+        forces[contact == 0] = 0.0  # in flight: no contact force
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
@@ -508,14 +583,9 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
         _attrs("transverse rate", "Omega", comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"),
     )
     if m.has_translation:
-        if m.name == "sliding":
-            v0 = np.column_stack([y[:, 6], y[:, 7], np.zeros(n)])
-            x0 = np.column_stack([y[:, 8], y[:, 9], np.ones(n)])
-        else:
-            v0 = np.column_stack([omega[:, 1], -omega[:, 0], np.zeros(n)])
-            x0 = np.column_stack([y[:, 6], y[:, 7], np.ones(n)])
+        v0, x0 = centre if centre is not None else floor_centre(m.name, y)
         v_g = v0 + q * np.cross(omega, k)
-        z_g = 1.0 + q * k[:, 2]
+        z_g = x0[:, 2] + q * k[:, 2]
         data["velocity"] = (
             ("time", "axis"),
             v0,
@@ -536,6 +606,7 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
             h_cg(omega, k, q=q, sigma=sigma, mu=mu),
             _attrs("h_cg, eq. (10)", "A0 Omega", comment="angular momentum about G along r_cg = q k + K, eq. (10)"),
         )
+        # (in flight: the horizontal velocity of the sphere's lowest point)
         slip = np.column_stack([v0[:, 0] - omega[:, 1], v0[:, 1] + omega[:, 0], np.zeros(n)])
         data["slip_speed"] = (
             "time",
@@ -600,4 +671,35 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
     for name, val in params.items():
         ds.attrs[name] = val
         ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]
+    return ds
+
+
+def flight_dataset(model: str, run: HybridRun, params: dict[str, float], p: np.ndarray) -> xr.Dataset:
+    """The Dataset of a run with flights (``on_contact_loss="continue"``): :func:`trajectory_dataset`
+    with O's height, the variables ``contact`` and ``height`` (of the sphere's lowest point), and
+    the phases in the attributes (``takeoff_times``, ``landing_times``, and per landing the
+    vertical impulse, the contact point's velocity before and after, the energy dissipated)."""
+    ds = trajectory_dataset(model, run.t, run.y, params, p, centre=(run.v_o, run.x_o), contact=run.contact)
+    ds["contact"] = (
+        "time",
+        run.contact,
+        _attrs("in contact", _ONE, comment="1 on the floor, 0 in flight (stability.nonlinear.flight)"),
+    )
+    ds["height"] = (
+        "time",
+        run.x_o[:, 2] - 1.0,
+        _attrs("height of the lowest point", "R", comment="height of the sphere's lowest point above the floor"),
+    )
+    lands = run.landings
+    ds.attrs.update(
+        impact_law=IMPACT_LAWS[model],
+        flights=len(run.takeoffs),
+        takeoff_times=np.array(run.takeoffs, float),
+        landing_times=np.array([x.time for x in lands], float),
+        impact_impulse_vertical=np.array([x.impulse[2] for x in lands], float),
+        impact_impulse_horizontal=np.array([np.hypot(x.impulse[0], x.impulse[1]) for x in lands], float),
+        impact_contact_velocity_before=np.array([x.contact_velocity_before[2] for x in lands], float),
+        impact_contact_velocity_after=np.array([x.contact_velocity_after[2] for x in lands], float),
+        impact_energy_loss=np.array([x.energy_loss for x in lands], float),
+    )
     return ds

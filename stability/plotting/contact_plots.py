@@ -1,5 +1,6 @@
 """Figures of where the model holds: a run's normal force and its event, a run's tilt up to the
-stick (computation in :mod:`stability.nonlinear.contact` and :func:`stability.simulate`)."""
+stick, a run that flies and lands (computation in :mod:`stability.nonlinear.contact`,
+:mod:`stability.nonlinear.flight` and :func:`stability.simulate`)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_contact_run"]
+__all__ = ["plot_contact_run", "plot_flight_run"]
 
 
 def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
@@ -58,4 +59,47 @@ def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tupl
     ax.legend(fontsize="small")
     ax2.legend(fontsize="small")
     ax.set_title(f"{run.attrs.get('model', '')} run: event {event}", fontsize="medium")
+    return fig, axes
+
+
+def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
+    """A run with flights (``simulate(..., on_contact_loss="continue")``): the normal force
+    ``N(t)`` (0 in flight) and the height of the sphere's lowest point, the take-offs and landings
+    marked.
+
+    Parameters
+    ----------
+    run : xarray.Dataset
+        A run with the variables ``contact``, ``height`` and the attributes ``takeoff_times``,
+        ``landing_times``.
+    axes : sequence of 2 Axes, optional
+
+    Returns
+    -------
+    (Figure, list of 2 Axes)
+    """
+    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
+    t = run.time.values
+    ax, ax2 = axes
+    ax.plot(t, run.normal_force.values, color="C0", label="N(t)")
+    ax.axhline(run.attrs["mu"] * run.attrs["fr_inv"], color="0.5", ls=":", label=r"$\mu\,$Fr$^{-1}$ (equilibrium)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_ylabel("normal force N")
+    ax2.plot(t, run.height.values, color="C1", label="height of the lowest point")
+    ax2.axhline(0.0, color="k", lw=0.8)
+    ax2.set_ylabel("height (units of R)")
+    ax2.set_xlabel(r"time (units of $1/\Omega$)")
+    ups = np.atleast_1d(run.attrs.get("takeoff_times", []))
+    downs = np.atleast_1d(run.attrs.get("landing_times", []))
+    for i, tt in enumerate(ups):
+        for a in axes:
+            a.axvline(tt, color="C3", lw=0.8, ls="-", label="take-off" if (i == 0 and a is ax) else None)
+    for i, tt in enumerate(downs):
+        for a in axes:
+            a.axvline(
+                tt, color="C2", lw=0.8, ls="--", label="landing (plastic impact)" if (i == 0 and a is ax) else None
+            )
+    ax.legend(fontsize="small")
+    ax2.legend(fontsize="small")
+    ax.set_title(f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium")
     return fig, axes

@@ -187,6 +187,12 @@ class FinalState:
         ``q, sigma, fr_inv, alpha_v, mu``.
     initial_tilt : float
         Degrees.
+    contact : str
+        Whether the sphere stays on the floor on the way: ``"held"`` (the deciding run watched
+        the normal force to its end), ``"lost"`` (a run, or the start itself, reached ``N = 0``:
+        no end state is reported), or ``"not checked"`` (decided by ``J`` and ``E`` without a
+        run: ``N > 0`` at the start and ``N = mu Fr^-1 > 0`` at every steady state, the
+        transient not integrated; ``simulate`` is the check).
     """
 
     tilt: float
@@ -205,6 +211,7 @@ class FinalState:
     initial_tilt: float = math.nan
     event: str = "none"
     event_time: float = math.nan
+    contact: str = "not checked"
 
     def to_dataset(self) -> xr.Dataset:
         """The prediction as a CF Dataset (product ``final_state``): 0-d variables ``tilt``,
@@ -314,6 +321,7 @@ class FinalState:
             model="sliding",
             event=self.event,
             event_time=self.event_time,
+            contact=self.contact,
         )
         if self.run is not None:
             for name, value in self.run.__dict__.items():
@@ -535,6 +543,30 @@ def final_state_from(
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
+    # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
+    n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
+    if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
+        return FinalState(
+            tilt=tilt0,
+            kind="contact_lost",
+            method="jellett",
+            energy=E0,
+            precession_rate=math.nan,
+            axial_spin=math.nan,
+            state=None,
+            reason=f"{reason}; but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves "
+            "the floor at once, the model does not hold, no final state",
+            run=None,
+            event="contact_lost",
+            event_time=0.0,
+            contact="lost",
+            **common,
+        )
+    if end is not None and fr_inv > 0.0:
+        reason += (
+            f"; contact not checked on the way (no run): N = {n0:.6g} at the start and mu Fr^-1 = "
+            f"{mu * fr_inv:.6g} at the end state, the transient between not integrated (simulate checks it)"
+        )
     if end is not None:
         return FinalState(
             tilt=end.tilt,
@@ -587,6 +619,7 @@ def final_state_from(
             run=run,
             event=run.event,
             event_time=run.event_time,
+            contact="lost" if run.event == "contact_lost" else "held",
             **common,
         )
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
@@ -612,8 +645,21 @@ def final_state_from(
         state=state if run.settled else None,
         reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)",
         run=run,
+        contact="held",
         **common,
     )
+
+
+def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
+    """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
+    equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve."""
+    from ..nonlinear import get_nonlinear_model
+    from ..nonlinear.parameters import pack
+
+    state = np.zeros((1, 10))
+    state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
+    p = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"], alpha_v=params["alpha_v"])
+    return float(get_nonlinear_model("sliding").contact_forces(state, p)[0, 2])
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
