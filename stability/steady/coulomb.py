@@ -175,7 +175,7 @@ def coulomb_final_state(
     t_stick = float(ds.switch_time.values[last_stick[-1]]) if last_stick.size else 0.0
     i_stick = int(np.searchsorted(ds.time.values, t_stick, side="right"))  # the first rolling sample
     e_s = float(np.mean(ds.energy.values[i_stick:]))  # constant while rolling (to the run's tolerance)
-    tilt_s = float(ds.polar_angle[i_stick])
+    tilt_s = float(ds.switch_tilt.values[last_stick[-1]]) if last_stick.size else float(ds.polar_angle[0])
     lo, hi = rolling_band(tilt_s, e_s, jel, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     seen = ds.polar_angle.values[i_stick:]
     need = np.nanmax(ds.friction_magnitude.values[i_stick:] / ds.friction_limit.values[i_stick:])
