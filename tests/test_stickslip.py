@@ -27,6 +27,10 @@ TH = math.radians(30.0)
 #: a wobbling launch with weak Coulomb friction that sticks and slips again and again
 LAUNCH = dict(omega=[1.0, 0.0, 0.5], k=[math.sin(TH), 0.0, math.cos(TH)], velocity=[0.3, 0.0])
 ALPHA_K = 0.02
+#: static limit above the kinetic one (mu_S > mu_K, as Kane and Levinson take it): the slip
+#: then restarts decisively (with alpha_s = alpha_k it grows from the seed at second order only,
+#: which costs the plain-numpy reference ~1e5 right-hand sides)
+ALPHA_S = 0.022
 THRESHOLD = 1e-10
 _K = np.array([0.0, 0.0, 1.0])
 
@@ -34,7 +38,7 @@ _K = np.array([0.0, 0.0, 1.0])
 @pytest.fixture(scope="module")
 def run():
     return stability.stick_slip(
-        t_end=75.0, **TOP, **LAUNCH, alpha_k=ALPHA_K, rtol=1e-11, atol=1e-14, slip_threshold=THRESHOLD
+        t_end=62.0, **TOP, **LAUNCH, alpha_k=ALPHA_K, alpha_s=ALPHA_S, rtol=1e-11, atol=1e-14, slip_threshold=THRESHOLD
     )
 
 
@@ -64,7 +68,7 @@ def _reference_switches(t_end):
         return math.hypot(y[6] - y[1], y[7] + y[0]) - THRESHOLD
 
     def brk(t, y):
-        return ALPHA_K - float(np.hypot(*_need(y)[0]))
+        return ALPHA_S - float(np.hypot(*_need(y)[0]))
 
     stop.terminal = brk.terminal = True
     stop.direction = brk.direction = -1
@@ -92,8 +96,8 @@ def test_switch_times_match_an_independent_hybrid(run):
     right-hand sides and the needed friction from Newton's law for G). Tolerance 1e-6 relative
     (the issue's): both integrate to rtol 1e-11, the events are located on the dense output to
     round-off, the threshold 1e-10 moves a stick by ~1e-10 / rate; 1e-6 is far above."""
-    ref = _reference_switches(75.0)
-    assert len(ref) >= 5  # it does stick and slip repeatedly
+    ref = _reference_switches(62.0)
+    assert [k for _, k in ref] == ["stick", "slip", "stick"]  # it sticks, slips and sticks again
     assert [k for _, k in ref] == list(run.switch_kind.values)
     np.testing.assert_allclose(run.switch_time.values, [t for t, _ in ref], rtol=1e-6)
 
@@ -106,7 +110,7 @@ def test_rolling_keeps_energy_and_jellett(run):
     e = run.energy.values
     starts = np.flatnonzero(np.diff(ph) == 1) + 1
     ends = np.flatnonzero(np.diff(ph) == -1)
-    assert starts.size >= 2
+    assert starts.size >= 1 and ends.size >= 1
     for a in starts:
         b = ends[ends > a][0] if (ends > a).any() else ph.size - 1
         seg = e[a : b + 1]
@@ -117,7 +121,7 @@ def test_rolling_keeps_energy_and_jellett(run):
 
 
 def test_friction_within_the_coulomb_bound(run):
-    """Reference: the Coulomb law itself. Sticking: |f| <= alpha_s (here alpha_k), to 1e-9
+    """Reference: the Coulomb law itself. Sticking: |f| <= alpha_s, to 1e-9
     (the event's location in round-off); at each stick -> slip switch the needed friction equals
     the limit to 1e-8; slipping (alpha_v = 0): |f| = alpha_k exactly (eq. 7 without
     regularisation), to 1e-12."""
