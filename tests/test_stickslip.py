@@ -188,3 +188,12 @@ def test_slip_law_is_the_package_traction():
     """The slip phase uses eq. (7) unregularised: traction with epsilon = 0 is alpha_k e_v."""
     f1, f2 = traction(0.3, -0.4, 0.0, 0.7, 0.0, 0.0)
     assert (f1, f2) == pytest.approx((-0.7 * 0.6, 0.7 * 0.8), rel=1e-15)
+
+
+def test_plot_marks_every_switch(run):
+    """The figure draws the run's switches: one marker per switch, at the run's switch times."""
+    from stability.plotting import plot_stick_slip
+
+    fig, axes = plot_stick_slip(run)
+    marked = np.concatenate([ln.get_xdata() for ln in axes[0].get_lines() if ln.get_marker() in ("v", "^", "x")])
+    np.testing.assert_array_equal(np.sort(marked), np.sort(run.switch_time.values))
