@@ -74,8 +74,15 @@ def _reference_switches(t_end):
     stop.direction = brk.direction = -1
     t, sticking, out = 0.0, False, []
     while t < t_end:
-        sol = solve_ivp(roll if sticking else slip, (t, t_end), y, method="DOP853", rtol=1e-11, atol=1e-14,
-                        events=brk if sticking else stop)
+        sol = solve_ivp(
+            roll if sticking else slip,
+            (t, t_end),
+            y,
+            method="DOP853",
+            rtol=1e-11,
+            atol=1e-14,
+            events=brk if sticking else stop,
+        )
         if sol.t_events[0].size == 0:
             break
         t, ye = float(sol.t_events[0][0]), sol.y_events[0][0]
@@ -143,8 +150,15 @@ def test_uniform_ball_stops_slipping_at_the_closed_form_time():
     over the rate ~0.1, and the integrator's error."""
     mu, ak = 2.28, 0.1
     ds = stability.stick_slip(
-        t_end=10.0, q=0.0, sigma=1.0, mu=mu, fr_inv=0.3, alpha_k=ak, omega=[0.2, -0.1, 3.0],
-        k=[0.1, 0.0, 1.0], velocity=[0.05, 0.3],
+        t_end=10.0,
+        q=0.0,
+        sigma=1.0,
+        mu=mu,
+        fr_inv=0.3,
+        alpha_k=ak,
+        omega=[0.2, -0.1, 3.0],
+        k=[0.1, 0.0, 1.0],
+        velocity=[0.05, 0.3],
     )
     vc0 = math.hypot(0.05 - (-0.1), 0.3 + 0.2)
     assert list(ds.switch_kind.values) == ["stick"]
@@ -174,8 +188,12 @@ def test_final_state_of_a_coulomb_top_is_rolling_in_its_band():
 
 @pytest.mark.parametrize(
     "change, name",
-    [(dict(alpha_k=0.0), "alpha_k"), (dict(alpha_s=0.01), "alpha_s"), (dict(fr_inv=0.0), "fr_inv"),
-     (dict(slip_threshold=-1.0), "slip_threshold")],
+    [
+        (dict(alpha_k=0.0), "alpha_k"),
+        (dict(alpha_s=0.01), "alpha_s"),
+        (dict(fr_inv=0.0), "fr_inv"),
+        (dict(slip_threshold=-1.0), "slip_threshold"),
+    ],
 )
 def test_bad_input_names_the_parameter(change, name):
     args = dict(t_end=1.0, **TOP, **LAUNCH, alpha_k=ALPHA_K)

@@ -60,7 +60,7 @@ from scipy.integrate import solve_ivp
 from ..errors import InputError
 from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
-from .parameters import MU, FR_INV, NORMAL, pack
+from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
 __all__ = ["PHASES", "SWITCH_KINDS", "stick_slip"]
@@ -194,7 +194,7 @@ def stick_slip(
     rolling = get_nonlinear_model("rolling")
     # the exact law (7) while slipping: no regularisation (|V_c| >= slip_threshold > 0 there)
     p = p_reg.copy()
-    p[6] = 0.0  # EPSILON
+    p[EPSILON] = 0.0
     scaled = p[NORMAL] == 1.0
     n_eq = p[MU] * p[FR_INV]
 
@@ -256,13 +256,25 @@ def stick_slip(
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:
             sol = solve_ivp(
-                slip_rhs, (t, t_end), y, method=method, t_eval=t_eval, events=(ev_slip_stop, ev_slip_contact),
-                rtol=rtol, atol=atol,
+                slip_rhs,
+                (t, t_end),
+                y,
+                method=method,
+                t_eval=t_eval,
+                events=(ev_slip_stop, ev_slip_contact),
+                rtol=rtol,
+                atol=atol,
             )
         else:
             sol = solve_ivp(
-                roll_rhs, (t, t_end), y, method=method, t_eval=t_eval, events=(ev_stick_break, ev_stick_contact),
-                rtol=rtol, atol=atol,
+                roll_rhs,
+                (t, t_end),
+                y,
+                method=method,
+                t_eval=t_eval,
+                events=(ev_stick_break, ev_stick_contact),
+                rtol=rtol,
+                atol=atol,
             )
         if sol.status < 0:
             status, message = -1, f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
@@ -354,7 +366,11 @@ def stick_slip(
     ds["friction_limit"] = (
         "time",
         lim,
-        {"long_name": "static friction limit", "units": "1", "comment": "alpha_s n: the largest friction while sticking"},
+        {
+            "long_name": "static friction limit",
+            "units": "1",
+            "comment": "alpha_s n: the largest friction while sticking",
+        },
     )
     cols = list(zip(*switches)) if switches else [[]] * 6
     ds = ds.assign(
@@ -370,7 +386,11 @@ def stick_slip(
             np.array(cols[3], float),
             {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"},
         ),
-        switch_spin=("switch", np.array(cols[4], float), {"long_name": "spin omega . k at the switch", "units": "Omega"}),
+        switch_spin=(
+            "switch",
+            np.array(cols[4], float),
+            {"long_name": "spin omega . k at the switch", "units": "Omega"},
+        ),
         switch_friction_ratio=(
             "switch",
             np.array(cols[5], float),

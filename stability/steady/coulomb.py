@@ -28,9 +28,8 @@ import numpy as np
 
 from ..nonlinear.stickslip import stick_slip
 from . import family
-from .final import Candidate, FinalState, SettleRun, candidates
 
-__all__ = ["ROLLING_BAND_POINTS", "coulomb_final_state", "rolling_band"]
+__all__ = ["ROLLING_BAND_POINTS", "coulomb_end", "rolling_band"]
 
 #: points of the grid in cos(tilt) on which the rolling band is bracketed before refinement
 ROLLING_BAND_POINTS = 2001
@@ -72,7 +71,7 @@ def rolling_band(
     return math.degrees(math.acos(max(-1.0, min(1.0, ends[0])))), math.degrees(math.acos(max(-1.0, min(1.0, ends[1]))))
 
 
-def coulomb_final_state(
+def coulomb_end(
     y: np.ndarray,
     params: dict[str, float],
     *,
@@ -80,7 +79,7 @@ def coulomb_final_state(
     alpha_s: Any = None,
     t_max: float = 1000.0,
     rtol: float = 1e-10,
-) -> FinalState:
+) -> tuple[dict[str, Any], dict[str, Any], tuple[float, float] | None]:
     """The end of a Coulomb top from a checked state ``y`` (``initial_state("sliding", ...)``)
     and checked parameters ``q, fr_inv, sigma, mu, alpha_v``: a hybrid run to ``t_max``
     (:func:`~stability.nonlinear.stickslip.stick_slip`, which checks ``alpha_k``, ``alpha_s``)
@@ -88,11 +87,17 @@ def coulomb_final_state(
 
     Returns
     -------
-    FinalState
-        ``kind = "rolling"`` (the run ends sticking; ``tilt`` the tilt at the last stick,
+    fields : dict
+        The fields of :class:`stability.steady.final.FinalState` but ``candidates`` and
+        ``run``: ``kind = "rolling"`` (the run ends sticking; ``tilt`` the tilt at the last stick,
         ``energy`` its conserved energy, the band and the switches in ``reason``),
         ``"unsettled"`` (still slipping at ``t_max``) or ``"contact_lost"``;
         ``method = "simulation"``.
+    run : dict
+        The fields of :class:`stability.steady.final.SettleRun` (the hybrid run).
+    level : tuple of float or None
+        ``(J, E)`` of the rolling motion (its candidates are the steady states of that level),
+        None if it does not end rolling.
     """
     t0 = time.perf_counter()
     q, sigma, fr_inv, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "mu"))
@@ -117,10 +122,9 @@ def coulomb_final_state(
     tilt0 = float(ds.polar_angle[0])
     kinds = ds.switch_kind.values
     n_sw = int(ds.attrs["n_switches"])
-    stuck = ds.phase.values == 1
     last_stick = np.flatnonzero(kinds == "stick")
     phase_end = ds.attrs["final_phase"]
-    run = SettleRun(
+    run = dict(
         t_end=float(ds.time[-1]),
         settled=phase_end == "stick" and ds.attrs["event"] == "none",
         tilt_change=math.nan,
@@ -133,44 +137,48 @@ def coulomb_final_state(
         event_time=ds.attrs["event_time"],
     )
     par = dict(params, alpha_k=float(ds.attrs["alpha_k"]))
-    switches = f"static limit alpha_s = {float(ds.attrs['alpha_s']):.6g}; {n_sw} stick/slip switches (hybrid run to t = {run.t_end:.6g})"
+    switches = f"static limit alpha_s = {float(ds.attrs['alpha_s']):.6g}; {n_sw} stick/slip switches (hybrid run to t = {run['t_end']:.6g})"
     jel = float(j[-1])
-    if run.event != "none":
-        return FinalState(
-            tilt=float(ds.polar_angle[-1]),
-            kind=run.event,
-            method="simulation",
-            jellett=float(j[0]),
-            initial_energy=e0,
-            energy=float(ds.energy[-1]),
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            candidates=(),
-            reason=f"Coulomb top (alpha_k > 0): {switches}; {run.event.replace('_', ' ')} at t = "
-            f"{run.event_time:.6g}: the model does not hold beyond, no final state",
-            run=run,
-            parameters=par,
-            initial_tilt=tilt0,
-            event=run.event,
-            event_time=run.event_time,
+    if run["event"] != "none":
+        return (
+            dict(
+                tilt=float(ds.polar_angle[-1]),
+                kind=run["event"],
+                method="simulation",
+                jellett=float(j[0]),
+                initial_energy=e0,
+                energy=float(ds.energy[-1]),
+                precession_rate=math.nan,
+                axial_spin=run["axial_spin"],
+                state=None,
+                reason=f"Coulomb top (alpha_k > 0): {switches}; {run['event'].replace('_', ' ')} at t = "
+                f"{run['event_time']:.6g}: the model does not hold beyond, no final state",
+                parameters=par,
+                initial_tilt=tilt0,
+                event=run["event"],
+                event_time=run["event_time"],
+            ),
+            run,
+            None,
         )
     if phase_end != "stick":
-        return FinalState(
-            tilt=float(ds.polar_angle[-1]),
-            kind="unsettled",
-            method="simulation",
-            jellett=float(j[0]),
-            initial_energy=e0,
-            energy=float(ds.energy[-1]),
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            candidates=(),
-            reason=f"Coulomb top (alpha_k > 0): {switches}; still slipping at t_max = {t_max:g}",
-            run=run,
-            parameters=par,
-            initial_tilt=tilt0,
+        return (
+            dict(
+                tilt=float(ds.polar_angle[-1]),
+                kind="unsettled",
+                method="simulation",
+                jellett=float(j[0]),
+                initial_energy=e0,
+                energy=float(ds.energy[-1]),
+                precession_rate=math.nan,
+                axial_spin=run["axial_spin"],
+                state=None,
+                reason=f"Coulomb top (alpha_k > 0): {switches}; still slipping at t_max = {t_max:g}",
+                parameters=par,
+                initial_tilt=tilt0,
+            ),
+            run,
+            None,
         )
     t_stick = float(ds.switch_time.values[last_stick[-1]]) if last_stick.size else 0.0
     i_stick = int(np.searchsorted(ds.time.values, t_stick, side="right"))  # the first rolling sample
@@ -179,9 +187,6 @@ def coulomb_final_state(
     lo, hi = rolling_band(tilt_s, e_s, jel, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     seen = ds.polar_angle.values[i_stick:]
     need = np.nanmax(ds.friction_magnitude.values[i_stick:] / ds.friction_limit.values[i_stick:])
-    cands: tuple[Candidate, ...] = candidates(
-        jel, e_s, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=max(params["alpha_v"], 1e-300), mu=mu
-    )
     reason = (
         f"Coulomb top (alpha_k > 0): {switches}; it sticks at t = {t_stick:.6g} (tilt {tilt_s:.6g} deg) and "
         f"rolls without slipping from then on: no work is done at the resting contact point, so the energy "
@@ -189,7 +194,7 @@ def coulomb_final_state(
         f"the rolling band [{lo:.6g}, {hi:.6g}] deg where U_J <= E (seen: [{seen.min():.6g}, {seen.max():.6g}] deg "
         f"up to t_max = {t_max:g}); the friction rolling needs peaks at {need:.3g} of the static limit"
     )
-    return FinalState(
+    fields = dict(
         tilt=tilt_s,
         kind="rolling",
         method="simulation",
@@ -197,11 +202,11 @@ def coulomb_final_state(
         initial_energy=e0,
         energy=e_s,
         precession_rate=math.nan,
-        axial_spin=run.axial_spin,
+        axial_spin=run["axial_spin"],
         state=None,
-        candidates=cands,
         reason=reason,
-        run=SettleRun(**{**run.__dict__, "tilt_change": float(np.ptp(seen))}),
         parameters=par,
         initial_tilt=tilt0,
     )
+    run["tilt_change"] = float(np.ptp(seen))
+    return fields, run, (jel, e_s)

@@ -496,11 +496,14 @@ def final_state(
     """
     params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-    if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls
-        from .coulomb import coulomb_final_state
+    if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls (steady/coulomb.py)
+        from .coulomb import coulomb_end
 
         y = initial_state("sliding", omega, k, velocity)
-        return coulomb_final_state(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol)
+        fields, run, level = coulomb_end(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol)
+        # the level's steady states, flagged for the viscous sliding top (none without alpha_v)
+        cands = () if level is None or alpha_v == 0.0 else candidates(*level, **params)
+        return FinalState(**fields, candidates=cands, run=SettleRun(**run))
     if alpha_v == 0.0:
         raise DomainError(
             "alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
