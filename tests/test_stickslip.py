@@ -215,3 +215,15 @@ def test_plot_marks_every_switch(run):
     fig, axes = plot_stick_slip(run)
     marked = np.concatenate([ln.get_xdata() for ln in axes[0].get_lines() if ln.get_marker() in ("v", "^", "x")])
     np.testing.assert_array_equal(np.sort(marked), np.sort(run.switch_time.values))
+
+
+def test_a_rolling_start_sticks_from_the_start():
+    """A start without slip (V0 = -K x omega) whose rolling needs less than the limit sticks at
+    once: phase 1 from t = 0, no switch, and the energy of the rolling top is constant (its
+    integral; 1e-9 relative at rtol 1e-10 over 20 time units)."""
+    ds = stability.stick_slip(
+        t_end=20.0, **TOP, alpha_k=0.2, omega=[0.3, 0.0, 1.5], k=[0.5, 0.0, 0.866], velocity=[0.0, -0.3]
+    )
+    assert np.all(ds.phase.values == 1) and ds.sizes["switch"] == 0
+    assert np.ptp(ds.energy.values) < 1e-9 * abs(float(ds.energy[0]))
+    assert float(ds.slip_speed.max()) < 1e-15

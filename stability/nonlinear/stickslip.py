@@ -51,6 +51,7 @@ settle: it rolls forever with the energy and ``J`` it had at its last stick
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -287,7 +288,7 @@ def stick_slip(
         out = sol.y.T
         hit = [i for i, te in enumerate(sol.t_events) if te.size]
         if hit:
-            which = hit[0]
+            which = min(hit, key=lambda i: float(sol.t_events[i][0]))  # the earliest event
             t_ev = float(sol.t_events[which][0])
             y_ev = sol.y_events[which][0]
             sel = keep < t_ev
@@ -321,6 +322,8 @@ def stick_slip(
             ratio = math.hypot(*f) / limit(n)
             switches.append((t_ev, "slip", _tilt(y_ev), 0.0, float(y_ev[0:3] @ y_ev[3:6]), ratio))
             phase, y = _SLIP, _sliding_state(y_ev, -2.0 * slip_threshold * f / math.hypot(*f))
+    if status < 0:
+        warnings.warn(f"stick_slip: {message}", RuntimeWarning, stacklevel=2)
     t_all = np.concatenate(ts)
     y_all = np.vstack(ys)
     ph = np.concatenate(phases)
