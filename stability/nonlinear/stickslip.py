@@ -356,6 +356,9 @@ def stick_slip(
         ds["normal_force"].values = nf
     if scaled:
         lim = a_s * ds.normal_force.values / n_eq
+    ds["friction"].attrs["comment"] = (
+        "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
+    )
     ds["phase"] = (
         "time",
         ph,
