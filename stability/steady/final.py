@@ -40,7 +40,7 @@ from stability.jit import Compiled
 from ..errors import DomainError
 from ..execution import announce, before_compiled_call
 from ..nonlinear.runs import _auto_method, initial_state, simulate
-from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
+from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
@@ -445,6 +445,8 @@ def final_state(
     t_max: Any = 2e5,
     settle_tolerance: Any = 1e-4,
     rtol: Any = 1e-10,
+    alpha_k: Any = 0.0,
+    alpha_s: Any = None,
 ) -> FinalState:
     """The predicted end of the motion of a sliding top (simulate's state arguments).
 
@@ -469,6 +471,11 @@ def final_state(
     rtol : float, default 1e-10
         Tolerance of the run (``atol = 1e-3 rtol``); ``J`` drifts by about ``0.25 rtol`` per
         1000 time units, and near a branch point the end tilt is sensitive to ``J``.
+    alpha_k, alpha_s : float, optional
+        Coulomb friction (eq. 7; ``alpha_s`` the static limit, default ``alpha_k``): with
+        ``alpha_k > 0`` the top sticks and rolls, and the answer is that rolling motion
+        (:func:`stability.steady.coulomb.coulomb_final_state`; a hybrid run to ``t_max``,
+        ``alpha_v = 0`` allowed; its run lasts ``min(t_max, 1000)``).
 
     Returns
     -------
@@ -497,6 +504,14 @@ def final_state(
     """
     params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+    if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls (steady/coulomb.py)
+        from .coulomb import coulomb_end
+
+        y = initial_state("sliding", omega, k, velocity)
+        fields, run, level = coulomb_end(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol)
+        # the level's steady states, flagged for the viscous sliding top (none without alpha_v)
+        cands = () if level is None or alpha_v == 0.0 else candidates(*level, **params)
+        return FinalState(**fields, candidates=cands, run=SettleRun(**run))
     if alpha_v == 0.0:
         raise DomainError(
             "alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
