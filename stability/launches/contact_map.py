@@ -1,0 +1,309 @@
+"""Where a launch loses its contact: the boundary ``N_min = 0`` in the plane of two launch
+quantities, traced by continuation (issue 19, "Where contact is lost").
+
+The launch (nondimensional as :func:`stability.simulate`, ``Omega`` the launch spin): the axis
+tilted by ``tilt`` in the x-z plane, ``k = (sin tilt, 0, cos tilt)``, spun about it and tipped
+at the rate ``tilt_rate`` about the horizontal ``J``,
+
+    omega = k + (tilt_rate / Omega) J,      d(tilt)/dt = tilt_rate at t = 0
+
+(``J x k = (cos tilt, 0, -sin tilt)`` is the direction of increasing tilt), the sphere's centre
+at rest. ``tilt_rate = 0`` is the launch state of :func:`stability.launch`.
+
+The smallest normal force of a run over ``duration`` seconds,
+
+    N_min = min over 0 <= t <= T of N(t),  N = mu fr_inv + mu q (k'')_3  (eq. 1, vertical),
+
+is found on a run that is *not* stopped at ``N = 0`` (:func:`stability.nonlinear.integrators.integrate`
+with the contact unwatched, so that ``N_min`` keeps its sign beyond the boundary): the smallest
+sample of ``N`` on an output grid of step :data:`SAMPLE_STEP`, then the interior minimum
+(``dN/dt = 0``) between its two neighbours by Brent's bounded minimisation, each trial time a
+run restarted from the sample before (so the minimum is one of the integrated solution, and
+``N`` there is exact to the integrator's tolerance: an error ``delta`` in the time of the
+minimum moves the value by ``N'' delta^2 / 2`` only). Where the run's smallest ``N`` is at
+``t = 0`` or ``T`` (no interior minimum) the sample is used. ``N_min`` is a minimum over time: a
+smooth function of the launch where one interior minimum is the smallest (envelope theorem:
+``d N_min / d p = dN/dp`` at ``t*``), with kinks where two minima exchange.
+
+The residual of the continuation is ``N_min / (M g)`` (the equilibrium normal force is
+``mu fr_inv`` in the units of the run, so this is ``N_min / (mu fr_inv)``: 1 at rest, O(1),
+continuous in the spin); the engine (:func:`continuation.trace`, generic) follows its zero
+through the box of the two quantities (the box's edges its constraints), from a zero found by
+Brent's method on a grid line where the grid's ``N_min`` changes sign. The grid itself (coarse,
+for the figure's colour) and the traced line are returned in one Dataset (product
+``contact_loss_map``, docs/datasets.md).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from continuation.engine import TraceOptions, trace
+
+from .._version import package_version
+from ..errors import InputError
+from ..nonlinear import get_nonlinear_model
+from ..nonlinear.integrators import integrate
+from ..nonlinear.runs import initial_state, model_parameter_vector
+from ..parameters import check_choice, check_positive
+from ..products import PRODUCT_ATTR
+from ..top import Top, check_launch_spin, from_rad_per_s, to_rad_per_s
+from .flip import launch_parameters
+
+__all__ = ["PRODUCT", "QUANTITIES", "ContactLossProblem", "contact_loss_boundary", "launch_min_normal_force"]
+
+#: the product attribute of :func:`contact_loss_boundary` (docs/datasets.md)
+PRODUCT = "contact_loss_map"
+#: the launch quantities a map can be drawn over, and their units (spin: the caller's unit)
+QUANTITIES = {"spin": None, "tilt": "degree", "tilt_rate": "rad s-1"}
+#: output step of the run on which the smallest normal force is first looked for (units of 1/Omega;
+#: a nutation period is about 2 pi / sigma, so ~60 samples a period)
+SAMPLE_STEP = 0.1
+#: integrator tolerance of the runs (the boundary is located to about this, relative)
+RUN_RTOL = 1e-10
+
+
+def launch_min_normal_force(
+    top: Top,
+    spin: float,
+    tilt: float,
+    tilt_rate: float,
+    *,
+    duration: float = 1.0,
+    alpha_v: Any = None,
+    rtol: float = RUN_RTOL,
+) -> tuple[float, float]:
+    """The smallest normal force of a launch over ``duration`` seconds, in units of ``M g``,
+    and its time (s) (module docstring). ``spin`` and ``tilt_rate`` in rad/s, ``tilt`` in
+    degrees."""
+    from scipy.optimize import minimize_scalar
+
+    w, params, _ = launch_parameters(top, spin, "rad/s", alpha_v, "sliding")
+    nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
+    _, p = model_parameter_vector("sliding", **nd)
+    th = math.radians(tilt)
+    k = np.array([math.sin(th), 0.0, math.cos(th)])
+    y0 = initial_state("sliding", k + (tilt_rate / w) * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0])
+    t_end = duration * w
+    n = max(2, int(math.ceil(t_end / SAMPLE_STEP)))
+    t_eval = np.linspace(0.0, t_end, n + 1)
+    model = get_nonlinear_model("sliding")
+    sol = integrate("sliding", y0, t_eval, p, rtol=rtol, atol=1e-3 * rtol)
+    if sol.status < 0:
+        from ..errors import RunError
+
+        raise RunError(f"the launch run failed: {sol.message}")
+    forces = model.contact_forces(np.ascontiguousarray(sol.y), p)[:, 2]
+    i = int(np.argmin(forces))
+    unit = nd["mu"] * nd["fr_inv"]
+    if i == 0 or i == n:
+        return float(forces[i]) / unit, float(t_eval[i]) / w
+    start, dt = sol.y[i - 1], t_eval[1] - t_eval[0]
+
+    def force(tau: float) -> float:
+        if tau <= 0.0:
+            return float(forces[i - 1])
+        s = integrate("sliding", start, np.array([0.0, tau]), p, rtol=rtol, atol=1e-3 * rtol)
+        return float(model.contact_forces(np.ascontiguousarray(s.y[-1:]), p)[0, 2])
+
+    res = minimize_scalar(force, bounds=(0.0, 2.0 * dt), method="bounded", options={"xatol": 1e-9})
+    best = min(float(res.fun), float(forces[i]))
+    return best / unit, (float(t_eval[i - 1]) + float(res.x)) / w
+
+
+class ContactLossProblem:
+    """Continuation problem ``N_min(x, y) / (M g) = 0`` (module docstring): ``u = (x, y)``, the
+    two launch quantities in SI (spin and tilt rate rad/s, tilt degrees), one equation; the
+    box ``lower <= u <= upper`` as the constraints."""
+
+    constraint_names = ("x_min", "x_max", "y_min", "y_max")
+
+    def __init__(self, top: Top, names: tuple[str, str], launch: dict[str, float], box: np.ndarray, **run: Any):
+        self.top, self.names, self.launch, self.box, self.run = top, names, launch, box, run
+
+    def min_force(self, u: np.ndarray) -> tuple[float, float]:
+        """``(N_min / (M g), its time in s)`` at the launch ``u``."""
+        q = dict(self.launch)
+        q[self.names[0]], q[self.names[1]] = float(u[0]), float(u[1])
+        return launch_min_normal_force(self.top, q["spin"], q["tilt"], q["tilt_rate"], **self.run)
+
+    def residual(self, u: np.ndarray) -> np.ndarray:
+        return np.array([self.min_force(u)[0]])
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        b = self.box
+        return np.array([u[0] - b[0, 0], b[0, 1] - u[0], u[1] - b[1, 0], b[1, 1] - u[1]])
+
+
+def _to_si(name: str, values: Any, unit: str) -> np.ndarray:
+    v = np.asarray(values, dtype=float)
+    return to_rad_per_s(v, unit) if name == "spin" else v
+
+
+def contact_loss_boundary(
+    top: Top,
+    *,
+    x: str = "tilt_rate",
+    y: str = "spin",
+    x_range: tuple[float, float] = (0.0, 100.0),
+    y_range: tuple[float, float] = (20.0, 50.0),
+    spin: float = 25.0,
+    tilt: float = 5.0,
+    tilt_rate: float = 0.0,
+    unit: str = "rev/s",
+    grid: tuple[int, int] = (11, 11),
+    duration: float = 1.0,
+    alpha_v: Any = None,
+    max_points: int = 200,
+) -> xr.Dataset:
+    """Where a launch of ``top`` loses its contact, in the plane of two launch quantities.
+
+    Parameters
+    ----------
+    top : stability.Top
+        The top in SI units.
+    x, y : {"spin", "tilt", "tilt_rate"}
+        The two quantities of the plane (different); the third is held at its given value.
+    x_range, y_range : (float, float)
+        Their ranges (spin in ``unit``, tilt in degrees, tilt rate in rad/s).
+    spin, tilt, tilt_rate : float
+        The launch (module docstring); those not on an axis are held.
+    unit : {"rad/s", "rev/s", "rpm", "Hz"}
+        Unit of the spin.
+    grid : (int, int)
+        Points of the coarse grid along x and y (at least 2 each).
+    duration : float, default 1.0
+        Seconds of each run over which the smallest normal force is taken.
+    alpha_v : float, optional
+        As :func:`stability.launch` (default the top's ``mu_v``, else 0.5).
+    max_points : int
+        Points of the traced line, at most, per direction.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``min_normal_force`` (units of ``M g``) and ``min_time`` (s) over ``(y, x)``; the traced
+        boundary ``boundary_x``, ``boundary_y`` along ``point`` (empty where the grid has no
+        sign change); attributes: the held launch, ``unit``, ``duration``, the wall time
+        ``seconds``, the number of runs; product ``contact_loss_map``.
+
+    Raises
+    ------
+    stability.errors.InputError
+        Unknown or equal quantities, an empty range, a grid smaller than 2 x 2.
+    """
+    from scipy.optimize import brentq
+
+    x = check_choice("x", x, tuple(QUANTITIES))
+    y = check_choice("y", y, tuple(QUANTITIES))
+    if x == y:
+        raise InputError(f"x = y = {x!r}: the map needs two different launch quantities")
+    for name, rng in (("x_range", x_range), ("y_range", y_range)):
+        if len(rng) != 2 or not float(rng[0]) < float(rng[1]):
+            raise InputError(f"{name} = {rng!r} must be (low, high) with low < high")
+    nx, ny = (int(v) for v in grid)
+    if nx < 2 or ny < 2:
+        raise InputError(f"grid = {grid!r} is outside the allowed range: at least 2 points along each axis")
+    duration = check_positive("duration", duration)
+    launch = {"spin": check_launch_spin(spin, unit), "tilt": float(tilt), "tilt_rate": float(tilt_rate)}
+    box = np.array([_to_si(x, x_range, unit), _to_si(y, y_range, unit)], dtype=float)
+    for name, (lo, hi) in zip((x, y), box):
+        if name == "spin":
+            check_launch_spin(lo, "rad/s"), check_launch_spin(hi, "rad/s")
+        if name == "tilt" and not (0.0 < lo and hi < 180.0):
+            raise InputError(f"the tilt range {lo:g} to {hi:g} degrees is outside the allowed range: 0 < tilt < 180")
+    problem = ContactLossProblem(top, (x, y), launch, box, duration=duration, alpha_v=alpha_v)
+    t0 = time.perf_counter()
+    xs, ys = np.linspace(*box[0], nx), np.linspace(*box[1], ny)
+    n_min = np.empty((ny, nx))
+    t_min = np.empty((ny, nx))
+    for j, yv in enumerate(ys):
+        for i, xv in enumerate(xs):
+            n_min[j, i], t_min[j, i] = problem.min_force(np.array([xv, yv]))
+    runs = nx * ny
+    # a start on the boundary: the first grid edge (along y, then along x) where N_min changes sign
+    start = None
+    for i in range(nx):
+        s = np.nonzero(np.sign(n_min[:-1, i]) * np.sign(n_min[1:, i]) < 0)[0]
+        if s.size:
+            j = int(s[0])
+            yz = brentq(lambda v: problem.residual(np.array([xs[i], v]))[0], ys[j], ys[j + 1], xtol=1e-10 * abs(ys[j + 1]))
+            start = np.array([xs[i], yz])
+            break
+    if start is None:
+        for j in range(ny):
+            s = np.nonzero(np.sign(n_min[j, :-1]) * np.sign(n_min[j, 1:]) < 0)[0]
+            if s.size:
+                i = int(s[0])
+                xz = brentq(lambda v: problem.residual(np.array([v, ys[j]]))[0], xs[i], xs[i + 1], xtol=1e-10 * max(1.0, abs(xs[i + 1])))
+                start = np.array([xz, ys[j]])
+                break
+    bx = by = np.zeros(0)
+    kinds: list[str] = []
+    if start is not None:
+        widths = box[:, 1] - box[:, 0]
+        options = TraceOptions(
+            step=0.02,
+            max_step=0.05,
+            tol=1e-8,
+            scale=(float(widths[0]), float(widths[1])),
+            detect_branch_points=False,
+            detect_closed=False,
+            max_points=max_points,
+            max_angle=0.3,
+        )
+        halves = []
+        for direction in (1, -1):
+            b = trace(problem, start, options, direction=direction, project_start=False)
+            halves.append(b)
+        pts = np.concatenate([halves[1].points[::-1], halves[0].points[1:]])
+        kinds = halves[1].kinds[::-1] + halves[0].kinds[1:]
+        bx, by = pts[:, 0], pts[:, 1]
+    seconds = time.perf_counter() - t0
+
+    def axis_values(name: str, v: np.ndarray) -> np.ndarray:
+        return from_rad_per_s(v, unit) if name == "spin" else v
+
+    def units(name: str) -> str:
+        return unit if name == "spin" else str(QUANTITIES[name])
+
+    held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
+    ds = xr.Dataset(
+        {
+            "min_normal_force": (
+                ("y", "x"),
+                n_min,
+                {"long_name": "smallest normal force of the run", "units": "M g", "comment": "below 0: contact lost"},
+            ),
+            "min_time": (("y", "x"), t_min, {"long_name": "time of the smallest normal force", "units": "s"}),
+            "boundary_x": ("point", axis_values(x, bx), {"long_name": f"{x} on the boundary N_min = 0", "units": units(x)}),
+            "boundary_y": ("point", axis_values(y, by), {"long_name": f"{y} on the boundary N_min = 0", "units": units(y)}),
+            "boundary_kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of the traced point"}),
+        },
+        coords={
+            "x": ("x", axis_values(x, xs), {"long_name": x.replace("_", " "), "units": units(x)}),
+            "y": ("y", axis_values(y, ys), {"long_name": y.replace("_", " "), "units": units(y)}),
+        },
+        attrs={
+            "Conventions": "CF-1.10",
+            PRODUCT_ATTR: PRODUCT,
+            "title": "where a launch loses its contact: the smallest normal force of the run",
+            "source": f"tippe-stability {package_version()}",
+            "x_quantity": x,
+            "y_quantity": y,
+            "unit": unit,
+            **{f"launch_{k}": float(v) for k, v in held.items()},
+            "duration": duration,
+            "runs": runs,
+            "seconds": seconds,
+            "q": top.q,
+            "mu": top.mu,
+            "sigma": top.sigma,
+        },
+    )
+    return ds
