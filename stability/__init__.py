@@ -73,6 +73,7 @@ _EXPORTS: dict[str, str] = {
     "launch": ".launches.result",
     "Launch": ".launches.result",
     "flip_time": ".launches.flip",
+    "contact_loss_boundary": ".launches.contact_map",
     "ImplausibleTopWarning": ".top",
 }
 
@@ -95,6 +96,7 @@ __all__ = [
     "bifurcation_diagram",
     "check_domain",
     "class_atlas",
+    "contact_loss_boundary",
     "coulomb_growth",
     "critical_spin",
     "eigenvalues",
@@ -138,6 +140,7 @@ _DATASETS = frozenset(
         "fold_curve",
         "steady_branch",
         "bifurcation_diagram",
+        "contact_loss_boundary",
     }
 )
 
