@@ -1,0 +1,108 @@
+"""Where a launch loses its contact (stability.contact_loss_boundary): the smallest normal force
+of a run and the traced boundary N_min = 0, each against an independent reference.
+
+Reference: the sliding sphere of tests/test_contact_loss.py (Newton's law for G and Euler's law
+about G, written independently of the package, N from the vertical momentum equation),
+integrated by scipy's DOP853 at rtol 1e-12 with dense output; its smallest N over the run is
+found by sampling the dense output every 0.02 time units and Brent's bounded minimisation of
+N(dense(t)) around the smallest sample. Tolerances: both runs are held to rtol ~1e-10 or better
+and N is O(1) in units of M g, so the two minima agree to ~1e-8; 1e-7 M g leaves room for the
+error growth over a few hundred time units.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq, minimize_scalar
+from test_contact_loss import MU, _accelerations
+
+import stability
+from stability.errors import InputError
+from stability.launches.contact_map import launch_min_normal_force
+
+TOP = stability.Top.table1()
+ALPHA_V = 0.5  # the launch default (stability.launches.flip.DEFAULT_ALPHA_V)
+
+
+def _reference_min(spin, tilt, rate, duration):
+    """Smallest N / (M g) of the launch over duration seconds, independently (module docstring)."""
+    nd = TOP.nondimensional(spin, alpha_v=ALPHA_V)
+    q, fr, sg, mu = nd["q"], nd["fr_inv"], nd["sigma"], nd["mu"]
+    assert mu == pytest.approx(MU)
+    th = math.radians(tilt)
+    k = np.array([math.sin(th), 0.0, math.cos(th)])
+    y0 = np.concatenate([k + rate / spin * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0]])
+
+    def f(t, y):
+        x = _accelerations(y, q, fr, sg, ALPHA_V, MU)
+        return np.concatenate([x[0:3], np.cross(y[0:3], y[3:6]), x[3:5]])
+
+    t_end = duration * spin
+    sol = solve_ivp(f, (0.0, t_end), y0, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
+
+    def n(t):
+        return _accelerations(sol.sol(t), q, fr, sg, ALPHA_V, MU)[5] / (mu * fr)
+
+    ts = np.arange(0.0, t_end, 0.02)
+    vals = np.array([n(t) for t in ts])
+    i = int(np.argmin(vals))
+    res = minimize_scalar(n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded",
+                          options={"xatol": 1e-10})
+    return min(float(res.fun), float(vals[i]))
+
+
+@pytest.mark.parametrize("spin, tilt, rate", [(150.0, 5.0, 60.0), (250.0, 5.0, 120.0)])
+def test_min_normal_force_against_independent_dop853(spin, tilt, rate):
+    n_min, _ = launch_min_normal_force(TOP, spin, tilt, rate, duration=0.5)
+    assert n_min == pytest.approx(_reference_min(spin, tilt, rate, 0.5), abs=1e-7)
+
+
+def test_traced_boundary_against_bisection_and_reference():
+    """The traced line is the grid's zero contour: at two of its points the zero of N_min found
+    by Brent's method along the spin at the traced tilt rate (to 1e-10 rad/s) matches the traced
+    spin to 1e-6 relative (the engine accepts |N_min| <= 1e-8 M g, and dN_min/dspin is ~1e-2 per
+    rad/s, so the traced spin is within ~1e-6 rad/s); and the independent run's N_min there is
+    0 to 1e-7 M g (module docstring)."""
+    ds = stability.contact_loss_boundary(
+        TOP, x="tilt_rate", y="spin", x_range=(90.0, 110.0), y_range=(38.0, 46.0), unit="rev/s",
+        tilt=5.0, grid=(3, 3), duration=0.5, max_points=8,
+    )
+    assert ds.attrs[stability.products.PRODUCT_ATTR] == "contact_loss_map"
+    z = ds.min_normal_force.values
+    assert z.min() < 0 < z.max()
+    n = ds.sizes["point"]
+    assert n >= 3
+    for j in (0, n // 2):
+        rate = float(ds.boundary_x[j])
+        spin = float(ds.boundary_y[j]) * 2 * math.pi
+        zero = brentq(lambda s: launch_min_normal_force(TOP, s, 5.0, rate, duration=0.5)[0],
+                      38.0 * 2 * math.pi, 46.0 * 2 * math.pi, xtol=1e-10)
+        assert spin == pytest.approx(zero, rel=1e-6)
+        assert abs(_reference_min(spin, 5.0, rate, 0.5)) < 1e-7
+
+
+def test_contact_map_figure():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from stability.plotting.contact_plots import plot_contact_loss_map
+
+    ds = stability.contact_loss_boundary(
+        TOP, x="tilt", y="tilt_rate", x_range=(2.0, 10.0), y_range=(60.0, 140.0), spin=40.0, unit="rev/s",
+        grid=(2, 2), duration=0.3, max_points=4,
+    )
+    fig, ax = plot_contact_loss_map(ds)
+    assert ax.get_xlabel().startswith("tilt")
+    assert ax.collections  # the N_min colour mesh
+
+
+@pytest.mark.parametrize(
+    "kw, name",
+    [({"x": "spin", "y": "spin"}, "x = y"), ({"x": "wobble"}, "x"), ({"x_range": (5.0, 1.0)}, "x_range"),
+     ({"grid": (1, 4)}, "grid"), ({"x": "tilt", "x_range": (0.0, 10.0)}, "tilt range")],
+)
+def test_bad_input_is_refused_naming_the_parameter(kw, name):
+    with pytest.raises(InputError, match=name):
+        stability.contact_loss_boundary(TOP, **kw)
