@@ -106,3 +106,38 @@ def test_contact_map_figure():
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
     with pytest.raises(InputError, match=name):
         stability.contact_loss_boundary(TOP, **kw)
+
+
+@pytest.mark.parametrize("rev_s, answer", [(7.15, "falls_back"), (40.0, "spins")])
+def test_launch_says_whether_the_top_spins_on_its_stick(rev_s, answer):
+    """The launch's stick answer: the spin about the axis at the stick (omega . k at the event)
+    against the independent sliding sphere (module docstring) run by DOP853 to the same stick
+    tilt (a terminal event on the tilt), to 1e-6 relative (both at rtol <= 1e-10 over ~1e3 time
+    units); the verdict against the stick's critical spin (131.2 rad/s for this stick, itself
+    checked against runs on the stick in tests/test_stick.py): 7.15 rev/s arrives at ~27 rad/s
+    and falls back, 40 rev/s at ~143 rad/s and spins on."""
+    top = stability.Top.table1(stick=stability.Stick(0.02, 0.003, 0.012))
+    ans = stability.launch(top, rev_s, unit="rev/s")
+    assert ans.event == "stick_contact" and ans.on_stick == answer
+    w = ans.spin
+    nd = top.nondimensional(w, alpha_v=ALPHA_V)
+    q, fr, sg = nd["q"], nd["fr_inv"], nd["sigma"]
+    c = math.cos(math.radians(top.stick_contact()[0]))
+    k0 = np.array([math.sin(math.radians(1.0)), 0.0, math.cos(math.radians(1.0))])
+
+    def f(t, y):
+        x = _accelerations(y, q, fr, sg, ALPHA_V, MU)
+        return np.concatenate([x[0:3], np.cross(y[0:3], y[3:6]), x[3:5]])
+
+    def gap(t, y):
+        return y[5] / np.linalg.norm(y[3:6]) - c
+
+    gap.terminal = True
+    sol = solve_ivp(f, (0.0, 5000.0), np.concatenate([k0, k0, [0.0, 0.0]]), method="DOP853", rtol=1e-11,
+                    atol=1e-13, events=gap)
+    y = sol.y_events[0][0]
+    assert ans.stick_spin == pytest.approx(abs(np.dot(y[0:3], y[3:6])) * w, rel=1e-6)
+    assert ans.stick_critical_spin == pytest.approx(
+        stability.critical_spin(top.on_stick(), "sliding", "upright").spin, rel=1e-12)
+    assert ("spins on its stick" if answer == "spins" else "falls back") in str(ans)
+    assert ans.to_dataset().attrs["on_stick"] == answer
