@@ -108,6 +108,68 @@ def test_bad_input_is_refused_naming_the_parameter(kw, name):
         stability.contact_loss_boundary(TOP, **kw)
 
 
+def _stick_event(omega, k, q, fr, sg, stick_tilt, velocity=(0.0, 0.0)):
+    """Time and state where the independent sliding sphere (module docstring), run by DOP853 at
+    rtol 1e-11, first reaches the tilt ``stick_tilt`` (a terminal event on ``k_3 - cos``)."""
+    c = math.cos(math.radians(stick_tilt))
+
+    def f(t, y):
+        x = _accelerations(y, q, fr, sg, ALPHA_V, MU)
+        return np.concatenate([x[0:3], np.cross(y[0:3], y[3:6]), x[3:5]])
+
+    def gap(t, y):
+        return y[5] / np.linalg.norm(y[3:6]) - c
+
+    gap.terminal = True
+    y0 = np.concatenate([omega, np.asarray(k, float) / np.linalg.norm(k), velocity])
+    sol = solve_ivp(f, (0.0, 5000.0), y0, method="DOP853", rtol=1e-11, atol=1e-13, events=gap)
+    return float(sol.t_events[0][0]), sol.y_events[0][0]
+
+
+def test_final_state_says_when_the_motion_reaches_the_stick():
+    """The paper's Fr^-1 = 0.3 run with the toy's stick: J and E decide 166.0 degrees, beyond the
+    stick's 131.18, so a run says when the stick is reached: its time against the independent
+    DOP853 tilt event to 1e-6 relative (both at rtol <= 1e-10 over ~700 time units); an end below
+    the stick is kept as J and E decide it."""
+    from stability.nonlinear.scene import INITIAL_CONDITIONS
+
+    ic = INITIAL_CONDITIONS[0.3]
+    st = stability.Top.table1(stick=stability.Stick(0.02, 0.003, 0.012)).stick_contact()[0]
+    end = stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=ALPHA_V, stick_tilt=st, **ic)
+    assert end.kind == "stick_contact" and end.tilt == pytest.approx(st, abs=1e-6)
+    t_ref, _ = _stick_event(np.asarray(ic["omega"], float), ic["k"], -0.1, 0.3, 1.0, st, ic["velocity"])
+    assert end.event_time == pytest.approx(t_ref, rel=1e-6)
+    assert "reaches its stick at 131.2 degrees" in end.reason
+    kept = stability.final_state(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=ALPHA_V, stick_tilt=170.0, **ic)
+    assert kept.kind == "tilted" and kept.method == "jellett"
+
+
+def test_bifurcation_diagram_of_a_top_with_a_stick():
+    """The diagram of the toy with its stick: the branch's states beyond the stick marked, a run
+    launched upright at 40 rev/s (1 degree off) stopped at the stick, its time against the
+    independent DOP853 tilt event to 1e-6 relative; the figure draws the stick's tilt."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from stability.plotting.steady_plots import plot_bifurcation
+
+    top = stability.Top.table1(stick=stability.Stick(0.02, 0.003, 0.012))
+    st = top.stick_contact()[0]
+    d = stability.bifurcation_diagram(top, unit="rev/s", runs=[40.0])
+    b = d["branch"]
+    assert b.attrs["stick_tilt"] == st
+    assert np.array_equal(b.beyond_stick.values == 1, b.tilt.values >= st) and b.beyond_stick.sum() > 0
+    r = d["runs"]
+    assert int(r.reaches_stick[0]) == 1 and float(r.end_tilt[0]) == pytest.approx(st, abs=1e-6)
+    nd = top.nondimensional(40.0, "rev/s", alpha_v=ALPHA_V)
+    th = math.radians(1.0)
+    t_ref, _ = _stick_event(np.array([0.0, 0.0, 1.0]), [math.sin(th), 0.0, math.cos(th)], nd["q"], nd["fr_inv"],
+                            nd["sigma"], st)
+    assert float(r.stick_time[0]) == pytest.approx(t_ref, rel=1e-6)
+    fig, ax = plot_bifurcation(b, vertical=d["vertical"], runs=r)
+    assert any("stick touches" in str(line.get_label()) for line in ax.get_lines())
+
+
 @pytest.mark.parametrize("rev_s, answer", [(7.15, "falls_back"), (40.0, "spins")])
 def test_launch_says_whether_the_top_spins_on_its_stick(rev_s, answer):
     """The launch's stick answer: the spin about the axis at the stick (omega . k at the event)
@@ -122,20 +184,8 @@ def test_launch_says_whether_the_top_spins_on_its_stick(rev_s, answer):
     w = ans.spin
     nd = top.nondimensional(w, alpha_v=ALPHA_V)
     q, fr, sg = nd["q"], nd["fr_inv"], nd["sigma"]
-    c = math.cos(math.radians(top.stick_contact()[0]))
     k0 = np.array([math.sin(math.radians(1.0)), 0.0, math.cos(math.radians(1.0))])
-
-    def f(t, y):
-        x = _accelerations(y, q, fr, sg, ALPHA_V, MU)
-        return np.concatenate([x[0:3], np.cross(y[0:3], y[3:6]), x[3:5]])
-
-    def gap(t, y):
-        return y[5] / np.linalg.norm(y[3:6]) - c
-
-    gap.terminal = True
-    sol = solve_ivp(f, (0.0, 5000.0), np.concatenate([k0, k0, [0.0, 0.0]]), method="DOP853", rtol=1e-11,
-                    atol=1e-13, events=gap)
-    y = sol.y_events[0][0]
+    _, y = _stick_event(k0, k0, q, fr, sg, top.stick_contact()[0])
     assert ans.stick_spin == pytest.approx(abs(np.dot(y[0:3], y[3:6])) * w, rel=1e-6)
     assert ans.stick_critical_spin == pytest.approx(
         stability.critical_spin(top.on_stick(), "sliding", "upright").spin, rel=1e-12)
