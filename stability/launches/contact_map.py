@@ -14,14 +14,9 @@ The smallest normal force of a run over ``duration`` seconds,
 
     N_min = min over 0 <= t <= T of N(t),  N = mu fr_inv + mu q (k'')_3  (eq. 1, vertical),
 
-is found on a run that is *not* stopped at ``N = 0`` (:func:`stability.nonlinear.integrators.integrate`
-with the contact unwatched, so that ``N_min`` keeps its sign beyond the boundary): the smallest
-sample of ``N`` on an output grid of step :data:`SAMPLE_STEP`, then the interior minimum
-(``dN/dt = 0``) between its two neighbours by Brent's bounded minimisation, each trial time a
-run restarted from the sample before (so the minimum is one of the integrated solution, and
-``N`` there is exact to the integrator's tolerance: an error ``delta`` in the time of the
-minimum moves the value by ``N'' delta^2 / 2`` only). Where the run's smallest ``N`` is at
-``t = 0`` or ``T`` (no interior minimum) the sample is used. ``N_min`` is a minimum over time: a
+is found on a run that is *not* stopped at ``N = 0``, so that ``N_min`` keeps its sign beyond
+the boundary, at its interior minimum ``dN/dt = 0``
+(:func:`stability.nonlinear.min_force.min_normal_force`). ``N_min`` is a minimum over time: a
 smooth function of the launch where one interior minimum is the smallest (envelope theorem:
 ``d N_min / d p = dN/dp`` at ``t*``), with kinks where two minima exchange.
 
@@ -47,8 +42,7 @@ from continuation.engine import TraceOptions, trace
 
 from .._version import package_version
 from ..errors import InputError
-from ..nonlinear import get_nonlinear_model
-from ..nonlinear.integrators import integrate
+from ..nonlinear.min_force import min_normal_force
 from ..nonlinear.runs import initial_state, model_parameter_vector
 from ..parameters import check_choice, check_positive
 from ..products import PRODUCT_ATTR
@@ -61,9 +55,6 @@ __all__ = ["PRODUCT", "QUANTITIES", "ContactLossProblem", "contact_loss_boundary
 PRODUCT = "contact_loss_map"
 #: the launch quantities a map can be drawn over, and their units (spin: the caller's unit)
 QUANTITIES = {"spin": None, "tilt": "degree", "tilt_rate": "rad s-1"}
-#: output step of the run on which the smallest normal force is first looked for (units of 1/Omega;
-#: a nutation period is about 2 pi / sigma, so ~60 samples a period)
-SAMPLE_STEP = 0.1
 #: integrator tolerance of the runs (the boundary is located to about this, relative)
 RUN_RTOL = 1e-10
 
@@ -81,39 +72,14 @@ def launch_min_normal_force(
     """The smallest normal force of a launch over ``duration`` seconds, in units of ``M g``,
     and its time (s) (module docstring). ``spin`` and ``tilt_rate`` in rad/s, ``tilt`` in
     degrees."""
-    from scipy.optimize import minimize_scalar
-
     w, params, _ = launch_parameters(top, spin, "rad/s", alpha_v, "sliding")
     nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
     _, p = model_parameter_vector("sliding", **nd)
     th = math.radians(tilt)
     k = np.array([math.sin(th), 0.0, math.cos(th)])
     y0 = initial_state("sliding", k + (tilt_rate / w) * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0])
-    t_end = duration * w
-    n = max(2, int(math.ceil(t_end / SAMPLE_STEP)))
-    t_eval = np.linspace(0.0, t_end, n + 1)
-    model = get_nonlinear_model("sliding")
-    sol = integrate("sliding", y0, t_eval, p, rtol=rtol, atol=1e-3 * rtol)
-    if sol.status < 0:
-        from ..errors import RunError
-
-        raise RunError(f"the launch run failed: {sol.message}")
-    forces = model.contact_forces(np.ascontiguousarray(sol.y), p)[:, 2]
-    i = int(np.argmin(forces))
-    unit = nd["mu"] * nd["fr_inv"]
-    if i == 0 or i == n:
-        return float(forces[i]) / unit, float(t_eval[i]) / w
-    start, dt = sol.y[i - 1], t_eval[1] - t_eval[0]
-
-    def force(tau: float) -> float:
-        if tau <= 0.0:
-            return float(forces[i - 1])
-        s = integrate("sliding", start, np.array([0.0, tau]), p, rtol=rtol, atol=1e-3 * rtol)
-        return float(model.contact_forces(np.ascontiguousarray(s.y[-1:]), p)[0, 2])
-
-    res = minimize_scalar(force, bounds=(0.0, 2.0 * dt), method="bounded", options={"xatol": 1e-9})
-    best = min(float(res.fun), float(forces[i]))
-    return best / unit, (float(t_eval[i - 1]) + float(res.x)) / w
+    n_min, t_min = min_normal_force("sliding", y0, p, duration * w, rtol=rtol)
+    return n_min / (nd["mu"] * nd["fr_inv"]), t_min / w
 
 
 class ContactLossProblem:
