@@ -74,6 +74,7 @@ _EXPORTS: dict[str, str] = {
     "Launch": ".launches.result",
     "flip_time": ".launches.flip",
     "contact_loss_boundary": ".launches.contact_map",
+    "contact_margin": ".steady.margin",
     "ImplausibleTopWarning": ".top",
 }
 
@@ -97,6 +98,7 @@ __all__ = [
     "check_domain",
     "class_atlas",
     "contact_loss_boundary",
+    "contact_margin",
     "coulomb_growth",
     "critical_spin",
     "eigenvalues",

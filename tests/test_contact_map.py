@@ -191,3 +191,83 @@ def test_launch_says_whether_the_top_spins_on_its_stick(rev_s, answer):
         stability.critical_spin(top.on_stick(), "sliding", "upright").spin, rel=1e-12)
     assert ("spins on its stick" if answer == "spins" else "falls back") in str(ans)
     assert ans.to_dataset().attrs["on_stick"] == answer
+
+
+# -- the steady states' contact margin (stability.steady.margin) ---------------------------------
+MARGIN = dict(q=-0.5, sigma=0.5, fr_inv=0.01, alpha_v=0.5)
+
+
+@pytest.mark.parametrize("tilt", [0.0, 180.0])
+def test_vertical_states_have_no_first_order_change_of_n(tilt):
+    """Closed form (stability.steady.margin): at k = +-K with f(y*) = 0 every term of N - mu fr_inv
+    is of second order in the tilt, so grad N . d = 0 and the linear estimate is infinite."""
+    from stability.steady.margin import contact_margin
+
+    m = contact_margin(tilt=tilt, duration=20.0, max_size=5.0, **MARGIN)
+    assert m.linear_size == math.inf and m.size is None
+
+
+def _tilted_state(tilt):
+    from stability.steady import family
+
+    th = math.radians(tilt)
+    lam = float(family.precession_rate(math.cos(th), q=MARGIN["q"], sigma=MARGIN["sigma"], fr_inv=MARGIN["fr_inv"],
+                                       mu=MU))
+    return family.state_vector(th, lam, MARGIN["q"])
+
+
+def _perturbed(y, d, size):
+    z = y + math.radians(size) * d
+    z[3:6] /= np.linalg.norm(z[3:6])
+    return z
+
+
+def test_linearised_change_of_n_against_runs():
+    """The first-order closed form delta N = eps Re(c e^{st}) (stability.steady.margin) against
+    runs from y* + eps d: the run's dip (mu fr_inv - N_min) / eps tends to the linear dip
+    mu fr_inv / linear_size as eps -> 0, with an error of first order in eps (halving eps halves
+    it, to 10 %), below 2 % at eps = 0.25 degree."""
+    from stability.nonlinear.min_force import min_normal_force
+    from stability.nonlinear.runs import model_parameter_vector
+    from stability.steady.margin import contact_margin
+
+    m = contact_margin(tilt=90.0, duration=50.0, max_size=5.0, **MARGIN)
+    y = _tilted_state(90.0)
+    _, p = model_parameter_vector("sliding", mu=MU, **MARGIN)
+    linear = m.normal_force / m.linear_size
+    errs = []
+    for eps in (0.5, 0.25):
+        z = np.concatenate([_perturbed(y, m.direction, eps), [0.0, 0.0]])
+        dip = (m.normal_force - min_normal_force("sliding", z, p, 50.0)[0]) / eps
+        errs.append(dip / linear - 1.0)
+    assert abs(errs[1]) < 0.02
+    assert errs[1] / errs[0] == pytest.approx(0.5, abs=0.1)
+
+
+def test_contact_margin_size_against_independent_dop853():
+    """At the size found by Brent's method, the independent sliding sphere (module docstring)
+    started from y* + size d has its smallest N over the run at 0, to 1e-7 of mu fr_inv (both
+    runs at rtol <= 1e-10 over 50 time units); the first-order estimate is within 20 % (the
+    size, ~32 degrees, is not small)."""
+    from stability.steady.margin import contact_margin
+
+    m = contact_margin(tilt=90.0, duration=50.0, max_size=80.0, **MARGIN)
+    assert m.size is not None and m.size == pytest.approx(m.linear_size, rel=0.2)
+    z = _perturbed(_tilted_state(90.0), m.direction, m.size)
+    q, fr, sg, av = MARGIN["q"], MARGIN["fr_inv"], MARGIN["sigma"], MARGIN["alpha_v"]
+
+    def f(t, y):
+        x = _accelerations(y, q, fr, sg, av, MU)
+        return np.concatenate([x[0:3], np.cross(y[0:3], y[3:6]), x[3:5]])
+
+    sol = solve_ivp(f, (0.0, 50.0), z, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
+
+    def n(t):
+        return _accelerations(sol.sol(t), q, fr, sg, av, MU)[5] / (MU * fr)
+
+    ts = np.arange(0.0, 50.0, 0.02)
+    vals = np.array([n(t) for t in ts])
+    i = int(np.argmin(vals))
+    res = minimize_scalar(n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded",
+                          options={"xatol": 1e-10})
+    assert abs(min(float(res.fun), vals[i])) < 1e-7
