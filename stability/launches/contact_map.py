@@ -24,7 +24,9 @@ The residual of the continuation is ``N_min / (M g)`` (the equilibrium normal fo
 ``mu fr_inv`` in the units of the run, so this is ``N_min / (mu fr_inv)``: 1 at rest, O(1),
 continuous in the spin); the engine (:func:`continuation.trace`, generic) follows its zero
 through the box of the two quantities (the box's edges its constraints), from a zero found by
-Brent's method on a grid line where the grid's ``N_min`` changes sign. The grid itself (coarse,
+Brent's method on a grid edge where the grid's ``N_min`` changes sign; then from every other
+such edge that no traced piece crosses (the line stops at a kink of ``N_min``, where the
+minimum of ``N(t)`` that is the smallest changes: the piece beyond it starts from its own edge). The grid itself (coarse,
 for the figure's colour) and the traced line are returned in one Dataset (product
 ``contact_loss_map``, docs/datasets.md).
 """
@@ -106,6 +108,20 @@ class ContactLossProblem:
         return np.array([u[0] - b[0, 0], b[0, 1] - u[0], u[1] - b[1, 0], b[1, 1] - u[1]])
 
 
+def _crosses(p0: np.ndarray, p1: np.ndarray, pts: np.ndarray, widths: np.ndarray) -> bool:
+    """Whether the segment ``p0 p1`` meets the polyline ``pts`` (in coordinates scaled by
+    ``widths``; the orientation test of two segments, touching counted)."""
+    a, b, q = p0 / widths, p1 / widths, pts / widths
+
+    def side(u: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
+        return (v[..., 0] - u[..., 0]) * (w[..., 1] - u[..., 1]) - (v[..., 1] - u[..., 1]) * (w[..., 0] - u[..., 0])
+
+    c, d = q[:-1], q[1:]
+    s1, s2 = side(a, b, c), side(a, b, d)
+    s3, s4 = side(c, d, a), side(c, d, b)
+    return bool(np.any((s1 * s2 <= 0) & (s3 * s4 <= 0)))
+
+
 def _to_si(name: str, values: Any, unit: str) -> np.ndarray:
     v = np.asarray(values, dtype=float)
     return to_rad_per_s(v, unit) if name == "spin" else v
@@ -155,7 +171,8 @@ def contact_loss_boundary(
     xarray.Dataset
         ``min_normal_force`` (units of ``M g``) and ``min_time`` (s) over ``(y, x)``; the traced
         boundary ``boundary_x``, ``boundary_y`` along ``point`` (empty where the grid has no
-        sign change); attributes: the held launch, ``unit``, ``duration``, the wall time
+        sign change), why its two ends stopped (``boundary_end_reasons``: the engine's
+        ``"boundary"`` at the box, ``"step_failure"`` at a kink of ``N_min``); attributes: the held launch, ``unit``, ``duration``, the wall time
         ``seconds``, the number of runs; product ``contact_loss_map``.
 
     Raises
@@ -192,44 +209,45 @@ def contact_loss_boundary(
         for i, xv in enumerate(xs):
             n_min[j, i], t_min[j, i] = problem.min_force(np.array([xv, yv]))
     runs = nx * ny
-    # a start on the boundary: the first grid edge (along y, then along x) where N_min changes sign
-    start = None
-    for i in range(nx):
-        s = np.nonzero(np.sign(n_min[:-1, i]) * np.sign(n_min[1:, i]) < 0)[0]
-        if s.size:
-            j = int(s[0])
-            yz = brentq(lambda v: problem.residual(np.array([xs[i], v]))[0], ys[j], ys[j + 1], xtol=1e-10 * abs(ys[j + 1]))
-            start = np.array([xs[i], yz])
-            break
-    if start is None:
-        for j in range(ny):
-            s = np.nonzero(np.sign(n_min[j, :-1]) * np.sign(n_min[j, 1:]) < 0)[0]
-            if s.size:
-                i = int(s[0])
-                xz = brentq(lambda v: problem.residual(np.array([v, ys[j]]))[0], xs[i], xs[i + 1], xtol=1e-10 * max(1.0, abs(xs[i + 1])))
-                start = np.array([xz, ys[j]])
-                break
-    bx = by = np.zeros(0)
-    kinds: list[str] = []
-    if start is not None:
-        widths = box[:, 1] - box[:, 0]
-        options = TraceOptions(
-            step=0.02,
-            max_step=0.05,
-            tol=1e-8,
-            scale=(float(widths[0]), float(widths[1])),
-            detect_branch_points=False,
-            detect_closed=False,
-            max_points=max_points,
-            max_angle=0.3,
+    # every grid edge where N_min changes sign, as (fixed axis, index along it, cell index)
+    edges = [(0, i, int(j)) for i in range(nx) for j in np.nonzero(n_min[:-1, i] * n_min[1:, i] < 0)[0]]
+    edges += [(1, j, int(i)) for j in range(ny) for i in np.nonzero(n_min[j, :-1] * n_min[j, 1:] < 0)[0]]
+    widths = box[:, 1] - box[:, 0]
+    options = TraceOptions(
+        step=0.02,
+        max_step=0.05,
+        tol=1e-8,
+        scale=(float(widths[0]), float(widths[1])),
+        detect_branch_points=False,
+        detect_closed=False,
+        max_points=max_points,
+        max_angle=0.3,
+    )
+    pieces: list[tuple[np.ndarray, list[str], list[str]]] = []
+    for axis, a_i, c_j in edges:
+        if axis == 0:  # along y at x = xs[a_i], between ys[c_j] and ys[c_j + 1]
+            p0, p1 = np.array([xs[a_i], ys[c_j]]), np.array([xs[a_i], ys[c_j + 1]])
+        else:
+            p0, p1 = np.array([xs[c_j], ys[a_i]]), np.array([xs[c_j + 1], ys[a_i]])
+        if any(_crosses(p0, p1, pts, widths) for pts, _, _ in pieces):
+            continue  # a traced piece already passes through this edge
+        s0 = brentq(
+            lambda f: problem.residual(p0 + f * (p1 - p0))[0], 0.0, 1.0, xtol=1e-12
+        )  # a start on the boundary (Brent along the edge)
+        start = p0 + s0 * (p1 - p0)
+        halves = [trace(problem, start, options, direction=d, project_start=False) for d in (1, -1)]
+        pieces.append(
+            (
+                np.concatenate([halves[1].points[::-1], halves[0].points[1:]]),
+                halves[1].kinds[::-1] + halves[0].kinds[1:],
+                [halves[1].end_reasons[0], halves[0].end_reasons[0]],
+            )
         )
-        halves = []
-        for direction in (1, -1):
-            b = trace(problem, start, options, direction=direction, project_start=False)
-            halves.append(b)
-        pts = np.concatenate([halves[1].points[::-1], halves[0].points[1:]])
-        kinds = halves[1].kinds[::-1] + halves[0].kinds[1:]
-        bx, by = pts[:, 0], pts[:, 1]
+    bx = np.concatenate([pts[:, 0] for pts, _, _ in pieces]) if pieces else np.zeros(0)
+    by = np.concatenate([pts[:, 1] for pts, _, _ in pieces]) if pieces else np.zeros(0)
+    piece = np.concatenate([np.full(len(k), n) for n, (_, k, _) in enumerate(pieces)]) if pieces else np.zeros(0, int)
+    kinds = [k for _, ks, _ in pieces for k in ks]
+    ends = [f"piece {n}: {' and '.join(e)}" for n, (_, _, e) in enumerate(pieces)]
     seconds = time.perf_counter() - t0
 
     def axis_values(name: str, v: np.ndarray) -> np.ndarray:
@@ -250,6 +268,11 @@ def contact_loss_boundary(
             "boundary_x": ("point", axis_values(x, bx), {"long_name": f"{x} on the boundary N_min = 0", "units": units(x)}),
             "boundary_y": ("point", axis_values(y, by), {"long_name": f"{y} on the boundary N_min = 0", "units": units(y)}),
             "boundary_kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of the traced point"}),
+            "boundary_piece": (
+                "point",
+                piece.astype(np.int32),
+                {"long_name": "traced piece (a smooth piece of N_min = 0; pieces meet at kinks of N_min)"},
+            ),
         },
         coords={
             "x": ("x", axis_values(x, xs), {"long_name": x.replace("_", " "), "units": units(x)}),
@@ -265,6 +288,7 @@ def contact_loss_boundary(
             "unit": unit,
             **{f"launch_{k}": float(v) for k, v in held.items()},
             "duration": duration,
+            "boundary_end_reasons": "; ".join(ends) if ends else "no sign change on the grid",
             "runs": runs,
             "seconds": seconds,
             "q": top.q,

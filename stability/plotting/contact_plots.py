@@ -87,7 +87,11 @@ def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Fi
     mesh = ax.pcolormesh(ds.x.values, ds.y.values, z, cmap="RdBu", norm=norm, shading="nearest")
     fig.colorbar(mesh, ax=ax, label=r"smallest normal force $N_{min}$ / $Mg$")
     if ds.sizes.get("point", 0):
-        ax.plot(ds.boundary_x.values, ds.boundary_y.values, color="k", lw=1.6, label="$N_{min} = 0$ (traced)")
+        piece = ds.boundary_piece.values
+        for n in np.unique(piece):  # each smooth piece (they meet at kinks of N_min)
+            sel = piece == n
+            ax.plot(ds.boundary_x.values[sel], ds.boundary_y.values[sel], color="k", ls="-", lw=1.6,
+                    label="$N_{min} = 0$ (traced)" if n == piece[0] else None)
         ax.legend(fontsize="small", loc="best")
     xl, yl = (ds[c].attrs for c in ("x", "y"))
     ax.set_xlabel(f"{xl['long_name']} ({xl['units']})")
