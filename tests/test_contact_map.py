@@ -48,8 +48,9 @@ def _reference_min(spin, tilt, rate, duration):
     ts = np.arange(0.0, t_end, 0.02)
     vals = np.array([n(t) for t in ts])
     i = int(np.argmin(vals))
-    res = minimize_scalar(n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded",
-                          options={"xatol": 1e-10})
+    res = minimize_scalar(
+        n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded", options={"xatol": 1e-10}
+    )
     return min(float(res.fun), float(vals[i]))
 
 
@@ -66,8 +67,16 @@ def test_traced_boundary_against_bisection_and_reference():
     rad/s, so the traced spin is within ~1e-6 rad/s); and the independent run's N_min there is
     0 to 1e-7 M g (module docstring)."""
     ds = stability.contact_loss_boundary(
-        TOP, x="tilt_rate", y="spin", x_range=(90.0, 110.0), y_range=(38.0, 46.0), unit="rev/s",
-        tilt=5.0, grid=(3, 3), duration=0.5, max_points=8,
+        TOP,
+        x="tilt_rate",
+        y="spin",
+        x_range=(90.0, 110.0),
+        y_range=(38.0, 46.0),
+        unit="rev/s",
+        tilt=5.0,
+        grid=(3, 3),
+        duration=0.5,
+        max_points=8,
     )
     assert ds.attrs[stability.products.PRODUCT_ATTR] == "contact_loss_map"
     z = ds.min_normal_force.values
@@ -77,21 +86,33 @@ def test_traced_boundary_against_bisection_and_reference():
     for j in (0, n // 2):
         rate = float(ds.boundary_x[j])
         spin = float(ds.boundary_y[j]) * 2 * math.pi
-        zero = brentq(lambda s: launch_min_normal_force(TOP, s, 5.0, rate, duration=0.5)[0],
-                      38.0 * 2 * math.pi, 46.0 * 2 * math.pi, xtol=1e-10)
+        zero = brentq(
+            lambda s: launch_min_normal_force(TOP, s, 5.0, rate, duration=0.5)[0],
+            38.0 * 2 * math.pi,
+            46.0 * 2 * math.pi,
+            xtol=1e-10,
+        )
         assert spin == pytest.approx(zero, rel=1e-6)
         assert abs(_reference_min(spin, 5.0, rate, 0.5)) < 1e-7
 
 
 def test_contact_map_figure():
-    import matplotlib
+    import matplotlib as mpl
 
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     from stability.plotting.contact_plots import plot_contact_loss_map
 
     ds = stability.contact_loss_boundary(
-        TOP, x="tilt", y="tilt_rate", x_range=(2.0, 10.0), y_range=(60.0, 140.0), spin=40.0, unit="rev/s",
-        grid=(2, 2), duration=0.3, max_points=4,
+        TOP,
+        x="tilt",
+        y="tilt_rate",
+        x_range=(2.0, 10.0),
+        y_range=(60.0, 140.0),
+        spin=40.0,
+        unit="rev/s",
+        grid=(2, 2),
+        duration=0.3,
+        max_points=4,
     )
     fig, ax = plot_contact_loss_map(ds)
     assert ax.get_xlabel().startswith("tilt")
@@ -100,8 +121,13 @@ def test_contact_map_figure():
 
 @pytest.mark.parametrize(
     "kw, name",
-    [({"x": "spin", "y": "spin"}, "x = y"), ({"x": "wobble"}, "x"), ({"x_range": (5.0, 1.0)}, "x_range"),
-     ({"grid": (1, 4)}, "grid"), ({"x": "tilt", "x_range": (0.0, 10.0)}, "tilt range")],
+    [
+        ({"x": "spin", "y": "spin"}, "x = y"),
+        ({"x": "wobble"}, "x"),
+        ({"x_range": (5.0, 1.0)}, "x_range"),
+        ({"grid": (1, 4)}, "grid"),
+        ({"x": "tilt", "x_range": (0.0, 10.0)}, "tilt range"),
+    ],
 )
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
     with pytest.raises(InputError, match=name):
@@ -148,9 +174,9 @@ def test_bifurcation_diagram_of_a_top_with_a_stick():
     """The diagram of the toy with its stick: the branch's states beyond the stick marked, a run
     launched upright at 40 rev/s (1 degree off) stopped at the stick, its time against the
     independent DOP853 tilt event to 1e-6 relative; the figure draws the stick's tilt."""
-    import matplotlib
+    import matplotlib as mpl
 
-    matplotlib.use("Agg")
+    mpl.use("Agg")
     from stability.plotting.steady_plots import plot_bifurcation
 
     top = stability.Top.table1(stick=stability.Stick(0.02, 0.003, 0.012))
@@ -163,8 +189,9 @@ def test_bifurcation_diagram_of_a_top_with_a_stick():
     assert int(r.reaches_stick[0]) == 1 and float(r.end_tilt[0]) == pytest.approx(st, abs=1e-6)
     nd = top.nondimensional(40.0, "rev/s", alpha_v=ALPHA_V)
     th = math.radians(1.0)
-    t_ref, _ = _stick_event(np.array([0.0, 0.0, 1.0]), [math.sin(th), 0.0, math.cos(th)], nd["q"], nd["fr_inv"],
-                            nd["sigma"], st)
+    t_ref, _ = _stick_event(
+        np.array([0.0, 0.0, 1.0]), [math.sin(th), 0.0, math.cos(th)], nd["q"], nd["fr_inv"], nd["sigma"], st
+    )
     assert float(r.stick_time[0]) == pytest.approx(t_ref, rel=1e-6)
     fig, ax = plot_bifurcation(b, vertical=d["vertical"], runs=r)
     assert any("stick touches" in str(line.get_label()) for line in ax.get_lines())
@@ -188,7 +215,8 @@ def test_launch_says_whether_the_top_spins_on_its_stick(rev_s, answer):
     _, y = _stick_event(k0, k0, q, fr, sg, top.stick_contact()[0])
     assert ans.stick_spin == pytest.approx(abs(np.dot(y[0:3], y[3:6])) * w, rel=1e-6)
     assert ans.stick_critical_spin == pytest.approx(
-        stability.critical_spin(top.on_stick(), "sliding", "upright").spin, rel=1e-12)
+        stability.critical_spin(top.on_stick(), "sliding", "upright").spin, rel=1e-12
+    )
     assert ("spins on its stick" if answer == "spins" else "falls back") in str(ans)
     assert ans.to_dataset().attrs["on_stick"] == answer
 
@@ -211,8 +239,9 @@ def _tilted_state(tilt):
     from stability.steady import family
 
     th = math.radians(tilt)
-    lam = float(family.precession_rate(math.cos(th), q=MARGIN["q"], sigma=MARGIN["sigma"], fr_inv=MARGIN["fr_inv"],
-                                       mu=MU))
+    lam = float(
+        family.precession_rate(math.cos(th), q=MARGIN["q"], sigma=MARGIN["sigma"], fr_inv=MARGIN["fr_inv"], mu=MU)
+    )
     return family.state_vector(th, lam, MARGIN["q"])
 
 
@@ -268,6 +297,7 @@ def test_contact_margin_size_against_independent_dop853():
     ts = np.arange(0.0, 50.0, 0.02)
     vals = np.array([n(t) for t in ts])
     i = int(np.argmin(vals))
-    res = minimize_scalar(n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded",
-                          options={"xatol": 1e-10})
+    res = minimize_scalar(
+        n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded", options={"xatol": 1e-10}
+    )
     assert abs(min(float(res.fun), vals[i])) < 1e-7

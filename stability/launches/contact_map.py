@@ -197,8 +197,9 @@ def contact_loss_boundary(
     box = np.array([_to_si(x, x_range, unit), _to_si(y, y_range, unit)], dtype=float)
     for name, (lo, hi) in zip((x, y), box):
         if name == "spin":
-            check_launch_spin(lo, "rad/s"), check_launch_spin(hi, "rad/s")
-        if name == "tilt" and not (0.0 < lo and hi < 180.0):
+            check_launch_spin(lo, "rad/s")
+            check_launch_spin(hi, "rad/s")
+        if name == "tilt" and not (lo > 0.0 and hi < 180.0):
             raise InputError(f"the tilt range {lo:g} to {hi:g} degrees is outside the allowed range: 0 < tilt < 180")
     problem = ContactLossProblem(top, (x, y), launch, box, duration=duration, alpha_v=alpha_v)
     t0 = time.perf_counter()
@@ -231,9 +232,9 @@ def contact_loss_boundary(
             p0, p1 = np.array([xs[c_j], ys[a_i]]), np.array([xs[c_j + 1], ys[a_i]])
         if any(_crosses(p0, p1, pts, widths) for pts, _, _ in pieces):
             continue  # a traced piece already passes through this edge
-        s0 = brentq(
-            lambda f: problem.residual(p0 + f * (p1 - p0))[0], 0.0, 1.0, xtol=1e-12
-        )  # a start on the boundary (Brent along the edge)
+        s0 = brentq(  # a start on the boundary (Brent along the edge)
+            lambda f, p0=p0, p1=p1: problem.residual(p0 + f * (p1 - p0))[0], 0.0, 1.0, xtol=1e-12
+        )
         start = p0 + s0 * (p1 - p0)
         halves = [trace(problem, start, options, direction=d, project_start=False) for d in (1, -1)]
         pieces.append(
@@ -257,7 +258,7 @@ def contact_loss_boundary(
         return unit if name == "spin" else str(QUANTITIES[name])
 
     held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
-    ds = xr.Dataset(
+    return xr.Dataset(
         {
             "min_normal_force": (
                 ("y", "x"),
@@ -265,8 +266,16 @@ def contact_loss_boundary(
                 {"long_name": "smallest normal force of the run", "units": "M g", "comment": "below 0: contact lost"},
             ),
             "min_time": (("y", "x"), t_min, {"long_name": "time of the smallest normal force", "units": "s"}),
-            "boundary_x": ("point", axis_values(x, bx), {"long_name": f"{x} on the boundary N_min = 0", "units": units(x)}),
-            "boundary_y": ("point", axis_values(y, by), {"long_name": f"{y} on the boundary N_min = 0", "units": units(y)}),
+            "boundary_x": (
+                "point",
+                axis_values(x, bx),
+                {"long_name": f"{x} on the boundary N_min = 0", "units": units(x)},
+            ),
+            "boundary_y": (
+                "point",
+                axis_values(y, by),
+                {"long_name": f"{y} on the boundary N_min = 0", "units": units(y)},
+            ),
             "boundary_kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of the traced point"}),
             "boundary_piece": (
                 "point",
@@ -296,4 +305,3 @@ def contact_loss_boundary(
             "sigma": top.sigma,
         },
     )
-    return ds

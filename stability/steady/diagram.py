@@ -249,7 +249,11 @@ def bifurcation_diagram(
             {"long_name": "the state's tilt is at or beyond the stick's: a state the toy cannot have"},
         )
         times = np.array(stick_times, dtype=float)
-        runs_ds["reaches_stick"] = ("run", np.isfinite(times).astype(np.int8), {"long_name": "the run reaches the stick"})
+        runs_ds["reaches_stick"] = (
+            "run",
+            np.isfinite(times).astype(np.int8),
+            {"long_name": "the run reaches the stick"},
+        )
         runs_ds["stick_time"] = (
             "run",
             times,

@@ -510,7 +510,13 @@ def final_state(
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
     return final_state_from(
-        y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt
+        y,
+        params,
+        simulation=simulation,
+        t_max=t_max,
+        settle_tolerance=settle_tolerance,
+        rtol=rtol,
+        stick_tilt=stick_tilt,
     )
 
 
