@@ -74,6 +74,8 @@ _EXPORTS: dict[str, str] = {
     "launch": ".launches.result",
     "Launch": ".launches.result",
     "flip_time": ".launches.flip",
+    "contact_loss_boundary": ".launches.contact_map",
+    "contact_margin": ".steady.margin",
     "ImplausibleTopWarning": ".top",
 }
 
@@ -96,6 +98,8 @@ __all__ = [
     "bifurcation_diagram",
     "check_domain",
     "class_atlas",
+    "contact_loss_boundary",
+    "contact_margin",
     "coulomb_growth",
     "critical_spin",
     "eigenvalues",
@@ -141,6 +145,7 @@ _DATASETS = frozenset(
         "fold_curve",
         "steady_branch",
         "bifurcation_diagram",
+        "contact_loss_boundary",
     }
 )
 

@@ -72,6 +72,9 @@ MAKERS = {
         q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, **INITIAL_CONDITIONS[0.3]
     ).to_dataset(),
     "top_classes": lambda tmp: stability.class_atlas(q=np.linspace(-0.6, 0.6, 25), sigma=np.linspace(0.05, 2.0, 20)),
+    "contact_loss_map": lambda tmp: stability.contact_loss_boundary(
+        stability.Top.table1(), x_range=(90.0, 110.0), y_range=(38.0, 46.0), grid=(2, 2), duration=0.3, max_points=3
+    ),
     "flip_time_map": lambda tmp: __import__("stability.launches.estimate", fromlist=["x"]).flip_time_map(
         stability.Top.table1(), [8.0, 12.0], [5.0], t_max=3000.0
     ),
@@ -181,7 +184,7 @@ def test_missing_or_unknown_product_is_a_clear_error():
     with pytest.raises(
         InputError,
         match=r"tippe_stability_product = 'pie_chart': no figure is registered "
-        r"for this product \(products with a figure: atlas, coulomb_growth",
+        r"for this product \(products with a figure: atlas, contact_loss_map, coulomb_growth",
     ):
         ds.tippe.plot()
     # a new Dataset from a product's variables has none of its attributes: the message says so

@@ -229,7 +229,9 @@ def run_launch(
             "velocity": ds.velocity.values[-1][:2],
         }
         if attrs.get("event", "none") != "none":  # the model stops holding: contact lost or stick reached
-            attrs.update(event_time=float(tt[-1]), event_tilt=float(pol[-1]))
+            # omega . k at the event (units of Omega): the spin about the symmetry axis the top
+            # carries onto its stick (the stick's sphere has axis -k: the same spin, reversed)
+            attrs.update(event_time=float(tt[-1]), event_tilt=float(pol[-1]), event_spin=float(ds.spin.values[-1]))
             event_note = f"the run stops at t = {tt[-1]:.6g} time units: {attrs['event']} at tilt {pol[-1]:.6g} degrees"
             break
         if stop_at_crossing and crossed is not None:

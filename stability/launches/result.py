@@ -32,7 +32,7 @@ from ..products import PRODUCT_ATTR
 from ..top import Top, from_rad_per_s
 from .flip import launch_parameters, run_launch
 
-__all__ = ["PRODUCT", "Launch", "inverts_above", "launch"]
+__all__ = ["PRODUCT", "Launch", "inverts_above", "launch", "stick_answer"]
 
 #: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
 PRODUCT = "launch"
@@ -68,6 +68,12 @@ class Launch:
         Where ``alpha_v`` came from.
     event, event_time, event_tilt :
         The run's contact event (``"none"`` until the nonlinear run reports one).
+    on_stick, stick_spin, stick_critical_spin :
+        For a run that reaches the stick (``event = "stick_contact"``): ``"spins"`` (then spins
+        on its stick) or ``"falls_back"``, the spin about the symmetry axis at the event
+        (``|omega . k|``, rad/s) and the critical spin of the top on its stick
+        (:func:`stability.critical_spin` of :meth:`stability.Top.on_stick`, upright: stable
+        above, rad/s); None otherwise.
     reasons : dict
         Field -> why it is None.
     """
@@ -90,6 +96,9 @@ class Launch:
     event: str = "none"
     event_time: float | None = None
     event_tilt: float | None = None
+    on_stick: str | None = None
+    stick_spin: float | None = None
+    stick_critical_spin: float | None = None
     reasons: dict[str, str] = field(default_factory=dict)
 
     def _spin(self, w: float | None, name: str) -> str:
@@ -188,6 +197,12 @@ class Launch:
         }
         if self.event_time is not None:
             attrs.update(event_time=float(self.event_time), event_tilt=float(self.event_tilt))
+        if self.on_stick is not None:
+            attrs.update(
+                on_stick=self.on_stick,
+                stick_spin=float(self.stick_spin),  # type: ignore[arg-type]
+                stick_critical_spin=float(self.stick_critical_spin),  # type: ignore[arg-type]
+            )
         return xr.Dataset(data, attrs=attrs)
 
 
@@ -218,6 +233,24 @@ def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
     if not math.isfinite(j_inv):
         return None
     return j_inv / float(upright_jellett(q=nd["q"], sigma=nd["sigma"])) * reference
+
+
+def stick_answer(top: Top, spin: float, alpha_v: float) -> tuple[str, float, float]:
+    """What a top that reaches its stick spinning at ``spin`` rad/s about its symmetry axis
+    does: ``("spins", spin, critical)`` if ``spin`` is above the critical spin of the top on its
+    stick (:func:`stability.critical_spin` of :meth:`stability.Top.on_stick`, upright: the
+    spin above which the upright spin on the tip is stable, the tip's sphere with its own
+    ``q' = (tip_center - com_offset) / tip_radius``), ``("falls_back", spin, critical)`` below.
+
+    The spin about the axis is a body quantity: on the stick's sphere (axis ``k' = -k``) it is
+    the same number reversed, and the upright state's stability does not depend on the sense.
+    ``alpha_v`` is used only when the top has no ``mu_v`` (the sliding threshold does not
+    depend on ``alpha_v > 0``: :func:`stability.critical_spin`)."""
+    from ..linear.critical import critical_spin
+
+    on = top.on_stick()
+    crit = critical_spin(on, "sliding", "upright", alpha_v=alpha_v).spin
+    return ("spins" if spin > crit else "falls_back"), float(spin), float(crit)
 
 
 def launch(
@@ -276,10 +309,20 @@ def launch(
         reasons["settle_time"] = run.reason
     force_unit = top.inertia_centre * w * w / top.radius
     ev = str(run.attrs.get("event", "none"))
+    on_stick = stick_spin = stick_critical = None
+    if ev == "stick_contact":
+        on_stick, stick_spin, stick_critical = stick_answer(top, abs(run.attrs["event_spin"]) * w, nd["alpha_v"])
     if ev != "none":  # the run stopped where the model stops holding: its end is not the prediction's
         reasons["end"] = (
             f"the motion reaches its stick at {run.attrs['event_tilt']:.4g} degrees after "
-            f"{run.attrs['event_time'] / w:.3g} s"
+            f"{run.attrs['event_time'] / w:.3g} s, then "
+            + (
+                f"spins on its stick (spin {stick_spin:.4g} rad/s about its axis, above the stick's "
+                f"critical spin {stick_critical:.4g} rad/s)"
+                if on_stick == "spins"
+                else f"falls back (spin {stick_spin:.4g} rad/s about its axis, below the stick's critical "
+                f"spin {stick_critical:.4g} rad/s)"
+            )
             if ev == "stick_contact"
             else f"the sphere leaves the floor (normal force zero) at {run.attrs['event_tilt']:.4g} "
             f"degrees after {run.attrs['event_time'] / w:.3g} s: the sliding model no longer holds"
@@ -303,5 +346,8 @@ def launch(
         event=str(ev),
         event_time=float(run.attrs["event_time"]) / w if ev != "none" else None,
         event_tilt=float(run.attrs["event_tilt"]) if ev != "none" else None,
+        on_stick=on_stick,
+        stick_spin=stick_spin,
+        stick_critical_spin=stick_critical,
         reasons=reasons,
     )

@@ -21,7 +21,8 @@ Functions (imported on first use, so that ``import stability`` does not import m
 * neutral and fold curves: :func:`plot_neutral_curve`, :func:`plot_fold_curve`;
 * nonlinear runs: :func:`plot_run`, the paper's Figs. 5-9 (:mod:`stability.plotting.scene_plots`);
   a run's normal force and event (contact lost, stick reached): :func:`plot_contact_run`; a run
-  that flies and lands: :func:`plot_flight_run`; a stick-slip run with its switches: :func:`plot_stick_slip`;
+  that flies and lands: :func:`plot_flight_run`; a stick-slip run with its switches: :func:`plot_stick_slip`; where
+  a launch loses its contact: :func:`plot_contact_loss_map`;
 * validation: :func:`plot_validation`, :func:`plot_coulomb_growth`;
 * a real top: :func:`plot_critical_spin`, :func:`plot_flip_time`, :func:`plot_flip_estimates`;
 * steady states: :func:`plot_steady_states` (the states of a Jellett level on its effective
@@ -52,6 +53,7 @@ _EXPORTS: dict[str, str] = {
     "plot_fold_curve": "maps",
     "growth_norm": "maps",
     "plot_run": "scene_plots",
+    "plot_contact_loss_map": "contact_plots",
     "plot_contact_run": "contact_plots",
     "plot_flight_run": "contact_plots",
     "plot_stick_slip": "stickslip_plots",

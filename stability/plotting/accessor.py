@@ -36,6 +36,7 @@ __all__ = ["PLOTS", "TippeAccessor", "plotting_function"]
 PLOTS: dict[str, str | Callable[..., Any]] = {
     "atlas": "stability.plotting.figures:plot_atlas",
     "flip_time_map": "stability.plotting.launch_plots:plot_flip_time",
+    "contact_loss_map": "stability.plotting.contact_plots:plot_contact_loss_map",
     "neutral_curve": "stability.plotting.maps:plot_neutral_curve",
     "fold_curve": "stability.plotting.maps:plot_fold_curve",
     "nonlinear_run": "stability.plotting.scene_plots:plot_run",

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_contact_run", "plot_flight_run"]
+__all__ = ["plot_contact_loss_map", "plot_contact_run", "plot_flight_run"]
 
 
 def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
@@ -103,3 +103,49 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     ax2.legend(fontsize="small")
     ax.set_title(f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium")
     return fig, axes
+def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """The contact-loss map (:func:`stability.contact_loss_boundary`): the smallest normal force
+    of the launch's run over the grid as colour (units of ``M g``, diverging about 0), the
+    boundary ``N_min = 0`` traced by continuation as a line.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Product ``contact_loss_map``.
+    ax : Axes, optional
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    from matplotlib.colors import TwoSlopeNorm
+
+    from ._layout import axes_or_new
+
+    fig, ax = axes_or_new(ax)
+    z = ds.min_normal_force.values
+    lo, hi = float(np.nanmin(z)), float(np.nanmax(z))
+    norm = TwoSlopeNorm(0.0, vmin=min(lo, -1e-3), vmax=max(hi, 1e-3))
+    mesh = ax.pcolormesh(ds.x.values, ds.y.values, z, cmap="RdBu", norm=norm, shading="nearest")
+    fig.colorbar(mesh, ax=ax, label=r"smallest normal force $N_{min}$ / $Mg$")
+    if ds.sizes.get("point", 0):
+        piece = ds.boundary_piece.values
+        for n in np.unique(piece):  # each smooth piece (they meet at kinks of N_min)
+            sel = piece == n
+            ax.plot(
+                ds.boundary_x.values[sel],
+                ds.boundary_y.values[sel],
+                color="k",
+                ls="-",
+                lw=1.6,
+                label="$N_{min} = 0$ (traced)" if n == piece[0] else None,
+            )
+        ax.legend(fontsize="small", loc="best")
+    xl, yl = (ds[c].attrs for c in ("x", "y"))
+    ax.set_xlabel(f"{xl['long_name']} ({xl['units']})")
+    ax.set_ylabel(f"{yl['long_name']} ({yl['units']})")
+    held = ", ".join(
+        f"{k.removeprefix('launch_').replace('_', ' ')} {v:g}" for k, v in ds.attrs.items() if k.startswith("launch_")
+    )
+    ax.set_title(f"where the launch loses its contact ({held}; {ds.attrs['duration']:g} s)", fontsize="medium")
+    return fig, ax

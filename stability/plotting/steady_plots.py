@@ -362,6 +362,9 @@ def plot_bifurcation(
                     fontsize=7,
                     arrowprops={"arrowstyle": "->", "linewidth": 0.6},
                 )
+    if "stick_tilt" in branch.attrs:  # a toy with a stick: no state beyond this tilt
+        st = float(branch.attrs["stick_tilt"])
+        ax.axhline(st, color="C3", ls="--", lw=1.0, label=f"the stick touches ({st:.4g} deg)")
     if launch is not None:
         _mark_launch(ax, launch, x, units, float(branch.attrs.get("q", float("nan"))))
     ax.set_xlabel(X_AXES.get(x, x).format(units=units), fontsize=9)

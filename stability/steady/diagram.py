@@ -83,6 +83,11 @@ def bifurcation_diagram(
         ``end_tilt``, ``t_end``, ``settled``, ``paper_run`` over ``run``). ``spin`` has
         ``units = unit``; every dataset has the attributes ``spin_unit``, ``reference_spin``
         (in ``unit``), the top's ``q``, ``sigma``, ``mu``, ``alpha_v``, ``radius_m``, ``mass_kg``.
+        A top with a stick (:meth:`stability.Top.stick_contact`): every dataset has ``stick_tilt``
+        (degrees) and ``stick_part``; the branch ``beyond_stick`` (1 where the state's tilt is at
+        or beyond the stick's: a state the toy cannot have); the runs stop at the stick and have
+        ``reaches_stick`` (1 for those that reach it) and ``stick_time`` (time units of the
+        launch spin when they do, NaN else), their ``end_tilt`` the stick's.
 
     Raises
     ------
@@ -112,6 +117,7 @@ def bifurcation_diagram(
     if not alpha_v > 0:
         raise InputError(f"alpha_v = {alpha_v!r} is outside the allowed range: alpha_v > 0")
     q, sigma, mu = top.q, top.sigma, top.mu
+    stick_tilt, stick_part = top.stick_contact() if top.stick is not None else (None, "")
     fr_ref = float(top.fr_inv(ref, unit))
     j_per_unit = upright_jellett(q=q, sigma=sigma) / ref
     bp = branch_points(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu)
@@ -148,6 +154,7 @@ def bifurcation_diagram(
         coords={"spin": ("level", spins, spin_attrs)},
     )
     rows = []
+    stick_times: list[float] = []
     th = math.radians(tilt)
     for r in runs:
         start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
@@ -156,11 +163,18 @@ def bifurcation_diagram(
         pred = final_state(**params, **start, simulation=False)
         chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
         end, _, run = settle(
-            initial_state("sliding", **start), params, chunk=chunk, t_max=2e5, settle_tolerance=1e-3, rtol=1e-10
+            initial_state("sliding", **start),
+            params,
+            chunk=chunk,
+            t_max=2e5,
+            settle_tolerance=1e-3,
+            rtol=1e-10,
+            stick_tilt=stick_tilt,
         )
         rows.append(
             (r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), 0)
         )
+        stick_times.append(run.event_time if run.event == "stick_contact" else math.nan)
     if paper_run:  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
         from ..nonlinear.scene import INITIAL_CONDITIONS
 
@@ -174,7 +188,9 @@ def bifurcation_diagram(
             settle_tolerance=1e-3,
             rtol=1e-10,
             chunk=chunk_length(pred.candidates, params, pred.jellett),
+            stick_tilt=stick_tilt,
         )
+        stick_times.append(run.event_time if run.event == "stick_contact" else math.nan)
         r = float(top.spin_rate(0.3, unit))
         rows.append(
             (
@@ -224,6 +240,25 @@ def bifurcation_diagram(
         "alpha_v": alpha_v,
         "initial_tilt_deg": float(tilt),
     }
+    if stick_tilt is not None:
+        attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
+        branch.attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
+        branch["beyond_stick"] = (
+            "point",
+            (branch.tilt.values >= stick_tilt).astype(np.int8),
+            {"long_name": "the state's tilt is at or beyond the stick's: a state the toy cannot have"},
+        )
+        times = np.array(stick_times, dtype=float)
+        runs_ds["reaches_stick"] = (
+            "run",
+            np.isfinite(times).astype(np.int8),
+            {"long_name": "the run reaches the stick"},
+        )
+        runs_ds["stick_time"] = (
+            "run",
+            times,
+            {"long_name": "time at which the run reaches the stick", "units": "1/Omega of the launch spin"},
+        )
     for ds in (vertical, runs_ds):
         ds.attrs.update(attrs)
     branch.attrs.update(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)

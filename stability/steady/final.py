@@ -163,7 +163,9 @@ class FinalState:
         ``"upright"``, ``"inverted"``, ``"tilted"`` (a steady state of the level), or after a run
         ``"rolling"`` (settled off every steady state: one of the no-slip continua of
         ``fr_inv = 0`` or ``q = 0``) or ``"unsettled"`` (the time limit came first), or ``"contact_lost"`` (the deciding run
-        reached a zero of the normal force: no final state of the model; ``event``, ``event_time``).
+        reached a zero of the normal force: no final state of the model; ``event``, ``event_time``), or
+        ``"stick_contact"`` (given ``stick_tilt``, the motion reaches the toy's stick: ``tilt`` is the
+        stick's, ``event_time`` when).
     method : str
         ``"jellett"`` (decided by ``J`` and ``E``) or ``"simulation"`` (a run decided).
     jellett : float
@@ -447,6 +449,7 @@ def final_state(
     rtol: Any = 1e-10,
     alpha_k: Any = 0.0,
     alpha_s: Any = None,
+    stick_tilt: Any = None,
 ) -> FinalState:
     """The predicted end of the motion of a sliding top (simulate's state arguments).
 
@@ -476,6 +479,13 @@ def final_state(
         ``alpha_k > 0`` the top sticks and rolls, and the answer is that rolling motion
         (:func:`stability.steady.coulomb.coulomb_final_state`; a hybrid run to ``t_max``,
         ``alpha_v = 0`` allowed; its run lasts ``min(t_max, 1000)``).
+    stick_tilt : float, optional
+        The tilt (degrees) at which the top's stick touches the floor
+        (:meth:`stability.Top.stick_contact`). When the end that ``J`` and ``E`` decide (or the
+        undecided end) lies at or beyond it, a run (stopped at the stick, :func:`stability.simulate`)
+        says when the motion reaches its stick: ``kind = "stick_contact"``, ``event_time``, the
+        tilt the stick's; an end below it is kept (the transient is not checked, as for contact
+        loss).
 
     Returns
     -------
@@ -520,7 +530,17 @@ def final_state(
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     before_compiled_call(COMPILED, COMPILE_SECONDS)
-    return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
+    if stick_tilt is not None:
+        stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
+    return final_state_from(
+        y,
+        params,
+        simulation=simulation,
+        t_max=t_max,
+        settle_tolerance=settle_tolerance,
+        rtol=rtol,
+        stick_tilt=stick_tilt,
+    )
 
 
 def final_state_from(
@@ -531,6 +551,7 @@ def final_state_from(
     t_max: Any = 2e5,
     settle_tolerance: Any = 1e-4,
     rtol: Any = 1e-10,
+    stick_tilt: float | None = None,
 ) -> FinalState:
     """:func:`final_state` after its input checks: from a checked state and checked parameters.
 
@@ -548,7 +569,7 @@ def final_state_from(
     params : dict of float
         ``q, fr_inv, sigma, mu, alpha_v`` in the physical domain, ``alpha_v > 0``
         (:func:`stability.steady.products.sliding_parameters`).
-    simulation, t_max, settle_tolerance, rtol
+    simulation, t_max, settle_tolerance, rtol, stick_tilt
         As in :func:`final_state`.
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
@@ -582,7 +603,9 @@ def final_state_from(
             f"; contact not checked on the way (no run): N = {n0:.6g} at the start and mu Fr^-1 = "
             f"{mu * fr_inv:.6g} at the end state, the transient between not integrated (simulate checks it)"
         )
-    if end is not None:
+    if stick_tilt is not None and end is not None and end.tilt < stick_tilt:
+        stick_tilt = None  # the decided end is below the stick: the stick plays no part
+    if end is not None and stick_tilt is None:
         return FinalState(
             tilt=end.tilt,
             kind=end.kind,
@@ -619,7 +642,27 @@ def final_state_from(
             f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
             "simulation=False skips it)"
         )
-    tilt, energy, run = settle(y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
+    tilt, energy, run = settle(
+        y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt
+    )
+    if run.event == "stick_contact":
+        return FinalState(
+            tilt=tilt,
+            kind=run.event,
+            method="simulation",
+            energy=energy,
+            precession_rate=math.nan,
+            axial_spin=run.axial_spin,
+            state=None,
+            reason=f"{reason}; a run decided: the motion reaches its stick at {tilt:.4g} degrees after "
+            f"t = {run.event_time:.6g} (units of 1/Omega): the sphere model's end"
+            + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
+            + " is a tilt the toy cannot have",
+            run=run,
+            event=run.event,
+            event_time=run.event_time,
+            **common,
+        )
     if run.event != "none":
         return FinalState(
             tilt=tilt,
@@ -726,11 +769,13 @@ def settle(
     settle_tolerance: float,
     rtol: float,
     samples: int = 20,
+    stick_tilt: float | None = None,
 ) -> tuple[float, float, SettleRun]:
     """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
     tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
-    ``t_max`` (or a failed integration: then unsettled, tilt NaN). Returns the end tilt (degrees),
-    the end energy and the :class:`SettleRun`."""
+    ``t_max`` (or a failed integration: then unsettled, tilt NaN), or an event (contact lost, the
+    stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
+    the :class:`SettleRun`."""
     w, kk, v = y0[0:3], y0[3:6], y0[6:8]
     t = 0.0
     n = 0
@@ -750,6 +795,7 @@ def settle(
             velocity=v,
             rtol=rtol,
             atol=1e-3 * rtol,
+            stick_tilt=stick_tilt,
             **params,
         )
         n += 1
