@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from .. import interrupts
 from ..errors import InputError, Interrupted
@@ -210,7 +211,9 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
 
     kinds = (("stable", 0), ("marginal", 1), ("unstable", 2), ("outside domain", -1))
     counts = dict.fromkeys((name for name, _ in kinds), 0)
-    with xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
+    from ..grids.store import is_store_path, open_store
+
+    with open_store(out) if is_store_path(out) else xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
         var = f["stability"]
         n0 = var.shape[0] if var.ndim else 1
         step = max(1, int(2e7 // max(1, var.size // n0)))
@@ -254,8 +257,11 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
 
+    from ..grids.store import is_store_path
+
     _apply_top(args)
-    out = check_output_path(args.output, overwrite=args.overwrite)
+    zarr_store = is_store_path(args.output)  # a Zarr store: stability.grids.store checks its name
+    out = Path(args.output) if zarr_store else check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
@@ -275,7 +281,7 @@ def run(args: argparse.Namespace) -> int:
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)
     layout = _layout(args)
-    if layout == _layout(None):
+    if layout == _layout(None) and not zarr_store:
         write_dataset(ds, out, overwrite=args.overwrite)
     else:
         from ..grids.chunked import write_atlas

@@ -41,7 +41,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, InputError, ParameterTypeError, ResumeError
+from ..errors import ChunkError, InputError, ParameterTypeError, ResumeError, require_extra
 from ..interrupts import Temporary, checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
@@ -49,6 +49,7 @@ from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
 from .outputs import TEMPORARY_PREFIX, atomic_output, check_output_path, close_quietly, temporary_name, write_error
 from .schema import MAP_VARIABLES, STORED_ATTR
+from .store import is_store_path, parts_directory
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -339,12 +340,6 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
             "change it beyond the stated bound: write with float32=False"
         )
     return w
-
-
-def parts_directory(path: str | os.PathLike) -> Path:
-    """The sidecar chunk store of an output file: ``<output>.parts/``."""
-    p = Path(path)
-    return p.with_name(p.name + ".parts")
 
 
 def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
@@ -732,7 +727,14 @@ def write_atlas(
             f"compression = {compression!r} is not a choice; choose one of {', '.join(map(str, COMPRESSIONS))}"
         )
     float32 = check_flag("float32", float32)
-    target = check_output_path(path, overwrite=overwrite)
+    zarr_store = is_store_path(path)
+    if zarr_store and (variables, compression, float32) != ("all", None, False):
+        raise InputError(
+            f"a Zarr store ({str(path)!r}) stores every variable of the atlas in float64, with Zarr's "
+            f"default compression: variables = {variables!r}, compression = {compression!r}, "
+            f"float32 = {float32!r} apply to netCDF files only"
+        )
+    target = Path(path) if zarr_store else check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
@@ -744,6 +746,32 @@ def write_atlas(
     expected = atlas_file_bytes(n_modes, n_points)
     report = _progress(progress, len(blocks))
     store = None
+    if zarr_store:
+        require_extra("zarr", "cluster", "an atlas written to a Zarr store (.zarr)")
+        from .store import write_store
+
+        spec = _spec(ds, dims) | {
+            "chunk_shape": chunk_shape,
+            "n_modes": n_modes,
+            "variables": _stored(ds, "all"),
+            "identity": _identity(ds, chunk_shape),
+        }
+        try:
+            with deferred():
+                return write_store(
+                    ds,
+                    target,
+                    overwrite=overwrite,
+                    client=client,
+                    resume=resume,
+                    window=window,
+                    spec=spec,
+                    blocks=blocks,
+                    report=report,
+                    failed=_Failure(parts_directory(target) if resume else None, len(blocks)),
+                )
+        finally:
+            report(close=True)
     try:
         with deferred():
             if resume:
@@ -961,8 +989,13 @@ def _run_on_cluster(
     window: int | None,
     failed: _Failure,
     report: _progress,
+    task: Callable | None = None,
+    args: tuple = (),
 ) -> None:
     """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
+
+    Each chunk runs ``task(spec, sl, *args)`` (default :func:`_compute_block`); ``put`` gets
+    what it returns.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
     ``allowed-failures``, dask's ``KilledWorker``) ends the run with a :class:`ChunkError`; the
@@ -970,6 +1003,7 @@ def _run_on_cluster(
     """
     from distributed import as_completed
 
+    task = task or _compute_block
     if window is None:
         window = 2 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)
@@ -977,7 +1011,7 @@ def _run_on_cluster(
     ac = as_completed()
     try:
         for name, sl in pending:
-            fut = client.submit(_compute_block, spec, sl, pure=False)
+            fut = client.submit(task, spec, sl, *args, pure=False)
             names[fut.key] = (name, sl, fut)
             ac.add(fut)
             if len(names) >= window:
@@ -993,7 +1027,7 @@ def _run_on_cluster(
             fut.release()
             nxt = next(pending, None)
             if nxt is not None:
-                f2 = client.submit(_compute_block, spec, nxt[1], pure=False)
+                f2 = client.submit(task, spec, nxt[1], *args, pure=False)
                 names[f2.key] = (*nxt, f2)
                 ac.add(f2)
     finally:
