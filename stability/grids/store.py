@@ -83,12 +83,17 @@ def _chunk_dims(dims: list[str]) -> tuple[str, ...]:
 
 
 def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> xr.Dataset:
-    """The atlas (lazy: nothing computed) plus its per-chunk record, chunked as the store."""
+    """The atlas's layout (variables of its dims, dtypes and attributes, chunked as the store;
+    their values never computed: the atlas's own graph is not built into the store's) plus the
+    per-chunk record."""
     import dask.array as da
 
-    out = ds.chunk({**chunk_shape, **({"mode": -1} if "mode" in ds.dims else {})})
-    for v in out.variables.values():
-        v.encoding = {}
+    def empty(v: xr.DataArray) -> da.Array:
+        return da.empty(v.shape, chunks=tuple(chunk_shape.get(d, n) for d, n in zip(v.dims, v.shape)), dtype=v.dtype)
+
+    out = xr.Dataset(
+        {k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, coords=ds.coords, attrs=ds.attrs
+    )
     counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
     cdims = _chunk_dims(dims)
     ones = (1,) * len(dims)
