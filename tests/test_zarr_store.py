@@ -141,7 +141,10 @@ def test_resume_after_a_kill_between_data_and_digest(tmp_path, monkeypatch, refe
         digests = z["chunk_digest"].values
     first = tuple(np.argwhere(digests != 0)[0])
     xr.Dataset({"chunk_digest": (("q_chunk", "fr_inv_chunk", "sigma_chunk"), np.zeros((1, 1, 1), np.uint64))}).to_zarr(
-        store, region={d: slice(i, i + 1) for d, i in zip(("q_chunk", "fr_inv_chunk", "sigma_chunk"), first)}, mode="r+", consolidated=False
+        store,
+        region={d: slice(i, i + 1) for d, i in zip(("q_chunk", "fr_inv_chunk", "sigma_chunk"), first)},
+        mode="r+",
+        consolidated=False,
     )
     calls = []
     real = dist._compute_block

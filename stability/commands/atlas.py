@@ -183,9 +183,6 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     if args.resume:
         interrupts.set_kept(f"the finished chunks are kept in {store}; rerun the same command to continue")
 
-    def note(text: str) -> None:
-        print(f"tippe atlas: note: {text}", file=sys.stderr)
-
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(
@@ -195,7 +192,6 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
                 client=client,
                 resume=args.resume,
                 progress=not args.no_progress and sys.stderr.isatty(),
-                notes=note,
                 **_layout(args),
             )
     except KeyboardInterrupt:
@@ -213,7 +209,8 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     counts = dict.fromkeys((name for name, _ in kinds), 0)
     from ..grids.store import is_store_path, open_store
 
-    with open_store(out) if is_store_path(out) else xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
+    # counted in slabs of <= 2e7 points: memory does not grow with the grid
+    with open_store(out) if is_store_path(out) else xr.open_dataset(out) as f:
         var = f["stability"]
         n0 = var.shape[0] if var.ndim else 1
         step = max(1, int(2e7 // max(1, var.size // n0)))
@@ -256,7 +253,6 @@ def _check_space(out, model: str, values: dict) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
-
     from ..grids.store import is_store_path
 
     _apply_top(args)

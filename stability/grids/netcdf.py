@@ -184,7 +184,7 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
         try:
             ds = open_store(p)
         except Exception as exc:
-            raise AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store ({type(exc).__name__})") from None
+            raise AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store ({exc!r:.80})") from None
     else:
         p = Path(_atlas_path(path))
         ds = _open(p)

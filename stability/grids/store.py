@@ -28,8 +28,10 @@ instead of a hidden temporary directory, and kept when the run is interrupted or
 opens it, refuses it if it belongs to another atlas (other coordinates, model, method, masking,
 chunks or package version: :class:`~stability.errors.ResumeError` naming what differs), reads
 ``chunk_digest`` and recomputes the digest of every chunk marked complete from what the store
-holds: a chunk that disagrees (edited, damaged) is refused naming it; the chunks marked
-incomplete (never written, or interrupted between the data and the digest) are computed. The
+holds: a chunk that disagrees (edited, swapped, copied from another store) is refused naming it;
+a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
+chunks marked incomplete (never written, or interrupted between the data and the digest) are
+computed. The
 result equals the atlas computed in one go, bit for bit. The store must be on a file system the
 workers share with the client (always true of a LocalCluster).
 """
@@ -39,6 +41,7 @@ from __future__ import annotations
 import hashlib
 import os
 import shutil
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -121,13 +124,14 @@ def _index(sl: dict[str, slice], spec: dict[str, Any]) -> dict[str, slice]:
     return {f"{d}_chunk": slice(sl[d].start // ch[d], sl[d].start // ch[d] + 1) for d in spec["dims"]}
 
 
-def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str) -> tuple[bool, bool]:
-    """Compute one chunk, write it into its region of the store, then its digest; return only
-    (zero mode at every point inside, a point inside). Runs wherever the chunk is sent."""
+def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute: Callable) -> tuple[bool, bool]:
+    """Compute one chunk (``compute(spec, sl)``: :func:`stability.grids.chunked._compute_block`),
+    write it into its region of the store, then its digest; return only (zero mode at every
+    point inside, a point inside). Runs wherever the chunk is sent."""
     from . import chunked
 
     dims = spec["dims"]
-    block = chunked._compute_block(spec, sl)
+    block = compute(spec, sl)
     shape = tuple(sl[d].stop - sl[d].start for d in dims)
     chunked._check_block(
         block,
@@ -209,7 +213,15 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
             digest = record["chunk_digest"][i]
             if digest == 0:
                 continue
-            block = _read_block(old, sl, dims)
+            try:
+                block = _read_block(old, sl, dims)
+            except Exception as exc:  # a chunk file truncated or damaged: computed again
+                warnings.warn(
+                    f"chunk {name} of {str(path)!r} cannot be read ({type(exc).__name__}): computed again",
+                    UserWarning,
+                    stacklevel=5,
+                )
+                continue
             if _digest(spec, sl, block) != digest:
                 raise ResumeError(
                     f"cannot resume: chunk {name} of {str(path)!r} does not match its digest (edited, "
@@ -231,13 +243,18 @@ def write_store(
     blocks: list,
     report: Callable,
     failed: Callable,
+    commit: bool = True,
 ) -> Path:
-    """The Zarr branch of :func:`stability.grids.chunked.write_atlas` (module docstring).
+    """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
+    complete store, renamed to ``target`` (``commit``) or left in ``<target>.parts`` for the
+    netCDF writer (``resume=True`` only); its path.
 
     ``spec`` is :func:`stability.grids.chunked._spec` with ``chunk_shape``, ``n_modes``,
     ``variables`` (the atlas variables stored) and ``identity``; ``blocks`` the (name, slice)
     of each chunk; ``report`` and ``failed`` as for the netCDF writer.
     """
+    from . import chunked
+
     _check_target(target, overwrite)
     dims = spec["dims"]
     parts = parts_directory(target) if resume else target.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{target.name}")
@@ -254,28 +271,29 @@ def write_store(
             for name, sl in todo:
                 checkpoint()
                 try:
-                    done[name] = _write_region(spec, sl, str(parts))
+                    done[name] = _write_region(spec, sl, str(parts), chunked._compute_block)
                 except (ChunkError, KeyboardInterrupt):
                     raise
                 except Exception as exc:
                     raise failed(name, sl, exc, report.done) from exc
                 report()
         else:
-            from .chunked import _run_on_cluster
 
-            def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool], fresh: bool) -> None:
+            def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
                 done[name] = summary
                 report()
                 checkpoint()
 
-            _run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=(str(parts),))
+            args = (str(parts), chunked._compute_block)  # the function itself: a test's fault goes along
+            chunked._run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
         _finish(parts, done, blocks, dims)
-        _commit(parts, target, overwrite)
+        if commit:
+            _commit(parts, target, overwrite)
     except BaseException:
         if not resume:
             shutil.rmtree(parts, ignore_errors=True)
         raise
-    return target
+    return target if commit else parts
 
 
 def _finish(parts: Path, done: dict[str, tuple[bool, bool]], blocks: list, dims: list[str]) -> None:
