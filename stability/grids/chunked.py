@@ -12,15 +12,10 @@
   (:func:`stability.grids.outputs.atomic_output`: no partial file, and an existing file, or one
   another run created meanwhile, is not replaced unless asked). Memory stays at a few chunks
   whatever the grid size; an interruption (checked between chunks) leaves no output file.
-* Resuming: with ``resume=True`` every finished chunk is also kept in a sidecar directory
-  ``<output>.parts/`` (:class:`_Store`: one ``.npz`` per chunk, each renamed into place when
-  complete, a journal of digests binding each chunk's content to its name, slice and store, a
-  manifest naming the atlas, and a lock: one run at a time). A rerun with the same arguments
-  uses the chunks found there that match their records and computes only the others; the
-  directory is removed once the output file is in place. A store written for a different
-  atlas (other grid, model, method, chunks or package version) or by an older version, and a
-  chunk file that does not match its record, are refused with the reason, never mixed in: a
-  resumed atlas equals the one computed in one go, bit for bit.
+* To a Zarr store (an output named ``*.zarr``), and with ``resume=True``: the chunks are written
+  by region into a Zarr store by whoever computes them (the workers of a cluster), each marked
+  complete by its digest; a rerun reuses the complete chunks; a netCDF output is then written
+  from the store (:mod:`stability.grids.store`).
 * Where the chunks run: in this process by default, or on a dask.distributed cluster given as
   ``client`` (:func:`stability.grids.cluster.dask_client`).
 """
