@@ -41,12 +41,9 @@ from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
 from .outputs import atomic_output, check_free_space, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import is_store_path, parts_directory
+from .store import _BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
-
-#: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
-_BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
 
 
 def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[str, int]) -> dict[str, int]:
@@ -204,15 +201,6 @@ def lazy_spectra(
 
 # --- writing -----------------------------------------------------------------------------------
 
-#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
-_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
-    "growth_rate": (np.dtype(np.float64), True),
-    "frequency": (np.dtype(np.float64), True),
-    "eigenvalue_error_bound": (np.dtype(np.float64), True),
-    "stability": (np.dtype(np.int8), False),
-    "physical": (np.dtype(np.int8), False),
-}
-
 #: what :func:`write_atlas` can store (``variables=``): every variable of the atlas, or the
 #: smallest set that draws a stability map (:data:`stability.grids.schema.MAP_VARIABLES`)
 VARIABLE_CHOICES = ("all", "map")
@@ -340,21 +328,6 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
     return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **{k: str(ds.attrs.get(k)) for k in keep}}
 
 
-def _check_block(
-    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
-) -> None:
-    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
-    if set(block) != set(_BLOCK_LAYOUT):
-        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
-    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
-        a = block[k]
-        want = shape + ((n_modes,) if modal else ())
-        if a.dtype != dtype:
-            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
-        if a.shape != want:
-            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
-
-
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
     ranges = [range(0, ds.sizes[d], chunk_shape[d]) for d in dims]
     out = []
@@ -399,16 +372,6 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
         method=spec["method"],
     )
     return dict(zip(_BLOCK_VARIABLES, out))
-
-
-def _slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-    """The per-chunk variables of an in-memory atlas."""
-    dims = list(ds["stability"].dims)
-    out = {}
-    for k in _BLOCK_VARIABLES:
-        v = ds[k].isel(sl)
-        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
-    return out
 
 
 def write_atlas(
@@ -538,6 +501,8 @@ def write_atlas(
                 blocks=blocks,
                 report=report,
                 failed=_Failure(parts_directory(target) if resume else None, len(blocks)),
+                compute=_compute_block,
+                run_on_cluster=_run_on_cluster,
                 commit=zarr_store,
             )
             if zarr_store:
@@ -647,7 +612,7 @@ def _write_chunks(
         return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
 
     def again(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-        return _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+        return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
 
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
         _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
@@ -658,7 +623,7 @@ def _write_chunks(
 
             def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
                 shape = tuple(sl[d].stop - sl[d].start for d in dims)
-                _check_block(
+                check_block(
                     block,
                     shape,
                     n_modes,
@@ -681,7 +646,7 @@ def _write_chunks(
                 for name, sl in blocks:
                     checkpoint()
                     try:
-                        block = _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+                        block = _compute_block(spec, sl) if lazy else slice_block(ds, sl)
                     except Exception as exc:
                         raise failed(name, sl, exc, report.done) from exc
                     put(name, sl, block)

@@ -54,13 +54,59 @@ from ..interrupts import checkpoint
 from .leading import leading, zero_everywhere
 from .outputs import TEMPORARY_PREFIX
 
-__all__ = ["RECORD_VARIABLES", "is_store_path", "open_store", "parts_directory", "write_store"]
+__all__ = [
+    "RECORD_VARIABLES",
+    "check_block",
+    "is_store_path",
+    "open_store",
+    "parts_directory",
+    "slice_block",
+    "write_store",
+]
 
 #: the per-chunk record of a store (not atlas variables: :func:`open_store` drops them)
 RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
 
 #: the attributes a resumed store must share with the atlas being written
 _IDENTITY = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
+
+
+#: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
+_BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
+
+#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
+_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
+    "growth_rate": (np.dtype(np.float64), True),
+    "frequency": (np.dtype(np.float64), True),
+    "eigenvalue_error_bound": (np.dtype(np.float64), True),
+    "stability": (np.dtype(np.int8), False),
+    "physical": (np.dtype(np.int8), False),
+}
+
+
+def check_block(
+    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
+) -> None:
+    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
+    if set(block) != set(_BLOCK_LAYOUT):
+        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
+    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
+        a = block[k]
+        want = shape + ((n_modes,) if modal else ())
+        if a.dtype != dtype:
+            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
+        if a.shape != want:
+            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
+
+
+def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
+    """The per-chunk variables of a chunk of an atlas in memory or in a store."""
+    dims = list(ds["stability"].dims)
+    out = {}
+    for k in _BLOCK_VARIABLES:
+        v = ds[k].isel(sl)
+        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
+    return out
 
 
 def is_store_path(path: str | os.PathLike) -> bool:
@@ -128,12 +174,10 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     """Compute one chunk (``compute(spec, sl)``: :func:`stability.grids.chunked._compute_block`),
     write it into its region of the store, then its digest; return only (zero mode at every
     point inside, a point inside). Runs wherever the chunk is sent."""
-    from . import chunked
-
     dims = spec["dims"]
     block = compute(spec, sl)
     shape = tuple(sl[d].stop - sl[d].start for d in dims)
-    chunked._check_block(
+    check_block(
         block,
         shape,
         spec["n_modes"],
@@ -162,17 +206,6 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), _digest(spec, sl, block)))})
     digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)  # last: the chunk is complete
     return everywhere, inside
-
-
-def _read_block(stored: xr.Dataset, sl: dict[str, slice], dims: list[str]) -> dict[str, np.ndarray]:
-    """The per-chunk variables of a chunk as the store holds them."""
-    from .chunked import _BLOCK_VARIABLES
-
-    out = {}
-    for k in _BLOCK_VARIABLES:
-        v = stored[k].isel(sl)
-        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
-    return out
 
 
 def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> dict[str, tuple[bool, bool]]:
@@ -214,7 +247,7 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
             if digest == 0:
                 continue
             try:
-                block = _read_block(old, sl, dims)
+                block = slice_block(old, sl)
             except Exception as exc:  # a chunk file truncated or damaged: computed again
                 warnings.warn(
                     f"chunk {name} of {str(path)!r} cannot be read ({type(exc).__name__}): computed again",
@@ -243,6 +276,8 @@ def write_store(
     blocks: list,
     report: Callable,
     failed: Callable,
+    compute: Callable,
+    run_on_cluster: Callable,
     commit: bool = True,
 ) -> Path:
     """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
@@ -251,10 +286,9 @@ def write_store(
 
     ``spec`` is :func:`stability.grids.chunked._spec` with ``chunk_shape``, ``n_modes``,
     ``variables`` (the atlas variables stored) and ``identity``; ``blocks`` the (name, slice)
-    of each chunk; ``report`` and ``failed`` as for the netCDF writer.
+    of each chunk; ``report``, ``failed``, ``compute`` (of one chunk) and ``run_on_cluster`` as
+    for the netCDF writer.
     """
-    from . import chunked
-
     _check_target(target, overwrite)
     dims = spec["dims"]
     parts = parts_directory(target) if resume else target.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{target.name}")
@@ -271,7 +305,7 @@ def write_store(
             for name, sl in todo:
                 checkpoint()
                 try:
-                    done[name] = _write_region(spec, sl, str(parts), chunked._compute_block)
+                    done[name] = _write_region(spec, sl, str(parts), compute)
                 except (ChunkError, KeyboardInterrupt):
                     raise
                 except Exception as exc:
@@ -284,8 +318,8 @@ def write_store(
                 report()
                 checkpoint()
 
-            args = (str(parts), chunked._compute_block)  # the function itself: a test's fault goes along
-            chunked._run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
+            args = (str(parts), compute)  # the function itself goes along (a test's injected fault too)
+            run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
         _finish(parts, done, blocks, dims)
         if commit:
             _commit(parts, target, overwrite)
