@@ -41,7 +41,7 @@ from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
 from .outputs import atomic_output, check_free_space, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import _BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
+from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -371,7 +371,7 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
         mask=spec["mask"],
         method=spec["method"],
     )
-    return dict(zip(_BLOCK_VARIABLES, out))
+    return dict(zip(BLOCK_VARIABLES, out))
 
 
 def write_atlas(
@@ -494,14 +494,14 @@ def write_atlas(
                 ds,
                 target,
                 overwrite=overwrite,
-                client=client,
+                client=client if ds.chunks else None,
                 resume=resume,
                 window=window,
                 spec=spec,
                 blocks=blocks,
                 report=report,
                 failed=_Failure(parts_directory(target) if resume else None, len(blocks)),
-                compute=_compute_block,
+                compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl),  # in memory: sliced
                 run_on_cluster=_run_on_cluster,
                 commit=zarr_store,
             )

@@ -55,6 +55,7 @@ from .leading import leading, zero_everywhere
 from .outputs import TEMPORARY_PREFIX
 
 __all__ = [
+    "BLOCK_VARIABLES",
     "RECORD_VARIABLES",
     "check_block",
     "is_store_path",
@@ -72,7 +73,7 @@ _IDENTITY = ("model", "eigenvalue_method", "mask_unphysical", "source", "paramet
 
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
-_BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
+BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
 
 #: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
 _BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
@@ -103,7 +104,7 @@ def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of a chunk of an atlas in memory or in a store."""
     dims = list(ds["stability"].dims)
     out = {}
-    for k in _BLOCK_VARIABLES:
+    for k in BLOCK_VARIABLES:
         v = ds[k].isel(sl)
         out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
     return out
