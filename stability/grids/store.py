@@ -355,7 +355,7 @@ def _check_target(target: Path, overwrite: bool) -> None:
     if not os.path.lexists(target):
         return
     if not overwrite:
-        raise FileExistsError(f"output {str(target)!r} exists; pass overwrite=True (--overwrite) to replace it")
+        raise FileExistsError(f"output {str(target)!r} exists; pass overwrite=True to replace it")
     if target.is_symlink() or not (target / "zarr.json").is_file():
         raise FileExistsError(f"output {str(target)!r} exists and is not a Zarr store; it is never replaced")
 
