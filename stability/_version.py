@@ -1,7 +1,7 @@
 """The installed version of tippe-stability, read once.
 
 Layer 0 (docs/architecture.md): imports nothing from the package. Every dataset's ``source``
-attribute, the chunk store's manifest and ``tippe --version`` take the version from here.
+attribute, the chunk store's identity and ``tippe --version`` take the version from here.
 """
 
 from __future__ import annotations

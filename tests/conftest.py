@@ -150,6 +150,15 @@ def assert_same_atlas(a: xr.Dataset, b: xr.Dataset) -> None:
     xr.testing.assert_identical(a, b)
 
 
+def kept_chunks(out) -> int:
+    """The chunks the resumable store of output ``out`` (``<out>.parts``, a Zarr store) marks
+    complete: a non-zero digest (:mod:`stability.grids.store`)."""
+    from stability.grids.store import parts_directory
+
+    with xr.open_dataset(parts_directory(out), engine="zarr", consolidated=False, chunks=None) as z:
+        return int((z["chunk_digest"].values != 0).sum())
+
+
 def assert_resume_completes(ds: xr.Dataset, out, reference: xr.Dataset, monkeypatch, missing: int) -> None:
     """After a faulted run: ``write_atlas(ds, out, resume=True)`` computes only the ``missing``
     chunks not kept in the parts store, removes the store and writes an atlas identical to

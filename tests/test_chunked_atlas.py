@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_resume_completes, assert_same_atlas
+from conftest import assert_resume_completes, assert_same_atlas, kept_chunks
 
 import stability
 from stability.cli import main
@@ -77,7 +77,7 @@ def test_interrupted_run_leaves_no_file_and_resumes(tmp_path, reference, monkeyp
         write_atlas(ds, out, resume=True)
     assert not out.exists()
     assert [p.name for p in tmp_path.iterdir()] == [parts_directory(out).name]  # no temporary file either
-    assert len(list(parts_directory(out).glob("chunk-*.npz"))) == 5
+    assert kept_chunks(out) == 5
 
     assert_resume_completes(ds, out, reference, monkeypatch, missing=7)
 

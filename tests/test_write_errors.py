@@ -15,7 +15,6 @@ Issue 13, item 12 (and E6: a clean-up error never replaces the first error). Ref
 from __future__ import annotations
 
 import errno
-import os
 import resource
 import subprocess
 import sys
@@ -27,10 +26,8 @@ import xarray as xr
 
 import stability
 import stability.files as outputs
-import stability.grids.chunked as dist
 from stability.errors import OutputWriteError
 from stability.files import TEMPORARY_PREFIX, check_free_space, close_quietly
-from stability.grids.chunked import parts_directory, write_atlas
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
 
@@ -95,32 +92,6 @@ def test_output_above_the_limit_is_refused_before_computing(tmp_path):
         "200000 bytes; nothing was written"
     ) in r.stderr
     assert list(tmp_path.iterdir()) == []
-
-
-def test_disk_full_while_saving_a_chunk_names_the_chunk_file(tmp_path, monkeypatch):
-    out = tmp_path / "a.nc"
-    real = np.savez
-    calls = []
-
-    def savez(f, **arrays):
-        calls.append(1)
-        if len(calls) == 2:
-            f.write(b"PK\x03\x04 half a chunk")
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        return real(f, **arrays)
-
-    monkeypatch.setattr(dist.np, "savez", savez)
-    ds = stability.atlas(
-        "sliding", q=np.linspace(-0.4, 0.4, 8), fr_inv=[0.0, 0.3], sigma=1.0, alpha_v=0.5, chunks={"q": 4}
-    )
-    with pytest.raises(OutputWriteError) as err:
-        write_atlas(ds, out, resume=True)
-    chunk = parts_directory(out) / "chunk-1-0.npz"
-    assert err.value.errno == errno.ENOSPC
-    assert str(err.value).startswith(f"cannot write '{chunk}': no space left on the file system holding")
-    assert not out.exists() and not chunk.exists()
-    assert _leftovers(tmp_path) == []  # neither the output's nor the chunk's temporary file
-    assert (parts_directory(out) / "chunk-0-0.npz").exists()  # the finished chunk is kept
 
 
 def test_library_error_without_errno_is_diagnosed(tmp_path, monkeypatch):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from .. import interrupts
 from ..errors import InputError, Interrupted
@@ -185,9 +186,6 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     if args.resume:
         interrupts.set_kept(f"the finished chunks are kept in {store}; rerun the same command to continue")
 
-    def note(text: str) -> None:
-        print(f"tippe atlas: note: {text}", file=sys.stderr)
-
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
             write_atlas(
@@ -197,7 +195,6 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
                 client=client,
                 resume=args.resume,
                 progress=not args.no_progress and sys.stderr.isatty(),
-                notes=note,
                 **_layout(args),
             )
     except KeyboardInterrupt:
@@ -212,7 +209,10 @@ def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
     import xarray as xr
 
     counts = dict.fromkeys(_COUNTED.values(), 0)
-    with xr.open_dataset(out) as f:  # counted in slabs of <= 2e7 points: memory does not grow with the grid
+    from ..grids.store import is_store_path, open_store
+
+    # counted in slabs of <= 2e7 points: memory does not grow with the grid
+    with open_store(out) if is_store_path(out) else xr.open_dataset(out) as f:
         var = f["stability"]
         n0 = var.shape[0] if var.ndim else 1
         step = max(1, int(2e7 // max(1, var.size // n0)))
@@ -261,9 +261,11 @@ def _check_space(out, model: str, values: dict) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe atlas``."""
     from ..grids.atlases import atlas  # here: ``tippe --help`` imports no xarray
+    from ..grids.store import is_store_path
 
     _apply_top(args)
-    out = check_output_path(args.output, overwrite=args.overwrite)
+    zarr_store = is_store_path(args.output)  # a Zarr store: stability.grids.store checks its name
+    out = Path(args.output) if zarr_store else check_output_path(args.output, overwrite=args.overwrite)
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
@@ -283,7 +285,7 @@ def run(args: argparse.Namespace) -> int:
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)
     layout = _layout(args)
-    if layout == _layout(None):
+    if layout == _layout(None) and not zarr_store:
         write_dataset(ds, out, overwrite=args.overwrite)
     else:
         from ..grids.chunked import write_atlas

@@ -12,27 +12,19 @@
   (:func:`stability.grids.outputs.atomic_output`: no partial file, and an existing file, or one
   another run created meanwhile, is not replaced unless asked). Memory stays at a few chunks
   whatever the grid size; an interruption (checked between chunks) leaves no output file.
-* Resuming: with ``resume=True`` every finished chunk is also kept in a sidecar directory
-  ``<output>.parts/`` (:class:`_Store`: one ``.npz`` per chunk, each renamed into place when
-  complete, a journal of digests binding each chunk's content to its name, slice and store, a
-  manifest naming the atlas, and a lock: one run at a time). A rerun with the same arguments
-  uses the chunks found there that match their records and computes only the others; the
-  directory is removed once the output file is in place. A store written for a different
-  atlas (other grid, model, method, chunks or package version) or by an older version, and a
-  chunk file that does not match its record, are refused with the reason, never mixed in: a
-  resumed atlas equals the one computed in one go, bit for bit.
+* To a Zarr store (an output named ``*.zarr``), and with ``resume=True``: the chunks are written
+  by region into a Zarr store by whoever computes them (the workers of a cluster), each marked
+  complete by its digest; a rerun reuses the complete chunks; a netCDF output is then written
+  from the store (:mod:`stability.grids.store`).
 * Where the chunks run: in this process by default, or on a dask.distributed cluster given as
   ``client`` (:func:`stability.grids.cluster.dask_client`).
 """
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
-import json
 import os
 import shutil
-import warnings
 from collections.abc import Callable
 from itertools import product
 from pathlib import Path
@@ -41,19 +33,17 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, InputError, ParameterTypeError, ResumeError
-from ..interrupts import Temporary, checkpoint, deferred
+from ..errors import ChunkError, InputError, ParameterTypeError, require_extra
+from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
-from .outputs import TEMPORARY_PREFIX, atomic_output, check_output_path, close_quietly, temporary_name, write_error
+from .outputs import atomic_output, check_free_space, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
+from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
-
-#: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
-_BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
 
 
 def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[str, int]) -> dict[str, int]:
@@ -211,19 +201,6 @@ def lazy_spectra(
 
 # --- writing -----------------------------------------------------------------------------------
 
-#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
-_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
-    "growth_rate": (np.dtype(np.float64), True),
-    "frequency": (np.dtype(np.float64), True),
-    "eigenvalue_error_bound": (np.dtype(np.float64), True),
-    "stability": (np.dtype(np.int8), False),
-    "physical": (np.dtype(np.int8), False),
-}
-
-#: format of the chunk store (manifest, journal, digests); a store of another format is refused
-STORE_FORMAT = 2
-
-
 #: what :func:`write_atlas` can store (``variables=``): every variable of the atlas, or the
 #: smallest set that draws a stability map (:data:`stability.grids.schema.MAP_VARIABLES`)
 VARIABLE_CHOICES = ("all", "map")
@@ -283,12 +260,12 @@ def _create_skeleton(
             if "mode" in c.dims and "mode" not in nc.dimensions:
                 continue
             fill = np.nan if c.dtype.kind == "f" else None
-            var = nc.createVariable(k, c.dtype, c.dims, fill_value=fill)
+            var = nc.createVariable(k, c.dtype.newbyteorder("="), c.dims, fill_value=fill)  # "<f8" read from Zarr
             var.setncatts(dict(c.attrs))
             var[...] = c.values
         for k in stored:
             v = ds[k]
-            dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype
+            dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype.newbyteorder("=")
             fill = dtype.type(np.nan) if dtype.kind == "f" else None
             cs = [chunk_shape.get(d, ds.sizes[d]) for d in v.dims]
             var = nc.createVariable(
@@ -341,12 +318,6 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     return w
 
 
-def parts_directory(path: str | os.PathLike) -> Path:
-    """The sidecar chunk store of an output file: ``<output>.parts/``."""
-    p = Path(path)
-    return p.with_name(p.name + ".parts")
-
-
 def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
     """What a chunk store must match to be reused: grid, model, method, chunks, version."""
     h = hashlib.sha256()
@@ -355,240 +326,6 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
         h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
     keep = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
     return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **{k: str(ds.attrs.get(k)) for k in keep}}
-
-
-class _Store:
-    """The sidecar chunk store ``<output>.parts/`` of a resumable run (module docstring).
-
-    Layout: ``lock`` (an exclusive ``flock`` held for the whole run; it holds the pid),
-    ``manifest.json`` (format, a random store id, the atlas's identity), ``chunks.jsonl`` (the
-    journal: one line per finished chunk, appended after the chunk's file is in place, with the
-    digest binding its content to its name, slice, the store and the atlas) and one
-    ``chunk-*.npz`` per finished chunk (its arrays and the same digest).
-
-    A kept chunk is used only if its recomputed digest equals both records; a file the journal
-    does not know (killed between the rename and the journal line) or that cannot be read is
-    computed again, and said so; a file whose content or digest disagrees (edited, swapped,
-    copied from another store) is refused with :class:`~stability.errors.ResumeError` naming it.
-    An integrity check against accidents and mix-ups, not a security boundary: whoever can write
-    the store can also rewrite the digests.
-    """
-
-    def __init__(self, path: Path, ident: dict[str, Any], dims: list[str], notes: Callable[[str], None]) -> None:
-        self.path, self.ident, self.dims, self.notes = path, ident, dims, notes
-        self.lock_fd: int | None = None
-        self.store_id = ""
-        self.journal: dict[str, str] = {}
-
-    # -- opening ----------------------------------------------------------------------------
-    def open(self) -> set[str]:
-        """Create or check the store, under its lock; the names of the chunk files found."""
-        store = self.path
-        existed = store.exists()
-        if existed and not store.is_dir():
-            raise ResumeError(
-                f"cannot resume: {str(store)!r} exists and is not a directory (not a chunk store "
-                "of this package); remove it or choose another output"
-            )
-        store.mkdir(exist_ok=True)
-        self._lock()
-        manifest = store / "manifest.json"
-        others = [p.name for p in store.iterdir() if p.name != "lock" and not p.name.startswith(TEMPORARY_PREFIX)]
-        if not manifest.is_file():
-            if others:
-                raise ResumeError(
-                    f"cannot resume: {str(store)!r} exists but has no manifest.json (not a chunk "
-                    "store of this package); remove it or choose another output"
-                )
-            import uuid
-
-            self.store_id = uuid.uuid4().hex
-            _write_json_atomically(
-                store, "manifest.json", {"format": STORE_FORMAT, "store_id": self.store_id, "identity": self.ident}
-            )
-            return set()
-        try:
-            old = json.loads(manifest.read_text())
-            if not isinstance(old, dict):
-                raise InputError("not a JSON object")
-        except (ValueError, UnicodeDecodeError, OSError):
-            raise ResumeError(
-                f"cannot resume: {str(manifest)!r} is not a readable manifest; remove {str(store)!r} to start afresh"
-            ) from None
-        if old.get("format") != STORE_FORMAT or not isinstance(old.get("identity"), dict):
-            raise ResumeError(
-                f"cannot resume from {str(store)!r}: it was written by an older version of the "
-                "package (no chunk journal to check its chunks against); remove it to start afresh"
-            )
-        diff = [k for k in self.ident if old["identity"].get(k) != json.loads(json.dumps(self.ident[k]))]
-        if diff:
-            raise ResumeError(
-                f"cannot resume from {str(store)!r}: it was written for a different atlas "
-                f"({', '.join(diff)} differ); remove it to start afresh"
-            )
-        self.store_id = str(old.get("store_id", ""))
-        self.journal = self._read_journal()
-        return {p.stem for p in store.glob("chunk-*.npz")}
-
-    def _lock(self) -> None:
-        """Take the store's exclusive lock, or fail at once naming the run holding it."""
-        path = self.path / "lock"
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-        try:
-            import fcntl
-        except ImportError:  # pragma: no cover - not POSIX: no early warning, the commit still decides
-            self.lock_fd = fd
-            return
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            holder = ""
-            with contextlib.suppress(OSError, ValueError):
-                holder = os.pread(fd, 64, 0).decode().strip()
-            os.close(fd)
-            raise ResumeError(
-                f"cannot resume from {str(self.path)!r}: another run{f' (pid {holder})' if holder else ''} "
-                "is using this chunk store; wait for it to end, or write to another output"
-            ) from None
-        except OSError:  # no locks on this file system: no early warning, the commit still decides
-            pass
-        with contextlib.suppress(OSError):
-            os.ftruncate(fd, 0)
-            os.pwrite(fd, str(os.getpid()).encode(), 0)
-        self.lock_fd = fd
-
-    def close(self) -> None:
-        if self.lock_fd is not None:
-            with contextlib.suppress(OSError):
-                os.close(self.lock_fd)
-            self.lock_fd = None
-
-    def _read_journal(self) -> dict[str, str]:
-        out: dict[str, str] = {}
-        path = self.path / "chunks.jsonl"
-        if not path.is_file():
-            return out
-        with open(path, encoding="utf-8", errors="replace") as f:
-            for line in f:
-                try:
-                    rec = json.loads(line)
-                    out[str(rec["name"])] = str(rec["digest"])
-                except (ValueError, KeyError, TypeError):
-                    continue  # a line torn by a kill: its chunk is computed again
-        return out
-
-    # -- chunks ------------------------------------------------------------------------------
-    def digest(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> str:
-        """sha256 of the store id, the atlas identity, the chunk's name and slice, and each array's
-        name, dtype, shape and bytes."""
-        h = hashlib.sha256()
-        h.update(self.store_id.encode())
-        h.update(json.dumps(self.ident, sort_keys=True).encode())
-        h.update(name.encode())
-        h.update(json.dumps([[d, sl[d].start, sl[d].stop] for d in self.dims]).encode())
-        for k in _BLOCK_VARIABLES:
-            a = np.ascontiguousarray(block[k])
-            h.update(k.encode())
-            h.update(a.dtype.str.encode())
-            h.update(repr(a.shape).encode())
-            h.update(a.tobytes())
-        return h.hexdigest()
-
-    def save(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray], target: Path) -> None:
-        """Write a finished chunk atomically (unique temporary name, removed on failure), then its
-        journal line."""
-        digest = self.digest(name, sl, block)
-        final = self.path / f"{name}.npz"
-        tmp = Temporary(temporary_name(final), None)
-        try:
-            try:
-                with open(tmp.path, "wb") as f:
-                    np.savez(f, _digest=np.array(digest), **block)
-                os.replace(tmp.path, final)
-                tmp.done(committed=False)
-                with open(self.path / "chunks.jsonl", "a", encoding="utf-8") as f:
-                    f.write(json.dumps({"name": name, "digest": digest}) + "\n")
-            except OSError as exc:
-                err = write_error(exc, target, tmp.path, what=str(final))
-                if err is not None:
-                    raise err from exc
-                raise
-        finally:
-            if tmp.state == "writing":
-                with contextlib.suppress(OSError):
-                    os.unlink(tmp.path)
-                tmp.done(committed=False)
-        self.journal[name] = digest
-
-    def load(
-        self, name: str, sl: dict[str, slice], shape: tuple[int, ...], n_modes: int
-    ) -> dict[str, np.ndarray] | None:
-        """A kept chunk, checked; None (computed again, and said so) if its file cannot be read
-        or the journal does not know it."""
-        path = self.path / f"{name}.npz"
-        recorded = self.journal.get(name)
-        if recorded is None:
-            self.notes(f"{path} is not in the chunk journal (the run was stopped while saving it): computed again")
-            return None
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                block = {k: np.asarray(z[k]) for k in z.files}
-        except Exception:  # unreadable or incomplete: computed again
-            self.notes(f"{path} cannot be read: computed again")
-            return None
-        stored = block.pop("_digest", None)
-        _check_block(
-            block,
-            shape,
-            n_modes,
-            lambda text: ResumeError(
-                f"cannot resume: chunk file {str(path)!r} {text}; delete it to have it computed again, or delete "
-                f"{str(self.path)!r}"
-            ),
-        )
-        if stored is None or str(stored) != recorded or self.digest(name, sl, block) != recorded:
-            raise ResumeError(
-                f"cannot resume: chunk file {str(path)!r} does not match what this run recorded for "
-                f"{name} (edited, swapped or from another run); delete it to have it computed again, or "
-                f"delete {str(self.path)!r}"
-            )
-        _check_values(block, lambda text: ResumeError(f"cannot resume: chunk file {str(path)!r} {text}"))
-        return block
-
-
-def _write_json_atomically(directory: Path, name: str, data: Any) -> None:
-    tmp = directory / f"{TEMPORARY_PREFIX}{name}"
-    tmp.write_text(json.dumps(data, indent=1))
-    os.replace(tmp, directory / name)
-
-
-def _check_block(
-    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
-) -> None:
-    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
-    if set(block) != set(_BLOCK_LAYOUT):
-        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
-    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
-        a = block[k]
-        want = shape + ((n_modes,) if modal else ())
-        if a.dtype != dtype:
-            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
-        if a.shape != want:
-            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
-
-
-def _check_values(block: dict[str, np.ndarray], error: Callable[[str], Exception]) -> None:
-    """Flags in range, and NaN exactly outside the domain (as :mod:`stability.grids.schema`)."""
-    stab, phys = block["stability"], block["physical"]
-    if not np.isin(stab, (-1, 0, 1, 2)).all() or not np.isin(phys, (0, 1)).all():
-        raise error("holds flag values outside stability in {-1, 0, 1, 2}, physical in {0, 1}")
-    outside = stab == -1
-    if not np.array_equal(phys == 0, outside):
-        raise error("has physical == 0 where stability != -1, or the reverse")
-    for k in ("growth_rate", "frequency", "eigenvalue_error_bound"):
-        nan = np.isnan(block[k])
-        if not (nan.all(axis=-1) == outside).all() or not (nan.any(axis=-1) == outside).all():
-            raise error(f"has NaN in {k} where the point is inside the domain, or a number outside it")
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -634,17 +371,7 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
         mask=spec["mask"],
         method=spec["method"],
     )
-    return dict(zip(_BLOCK_VARIABLES, out))
-
-
-def _slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-    """The per-chunk variables of an in-memory atlas."""
-    dims = list(ds["stability"].dims)
-    out = {}
-    for k in _BLOCK_VARIABLES:
-        v = ds[k].isel(sl)
-        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
-    return out
+    return dict(zip(BLOCK_VARIABLES, out))
 
 
 def write_atlas(
@@ -656,12 +383,11 @@ def write_atlas(
     resume: bool = False,
     progress: bool | Callable[[int, int], None] = False,
     window: int | None = None,
-    notes: Callable[[str], None] | None = None,
     variables: str = "all",
     compression: str | None = None,
     float32: bool = False,
 ) -> Path:
-    """Write an atlas (lazy or not) to netCDF chunk by chunk, atomically.
+    """Write an atlas (lazy or not) chunk by chunk, atomically: to netCDF, or to a Zarr store.
 
     Parameters
     ----------
@@ -669,27 +395,27 @@ def write_atlas(
         An atlas from :func:`stability.atlas`, typically with ``chunks=``; an in-memory one is
         written in one chunk per dimension-size.
     path : path-like
-        Target file.
+        Target file; a name ending in ``.zarr`` is a Zarr store, written by region by whoever
+        computes each chunk (:mod:`stability.grids.store`).
     overwrite : bool, default False
-        Replace an existing file.
+        Replace an existing file (or store).
     client : distributed.Client, optional
         Compute the chunks on this cluster (see :func:`stability.grids.cluster.dask_client`); in this
         process if None.
     resume : bool, default False
-        Keep finished chunks in ``<output>.parts/`` and reuse those of an earlier interrupted
-        run (module docstring, :class:`_Store`). Without it nothing survives an interruption.
+        Build the chunks in the Zarr store ``<output>.parts`` (:mod:`stability.grids.store`), kept
+        when the run is interrupted or fails, and reuse the complete chunks of an earlier run's
+        store (each checked against its digest); a netCDF output is then written from the
+        store, and the store removed. Without it nothing survives an interruption.
     progress : bool or callable, default False
         A progress bar on stderr (True), or ``progress(done, total)`` after each chunk;
         silent by default.
     window : int, optional
         Chunks in flight at once on a cluster (default: twice its threads); bounds memory.
-    notes : callable, optional
-        Receives one line per kept chunk computed again (unreadable, or unknown to the journal);
-        a ``UserWarning`` each if None.
     variables : {"all", "map"}, default "all"
         What the file stores: every variable of the atlas, or for a map the leading growth rate
         and the stability flag only (:data:`stability.grids.schema.MAP_VARIABLES`; the file's
-        attribute ``atlas_variables = "map"``; :func:`stability.open_atlas` reads both).
+        attribute ``atlas_variables = "map"``; :func:`stability.open_atlas` reads both). netCDF only.
     compression : {None, "zlib", "zstd"}, default None
         netCDF4's compression of the data variables (level 1, with the byte shuffle): lossless.
     float32 : bool, default False
@@ -697,7 +423,7 @@ def write_atlas(
         rounding, stated in each such variable's attributes (``storage_relative_error``); the
         flags are decided in float64 before. A value whose rounding would leave the normal
         float32 range (become zero, subnormal or infinite) is refused
-        (:class:`~stability.errors.InputError`), never stored changed.
+        (:class:`~stability.errors.InputError`), never stored changed. netCDF only.
 
     Returns
     -------
@@ -706,13 +432,13 @@ def write_atlas(
     Raises
     ------
     ResumeError
-        ``resume=True`` and ``<output>.parts/`` belongs to another atlas, to an older version,
-        is in use by another run, or holds a chunk file that does not match its record (named).
+        ``resume=True`` and ``<output>.parts`` belongs to another atlas (or version), is not a
+        Zarr store, or holds a chunk that does not match its digest (named).
     FileExistsError
         The output exists (or was created by another process during the run) and ``overwrite``
-        is False, or is not a regular file.
+        is False, or is not a regular file (a Zarr store: not a store).
     stability.errors.OutputWriteError
-        The output or a chunk file could not be written (named, with the cause).
+        The output could not be written (named, with the cause).
     """
     overwrite = check_flag("overwrite", overwrite)
     resume = check_flag("resume", resume)
@@ -720,11 +446,6 @@ def write_atlas(
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
         raise ParameterTypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
-    if notes is None:
-
-        def notes(text: str) -> None:
-            warnings.warn(text, UserWarning, stacklevel=3)
-
     if variables not in VARIABLE_CHOICES:
         raise InputError(f"variables = {variables!r} is not a choice; choose one of {', '.join(VARIABLE_CHOICES)}")
     if compression not in COMPRESSIONS:
@@ -732,7 +453,14 @@ def write_atlas(
             f"compression = {compression!r} is not a choice; choose one of {', '.join(map(str, COMPRESSIONS))}"
         )
     float32 = check_flag("float32", float32)
-    target = check_output_path(path, overwrite=overwrite)
+    zarr_store = is_store_path(path)
+    if zarr_store and (variables, compression, float32) != ("all", None, False):
+        raise InputError(
+            f"a Zarr store ({str(path)!r}) stores every variable of the atlas in float64, with Zarr's "
+            f"default compression: variables = {variables!r}, compression = {compression!r}, "
+            f"float32 = {float32!r} apply to netCDF files only"
+        )
+    target = Path(path) if zarr_store else check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
@@ -741,39 +469,53 @@ def write_atlas(
         chunk_shape[d] = int(c[0]) if c else ds.sizes[d]
     blocks = _chunk_slices(ds, dims, chunk_shape)
     n_points = int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64))
-    expected = atlas_file_bytes(n_modes, n_points)
     report = _progress(progress, len(blocks))
-    store = None
+    layout = _Layout(_stored(ds, variables), compression, float32)
     try:
         with deferred():
-            if resume:
-                store = _Store(parts_directory(target), _identity(ds, chunk_shape), dims, notes)
-                done = store.open()
-            else:
-                done = set()
-            _write_chunks(
+            if not (zarr_store or resume):
+                _write_chunks(
+                    ds, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
+                    chunk_shape, blocks, client, window, report, layout,
+                )  # fmt: skip
+                return target
+            require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
+            from .store import open_store, write_store
+
+            spec = _spec(ds, dims) | {
+                "chunk_shape": chunk_shape,
+                "n_modes": n_modes,
+                "variables": _stored(ds, "all"),
+                "identity": _identity(ds, chunk_shape),
+            }
+            if not zarr_store:
+                check_free_space(target, atlas_file_bytes(n_modes, n_points))
+            parts = write_store(
                 ds,
                 target,
-                overwrite,
-                expected,
-                dims,
-                n_modes,
-                chunk_shape,
-                blocks,
-                done,
-                store,
-                client,
-                window,
-                report,
-                _Layout(_stored(ds, variables), compression, float32),
+                overwrite=overwrite,
+                client=client if ds.chunks else None,
+                resume=resume,
+                window=window,
+                spec=spec,
+                blocks=blocks,
+                report=report,
+                failed=_Failure(parts_directory(target) if resume else None, len(blocks)),
+                compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl),  # in memory: sliced
+                run_on_cluster=_run_on_cluster,
+                commit=zarr_store,
             )
-            if store is not None:
-                shutil.rmtree(store.path, ignore_errors=True)
+            if zarr_store:
+                return target
+            with open_store(parts) as stored:  # the netCDF file from the complete store
+                _write_chunks(
+                    stored, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
+                    chunk_shape, blocks, None, None, _progress(False, len(blocks)), layout,
+                )  # fmt: skip
+            shutil.rmtree(parts, ignore_errors=True)
+            return target
     finally:
         report(close=True)
-        if store is not None:
-            store.close()
-    return target
 
 
 class _Layout(NamedTuple):
@@ -854,18 +596,15 @@ def _write_chunks(
     n_modes: int,
     chunk_shape: dict[str, int],
     blocks: list,
-    done: set[str],
-    store: _Store | None,
     client: Any,
     window: int | None,
     report: _progress,
-    layout: _Layout | None = None,
+    layout: _Layout,
 ) -> None:
-    """The body of :func:`write_atlas`: skeleton, kept chunks, computed chunks, commit."""
+    """The netCDF body of :func:`write_atlas`: skeleton, chunks (computed, or read from ``ds``
+    in memory or in a store), commit."""
     import netCDF4
 
-    if layout is None:
-        layout = _Layout(list(ds.data_vars), None, False)
     lazy = bool(ds.chunks)
     spec = _spec(ds, dims)
 
@@ -873,11 +612,7 @@ def _write_chunks(
         return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
 
     def again(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-        if store is not None and name in done:
-            kept = store.load(name, sl, tuple(sl[d].stop - sl[d].start for d in dims), n_modes)
-            if kept is not None:
-                return kept
-        return _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+        return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
 
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
         _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
@@ -886,19 +621,16 @@ def _write_chunks(
             nc.set_auto_mask(False)
             lead = _Leading(nc, dims, again, cast)
 
-            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray], fresh: bool) -> None:
+            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
                 shape = tuple(sl[d].stop - sl[d].start for d in dims)
-                if fresh:
-                    _check_block(
-                        block,
-                        shape,
-                        n_modes,
-                        lambda text: ChunkError(
-                            f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"
-                        ),
-                    )
-                    if store is not None:
-                        store.save(name, sl, block, target)
+                check_block(
+                    block,
+                    shape,
+                    n_modes,
+                    lambda text: ChunkError(
+                        f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"
+                    ),
+                )
                 idx = tuple(sl[d] for d in dims)
                 for k, v in block.items():
                     if k in nc.variables:
@@ -909,25 +641,17 @@ def _write_chunks(
                 report()
                 checkpoint()
 
-            todo = []
-            for name, sl in blocks:
-                shape = tuple(sl[d].stop - sl[d].start for d in dims)
-                kept = store.load(name, sl, shape, n_modes) if (store is not None and name in done) else None
-                if kept is not None:
-                    put(name, sl, kept, False)
-                else:
-                    todo.append((name, sl))
-            failed = _Failure(store.path if store is not None else None, len(blocks))
+            failed = _Failure(None, len(blocks))
             if client is None or not lazy:
-                for name, sl in todo:
+                for name, sl in blocks:
                     checkpoint()
                     try:
-                        block = _compute_block(spec, sl) if lazy else _slice_block(ds, sl)
+                        block = _compute_block(spec, sl) if lazy else slice_block(ds, sl)
                     except Exception as exc:
                         raise failed(name, sl, exc, report.done) from exc
-                    put(name, sl, block, True)
+                    put(name, sl, block)
             else:
-                _run_on_cluster(client, spec, todo, put, window, failed, report)
+                _run_on_cluster(client, spec, blocks, put, window, failed, report)
             lead.close()
 
 
@@ -961,8 +685,13 @@ def _run_on_cluster(
     window: int | None,
     failed: _Failure,
     report: _progress,
+    task: Callable | None = None,
+    args: tuple = (),
 ) -> None:
     """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
+
+    Each chunk runs ``task(spec, sl, *args)`` (default :func:`_compute_block`); ``put`` gets
+    what it returns.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
     ``allowed-failures``, dask's ``KilledWorker``) ends the run with a :class:`ChunkError`; the
@@ -970,6 +699,7 @@ def _run_on_cluster(
     """
     from distributed import as_completed
 
+    task = task or _compute_block
     if window is None:
         window = 2 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)
@@ -977,7 +707,7 @@ def _run_on_cluster(
     ac = as_completed()
     try:
         for name, sl in pending:
-            fut = client.submit(_compute_block, spec, sl, pure=False)
+            fut = client.submit(task, spec, sl, *args, pure=False)
             names[fut.key] = (name, sl, fut)
             ac.add(fut)
             if len(names) >= window:
@@ -989,11 +719,11 @@ def _run_on_cluster(
                 block = fut.result()
             except Exception as exc:
                 raise failed(name, sl, exc, report.done) from exc
-            put(name, sl, block, True)
+            put(name, sl, block)
             fut.release()
             nxt = next(pending, None)
             if nxt is not None:
-                f2 = client.submit(_compute_block, spec, nxt[1], pure=False)
+                f2 = client.submit(task, spec, nxt[1], *args, pure=False)
                 names[f2.key] = (*nxt, f2)
                 ac.add(f2)
     finally:

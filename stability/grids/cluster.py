@@ -3,8 +3,10 @@
 :func:`dask_client`: in this process by default (chunks one after the other, each using every
 core through the kernel's threads); a LocalCluster on 127.0.0.1 with ``workers=N``; an existing
 cluster with ``scheduler="tcp://host:port"`` or the path of a scheduler file. With a cluster,
-results come back to this process to be written (:func:`stability.grids.chunked.write_atlas`),
-so no file system needs to be shared.
+results come back to this process to be written to netCDF
+(:func:`stability.grids.chunked.write_atlas`), so no file system needs to be shared; a Zarr store
+(and a resumable run) is written by the workers themselves, on a file system they share with
+this process (:mod:`stability.grids.store`).
 """
 
 from __future__ import annotations

@@ -134,6 +134,8 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
     Parameters
     ----------
     path : path-like
+        A netCDF file, or a Zarr store (a directory whose name ends in ``.zarr``,
+        :mod:`stability.grids.store`).
     chunks : int or dict, optional
         Open lazily with dask chunks of these sizes (the file stays open until ``ds.close()``),
         for an atlas larger than memory. By default the atlas is loaded and the file closed.
@@ -152,8 +154,17 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
     stability.errors.ResourceError
         Loading it would need more memory than is available (pass ``chunks=``).
     """
-    p = Path(_atlas_path(path))
-    ds = _open(p)
+    from .store import is_store_path, open_store
+
+    if isinstance(path, (str, os.PathLike)) and is_store_path(path) and Path(path).is_dir():
+        p = Path(path)
+        try:
+            ds = open_store(p)
+        except Exception as exc:
+            raise AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store ({exc!r:.80})") from None
+    else:
+        p = Path(_atlas_path(path))
+        ds = _open(p)
     try:
         product = ds.attrs.get(PRODUCT_ATTR)
         if product is None:

@@ -1,0 +1,381 @@
+"""Atlases as Zarr stores, written by region by whoever computes the chunks, and resumed from them.
+
+:func:`write_store` (``write_atlas(ds, "atlas.zarr")``, ``tippe atlas -o atlas.zarr``) writes an
+atlas with xarray's public API only:
+
+1. ``ds.to_zarr(parts, compute=False)`` lays out the store: every variable of the atlas
+   (:mod:`stability.grids.schema`, the same names, dimensions, attributes and dtypes as the
+   netCDF atlas), chunked like the grid, with its coordinates and attributes, no data yet; plus
+   the per-chunk record ``chunk_digest`` (one uint64 per chunk of the grid, dimensions
+   ``<dim>_chunk``, one Zarr chunk each; 0: not written) and ``chunk_zero_everywhere``,
+   ``chunk_inside`` (what the leading growth rate's whole-grid rule needs of each chunk,
+   :mod:`stability.grids.leading`).
+2. Each chunk of the grid is computed and written into its region with
+   ``to_zarr(parts, region=...)`` (:func:`_write_region`) by the process that computed it: on a
+   dask cluster, the workers themselves, which return only the chunk's summary (two flags): the
+   client never holds a chunk, and its memory does not grow with the grid. The regions are the
+   Zarr chunks, so concurrent writers never share a chunk file. The digest (sha256 of the atlas's
+   identity, the chunk's slice and the bytes of its arrays, first 8 bytes) is written **last**,
+   in a second region write: a chunk is complete exactly when its digest is non-zero.
+3. When every chunk is written, the leading growth rate's rule is decided over the whole grid
+   (from the per-chunk flags, no data read), the few chunks written provisionally with the zero
+   mode left out are rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
+   it (no partial store under the output's name; an existing store is replaced only with
+   ``overwrite=True``).
+
+Resuming (``resume=True``): the store is built in ``<output>.parts`` (:func:`parts_directory`)
+instead of a hidden temporary directory, and kept when the run is interrupted or fails. A rerun
+opens it, refuses it if it belongs to another atlas (other coordinates, model, method, masking,
+chunks or package version: :class:`~stability.errors.ResumeError` naming what differs), reads
+``chunk_digest`` and recomputes the digest of every chunk marked complete from what the store
+holds: a chunk that disagrees (edited, swapped, copied from another store) is refused naming it;
+a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
+chunks marked incomplete (never written, or interrupted between the data and the digest) are
+computed. The
+result equals the atlas computed in one go, bit for bit. The store must be on a file system the
+workers share with the client (always true of a LocalCluster).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ..errors import ChunkError, ResumeError
+from ..interrupts import checkpoint
+from .leading import leading, zero_everywhere
+from .outputs import TEMPORARY_PREFIX
+
+__all__ = [
+    "BLOCK_VARIABLES",
+    "RECORD_VARIABLES",
+    "check_block",
+    "is_store_path",
+    "open_store",
+    "parts_directory",
+    "slice_block",
+    "write_store",
+]
+
+#: the per-chunk record of a store (not atlas variables: :func:`open_store` drops them)
+RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
+
+#: the attributes a resumed store must share with the atlas being written
+_IDENTITY = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
+
+
+#: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
+BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
+
+#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
+_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
+    "growth_rate": (np.dtype(np.float64), True),
+    "frequency": (np.dtype(np.float64), True),
+    "eigenvalue_error_bound": (np.dtype(np.float64), True),
+    "stability": (np.dtype(np.int8), False),
+    "physical": (np.dtype(np.int8), False),
+}
+
+
+def check_block(
+    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
+) -> None:
+    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
+    if set(block) != set(_BLOCK_LAYOUT):
+        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
+    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
+        a = block[k]
+        want = shape + ((n_modes,) if modal else ())
+        if a.dtype != dtype:
+            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
+        if a.shape != want:
+            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
+
+
+def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
+    """The per-chunk variables of a chunk of an atlas in memory or in a store."""
+    dims = list(ds["stability"].dims)
+    out = {}
+    for k in BLOCK_VARIABLES:
+        v = ds[k].isel(sl)
+        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
+    return out
+
+
+def is_store_path(path: str | os.PathLike) -> bool:
+    """Whether ``path`` names a Zarr store (its name ends in ``.zarr``)."""
+    return str(path).rstrip("/\\").endswith(".zarr")
+
+
+def parts_directory(path: str | os.PathLike) -> Path:
+    """The store of a resumable run of output ``path``: ``<output>.parts``."""
+    p = Path(path)
+    return p.with_name(p.name + ".parts")
+
+
+def open_store(path: str | os.PathLike) -> xr.Dataset:
+    """The atlas in a complete Zarr store, opened lazily (xarray's zarr backend, not dask),
+    without its per-chunk record."""
+    ds = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+    return ds.drop_vars([v for v in RECORD_VARIABLES if v in ds.variables])
+
+
+def _chunk_dims(dims: list[str]) -> tuple[str, ...]:
+    return tuple(f"{d}_chunk" for d in dims)
+
+
+def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> xr.Dataset:
+    """The atlas's layout (variables of its dims, dtypes and attributes, chunked as the store;
+    their values never computed: the atlas's own graph is not built into the store's) plus the
+    per-chunk record."""
+    import dask.array as da
+
+    def empty(v: xr.DataArray) -> da.Array:
+        return da.empty(v.shape, chunks=tuple(chunk_shape.get(d, n) for d, n in zip(v.dims, v.shape)), dtype=v.dtype)
+
+    out = xr.Dataset(
+        {k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, coords=ds.coords, attrs=ds.attrs
+    )
+    counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
+    cdims = _chunk_dims(dims)
+    ones = (1,) * len(dims)
+    out["chunk_digest"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.uint64))
+    out["chunk_zero_everywhere"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
+    out["chunk_inside"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
+    return out
+
+
+def _digest(spec: dict[str, Any], sl: dict[str, slice], block: dict[str, np.ndarray]) -> np.uint64:
+    """sha256 of the atlas's identity, the chunk's slice and its arrays (name, dtype, shape,
+    bytes): its first 8 bytes, never 0 (0 marks a chunk not written)."""
+    h = hashlib.sha256(repr(spec["identity"]).encode())
+    h.update(repr([(d, sl[d].start, sl[d].stop) for d in spec["dims"]]).encode())
+    for k in sorted(block):
+        a = np.ascontiguousarray(block[k])
+        h.update(f"{k} {a.dtype.str} {a.shape}".encode())
+        h.update(a.tobytes())
+    return np.uint64(max(1, int.from_bytes(h.digest()[:8], "little")))
+
+
+def _index(sl: dict[str, slice], spec: dict[str, Any]) -> dict[str, slice]:
+    """The chunk's region in the per-chunk record."""
+    ch = spec["chunk_shape"]
+    return {f"{d}_chunk": slice(sl[d].start // ch[d], sl[d].start // ch[d] + 1) for d in spec["dims"]}
+
+
+def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute: Callable) -> tuple[bool, bool]:
+    """Compute one chunk (``compute(spec, sl)``: :func:`stability.grids.chunked._compute_block`),
+    write it into its region of the store, then its digest; return only (zero mode at every
+    point inside, a point inside). Runs wherever the chunk is sent."""
+    dims = spec["dims"]
+    block = compute(spec, sl)
+    shape = tuple(sl[d].stop - sl[d].start for d in dims)
+    check_block(
+        block,
+        shape,
+        spec["n_modes"],
+        lambda text: ChunkError(f"a chunk was computed wrongly: it {text} (a bug; nothing was written)"),
+    )
+    mdims = (*dims, "mode")
+    arrays = {k: (mdims if block[k].ndim == len(dims) + 1 else dims, v) for k, v in block.items()}
+    part = xr.Dataset(arrays)
+    part["max_growth_rate"] = (dims, np.ascontiguousarray(block["growth_rate"][..., 0]))
+    everywhere, inside = zero_everywhere(part["growth_rate"], part["frequency"], part["eigenvalue_error_bound"])
+    everywhere, inside = bool(everywhere) and bool(dims), bool(inside)
+    lead = leading(
+        part["growth_rate"], part["frequency"], part["eigenvalue_error_bound"], part["max_growth_rate"], drop=everywhere
+    )
+    part["leading_growth_rate"] = lead.variable
+    part = part[spec["variables"]]
+    region = {d: sl[d] for d in dims}
+    part.to_zarr(path, region=region, mode="r+", consolidated=False)
+    record = xr.Dataset(
+        {
+            "chunk_zero_everywhere": (_chunk_dims(dims), np.full((1,) * len(dims), everywhere, dtype=np.int8)),
+            "chunk_inside": (_chunk_dims(dims), np.full((1,) * len(dims), inside, dtype=np.int8)),
+        }
+    )
+    record.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
+    digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), _digest(spec, sl, block)))})
+    digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)  # last: the chunk is complete
+    return everywhere, inside
+
+
+def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> dict[str, tuple[bool, bool]]:
+    """The chunks of an earlier run's store that are complete and check out (see module
+    docstring), with their summaries; a store of another atlas or a chunk that disagrees with
+    its digest is a :class:`ResumeError`."""
+    dims = spec["dims"]
+    try:
+        old = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+    except Exception:
+        raise ResumeError(
+            f"cannot resume: {str(path)!r} exists but is not a readable Zarr store of this package; "
+            "remove it or choose another output"
+        ) from None
+    with old:
+        diff = [k for k in _IDENTITY if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
+        diff += [
+            k
+            for k in ds.coords
+            if k not in old.coords or not np.array_equal(old[k].values, ds[k].values, equal_nan=True)
+        ]
+        if "chunk_digest" not in old or "stability" not in old:
+            diff.append("layout")
+        else:
+            stored_chunks = old["stability"].encoding.get("chunks") or old["stability"].encoding.get("preferred_chunks")
+            if stored_chunks is not None and tuple(stored_chunks) != tuple(spec["chunk_shape"][d] for d in dims):
+                diff.append("chunks")
+        if diff:
+            raise ResumeError(
+                f"cannot resume from {str(path)!r}: it was written for a different atlas "
+                f"({', '.join(diff)} differ); remove it to start afresh"
+            )
+        record = {k: old[k].values for k in RECORD_VARIABLES}
+        done: dict[str, tuple[bool, bool]] = {}
+        for name, sl in blocks:
+            checkpoint()
+            i = tuple(s.start for s in _index(sl, spec).values())
+            digest = record["chunk_digest"][i]
+            if digest == 0:
+                continue
+            try:
+                block = slice_block(old, sl)
+            except Exception as exc:  # a chunk file truncated or damaged: computed again
+                warnings.warn(
+                    f"chunk {name} of {str(path)!r} cannot be read ({type(exc).__name__}): computed again",
+                    UserWarning,
+                    stacklevel=5,
+                )
+                continue
+            if _digest(spec, sl, block) != digest:
+                raise ResumeError(
+                    f"cannot resume: chunk {name} of {str(path)!r} does not match its digest (edited, "
+                    f"damaged or from another run); remove {str(path)!r} to start afresh"
+                )
+            done[name] = (bool(record["chunk_zero_everywhere"][i]), bool(record["chunk_inside"][i]))
+    return done
+
+
+def write_store(
+    ds: xr.Dataset,
+    target: Path,
+    *,
+    overwrite: bool,
+    client: Any,
+    resume: bool,
+    window: int | None,
+    spec: dict[str, Any],
+    blocks: list,
+    report: Callable,
+    failed: Callable,
+    compute: Callable,
+    run_on_cluster: Callable,
+    commit: bool = True,
+) -> Path:
+    """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
+    complete store, renamed to ``target`` (``commit``) or left in ``<target>.parts`` for the
+    netCDF writer (``resume=True`` only); its path.
+
+    ``spec`` is :func:`stability.grids.chunked._spec` with ``chunk_shape``, ``n_modes``,
+    ``variables`` (the atlas variables stored) and ``identity``; ``blocks`` the (name, slice)
+    of each chunk; ``report``, ``failed``, ``compute`` (of one chunk) and ``run_on_cluster`` as
+    for the netCDF writer.
+    """
+    _check_target(target, overwrite)
+    dims = spec["dims"]
+    parts = parts_directory(target) if resume else target.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{target.name}")
+    done: dict[str, tuple[bool, bool]] = {}
+    try:
+        if resume and parts.exists():
+            done = _reopen(parts, ds, spec, blocks)
+        else:
+            _template(ds, spec["chunk_shape"], dims).to_zarr(parts, mode="w", compute=False, consolidated=False)
+        for _ in done:
+            report()
+        todo = [(name, sl) for name, sl in blocks if name not in done]
+        if client is None:
+            for name, sl in todo:
+                checkpoint()
+                try:
+                    done[name] = _write_region(spec, sl, str(parts), compute)
+                except (ChunkError, KeyboardInterrupt):
+                    raise
+                except Exception as exc:
+                    raise failed(name, sl, exc, report.done) from exc
+                report()
+        else:
+
+            def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
+                done[name] = summary
+                report()
+                checkpoint()
+
+            args = (str(parts), compute)  # the function itself goes along (a test's injected fault too)
+            run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
+        _finish(parts, done, blocks, dims)
+        if commit:
+            _commit(parts, target, overwrite)
+    except BaseException:
+        if not resume:
+            shutil.rmtree(parts, ignore_errors=True)
+        raise
+    return target if commit else parts
+
+
+def _finish(parts: Path, done: dict[str, tuple[bool, bool]], blocks: list, dims: list[str]) -> None:
+    """The leading growth rate's whole-grid rule (:mod:`stability.grids.leading`): the zero mode
+    is left out iff every chunk has it at every point inside and one chunk has a point inside;
+    otherwise the chunks written with it left out get ``max_growth_rate``, read back."""
+    drop = all(e for e, _ in done.values()) and any(i for _, i in done.values())
+    if drop:
+        return
+    with xr.open_dataset(parts, engine="zarr", consolidated=False, chunks=None) as stored:
+        if "leading_growth_rate" not in stored:
+            return
+        for name, sl in blocks:
+            if done[name][0]:
+                checkpoint()
+                fixed = stored["max_growth_rate"].isel(sl).load().rename("leading_growth_rate")
+                fixed.to_dataset().drop_vars(list(fixed.coords)).to_zarr(
+                    parts, region={d: sl[d] for d in dims}, mode="r+", consolidated=False
+                )
+
+
+def _check_target(target: Path, overwrite: bool) -> None:
+    """A new name, or (``overwrite=True``) an existing Zarr store; never anything else."""
+    if not os.path.lexists(target):
+        return
+    if not overwrite:
+        raise FileExistsError(f"output {str(target)!r} exists; pass overwrite=True to replace it")
+    if target.is_symlink() or not (target / "zarr.json").is_file():
+        raise FileExistsError(f"output {str(target)!r} exists and is not a Zarr store; it is never replaced")
+
+
+def _commit(parts: Path, target: Path, overwrite: bool) -> None:
+    """Rename the complete store to its name; an existing store (``overwrite``) is moved aside
+    first and removed after. Another process creating the name meanwhile wins (the rename of a
+    directory onto a non-empty one fails): FileExistsError."""
+    checkpoint()
+    old = None
+    if os.path.lexists(target):
+        _check_target(target, overwrite)
+        old = target.with_name(f"{TEMPORARY_PREFIX}old-{os.getpid()}-{target.name}")
+        os.rename(target, old)
+    try:
+        os.rename(parts, target)
+    except OSError:
+        raise FileExistsError(
+            f"output {str(target)!r} was created by another process while this run was computing; "
+            f"nothing was replaced (the complete store is {str(parts)!r})"
+        ) from None
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)

@@ -1,0 +1,188 @@
+"""Atlases as Zarr stores (stability.grids.store): written by region, by the workers, resumed.
+
+Reference: the in-memory atlas (``stability.atlas`` without ``chunks``, checked against mpmath in
+test_spectra_reference and test_kernel). A store computes the same per-point arithmetic on
+slices of the grid, so what :func:`stability.open_atlas` reads back must equal it bit for bit
+(``assert_same_atlas``, plus the bytes of the floating-point variables, NaN included), whether the
+chunks were written in this process, by the two workers of a LocalCluster, or resumed.
+"""
+
+from __future__ import annotations
+
+import tracemalloc
+
+import numpy as np
+import pytest
+import xarray as xr
+from conftest import assert_same_atlas
+
+import stability
+import stability.grids.chunked as dist
+from stability.cli import main
+from stability.errors import AtlasFileError, InputError, ResumeError
+from stability.grids.chunked import write_atlas
+from stability.grids.cluster import dask_client
+from stability.grids.store import parts_directory
+
+GRID = dict(
+    q=np.linspace(-0.6, 0.6, 13), fr_inv=[0.0, 0.3], sigma=np.linspace(0.2, 1.2, 4), alpha_v=0.5, mask_unphysical=True
+)
+CHUNKS = {"q": 4, "sigma": 2}  # 4 x 1 x 2 = 8 chunks, ragged in q
+
+
+@pytest.fixture(scope="module")
+def reference() -> xr.Dataset:
+    return stability.atlas("sliding", **GRID)
+
+
+def _bitwise(read: xr.Dataset, reference: xr.Dataset) -> None:
+    assert_same_atlas(read, reference)
+    for v in ("growth_rate", "frequency", "eigenvalue_error_bound", "max_growth_rate", "leading_growth_rate"):
+        assert read[v].values.tobytes() == reference[v].values.tobytes(), v
+
+
+def _kept(store) -> int:
+    """Chunks the store of an interrupted run marks complete (a non-zero digest)."""
+    with xr.open_dataset(store, engine="zarr", consolidated=False, chunks=None) as z:
+        return int((z["chunk_digest"].values != 0).sum())
+
+
+def _interrupted(out, monkeypatch, kept: int) -> None:
+    real = dist._compute_block
+    calls = []
+
+    def compute(spec, sl):
+        if len(calls) == kept:
+            raise KeyboardInterrupt
+        calls.append(sl)
+        return real(spec, sl)
+
+    monkeypatch.setattr(dist, "_compute_block", compute)
+    with pytest.raises(KeyboardInterrupt):
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    monkeypatch.undo()
+    assert not out.exists() and _kept(parts_directory(out)) == kept
+
+
+def test_store_in_this_process_equals_in_memory(tmp_path, reference):
+    out = write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.zarr")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.zarr"]  # no temporary store left
+    _bitwise(stability.open_atlas(out), reference)
+    # an in-memory atlas is written as one chunk; an existing store is replaced only if asked
+    with pytest.raises(FileExistsError, match="exists"):
+        write_atlas(reference, out)
+    _bitwise(stability.open_atlas(write_atlas(reference, out, overwrite=True)), reference)
+
+
+def test_store_written_by_two_workers_equals_in_memory(tmp_path, reference):
+    """A LocalCluster of two worker processes: the workers write the regions, the client gets
+    back two flags per chunk (recorded here), never a chunk."""
+    seen = []
+    real = dist._run_on_cluster
+
+    def spy(client, spec, todo, put, *args, **kwargs):
+        return real(client, spec, todo, lambda *a: seen.append(a[2]) or put(*a), *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as mp, dask_client(workers=2) as client:
+        mp.setattr(dist, "_run_on_cluster", spy)
+        out = write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.zarr", client=client)
+    assert len(seen) == 8 and all(isinstance(s, tuple) and len(s) == 2 and set(s) <= {True, False} for s in seen)
+    _bitwise(stability.open_atlas(out), reference)
+
+
+def test_client_memory_stays_flat_as_the_atlas_grows(tmp_path):
+    """The client's peak of traced allocations (tracemalloc: numpy's arrays included, every
+    thread of the client process) while two workers write a store of 4 and then 16 chunks of
+    2.4 MB each: below one chunk both times (the chunks never reach the client), and growing by
+    less than a twentieth of a chunk's bytes per chunk added (what does grow is bookkeeping of a
+    few tens of kB per chunk, whatever the chunk's size: the layout's task graph, the futures;
+    measured 43 kB). Reference: the netCDF writer in the same run, whose client receives every
+    chunk, peaks above one chunk."""
+    chunk_bytes = 16 * 40 * 50 * (3 * 3 * 8 + 2)
+
+    def peak(nq: int, name: str) -> int:
+        grid = dict(q=np.linspace(-0.6, 0.6, nq), fr_inv=np.linspace(0, 1, 40), sigma=np.linspace(0.2, 1.2, 50))
+        ds = stability.atlas("sliding", chunks={"q": 16}, alpha_v=0.5, mask_unphysical=True, **grid)
+        tracemalloc.start()
+        try:
+            write_atlas(ds, tmp_path / name, client=client)
+            return tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+
+    with dask_client(workers=2) as client:
+        peak(16, "warm.zarr")  # imports and first calls
+        small, large = peak(64, "small.zarr"), peak(256, "large.zarr")
+        netcdf = peak(64, "small.nc")
+    assert small < chunk_bytes and large < chunk_bytes, (small, large, chunk_bytes)
+    assert (large - small) / (16 - 4) < chunk_bytes / 20, (small, large)
+    assert netcdf > chunk_bytes, netcdf
+
+
+def test_interrupted_store_resumes_bitwise(tmp_path, monkeypatch, reference):
+    out = tmp_path / "a.zarr"
+    _interrupted(out, monkeypatch, kept=3)
+    calls = []
+    real = dist._compute_block
+    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: calls.append(sl) or real(spec, sl))
+    write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    assert len(calls) == 5  # only the chunks not kept
+    assert not parts_directory(out).exists()
+    _bitwise(stability.open_atlas(out), reference)
+
+
+def test_resume_after_a_kill_between_data_and_digest(tmp_path, monkeypatch, reference):
+    """A chunk whose data was written but not its digest (killed in between) counts as not
+    written: computed again."""
+    out = tmp_path / "a.zarr"
+    _interrupted(out, monkeypatch, kept=3)
+    store = parts_directory(out)
+    with xr.open_dataset(store, engine="zarr", consolidated=False, chunks=None) as z:
+        digests = z["chunk_digest"].values
+    first = tuple(np.argwhere(digests != 0)[0])
+    xr.Dataset({"chunk_digest": (("q_chunk", "fr_inv_chunk", "sigma_chunk"), np.zeros((1, 1, 1), np.uint64))}).to_zarr(
+        store,
+        region={d: slice(i, i + 1) for d, i in zip(("q_chunk", "fr_inv_chunk", "sigma_chunk"), first)},
+        mode="r+",
+        consolidated=False,
+    )
+    calls = []
+    real = dist._compute_block
+    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: calls.append(sl) or real(spec, sl))
+    write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    assert len(calls) == 6
+    _bitwise(stability.open_atlas(out), reference)
+
+
+def test_resume_refuses_an_edited_chunk_and_another_atlas(tmp_path, monkeypatch):
+    out = tmp_path / "a.zarr"
+    _interrupted(out, monkeypatch, kept=3)
+    store = parts_directory(out)
+    with xr.open_dataset(store, engine="zarr", consolidated=False, chunks=None) as z:
+        g = z["growth_rate"].isel(q=slice(0, 4), fr_inv=slice(0, 2), sigma=slice(0, 2)).values.copy()
+    i = tuple(np.argwhere(np.isfinite(g))[0])
+    g[i] = np.nextafter(g[i], np.inf)  # one ulp
+    xr.Dataset({"growth_rate": (("q", "fr_inv", "sigma", "mode"), g)}).to_zarr(
+        store, region={"q": slice(0, 4), "fr_inv": slice(0, 2), "sigma": slice(0, 2)}, mode="r+", consolidated=False
+    )
+    with pytest.raises(ResumeError, match=r"chunk chunk-0-0-0 of .* does not match its digest"):
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    other = stability.atlas("sliding", chunks=CHUNKS, **{**GRID, "alpha_v": 0.7})
+    with pytest.raises(ResumeError, match=r"different atlas \(alpha_v differ\)"):
+        write_atlas(other, out, resume=True)
+    assert not out.exists() and store.is_dir()
+
+
+def test_cli_zarr_and_refusals(tmp_path, capsys, reference):
+    args = ["atlas", "--q", "-0.6:0.6:13", "--fr-inv", "0,0.3", "--sigma", "0.2:1.2:4", "--alpha-v", "0.5"]
+    args += ["--mask-unphysical", "--no-progress"]
+    assert main([*args, "--chunks", "q=4,sigma=2", "--resume", "-o", str(tmp_path / "a.zarr")]) == 0
+    assert "wrote" in capsys.readouterr().out
+    _bitwise(stability.open_atlas(tmp_path / "a.zarr"), reference)
+    assert main([*args, "--variables", "map", "-o", str(tmp_path / "b.zarr")]) == 2
+    assert "apply to netCDF files only" in capsys.readouterr().err
+    with pytest.raises(InputError, match="apply to netCDF files only"):
+        write_atlas(reference, tmp_path / "c.zarr", float32=True)
+    (tmp_path / "d.zarr").mkdir()
+    with pytest.raises(AtlasFileError, match="not a readable Zarr store"):
+        stability.open_atlas(tmp_path / "d.zarr")
