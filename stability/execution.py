@@ -44,6 +44,7 @@ __all__ = [
     "announce",
     "before_compiled_call",
     "engine",
+    "pick",
     "quiet",
     "use_compiled",
     "using",
@@ -109,6 +110,19 @@ def use_compiled(twin: Any, npts: int, value: str | None = None) -> bool:
     if chosen != "auto":
         return chosen == "compiled"
     return npts >= PYTHON_BELOW or twin.in_memory()
+
+
+def pick(fn: Any, npts: int, value: str | None = None, *, below: int = PYTHON_BELOW) -> Any:
+    """``fn`` (a function compiled by numba) or its interpreted execution
+    (:func:`stability.jit.python`), by the rule of the module docstring for a request of
+    ``npts`` points (``below``: the size from which it runs compiled, where the interpreted
+    cost per point is larger than the kernel's); ``value`` as in :func:`engine`."""
+    chosen = engine(value)
+    if chosen == "compiled" or (chosen == "auto" and (npts >= below or bool(fn.signatures))):
+        return fn
+    from .jit import python
+
+    return python(fn)
 
 
 def before_compiled_call(twin: Any, seconds: float) -> None:

@@ -52,6 +52,7 @@ __all__ = [
     "active",
     "njit",
     "overload",
+    "python",
     "register_jitable",
 ]
 
@@ -136,6 +137,78 @@ def njit(fn: Callable | None = None, **options: Any) -> Any:
         return activate().njit(**options)(f)
 
     return make if fn is None else make(fn)
+
+
+# ------------------------------------------------------------------------------------------
+# the interpreted execution of compiled functions
+# ------------------------------------------------------------------------------------------
+#: the packages whose functions :func:`python` re-binds (the rest of the world is left as it is)
+_PACKAGES = ("stability", "continuation")
+
+
+def _is_dispatcher(value: Any) -> bool:
+    """Whether ``value`` is a numba dispatcher (its public ``py_func`` and ``signatures``)."""
+    return callable(value) and hasattr(value, "py_func") and hasattr(value, "signatures")
+
+
+def _ours(value: Any) -> bool:
+    module = getattr(value, "__module__", None) or getattr(value, "__name__", "")
+    return isinstance(module, str) and module.split(".")[0] in _PACKAGES
+
+
+class _Interpreted(types.ModuleType):
+    """A module of the package seen from interpreted code: its compiled functions are their
+    :func:`python` executions (``sliding.rhs(...)`` inside a function run by :func:`python`)."""
+
+    def __init__(self, module: types.ModuleType) -> None:
+        super().__init__(module.__name__)
+        self._module = module
+
+    def __getattr__(self, name: str) -> Any:
+        return _rebound(getattr(self._module, name))
+
+
+def _rebound(value: Any) -> Any:
+    if _is_dispatcher(value) or (isinstance(value, types.FunctionType) and _ours(value)):
+        return python(value)
+    if isinstance(value, types.ModuleType) and _ours(value):
+        return _Interpreted(value)
+    return value
+
+
+_PYTHON: dict[Any, Callable] = {}
+
+
+def _names(code: types.CodeType) -> set[str]:
+    """The global names a code object and the code nested in it refer to."""
+    out = set(code.co_names)
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            out |= _names(const)
+    return out
+
+
+def python(fn: Any) -> Callable:
+    """The interpreted execution of ``fn`` (a numba dispatcher, or a plain function of the
+    package): its Python source (the dispatcher's public ``py_func``), with every compiled
+    function it reaches (through its globals, or attributes of the package's modules) run the
+    same way. Nothing is compiled and numba's caches are not touched: what a single query runs
+    (:mod:`stability.execution`). The same source as the compiled execution; the floating-point
+    results agree to rounding (numba and numpy may round the library functions differently)."""
+    key = getattr(fn, "py_func", fn)
+    if key in _PYTHON:
+        return _PYTHON[key]
+    names: dict[str, Any] = {}
+    f = types.FunctionType(key.__code__, names, key.__name__, key.__defaults__, key.__closure__)
+    f.__kwdefaults__ = key.__kwdefaults__
+    f.__doc__, f.__module__, f.__qualname__ = key.__doc__, key.__module__, key.__qualname__
+    _PYTHON[key] = f  # before the globals: recursive functions find themselves
+    used = _names(key.__code__)
+    names.update({k: _rebound(v) for k, v in key.__globals__.items() if k in used})
+    names.setdefault("__builtins__", key.__globals__.get("__builtins__", __builtins__))
+    for k, v in key.__globals__.items():
+        names.setdefault(k, v)
+    return f
 
 
 class Compiled:

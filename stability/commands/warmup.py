@@ -128,7 +128,7 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                     alpha_v=0.5,
                 ),
             ),
-            [states.COMPILED, final.COMPILED],
+            [],
         )
     )
     out.append(

@@ -35,10 +35,10 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from stability.jit import Compiled
+from stability.jit import python
 
 from ..errors import DomainError
-from ..execution import announce, before_compiled_call
+from ..execution import announce
 from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
@@ -47,11 +47,10 @@ from .products import DEGREE, check_scales, flag_attrs, potential_curve, product
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
-#: the first prediction's compilation on a cold numba cache (the level's closed forms and the
-#: integrals of the initial state): measured 5.5 s of wall time on the 2-core machine
-COMPILE_SECONDS = 6.0
-#: the compiled functions every prediction runs (the notice's question; ``tippe warmup``)
-COMPILED = Compiled(family.level_states, point_integrals)
+#: a prediction is one query: the level's closed forms and the initial state's integrals run
+#: interpreted (:func:`stability.jit.python`), compiling nothing (docs/performance.md)
+_level_states = python(family.level_states)
+_point_integrals = python(point_integrals)
 
 __all__ = [
     "MATCH_DEG",
@@ -337,12 +336,12 @@ def candidates(
 ) -> tuple[Candidate, ...]:
     """Every steady state of the level ``J`` with its energy, flag and reachability (``U_J <= E0``).
 
-    The closed forms in one compiled call (:func:`stability.steady.family.level_states`): no
+    The closed forms in one call (:func:`stability.steady.family.level_states`, interpreted): no
     integration, no eigenvalues (the flag is the energy criterion,
     :mod:`stability.steady.verdicts`; ``alpha_v > 0``)."""
     J, E0 = float(jellett), float(initial_energy)
     tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
-    rows = family.level_states(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
+    rows = _level_states(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
     last = len(rows) - 1
     out = []
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
@@ -496,7 +495,6 @@ def final_state(
         )
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
-    before_compiled_call(COMPILED, COMPILE_SECONDS)
     return final_state_from(y, params, simulation=simulation, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol)
 
 
@@ -529,7 +527,7 @@ def final_state_from(
         As in :func:`final_state`.
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-    J0, E0 = point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    J0, E0 = _point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)

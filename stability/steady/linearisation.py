@@ -50,6 +50,7 @@ import numpy as np
 from stability.jit import njit
 
 from ..errors import InputError
+from ..execution import pick
 from ..linear.spectra import spectrum
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
@@ -98,6 +99,11 @@ def reduced_state_size(model: str) -> int:
     """Size of the state without the cyclic position (8 for the sliding sphere)."""
     m = get_nonlinear_model(model)
     return len(m.state) - 2 if m.has_translation else len(m.state)
+
+
+#: batches of at least this many states get their Jacobians compiled; fewer run interpreted
+#: (each state costs 8 interpreted right-hand sides, ~2 ms; benchmarks/cold_start.py)
+JACOBIANS_COMPILED_FROM = 64
 
 
 @njit(cache=True)
@@ -154,7 +160,8 @@ def precessing_jacobians(y: np.ndarray, lam: np.ndarray, p: np.ndarray, model: s
     m = get_nonlinear_model(model)
     y = np.ascontiguousarray(np.atleast_2d(y), dtype=float)
     lam = np.ascontiguousarray(np.broadcast_to(np.asarray(lam, float), (y.shape[0],)))
-    return _jacobians(y, lam, p, CODES[m.name], len(m.state))
+    jacobians = pick(_jacobians, y.shape[0], below=JACOBIANS_COMPILED_FROM)  # stability.execution's rule
+    return jacobians(y, lam, p, CODES[m.name], len(m.state))
 
 
 def neutral_covectors(y: np.ndarray, *, q: float, sigma: float, mu: float) -> tuple[np.ndarray, np.ndarray]:
