@@ -165,7 +165,9 @@ class _Interpreted(types.ModuleType):
         self._module = module
 
     def __getattr__(self, name: str) -> Any:
-        return _rebound(getattr(self._module, name))
+        value = _rebound(getattr(self._module, name))
+        setattr(self, name, value)  # found once
+        return value
 
 
 def _rebound(value: Any) -> Any:
@@ -189,12 +191,14 @@ def _names(code: types.CodeType) -> set[str]:
 
 
 def python(fn: Any) -> Callable:
-    """The interpreted execution of ``fn`` (a numba dispatcher, or a plain function of the
-    package): its Python source (the dispatcher's public ``py_func``), with every compiled
+    """The interpreted execution of ``fn`` (a numba dispatcher, a plain function of the
+    package, or a module of the package: its functions so executed): its Python source (the dispatcher's public ``py_func``), with every compiled
     function it reaches (through its globals, or attributes of the package's modules) run the
     same way. Nothing is compiled and numba's caches are not touched: what a single query runs
     (:mod:`stability.execution`). The same source as the compiled execution; the floating-point
     results agree to rounding (numba and numpy may round the library functions differently)."""
+    if isinstance(fn, types.ModuleType):
+        return _Interpreted(fn)
     key = getattr(fn, "py_func", fn)
     if key in _PYTHON:
         return _PYTHON[key]

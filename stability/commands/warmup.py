@@ -134,8 +134,8 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     out.append(
         (
             "branch of tilted states: compiled step (sliding model)",
-            lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-            [branch.COMPILED_STEP],
+            lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, compiled=True),
+            [],
         )
     )
     for name in NONLINEAR_MODELS:

@@ -102,8 +102,9 @@ def reduced_state_size(model: str) -> int:
 
 
 #: batches of at least this many states get their Jacobians compiled; fewer run interpreted
-#: (each state costs 8 interpreted right-hand sides, ~2 ms; benchmarks/cold_start.py)
-JACOBIANS_COMPILED_FROM = 64
+#: (each state costs 8 interpreted right-hand sides, 0.76 ms measured: 512 of them about what
+#: importing numba and loading the compiled one cost on a warm cache; benchmarks/cold_start.py)
+JACOBIANS_COMPILED_FROM = 512
 
 
 @njit(cache=True)
