@@ -24,6 +24,10 @@ an interruption (:func:`stability.interrupts.checkpoint`): Ctrl-C or SIGTERM end
 within milliseconds, with an ordinary exception, never from inside compiled code. The kernels
 hold no GIL and assign no array slices (a slice assignment makes numba compile its
 shape-mismatch message formatting, seconds of compile time for nothing).
+
+A run's first :data:`INTERPRETED_STEPS` steps run the same slice interpreted
+(:func:`stability.jit.python`) unless the compiled one is in memory, the rest compiled: a short
+run compiles nothing, a long one compiles once (:mod:`stability.execution`).
 """
 
 from __future__ import annotations
@@ -32,13 +36,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
-from scipy.optimize import brentq
 
-from stability.jit import Compiled, njit
+from stability.jit import Compiled, njit, python
 
 from ..errors import InputError
-from ..execution import before_compiled_call
+from ..execution import before_compiled_call, engine, pick
 from ..interrupts import checkpoint
 from .kernels import CODES
 from .kernels import rhs as _model_rhs
@@ -59,7 +61,6 @@ __all__ = [
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-METHODS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
@@ -591,6 +592,34 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     return status
 
 
+#: a run's first slice of at most this many steps runs interpreted (:func:`stability.jit.python`)
+#: unless the compiled slice is in memory; the rest compiled. A short run (the README's
+#: t_end = 50: 692 steps) then compiles nothing. Measured (benchmarks/cold_start.py,
+#: docs/performance.md): ~2 ms per interpreted step against ~20 s of compiling on a cold cache
+#: and ~1 s of loading on a warm one.
+INTERPRETED_STEPS = 1000
+
+
+def _slices(compiled: Callable) -> Callable[[int], tuple[Callable, int]]:
+    """The slice function and budget of each call of a run (:data:`INTERPRETED_STEPS`): the
+    interpreted execution first if :func:`stability.execution.pick` chooses it, then the compiled
+    one (with the compile notice); every slice interpreted if ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so the switch
+    changes nothing but the execution."""
+    first = [pick(compiled, 0)]
+
+    def next_slice(budget: int) -> tuple[Callable, int]:
+        if engine() == "python":  # forced (TIPPE_KERNEL=python): the whole run interpreted
+            return first[0] if first else python(compiled), budget
+        if first:
+            fn = first.pop()
+            if fn is not compiled:
+                return fn, min(budget, INTERPRETED_STEPS)
+        before_compiled_call(Compiled(compiled), COMPILE_SECONDS)
+        return compiled, budget
+
+    return next_slice
+
+
 def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
     """Call ``step(budget)`` until it returns a final status, with an interruption point and a
     progress report (the time reached) between calls."""
@@ -636,8 +665,11 @@ def dopri5(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
+    slices = _slices(dopri5_slice)
+
     def step(b: int):
-        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
+        fn, b = slices(b)
+        st = fn(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
@@ -665,8 +697,11 @@ def rk4(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
+    slices = _slices(rk4_slice)
+
     def step(b: int):
-        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
+        fn, b = slices(b)
+        st = fn(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
@@ -691,7 +726,9 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     watch = watch or c_stick >= -1.0
 
     kw = {"first_step": step} if step else {}
-    solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
+    import scipy.integrate  # here: a second of imports that the compiled methods do not need
+
+    solver = getattr(scipy.integrate, method)(fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
     y = np.full((t_eval.size, y0.size), np.nan)
     y[0] = y0
     j, steps, status = 1, 0, SUCCESS
@@ -714,6 +751,8 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         t_new = solver.t
         if watch and n_of(t_new, solver.y) <= 0.0:
             dense = solver.dense_output()
+            from scipy.optimize import brentq
+
             t_ev = brentq(
                 lambda tt, dense=dense: n_of(tt, dense(tt)),
                 solver.t_old,
@@ -808,8 +847,6 @@ def integrate(
     c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-    if method in COMPILED_METHODS:
-        before_compiled_call(Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
     if method == "dopri5":
         y, nfev, na, nr, st, ev = dopri5(
             code,

@@ -24,6 +24,7 @@ import xarray as xr
 
 from .._version import package_version
 from ..errors import InputError, ParameterTypeError
+from ..execution import pick
 from ..interrupts import deferred
 from ..parameters import (
     COMPUTABLE_MAX,
@@ -472,7 +473,7 @@ def trajectory_dataset(model: str, t: np.ndarray, y: np.ndarray, params: dict[st
     good = np.isfinite(y).all(axis=1)
     forces = np.full((n, 3), np.nan)
     if good.any():
-        forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
+        forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
