@@ -328,62 +328,6 @@ def test_compile_notice_before_a_first_compiled_run(tmp_path):
     assert out.stderr.splitlines() == [execution.NOTICE.format(seconds=20.0)]
 
 
-STEADY_CALLS = """
-    import stability, continuation
-    stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1, sigma=1.0, fr_inv=0.3,
-                          alpha_v=0.5)
-    stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-    stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-"""
-
-
-def test_steady_entry_points_say_before_they_compile(tmp_path):
-    """final_state, steady_states and steady_branch compiled 5.5 / 18 / 25 s silently on a fresh
-    install. Each asks first (execution.before_compiled_call) about the compiled functions it
-    always runs, with its own estimate: checked without compiling, in a fresh interpreter on an
-    empty cache (each call stopped at the question)."""
-    code = """
-        import sys
-        import stability, continuation
-        import stability.steady.final as F, stability.steady.states as S, stability.steady.branch as B
-
-        class Stop(Exception):
-            pass
-
-        def asked(c, seconds):
-            print(f"asked {seconds:g} {c.in_memory()}", file=sys.stderr)
-            raise Stop
-
-        for m in (F, S, B):
-            m.before_compiled_call = asked
-        for call in (lambda: stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1,
-                                                   sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                     lambda: stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                     lambda: stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)):
-            try:
-                call()
-            except Stop:
-                pass
-    """
-    out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
-    assert out.returncode == 0, out.stderr
-    assert out.stderr.splitlines() == ["asked 6 False", "asked 20 False", "asked 25 False"]
-
-
-def test_steady_compile_notice_once_cold_and_never_warm(tmp_path):
-    """The real thing, on an empty numba cache (a fresh install): the first process compiles and
-    says so once; a second process on the same cache loads and says nothing, which holds only if
-    every compiled function the calls list was cached by the first (no notice on every run).
-    About 50 s (the compilation)."""
-    env = {"NUMBA_CACHE_DIR": str(tmp_path), "TIPPE_KERNEL": "auto"}
-    cold = _run(STEADY_CALLS, env)
-    assert cold.returncode == 0, cold.stderr
-    assert cold.stderr.splitlines() == [execution.NOTICE.format(seconds=6.0)]
-    warm = _run(STEADY_CALLS, env)
-    assert warm.returncode == 0, warm.stderr
-    assert warm.stderr == ""
-
-
 # --- what a fresh process imports -----------------------------------------------------------
 
 
