@@ -118,25 +118,32 @@ def pick(fn: Any, npts: int, value: str | None = None, *, below: int = PYTHON_BE
     ``npts`` points (``below``: the size from which it runs compiled, where the interpreted
     cost per point is larger than the kernel's); ``value`` as in :func:`engine`."""
     chosen = engine(value)
-    if chosen == "compiled" or (chosen == "auto" and (npts >= below or bool(fn.signatures))):
+    if chosen == "compiled" or (chosen == "auto" and (npts >= below or _in_memory(fn))):
         return fn
     from .jit import python
 
     return python(fn)
 
 
+def _in_memory(fn: Any) -> bool:
+    """Whether this process holds the compiled code of ``fn`` (a :class:`stability.jit.Twin` or
+    a numba dispatcher: its public ``signatures``)."""
+    return fn.in_memory() if hasattr(fn, "in_memory") else bool(fn.signatures)
+
+
 def before_compiled_call(twin: Any, seconds: float) -> None:
-    """Say on stderr, once per process, that ``twin`` is being compiled (``seconds``: the
+    """Say on stderr, once per process, that ``twin`` (a :class:`stability.jit.Twin` or a numba
+    dispatcher) is being compiled (``seconds``: the
     estimate printed), if the call that follows is still compiling :data:`NOTICE_AFTER` seconds
     later (numba's public API cannot tell a cached function from one it must compile, but a
     load from the cache takes a fraction of that); nothing if ``twin`` is in memory already
     or while :func:`quiet` is active."""
-    if _STATE["noticed"] or _STATE["quiet"] or twin.in_memory():
+    if _STATE["noticed"] or _STATE["quiet"] or _in_memory(twin):
         return
     _STATE["noticed"] = True
 
     def notice() -> None:
-        if not twin.in_memory():
+        if not _in_memory(twin):
             print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice)
 
     timer = threading.Timer(NOTICE_AFTER, notice)

@@ -23,10 +23,14 @@ that only ever runs the Python execution never imports numba.
 :class:`Twin` pairs a plain Python function (a loop over points, say) with its numba
 compilation, made on first use: ``twin.python`` runs interpreted, ``twin(...)`` compiled,
 ``twin.in_memory()`` tells whether calling the compiled one would compile (or load from numba's
-disk cache) first. A
-twin may be *parallel*: its source loops over ``prange`` (bound to the builtin ``range`` in the
-module's namespace, so the Python execution and a serial compilation run an ordinary loop), and
-its compilation sees numba's ``prange`` instead.
+disk cache) first. A twin may be *parallel*: its source loops over ``prange`` (bound to the
+builtin ``range`` in the module's namespace, so the Python execution and a serial compilation
+run an ordinary loop), and its compilation sees numba's ``prange`` instead.
+
+:func:`python` gives the interpreted execution of any function compiled with :func:`njit` (its
+public ``py_func``, with the compiled functions it calls re-bound to their own interpreted
+executions): what a single query runs (the steady states, a final state, a short run's first
+steps), compiling nothing; :func:`stability.execution.pick` chooses between the two by size.
 
 Disk cache. Functions compiled with ``cache=True`` use numba's own disk cache, through its
 public options only. numba revalidates a cached function against its own source file: after
@@ -213,21 +217,6 @@ def python(fn: Any) -> Callable:
     for k, v in key.__globals__.items():
         names.setdefault(k, v)
     return f
-
-
-class Compiled:
-    """One or more numba dispatchers, asked as a whole whether calling them compiles: whether
-    their code is in memory (:meth:`in_memory`, numba's public ``signatures``); what a caller
-    needs to say "compiling, once" when a first call is slow (the same question as
-    :class:`Twin`'s). List the dispatchers that a call always runs (callees compiled into them
-    have disk caches of their own and follow)."""
-
-    def __init__(self, *dispatchers: Any) -> None:
-        self.dispatchers = dispatchers
-
-    def in_memory(self) -> bool:
-        """Whether this process holds the compiled code of every one of them."""
-        return all(bool(d.signatures) for d in self.dispatchers)
 
 
 # ------------------------------------------------------------------------------------------

@@ -314,13 +314,11 @@ def test_compile_notice_before_a_first_compiled_run(tmp_path):
     code = """
         import sys, time
         from stability import execution
-        from stability.jit import Compiled
         from stability.nonlinear import integrators as I
         execution.NOTICE_AFTER = 0.05
         for slice_ in (I.dopri5_slice, I.rk4_slice):
-            c = Compiled(slice_)
-            assert not c.in_memory()
-            execution.before_compiled_call(c, I.COMPILE_SECONDS)
+            assert not slice_.signatures
+            execution.before_compiled_call(slice_, I.COMPILE_SECONDS)
         time.sleep(0.3)
     """
     out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stability.jit import Compiled, njit, python
+from stability.jit import njit, python
 
 from ..errors import InputError
 from ..execution import before_compiled_call, engine, pick
@@ -614,7 +614,7 @@ def _slices(compiled: Callable) -> Callable[[int], tuple[Callable, int]]:
             fn = first.pop()
             if fn is not compiled:
                 return fn, min(budget, INTERPRETED_STEPS)
-        before_compiled_call(Compiled(compiled), COMPILE_SECONDS)
+        before_compiled_call(compiled, COMPILE_SECONDS)
         return compiled, budget
 
     return next_slice
