@@ -170,6 +170,40 @@ def run_table(python: str, repeat: int, names: list[str]) -> dict:
     return results
 
 
+_CROSSOVER = """
+import json, os, time
+import stability
+from stability import execution
+from stability.nonlinear import integrators
+
+kw = dict(omega=[0, 0, 1], k=[1e-3, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
+out = {}
+for mode in ("python", "compiled"):
+    os.environ[execution.ENVIRONMENT] = mode
+    t = time.perf_counter()
+    stability.simulate("sliding", t_end=1.0, **kw)  # the compiled run: compile or load here
+    out[mode + "_first"] = time.perf_counter() - t
+    for t_end in (50.0, 200.0):
+        t = time.perf_counter()
+        ds = stability.simulate("sliding", t_end=t_end, **kw)
+        out[f"{mode}_{t_end:g}"] = (time.perf_counter() - t, int(ds.attrs["naccept"]) + int(ds.attrs["nreject"]))
+print(json.dumps(out))
+"""
+
+
+def crossover(python: str, cwd: str, cache: str) -> dict:
+    """The interpreted integrator's cost per step against the compiled one's, in one process on
+    ``cache`` (run it twice: the first fills the cache), and the step count from which compiling
+    pays (:data:`stability.nonlinear.integrators.INTERPRETED_STEPS`)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+    out = subprocess.run([python, "-c", _CROSSOVER], capture_output=True, text=True, env=env, cwd=cwd, check=True)
+    r = json.loads(out.stdout.strip().splitlines()[-1])
+    (tp, n), (tc, _) = r["python_200"], r["compiled_200"]
+    r["python_ms_per_step"] = 1e3 * tp / n
+    r["compiled_ms_per_step"] = 1e3 * tc / n
+    return r
+
+
 def fresh_venv(source: Path, where: str) -> str:
     """A new virtual environment with the package installed from ``source`` (not editable, no
     extras): its python."""
@@ -192,6 +226,9 @@ def main(argv: list[str] | None = None) -> None:
     )
     parser.add_argument("--calls", nargs="*", default=list(CALLS), help="which calls (default: all)")
     parser.add_argument("--json", help="also write the results as JSON")
+    parser.add_argument(
+        "--crossover", action="store_true", help="also measure the integrator's interpreted and compiled cost per step"
+    )
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="tippe-venv-") as tmp:
         python = fresh_venv(Path(__file__).resolve().parent.parent, tmp) if args.fresh_venv else args.python
@@ -207,6 +244,19 @@ def main(argv: list[str] | None = None) -> None:
             flush=True,
         )
         results = run_table(python, args.repeat, args.calls)
+        if args.crossover:
+            with tempfile.TemporaryDirectory(prefix="tippe-cross-") as cache:
+                cold = crossover(python, cache, cache)
+                warm = crossover(python, cache, cache)
+            results["crossover"] = {"cold": cold, "warm": warm}
+            print(
+                f"integrator: interpreted {warm['python_ms_per_step']:.2f} ms per step, compiled "
+                f"{warm['compiled_ms_per_step']:.4f} ms; first compiled run {cold['compiled_first']:.1f} s cold, "
+                f"{warm['compiled_first']:.2f} s warm: compiling pays from "
+                f"~{cold['compiled_first'] / warm['python_ms_per_step'] * 1e3:.0f} steps cold, "
+                f"~{warm['compiled_first'] / warm['python_ms_per_step'] * 1e3:.0f} warm",
+                flush=True,
+            )
         results["dask_installed"] = extras == "True"
         results["load_average_after"] = os.getloadavg()[0]
         print(f"load average now {results['load_average_after']:.2f}")

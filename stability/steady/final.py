@@ -35,10 +35,8 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from stability.jit import python
-
 from ..errors import DomainError
-from ..execution import announce
+from ..execution import announce, pick
 from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import family
@@ -47,10 +45,6 @@ from .products import DEGREE, check_scales, flag_attrs, potential_curve, product
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
-#: a prediction is one query: the level's closed forms and the initial state's integrals run
-#: interpreted (:func:`stability.jit.python`), compiling nothing (docs/performance.md)
-_level_states = python(family.level_states)
-_point_integrals = python(point_integrals)
 
 __all__ = [
     "MATCH_DEG",
@@ -341,7 +335,7 @@ def candidates(
     :mod:`stability.steady.verdicts`; ``alpha_v > 0``)."""
     J, E0 = float(jellett), float(initial_energy)
     tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
-    rows = _level_states(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
+    rows = pick(family.level_states, 1)(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
     last = len(rows) - 1
     out = []
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
@@ -527,7 +521,8 @@ def final_state_from(
         As in :func:`final_state`.
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-    J0, E0 = _point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    # one query: interpreted unless compiled code is in memory (stability.execution.pick)
+    J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
