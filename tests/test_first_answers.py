@@ -41,7 +41,7 @@ def reference():
 def test_dopri5_in_each_execution_agrees_with_dop853(mode, reference, monkeypatch):
     """dopri5 at rtol 1e-11 against DOP853: both globally accurate to ~1e-9 over 50 time units,
     so 1e-8 (the tolerance of test_dopri5_agrees_with_scipy_dop853). ``auto`` with
-    INTERPRETED_STEPS = 40: the first 40 steps interpreted, the rest compiled."""
+    INTERPRETED_STEPS = 40: the first 40 steps interpreted, the rest compiled (the switch)."""
     monkeypatch.setenv(execution.ENVIRONMENT, mode)
     monkeypatch.setattr(integrators, "INTERPRETED_STEPS", 40)
     a = simulate("sliding", t_end=50.0, dt=1.0, **IC, **BASE, method="dopri5", rtol=1e-11, atol=1e-14)

@@ -25,9 +25,9 @@ within milliseconds, with an ordinary exception, never from inside compiled code
 hold no GIL and assign no array slices (a slice assignment makes numba compile its
 shape-mismatch message formatting, seconds of compile time for nothing).
 
-A run's first :data:`INTERPRETED_STEPS` steps run the same slice interpreted
-(:func:`stability.jit.python`) unless the compiled one is in memory, the rest compiled: a short
-run compiles nothing, a long one compiles once (:mod:`stability.execution`).
+A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted
+(:func:`stability.jit.python`) unless the compiled ones are in memory: it compiles nothing; a
+long one runs compiled (:mod:`stability.execution`).
 """
 
 from __future__ import annotations
@@ -592,20 +592,26 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     return status
 
 
-#: a run's first slice of at most this many steps runs interpreted (:func:`stability.jit.python`)
-#: unless the compiled slice is in memory; the rest compiled. A short run (the README's
-#: t_end = 50: 692 steps) then compiles nothing. Measured (benchmarks/cold_start.py,
-#: docs/performance.md): ~2 ms per interpreted step against ~20 s of compiling on a cold cache
-#: and ~1 s of loading on a warm one.
-INTERPRETED_STEPS = 1000
+#: a run over at most this span of time (units of the model) runs interpreted
+#: (:func:`stability.jit.python`) unless the compiled slice is in memory; a longer one compiled
+#: from its first step. Measured (``python benchmarks/cold_start.py --crossover``,
+#: docs/performance.md): ~14 dopri5 steps per unit of time at the default tolerances, ~2 ms per
+#: interpreted step, against ~13 s of CPU to compile on a cold cache (~450 units) and ~1 s to
+#: load on a warm one (~35 units); the README's t_end = 50 (692 steps) runs interpreted.
+INTERPRETED_SPAN = 100.0
+#: ... and an interpreted run that takes more steps than this (a stiff or fast one) goes on
+#: compiled from where it is
+INTERPRETED_STEPS = 2000
 
 
-def _slices(compiled: Callable) -> Callable[[int], tuple[Callable, int]]:
-    """The slice function and budget of each call of a run (:data:`INTERPRETED_STEPS`): the
-    interpreted execution first if :func:`stability.execution.pick` chooses it, then the compiled
-    one (with the compile notice); every slice interpreted if ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so the switch
-    changes nothing but the execution."""
-    first = [pick(compiled, 0)]
+def _slices(compiled: Callable, span: float) -> Callable[[int], tuple[Callable, int]]:
+    """The slice function and budget of each call of a run over ``span`` units of time: the
+    interpreted execution first if the span is at most :data:`INTERPRETED_SPAN` and
+    :func:`stability.execution.pick` chooses it, for at most :data:`INTERPRETED_STEPS` steps;
+    then the compiled one (with the compile notice); every slice interpreted if
+    ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so a switch changes
+    nothing but the execution."""
+    first = [pick(compiled, 0) if span <= INTERPRETED_SPAN else compiled]
 
     def next_slice(budget: int) -> tuple[Callable, int]:
         if engine() == "python":  # forced (TIPPE_KERNEL=python): the whole run interpreted
@@ -665,7 +671,7 @@ def dopri5(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
-    slices = _slices(dopri5_slice)
+    slices = _slices(dopri5_slice, float(t_eval[-1] - t_eval[0]))
 
     def step(b: int):
         fn, b = slices(b)
@@ -697,7 +703,7 @@ def rk4(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
-    slices = _slices(rk4_slice)
+    slices = _slices(rk4_slice, float(t_eval[-1] - t_eval[0]))
 
     def step(b: int):
         fn, b = slices(b)
