@@ -56,7 +56,6 @@ import numpy as np
 from stability.jit import njit, register_jitable
 
 from ..execution import pick
-
 from ..models.inertia import inertia_g, transverse_inertia_g
 
 __all__ = [
