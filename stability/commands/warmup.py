@@ -37,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def steps() -> list[tuple[str, Callable[[], object], list]]:
     """``(what, call, twins)``: each step's name, a call that runs it compiled, and the
-    :class:`stability.jit.Twin` objects it compiles (to tell compiled from loaded)."""
+    :class:`stability.jit.Twin` objects it compiles (the test that every loop is covered)."""
     import numpy as np
 
     from ..linear import kernel, neutrality, roots

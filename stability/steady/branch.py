@@ -56,7 +56,7 @@ from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
-from . import family, linearisation
+from . import family
 from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals

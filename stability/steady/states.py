@@ -25,7 +25,7 @@ from stability.jit import njit, register_jitable
 from ..execution import pick
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar
-from . import family, linearisation
+from . import family
 from .linearisation import state_modes
 from .products import (
     DEGREE,
