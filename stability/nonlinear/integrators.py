@@ -595,10 +595,10 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
 #: a run over at most this span of time (units of the model) runs interpreted
 #: (:func:`stability.jit.python`) unless the compiled slice is in memory; a longer one compiled
 #: from its first step. Measured (``python benchmarks/cold_start.py --crossover``,
-#: docs/performance.md): ~15 dopri5 steps per unit of time at the default tolerances, ~0.4 ms
-#: per interpreted step against ~0.005 ms compiled, ~11 s of CPU to compile on a cold cache
-#: (~2000 units) and ~0.3 s to load on a warm one (~50 units); the README's t_end = 50 (692
-#: steps, 0.26 s interpreted) runs interpreted.
+#: docs/performance.md): ~15 dopri5 steps per unit of time at the default tolerances, 0.35 ms
+#: per interpreted step against 0.0046 ms compiled, 7.9 s to compile on a cold cache (~22,600
+#: steps, ~1500 units) and 0.32 s to load on a warm one (~900 steps, ~60 units); the README's
+#: t_end = 50 (692 steps, 0.26 s interpreted) runs interpreted.
 INTERPRETED_SPAN = 100.0
 #: ... and an interpreted run that takes more steps than this (a stiff or fast one) goes on
 #: compiled from where it is
