@@ -24,6 +24,7 @@ import xarray as xr
 
 from .._version import package_version
 from ..errors import InputError, ParameterTypeError
+from ..execution import pick
 from ..interrupts import deferred
 from ..parameters import (
     COMPUTABLE_MAX,
@@ -545,7 +546,7 @@ def trajectory_dataset(
         good &= contact == 1
     forces = np.full((n, 3), np.nan)
     if good.any():
-        forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
+        forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
     if contact is not None:
         forces[contact == 0] = 0.0  # in flight: no contact force
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
