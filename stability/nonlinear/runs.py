@@ -446,22 +446,10 @@ def simulate(
     flights = None
     try:
         with deferred():
+            options = dict(method=method, rtol=rtol, atol=atol, step=step, max_steps=max_steps)
+            options.update(progress=report, stick_tilt=stick_tilt)
             if on_contact_loss == "continue" and watched:
-                flights = run_with_flights(
-                    integrate,
-                    m.name,
-                    y0,
-                    t_eval,
-                    p,
-                    params,
-                    method=method,
-                    rtol=rtol,
-                    atol=atol,
-                    step=step,
-                    max_steps=max_steps,
-                    progress=report,
-                    stick_tilt=stick_tilt,
-                )
+                flights = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
                 sol = Solution(
                     flights.t,
                     flights.y,
@@ -474,20 +462,7 @@ def simulate(
                     flights.event,
                 )
             else:
-                sol = integrate(
-                    m.name,
-                    y0,
-                    t_eval,
-                    p,
-                    method=method,
-                    rtol=rtol,
-                    atol=atol,
-                    step=step,
-                    max_steps=max_steps,
-                    progress=report,
-                    watch_contact=watched,
-                    stick_tilt=stick_tilt,
-                )
+                sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
     finally:
         close()
     message = sol.message if flights is None else flights.message

@@ -638,25 +638,21 @@ def final_state_from(
     tilt, energy, run = settle(
         y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt
     )
-    if run.event == "stick_contact":
-        return FinalState(
-            tilt=tilt,
-            kind=run.event,
-            method="simulation",
-            energy=energy,
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            reason=f"{reason}; a run decided: the motion reaches its stick at {tilt:.4g} degrees after "
-            f"t = {run.event_time:.6g} (units of 1/Omega): the sphere model's end"
-            + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
-            + " is a tilt the toy cannot have",
-            run=run,
-            event=run.event,
-            event_time=run.event_time,
-            **common,
-        )
     if run.event != "none":
+        if run.event == "stick_contact":
+            what = (
+                f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
+                "1/Omega): the sphere model's end"
+                + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
+                + " is a tilt the toy cannot have"
+            )
+            contact = {}  # stays "not checked": the stick ended the run first
+        else:
+            what = (
+                f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
+                "does not hold beyond, no final state"
+            )
+            contact = {"contact": "lost" if run.event == "contact_lost" else "held"}
         return FinalState(
             tilt=tilt,
             kind=run.event,
@@ -665,12 +661,11 @@ def final_state_from(
             precession_rate=math.nan,
             axial_spin=run.axial_spin,
             state=None,
-            reason=f"{reason}; a run decided: {run.event.replace('_', ' ')} at t = {run.event_time:.6g} "
-            f"(tilt {tilt:.6g} deg): the model does not hold beyond, no final state",
+            reason=f"{reason}; a run decided: {what}",
             run=run,
             event=run.event,
             event_time=run.event_time,
-            contact="lost" if run.event == "contact_lost" else "held",
+            **contact,
             **common,
         )
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
