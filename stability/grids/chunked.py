@@ -25,7 +25,9 @@ from __future__ import annotations
 import hashlib
 import os
 import shutil
+import threading
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from itertools import product
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -637,15 +639,18 @@ def _write_chunks(
     def cast(name: str, v: np.ndarray) -> np.ndarray:
         return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
 
-    def again(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-        return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
+    computing = threading.Lock()  # one chunk's spectra at a time (the compiled loop's threads)
+
+    def compute(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
+        with computing:
+            return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
 
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
         _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
         checkpoint()
         with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
             nc.set_auto_mask(False)
-            lead = _Leading(nc, dims, again, cast)
+            lead = _Leading(nc, dims, compute, cast)
 
             def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
                 shape = tuple(sl[d].stop - sl[d].start for d in dims)
@@ -668,20 +673,37 @@ def _write_chunks(
                 if "max_growth_rate" in nc.variables:
                     nc.variables["max_growth_rate"][idx] = top
                 lead.put(name, sl, block, top)
-                report()
                 checkpoint()
 
             failed = _Failure(None, len(blocks))
             if client is None or not lazy:
-                for name, sl in blocks:
-                    checkpoint()
-                    try:
-                        block = _compute_block(spec, sl) if lazy else slice_block(ds, sl)
-                    except Exception as exc:
-                        raise failed(name, sl, exc, report.done) from exc
-                    put(name, sl, block)
+                # each chunk is written (rounded, compressed) by one writer thread, in order, while
+                # the next is computed: netCDF4's writes and the compiled spectra release the GIL,
+                # so the writing overlaps the spectra instead of following them (one chunk more in
+                # memory); the file is the one the plain loop writes
+                with ThreadPoolExecutor(max_workers=1) as writer:
+                    pending = None
+                    for name, sl in blocks:
+                        checkpoint()
+                        try:
+                            block = compute(name, sl)
+                        except Exception as exc:
+                            raise failed(name, sl, exc, report.done) from exc
+                        if pending is not None:
+                            pending.result()
+                            report()
+                        pending = writer.submit(put, name, sl, block)
+                        del block
+                    if pending is not None:
+                        pending.result()
+                        report()
             else:
-                _run_on_cluster(client, spec, blocks, put, window, failed, report)
+
+                def put_reported(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+                    put(name, sl, block)
+                    report()
+
+                _run_on_cluster(client, spec, blocks, put_reported, window, failed, report)
             lead.close()
 
 
