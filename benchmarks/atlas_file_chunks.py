@@ -19,7 +19,17 @@ import time
 
 import numpy as np
 
-SETTINGS = [(True, 20, 1), (True, 5, 1), (True, 2, 1), (True, 1, 1), (True, 2, -1), (True, 2, -3), (False, 20, None), (False, 2, None)]
+#: (float32, file chunk in values of q, zstd level or None: uncompressed)
+SETTINGS = [
+    (True, 20, 1),
+    (True, 5, 1),
+    (True, 2, 1),
+    (True, 1, 1),
+    (True, 2, -1),
+    (True, 2, -3),
+    (False, 20, None),
+    (False, 2, None),
+]
 
 
 def main() -> None:
@@ -44,7 +54,10 @@ def main() -> None:
     n = int(np.prod([ds.sizes[d] for d in dims]))
     variants = {}
     for f32 in (True, False):
-        c = {k: (_as_float32(k, v) if f32 and v.dtype.kind == "f" else np.ascontiguousarray(v)) for k, v in block.items()}
+        c = {
+            k: (_as_float32(k, v) if f32 and v.dtype.kind == "f" else np.ascontiguousarray(v))
+            for k, v in block.items()
+        }
         c["max_growth_rate"] = np.ascontiguousarray(c["growth_rate"][..., 0])
         c["leading_growth_rate"] = c["max_growth_rate"].copy()
         variants[f32] = c
