@@ -8,7 +8,7 @@
   (dimensions, coordinates, attributes, as xarray writes them) under a temporary name next to
   the target; each chunk is computed (in this process, or on a dask.distributed cluster), checked
   (exact dtypes and shapes: a block is never broadcast or cast into the file), written into its
-  region and dropped; the file is committed only when complete
+  region (by one writer thread, in order, while the next chunk is computed) and dropped; the file is committed only when complete
   (:func:`stability.files.atomic_output`: no partial file, and an existing file, or one
   another run created meanwhile, is not replaced unless asked). Memory stays at a few chunks
   whatever the grid size; an interruption (checked between chunks) leaves no output file.
