@@ -7,7 +7,8 @@ on each chunk, results dropped: what any atlas must compute) and right after the
 :func:`stability.grids.chunked.write_atlas` of the lazy atlas in that layout (``--layouts``; e.g. ``all`` = every variable in float64,
 uncompressed, the default file; ``map+zstd+f32`` = the leading growth rate and the flag, zstd,
 float32). Reported per layout: min and median wall time, the ratio of each write to the bare spectra
-measured just before it, and bytes per grid point on disk.
+measured just before it, and bytes per grid point on disk; the same for the CPU time of the
+process (all its threads: what a loaded machine does not change much).
 
     python benchmarks/atlas_write.py --out-dir /tmp --rounds 2
     # the previous code, same machine, one after the other (A/B):
@@ -72,22 +73,34 @@ def measure(q_points: int, out_dir: str, layouts: list[str], rounds: int) -> dic
     times: dict[str, list[float]] = {"bare spectra": []}
     sizes: dict[str, int] = {}
     ratios: dict[str, list[float]] = {}
+    cpu: dict[str, list[float]] = {"bare spectra": []}  # CPU seconds of the process (all threads)
+    cpu_ratios: dict[str, list[float]] = {}
     for _ in range(rounds):
         for layout in layouts:
-            t = time.perf_counter()
+            t, c = time.perf_counter(), time.process_time()
             bare()
-            tb = time.perf_counter() - t
+            tb, cb = time.perf_counter() - t, time.process_time() - c
             times["bare spectra"].append(tb)
+            cpu["bare spectra"].append(cb)
             path = os.path.join(out_dir, f"atlas_write_{layout}.nc")
             ds = stability.atlas("sliding", mask_unphysical=True, chunks={"q": 20}, **grid)
-            t = time.perf_counter()
+            t, c = time.perf_counter(), time.process_time()
             write_atlas(ds, path, overwrite=True, **_kwargs(layout))
-            tw = time.perf_counter() - t
+            tw, cw = time.perf_counter() - t, time.process_time() - c
             times.setdefault(layout, []).append(tw)
             ratios.setdefault(layout, []).append(tw / tb)
+            cpu.setdefault(layout, []).append(cw)
+            cpu_ratios.setdefault(layout, []).append(cw / cb)
             sizes[layout] = os.path.getsize(path)
             os.remove(path)
-    return {"points": n, "times": times, "ratios": ratios, "bytes_per_point": {k: v / n for k, v in sizes.items()}}
+    return {
+        "points": n,
+        "times": times,
+        "ratios": ratios,
+        "cpu": cpu,
+        "cpu_ratios": cpu_ratios,
+        "bytes_per_point": {k: v / n for k, v in sizes.items()},
+    }
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -131,9 +144,13 @@ def main(argv: list[str] | None = None) -> None:
     )
     for k, v in res["times"].items():
         r = res["ratios"].get(k)
+        cr = res.get("cpu_ratios", {}).get(k)
         extra = (
             f"  x bare {min(r):.2f} / {statistics.median(r):.2f}  {res['bytes_per_point'][k]:6.2f} B/pt" if r else ""
         )
+        if "cpu" in res:
+            c = res["cpu"][k]
+            extra += f"  CPU {min(c):7.2f} s" + (f" x bare {min(cr):.2f} / {statistics.median(cr):.2f}" if cr else "")
         print(f"{k:16s} {min(v):7.2f} / {statistics.median(v):7.2f} s{extra}")
 
 

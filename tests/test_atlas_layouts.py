@@ -166,3 +166,34 @@ def test_map_file_draws_the_same_stability_map(tmp_path, reference):
         from stability.plotting.atlas_plots import plot_growth_rate
 
         plot_growth_rate(read.sel(fr_inv=0.5, alpha_v=0.1, sigma=1.0, method="nearest"), "q")
+
+
+def test_small_file_chunks_read_back_bit_for_bit(tmp_path, reference, monkeypatch):
+    """Grid chunks written as several file (HDF5) chunks: each file chunk divides the grid chunk
+    (every write covers whole file chunks) and is at most ``FILE_CHUNK_BYTES``; the file, read
+    back, equals the in-memory atlas bit for bit (reference: the whole grid in one call), the
+    grid chunks q=8 of 31 leaving a partial last one. The limit is made small (2 kB) so that this
+    small grid is cut along two dimensions."""
+    import netCDF4
+
+    from stability.grids import chunked
+
+    monkeypatch.setattr(chunked, "FILE_CHUNK_BYTES", 2048)
+    lazy = stability.atlas("sliding", mask_unphysical=True, chunks={"q": 8}, **GRID)
+    calls = []
+    path = write_atlas(lazy, tmp_path / "a.nc", compression="zstd", progress=lambda d, t: calls.append((d, t)))
+    # the progress callback runs in the caller's thread, once per chunk, in order
+    assert calls == [(i, 4) for i in range(1, 5)]
+    with netCDF4.Dataset(path) as nc:
+        for k in ("growth_rate", "leading_growth_rate", "stability"):
+            var = nc.variables[k]
+            grid_chunk = [8 if d == "q" else len(nc.dimensions[d]) for d in var.dimensions]
+            file_chunk = var.chunking()
+            assert all(g % f == 0 for g, f in zip(grid_chunk, file_chunk)), (k, file_chunk)
+            assert np.prod(file_chunk) * var.dtype.itemsize <= 2048, (k, file_chunk)
+            if np.prod(grid_chunk) * var.dtype.itemsize > 2048:
+                assert file_chunk != grid_chunk, k
+    read = stability.open_atlas(path)
+    for v in reference.data_vars:
+        a, b = _aligned(read, reference, v)
+        assert np.array_equal(a, b, equal_nan=True), v
