@@ -173,6 +173,7 @@ def test_final_state_of_a_coulomb_top_is_rolling_in_its_band():
     stick lie inside the band; E and J of the answer are the run's (conserved while rolling)."""
     end = stability.final_state(**TOP, **LAUNCH, alpha_v=0.0, alpha_k=0.03, t_max=200.0)
     assert end.kind == "rolling" and end.method == "simulation"
+    assert end.contact == "held"  # the hybrid run watched N to its end
     assert "rolls without slipping" in end.reason
     lo, hi = rolling_band(end.tilt, end.energy, end.jellett, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
     for tilt in (lo, hi):
@@ -227,3 +228,52 @@ def test_a_rolling_start_sticks_from_the_start():
     assert np.all(ds.phase.values == 1) and ds.sizes["switch"] == 0
     assert np.ptp(ds.energy.values) < 1e-9 * abs(float(ds.energy[0]))
     assert float(ds.slip_speed.max()) < 1e-15
+
+
+#: a launch tilted 60 degrees spinning about a tipped axis: the floor would have to pull
+#: (N < 0 at t = 0, by the reference's Newton's law for G: about -0.12 rolling, -0.085 slipping)
+_PULLED = dict(omega=[3.0, 0.0, 3.0], k=[math.sin(math.radians(60.0)), 0.0, math.cos(math.radians(60.0))])
+
+
+def _reference_normal_force(y, slipping):
+    """N from Newton's law for G, N = mu fr_inv + mu q (omega' x k + omega x (omega x k)) . K,
+    with omega' of reference.py's right-hand sides (alpha_k = 0.03, alpha_v = 0, law (7))."""
+    q, fr, sg, mu = TOP["q"], TOP["fr_inv"], TOP["sigma"], TOP["mu"]
+    w, k = y[0:3], y[3:6]
+    wd = (sliding_rhs(0.0, y, q, fr, sg, mu, 0.0, 0.03, 0.0, 0) if slipping else rolling_rhs(0.0, y, q, fr, sg, mu))[0:3]
+    return mu * fr + mu * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+
+
+@pytest.mark.parametrize(
+    "velocity, slipping, normal",
+    [
+        ([0.0, -3.0], False, "equilibrium"),  # V0 = -K x omega: a rolling start
+        ([0.0, -3.0], False, "actual"),  # its static limit alpha_s N / (mu fr_inv) < 0 (was NaN)
+        ([0.5, 0.0], True, "equilibrium"),  # a slipping start
+    ],
+)
+def test_a_start_without_contact_force_is_reported_at_once(velocity, slipping, normal):
+    """Reference: N at the start from Newton's law for G (_reference_normal_force) is negative
+    (checked here: a sign, no tolerance needed, |N| > 0.08). The events fire on a downward
+    crossing only, so such a start must be its own event: contact_lost at t = 0, one sample, no
+    NaN; final_state's Coulomb path says the contact was lost (issue: it said "not checked")."""
+    y = np.concatenate([_PULLED["omega"], _PULLED["k"], velocity, [0.0, 0.0]])
+    if not slipping:
+        y = np.concatenate([y[0:6], y[8:10]])
+    assert _reference_normal_force(y, slipping) < -0.08
+    ds = stability.stick_slip(t_end=5.0, **TOP, **_PULLED, velocity=velocity, alpha_k=0.03, normal=normal)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["event_time"] == 0.0
+    assert ds.sizes["time"] == 1 and ds.sizes["switch"] == 0
+    assert all(np.isfinite(ds[v].values).all() for v in ("omega", "polar_angle", "friction", "normal_force"))
+    assert float(ds.normal_force[0]) <= 0.0
+    end = stability.final_state(**TOP, **_PULLED, velocity=velocity, alpha_v=0.0, alpha_k=0.03, t_max=5.0)
+    assert (end.kind, end.event, end.event_time, end.contact) == ("contact_lost", "contact_lost", 0.0, "lost")
+
+
+@pytest.mark.parametrize("change, name", [(dict(stick_tilt=5.0), "stick_tilt"), (dict(simulation=False), "simulation")])
+def test_coulomb_final_state_refuses_options_it_cannot_honour(change, name):
+    """With alpha_k > 0 the end is the hybrid run's: a stick tilt (no stick event there) or no
+    run cannot be honoured, and were silently ignored (the answer was 'rolling' at 17 degrees with
+    stick_tilt = 5): now an InputError naming the option."""
+    with pytest.raises(InputError, match=name):
+        stability.final_state(**TOP, **LAUNCH, alpha_v=0.0, alpha_k=0.03, t_max=200.0, **change)

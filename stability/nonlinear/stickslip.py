@@ -29,7 +29,8 @@ slip restarts in the direction ``e = -f / |f|`` opposite to the needed friction 
 along which the kinetic friction ``-alpha_k e`` continues the needed one), with a seed slip
 ``2 slip_threshold`` added to ``V0`` (an energy change of order ``mu |V_G| slip_threshold``).
 Every run checks the contact: ``N > 0`` (a zero of ``N`` ends the run, ``event =
-"contact_lost"``, as :func:`stability.simulate`).
+"contact_lost"``, as :func:`stability.simulate`; a start with ``N <= 0`` ends it at once,
+``event_time = 0``, the run one sample long).
 
 Only the isotropic law (eq. 7) is offered: its sticking cone is the disc ``|f| <= alpha_s n``;
 the component-wise law (16) would stick in a square and is not built here.
@@ -241,18 +242,26 @@ def stick_slip(
     switches: list[tuple] = []
     t = 0.0
     phase = _SLIP
+    event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
     if math.hypot(*_slip_velocity(y)) <= slip_threshold:  # starts without slip: stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
-        if math.hypot(*f) <= limit(n):
-            phase, y = _STICK, y8
+        if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
+            phase, y, n0 = _STICK, y8, n  # no slip: the sample shows rolling's forces
+        elif math.hypot(*f) <= limit(n):
+            phase, y, n0 = _STICK, y8, n
         else:
             y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
-    event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
+            n0 = ev_slip_contact(0.0, y)
+    else:
+        n0 = ev_slip_contact(0.0, y)
+    if n0 <= 0.0:  # the events fire on a crossing only: a start without contact force is its own event
+        event, event_time = "contact_lost", 0.0
+        message = f"the normal force is N = {n0:.6g} <= 0 at the start (contact lost at once)"
     ts.append(np.array([0.0]))
     ys.append((y if phase == _SLIP else _sliding_state(y))[None, :])
     phases.append(np.array([phase], np.int8))
-    while t < t_end:
+    while t < t_end and event == "none":
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:

@@ -92,7 +92,8 @@ def coulomb_end(
         ``run``: ``kind = "rolling"`` (the run ends sticking; ``tilt`` the tilt at the last stick,
         ``energy`` its conserved energy, the band and the switches in ``reason``),
         ``"unsettled"`` (still slipping at ``t_max``) or ``"contact_lost"``;
-        ``method = "simulation"``.
+        ``method = "simulation"``; ``contact = "lost"`` if the run reached ``N = 0``, else
+        ``"held"`` (the run watches ``N`` in every phase).
     run : dict
         The fields of :class:`stability.steady.final.SettleRun` (the hybrid run).
     level : tuple of float or None
@@ -157,6 +158,7 @@ def coulomb_end(
                 initial_tilt=tilt0,
                 event=run["event"],
                 event_time=run["event_time"],
+                contact="lost" if run["event"] == "contact_lost" else "held",
             ),
             run,
             None,
@@ -176,6 +178,7 @@ def coulomb_end(
                 reason=f"Coulomb top (alpha_k > 0): {switches}; still slipping at t_max = {t_max:g}",
                 parameters=par,
                 initial_tilt=tilt0,
+                contact="held",
             ),
             run,
             None,
@@ -207,6 +210,7 @@ def coulomb_end(
         reason=reason,
         parameters=par,
         initial_tilt=tilt0,
+        contact="held",  # the hybrid run watched N to its end
     )
     run["tilt_change"] = float(np.ptp(seen))
     return fields, run, (jel, e_s)
