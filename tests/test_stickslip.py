@@ -307,3 +307,15 @@ def test_coulomb_final_state_refuses_options_it_cannot_honour(change, name):
     stick_tilt = 5): now an InputError naming the option."""
     with pytest.raises(InputError, match=name):
         stability.final_state(**TOP, **LAUNCH, alpha_v=0.0, alpha_k=0.03, t_max=200.0, **change)
+
+
+def test_chattering_has_its_named_status():
+    """max_switches = 1 on the launch that sticks, slips and sticks again (the reference hybrid
+    above): the run stops after its first switch with the named status CHATTERING (not -1,
+    which is MAX_STEPS of the integrators) and a warning."""
+    from stability.nonlinear.integrators import CHATTERING, MAX_STEPS, STATUS_MESSAGES
+
+    with pytest.warns(RuntimeWarning, match="chattering"):
+        ds = stability.stick_slip(t_end=62.0, **TOP, **LAUNCH, alpha_k=ALPHA_K, alpha_s=ALPHA_S, max_switches=1)
+    assert ds.attrs["status"] == CHATTERING != MAX_STEPS and "chattering" in STATUS_MESSAGES[CHATTERING]
+    assert ds.attrs["n_switches"] == 1

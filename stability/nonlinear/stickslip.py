@@ -62,6 +62,8 @@ from scipy.integrate import solve_ivp
 from ..errors import InputError
 from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
+from .friction import NORMAL_FORCE
+from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -147,7 +149,9 @@ def stick_slip(
     dt : float, default 0.1
         Output interval; the switch instants are samples too (the last sample of each phase).
     max_switches : int
-        A run that switches more often stops there (``attrs["status"] = -1``): chattering.
+        A run that switches more often stops there (``attrs["status"]`` is
+        :data:`~stability.nonlinear.integrators.CHATTERING`, -6); a failed phase gives scipy's
+        failure as ``STEP_TOO_SMALL`` (-2) or ``NOT_FINITE`` (-3).
 
     Returns
     -------
@@ -197,7 +201,7 @@ def stick_slip(
     # the exact law (7) while slipping: no regularisation (|V_c| >= slip_threshold > 0 there)
     p = p_reg.copy()
     p[EPSILON] = 0.0
-    scaled = p[NORMAL] == 1.0
+    scaled = p[NORMAL] == NORMAL_FORCE["actual"]
     n_eq = p[MU] * p[FR_INV]
 
     def limit(n: float) -> float:
@@ -287,7 +291,8 @@ def stick_slip(
                 atol=atol,
             )
         if sol.status < 0:
-            status, message = -1, f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
+            status = STEP_TOO_SMALL if "step size" in sol.message else NOT_FINITE  # as integrators.py maps scipy's
+            message = f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
             out = sol.y.T
             ts.append(sol.t)
             ys.append(out if phase == _SLIP else np.array([_sliding_state(r) for r in out]).reshape(-1, 10))
@@ -314,7 +319,7 @@ def stick_slip(
             message = f"the normal force reached zero at t = {t_ev:.9g} (contact lost)"
             break
         if len(switches) >= max_switches:
-            status, message = -1, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
+            status, message = CHATTERING, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
             break
         if phase == _SLIP:  # the slip reached the threshold: stick if rolling's friction is within the limit
             y8 = _rolling_state(y_ev)
