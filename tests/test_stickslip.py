@@ -319,3 +319,19 @@ def test_chattering_has_its_named_status():
         ds = stability.stick_slip(t_end=62.0, **TOP, **LAUNCH, alpha_k=ALPHA_K, alpha_s=ALPHA_S, max_switches=1)
     assert ds.attrs["status"] == CHATTERING != MAX_STEPS and "chattering" in STATUS_MESSAGES[CHATTERING]
     assert ds.attrs["n_switches"] == 1
+
+
+def test_rolling_band_refuses_an_energy_below_the_potential():
+    """Reference: U_J minimised from its definition (_effective_potential_by_minimising). Below it
+    (by 1e-3 of U_J, far beyond the accepted slack 1e-8 and the minimiser's error) no state has
+    this tilt: a DomainError naming the energy and U_J (it returned (tilt, tilt) before: E = -100
+    gave (30, 30)); just above it (1e-3) the band is a small interval around the tilt."""
+    from stability.errors import DomainError
+
+    jel = 1.2
+    u = _effective_potential_by_minimising(math.cos(math.radians(30.0)), jel)
+    for energy in (u - 1e-3 * abs(u), -100.0):
+        with pytest.raises(DomainError, match=r"energy = .* U_J"):
+            rolling_band(30.0, energy, jel, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
+    lo, hi = rolling_band(30.0, u + 1e-3 * abs(u), jel, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
+    assert lo < 30.0 < hi
