@@ -116,7 +116,13 @@ def test_contact_map_figure():
     )
     fig, ax = plot_contact_loss_map(ds)
     assert ax.get_xlabel().startswith("tilt")
-    assert ax.collections  # the N_min colour mesh
+    from matplotlib.collections import QuadMesh
+
+    meshes = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    assert len(meshes) == 1  # the N_min colour mesh: it draws the dataset's values, in its (y, x) order
+    drawn = np.asarray(meshes[0].get_array()).reshape(ds.min_normal_force.shape)
+    np.testing.assert_array_equal(drawn, ds.min_normal_force.values)
+    assert meshes[0].norm.vcenter == 0.0  # diverging about N = 0 (the boundary)
 
 
 @pytest.mark.parametrize(
@@ -127,10 +133,21 @@ def test_contact_map_figure():
         ({"x_range": (5.0, 1.0)}, "x_range"),
         ({"grid": (1, 4)}, "grid"),
         ({"x": "tilt", "x_range": (0.0, 10.0)}, "tilt range"),
+        ({"grid": (2.7, 4)}, "grid"),  # was int(2.7) = 2
+        ({"grid": 3}, "grid"),
+        ({"tilt": 200.0}, "tilt"),  # the held tilt (default axes tilt_rate, spin) was not checked
+        ({"tilt": "abc"}, "tilt"),  # float("abc"): a bare ValueError
+        (
+            {"x": "spin", "y": "tilt", "x_range": (20.0, 50.0), "y_range": (2.0, 10.0), "tilt_rate": float("nan")},
+            "tilt_rate",
+        ),
+        ({"max_points": 0}, "max_points"),
     ],
 )
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
-    with pytest.raises(InputError, match=name):
+    from stability.errors import ParameterTypeError
+
+    with pytest.raises((InputError, ParameterTypeError), match=name):
         stability.contact_loss_boundary(TOP, **kw)
 
 
@@ -329,7 +346,8 @@ def test_contact_margin_finds_the_smallest_size_of_a_non_monotone_n_min(monkeypa
 
 
 @pytest.mark.parametrize(
-    "kw, name", [(dict(tilt="abc"), "tilt"), (dict(tilt=200.0), "tilt"), (dict(spin="x"), "spin"), (dict(rtol=2.0), "rtol")]
+    "kw, name",
+    [(dict(tilt="abc"), "tilt"), (dict(tilt=200.0), "tilt"), (dict(spin="x"), "spin"), (dict(rtol=2.0), "rtol")],
 )
 def test_contact_margin_bad_input_names_the_parameter(kw, name):
     """The package's errors (TypeError / DomainError subclasses), naming the parameter; before,

@@ -246,7 +246,8 @@ def test_a_graze_stops_the_run_with_its_status():
 
     def lost_at_once(model, y0, t_eval, p, **kw):
         calls.append(t_eval[0])
-        return Solution(t_eval[:1], np.asarray(y0, float)[None, :], 1, 0, 0, 0, "stand-in", float(t_eval[0]), "contact_lost")
+        y1 = np.asarray(y0, float)[None, :]
+        return Solution(t_eval[:1], y1, 1, 0, 0, 0, "stand-in", float(t_eval[0]), "contact_lost")
 
     params = dict(q=Q, fr_inv=FR, sigma=SG, mu=MU)
     run = run_with_flights(lost_at_once, "sliding", y, np.linspace(0.0, 5.0, 11), np.zeros(9), params)

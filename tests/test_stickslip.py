@@ -270,7 +270,8 @@ def _reference_normal_force(y, slipping):
     with omega' of reference.py's right-hand sides (alpha_k = 0.03, alpha_v = 0, law (7))."""
     q, fr, sg, mu = TOP["q"], TOP["fr_inv"], TOP["sigma"], TOP["mu"]
     w, k = y[0:3], y[3:6]
-    wd = (sliding_rhs(0.0, y, q, fr, sg, mu, 0.0, 0.03, 0.0, 0) if slipping else rolling_rhs(0.0, y, q, fr, sg, mu))[0:3]
+    rhs = sliding_rhs(0.0, y, q, fr, sg, mu, 0.0, 0.03, 0.0, 0) if slipping else rolling_rhs(0.0, y, q, fr, sg, mu)
+    wd = rhs[0:3]
     return mu * fr + mu * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
 
 

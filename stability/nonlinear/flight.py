@@ -374,7 +374,8 @@ def run_with_flights(
     the impact (module docstring) and go on with the same model, up to ``t_eval[-1]``.
 
     ``integrate`` is :func:`stability.nonlinear.integrators.integrate` (passed in, with its
-    keywords ``kw``, ``watch_contact`` on); ``params`` holds ``q, fr_inv, sigma, mu`` (floats). Samples: the requested times, plus each take-off
+    keywords ``kw``, ``watch_contact`` on); ``params`` holds ``q, fr_inv, sigma, mu`` (floats).
+    Samples: the requested times, plus each take-off
     (the state where ``N = 0``) and each landing (the state just after the impact).
     """
     q, fr, sg, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
