@@ -116,7 +116,13 @@ def test_contact_map_figure():
     )
     fig, ax = plot_contact_loss_map(ds)
     assert ax.get_xlabel().startswith("tilt")
-    assert ax.collections  # the N_min colour mesh
+    from matplotlib.collections import QuadMesh
+
+    meshes = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    assert len(meshes) == 1  # the N_min colour mesh: it draws the dataset's values, in its (y, x) order
+    drawn = np.asarray(meshes[0].get_array()).reshape(ds.min_normal_force.shape)
+    np.testing.assert_array_equal(drawn, ds.min_normal_force.values)
+    assert meshes[0].norm.vcenter == 0.0  # diverging about N = 0 (the boundary)
 
 
 @pytest.mark.parametrize(
@@ -127,10 +133,21 @@ def test_contact_map_figure():
         ({"x_range": (5.0, 1.0)}, "x_range"),
         ({"grid": (1, 4)}, "grid"),
         ({"x": "tilt", "x_range": (0.0, 10.0)}, "tilt range"),
+        ({"grid": (2.7, 4)}, "grid"),  # was int(2.7) = 2
+        ({"grid": 3}, "grid"),
+        ({"tilt": 200.0}, "tilt"),  # the held tilt (default axes tilt_rate, spin) was not checked
+        ({"tilt": "abc"}, "tilt"),  # float("abc"): a bare ValueError
+        (
+            {"x": "spin", "y": "tilt", "x_range": (20.0, 50.0), "y_range": (2.0, 10.0), "tilt_rate": float("nan")},
+            "tilt_rate",
+        ),
+        ({"max_points": 0}, "max_points"),
     ],
 )
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
-    with pytest.raises(InputError, match=name):
+    from stability.errors import ParameterTypeError
+
+    with pytest.raises((InputError, ParameterTypeError), match=name):
         stability.contact_loss_boundary(TOP, **kw)
 
 
@@ -301,3 +318,44 @@ def test_contact_margin_size_against_independent_dop853():
         n, bounds=(ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]), method="bounded", options={"xatol": 1e-10}
     )
     assert abs(min(float(res.fun), vals[i])) < 1e-7
+
+
+def test_contact_margin_finds_the_smallest_size_of_a_non_monotone_n_min(monkeypatch):
+    """N_min(eps) need not fall monotonically: a stand-in for the run's smallest N, a cubic in
+    the angle phi between the perturbed axis and the steady one with zeros at phi = 0.3, 0.5, 0.9
+    rad (N > 0 below 0.3, < 0 on (0.3, 0.5), > 0 on (0.5, 0.9), < 0 above), must give the
+    size of the first zero, phi = 0.3, solved here from the geometry alone (brentq on the angle
+    of normalise(k* + eps d_k)). Tolerance 1e-7 relative: the margin's Brent xtol 1e-9 degree on
+    a size ~18 degrees. Before, Brent on [0, max_size] returned any of the zeros."""
+    import stability.steady.margin as margin
+
+    k_star = _tilted_state(90.0)[3:6]
+
+    def phi_of(z):
+        return math.acos(min(1.0, float(z[3:6] @ k_star / np.linalg.norm(z[3:6]))))
+
+    def stand_in(model, z, p, duration, rtol=1e-10):
+        phi = phi_of(z)
+        return -(phi - 0.3) * (phi - 0.5) * (phi - 0.9), None
+
+    monkeypatch.setattr(margin, "min_normal_force", stand_in)
+    m = margin.contact_margin(tilt=90.0, duration=5.0, max_size=80.0, **MARGIN)
+    d = m.direction
+    expected = brentq(lambda e: phi_of(_perturbed(_tilted_state(90.0), d, e)) - 0.3, 1e-3, 80.0, xtol=1e-12)
+    assert m.size == pytest.approx(expected, rel=1e-7)
+
+
+@pytest.mark.parametrize(
+    "kw, name",
+    [(dict(tilt="abc"), "tilt"), (dict(tilt=200.0), "tilt"), (dict(spin="x"), "spin"), (dict(rtol=2.0), "rtol")],
+)
+def test_contact_margin_bad_input_names_the_parameter(kw, name):
+    """The package's errors (TypeError / DomainError subclasses), naming the parameter; before,
+    tilt = 'abc' gave float()'s bare ValueError."""
+    from stability.errors import ParameterTypeError
+    from stability.steady.margin import contact_margin
+
+    args = dict(tilt=90.0, **MARGIN)
+    args.update(kw)
+    with pytest.raises((InputError, ParameterTypeError), match=name):
+        contact_margin(**args)

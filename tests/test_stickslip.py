@@ -19,7 +19,6 @@ import stability
 from stability.errors import InputError
 from stability.nonlinear.friction import traction
 from stability.nonlinear.reference import rolling_rhs, sliding_rhs
-from stability.steady import family
 from stability.steady.coulomb import rolling_band
 
 TOP = dict(q=-0.1, sigma=1.0, mu=2.28, fr_inv=0.3)
@@ -167,18 +166,50 @@ def test_uniform_ball_stops_slipping_at_the_closed_form_time():
     assert ds.attrs["final_phase"] == "stick"
 
 
+def _effective_potential_by_minimising(c, jellett):
+    """U_J(c) from its definition: the least energy of a state with axis height c and Jellett's
+    integral J, E = mu |v_G|^2 / 2 + omega . I_G omega / 2 + mu fr_inv z_G, minimised over the
+    horizontal velocity of O (which zeroes v_G's horizontal part, leaving v_G . K = q omega .
+    (k x K) since O stays at height 1) and over omega on the plane (K + q k) . I_G omega = J (eq.
+    10), by scipy's BFGS on the plane's two coordinates; I_G = A_G 1 + (sigma - A_G) k k^T,
+    A_G = 1 - mu q^2, z_G = 1 + q c (G = O + q k)."""
+    from scipy.optimize import minimize
+
+    q, sg, fr, mu = TOP["q"], TOP["sigma"], TOP["fr_inv"], TOP["mu"]
+    k = np.array([math.sqrt(max(0.0, 1.0 - c * c)), 0.0, c])
+    a_g = 1.0 - mu * q * q
+    i_g = a_g * np.eye(3) + (sg - a_g) * np.outer(k, k)
+    a = i_g @ (_K + q * k)
+    base = jellett * a / (a @ a)  # on the plane
+    plane = np.linalg.svd(a[None, :])[2][1:]  # two unit vectors normal to a
+
+    def energy(s):
+        w = base + s @ plane
+        return 0.5 * mu * (q * w @ np.cross(k, _K)) ** 2 + 0.5 * w @ i_g @ w + mu * fr * (1.0 + q * c)
+
+    return minimize(energy, np.zeros(2), method="BFGS", options={"gtol": 1e-13}).fun
+
+
 def test_final_state_of_a_coulomb_top_is_rolling_in_its_band():
-    """Reference: the energy principle E >= U_J(c) (family.effective_potential, S5): the band's
-    ends solve U_J(c) = E (to 1e-10 of E), and the tilts the hybrid run shows after its last
-    stick lie inside the band; E and J of the answer are the run's (conserved while rolling)."""
+    """Reference: the energy principle E >= U_J(c), U_J written here from its definition
+    (_effective_potential_by_minimising): the band's ends solve U_J(c) = E, to 1e-9 of E (the
+    ends are bisected to round-off; BFGS on a convex quadratic stops at a gradient 1e-13, an
+    energy error ~1e-26; measured agreement 2e-16; 1e-9 leaves room for the minimiser's line
+    search, and an end off by 0.001 degree already moves U_J by 8e-7 of E); an end at the
+    vertical must have U_J <= E there; and the tilts the hybrid run shows after its
+    last stick lie inside the band; E and J of the answer are the run's (conserved while rolling)."""
     end = stability.final_state(**TOP, **LAUNCH, alpha_v=0.0, alpha_k=0.03, t_max=200.0)
     assert end.kind == "rolling" and end.method == "simulation"
+    assert end.contact == "held"  # the hybrid run watched N to its end
     assert "rolls without slipping" in end.reason
     lo, hi = rolling_band(end.tilt, end.energy, end.jellett, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
+    assert lo <= end.tilt < hi < 180.0
     for tilt in (lo, hi):
-        if 0.0 < tilt < 180.0:
-            u = family.effective_potential(math.cos(math.radians(tilt)), end.jellett, -0.1, 1.0, 0.3, 2.28)
-            assert u == pytest.approx(end.energy, rel=1e-10)
+        u = _effective_potential_by_minimising(math.cos(math.radians(tilt)), end.jellett)
+        if 0.0 < tilt < 180.0:  # an inner end is a zero of U_J - E
+            assert u == pytest.approx(end.energy, rel=1e-9)
+        else:  # an end at the vertical: U_J <= E all the way there
+            assert u <= end.energy
     ds = stability.stick_slip(t_end=200.0, **TOP, **LAUNCH, alpha_k=0.03)
     t_stick = float(ds.switch_time[-1])
     seen = ds.polar_angle.where(ds.time > t_stick, drop=True).values
@@ -227,3 +258,81 @@ def test_a_rolling_start_sticks_from_the_start():
     assert np.all(ds.phase.values == 1) and ds.sizes["switch"] == 0
     assert np.ptp(ds.energy.values) < 1e-9 * abs(float(ds.energy[0]))
     assert float(ds.slip_speed.max()) < 1e-15
+
+
+#: a launch tilted 60 degrees spinning about a tipped axis: the floor would have to pull
+#: (N < 0 at t = 0, by the reference's Newton's law for G: about -0.12 rolling, -0.085 slipping)
+_PULLED = dict(omega=[3.0, 0.0, 3.0], k=[math.sin(math.radians(60.0)), 0.0, math.cos(math.radians(60.0))])
+
+
+def _reference_normal_force(y, slipping):
+    """N from Newton's law for G, N = mu fr_inv + mu q (omega' x k + omega x (omega x k)) . K,
+    with omega' of reference.py's right-hand sides (alpha_k = 0.03, alpha_v = 0, law (7))."""
+    q, fr, sg, mu = TOP["q"], TOP["fr_inv"], TOP["sigma"], TOP["mu"]
+    w, k = y[0:3], y[3:6]
+    rhs = sliding_rhs(0.0, y, q, fr, sg, mu, 0.0, 0.03, 0.0, 0) if slipping else rolling_rhs(0.0, y, q, fr, sg, mu)
+    wd = rhs[0:3]
+    return mu * fr + mu * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+
+
+@pytest.mark.parametrize(
+    "velocity, slipping, normal",
+    [
+        ([0.0, -3.0], False, "equilibrium"),  # V0 = -K x omega: a rolling start
+        ([0.0, -3.0], False, "actual"),  # its static limit alpha_s N / (mu fr_inv) < 0 (was NaN)
+        ([0.5, 0.0], True, "equilibrium"),  # a slipping start
+    ],
+)
+def test_a_start_without_contact_force_is_reported_at_once(velocity, slipping, normal):
+    """Reference: N at the start from Newton's law for G (_reference_normal_force) is negative
+    (checked here: a sign, no tolerance needed, |N| > 0.08). The events fire on a downward
+    crossing only, so such a start must be its own event: contact_lost at t = 0, one sample, no
+    NaN; final_state's Coulomb path says the contact was lost (issue: it said "not checked")."""
+    y = np.concatenate([_PULLED["omega"], _PULLED["k"], velocity, [0.0, 0.0]])
+    if not slipping:
+        y = np.concatenate([y[0:6], y[8:10]])
+    assert _reference_normal_force(y, slipping) < -0.08
+    ds = stability.stick_slip(t_end=5.0, **TOP, **_PULLED, velocity=velocity, alpha_k=0.03, normal=normal)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["event_time"] == 0.0
+    assert ds.sizes["time"] == 1 and ds.sizes["switch"] == 0
+    assert all(np.isfinite(ds[v].values).all() for v in ("omega", "polar_angle", "friction", "normal_force"))
+    assert float(ds.normal_force[0]) <= 0.0
+    end = stability.final_state(**TOP, **_PULLED, velocity=velocity, alpha_v=0.0, alpha_k=0.03, t_max=5.0)
+    assert (end.kind, end.event, end.event_time, end.contact) == ("contact_lost", "contact_lost", 0.0, "lost")
+
+
+@pytest.mark.parametrize("change, name", [(dict(stick_tilt=5.0), "stick_tilt"), (dict(simulation=False), "simulation")])
+def test_coulomb_final_state_refuses_options_it_cannot_honour(change, name):
+    """With alpha_k > 0 the end is the hybrid run's: a stick tilt (no stick event there) or no
+    run cannot be honoured, and were silently ignored (the answer was 'rolling' at 17 degrees with
+    stick_tilt = 5): now an InputError naming the option."""
+    with pytest.raises(InputError, match=name):
+        stability.final_state(**TOP, **LAUNCH, alpha_v=0.0, alpha_k=0.03, t_max=200.0, **change)
+
+
+def test_chattering_has_its_named_status():
+    """max_switches = 1 on the launch that sticks, slips and sticks again (the reference hybrid
+    above): the run stops after its first switch with the named status CHATTERING (not -1,
+    which is MAX_STEPS of the integrators) and a warning."""
+    from stability.nonlinear.integrators import CHATTERING, MAX_STEPS, STATUS_MESSAGES
+
+    with pytest.warns(RuntimeWarning, match="chattering"):
+        ds = stability.stick_slip(t_end=62.0, **TOP, **LAUNCH, alpha_k=ALPHA_K, alpha_s=ALPHA_S, max_switches=1)
+    assert ds.attrs["status"] == CHATTERING != MAX_STEPS and "chattering" in STATUS_MESSAGES[CHATTERING]
+    assert ds.attrs["n_switches"] == 1
+
+
+def test_rolling_band_refuses_an_energy_below_the_potential():
+    """Reference: U_J minimised from its definition (_effective_potential_by_minimising). Below it
+    (by 1e-3 of U_J, far beyond the accepted slack 1e-8 and the minimiser's error) no state has
+    this tilt: a DomainError naming the energy and U_J (it returned (tilt, tilt) before: E = -100
+    gave (30, 30)); just above it (1e-3) the band is a small interval around the tilt."""
+    from stability.errors import DomainError
+
+    jel = 1.2
+    u = _effective_potential_by_minimising(math.cos(math.radians(30.0)), jel)
+    for energy in (u - 1e-3 * abs(u), -100.0):
+        with pytest.raises(DomainError, match=r"energy = .* U_J"):
+            rolling_band(30.0, energy, jel, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
+    lo, hi = rolling_band(30.0, u + 1e-3 * abs(u), jel, q=-0.1, sigma=1.0, fr_inv=0.3, mu=2.28)
+    assert lo < 30.0 < hi

@@ -46,7 +46,7 @@ from .._version import package_version
 from ..errors import InputError
 from ..nonlinear.min_force import min_normal_force
 from ..nonlinear.runs import initial_state, model_parameter_vector
-from ..parameters import check_choice, check_positive
+from ..parameters import as_scalar, check_choice, check_integer, check_interval, check_positive
 from ..products import PRODUCT_ATTR
 from ..top import Top, check_launch_spin, from_rad_per_s, to_rad_per_s
 from .flip import launch_parameters
@@ -178,7 +178,11 @@ def contact_loss_boundary(
     Raises
     ------
     stability.errors.InputError
-        Unknown or equal quantities, an empty range, a grid smaller than 2 x 2.
+        Unknown or equal quantities, an empty range, a grid smaller than 2 x 2 or not of two
+        integers, ``max_points < 2``, a held ``tilt`` outside ``(0, 180)``, a ``tilt_rate`` not
+        finite.
+    stability.errors.ParameterTypeError
+        A held ``tilt`` or ``tilt_rate``, a ``grid`` entry or ``max_points`` of the wrong type.
     """
     from scipy.optimize import brentq
 
@@ -189,11 +193,16 @@ def contact_loss_boundary(
     for name, rng in (("x_range", x_range), ("y_range", y_range)):
         if len(rng) != 2 or not float(rng[0]) < float(rng[1]):
             raise InputError(f"{name} = {rng!r} must be (low, high) with low < high")
-    nx, ny = (int(v) for v in grid)
-    if nx < 2 or ny < 2:
-        raise InputError(f"grid = {grid!r} is outside the allowed range: at least 2 points along each axis")
+    if not isinstance(grid, (tuple, list)) or len(grid) != 2:
+        raise InputError(f"grid = {grid!r} must be two integers (nx, ny), at least 2 points along each axis")
+    nx, ny = (check_integer("grid", v, minimum=2) for v in grid)
+    max_points = check_integer("max_points", max_points, minimum=2)
     duration = check_positive("duration", duration)
-    launch = {"spin": check_launch_spin(spin, unit), "tilt": float(tilt), "tilt_rate": float(tilt_rate)}
+    launch = {
+        "spin": check_launch_spin(spin, unit),
+        "tilt": check_interval("tilt", tilt, 0.0, 180.0),
+        "tilt_rate": as_scalar("tilt_rate", tilt_rate),
+    }
     box = np.array([_to_si(x, x_range, unit), _to_si(y, y_range, unit)], dtype=float)
     for name, (lo, hi) in zip((x, y), box):
         if name == "spin":

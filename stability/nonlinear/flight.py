@@ -39,8 +39,8 @@ Coulomb's proportionality, eq. 6): its friction vanishes with ``N`` at the take-
 free motion starts where the constrained one ends (``h'' = 0``) and the sphere rises,
 ``h ~ c tau^3``. The paper's law (7) at the equilibrium normal force keeps its full traction
 as ``N`` reaches 0, and so does the rolling constraint: dropping it at the take-off turns the
-top into the floor at once (``h''(0+) < 0``, measured ``-0.04`` for the issue's reproducer);
-such runs refuse ``"continue"`` (:func:`stability.nonlinear.runs.simulate`).
+top into the floor at once (``h''(0+) < 0``; docs/contact.md, "Which runs", gives a measured
+value); such runs refuse ``"continue"`` (:func:`stability.nonlinear.runs.simulate`).
 
 Impact law (perfectly plastic, ``e = 0``, frictionless)
 -------------------------------------------------------
@@ -64,12 +64,16 @@ energy ``Lambda^2 / (2 (1/mu + (r x K) . I_G^-1 (r x K)))`` (reported per landin
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
+from ..errors import InputError
 from ..models.inertia import inertia_g
+from .integrators import GRAZE, TOO_MANY_FLIGHTS, Solution
 
 __all__ = [
     "IMPACT_LAWS",
@@ -217,8 +221,16 @@ def _longest(f: Flight) -> float:
 
 def landing_time(f: Flight) -> float:
     """The duration of the flight: the first zero of :func:`landing_height` after the take-off
-    (module docstring), to round-off in time. Needs ``fr_inv > 0``."""
+    (module docstring), to round-off in time; 0 if the sphere does not rise (a graze). Needs
+    ``fr_inv > 0`` (else InputError: without gravity the flight has no end)."""
+    if not f.fr_inv > 0.0:
+        raise InputError(
+            f"fr_inv = {f.fr_inv!r} is outside the allowed range of landing_time: fr_inv > 0 (without gravity "
+            "the top never lands)"
+        )
     t_max = _longest(f)
+    if not t_max > 0.0:  # h <= z_G + |q| - 1 <= 0 from the take-off on: no rise (a graze)
+        return 0.0
     rate = f.precession_rate
     dt = t_max / 256.0
     if rate > 0.0:
@@ -311,6 +323,10 @@ class HybridRun:
     takeoffs : list of float
     landings : list of Landing
     nfev, naccept, nreject, status : int
+        ``status`` 0, an integrator's failure code, or
+        :data:`~stability.nonlinear.integrators.TOO_MANY_FLIGHTS` (more than :data:`MAX_FLIGHTS`)
+        or :data:`~stability.nonlinear.integrators.GRAZE` (a take-off without rise), which stop
+        the run there (:data:`~stability.nonlinear.integrators.STATUS_MESSAGES`).
     message : str
     event : str
         ``"stick_contact"`` if the run ended at the stick, else ``"contact_lost"`` if it took
@@ -346,13 +362,20 @@ def floor_centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def run_with_flights(
-    integrate, model: str, y0: np.ndarray, t_eval: np.ndarray, p: np.ndarray, params: dict, **kw
+    integrate: Callable[..., Solution],
+    model: str,
+    y0: np.ndarray,
+    t_eval: np.ndarray,
+    p: np.ndarray,
+    params: dict[str, float],
+    **kw: Any,
 ) -> HybridRun:
     """Integrate on the floor until the contact is lost, fly (closed form) to the landing, apply
     the impact (module docstring) and go on with the same model, up to ``t_eval[-1]``.
 
     ``integrate`` is :func:`stability.nonlinear.integrators.integrate` (passed in, with its
-    keywords ``kw``, ``watch_contact`` on). Samples: the requested times, plus each take-off
+    keywords ``kw``, ``watch_contact`` on); ``params`` holds ``q, fr_inv, sigma, mu`` (floats).
+    Samples: the requested times, plus each take-off
     (the state where ``N = 0``) and each landing (the state just after the impact).
     """
     q, fr, sg, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
@@ -377,7 +400,8 @@ def run_with_flights(
                 event, event_time = sol.event, sol.event_time
             break
         if len(takeoffs) >= MAX_FLIGHTS:
-            status, message = -4, f"more than {MAX_FLIGHTS} flights: the top bounces ever more often (stopped there)"
+            status = TOO_MANY_FLIGHTS
+            message = f"more than {MAX_FLIGHTS} flights: the top bounces ever more often (stopped there)"
             break
         t0 = sol.event_time
         takeoffs.append(t0)
@@ -385,6 +409,13 @@ def run_with_flights(
             event, event_time = "contact_lost", t0
         f = body_state(model, sol.y[-1], q=q, fr_inv=fr, sigma=sg, mu=mu)
         tau = landing_time(f)
+        if tau == 0.0:  # N = 0 but no rise: the floor model cannot go on (N <= 0) and no flight starts
+            status = GRAZE
+            message = (
+                f"at t = {t0:.9g} the normal force reached zero but the sphere does not rise (a graze): "
+                "neither the floor model nor the flight holds there (stopped)"
+            )
+            break
         t_land = t0 + tau
         inside = t_eval[(t_eval > t0) & ((t_eval < t_land) | (t_land >= t_eval[-1]))]
         if inside.size:

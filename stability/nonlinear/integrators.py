@@ -90,11 +90,17 @@ _P = np.array(
 
 #: status codes of the compiled integrators
 SUCCESS, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE = 0, -1, -2, -3
+#: status codes of the hybrid runs (flights: :mod:`stability.nonlinear.flight`; stick and slip:
+#: :mod:`stability.nonlinear.stickslip`), which stop there with a warning
+TOO_MANY_FLIGHTS, GRAZE, CHATTERING = -4, -5, -6
 STATUS_MESSAGES = {
     SUCCESS: "success",
     MAX_STEPS: "maximum number of steps reached",
     STEP_TOO_SMALL: "step size fell below the round-off level",
     NOT_FINITE: "the solution became non-finite",
+    TOO_MANY_FLIGHTS: "too many flights: the top bounces ever more often",
+    GRAZE: "the normal force reached zero but the top does not rise: a graze, neither on the floor nor in flight",
+    CHATTERING: "too many stick/slip switches: chattering",
 }
 
 

@@ -29,7 +29,8 @@ slip restarts in the direction ``e = -f / |f|`` opposite to the needed friction 
 along which the kinetic friction ``-alpha_k e`` continues the needed one), with a seed slip
 ``2 slip_threshold`` added to ``V0`` (an energy change of order ``mu |V_G| slip_threshold``).
 Every run checks the contact: ``N > 0`` (a zero of ``N`` ends the run, ``event =
-"contact_lost"``, as :func:`stability.simulate`).
+"contact_lost"``, as :func:`stability.simulate`; a start with ``N <= 0`` ends it at once,
+``event_time = 0``, the run one sample long).
 
 Only the isotropic law (eq. 7) is offered: its sticking cone is the disc ``|f| <= alpha_s n``;
 the component-wise law (16) would stick in a square and is not built here.
@@ -61,6 +62,8 @@ from scipy.integrate import solve_ivp
 from ..errors import InputError
 from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
+from .friction import NORMAL_FORCE
+from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -146,7 +149,9 @@ def stick_slip(
     dt : float, default 0.1
         Output interval; the switch instants are samples too (the last sample of each phase).
     max_switches : int
-        A run that switches more often stops there (``attrs["status"] = -1``): chattering.
+        A run that switches more often stops there (``attrs["status"]`` is
+        :data:`~stability.nonlinear.integrators.CHATTERING`, -6); a failed phase gives scipy's
+        failure as ``STEP_TOO_SMALL`` (-2) or ``NOT_FINITE`` (-3).
 
     Returns
     -------
@@ -196,7 +201,7 @@ def stick_slip(
     # the exact law (7) while slipping: no regularisation (|V_c| >= slip_threshold > 0 there)
     p = p_reg.copy()
     p[EPSILON] = 0.0
-    scaled = p[NORMAL] == 1.0
+    scaled = p[NORMAL] == NORMAL_FORCE["actual"]
     n_eq = p[MU] * p[FR_INV]
 
     def limit(n: float) -> float:
@@ -241,18 +246,26 @@ def stick_slip(
     switches: list[tuple] = []
     t = 0.0
     phase = _SLIP
+    event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
     if math.hypot(*_slip_velocity(y)) <= slip_threshold:  # starts without slip: stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
-        if math.hypot(*f) <= limit(n):
-            phase, y = _STICK, y8
+        if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
+            phase, y, n0 = _STICK, y8, n  # no slip: the sample shows rolling's forces
+        elif math.hypot(*f) <= limit(n):
+            phase, y, n0 = _STICK, y8, n
         else:
             y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
-    event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
+            n0 = ev_slip_contact(0.0, y)
+    else:
+        n0 = ev_slip_contact(0.0, y)
+    if n0 <= 0.0:  # the events fire on a crossing only: a start without contact force is its own event
+        event, event_time = "contact_lost", 0.0
+        message = f"the normal force is N = {n0:.6g} <= 0 at the start (contact lost at once)"
     ts.append(np.array([0.0]))
     ys.append((y if phase == _SLIP else _sliding_state(y))[None, :])
     phases.append(np.array([phase], np.int8))
-    while t < t_end:
+    while t < t_end and event == "none":
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:
@@ -261,7 +274,8 @@ def stick_slip(
             rhs, events = roll_rhs, (ev_stick_break, ev_stick_contact)
         sol = solve_ivp(rhs, (t, t_end), y, method=method, t_eval=t_eval, events=events, rtol=rtol, atol=atol)
         if sol.status < 0:  # what was integrated is kept, then the loop ends (hit is empty)
-            status, message = -1, f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
+            status = STEP_TOO_SMALL if "step size" in sol.message else NOT_FINITE  # as integrators.py maps scipy's
+            message = f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
         keep = sol.t
         out = sol.y.T
         hit = [i for i, te in enumerate(sol.t_events) if te.size] if sol.status >= 0 else []
@@ -283,7 +297,7 @@ def stick_slip(
             message = f"the normal force reached zero at t = {t_ev:.9g} (contact lost)"
             break
         if len(switches) >= max_switches:
-            status, message = -1, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
+            status, message = CHATTERING, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
             break
         if phase == _SLIP:  # the slip reached the threshold: stick if rolling's friction is within the limit
             y8 = _rolling_state(y_ev)

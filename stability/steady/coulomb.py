@@ -27,12 +27,16 @@ from typing import Any
 import numpy as np
 
 from ..nonlinear.stickslip import stick_slip
+from ..errors import DomainError, RunError
 from . import family
 
-__all__ = ["ROLLING_BAND_POINTS", "coulomb_end", "rolling_band"]
+__all__ = ["ROLLING_BAND_POINTS", "ROLLING_BAND_SLACK", "coulomb_end", "rolling_band"]
 
 #: points of the grid in cos(tilt) on which the rolling band is bracketed before refinement
 ROLLING_BAND_POINTS = 2001
+#: relative shortfall of E below U_J(cos tilt) accepted as round-off (a stick on a steady state,
+#: E = U_J up to the run's energy error, ~rtol; rolling_band's default run has rtol 1e-10)
+ROLLING_BAND_SLACK = 1e-8
 
 
 def rolling_band(
@@ -45,12 +49,23 @@ def rolling_band(
     are the zeros of ``U_J(c) - E`` next to ``c = cos tilt``, bracketed on a grid of
     :data:`ROLLING_BAND_POINTS` cosines and refined by bisection to round-off; an end at the
     vertical (0 or 180 degrees) when ``U_J <= E`` all the way there.
+
+    Raises
+    ------
+    stability.errors.DomainError
+        ``energy < U_J(cos tilt)`` by more than :data:`ROLLING_BAND_SLACK` (relative): no state
+        of that energy has this tilt on the level ``J``, there is no band.
     """
 
     def excess(c: float) -> float:
         return float(family.effective_potential(c, jellett, q, sigma, fr_inv, mu)) - energy
 
     c0 = math.cos(math.radians(tilt))
+    if excess(c0) > ROLLING_BAND_SLACK * max(1.0, abs(energy)):
+        raise DomainError(
+            f"energy = {energy!r} is below U_J(cos tilt) = {excess(c0) + energy!r} at tilt = {tilt!r} deg (J = "
+            f"{jellett!r}): outside the allowed range energy >= U_J, no rolling band (the energy principle)"
+        )
     grid = np.linspace(-1.0, 1.0, ROLLING_BAND_POINTS)
     ends = []
     for side in (1.0, -1.0):  # towards c = 1 (smaller tilt), then c = -1
@@ -92,7 +107,8 @@ def coulomb_end(
         ``run``: ``kind = "rolling"`` (the run ends sticking; ``tilt`` the tilt at the last stick,
         ``energy`` its conserved energy, the band and the switches in ``reason``),
         ``"unsettled"`` (still slipping at ``t_max``) or ``"contact_lost"``;
-        ``method = "simulation"``.
+        ``method = "simulation"``; ``contact = "lost"`` if the run reached ``N = 0``, else
+        ``"held"`` (the run watches ``N`` in every phase).
     run : dict
         The fields of :class:`stability.steady.final.SettleRun` (the hybrid run).
     level : tuple of float or None
@@ -148,6 +164,7 @@ def coulomb_end(
         state=None,
         parameters=par,
         initial_tilt=tilt0,
+        contact="lost" if run["event"] == "contact_lost" else "held",  # the hybrid run watched N
     )
     if run["event"] != "none" or phase_end != "stick":  # no rolling end: the run's last sample
         if run["event"] != "none":
@@ -173,7 +190,12 @@ def coulomb_end(
     tilt_s = float(ds.switch_tilt.values[last_stick[-1]]) if last_stick.size else float(ds.polar_angle[0])
     lo, hi = rolling_band(tilt_s, e_s, jel, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     seen = ds.polar_angle.values[i_stick:]
-    need = np.nanmax(ds.friction_magnitude.values[i_stick:] / ds.friction_limit.values[i_stick:])
+    need = float(np.max(ds.friction_magnitude.values[i_stick:] / ds.friction_limit.values[i_stick:]))
+    if not math.isfinite(need):  # N > 0 while sticking (the run's event), so the limit is positive
+        raise RunError(
+            f"Coulomb top: the friction rolling needs, over its static limit, is {need!r} after the last stick "
+            f"(t = {t_stick:.6g}): the hybrid run's forces are not finite there"
+        )
     reason = (
         f"Coulomb top (alpha_k > 0): {switches}; it sticks at t = {t_stick:.6g} (tilt {tilt_s:.6g} deg) and "
         f"rolls without slipping from then on: no work is done at the resting contact point, so the energy "

@@ -35,7 +35,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from ..errors import DomainError
+from ..errors import DomainError, InputError
 from ..execution import announce, pick
 from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
@@ -470,8 +470,10 @@ def final_state(
     alpha_k, alpha_s : float, optional
         Coulomb friction (eq. 7; ``alpha_s`` the static limit, default ``alpha_k``): with
         ``alpha_k > 0`` the top sticks and rolls, and the answer is that rolling motion
-        (:func:`stability.steady.coulomb.coulomb_final_state`; a hybrid run to ``t_max``,
-        ``alpha_v = 0`` allowed; its run lasts ``min(t_max, 1000)``).
+        (:func:`stability.steady.coulomb.coulomb_end`; a hybrid run to ``t_max``,
+        ``alpha_v = 0`` allowed; its run lasts ``min(t_max, 1000)``). With ``alpha_k > 0``,
+        ``stick_tilt`` and ``simulation=False`` are refused (InputError) and ``settle_tolerance``
+        is not used (the run's last phase, stick or slip, decides).
     stick_tilt : float, optional
         The tilt (degrees) at which the top's stick touches the floor
         (:meth:`stability.Top.stick_contact`). When the end that ``J`` and ``E`` decide (or the
@@ -509,6 +511,16 @@ def final_state(
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls (steady/coulomb.py)
         from .coulomb import coulomb_end
+
+        refused = {"stick_tilt": stick_tilt, "simulation": check_flag("simulation", simulation)}
+        for name, allowed in (("stick_tilt", None), ("simulation", True)):
+            if refused[name] is not allowed:  # the hybrid run has no stick event and no run-less answer
+                raise InputError(
+                    f"{name} = {refused[name]!r} is not allowed with alpha_k = {alpha_k!r} > 0: the Coulomb "
+                    f"top's end is always a hybrid run (stability.stick_slip), which does not watch the "
+                    f"stick; allowed: {name} = {allowed!r}"
+                )
+        check_positive("settle_tolerance", settle_tolerance)  # checked, not used: the hybrid run's last phase decides
 
         y = initial_state("sliding", omega, k, velocity)
         fields, run, level = coulomb_end(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol)

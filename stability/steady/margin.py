@@ -41,7 +41,7 @@ import numpy as np
 
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.min_force import min_normal_force
-from ..parameters import DEFAULT_MU, check_choice, check_positive
+from ..parameters import DEFAULT_MU, as_scalar, check_choice, check_interval, check_positive
 from . import family
 from .linearisation import precessing_jacobians
 from .products import sliding_parameters
@@ -81,6 +81,10 @@ class ContactMargin:
     duration: float
 
 
+#: sizes scanned in ``(0, max_size]`` before Brent's method refines the first sign change
+SCAN_SIZES = 8
+
+
 def contact_margin(
     *,
     tilt: float,
@@ -109,7 +113,9 @@ def contact_margin(
     duration : float, default 100.0
         Time units of each run over which the smallest normal force is taken.
     max_size : float, default 30.0
-        Largest perturbation tried, degrees.
+        Largest perturbation tried, degrees: :data:`SCAN_SIZES` equal steps up to it, the first
+        step whose run loses the contact refined by Brent's method (the smallest such size, to
+        the scan's resolution: ``N_min`` need not fall monotonically with the size).
     rtol : float
         Integrator tolerance of the runs.
     mode : {"least_stable", "nutation"}
@@ -124,7 +130,10 @@ def contact_margin(
     ------
     stability.errors.DomainError
         A tilt outside ``[0, 180]``, a tilted state that does not exist at these parameters
-        (``q P(c) <= 0``), ``fr_inv = 0`` (no weight: ``N = 0`` at equilibrium).
+        (``q P(c) <= 0``), ``fr_inv = 0`` (no weight: ``N = 0`` at equilibrium), a ``spin``
+        not finite, ``rtol`` outside ``(0, 1)``.
+    stability.errors.ParameterTypeError
+        A ``tilt``, ``spin`` or ``rtol`` that is not a real number.
     """
     from scipy.optimize import brentq
 
@@ -134,9 +143,9 @@ def contact_margin(
     params, _ = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     if not params["fr_inv"] > 0:
         raise DomainError("fr_inv = 0 is outside the allowed range of contact_margin: fr_inv > 0 (N = 0 at rest)")
-    tilt = float(tilt)
-    if not 0.0 <= tilt <= 180.0:
-        raise DomainError(f"tilt = {tilt:g} degrees is outside the allowed range: 0 <= tilt <= 180")
+    tilt = check_interval("tilt", tilt, 0.0, 180.0, closed="both")
+    spin = as_scalar("spin", spin)
+    rtol = check_interval("rtol", rtol, 0.0, 1.0)
     duration = check_positive("duration", duration)
     check_choice("mode", mode, MODES)
     max_size = check_positive("max_size", max_size)
@@ -183,7 +192,13 @@ def contact_margin(
         z[3:6] /= np.linalg.norm(z[3:6])
         return min_normal_force("sliding", np.concatenate([z, [0.0, 0.0]]), p, duration, rtol=rtol)[0]
 
-    size = None
-    if n_min(max_size) < 0.0:
-        size = float(brentq(n_min, 0.0, max_size, xtol=1e-9, rtol=1e-10))
+    # N_min(eps) need not be monotone: the first sign change on a scan of SCAN_SIZES sizes
+    # brackets the smallest size (a loss between two scanned sizes that is regained before the
+    # next one is not seen)
+    size, below = None, 0.0
+    for above in np.linspace(0.0, max_size, SCAN_SIZES + 1)[1:]:
+        if n_min(float(above)) < 0.0:
+            size = float(brentq(n_min, below, float(above), xtol=1e-9, rtol=1e-10))
+            break
+        below = float(above)
     return ContactMargin(size, linear, s, d, n0, duration)
