@@ -38,9 +38,12 @@ workers share with the client (always true of a LocalCluster).
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import os
+import secrets
 import shutil
+import tempfile
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -49,10 +52,10 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, ResumeError
-from ..interrupts import checkpoint
+from ..errors import ChunkError, OutputWriteError, ResumeError
+from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
-from ..files import TEMPORARY_PREFIX
+from ..files import TEMPORARY_PREFIX, file_mode
 
 __all__ = [
     "BLOCK_VARIABLES",
@@ -292,13 +295,20 @@ def write_store(
     """
     _check_target(target, overwrite)
     dims = spec["dims"]
-    parts = parts_directory(target) if resume else target.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{target.name}")
+    tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
+    if resume:
+        parts = parts_directory(target)
+    else:
+        directory = target.parent if str(target.parent) else Path(".")
+        parts = Path(tempfile.mkdtemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=directory))
+        tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
         if resume and parts.exists():
             done = _reopen(parts, ds, spec, blocks)
         else:
             _template(ds, spec["chunk_shape"], dims).to_zarr(parts, mode="w", compute=False, consolidated=False)
+            os.chmod(parts, file_mode(directory=True))  # not mkdtemp's 0o700: the store's own mode
         for _ in done:
             report()
         todo = [(name, sl) for name, sl in blocks if name not in done]
@@ -323,11 +333,14 @@ def write_store(
             run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
         _finish(parts, done, blocks, dims)
         if commit:
-            _commit(parts, target, overwrite)
+            _commit(parts, target, overwrite, tmp)
     except BaseException:
         if not resume:
             shutil.rmtree(parts, ignore_errors=True)
         raise
+    finally:
+        if tmp is not None and tmp.state != "committed":
+            tmp.done(committed=False)
     return target if commit else parts
 
 
@@ -360,22 +373,44 @@ def _check_target(target: Path, overwrite: bool) -> None:
         raise FileExistsError(f"output {str(target)!r} exists and is not a Zarr store; it is never replaced")
 
 
-def _commit(parts: Path, target: Path, overwrite: bool) -> None:
+def _commit(parts: Path, target: Path, overwrite: bool, tmp: Temporary | None) -> None:
     """Rename the complete store to its name; an existing store (``overwrite``) is moved aside
-    first and removed after. Another process creating the name meanwhile wins (the rename of a
-    directory onto a non-empty one fails): FileExistsError."""
+    first and removed after, or put back if the rename fails. Another process creating the name
+    meanwhile wins (the rename of a directory onto a non-empty one fails): FileExistsError; any
+    other failure of the rename: OutputWriteError naming the cause."""
     checkpoint()
+    kept = "it was removed" if tmp is not None else f"it is kept in {str(parts)!r}"
     old = None
     if os.path.lexists(target):
         _check_target(target, overwrite)
-        old = target.with_name(f"{TEMPORARY_PREFIX}old-{os.getpid()}-{target.name}")
+        old = target.with_name(f"{TEMPORARY_PREFIX}old-{secrets.token_hex(6)}-{target.name}")
         os.rename(target, old)
+    if tmp is not None:
+        tmp.state = "committing"
     try:
         os.rename(parts, target)
-    except OSError:
-        raise FileExistsError(
-            f"output {str(target)!r} was created by another process while this run was computing; "
-            f"nothing was replaced (the complete store is {str(parts)!r})"
-        ) from None
+    except OSError as exc:
+        if tmp is not None:
+            tmp.state = "writing"
+        taken = exc.errno in (errno.EEXIST, errno.ENOTEMPTY, errno.ENOTDIR) and os.path.lexists(target)
+        lost = ""
+        if old is not None:
+            try:
+                os.rename(old, target)
+            except OSError:
+                lost = f"; the store it replaces could not be put back and is in {str(old)!r}"
+        if taken:
+            raise FileExistsError(
+                f"output {str(target)!r} was created by another process while this run was computing; "
+                f"nothing was replaced (the complete store: {kept}{lost})"
+            ) from None
+        raise OutputWriteError(
+            f"cannot write {str(target)!r}: renaming the complete store to it failed ({exc.strerror}); "
+            f"nothing was replaced (the complete store: {kept}{lost})",
+            exc.errno,
+            str(target),
+        ) from exc
+    if tmp is not None:
+        tmp.done(committed=True)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)
