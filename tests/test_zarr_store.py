@@ -275,3 +275,17 @@ def test_two_writers_in_one_process_have_their_own_stores(tmp_path, monkeypatch,
         write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out)
     assert len(nested[0]) == 1 and _hidden(tmp_path) == []
     _bitwise(stability.open_atlas(out), reference)
+
+
+@pytest.mark.parametrize("variable", ["growth_rate", "q"])
+def test_a_damaged_store_is_refused_naming_the_chunk(tmp_path, reference, variable):
+    """One chunk file of a complete store overwritten with other bytes (a data variable's, read
+    when the atlas loads; a coordinate's, read when the store opens): open_atlas refuses it
+    with an AtlasFileError naming the store and that chunk file, not a bare OSError."""
+    out = write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.zarr")
+    key = "c/0/0/0/0" if variable == "growth_rate" else "c/0"
+    chunk = out / variable / key
+    assert chunk.is_file()
+    chunk.write_bytes(b"not a zstd frame" * 4)
+    with pytest.raises(AtlasFileError, match=rf"atlas store .*a\.zarr' .*chunk file '{variable}/{key}' is damaged"):
+        stability.open_atlas(out)

@@ -61,6 +61,7 @@ __all__ = [
     "BLOCK_VARIABLES",
     "RECORD_VARIABLES",
     "check_block",
+    "damaged_chunk",
     "is_store_path",
     "open_store",
     "parts_directory",
@@ -129,6 +130,24 @@ def open_store(path: str | os.PathLike) -> xr.Dataset:
     without its per-chunk record."""
     ds = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
     return ds.drop_vars([v for v in RECORD_VARIABLES if v in ds.variables])
+
+
+def damaged_chunk(path: str | os.PathLike) -> str | None:
+    """The first chunk file of the store ``path`` that cannot be read (``"growth_rate/c/0/0/0/0"``,
+    relative to the store), or None if every chunk reads: each chunk of each array read once,
+    through zarr's public API (for the message of a store that failed to load)."""
+    import itertools
+
+    import zarr
+
+    group = zarr.open_group(str(path), mode="r")
+    for name, array in sorted(group.arrays()):
+        for index in itertools.product(*(range(n) for n in array.cdata_shape)):
+            try:
+                array.blocks[index]
+            except Exception:
+                return f"{name}/{array.metadata.encode_chunk_key(index)}"
+    return None
 
 
 def _chunk_dims(dims: list[str]) -> tuple[str, ...]:
