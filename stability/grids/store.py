@@ -53,9 +53,9 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, OutputWriteError, ResumeError
+from ..files import TEMPORARY_PREFIX, file_mode
 from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
-from ..files import TEMPORARY_PREFIX, file_mode
 
 __all__ = [
     "BLOCK_VARIABLES",
