@@ -289,3 +289,22 @@ def test_a_damaged_store_is_refused_naming_the_chunk(tmp_path, reference, variab
     chunk.write_bytes(b"not a zstd frame" * 4)
     with pytest.raises(AtlasFileError, match=rf"atlas store .*a\.zarr' .*chunk file '{variable}/{key}' is damaged"):
         stability.open_atlas(out)
+
+
+def test_a_store_in_a_missing_or_unwritable_directory_is_refused_before_computing(tmp_path, monkeypatch):
+    """As for a netCDF file: the store's directory must exist and be writable, checked before
+    any chunk is computed (nothing created: not no/such/, not a store)."""
+    computed = []
+    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: computed.append(sl))
+    ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
+    with pytest.raises(FileNotFoundError, match=r"output directory .*no/such' of .*a\.zarr' does not exist"):
+        write_atlas(ds, tmp_path / "no" / "such" / "a.zarr")
+    (tmp_path / "file").write_text("")
+    with pytest.raises(NotADirectoryError, match=r"output directory .*file' of .* is not a directory"):
+        write_atlas(ds, tmp_path / "file" / "a.zarr")
+    if os.geteuid() != 0:  # root writes anywhere: the probe is what tells
+        locked = tmp_path / "locked"
+        locked.mkdir(mode=0o500)
+        with pytest.raises(PermissionError, match=r"output directory .*locked' of .* is not writable"):
+            write_atlas(ds, locked / "a.zarr")
+    assert computed == [] and sorted(p.name for p in tmp_path.iterdir()) == ["file"] + (["locked"] if os.geteuid() else [])

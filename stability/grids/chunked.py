@@ -39,7 +39,7 @@ from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
-from ..files import atomic_output, check_free_space, check_output_path, close_quietly
+from ..files import atomic_output, check_free_space, check_output_directory, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
 from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
@@ -460,7 +460,11 @@ def write_atlas(
             f"default compression: variables = {variables!r}, compression = {compression!r}, "
             f"float32 = {float32!r} apply to netCDF files only"
         )
-    target = Path(path) if zarr_store else check_output_path(path, overwrite=overwrite)
+    if zarr_store:  # its name is checked by the store (a directory), its directory here
+        target = Path(path)
+        check_output_directory(target)
+    else:
+        target = check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
