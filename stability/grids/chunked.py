@@ -22,6 +22,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import shutil
@@ -433,7 +434,8 @@ def write_atlas(
     ------
     ResumeError
         ``resume=True`` and ``<output>.parts`` belongs to another atlas (or version), is not a
-        Zarr store, or holds a chunk that does not match its digest (named).
+        Zarr store, holds a chunk that does not match its digest (named), or is being written
+        by another run (its lock: :func:`stability.grids.store.locked`).
     FileExistsError
         The output exists (or was created by another process during the run) and ``overwrite``
         is False, or is not a regular file (a Zarr store: not a store).
@@ -476,7 +478,7 @@ def write_atlas(
     report = _progress(progress, len(blocks))
     layout = _Layout(_stored(ds, variables), compression, float32)
     try:
-        with deferred():
+        with deferred(), contextlib.ExitStack() as held:
             if not (zarr_store or resume):
                 _write_chunks(
                     ds, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
@@ -484,7 +486,10 @@ def write_atlas(
                 )  # fmt: skip
                 return target
             require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
-            from .store import open_store, write_store
+            from .store import locked, open_store, write_store
+
+            if resume:  # held until the output is written and the store removed
+                held.enter_context(locked(parts_directory(target)))
 
             spec = _spec(ds, dims) | {
                 "chunk_shape": chunk_shape,

@@ -32,12 +32,14 @@ holds: a chunk that disagrees (edited, swapped, copied from another store) is re
 a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
 chunks marked incomplete (never written, or interrupted between the data and the digest) are
 computed. The
-result equals the atlas computed in one go, bit for bit. The store must be on a file system the
+result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
+(:func:`locked`) until its output is written: a second run on the same store is refused at once. The store must be on a file system the
 workers share with the client (always true of a LocalCluster).
 """
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import hashlib
 import os
@@ -45,7 +47,7 @@ import secrets
 import shutil
 import tempfile
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -63,6 +65,7 @@ __all__ = [
     "check_block",
     "damaged_chunk",
     "is_store_path",
+    "locked",
     "open_store",
     "parts_directory",
     "slice_block",
@@ -123,6 +126,38 @@ def parts_directory(path: str | os.PathLike) -> Path:
     """The store of a resumable run of output ``path``: ``<output>.parts``."""
     p = Path(path)
     return p.with_name(p.name + ".parts")
+
+
+@contextlib.contextmanager
+def locked(parts: Path) -> Iterator[None]:
+    """Hold the resumable store ``parts`` (created empty if new) for a whole run: an exclusive
+    ``fcntl.flock`` on its directory, which the kernel releases when the run ends, however it
+    ends (a killed run leaves no stale lock). A second run on the same store is refused at once
+    (:class:`ResumeError`), instead of racing the first over the same chunks. Where the file
+    system has no such lock (some network file systems) the run goes unlocked. An empty
+    directory created here is removed at the end (a run refused before writing leaves none)."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX: unlocked
+        yield
+        return
+    parts.mkdir(exist_ok=True)
+    fd = os.open(parts, os.O_RDONLY)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise ResumeError(
+                f"cannot resume: another run is writing {str(parts)!r} now (it holds the store's lock); "
+                "wait for it to end, or stop it and rerun"
+            ) from None
+        except OSError:
+            pass  # no flock on a directory of this file system
+        yield
+    finally:
+        os.close(fd)
+        with contextlib.suppress(OSError):
+            parts.rmdir()  # only if empty
 
 
 def open_store(path: str | os.PathLike) -> xr.Dataset:
@@ -323,10 +358,11 @@ def write_store(
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
-        if resume and parts.exists():
+        if resume and (parts / "zarr.json").exists():
             done = _reopen(parts, ds, spec, blocks)
-        else:
-            _template(ds, spec["chunk_shape"], dims).to_zarr(parts, mode="w", compute=False, consolidated=False)
+        else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
+            layout = _template(ds, spec["chunk_shape"], dims)
+            layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
             os.chmod(parts, file_mode(directory=True))  # not mkdtemp's 0o700: the store's own mode
         for _ in done:
             report()
