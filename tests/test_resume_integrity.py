@@ -188,3 +188,23 @@ def test_a_second_run_on_the_same_store_fails_at_once(tmp_path, monkeypatch, ref
     write_atlas(ds, out, resume=True)
     assert len(calls) == 8 - 3 and not store.exists()
     assert_same_atlas(stability.open_atlas(out), reference)
+
+
+@pytest.mark.parametrize("kind", ["a file", "a directory of other files"])
+def test_a_foreign_parts_path_is_refused_and_left_alone(tmp_path, kind):
+    """``<output>.parts`` that is not a store of this package (a file; a directory holding other
+    files): refused before computing, naming it, and left exactly as it was (never written
+    into, never removed)."""
+    out = tmp_path / "a.nc"
+    parts = parts_directory(out)
+    if kind == "a file":
+        parts.write_text("mine")
+        mine = parts
+    else:
+        parts.mkdir()
+        mine = parts / "notes.txt"
+        mine.write_text("mine")
+    with pytest.raises(ResumeError, match=r"a\.nc\.parts' exists .*not a .*Zarr store"):
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    assert mine.read_text() == "mine" and not out.exists()
+    assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(["a.nc.parts"] + (["notes.txt"] if kind != "a file" else []))

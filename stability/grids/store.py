@@ -33,8 +33,9 @@ a chunk that cannot be read (a truncated chunk file) is computed again, with a w
 chunks marked incomplete (never written, or interrupted between the data and the digest) are
 computed. The
 result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
-(:func:`locked`) until its output is written: a second run on the same store is refused at once. The store must be on a file system the
-workers share with the client (always true of a LocalCluster).
+(:func:`locked`) until its output is written: a second run on the same store is refused at
+once. The store must be on a file system the workers share with the client (always true of a
+LocalCluster).
 """
 
 from __future__ import annotations
@@ -141,6 +142,10 @@ def locked(parts: Path) -> Iterator[None]:
     except ImportError:  # pragma: no cover - not POSIX: unlocked
         yield
         return
+    if os.path.lexists(parts) and not parts.is_dir():
+        raise ResumeError(
+            f"cannot resume: {str(parts)!r} exists and is not a Zarr store; remove it or choose another output"
+        )
     parts.mkdir(exist_ok=True)
     fd = os.open(parts, os.O_RDONLY)
     try:
@@ -358,7 +363,7 @@ def write_store(
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
-        if resume and (parts / "zarr.json").exists():
+        if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
             done = _reopen(parts, ds, spec, blocks)
         else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
             layout = _template(ds, spec["chunk_shape"], dims)
