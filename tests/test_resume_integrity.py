@@ -207,4 +207,6 @@ def test_a_foreign_parts_path_is_refused_and_left_alone(tmp_path, kind):
     with pytest.raises(ResumeError, match=r"a\.nc\.parts' exists .*not a .*Zarr store"):
         write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
     assert mine.read_text() == "mine" and not out.exists()
-    assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(["a.nc.parts"] + (["notes.txt"] if kind != "a file" else []))
+    assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(
+        ["a.nc.parts"] + (["notes.txt"] if kind != "a file" else [])
+    )

@@ -307,4 +307,6 @@ def test_a_store_in_a_missing_or_unwritable_directory_is_refused_before_computin
         locked.mkdir(mode=0o500)
         with pytest.raises(PermissionError, match=r"output directory .*locked' of .* is not writable"):
             write_atlas(ds, locked / "a.zarr")
-    assert computed == [] and sorted(p.name for p in tmp_path.iterdir()) == ["file"] + (["locked"] if os.geteuid() else [])
+    assert computed == [] and sorted(p.name for p in tmp_path.iterdir()) == ["file"] + (
+        ["locked"] if os.geteuid() else []
+    )
