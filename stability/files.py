@@ -46,10 +46,12 @@ __all__ = [
     "TEMPORARY_PREFIX",
     "atomic_output",
     "check_free_space",
+    "check_output_directory",
     "check_output_path",
     "close_quietly",
     "commit",
     "describe_kind",
+    "file_mode",
     "format_bytes",
     "temporary_name",
     "write_error",
@@ -138,6 +140,21 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     st = _lstat(p)
     if st is not None:
         _refuse_existing(p, st, overwrite)
+    check_output_directory(p)
+    return p
+
+
+def check_output_directory(path: str | os.PathLike) -> None:
+    """Fail early if the directory that is to hold ``path`` does not exist, is not a directory
+    or is not writable (a probe file is created and removed there); ``path`` itself is not
+    looked at (a Zarr store checks its own name).
+
+    Raises
+    ------
+    FileNotFoundError, NotADirectoryError, PermissionError
+        Naming the directory and ``path``.
+    """
+    p = Path(path)
     parent = _directory(p)
     if not parent.exists():
         raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
@@ -151,7 +168,6 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
         raise PermissionError(
             f"output directory {str(parent)!r} of {str(p)!r} is not writable ({exc.strerror})"
         ) from None
-    return p
 
 
 def _fsize_limit() -> int | None:
@@ -199,6 +215,43 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
             errno.EFBIG,
             p,
         )
+
+
+# --- permissions ------------------------------------------------------------------------------
+
+
+def _umask_from_proc() -> int | None:
+    """The process's umask as Linux (>= 4.7) states it in ``/proc/self/status`` ("Umask:"),
+    read without changing it; None where the system does not say."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+def _umask_by_setting() -> int:
+    mask = os.umask(0o022)  # the only other way: set and restore (process-wide, so done once, here)
+    os.umask(mask)
+    return mask
+
+
+#: the umask read once at import, for a system without ``/proc/self/status`` (None on Linux:
+#: read there each time, never set)
+_UMASK_AT_IMPORT = None if _umask_from_proc() is not None else _umask_by_setting()
+
+
+def file_mode(directory: bool = False) -> int:
+    """The permissions a new file (``0o666``) or directory (``0o777``) gets under the process's
+    umask, which is read, never set (``os.umask`` is process-wide: setting it to read it races
+    with every other thread creating a file)."""
+    mask = _umask_from_proc()
+    if mask is None:
+        mask = _UMASK_AT_IMPORT if _UMASK_AT_IMPORT is not None else 0o022
+    return (0o777 if directory else 0o666) & ~mask
 
 
 # --- the commit --------------------------------------------------------------------------------
@@ -288,9 +341,7 @@ def atomic_output(
             if translated is not None:
                 raise translated from exc
             raise
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp.path, 0o666 & ~umask)
+        os.chmod(tmp.path, file_mode())
         commit(tmp, p, overwrite=overwrite)
     finally:
         if tmp.state != "committed":

@@ -23,14 +23,15 @@ land in the wrong place.
   (an application's own handler is left alone); the previous handler is restored on exit, and a
   SIGINT that arrived is raised as ``KeyboardInterrupt`` at the next :func:`checkpoint` or at the
   exit of the block. A second SIGINT raises at once, as Python does.
-* :class:`Temporary`: files being written register themselves, so that the emergency exit
-  removes what is not complete and says truthfully what was written.
+* :class:`Temporary`: files (and Zarr stores, directories) being written register themselves,
+  so that the emergency exit removes what is not complete and says truthfully what was written.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import signal
 import sys
 import threading
@@ -192,7 +193,8 @@ def deferred() -> Iterator[None]:
 
 
 class Temporary:
-    """A file being written under a temporary name, for the emergency exit.
+    """A file (or a directory: a Zarr store) being written under a temporary name, for the
+    emergency exit, which removes it.
 
     ``state``: ``"writing"`` (remove it), ``"committing"`` (being committed to ``target``),
     ``"committed"``, ``"removed"``.
@@ -259,7 +261,10 @@ def _emergency_exit(why: str) -> None:
                 if not os.path.exists(tmp.path) or os.path.samefile(tmp.path, tmp.target):
                     written.append(tmp.target)
         with contextlib.suppress(OSError):
-            os.unlink(tmp.path)
+            if os.path.isdir(tmp.path) and not os.path.islink(tmp.path):
+                shutil.rmtree(tmp.path, ignore_errors=True)  # a Zarr store being written
+            else:
+                os.unlink(tmp.path)
     mp = sys.modules.get("multiprocessing")  # a local dask cluster's workers: not orphaned
     for child in mp.active_children() if mp is not None else ():
         with contextlib.suppress(Exception):

@@ -268,3 +268,37 @@ def test_write_dataset_in_slabs_is_the_dataset(tmp_path, monkeypatch):
         xr.testing.assert_identical(w.load(), ds.compute())
         xr.testing.assert_identical(w.load(), x.load())
     assert len(calls) >= 300 * 7 * 8 // 1024 + 6  # one per slab of g, of lazy's 6 chunks, and more
+
+
+@pytest.mark.skipif(os.name != "posix", reason="POSIX permissions")
+def test_outputs_get_the_umask_without_setting_it(tmp_path, monkeypatch):
+    """A committed file (and a Zarr store's directory) has the mode the process's umask gives a
+    new file (directory). Reference: a file and a directory created by ``open`` and
+    ``os.mkdir`` in the same directory, to which the kernel applies the umask itself; under an
+    unusual umask (0o027), so that 0o644 would not pass by chance. The umask is read, never
+    set: ``os.umask`` (process-wide, a race with every other thread creating a file) fails
+    the test if called."""
+    import stat
+
+    from stability.files import atomic_output
+    from stability.grids.chunked import write_atlas
+
+    previous = os.umask(0o027)
+    try:
+        (tmp_path / "reference").write_text("")
+        os.mkdir(tmp_path / "reference-dir")
+
+        def forbidden(mask):
+            raise AssertionError(f"os.umask({mask:#o}) called while writing")
+
+        monkeypatch.setattr(os, "umask", forbidden)
+        with atomic_output(tmp_path / "a.txt") as tmp:
+            Path(tmp).write_text("x")
+        ds = stability.atlas("fixed_pivot", q=[0.1, 0.2], fr_inv=0.1, sigma=1.0)
+        store = write_atlas(ds, tmp_path / "a.zarr")
+        monkeypatch.undo()
+    finally:
+        os.umask(previous)
+    mode = lambda p: stat.S_IMODE(os.stat(p).st_mode)  # noqa: E731
+    assert mode(tmp_path / "a.txt") == mode(tmp_path / "reference") == 0o640
+    assert mode(store) == mode(tmp_path / "reference-dir") == 0o750

@@ -98,9 +98,10 @@ INJECT = textwrap.dedent("""
     import os, signal, sys, time
     import stability.grids.atlases as atlases
     import stability.grids.netcdf as netcdf
+    import stability.grids.store as store
 
     module, n, signame, mode = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
-    target = {"atlases": atlases, "netcdf": netcdf}[module]
+    target = {"atlases": atlases, "netcdf": netcdf, "store": store}[module]
     netcdf.SLAB_BYTES = 1 << 14          # many slabs: many interruption points in the write
     atlases.BLOCK_POINTS = 2000          # many blocks
     real, calls = target.checkpoint, [0]
@@ -258,6 +259,21 @@ def test_a_second_signal_ends_at_once(tmp_path):
     )
     err = _check_ended(proc, None, tmp_path, "a.nc")
     assert "received twice" in err
+
+
+def test_a_second_signal_removes_a_store_being_written(tmp_path):
+    """The same for a Zarr store (a directory) written chunk by chunk, stuck after its second
+    chunk: the emergency exit removes the hidden store it registered, whole."""
+    script = INJECT.replace("time.sleep(60)", "os.kill(os.getpid(), signal.SIGTERM); time.sleep(60)")
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script, "store", "2", "SIGINT", "stuck", *ATLAS, "--chunks", "q=50", "-o", "a.zarr"],
+        cwd=tmp_path,
+        env=_env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    err = _check_ended(proc, None, tmp_path, "a.zarr")
+    assert "received twice" in err and list(tmp_path.iterdir()) == []
 
 
 def test_library_call_keeps_a_foreign_handler(tmp_path):

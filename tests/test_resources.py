@@ -5,15 +5,18 @@ References:
 * the refusals: a request sized at 10x the limit set by ``TIPPE_MEMORY_LIMIT`` is refused before
   anything is allocated (the process's peak stays under the limit), and the message names the
   estimate, the parameter and a way out;
-* the limit: ``MemAvailable`` read from /proc/meminfo by the test itself.
+* the limit: ``MemAvailable`` read from /proc/meminfo by the test itself; the cgroup's room
+  from fake cgroup files; the room under ``ulimit -v`` set by the test;
+* the estimates: the bytes of the datasets the calls return (``nbytes``).
 
-The estimates themselves (bytes per point times points) are not pinned to a measured peak: they
-only have to refuse a request far above the memory (docs/hard_cases.md, "Memory").
+The peak estimates (bytes per point times points) are not pinned to a measured peak: they only
+have to refuse a request far above the memory (docs/hard_cases.md, "Memory").
 """
 
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -53,6 +56,125 @@ def test_env_limit_garbage_is_named(monkeypatch):
     monkeypatch.setenv(resources.ENV_LIMIT, "lots")
     with pytest.raises(ValueError, match="TIPPE_MEMORY_LIMIT"):
         resources.memory_limit()
+
+
+def _fake_cgroups(tmp_path, monkeypatch, own: str, levels: dict[str, tuple[str, str]], v1: bool = False) -> None:
+    """A cgroup hierarchy under ``tmp_path``: this process in cgroup ``own``; ``levels`` maps a
+    level ("" the root) to its (limit, usage) files' contents (v2 memory.max/memory.current, or
+    v1 memory.limit_in_bytes/memory.usage_in_bytes under the ``memory`` mount)."""
+    root = tmp_path / "cgroup"
+    names = ("memory.limit_in_bytes", "memory.usage_in_bytes") if v1 else ("memory.max", "memory.current")
+    for level, contents in levels.items():
+        d = root / ("memory" if v1 else "") / level
+        d.mkdir(parents=True, exist_ok=True)
+        for name, text in zip(names, contents):
+            (d / name).write_text(text + "\n")
+    (tmp_path / "self-cgroup").write_text(("4:memory:" if v1 else "0::") + own + "\n")
+    monkeypatch.setattr(resources, "CGROUP_ROOT", str(root))
+    monkeypatch.setattr(resources, "PROC_CGROUP", str(tmp_path / "self-cgroup"))
+    monkeypatch.delenv(resources.ENV_LIMIT, raising=False)
+
+
+@pytest.mark.parametrize(
+    "v1,levels,room",
+    [
+        (False, {"job/step": ("90000000", "30000000"), "job": ("max", "35000000"), "": ("max", "0")}, 60e6),
+        (False, {"job/step": ("max", "30000000"), "job": ("80000000", "35000000")}, 45e6),  # the parent binds
+        (True, {"job/step": ("70000000", "20000000"), "job": ("9223372036854771712", "0")}, 50e6),  # v1 "no limit"
+    ],
+    ids=["v2", "v2-parent", "v1"],
+)
+def test_limit_is_the_cgroup_room_in_a_container(tmp_path, monkeypatch, v1, levels, room):
+    """In a container MemAvailable is the host's: the cgroup's limit minus its usage binds, at
+    the process's level or a parent's. Reference: the numbers written in the fake cgroup files
+    (their difference by hand); exact, as the limit is HEADROOM times that integer (below 2**53).
+    The cgroup rooms here (tens of MB) are far below this machine's MemAvailable."""
+    _fake_cgroups(tmp_path, monkeypatch, "/job/step", levels, v1)
+    limit, source = resources.memory_limit()
+    assert (limit, source) == (resources.HEADROOM * room, "80% of the cgroup's memory limit")
+    said = f"about {resources.format_bytes(resources.HEADROOM * room)} is available (80% of the cgroup's memory limit)"
+    with pytest.raises(ResourceError, match=re.escape(said)):
+        resources.check_memory(1e9, what="a request", parameter="size", way_out="ask less")
+
+
+def test_no_cgroup_limit_leaves_mem_available(tmp_path, monkeypatch):
+    """Every level ``max``: no cgroup room; the limit is MemAvailable's as without cgroups."""
+    _fake_cgroups(tmp_path, monkeypatch, "/job", {"job": ("max", "5"), "": ("max", "5")})
+    assert resources._cgroup_room() is None
+    assert resources.memory_limit()[1] != "80% of the cgroup's memory limit"
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/status"), reason="Linux /proc/self/status (VmSize)")
+def test_limit_is_the_room_under_ulimit_v():
+    """A process whose soft RLIMIT_AS is its address space in use plus 300 MB (set by the test's
+    own code, ``resource.setrlimit``): the limit is 80 % of the room left. Reference: VmSize read
+    by the subprocess just before and just after the call; the address space only grows in
+    between, so the limit lies between the two readings' rooms (a bracket, no tolerance)."""
+    code = textwrap.dedent("""
+        import resource
+        from stability import resources
+
+        def vmsize():
+            with open("/proc/self/status") as f:
+                return float(next(ln for ln in f if ln.startswith("VmSize:")).split()[1]) * 1024.0
+
+        soft = int(vmsize() + 300e6)
+        resource.setrlimit(resource.RLIMIT_AS, (soft, resource.getrlimit(resource.RLIMIT_AS)[1]))
+        before = vmsize()
+        limit, source = resources.memory_limit()
+        after = vmsize()
+        print(soft, before, after, limit, source, sep="|")
+    """)
+    env = {k: v for k, v in os.environ.items() if k != resources.ENV_LIMIT}
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    soft, before, after, limit, source = r.stdout.strip().split("|")
+    soft, before, after, limit = map(float, (soft, before, after, limit))
+    assert source == "80% of ulimit -v"
+    assert resources.HEADROOM * (soft - after) <= limit <= resources.HEADROOM * (soft - before)
+
+
+# --- the estimates against the datasets the calls return ----------------------------------------
+
+
+SIMULATE_START = dict(t_end=20, dt=0.1, omega=[0.02, 0, 1], k=[0.05, 0, 1], q=-0.1, fr_inv=0.3, sigma=1.5)
+
+
+@pytest.mark.parametrize("model", sorted(resources.SIMULATE_FILE_BYTES_PER_TIME))
+def test_simulate_estimates_against_the_returned_dataset(model):
+    """Reference: the dataset simulate returns, its bytes counted by numpy (``nbytes``). The
+    stored bytes per output time are exact (every variable along ``time`` counted once: a count
+    of float64 values, no tolerance); the peak estimate holds at least the whole dataset (the
+    ``axis`` coordinate too) and is the 1.6 x the stored values its comment states (the
+    integrator's output array and the derived quantities' temporaries, not measurable
+    deterministically: the removed VmHWM test)."""
+    extra = {"alpha_v": 0.5} if model == "sliding" else {}
+    ds = stability.simulate(model, **SIMULATE_START, **extra)
+    n = ds.sizes["time"]
+    along_time = sum(v.nbytes for v in ds.variables.values() if "time" in v.dims)
+    assert resources.simulate_file_bytes(model, n) == along_time
+    assert ds.nbytes <= resources.simulate_bytes(model, n) <= 1.6 * ds.nbytes
+
+
+@pytest.mark.parametrize("model,extra", [("sliding", {"alpha_v": 0.5}), ("rolling", {}), ("fixed_pivot", {})])
+def test_atlas_estimates_against_the_returned_dataset(model, extra):
+    """Reference: the atlas returned (``nbytes`` of its variables over the grid, by numpy). The
+    stored bytes per point and mode are exact (a count of float64 and int8 values, no
+    tolerance); the peak estimate holds at least the whole dataset, coordinates included. Its
+    excess (one block's temporaries) is not pinned: only measurable, not derivable."""
+    ds = stability.atlas(
+        model,
+        q=np.linspace(-0.3, 0.3, 7),
+        fr_inv=[0.0, 0.3],
+        sigma=np.linspace(1.0, 1.6, 5),
+        mask_unphysical=True,
+        **extra,
+    )
+    dims = set(ds["stability"].dims)
+    n_points, n_modes = 7 * 2 * 5, ds.sizes["mode"]
+    over_grid = sum(v.nbytes for v in ds.variables.values() if dims <= set(v.dims))
+    assert resources.atlas_file_bytes(n_modes, n_points) == over_grid
+    assert ds.nbytes <= resources.atlas_bytes(n_modes, n_points, 2**16)
 
 
 LIMIT = 50e6

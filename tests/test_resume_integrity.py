@@ -11,6 +11,8 @@ damaged chunk again, say so, and give the reference.
 from __future__ import annotations
 
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -149,3 +151,62 @@ def test_a_wrongly_computed_block_is_never_broadcast(tmp_path, monkeypatch):
     ):
         write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []
+
+
+HOLD = """
+import fcntl, os, sys
+fd = os.open(sys.argv[1], os.O_RDONLY)
+fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+print("held", flush=True)
+sys.stdin.read()
+"""
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="fcntl.flock")
+def test_a_second_run_on_the_same_store_fails_at_once(tmp_path, monkeypatch, reference):
+    """Another process holds the store of an interrupted run (the lock taken by the test's own
+    flock on the store's directory, in a subprocess: a run in progress): a resumed run is
+    refused at once, computing nothing and leaving the store as it was; once the other process
+    has ended (its lock released by the kernel), the same run resumes to the reference."""
+    out = tmp_path / "a.nc"
+    _interrupted_store(out, monkeypatch, kept=3)
+    store = parts_directory(out)
+    before = sorted((p.relative_to(store), p.stat().st_mtime_ns) for p in store.rglob("*"))
+    calls = []
+    real = dist._compute_block
+    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: calls.append(sl) or real(spec, sl))
+    ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
+    holder = subprocess.Popen([sys.executable, "-c", HOLD, str(store)], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    try:
+        assert holder.stdout.readline().strip() == b"held"
+        with pytest.raises(ResumeError, match=r"another run is writing .*a\.nc\.parts' now"):
+            write_atlas(ds, out, resume=True)
+    finally:
+        holder.communicate(b"", timeout=60)
+    assert calls == [] and not out.exists()
+    assert sorted((p.relative_to(store), p.stat().st_mtime_ns) for p in store.rglob("*")) == before
+    write_atlas(ds, out, resume=True)
+    assert len(calls) == 8 - 3 and not store.exists()
+    assert_same_atlas(stability.open_atlas(out), reference)
+
+
+@pytest.mark.parametrize("kind", ["a file", "a directory of other files"])
+def test_a_foreign_parts_path_is_refused_and_left_alone(tmp_path, kind):
+    """``<output>.parts`` that is not a store of this package (a file; a directory holding other
+    files): refused before computing, naming it, and left exactly as it was (never written
+    into, never removed)."""
+    out = tmp_path / "a.nc"
+    parts = parts_directory(out)
+    if kind == "a file":
+        parts.write_text("mine")
+        mine = parts
+    else:
+        parts.mkdir()
+        mine = parts / "notes.txt"
+        mine.write_text("mine")
+    with pytest.raises(ResumeError, match=r"a\.nc\.parts' exists .*not a .*Zarr store"):
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
+    assert mine.read_text() == "mine" and not out.exists()
+    assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(
+        ["a.nc.parts"] + (["notes.txt"] if kind != "a file" else [])
+    )

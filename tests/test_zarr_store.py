@@ -9,6 +9,8 @@ chunks were written in this process, by the two workers of a LocalCluster, or re
 
 from __future__ import annotations
 
+import errno
+import os
 import tracemalloc
 
 import numpy as np
@@ -19,7 +21,8 @@ from conftest import assert_same_atlas
 import stability
 import stability.grids.chunked as dist
 from stability.cli import main
-from stability.errors import AtlasFileError, InputError, ResumeError
+from stability.errors import AtlasFileError, InputError, OutputWriteError, ResumeError
+from stability.files import TEMPORARY_PREFIX
 from stability.grids.chunked import write_atlas
 from stability.grids.cluster import dask_client
 from stability.grids.store import parts_directory
@@ -186,3 +189,124 @@ def test_cli_zarr_and_refusals(tmp_path, capsys, reference):
     (tmp_path / "d.zarr").mkdir()
     with pytest.raises(AtlasFileError, match="not a readable Zarr store"):
         stability.open_atlas(tmp_path / "d.zarr")
+
+
+def _hidden(directory) -> list[str]:
+    return sorted(p.name for p in directory.iterdir() if p.name.startswith(TEMPORARY_PREFIX))
+
+
+def _on_commit(monkeypatch, target, action) -> None:
+    """Call ``action(error)`` in place of nothing just before the rename that commits a store to
+    ``target`` (the rename of a hidden temporary store onto it, not the one moving an old store
+    aside); ``action`` may raise, or act as another process."""
+    real = os.rename
+
+    def rename(src, dst, *args, **kwargs):
+        src_name = os.path.basename(os.fspath(src))
+        if os.fspath(dst) == os.fspath(target) and src_name.startswith(TEMPORARY_PREFIX) and "-old-" not in src_name:
+            action()
+        return real(src, dst, *args, **kwargs)
+
+    monkeypatch.setattr(os, "rename", rename)
+
+
+def test_a_failed_commit_puts_the_replaced_store_back(tmp_path, monkeypatch, reference):
+    """overwrite=True moves the existing store aside before the rename that commits: when that
+    rename fails (here EIO), the existing store is put back under its name, intact, and the
+    error names the cause (not "another process")."""
+    out = write_atlas(reference, tmp_path / "a.zarr")
+
+    def fail():
+        raise OSError(errno.EIO, os.strerror(errno.EIO))
+
+    _on_commit(monkeypatch, out, fail)
+    other = stability.atlas("sliding", **{**GRID, "alpha_v": 0.7})
+    with pytest.raises(OutputWriteError, match=r"renaming the complete store to it failed .*nothing was replaced"):
+        write_atlas(other, out, overwrite=True)
+    monkeypatch.undo()
+    assert _hidden(tmp_path) == []
+    _bitwise(stability.open_atlas(out), reference)
+
+
+@pytest.mark.parametrize("existing", [False, True])
+def test_another_process_creating_the_name_wins(tmp_path, monkeypatch, reference, existing):
+    """Another process creates the output while this run computes (just before its commit): this
+    run gets FileExistsError and removes its own store; the other's output is left as it is. With
+    overwrite=True the store being replaced cannot be put back then (its name is taken): the
+    error says where it is."""
+    out = tmp_path / "a.zarr"
+    if existing:
+        write_atlas(reference, out)
+
+    def other_process():
+        (tmp_path / "elsewhere").mkdir()
+        (tmp_path / "elsewhere" / "theirs").write_text("theirs")
+        os.replace(tmp_path / "elsewhere", out) if not out.exists() else None
+
+    _on_commit(monkeypatch, out, other_process)
+    with pytest.raises(FileExistsError, match="created by another process") as info:
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, overwrite=existing)
+    monkeypatch.undo()
+    assert sorted(p.name for p in out.iterdir()) == ["theirs"]
+    hidden = _hidden(tmp_path)
+    if existing:  # the store replaced: moved aside, named in the error, intact
+        assert len(hidden) == 1 and hidden[0] in str(info.value) and "could not be put back" in str(info.value)
+        _bitwise(stability.open_atlas(tmp_path / hidden[0]), reference)
+    else:
+        assert hidden == []
+
+
+def test_two_writers_in_one_process_have_their_own_stores(tmp_path, monkeypatch, reference):
+    """A second write_atlas to the same name, in the same process, while the first computes its
+    first chunk: each builds its own hidden store (unique names, not one per process id); the
+    second commits, the first then finds the name taken (and says so: the check at the commit)."""
+    out = tmp_path / "a.zarr"
+    real = dist._compute_block
+    nested = []
+
+    def compute(spec, sl):
+        if not nested:
+            nested.append(_hidden(tmp_path))  # the first writer's store, and only it
+            write_atlas(reference, out)
+        return real(spec, sl)
+
+    monkeypatch.setattr(dist, "_compute_block", compute)
+    with pytest.raises(FileExistsError, match=r"a\.zarr' exists; pass overwrite=True"):
+        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out)
+    assert len(nested[0]) == 1 and _hidden(tmp_path) == []
+    _bitwise(stability.open_atlas(out), reference)
+
+
+@pytest.mark.parametrize("variable", ["growth_rate", "q"])
+def test_a_damaged_store_is_refused_naming_the_chunk(tmp_path, reference, variable):
+    """One chunk file of a complete store overwritten with other bytes (a data variable's, read
+    when the atlas loads; a coordinate's, read when the store opens): open_atlas refuses it
+    with an AtlasFileError naming the store and that chunk file, not a bare OSError."""
+    out = write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), tmp_path / "a.zarr")
+    key = "c/0/0/0/0" if variable == "growth_rate" else "c/0"
+    chunk = out / variable / key
+    assert chunk.is_file()
+    chunk.write_bytes(b"not a zstd frame" * 4)
+    with pytest.raises(AtlasFileError, match=rf"atlas store .*a\.zarr' .*chunk file '{variable}/{key}' is damaged"):
+        stability.open_atlas(out)
+
+
+def test_a_store_in_a_missing_or_unwritable_directory_is_refused_before_computing(tmp_path, monkeypatch):
+    """As for a netCDF file: the store's directory must exist and be writable, checked before
+    any chunk is computed (nothing created: not no/such/, not a store)."""
+    computed = []
+    monkeypatch.setattr(dist, "_compute_block", lambda spec, sl: computed.append(sl))
+    ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
+    with pytest.raises(FileNotFoundError, match=r"output directory .*no/such' of .*a\.zarr' does not exist"):
+        write_atlas(ds, tmp_path / "no" / "such" / "a.zarr")
+    (tmp_path / "file").write_text("")
+    with pytest.raises(NotADirectoryError, match=r"output directory .*file' of .* is not a directory"):
+        write_atlas(ds, tmp_path / "file" / "a.zarr")
+    if os.geteuid() != 0:  # root writes anywhere: the probe is what tells
+        locked = tmp_path / "locked"
+        locked.mkdir(mode=0o500)
+        with pytest.raises(PermissionError, match=r"output directory .*locked' of .* is not writable"):
+            write_atlas(ds, locked / "a.zarr")
+    assert computed == [] and sorted(p.name for p in tmp_path.iterdir()) == ["file"] + (
+        ["locked"] if os.geteuid() else []
+    )

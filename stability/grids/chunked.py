@@ -22,6 +22,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import shutil
@@ -41,7 +42,7 @@ from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
-from ..files import atomic_output, check_free_space, check_output_path, close_quietly
+from ..files import atomic_output, check_free_space, check_output_directory, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
 from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
@@ -459,7 +460,8 @@ def write_atlas(
     ------
     ResumeError
         ``resume=True`` and ``<output>.parts`` belongs to another atlas (or version), is not a
-        Zarr store, or holds a chunk that does not match its digest (named).
+        Zarr store, holds a chunk that does not match its digest (named), or is being written
+        by another run (its lock: :func:`stability.grids.store.locked`).
     FileExistsError
         The output exists (or was created by another process during the run) and ``overwrite``
         is False, or is not a regular file (a Zarr store: not a store).
@@ -486,7 +488,11 @@ def write_atlas(
             f"default compression: variables = {variables!r}, compression = {compression!r}, "
             f"float32 = {float32!r} apply to netCDF files only"
         )
-    target = Path(path) if zarr_store else check_output_path(path, overwrite=overwrite)
+    if zarr_store:  # its name is checked by the store (a directory), its directory here
+        target = Path(path)
+        check_output_directory(target)
+    else:
+        target = check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
     chunk_shape = {}
@@ -498,7 +504,7 @@ def write_atlas(
     report = _progress(progress, len(blocks))
     layout = _Layout(_stored(ds, variables), compression, float32)
     try:
-        with deferred():
+        with deferred(), contextlib.ExitStack() as held:
             if not (zarr_store or resume):
                 _write_chunks(
                     ds, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
@@ -506,7 +512,10 @@ def write_atlas(
                 )  # fmt: skip
                 return target
             require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
-            from .store import open_store, write_store
+            from .store import locked, open_store, write_store
+
+            if resume:  # held until the output is written and the store removed
+                held.enter_context(locked(parts_directory(target)))
 
             spec = _spec(ds, dims) | {
                 "chunk_shape": chunk_shape,

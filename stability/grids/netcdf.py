@@ -161,7 +161,7 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
         try:
             ds = open_store(p)
         except Exception as exc:
-            raise AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store ({exc!r:.80})") from None
+            raise _unreadable(p, exc) from None
     else:
         p = Path(_atlas_path(path))
         ds = _open(p)
@@ -254,12 +254,22 @@ def _open(p: Path) -> xr.Dataset:
 
 
 def _unreadable(p: Path, exc: BaseException) -> AtlasFileError:
+    cause = f"{type(exc).__name__}: {' '.join(str(exc).split())[:120]}"
+    if p.is_dir():  # a Zarr store: the chunk file that does not read
+        from .store import damaged_chunk
+
+        try:
+            chunk = damaged_chunk(p)
+        except Exception:
+            chunk = None
+        where = f"its chunk file {chunk!r} is damaged" if chunk else "it cannot be read"
+        return AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store: {where} ({cause})")
     with open(p, "rb") as f:
         head = f.read(8)
     if head.startswith((b"\x89HDF", b"CDF")):
         return AtlasFileError(
             f"atlas file {str(p)!r} is not a readable netCDF file: it cannot be read to the end "
-            f"(truncated or damaged: {type(exc).__name__}: {' '.join(str(exc).split())[:120]})"
+            f"(truncated or damaged: {cause})"
         )
     return AtlasFileError(
         f"atlas file {str(p)!r} is not a readable netCDF file (it does not start with a netCDF or HDF5 signature)"

@@ -32,33 +32,41 @@ holds: a chunk that disagrees (edited, swapped, copied from another store) is re
 a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
 chunks marked incomplete (never written, or interrupted between the data and the digest) are
 computed. The
-result equals the atlas computed in one go, bit for bit. The store must be on a file system the
-workers share with the client (always true of a LocalCluster).
+result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
+(:func:`locked`) until its output is written: a second run on the same store is refused at
+once. The store must be on a file system the workers share with the client (always true of a
+LocalCluster).
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import hashlib
 import os
+import secrets
 import shutil
+import tempfile
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from ..errors import ChunkError, ResumeError
-from ..interrupts import checkpoint
+from ..errors import ChunkError, OutputWriteError, ResumeError
+from ..files import TEMPORARY_PREFIX, file_mode
+from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
-from ..files import TEMPORARY_PREFIX
 
 __all__ = [
     "BLOCK_VARIABLES",
     "RECORD_VARIABLES",
     "check_block",
+    "damaged_chunk",
     "is_store_path",
+    "locked",
     "open_store",
     "parts_directory",
     "slice_block",
@@ -121,11 +129,65 @@ def parts_directory(path: str | os.PathLike) -> Path:
     return p.with_name(p.name + ".parts")
 
 
+@contextlib.contextmanager
+def locked(parts: Path) -> Iterator[None]:
+    """Hold the resumable store ``parts`` (created empty if new) for a whole run: an exclusive
+    ``fcntl.flock`` on its directory, which the kernel releases when the run ends, however it
+    ends (a killed run leaves no stale lock). A second run on the same store is refused at once
+    (:class:`ResumeError`), instead of racing the first over the same chunks. Where the file
+    system has no such lock (some network file systems) the run goes unlocked. An empty
+    directory created here is removed at the end (a run refused before writing leaves none)."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX: unlocked
+        yield
+        return
+    if os.path.lexists(parts) and not parts.is_dir():
+        raise ResumeError(
+            f"cannot resume: {str(parts)!r} exists and is not a Zarr store; remove it or choose another output"
+        )
+    parts.mkdir(exist_ok=True)
+    fd = os.open(parts, os.O_RDONLY)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise ResumeError(
+                f"cannot resume: another run is writing {str(parts)!r} now (it holds the store's lock); "
+                "wait for it to end, or stop it and rerun"
+            ) from None
+        except OSError:
+            pass  # no flock on a directory of this file system
+        yield
+    finally:
+        os.close(fd)
+        with contextlib.suppress(OSError):
+            parts.rmdir()  # only if empty
+
+
 def open_store(path: str | os.PathLike) -> xr.Dataset:
     """The atlas in a complete Zarr store, opened lazily (xarray's zarr backend, not dask),
     without its per-chunk record."""
     ds = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
     return ds.drop_vars([v for v in RECORD_VARIABLES if v in ds.variables])
+
+
+def damaged_chunk(path: str | os.PathLike) -> str | None:
+    """The first chunk file of the store ``path`` that cannot be read (``"growth_rate/c/0/0/0/0"``,
+    relative to the store), or None if every chunk reads: each chunk of each array read once,
+    through zarr's public API (for the message of a store that failed to load)."""
+    import itertools
+
+    import zarr
+
+    group = zarr.open_group(str(path), mode="r")
+    for name, array in sorted(group.arrays()):
+        for index in itertools.product(*(range(n) for n in array.cdata_shape)):
+            try:
+                array.blocks[index]
+            except Exception:
+                return f"{name}/{array.metadata.encode_chunk_key(index)}"
+    return None
 
 
 def _chunk_dims(dims: list[str]) -> tuple[str, ...]:
@@ -292,13 +354,21 @@ def write_store(
     """
     _check_target(target, overwrite)
     dims = spec["dims"]
-    parts = parts_directory(target) if resume else target.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{target.name}")
+    tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
+    if resume:
+        parts = parts_directory(target)
+    else:
+        directory = target.parent if str(target.parent) else Path(".")
+        parts = Path(tempfile.mkdtemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=directory))
+        tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
-        if resume and parts.exists():
+        if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
             done = _reopen(parts, ds, spec, blocks)
-        else:
-            _template(ds, spec["chunk_shape"], dims).to_zarr(parts, mode="w", compute=False, consolidated=False)
+        else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
+            layout = _template(ds, spec["chunk_shape"], dims)
+            layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
+            os.chmod(parts, file_mode(directory=True))  # not mkdtemp's 0o700: the store's own mode
         for _ in done:
             report()
         todo = [(name, sl) for name, sl in blocks if name not in done]
@@ -323,11 +393,14 @@ def write_store(
             run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
         _finish(parts, done, blocks, dims)
         if commit:
-            _commit(parts, target, overwrite)
+            _commit(parts, target, overwrite, tmp)
     except BaseException:
         if not resume:
             shutil.rmtree(parts, ignore_errors=True)
         raise
+    finally:
+        if tmp is not None and tmp.state != "committed":
+            tmp.done(committed=False)
     return target if commit else parts
 
 
@@ -360,22 +433,44 @@ def _check_target(target: Path, overwrite: bool) -> None:
         raise FileExistsError(f"output {str(target)!r} exists and is not a Zarr store; it is never replaced")
 
 
-def _commit(parts: Path, target: Path, overwrite: bool) -> None:
+def _commit(parts: Path, target: Path, overwrite: bool, tmp: Temporary | None) -> None:
     """Rename the complete store to its name; an existing store (``overwrite``) is moved aside
-    first and removed after. Another process creating the name meanwhile wins (the rename of a
-    directory onto a non-empty one fails): FileExistsError."""
+    first and removed after, or put back if the rename fails. Another process creating the name
+    meanwhile wins (the rename of a directory onto a non-empty one fails): FileExistsError; any
+    other failure of the rename: OutputWriteError naming the cause."""
     checkpoint()
+    kept = "it was removed" if tmp is not None else f"it is kept in {str(parts)!r}"
     old = None
     if os.path.lexists(target):
         _check_target(target, overwrite)
-        old = target.with_name(f"{TEMPORARY_PREFIX}old-{os.getpid()}-{target.name}")
+        old = target.with_name(f"{TEMPORARY_PREFIX}old-{secrets.token_hex(6)}-{target.name}")
         os.rename(target, old)
+    if tmp is not None:
+        tmp.state = "committing"
     try:
         os.rename(parts, target)
-    except OSError:
-        raise FileExistsError(
-            f"output {str(target)!r} was created by another process while this run was computing; "
-            f"nothing was replaced (the complete store is {str(parts)!r})"
-        ) from None
+    except OSError as exc:
+        if tmp is not None:
+            tmp.state = "writing"
+        taken = exc.errno in (errno.EEXIST, errno.ENOTEMPTY, errno.ENOTDIR) and os.path.lexists(target)
+        lost = ""
+        if old is not None:
+            try:
+                os.rename(old, target)
+            except OSError:
+                lost = f"; the store it replaces could not be put back and is in {str(old)!r}"
+        if taken:
+            raise FileExistsError(
+                f"output {str(target)!r} was created by another process while this run was computing; "
+                f"nothing was replaced (the complete store: {kept}{lost})"
+            ) from None
+        raise OutputWriteError(
+            f"cannot write {str(target)!r}: renaming the complete store to it failed ({exc.strerror}); "
+            f"nothing was replaced (the complete store: {kept}{lost})",
+            exc.errno,
+            str(target),
+        ) from exc
+    if tmp is not None:
+        tmp.done(committed=True)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)
