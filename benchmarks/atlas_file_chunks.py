@@ -55,8 +55,7 @@ def main() -> None:
     variants = {}
     for f32 in (True, False):
         c = {
-            k: (_as_float32(k, v) if f32 and v.dtype.kind == "f" else np.ascontiguousarray(v))
-            for k, v in block.items()
+            k: (_as_float32(k, v) if f32 and v.dtype.kind == "f" else np.ascontiguousarray(v)) for k, v in block.items()
         }
         c["max_growth_rate"] = np.ascontiguousarray(c["growth_rate"][..., 0])
         c["leading_growth_rate"] = c["max_growth_rate"].copy()
@@ -80,8 +79,8 @@ def main() -> None:
             best[key] = (min(best.get(key, (np.inf,))[0], t), os.path.getsize(a.path) / n)
     os.remove(a.path)
     print(f"{n:.0e} points, one grid chunk; best of {a.rounds}")
-    for (f32, qc, level), (t, b) in best.items():
-        what = "float32, zstd level %d" % level if level is not None else "float64, uncompressed"
+    for (_f32, qc, level), (t, b) in best.items():
+        what = f"float32, zstd level {level}" if level is not None else "float64, uncompressed"
         print(f"{what:24s} file chunk q={qc:<3d} {t:6.3f} s  {b:6.2f} B/pt")
 
 

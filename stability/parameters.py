@@ -436,7 +436,7 @@ def _two_sum(a: Any, b: Any) -> tuple[Any, Any]:
 
 
 @register_jitable
-def _expansion_value(e: tuple) -> Any:
+def _expansion_value(e: tuple[float, ...]) -> Any:
     """The sum of the expansion ``e`` from its smallest component, replaced by its largest
     nonzero component where the rounding of the sum loses that component's sign."""
     top = e[0]

@@ -170,7 +170,10 @@ def memory_limit() -> tuple[float, str]:
     env = _env_limit()
     if env is not None:
         return env, f"the limit {ENV_LIMIT}"
-    found = [(_cgroup_room(), "the cgroup's memory limit"), (_address_space_room(), "ulimit -v")]
+    found: list[tuple[float | None, str]] = [
+        (_cgroup_room(), "the cgroup's memory limit"),
+        (_address_space_room(), "ulimit -v"),
+    ]
     try:
         with open("/proc/meminfo") as f:
             avail = next(float(ln.split()[1]) * 1024.0 for ln in f if ln.startswith("MemAvailable:"))
@@ -178,10 +181,10 @@ def memory_limit() -> tuple[float, str]:
     except (OSError, StopIteration, ValueError, IndexError):
         with contextlib.suppress(ValueError, OSError, AttributeError):  # not POSIX: nothing
             found.append((float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")), "free physical memory"))
-    found = [(v, source) for v, source in found if v is not None]
-    if not found:  # pragma: no cover - not POSIX
+    known = [(v, source) for v, source in found if v is not None]
+    if not known:  # pragma: no cover - not POSIX
         return float("inf"), "no known limit"
-    avail, source = min(found)
+    avail, source = min(known)
     return max(0.0, HEADROOM * avail), f"{HEADROOM:.0%} of {source}"
 
 

@@ -170,7 +170,7 @@ def run(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     os.environ[execution.ENVIRONMENT] = "compiled"  # this process only: every step runs compiled
     with execution.quiet():
-        for what, call, twins in todo:
+        for what, call, _twins in todo:
             t0 = time.perf_counter()
             call()
             print(f"{what}: {time.perf_counter() - t0:.1f} s (compiled, or loaded from the disk cache)", flush=True)

@@ -37,12 +37,12 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, InputError, ParameterTypeError, require_extra
+from ..files import atomic_output, check_free_space, check_output_directory, check_output_path, close_quietly
 from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
-from ..files import atomic_output, check_free_space, check_output_directory, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
 from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 

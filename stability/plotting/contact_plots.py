@@ -102,6 +102,8 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     ax2.legend(fontsize="small")
     ax.set_title(f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium")
     return fig, axes
+
+
 def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     """The contact-loss map (:func:`stability.contact_loss_boundary`): the smallest normal force
     of the launch's run over the grid as colour (units of ``M g``, diverging about 0), the

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -47,10 +48,11 @@ def plot_validation(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, 
     fig, ax = axes_or_new(ax)
     measured = ds["measured_growth_rate"].values
     model = ds.attrs.get("model", "")
-    for name, style, label in (
+    styles: tuple[tuple[str, dict[str, Any], str], ...] = (
         ("jacobian_growth_rate", {"marker": "o"}, "Jacobian of the nonlinear model"),
         ("predicted_growth_rate", {"marker": "s", "markerfacecolor": "none"}, f"linear operator ({model})"),
-    ):
+    )
+    for name, style, label in styles:
         ax.plot(ds[name].values, measured, linestyle="none", label=label, **style)
     values = np.concatenate([ds[v].values for v in _VALIDATION])
     values = values[np.isfinite(values)]

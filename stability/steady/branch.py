@@ -228,7 +228,9 @@ class SteadyBranchProblem:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
-            _, _, rl = self.kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full, w)
+            _, _, rl = self.kernels.residual_and_jacobian(
+                theta, math.log(lam), self.p, self.q, self.code, self.n_full, w
+            )
             r = self.divided_residual(theta, lam)
             step = r / (rl / lam * (lam * lam + w))
             lam -= step

@@ -26,8 +26,8 @@ from typing import Any
 
 import numpy as np
 
-from ..nonlinear.stickslip import stick_slip
 from ..errors import DomainError, RunError
+from ..nonlinear.stickslip import stick_slip
 from . import family
 
 __all__ = ["ROLLING_BAND_POINTS", "ROLLING_BAND_SLACK", "coulomb_end", "rolling_band"]
@@ -168,9 +168,12 @@ def coulomb_end(
     )
     if run["event"] != "none" or phase_end != "stick":  # no rolling end: the run's last sample
         if run["event"] != "none":
-            kind, end = run["event"], (
-                f"{run['event'].replace('_', ' ')} at t = {run['event_time']:.6g}: the model does not hold "
-                "beyond, no final state"
+            kind, end = (
+                run["event"],
+                (
+                    f"{run['event'].replace('_', ' ')} at t = {run['event_time']:.6g}: the model does not hold "
+                    "beyond, no final state"
+                ),
             )
             event = dict(event=run["event"], event_time=run["event_time"])
         else:

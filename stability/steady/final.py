@@ -45,7 +45,6 @@ from .products import DEGREE, check_scales, flag_attrs, potential_curve, product
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
-
 __all__ = [
     "MATCH_DEG",
     "Candidate",
@@ -523,7 +522,9 @@ def final_state(
         check_positive("settle_tolerance", settle_tolerance)  # checked, not used: the hybrid run's last phase decides
 
         y = initial_state("sliding", omega, k, velocity)
-        fields, run, level = coulomb_end(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol)
+        fields, run, level = coulomb_end(
+            y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol
+        )
         # the level's steady states, flagged for the viscous sliding top (none without alpha_v)
         cands = () if level is None or alpha_v == 0.0 else candidates(*level, **params)
         return FinalState(**fields, candidates=cands, run=SettleRun(**run))

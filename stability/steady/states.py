@@ -39,7 +39,6 @@ from .products import (
 )
 from .verdicts import flag_of
 
-
 __all__ = ["point_integrals", "state_integrals", "steady_states", "upright_jellett"]
 
 #: Jellett's integral of the upright spin 1 (:func:`stability.steady.family.upright_jellett`)
