@@ -293,3 +293,41 @@ def test_scipy_batched_check_locates_the_event(batch, monkeypatch):
     assert abs(ds.attrs["event_time"] - ref) <= 1e-6 * ref
     assert float(ds.time[-1]) == ds.attrs["event_time"] and np.all(np.diff(ds.time.values) > 0)
     assert np.isfinite(ds.omega.values).all() and float(ds.normal_force.min()) > -1e-9
+
+
+def test_rolling_contact_loss_time_against_independent_dop853():
+    """The rolling model's constraint force can point down too: its run stops at the first zero
+    of N with event contact_lost. Reference: the rolling sphere of
+    stability.nonlinear.reference.rolling_rhs (plain numpy, the centre's acceleration eliminated
+    first and a 3 x 3 system for omega', not the kernels' 6 x 6 one), integrated by scipy's
+    DOP853 with a terminal event on N = mu fr_inv + mu q (k'')_3, k'' = omega' x k + omega x
+    (omega x k) (the vertical component of eq. 1 with O at height R). Tolerance 1e-6 relative on
+    the time (the issue's; both runs at rtol 1e-11 agree to ~1e-9); N of the run against the
+    same vertical equation at the run's own states to 1e-10 (round-off of two eliminations of
+    an O(1) system)."""
+    from stability.nonlinear.reference import rolling_rhs
+
+    q, fr, sg = -0.1, 0.05, 1.0
+    k0 = _unit([0.3, 0, 1])
+    y0 = np.concatenate([[2.0, 0.0, 1.0], k0, [0.0, 0.0]])
+
+    def n_ref(t, y, *_):
+        wd = rolling_rhs(t, y, q, fr, sg, MU)[0:3]
+        w, k = y[0:3], y[3:6]
+        return MU * fr + MU * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+
+    n_ref.terminal = True
+    n_ref.direction = -1
+    ref = solve_ivp(
+        rolling_rhs, (0.0, 20.0), y0, method="DOP853", rtol=1e-11, atol=1e-13, events=n_ref, args=(q, fr, sg, MU)
+    )
+    assert ref.t_events[0].size == 1
+    t_ref = ref.t_events[0][0]
+    ds = simulate("rolling", t_end=20, q=q, fr_inv=fr, sigma=sg, omega=[2, 0, 1], k=k0, rtol=1e-11, atol=1e-13)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["status"] == 0
+    assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
+    assert float(ds.time[-1]) == ds.attrs["event_time"]
+    states = np.column_stack([ds.omega.values, ds.k.values, ds.position.values])
+    n_run = np.array([n_ref(0.0, s) for s in states])
+    np.testing.assert_allclose(ds.normal_force.values, n_run, rtol=0, atol=1e-10)
+    assert abs(n_run[-1]) < 1e-8 and n_run.min() > -1e-8
