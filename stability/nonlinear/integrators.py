@@ -41,6 +41,7 @@ from ..errors import InputError
 from ..execution import before_compiled_call
 from ..interrupts import checkpoint
 from .kernels import CODES
+from .kernels import normal_force_lower_bound as _normal_force_lower_bound
 from .kernels import rhs as _model_rhs
 from .parameters import FR_INV, MU, Q
 from .vectors import cross
@@ -220,8 +221,17 @@ WATCH_BATCH = 64
 @njit(cache=True, nogil=True)
 def first_event(code, ts, ys, p, watch, c_stick):
     """The index of the first row of ``ys`` (states at the times ``ts``) where
-    :func:`event_value` is <= 0, or -1: one compiled call for a batch of scipy's steps."""
+    :func:`event_value` is <= 0, or -1: one compiled call for a batch of scipy's steps.
+
+    A state whose normal force is certainly positive by the model's closed-form lower bound
+    (:func:`stability.nonlinear.kernels.normal_force_lower_bound`, no 6 x 6 solve) skips the
+    right-hand side; the others are decided by :func:`event_value_at`, so the answer is the
+    same as with the solve at every row."""
     for i in range(ts.shape[0]):
+        if watch != 0 and _normal_force_lower_bound(code, ys[i], p) > 0.0:
+            if event_value(ys[i], ys[i], p, 0, c_stick) <= 0.0:  # the stick's gap alone
+                return i
+            continue
         if event_value_at(code, ts[i], ys[i], p, watch, c_stick) <= 0.0:
             return i
     return -1
