@@ -374,3 +374,24 @@ def test_screened_batch_check_finds_the_first_nonpositive_n():
     assert 0 < first and n_ref[first - 1] > 0.0
     assert first_event(0, t, ys, p, 1, -2.0) == first
     assert first_event(0, t[:first], ys[:first], p, 1, -2.0) == -1
+
+
+def test_rolling_closed_form_normal_force_against_reference():
+    """stability.nonlinear.rolling.normal_force (closed form) against N from the plain-numpy
+    rolling sphere of stability.nonlinear.reference (its 3 x 3 solve for omega', then the
+    vertical equation N = mu fr_inv + mu q (k'')_3), at random states with k off the unit
+    sphere too; tolerance 1e-12 of the closed form's scale (round-off of two eliminations)."""
+    from stability.nonlinear.parameters import pack
+    from stability.nonlinear.reference import rolling_rhs
+    from stability.nonlinear.rolling import normal_force
+
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        q, fr, sg = rng.uniform(-0.5, 0.5), rng.uniform(0.01, 1.0), rng.uniform(0.3, 2.0)
+        y = rng.normal(size=8)
+        y[3:6] = _unit(y[3:6]) * rng.uniform(0.95, 1.05)
+        w, k = y[0:3], y[3:6]
+        wd = rolling_rhs(0.0, y, q, fr, sg, MU)[0:3]
+        n_ref = MU * fr + MU * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+        n, scale = normal_force(y, pack(q=q, fr_inv=fr, sigma=sg, mu=MU))
+        assert abs(n - n_ref) <= 1e-12 * scale

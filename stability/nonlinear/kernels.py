@@ -37,13 +37,18 @@ NORMAL_FORCE_MARGIN = 1e-10
 @njit(cache=True, nogil=True)
 def normal_force_lower_bound(code, y, p):
     """A lower bound of the normal force at ``y`` without the model's 6 x 6 solve, or ``-inf``
-    where the model has none (rolling: its friction is an unknown of the system; fixed pivot).
+    where the model has none (the fixed pivot) or its closed form is not defined there.
 
-    Sliding: the closed form :func:`stability.nonlinear.sliding.normal_force` less
-    :data:`NORMAL_FORCE_MARGIN` times its scale, so that a positive bound means ``N > 0`` for
-    the 6 x 6 solution too (the two differ by round-off only)."""
+    The closed form (:func:`stability.nonlinear.sliding.normal_force`,
+    :func:`stability.nonlinear.rolling.normal_force`) less :data:`NORMAL_FORCE_MARGIN` times
+    its scale, so that a positive bound means ``N > 0`` for the 6 x 6 solution too (the two
+    differ by round-off only)."""
     if code == 0:
         n, scale = sliding.normal_force(y, p)
-        if n == n:
-            return n - NORMAL_FORCE_MARGIN * scale
+    elif code == 1:
+        n, scale = rolling.normal_force(y, p)
+    else:
+        return -np.inf
+    if n == n:
+        return n - NORMAL_FORCE_MARGIN * scale
     return -np.inf

@@ -33,7 +33,7 @@ from stability.jit import njit
 from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
 
-__all__ = ["STATE", "contact_forces", "rhs"]
+__all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
@@ -114,3 +114,43 @@ def contact_forces(states, p):
         x = _solve(states[i], p)
         out[i, 0], out[i, 1], out[i, 2] = x[3], x[4], x[5]
     return out
+
+
+@njit(cache=True, nogil=True)
+def normal_force(y, p):
+    """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
+
+    As :func:`stability.nonlinear.sliding.normal_force` (``u = k x K``,
+    ``N = mu fr_inv + mu q (d_3 + omega' . u)``, ``d = omega x (omega x k)``), with the
+    rolling sphere's reduced system (:mod:`stability.nonlinear.reference`: ``f`` eliminated by
+    the horizontal part of eq. 1) ``M a = I0 a + mu q (K x a) x k + mu K x (-K x a + q a x k)``,
+    ``R = -(sigma - 1)(k . omega)(omega x k) - mu q fr_inv k x K - mu q K x d``. ``u`` is an
+    eigenvector of ``M^T`` for any ``k``: ``I0 u = u``; the second term's transpose
+    ``-mu q [K]x [k]x`` gives ``mu q k_3 u`` (``[k]x u = k_3 k - |k|^2 K``, ``K x k = -u``); the
+    third's, ``-mu [K]x [K]x - mu q [k]x [K]x``, gives ``mu u + mu q k_3 u``
+    (``K x u = k_h``, ``K x k_h = -u``, ``k x k_h = -k_3 u``). So
+    ``omega' . u = (u . R) / lambda``, ``lambda = 1 + mu + 2 mu q k_3`` (for a unit ``k``,
+    ``A_G + mu |r|^2 > 0``, ``r`` from G to the contact point), and::
+
+        u . R = -(sigma - 1)(k . omega)(u . (omega x k)) - mu q fr_inv |k_h|^2
+                + mu q (k_1 d_1 + k_2 d_2).
+
+    Equal to the kernel's 6 x 6 solution (:func:`contact_forces`) up to round-off; ``scale``
+    the sum of the magnitudes of the terms; ``(nan, inf)`` where ``lambda`` is not safely
+    positive.
+    """
+    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
+    w0, w1, w2 = y[0], y[1], y[2]
+    k0, k1, k2 = y[3], y[4], y[5]
+    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k
+    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
+    mq = mu * q
+    lam = 1.0 + mu + 2.0 * mq * k2
+    if not lam > 1e-8:
+        return np.nan, np.inf
+    t_gyro = -(sg - 1.0) * (k0 * w0 + k1 * w1 + k2 * w2) * (k1 * c0 - k0 * c1)
+    t_grav = -mq * fr * (k0 * k0 + k1 * k1)
+    t_cen = mq * (k0 * d0 + k1 * d1)
+    lever = mq / lam
+    n = mu * fr + mq * d2 + lever * (t_gyro + t_grav + t_cen)
+    return n, abs(mu * fr) + abs(mq * d2) + abs(lever) * (abs(t_gyro) + abs(t_grav) + abs(t_cen))
