@@ -214,7 +214,7 @@ def event_value_at(code, t, y, p, watch, c_stick):
 
 #: accepted steps of a scipy solver per batched check of the normal force (:func:`first_event`):
 #: one compiled call per batch instead of one per step (a call's dispatch, ~1 us, outweighs the
-#: 6 x 6 solve); ``python benchmarks/contact_detection.py`` measures it against 1 (every step)
+#: closed-form check of a step); ``python benchmarks/contact_detection.py`` measures it against 1
 WATCH_BATCH = 64
 
 
