@@ -22,11 +22,13 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from scipy.integrate import LSODA
 from suites.timing import best_times
 
 from stability.jit import njit
 from stability.nonlinear import integrators
 from stability.nonlinear.integrators import event_value_at, integrate
+from stability.nonlinear.kernels import CODES, rhs
 from stability.nonlinear.runs import initial_state, model_parameter_vector
 from stability.nonlinear.scene import INITIAL_CONDITIONS
 
@@ -62,6 +64,33 @@ def _case(model, t_end, method, omega, k, velocity=None, **params):
         return go
 
     return run
+
+
+def _check_alone(model, t_end, omega, k, velocity=None, **params):
+    """CPU seconds per accepted step of the batched check alone (``first_event`` on the run's own
+    accepted LSODA states, batches of ``WATCH_BATCH``), screened and solved, best of 51: a tight
+    compiled loop, steadier on a loaded machine than the difference of two runs."""
+    code = CODES[model]
+    _, p = model_parameter_vector(model, **params)
+    y0 = initial_state(model, omega, k, velocity)
+    solver = LSODA(lambda t, y: rhs(code, t, y, p), 0.0, y0, t_end, rtol=1e-9, atol=1e-12)
+    ts, ys = [], []
+    while solver.status == "running":
+        solver.step()
+        ts.append(solver.t)
+        ys.append(solver.y)
+    ts, ys = np.array(ts), np.array(ys)
+    b = integrators.WATCH_BATCH
+    out = {}
+    for arm, fn in (("screened", _SCREENED), ("solved", _first_event_solved)):
+        best = np.inf
+        for _ in range(51):
+            t0 = time.process_time()
+            for i in range(0, ts.size, b):
+                assert fn(code, ts[i : i + b], ys[i : i + b], p, 1, -2.0) == -1
+            best = min(best, time.process_time() - t0)
+        out[arm] = best / ts.size
+    return out, ts.size
 
 
 def _cpu_best(arms, repeat):
@@ -113,6 +142,23 @@ def main() -> None:
             "rolling", 200.0, "LSODA", ic["omega"], ic["k"], None, q=-0.1, fr_inv=0.3, sigma=1.0
         ),
     }
+    alone = {  # the scipy cases again, for the check alone
+        "Coulomb alpha_k = 0.05, sliding, LSODA, t = 200 (contact holds)": lambda: _check_alone(
+            "sliding",
+            200.0,
+            ic["omega"],
+            ic["k"],
+            ic.get("velocity"),
+            q=-0.1,
+            fr_inv=0.3,
+            sigma=1.0,
+            alpha_v=0.5,
+            alpha_k=0.05,
+        ),
+        "paper Fr^-1 = 0.3, rolling, LSODA, t = 200 (contact holds)": lambda: _check_alone(
+            "rolling", 200.0, ic["omega"], ic["k"], None, q=-0.1, fr_inv=0.3, sigma=1.0
+        ),
+    }
     for name, run in cases.items():
         arms = {"watched": run(True), "unwatched": run(False)}
         if "LSODA" in name:  # scipy's path: batched screened check (default) against the others
@@ -134,6 +180,14 @@ def main() -> None:
             "    CPU time of the process (best of 21): "
             + ", ".join(f"{arm} {sec * 1e3:.3f} ms (ratio {sec / cpu['unwatched']:.3f})" for arm, sec in cpu.items())
         )
+        if name in alone:
+            per, steps = alone[name]()
+            step = cpu["unwatched"] / res["unwatched"].naccept
+            print(
+                f"    the check alone ({steps} steps): screened {per['screened'] * 1e9:.0f} ns per step "
+                f"({per['screened'] / step:.1%} of an unwatched step, {step * 1e6:.2f} us), "
+                f"solved {per['solved'] * 1e9:.0f} ns ({per['solved'] / step:.1%})"
+            )
     # the issue's reproducer: watched to its event, unwatched to the same time
     lost = _case(
         "sliding", 50.0, "dopri5", [2.0, 0.0, 1.0], k_lost, [0.0, 0.0], q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5
