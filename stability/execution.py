@@ -11,9 +11,9 @@ does. The rule (docs/performance.md, "The first call"):
   memory in this process (then it runs, compiling and loading nothing); a first eigenvalue,
   threshold or neutral curve in a fresh process then takes a fraction of a second and imports
   no numba;
-* larger requests run compiled; if that needs a compilation (the loop is neither in memory nor
-  in numba's disk cache), one line on stderr says so first, once per process
-  (:data:`NOTICE`); ``tippe warmup`` compiles every loop ahead of time;
+* larger requests run compiled; if that call is still compiling after :data:`NOTICE_AFTER`
+  seconds, one line on stderr says so, once per process (:data:`NOTICE`); ``tippe warmup``
+  compiles every loop ahead of time;
 * the environment variable :data:`ENVIRONMENT` (``TIPPE_KERNEL``) forces a path: ``python``,
   ``compiled`` or ``auto`` (the default, the rule above); so does :func:`using` inside a block
   (the benchmarks of ``python benchmarks/run.py`` measure the compiled paths), and functions that take an
@@ -29,6 +29,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -38,10 +39,12 @@ __all__ = [
     "ENGINES",
     "ENVIRONMENT",
     "NOTICE",
+    "NOTICE_AFTER",
     "PYTHON_BELOW",
     "announce",
     "before_compiled_call",
     "engine",
+    "pick",
     "quiet",
     "use_compiled",
     "using",
@@ -62,6 +65,10 @@ NOTICE = (
     "tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
     "(cached for later runs; `tippe warmup` compiles them all)"
 )
+
+#: seconds a first compiled call runs before :data:`NOTICE` is printed (loading a cached loop
+#: takes ~0.1-0.5 s, compiling one several seconds)
+NOTICE_AFTER = 1.5
 
 _STATE: dict[str, Any] = {"noticed": False, "quiet": 0, "using": None}
 
@@ -105,16 +112,43 @@ def use_compiled(twin: Any, npts: int, value: str | None = None) -> bool:
     return npts >= PYTHON_BELOW or twin.in_memory()
 
 
+def pick(fn: Any, npts: int, value: str | None = None, *, below: int = PYTHON_BELOW) -> Any:
+    """``fn`` (a function compiled by numba) or its interpreted execution
+    (:func:`stability.jit.python`), by the rule of the module docstring for a request of
+    ``npts`` points (``below``: the size from which it runs compiled, where the interpreted
+    cost per point is larger than the kernel's); ``value`` as in :func:`engine`."""
+    chosen = engine(value)
+    if chosen == "compiled" or (chosen == "auto" and (npts >= below or _in_memory(fn))):
+        return fn
+    from .jit import python
+
+    return python(fn)
+
+
+def _in_memory(fn: Any) -> bool:
+    """Whether this process holds the compiled code of ``fn`` (a :class:`stability.jit.Twin` or
+    a numba dispatcher: its public ``signatures``)."""
+    return fn.in_memory() if hasattr(fn, "in_memory") else bool(fn.signatures)
+
+
 def before_compiled_call(twin: Any, seconds: float) -> None:
-    """Say on stderr, once per process, that ``twin`` is about to be compiled (``seconds``: the
-    estimate printed), if it is neither in memory nor in numba's disk cache; nothing while
-    :func:`quiet` is active or if the cache cannot be read (the call then just compiles)."""
-    if _STATE["noticed"] or _STATE["quiet"] or twin.in_memory():
-        return
-    if twin.cached() is not False:
+    """Say on stderr, once per process, that ``twin`` (a :class:`stability.jit.Twin` or a numba
+    dispatcher) is being compiled (``seconds``: the
+    estimate printed), if the call that follows is still compiling :data:`NOTICE_AFTER` seconds
+    later (numba's public API cannot tell a cached function from one it must compile, but a
+    load from the cache takes a fraction of that); nothing if ``twin`` is in memory already
+    or while :func:`quiet` is active."""
+    if _STATE["noticed"] or _STATE["quiet"] or _in_memory(twin):
         return
     _STATE["noticed"] = True
-    print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice, on stderr)
+
+    def notice() -> None:
+        if not _in_memory(twin):
+            print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice)
+
+    timer = threading.Timer(NOTICE_AFTER, notice)
+    timer.daemon = True
+    timer.start()
 
 
 def announce(text: str) -> None:

@@ -23,19 +23,20 @@ that only ever runs the Python execution never imports numba.
 :class:`Twin` pairs a plain Python function (a loop over points, say) with its numba
 compilation, made on first use: ``twin.python`` runs interpreted, ``twin(...)`` compiled,
 ``twin.in_memory()`` tells whether calling the compiled one would compile (or load from numba's
-disk cache) first, ``twin.cached()`` whether numba's disk cache holds it for this machine. A
-twin may be *parallel*: its source loops over ``prange`` (bound to the builtin ``range`` in the
-module's namespace, so the Python execution and a serial compilation run an ordinary loop), and
-its compilation sees numba's ``prange`` instead.
+disk cache) first. A twin may be *parallel*: its source loops over ``prange`` (bound to the
+builtin ``range`` in the module's namespace, so the Python execution and a serial compilation
+run an ordinary loop), and its compilation sees numba's ``prange`` instead.
 
-Disk cache. numba stamps the cache of a compiled function with a hash of its own source file
-only: a compiled loop that calls a ``register_jitable`` function of another file would be loaded
-stale after that file changed (the helpers are compiled into the loop). Every function compiled
-through this module with ``cache=True`` is stamped instead with a hash of its own file, of
-every source file of its package that registers functions for compiled code, and of every
-source file of :mod:`continuation` (whose compiled building blocks are compiled into the
-callers) (:func:`source_stamp`): editing any single-sourced formula invalidates the caches
-that may contain it.
+:func:`python` gives the interpreted execution of any function compiled with :func:`njit` (its
+public ``py_func``, with the compiled functions it calls re-bound to their own interpreted
+executions): what a single query runs (the steady states, a final state, a short run's first
+steps), compiling nothing; :func:`stability.execution.pick` chooses between the two by size.
+
+Disk cache. Functions compiled with ``cache=True`` use numba's own disk cache, through its
+public options only. numba revalidates a cached function against its own source file: after
+editing a ``register_jitable`` formula of another file in a source checkout, clear the cache
+(delete the ``*.nbi``/``*.nbc`` files under ``__pycache__``, or set ``NUMBA_CACHE_DIR`` to a new
+directory); an installed release never changes its files.
 
 The numba options used across the package are :data:`OPTIONS` (IEEE arithmetic: no fastmath,
 so no reassociation or contraction into fused multiply-adds, and the same bits as the Python
@@ -44,9 +45,6 @@ execution; numpy's error model, so a division by zero gives inf or NaN as in num
 
 from __future__ import annotations
 
-import functools
-import hashlib
-import os
 import types
 from collections.abc import Callable
 from typing import Any
@@ -56,11 +54,10 @@ __all__ = [
     "Twin",
     "activate",
     "active",
-    "in_disk_cache",
     "njit",
     "overload",
+    "python",
     "register_jitable",
-    "source_stamp",
 ]
 
 #: numba options of the compiled code of the package (module docstring)
@@ -69,9 +66,6 @@ OPTIONS: dict[str, Any] = dict(fastmath=False, nogil=True, error_model="numpy")
 #: registrations waiting for numba: ("jitable", function, options) or ("overload", function, impl, options)
 _PENDING: list[tuple] = []
 _NUMBA: Any = None  # the numba module once activated
-
-#: the text that marks a source file as holding functions for compiled code (source_stamp)
-_MARKERS = (b"register_jitable", b"overload(")
 
 
 def _register(entry: tuple) -> None:
@@ -141,125 +135,88 @@ def active() -> bool:
 
 
 def njit(fn: Callable | None = None, **options: Any) -> Any:
-    """:func:`numba.njit` after :func:`activate`, with the disk cache stamped by
-    :func:`source_stamp` when ``cache=True``; for modules whose only purpose is compiled code."""
+    """:func:`numba.njit` after :func:`activate`; for modules whose only purpose is compiled code."""
 
     def make(f: Callable) -> Any:
-        disp = activate().njit(**options)(f)
-        if options.get("cache"):
-            _stamp(disp)
-        return disp
+        return activate().njit(**options)(f)
 
     return make if fn is None else make(fn)
 
 
 # ------------------------------------------------------------------------------------------
-# the disk cache
+# the interpreted execution of compiled functions
 # ------------------------------------------------------------------------------------------
-@functools.cache
-def _all_sources(root: str) -> tuple[tuple[str, bytes], ...]:
-    """``(path, contents)`` of every ``.py`` file under ``root``, sorted by path."""
-    out = []
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith((".", "__")))
-        for name in sorted(files):
-            if name.endswith(".py"):
-                path = os.path.join(folder, name)
-                with open(path, "rb") as f:
-                    out.append((os.path.relpath(path, root), f.read()))
-    return tuple(out)
+#: the packages whose functions :func:`python` re-binds (the rest of the world is left as it is)
+_PACKAGES = ("stability", "continuation")
 
 
-def _package_sources(root: str) -> tuple[tuple[str, bytes], ...]:
-    """The files of :func:`_all_sources` that register functions for compiled code (they
-    contain one of :data:`_MARKERS`)."""
-    return tuple((path, data) for path, data in _all_sources(root) if any(m in data for m in _MARKERS))
+def _is_dispatcher(value: Any) -> bool:
+    """Whether ``value`` is a numba dispatcher (its public ``py_func`` and ``signatures``)."""
+    return callable(value) and hasattr(value, "py_func") and hasattr(value, "signatures")
 
 
-def _continuation_root() -> str:
-    """The directory of the installed :mod:`continuation` package (found, not imported)."""
-    import importlib.util
-
-    spec = importlib.util.find_spec("continuation")
-    return os.path.dirname(spec.origin) if spec is not None and spec.origin else ""
+def _ours(value: Any) -> bool:
+    module = getattr(value, "__module__", None) or getattr(value, "__name__", "")
+    return isinstance(module, str) and module.split(".")[0] in _PACKAGES
 
 
-def _package_root(filename: str) -> str:
-    """The top-level package directory of a source file (the highest folder with an
-    ``__init__.py`` above it)."""
-    folder = os.path.dirname(os.path.abspath(filename))
-    while os.path.exists(os.path.join(os.path.dirname(folder), "__init__.py")):
-        folder = os.path.dirname(folder)
-    return folder
+class _Interpreted(types.ModuleType):
+    """A module of the package seen from interpreted code: its compiled functions are their
+    :func:`python` executions (``sliding.rhs(...)`` inside a function run by :func:`python`)."""
+
+    def __init__(self, module: types.ModuleType) -> None:
+        super().__init__(module.__name__)
+        self._module = module
+
+    def __getattr__(self, name: str) -> Any:
+        value = _rebound(getattr(self._module, name))
+        setattr(self, name, value)  # found once
+        return value
 
 
-@functools.cache
-def source_stamp(filename: str) -> bytes:
-    """The stamp of numba's disk cache for a function defined in ``filename``: a SHA-256 of that
-    file, of every source file of its top-level package and of this one that registers
-    functions for compiled code, and of every source file of :mod:`continuation` (module
-    docstring)."""
-    h = hashlib.sha256()
-    with open(filename, "rb") as f:
-        h.update(f.read())
-    for root in sorted({_package_root(filename), _package_root(__file__)}):
-        for path, data in _package_sources(root):
-            h.update(path.encode())
-            h.update(hashlib.sha256(data).digest())
-    engine = _continuation_root()
-    for path, data in _all_sources(engine) if engine else ():
-        h.update(b"continuation/" + path.encode())
-        h.update(hashlib.sha256(data).digest())
-    return h.digest()
+def _rebound(value: Any) -> Any:
+    if _is_dispatcher(value) or (isinstance(value, types.FunctionType) and _ours(value)):
+        return python(value)
+    if isinstance(value, types.ModuleType) and _ours(value):
+        return _Interpreted(value)
+    return value
 
 
-def _stamp(disp: Any) -> None:
-    """Stamp ``disp``'s disk cache with :func:`source_stamp` (numba's private cache API; left
-    as numba made it if that is not there)."""
-    try:
-        cache_file = disp._cache._cache_file
-        cache_file._source_stamp = source_stamp(disp.py_func.__code__.co_filename)
-    except (AttributeError, OSError):
-        pass
+_PYTHON: dict[Any, Callable] = {}
 
 
-def in_disk_cache(disp: Any) -> bool | None:
-    """Whether numba's disk cache holds compiled code of ``disp`` valid on this machine (same
-    stamp, numba, Python, CPU and bytecode), read from its small index file without loading
-    anything; None if that cannot be told (numba's private cache API changed)."""
-    try:
-        cache = disp._cache
-        if not getattr(cache, "_enabled", False):
-            return False
-        index = cache._cache_file._load_index()
-        if not index:
-            return False
-        codegen = disp.targetctx.codegen()
-        magic = codegen.magic_tuple()
-        return any(key[1] == magic and key[2] == cache._index_key(key[0], codegen)[2] for key in index)
-    except Exception:  # private API: any change means "unknown", never a failure
-        return None
+def _names(code: types.CodeType) -> set[str]:
+    """The global names a code object and the code nested in it refer to."""
+    out = set(code.co_names)
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            out |= _names(const)
+    return out
 
 
-class Compiled:
-    """One or more numba dispatchers, asked as a whole whether calling them compiles: whether
-    their code is in memory (:meth:`in_memory`) or in numba's disk cache (:meth:`cached`); what a
-    caller needs to say "compiling, once" before a first call (the same two questions as
-    :class:`Twin`'s). List the dispatchers that a call always runs (callees compiled into them
-    have disk caches of their own and follow)."""
-
-    def __init__(self, *dispatchers: Any) -> None:
-        self.dispatchers = dispatchers
-
-    def in_memory(self) -> bool:
-        """Whether this process holds the compiled code of every one of them."""
-        return all(bool(d.overloads) for d in self.dispatchers)
-
-    def cached(self) -> bool | None:
-        """Whether numba's disk cache holds every one of them (:func:`in_disk_cache`; None if
-        that cannot be told for one)."""
-        states = [in_disk_cache(d) for d in self.dispatchers]
-        return None if None in states else all(states)
+def python(fn: Any) -> Callable:
+    """The interpreted execution of ``fn`` (a numba dispatcher, a plain function of the
+    package, or a module of the package: its functions so executed): its Python source (the dispatcher's public ``py_func``), with every compiled
+    function it reaches (through its globals, or attributes of the package's modules) run the
+    same way. Nothing is compiled and numba's caches are not touched: what a single query runs
+    (:mod:`stability.execution`). The same source as the compiled execution; the floating-point
+    results agree to rounding (numba and numpy may round the library functions differently)."""
+    if isinstance(fn, types.ModuleType):
+        return _Interpreted(fn)
+    key = getattr(fn, "py_func", fn)
+    if key in _PYTHON:
+        return _PYTHON[key]
+    names: dict[str, Any] = {}
+    f = types.FunctionType(key.__code__, names, key.__name__, key.__defaults__, key.__closure__)
+    f.__kwdefaults__ = key.__kwdefaults__
+    f.__doc__, f.__module__, f.__qualname__ = key.__doc__, key.__module__, key.__qualname__
+    _PYTHON[key] = f  # before the globals: recursive functions find themselves
+    used = _names(key.__code__)
+    names.update({k: _rebound(v) for k, v in key.__globals__.items() if k in used})
+    names.setdefault("__builtins__", key.__globals__.get("__builtins__", __builtins__))
+    for k, v in key.__globals__.items():
+        names.setdefault(k, v)
+    return f
 
 
 # ------------------------------------------------------------------------------------------
@@ -320,12 +277,7 @@ class Twin:
 
     def in_memory(self) -> bool:
         """Whether this process holds the compiled code (calling it compiles nothing, loads nothing)."""
-        return self._dispatcher is not None and bool(self._dispatcher.overloads)
-
-    def cached(self) -> bool | None:
-        """Whether numba's disk cache holds the compiled code for this machine
-        (:func:`in_disk_cache`; imports numba)."""
-        return in_disk_cache(self.dispatcher)
+        return self._dispatcher is not None and bool(self._dispatcher.signatures)
 
     def __call__(self, *args: Any) -> Any:
         """The compiled execution (compiled, or loaded from the disk cache, on first call)."""

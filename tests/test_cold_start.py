@@ -282,20 +282,24 @@ def _run(code: str, env: dict | None = None) -> subprocess.CompletedProcess:
 
 
 def test_compile_notice_once_per_process_and_only_if_not_cached(tmp_path):
-    """The stderr line before a compilation: printed when the loop is neither in memory nor in
-    numba's disk cache (here an empty one: a fresh install), once per process, never inside
-    execution.quiet() (tippe warmup). Checked in a fresh interpreter, without compiling."""
+    """The stderr line of a compilation: printed when the loop is not in memory and the call is
+    still running NOTICE_AFTER seconds later (a compilation; a load from numba's disk cache is
+    shorter), once per process, never inside execution.quiet() (tippe warmup). Checked in a
+    fresh interpreter, without compiling (the call "runs" for 0.3 s, NOTICE_AFTER is 0.05 s)."""
     code = """
-        import sys
+        import sys, time
         from stability import execution
         from stability.linear import kernel
+        execution.NOTICE_AFTER = 0.05
         loops = kernel._COEFFICIENT_LOOPS
         with execution.quiet():
             execution.before_compiled_call(loops[1], 7.0)
-        print("after quiet", file=sys.stderr)
+        time.sleep(0.3)
+        print("after quiet", file=sys.stderr, flush=True)
         execution.before_compiled_call(loops[1], 7.0)
         execution.before_compiled_call(loops[0], 7.0)
-        assert not loops[0].in_memory() and loops[0].cached() is False
+        time.sleep(0.3)
+        assert not loops[0].in_memory()
     """
     out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
     assert out.returncode == 0, out.stderr
@@ -306,76 +310,20 @@ def test_compile_notice_once_per_process_and_only_if_not_cached(tmp_path):
 def test_compile_notice_before_a_first_compiled_run(tmp_path):
     """simulate's compiled integrators say so too before compiling on an empty cache (issue 15:
     a first simulate compiled ~18 s of CPU silently). Checked without compiling: the slices
-    are neither in memory nor in the (empty) disk cache, so the line is printed, once."""
+    are not in memory and the "call" lasts longer than NOTICE_AFTER, so the line is printed, once."""
     code = """
-        import sys
+        import sys, time
         from stability import execution
-        from stability.jit import Compiled
         from stability.nonlinear import integrators as I
+        execution.NOTICE_AFTER = 0.05
         for slice_ in (I.dopri5_slice, I.rk4_slice):
-            c = Compiled(slice_)
-            assert not c.in_memory() and c.cached() is False
-            execution.before_compiled_call(c, I.COMPILE_SECONDS)
+            assert not slice_.signatures
+            execution.before_compiled_call(slice_, I.COMPILE_SECONDS)
+        time.sleep(0.3)
     """
     out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
     assert out.returncode == 0, out.stderr
     assert out.stderr.splitlines() == [execution.NOTICE.format(seconds=20.0)]
-
-
-STEADY_CALLS = """
-    import stability, continuation
-    stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1, sigma=1.0, fr_inv=0.3,
-                          alpha_v=0.5)
-    stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-    stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)
-"""
-
-
-def test_steady_entry_points_say_before_they_compile(tmp_path):
-    """final_state, steady_states and steady_branch compiled 5.5 / 18 / 25 s silently on a fresh
-    install. Each asks first (execution.before_compiled_call) about the compiled functions it
-    always runs, with its own estimate: checked without compiling, in a fresh interpreter on an
-    empty cache (each call stopped at the question)."""
-    code = """
-        import sys
-        import stability, continuation
-        import stability.steady.final as F, stability.steady.states as S, stability.steady.branch as B
-
-        class Stop(Exception):
-            pass
-
-        def asked(c, seconds):
-            print(f"asked {seconds:g} {c.in_memory()} {c.cached()}", file=sys.stderr)
-            raise Stop
-
-        for m in (F, S, B):
-            m.before_compiled_call = asked
-        for call in (lambda: stability.final_state(omega=[0, 0, 1.0], k=[0.05, 0, 1.0], velocity=[0, 0], q=-0.1,
-                                                   sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                     lambda: stability.steady_states(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
-                     lambda: stability.steady_branch(q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5)):
-            try:
-                call()
-            except Stop:
-                pass
-    """
-    out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
-    assert out.returncode == 0, out.stderr
-    assert out.stderr.splitlines() == ["asked 6 False False", "asked 20 False False", "asked 25 False False"]
-
-
-def test_steady_compile_notice_once_cold_and_never_warm(tmp_path):
-    """The real thing, on an empty numba cache (a fresh install): the first process compiles and
-    says so once; a second process on the same cache loads and says nothing, which holds only if
-    every compiled function the calls list was cached by the first (no notice on every run).
-    About 50 s (the compilation)."""
-    env = {"NUMBA_CACHE_DIR": str(tmp_path), "TIPPE_KERNEL": "auto"}
-    cold = _run(STEADY_CALLS, env)
-    assert cold.returncode == 0, cold.stderr
-    assert cold.stderr.splitlines() == [execution.NOTICE.format(seconds=6.0)]
-    warm = _run(STEADY_CALLS, env)
-    assert warm.returncode == 0, warm.stderr
-    assert warm.stderr == ""
 
 
 # --- what a fresh process imports -----------------------------------------------------------

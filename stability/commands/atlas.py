@@ -249,7 +249,7 @@ def _check_space(out, model: str, values: dict) -> None:
     """Refuse, before computing, an atlas whose file cannot fit on its file system."""
     import numpy as np
 
-    from ..grids.outputs import check_free_space
+    from ..files import check_free_space
     from ..resources import atlas_file_bytes
 
     n = 1

@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
 def _plot(top, res, args: argparse.Namespace) -> None:
     """The bifurcation diagram of ``top`` around the launch (:func:`stability.bifurcation_diagram`,
     :func:`stability.plotting.plot_bifurcation`), written to ``args.plot``."""
-    from ..grids.outputs import check_output_path
+    from ..files import check_output_path
     from ..plotting.atlas_plots import save_figure
     from ..plotting.steady_plots import plot_bifurcation
     from ..steady.diagram import bifurcation_diagram

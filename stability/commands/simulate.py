@@ -119,7 +119,7 @@ def _output_times(t_end: float, dt: float) -> int | None:
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe simulate``: check the output, the memory and the disk first; warn before a
     large output; show progress on a terminal; say what was written."""
-    from ..grids.outputs import check_free_space
+    from ..files import check_free_space
     from ..nonlinear.runs import check_run_memory, simulate
     from ..resources import format_bytes, simulate_file_bytes
 

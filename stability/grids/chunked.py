@@ -9,7 +9,7 @@
   the target; each chunk is computed (in this process, or on a dask.distributed cluster), checked
   (exact dtypes and shapes: a block is never broadcast or cast into the file), written into its
   region and dropped; the file is committed only when complete
-  (:func:`stability.grids.outputs.atomic_output`: no partial file, and an existing file, or one
+  (:func:`stability.files.atomic_output`: no partial file, and an existing file, or one
   another run created meanwhile, is not replaced unless asked). Memory stays at a few chunks
   whatever the grid size; an interruption (checked between chunks) leaves no output file.
 * To a Zarr store (an output named ``*.zarr``), and with ``resume=True``: the chunks are written
@@ -39,7 +39,7 @@ from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
-from .outputs import atomic_output, check_free_space, check_output_path, close_quietly
+from ..files import atomic_output, check_free_space, check_output_path, close_quietly
 from .schema import MAP_VARIABLES, STORED_ATTR
 from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 

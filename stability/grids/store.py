@@ -52,7 +52,7 @@ import xarray as xr
 from ..errors import ChunkError, ResumeError
 from ..interrupts import checkpoint
 from .leading import leading, zero_everywhere
-from .outputs import TEMPORARY_PREFIX
+from ..files import TEMPORARY_PREFIX
 
 __all__ = [
     "BLOCK_VARIABLES",

@@ -9,8 +9,7 @@ First-principles check (docs/models.md): the angular momentum about the pivot is
 linearised about ``omega = k = K`` with ``Phi' = i Phi - i omega`` (eq. 11, second line) this
 gives ``A_C Phi'' - i sigma Phi' - mu fr_inv (1 + q) Phi = 0``: eq. (8) exactly.
 
-Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
-``Re s``, frequency ``Im s`` in units of the spin rate (eq. 8's ``lambda = -i s - 1``).
+Convention: every model's (:mod:`stability.models.base`) (eq. 8's ``lambda = -i s - 1``).
 """
 
 from __future__ import annotations

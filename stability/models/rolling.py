@@ -22,8 +22,7 @@ model (:func:`stability.jacobian_eigenvalues`). Monic state form, ``x = (Phi, Ph
     x' = [[0, 1], [kappa, i gamma]] x,  gamma = (sigma + mu (1 + q)) / A_C,
     kappa = mu fr_inv q / A_C,  det(s 1 - A) = s^2 - i gamma s - kappa.
 
-Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
-``Re s``, frequency ``Im s`` in units of the spin rate.
+Convention: every model's (:mod:`stability.models.base`).
 """
 
 from __future__ import annotations

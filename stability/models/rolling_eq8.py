@@ -18,8 +18,7 @@ and ``0`` and ``1 / (1 + mu)`` here. The first-principles polynomial is also the
 ``alpha_v -> infinity`` limit of the sliding model's (divide eq. 11's ``det(s M - A)`` by
 ``alpha_v``).
 
-Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
-``Re s``, frequency ``Im s`` in units of the spin rate (eq. 8's ``lambda = -i s - 1``).
+Convention: every model's (:mod:`stability.models.base`) (eq. 8's ``lambda = -i s - 1``).
 """
 
 from __future__ import annotations

@@ -66,8 +66,7 @@ compiled neutral condition), with the same floating-point operations and hence t
 in every engine. :class:`Sliding` offers them to the rest of the package as its optional
 capabilities ``point_coefficients`` and ``point_derivatives`` (:mod:`stability.models.base`).
 
-Convention: ``x ~ exp(s t)``, ``t`` in units of ``1/Omega``, fixed frame; growth rate
-``Re s``, frequency ``Im s`` in units of the spin rate.
+Convention: every model's (:mod:`stability.models.base`).
 """
 
 from __future__ import annotations

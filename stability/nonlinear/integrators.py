@@ -24,6 +24,10 @@ an interruption (:func:`stability.interrupts.checkpoint`): Ctrl-C or SIGTERM end
 within milliseconds, with an ordinary exception, never from inside compiled code. The kernels
 hold no GIL and assign no array slices (a slice assignment makes numba compile its
 shape-mismatch message formatting, seconds of compile time for nothing).
+
+A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted
+(:func:`stability.jit.python`) unless the compiled ones are in memory: it compiles nothing; a
+long one runs compiled (:mod:`stability.execution`).
 """
 
 from __future__ import annotations
@@ -32,13 +36,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
-from scipy.optimize import brentq
 
-from stability.jit import Compiled, njit
+from stability.jit import njit, python
 
 from ..errors import InputError
-from ..execution import before_compiled_call
+from ..execution import before_compiled_call, engine, pick
 from ..interrupts import checkpoint
 from .kernels import CODES
 from .kernels import normal_force_lower_bound as _normal_force_lower_bound
@@ -60,7 +62,6 @@ __all__ = [
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-METHODS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
@@ -241,6 +242,8 @@ def _locate_dense(solver, n_of):
     """The first zero of ``n_of`` in a scipy solver's last step (``> 0`` at ``t_old``, ``<= 0`` at
     ``t``): Brent's method on the step's dense output (as ``solve_ivp``'s events), then the first
     representable time with ``N <= 0``."""
+    from scipy.optimize import brentq
+
     dense = solver.dense_output()
     t_new = solver.t
     t_ev = brentq(lambda tt: n_of(tt, dense(tt)), solver.t_old, t_new, xtol=1e-15, rtol=4 * np.finfo(float).eps)
@@ -651,6 +654,41 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     return status
 
 
+#: a run over at most this span of time (units of the model) runs interpreted
+#: (:func:`stability.jit.python`) unless the compiled slice is in memory; a longer one compiled
+#: from its first step. Measured (``python benchmarks/cold_start.py --crossover``,
+#: docs/performance.md): ~15 dopri5 steps per unit of time at the default tolerances, 0.35 ms
+#: per interpreted step against 0.0046 ms compiled, 7.9 s to compile on a cold cache (~22,600
+#: steps, ~1500 units) and 0.32 s to load on a warm one (~900 steps, ~60 units); the README's
+#: t_end = 50 (692 steps, 0.26 s interpreted) runs interpreted.
+INTERPRETED_SPAN = 100.0
+#: ... and an interpreted run that takes more steps than this (a stiff or fast one) goes on
+#: compiled from where it is
+INTERPRETED_STEPS = 2000
+
+
+def _slices(compiled: Callable, span: float) -> Callable[[int], tuple[Callable, int]]:
+    """The slice function and budget of each call of a run over ``span`` units of time: the
+    interpreted execution first if the span is at most :data:`INTERPRETED_SPAN` and
+    :func:`stability.execution.pick` chooses it, for at most :data:`INTERPRETED_STEPS` steps;
+    then the compiled one (with the compile notice); every slice interpreted if
+    ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so a switch changes
+    nothing but the execution."""
+    first = [pick(compiled, 0) if span <= INTERPRETED_SPAN else compiled]
+
+    def next_slice(budget: int) -> tuple[Callable, int]:
+        if engine() == "python":  # forced (TIPPE_KERNEL=python): the whole run interpreted
+            return python(compiled), budget
+        if first:
+            fn = first.pop()
+            if fn is not compiled:
+                return fn, min(budget, INTERPRETED_STEPS)
+        before_compiled_call(compiled, COMPILE_SECONDS)
+        return compiled, budget
+
+    return next_slice
+
+
 def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
     """Call ``step(budget)`` until it returns a final status, with an interruption point and a
     progress report (the time reached) between calls."""
@@ -696,8 +734,11 @@ def dopri5(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
+    slices = _slices(dopri5_slice, float(t_eval[-1] - t_eval[0]))
+
     def step(b: int):
-        st = dopri5_slice(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
+        fn, b = slices(b)
+        st = fn(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
@@ -725,8 +766,11 @@ def rk4(
     cnt = np.zeros(8, dtype=np.int64)
     w = 1 if watch else 0
 
+    slices = _slices(rk4_slice, float(t_eval[-1] - t_eval[0]))
+
     def step(b: int):
-        st = rk4_slice(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
+        fn, b = slices(b)
+        st = fn(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
         return st, fs[_T]
 
     _run_slices(step, t_eval, progress, budget)
@@ -753,7 +797,9 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     watch = watch or c_stick >= -1.0
 
     kw = {"first_step": step} if step else {}
-    solver = METHODS[method](fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
+    import scipy.integrate  # here: a second of imports that the compiled methods do not need
+
+    solver = getattr(scipy.integrate, method)(fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
     y = np.full((t_eval.size, y0.size), np.nan)
     y[0] = y0
     j, steps, status = 1, 0, SUCCESS
@@ -782,7 +828,7 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         t_a, y_a = (float(pend_t[i - 1]), pend_y[i - 1].copy()) if i > 0 else (ok_t, ok_y)
 
         def make(t0, y_start):
-            return METHODS[method](fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
+            return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
 
         return _relocate(make, n_of, t_a, y_a, float(pend_t[i]), pend_y[i].copy(), max_steps)
 
@@ -893,8 +939,6 @@ def integrate(
     c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-    if method in COMPILED_METHODS:
-        before_compiled_call(Compiled(dopri5_slice if method == "dopri5" else rk4_slice), COMPILE_SECONDS)
     if method == "dopri5":
         y, nfev, na, nr, st, ev = dopri5(
             code,

@@ -27,6 +27,7 @@ import numpy as np
 
 from stability.jit import njit, register_jitable
 
+from ..execution import pick
 from ..models.inertia import inertia_g
 
 __all__ = [
@@ -153,7 +154,7 @@ def h_cg(omega: np.ndarray, k: np.ndarray, *, q: float, sigma: float, mu: float)
     omega = np.asarray(omega)
     k = np.asarray(k)
     dtype = np.result_type(omega, k, float)
-    return _h_cg_rows(
+    return pick(_h_cg_rows, omega.shape[0])(
         np.ascontiguousarray(omega, dtype=dtype),
         np.ascontiguousarray(k, dtype=dtype),
         float(q),

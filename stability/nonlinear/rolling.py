@@ -30,7 +30,8 @@ import numpy as np
 from continuation.compiled import solve_dense
 from stability.jit import njit
 
-from .parameters import FR_INV, MU, SIGMA, Q
+from .parameters import MU, Q
+from .sphere import sphere_rows
 from .vectors import cross
 
 __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
@@ -41,22 +42,11 @@ STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
 
 @njit(cache=True)
 def _solve(y, p):
-    """``x = (omega', f_1, f_2, N)`` from the 6 x 6 system of the module docstring."""
-    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
-    w0, w1, w2 = y[0], y[1], y[2]
+    """``x = (omega', f_1, f_2, N)`` from the 6 x 6 system of the module docstring (the rows
+    it shares with the sliding sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
+    mq, mu = p[MU] * p[Q], p[MU]
     k0, k1, k2 = y[3], y[4], y[5]
-    kw = k0 * w0 + k1 * w1 + k2 * w2
-    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)
-    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)
-    a = np.zeros((6, 6), y.dtype)
-    b = np.zeros(6, y.dtype)
-    s1 = sg - 1.0
-    kk = (k0, k1, k2)
-    for i in range(3):
-        a[i, i] = 1.0
-        for j in range(3):
-            a[i, j] += s1 * kk[i] * kk[j]
-    mq = mu * q
+    a, b = sphere_rows(y, p)
     # - mu q V0' x k with V0' = (a1, -a0, 0): V0' x k = (-a0 k2, -a1 k2, a0 k0 + a1 k1)
     a[0, 0] += mq * k2
     a[1, 1] += mq * k2
@@ -65,23 +55,11 @@ def _solve(y, p):
     # + K x f = (-f2, f1, 0)
     a[0, 4] = -1.0
     a[1, 3] = 1.0
-    b[0] = -s1 * kw * c0 - mq * fr * k1
-    b[1] = -s1 * kw * c1 + mq * fr * k0
-    b[2] = -s1 * kw * c2
-    # (1) horizontal: mu V0'_h + mu q (omega' x k)_h - f_h = -mu q (omega x (omega x k))_h
-    a[3, 1] = mu + mq * k2
-    a[3, 2] = -mq * k1
+    # (1) horizontal: mu V0'_h = mu (omega'_2, -omega'_1), and - f_h
+    a[3, 1] += mu
     a[3, 3] = -1.0
-    a[4, 0] = -mu - mq * k2
-    a[4, 2] = mq * k0
+    a[4, 0] -= mu
     a[4, 4] = -1.0
-    b[3] = -mq * d0
-    b[4] = -mq * d1
-    # (1) vertical
-    a[5, 0] = mq * k1
-    a[5, 1] = -mq * k0
-    a[5, 5] = -1.0
-    b[5] = -mq * d2 - mu * fr
     return solve_dense(a, b)
 
 

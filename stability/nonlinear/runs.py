@@ -24,6 +24,7 @@ import xarray as xr
 
 from .._version import package_version
 from ..errors import InputError, ParameterTypeError
+from ..execution import pick
 from ..interrupts import deferred
 from ..parameters import (
     COMPUTABLE_MAX,
@@ -445,22 +446,10 @@ def simulate(
     flights = None
     try:
         with deferred():
+            options = dict(method=method, rtol=rtol, atol=atol, step=step, max_steps=max_steps)
+            options.update(progress=report, stick_tilt=stick_tilt)
             if on_contact_loss == "continue" and watched:
-                flights = run_with_flights(
-                    integrate,
-                    m.name,
-                    y0,
-                    t_eval,
-                    p,
-                    params,
-                    method=method,
-                    rtol=rtol,
-                    atol=atol,
-                    step=step,
-                    max_steps=max_steps,
-                    progress=report,
-                    stick_tilt=stick_tilt,
-                )
+                flights = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
                 sol = Solution(
                     flights.t,
                     flights.y,
@@ -473,20 +462,7 @@ def simulate(
                     flights.event,
                 )
             else:
-                sol = integrate(
-                    m.name,
-                    y0,
-                    t_eval,
-                    p,
-                    method=method,
-                    rtol=rtol,
-                    atol=atol,
-                    step=step,
-                    max_steps=max_steps,
-                    progress=report,
-                    watch_contact=watched,
-                    stick_tilt=stick_tilt,
-                )
+                sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
     finally:
         close()
     message = sol.message if flights is None else flights.message
@@ -545,7 +521,7 @@ def trajectory_dataset(
         good &= contact == 1
     forces = np.full((n, 3), np.nan)
     if good.any():
-        forces[good] = m.contact_forces(np.ascontiguousarray(y[good]), p)
+        forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
     if contact is not None:
         forces[contact == 0] = 0.0  # in flight: no contact force
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}

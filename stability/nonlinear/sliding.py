@@ -34,7 +34,8 @@ from continuation.compiled import solve_dense
 from stability.jit import njit
 
 from .friction import traction
-from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, SIGMA, Q
+from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q
+from .sphere import sphere_rows
 from .vectors import cross
 
 __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
@@ -45,47 +46,23 @@ STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_
 
 @njit(cache=True)
 def _solve(y, p):
-    """Accelerations, normal force and friction: ``(x, f1, f2)``, ``x`` as in the docstring."""
-    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
-    w0, w1, w2 = y[0], y[1], y[2]
+    """Accelerations, normal force and friction: ``(x, f1, f2)``, ``x`` as in the docstring (the
+    rows it shares with the rolling sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
+    q, fr, mu = p[Q], p[FR_INV], p[MU]
+    w0, w1 = y[0], y[1]
     k0, k1, k2 = y[3], y[4], y[5]
     v0, v1 = y[6], y[7]
-    kw = k0 * w0 + k1 * w1 + k2 * w2
-    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k = k'
-    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
     g1, g2 = traction(v0 - w1, v1 + w0, p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
-    a = np.zeros((6, 6), y.dtype)
-    b = np.zeros(6, y.dtype)
-    s1 = sg - 1.0
-    kk = (k0, k1, k2)
-    for i in range(3):  # I0 omega'
-        a[i, i] = 1.0
-        for j in range(3):
-            a[i, j] += s1 * kk[i] * kk[j]
+    a, b = sphere_rows(y, p)
     mq = mu * q
     # - mu q V0' x k,  V0' = (b1, b2, 0): V0' x k = (b2 k3, -b1 k3, b1 k2 - b2 k1)
     a[0, 4] = -mq * k2
     a[1, 3] = mq * k2
     a[2, 3] = -mq * k1
     a[2, 4] = mq * k0
-    # right-hand side of (2): -(sigma-1)(k.omega)(omega x k) - mu q fr_inv k x K, k x K = (k2, -k1, 0)
-    b[0] = -s1 * kw * c0 - mq * fr * k1
-    b[1] = -s1 * kw * c1 + mq * fr * k0
-    b[2] = -s1 * kw * c2
-    # (1), horizontal: mu V0' + mu q (omega' x k)_h - f_h = -mu q (omega x (omega x k))_h
+    # (1), horizontal: mu V0'
     a[3, 3] = mu
     a[4, 4] = mu
-    a[3, 1] = mq * k2
-    a[3, 2] = -mq * k1
-    a[4, 2] = mq * k0
-    a[4, 0] = -mq * k2
-    b[3] = -mq * d0
-    b[4] = -mq * d1
-    # (1), vertical: mu q (omega' x k)_3 - N = -mu q (omega x (omega x k))_3 - mu fr_inv
-    a[5, 0] = mq * k1
-    a[5, 1] = -mq * k0
-    a[5, 5] = -1.0
-    b[5] = -mq * d2 - mu * fr
     if p[NORMAL] == 0.0:
         # f = g known: K x f = (-g2, g1, 0) moves to the right of (2); f_h to the right of (1)
         b[0] += g2

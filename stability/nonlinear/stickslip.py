@@ -256,37 +256,15 @@ def stick_slip(
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:
-            sol = solve_ivp(
-                slip_rhs,
-                (t, t_end),
-                y,
-                method=method,
-                t_eval=t_eval,
-                events=(ev_slip_stop, ev_slip_contact),
-                rtol=rtol,
-                atol=atol,
-            )
+            rhs, events = slip_rhs, (ev_slip_stop, ev_slip_contact)
         else:
-            sol = solve_ivp(
-                roll_rhs,
-                (t, t_end),
-                y,
-                method=method,
-                t_eval=t_eval,
-                events=(ev_stick_break, ev_stick_contact),
-                rtol=rtol,
-                atol=atol,
-            )
-        if sol.status < 0:
+            rhs, events = roll_rhs, (ev_stick_break, ev_stick_contact)
+        sol = solve_ivp(rhs, (t, t_end), y, method=method, t_eval=t_eval, events=events, rtol=rtol, atol=atol)
+        if sol.status < 0:  # what was integrated is kept, then the loop ends (hit is empty)
             status, message = -1, f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
-            out = sol.y.T
-            ts.append(sol.t)
-            ys.append(out if phase == _SLIP else np.array([_sliding_state(r) for r in out]).reshape(-1, 10))
-            phases.append(np.full(sol.t.size, phase, np.int8))
-            break
         keep = sol.t
         out = sol.y.T
-        hit = [i for i, te in enumerate(sol.t_events) if te.size]
+        hit = [i for i, te in enumerate(sol.t_events) if te.size] if sol.status >= 0 else []
         if hit:
             which = min(hit, key=lambda i: float(sol.t_events[i][0]))  # the earliest event
             t_ev = float(sol.t_events[which][0])
@@ -330,30 +308,31 @@ def stick_slip(
     ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg)
     stuck = ph == _STICK
     lim = np.full(t_all.size, a_s)
-    if stuck.any():
-        forces = rolling.contact_forces(np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]])), p)
+
+    def put_forces(sel: np.ndarray, forces: np.ndarray, *, sticking: bool) -> None:
+        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (a
+        sticking sample's friction is horizontal)."""
         f = ds.friction.values.copy()
-        f[stuck, 0:2] = forces[:, 0:2]
-        f[stuck, 2] = 0.0
+        f[sel, 0:2] = forces[:, 0:2]
+        if sticking:
+            f[sel, 2] = 0.0
         ds["friction"].values = f
         mag = ds.friction_magnitude.values.copy()
-        mag[stuck] = np.hypot(forces[:, 0], forces[:, 1])
+        mag[sel] = np.hypot(forces[:, 0], forces[:, 1])
         ds["friction_magnitude"].values = mag
         nf = ds.normal_force.values.copy()
-        nf[stuck] = forces[:, 2]
+        nf[sel] = forces[:, 2]
         ds["normal_force"].values = nf
+
+    if stuck.any():
+        put_forces(
+            stuck,
+            rolling.contact_forces(np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]])), p),
+            sticking=True,
+        )
     slipping = ~stuck
     if slipping.any():  # the exact law (7) while slipping (the run's p_reg is the regularised one)
-        forces = sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p)
-        f = ds.friction.values.copy()
-        f[slipping, 0:2] = forces[:, 0:2]
-        ds["friction"].values = f
-        mag = ds.friction_magnitude.values.copy()
-        mag[slipping] = np.hypot(forces[:, 0], forces[:, 1])
-        ds["friction_magnitude"].values = mag
-        nf = ds.normal_force.values.copy()
-        nf[slipping] = forces[:, 2]
-        ds["normal_force"].values = nf
+        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p), sticking=False)
     if scaled:
         lim = a_s * ds.normal_force.values / n_eq
     ds["friction"].attrs["comment"] = (

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..errors import InputError
 
-__all__ = ["axes_or_new", "panels_or_new"]
+if TYPE_CHECKING:
+    import numpy as np
+    import xarray as xr
+
+__all__ = ["axes_or_new", "panels_or_new", "run_panels"]
 
 
 def axes_or_new(
@@ -44,3 +48,10 @@ def panels_or_new(
     fig = Figure(figsize=figsize, layout="constrained")
     grid = fig.subplots(1 if row else n, n if row else 1, squeeze=False, **subplots_kw)
     return fig, list(grid.ravel())
+
+
+def run_panels(run: xr.Dataset, axes: Sequence[Axes] | None) -> tuple[Figure, list[Axes], np.ndarray]:
+    """The two panels of a run's figure over its time (:func:`panels_or_new`: a column of 2, the
+    time axis shared) and the run's times ``run.time``."""
+    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
+    return fig, axes, run.time.values

@@ -10,13 +10,21 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
-from ._layout import panels_or_new
+from ._layout import run_panels
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["plot_contact_loss_map", "plot_contact_run", "plot_flight_run"]
+
+
+def _normal_force_panel(ax: Axes, t: np.ndarray, run: xr.Dataset) -> None:
+    """The run's normal force ``N(t)`` with its equilibrium value ``mu fr_inv`` and zero."""
+    ax.plot(t, run.normal_force.values, color="C0", label="N(t)")
+    ax.axhline(run.attrs["mu"] * run.attrs["fr_inv"], color="0.5", ls=":", label=r"$\mu\,$Fr$^{-1}$ (equilibrium)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_ylabel("normal force N")
 
 
 def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple[Figure, list[Axes]]:
@@ -34,16 +42,11 @@ def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tupl
     -------
     (Figure, list of 2 Axes)
     """
-    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
-    t = run.time.values
+    fig, axes, t = run_panels(run, axes)
     event = run.attrs.get("event", "none")
     t_ev = float(run.attrs.get("event_time", math.nan))
-    ax = axes[0]
-    ax.plot(t, run.normal_force.values, color="C0", label="N(t)")
-    ax.axhline(run.attrs["mu"] * run.attrs["fr_inv"], color="0.5", ls=":", label=r"$\mu\,$Fr$^{-1}$ (equilibrium)")
-    ax.axhline(0.0, color="k", lw=0.8)
-    ax.set_ylabel("normal force N")
-    ax2 = axes[1]
+    ax, ax2 = axes
+    _normal_force_panel(ax, t, run)
     ax2.plot(t, run.polar_angle.values, color="C1", label="tilt")
     stick = float(run.attrs.get("stick_tilt", math.nan))
     if np.isfinite(stick):
@@ -78,13 +81,9 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     -------
     (Figure, list of 2 Axes)
     """
-    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
-    t = run.time.values
+    fig, axes, t = run_panels(run, axes)
     ax, ax2 = axes
-    ax.plot(t, run.normal_force.values, color="C0", label="N(t)")
-    ax.axhline(run.attrs["mu"] * run.attrs["fr_inv"], color="0.5", ls=":", label=r"$\mu\,$Fr$^{-1}$ (equilibrium)")
-    ax.axhline(0.0, color="k", lw=0.8)
-    ax.set_ylabel("normal force N")
+    _normal_force_panel(ax, t, run)
     ax2.plot(t, run.height.values, color="C1", label="height of the lowest point")
     ax2.axhline(0.0, color="k", lw=0.8)
     ax2.set_ylabel("height (units of R)")

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
-from ._layout import panels_or_new
+from ._layout import run_panels
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -32,8 +32,7 @@ def plot_stick_slip(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     -------
     (Figure, list of 2 Axes)
     """
-    fig, axes = panels_or_new(axes, 2, (6.4, 5.6), sharex=True)
-    t = run.time.values
+    fig, axes, t = run_panels(run, axes)
     stuck = run.phase.values == 1
     ax, ax2 = axes
     ax.plot(t, run.slip_speed.values, color="C0", lw=1.0, label=r"slip speed $|V_c|$")

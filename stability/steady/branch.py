@@ -47,28 +47,25 @@ import xarray as xr
 
 from continuation.engine import TraceOptions, trace
 from continuation.problem import StepResult
-from stability.jit import Compiled
+from stability.jit import python
 
 from ..errors import ConvergenceError, DomainError
-from ..execution import before_compiled_call
+from ..execution import pick
 from ..linear.neutral_curves import CURVE_MAX_ANGLE
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
-from . import family, linearisation
+from . import family
 from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
 from .states import state_integrals
 from .verdicts import flag_of
 
-#: the first branch's compilation on a cold numba cache (the compiled step, the linearisations
-#: and the nonlinear right-hand side): measured 25 s of wall time on the 2-core machine
-COMPILE_SECONDS = 25.0
-#: the compiled functions a branch runs with the compiled step, and with the engine's Python
-#: path (the notice's question; ``tippe warmup``)
-COMPILED_STEP = Compiled(kernels.step, linearisation._jacobians)
-PYTHON_STEP = Compiled(kernels.residual_and_jacobian, linearisation._jacobians)
+#: branches of at least this many points (``~pi / max_step``) run the compiled step by default;
+#: fewer run the engine's Python path on the interpreted residual (stability.execution's rule;
+#: the crossover measured by benchmarks/cold_start.py, docs/performance.md)
+BRANCH_COMPILED_FROM = 1000
 
 __all__ = ["KINDS", "SteadyBranchProblem", "branch_points", "points_dataset", "steady_branch"]
 
@@ -116,8 +113,11 @@ class SteadyBranchProblem:
         jellett_max: float = math.inf,
         jellett_min: float = 0.0,
         model: str = "sliding",
+        compiled: bool = True,
     ):
         m = get_nonlinear_model(model)
+        #: the residual's functions: compiled, or their interpreted execution (stability.jit.python)
+        self.kernels = kernels if compiled else python(kernels)
         self.params = dict(params)
         self.p = p
         self.q = params["q"]
@@ -134,11 +134,11 @@ class SteadyBranchProblem:
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
         """``(F . e_2) / sin(theta)`` (unscaled), at ``theta = 0`` the limit."""
-        return kernels.divided(float(theta), float(lam), self.p, self.q, self.code, self.n_full)[0]
+        return self.kernels.divided(float(theta), float(lam), self.p, self.q, self.code, self.n_full)[0]
 
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
-        r, rt, rl = kernels.residual_and_jacobian(
+        r, rt, rl = self.kernels.residual_and_jacobian(
             float(u[0]), float(u[1]), self.p, self.q, self.code, self.n_full, self.weight
         )
         return np.array([r]), np.array([[rt, rl]])
@@ -158,14 +158,14 @@ class SteadyBranchProblem:
         key = (float(u[0]), float(u[1]))
         if self._last is not None and self._last[0] == key:
             return self._last[1]
-        j, jt, jl = kernels.jellett(key[0], key[1], self.q, self.params["sigma"], self.params["mu"])
+        j, jt, jl = self.kernels.jellett(key[0], key[1], self.q, self.params["sigma"], self.params["mu"])
         out = (j, np.array([jt, jl]))
         self._last = (key, out)
         return out
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """``[theta, pi - theta, jellett_max - |J|(, |J| - jellett_min)]``, ``>= 0`` on the branch."""
-        return kernels.constraint_values(
+        return self.kernels.constraint_values(
             float(u[0]), self.jellett(u)[0], self.jellett_max, self.jellett_min, self.degenerate
         )
 
@@ -189,7 +189,7 @@ class SteadyBranchProblem:
         """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
         (corrector, tangent, constraints and test function in one compiled call)."""
         return StepResult(
-            *kernels.step(
+            *self.kernels.step(
                 self.p,
                 self.q,
                 self.params["sigma"],
@@ -228,7 +228,7 @@ class SteadyBranchProblem:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
-            _, _, rl = kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full, w)
+            _, _, rl = self.kernels.residual_and_jacobian(theta, math.log(lam), self.p, self.q, self.code, self.n_full, w)
             r = self.divided_residual(theta, lam)
             step = r / (rl / lam * (lam * lam + w))
             lam -= step
@@ -286,7 +286,7 @@ def steady_branch(
     jellett_max: Any = None,
     max_step: Any = 0.02,
     max_angle: Any = CURVE_MAX_ANGLE,
-    compiled: bool = True,
+    compiled: bool | None = None,
 ) -> xr.Dataset:
     """The family of tilted steady states, traced by continuation against Jellett's integral.
 
@@ -302,9 +302,11 @@ def steady_branch(
     max_step, max_angle : float
         The engine's largest step (arclength in ``(theta, log lam)``) and the
         largest turn of the tangent per step (radians): about ``pi / max_step`` points.
-    compiled : bool, default True
+    compiled : bool, optional
         Let the engine use the problem's compiled step
-        (:func:`stability.steady.branch_compiled.step`); False: the engine's Python path (the
+        (:func:`stability.steady.branch_compiled.step`); False: the engine's Python path on the
+        interpreted residual; None (default): compiled if it is in memory or the branch has
+        :data:`BRANCH_COMPILED_FROM` points or more (:func:`stability.execution.pick`) (the
         same points to rounding).
 
     Returns
@@ -336,12 +338,13 @@ def steady_branch(
     # a branch is at most ~pi / max_step points (the engine's max_points is 100000): 1e-4 or more
     max_step = check_interval("max_step", max_step, MIN_MAX_STEP, math.inf, closed="left")
     max_angle = check_interval("max_angle", max_angle, 1e-6, math.pi, closed="both")
+    if compiled is None:  # by size (stability.execution.pick); the compiled step if in memory
+        compiled = pick(kernels.step, math.pi / max_step, below=BRANCH_COMPILED_FROM) is kernels.step
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
     check_scales(params, jmax, jellett_name="jellett_max")
-    before_compiled_call(COMPILED_STEP if compiled else PYTHON_STEP, COMPILE_SECONDS)
-    prob = SteadyBranchProblem(params, p)
+    prob = SteadyBranchProblem(params, p, compiled=compiled)
     attrs = product_attrs(
         "steady_branch",
         "Tilted steady states of the sliding Tippe top against Jellett's integral",

@@ -139,47 +139,34 @@ def coulomb_end(
     par = dict(params, alpha_k=float(ds.attrs["alpha_k"]))
     switches = f"static limit alpha_s = {float(ds.attrs['alpha_s']):.6g}; {n_sw} stick/slip switches (hybrid run to t = {run['t_end']:.6g})"
     jel = float(j[-1])
-    if run["event"] != "none":
-        return (
-            dict(
-                tilt=float(ds.polar_angle[-1]),
-                kind=run["event"],
-                method="simulation",
-                jellett=float(j[0]),
-                initial_energy=e0,
-                energy=float(ds.energy[-1]),
-                precession_rate=math.nan,
-                axial_spin=run["axial_spin"],
-                state=None,
-                reason=f"Coulomb top (alpha_k > 0): {switches}; {run['event'].replace('_', ' ')} at t = "
-                f"{run['event_time']:.6g}: the model does not hold beyond, no final state",
-                parameters=par,
-                initial_tilt=tilt0,
-                event=run["event"],
-                event_time=run["event_time"],
-            ),
-            run,
-            None,
+    common = dict(
+        method="simulation",
+        jellett=float(j[0]),
+        initial_energy=e0,
+        precession_rate=math.nan,
+        axial_spin=run["axial_spin"],
+        state=None,
+        parameters=par,
+        initial_tilt=tilt0,
+    )
+    if run["event"] != "none" or phase_end != "stick":  # no rolling end: the run's last sample
+        if run["event"] != "none":
+            kind, end = run["event"], (
+                f"{run['event'].replace('_', ' ')} at t = {run['event_time']:.6g}: the model does not hold "
+                "beyond, no final state"
+            )
+            event = dict(event=run["event"], event_time=run["event_time"])
+        else:
+            kind, end, event = "unsettled", f"still slipping at t_max = {t_max:g}", {}
+        fields = dict(
+            tilt=float(ds.polar_angle[-1]),
+            kind=kind,
+            energy=float(ds.energy[-1]),
+            reason=f"Coulomb top (alpha_k > 0): {switches}; {end}",
+            **event,
+            **common,
         )
-    if phase_end != "stick":
-        return (
-            dict(
-                tilt=float(ds.polar_angle[-1]),
-                kind="unsettled",
-                method="simulation",
-                jellett=float(j[0]),
-                initial_energy=e0,
-                energy=float(ds.energy[-1]),
-                precession_rate=math.nan,
-                axial_spin=run["axial_spin"],
-                state=None,
-                reason=f"Coulomb top (alpha_k > 0): {switches}; still slipping at t_max = {t_max:g}",
-                parameters=par,
-                initial_tilt=tilt0,
-            ),
-            run,
-            None,
-        )
+        return fields, run, None
     t_stick = float(ds.switch_time.values[last_stick[-1]]) if last_stick.size else 0.0
     i_stick = int(np.searchsorted(ds.time.values, t_stick, side="right"))  # the first rolling sample
     e_s = float(np.mean(ds.energy.values[i_stick:]))  # constant while rolling (to the run's tolerance)
@@ -194,19 +181,6 @@ def coulomb_end(
         f"the rolling band [{lo:.6g}, {hi:.6g}] deg where U_J <= E (seen: [{seen.min():.6g}, {seen.max():.6g}] deg "
         f"up to t_max = {t_max:g}); the friction rolling needs peaks at {need:.3g} of the static limit"
     )
-    fields = dict(
-        tilt=tilt_s,
-        kind="rolling",
-        method="simulation",
-        jellett=float(j[0]),
-        initial_energy=e0,
-        energy=e_s,
-        precession_rate=math.nan,
-        axial_spin=run["axial_spin"],
-        state=None,
-        reason=reason,
-        parameters=par,
-        initial_tilt=tilt0,
-    )
+    fields = dict(tilt=tilt_s, kind="rolling", energy=e_s, reason=reason, **common)
     run["tilt_change"] = float(np.ptp(seen))
     return fields, run, (jel, e_s)

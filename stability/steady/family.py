@@ -55,6 +55,7 @@ import numpy as np
 
 from stability.jit import njit, register_jitable
 
+from ..execution import pick
 from ..models.inertia import inertia_g, transverse_inertia_g
 
 __all__ = [
@@ -447,7 +448,7 @@ def level_states(jellett, q, sigma, fr_inv, mu):
 def tilted_cosines(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float) -> list[float]:
     """Cosines of every tilted steady state (``-1 < c < 1``) on the Jellett level ``J``,
     decreasing (increasing tilt): :func:`tilted_roots`, through :func:`level_states`."""
-    rows = level_states(float(jellett), float(q), float(sigma), float(fr_inv), float(mu))
+    rows = pick(level_states, 1)(float(jellett), float(q), float(sigma), float(fr_inv), float(mu))
     return rows[1:-1, 0].tolist()
 
 
@@ -484,8 +485,9 @@ def state_vector(theta: Any, lam: Any, q: float, phi: Any = 0.0) -> np.ndarray:
     theta, lam, phi = np.broadcast_arrays(np.asarray(theta, float), np.asarray(lam, float), np.asarray(phi, float))
     out = np.empty(theta.shape + (8,))
     flat = out.reshape(-1, 8)
+    core = pick(state_core, flat.shape[0])  # stability.execution's rule
     for i, (t, la, ph) in enumerate(zip(theta.ravel(), lam.ravel(), phi.ravel())):
-        state_core(float(t), float(la), float(q), float(ph), flat[i])
+        core(float(t), float(la), float(q), float(ph), flat[i])
     return out
 
 

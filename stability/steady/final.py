@@ -35,10 +35,8 @@ from typing import Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from stability.jit import Compiled
-
 from ..errors import DomainError
-from ..execution import announce, before_compiled_call
+from ..execution import announce, pick
 from ..nonlinear.runs import _auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from . import family
@@ -47,11 +45,6 @@ from .products import DEGREE, check_scales, flag_attrs, potential_curve, product
 from .states import point_integrals
 from .verdicts import STABLE, UNSTABLE, flag_of
 
-#: the first prediction's compilation on a cold numba cache (the level's closed forms and the
-#: integrals of the initial state): measured 5.5 s of wall time on the 2-core machine
-COMPILE_SECONDS = 6.0
-#: the compiled functions every prediction runs (the notice's question; ``tippe warmup``)
-COMPILED = Compiled(family.level_states, point_integrals)
 
 __all__ = [
     "MATCH_DEG",
@@ -347,12 +340,12 @@ def candidates(
 ) -> tuple[Candidate, ...]:
     """Every steady state of the level ``J`` with its energy, flag and reachability (``U_J <= E0``).
 
-    The closed forms in one compiled call (:func:`stability.steady.family.level_states`): no
+    The closed forms in one call (:func:`stability.steady.family.level_states`, interpreted): no
     integration, no eigenvalues (the flag is the energy criterion,
     :mod:`stability.steady.verdicts`; ``alpha_v > 0``)."""
     J, E0 = float(jellett), float(initial_energy)
     tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
-    rows = family.level_states(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
+    rows = pick(family.level_states, 1)(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
     last = len(rows) - 1
     out = []
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
@@ -529,7 +522,6 @@ def final_state(
         )
     simulation = check_flag("simulation", simulation)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
-    before_compiled_call(COMPILED, COMPILE_SECONDS)
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
     return final_state_from(
@@ -573,7 +565,8 @@ def final_state_from(
         As in :func:`final_state`.
     """
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-    J0, E0 = point_integrals(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    # one query: interpreted unless compiled code is in memory (stability.execution.pick)
+    J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
@@ -645,25 +638,21 @@ def final_state_from(
     tilt, energy, run = settle(
         y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt
     )
-    if run.event == "stick_contact":
-        return FinalState(
-            tilt=tilt,
-            kind=run.event,
-            method="simulation",
-            energy=energy,
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            reason=f"{reason}; a run decided: the motion reaches its stick at {tilt:.4g} degrees after "
-            f"t = {run.event_time:.6g} (units of 1/Omega): the sphere model's end"
-            + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
-            + " is a tilt the toy cannot have",
-            run=run,
-            event=run.event,
-            event_time=run.event_time,
-            **common,
-        )
     if run.event != "none":
+        if run.event == "stick_contact":
+            what = (
+                f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
+                "1/Omega): the sphere model's end"
+                + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
+                + " is a tilt the toy cannot have"
+            )
+            contact = {}  # stays "not checked": the stick ended the run first
+        else:
+            what = (
+                f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
+                "does not hold beyond, no final state"
+            )
+            contact = {"contact": "lost" if run.event == "contact_lost" else "held"}
         return FinalState(
             tilt=tilt,
             kind=run.event,
@@ -672,12 +661,11 @@ def final_state_from(
             precession_rate=math.nan,
             axial_spin=run.axial_spin,
             state=None,
-            reason=f"{reason}; a run decided: {run.event.replace('_', ' ')} at t = {run.event_time:.6g} "
-            f"(tilt {tilt:.6g} deg): the model does not hold beyond, no final state",
+            reason=f"{reason}; a run decided: {what}",
             run=run,
             event=run.event,
             event_time=run.event_time,
-            contact="lost" if run.event == "contact_lost" else "held",
+            **contact,
             **common,
         )
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
@@ -710,14 +698,16 @@ def final_state_from(
 
 def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
     """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
-    equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve."""
+    equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve (interpreted
+    unless compiled code is in memory: :func:`stability.execution.pick`)."""
     from ..nonlinear import get_nonlinear_model
     from ..nonlinear.parameters import pack
 
     state = np.zeros((1, 10))
     state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
     p = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"], alpha_v=params["alpha_v"])
-    return float(get_nonlinear_model("sliding").contact_forces(state, p)[0, 2])
+    forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
+    return float(forces(state, p)[0, 2])
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:

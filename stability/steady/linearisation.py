@@ -50,6 +50,7 @@ import numpy as np
 from stability.jit import njit
 
 from ..errors import InputError
+from ..execution import pick
 from ..linear.spectra import spectrum
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.kernels import CODES
@@ -91,6 +92,12 @@ for _i in (0, 3):
     ROTATION[_i + 1, _i] = 1.0
 ROTATION[6, 7] = -1.0
 ROTATION[7, 6] = 1.0
+
+
+#: batches of at least this many states get their Jacobians compiled; fewer run interpreted
+#: (each state costs 8 interpreted right-hand sides, 0.76 ms measured: 512 of them about what
+#: importing numba and loading the compiled one cost on a warm cache; benchmarks/cold_start.py)
+JACOBIANS_COMPILED_FROM = 512
 
 
 @njit(cache=True)
@@ -147,7 +154,8 @@ def precessing_jacobians(y: np.ndarray, lam: np.ndarray, p: np.ndarray, model: s
     m = get_nonlinear_model(model)
     y = np.ascontiguousarray(np.atleast_2d(y), dtype=float)
     lam = np.ascontiguousarray(np.broadcast_to(np.asarray(lam, float), (y.shape[0],)))
-    return _jacobians(y, lam, p, CODES[m.name], len(m.state))
+    jacobians = pick(_jacobians, y.shape[0], below=JACOBIANS_COMPILED_FROM)  # stability.execution's rule
+    return jacobians(y, lam, p, CODES[m.name], len(m.state))
 
 
 def neutral_covectors(y: np.ndarray, *, q: float, sigma: float, mu: float) -> tuple[np.ndarray, np.ndarray]:

@@ -20,12 +20,12 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from stability.jit import Compiled, njit, register_jitable
+from stability.jit import njit, register_jitable
 
-from ..execution import before_compiled_call
+from ..execution import pick
 from ..nonlinear.quantities import centre_velocity, energy_terms, jellett_integral
 from ..parameters import DEFAULT_MU, as_scalar
-from . import family, linearisation
+from . import family
 from .linearisation import state_modes
 from .products import (
     DEGREE,
@@ -39,9 +39,6 @@ from .products import (
 )
 from .verdicts import flag_of
 
-#: the first call's compilation on a cold numba cache (the level's closed forms, the integrals,
-#: the linearisations and the nonlinear right-hand side they use): measured 18 s of wall time
-COMPILE_SECONDS = 20.0
 
 __all__ = ["point_integrals", "state_integrals", "steady_states", "upright_jellett"]
 
@@ -78,11 +75,6 @@ def point_integrals(y, q, sigma, fr_inv, mu):
     return _integrals_of(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], q, sigma, fr_inv, mu)
 
 
-#: the compiled functions every call of :func:`steady_states` runs (the notice's question;
-#: ``tippe warmup``)
-COMPILED = Compiled(family.level_states, _integrals, linearisation._jacobians)
-
-
 def state_integrals(
     y: np.ndarray, *, q: float, sigma: float, fr_inv: float, mu: float
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -91,7 +83,7 @@ def state_integrals(
     :func:`~stability.nonlinear.quantities.energy_terms`, the ones :func:`stability.simulate`
     reports ``h_cg`` and ``energy`` with), compiled."""
     y = np.ascontiguousarray(np.atleast_2d(y)[:, :8], dtype=np.float64)
-    return _integrals(y, float(q), float(sigma), float(fr_inv), float(mu))
+    return pick(_integrals, y.shape[0])(y, float(q), float(sigma), float(fr_inv), float(mu))
 
 
 def steady_states(
@@ -150,8 +142,7 @@ def steady_states(
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
     check_scales(params, J)
-    before_compiled_call(COMPILED, COMPILE_SECONDS)
-    table = family.level_states(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
+    table = pick(family.level_states, 1)(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]
     kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
     cosines, tests, scales, lam = table[:, 0], table[:, 2], table[:, 3], table[:, 4]
