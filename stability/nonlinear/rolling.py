@@ -31,7 +31,7 @@ from continuation.compiled import solve_dense
 from stability.jit import njit
 
 from .parameters import MU, Q
-from .sphere import sphere_rows
+from .sphere import normal_force_terms, sphere_rows
 from .vectors import cross
 
 __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
@@ -117,18 +117,12 @@ def normal_force(y, p):
     the sum of the magnitudes of the terms; ``(nan, inf)`` where ``lambda`` is not safely
     positive.
     """
-    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
-    w0, w1, w2 = y[0], y[1], y[2]
-    k0, k1, k2 = y[3], y[4], y[5]
-    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k
-    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
+    q, mu = p[Q], p[MU]
+    n0, s0, t_row, s_row, kd = normal_force_terms(y, p)
     mq = mu * q
-    lam = 1.0 + mu + 2.0 * mq * k2
+    lam = 1.0 + mu + 2.0 * mq * y[5]
     if not lam > 1e-8:
         return np.nan, np.inf
-    t_gyro = -(sg - 1.0) * (k0 * w0 + k1 * w1 + k2 * w2) * (k1 * c0 - k0 * c1)
-    t_grav = -mq * fr * (k0 * k0 + k1 * k1)
-    t_cen = mq * (k0 * d0 + k1 * d1)
+    t_cen = mq * kd
     lever = mq / lam
-    n = mu * fr + mq * d2 + lever * (t_gyro + t_grav + t_cen)
-    return n, abs(mu * fr) + abs(mq * d2) + abs(lever) * (abs(t_gyro) + abs(t_grav) + abs(t_cen))
+    return n0 + lever * (t_row + t_cen), s0 + abs(lever) * (s_row + abs(t_cen))

@@ -35,7 +35,7 @@ from stability.jit import njit
 
 from .friction import traction
 from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q
-from .sphere import sphere_rows
+from .sphere import normal_force_terms, sphere_rows
 from .vectors import cross
 
 __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
@@ -154,23 +154,19 @@ def normal_force(y, p):
     Where a denominator is not safely positive: ``(nan, inf)``. The integrators' scipy path
     uses it to screen the accepted steps (:func:`stability.nonlinear.kernels.normal_force_lower_bound`).
     """
-    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
-    w0, w1, w2 = y[0], y[1], y[2]
+    q, fr, mu = p[Q], p[FR_INV], p[MU]
     k0, k1, k2 = y[3], y[4], y[5]
-    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k
-    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
-    g1, g2 = traction(y[6] - w1, y[7] + w0, p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
+    n0, s0, t_row, s_row, kd = normal_force_terms(y, p)
+    g1, g2 = traction(y[6] - y[1], y[7] + y[0], p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
     mq = mu * q
     den = 1.0 - mq * q * k2 * k2
     if not den > 1e-8:
         return np.nan, np.inf
-    t_gyro = -(sg - 1.0) * (k0 * w0 + k1 * w1 + k2 * w2) * (k1 * c0 - k0 * c1)
-    t_grav = -mq * fr * (k0 * k0 + k1 * k1)
-    t_cen = -mq * q * k2 * (k0 * d0 + k1 * d1)
+    t_cen = -mq * q * k2 * kd
     t_fric = (1.0 + q * k2) * (k0 * g1 + k1 * g2)
     lever = mq / den
-    top = mu * fr + mq * d2 + lever * (t_gyro + t_grav + t_cen)
-    scale = abs(mu * fr) + abs(mq * d2) + abs(lever) * (abs(t_gyro) + abs(t_grav) + abs(t_cen))
+    top = n0 + lever * (t_row + t_cen)
+    scale = s0 + abs(lever) * (s_row + abs(t_cen))
     if p[NORMAL] == 0.0:
         return top + lever * t_fric, scale + abs(lever * t_fric)
     bottom = 1.0 - lever * t_fric / (mu * fr)
