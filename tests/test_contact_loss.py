@@ -293,3 +293,105 @@ def test_scipy_batched_check_locates_the_event(batch, monkeypatch):
     assert abs(ds.attrs["event_time"] - ref) <= 1e-6 * ref
     assert float(ds.time[-1]) == ds.attrs["event_time"] and np.all(np.diff(ds.time.values) > 0)
     assert np.isfinite(ds.omega.values).all() and float(ds.normal_force.min()) > -1e-9
+
+
+def test_rolling_contact_loss_time_against_independent_dop853():
+    """The rolling model's constraint force can point down too: its run stops at the first zero
+    of N with event contact_lost. Reference: the rolling sphere of
+    stability.nonlinear.reference.rolling_rhs (plain numpy, the centre's acceleration eliminated
+    first and a 3 x 3 system for omega', not the kernels' 6 x 6 one), integrated by scipy's
+    DOP853 with a terminal event on N = mu fr_inv + mu q (k'')_3, k'' = omega' x k + omega x
+    (omega x k) (the vertical component of eq. 1 with O at height R). Tolerance 1e-6 relative on
+    the time (the issue's; both runs at rtol 1e-11 agree to ~1e-9); N of the run against the
+    same vertical equation at the run's own states to 1e-10 (round-off of two eliminations of
+    an O(1) system)."""
+    from stability.nonlinear.reference import rolling_rhs
+
+    q, fr, sg = -0.1, 0.05, 1.0
+    k0 = _unit([0.3, 0, 1])
+    y0 = np.concatenate([[2.0, 0.0, 1.0], k0, [0.0, 0.0]])
+
+    def n_ref(t, y, *_):
+        wd = rolling_rhs(t, y, q, fr, sg, MU)[0:3]
+        w, k = y[0:3], y[3:6]
+        return MU * fr + MU * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+
+    n_ref.terminal = True
+    n_ref.direction = -1
+    ref = solve_ivp(
+        rolling_rhs, (0.0, 20.0), y0, method="DOP853", rtol=1e-11, atol=1e-13, events=n_ref, args=(q, fr, sg, MU)
+    )
+    assert ref.t_events[0].size == 1
+    t_ref = ref.t_events[0][0]
+    ds = simulate("rolling", t_end=20, q=q, fr_inv=fr, sigma=sg, omega=[2, 0, 1], k=k0, rtol=1e-11, atol=1e-13)
+    assert ds.attrs["event"] == "contact_lost" and ds.attrs["status"] == 0
+    assert abs(ds.attrs["event_time"] - t_ref) <= 1e-6 * t_ref
+    assert float(ds.time[-1]) == ds.attrs["event_time"]
+    states = np.column_stack([ds.omega.values, ds.k.values, ds.position.values])
+    n_run = np.array([n_ref(0.0, s) for s in states])
+    np.testing.assert_allclose(ds.normal_force.values, n_run, rtol=0, atol=1e-10)
+    assert abs(n_run[-1]) < 1e-8 and n_run.min() > -1e-8
+
+
+def test_closed_form_normal_force_against_independent_equations():
+    """stability.nonlinear.sliding.normal_force (closed form, the eigenvector u = k x K of the
+    reduced 3 x 3 system) against N of the independent Newton/Euler-about-G system of this file
+    (numpy's LU), at random unit-k states with viscous friction; tolerance 1e-12 of its scale
+    (round-off of two eliminations). With Coulomb friction proportional to N (normal="actual")
+    and a k off the unit sphere (as an integrated k drifts), against the kernel's own 6 x 6
+    solve (contact_forces: a different elimination of the same equations), 1e-12 of the scale."""
+    from stability.nonlinear.parameters import pack
+    from stability.nonlinear.sliding import contact_forces, normal_force
+
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        q, fr, sg, av = rng.uniform(-0.5, 0.5), rng.uniform(0.01, 1.0), rng.uniform(0.3, 2.0), rng.uniform(0, 1)
+        y = rng.normal(size=10)
+        y[3:6] = _unit(y[3:6])
+        n, scale = normal_force(y, pack(q=q, fr_inv=fr, sigma=sg, mu=MU, alpha_v=av))
+        assert abs(n - _accelerations(y, q, fr, sg, av, MU)[5]) <= 1e-12 * scale
+        p = pack(q=q, fr_inv=fr, sigma=sg, mu=MU, alpha_v=av, alpha_k=rng.uniform(0, 0.5), normal=1)
+        y[3:6] *= rng.uniform(0.95, 1.05)
+        n, scale = normal_force(y, p)
+        if np.isfinite(n):
+            assert abs(n - contact_forces(y[None, :], p)[0, 2]) <= 1e-12 * scale
+
+
+def test_screened_batch_check_finds_the_first_nonpositive_n():
+    """integrators.first_event skips the solve where the closed-form lower bound is positive: on
+    the states of the issue's reproducer run past its contact loss (unwatched), the first row it
+    reports is the first row where the independent N of this file is <= 0 (and -1 before it)."""
+    from stability.nonlinear.integrators import first_event, integrate
+    from stability.nonlinear.parameters import pack
+
+    q, fr, sg, av = -0.1, 0.05, 1.0, 0.5
+    p = pack(q=q, fr_inv=fr, sigma=sg, mu=MU, alpha_v=av)
+    y0 = np.concatenate([[2.0, 0.0, 1.0], _unit([0.3, 0, 1]), [0.0, 0.0, 0.0, 0.0]])
+    t = np.linspace(0.0, 2.0, 2001)
+    ys = integrate("sliding", y0, t, p, method="DOP853").y
+    n_ref = np.array([_accelerations(y, q, fr, sg, av, MU)[5] for y in ys])
+    first = int(np.argmax(n_ref <= 0.0))
+    assert 0 < first and n_ref[first - 1] > 0.0
+    assert first_event(0, t, ys, p, 1, -2.0) == first
+    assert first_event(0, t[:first], ys[:first], p, 1, -2.0) == -1
+
+
+def test_rolling_closed_form_normal_force_against_reference():
+    """stability.nonlinear.rolling.normal_force (closed form) against N from the plain-numpy
+    rolling sphere of stability.nonlinear.reference (its 3 x 3 solve for omega', then the
+    vertical equation N = mu fr_inv + mu q (k'')_3), at random states with k off the unit
+    sphere too; tolerance 1e-12 of the closed form's scale (round-off of two eliminations)."""
+    from stability.nonlinear.parameters import pack
+    from stability.nonlinear.reference import rolling_rhs
+    from stability.nonlinear.rolling import normal_force
+
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        q, fr, sg = rng.uniform(-0.5, 0.5), rng.uniform(0.01, 1.0), rng.uniform(0.3, 2.0)
+        y = rng.normal(size=8)
+        y[3:6] = _unit(y[3:6]) * rng.uniform(0.95, 1.05)
+        w, k = y[0:3], y[3:6]
+        wd = rolling_rhs(0.0, y, q, fr, sg, MU)[0:3]
+        n_ref = MU * fr + MU * q * (np.cross(wd, k) + np.cross(w, np.cross(w, k)))[2]
+        n, scale = normal_force(y, pack(q=q, fr_inv=fr, sigma=sg, mu=MU))
+        assert abs(n - n_ref) <= 1e-12 * scale

@@ -43,6 +43,7 @@ from ..errors import InputError
 from ..execution import before_compiled_call, engine, pick
 from ..interrupts import checkpoint
 from .kernels import CODES
+from .kernels import normal_force_lower_bound as _normal_force_lower_bound
 from .kernels import rhs as _model_rhs
 from .parameters import FR_INV, MU, Q
 from .vectors import cross
@@ -220,15 +221,24 @@ def event_value_at(code, t, y, p, watch, c_stick):
 
 #: accepted steps of a scipy solver per batched check of the normal force (:func:`first_event`):
 #: one compiled call per batch instead of one per step (a call's dispatch, ~1 us, outweighs the
-#: 6 x 6 solve); ``python benchmarks/contact_detection.py`` measures it against 1 (every step)
+#: closed-form check of a step); ``python benchmarks/contact_detection.py`` measures it against 1
 WATCH_BATCH = 64
 
 
 @njit(cache=True, nogil=True)
 def first_event(code, ts, ys, p, watch, c_stick):
     """The index of the first row of ``ys`` (states at the times ``ts``) where
-    :func:`event_value` is <= 0, or -1: one compiled call for a batch of scipy's steps."""
+    :func:`event_value` is <= 0, or -1: one compiled call for a batch of scipy's steps.
+
+    A state whose normal force is certainly positive by the model's closed-form lower bound
+    (:func:`stability.nonlinear.kernels.normal_force_lower_bound`, no 6 x 6 solve) skips the
+    right-hand side; the others are decided by :func:`event_value_at`, so the answer is the
+    same as with the solve at every row."""
     for i in range(ts.shape[0]):
+        if watch != 0 and _normal_force_lower_bound(code, ys[i], p) > 0.0:
+            if event_value(ys[i], ys[i], p, 0, c_stick) <= 0.0:  # the stick's gap alone
+                return i
+            continue
         if event_value_at(code, ts[i], ys[i], p, watch, c_stick) <= 0.0:
             return i
     return -1
@@ -802,28 +812,31 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     event = None
     if watch and n_of(t_eval[0], y0) <= 0.0:
         return y, 1, 0, 0, status, (float(t_eval[0]), np.array(y0, dtype=float), 1)
-    # the accepted steps not yet checked (scipy returns a new state array per step), and the last
-    # checked one (N > 0 there)
-    pend_t: list[float] = []
-    pend_y: list[np.ndarray] = []
+    # the accepted steps not yet checked, copied into preallocated rows (the solver's arrays are
+    # not kept: a list of them, stacked per batch, cost as much as the check itself), and the
+    # last checked one (N > 0 there)
+    batch = max(1, int(WATCH_BATCH))
+    pend_t = np.empty(batch if watch else 0)
+    pend_y = np.empty((batch if watch else 0, y0.size))
+    npend = 0
     ok_t, ok_y = float(t_eval[0]), np.array(y0, dtype=float)
 
     def check(last_step: bool):
         """The event among the pending steps, or None; they are checked after."""
-        nonlocal ok_t, ok_y
-        i = int(first_event(code, np.array(pend_t), np.array(pend_y), p, w, c_stick))
+        nonlocal ok_t, ok_y, npend
+        n_p, npend = npend, 0
+        i = int(first_event(code, pend_t[:n_p], pend_y[:n_p], p, w, c_stick))
         if i < 0:
-            ok_t, ok_y = pend_t[-1], pend_y[-1]
-            pend_t.clear(), pend_y.clear()
+            ok_t, ok_y = float(pend_t[n_p - 1]), pend_y[n_p - 1].copy()
             return None
-        if last_step and i == len(pend_t) - 1:  # the solver's own last step: its dense output
+        if last_step and i == n_p - 1:  # the solver's own last step: its dense output
             return _locate_dense(solver, n_of)
-        t_a, y_a = (pend_t[i - 1], pend_y[i - 1]) if i > 0 else (ok_t, ok_y)
+        t_a, y_a = (float(pend_t[i - 1]), pend_y[i - 1].copy()) if i > 0 else (ok_t, ok_y)
 
         def make(t0, y_start):
             return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
 
-        return _relocate(make, n_of, t_a, y_a, pend_t[i], pend_y[i], max_steps)
+        return _relocate(make, n_of, t_a, y_a, float(pend_t[i]), pend_y[i].copy(), max_steps)
 
     while j < t_eval.size:
         if steps >= max_steps:
@@ -840,9 +853,10 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
             break
         t_new = solver.t
         if watch:
-            pend_t.append(t_new)
-            pend_y.append(solver.y)
-            if len(pend_t) >= WATCH_BATCH:
+            pend_t[npend] = t_new
+            pend_y[npend] = solver.y
+            npend += 1
+            if npend >= batch:
                 ev = check(True)
                 if ev is not None:
                     event = ev
@@ -856,7 +870,7 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         if solver.status == "finished" and j < t_eval.size:
             y[j:] = solver.y
             j = t_eval.size
-    if watch and event is None and pend_t:
+    if watch and event is None and npend:
         # the steps since the last batch (the run's end, or its failure: an event before it wins)
         event = check(status == SUCCESS)
         if event is not None:

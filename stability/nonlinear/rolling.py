@@ -31,10 +31,10 @@ from continuation.compiled import solve_dense
 from stability.jit import njit
 
 from .parameters import MU, Q
-from .sphere import sphere_rows
+from .sphere import normal_force_terms, sphere_rows
 from .vectors import cross
 
-__all__ = ["STATE", "contact_forces", "rhs"]
+__all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
@@ -92,3 +92,37 @@ def contact_forces(states, p):
         x = _solve(states[i], p)
         out[i, 0], out[i, 1], out[i, 2] = x[3], x[4], x[5]
     return out
+
+
+@njit(cache=True, nogil=True)
+def normal_force(y, p):
+    """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
+
+    As :func:`stability.nonlinear.sliding.normal_force` (``u = k x K``,
+    ``N = mu fr_inv + mu q (d_3 + omega' . u)``, ``d = omega x (omega x k)``), with the
+    rolling sphere's reduced system (:mod:`stability.nonlinear.reference`: ``f`` eliminated by
+    the horizontal part of eq. 1) ``M a = I0 a + mu q (K x a) x k + mu K x (-K x a + q a x k)``,
+    ``R = -(sigma - 1)(k . omega)(omega x k) - mu q fr_inv k x K - mu q K x d``. ``u`` is an
+    eigenvector of ``M^T`` for any ``k``: ``I0 u = u``; the second term's transpose
+    ``-mu q [K]x [k]x`` gives ``mu q k_3 u`` (``[k]x u = k_3 k - |k|^2 K``, ``K x k = -u``); the
+    third's, ``-mu [K]x [K]x - mu q [k]x [K]x``, gives ``mu u + mu q k_3 u``
+    (``K x u = k_h``, ``K x k_h = -u``, ``k x k_h = -k_3 u``). So
+    ``omega' . u = (u . R) / lambda``, ``lambda = 1 + mu + 2 mu q k_3`` (for a unit ``k``,
+    ``A_G + mu |r|^2 > 0``, ``r`` from G to the contact point), and::
+
+        u . R = -(sigma - 1)(k . omega)(u . (omega x k)) - mu q fr_inv |k_h|^2
+                + mu q (k_1 d_1 + k_2 d_2).
+
+    Equal to the kernel's 6 x 6 solution (:func:`contact_forces`) up to round-off; ``scale``
+    the sum of the magnitudes of the terms; ``(nan, inf)`` where ``lambda`` is not safely
+    positive.
+    """
+    q, mu = p[Q], p[MU]
+    n0, s0, t_row, s_row, kd = normal_force_terms(y, p)
+    mq = mu * q
+    lam = 1.0 + mu + 2.0 * mq * y[5]
+    if not lam > 1e-8:
+        return np.nan, np.inf
+    t_cen = mq * kd
+    lever = mq / lam
+    return n0 + lever * (t_row + t_cen), s0 + abs(lever) * (s_row + abs(t_cen))

@@ -35,10 +35,10 @@ from stability.jit import njit
 
 from .friction import traction
 from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q
-from .sphere import sphere_rows
+from .sphere import normal_force_terms, sphere_rows
 from .vectors import cross
 
-__all__ = ["STATE", "contact_forces", "rhs"]
+__all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 
 #: names of the state components
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_1", "X_2")
@@ -125,3 +125,51 @@ def contact_forces(states, p):
         x, f1, f2 = _solve(states[i], p)
         out[i, 0], out[i, 1], out[i, 2] = f1, f2, x[5]
     return out
+
+
+@njit(cache=True, nogil=True)
+def normal_force(y, p):
+    """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
+
+    Derivation (eqs. 1, 2 about O, as the kernel's system; any ``k``, unit or not). With
+    ``u = k x K = (k_2, -k_1, 0)``, the vertical component of (1) reads
+    ``N = mu fr_inv + mu q (d_3 + omega' . u)``, ``d = omega x (omega x k)``, since
+    ``(omega' x k)_3 = omega' . (k x K)``. Eliminating ``V0'`` from (2) by the horizontal part of
+    (1) gives ``M omega' = R`` (:mod:`stability.nonlinear.reference`), ``M a = I0 a
+    + mu q^2 (P (a x k)) x k = I0 a + mu q^2 [k]x P [k]x a``, symmetric. ``u`` is an
+    eigenvector of ``M``: ``I0 u = u`` (``k . u = 0``), ``[k]x u = k_3 k - |k|^2 K``,
+    ``P [k]x u = k_3 k_h``, ``[k]x (k_3 k_h) = -k_3^2 u``; so ``M u = (1 - mu q^2 k_3^2) u`` and
+    ``omega' . u = (u . R) / (1 - mu q^2 k_3^2)``, with (the terms of ``R`` dotted with ``u``)::
+
+        u . R = -(sigma - 1)(k . omega)(u . (omega x k)) - mu q fr_inv |k_h|^2
+                + (1 + q k_3)(k_1 f_1 + k_2 f_2) - mu q^2 k_3 (k_1 d_1 + k_2 d_2).
+
+    With the friction proportional to ``N`` (``normal = "actual"``, ``f = N g / (mu fr_inv)``)
+    the friction term is ``N rho``, ``rho = (1 + q k_3)(k_1 g_1 + k_2 g_2) / (mu fr_inv)``, and
+    ``N (1 - mu q rho / (1 - mu q^2 k_3^2))`` equals the rest. (For a unit ``k``,
+    ``1 - mu q^2 k_3^2 = A_G + mu q^2 |k_h|^2 > 0``: the same as Euler's law about G.)
+
+    The result equals the kernel's 6 x 6 solution (:func:`contact_forces`) up to round-off;
+    ``scale`` is the sum of the magnitudes of its terms (round-off is a few ``eps * scale``).
+    Where a denominator is not safely positive: ``(nan, inf)``. The integrators' scipy path
+    uses it to screen the accepted steps (:func:`stability.nonlinear.kernels.normal_force_lower_bound`).
+    """
+    q, fr, mu = p[Q], p[FR_INV], p[MU]
+    k0, k1, k2 = y[3], y[4], y[5]
+    n0, s0, t_row, s_row, kd = normal_force_terms(y, p)
+    g1, g2 = traction(y[6] - y[1], y[7] + y[0], p[ALPHA_V], p[ALPHA_K], p[EPSILON], p[LAW])
+    mq = mu * q
+    den = 1.0 - mq * q * k2 * k2
+    if not den > 1e-8:
+        return np.nan, np.inf
+    t_cen = -mq * q * k2 * kd
+    t_fric = (1.0 + q * k2) * (k0 * g1 + k1 * g2)
+    lever = mq / den
+    top = n0 + lever * (t_row + t_cen)
+    scale = s0 + abs(lever) * (s_row + abs(t_cen))
+    if p[NORMAL] == 0.0:
+        return top + lever * t_fric, scale + abs(lever * t_fric)
+    bottom = 1.0 - lever * t_fric / (mu * fr)
+    if not bottom > 1e-8:
+        return np.nan, np.inf
+    return top / bottom, (scale + abs(lever * t_fric / (mu * fr)) * abs(top)) / bottom

@@ -24,7 +24,7 @@ from stability.jit import njit
 from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
 
-__all__ = ["sphere_rows"]
+__all__ = ["normal_force_terms", "sphere_rows"]
 
 
 @njit(cache=True)
@@ -61,3 +61,29 @@ def sphere_rows(y, p):
     a[5, 5] = -1.0
     b[5] = -mq * d2 - mu * fr
     return a, b
+
+
+@njit(cache=True, nogil=True)
+def normal_force_terms(y, p):
+    """The pieces of the closed-form normal force the two spheres share
+    (:func:`stability.nonlinear.sliding.normal_force`, :func:`stability.nonlinear.rolling.normal_force`).
+
+    With ``u = k x K`` and ``d = omega x (omega x k)``: ``N = n0 + mu q (omega' . u)``,
+    ``n0 = mu fr_inv + mu q d_3`` (row 5), and ``u`` dotted with the right-hand side of rows 0-2,
+    ``t = -(sigma - 1)(k . omega)(u . (omega x k)) - mu q fr_inv |k_h|^2``.
+
+    Returns
+    -------
+    tuple
+        ``(n0, |mu fr_inv| + |mu q d_3|, t, sum of the magnitudes of t's two terms,
+        k_1 d_1 + k_2 d_2)`` (the last for the models' own centripetal term).
+    """
+    q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]
+    w0, w1, w2 = y[0], y[1], y[2]
+    k0, k1, k2 = y[3], y[4], y[5]
+    c0, c1, c2 = cross(w0, w1, w2, k0, k1, k2)  # omega x k
+    d0, d1, d2 = cross(w0, w1, w2, c0, c1, c2)  # omega x (omega x k)
+    mq = mu * q
+    t_gyro = -(sg - 1.0) * (k0 * w0 + k1 * w1 + k2 * w2) * (k1 * c0 - k0 * c1)
+    t_grav = -mq * fr * (k0 * k0 + k1 * k1)
+    return mu * fr + mq * d2, abs(mu * fr) + abs(mq * d2), t_gyro + t_grav, abs(t_gyro) + abs(t_grav), k0 * d0 + k1 * d1
