@@ -371,7 +371,7 @@ def test_screened_batch_check_finds_the_first_nonpositive_n():
     ys = integrate("sliding", y0, t, p, method="DOP853").y
     n_ref = np.array([_accelerations(y, q, fr, sg, av, MU)[5] for y in ys])
     first = int(np.argmax(n_ref <= 0.0))
-    assert 0 < first and n_ref[first - 1] > 0.0
+    assert first > 0 and n_ref[first - 1] > 0.0
     assert first_event(0, t, ys, p, 1, -2.0) == first
     assert first_event(0, t[:first], ys[:first], p, 1, -2.0) == -1
 
