@@ -69,7 +69,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import InputError
 from ..models.inertia import inertia_g
@@ -254,6 +253,8 @@ def landing_time(f: Flight) -> float:
         pts = np.concatenate([[first], pts])
     h = landing_height(f, pts)
     j = int(np.nonzero(h <= 0.0)[0][0])  # h(T_max) < 0: there is one, and h(pts[0]) > 0
+    from scipy.optimize import brentq  # here: scipy.optimize costs ~0.5 s of imports a run on the floor does not need
+
     return float(brentq(lambda t: landing_height(f, np.array([t]))[0], pts[j - 1], pts[j], xtol=1e-300, rtol=_RTOL))
 
 
