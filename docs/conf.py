@@ -165,7 +165,7 @@ def _gallery_page() -> str:
         "with `tippe figures atlases/<name>.toml` (the recipe format is described in the "
         "module docstring of `stability.recipes`; the datasets behind the figures in "
         "[Datasets](../datasets.md)); the charts of the last section are drawn by the "
-        "benchmark suites (`tippe bench`) from the measurements stored beside them.\n",
+        "benchmark suites (`python benchmarks/run.py`) from the measurements stored beside them.\n",
     ]
     for png in sorted(atlases.glob("*.png")):
         recipe = png.with_suffix(".toml")
@@ -176,7 +176,19 @@ def _gallery_page() -> str:
             f"## {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n:width: 100%\n```\n\n"
             f"```{{literalinclude}} ../../atlases/{recipe.name}\n:language: toml\n:caption: atlases/{recipe.name}\n```\n"
         )
-    charts = [p for p in sorted(atlases.glob("*.png")) if not p.with_suffix(".toml").exists()]
+    without_recipe = [p for p in sorted(atlases.glob("*.png")) if not p.with_suffix(".toml").exists()]
+    charts = [p for p in without_recipe if p.stem.startswith("work_precision")]
+    others = [p for p in without_recipe if p not in charts]
+    if others:
+        out.append(
+            "## Figures drawn by a script or a docs example\n\nEach is described, with the command or "
+            "the code that draws it, in the README's gallery and in the docs page it illustrates "
+            "(docs/contact.md, docs/launch.md).\n"
+        )
+        for png in others:
+            out.append(
+                f"### {png.stem}\n\n```{{image}} ../../atlases/{png.name}\n:alt: {png.stem}\n:width: 100%\n```\n"
+            )
     if charts:
         out.append(
             "## Work-precision charts\n\nDrawn by the benchmark suites (docs/performance.md) "
@@ -191,6 +203,13 @@ def _gallery_page() -> str:
             )
     return "\n".join(out)
 
+
+# the stubs autosummary wrote for names no longer public would stay as orphan pages: remove them
+for _package in ("stability", "continuation"):
+    _public = set(importlib.import_module(_package).__all__)
+    for _stub in (GENERATED / "api" / _package).glob("*.rst"):
+        if _stub.stem.removeprefix(_package + ".") not in _public:
+            _stub.unlink()
 
 _write(
     GENERATED / "api" / "stability.rst",
