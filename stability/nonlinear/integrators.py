@@ -617,13 +617,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
                 th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, kk, yn, f1, True, ys, watch, c_stick)
                 t_ev = t + th_ev * hh
                 while j < m and t_eval[j] < t_ev:
-                    th = (t_eval[j] - t) / hh
-                    h00 = (1 + 2 * th) * (1 - th) ** 2
-                    h10 = th * (1 - th) ** 2
-                    h01 = th * th * (3 - 2 * th)
-                    h11 = th * th * (th - 1)
-                    for i in range(n):
-                        out[j, i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
+                    _hermite(y, f0, yn, f1, hh, (t_eval[j] - t) / hh, out[j])
                     j += 1
                 for i in range(n):
                     y[i] = ys[i]
@@ -633,13 +627,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
                 break
             fs[_N] = n_new
         while j < m and t_eval[j] <= t_new:
-            th = (t_eval[j] - t) / hh
-            h00 = (1 + 2 * th) * (1 - th) ** 2
-            h10 = th * (1 - th) ** 2
-            h01 = th * th * (3 - 2 * th)
-            h11 = th * th * (th - 1)
-            for i in range(n):
-                out[j, i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
+            _hermite(y, f0, yn, f1, hh, (t_eval[j] - t) / hh, out[j])
             j += 1
         finite = True
         for i in range(n):
