@@ -3,10 +3,10 @@
 The spectral kernel's loops, the batched root finders, the neutral curves' corrector, the
 steady layer's closed forms and the integrators are each one plain Python source with two
 executions that give the same bits (:func:`stability.jit.python` or the source itself, and
-:func:`stability.jit.cached` or an ``njit`` function): the interpreter, which needs no compilation but costs ~50-100 us per point, and numba,
-~0.3 us per point once compiled but several seconds to compile on a machine whose numba disk
-cache does not hold it yet (a fresh install), and ~0.5 s to import numba and load it when it
-does. The rule (docs/performance.md, "The first call"):
+:func:`stability.jit.cached` or an ``njit`` function): the interpreter, which needs no
+compilation but costs ~50-100 us per point, and numba, ~0.3 us per point once compiled but
+several seconds to compile on a machine whose numba disk cache does not hold it yet (a fresh
+install), and ~0.5 s to import numba and load it when it does. The rule (docs/performance.md, "The first call"):
 
 * fewer than :data:`PYTHON_BELOW` points run interpreted, unless the compiled loop is already in
   memory in this process (then it runs, compiling and loading nothing); a first eigenvalue,
@@ -60,7 +60,7 @@ PYTHON_BELOW = 4096
 COMPILE_SECONDS = 20.0
 
 #: the line printed on stderr, once per process, before a compilation (``{seconds}``: an estimate)
-NOTICE = "tippe-stability: compiling kernels, once, ~{seconds:.0f} s (cached for later runs; `tippe warmup` compiles them all)"
+NOTICE = "tippe-stability: compiling kernels, once, ~{seconds:.0f} s (then cached; `tippe warmup` compiles them all)"
 
 #: seconds a first compiled call runs before :data:`NOTICE` is printed (loading a cached loop
 #: takes ~0.1-0.5 s, compiling one several seconds)
