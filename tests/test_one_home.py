@@ -39,6 +39,7 @@ from test_kernel import NAMES, _bound_points
 
 import stability
 import stability.jit
+from stability.jit import cached
 from stability.linear import kernel
 from stability.linear.neutral_curves import neutral_curve
 from stability.linear.neutrality import NeutralCondition, _other_roots_list, _other_roots_many
@@ -291,7 +292,7 @@ def test_quadratic_formula_engines_and_mpmath():
     c = _quadratics(1000, 44)
     roots = np.empty((c.shape[0], 2), dtype=complex)
     exact = np.empty((c.shape[0], 2), dtype=bool)
-    quadratic_roots_many(c[:, 0].copy(), c[:, 1].copy(), c[:, 2].copy(), roots, exact)
+    cached(quadratic_roots_many)(c[:, 0].copy(), c[:, 1].copy(), c[:, 2].copy(), roots, exact)
     mp.mp.dps = 40
     n_exact = 0
     for j, (a, b, k) in enumerate(c):
@@ -341,7 +342,7 @@ def test_composite_division_engines_and_mpmath():
         ws.append(w)
     cs, ws = np.array(cs), np.array(ws)
     many = np.empty((len(ws), 2), dtype=complex)
-    _other_roots_many(cs, 4, ws, 1, many)
+    cached(_other_roots_many)(cs, 4, ws, 1, many)
     for j in range(len(ws)):
         assert _other_roots_list(cs[j], ws[j], 1) == many[j].tolist()
 
@@ -434,11 +435,12 @@ _CACHE_KEYS = """
 import hashlib
 from numba.core.serialize import dumps
 import stability
+from stability.jit import cached
 from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
 cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
-funcs = [*ks.checked, *ks.masked, *ks.domain, ks.coefficients,
+funcs = [*(cached(f, p) for f in (ks.checked, ks.masked, ks.domain) for p in (False, True)), cached(ks.coefficients),
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func

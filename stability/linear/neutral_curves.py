@@ -263,7 +263,7 @@ class NeutralProblem:
         Offer the engine the compiled step (:mod:`stability.linear.neutral_compiled`) and evaluate
         constraints and test functions by their compiled twins, where they exist (the sliding
         model's crossing form); False keeps everything in Python. None (default): the rule of
-        :mod:`stability.execution`, :func:`compiled_step_in_memory`.
+        :func:`stability.execution.use_compiled`.
 
     Attributes
     ----------
@@ -289,8 +289,11 @@ class NeutralProblem:
         self.model = get_model(model)
         self.names = (x, y)
         self.fixed = dict(fixed)
-        if compiled is None:
-            compiled = compiled_step_in_memory(self.model)
+        if compiled is None:  # the rule of stability.execution: the compiled step if in memory (or forced)
+            step = sys.modules.get(__package__ + ".neutral_compiled")  # nothing imported to find out
+            f, d = (getattr(self.model, k, None) for k in ("point_coefficients", "point_derivatives"))
+            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(self.model.n_modes)))
+            compiled = execution.use_compiled(known or None, 1)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
         self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
@@ -453,23 +456,6 @@ class FoldProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
         return _constraint_values(self._constraints, self.params(u))
-
-
-def compiled_step_in_memory(model: str | LinearModel) -> bool:
-    """The execution of the neutral curves' corrector by the rule of :mod:`stability.execution`:
-    ``TIPPE_KERNEL`` if it forces one, else whether this process has compiled the model's
-    compiled step (:mod:`stability.linear.neutral_compiled`) already; nothing is compiled or
-    imported to find out."""
-    chosen = execution.engine()
-    if chosen != "auto":
-        return chosen == "compiled"
-    compiled = sys.modules.get(__package__ + ".neutral_compiled")
-    m = get_model(model)
-    formula = getattr(m, "point_coefficients", None)
-    derivative = getattr(m, "point_derivatives", None)
-    if compiled is None or formula is None or derivative is None:
-        return False
-    return bool(compiled.step_kernel(crossing_kernels(formula, derivative, int(m.n_modes))).signatures)
 
 
 # ------------------------------------------------------------------------------------------
@@ -884,7 +870,7 @@ def neutral_curve(
         Use the compiled corrector of :mod:`stability.linear.neutral_compiled` where there is one
         (the sliding model's crossing form; numba, compiled on first use and cached on disk);
         False forces the engine's Python path. The two give the same points to rounding. None
-        (default): the rule of :mod:`stability.execution` (:func:`compiled_step_in_memory`: the
+        (default): the rule of :mod:`stability.execution` (:func:`~stability.execution.use_compiled`: the
         compiled corrector only if this process has compiled it already, unless
         ``TIPPE_KERNEL`` says otherwise); a first curve in a fresh process then compiles nothing.
 
