@@ -571,7 +571,7 @@ class _Tracer:
         step gave them (and its tangent is the one used), else None."""
         sp, t = self.sp, self.t
         if self.cstep is not None:
-            r = StepResult(*self.cstep(guess, t, self.v, h, self.sc, self.tol, max_it, max_move))
+            r = StepResult(*self.cstep(guess, t, self.v, float(h), self.sc, float(self.tol), int(max_it), float(max_move)))
             sp.n_residual += r.n_residual_and_jacobian + r.n_residual
             sp.n_jacobian += r.n_residual_and_jacobian
             if not r.ok:

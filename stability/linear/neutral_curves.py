@@ -58,7 +58,6 @@ from xarray.indexes import PandasIndex
 
 from continuation.engine import Branch, TraceOptions, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
-from continuation.problem import StepResult
 
 from .. import execution
 from .._version import package_version
@@ -312,25 +311,11 @@ class NeutralProblem:
             self._growth_kernel = kernels.other_growth
             self.compiled_step = self._compiled_step
 
-    def _compiled_step(
-        self,
-        guess: np.ndarray,
-        t_plane: np.ndarray,
-        anchor: np.ndarray,
-        h: float,
-        scale: np.ndarray,
-        tol: float,
-        max_iter: int,
-        max_move: float,
-    ) -> StepResult:
-        """The engine's hook (:mod:`continuation.problem`): the step of
-        :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
+    def _compiled_step(self, *corrector: Any) -> tuple:
+        """The engine's hook (:mod:`continuation.problem`, which lists the arguments): the step
+        of :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
-        return StepResult(
-            *self._step_kernel(
-                *self._compiled, guess, t_plane, anchor, float(h), scale, float(tol), int(max_iter), float(max_move)
-            )
-        )
+        return self._step_kernel(*self._compiled, *corrector)
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         """All parameters at ``u``."""
@@ -989,6 +974,15 @@ def neutral_curve(
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
+    options = TraceOptions(
+        fold_components=(0, 1),
+        scale=scale,
+        step=step,
+        max_step=max_step,
+        max_angle=max_angle,
+        max_points=max_points,
+        tol=tol,
+    )
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
@@ -1019,19 +1013,7 @@ def neutral_curve(
             )
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(
-            prob,
-            u,
-            TraceOptions(
-                fold_components=(0, 1),
-                scale=scale,
-                step=step,
-                max_step=max_step,
-                max_angle=max_angle,
-                max_points=max_points,
-                tol=tol,
-            ),
-        )
+        br = trace_both(prob, u, options)
         branches.append(br)
         if start is None:
             skip[i + 1 :] |= _near_branch_mask(G[i + 1 :], br.points / scale, cell)
@@ -1153,19 +1135,8 @@ def fold_curve(
     fx = dict(fixed)
     z0 = fx.pop(z)
     full = _fixed_parameters(m, (x, y), {**fx, z: z0})
-    plane = neutral_curve(
-        m,
-        x,
-        y,
-        fixed=full,
-        x_range=x_range,
-        y_range=y_range,
-        step=step,
-        max_step=max_step,
-        max_angle=max_angle,
-        max_points=max_points,
-        edge_margin=edge_margin,
-    )
+    trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
+    plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
     ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full), z: _check_range(z, z_range, full)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0, ranges[z][1] - ranges[z][0]])
@@ -1173,26 +1144,14 @@ def fold_curve(
     lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
     samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
     prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
+    options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []
     for k in range(folds.sizes["point"]):
         u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(
-            prob,
-            u,
-            TraceOptions(
-                fold_components=(3,),
-                scale=scale,
-                step=step,
-                max_step=max_step,
-                max_angle=max_angle,
-                max_points=max_points,
-                tol=tol,
-            ),
-        )
-        branches.append(br)
+        branches.append(trace_both(prob, u, options))
     # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
     return _assemble(
         m,
