@@ -665,6 +665,55 @@ def _check_points(
     return near[:, 0].real, radius
 
 
+#: the attributes of the dataset's variables other than the traced parameters
+_DATA_ATTRS: dict[str, dict[str, str]] = {
+    "frequency": {
+        "long_name": "neutral frequency",
+        "units": "Omega",
+        "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
+    },
+    "branch": {"long_name": "branch", "comment": "index of the traced branch"},
+    "kind": {
+        "long_name": "kind of point",
+        "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint",
+    },
+    "detail": {"long_name": "what the special point is"},
+    "residual": {
+        "long_name": "backward error",
+        "units": "1",
+        "comment": "relative backward error of the neutral condition: the larger of its two rows, "
+        "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
+        "(stability.linear.neutrality)",
+    },
+    "leading": {
+        "long_name": "traced mode leads",
+        "comment": "the traced mode is the leading one (the curve is the stability boundary)",
+    },
+    "check_growth_rate": {
+        "long_name": "check: LAPACK Re s",
+        "units": "Omega",
+        "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
+        "(zero within check_bound on a neutral curve)",
+    },
+    "check_bound": {
+        "long_name": "check error bound",
+        "units": "Omega",
+        "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
+        "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
+        "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
+    },
+}
+
+
+def _tangent_attrs(n: str) -> dict[str, str]:
+    return {
+        "long_name": f"tangent, {n}",
+        "units": "1",
+        "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+        "branch; continuation.dense interpolates with it)",
+    }
+
+
 def _dataset(
     model: LinearModel,
     names: Sequence[str],
@@ -679,95 +728,29 @@ def _dataset(
     attrs: Mapping[str, Any],
     tangents: np.ndarray | None = None,
 ) -> xr.Dataset:
-    data: dict[str, Any] = {}
     cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
-    for n, c in zip(names, cols):
-        data[n] = ("point", c, _var_attrs(n))
+    data: dict[str, Any] = {n: (c, _var_attrs(n)) for n, c in zip(names, cols)}
     w = points[:, freq_col] if len(points) else np.zeros(0)
-    data["frequency"] = (
-        "point",
-        w,
-        {
-            "long_name": "neutral frequency",
-            "units": "Omega",
-            "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
-        },
-    )
+    data["frequency"] = (w, _DATA_ATTRS["frequency"])
     if tangents is None:
         tangents = np.zeros_like(points)
     order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (
-            "point",
-            tangents[:, i],
-            {
-                "long_name": f"tangent, {n}",
-                "units": "1",
-                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-                "branch; continuation.dense interpolates with it)",
-            },
-        )
-    data["branch"] = (
-        "point",
-        branch.astype(np.int32),
-        {"long_name": "branch", "comment": "index of the traced branch"},
-    )
-    data["kind"] = (
-        "point",
-        np.array(kinds, dtype=object),
-        {
-            "long_name": "kind of point",
-            "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint",
-        },
-    )
-    data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
-    data["residual"] = (
-        "point",
-        residual,
-        {
-            "long_name": "backward error",
-            "units": "1",
-            "comment": "relative backward error of the neutral condition: the larger of its two rows, "
-            "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
-            "(stability.linear.neutrality)",
-        },
-    )
+        data[f"tangent_{n}"] = (tangents[:, i], _tangent_attrs(n))
+    data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
+    data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
+    data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
+    data["residual"] = (residual, _DATA_ATTRS["residual"])
     if leading is not None:
-        data["leading"] = (
-            "point",
-            leading,
-            {
-                "long_name": "traced mode leads",
-                "comment": "the traced mode is the leading one (the curve is the stability boundary)",
-            },
-        )
+        data["leading"] = (leading, _DATA_ATTRS["leading"])
     if len(points):
         check, check_bound = _check_points(model, names, fixed, cols, w)
     else:
         check, check_bound = np.zeros(0), np.zeros(0)
-    data["check_growth_rate"] = (
-        "point",
-        check,
-        {
-            "long_name": "check: LAPACK Re s",
-            "units": "Omega",
-            "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
-            "(zero within check_bound on a neutral curve)",
-        },
-    )
-    data["check_bound"] = (
-        "point",
-        check_bound,
-        {
-            "long_name": "check error bound",
-            "units": "Omega",
-            "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
-            "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
-            "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
-        },
-    )
+    data["check_growth_rate"] = (check, _DATA_ATTRS["check_growth_rate"])
+    data["check_bound"] = (check_bound, _DATA_ATTRS["check_bound"])
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
-    variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
+    variables = {k: xr.Variable(("point",), np.asarray(v[0]), dict(v[1]), fastpath=True) for k, v in data.items()}
     ds_attrs = {
         "Conventions": "CF-1.10",
         "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
