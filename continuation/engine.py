@@ -747,35 +747,26 @@ class _Tracer:
         nothing, so it is reported once), unless a boundary cuts the step short.
         """
         sp, t, floor = self.sp, self.t, self.o.event_floor
-        kinds, details = self.kinds, self.details
-        candidates: list[tuple[str, str, Callable, float, float]] = []
-        at_start = len(self.pts) == 1 and kinds[0] == "start"
-        at_new: list[tuple[str, str]] = []
-        for i in self.o.fold_components:
-            pa, pb = float(t[i]), float(t_b[i])
-            if at_start and abs(pa) <= floor and abs(pb) > floor:
-                kinds[0], details[0] = "fold", str(i)
-            elif pa * pb < 0:
-                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
-            elif pb == 0.0 and abs(pa) > floor and stop is None:
-                at_new.append(("fold", str(i)))
-        tests, tests_b = self.tests, tests_new if stop is None else sp.tests(v_b, t_b)
-        for k in range(tests.size):
-            pa, pb = float(tests[k]), float(tests_b[k])
-            if at_start and abs(pa) <= floor and abs(pb) > floor:
-                kinds[0], details[0] = "test", sp.test_names[k]
-            elif pa * pb < 0:
-                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k], pa, pb))
-            elif pb == 0.0 and abs(pa) > floor and stop is None:
-                at_new.append(("test", sp.test_names[k]))
+        at_start = len(self.pts) == 1 and self.kinds[0] == "start"
+        # (kind, detail, test function phi(v, t), its value at the current point and at v_b)
+        folds = self.o.fold_components
+        tests = [("fold", str(i), lambda vv, tt, i=i: tt[i], float(t[i]), float(t_b[i])) for i in folds]
+        tests_b = tests_new if stop is None else sp.tests(v_b, t_b)
+        for k in range(self.tests.size):
+            phi = lambda vv, tt, k=k: sp.tests(vv, tt)[k]  # noqa: E731
+            tests.append(("test", sp.test_names[k], phi, float(self.tests[k]), float(tests_b[k])))
         if self.o.detect_branch_points:
-            bp, bp_b = self.bp, s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
-            if at_start and abs(bp) <= floor and abs(bp_b) > floor:
-                kinds[0], details[0] = "branch_point", ""
-            elif bp * bp_b < 0:
-                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), bp, bp_b))
-            elif bp_b == 0.0 and abs(bp) > floor and stop is None:
-                at_new.append(("branch_point", ""))
+            bp_b = s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
+            tests.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), self.bp, bp_b))
+        candidates: list[tuple[str, str, Callable, float, float]] = []
+        at_new: list[tuple[str, str]] = []
+        for kind, name, phi, pa, pb in tests:
+            if at_start and abs(pa) <= floor and abs(pb) > floor:
+                self.kinds[0], self.details[0] = kind, name
+            elif pa * pb < 0:
+                candidates.append((kind, name, phi, pa, pb))
+            elif pb == 0.0 and abs(pa) > floor and stop is None:
+                at_new.append((kind, name))
         h_b = s.h if stop is None else stop.h
         events: list[_Event] = []
         for kind, name, phi, pa, pb in candidates:
