@@ -148,18 +148,14 @@ def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[st
     return {k: float(v) for k, v in p.items()}
 
 
-def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]:
-    """The domain's range of ``name`` given the fixed parameters (the table), its open ends
-    closed by :data:`DEFAULT_RANGES`."""
+def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
+    """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
+    parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
+    if rng is not None:
+        return check_range(f"{name}_range", rng)
     lo, hi = domain_range(name, fixed)
     dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
     return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
-
-
-def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
-    if rng is None:
-        return _default_range(name, fixed)
-    return check_range(f"{name}_range", rng)
 
 
 def _outside_domain_error(
@@ -326,8 +322,7 @@ class NeutralProblem:
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), False)[0]
+            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), False)[0]
         return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian=False)[0]
 
     def jacobian(self, u: np.ndarray) -> np.ndarray:
@@ -337,15 +332,13 @@ class NeutralProblem:
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``F`` and ``dF/du`` from one evaluation of the coefficients (compiled twin if any)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), True)
+            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), True)
         return self.cond.residual_and_jacobian(u[:2], float(u[2]))
 
     def other_growth(self, u: np.ndarray) -> float:
         """Largest growth rate among the other modes (-inf if there is none)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._growth_kernel(point, free, ncoef, np.asarray(u, dtype=float))
+            return self._growth_kernel(*self._compiled[:3], np.asarray(u, dtype=float))
         r = self.cond.other_modes_list(u[:2], float(u[2]))
         return max(z.real for z in r) if r else -np.inf
 
@@ -383,10 +376,7 @@ class NeutralProblem:
 
             point, free, _, codes, index, a = self._compiled
             return constraint_values(point, free, np.asarray(u, dtype=float), codes, index, a)
-        p = self.fixed.copy()
-        p[self.names[0]] = float(u[0])
-        p[self.names[1]] = float(u[1])
-        return _constraint_values(self._constraints, p)
+        return _constraint_values(self._constraints, self.params(u))
 
 
 class FoldProblem:
@@ -460,12 +450,6 @@ def compiled_step_in_memory(model: str | LinearModel) -> bool:
 # ------------------------------------------------------------------------------------------
 # start points
 # ------------------------------------------------------------------------------------------
-def _grid_params(x: str, y: str, fixed: Mapping[str, float], X: np.ndarray, Y: np.ndarray) -> dict:
-    p: dict[str, Any] = dict(fixed)
-    p[x], p[y] = X, Y
-    return p
-
-
 class _Guesses(NamedTuple):
     """Start guesses from the coarse atlas, and how many of its points decided every sign."""
 
@@ -491,7 +475,7 @@ def _atlas_guesses(
     # the compiled kernel (stability.linear.kernel), its serial loop: on a thread pool, start-up
     # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
-    gr = growth(model, parallel=False, **_grid_params(x, y, fixed, X, Y))
+    gr = growth(model, parallel=False, **{**fixed, x: X, y: Y})
     sp = gr.spectrum
     if not sp.inside.any():
         raise _outside_domain_error(model, x, y, ranges, fixed)
@@ -939,7 +923,7 @@ def neutral_curve(
                 raise InputError(f"start point {s!r}: a start point has 2 or 3 values (x, y[, w])")
             s = [as_scalar("start", v) for v in s]
             if len(s) == 2:
-                p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
+                p = {**fixed, x: np.asarray(s[0]), y: np.asarray(s[1])}
                 sp0 = spectrum(m, mask_unphysical=True, **p)
                 ev = sp0.eigenvalues
                 if np.isnan(ev).all():
@@ -952,8 +936,6 @@ def neutral_curve(
                     if np.isfinite(dist).any()
                     else float(ev[np.nanargmin(np.abs(ev.real))].imag)
                 )
-            if len(s) != 3:
-                raise InputError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
