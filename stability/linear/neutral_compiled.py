@@ -11,10 +11,11 @@ engine's Python path does per step: Newton's method on the bordered system
 ``det [J; t^T]`` at the solution (:func:`continuation.compiled.tangent_det`). All in the
 engine's scaled variables ``v = u / scale``.
 
-The constraints of the problem (the physical domain's bounds, from the table
-:data:`stability.parameters.DOMAIN` through :func:`~stability.parameters.domain_sides`, and the
-requested ranges) are evaluated by :func:`constraint_values`, and the second test function (the
-largest growth rate of the other modes) by the model's compiled twin, at the new point.
+The constraints of the problem (the physical domain's bounds and the requested ranges) are
+evaluated by :func:`constraint_values`, the one source of
+:func:`stability.linear.neutral_constraints.constraint_values` compiled, and the second test
+function (the largest growth rate of the other modes) by the model's compiled twin, at the new
+point.
 """
 
 from __future__ import annotations
@@ -28,41 +29,15 @@ import numpy as np
 from continuation.compiled import newton, tangent_det
 from stability.jit import OPTIONS, njit
 
-from ..parameters import domain_sides
+from .neutral_constraints import constraint_values as _constraint_values
 from .neutrality import CrossingKernels
 
-__all__ = ["CONSTRAINT_CODES", "constraint_values", "step_kernel"]
+__all__ = ["constraint_values", "step_kernel"]
 
 _JIT = dict(OPTIONS, cache=True)
 
-#: kinds of constraint rows ``(code, index, a)`` for :func:`constraint_values` (parameters
-#: ``p`` indexed as ``(q, fr_inv, sigma, alpha_v, mu)``): the margin ``upper - lower`` of row
-#: ``index`` of :data:`stability.parameters.DOMAIN` minus ``a``, ``p[index] - a``, ``a - p[index]``
-CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
-
-
-@njit(**_JIT)
-def constraint_values(
-    point: np.ndarray, free_index: np.ndarray, u: np.ndarray, codes: np.ndarray, index: np.ndarray, a: np.ndarray
-) -> np.ndarray:
-    """The problem's constraints at ``u`` (problem variables), ``>= 0`` inside, from rows
-    ``(code, index, a)`` (:data:`CONSTRAINT_CODES`): the same source and operations as their
-    Python evaluation in :meth:`stability.linear.neutral_curves.NeutralProblem.constraints`."""
-    p = point.copy()
-    for i in range(free_index.shape[0]):
-        p[free_index[i]] = u[i]
-    sides = domain_sides(p[0], p[1], p[2], p[3], p[4], 0.0)
-    out = np.empty(codes.shape[0])
-    for k in range(codes.shape[0]):
-        c = codes[k]
-        j = index[k]
-        if c == 0:
-            out[k] = (sides[2 * j + 1] - sides[2 * j]) - a[k]
-        elif c == 1:
-            out[k] = p[j] - a[k]
-        else:
-            out[k] = a[k] - p[j]
-    return out
+#: the problem's constraints (:func:`stability.linear.neutral_constraints.constraint_values`), compiled
+constraint_values = njit(**_JIT)(_constraint_values)
 
 
 def step_kernel(kernels: CrossingKernels) -> Callable[..., tuple]:

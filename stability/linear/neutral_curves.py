@@ -65,9 +65,7 @@ from ..errors import ConvergenceError, DomainError, InputError, ParameterTypeErr
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
-    DOMAIN,
     LONG_NAMES,
-    PARAMETERS,
     UPPER_BOUND,
     WINDOW_UPPER_BOUND,
     as_scalar,
@@ -78,7 +76,6 @@ from ..parameters import (
     check_positive,
     check_range,
     domain_range,
-    domain_sides,
     domain_text,
     parameter_attrs,
 )
@@ -86,6 +83,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
+from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
 from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
 from .spectra import spectrum
@@ -172,71 +170,6 @@ def _outside_domain_error(
     )
 
 
-class Constraint(NamedTuple):
-    """One constraint ``g(params) >= 0`` of a neutral-curve problem.
-
-    Attributes
-    ----------
-    name : str
-        The bound as text (a domain bound's text of :data:`stability.parameters.DOMAIN`, or the
-        end of a requested range); the ``detail`` of a point where a branch ends on it.
-    kind : str
-        ``"domain_edge"`` or ``"endpoint"``.
-    code : str
-        ``"domain"`` (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus
-        ``a``), ``"lower"`` (``p[index] - a``) or ``"upper"`` (``a - p[index]``); ``index`` of a
-        parameter counts in :data:`stability.parameters.PARAMETERS`
-        (:data:`stability.linear.neutral_compiled.CONSTRAINT_CODES`).
-    index : int
-    a : float
-    bound : (str, float) or None
-        ``(parameter, value)`` if ``g`` is a simple bound on one parameter.
-    """
-
-    name: str
-    kind: str
-    code: str
-    index: int
-    a: float
-    bound: tuple[str, float] | None
-
-
-def _constraints(
-    model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]], margin: float
-) -> list[Constraint]:
-    """The bounds of the domain table that involve a free parameter (and only parameters of the
-    model), strict ones as ``>= margin``, then the requested ranges."""
-    f = set(free)
-    given = set(model.parameters)
-    out: list[Constraint] = []
-    for k, b in enumerate(DOMAIN):
-        if set(b.involves) <= given and set(b.involves) & f:
-            a = margin if b.strict else 0.0
-            simple = (b.involves[0], a) if len(b.involves) == 1 else None
-            out.append(Constraint(b.text, "domain_edge", "domain", k, a, simple))
-    for name, (lo, hi) in ranges.items():
-        j = PARAMETERS.index(name)
-        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", "lower", j, lo, (name, lo)))
-        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", "upper", j, hi, (name, hi)))
-    return out
-
-
-def _constraint_values(constraints: Sequence[Constraint], p: Mapping[str, float]) -> np.ndarray:
-    """The constraints at the parameters ``p`` (Python floats): the same source and operations
-    as the compiled :func:`stability.linear.neutral_compiled.constraint_values`."""
-    point = [p.get(name, 0.0) for name in PARAMETERS]
-    sides = domain_sides(*point, 0.0)
-    out = np.empty(len(constraints))
-    for k, c in enumerate(constraints):
-        if c.code == "domain":
-            out[k] = (sides[2 * c.index + 1] - sides[2 * c.index]) - c.a
-        elif c.code == "lower":
-            out[k] = point[c.index] - c.a
-        else:
-            out[k] = c.a - point[c.index]
-    return out
-
-
 class NeutralProblem:
     """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.linear.neutrality`.
 
@@ -287,20 +220,22 @@ class NeutralProblem:
         if compiled is None:
             compiled = compiled_step_in_memory(self.model)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
-        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
         self.constraint_kinds = tuple(c.kind for c in self._constraints)
         self.constraint_bounds = tuple(c.bound for c in self._constraints)
+        self._point, self._free, self._rows = constraint_arguments(self)
         self._compiled = None
         kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
-            from .neutral_compiled import CONSTRAINT_CODES, step_kernel
+            from .neutral_compiled import step_kernel
 
+            codes, index, a = self._rows
             self._compiled = (
                 *self.cond._compiled,
-                np.array([CONSTRAINT_CODES[c.code] for c in self._constraints], dtype=np.int64),
-                np.array([c.index for c in self._constraints], dtype=np.int64),
-                np.array([c.a for c in self._constraints], dtype=float),
+                np.array(codes, dtype=np.int64),
+                np.array(index, dtype=np.int64),
+                np.array(a, dtype=float),
             )
             self._step_kernel = step_kernel(kernels)
             self._rj_kernel = kernels.residual_and_jacobian
@@ -372,11 +307,11 @@ class NeutralProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
         if self._compiled is not None:
-            from .neutral_compiled import constraint_values
+            from .neutral_compiled import constraint_values as compiled
 
             point, free, _, codes, index, a = self._compiled
-            return constraint_values(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return _constraint_values(self._constraints, self.params(u))
+            return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
+        return constraint_values(self._point, self._free, [float(u[0]), float(u[1])], *self._rows)
 
 
 class FoldProblem:
@@ -408,10 +343,11 @@ class FoldProblem:
         self.fixed = dict(fixed)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
         self.other = 1 if fold_in == x else 0
-        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
         self.constraint_kinds = tuple(c.kind for c in self._constraints)
         self.constraint_bounds = tuple(c.bound for c in self._constraints)
+        self._point, self._free, self._rows = constraint_arguments(self)
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         p = dict(self.fixed)
@@ -427,7 +363,7 @@ class FoldProblem:
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
-        return _constraint_values(self._constraints, self.params(u))
+        return constraint_values(self._point, self._free, [float(u[0]), float(u[1]), float(u[3])], *self._rows)
 
 
 def compiled_step_in_memory(model: str | LinearModel) -> bool:
