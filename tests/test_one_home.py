@@ -230,9 +230,10 @@ def test_domain_table_states_the_documented_domain():
 
 def test_margins_same_bits_python_and_compiled():
     """Engine agreement: the constraints of a neutral-curve problem (the table's margins and
-    the ranges) from Python floats and compiled (the compiled step's own,
-    neutral_compiled.constraint_values), on points near the domain's edges in three planes."""
-    from stability.linear.neutral_curves import NeutralProblem, _constraint_values
+    the ranges) from Python floats (neutral_constraints.constraint_values, interpreted) and compiled
+    (the compiled step's own, neutral_compiled.constraint_values), on points near the domain's
+    edges in three planes."""
+    from stability.linear.neutral_curves import NeutralProblem
 
     rng = np.random.default_rng(43)
     for x, y, fixed in (
@@ -241,7 +242,8 @@ def test_margins_same_bits_python_and_compiled():
         ("sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5, mu=2.28)),
     ):
         prob = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=True)
-        assert prob._compiled is not None
+        python = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=False)
+        assert prob._compiled is not None and python._compiled is None
         for _ in range(200):
             u = np.array(
                 [
@@ -250,7 +252,7 @@ def test_margins_same_bits_python_and_compiled():
                     rng.uniform(-2, 2),
                 ]
             )
-            ours = _constraint_values(prob._constraints, prob.params(u))
+            ours = python.constraints(u)
             np.testing.assert_array_equal(prob.constraints(u), ours)
 
 
