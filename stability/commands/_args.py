@@ -21,10 +21,13 @@ __all__ = [
     "add_top_arguments",
     "apply_top",
     "comma_floats",
+    "new_command",
+    "output_path",
     "parameter_help",
     "parameter_values",
     "top_from_args",
     "top_parameters",
+    "write_output",
 ]
 
 
@@ -115,6 +118,31 @@ def add_model_flag(
         metavar="MODEL",
         help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""),
     )
+
+
+def new_command(sub: argparse._SubParsersAction, name: str, run, *, help: str, description: str):
+    """The parser of the subcommand ``name``, run by ``run`` (every command's ``register``)."""
+    p = sub.add_parser(name, help=help, description=description)
+    p.set_defaults(func=run)
+    return p
+
+
+def output_path(args: argparse.Namespace):  # -> Path | None
+    """``--output`` checked before anything is computed (:func:`stability.files.check_output_path`),
+    or None when not given."""
+    from ..files import check_output_path
+
+    return check_output_path(args.output, overwrite=args.overwrite) if args.output else None
+
+
+def write_output(dataset, out, args: argparse.Namespace) -> None:
+    """Write ``dataset`` (or what a callable returns: built only when written) to the checked
+    path ``out`` of :func:`output_path` and say so; nothing when ``out`` is None."""
+    from ..grids.netcdf import write_dataset
+
+    if out is not None:
+        write_dataset(dataset() if callable(dataset) else dataset, out, overwrite=args.overwrite)
+        print(f"wrote {out}")
 
 
 def add_output_flags(
@@ -211,7 +239,6 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
     g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2", help="gravity (default 9.80665)")
     g.add_argument(
         "--mu-v",
-        dest="mu_v",
         type=float,
         metavar="S/M",
         help="viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
@@ -219,7 +246,6 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
     )
     g.add_argument(
         "--mu-k",
-        dest="mu_k",
         type=float,
         metavar="MU_K",
         help="Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_top_arguments, top_from_args
+from ._args import add_top_arguments, new_command, top_from_args
 
 __all__ = ["register", "run"]
 
@@ -13,8 +13,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``launch`` subcommand."""
     from ..top import SPIN_UNITS
 
-    p = sub.add_parser(
+    p = new_command(
+        sub,
         "launch",
+        run,
         help="what a real top does when you spin it: thresholds, end, flip and settle times",
         description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
         "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
@@ -28,7 +30,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--tilt", type=float, default=1.0, metavar="DEG", help="initial tilt of the axis (default 1)")
     g.add_argument(
         "--alpha-v",
-        dest="alpha_v",
         type=float,
         metavar="VALUE",
         help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)",
@@ -40,7 +41,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="FILE.png",
         help="also draw the top's bifurcation diagram in --unit, the launch and its end marked",
     )
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -5,10 +5,19 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
-from ._args import FLAGS, add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top
+from ._args import (
+    FLAGS,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    new_command,
+    output_path,
+    write_output,
+)
 
 __all__ = ["register", "run"]
 
@@ -23,8 +32,10 @@ def _pair(text: str, name: str) -> tuple[float, float]:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``neutral`` subcommand."""
-    p = sub.add_parser(
+    p = new_command(
+        sub,
         "neutral",
+        run,
         help="neutral curves of a linear model in a parameter plane -> netCDF",
         description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
         "(Re s = 0) in the plane of two parameters, print the special points (folds, "
@@ -45,14 +56,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
     add_output_flags(p, "netCDF file to write (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe neutral``."""
     from ..linear.neutral_curves import neutral_curve
 
-    out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
+    out = output_path(args)
     model = get_model(args.model)
     traced = (args.x, args.y)
     apply_top(args, [n for n in FLAGS if n in model.parameters], spin_needed="fr_inv" not in traced, skip=traced)
@@ -85,7 +95,5 @@ def run(args: argparse.Namespace) -> int:
                 f"{float(special[args.x][k]):>18.12g} {float(special[args.y][k]):>18.12g} "
                 f"{float(special.frequency[k]):>18.12g}  {special.detail.values[k]}"
             )
-    if out is not None:
-        write_dataset(ds, out, overwrite=args.overwrite)
-        print(f"wrote {out}")
+    write_output(ds, out, args)
     return 0

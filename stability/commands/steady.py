@@ -7,10 +7,17 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..grids.netcdf import check_output_path, write_dataset
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
-from ._args import add_output_flags, add_parameter_flags, add_top_arguments, apply_top
+from ._args import (
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    new_command,
+    output_path,
+    write_output,
+)
 
 __all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
 
@@ -39,8 +46,10 @@ def apply_top_flags(args: argparse.Namespace) -> None:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``steady`` subcommand."""
-    p = sub.add_parser(
+    p = new_command(
+        sub,
         "steady",
+        run,
         help="steady (tilted) states on a Jellett level, or the branch of tilted states",
         description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
         "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
@@ -62,7 +71,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--jellett-max",
-        dest="jellett_max",
         type=float,
         default=None,
         metavar="J",
@@ -70,14 +78,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--max-step",
-        dest="max_step",
         type=float,
         default=0.02,
         metavar="H",
         help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
     )
     add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -90,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
         raise InputError("--jellett-max and --max-step are only used with --branch")
     apply_top_flags(args)
-    out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
+    out = output_path(args)
     top = dict(q=args.q, sigma=args.sigma, fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu)
     if args.branch:
         ds = steady_branch(**top, jellett_max=args.jellett_max, max_step=args.max_step)
@@ -128,7 +134,5 @@ def run(args: argparse.Namespace) -> int:
                 f"{float(s.axial_spin):12.6g} {float(s.energy):12.8g} {float(s.growth_rate):12.4g} "
                 f"{FLAG_NAMES[int(s.stability)]:>10}"
             )
-    if out is not None:
-        write_dataset(ds, out, overwrite=args.overwrite)
-        print(f"wrote {out}")
+    write_output(ds, out, args)
     return 0

@@ -8,15 +8,17 @@ from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
 from ..top import SPIN_UNITS, Top
-from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, top_from_args
+from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, new_command, top_from_args
 
 __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``threshold`` subcommand."""
-    p = sub.add_parser(
+    p = new_command(
+        sub,
         "threshold",
+        run,
         help="threshold of one parameter, or the critical spin of a real top",
         description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
         "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
@@ -55,7 +57,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
     )
-    p.set_defaults(func=run)
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:
