@@ -136,10 +136,8 @@ def _parameters_as_flags(text: str, flags: Collection[str]) -> str:
 
 def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
     """The option strings of the subcommand ``command`` of the ``tippe`` parser."""
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction) and command in action.choices:
-            return {s for a in action.choices[command]._actions for s in a.option_strings}
-    return set()
+    sub = parser._subcommand(command)
+    return set(sub._options()) if sub is not None else set()
 
 
 class HelpFormatter(argparse.HelpFormatter):

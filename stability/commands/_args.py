@@ -21,10 +21,11 @@ __all__ = [
     "add_top_arguments",
     "apply_top",
     "comma_floats",
-    "new_command",
+    "lo_hi",
     "output_path",
     "parameter_help",
     "parameter_values",
+    "required_top",
     "top_from_args",
     "top_parameters",
     "write_output",
@@ -118,13 +119,6 @@ def add_model_flag(
         metavar="MODEL",
         help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""),
     )
-
-
-def new_command(sub: argparse._SubParsersAction, name: str, run, *, help: str, description: str):
-    """The parser of the subcommand ``name``, run by ``run`` (every command's ``register``)."""
-    p = sub.add_parser(name, help=help, description=description)
-    p.set_defaults(func=run)
-    return p
 
 
 def output_path(args: argparse.Namespace):  # -> Path | None
@@ -321,6 +315,28 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
             f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., --top FILE or --preset)"
         )
     return None
+
+
+def required_top(args: argparse.Namespace, command: str):  # -> Top
+    """The top of :func:`top_from_args`, or an :class:`InputError` saying that ``command`` needs one."""
+    from ..errors import InputError
+
+    top = top_from_args(args)
+    if top is None:
+        flags = ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
+        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {flags}")
+    return top
+
+
+def lo_hi(text: str, flag: str) -> tuple[float, float]:
+    """``LO:HI`` of a range flag (``--bracket``, ``--x-range``) as two floats."""
+    from ..errors import InputError
+
+    try:
+        lo, hi = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise InputError(f"{flag} = {text!r} must be lo:hi (two numbers)") from None
+    return lo, hi
 
 
 def top_parameters(

@@ -19,15 +19,7 @@ from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
-from ._args import (
-    add_model_flag,
-    add_output_flags,
-    add_parameter_flags,
-    add_top_arguments,
-    apply_top,
-    new_command,
-    parameter_values,
-)
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -50,10 +42,8 @@ def plot_figure(ds, x: str):
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``atlas`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "atlas",
-        run,
         help="eigenvalues of a linear model over a parameter grid -> netCDF",
         description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
         "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
@@ -141,6 +131,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
     )
     g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
+    p.set_defaults(func=run)
 
 
 def parse_chunks(text: str) -> int | dict[str, int]:

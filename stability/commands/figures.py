@@ -6,17 +6,14 @@ import argparse
 from pathlib import Path
 
 from ..errors import InputError
-from ._args import new_command
 
 __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``figures`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "figures",
-        run,
         help="compute and draw atlas recipes (atlases/*.toml)",
         description="Run atlas recipes: compute the datasets that are missing or out of date "
         "(netCDF beside each recipe) and draw their figures (PNG). A recipe's own outputs "
@@ -31,6 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="recompute even when a matching dataset exists, and replace a file at a recipe's "
         "output path that was not written by a recipe (default: reuse, refuse)",
     )
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_output_flags, add_state_flags, new_command, output_path, write_output
+from ._args import add_output_flags, add_state_flags, output_path, write_output
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
 __all__ = ["register", "run"]
@@ -13,10 +13,8 @@ __all__ = ["register", "run"]
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``final`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "final",
-        run,
         help="predicted final state of a sliding top (Jellett's integral, or a run)",
         description="Where the motion of a sliding top from a given state ends: the steady states of its "
         "Jellett level below its initial energy decide it when exactly one is stable (method "
@@ -44,6 +42,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="time limit of a deciding run, units of 1/Omega (default 2e5)",
     )
     add_output_flags(p, "write the prediction and its candidate table as netCDF (default: print only)")
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_top_arguments, new_command, top_from_args
+from ._args import add_top_arguments, required_top
 
 __all__ = ["register", "run"]
 
@@ -13,10 +13,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``launch`` subcommand."""
     from ..top import SPIN_UNITS
 
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "launch",
-        run,
         help="what a real top does when you spin it: thresholds, end, flip and settle times",
         description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
         "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
@@ -41,20 +39,14 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="FILE.png",
         help="also draw the top's bifurcation diagram in --unit, the launch and its end marked",
     )
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe launch``."""
     from ..launches.result import launch
 
-    top = top_from_args(args)
-    if top is None:
-        from ..errors import InputError
-
-        raise InputError(
-            "tippe launch needs a top: --preset, --top FILE.toml or --mass, --radius, --com-offset, "
-            "--inertia-transverse, --inertia-axial"
-        )
+    top = required_top(args, "tippe launch")
     res = launch(top, args.spin, unit=args.unit, tilt=args.tilt, alpha_v=args.alpha_v, model=args.model)
     print(res)
     if args.plot:

@@ -14,7 +14,7 @@ from ._args import (
     add_parameter_flags,
     add_top_arguments,
     apply_top,
-    new_command,
+    lo_hi,
     output_path,
     write_output,
 )
@@ -22,20 +22,10 @@ from ._args import (
 __all__ = ["register", "run"]
 
 
-def _pair(text: str, name: str) -> tuple[float, float]:
-    try:
-        lo, hi = (float(v) for v in text.split(":"))
-    except ValueError:
-        raise InputError(f"{name} = {text!r} must be lo:hi (two numbers)") from None
-    return lo, hi
-
-
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``neutral`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "neutral",
-        run,
         help="neutral curves of a linear model in a parameter plane -> netCDF",
         description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
         "(Re s = 0) in the plane of two parameters, print the special points (folds, "
@@ -56,6 +46,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
     add_output_flags(p, "netCDF file to write (default: print only)")
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -78,8 +69,8 @@ def run(args: argparse.Namespace) -> int:
     for name in FLAGS:
         if name not in model.parameters and getattr(args, name) is not None:
             raise InputError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")
-    xr_ = _pair(args.x_range, "--x-range") if args.x_range else None
-    yr_ = _pair(args.y_range, "--y-range") if args.y_range else None
+    xr_ = lo_hi(args.x_range, "--x-range") if args.x_range else None
+    yr_ = lo_hi(args.y_range, "--y-range") if args.y_range else None
     ds = neutral_curve(model, args.x, args.y, fixed=fixed, x_range=xr_, y_range=yr_)
     special = ds.where(ds.kind != "regular", drop=True) if ds.sizes["point"] else ds
     print(

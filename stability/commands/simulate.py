@@ -10,15 +10,7 @@ import sys
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import (
-    add_model_flag,
-    add_output_flags,
-    add_parameter_flags,
-    add_state_flags,
-    add_top_arguments,
-    apply_top,
-    new_command,
-)
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_state_flags, add_top_arguments, apply_top
 
 __all__ = ["register", "run"]
 
@@ -33,10 +25,8 @@ _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", 
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "simulate",
-        run,
         help="integrate a nonlinear model -> netCDF",
         description="Integrate the sliding, rolling or fixed-pivot top from a given "
         "state and write the run (omega, k, energy, forces, ...) as netCDF. "
@@ -111,6 +101,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="show a progress bar (default: when stderr is a terminal and the run takes over a second)",
     )
     g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
+    p.set_defaults(func=run)
 
 
 #: outputs above this size get a warning on stderr before the run

@@ -14,7 +14,6 @@ from ._args import (
     add_parameter_flags,
     add_top_arguments,
     apply_top,
-    new_command,
     output_path,
     write_output,
 )
@@ -46,10 +45,8 @@ def apply_top_flags(args: argparse.Namespace) -> None:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``steady`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "steady",
-        run,
         help="steady (tilted) states on a Jellett level, or the branch of tilted states",
         description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
         "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
@@ -84,6 +81,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
     )
     add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -8,17 +8,23 @@ from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
 from ..top import SPIN_UNITS, Top
-from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, new_command, top_from_args
+from ._args import (
+    FLAGS,
+    TOP_FLAGS,
+    add_model_flag,
+    add_parameter_flags,
+    add_top_arguments,
+    lo_hi,
+    required_top,
+)
 
 __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``threshold`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "threshold",
-        run,
         help="threshold of one parameter, or the critical spin of a real top",
         description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
         "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
@@ -57,6 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
     )
+    p.set_defaults(func=run)
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:
@@ -84,23 +91,13 @@ def _refuse_unused(args: argparse.Namespace) -> None:
         )
 
 
-def _top(args: argparse.Namespace) -> Top:
-    top = top_from_args(args)
-    if top is None:
-        raise InputError(
-            "tippe threshold spin needs a top: --preset, --top FILE.toml or "
-            + ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
-        )
-    return top
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
     from ..linear.critical import _one_threshold, critical_spin, threshold_crossings
 
     _refuse_unused(args)
     if args.param == "spin":
-        top = _top(args)
+        top = required_top(args, "tippe threshold spin")
         orientation = args.orientation or "both"
         alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
         found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
@@ -132,14 +129,7 @@ def run(args: argparse.Namespace) -> int:
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
         raise InputError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")
-    bracket = None
-    if args.bracket:
-        try:
-            bracket = tuple(float(v) for v in args.bracket.split(":"))
-        except ValueError:
-            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi") from None
-        if len(bracket) != 2:
-            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi")
+    bracket = lo_hi(args.bracket, "--bracket") if args.bracket else None
     if args.all:
         found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
         if not found:

@@ -6,15 +6,7 @@ import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import (
-    add_model_flag,
-    add_output_flags,
-    add_parameter_flags,
-    add_top_arguments,
-    apply_top,
-    new_command,
-    parameter_values,
-)
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
 __all__ = ["register", "run"]
 
@@ -46,10 +38,8 @@ def format_points(ds) -> str:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``validate`` subcommand."""
-    p = new_command(
-        sub,
+    p = sub.add_parser(
         "validate",
-        run,
         help="check linear growth rates against nonlinear runs",
         description="For each point (values broadcast together), perturb the upright "
         "spin along the leading eigenvector, integrate the nonlinear model, "
@@ -73,6 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)",
     )
     add_output_flags(p, "also write the Dataset as netCDF (default: print only)")
+    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
