@@ -385,16 +385,13 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
             )
             return 0
         return EXIT_FAILURE
-    except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
+    except (ValueError, TypeError, OSError, TippeError, ConvergenceError) as exc:
         if debug:
             raise
         print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
-        return EXIT_USAGE
-    except (TippeError, ConvergenceError) as exc:  # a failure to compute: ChunkError, ConvergenceError
-        if debug:
-            raise
-        print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
-        return EXIT_FAILURE
+        # bad input (every InputError is a ValueError) or a file: 2; a failure to compute
+        # (ChunkError, ConvergenceError, any other TippeError): 1
+        return EXIT_USAGE if isinstance(exc, (ValueError, TypeError, OSError)) else EXIT_FAILURE
     except Exception as exc:  # a bug: still one line unless asked
         if debug:
             raise
