@@ -136,10 +136,8 @@ def _parameters_as_flags(text: str, flags: Collection[str]) -> str:
 
 def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
     """The option strings of the subcommand ``command`` of the ``tippe`` parser."""
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction) and command in action.choices:
-            return {s for a in action.choices[command]._actions for s in a.option_strings}
-    return set()
+    sub = parser._subcommand(command)
+    return set(sub._options()) if sub is not None else set()
 
 
 class HelpFormatter(argparse.HelpFormatter):
@@ -387,16 +385,13 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
             )
             return 0
         return EXIT_FAILURE
-    except (ValueError, TypeError, OSError) as exc:  # bad input (every InputError is a ValueError)
+    except (ValueError, TypeError, OSError, TippeError, ConvergenceError) as exc:
         if debug:
             raise
         print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
-        return EXIT_USAGE
-    except (TippeError, ConvergenceError) as exc:  # a failure to compute: ChunkError, ConvergenceError
-        if debug:
-            raise
-        print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
-        return EXIT_FAILURE
+        # bad input (every InputError is a ValueError) or a file: 2; a failure to compute
+        # (ChunkError, ConvergenceError, any other TippeError): 1
+        return EXIT_USAGE if isinstance(exc, (ValueError, TypeError, OSError)) else EXIT_FAILURE
     except Exception as exc:  # a bug: still one line unless asked
         if debug:
             raise

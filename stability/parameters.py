@@ -837,15 +837,11 @@ def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum:
             else f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
         )
     )
-    both = (
-        f" in [{minimum}, {top}]"
-        if minimum is not None and maximum is not None
-        else f" >= {minimum}"
-        if minimum is not None
-        else f" <= {top}"
-        if maximum is not None
-        else ""
-    )
+    if minimum is not None and maximum is not None:
+        both, rng = f" in [{minimum}, {top}]", f"{minimum} <= {name} <= {top}"
+    else:  # one bound or none: ``>= 1`` after "an integer" and after the name
+        bound = f">= {minimum}" if minimum is not None else f"<= {top}" if maximum is not None else ""
+        both, rng = f" {bound}" if bound else "", f"{name} {bound}"
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
         if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
@@ -856,13 +852,6 @@ def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum:
     v = int(value)
     if (minimum is not None and v < minimum) or (maximum is not None and v > maximum):
         shown = _integer_text(v) if len(str(abs(v))) > 18 else str(v)
-        rng = (
-            f"{minimum} <= {name} <= {top}"
-            if minimum is not None and maximum is not None
-            else f"{name} >= {minimum}"
-            if minimum is not None
-            else f"{name} <= {top}"
-        )
         raise DomainError(f"{name} = {shown} is outside the allowed range: {rng}")
     return v
 

@@ -79,7 +79,7 @@ import hashlib
 import importlib.util
 import time
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -214,6 +214,14 @@ def _grid_value(path: Path, key: str, value: Any) -> float | np.ndarray:
     raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
 
 
+def _one_of(p: Path, raw: dict[str, Any], key: str, default: Any, choices: Sequence[str]) -> Any:
+    """The recipe's ``key`` (``default`` if absent), or a :class:`RecipeError` naming the choices."""
+    value = raw.get(key, default)
+    if value not in choices:
+        raise RecipeError(f"{p}: {key} = {value!r} is not one of {', '.join(choices)}")
+    return value
+
+
 def load_recipe(path: str | Path) -> Recipe:
     """Read and check a recipe file.
 
@@ -237,16 +245,12 @@ def load_recipe(path: str | Path) -> Recipe:
     for key in ("title", "kind"):
         if key not in raw:
             raise RecipeError(f"{p}: the key {key!r} is required")
-    kind = raw["kind"]
-    if kind not in KINDS:
-        raise RecipeError(f"{p}: kind = {kind!r} is not one of {', '.join(KINDS)}")
+    kind = _one_of(p, raw, "kind", None, KINDS)
     digest = hashlib.sha256(raw_bytes + code_fingerprint().encode()).hexdigest()[:16]
     top = _load_top(p, raw, kind)
     common = dict(path=p, title=str(raw["title"]), kind=kind, caption=str(raw.get("caption", "")), digest=digest)
     if kind == "scene":
-        figure = raw.get("figure")
-        if figure not in SCENE_FIGURES:
-            raise RecipeError(f"{p}: figure = {figure!r} is not one of {', '.join(SCENE_FIGURES)}")
+        figure = _one_of(p, raw, "figure", None, SCENE_FIGURES)
         if "grid" in raw:
             raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
         return Recipe(**common, model="sliding", grid={}, figure=figure)
@@ -260,11 +264,7 @@ def load_recipe(path: str | Path) -> Recipe:
     except ValueError:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
     if kind == "critical_spin":
-        preset = raw.get("preset", "table1")
-        if top is not None:
-            preset = None
-        elif preset not in PRESETS:
-            raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
+        preset = None if top is not None else _one_of(p, raw, "preset", "table1", PRESETS)
         x = raw.get("x", "q")
         if x not in ("q", "sigma") or set(raw["grid"]) != {x}:
             raise RecipeError(f"{p}: a critical_spin recipe varies one of q, sigma: [grid] must hold only x = {x!r}")
@@ -347,9 +347,7 @@ def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], mode
     is a 1-D grid of fr_inv (the spin is recorded as a coordinate along it)."""
     from .top import SPIN_UNITS
 
-    unit = raw.get("unit", "rad/s")
-    if unit not in SPIN_UNITS:
-        raise RecipeError(f"{p}: unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+    unit = _one_of(p, raw, "unit", "rad/s", SPIN_UNITS)
     if top is None:
         if "unit" in raw:
             raise RecipeError(f"{p}: unit = {unit!r} needs a [top] table and a spin")
@@ -729,12 +727,8 @@ def _load_steady(p: Path, raw: dict[str, Any], kind: str, common: dict[str, Any]
     if kind == "bifurcation":
         from .top import SPIN_UNITS
 
-        preset = None if top is not None else raw.get("preset", "table1")
-        if top is None and preset not in PRESETS:
-            raise RecipeError(f"{p}: preset = {preset!r} is not one of {', '.join(PRESETS)}")
-        unit = raw.get("unit", "rpm")
-        if unit not in SPIN_UNITS:
-            raise RecipeError(f"{p}: unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+        preset = None if top is not None else _one_of(p, raw, "preset", "table1", PRESETS)
+        unit = _one_of(p, raw, "unit", "rpm", SPIN_UNITS)
         if "runs_rpm" in raw and "runs" in raw:
             raise RecipeError(f"{p}: runs_rpm and runs conflict: give the launch spins once (runs, in unit)")
         key = "runs" if "runs" in raw else "runs_rpm"

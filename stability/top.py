@@ -131,10 +131,6 @@ def check_launch_spin(spin: Any, unit: str) -> float:
     return w * factor
 
 
-def _positive(name: str, value: Any) -> float:
-    return check_positive(name, value)
-
-
 def _spin(spin: Any, unit: str) -> np.ndarray:
     """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
     factor = _unit(unit)
@@ -190,7 +186,7 @@ class Top:
 
     def __post_init__(self) -> None:
         for name in ("mass", "radius", "inertia_transverse", "inertia_axial", "g"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "com_offset", as_scalar("com_offset", self.com_offset))
         for name in ("mu_k", "mu_v"):
             v = getattr(self, name)
@@ -410,8 +406,6 @@ class Top:
         """
         from collections.abc import Mapping
 
-        from .errors import InputError
-
         if not isinstance(data, Mapping):
             raise InputError(f"{source} must be a table of SI values, not {type(data).__name__}")
         required = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
@@ -435,16 +429,14 @@ class Top:
                     f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
                     "preset or the top's SI data, not both"
                 )
-            named: Top = getattr(cls, preset)(**extra)
-            return named
+            return getattr(cls, preset)(**extra)
         missing = [k for k in required if k not in data]
         if missing:
             raise InputError(
                 f"{source}: missing {', '.join(missing)} (SI units), or give preset = "
                 f"{' or '.join(repr(p) for p in PRESETS)}"
             )
-        top: Top = cls(**{k: float(data[k]) for k in required}, **extra)  # type: ignore[arg-type]
-        return top
+        return cls(**{k: float(data[k]) for k in required}, **extra)  # type: ignore[arg-type]
 
     @classmethod
     def from_toml(cls, path: Any) -> Top:
@@ -460,8 +452,6 @@ class Top:
         """
         import tomllib
         from pathlib import Path
-
-        from .errors import InputError
 
         p = Path(path)
         try:

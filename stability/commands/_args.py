@@ -21,10 +21,14 @@ __all__ = [
     "add_top_arguments",
     "apply_top",
     "comma_floats",
+    "lo_hi",
+    "output_path",
     "parameter_help",
     "parameter_values",
+    "required_top",
     "top_from_args",
     "top_parameters",
+    "write_output",
 ]
 
 
@@ -115,6 +119,24 @@ def add_model_flag(
         metavar="MODEL",
         help=f"{what}: {', '.join(models)}" + (f" ({old})" if old else ""),
     )
+
+
+def output_path(args: argparse.Namespace):  # -> Path | None
+    """``--output`` checked before anything is computed (:func:`stability.files.check_output_path`),
+    or None when not given."""
+    from ..files import check_output_path
+
+    return check_output_path(args.output, overwrite=args.overwrite) if args.output else None
+
+
+def write_output(dataset, out, args: argparse.Namespace) -> None:
+    """Write ``dataset`` (or what a callable returns: built only when written) to the checked
+    path ``out`` of :func:`output_path` and say so; nothing when ``out`` is None."""
+    from ..grids.netcdf import write_dataset
+
+    if out is not None:
+        write_dataset(dataset() if callable(dataset) else dataset, out, overwrite=args.overwrite)
+        print(f"wrote {out}")
 
 
 def add_output_flags(
@@ -211,7 +233,6 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
     g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2", help="gravity (default 9.80665)")
     g.add_argument(
         "--mu-v",
-        dest="mu_v",
         type=float,
         metavar="S/M",
         help="viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
@@ -219,7 +240,6 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
     )
     g.add_argument(
         "--mu-k",
-        dest="mu_k",
         type=float,
         metavar="MU_K",
         help="Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)",
@@ -295,6 +315,28 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
             f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., --top FILE or --preset)"
         )
     return None
+
+
+def required_top(args: argparse.Namespace, command: str):  # -> Top
+    """The top of :func:`top_from_args`, or an :class:`InputError` saying that ``command`` needs one."""
+    from ..errors import InputError
+
+    top = top_from_args(args)
+    if top is None:
+        flags = ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
+        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {flags}")
+    return top
+
+
+def lo_hi(text: str, flag: str) -> tuple[float, float]:
+    """``LO:HI`` of a range flag (``--bracket``, ``--x-range``) as two floats."""
+    from ..errors import InputError
+
+    try:
+        lo, hi = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise InputError(f"{flag} = {text!r} must be lo:hi (two numbers)") from None
+    return lo, hi
 
 
 def top_parameters(

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..grids.netcdf import check_output_path, write_dataset
-from ._args import add_output_flags, add_state_flags
+from ._args import add_output_flags, add_state_flags, output_path, write_output
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
 __all__ = ["register", "run"]
@@ -37,7 +36,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--t-max",
-        dest="t_max",
         type=float,
         default=2e5,
         metavar="T",
@@ -52,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
     from ..steady.final import final_state
 
     apply_top_flags(args)
-    out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
+    out = output_path(args)
     end = final_state(
         omega=args.omega,
         k=args.k,
@@ -79,7 +77,5 @@ def run(args: argparse.Namespace) -> int:
             f"{'':28}{c.kind:<9} {c.tilt:12.6f} {c.energy:14.10g} {FLAG_NAMES[c.stability]:>10} "
             f"{'yes' if c.reachable else 'no'}"
         )
-    if out is not None:
-        write_dataset(end.to_dataset(), out, overwrite=args.overwrite)
-        print(f"wrote {out}")
+    write_output(end.to_dataset, out, args)
     return 0

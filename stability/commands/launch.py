@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_top_arguments, top_from_args
+from ._args import add_top_arguments, required_top
 
 __all__ = ["register", "run"]
 
@@ -28,7 +28,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--tilt", type=float, default=1.0, metavar="DEG", help="initial tilt of the axis (default 1)")
     g.add_argument(
         "--alpha-v",
-        dest="alpha_v",
         type=float,
         metavar="VALUE",
         help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)",
@@ -47,14 +46,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe launch``."""
     from ..launches.result import launch
 
-    top = top_from_args(args)
-    if top is None:
-        from ..errors import InputError
-
-        raise InputError(
-            "tippe launch needs a top: --preset, --top FILE.toml or --mass, --radius, --com-offset, "
-            "--inertia-transverse, --inertia-axial"
-        )
+    top = required_top(args, "tippe launch")
     res = launch(top, args.spin, unit=args.unit, tilt=args.tilt, alpha_v=args.alpha_v, model=args.model)
     print(res)
     if args.plot:

@@ -5,20 +5,21 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..grids.netcdf import check_output_path, write_dataset
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
-from ._args import FLAGS, add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top
+from ._args import (
+    FLAGS,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    lo_hi,
+    output_path,
+    write_output,
+)
 
 __all__ = ["register", "run"]
-
-
-def _pair(text: str, name: str) -> tuple[float, float]:
-    try:
-        lo, hi = (float(v) for v in text.split(":"))
-    except ValueError:
-        raise InputError(f"{name} = {text!r} must be lo:hi (two numbers)") from None
-    return lo, hi
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -52,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe neutral``."""
     from ..linear.neutral_curves import neutral_curve
 
-    out = check_output_path(args.output, overwrite=args.overwrite) if args.output else None
+    out = output_path(args)
     model = get_model(args.model)
     traced = (args.x, args.y)
     apply_top(args, [n for n in FLAGS if n in model.parameters], spin_needed="fr_inv" not in traced, skip=traced)
@@ -68,8 +69,8 @@ def run(args: argparse.Namespace) -> int:
     for name in FLAGS:
         if name not in model.parameters and getattr(args, name) is not None:
             raise InputError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")
-    xr_ = _pair(args.x_range, "--x-range") if args.x_range else None
-    yr_ = _pair(args.y_range, "--y-range") if args.y_range else None
+    xr_ = lo_hi(args.x_range, "--x-range") if args.x_range else None
+    yr_ = lo_hi(args.y_range, "--y-range") if args.y_range else None
     ds = neutral_curve(model, args.x, args.y, fixed=fixed, x_range=xr_, y_range=yr_)
     special = ds.where(ds.kind != "regular", drop=True) if ds.sizes["point"] else ds
     print(
@@ -85,7 +86,5 @@ def run(args: argparse.Namespace) -> int:
                 f"{float(special[args.x][k]):>18.12g} {float(special[args.y][k]):>18.12g} "
                 f"{float(special.frequency[k]):>18.12g}  {special.detail.values[k]}"
             )
-    if out is not None:
-        write_dataset(ds, out, overwrite=args.overwrite)
-        print(f"wrote {out}")
+    write_output(ds, out, args)
     return 0

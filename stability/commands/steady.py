@@ -7,10 +7,16 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..grids.netcdf import check_output_path, write_dataset
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
-from ._args import add_output_flags, add_parameter_flags, add_top_arguments, apply_top
+from ._args import (
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    output_path,
+    write_output,
+)
 
 __all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
 
@@ -62,7 +68,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--jellett-max",
-        dest="jellett_max",
         type=float,
         default=None,
         metavar="J",
@@ -70,7 +75,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--max-step",
-        dest="max_step",
         type=float,
         default=0.02,
         metavar="H",
@@ -90,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
         raise InputError("--jellett-max and --max-step are only used with --branch")
     apply_top_flags(args)
-    out = None if args.output is None else check_output_path(args.output, overwrite=args.overwrite)
+    out = output_path(args)
     top = dict(q=args.q, sigma=args.sigma, fr_inv=args.fr_inv, alpha_v=args.alpha_v, mu=args.mu)
     if args.branch:
         ds = steady_branch(**top, jellett_max=args.jellett_max, max_step=args.max_step)
@@ -128,7 +132,5 @@ def run(args: argparse.Namespace) -> int:
                 f"{float(s.axial_spin):12.6g} {float(s.energy):12.8g} {float(s.growth_rate):12.4g} "
                 f"{FLAG_NAMES[int(s.stability)]:>10}"
             )
-    if out is not None:
-        write_dataset(ds, out, overwrite=args.overwrite)
-        print(f"wrote {out}")
+    write_output(ds, out, args)
     return 0

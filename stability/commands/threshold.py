@@ -8,7 +8,15 @@ from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
 from ..parameters import DEFAULT_MU
 from ..top import SPIN_UNITS, Top
-from ._args import FLAGS, TOP_FLAGS, add_model_flag, add_parameter_flags, add_top_arguments, top_from_args
+from ._args import (
+    FLAGS,
+    TOP_FLAGS,
+    add_model_flag,
+    add_parameter_flags,
+    add_top_arguments,
+    lo_hi,
+    required_top,
+)
 
 __all__ = ["register", "run"]
 
@@ -83,23 +91,13 @@ def _refuse_unused(args: argparse.Namespace) -> None:
         )
 
 
-def _top(args: argparse.Namespace) -> Top:
-    top = top_from_args(args)
-    if top is None:
-        raise InputError(
-            "tippe threshold spin needs a top: --preset, --top FILE.toml or "
-            + ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
-        )
-    return top
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe threshold``."""
     from ..linear.critical import _one_threshold, critical_spin, threshold_crossings
 
     _refuse_unused(args)
     if args.param == "spin":
-        top = _top(args)
+        top = required_top(args, "tippe threshold spin")
         orientation = args.orientation or "both"
         alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
         found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
@@ -131,14 +129,7 @@ def run(args: argparse.Namespace) -> int:
     fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
         raise InputError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")
-    bracket = None
-    if args.bracket:
-        try:
-            bracket = tuple(float(v) for v in args.bracket.split(":"))
-        except ValueError:
-            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi") from None
-        if len(bracket) != 2:
-            raise InputError(f"--bracket = {args.bracket!r} must be lo:hi")
+    bracket = lo_hi(args.bracket, "--bracket") if args.bracket else None
     if args.all:
         found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
         if not found:

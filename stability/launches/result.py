@@ -155,32 +155,24 @@ class Launch:
         a field that is None is NaN with its reason in the variable's ``comment``."""
         nan = math.nan
 
-        def var(v: float | None, long_name: str, units: str, name: str) -> tuple:
+        def var(name: str, long_name: str, units: str) -> tuple:
+            v = getattr(self, name)
             attrs = {"long_name": long_name, "units": units}
             if v is None:
                 attrs["comment"] = self.reasons.get(name, "")
             return ((), nan if v is None else float(v), attrs)
 
-        data = {
-            "spin": var(self.spin, "launch spin", "rad s-1", "spin"),
-            "initial_tilt": var(self.tilt, "initial tilt of the axis", "degree", "tilt"),
-            "unstable_above": var(
-                self.unstable_above, "spin above which the upright top is unstable", "rad s-1", "unstable_above"
-            ),
-            "inverts_above": var(
-                self.inverts_above, "launch spin above which the top inverts completely", "rad s-1", "inverts_above"
-            ),
-            "end_tilt": var(self.end_tilt, "tilt where the launch ends", "degree", "end_tilt"),
-            "flip_time": var(self.flip_time, "time until the axis first crosses 90 degrees", "s", "flip_time"),
-            "settle_time": var(
-                self.settle_time, "time until the tilt stays within 1 degree of its end", "s", "settle_time"
-            ),
-            "min_normal_force": var(
-                self.min_normal_force, "smallest normal force along the run", "N", "min_normal_force"
-            ),
-            "min_normal_force_nd": var(
-                self.min_normal_force_nd, "smallest normal force along the run", "A0 Omega2 R-1", "min_normal_force_nd"
-            ),
+        force = "smallest normal force along the run"
+        data = {  # variable: var(field, long name, units)
+            "spin": var("spin", "launch spin", "rad s-1"),
+            "initial_tilt": var("tilt", "initial tilt of the axis", "degree"),
+            "unstable_above": var("unstable_above", "spin above which the upright top is unstable", "rad s-1"),
+            "inverts_above": var("inverts_above", "launch spin above which the top inverts completely", "rad s-1"),
+            "end_tilt": var("end_tilt", "tilt where the launch ends", "degree"),
+            "flip_time": var("flip_time", "time until the axis first crosses 90 degrees", "s"),
+            "settle_time": var("settle_time", "time until the tilt stays within 1 degree of its end", "s"),
+            "min_normal_force": var("min_normal_force", force, "N"),
+            "min_normal_force_nd": var("min_normal_force_nd", force, "A0 Omega2 R-1"),
         }
         attrs = {
             "Conventions": "CF-1.10",

@@ -14,8 +14,6 @@ Convention: every model's (:mod:`stability.models.base`) (eq. 8's ``lambda = -i 
 
 from __future__ import annotations
 
-import numpy as np
-
 from .second_order import SecondOrderTop
 
 __all__ = ["FixedPivot"]
@@ -27,7 +25,4 @@ class FixedPivot(SecondOrderTop):
     name = "fixed_pivot"
     equations = "(8)-(9)"
     description = "heavy top on a fixed pivot at the sphere's bottom point, eq. (8) with h = 1 + q"
-
-    def h(self, q: np.ndarray) -> np.ndarray:
-        """``h = 1 + q`` (eq. 9): height of G above the pivot."""
-        return 1.0 + q
+    support_depth = 1.0  # h = 1 + q (eq. 9): G above the pivot

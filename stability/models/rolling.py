@@ -29,20 +29,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import LinearModel
-from .second_order import contact_transverse_inertia, gyroscopic_coefficients, gyroscopic_state_form
+from .second_order import SecondOrderTop, contact_transverse_inertia
 
 __all__ = ["Rolling"]
 
 
-class Rolling(LinearModel):
+class Rolling(SecondOrderTop):
     """Linearised rolling sphere: ``A_C Phi'' - i (sigma + mu (1+q)) Phi' - mu fr_inv q Phi = 0``."""
 
     name = "rolling"
     equations = "(1), (2), (4), (5) linearised"
-    parameters = ("q", "fr_inv", "sigma", "mu")
-    state = ("Phi", "dPhi_dt")
-    n_modes = 2
+    gyroscopic = "gamma"
     description = "top rolling on its sphere, linearised from the vector equations (1), (2), (4), (5)"
 
     def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
@@ -50,13 +47,3 @@ class Rolling(LinearModel):
         q, fr_inv, sigma, mu = np.broadcast_arrays(*(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
         a_c = contact_transverse_inertia(q, mu)
         return {"A_C": a_c, "gamma": (sigma + mu * (1.0 + q)) / a_c, "kappa": mu * fr_inv * q / a_c}
-
-    def matrices(self, *, q, fr_inv, sigma, mu):
-        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]``."""
-        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_state_form(d["gamma"], d["kappa"])
-
-    def coefficients(self, *, q, fr_inv, sigma, mu):
-        """``s^2 - i gamma s - kappa``, highest power first."""
-        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_coefficients(d["gamma"], d["kappa"])

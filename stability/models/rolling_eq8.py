@@ -23,8 +23,6 @@ Convention: every model's (:mod:`stability.models.base`) (eq. 8's ``lambda = -i 
 
 from __future__ import annotations
 
-import numpy as np
-
 from .second_order import SecondOrderTop
 
 __all__ = ["RollingEq8"]
@@ -36,7 +34,4 @@ class RollingEq8(SecondOrderTop):
     name = "rolling_eq8"
     equations = "(8)-(9) as printed"
     description = "top rolling on its sphere, eq. (8)-(9) as printed, h = q, sigma_hat = sigma/A_C"
-
-    def h(self, q: np.ndarray) -> np.ndarray:
-        """``h = q`` (eq. 9): height of G above the sphere's centre."""
-        return np.asarray(q, dtype=float)
+    support_depth = 0.0  # h = q (eq. 9): G above the sphere's centre

@@ -66,10 +66,16 @@ class SecondOrderTop(LinearModel):
     parameters = ("q", "fr_inv", "sigma", "mu")
     state = ("Phi", "dPhi_dt")
     n_modes = 2
+    #: the key of :meth:`derived` that is the coefficient ``gamma`` of ``i Phi'`` (here ``sigma_hat``)
+    gyroscopic = "sigma_hat"
 
-    def h(self, q: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract in spirit
-        """Height of G above the support point, eq. (9), in units of R."""
-        raise NotImplementedError
+    #: depth of the support point below the sphere's centre, units of R: ``h = q + depth`` (eq. 9)
+    support_depth: float = 0.0
+
+    def h(self, q: np.ndarray) -> np.ndarray:
+        """Height of G above the support point, eq. (9), in units of R: ``q + support_depth``."""
+        q = np.asarray(q, dtype=float)
+        return q + self.support_depth if self.support_depth else q
 
     def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
         """Derived quantities: ``A_C``, ``sigma_hat``, ``h`` and ``kappa`` (eqs. 8-9)."""
@@ -78,11 +84,12 @@ class SecondOrderTop(LinearModel):
         return {"A_C": a_c, "sigma_hat": sigma / a_c, "h": h, "kappa": mu * fr_inv * h / a_c}
 
     def matrices(self, *, q, fr_inv, sigma, mu):
-        """``M = 1`` and ``A = [[0, 1], [kappa, i sigma_hat]]`` (state form of eq. 8)."""
+        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8; ``gamma`` is
+        :attr:`gyroscopic`)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_state_form(d["sigma_hat"], d["kappa"])
+        return gyroscopic_state_form(d[self.gyroscopic], d["kappa"])
 
     def coefficients(self, *, q, fr_inv, sigma, mu):
-        """``s^2 - i sigma_hat s - kappa``."""
+        """``s^2 - i gamma s - kappa``, highest power first (``gamma`` is :attr:`gyroscopic`)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_coefficients(d["sigma_hat"], d["kappa"])
+        return gyroscopic_coefficients(d[self.gyroscopic], d["kappa"])

@@ -75,30 +75,18 @@ class NonlinearModel:
         return "X_1" in self.state
 
 
-#: name -> (module, equations, parameters, transverse index pairs, linear model): what the registry
-#: knows before the model's compiled module is imported (:class:`NonlinearModel`)
-_MODELS: dict[str, tuple[str, str, tuple[str, ...], tuple[tuple[int, int], ...], str]] = {
+#: the parameters of the tops without friction parameters (rolling, fixed pivot)
+_CLASSICAL = ("q", "fr_inv", "sigma", "mu")
+#: name -> (equations, parameters, transverse index pairs): what the registry knows before the
+#: model's compiled module (of the same name) is imported; its linear model has the same name too
+_MODELS: dict[str, tuple[str, tuple[str, ...], tuple[tuple[int, int], ...]]] = {
     "sliding": (
-        "sliding",
         "(1), (2), (4), (5), (7)/(16)",
         ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
         ((0, 1), (3, 4), (6, 7)),
-        "sliding",
     ),
-    "rolling": (
-        "rolling",
-        "(1), (2), (4), (5) with V_c = 0",
-        ("q", "fr_inv", "sigma", "mu"),
-        ((0, 1), (3, 4)),
-        "rolling",
-    ),
-    "fixed_pivot": (
-        "fixed_pivot",
-        "(2), (4) about the pivot; (8)-(9) with h = 1 + q",
-        ("q", "fr_inv", "sigma", "mu"),
-        ((0, 1), (3, 4)),
-        "fixed_pivot",
-    ),
+    "rolling": ("(1), (2), (4), (5) with V_c = 0", _CLASSICAL, ((0, 1), (3, 4))),
+    "fixed_pivot": ("(2), (4) about the pivot; (8)-(9) with h = 1 + q", _CLASSICAL, ((0, 1), (3, 4))),
 }
 
 
@@ -111,10 +99,10 @@ class _Registry(Mapping[str, NonlinearModel]):
 
     def __getitem__(self, name: str) -> NonlinearModel:
         if name not in self._built:
-            module, equations, parameters, transverse, linear_model = _MODELS[name]
-            mod = importlib.import_module(f"{__name__}.{module}")
+            equations, parameters, transverse = _MODELS[name]
+            mod = importlib.import_module(f"{__name__}.{name}")
             self._built[name] = NonlinearModel(
-                name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters, transverse, linear_model
+                name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters, transverse, name
             )
         return self._built[name]
 

@@ -145,9 +145,7 @@ def plot_neutral_curve(
     -------
     (Figure, Axes)
     """
-    x = curve.attrs["x"] if x is None else x
-    y = curve.attrs["y"] if y is None else y
-    return _draw_curve(curve, ax, x, y, label)
+    return _draw_curve(curve, ax, x, y, label, ("x", "y"))
 
 
 def plot_fold_curve(
@@ -178,14 +176,17 @@ def plot_fold_curve(
     -------
     (Figure, Axes)
     """
-    x = curve.attrs["z"] if x is None else x
-    y = curve.attrs["fold_in"] if y is None else y
-    return _draw_curve(curve, ax, x, y, label)
+    return _draw_curve(curve, ax, x, y, label, ("z", "fold_in"))
 
 
-def _draw_curve(curve: xr.Dataset, ax: Axes | None, x: str, y: str, label: str) -> tuple[Figure, Axes]:
+def _draw_curve(
+    curve: xr.Dataset, ax: Axes | None, x: str | None, y: str | None, label: str, plane: tuple[str, str]
+) -> tuple[Figure, Axes]:
     """Branches of a continued curve in the (x, y) plane (solid where the traced mode leads,
-    dashed elsewhere) and its special points (:data:`SPECIAL_MARKERS`)."""
+    dashed elsewhere) and its special points (:data:`SPECIAL_MARKERS`); an ``x`` or ``y`` not
+    given is the variable named by the curve's attribute ``plane[0]`` or ``plane[1]``."""
+    x = curve.attrs[plane[0]] if x is None else x
+    y = curve.attrs[plane[1]] if y is None else y
     fig, ax = axes_or_new(ax)
     first = True
     for b in np.unique(curve["branch"].values):

@@ -244,28 +244,19 @@ def fig9(
         )
     ax1.legend(loc="upper right")
     markers = ("o", "s", "^", "D", "v", "P")
-    for j, (label, ds) in enumerate(cases.items()):
-        # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
-        ax2.plot(
-            _periods(ds),
-            ds.polar_angle.values,
-            color=f"C{j}",
-            linestyle="-",
-            linewidth=0.8,
-            marker=markers[j % len(markers)],
-            markevery=(0.03 * (j + 1), 0.12),
-            markersize=4,
-            label=label,
-        )
-    for j, (label, ds) in enumerate(paper_scheme.items()):
-        ax2.plot(
-            _periods(ds),
-            ds.polar_angle.values,
-            color=f"C{j}",
-            linestyle=":",
-            linewidth=1.0,
-            label=f"{label}, paper's scheme",
-        )
+    # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
+    for runs, line, width, name in ((cases, "-", 0.8, "{}"), (paper_scheme, ":", 1.0, "{}, paper's scheme")):
+        for j, (label, ds) in enumerate(runs.items()):
+            marks = {"marker": markers[j % len(markers)], "markevery": (0.03 * (j + 1), 0.12), "markersize": 4}
+            ax2.plot(
+                _periods(ds),
+                ds.polar_angle.values,
+                color=f"C{j}",
+                linestyle=line,
+                linewidth=width,
+                label=name.format(label),
+                **(marks if line == "-" else {}),
+            )
     ax2.set_ylabel("polar angle of $k$ (deg)")
     ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
     for ds, style, label in (
