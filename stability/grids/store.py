@@ -46,7 +46,6 @@ import hashlib
 import os
 import secrets
 import shutil
-import tempfile
 import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -56,7 +55,7 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, OutputWriteError, ResumeError
-from ..files import TEMPORARY_PREFIX, file_mode
+from ..files import TEMPORARY_PREFIX, temporary_name
 from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
 
@@ -358,8 +357,7 @@ def write_store(
     if resume:
         parts = parts_directory(target)
     else:
-        directory = target.parent if str(target.parent) else Path(".")
-        parts = Path(tempfile.mkdtemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=directory))
+        parts = Path(temporary_name(target, directory=True))
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
@@ -368,7 +366,6 @@ def write_store(
         else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
             layout = _template(ds, spec["chunk_shape"], dims)
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
-            os.chmod(parts, file_mode(directory=True))  # not mkdtemp's 0o700: the store's own mode
         for _ in done:
             report()
         todo = [(name, sl) for name, sl in blocks if name not in done]
