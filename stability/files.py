@@ -37,6 +37,7 @@ import stat
 import secrets
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 from .errors import OutputWriteError, ParameterTypeError, TippeError
 from .interrupts import Temporary, checkpoint
@@ -47,6 +48,7 @@ __all__ = [
     "check_free_space",
     "check_output_directory",
     "check_output_path",
+    "close_quietly",
     "commit",
     "describe_kind",
     "format_bytes",
@@ -399,3 +401,18 @@ def _diagnose(directory: str, tmp: str | None, limit: int | None) -> tuple[int |
         if size + 1_000_000 >= limit:
             return errno.EFBIG, f"file size limit (ulimit -f) of {limit} bytes reached"
     return None, "the netCDF/HDF5 library reported an error"
+
+
+@contextlib.contextmanager
+def close_quietly(handle: Any) -> Iterator[Any]:
+    """``with close_quietly(netCDF4.Dataset(...)) as nc``: closed at the end; if the block
+    raised, an error of the close (HDF5 flushes on close, and fails again on a full disk) is
+    dropped so that the first error is the one reported; on success a close error is raised
+    (a failed flush is a failed write)."""
+    try:
+        yield handle
+    except BaseException:
+        with contextlib.suppress(Exception):
+            handle.close()
+        raise
+    handle.close()

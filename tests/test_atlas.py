@@ -85,7 +85,7 @@ def test_failed_write_leaves_no_file(ds, tmp_path, monkeypatch):
         open(path, "wb").write(b"CDF\x01 partial")
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(netcdf, "to_netcdf", boom)
+    monkeypatch.setattr(netcdf, "_to_netcdf", boom)
     with pytest.raises(RuntimeError, match="disk full"):
         stability.write_dataset(ds, tmp_path / "atlas.nc")
     assert list(tmp_path.iterdir()) == []

@@ -186,7 +186,7 @@ def test_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
 
     import stability.grids.netcdf as netcdf
 
-    monkeypatch.setattr(netcdf, "to_netcdf", broken)
+    monkeypatch.setattr(netcdf, "_to_netcdf", broken)
     with pytest.raises(OSError, match="disk full"):
         stability.write_dataset(ds, tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []

@@ -27,7 +27,7 @@ import xarray as xr
 import stability
 import stability.files as outputs
 from stability.errors import OutputWriteError
-from stability.files import TEMPORARY_PREFIX, check_free_space
+from stability.files import TEMPORARY_PREFIX, check_free_space, close_quietly
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
 
@@ -107,7 +107,7 @@ def test_library_error_without_errno_is_diagnosed(tmp_path, monkeypatch):
         monkeypatch.setattr(outputs.os, "statvfs", lambda d: Full())
         raise RuntimeError("NetCDF: HDF error")
 
-    monkeypatch.setattr(netcdf, "to_netcdf", failing)
+    monkeypatch.setattr(netcdf, "_to_netcdf", failing)
     with pytest.raises(OutputWriteError) as err:
         stability.write_dataset(xr.Dataset({"x": ("t", np.arange(3.0))}), tmp_path / "a.nc")
     assert err.value.errno == errno.ENOSPC
@@ -133,12 +133,25 @@ def test_free_space_checked_before_computing(tmp_path, monkeypatch):
     check_free_space(tmp_path / "a.nc", 3000)
 
 
+def test_a_close_error_never_replaces_the_first_error():
+    class Handle:
+        def close(self):
+            raise RuntimeError("NetCDF: HDF error (while closing)")
+
+    with pytest.raises(OSError, match="the first error"):
+        with close_quietly(Handle()):
+            raise OSError(errno.ENOSPC, "the first error")
+    with pytest.raises(RuntimeError, match="while closing"):  # on success a failed close is a failed write
+        with close_quietly(Handle()):
+            pass
+
+
 def test_failures_that_are_not_write_errors_pass_unchanged(tmp_path, monkeypatch):
     """Bad input and interruptions raised while writing are not turned into write errors."""
     import stability.grids.netcdf as netcdf
 
     for exc in (ValueError("bad value"), KeyboardInterrupt()):
-        monkeypatch.setattr(netcdf, "to_netcdf", lambda ds, path, exc=exc: (_ for _ in ()).throw(exc))
+        monkeypatch.setattr(netcdf, "_to_netcdf", lambda ds, path, exc=exc: (_ for _ in ()).throw(exc))
         with pytest.raises(type(exc)):
             stability.write_dataset(xr.Dataset({"x": ("t", np.arange(3.0))}), tmp_path / "a.nc")
     assert list(tmp_path.iterdir()) == []

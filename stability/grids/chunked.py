@@ -26,23 +26,25 @@ import contextlib
 import hashlib
 import os
 import shutil
+import threading
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from itertools import product
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, InputError, ParameterTypeError, require_extra
-from ..files import atomic_output, check_output_directory, check_output_path
+from ..files import atomic_output, check_free_space, check_output_directory, check_output_path, close_quietly
 from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
-from .netcdf import to_netcdf
+from .leading import leading, zero_everywhere
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import BLOCK_VARIABLES, is_store_path, parts_directory, slice_block
+from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -256,7 +258,65 @@ def _float32_attrs() -> dict[str, Any]:
     }
 
 
-def _as_float32(v: np.ndarray, name: str) -> np.ndarray:
+def _create_skeleton(
+    ds: xr.Dataset,
+    path: str,
+    chunk_shape: dict[str, int],
+    stored: list[str] | None = None,
+    compression: str | None = None,
+    float32: bool = False,
+) -> None:
+    """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
+    data variables (``stored``; default all) defined (chunked like the dataset, compressed as
+    asked, floating ones as float32 if asked) but not yet written."""
+    import netCDF4
+
+    if stored is None:
+        stored = list(ds.data_vars)
+    scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
+    filters: dict[str, Any] = (
+        {} if compression is None else {"compression": compression, "complevel": LEVELS[compression], "shuffle": True}
+    )
+    with close_quietly(netCDF4.Dataset(path, "w", format="NETCDF4")) as nc:
+        for d, n in ds.sizes.items():
+            if d == "mode" and not any("mode" in ds[k].dims for k in stored):
+                continue
+            nc.createDimension(d, n)
+        for k, c in ds.coords.items():
+            if "mode" in c.dims and "mode" not in nc.dimensions:
+                continue
+            fill = np.nan if c.dtype.kind == "f" else None
+            var = nc.createVariable(k, c.dtype.newbyteorder("="), c.dims, fill_value=fill)  # "<f8" read from Zarr
+            var.setncatts(dict(c.attrs))
+            var[...] = c.values
+        for k in stored:
+            v = ds[k]
+            dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype.newbyteorder("=")
+            fill = dtype.type(np.nan) if dtype.kind == "f" else None
+            cs = _file_chunks([chunk_shape.get(d, ds.sizes[d]) for d in v.dims], dtype.itemsize)
+            var = nc.createVariable(
+                k,
+                dtype,
+                v.dims,
+                fill_value=fill,
+                chunksizes=cs or None,
+                contiguous=not cs and not filters,
+                **(filters if cs else {}),
+            )
+            attrs = dict(v.attrs)
+            if scalar_coords:
+                attrs["coordinates"] = " ".join(scalar_coords)
+            if dtype != v.dtype:
+                attrs.update(_float32_attrs())
+            var.setncatts(attrs)
+        nc.setncatts(dict(ds.attrs))
+        if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
+            nc.setncatts({STORED_ATTR: "map"})
+        if compression is not None:
+            nc.setncatts({"compression": f"{compression} level {LEVELS[compression]}, byte shuffle (lossless)"})
+
+
+def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     """``v`` rounded to float32, refused (:class:`~stability.errors.InputError`) where the rounding
     would not keep a value's sign and magnitude class: a finite nonzero value that would become
     zero, subnormal or infinite."""
@@ -435,37 +495,37 @@ def write_atlas(
         target = check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
-    chunk_shape = {d: int(ds.chunksizes[d][0]) if ds.chunks and d in ds.chunksizes else ds.sizes[d] for d in dims}
+    chunk_shape = {}
+    for d in dims:
+        c = ds.chunksizes.get(d) if ds.chunks else None
+        chunk_shape[d] = int(c[0]) if c else ds.sizes[d]
     blocks = _chunk_slices(ds, dims, chunk_shape)
     n_points = int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64))
     report = _progress(progress, len(blocks))
-    stored = _stored(ds, variables)
+    layout = _Layout(_stored(ds, variables), compression, float32)
     try:
         with deferred(), contextlib.ExitStack() as held:
-            if not zarr_store:
-                tmp = held.enter_context(
-                    atomic_output(target, overwrite=overwrite, expected_bytes=atlas_file_bytes(n_modes, n_points))
-                )
-            if not (zarr_store or resume or ds.chunks):  # in memory: written as it is
-                _write_netcdf(ds, tmp, stored, chunk_shape, compression, float32)
-                for _ in blocks:
-                    report()
+            if not (zarr_store or resume):
+                _write_chunks(
+                    ds, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
+                    chunk_shape, blocks, client, window, report, layout,
+                )  # fmt: skip
                 return target
-            require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, resume=True, or chunks=)")
-            from .store import locked, write_store
+            require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
+            from .store import locked, open_store, write_store
 
             if resume:  # held until the output is written and the store removed
                 held.enter_context(locked(parts_directory(target)))
-            if zarr_store or resume:
-                kept = _stored(ds, "all")
-            else:  # only what the file stores (and what the leading growth rate's rule reads back)
-                kept = [k for k in ds.data_vars if k in stored or k == "max_growth_rate"]
+
             spec = _spec(ds, dims) | {
                 "chunk_shape": chunk_shape,
                 "n_modes": n_modes,
-                "variables": kept,
+                "variables": _stored(ds, "all"),
                 "identity": _identity(ds, chunk_shape),
+                "resume": resume,
             }
+            if not zarr_store:
+                check_free_space(target, atlas_file_bytes(n_modes, n_points))
             parts = write_store(
                 ds,
                 target,
@@ -483,47 +543,178 @@ def write_atlas(
             )
             if zarr_store:
                 return target
-            try:  # the netCDF file from the complete store, one Zarr chunk at a time
-                with xr.open_zarr(parts, consolidated=False) as z:
-                    _write_netcdf(z[kept].assign_attrs(ds.attrs), tmp, stored, chunk_shape, compression, float32)
-            finally:
-                if not resume:
-                    shutil.rmtree(parts, ignore_errors=True)
-        if resume:
+            with open_store(parts) as stored:  # the netCDF file from the complete store
+                _write_chunks(
+                    stored, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
+                    chunk_shape, blocks, None, None, _progress(False, len(blocks)), layout,
+                )  # fmt: skip
             shutil.rmtree(parts, ignore_errors=True)
-        return target
+            return target
     finally:
         report(close=True)
 
 
-def _write_netcdf(
+class _Layout(NamedTuple):
+    """What :func:`write_atlas` stores and how."""
+
+    stored: list[str]
+    compression: str | None
+    float32: bool
+
+
+class _Leading:
+    """``leading_growth_rate`` chunk by chunk, from the chunk in memory (never read back).
+
+    The rule (:mod:`stability.grids.leading`) leaves the structural zero mode out only if every
+    part of the grid has it at every point inside and one part has a point inside. Each chunk is
+    written with the zero mode left out while every chunk so far has it everywhere
+    (``zero_everywhere``), else as ``max_growth_rate``; at the first chunk that has not, the
+    chunks written before (each of which has it everywhere) are rewritten as
+    ``max_growth_rate``, read from the file or recomputed (``again``), and at the end, if no
+    chunk had a point inside, the same. The values are those of deciding on the whole grid
+    first, bit for bit."""
+
+    def __init__(
+        self,
+        nc: Any,
+        dims: list[str],
+        again: Callable[[str, dict[str, slice]], dict[str, np.ndarray]],
+        cast: Callable[[str, np.ndarray], np.ndarray],
+    ) -> None:
+        self.nc, self.dims, self.again, self.cast = nc, dims, again, cast
+        self.active = "leading_growth_rate" in nc.variables
+        self.dropping, self.any_inside, self.provisional = True, False, []
+
+    def _max(self, name: str, sl: dict[str, slice]) -> np.ndarray:
+        idx = tuple(sl[d] for d in self.dims)
+        if "max_growth_rate" in self.nc.variables:
+            return np.asarray(self.nc.variables["max_growth_rate"][idx])
+        return self.cast("leading_growth_rate", np.ascontiguousarray(self.again(name, sl)["growth_rate"][..., 0]))
+
+    def _undo(self) -> None:
+        for name, sl in self.provisional:
+            checkpoint()
+            self.nc.variables["leading_growth_rate"][tuple(sl[d] for d in self.dims)] = self._max(name, sl)
+        self.provisional = []
+
+    def put(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray], top: np.ndarray) -> None:
+        """Write the chunk ``block`` at ``sl``; ``top`` is its ``max_growth_rate`` as stored."""
+        if not self.active:
+            return
+        idx = tuple(sl[d] for d in self.dims)
+        mdims = (*self.dims, "mode")
+        g = xr.DataArray(block["growth_rate"], dims=mdims)
+        f = xr.DataArray(block["frequency"], dims=mdims)
+        b = xr.DataArray(block["eigenvalue_error_bound"], dims=mdims)
+        if self.dropping:
+            everywhere, inside = zero_everywhere(g, f, b)
+            self.any_inside |= bool(inside)
+            if not bool(everywhere) or not self.dims:
+                self.dropping = False
+                self._undo()
+        if not self.dropping:  # leading(..., drop=False) is max_growth_rate itself
+            self.nc.variables["leading_growth_rate"][idx] = top
+            return
+        m = xr.DataArray(np.ascontiguousarray(block["growth_rate"][..., 0]), dims=self.dims)
+        value = leading(g, f, b, m, drop=True).values
+        self.provisional.append((name, sl))
+        self.nc.variables["leading_growth_rate"][idx] = self.cast("leading_growth_rate", np.ascontiguousarray(value))
+
+    def close(self) -> None:
+        if self.active and self.dropping and not self.any_inside:
+            self._undo()
+
+
+def _write_chunks(
     ds: xr.Dataset,
-    tmp: str,
-    stored: list[str],
+    target: Path,
+    overwrite: bool,
+    expected: float,
+    dims: list[str],
+    n_modes: int,
     chunk_shape: dict[str, int],
-    compression: str | None,
-    float32: bool,
+    blocks: list,
+    client: Any,
+    window: int | None,
+    report: _progress,
+    layout: _Layout,
 ) -> None:
-    """Write the variables ``stored`` of ``ds`` to the netCDF file ``tmp`` (xarray's
-    ``to_netcdf``, :func:`stability.grids.netcdf.to_netcdf`): file chunks of at most
-    :data:`FILE_CHUNK_BYTES`, compressed as asked, floating variables as float32 if asked
-    (:func:`_as_float32`, its bound in their attributes)."""
-    out = ds[stored]
-    encoding: dict[str, dict[str, Any]] = {}
-    for k in stored:
-        v = out[k]
-        if float32 and v.dtype.kind == "f":
-            data = v.data.map_blocks(_as_float32, k, dtype=np.float32) if v.chunks else _as_float32(v.values, k)
-            out[k] = v.copy(data=data).assign_attrs(_float32_attrs())
-        cs = _file_chunks([chunk_shape.get(d, ds.sizes[d]) for d in v.dims], out[k].dtype.itemsize)
-        encoding[k] = {"chunksizes": cs, "contiguous": False} if cs else {}
-        if cs and compression is not None:
-            encoding[k] |= {"compression": compression, "complevel": LEVELS[compression], "shuffle": True}
-    if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
-        out.attrs[STORED_ATTR] = "map"
-    if compression is not None:
-        out.attrs["compression"] = f"{compression} level {LEVELS[compression]}, byte shuffle (lossless)"
-    to_netcdf(out, tmp, encoding=encoding)
+    """The netCDF body of :func:`write_atlas`: skeleton, chunks (computed, or read from ``ds``
+    in memory or in a store), commit."""
+    import netCDF4
+
+    lazy = bool(ds.chunks)
+    spec = _spec(ds, dims)
+
+    def cast(name: str, v: np.ndarray) -> np.ndarray:
+        return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
+
+    computing = threading.Lock()  # one chunk's spectra at a time (the compiled loop's threads)
+
+    def compute(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
+        with computing:
+            return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
+
+    with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
+        _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
+        checkpoint()
+        with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
+            nc.set_auto_mask(False)
+            lead = _Leading(nc, dims, compute, cast)
+
+            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+                shape = tuple(sl[d].stop - sl[d].start for d in dims)
+                check_block(
+                    block,
+                    shape,
+                    n_modes,
+                    lambda text: ChunkError(
+                        f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"
+                    ),
+                )
+                idx = tuple(sl[d] for d in dims)
+                for k, v in block.items():
+                    if k in nc.variables:
+                        nc.variables[k][idx] = cast(k, v)
+                # the largest growth rate, rounded once for both variables that may hold it
+                top_name = "max_growth_rate" if "max_growth_rate" in nc.variables else "leading_growth_rate"
+                g0 = block["growth_rate"][..., 0]
+                top = cast(top_name, g0) if layout.float32 else np.ascontiguousarray(g0)
+                if "max_growth_rate" in nc.variables:
+                    nc.variables["max_growth_rate"][idx] = top
+                lead.put(name, sl, block, top)
+                checkpoint()
+
+            failed = _Failure(None, len(blocks))
+            if client is None or not lazy:
+                # each chunk is written (rounded, compressed) by one writer thread, in order, while
+                # the next is computed: netCDF4's writes and the compiled spectra release the GIL,
+                # so the writing overlaps the spectra instead of following them (one chunk more in
+                # memory); the file is the one the plain loop writes
+                with ThreadPoolExecutor(max_workers=1) as writer:
+                    pending = None
+                    for name, sl in blocks:
+                        checkpoint()
+                        try:
+                            block = compute(name, sl)
+                        except Exception as exc:
+                            raise failed(name, sl, exc, report.done) from exc
+                        if pending is not None:
+                            pending.result()
+                            report()
+                        pending = writer.submit(put, name, sl, block)
+                        del block
+                    if pending is not None:
+                        pending.result()
+                        report()
+            else:
+
+                def put_reported(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+                    put(name, sl, block)
+                    report()
+
+                _run_on_cluster(client, spec, blocks, put_reported, window, failed, report)
+            lead.close()
 
 
 class _Failure:

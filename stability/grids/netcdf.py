@@ -80,17 +80,17 @@ def _in_slabs(ds: xr.Dataset) -> xr.Dataset:
     return out
 
 
-def to_netcdf(ds: xr.Dataset, tmp: str, encoding: dict | None = None) -> None:
-    """``ds.to_netcdf(tmp, encoding=encoding)`` (xarray's public writer: the file is the one it
-    writes). A large dataset goes slab by slab (:func:`_in_slabs`, ``compute=False`` then dask's
-    synchronous scheduler, in this thread), so that a signal is acted on between slabs and a lazy
-    (dask) variable is never held whole in memory; without dask it is written in one call."""
+def _to_netcdf(ds: xr.Dataset, tmp: str) -> None:
+    """``ds.to_netcdf(tmp)`` (xarray's public writer: the file is the one it writes). A large
+    dataset goes slab by slab (:func:`_in_slabs`, ``compute=False`` then dask's synchronous
+    scheduler, in this thread), so that a signal is acted on between slabs and a lazy (dask)
+    variable is never held whole in memory; without dask it is written in one call."""
     checkpoint()
     large = any(v.chunks is not None or v.nbytes > SLAB_BYTES for v in ds.data_vars.values())
     if large and importlib.util.find_spec("dask") is not None:
-        _in_slabs(ds).to_netcdf(tmp, format="NETCDF4", encoding=encoding, compute=False).compute(scheduler="synchronous")
+        _in_slabs(ds).to_netcdf(tmp, format="NETCDF4", compute=False).compute(scheduler="synchronous")
     else:
-        ds.to_netcdf(tmp, format="NETCDF4", encoding=encoding)
+        ds.to_netcdf(tmp, format="NETCDF4")
     checkpoint()
 
 
@@ -124,7 +124,7 @@ def write_dataset(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = 
     if not isinstance(ds, xr.Dataset):
         raise ParameterTypeError(f"ds must be an xarray.Dataset, got {type(ds).__name__}")
     with deferred(), atomic_output(path, overwrite=overwrite, expected_bytes=float(ds.nbytes)) as tmp:
-        to_netcdf(ds, tmp)
+        _to_netcdf(ds, tmp)
     return Path(path)
 
 

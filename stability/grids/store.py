@@ -222,7 +222,7 @@ def _digest(spec: dict[str, Any], sl: dict[str, slice], block: dict[str, np.ndar
     for k in sorted(block):
         a = np.ascontiguousarray(block[k])
         h.update(f"{k} {a.dtype.str} {a.shape}".encode())
-        h.update(a.tobytes())
+        h.update(a.data)  # the array's own bytes, not a copy
     return np.uint64(max(1, int.from_bytes(h.digest()[:8], "little")))
 
 
@@ -265,7 +265,8 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
         }
     )
     record.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
-    digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), _digest(spec, sl, block)))})
+    mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
+    digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), mark))})
     digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)  # last: the chunk is complete
     return everywhere, inside
 
@@ -351,7 +352,8 @@ def write_store(
     of each chunk; ``report``, ``failed``, ``compute`` (of one chunk) and ``run_on_cluster`` as
     for the netCDF writer.
     """
-    _check_target(target, overwrite)
+    if commit:
+        _check_target(target, overwrite)
     dims = spec["dims"]
     tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
     if resume:
@@ -364,7 +366,7 @@ def write_store(
         if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
             done = _reopen(parts, ds, spec, blocks)
         else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
-            layout = _template(ds, spec["chunk_shape"], dims)
+            layout = _template(ds[spec["variables"]], spec["chunk_shape"], dims)
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
         for _ in done:
             report()
