@@ -44,7 +44,7 @@ from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
+from .store import BLOCK_VARIABLES, IDENTITY_ATTRS, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -332,8 +332,8 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
     for k in sorted(ds.coords):
         h.update(k.encode())
         h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
-    keep = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
-    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **{k: str(ds.attrs.get(k)) for k in keep}}
+    attrs = {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
+    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **attrs}
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:

@@ -61,6 +61,7 @@ from .leading import leading, zero_everywhere
 
 __all__ = [
     "BLOCK_VARIABLES",
+    "IDENTITY_ATTRS",
     "RECORD_VARIABLES",
     "check_block",
     "damaged_chunk",
@@ -76,7 +77,7 @@ __all__ = [
 RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
 
 #: the attributes a resumed store must share with the atlas being written
-_IDENTITY = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
+IDENTITY_ATTRS = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
 
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
@@ -206,11 +207,8 @@ def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> x
         {k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, coords=ds.coords, attrs=ds.attrs
     )
     counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
-    cdims = _chunk_dims(dims)
-    ones = (1,) * len(dims)
-    out["chunk_digest"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.uint64))
-    out["chunk_zero_everywhere"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
-    out["chunk_inside"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
+    for k, dtype in zip(RECORD_VARIABLES, (np.uint64, np.int8, np.int8)):
+        out[k] = (_chunk_dims(dims), da.zeros(counts, chunks=(1,) * len(dims), dtype=dtype))
     return out
 
 
@@ -256,18 +254,12 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     )
     part["leading_growth_rate"] = lead.variable
     part = part[spec["variables"]]
-    region = {d: sl[d] for d in dims}
-    part.to_zarr(path, region=region, mode="r+", consolidated=False)
-    record = xr.Dataset(
-        {
-            "chunk_zero_everywhere": (_chunk_dims(dims), np.full((1,) * len(dims), everywhere, dtype=np.int8)),
-            "chunk_inside": (_chunk_dims(dims), np.full((1,) * len(dims), inside, dtype=np.int8)),
-        }
-    )
-    record.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
+    part.to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
     mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
-    digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), mark))})
-    digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)  # last: the chunk is complete
+    record = {"chunk_zero_everywhere": np.int8(everywhere), "chunk_inside": np.int8(inside), "chunk_digest": mark}
+    for k, v in record.items():  # the digest last: the chunk is complete when it is written
+        one = xr.Dataset({k: (_chunk_dims(dims), np.full((1,) * len(dims), v))})
+        one.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
     return everywhere, inside
 
 
@@ -284,7 +276,7 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
             "remove it or choose another output"
         ) from None
     with old:
-        diff = [k for k in _IDENTITY if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
+        diff = [k for k in IDENTITY_ATTRS if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
         diff += [
             k
             for k in ds.coords
