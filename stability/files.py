@@ -341,9 +341,7 @@ def _is_library_write_error(exc: BaseException) -> bool:
     )
 
 
-def write_error(
-    exc: BaseException, target: Path, tmp: str | None = None, what: str | None = None
-) -> OutputWriteError | None:
+def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> OutputWriteError | None:
     """The :class:`~stability.errors.OutputWriteError` for a failure while writing ``target``,
     or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
     are passed on as they are).
@@ -355,8 +353,6 @@ def write_error(
         The output file (named in the message).
     tmp : str, optional
         The temporary file being written (its size is compared with the file size limit).
-    what : str, optional
-        The file named in the message, if not ``target`` (a chunk file of a chunk store).
     """
     if isinstance(exc, (KeyboardInterrupt, SystemExit, GeneratorExit, OutputWriteError)):
         return None
@@ -372,7 +368,7 @@ def write_error(
     )
     if found is None and not library and not own_file:
         return None
-    name = what or str(target)
+    name = str(target)
     d = str(_directory(Path(target)))
     detail = " ".join(str(exc).split())[:160]
     limit = _fsize_limit()
