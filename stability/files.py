@@ -34,7 +34,7 @@ import contextlib
 import errno
 import os
 import stat
-import tempfile
+import secrets
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -51,7 +51,6 @@ __all__ = [
     "close_quietly",
     "commit",
     "describe_kind",
-    "file_mode",
     "format_bytes",
     "temporary_name",
     "write_error",
@@ -217,43 +216,6 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
         )
 
 
-# --- permissions ------------------------------------------------------------------------------
-
-
-def _umask_from_proc() -> int | None:
-    """The process's umask as Linux (>= 4.7) states it in ``/proc/self/status`` ("Umask:"),
-    read without changing it; None where the system does not say."""
-    try:
-        with open("/proc/self/status", encoding="ascii", errors="replace") as f:
-            for line in f:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except (OSError, ValueError, IndexError):
-        pass
-    return None
-
-
-def _umask_by_setting() -> int:
-    mask = os.umask(0o022)  # the only other way: set and restore (process-wide, so done once, here)
-    os.umask(mask)
-    return mask
-
-
-#: the umask read once at import, for a system without ``/proc/self/status`` (None on Linux:
-#: read there each time, never set)
-_UMASK_AT_IMPORT = None if _umask_from_proc() is not None else _umask_by_setting()
-
-
-def file_mode(directory: bool = False) -> int:
-    """The permissions a new file (``0o666``) or directory (``0o777``) gets under the process's
-    umask, which is read, never set (``os.umask`` is process-wide: setting it to read it races
-    with every other thread creating a file)."""
-    mask = _umask_from_proc()
-    if mask is None:
-        mask = _UMASK_AT_IMPORT if _UMASK_AT_IMPORT is not None else 0o022
-    return (0o777 if directory else 0o666) & ~mask
-
-
 # --- the commit --------------------------------------------------------------------------------
 
 
@@ -302,11 +264,20 @@ def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
     tmp.done(committed=True)
 
 
-def temporary_name(target: Path) -> str:
-    """Create an empty, unique temporary file next to ``target``; return its name."""
-    fd, name = tempfile.mkstemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=_directory(target))
-    os.close(fd)
-    return name
+def temporary_name(target: Path, directory: bool = False) -> str:
+    """Create an empty, unique temporary file (or directory) next to ``target``; return its name.
+    It gets the mode a new file (directory) gets under the process's umask, which the kernel
+    applies (``os.umask`` is never called: it is process-wide)."""
+    while True:
+        name = os.path.join(_directory(target), f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}-{target.name}")
+        try:
+            if directory:
+                os.mkdir(name, 0o777)
+            else:
+                os.close(os.open(name, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
+            return name
+        except FileExistsError:  # pragma: no cover - 2**32 names
+            continue
 
 
 @contextlib.contextmanager
@@ -326,8 +297,8 @@ def atomic_output(
         (:func:`check_free_space`).
 
     The temporary file is removed on any exception, including an interruption; an error while
-    writing is translated by :func:`write_error`. The final file gets the usual permissions
-    (umask).
+    writing is translated by :func:`write_error`. The file gets the usual permissions (umask:
+    :func:`temporary_name`).
     """
     p = check_output_path(path, overwrite=overwrite)
     if expected_bytes is not None:
@@ -341,7 +312,6 @@ def atomic_output(
             if translated is not None:
                 raise translated from exc
             raise
-        os.chmod(tmp.path, file_mode())
         commit(tmp, p, overwrite=overwrite)
     finally:
         if tmp.state != "committed":
@@ -371,9 +341,7 @@ def _is_library_write_error(exc: BaseException) -> bool:
     )
 
 
-def write_error(
-    exc: BaseException, target: Path, tmp: str | None = None, what: str | None = None
-) -> OutputWriteError | None:
+def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> OutputWriteError | None:
     """The :class:`~stability.errors.OutputWriteError` for a failure while writing ``target``,
     or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
     are passed on as they are).
@@ -385,8 +353,6 @@ def write_error(
         The output file (named in the message).
     tmp : str, optional
         The temporary file being written (its size is compared with the file size limit).
-    what : str, optional
-        The file named in the message, if not ``target`` (a chunk file of a chunk store).
     """
     if isinstance(exc, (KeyboardInterrupt, SystemExit, GeneratorExit, OutputWriteError)):
         return None
@@ -402,7 +368,7 @@ def write_error(
     )
     if found is None and not library and not own_file:
         return None
-    name = what or str(target)
+    name = str(target)
     d = str(_directory(Path(target)))
     detail = " ".join(str(exc).split())[:160]
     limit = _fsize_limit()

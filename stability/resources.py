@@ -12,13 +12,9 @@ times, a larger ``dt``), instead of growing until the kernel's out-of-memory kil
 process (measured before this check: ``simulate(t_end=1e7)`` grew to 24 GB).
 
 The limit (:func:`memory_limit`) is ``TIPPE_MEMORY_LIMIT`` (bytes; ``2e9``, ``500M``, ``8G``) when
-set, else :data:`HEADROOM` times the smallest of the memory available: ``MemAvailable`` of
-``/proc/meminfo`` (the kernel's own estimate; or the free physical pages, ``os.sysconf``, where
-there is none), the room left in the cgroup (v2: ``memory.max - memory.current`` of the
-process's cgroup and of each parent up to the root, where ``memory.max`` is not ``max``; v1's
-``memory.limit_in_bytes - memory.usage_in_bytes`` likewise: in a container ``MemAvailable`` is
-the host's), and the room left under the soft address-space limit
-(``ulimit -v``, ``RLIMIT_AS``, minus the process's ``VmSize``).
+set, else :data:`HEADROOM` times ``MemAvailable`` of ``/proc/meminfo`` (the kernel's own
+estimate); without either, no limit. In a container with a memory limit below the host's, set
+``TIPPE_MEMORY_LIMIT`` (``MemAvailable`` is the host's).
 
 The bytes per point are the stored values of the result (its dataset's variables: 8 bytes a
 float64, 1 an int8) plus the temporaries of computing them; they are estimates, good to a factor
@@ -28,7 +24,6 @@ which is their one job.
 
 from __future__ import annotations
 
-import contextlib
 import os
 import re
 
@@ -95,97 +90,24 @@ def _env_limit() -> float | None:
     return value
 
 
-#: where the cgroup v2 hierarchy is mounted, and the file naming this process's cgroup
-CGROUP_ROOT, PROC_CGROUP = "/sys/fs/cgroup", "/proc/self/cgroup"
-
-
-def _number(path: str) -> float | None:
-    """The number in a cgroup file; None if unreadable or no limit (v2 ``max``, v1 2**63 - 4096)."""
-    try:
-        with open(path) as f:
-            value = float(f.read().strip())
-    except (OSError, ValueError):
-        return None
-    return value if value < 2.0**62 else None
-
-
-def _cgroup_room() -> float | None:
-    """The smallest ``limit - usage`` of this process's memory cgroup and its parents (a limit
-    set higher up binds too): v2 ``memory.max - memory.current``; v1 (a hybrid hierarchy)
-    ``memory.limit_in_bytes - memory.usage_in_bytes``. None where no level has a limit."""
-    try:
-        with open(PROC_CGROUP) as f:
-            lines = [ln.rstrip("\n").split(":", 2) for ln in f]
-    except OSError:
-        return None
-    rooms = []
-    for fields in lines:
-        if len(fields) != 3:
-            continue
-        _, controllers, own = fields
-        if controllers == "":
-            mount, limit_file, usage_file = "", "memory.max", "memory.current"
-        elif "memory" in controllers.split(","):
-            mount, limit_file, usage_file = controllers, "memory.limit_in_bytes", "memory.usage_in_bytes"
-        else:
-            continue
-        parts = [p for p in own.split("/") if p and p != ".."]
-        for depth in range(len(parts), -1, -1):
-            level = os.path.join(CGROUP_ROOT, mount, *parts[:depth])
-            limit = _number(os.path.join(level, limit_file))
-            if limit is not None:
-                rooms.append(limit - (_number(os.path.join(level, usage_file)) or 0.0))
-    return min(rooms) if rooms else None
-
-
-def _address_space_room() -> float | None:
-    """The soft ``RLIMIT_AS`` (``ulimit -v``) minus the address space in use (``VmSize``); None
-    without a limit."""
-    try:
-        import resource
-
-        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    except (ImportError, OSError, ValueError):  # pragma: no cover - not POSIX
-        return None
-    if soft == resource.RLIM_INFINITY or soft < 0:
-        return None
-    used = 0.0
-    try:
-        with open("/proc/self/status") as f:
-            used = next(float(ln.split()[1]) * 1024.0 for ln in f if ln.startswith("VmSize:"))
-    except (OSError, StopIteration, ValueError, IndexError):
-        pass
-    return float(soft) - used
-
-
 def memory_limit() -> tuple[float, str]:
     """The memory a request may take, in bytes, and where the number comes from.
 
     Returns
     -------
     (float, str)
-        ``TIPPE_MEMORY_LIMIT`` if set; else :data:`HEADROOM` x the smallest available amount
-        (module docstring), with a text naming its source.
+        ``TIPPE_MEMORY_LIMIT`` if set; else :data:`HEADROOM` x ``MemAvailable``, with a text
+        naming its source.
     """
     env = _env_limit()
     if env is not None:
         return env, f"the limit {ENV_LIMIT}"
-    found: list[tuple[float | None, str]] = [
-        (_cgroup_room(), "the cgroup's memory limit"),
-        (_address_space_room(), "ulimit -v"),
-    ]
     try:
         with open("/proc/meminfo") as f:
             avail = next(float(ln.split()[1]) * 1024.0 for ln in f if ln.startswith("MemAvailable:"))
-        found.append((avail, "MemAvailable"))
-    except (OSError, StopIteration, ValueError, IndexError):
-        with contextlib.suppress(ValueError, OSError, AttributeError):  # not POSIX: nothing
-            found.append((float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")), "free physical memory"))
-    known = [(v, source) for v, source in found if v is not None]
-    if not known:  # pragma: no cover - not POSIX
+    except (OSError, StopIteration, ValueError, IndexError):  # not Linux: no known limit
         return float("inf"), "no known limit"
-    avail, source = min(known)
-    return max(0.0, HEADROOM * avail), f"{HEADROOM:.0%} of {source}"
+    return HEADROOM * avail, f"{HEADROOM:.0%} of MemAvailable"
 
 
 def check_memory(nbytes: float, *, what: str, parameter: str, way_out: str) -> None:

@@ -5,8 +5,7 @@ References:
 * the refusals: a request sized at 10x the limit set by ``TIPPE_MEMORY_LIMIT`` is refused before
   anything is allocated (the process's peak stays under the limit), and the message names the
   estimate, the parameter and a way out;
-* the limit: ``MemAvailable`` read from /proc/meminfo by the test itself; the cgroup's room
-  from fake cgroup files; the room under ``ulimit -v`` set by the test;
+* the limit: ``MemAvailable`` read from /proc/meminfo by the test itself;
 * the estimates: the bytes of the datasets the calls return (``nbytes``).
 
 The peak estimates (bytes per point times points) are not pinned to a measured peak: they only
@@ -16,7 +15,6 @@ have to refuse a request far above the memory (docs/hard_cases.md, "Memory").
 from __future__ import annotations
 
 import os
-import re
 import subprocess
 import sys
 import textwrap
@@ -40,8 +38,7 @@ def test_limit_is_a_fraction_of_mem_available(monkeypatch):
     with open("/proc/meminfo") as f:
         avail = next(float(ln.split()[1]) * 1024 for ln in f if ln.startswith("MemAvailable:"))
     limit, source = resources.memory_limit()
-    # the smallest of several sources: at most 80 % of MemAvailable (which moves by a few %
-    # between the two reads on a shared machine)
+    # 80 % of MemAvailable (which moves by a few % between the two reads on a shared machine)
     assert limit <= resources.HEADROOM * avail * 1.05
     assert "80%" in source
 
@@ -56,82 +53,6 @@ def test_env_limit_garbage_is_named(monkeypatch):
     monkeypatch.setenv(resources.ENV_LIMIT, "lots")
     with pytest.raises(ValueError, match="TIPPE_MEMORY_LIMIT"):
         resources.memory_limit()
-
-
-def _fake_cgroups(tmp_path, monkeypatch, own: str, levels: dict[str, tuple[str, str]], v1: bool = False) -> None:
-    """A cgroup hierarchy under ``tmp_path``: this process in cgroup ``own``; ``levels`` maps a
-    level ("" the root) to its (limit, usage) files' contents (v2 memory.max/memory.current, or
-    v1 memory.limit_in_bytes/memory.usage_in_bytes under the ``memory`` mount)."""
-    root = tmp_path / "cgroup"
-    names = ("memory.limit_in_bytes", "memory.usage_in_bytes") if v1 else ("memory.max", "memory.current")
-    for level, contents in levels.items():
-        d = root / ("memory" if v1 else "") / level
-        d.mkdir(parents=True, exist_ok=True)
-        for name, text in zip(names, contents):
-            (d / name).write_text(text + "\n")
-    (tmp_path / "self-cgroup").write_text(("4:memory:" if v1 else "0::") + own + "\n")
-    monkeypatch.setattr(resources, "CGROUP_ROOT", str(root))
-    monkeypatch.setattr(resources, "PROC_CGROUP", str(tmp_path / "self-cgroup"))
-    monkeypatch.delenv(resources.ENV_LIMIT, raising=False)
-
-
-@pytest.mark.parametrize(
-    "v1,levels,room",
-    [
-        (False, {"job/step": ("90000000", "30000000"), "job": ("max", "35000000"), "": ("max", "0")}, 60e6),
-        (False, {"job/step": ("max", "30000000"), "job": ("80000000", "35000000")}, 45e6),  # the parent binds
-        (True, {"job/step": ("70000000", "20000000"), "job": ("9223372036854771712", "0")}, 50e6),  # v1 "no limit"
-    ],
-    ids=["v2", "v2-parent", "v1"],
-)
-def test_limit_is_the_cgroup_room_in_a_container(tmp_path, monkeypatch, v1, levels, room):
-    """In a container MemAvailable is the host's: the cgroup's limit minus its usage binds, at
-    the process's level or a parent's. Reference: the numbers written in the fake cgroup files
-    (their difference by hand); exact, as the limit is HEADROOM times that integer (below 2**53).
-    The cgroup rooms here (tens of MB) are far below this machine's MemAvailable."""
-    _fake_cgroups(tmp_path, monkeypatch, "/job/step", levels, v1)
-    limit, source = resources.memory_limit()
-    assert (limit, source) == (resources.HEADROOM * room, "80% of the cgroup's memory limit")
-    said = f"about {resources.format_bytes(resources.HEADROOM * room)} is available (80% of the cgroup's memory limit)"
-    with pytest.raises(ResourceError, match=re.escape(said)):
-        resources.check_memory(1e9, what="a request", parameter="size", way_out="ask less")
-
-
-def test_no_cgroup_limit_leaves_mem_available(tmp_path, monkeypatch):
-    """Every level ``max``: no cgroup room; the limit is MemAvailable's as without cgroups."""
-    _fake_cgroups(tmp_path, monkeypatch, "/job", {"job": ("max", "5"), "": ("max", "5")})
-    assert resources._cgroup_room() is None
-    assert resources.memory_limit()[1] != "80% of the cgroup's memory limit"
-
-
-@pytest.mark.skipif(not os.path.exists("/proc/self/status"), reason="Linux /proc/self/status (VmSize)")
-def test_limit_is_the_room_under_ulimit_v():
-    """A process whose soft RLIMIT_AS is its address space in use plus 300 MB (set by the test's
-    own code, ``resource.setrlimit``): the limit is 80 % of the room left. Reference: VmSize read
-    by the subprocess just before and just after the call; the address space only grows in
-    between, so the limit lies between the two readings' rooms (a bracket, no tolerance)."""
-    code = textwrap.dedent("""
-        import resource
-        from stability import resources
-
-        def vmsize():
-            with open("/proc/self/status") as f:
-                return float(next(ln for ln in f if ln.startswith("VmSize:")).split()[1]) * 1024.0
-
-        soft = int(vmsize() + 300e6)
-        resource.setrlimit(resource.RLIMIT_AS, (soft, resource.getrlimit(resource.RLIMIT_AS)[1]))
-        before = vmsize()
-        limit, source = resources.memory_limit()
-        after = vmsize()
-        print(soft, before, after, limit, source, sep="|")
-    """)
-    env = {k: v for k, v in os.environ.items() if k != resources.ENV_LIMIT}
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
-    assert r.returncode == 0, r.stderr[-2000:]
-    soft, before, after, limit, source = r.stdout.strip().split("|")
-    soft, before, after, limit = map(float, (soft, before, after, limit))
-    assert source == "80% of ulimit -v"
-    assert resources.HEADROOM * (soft - after) <= limit <= resources.HEADROOM * (soft - before)
 
 
 # --- the estimates against the datasets the calls return ----------------------------------------

@@ -210,3 +210,20 @@ def test_a_foreign_parts_path_is_refused_and_left_alone(tmp_path, kind):
     assert sorted(p.name for p in tmp_path.rglob("*")) == sorted(
         ["a.nc.parts"] + (["notes.txt"] if kind != "a file" else [])
     )
+
+
+def test_a_resumed_run_replaces_an_existing_file_when_asked(tmp_path, monkeypatch, reference):
+    """``resume=True, overwrite=True`` onto an existing netCDF file: the store is committed as
+    netCDF over it (the store is checked as a target only when it is itself the output; before,
+    the existing file was refused as "not a Zarr store"). Without ``overwrite`` it is kept.
+    Reference: the in-memory atlas, bit for bit; the foreign file's bytes."""
+    out = tmp_path / "a.nc"
+    _interrupted_store(out, monkeypatch, kept=3)
+    out.write_bytes(b"an older atlas")
+    ds = stability.atlas("sliding", chunks=CHUNKS, **GRID)
+    with pytest.raises(FileExistsError, match="pass overwrite=True"):
+        write_atlas(ds, out, resume=True)
+    assert out.read_bytes() == b"an older atlas"
+    write_atlas(ds, out, resume=True, overwrite=True)
+    assert_same_atlas(stability.open_atlas(out), reference)
+    assert not parts_directory(out).exists()

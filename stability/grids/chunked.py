@@ -44,7 +44,7 @@ from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
 from .leading import leading, zero_everywhere
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import BLOCK_VARIABLES, check_block, is_store_path, parts_directory, slice_block
+from .store import BLOCK_VARIABLES, IDENTITY_ATTRS, check_block, is_store_path, parts_directory, slice_block
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -115,23 +115,13 @@ def _block_spectra(
     p = dict(zip(names, args))
     shape = np.broadcast_shapes(*(np.shape(a) for a in args))
     sp = spectrum(model, mask_unphysical=mask, method=method, **p)
-    n = model.n_modes
-    if sp.eigenvalues.shape == shape + (n,) and sp.error_bound.shape == shape + (n,):
-        # the usual case (a chunk of a grid): views of the fresh, writable arrays, no copies (a
-        # writer that keeps only a map never reads most of them; copying them cost a quarter
-        # of a map's writing time)
-        return (
-            sp.eigenvalues.real,
-            sp.eigenvalues.imag,
-            sp.error_bound,
-            np.broadcast_to(sp.stability, shape).astype(np.int8),
-            np.broadcast_to(sp.inside, shape).astype(np.int8),
-        )
-    ev = np.broadcast_to(sp.eigenvalues, shape + (n,))
+    ev = np.broadcast_to(sp.eigenvalues, shape + (model.n_modes,))
+    # views of the fresh arrays, no copies (a writer that keeps only a map never reads most of
+    # them; copying them cost a quarter of a map's writing time)
     return (
-        np.ascontiguousarray(ev.real),
-        np.ascontiguousarray(ev.imag),
-        np.broadcast_to(sp.error_bound, shape + (n,)).copy(),
+        ev.real,
+        ev.imag,
+        np.broadcast_to(sp.error_bound, ev.shape),
         np.broadcast_to(sp.stability, shape).astype(np.int8),
         np.broadcast_to(sp.inside, shape).astype(np.int8),
     )
@@ -191,15 +181,7 @@ def lazy_spectra(
         output_dtypes=[np.float64, np.float64, np.float64, np.int8, np.int8],
         dask_gufunc_kwargs={"output_sizes": {"mode": n}},
     )
-    arrays = []
-    for da in out:
-        order = [d for d in dims if d in da.dims] + (["mode"] if "mode" in da.dims else [])
-        da = da.transpose(*order)
-        data = da.data
-        if da.ndim != len(dims) + ("mode" in da.dims):  # pragma: no cover - a 0-d grid
-            raise AssertionError("grid dimensions lost")
-        arrays.append(data)
-    return tuple(arrays)
+    return tuple(da.transpose(*[d for d in dims if d in da.dims], ...).data for da in out)
 
 
 # --- writing -----------------------------------------------------------------------------------
@@ -350,8 +332,8 @@ def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
     for k in sorted(ds.coords):
         h.update(k.encode())
         h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
-    keep = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
-    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **{k: str(ds.attrs.get(k)) for k in keep}}
+    attrs = {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
+    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **attrs}
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -522,6 +504,7 @@ def write_atlas(
                 "n_modes": n_modes,
                 "variables": _stored(ds, "all"),
                 "identity": _identity(ds, chunk_shape),
+                "resume": resume,
             }
             if not zarr_store:
                 check_free_space(target, atlas_file_bytes(n_modes, n_points))
@@ -712,7 +695,7 @@ def _write_chunks(
                     put(name, sl, block)
                     report()
 
-                _run_on_cluster(client, spec, blocks, put_reported, window, failed, report)
+                _run_on_cluster(client, spec, blocks, put_reported, window, failed, report, _compute_block, ())
             lead.close()
 
 
@@ -746,12 +729,12 @@ def _run_on_cluster(
     window: int | None,
     failed: _Failure,
     report: _progress,
-    task: Callable | None = None,
-    args: tuple = (),
+    task: Callable,
+    args: tuple,
 ) -> None:
     """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
 
-    Each chunk runs ``task(spec, sl, *args)`` (default :func:`_compute_block`); ``put`` gets
+    Each chunk runs ``task(spec, sl, *args)``; ``put`` gets
     what it returns.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
@@ -760,7 +743,6 @@ def _run_on_cluster(
     """
     from distributed import as_completed
 
-    task = task or _compute_block
     if window is None:
         window = 2 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)

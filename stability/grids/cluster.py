@@ -102,9 +102,7 @@ def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
     from distributed import Client
 
     try:
-        if "scheduler_file" in kwargs:
-            return Client(timeout="20s", **kwargs)
-        return Client(address, timeout="20s")
+        return Client(timeout="20s", **kwargs) if kwargs else Client(address, timeout="20s")
     except (OSError, TimeoutError) as exc:
         raise ConnectionError(
             f"cannot reach the dask scheduler {what!r} (address {address}): {type(exc).__name__}: {exc}"

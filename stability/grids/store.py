@@ -46,7 +46,6 @@ import hashlib
 import os
 import secrets
 import shutil
-import tempfile
 import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -56,12 +55,13 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ChunkError, OutputWriteError, ResumeError
-from ..files import TEMPORARY_PREFIX, file_mode
+from ..files import TEMPORARY_PREFIX, temporary_name
 from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
 
 __all__ = [
     "BLOCK_VARIABLES",
+    "IDENTITY_ATTRS",
     "RECORD_VARIABLES",
     "check_block",
     "damaged_chunk",
@@ -77,7 +77,7 @@ __all__ = [
 RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
 
 #: the attributes a resumed store must share with the atlas being written
-_IDENTITY = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
+IDENTITY_ATTRS = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
 
 
 #: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
@@ -207,11 +207,8 @@ def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> x
         {k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, coords=ds.coords, attrs=ds.attrs
     )
     counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
-    cdims = _chunk_dims(dims)
-    ones = (1,) * len(dims)
-    out["chunk_digest"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.uint64))
-    out["chunk_zero_everywhere"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
-    out["chunk_inside"] = (cdims, da.zeros(counts, chunks=ones, dtype=np.int8))
+    for k, dtype in zip(RECORD_VARIABLES, (np.uint64, np.int8, np.int8)):
+        out[k] = (_chunk_dims(dims), da.zeros(counts, chunks=(1,) * len(dims), dtype=dtype))
     return out
 
 
@@ -223,7 +220,7 @@ def _digest(spec: dict[str, Any], sl: dict[str, slice], block: dict[str, np.ndar
     for k in sorted(block):
         a = np.ascontiguousarray(block[k])
         h.update(f"{k} {a.dtype.str} {a.shape}".encode())
-        h.update(a.tobytes())
+        h.update(a.data)  # the array's own bytes, not a copy
     return np.uint64(max(1, int.from_bytes(h.digest()[:8], "little")))
 
 
@@ -257,17 +254,12 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     )
     part["leading_growth_rate"] = lead.variable
     part = part[spec["variables"]]
-    region = {d: sl[d] for d in dims}
-    part.to_zarr(path, region=region, mode="r+", consolidated=False)
-    record = xr.Dataset(
-        {
-            "chunk_zero_everywhere": (_chunk_dims(dims), np.full((1,) * len(dims), everywhere, dtype=np.int8)),
-            "chunk_inside": (_chunk_dims(dims), np.full((1,) * len(dims), inside, dtype=np.int8)),
-        }
-    )
-    record.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
-    digest = xr.Dataset({"chunk_digest": (_chunk_dims(dims), np.full((1,) * len(dims), _digest(spec, sl, block)))})
-    digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)  # last: the chunk is complete
+    part.to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
+    mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
+    record = {"chunk_zero_everywhere": np.int8(everywhere), "chunk_inside": np.int8(inside), "chunk_digest": mark}
+    for k, v in record.items():  # the digest last: the chunk is complete when it is written
+        one = xr.Dataset({k: (_chunk_dims(dims), np.full((1,) * len(dims), v))})
+        one.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
     return everywhere, inside
 
 
@@ -284,7 +276,7 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
             "remove it or choose another output"
         ) from None
     with old:
-        diff = [k for k in _IDENTITY if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
+        diff = [k for k in IDENTITY_ATTRS if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
         diff += [
             k
             for k in ds.coords
@@ -352,23 +344,22 @@ def write_store(
     of each chunk; ``report``, ``failed``, ``compute`` (of one chunk) and ``run_on_cluster`` as
     for the netCDF writer.
     """
-    _check_target(target, overwrite)
+    if commit:
+        _check_target(target, overwrite)
     dims = spec["dims"]
     tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
     if resume:
         parts = parts_directory(target)
     else:
-        directory = target.parent if str(target.parent) else Path(".")
-        parts = Path(tempfile.mkdtemp(prefix=TEMPORARY_PREFIX, suffix="-" + target.name, dir=directory))
+        parts = Path(temporary_name(target, directory=True))
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
     try:
         if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
             done = _reopen(parts, ds, spec, blocks)
         else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
-            layout = _template(ds, spec["chunk_shape"], dims)
+            layout = _template(ds[spec["variables"]], spec["chunk_shape"], dims)
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
-            os.chmod(parts, file_mode(directory=True))  # not mkdtemp's 0o700: the store's own mode
         for _ in done:
             report()
         todo = [(name, sl) for name, sl in blocks if name not in done]
