@@ -216,90 +216,65 @@ class FinalState:
         run's numbers as attributes."""
         cands = self.candidates
         n = len(cands)
-        ends = [c is self.state for c in cands]
+
+        def scalar(value: float, long_name: str, units: str, short: str | None = None) -> tuple:
+            return ((), value, var_attrs(long_name, units, short=short))
+
+        def column(values: list, attrs: dict[str, Any], dtype: Any = None) -> tuple:
+            return ("candidate", np.array(values, dtype=dtype), attrs)
+
+        def yes_no(long_name: str, meanings: str, **extra: str) -> dict[str, Any]:
+            flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": meanings}
+            return {"long_name": long_name, **extra, **flags}
+
+        tilt_long = "final polar angle of the axis from the upward vertical"
+        jellett_long = "Jellett's integral J = (K + q k) . I_G omega of the motion"
         data = {
-            "tilt": (
-                (),
-                self.tilt,
-                var_attrs("final polar angle of the axis from the upward vertical", DEGREE, short="final tilt"),
+            "tilt": scalar(self.tilt, tilt_long, DEGREE, "final tilt"),
+            "initial_tilt": scalar(self.initial_tilt, "initial polar angle of the axis", DEGREE, "initial tilt"),
+            "jellett": scalar(self.jellett, jellett_long, "A0 Omega", "Jellett's J"),
+            "initial_energy": scalar(self.initial_energy, "initial energy", "A0 Omega^2"),
+            "energy": scalar(self.energy, "energy of the final state", "A0 Omega^2", "final energy"),
+            "precession_rate": scalar(
+                self.precession_rate, "precession rate of the final state", "Omega", "precession rate"
             ),
-            "initial_tilt": (
-                (),
-                self.initial_tilt,
-                var_attrs("initial polar angle of the axis", DEGREE, short="initial tilt"),
+            "axial_spin": scalar(
+                self.axial_spin, "spin about the axis of the final state, omega . k", "Omega", "axial spin"
             ),
-            "jellett": (
-                (),
-                self.jellett,
-                var_attrs(
-                    "Jellett's integral J = (K + q k) . I_G omega of the motion", "A0 Omega", short="Jellett's J"
-                ),
-            ),
-            "initial_energy": ((), self.initial_energy, var_attrs("initial energy", "A0 Omega^2")),
-            "energy": ((), self.energy, var_attrs("energy of the final state", "A0 Omega^2", short="final energy")),
-            "precession_rate": (
-                (),
-                self.precession_rate,
-                var_attrs("precession rate of the final state", "Omega", short="precession rate"),
-            ),
-            "axial_spin": (
-                (),
-                self.axial_spin,
-                var_attrs("spin about the axis of the final state, omega . k", "Omega", short="axial spin"),
-            ),
-            "candidate_kind": (
-                "candidate",
-                np.array([c.kind for c in cands], dtype=str),
+            "candidate_kind": column(
+                [c.kind for c in cands],
                 {"long_name": "kind of state", "comment": "kind of the steady state of the level"},
+                str,
             ),
-            "candidate_tilt": (
-                "candidate",
-                np.array([c.tilt for c in cands]),
-                var_attrs("tilt of the steady state", DEGREE, short="tilt"),
+            "candidate_tilt": column(
+                [c.tilt for c in cands], var_attrs("tilt of the steady state", DEGREE, short="tilt")
             ),
-            "candidate_energy": (
-                "candidate",
-                np.array([c.energy for c in cands]),
+            "candidate_energy": column(
+                [c.energy for c in cands],
                 var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"),
             ),
-            "candidate_precession_rate": (
-                "candidate",
-                np.array([c.precession_rate for c in cands]),
+            "candidate_precession_rate": column(
+                [c.precession_rate for c in cands],
                 var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
             ),
-            "candidate_axial_spin": (
-                "candidate",
-                np.array([c.axial_spin for c in cands]),
+            "candidate_axial_spin": column(
+                [c.axial_spin for c in cands],
                 var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
             ),
-            "candidate_stability": (
-                "candidate",
-                np.array([c.stability for c in cands], dtype=np.int8),
-                flag_attrs("stability of the steady state"),
+            "candidate_stability": column(
+                [c.stability for c in cands], flag_attrs("stability of the steady state"), np.int8
             ),
-            "candidate_energy_test": (
-                "candidate",
-                np.array([c.energy_test for c in cands]),
+            "candidate_energy_test": column(
+                [c.energy_test for c in cands],
                 var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"),
             ),
-            "candidate_reachable": (
-                "candidate",
-                np.array([c.reachable for c in cands], dtype=np.int8),
-                {
-                    "long_name": "U_J <= initial energy",
-                    "flag_values": np.array([0, 1], np.int8),
-                    "flag_meanings": "unreachable reachable",
-                },
+            "candidate_reachable": column(
+                [c.reachable for c in cands], yes_no("U_J <= initial energy", "unreachable reachable"), np.int8
             ),
-            "candidate_is_final": (
-                "candidate",
-                np.array(ends, dtype=np.int8),
-                {
-                    "long_name": "final state",
-                    "comment": "the motion ends on this state",
-                    "flag_values": np.array([0, 1], np.int8),
-                    "flag_meanings": "no yes",
-                },
+            "candidate_is_final": column(
+                [c is self.state for c in cands],
+                yes_no("final state", "no yes", comment="the motion ends on this state"),
+                np.int8,
             ),
         }
         p = self.parameters
