@@ -303,11 +303,11 @@ def stick_slip(
             y8 = _rolling_state(y_ev)
             f, n = rolling_need(y8)
             ratio = math.hypot(*f) / limit(n)
-            if ratio <= 1.0:
-                switches.append((t_ev, "stick", _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+            kind = "stick" if ratio <= 1.0 else "transit"
+            switches.append((t_ev, kind, _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+            if kind == "stick":
                 phase, y = _STICK, y8
             else:
-                switches.append((t_ev, "transit", _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
                 y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
         else:  # the needed friction reached the static limit: slip along -f
             f, n = rolling_need(y_ev)
@@ -352,50 +352,26 @@ def stick_slip(
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
     )
-    ds["phase"] = (
-        "time",
-        ph,
-        {
-            "long_name": "contact phase",
-            "flag_values": np.array([0, 1], np.int8),
-            "flag_meanings": "slip stick",
-            "comment": "slip: sliding model with Coulomb friction (7); stick: rolling model (V_c = 0)",
-        },
-    )
-    ds["friction_limit"] = (
-        "time",
-        lim,
-        {
-            "long_name": "static friction limit",
-            "units": "1",
-            "comment": "alpha_s n: the largest friction while sticking",
-        },
-    )
+    phase_comment = "slip: sliding model with Coulomb friction (7); stick: rolling model (V_c = 0)"
+    flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": "slip stick", "comment": phase_comment}
+    ds["phase"] = ("time", ph, {"long_name": "contact phase", **flags})
+    limit_comment = "alpha_s n: the largest friction while sticking"
+    ds["friction_limit"] = ("time", lim, {"long_name": "static friction limit", "units": "1", "comment": limit_comment})
     cols = list(zip(*switches)) if switches else [[]] * 6
-    ds = ds.assign(
-        switch_time=("switch", np.array(cols[0], float), {"long_name": "switch time", "units": "1/Omega"}),
-        switch_kind=(
-            "switch",
-            np.array(cols[1], dtype="<U7"),
-            {"long_name": "kind of switch", "comment": "stick (slip -> stick), slip (stick -> slip), transit"},
-        ),
-        switch_tilt=("switch", np.array(cols[2], float), {"long_name": "tilt at the switch", "units": "degree"}),
-        switch_slip_speed=(
-            "switch",
-            np.array(cols[3], float),
+    kinds = "stick (slip -> stick), slip (stick -> slip), transit"
+    switch_attrs = {  # name: (dtype, attributes), in the order of the switch tuples
+        "switch_time": (float, {"long_name": "switch time", "units": "1/Omega"}),
+        "switch_kind": ("<U7", {"long_name": "kind of switch", "comment": kinds}),
+        "switch_tilt": (float, {"long_name": "tilt at the switch", "units": "degree"}),
+        "switch_slip_speed": (
+            float,
             {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"},
         ),
-        switch_spin=(
-            "switch",
-            np.array(cols[4], float),
-            {"long_name": "spin omega . k at the switch", "units": "Omega"},
-        ),
-        switch_friction_ratio=(
-            "switch",
-            np.array(cols[5], float),
-            {"long_name": "needed friction / static limit at the switch", "units": "1"},
-        ),
-    )
+        "switch_spin": (float, {"long_name": "spin omega . k at the switch", "units": "Omega"}),
+        "switch_friction_ratio": (float, {"long_name": "needed friction / static limit at the switch", "units": "1"}),
+    }
+    variables = zip(switch_attrs.items(), cols)
+    ds = ds.assign({name: ("switch", np.array(col, dtype), attrs) for (name, (dtype, attrs)), col in variables})
     ds.attrs.update(
         switching_model=(
             "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases "
