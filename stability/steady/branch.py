@@ -58,7 +58,7 @@ from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
 from .linearisation import state_modes
-from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, variable
 from .states import state_integrals
 from .verdicts import flag_of
 
@@ -494,59 +494,50 @@ def points_dataset(
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
-        "tilt": (
-            "point",
-            np.degrees(theta),
-            var_attrs("polar angle of the axis k from the upward vertical", DEGREE, short="tilt"),
+        "tilt": variable(
+            "point", np.degrees(theta), "polar angle of the axis k from the upward vertical", DEGREE, short="tilt"
         ),
-        "jellett": (
-            "point",
-            J,
-            var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"),
+        "jellett": variable(
+            "point", J, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
         ),
-        "precession_rate": (
+        "precession_rate": variable(
             "point",
             lam,
-            var_attrs(
-                "precession rate of the axis about the vertical",
-                "Omega",
-                short="precession rate",
-                comment="at a branch point: spin / (1 + q cos(tilt))",
-            ),
+            "precession rate of the axis about the vertical",
+            "Omega",
+            short="precession rate",
+            comment="at a branch point: spin / (1 + q cos(tilt))",
         ),
-        "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
-        "energy": ("point", E, var_attrs("total energy", "A0 Omega^2", short="energy")),
-        "upright_equivalent_spin": (
+        "axial_spin": variable("point", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
+        "energy": variable("point", E, "total energy", "A0 Omega^2", short="energy"),
+        "upright_equivalent_spin": variable(
             "point",
             J / j_upright,
-            var_attrs(
-                "spin of the upright state with the same J, J / (sigma (1 + q))", "Omega", short="upright-equiv. spin"
-            ),
+            "spin of the upright state with the same J, J / (sigma (1 + q))",
+            "Omega",
+            short="upright-equiv. spin",
         ),
-        "growth_rate": (
+        "growth_rate": variable(
             "point",
             growth,
-            var_attrs(
-                "leading growth rate of the linearisation (frame precessing with the state), structural "
-                "neutral directions removed",
-                "Omega",
-                short="leading growth rate",
-            ),
+            "leading growth rate of the linearisation (frame precessing with the state), structural "
+            "neutral directions removed",
+            "Omega",
+            short="leading growth rate",
         ),
-        "growth_rate_bound": (
+        "growth_rate_bound": variable(
             "point",
             bound,
-            var_attrs(
-                "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
-                "point; tilted states: 1e3 u ||A||_F)",
-                "Omega",
-                short="growth rate bound",
-            ),
+            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)",
+            "Omega",
+            short="growth rate bound",
         ),
-        "n_neutral": (
+        "n_neutral": variable(
             "point",
             np.asarray(n_neutral, dtype=np.int8),
-            var_attrs("number of physical modes neutral within rounding", short="neutral modes"),
+            "number of physical modes neutral within rounding",
+            short="neutral modes",
         ),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": (
