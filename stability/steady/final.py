@@ -143,7 +143,7 @@ class SettleRun:
     event_time: float = math.nan
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FinalState:
     """The predicted end of a motion (:func:`final_state`).
 
@@ -195,12 +195,12 @@ class FinalState:
     jellett: float
     initial_energy: float
     energy: float
-    precession_rate: float
-    axial_spin: float
-    state: Candidate | None
+    precession_rate: float = math.nan
+    axial_spin: float = math.nan
+    state: Candidate | None = None
     candidates: tuple[Candidate, ...]
     reason: str
-    run: SettleRun | None
+    run: SettleRun | None = None
     parameters: dict[str, float] = field(default_factory=dict)
     initial_tilt: float = math.nan
     event: str = "none"
@@ -563,22 +563,10 @@ def final_state_from(
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
     n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
-        return FinalState(
-            tilt=tilt0,
-            kind="contact_lost",
-            method="jellett",
-            energy=E0,
-            precession_rate=math.nan,
-            axial_spin=math.nan,
-            state=None,
-            reason=f"{reason}; but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves "
-            "the floor at once, the model does not hold, no final state",
-            run=None,
-            event="contact_lost",
-            event_time=0.0,
-            contact="lost",
-            **common,
-        )
+        why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
+        reason = f"{reason}; {why}, the model does not hold, no final state"
+        lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost")
+        return FinalState(tilt=tilt0, method="jellett", energy=E0, reason=reason, **lost, **common)
     if end is not None and fr_inv > 0.0:
         reason += (
             f"; contact not checked on the way (no run): N = {n0:.6g} at the start and mu Fr^-1 = "
@@ -587,31 +575,11 @@ def final_state_from(
     if stick_tilt is not None and end is not None and end.tilt < stick_tilt:
         stick_tilt = None  # the decided end is below the stick: the stick plays no part
     if end is not None and stick_tilt is None:
-        return FinalState(
-            tilt=end.tilt,
-            kind=end.kind,
-            method="jellett",
-            energy=end.energy,
-            precession_rate=end.precession_rate,
-            axial_spin=end.axial_spin,
-            state=end,
-            reason=reason,
-            run=None,
-            **common,
-        )
+        decided = dict(tilt=end.tilt, kind=end.kind, energy=end.energy, state=end, method="jellett", reason=reason)
+        return FinalState(**decided, precession_rate=end.precession_rate, axial_spin=end.axial_spin, **common)
     if not simulation:
-        return FinalState(
-            tilt=math.nan,
-            kind="undecided",
-            method="simulation",
-            energy=math.nan,
-            precession_rate=math.nan,
-            axial_spin=math.nan,
-            state=None,
-            reason=reason + "; no run (simulation=False)",
-            run=None,
-            **common,
-        )
+        undecided = dict(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan)
+        return FinalState(**undecided, reason=reason + "; no run (simulation=False)", **common)
     t_max = check_positive("t_max", t_max)
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
     rtol = check_interval("rtol", rtol, 0.0, 1.0)
@@ -641,47 +609,23 @@ def final_state_from(
                 "does not hold beyond, no final state"
             )
             contact = {"contact": "lost" if run.event == "contact_lost" else "held"}
-        return FinalState(
-            tilt=tilt,
-            kind=run.event,
-            method="simulation",
-            energy=energy,
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            reason=f"{reason}; a run decided: {what}",
-            run=run,
-            event=run.event,
-            event_time=run.event_time,
-            **contact,
-            **common,
-        )
+        stopped = dict(kind=run.event, event=run.event, event_time=run.event_time, **contact)
+        reason = f"{reason}; a run decided: {what}"
+        on_way = dict(tilt=tilt, method="simulation", energy=energy, axial_spin=run.axial_spin, reason=reason, run=run)
+        return FinalState(**on_way, **stopped, **common)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
+    outcome = dict(kind="rolling" if run.settled else "unsettled", energy=energy, axial_spin=run.axial_spin)
     if state is not None and run.settled:
-        kind = state.kind
-    elif run.settled:
-        kind = "rolling"
-    else:
-        kind = "unsettled"
+        outcome = dict(kind=state.kind, energy=state.energy, axial_spin=state.axial_spin, state=state)
+        outcome.update(precession_rate=state.precession_rate)
     how = (
         "settled"
         if run.settled
         else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
     )
-    return FinalState(
-        tilt=tilt,
-        kind=kind,
-        method="simulation",
-        energy=state.energy if state is not None and run.settled else energy,
-        precession_rate=state.precession_rate if state is not None and run.settled else math.nan,
-        axial_spin=state.axial_spin if state is not None and run.settled else run.axial_spin,
-        state=state if run.settled else None,
-        reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)",
-        run=run,
-        contact="held",
-        **common,
-    )
+    reason = f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)"
+    return FinalState(tilt=tilt, method="simulation", reason=reason, run=run, contact="held", **outcome, **common)
 
 
 def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
