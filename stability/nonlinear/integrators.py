@@ -882,26 +882,14 @@ def integrate(
     c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
+    watch = dict(progress=progress, watch=watch_contact, c_stick=c_stick)
     if method == "dopri5":
-        y, nfev, na, nr, st, ev = dopri5(
-            code,
-            y0,
-            t_eval,
-            p,
-            float(rtol),
-            float(atol),
-            float(step or 0.0),
-            int(max_steps),
-            progress=progress,
-            watch=watch_contact,
-            c_stick=c_stick,
-        )
+        tolerances = (float(rtol), float(atol), float(step or 0.0), int(max_steps))
+        y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, *tolerances, **watch)
     elif method == "rk4":
         if step is None or not step > 0:
             raise InputError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st, ev = rk4(
-            code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact, c_stick=c_stick
-        )
+        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), **watch)
     elif method in SCIPY_METHODS:
         y, nfev, na, nr, st, ev = _scipy(
             code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress, watch_contact, c_stick
@@ -916,15 +904,6 @@ def integrate(
         # which watched quantity reached zero: the stick's gap, or else the normal force
         gap = event_value(y_ev, y_ev, p, 0, c_stick)
         kind = "stick_contact" if gap <= 0.0 else "contact_lost"
-        return Solution(
-            np.append(t_eval[:rows], t_ev),
-            np.vstack([y[:rows], y_ev[None, :]]),
-            int(nfev),
-            int(na),
-            int(nr),
-            int(st),
-            method,
-            t_ev,
-            kind,
-        )
+        t_out, y_out = np.append(t_eval[:rows], t_ev), np.vstack([y[:rows], y_ev[None, :]])
+        return Solution(t_out, y_out, int(nfev), int(na), int(nr), int(st), method, t_ev, kind)
     return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)

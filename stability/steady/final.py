@@ -216,6 +216,7 @@ class FinalState:
         run's numbers as attributes."""
         cands = self.candidates
         n = len(cands)
+        index = "index of the steady state"
 
         def scalar(value: float, long_name: str, units: str, short: str | None = None) -> tuple:
             return ((), value, var_attrs(long_name, units, short=short))
@@ -297,14 +298,7 @@ class FinalState:
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
         return xr.Dataset(
             data,
-            coords={
-                "candidate": (
-                    "candidate",
-                    np.arange(n),
-                    {"long_name": "candidate", "comment": "index of the steady state"},
-                ),
-                **curve_coords,
-            },
+            coords={"candidate": column(np.arange(n), {"long_name": "candidate", "comment": index})} | curve_coords,
             attrs=attrs,
         )
 
@@ -325,18 +319,8 @@ def candidates(
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
         kind = "upright" if i == 0 else "inverted" if i == last else "tilted"
         tilt = 0.0 if i == 0 else 180.0 if i == last else math.degrees(math.acos(c))
-        out.append(
-            Candidate(
-                kind,
-                tilt,
-                u,
-                lam,
-                axial,
-                flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v),
-                test,
-                u <= E0 + tol,
-            )
-        )
+        flag = flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
+        out.append(Candidate(kind, tilt, u, lam, axial, flag, test, u <= E0 + tol))
     return tuple(out)
 
 
