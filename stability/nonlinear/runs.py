@@ -453,26 +453,12 @@ def simulate(
         ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
     else:
         ds = flight_dataset(m.name, flights, params, p)
-    ds.attrs.update(
-        event=sol.event,
-        event_time=sol.event_time,
-        on_contact_loss=on_contact_loss,
-        contact_watched=int(watched),
-        stick_tilt=float("nan") if stick_tilt is None else stick_tilt,
-    )
-    ds.attrs.update(
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        nfev=sol.nfev,
-        naccept=sol.naccept,
-        nreject=sol.nreject,
-        status=sol.status,
-        message=message,
-        friction_law=friction if m.name == "sliding" else "none (constraint force)",
-        normal_force_scaling=normal,
-        slip_scale=float(slip_scale),
-    )
+    ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss)
+    ds.attrs.update(contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
+    ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept, nreject=sol.nreject)
+    ds.attrs.update(status=sol.status, message=message)
+    friction_law = friction if m.name == "sliding" else "none (constraint force)"
+    ds.attrs.update(friction_law=friction_law, normal_force_scaling=normal, slip_scale=float(slip_scale))
     return ds
 
 
@@ -571,13 +557,9 @@ def trajectory_dataset(
         short, what = names[name]
         put(name, val, short, "A0 Omega^2", f"{what}, in units of A0 Omega^2")
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(
-        Conventions="CF-1.10",
-        title=f"Tippe top, nonlinear {m.name} model",
-        source=f"stability.simulate (tippe-stability {package_version()})",
-        model=m.name,
-        equations=m.equations,
-    )
+    source = f"stability.simulate (tippe-stability {package_version()})"
+    ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model", source=source)
+    ds.attrs.update(model=m.name, equations=m.equations)
     ds.attrs[PRODUCT_ATTR] = "nonlinear_run"
     for name, val in params.items():
         ds.attrs[name] = val

@@ -378,18 +378,8 @@ def stick_slip(
             "with the rolling model; stick when |V_c| reaches slip_threshold and rolling's friction is "
             "within alpha_s n; slip when it reaches alpha_s n"
         ),
-        alpha_s=a_s,
-        slip_threshold=float(slip_threshold),
-        n_switches=len(switches),
-        final_phase=PHASES[int(ph[-1])],
-        event=event,
-        event_time=event_time,
-        status=status,
-        message=message,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        friction_law="isotropic",
-        normal_force_scaling=normal,
     )
+    ds.attrs.update(alpha_s=a_s, slip_threshold=float(slip_threshold), n_switches=len(switches))
+    ds.attrs.update(final_phase=PHASES[int(ph[-1])], event=event, event_time=event_time, status=status, message=message)
+    ds.attrs.update(method=method, rtol=rtol, atol=atol, friction_law="isotropic", normal_force_scaling=normal)
     return ds

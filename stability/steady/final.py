@@ -496,15 +496,8 @@ def final_state(
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    return final_state_from(
-        y,
-        params,
-        simulation=simulation,
-        t_max=t_max,
-        settle_tolerance=settle_tolerance,
-        rtol=rtol,
-        stick_tilt=stick_tilt,
-    )
+    options = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
+    return final_state_from(y, params, simulation=simulation, **options)
 
 
 def final_state_from(
@@ -649,19 +642,8 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
             vert.append(True)
         cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
     p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    growth = state_modes(
-        np.array(ys),
-        np.array(lams),
-        np.array(vert),
-        np.array(cos_),
-        np.array(spins),
-        p,
-        q=q,
-        sigma=sigma,
-        fr_inv=params["fr_inv"],
-        alpha_v=params["alpha_v"],
-        mu=mu,
-    )[1]
+    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p)
+    growth = state_modes(*states, q=q, sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
@@ -692,18 +674,8 @@ def settle(
     change = math.inf
     while t < t_max:
         length = min(chunk, t_max - t)
-        ds = simulate(
-            "sliding",
-            t_end=length,
-            t_eval=np.linspace(0.0, length, samples + 1),
-            omega=w,
-            k=kk,
-            velocity=v,
-            rtol=rtol,
-            atol=1e-3 * rtol,
-            stick_tilt=stick_tilt,
-            **params,
-        )
+        start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
+        ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
         n += 1
         t += length
         if j0 is None:
@@ -723,17 +695,10 @@ def settle(
         if change < settle_tolerance and slip < 1e-6:
             settled = True
             break
-    run = SettleRun(
-        t_end=t,
-        settled=settled,
-        tilt_change=change,
-        slip_speed=slip,
-        chunks=n,
-        seconds=time.perf_counter() - t0,
-        jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
-        axial_spin=float(ds.spin[-1]),
-        event=event,
-        event_time=t if event != "none" else math.nan,
-    )
+    drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
+    seconds = time.perf_counter() - t0
+    work = dict(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=seconds)
+    event_time = t if event != "none" else math.nan
+    run = SettleRun(**work, jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=event_time)
     ok = np.isfinite(pol)
     return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run
