@@ -34,6 +34,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -42,6 +43,7 @@ from stability.jit import njit, python
 from ..errors import InputError
 from ..execution import before_compiled_call, engine, pick
 from ..interrupts import checkpoint
+from ..parameters import check_interval
 from .kernels import CODES
 from .kernels import normal_force_lower_bound as _normal_force_lower_bound
 from .kernels import rhs as _model_rhs
@@ -53,6 +55,7 @@ __all__ = [
     "SCIPY_METHODS",
     "SLICE_STEPS",
     "Solution",
+    "check_tolerances",
     "dopri5",
     "dopri5_slice",
     "integrate",
@@ -62,6 +65,14 @@ __all__ = [
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: the allowed range of a run's relative and absolute tolerances (open at both ends)
+TOLERANCE_RANGE = (0.0, 1.0)
+
+
+def check_tolerances(**tolerances: Any) -> tuple[float, ...]:
+    """The tolerances given by name (``rtol=..., atol=...``) checked against
+    :data:`TOLERANCE_RANGE` (the message names the one outside), as floats in that order."""
+    return tuple(check_interval(name, value, *TOLERANCE_RANGE) for name, value in tolerances.items())
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])

@@ -26,6 +26,7 @@ from .._version import package_version
 from ..errors import InputError, ParameterTypeError
 from ..execution import pick
 from ..interrupts import deferred
+from ..models.inertia import inertia_contact, inertia_g
 from ..parameters import (
     COMPUTABLE_MAX,
     DEFAULT_MU,
@@ -43,11 +44,11 @@ from . import get_nonlinear_model
 from .contact import check_on_contact_loss
 from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, integrate
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, check_tolerances, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
-__all__ = ["STIFF_RATE", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
+__all__ = ["STIFF_RATE", "auto_method", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA: where the measured costs of
 #: the compiled dopri5 (held to steps ~3.3 / rate by stability) and of LSODA cross, below which
@@ -185,14 +186,15 @@ def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position
     return np.concatenate(parts)
 
 
-def _auto_method(model: str, params: dict[str, float]) -> str:
+def auto_method(model: str, params: dict[str, float]) -> str:
     """``"LSODA"`` when the sliding top's slip mode decays faster than :data:`STIFF_RATE`
     (rate ``alpha_v A_C / (mu A_G)``, ``A_C = 1 + mu (1 + 2 q)``, ``A_G = 1 - mu q^2``), or
     with Coulomb friction (stiff at sticking); otherwise the compiled ``"dopri5"``."""
     if model != "sliding":
         return "dopri5"
     mu, q = params["mu"], params["q"]
-    rate = params["alpha_v"] * (1 + mu * (1 + 2 * q)) / (mu * (1 - mu * q * q))
+    a_g = inertia_g(q, mu)
+    rate = params["alpha_v"] * inertia_contact(q, mu, a_g) / (mu * a_g)
     return "LSODA" if (rate > STIFF_RATE or params["alpha_k"] > 0) else "dopri5"
 
 
@@ -375,8 +377,7 @@ def simulate(
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
     params, p = model_parameter_vector(m.name, **top, friction=friction, normal=normal, slip_scale=slip_scale)
     t_end = check_positive("t_end", t_end)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_steps = check_integer("max_steps", max_steps, minimum=1)
     if step is not None:
         step = check_positive("step", step)
@@ -392,18 +393,13 @@ def simulate(
         t_eval = np.linspace(0.0, float(t_end), n + 1)
     else:
         t_eval = as_parameter("t_eval", t_eval)
-        if (
-            t_eval.ndim != 1
-            or t_eval.size < 2
-            or t_eval[0] != 0.0
-            or np.any(np.diff(t_eval) <= 0)
-            or not np.isclose(t_eval[-1], t_end)
-        ):
+        not_1d = t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0
+        if not_1d or np.any(np.diff(t_eval) <= 0) or not np.isclose(t_eval[-1], t_end):
             raise InputError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
         check_run_memory(m.name, t_eval.size, t_end=t_end, dt=None)
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
-        method = _auto_method(m.name, params)
+        method = auto_method(m.name, params)
     check_on_contact_loss(on_contact_loss)
     if on_contact_loss == "continue" and stick_tilt is not None:
         raise InputError(

@@ -63,7 +63,7 @@ from ..errors import InputError
 from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL
+from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -192,8 +192,7 @@ def stick_slip(
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_switches = check_integer("max_switches", max_switches, minimum=1)
     method = check_choice("method", method, ("RK45", "DOP853", "Radau", "BDF", "LSODA"))
     sliding = get_nonlinear_model("sliding")

@@ -63,7 +63,7 @@ from ..models import MODELS
 from ..parameters import DEFAULT_MU, check_choice, check_domain, check_interval, check_positive, parameter_attrs
 from ..products import PRODUCT_ATTR
 from . import get_nonlinear_model
-from .integrators import SCIPY_METHODS
+from .integrators import SCIPY_METHODS, check_tolerances
 from .jacobian import transverse_jacobian, upright_state
 from .runs import simulate
 
@@ -404,8 +404,7 @@ def validate(
     n_efold = check_positive("n_efold", n_efold)
     n_periods = check_positive("n_periods", n_periods)
     max_time = check_positive("max_time", max_time)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     method = check_choice("method", method, ("auto", "dopri5") + tuple(SCIPY_METHODS))
     rows = []
     for j in range(flat["q"].size):

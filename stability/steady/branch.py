@@ -347,13 +347,8 @@ def steady_branch(
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
     check_scales(params, jmax, jellett_name="jellett_max")
     prob = SteadyBranchProblem(params, p, compiled=compiled)
-    attrs = product_attrs(
-        "steady_branch",
-        "Tilted steady states of the sliding Tippe top against Jellett's integral",
-        "continuation.steady_branch",
-        params,
-        removed_neutral=True,
-    )
+    title = "Tilted steady states of the sliding Tippe top against Jellett's integral"
+    attrs = product_attrs("steady_branch", title, "continuation.steady_branch", params, removed_neutral=True)
     attrs["model"] = "sliding"
     options = TraceOptions(
         step=min(max_step, 0.02), max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled
@@ -370,12 +365,8 @@ def steady_branch(
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
         ell0 = math.log(math.sqrt(jmax * prob.jellett_min) / j_unit)
-        ends = []
-        halves = []
-        for direction in (-1, 1):
-            br = trace(prob, [theta0, ell0], options, tangent0=[0.0, direction], project_start=True)
-            halves.append(br)
-            ends.append(br.end_reasons[0])
+        halves = [trace(prob, [theta0, ell0], options, tangent0=[0.0, d], project_start=True) for d in (-1, 1)]
+        ends = [half.end_reasons[0] for half in halves]
         lo, hi = halves
         pts = np.concatenate([lo.points[::-1], hi.points[1:]])
         kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
@@ -438,15 +429,8 @@ def steady_branch(
             f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
             + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J there" if why else "")
         )
-    attrs.update(
-        start=start,
-        ends=", ".join(ends),
-        jellett_max=prob.jellett_max,
-        n_newton=work[0],
-        n_residual=work[1],
-        n_jacobian=work[2],
-        degenerate=int(prob.degenerate),
-    )
+    attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max)
+    attrs.update(n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
@@ -464,14 +448,9 @@ def points_dataset(
     theta, lam = pts[:, 0], np.exp(pts[:, 1])
     c = np.cos(theta)
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
-    growth = np.full(n, np.nan)
-    bound = np.full(n, np.nan)
-    n_neutral = np.zeros(n, dtype=np.int8)
-    jac = np.zeros(n, dtype=np.int8)
-    flags = np.zeros(n, dtype=np.int8)
-    J = np.zeros(n)
-    E = np.zeros(n)
-    axial = np.zeros(n)
+    growth, bound = np.full(n, np.nan), np.full(n, np.nan)
+    n_neutral, jac, flags = (np.zeros(n, dtype=np.int8) for _ in range(3))
+    J, E, axial = np.zeros(n), np.zeros(n), np.zeros(n)
     if n:
         pr = prob.params
         q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
@@ -556,8 +535,5 @@ def points_dataset(
         ),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
-    return xr.Dataset(
-        data,
-        coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
-        attrs=attrs,
-    )
+    index = {"long_name": "point", "comment": "index along the branch"}
+    return xr.Dataset(data, coords={"point": ("point", np.arange(n), index)}, attrs=attrs)

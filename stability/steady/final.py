@@ -37,7 +37,8 @@ import xarray as xr
 
 from ..errors import DomainError, InputError
 from ..execution import announce, pick
-from ..nonlinear.runs import _auto_method, initial_state, simulate
+from ..nonlinear.integrators import check_tolerances
+from ..nonlinear.runs import auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import state_modes
@@ -559,9 +560,9 @@ def final_state_from(
         return FinalState(**undecided, reason=reason + "; no run (simulation=False)", **common)
     t_max = check_positive("t_max", t_max)
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    (rtol,) = check_tolerances(rtol=rtol)
     chunk = chunk_length(cands, params, J0)
-    if _auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
+    if auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
         announce(
             f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
             f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
