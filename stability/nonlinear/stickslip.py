@@ -216,26 +216,22 @@ def stick_slip(
     def roll_rhs(t, y):
         return rolling.rhs(t, y, p)
 
+    # every event ends its phase, on a downward crossing
     def ev_slip_stop(t, y):
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
-    ev_slip_stop.terminal, ev_slip_stop.direction = True, -1
-
     def ev_slip_contact(t, y):
         return float(sliding.contact_forces(np.ascontiguousarray(y[None, :]), p)[0, 2])
-
-    ev_slip_contact.terminal, ev_slip_contact.direction = True, -1
 
     def ev_stick_break(t, y):
         f, n = rolling_need(y)
         return limit(n) - math.hypot(f[0], f[1])
 
-    ev_stick_break.terminal, ev_stick_break.direction = True, -1
-
     def ev_stick_contact(t, y):
         return rolling_need(y)[1]
 
-    ev_stick_contact.terminal, ev_stick_contact.direction = True, -1
+    for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
+        ev.terminal, ev.direction = True, -1
 
     y = initial_state("sliding", omega, k, velocity)
     grid = np.linspace(0.0, t_end, int(np.ceil(t_end / dt - 1e-9)) + 1)
@@ -322,13 +318,11 @@ def stick_slip(
     stuck = ph == _STICK
     lim = np.full(t_all.size, a_s)
 
-    def put_forces(sel: np.ndarray, forces: np.ndarray, *, sticking: bool) -> None:
-        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (a
-        sticking sample's friction is horizontal)."""
+    def put_forces(sel: np.ndarray, forces: np.ndarray) -> None:
+        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (the
+        friction's vertical component stays 0, as :func:`trajectory_dataset` writes it)."""
         f = ds.friction.values.copy()
         f[sel, 0:2] = forces[:, 0:2]
-        if sticking:
-            f[sel, 2] = 0.0
         ds["friction"].values = f
         mag = ds.friction_magnitude.values.copy()
         mag[sel] = np.hypot(forces[:, 0], forces[:, 1])
@@ -338,14 +332,11 @@ def stick_slip(
         ds["normal_force"].values = nf
 
     if stuck.any():
-        put_forces(
-            stuck,
-            rolling.contact_forces(np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]])), p),
-            sticking=True,
-        )
+        rolling_states = np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]]))
+        put_forces(stuck, rolling.contact_forces(rolling_states, p))
     slipping = ~stuck
     if slipping.any():  # the exact law (7) while slipping (the run's p_reg is the regularised one)
-        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p), sticking=False)
+        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p))
     if scaled:
         lim = a_s * ds.normal_force.values / n_eq
     ds["friction"].attrs["comment"] = (
