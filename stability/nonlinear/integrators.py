@@ -750,10 +750,12 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
 
     watch = watch or c_stick >= -1.0
 
-    kw = {"first_step": step} if step else {}
     import scipy.integrate  # here: a second of imports that the compiled methods do not need
 
-    solver = getattr(scipy.integrate, method)(fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
+    def make(t0, y_start, **kw):
+        return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol, **kw)
+
+    solver = make(t_eval[0], y0, **({"first_step": step} if step else {}))
     y = np.full((t_eval.size, y0.size), np.nan)
     y[0] = y0
     j, steps, status = 1, 0, SUCCESS
@@ -780,10 +782,6 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         if last_step and i == n_p - 1:  # the solver's own last step: its dense output
             return _locate_dense(solver, n_of)
         t_a, y_a = (float(pend_t[i - 1]), pend_y[i - 1].copy()) if i > 0 else (ok_t, ok_y)
-
-        def make(t0, y_start):
-            return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
-
         return _relocate(make, n_of, t_a, y_a, float(pend_t[i]), pend_y[i].copy(), max_steps)
 
     while j < t_eval.size:
@@ -804,14 +802,9 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
             pend_t[npend] = t_new
             pend_y[npend] = solver.y
             npend += 1
-            if npend >= batch:
-                ev = check(True)
-                if ev is not None:
-                    event = ev
-                    break
-        k = j
-        while k < t_eval.size and t_eval[k] <= t_new:
-            k += 1
+            if npend >= batch and (event := check(True)) is not None:
+                break
+        k = int(np.searchsorted(t_eval, t_new, side="right"))  # the outputs up to t_new (from j on)
         if k > j:
             y[j:k] = solver.dense_output()(t_eval[j:k]).T
             j = k
