@@ -138,18 +138,7 @@ def model_parameter_vector(
             "normal = 'actual' needs fr_inv > 0 (friction proportional to N(t) / (mu fr_inv)); got fr_inv = 0"
         )
     slip_scale = check_positive("slip_scale", slip_scale)
-    vec = pack(
-        q=params["q"],
-        fr_inv=params["fr_inv"],
-        sigma=params["sigma"],
-        mu=params["mu"],
-        alpha_v=params.get("alpha_v", 0.0),
-        alpha_k=params.get("alpha_k", 0.0),
-        epsilon=float(slip_scale),
-        law=FRICTION_LAWS[friction],
-        normal=NORMAL_FORCE[normal],
-    )
-    return params, vec
+    return params, pack(**params, epsilon=float(slip_scale), law=FRICTION_LAWS[friction], normal=NORMAL_FORCE[normal])
 
 
 def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position: Any = None) -> np.ndarray:
@@ -234,14 +223,8 @@ def _progress(
         return None, lambda: None
     from tqdm import tqdm
 
-    bar = tqdm(
-        total=t_end,
-        unit="t",
-        desc="simulate",
-        leave=False,
-        delay=1.0,
-        bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]",
-    )
+    form = "{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]"
+    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False, delay=1.0, bar_format=form)
 
     def report(t: float) -> None:
         bar.update(max(0.0, min(t_end, float(t)) - bar.n))
