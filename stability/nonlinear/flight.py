@@ -65,7 +65,7 @@ energy ``Lambda^2 / (2 (1/mu + (r x K) . I_G^-1 (r x K)))`` (reported per landin
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -166,17 +166,8 @@ def body_state(model: str, y: np.ndarray, *, q: float, fr_inv: float, sigma: flo
     w, k = np.array(y[0:3], float), np.array(y[3:6], float)
     v_o, x_o = (a[0] for a in floor_centre(model, np.asarray(y, float)[None, :]))
     a_g = float(inertia_g(q, mu))
-    return Flight(
-        x_g=x_o + q * k,
-        v_g=v_o + q * np.cross(w, k),
-        k=k,
-        l_g=_inertia(k, a_g, sigma) @ w,
-        spin=float(w @ k),
-        q=q,
-        fr_inv=fr_inv,
-        sigma=sigma,
-        mu=mu,
-    )
+    l_g = _inertia(k, a_g, sigma) @ w
+    return Flight(x_o + q * k, v_o + q * np.cross(w, k), k, l_g, float(w @ k), q, fr_inv, sigma, mu)
 
 
 def flight_motion(f: Flight, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -427,30 +418,8 @@ def run_with_flights(
             break  # still in the air at the end
         w, k, v_o, landing = impact(f, tau)
         x_o = flight_motion(f, np.array([tau]))[2][0]
-        landings.append(
-            Landing(
-                t_land,
-                landing.impulse,
-                landing.contact_velocity_before,
-                landing.contact_velocity_after,
-                landing.energy_loss,
-            )
-        )
+        landings.append(replace(landing, time=t_land))
         y = model_state(model, w, k, v_o, x_o)
         seg = np.concatenate([[t_land], t_eval[t_eval > t_land]])
-    return HybridRun(
-        np.concatenate(ts),
-        np.vstack(ys),
-        np.vstack(vs),
-        np.vstack(xs),
-        np.concatenate(cs),
-        takeoffs,
-        landings,
-        nfev,
-        naccept,
-        nreject,
-        status,
-        message,
-        event,
-        event_time,
-    )
+    samples = (np.concatenate(ts), np.vstack(ys), np.vstack(vs), np.vstack(xs), np.concatenate(cs))
+    return HybridRun(*samples, takeoffs, landings, nfev, naccept, nreject, status, message, event, event_time)

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -43,6 +44,7 @@ from stability.jit import njit
 from ..errors import InputError
 from ..execution import engine, pick
 from ..interrupts import checkpoint
+from ..parameters import check_interval
 from .kernels import CODES
 from .kernels import normal_force_lower_bound as _normal_force_lower_bound
 from .kernels import rhs as _model_rhs
@@ -54,6 +56,7 @@ __all__ = [
     "SCIPY_METHODS",
     "SLICE_STEPS",
     "Solution",
+    "check_tolerances",
     "dopri5",
     "dopri5_slice",
     "integrate",
@@ -63,6 +66,14 @@ __all__ = [
 
 COMPILED_METHODS = ("dopri5", "rk4")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: the allowed range of a run's relative and absolute tolerances (open at both ends)
+TOLERANCE_RANGE = (0.0, 1.0)
+
+
+def check_tolerances(**tolerances: Any) -> tuple[float, ...]:
+    """The tolerances given by name (``rtol=..., atol=...``) checked against
+    :data:`TOLERANCE_RANGE` (the message names the one outside), as floats in that order."""
+    return tuple(check_interval(name, value, *TOLERANCE_RANGE) for name, value in tolerances.items())
 
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
@@ -207,12 +218,6 @@ def event_value(y, dy, p, watch, c_stick):
 
 
 @njit(cache=True, nogil=True)
-def normal_force_at(code, t, y, p):
-    """:func:`normal_force_of` at a state alone (one right-hand side): one compiled call."""
-    return normal_force_of(y, _model_rhs(code, t, y, p), p)
-
-
-@njit(cache=True, nogil=True)
 def event_value_at(code, t, y, p, watch, c_stick):
     """:func:`event_value` at a state alone (one right-hand side when ``N`` is watched)."""
     if watch == 0:
@@ -347,6 +352,30 @@ def _copy_row(dst, i, src):
 
 
 @njit(cache=True, nogil=True)
+def _start(code, t_eval, p, y, k, fs, cnt, out):
+    """The first call of a run: output row 0 and the derivative at ``y`` in ``k[0]``."""
+    cnt[_STARTED] = 1
+    fs[_T] = t_eval[0]
+    _copy_row(out, 0, y)
+    cnt[_J] = 1
+    _copy_row(k, 0, _model_rhs(code, fs[_T], y, p))
+    cnt[_NFEV] = 1
+
+
+@njit(cache=True, nogil=True)
+def _ends_at_start(y, f0, p, fs, cnt, watch, c_stick):
+    """True if the watched quantity is <= 0 at the start (no contact force there): the event is
+    the initial state."""
+    if watch != 0 or c_stick >= -1.0:
+        fs[_N] = event_value(y, f0, p, watch, c_stick)
+        if fs[_N] <= 0.0:
+            fs[_TEV] = fs[_T]
+            cnt[_STATUS] = EVENT
+            return True
+    return False
+
+
+@njit(cache=True, nogil=True)
 def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of adaptive Dormand-Prince 5(4) with dense output at
     ``t_eval`` (compiled, without the GIL), continuing the run held in the state arrays.
@@ -404,12 +433,8 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
     err = np.empty(n)
     t_end = t_eval[m - 1]
     if cnt[_STARTED] == 0:
-        cnt[_STARTED] = 1
-        t = t_eval[0]
-        _copy_row(out, 0, y)
-        cnt[_J] = 1
-        _copy_row(k, 0, _model_rhs(code, t, y, p))
-        cnt[_NFEV] = 1
+        _start(code, t_eval, p, y, k, fs, cnt, out)
+        t = fs[_T]
         h = fs[_H]
         if h <= 0.0:
             # Hairer, Norsett & Wanner II.4: starting step size
@@ -434,14 +459,9 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             dm = max(d1, d2)
             h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
             h = min(100.0 * h0, h1)
-        fs[_T] = t
         fs[_H] = min(h, t_end - t)
-        if watch != 0 or c_stick >= -1.0:
-            fs[_N] = event_value(y, k[0], p, watch, c_stick)
-            if fs[_N] <= 0.0:  # no contact force at the start: the event is the initial state
-                fs[_TEV] = t
-                cnt[_STATUS] = EVENT
-                return EVENT
+        if _ends_at_start(y, k[0], p, fs, cnt, watch, c_stick):
+            return EVENT
     t = fs[_T]
     h = fs[_H]
     j = cnt[_J]
@@ -504,9 +524,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
                     th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys, watch, c_stick)
                     t_ev = t + th_ev * h
                     while j < m and t_eval[j] < t_ev:
-                        th = (t_eval[j] - t) / h
-                        _dopri5_dense(y, k, h, th, err)
-                        _copy_row(out, j, err)
+                        _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
                         j += 1
                     for i in range(n):
                         y[i] = ys[i]
@@ -517,12 +535,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
                     break
                 fs[_N] = n_new
             while j < m and t_eval[j] <= t_new:
-                th = (t_eval[j] - t) / h
-                for i in range(n):
-                    acc = 0.0
-                    for r in range(7):
-                        acc += k[r, i] * th * (_P[r, 0] + th * (_P[r, 1] + th * (_P[r, 2] + th * _P[r, 3])))
-                    out[j, i] = y[i] + h * acc
+                _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
                 j += 1
             t = t_new
             for i in range(n):
@@ -556,7 +569,8 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     scheme), compiled without the GIL, continuing the run held in the state arrays.
 
     Steps of size ``h`` (the last one shortened to end at ``t_eval[-1]``); outputs by cubic
-    Hermite interpolation between steps. ``y`` (the state at ``fs[0]``), ``f0`` (its derivative),
+    Hermite interpolation between steps. ``y`` (the state at ``fs[0]``), ``f0`` (shape (1, n):
+    its derivative),
     ``fs = [t, h, N, t_event]`` and ``cnt`` (layout of :func:`dopri5_slice`) are updated;
     ``watch`` as there (the zero of N located on the Hermite cubic). Returns :data:`CONTINUE`
     or the final status.
@@ -567,20 +581,9 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
     ys = np.empty(n)
     yn = np.empty(n)
     if cnt[_STARTED] == 0:
-        cnt[_STARTED] = 1
-        fs[_T] = t_eval[0]
-        _copy_row(out, 0, y)
-        cnt[_J] = 1
-        f = _model_rhs(code, fs[_T], y, p)
-        for i in range(n):
-            f0[i] = f[i]
-        cnt[_NFEV] = 1
-        if watch != 0 or c_stick >= -1.0:
-            fs[_N] = event_value(y, f0, p, watch, c_stick)
-            if fs[_N] <= 0.0:
-                fs[_TEV] = fs[_T]
-                cnt[_STATUS] = EVENT
-                return EVENT
+        _start(code, t_eval, p, y, f0, fs, cnt, out)
+        if _ends_at_start(y, f0[0], p, fs, cnt, watch, c_stick):
+            return EVENT
     t = fs[_T]
     j = cnt[_J]
     nfev = cnt[_NFEV]
@@ -595,7 +598,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         hh = min(h, t_end - t)
         last = t + 1.0000001 * hh >= t_end
         for i in range(n):
-            ys[i] = y[i] + 0.5 * hh * f0[i]
+            ys[i] = y[i] + 0.5 * hh * f0[0, i]
         k2 = _model_rhs(code, t + 0.5 * hh, ys, p)
         for i in range(n):
             ys[i] = y[i] + 0.5 * hh * k2[i]
@@ -604,7 +607,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
             ys[i] = y[i] + hh * k3[i]
         k4 = _model_rhs(code, t + hh, ys, p)
         for i in range(n):
-            yn[i] = y[i] + hh / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            yn[i] = y[i] + hh / 6.0 * (f0[0, i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
         f1 = _model_rhs(code, t + hh, yn, p)
         nfev += 4
         steps += 1
@@ -612,13 +615,10 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if watch != 0 or c_stick >= -1.0:
             n_new = event_value(yn, f1, p, watch, c_stick)
             if n_new <= 0.0:
-                kk = np.empty((1, n))
-                for i in range(n):
-                    kk[0, i] = f0[i]
-                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, kk, yn, f1, True, ys, watch, c_stick)
+                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, f0, yn, f1, True, ys, watch, c_stick)
                 t_ev = t + th_ev * hh
                 while j < m and t_eval[j] < t_ev:
-                    _hermite(y, f0, yn, f1, hh, (t_eval[j] - t) / hh, out[j])
+                    _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
                     j += 1
                 for i in range(n):
                     y[i] = ys[i]
@@ -628,12 +628,12 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
                 break
             fs[_N] = n_new
         while j < m and t_eval[j] <= t_new:
-            _hermite(y, f0, yn, f1, hh, (t_eval[j] - t) / hh, out[j])
+            _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
             j += 1
         finite = True
         for i in range(n):
             y[i] = yn[i]
-            f0[i] = f1[i]
+            f0[0, i] = f1[i]
             if not np.isfinite(yn[i]):
                 finite = False
         t = t_new
@@ -678,92 +678,52 @@ def _slices(compiled: Callable, span: float) -> Callable[[int], tuple[Callable, 
     return next_slice
 
 
-def _run_slices(step, t_eval: np.ndarray, progress, budget: int) -> None:
-    """Call ``step(budget)`` until it returns a final status, with an interruption point and a
-    progress report (the time reached) between calls."""
-    while True:
-        checkpoint()
-        status, t = step(budget)
-        if progress is not None:
-            progress(t)
-        if status != CONTINUE:
-            return
-
-
-def dopri5(
-    code,
-    y0,
-    t_eval,
-    p,
-    rtol,
-    atol,
-    h_init,
-    max_steps,
-    *,
-    budget: int = SLICE_STEPS,
-    progress=None,
-    watch: bool = False,
-    c_stick: float = -2.0,
-):
-    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
-    :func:`dopri5_slice` called in slices of ``budget`` steps.
+def _compiled_run(kernel, head: tuple, y0, t_eval, h: float, stages: int, budget: int, progress, watch, c_stick):
+    """A compiled run: ``kernel(*head, budget, y, stages, fs, cnt, out, watch, c_stick)`` called
+    in slices of ``budget`` steps until it returns a final status, with an interruption point
+    and a progress report (the time reached) between calls.
 
     Returns
     -------
     tuple
         ``(y_out, nfev, naccept, nreject, status, event)``; rows of ``y_out`` not reached are
         NaN; ``event`` is None or ``(t_event, y_event, rows)`` (``watch``: the first zero of the
-        normal force, after ``rows`` output rows).
+        normal force, after ``rows`` output rows). An :data:`EVENT` is a success with its event.
     """
     y = np.array(y0, dtype=np.float64)
-    n, m = y.size, t_eval.size
-    out = np.full((m, n), np.nan)
-    k = np.empty((7, n))
-    fs = np.array([t_eval[0], float(h_init), np.nan, np.nan])
+    out = np.full((t_eval.size, y.size), np.nan)
+    k = np.empty((stages, y.size))
+    fs = np.array([t_eval[0], h, np.nan, np.nan])
     cnt = np.zeros(8, dtype=np.int64)
-    w = 1 if watch else 0
-
-    slices = _slices(dopri5_slice, float(t_eval[-1] - t_eval[0]))
-
-    def step(b: int):
-        fn, b = slices(b)
-        st = fn(code, t_eval, p, rtol, atol, max_steps, b, y, k, fs, cnt, out, w, float(c_stick))
-        return st, fs[_T]
-
-    _run_slices(step, t_eval, progress, budget)
-    return out, int(cnt[_NFEV]), int(cnt[_NACCEPT]), int(cnt[_NREJECT]), *_event(cnt, fs, y)
-
-
-def _event(cnt, fs, y):
-    """``(status, event)`` of a compiled run: an :data:`EVENT` is a success with its event."""
+    slices = _slices(kernel, float(t_eval[-1] - t_eval[0]))
+    while True:
+        checkpoint()
+        fn, b = slices(budget)
+        status = fn(*head, b, y, k, fs, cnt, out, 1 if watch else 0, float(c_stick))
+        if progress is not None:
+            progress(fs[_T])
+        if status != CONTINUE:
+            break
+    work = (out, int(cnt[_NFEV]), int(cnt[_NACCEPT]), int(cnt[_NREJECT]))
     if cnt[_STATUS] == EVENT:
-        return SUCCESS, (float(fs[_TEV]), y.copy(), int(cnt[_J]))
-    return int(cnt[_STATUS]), None
+        return *work, SUCCESS, (float(fs[_TEV]), y.copy(), int(cnt[_J]))
+    return *work, int(cnt[_STATUS]), None
 
 
-def rk4(
-    code, y0, t_eval, p, h, *, budget: int = SLICE_STEPS, progress=None, watch: bool = False, c_stick: float = -2.0
+def dopri5(
+    code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget=SLICE_STEPS, progress=None, watch=False, c_stick=-2.0
 ):
+    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
+    :func:`dopri5_slice` called in slices of ``budget`` steps; returns as :func:`_compiled_run`."""
+    head = (code, t_eval, p, rtol, atol, max_steps)
+    return _compiled_run(dopri5_slice, head, y0, t_eval, float(h_init), 7, budget, progress, watch, c_stick)
+
+
+def rk4(code, y0, t_eval, p, h, *, budget=SLICE_STEPS, progress=None, watch=False, c_stick=-2.0):
     """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
-    slices of ``budget`` steps. Returns ``(y_out, nfev, nsteps, 0, status, event)`` (``event``
-    as in :func:`dopri5`)."""
-    y = np.array(y0, dtype=np.float64)
-    n, m = y.size, t_eval.size
-    out = np.full((m, n), np.nan)
-    f0 = np.empty(n)
-    fs = np.array([t_eval[0], float(h), np.nan, np.nan])
-    cnt = np.zeros(8, dtype=np.int64)
-    w = 1 if watch else 0
-
-    slices = _slices(rk4_slice, float(t_eval[-1] - t_eval[0]))
-
-    def step(b: int):
-        fn, b = slices(b)
-        st = fn(code, t_eval, p, float(h), b, y, f0, fs, cnt, out, w, float(c_stick))
-        return st, fs[_T]
-
-    _run_slices(step, t_eval, progress, budget)
-    return out, int(cnt[_NFEV]), int(cnt[_STEPS]), 0, *_event(cnt, fs, y)
+    slices of ``budget`` steps; returns as :func:`_compiled_run` (``naccept`` the steps)."""
+    head = (code, t_eval, p, float(h))
+    return _compiled_run(rk4_slice, head, y0, t_eval, float(h), 1, budget, progress, watch, c_stick)
 
 
 def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False, c_stick=-2.0):
@@ -785,10 +745,12 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
 
     watch = watch or c_stick >= -1.0
 
-    kw = {"first_step": step} if step else {}
     import scipy.integrate  # here: a second of imports that the compiled methods do not need
 
-    solver = getattr(scipy.integrate, method)(fun, t_eval[0], y0, t_eval[-1], rtol=rtol, atol=atol, **kw)
+    def make(t0, y_start, **kw):
+        return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol, **kw)
+
+    solver = make(t_eval[0], y0, **({"first_step": step} if step else {}))
     y = np.full((t_eval.size, y0.size), np.nan)
     y[0] = y0
     j, steps, status = 1, 0, SUCCESS
@@ -815,10 +777,6 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         if last_step and i == n_p - 1:  # the solver's own last step: its dense output
             return _locate_dense(solver, n_of)
         t_a, y_a = (float(pend_t[i - 1]), pend_y[i - 1].copy()) if i > 0 else (ok_t, ok_y)
-
-        def make(t0, y_start):
-            return getattr(scipy.integrate, method)(fun, t0, y_start, t_eval[-1], rtol=rtol, atol=atol)
-
         return _relocate(make, n_of, t_a, y_a, float(pend_t[i]), pend_y[i].copy(), max_steps)
 
     while j < t_eval.size:
@@ -839,14 +797,9 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
             pend_t[npend] = t_new
             pend_y[npend] = solver.y
             npend += 1
-            if npend >= batch:
-                ev = check(True)
-                if ev is not None:
-                    event = ev
-                    break
-        k = j
-        while k < t_eval.size and t_eval[k] <= t_new:
-            k += 1
+            if npend >= batch and (event := check(True)) is not None:
+                break
+        k = int(np.searchsorted(t_eval, t_new, side="right"))  # the outputs up to t_new (from j on)
         if k > j:
             y[j:k] = solver.dense_output()(t_eval[j:k]).T
             j = k
@@ -923,26 +876,14 @@ def integrate(
     c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
+    watch = dict(progress=progress, watch=watch_contact, c_stick=c_stick)
     if method == "dopri5":
-        y, nfev, na, nr, st, ev = dopri5(
-            code,
-            y0,
-            t_eval,
-            p,
-            float(rtol),
-            float(atol),
-            float(step or 0.0),
-            int(max_steps),
-            progress=progress,
-            watch=watch_contact,
-            c_stick=c_stick,
-        )
+        tolerances = (float(rtol), float(atol), float(step or 0.0), int(max_steps))
+        y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, *tolerances, **watch)
     elif method == "rk4":
         if step is None or not step > 0:
             raise InputError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st, ev = rk4(
-            code, y0, t_eval, p, float(step), progress=progress, watch=watch_contact, c_stick=c_stick
-        )
+        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), **watch)
     elif method in SCIPY_METHODS:
         y, nfev, na, nr, st, ev = _scipy(
             code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress, watch_contact, c_stick
@@ -957,15 +898,6 @@ def integrate(
         # which watched quantity reached zero: the stick's gap, or else the normal force
         gap = event_value(y_ev, y_ev, p, 0, c_stick)
         kind = "stick_contact" if gap <= 0.0 else "contact_lost"
-        return Solution(
-            np.append(t_eval[:rows], t_ev),
-            np.vstack([y[:rows], y_ev[None, :]]),
-            int(nfev),
-            int(na),
-            int(nr),
-            int(st),
-            method,
-            t_ev,
-            kind,
-        )
+        t_out, y_out = np.append(t_eval[:rows], t_ev), np.vstack([y[:rows], y_ev[None, :]])
+        return Solution(t_out, y_out, int(nfev), int(na), int(nr), int(st), method, t_ev, kind)
     return Solution(t_eval, y, int(nfev), int(na), int(nr), int(st), method)

@@ -26,6 +26,7 @@ from .._version import package_version
 from ..errors import InputError, ParameterTypeError
 from ..execution import pick
 from ..interrupts import deferred
+from ..models.inertia import inertia_contact, inertia_g
 from ..parameters import (
     COMPUTABLE_MAX,
     DEFAULT_MU,
@@ -43,11 +44,11 @@ from . import get_nonlinear_model
 from .contact import check_on_contact_loss
 from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, integrate
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, check_tolerances, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
-__all__ = ["STIFF_RATE", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
+__all__ = ["STIFF_RATE", "auto_method", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA: where the measured costs of
 #: the compiled dopri5 (held to steps ~3.3 / rate by stability) and of LSODA cross, below which
@@ -137,18 +138,7 @@ def model_parameter_vector(
             "normal = 'actual' needs fr_inv > 0 (friction proportional to N(t) / (mu fr_inv)); got fr_inv = 0"
         )
     slip_scale = check_positive("slip_scale", slip_scale)
-    vec = pack(
-        q=params["q"],
-        fr_inv=params["fr_inv"],
-        sigma=params["sigma"],
-        mu=params["mu"],
-        alpha_v=params.get("alpha_v", 0.0),
-        alpha_k=params.get("alpha_k", 0.0),
-        epsilon=float(slip_scale),
-        law=FRICTION_LAWS[friction],
-        normal=NORMAL_FORCE[normal],
-    )
-    return params, vec
+    return params, pack(**params, epsilon=float(slip_scale), law=FRICTION_LAWS[friction], normal=NORMAL_FORCE[normal])
 
 
 def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position: Any = None) -> np.ndarray:
@@ -185,14 +175,15 @@ def initial_state(model: str, omega: Any, k: Any, velocity: Any = None, position
     return np.concatenate(parts)
 
 
-def _auto_method(model: str, params: dict[str, float]) -> str:
+def auto_method(model: str, params: dict[str, float]) -> str:
     """``"LSODA"`` when the sliding top's slip mode decays faster than :data:`STIFF_RATE`
     (rate ``alpha_v A_C / (mu A_G)``, ``A_C = 1 + mu (1 + 2 q)``, ``A_G = 1 - mu q^2``), or
     with Coulomb friction (stiff at sticking); otherwise the compiled ``"dopri5"``."""
     if model != "sliding":
         return "dopri5"
     mu, q = params["mu"], params["q"]
-    rate = params["alpha_v"] * (1 + mu * (1 + 2 * q)) / (mu * (1 - mu * q * q))
+    a_g = inertia_g(q, mu)
+    rate = params["alpha_v"] * inertia_contact(q, mu, a_g) / (mu * a_g)
     return "LSODA" if (rate > STIFF_RATE or params["alpha_k"] > 0) else "dopri5"
 
 
@@ -232,14 +223,8 @@ def _progress(
         return None, lambda: None
     from tqdm import tqdm
 
-    bar = tqdm(
-        total=t_end,
-        unit="t",
-        desc="simulate",
-        leave=False,
-        delay=1.0,
-        bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]",
-    )
+    form = "{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} of {total:.4g} [{elapsed}<{remaining}]"
+    bar = tqdm(total=t_end, unit="t", desc="simulate", leave=False, delay=1.0, bar_format=form)
 
     def report(t: float) -> None:
         bar.update(max(0.0, min(t_end, float(t)) - bar.n))
@@ -372,21 +357,10 @@ def simulate(
     True
     """
     m = get_nonlinear_model(model)
-    params, p = model_parameter_vector(
-        m.name,
-        q=q,
-        fr_inv=fr_inv,
-        sigma=sigma,
-        alpha_v=alpha_v,
-        alpha_k=alpha_k,
-        mu=mu,
-        friction=friction,
-        normal=normal,
-        slip_scale=slip_scale,
-    )
+    top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
+    params, p = model_parameter_vector(m.name, **top, friction=friction, normal=normal, slip_scale=slip_scale)
     t_end = check_positive("t_end", t_end)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_steps = check_integer("max_steps", max_steps, minimum=1)
     if step is not None:
         step = check_positive("step", step)
@@ -402,18 +376,13 @@ def simulate(
         t_eval = np.linspace(0.0, float(t_end), n + 1)
     else:
         t_eval = as_parameter("t_eval", t_eval)
-        if (
-            t_eval.ndim != 1
-            or t_eval.size < 2
-            or t_eval[0] != 0.0
-            or np.any(np.diff(t_eval) <= 0)
-            or not np.isclose(t_eval[-1], t_end)
-        ):
+        not_1d = t_eval.ndim != 1 or t_eval.size < 2 or t_eval[0] != 0.0
+        if not_1d or np.any(np.diff(t_eval) <= 0) or not np.isclose(t_eval[-1], t_end):
             raise InputError(f"t_eval = {t_eval!r:.60} must increase strictly from 0 to t_end = {t_end:.6g}")
         check_run_memory(m.name, t_eval.size, t_end=t_end, dt=None)
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
-        method = _auto_method(m.name, params)
+        method = auto_method(m.name, params)
     check_on_contact_loss(on_contact_loss)
     if on_contact_loss == "continue" and stick_tilt is not None:
         raise InputError(
@@ -450,17 +419,8 @@ def simulate(
             options.update(progress=report, stick_tilt=stick_tilt)
             if on_contact_loss == "continue" and watched:
                 flights = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
-                sol = Solution(
-                    flights.t,
-                    flights.y,
-                    flights.nfev,
-                    flights.naccept,
-                    flights.nreject,
-                    flights.status,
-                    method,
-                    flights.event_time,
-                    flights.event,
-                )
+                f = flights
+                sol = Solution(f.t, f.y, f.nfev, f.naccept, f.nreject, f.status, method, f.event_time, f.event)
             else:
                 sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
     finally:
@@ -472,26 +432,12 @@ def simulate(
         ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
     else:
         ds = flight_dataset(m.name, flights, params, p)
-    ds.attrs.update(
-        event=sol.event,
-        event_time=sol.event_time,
-        on_contact_loss=on_contact_loss,
-        contact_watched=int(watched),
-        stick_tilt=float("nan") if stick_tilt is None else stick_tilt,
-    )
-    ds.attrs.update(
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        nfev=sol.nfev,
-        naccept=sol.naccept,
-        nreject=sol.nreject,
-        status=sol.status,
-        message=message,
-        friction_law=friction if m.name == "sliding" else "none (constraint force)",
-        normal_force_scaling=normal,
-        slip_scale=float(slip_scale),
-    )
+    ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss)
+    ds.attrs.update(contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
+    ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept, nreject=sol.nreject)
+    ds.attrs.update(status=sol.status, message=message)
+    friction_law = friction if m.name == "sliding" else "none (constraint force)"
+    ds.attrs.update(friction_law=friction_law, normal_force_scaling=normal, slip_scale=float(slip_scale))
     return ds
 
 
@@ -535,96 +481,50 @@ def trajectory_dataset(
         ),
         "axis": ("axis", np.array([1, 2, 3]), comp),
     }
-    data: dict[str, tuple] = {
-        "omega": (
-            ("time", "axis"),
-            omega,
-            _attrs("angular velocity", "Omega", comment="in units of the spin rate Omega"),
-        ),
-        "k": (("time", "axis"), k, _attrs("symmetry axis k", _ONE, comment="unit vector along the symmetry axis")),
-    }
+    data: dict[str, tuple] = {}
+
+    def put(name: str, values: np.ndarray, long_name: str, units: str, comment: str) -> None:
+        dims = ("time", "axis") if values.ndim == 2 else "time"
+        data[name] = (dims, values, _attrs(long_name, units, comment=comment))
+
+    put("omega", omega, "angular velocity", "Omega", "in units of the spin rate Omega")
+    put("k", k, "symmetry axis k", _ONE, "unit vector along the symmetry axis")
     wk = np.einsum("ij,ij->i", omega, k)
     kn = np.linalg.norm(k, axis=1)
     with np.errstate(invalid="ignore"):
         polar = np.degrees(np.arccos(np.clip(k[:, 2] / kn, -1.0, 1.0)))
-    data["polar_angle"] = (
-        "time",
-        polar,
-        _attrs("polar angle of k", "degree", comment="angle of k from the upward vertical K"),
-    )
-    data["spin"] = ("time", wk, _attrs("spin", "Omega", comment="omega . k, in units of the spin rate Omega"))
-    data["transverse_rate"] = (
-        "time",
-        np.hypot(omega[:, 0], omega[:, 1]),
-        _attrs("transverse rate", "Omega", comment="transverse angular rate |omega_1 + i omega_2| (fixed frame)"),
-    )
+    put("polar_angle", polar, "polar angle of k", "degree", "angle of k from the upward vertical K")
+    put("spin", wk, "spin", "Omega", "omega . k, in units of the spin rate Omega")
+    transverse = np.hypot(omega[:, 0], omega[:, 1])
+    what = "transverse angular rate |omega_1 + i omega_2| (fixed frame)"
+    put("transverse_rate", transverse, "transverse rate", "Omega", what)
     if m.has_translation:
         v0, x0 = centre if centre is not None else floor_centre(m.name, y)
         v_g = v0 + q * np.cross(omega, k)
         z_g = x0[:, 2] + q * k[:, 2]
-        data["velocity"] = (
-            ("time", "axis"),
-            v0,
-            _attrs("velocity of O", "Omega R", comment="velocity of the sphere's centre O"),
-        )
-        data["position"] = (
-            ("time", "axis"),
-            x0,
-            _attrs("position of O", "R", comment="position of the sphere's centre O; the plane is at height 0"),
-        )
-        data["momentum"] = (
-            ("time", "axis"),
-            mu * v_g,
-            _attrs("momentum mu V_G", _ONE, comment="linear momentum mu V_G"),
-        )
-        data["h_cg"] = (
-            "time",
-            h_cg(omega, k, q=q, sigma=sigma, mu=mu),
-            _attrs("h_cg, eq. (10)", "A0 Omega", comment="angular momentum about G along r_cg = q k + K, eq. (10)"),
-        )
+        put("velocity", v0, "velocity of O", "Omega R", "velocity of the sphere's centre O")
+        put("position", x0, "position of O", "R", "position of the sphere's centre O; the plane is at height 0")
+        put("momentum", mu * v_g, "momentum mu V_G", _ONE, "linear momentum mu V_G")
+        h = h_cg(omega, k, q=q, sigma=sigma, mu=mu)
+        put("h_cg", h, "h_cg, eq. (10)", "A0 Omega", "angular momentum about G along r_cg = q k + K, eq. (10)")
         # (in flight: the horizontal velocity of the sphere's lowest point)
         slip = np.column_stack([v0[:, 0] - omega[:, 1], v0[:, 1] + omega[:, 0], np.zeros(n)])
-        data["slip_speed"] = (
-            "time",
-            np.linalg.norm(slip, axis=1),
-            _attrs("slip speed", "Omega R", comment="speed of the contact point |V_c|, eq. (5)"),
-        )
+        what = "speed of the contact point |V_c|, eq. (5)"
+        put("slip_speed", np.linalg.norm(slip, axis=1), "slip speed", "Omega R", what)
         f = np.column_stack([forces[:, 0], forces[:, 1], np.zeros(n)])
-        data["friction"] = (
-            ("time", "axis"),
-            f,
-            _attrs(
-                "friction force",
-                _ONE,
-                comment="tangential contact force"
-                + (" (friction law)" if m.name == "sliding" else " needed to keep rolling"),
-            ),
-        )
-        data["friction_magnitude"] = (
-            "time",
-            np.hypot(f[:, 0], f[:, 1]),
-            _attrs("friction magnitude", _ONE, comment="magnitude of the tangential contact force"),
-        )
-        data["normal_force"] = (
-            "time",
-            forces[:, 2],
-            _attrs("normal force N", _ONE, comment="normal contact force; equilibrium value mu fr_inv"),
-        )
+        why = " (friction law)" if m.name == "sliding" else " needed to keep rolling"
+        put("friction", f, "friction force", _ONE, "tangential contact force" + why)
+        magnitude = np.hypot(f[:, 0], f[:, 1])
+        put("friction_magnitude", magnitude, "friction magnitude", _ONE, "magnitude of the tangential contact force")
+        put("normal_force", forces[:, 2], "normal force N", _ONE, "normal contact force; equilibrium value mu fr_inv")
     else:
         v_g = (1.0 + q) * np.cross(omega, k)
         z_g = (1.0 + q) * k[:, 2]
-        data["reaction"] = (
-            ("time", "axis"),
-            forces,
-            _attrs("pivot force", _ONE, comment="force of the pivot on the top"),
-        )
+        put("reaction", forces, "pivot force", _ONE, "force of the pivot on the top")
         a_c = 1.0 + mu * (1.0 + 2.0 * q)
         l_p = a_c * omega + (sigma - a_c) * wk[:, None] * k
-        data["angular_momentum_vertical"] = (
-            "time",
-            l_p[:, 2],
-            _attrs("L_z about the pivot", "A0 Omega", comment="vertical angular momentum about the pivot"),
-        )
+        what = "vertical angular momentum about the pivot"
+        put("angular_momentum_vertical", l_p[:, 2], "L_z about the pivot", "A0 Omega", what)
     names = {
         "kinetic_translational": ("translational KE", "kinetic energy of translation of G"),
         "kinetic_spin": ("spin KE", "rotational kinetic energy of the spin about G"),
@@ -634,15 +534,11 @@ def trajectory_dataset(
     }
     for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu).items():
         short, what = names[name]
-        data[name] = ("time", val, _attrs(short, "A0 Omega^2", comment=f"{what}, in units of A0 Omega^2"))
+        put(name, val, short, "A0 Omega^2", f"{what}, in units of A0 Omega^2")
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(
-        Conventions="CF-1.10",
-        title=f"Tippe top, nonlinear {m.name} model",
-        source=f"stability.simulate (tippe-stability {package_version()})",
-        model=m.name,
-        equations=m.equations,
-    )
+    source = f"stability.simulate (tippe-stability {package_version()})"
+    ds.attrs.update(Conventions="CF-1.10", title=f"Tippe top, nonlinear {m.name} model", source=source)
+    ds.attrs.update(model=m.name, equations=m.equations)
     ds.attrs[PRODUCT_ATTR] = "nonlinear_run"
     for name, val in params.items():
         ds.attrs[name] = val
@@ -656,16 +552,10 @@ def flight_dataset(model: str, run: HybridRun, params: dict[str, float], p: np.n
     the phases in the attributes (``takeoff_times``, ``landing_times``, and per landing the
     vertical impulse, the contact point's velocity before and after, the energy dissipated)."""
     ds = trajectory_dataset(model, run.t, run.y, params, p, centre=(run.v_o, run.x_o), contact=run.contact)
-    ds["contact"] = (
-        "time",
-        run.contact,
-        _attrs("in contact", _ONE, comment="1 on the floor, 0 in flight (stability.nonlinear.flight)"),
-    )
-    ds["height"] = (
-        "time",
-        run.x_o[:, 2] - 1.0,
-        _attrs("height of the lowest point", "R", comment="height of the sphere's lowest point above the floor"),
-    )
+    contact = _attrs("in contact", _ONE, comment="1 on the floor, 0 in flight (stability.nonlinear.flight)")
+    ds["contact"] = ("time", run.contact, contact)
+    height = _attrs("height of the lowest point", "R", comment="height of the sphere's lowest point above the floor")
+    ds["height"] = ("time", run.x_o[:, 2] - 1.0, height)
     lands = run.landings
     ds.attrs.update(
         impact_law=IMPACT_LAWS[model],

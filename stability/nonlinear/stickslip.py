@@ -63,7 +63,7 @@ from ..errors import InputError
 from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL
+from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -192,8 +192,7 @@ def stick_slip(
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_switches = check_integer("max_switches", max_switches, minimum=1)
     method = check_choice("method", method, ("RK45", "DOP853", "Radau", "BDF", "LSODA"))
     sliding = get_nonlinear_model("sliding")
@@ -217,26 +216,22 @@ def stick_slip(
     def roll_rhs(t, y):
         return rolling.rhs(t, y, p)
 
+    # every event ends its phase, on a downward crossing
     def ev_slip_stop(t, y):
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
-    ev_slip_stop.terminal, ev_slip_stop.direction = True, -1
-
     def ev_slip_contact(t, y):
         return float(sliding.contact_forces(np.ascontiguousarray(y[None, :]), p)[0, 2])
-
-    ev_slip_contact.terminal, ev_slip_contact.direction = True, -1
 
     def ev_stick_break(t, y):
         f, n = rolling_need(y)
         return limit(n) - math.hypot(f[0], f[1])
 
-    ev_stick_break.terminal, ev_stick_break.direction = True, -1
-
     def ev_stick_contact(t, y):
         return rolling_need(y)[1]
 
-    ev_stick_contact.terminal, ev_stick_contact.direction = True, -1
+    for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
+        ev.terminal, ev.direction = True, -1
 
     y = initial_state("sliding", omega, k, velocity)
     grid = np.linspace(0.0, t_end, int(np.ceil(t_end / dt - 1e-9)) + 1)
@@ -303,11 +298,11 @@ def stick_slip(
             y8 = _rolling_state(y_ev)
             f, n = rolling_need(y8)
             ratio = math.hypot(*f) / limit(n)
-            if ratio <= 1.0:
-                switches.append((t_ev, "stick", _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+            kind = "stick" if ratio <= 1.0 else "transit"
+            switches.append((t_ev, kind, _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+            if kind == "stick":
                 phase, y = _STICK, y8
             else:
-                switches.append((t_ev, "transit", _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
                 y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
         else:  # the needed friction reached the static limit: slip along -f
             f, n = rolling_need(y_ev)
@@ -323,13 +318,11 @@ def stick_slip(
     stuck = ph == _STICK
     lim = np.full(t_all.size, a_s)
 
-    def put_forces(sel: np.ndarray, forces: np.ndarray, *, sticking: bool) -> None:
-        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (a
-        sticking sample's friction is horizontal)."""
+    def put_forces(sel: np.ndarray, forces: np.ndarray) -> None:
+        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (the
+        friction's vertical component stays 0, as :func:`trajectory_dataset` writes it)."""
         f = ds.friction.values.copy()
         f[sel, 0:2] = forces[:, 0:2]
-        if sticking:
-            f[sel, 2] = 0.0
         ds["friction"].values = f
         mag = ds.friction_magnitude.values.copy()
         mag[sel] = np.hypot(forces[:, 0], forces[:, 1])
@@ -339,81 +332,44 @@ def stick_slip(
         ds["normal_force"].values = nf
 
     if stuck.any():
-        put_forces(
-            stuck,
-            rolling.contact_forces(np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]])), p),
-            sticking=True,
-        )
+        rolling_states = np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]]))
+        put_forces(stuck, rolling.contact_forces(rolling_states, p))
     slipping = ~stuck
     if slipping.any():  # the exact law (7) while slipping (the run's p_reg is the regularised one)
-        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p), sticking=False)
+        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p))
     if scaled:
         lim = a_s * ds.normal_force.values / n_eq
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
     )
-    ds["phase"] = (
-        "time",
-        ph,
-        {
-            "long_name": "contact phase",
-            "flag_values": np.array([0, 1], np.int8),
-            "flag_meanings": "slip stick",
-            "comment": "slip: sliding model with Coulomb friction (7); stick: rolling model (V_c = 0)",
-        },
-    )
-    ds["friction_limit"] = (
-        "time",
-        lim,
-        {
-            "long_name": "static friction limit",
-            "units": "1",
-            "comment": "alpha_s n: the largest friction while sticking",
-        },
-    )
+    phase_comment = "slip: sliding model with Coulomb friction (7); stick: rolling model (V_c = 0)"
+    flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": "slip stick", "comment": phase_comment}
+    ds["phase"] = ("time", ph, {"long_name": "contact phase", **flags})
+    limit_comment = "alpha_s n: the largest friction while sticking"
+    ds["friction_limit"] = ("time", lim, {"long_name": "static friction limit", "units": "1", "comment": limit_comment})
     cols = list(zip(*switches)) if switches else [[]] * 6
-    ds = ds.assign(
-        switch_time=("switch", np.array(cols[0], float), {"long_name": "switch time", "units": "1/Omega"}),
-        switch_kind=(
-            "switch",
-            np.array(cols[1], dtype="<U7"),
-            {"long_name": "kind of switch", "comment": "stick (slip -> stick), slip (stick -> slip), transit"},
-        ),
-        switch_tilt=("switch", np.array(cols[2], float), {"long_name": "tilt at the switch", "units": "degree"}),
-        switch_slip_speed=(
-            "switch",
-            np.array(cols[3], float),
+    kinds = "stick (slip -> stick), slip (stick -> slip), transit"
+    switch_attrs = {  # name: (dtype, attributes), in the order of the switch tuples
+        "switch_time": (float, {"long_name": "switch time", "units": "1/Omega"}),
+        "switch_kind": ("<U7", {"long_name": "kind of switch", "comment": kinds}),
+        "switch_tilt": (float, {"long_name": "tilt at the switch", "units": "degree"}),
+        "switch_slip_speed": (
+            float,
             {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"},
         ),
-        switch_spin=(
-            "switch",
-            np.array(cols[4], float),
-            {"long_name": "spin omega . k at the switch", "units": "Omega"},
-        ),
-        switch_friction_ratio=(
-            "switch",
-            np.array(cols[5], float),
-            {"long_name": "needed friction / static limit at the switch", "units": "1"},
-        ),
-    )
+        "switch_spin": (float, {"long_name": "spin omega . k at the switch", "units": "Omega"}),
+        "switch_friction_ratio": (float, {"long_name": "needed friction / static limit at the switch", "units": "1"}),
+    }
+    variables = zip(switch_attrs.items(), cols)
+    ds = ds.assign({name: ("switch", np.array(col, dtype), attrs) for (name, (dtype, attrs)), col in variables})
     ds.attrs.update(
         switching_model=(
             "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases "
             "with the rolling model; stick when |V_c| reaches slip_threshold and rolling's friction is "
             "within alpha_s n; slip when it reaches alpha_s n"
         ),
-        alpha_s=a_s,
-        slip_threshold=float(slip_threshold),
-        n_switches=len(switches),
-        final_phase=PHASES[int(ph[-1])],
-        event=event,
-        event_time=event_time,
-        status=status,
-        message=message,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        friction_law="isotropic",
-        normal_force_scaling=normal,
     )
+    ds.attrs.update(alpha_s=a_s, slip_threshold=float(slip_threshold), n_switches=len(switches))
+    ds.attrs.update(final_phase=PHASES[int(ph[-1])], event=event, event_time=event_time, status=status, message=message)
+    ds.attrs.update(method=method, rtol=rtol, atol=atol, friction_law="isotropic", normal_force_scaling=normal)
     return ds

@@ -63,7 +63,7 @@ from ..models import MODELS
 from ..parameters import DEFAULT_MU, check_choice, check_domain, check_interval, check_positive, parameter_attrs
 from ..products import PRODUCT_ATTR
 from . import get_nonlinear_model
-from .integrators import SCIPY_METHODS
+from .integrators import SCIPY_METHODS, check_tolerances
 from .jacobian import transverse_jacobian, upright_state
 from .runs import simulate
 
@@ -180,18 +180,9 @@ def _one_point(
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
-        ds = simulate(
-            model,
-            t_end=t_end,
-            t_eval=np.linspace(0.0, t_end, n_samples),
-            omega=y[0:3],
-            k=y[3:6],
-            velocity=velocity,
-            rtol=rtol,
-            atol=atol,
-            method=method,
-            **{k: v for k, v in params.items() if k != "alpha_k"},
-        )
+        start = dict(t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3], k=y[3:6], velocity=velocity)
+        top = {k: v for k, v in params.items() if k != "alpha_k"}
+        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **top)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
     growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
@@ -413,8 +404,7 @@ def validate(
     n_efold = check_positive("n_efold", n_efold)
     n_periods = check_positive("n_periods", n_periods)
     max_time = check_positive("max_time", max_time)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
-    atol = check_interval("atol", atol, 0.0, 1.0)
+    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     method = check_choice("method", method, ("auto", "dopri5") + tuple(SCIPY_METHODS))
     rows = []
     for j in range(flat["q"].size):
@@ -438,21 +428,11 @@ def validate(
         data[name] = ("point", vals, attrs)
     coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(
-        Conventions="CF-1.10",
-        title=f"validation of the linear {m.name} model by nonlinear runs",
-        source="stability.validate",
-        model=m.name,
-        linear_model=m.linear_model,
-        jacobian_of=f"nonlinear {m.name} model ({m.equations})",
-        amplitude=amplitude,
-        n_efold=n_efold,
-        n_periods=n_periods,
-        rtol=rtol,
-        atol=atol,
-        method=method,
-        convention="x ~ exp(s t), fixed frame, spin +1, t in 1/Omega",
-    )
+    title = f"validation of the linear {m.name} model by nonlinear runs"
+    ds.attrs.update(Conventions="CF-1.10", title=title, source="stability.validate", model=m.name)
+    ds.attrs.update(linear_model=m.linear_model, jacobian_of=f"nonlinear {m.name} model ({m.equations})")
+    ds.attrs.update(amplitude=amplitude, n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method)
+    ds.attrs["convention"] = "x ~ exp(s t), fixed frame, spin +1, t in 1/Omega"
     ds.attrs[PRODUCT_ATTR] = "validation"
     return ds
 
@@ -513,17 +493,8 @@ def coulomb_growth(
     i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
     k = [v[1].real, v[1].imag, np.sqrt(1 - abs(v[1]) ** 2)]
-    run = dict(
-        t_end=t_end,
-        dt=t_end / 3000,
-        omega=[v[0].real, v[0].imag, 1.0],
-        k=k,
-        velocity=[v[2].real, v[2].imag],
-        **top,
-        alpha_v=0.0,
-        alpha_k=alpha_k,
-        friction=friction,
-    )
+    run = dict(t_end=t_end, dt=t_end / 3000, omega=[v[0].real, v[0].imag, 1.0], k=k)
+    run.update(velocity=[v[2].real, v[2].imag], **top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
     if scheme == "adaptive":
         ds = simulate("sliding", **run, slip_scale=slip_scale, method="LSODA", rtol=rtol, atol=atol)
     else:
@@ -536,33 +507,17 @@ def coulomb_growth(
     res_e = float(np.sqrt(np.mean((np.exp(np.polyval(pe, t)) / tilt - 1) ** 2)))
     res_a = float(np.sqrt(np.mean((np.polyval(pa, t) / tilt - 1) ** 2)))
     s_stick = eigenvalues("sliding", **top, alpha_v=alpha_k / slip_scale)
-    out = xr.Dataset(
-        {
-            "tilt": ("time", tilt, {"long_name": "tilt |Phi| = |k_1 + i k_2|", "units": "1"}),
-            "slip_speed": ds.slip_speed,
-        },
-        coords={"time": ds.time},
-    )
-    out.attrs.update(
-        Conventions="CF-1.10",
-        title="Coulomb friction alone: growth of the tilt",
-        source="stability.nonlinear.validation.coulomb_growth",
-        **top,
-        alpha_k=alpha_k,
-        alpha_v=0.0,
-        friction=friction,
-        amplitude=amplitude,
-        scheme=scheme,
-        step=step if scheme == "fixed_step" else 0.0,
-        slip_scale=slip_scale,
-        exponential_residual=res_e,
-        algebraic_residual=res_a,
-        growth=("none" if abs(tilt[-1] / tilt[0] - 1) < 1e-2 else "algebraic" if res_a < res_e else "exponential"),
-        algebraic_slope=float(pa[0]),
-        exponential_rate=float(pe[0]),
-        median_slip_speed=float(np.median(ds.slip_speed.values)),
-        sticking_growth_rate=float(np.max(s_stick.real)),
-        final_tilt=float(tilt[-1]),
-    )
+    tilt_attrs = {"long_name": "tilt |Phi| = |k_1 + i k_2|", "units": "1"}
+    out = xr.Dataset({"tilt": ("time", tilt, tilt_attrs), "slip_speed": ds.slip_speed}, coords={"time": ds.time})
+    title, source = "Coulomb friction alone: growth of the tilt", "stability.nonlinear.validation.coulomb_growth"
+    out.attrs.update(Conventions="CF-1.10", title=title, source=source, **top, alpha_k=alpha_k, alpha_v=0.0)
+    out.attrs.update(friction=friction, amplitude=amplitude, scheme=scheme)
+    out.attrs.update(step=step if scheme == "fixed_step" else 0.0, slip_scale=slip_scale)
+    out.attrs.update(exponential_residual=res_e, algebraic_residual=res_a)
+    growth = "none" if abs(tilt[-1] / tilt[0] - 1) < 1e-2 else "algebraic" if res_a < res_e else "exponential"
+    out.attrs.update(growth=growth, algebraic_slope=float(pa[0]), exponential_rate=float(pe[0]))
+    out.attrs.update(median_slip_speed=float(np.median(ds.slip_speed.values)))
+    out.attrs.update(sticking_growth_rate=float(np.max(s_stick.real)), final_tilt=float(tilt[-1]))
+
     out.attrs[PRODUCT_ATTR] = "coulomb_growth"
     return out

@@ -57,7 +57,7 @@ from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
 from .linearisation import state_modes
-from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, var_attrs
+from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, variable
 from .states import state_integrals
 from .verdicts import flag_of
 
@@ -328,13 +328,8 @@ def steady_branch(
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)
     check_scales(params, jmax, jellett_name="jellett_max")
     prob = SteadyBranchProblem(params, p, compiled=compiled)
-    attrs = product_attrs(
-        "steady_branch",
-        "Tilted steady states of the sliding Tippe top against Jellett's integral",
-        "continuation.steady_branch",
-        params,
-        removed_neutral=True,
-    )
+    title = "Tilted steady states of the sliding Tippe top against Jellett's integral"
+    attrs = product_attrs("steady_branch", title, "continuation.steady_branch", params, removed_neutral=True)
     attrs["model"] = "sliding"
     options = TraceOptions(
         step=min(max_step, 0.02), max_step=max_step, max_angle=max_angle, max_points=100000, compiled=compiled
@@ -351,12 +346,8 @@ def steady_branch(
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
         ell0 = math.log(math.sqrt(jmax * prob.jellett_min) / j_unit)
-        ends = []
-        halves = []
-        for direction in (-1, 1):
-            br = trace(prob, [theta0, ell0], options, tangent0=[0.0, direction], project_start=True)
-            halves.append(br)
-            ends.append(br.end_reasons[0])
+        halves = [trace(prob, [theta0, ell0], options, tangent0=[0.0, d], project_start=True) for d in (-1, 1)]
+        ends = [half.end_reasons[0] for half in halves]
         lo, hi = halves
         pts = np.concatenate([lo.points[::-1], hi.points[1:]])
         kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
@@ -419,15 +410,8 @@ def steady_branch(
             f"(tilt {math.degrees(pts[-1, 0]):.6g} deg); parameters {params}"
             + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J there" if why else "")
         )
-    attrs.update(
-        start=start,
-        ends=", ".join(ends),
-        jellett_max=prob.jellett_max,
-        n_newton=work[0],
-        n_residual=work[1],
-        n_jacobian=work[2],
-        degenerate=int(prob.degenerate),
-    )
+    attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max)
+    attrs.update(n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
@@ -445,14 +429,9 @@ def points_dataset(
     theta, lam = pts[:, 0], np.exp(pts[:, 1])
     c = np.cos(theta)
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
-    growth = np.full(n, np.nan)
-    bound = np.full(n, np.nan)
-    n_neutral = np.zeros(n, dtype=np.int8)
-    jac = np.zeros(n, dtype=np.int8)
-    flags = np.zeros(n, dtype=np.int8)
-    J = np.zeros(n)
-    E = np.zeros(n)
-    axial = np.zeros(n)
+    growth, bound = np.full(n, np.nan), np.full(n, np.nan)
+    n_neutral, jac, flags = (np.zeros(n, dtype=np.int8) for _ in range(3))
+    J, E, axial = np.zeros(n), np.zeros(n), np.zeros(n)
     if n:
         pr = prob.params
         q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
@@ -475,59 +454,50 @@ def points_dataset(
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
     data = {
-        "tilt": (
-            "point",
-            np.degrees(theta),
-            var_attrs("polar angle of the axis k from the upward vertical", DEGREE, short="tilt"),
+        "tilt": variable(
+            "point", np.degrees(theta), "polar angle of the axis k from the upward vertical", DEGREE, short="tilt"
         ),
-        "jellett": (
-            "point",
-            J,
-            var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"),
+        "jellett": variable(
+            "point", J, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
         ),
-        "precession_rate": (
+        "precession_rate": variable(
             "point",
             lam,
-            var_attrs(
-                "precession rate of the axis about the vertical",
-                "Omega",
-                short="precession rate",
-                comment="at a branch point: spin / (1 + q cos(tilt))",
-            ),
+            "precession rate of the axis about the vertical",
+            "Omega",
+            short="precession rate",
+            comment="at a branch point: spin / (1 + q cos(tilt))",
         ),
-        "axial_spin": ("point", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
-        "energy": ("point", E, var_attrs("total energy", "A0 Omega^2", short="energy")),
-        "upright_equivalent_spin": (
+        "axial_spin": variable("point", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
+        "energy": variable("point", E, "total energy", "A0 Omega^2", short="energy"),
+        "upright_equivalent_spin": variable(
             "point",
             J / j_upright,
-            var_attrs(
-                "spin of the upright state with the same J, J / (sigma (1 + q))", "Omega", short="upright-equiv. spin"
-            ),
+            "spin of the upright state with the same J, J / (sigma (1 + q))",
+            "Omega",
+            short="upright-equiv. spin",
         ),
-        "growth_rate": (
+        "growth_rate": variable(
             "point",
             growth,
-            var_attrs(
-                "leading growth rate of the linearisation (frame precessing with the state), structural "
-                "neutral directions removed",
-                "Omega",
-                short="leading growth rate",
-            ),
+            "leading growth rate of the linearisation (frame precessing with the state), structural "
+            "neutral directions removed",
+            "Omega",
+            short="leading growth rate",
         ),
-        "growth_rate_bound": (
+        "growth_rate_bound": variable(
             "point",
             bound,
-            var_attrs(
-                "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
-                "point; tilted states: 1e3 u ||A||_F)",
-                "Omega",
-                short="growth rate bound",
-            ),
+            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)",
+            "Omega",
+            short="growth rate bound",
         ),
-        "n_neutral": (
+        "n_neutral": variable(
             "point",
             np.asarray(n_neutral, dtype=np.int8),
-            var_attrs("number of physical modes neutral within rounding", short="neutral modes"),
+            "number of physical modes neutral within rounding",
+            short="neutral modes",
         ),
         "stability": ("point", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": (
@@ -546,8 +516,5 @@ def points_dataset(
         ),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
-    return xr.Dataset(
-        data,
-        coords={"point": ("point", np.arange(n), {"long_name": "point", "comment": "index along the branch"})},
-        attrs=attrs,
-    )
+    index = {"long_name": "point", "comment": "index along the branch"}
+    return xr.Dataset(data, coords={"point": ("point", np.arange(n), index)}, attrs=attrs)

@@ -37,7 +37,8 @@ import xarray as xr
 
 from ..errors import DomainError, InputError
 from ..execution import announce, pick
-from ..nonlinear.runs import _auto_method, initial_state, simulate
+from ..nonlinear.integrators import check_tolerances
+from ..nonlinear.runs import auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from . import family
 from .linearisation import state_modes
@@ -143,7 +144,7 @@ class SettleRun:
     event_time: float = math.nan
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FinalState:
     """The predicted end of a motion (:func:`final_state`).
 
@@ -195,12 +196,12 @@ class FinalState:
     jellett: float
     initial_energy: float
     energy: float
-    precession_rate: float
-    axial_spin: float
-    state: Candidate | None
+    precession_rate: float = math.nan
+    axial_spin: float = math.nan
+    state: Candidate | None = None
     candidates: tuple[Candidate, ...]
     reason: str
-    run: SettleRun | None
+    run: SettleRun | None = None
     parameters: dict[str, float] = field(default_factory=dict)
     initial_tilt: float = math.nan
     event: str = "none"
@@ -216,90 +217,66 @@ class FinalState:
         run's numbers as attributes."""
         cands = self.candidates
         n = len(cands)
-        ends = [c is self.state for c in cands]
+        index = "index of the steady state"
+
+        def scalar(value: float, long_name: str, units: str, short: str | None = None) -> tuple:
+            return ((), value, var_attrs(long_name, units, short=short))
+
+        def column(values: list, attrs: dict[str, Any], dtype: Any = None) -> tuple:
+            return ("candidate", np.array(values, dtype=dtype), attrs)
+
+        def yes_no(long_name: str, meanings: str, **extra: str) -> dict[str, Any]:
+            flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": meanings}
+            return {"long_name": long_name, **extra, **flags}
+
+        tilt_long = "final polar angle of the axis from the upward vertical"
+        jellett_long = "Jellett's integral J = (K + q k) . I_G omega of the motion"
         data = {
-            "tilt": (
-                (),
-                self.tilt,
-                var_attrs("final polar angle of the axis from the upward vertical", DEGREE, short="final tilt"),
+            "tilt": scalar(self.tilt, tilt_long, DEGREE, "final tilt"),
+            "initial_tilt": scalar(self.initial_tilt, "initial polar angle of the axis", DEGREE, "initial tilt"),
+            "jellett": scalar(self.jellett, jellett_long, "A0 Omega", "Jellett's J"),
+            "initial_energy": scalar(self.initial_energy, "initial energy", "A0 Omega^2"),
+            "energy": scalar(self.energy, "energy of the final state", "A0 Omega^2", "final energy"),
+            "precession_rate": scalar(
+                self.precession_rate, "precession rate of the final state", "Omega", "precession rate"
             ),
-            "initial_tilt": (
-                (),
-                self.initial_tilt,
-                var_attrs("initial polar angle of the axis", DEGREE, short="initial tilt"),
+            "axial_spin": scalar(
+                self.axial_spin, "spin about the axis of the final state, omega . k", "Omega", "axial spin"
             ),
-            "jellett": (
-                (),
-                self.jellett,
-                var_attrs(
-                    "Jellett's integral J = (K + q k) . I_G omega of the motion", "A0 Omega", short="Jellett's J"
-                ),
-            ),
-            "initial_energy": ((), self.initial_energy, var_attrs("initial energy", "A0 Omega^2")),
-            "energy": ((), self.energy, var_attrs("energy of the final state", "A0 Omega^2", short="final energy")),
-            "precession_rate": (
-                (),
-                self.precession_rate,
-                var_attrs("precession rate of the final state", "Omega", short="precession rate"),
-            ),
-            "axial_spin": (
-                (),
-                self.axial_spin,
-                var_attrs("spin about the axis of the final state, omega . k", "Omega", short="axial spin"),
-            ),
-            "candidate_kind": (
-                "candidate",
-                np.array([c.kind for c in cands], dtype=str),
+            "candidate_kind": column(
+                [c.kind for c in cands],
                 {"long_name": "kind of state", "comment": "kind of the steady state of the level"},
+                str,
             ),
-            "candidate_tilt": (
-                "candidate",
-                np.array([c.tilt for c in cands]),
-                var_attrs("tilt of the steady state", DEGREE, short="tilt"),
+            "candidate_tilt": column(
+                [c.tilt for c in cands], var_attrs("tilt of the steady state", DEGREE, short="tilt")
             ),
-            "candidate_energy": (
-                "candidate",
-                np.array([c.energy for c in cands]),
+            "candidate_energy": column(
+                [c.energy for c in cands],
                 var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"),
             ),
-            "candidate_precession_rate": (
-                "candidate",
-                np.array([c.precession_rate for c in cands]),
+            "candidate_precession_rate": column(
+                [c.precession_rate for c in cands],
                 var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
             ),
-            "candidate_axial_spin": (
-                "candidate",
-                np.array([c.axial_spin for c in cands]),
+            "candidate_axial_spin": column(
+                [c.axial_spin for c in cands],
                 var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
             ),
-            "candidate_stability": (
-                "candidate",
-                np.array([c.stability for c in cands], dtype=np.int8),
-                flag_attrs("stability of the steady state"),
+            "candidate_stability": column(
+                [c.stability for c in cands], flag_attrs("stability of the steady state"), np.int8
             ),
-            "candidate_energy_test": (
-                "candidate",
-                np.array([c.energy_test for c in cands]),
+            "candidate_energy_test": column(
+                [c.energy_test for c in cands],
                 var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"),
             ),
-            "candidate_reachable": (
-                "candidate",
-                np.array([c.reachable for c in cands], dtype=np.int8),
-                {
-                    "long_name": "U_J <= initial energy",
-                    "flag_values": np.array([0, 1], np.int8),
-                    "flag_meanings": "unreachable reachable",
-                },
+            "candidate_reachable": column(
+                [c.reachable for c in cands], yes_no("U_J <= initial energy", "unreachable reachable"), np.int8
             ),
-            "candidate_is_final": (
-                "candidate",
-                np.array(ends, dtype=np.int8),
-                {
-                    "long_name": "final state",
-                    "comment": "the motion ends on this state",
-                    "flag_values": np.array([0, 1], np.int8),
-                    "flag_meanings": "no yes",
-                },
+            "candidate_is_final": column(
+                [c is self.state for c in cands],
+                yes_no("final state", "no yes", comment="the motion ends on this state"),
+                np.int8,
             ),
         }
         p = self.parameters
@@ -322,14 +299,7 @@ class FinalState:
                 attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
         return xr.Dataset(
             data,
-            coords={
-                "candidate": (
-                    "candidate",
-                    np.arange(n),
-                    {"long_name": "candidate", "comment": "index of the steady state"},
-                ),
-                **curve_coords,
-            },
+            coords={"candidate": column(np.arange(n), {"long_name": "candidate", "comment": index})} | curve_coords,
             attrs=attrs,
         )
 
@@ -350,18 +320,8 @@ def candidates(
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
         kind = "upright" if i == 0 else "inverted" if i == last else "tilted"
         tilt = 0.0 if i == 0 else 180.0 if i == last else math.degrees(math.acos(c))
-        out.append(
-            Candidate(
-                kind,
-                tilt,
-                u,
-                lam,
-                axial,
-                flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v),
-                test,
-                u <= E0 + tol,
-            )
-        )
+        flag = flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
+        out.append(Candidate(kind, tilt, u, lam, axial, flag, test, u <= E0 + tol))
     return tuple(out)
 
 
@@ -537,15 +497,8 @@ def final_state(
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    return final_state_from(
-        y,
-        params,
-        simulation=simulation,
-        t_max=t_max,
-        settle_tolerance=settle_tolerance,
-        rtol=rtol,
-        stick_tilt=stick_tilt,
-    )
+    options = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
+    return final_state_from(y, params, simulation=simulation, **options)
 
 
 def final_state_from(
@@ -588,22 +541,10 @@ def final_state_from(
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
     n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
-        return FinalState(
-            tilt=tilt0,
-            kind="contact_lost",
-            method="jellett",
-            energy=E0,
-            precession_rate=math.nan,
-            axial_spin=math.nan,
-            state=None,
-            reason=f"{reason}; but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves "
-            "the floor at once, the model does not hold, no final state",
-            run=None,
-            event="contact_lost",
-            event_time=0.0,
-            contact="lost",
-            **common,
-        )
+        why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
+        reason = f"{reason}; {why}, the model does not hold, no final state"
+        lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost")
+        return FinalState(tilt=tilt0, method="jellett", energy=E0, reason=reason, **lost, **common)
     if end is not None and fr_inv > 0.0:
         reason += (
             f"; contact not checked on the way (no run): N = {n0:.6g} at the start and mu Fr^-1 = "
@@ -612,36 +553,16 @@ def final_state_from(
     if stick_tilt is not None and end is not None and end.tilt < stick_tilt:
         stick_tilt = None  # the decided end is below the stick: the stick plays no part
     if end is not None and stick_tilt is None:
-        return FinalState(
-            tilt=end.tilt,
-            kind=end.kind,
-            method="jellett",
-            energy=end.energy,
-            precession_rate=end.precession_rate,
-            axial_spin=end.axial_spin,
-            state=end,
-            reason=reason,
-            run=None,
-            **common,
-        )
+        decided = dict(tilt=end.tilt, kind=end.kind, energy=end.energy, state=end, method="jellett", reason=reason)
+        return FinalState(**decided, precession_rate=end.precession_rate, axial_spin=end.axial_spin, **common)
     if not simulation:
-        return FinalState(
-            tilt=math.nan,
-            kind="undecided",
-            method="simulation",
-            energy=math.nan,
-            precession_rate=math.nan,
-            axial_spin=math.nan,
-            state=None,
-            reason=reason + "; no run (simulation=False)",
-            run=None,
-            **common,
-        )
+        undecided = dict(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan)
+        return FinalState(**undecided, reason=reason + "; no run (simulation=False)", **common)
     t_max = check_positive("t_max", t_max)
     settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    (rtol,) = check_tolerances(rtol=rtol)
     chunk = chunk_length(cands, params, J0)
-    if _auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
+    if auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
         announce(
             f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
             f"{STIFF_SECONDS_PER_UNIT * 1e4:.0f} s per 10^4 time units): up to ~"
@@ -666,47 +587,23 @@ def final_state_from(
                 "does not hold beyond, no final state"
             )
             contact = {"contact": "lost" if run.event == "contact_lost" else "held"}
-        return FinalState(
-            tilt=tilt,
-            kind=run.event,
-            method="simulation",
-            energy=energy,
-            precession_rate=math.nan,
-            axial_spin=run.axial_spin,
-            state=None,
-            reason=f"{reason}; a run decided: {what}",
-            run=run,
-            event=run.event,
-            event_time=run.event_time,
-            **contact,
-            **common,
-        )
+        stopped = dict(kind=run.event, event=run.event, event_time=run.event_time, **contact)
+        reason = f"{reason}; a run decided: {what}"
+        on_way = dict(tilt=tilt, method="simulation", energy=energy, axial_spin=run.axial_spin, reason=reason, run=run)
+        return FinalState(**on_way, **stopped, **common)
     near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
     state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
+    outcome = dict(kind="rolling" if run.settled else "unsettled", energy=energy, axial_spin=run.axial_spin)
     if state is not None and run.settled:
-        kind = state.kind
-    elif run.settled:
-        kind = "rolling"
-    else:
-        kind = "unsettled"
+        outcome = dict(kind=state.kind, energy=state.energy, axial_spin=state.axial_spin, state=state)
+        outcome.update(precession_rate=state.precession_rate)
     how = (
         "settled"
         if run.settled
         else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
     )
-    return FinalState(
-        tilt=tilt,
-        kind=kind,
-        method="simulation",
-        energy=state.energy if state is not None and run.settled else energy,
-        precession_rate=state.precession_rate if state is not None and run.settled else math.nan,
-        axial_spin=state.axial_spin if state is not None and run.settled else run.axial_spin,
-        state=state if run.settled else None,
-        reason=f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)",
-        run=run,
-        contact="held",
-        **common,
-    )
+    reason = f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)"
+    return FinalState(tilt=tilt, method="simulation", reason=reason, run=run, contact="held", **outcome, **common)
 
 
 def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
@@ -746,19 +643,8 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
             vert.append(True)
         cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
     p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    growth = state_modes(
-        np.array(ys),
-        np.array(lams),
-        np.array(vert),
-        np.array(cos_),
-        np.array(spins),
-        p,
-        q=q,
-        sigma=sigma,
-        fr_inv=params["fr_inv"],
-        alpha_v=params["alpha_v"],
-        mu=mu,
-    )[1]
+    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p)
+    growth = state_modes(*states, q=q, sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
@@ -789,18 +675,8 @@ def settle(
     change = math.inf
     while t < t_max:
         length = min(chunk, t_max - t)
-        ds = simulate(
-            "sliding",
-            t_end=length,
-            t_eval=np.linspace(0.0, length, samples + 1),
-            omega=w,
-            k=kk,
-            velocity=v,
-            rtol=rtol,
-            atol=1e-3 * rtol,
-            stick_tilt=stick_tilt,
-            **params,
-        )
+        start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
+        ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
         n += 1
         t += length
         if j0 is None:
@@ -820,17 +696,10 @@ def settle(
         if change < settle_tolerance and slip < 1e-6:
             settled = True
             break
-    run = SettleRun(
-        t_end=t,
-        settled=settled,
-        tilt_change=change,
-        slip_speed=slip,
-        chunks=n,
-        seconds=time.perf_counter() - t0,
-        jellett_drift=abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300),
-        axial_spin=float(ds.spin[-1]),
-        event=event,
-        event_time=t if event != "none" else math.nan,
-    )
+    drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
+    seconds = time.perf_counter() - t0
+    work = dict(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=seconds)
+    event_time = t if event != "none" else math.nan
+    run = SettleRun(**work, jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=event_time)
     ok = np.isfinite(pol)
     return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from ..nonlinear import get_nonlinear_model
+from ..nonlinear.integrators import check_tolerances
 from ..nonlinear.min_force import min_normal_force
 from ..parameters import DEFAULT_MU, as_scalar, check_choice, check_interval, check_positive
 from . import family
@@ -145,7 +146,7 @@ def contact_margin(
         raise DomainError("fr_inv = 0 is outside the allowed range of contact_margin: fr_inv > 0 (N = 0 at rest)")
     tilt = check_interval("tilt", tilt, 0.0, 180.0, closed="both")
     spin = as_scalar("spin", spin)
-    rtol = check_interval("rtol", rtol, 0.0, 1.0)
+    (rtol,) = check_tolerances(rtol=rtol)
     duration = check_positive("duration", duration)
     check_choice("mode", mode, MODES)
     max_size = check_positive("max_size", max_size)

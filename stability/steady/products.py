@@ -36,6 +36,7 @@ __all__ = [
     "product_attrs",
     "sliding_parameters",
     "var_attrs",
+    "variable",
 ]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
@@ -154,6 +155,11 @@ def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None
         return {"long_name": long_name, "units": units, **extra}
     comment = long_name + (f"; {extra.pop('comment')}" if "comment" in extra else "")
     return {"long_name": short, "units": units, "comment": comment, **extra}
+
+
+def variable(dims: Any, values: Any, long_name: str, units: str = UNITLESS, **kw: Any) -> tuple:
+    """A dataset variable ``(dims, values, attrs)`` with the CF attributes of :func:`var_attrs`."""
+    return (dims, values, var_attrs(long_name, units, **kw))
 
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:

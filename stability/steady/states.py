@@ -35,7 +35,7 @@ from .products import (
     potential_curve,
     product_attrs,
     sliding_parameters,
-    var_attrs,
+    variable,
 )
 from .verdicts import flag_of
 
@@ -179,59 +179,50 @@ def steady_states(
             np.array(kinds, dtype=str),
             {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"},
         ),
-        "tilt": (
+        "tilt": variable(
             "state",
             np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))),
-            var_attrs(
-                "polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE, short="tilt"
-            ),
+            "polar angle of the axis k from the upward vertical (0 upright, 180 inverted)",
+            DEGREE,
+            short="tilt",
         ),
-        "precession_rate": (
+        "precession_rate": variable(
             "state",
             lam,
-            var_attrs(
-                "precession rate of the axis about the vertical (NaN for the vertical states)",
-                "Omega",
-                short="precession rate",
-                comment="units of the spin rate Omega (simulate's time unit 1/Omega)",
-            ),
+            "precession rate of the axis about the vertical (NaN for the vertical states)",
+            "Omega",
+            short="precession rate",
+            comment="units of the spin rate Omega (simulate's time unit 1/Omega)",
         ),
-        "axial_spin": ("state", axial, var_attrs("spin about the axis, omega . k", "Omega", short="axial spin")),
-        "omega_vertical": (
-            "state",
-            y[:, 2],
-            var_attrs("vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"),
+        "axial_spin": variable("state", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
+        "omega_vertical": variable(
+            "state", y[:, 2], "vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"
         ),
-        "energy": ("state", energy, var_attrs("total energy of the state", "A0 Omega^2", short="energy")),
-        "jellett": (
-            "state",
-            jel,
-            var_attrs("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"),
+        "energy": variable("state", energy, "total energy of the state", "A0 Omega^2", short="energy"),
+        "jellett": variable(
+            "state", jel, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
         ),
-        "growth_rate": (
+        "growth_rate": variable(
             "state",
             growth,
-            var_attrs(
-                "leading growth rate of the linearisation about the state (frame precessing with it), "
-                "structural neutral directions removed",
-                "Omega",
-                short="leading growth rate",
-            ),
+            "leading growth rate of the linearisation about the state (frame precessing with it), "
+            "structural neutral directions removed",
+            "Omega",
+            short="leading growth rate",
         ),
-        "growth_rate_bound": (
+        "growth_rate_bound": variable(
             "state",
             bound,
-            var_attrs(
-                "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
-                "point; tilted states: 1e3 u ||A||_F)",
-                "Omega",
-                short="growth rate bound",
-            ),
+            "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
+            "point; tilted states: 1e3 u ||A||_F)",
+            "Omega",
+            short="growth rate bound",
         ),
-        "n_neutral": (
+        "n_neutral": variable(
             "state",
             n_neutral.astype(np.int8),
-            var_attrs("number of physical modes neutral within rounding", short="neutral modes"),
+            "number of physical modes neutral within rounding",
+            short="neutral modes",
         ),
         "stability": ("state", flags, flag_attrs("stability of the steady state")),
         "stability_jacobian": (
@@ -243,39 +234,27 @@ def steady_states(
                 "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for vertical ones",
             ),
         ),
-        "energy_test": (
+        "energy_test": variable(
             "state",
             tests,
-            var_attrs(
-                "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
-                short="energy criterion",
-            ),
+            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
+            short="energy criterion",
         ),
-        "mode_growth_rate": (
-            ("state", "mode"),
-            ev.real,
-            var_attrs("growth rate Re s of each physical mode", "Omega", short="growth rate Re s"),
+        "mode_growth_rate": variable(
+            ("state", "mode"), ev.real, "growth rate Re s of each physical mode", "Omega", short="growth rate Re s"
         ),
-        "mode_frequency": (
+        "mode_frequency": variable(
             ("state", "mode"),
             ev.imag,
-            var_attrs(
-                "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
-                "Omega",
-                short="frequency Im s",
-            ),
+            "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
+            "Omega",
+            short="frequency Im s",
         ),
     }
     for name, values in eq.items():
-        data[name] = (
-            "state",
-            values,
-            var_attrs(
-                f"{name.split('_', 1)[1]} of eq. (11) at the equivalent spin (vertical states)",
-                "R" if name == "equivalent_q" else UNITLESS,
-                short=f"equivalent {name.split('_', 1)[1]}",
-            ),
-        )
+        what, units = name.split("_", 1)[1], "R" if name == "equivalent_q" else UNITLESS
+        long_name = f"{what} of eq. (11) at the equivalent spin (vertical states)"
+        data[name] = variable("state", values, long_name, units, short=f"equivalent {what}")
     curve, curve_coords = potential_curve(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     data.update(curve)
     coords = {
