@@ -39,7 +39,6 @@ engine's Python path never imports it.
 from __future__ import annotations
 
 import math
-
 from collections.abc import Callable
 
 import numba
@@ -74,8 +73,8 @@ def register() -> None:
     """Register the building blocks of :mod:`continuation.linalg` and
     :mod:`continuation.interpolation` with numba (run once, when this module is imported)."""
     for fn in (
-        linalg.lu_solve,
         linalg._lu_solve_loop,
+        linalg._lu_solve_array,
         linalg._lu_solve3,
         linalg.tangent_det,
         interpolation.hermite_eval,
@@ -84,6 +83,7 @@ def register() -> None:
         register_jitable(fn)
     options = {k: _JIT[k] for k in ("fastmath", "nogil", "error_model")}
     for fn, impl in (
+        (linalg.lu_solve, linalg._lu_solve_compiled),
         (linalg.solve_det, linalg._solve_det_compiled),
         (linalg.bordered_solve, linalg._bordered_solve_compiled),
         (linalg.norm, linalg._norm_compiled),
@@ -123,7 +123,7 @@ predict = njit(**_JIT)(interpolation.predict)
 
 #: ``a x = b`` in place by :func:`continuation.linalg.lu_solve` (``a`` overwritten, ``b`` holds
 #: and is the solution; all NaN at a zero or NaN pivot), for float and complex arrays
-solve_dense = njit(cache=True)(linalg._solve_dense)
+solve_dense = njit(**_JIT)(linalg._solve_dense)
 
 
 @njit(**_JIT)

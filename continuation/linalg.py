@@ -28,7 +28,8 @@ analyticity).
 
 Storage in each world, for speed (the operations, hence the numbers, are the same):
 Python works on nested lists (indexing a list is several times faster than indexing an array
-from Python), compiled code on the arrays. Two things differ by design between the worlds:
+from Python), compiled code on the arrays, indexed ``A[i, j]`` (:func:`_lu_solve_array`: numba
+would make a view object for every row ``A[i]``). Two things differ by design between the worlds:
 :func:`norm` (Python: one BLAS dot product; compiled: a loop, not bit-identical to BLAS, so a
 problem's compiled step and the engine's Python path agree to rounding, not bit for bit); and
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
@@ -134,6 +135,60 @@ def _lu_solve_loop(A, x):
             acc -= Ak[j] * x[j]
         x[k] = acc / Ak[k]
     return True, det
+
+
+def _lu_solve_array(A, x):
+    """:func:`lu_solve` on a 2-D array, for compiled code: the operations of
+    :func:`_lu_solve_loop` in the same order (the same numbers: tests/test_continuation_engine.py),
+    its entries read as ``A[i, j]``. numba makes a reference-counted view object for every row
+    ``A[i]`` that the loop's nested-list indexing would take, which made a 6 x 6 solve 2.4x
+    slower (docs/performance.md, "The 6 x 6 solve of the nonlinear runs")."""
+    m = len(x)
+    det = 1.0
+    for k in range(m):
+        p = k
+        big = abs(A[k, k])
+        for i in range(k + 1, m):
+            if abs(A[i, k]) > big:
+                p = i
+                big = abs(A[i, k])
+        if big == 0.0 or big != big:
+            return False, big
+        if p != k:
+            for j in range(k, m):
+                tmp = A[k, j]
+                A[k, j] = A[p, j]
+                A[p, j] = tmp
+            tmp = x[k]
+            x[k] = x[p]
+            x[p] = tmp
+            det = -det
+        piv = A[k, k]
+        det *= piv
+        for i in range(k + 1, m):
+            f = A[i, k] / piv
+            if f != 0.0:
+                for j in range(k + 1, m):
+                    A[i, j] -= f * A[k, j]
+                x[i] -= f * x[k]
+    for k in range(m - 1, -1, -1):
+        acc = x[k]
+        for j in range(k + 1, m):
+            acc -= A[k, j] * x[j]
+        x[k] = acc / A[k, k]
+    return True, det
+
+
+def _lu_solve_compiled(A, x):
+    """The compiled face of :func:`lu_solve` (arrays): :func:`_lu_solve3` for m = 3, otherwise
+    :func:`_lu_solve_array`."""
+
+    def impl(A, x):
+        if len(x) == 3:
+            return _lu_solve3(A, x)
+        return _lu_solve_array(A, x)
+
+    return impl
 
 
 def _lu_solve3(A, x):

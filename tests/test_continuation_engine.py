@@ -250,6 +250,51 @@ def test_unrolled_3x3_elimination_is_the_loop():
     assert n_singular > 50  # the singular cases were exercised
 
 
+@pytest.mark.parametrize("m", [2, 4, 6])
+def test_array_elimination_is_the_loop(m):
+    """Compiled code solves on 2-D arrays indexed ``A[i, j]`` (``_lu_solve_array``: numba makes
+    a reference-counted view for every row ``A[i]`` the nested-list coding would take). Reference:
+    the nested-list loop ``_lu_solve_loop``, a second coding of the same elimination. They must
+    agree bit for bit (the same operations in the same order), on ties, zero multipliers, zeros
+    of either sign and singular matrices: the float loop in Python on lists against the array
+    coding in Python and compiled (``solve_dense``, the nonlinear runs' 6 x 6 solve, and the
+    compiled ``lu_solve`` inside ``solve_det``); complex systems (a complex-step Jacobian) both
+    codings compiled, where the same complex arithmetic runs in both."""
+    from numba import njit
+
+    from continuation.compiled import solve_dense, solve_det
+    from continuation.linalg import _lu_solve_array, _lu_solve_loop
+
+    @njit
+    def loop(G, b):
+        x = b.copy()
+        ok, d = _lu_solve_loop(G.copy(), x)
+        return ok, d, x
+
+    rng = np.random.default_rng(11)
+    n_singular = 0
+    for G, b in _random_systems(rng, m, 1000):
+        x1 = b.tolist()
+        ok1, d1 = _lu_solve_loop(G.tolist(), x1)
+        x2 = b.copy()
+        ok2, d2 = _lu_solve_array(G.copy(), x2)
+        ok3, x3, d3 = solve_det(G, b)
+        x4 = solve_dense(G.copy(), b.copy())
+        assert (ok2, _bits(d2)) == (ok1, _bits(d1)) and (ok3, _bits(d3)) == (ok1, _bits(d1))
+        n_singular += not ok1
+        if ok1:
+            for x in (x2, x3, x4):
+                assert np.array_equal(_bits(x), _bits(x1))
+        else:
+            assert np.isnan(x4).all()
+        Gc, bc = G + 1j * rng.standard_normal(G.shape), b - 1j * rng.standard_normal(b.shape)
+        okc, dc, xc = loop(Gc, bc)
+        yc = solve_dense(Gc.copy(), bc.copy())
+        if okc:
+            assert np.array_equal(_bits(yc.real), _bits(xc.real)) and np.array_equal(_bits(yc.imag), _bits(xc.imag))
+    assert n_singular > 20  # the singular cases were exercised
+
+
 @pytest.mark.parametrize("m", [2, 3, 4, 5])
 def test_small_solves_against_lapack(m):
     """continuation.linalg's solves and determinants, from Python (lists; LAPACK itself above
