@@ -48,6 +48,10 @@ thousand points). The two give the same bits (tests/test_kernel.py). Per point:
    ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
    Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
    benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
+   The model loops take two points per iteration and form Cardano's estimates of both
+   (:func:`_estimates`, :func:`_solve_pair`) before finishing either: each is one long chain
+   of dependent operations, and two side by side overlap in the processor (~6 % per point;
+   the same arithmetic, the same bits).
 5. *Error bound*, the one of :mod:`stability.linear.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
    ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
    and ``p''`` evaluated at the final roots.
