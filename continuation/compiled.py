@@ -3,10 +3,13 @@
 A problem may give the engine a ``compiled_step`` (:mod:`continuation.problem`): the
 corrector, the tangent and the branch-point test in one compiled call, with the same semantics
 as the engine's Python path (:func:`continuation.engine.trace`). The engine cannot hand a
-problem's compiled residual to a generic compiled loop without losing numba's on-disk cache
-(a function passed as an argument makes the caller uncacheable, and costs microseconds of
-dispatch per call), so the loop lives with the problem; the pieces that do not depend on the
-problem are here. Each is the engine's own building block compiled, not a copy of it:
+problem's compiled residual to a generic compiled loop as a run-time argument without losing
+numba's on-disk cache (a dispatcher in a signature or a closure is pickled with a key that
+differs in every process); the problem's own ``njit(cache=True)`` step calls :func:`newton`
+here (a ``register_jitable`` function, compiled into the caller) with its residual, a
+``register_jitable`` function too, as the first argument: the residual is then a compile-time
+constant of the caller's type, the caller's cache key stays the same in every process, and the
+call is inlined as if the loop were written out. Each is the engine's own building block compiled, not a copy of it:
 
 * :func:`solve_det`: :func:`continuation.linalg.solve_det` (Gaussian elimination with partial
   pivoting, :func:`continuation.linalg.lu_solve`, and the determinant from the pivots);
@@ -20,8 +23,10 @@ problem are here. Each is the engine's own building block compiled, not a copy o
   complex; all NaN at a zero pivot), the compiled 6 x 6 solve of the nonlinear models'
   right-hand sides;
 * :func:`corrector_update`: one step of the pseudo-arclength Newton iteration of
-  ``engine._newton``, the convergence tests included, so that a problem's loop is a few lines
-  (see :mod:`stability.linear.neutral_compiled`).
+  ``engine._newton``, the convergence tests included;
+* :func:`newton`: the whole corrector loop (``engine._newton`` with polishing) for a problem's
+  residual passed as an argument, so that a problem's compiled step is its residual, its
+  constraints and its test functions (see :mod:`stability.linear.neutral_compiled`).
 
 All are ``numba.njit(cache=True)``: compiled once per machine and cached in ``__pycache__``.
 Importing this module imports numba and registers the engine's building blocks with it, through
@@ -34,6 +39,8 @@ engine's Python path never imports it.
 from __future__ import annotations
 
 import math
+
+from collections.abc import Callable
 
 import numba
 import numpy as np
@@ -49,6 +56,7 @@ __all__ = [
     "FLOOR",
     "POLISH",
     "corrector_update",
+    "newton",
     "norm",
     "predict",
     "solve_dense",
@@ -167,3 +175,74 @@ def corrector_update(
     if converged:
         return POLISH, dv, fn
     return CONTINUE, dv, fn
+
+
+@register_jitable
+def newton(
+    residual: Callable[..., None],
+    args: tuple,
+    guess: np.ndarray,
+    t_plane: np.ndarray,
+    anchor: np.ndarray,
+    h: float,
+    scale: np.ndarray,
+    tol: float,
+    max_iter: int,
+    max_move: float,
+) -> tuple[bool, int, int, int, np.ndarray, np.ndarray]:
+    """The corrector of one step (``engine._newton`` with polishing), compiled.
+
+    ``residual(*args, u, jacobian, F, J)`` writes ``F(u)`` into ``F`` (n,) and, if ``jacobian``,
+    ``dF/du`` into ``J`` (n, n+1), at the problem's variables ``u = v * scale`` (the engine's
+    ``_Scaled``); a ``register_jitable`` function (see the module docstring). Newton's method on
+    the bordered system ``[F(v); t_plane . (v - anchor) - h] = 0`` from ``guess`` (scaled
+    variables): accept at ``||F|| <= tol``, at most ``max_iter`` iterations, give up if an
+    iterate moves farther than ``max_move`` from ``guess``; a converged point above the rounding
+    floor is polished by one more step, kept if its residual is smaller.
+
+    Returns ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J)``: the point and the
+    scaled Jacobian there (the one of the last Newton step when the polish step was kept, as
+    the Python path).
+    """
+    m = guess.shape[0]
+    n = m - 1
+    F = np.empty(n)
+    J = np.empty((n, m))
+    F2 = np.empty(n)
+    J2 = np.empty((n, m))
+    v = guess.copy()
+    n_rj = 0
+    n_r = 0
+    ok = False
+    iterations = max_iter
+    for it in range(max_iter + 1):
+        residual(*args, v * scale, True, F, J)
+        for i in range(n):
+            for j in range(m):
+                J[i, j] = J[i, j] * scale[j]
+        n_rj += 1
+        action, dv, fn = corrector_update(it, max_iter, v, guess, F, J, t_plane, anchor, h, tol, True)
+        if action == FAILED:
+            iterations = it
+            break
+        if action == CONVERGED:
+            ok = True
+            iterations = it
+            break
+        if action == POLISH:
+            ok = True
+            iterations = it
+            if math.isfinite(norm(dv)):
+                v2 = v + dv
+                residual(*args, v2 * scale, False, F2, J2)
+                n_r += 1
+                if norm(F2) < fn:
+                    v = v2
+                    iterations = it + 1
+            break
+        v = v + dv  # CONTINUE
+        moved = norm(v - guess)
+        if not math.isfinite(moved) or moved > max_move:
+            iterations = it + 1
+            break
+    return ok, iterations, n_rj, n_r, v, J

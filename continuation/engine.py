@@ -459,13 +459,9 @@ class _Tracer:
     ):
         self.sp = _Scaled(problem, sc)
         self.sc = sc
-        self.h, self.min_step, self.max_step, self.grow = o.step, o.min_step, o.max_step, o.grow
-        self.max_points, self.max_arclength = o.max_points, o.max_arclength
-        self.tol, self.max_iter, self.max_angle = o.tol, o.max_iter, o.max_angle
-        self.fold_components = o.fold_components
+        self.o = o  # the settings (TraceOptions)
+        self.h = o.step
         self.callback = callback
-        self.detect_closed, self.detect_branch_points = o.detect_closed, o.detect_branch_points
-        self.event_floor = o.event_floor
         # the problem's compiled corrector (continuation.problem), if it has one and may use it;
         # then the predictor is compiled too
         self.cstep = getattr(problem, "compiled_step", None) if o.compiled else None
@@ -491,7 +487,7 @@ class _Tracer:
         self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool, start_slack: float
     ) -> None:
         """The start point: on the curve, inside the constraints, with its tangent and tests."""
-        sp, sc, tol = self.sp, self.sc, self.tol
+        sp, sc, tol = self.sp, self.sc, self.o.tol
         v = u0 / sc
         if project_start:
             v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
@@ -525,8 +521,8 @@ class _Tracer:
     # --- the loop ----------------------------------------------------------------------------
     def run(self) -> Branch:
         """Step until the branch ends (a boundary, closure, a failure, a limit, the callback)."""
-        while not self.done and len(self.pts) < self.max_points:
-            if self.arc[-1] >= self.max_arclength:
+        while not self.done and len(self.pts) < self.o.max_points:
+            if self.arc[-1] >= self.o.max_arclength:
                 self._finish("max_arclength")
                 break
             step = self._step()
@@ -545,17 +541,17 @@ class _Tracer:
         v, t, h = self.v, self.t, self.h
         prev = self.prev
         guess = self.predictor(v, t, *(prev if prev is not None else (v, t)), prev is not None and self.use_hermite, h)
-        v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.max_iter, 2.0 * h + 1e-12)
+        v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.o.max_iter, 2.0 * h + 1e-12)
         self.n_newton += it
         angle = 0.0
         if ok:
             angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
-            ok = angle <= self.max_angle or h <= self.min_step
+            ok = angle <= self.o.max_angle or h <= self.o.min_step
         if not ok:
-            if h <= self.min_step:
+            if h <= self.o.min_step:
                 self._finish("step_failure")
             else:
-                self.h = max(h / 2.0, self.min_step)
+                self.h = max(h / 2.0, self.o.min_step)
                 self.use_hermite = False
             return None
         self.use_hermite = True
@@ -571,7 +567,8 @@ class _Tracer:
         step gave them (and its tangent is the one used), else None."""
         sp, t = self.sp, self.t
         if self.cstep is not None:
-            r = StepResult(*self.cstep(guess, t, self.v, h, self.sc, self.tol, max_it, max_move))
+            r = self.cstep(guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
+            r = StepResult(*r)
             sp.n_residual += r.n_residual_and_jacobian + r.n_residual
             sp.n_jacobian += r.n_residual_and_jacobian
             if not r.ok:
@@ -581,7 +578,7 @@ class _Tracer:
                 return r.v, True, r.iterations, tt, d, None
             extra = None if r.constraints is None else (r.constraints, r.tests)
             return r.v, True, r.iterations, r.tangent, r.det, extra
-        vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.tol, max_it, max_move)
+        vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.o.tol, max_it, max_move)
         if not ok:
             return vv, False, it, None, 0.0, None
         tt, d = _tangent_det(JJ, t)
@@ -601,9 +598,9 @@ class _Tracer:
             guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
         else:
             guess = v + h * t
-        vv, ok, _, tt, _, _ = self._correct(guess, h, self.max_iter + 4, 4 * abs(h) + 1e-12)
+        vv, ok, _, tt, _, _ = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
         if not ok:
-            vv, ok, _, tt, _, _ = self._correct(v + h * t, h, self.max_iter + 4, 4 * abs(h) + 1e-12)
+            vv, ok, _, tt, _, _ = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
         if not ok:
             raise ConvergenceError("corrector failed while locating a special point")
         if ha < h < hb:
@@ -635,10 +632,10 @@ class _Tracer:
         iterations), keep after a moderate one, shrink after a hard one; and keep the next turn
         of the tangent below ``max_angle`` (if it turns by ``angle`` over ``h``, about ``0.9
         max_angle`` next)."""
-        factor = self.grow if s.iterations <= 3 else (1.0 if s.iterations <= 5 else 0.7)
+        factor = self.o.grow if s.iterations <= 3 else (1.0 if s.iterations <= 5 else 0.7)
         if s.angle > 0:
-            factor = min(factor, 0.9 * self.max_angle / s.angle)
-        self.h = min(max(self.h * factor, self.min_step), self.max_step)
+            factor = min(factor, 0.9 * self.o.max_angle / s.angle)
+        self.h = min(max(self.h * factor, self.o.min_step), self.o.max_step)
 
     # --- boundary handling (constraints) ---------------------------------------------------
     def _boundary(self, s: _Step, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
@@ -695,7 +692,7 @@ class _Tracer:
         then brackets with :func:`continuation.events.locate`)."""
         if not (ga > 0 > gb):
             return None
-        sp, v, t, h, tol = self.sp, self.v, self.t, s.h, self.tol
+        sp, v, t, h, tol = self.sp, self.v, self.t, s.h, self.o.tol
         h0 = h_b * ga / (ga - gb)
         uu = hermite(v, t, s.v, s.t, h0 / h) if h > 0 else v + h0 * t
         gscale = max(1.0, abs(ga), abs(gb))
@@ -749,36 +746,27 @@ class _Tracer:
         the new point that special point (the next step then starts from 0.0 and brackets
         nothing, so it is reported once), unless a boundary cuts the step short.
         """
-        sp, t, floor = self.sp, self.t, self.event_floor
-        kinds, details = self.kinds, self.details
+        sp, t, floor = self.sp, self.t, self.o.event_floor
+        at_start = len(self.pts) == 1 and self.kinds[0] == "start"
+        # (kind, detail, test function phi(v, t), its value at the current point and at v_b)
+        folds = self.o.fold_components
+        tests = [("fold", str(i), lambda vv, tt, i=i: tt[i], float(t[i]), float(t_b[i])) for i in folds]
+        tests_b = tests_new if stop is None else sp.tests(v_b, t_b)
+        for k in range(self.tests.size):
+            phi = lambda vv, tt, k=k: sp.tests(vv, tt)[k]  # noqa: E731
+            tests.append(("test", sp.test_names[k], phi, float(self.tests[k]), float(tests_b[k])))
+        if self.o.detect_branch_points:
+            bp_b = s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
+            tests.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), self.bp, bp_b))
         candidates: list[tuple[str, str, Callable, float, float]] = []
-        at_start = len(self.pts) == 1 and kinds[0] == "start"
         at_new: list[tuple[str, str]] = []
-        for i in self.fold_components:
-            pa, pb = float(t[i]), float(t_b[i])
+        for kind, name, phi, pa, pb in tests:
             if at_start and abs(pa) <= floor and abs(pb) > floor:
-                kinds[0], details[0] = "fold", str(i)
+                self.kinds[0], self.details[0] = kind, name
             elif pa * pb < 0:
-                candidates.append(("fold", str(i), lambda vv, tt, i=i: tt[i], pa, pb))
+                candidates.append((kind, name, phi, pa, pb))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
-                at_new.append(("fold", str(i)))
-        tests, tests_b = self.tests, tests_new if stop is None else sp.tests(v_b, t_b)
-        for k in range(tests.size):
-            pa, pb = float(tests[k]), float(tests_b[k])
-            if at_start and abs(pa) <= floor and abs(pb) > floor:
-                kinds[0], details[0] = "test", sp.test_names[k]
-            elif pa * pb < 0:
-                candidates.append(("test", sp.test_names[k], lambda vv, tt, k=k: sp.tests(vv, tt)[k], pa, pb))
-            elif pb == 0.0 and abs(pa) > floor and stop is None:
-                at_new.append(("test", sp.test_names[k]))
-        if self.detect_branch_points:
-            bp, bp_b = self.bp, s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
-            if at_start and abs(bp) <= floor and abs(bp_b) > floor:
-                kinds[0], details[0] = "branch_point", ""
-            elif bp * bp_b < 0:
-                candidates.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), bp, bp_b))
-            elif bp_b == 0.0 and abs(bp) > floor and stop is None:
-                at_new.append(("branch_point", ""))
+                at_new.append((kind, name))
         h_b = s.h if stop is None else stop.h
         events: list[_Event] = []
         for kind, name, phi, pa, pb in candidates:
@@ -798,7 +786,7 @@ class _Tracer:
         """Pseudo-arclength on the step where the branch passes its start point again (within 5%
         of the step's chord ``seg``, in the start's direction), or None. Only once the branch
         has at least 4 points and has gone more than 3 steps' length."""
-        if not (self.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * s.h):
+        if not (self.o.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * s.h):
             return None
         v, v_start = self.v, self.v_start
         # the distance to the segment is at least |v_start - v| - seg: most steps stop here

@@ -63,13 +63,11 @@ Optional:
     same numbers the methods give), which the engine then does not ask for separately. It
     must solve the same equations as ``residual`` (which the engine still uses to project the
     start point and to end a branch on a constraint). The building blocks, the Python path's
-    own functions compiled, are in :mod:`continuation.compiled` (one Newton update with the
-    convergence tests, the bordered tangent, the norm), so that the loop is a few lines:
-    ``HopfWithHook`` in tests/test_continuation_engine.py, or
-    :mod:`stability.linear.neutral_compiled`. The engine cannot take a problem's compiled
-    residual and run a generic compiled loop on it: numba does not cache a function that
-    receives another compiled function as an argument, and the dispatch costs microseconds
-    per call; so the problem owns its loop.
+    own functions compiled, are in :mod:`continuation.compiled`: the corrector loop
+    :func:`~continuation.compiled.newton`, which a problem's own compiled step calls with its
+    residual (a ``register_jitable`` function, so that numba caches the step on disk), the
+    bordered tangent, the norm; e.g. ``HopfWithHook`` in tests/test_continuation_engine.py, or
+    :mod:`stability.linear.neutral_compiled`.
 
 Rules: the methods are functions of their arguments only. The engine calls them at points of
 its choosing (predictions, Newton iterates, points inside a step while it locates special

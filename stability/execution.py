@@ -1,24 +1,28 @@
 """Which execution runs a loop that is written once: interpreted (Python) or compiled (numba).
 
-The spectral kernel's loops, the batched root finders and the neutral curves' corrector are
-each one plain Python source (:class:`stability.jit.Twin`) with two executions that give the
-same bits: the interpreter, which needs no compilation but costs ~50-100 us per point, and numba,
-~0.3 us per point once compiled but several seconds to compile on a machine whose numba disk
-cache does not hold it yet (a fresh install), and ~0.5 s to import numba and load it when it
-does. The rule (docs/performance.md, "The first call"):
+The spectral kernel's loops, the batched root finders, the neutral curves' corrector, the
+steady layer's closed forms and the integrators are each one plain Python source with two
+executions that give the same bits (:func:`stability.jit.python` or the source itself, and
+:func:`stability.jit.cached` or an ``njit`` function): the interpreter, which needs no
+compilation but costs ~50-100 us per point, and numba, ~0.3 us per point once compiled but
+several seconds to compile on a machine whose numba disk cache does not hold it yet (a fresh
+install), and ~0.5 s to import numba and load it when it does. The rule (docs/performance.md, "The first call"):
 
 * fewer than :data:`PYTHON_BELOW` points run interpreted, unless the compiled loop is already in
   memory in this process (then it runs, compiling and loading nothing); a first eigenvalue,
   threshold or neutral curve in a fresh process then takes a fraction of a second and imports
   no numba;
 * larger requests run compiled; if that call is still compiling after :data:`NOTICE_AFTER`
-  seconds, one line on stderr says so, once per process (:data:`NOTICE`); ``tippe warmup``
-  compiles every loop ahead of time;
+  seconds, one line on stderr says so, once per process (:data:`NOTICE`, with the one estimate
+  :data:`COMPILE_SECONDS`); ``tippe warmup`` compiles every loop ahead of time;
 * the environment variable :data:`ENVIRONMENT` (``TIPPE_KERNEL``) forces a path: ``python``,
   ``compiled`` or ``auto`` (the default, the rule above); so does :func:`using` inside a block
   (the benchmarks of ``python benchmarks/run.py`` measure the compiled paths), and functions that take an
   ``engine`` argument take the same three values (None: :func:`using`'s, else the
   environment's).
+
+:func:`use_compiled` is the rule, :func:`pick` the code it chooses: the entry point of each
+path asks one of them, once per request.
 
 The two executions run the same source on the same points: the tests compare them bit for bit
 (an engine-agreement check; the independent references remain mpmath and the closed forms).
@@ -30,25 +34,15 @@ import contextlib
 import os
 import sys
 import threading
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
 from typing import Any
 
+from . import jit
 from .errors import InputError
 
-__all__ = [
-    "ENGINES",
-    "ENVIRONMENT",
-    "NOTICE",
-    "NOTICE_AFTER",
-    "PYTHON_BELOW",
-    "announce",
-    "before_compiled_call",
-    "engine",
-    "pick",
-    "quiet",
-    "use_compiled",
-    "using",
-]
+__all__ = ["COMPILE_SECONDS", "ENGINES", "ENVIRONMENT", "NOTICE", "NOTICE_AFTER", "PYTHON_BELOW", "announce"]
+__all__ += ["engine", "pick", "quiet", "use_compiled", "using"]
 
 #: the environment variable that forces an execution
 ENVIRONMENT = "TIPPE_KERNEL"
@@ -60,17 +54,19 @@ ENGINES = ("auto", "python", "compiled")
 #: interpreted work at this size, less than importing numba and loading a cached loop)
 PYTHON_BELOW = 4096
 
+#: what a first compilation on a cold cache takes, at most (s; the estimate of :data:`NOTICE`:
+#: a model's kernel loop ~10 s, a first compiled run's integrator and right-hand sides ~18 s of
+#: CPU on a 2-core machine with numba 0.68, docs/performance.md)
+COMPILE_SECONDS = 20.0
+
 #: the line printed on stderr, once per process, before a compilation (``{seconds}``: an estimate)
-NOTICE = (
-    "tippe-stability: compiling kernels, once, ~{seconds:.0f} s "
-    "(cached for later runs; `tippe warmup` compiles them all)"
-)
+NOTICE = "tippe-stability: compiling kernels, once, ~{seconds:.0f} s (then cached; `tippe warmup` compiles them all)"
 
 #: seconds a first compiled call runs before :data:`NOTICE` is printed (loading a cached loop
 #: takes ~0.1-0.5 s, compiling one several seconds)
 NOTICE_AFTER = 1.5
 
-_STATE: dict[str, Any] = {"noticed": False, "quiet": 0, "using": None}
+_STATE: dict[str, Any] = {"noticed": False, "quiet": False, "using": None}
 
 
 def engine(value: str | None = None) -> str:
@@ -82,73 +78,48 @@ def engine(value: str | None = None) -> str:
     InputError
         A value that is not one of :data:`ENGINES` (the message names where it came from).
     """
-    using: str | None = _STATE["using"]
-    if value is None and using is not None:
-        return using
-    if value is None:
-        raw = os.environ.get(ENVIRONMENT, "").strip().lower()
-        if raw in ("", "auto"):
-            return "auto"
-        if raw not in ENGINES:
-            raise InputError(
-                f"the environment variable {ENVIRONMENT} = {raw!r} is not known; "
-                f"set it to one of {', '.join(ENGINES)} (or unset it)"
-            )
-        return raw
-    if value not in ENGINES:
-        raise InputError(
-            f"engine = {value!r} is not known; choose one of {', '.join(ENGINES)} "
-            f"or None (the environment variable {ENVIRONMENT}, default auto)"
-        )
-    return value
+    chosen = value or _STATE["using"] or os.environ.get(ENVIRONMENT, "").strip().lower() or "auto"
+    if chosen not in ENGINES:
+        ok = ", ".join(ENGINES)
+        where = f"the environment variable {ENVIRONMENT}" if value is None else "engine"
+        ask = f"set it to one of {ok} (or unset it)" if value is None else f"choose one of {ok} or None ({ENVIRONMENT})"
+        raise InputError(f"{where} = {chosen!r} is not known; {ask}")
+    return chosen
 
 
-def use_compiled(twin: Any, npts: int, value: str | None = None) -> bool:
-    """Whether ``twin`` (a :class:`stability.jit.Twin`) runs compiled on ``npts`` points
-    (module docstring); ``value`` as in :func:`engine`."""
+def use_compiled(
+    fn: Any, npts: float, value: str | None = None, *, below: int = PYTHON_BELOW, parallel: bool = False
+) -> bool:
+    """Whether a request of ``npts`` points runs ``fn`` compiled (module docstring): ``fn`` a
+    numba dispatcher or a function given to :func:`stability.jit.cached` (with ``parallel``);
+    None: no compiled code exists yet. ``below``: the size from which it runs compiled, where
+    the interpreted cost per point is larger than the kernel's; ``value`` as in :func:`engine`.
+    When it says yes, the compile notice is armed (:data:`NOTICE`)."""
     chosen = engine(value)
-    if chosen != "auto":
-        return chosen == "compiled"
-    return npts >= PYTHON_BELOW or twin.in_memory()
+    if chosen == "python" or (chosen == "auto" and npts < below and not jit.in_memory(fn, parallel)):
+        return False
+    if not (_STATE["noticed"] or _STATE["quiet"] or jit.in_memory(fn, parallel)):
+        _STATE["noticed"] = True
+        threading.Thread(target=_notice, args=(fn, parallel), daemon=True).start()
+    return True
 
 
-def pick(fn: Any, npts: int, value: str | None = None, *, below: int = PYTHON_BELOW) -> Any:
-    """``fn`` (a function compiled by numba) or its interpreted execution
-    (:func:`stability.jit.python`), by the rule of the module docstring for a request of
-    ``npts`` points (``below``: the size from which it runs compiled, where the interpreted
-    cost per point is larger than the kernel's); ``value`` as in :func:`engine`."""
-    chosen = engine(value)
-    if chosen == "compiled" or (chosen == "auto" and (npts >= below or _in_memory(fn))):
-        return fn
-    from .jit import python
-
-    return python(fn)
+def _notice(fn: Any, parallel: bool) -> None:
+    """:data:`NOTICE` after :data:`NOTICE_AFTER` seconds, unless ``fn`` got into memory meanwhile
+    (numba's public API cannot tell a cached function from one it must compile, but a load from
+    the disk cache is quicker)."""
+    time.sleep(NOTICE_AFTER)
+    if not jit.in_memory(fn, parallel):
+        print(NOTICE.format(seconds=COMPILE_SECONDS), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice)
 
 
-def _in_memory(fn: Any) -> bool:
-    """Whether this process holds the compiled code of ``fn`` (a :class:`stability.jit.Twin` or
-    a numba dispatcher: its public ``signatures``)."""
-    return fn.in_memory() if hasattr(fn, "in_memory") else bool(fn.signatures)
-
-
-def before_compiled_call(twin: Any, seconds: float) -> None:
-    """Say on stderr, once per process, that ``twin`` (a :class:`stability.jit.Twin` or a numba
-    dispatcher) is being compiled (``seconds``: the
-    estimate printed), if the call that follows is still compiling :data:`NOTICE_AFTER` seconds
-    later (numba's public API cannot tell a cached function from one it must compile, but a
-    load from the cache takes a fraction of that); nothing if ``twin`` is in memory already
-    or while :func:`quiet` is active."""
-    if _STATE["noticed"] or _STATE["quiet"] or _in_memory(twin):
-        return
-    _STATE["noticed"] = True
-
-    def notice() -> None:
-        if not _in_memory(twin):
-            print(NOTICE.format(seconds=seconds), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice)
-
-    timer = threading.Timer(NOTICE_AFTER, notice)
-    timer.daemon = True
-    timer.start()
+def pick(fn: Any, npts: float, value: str | None = None, **rule: Any) -> Callable:
+    """The code :func:`use_compiled` chooses for ``fn`` (``rule``: its ``below`` and
+    ``parallel``): compiled (``fn`` itself if a numba dispatcher, else
+    :func:`stability.jit.cached`), or its interpreted execution (:func:`stability.jit.python`)."""
+    if use_compiled(fn, npts, value, **rule):
+        return fn if hasattr(fn, "signatures") else jit.cached(fn, rule.get("parallel", False))
+    return jit.python(fn)
 
 
 def announce(text: str) -> None:
@@ -159,25 +130,22 @@ def announce(text: str) -> None:
 
 
 @contextlib.contextmanager
-def quiet() -> Iterator[None]:
-    """No :data:`NOTICE` inside (``tippe warmup`` reports its own progress)."""
-    _STATE["quiet"] += 1
+def _setting(key: str, value: Any) -> Iterator[None]:
+    previous, _STATE[key] = _STATE[key], value
     try:
         yield
     finally:
-        _STATE["quiet"] -= 1
+        _STATE[key] = previous
 
 
-@contextlib.contextmanager
-def using(value: str) -> Iterator[None]:
+def quiet() -> contextlib.AbstractContextManager[None]:
+    """No :data:`NOTICE` inside (``tippe warmup`` reports its own progress)."""
+    return _setting("quiet", True)
+
+
+def using(value: str) -> contextlib.AbstractContextManager[None]:
     """Every loop inside runs in the execution ``value`` (one of :data:`ENGINES`) unless a call
     asks for another; also a decorator. The suites of ``python benchmarks/run.py`` measure the compiled
     paths under ``using("compiled")``: their baselines and the package's default both get
     compiled code, as a long-running process has."""
-    chosen = engine(value)
-    previous = _STATE["using"]
-    _STATE["using"] = chosen
-    try:
-        yield
-    finally:
-        _STATE["using"] = previous
+    return _setting("using", engine(value))

@@ -14,18 +14,18 @@ that only ever runs the Python execution never imports numba.
 
 :func:`activate` runs (it is idempotent)
 
-* when a compiled function is made through this module (:func:`njit`, :class:`Twin`);
+* when a compiled function is made through this module (:func:`njit`, :func:`cached`);
 * when called: an ``@numba.njit`` function of a user's own that calls, say,
   ``stability.models.inertia.inertia_g`` needs ``stability.jit.activate()`` called once before
   it compiles (the package installs no hook into numba: no ``numba_extensions`` entry point,
   which would run in every numba program of the environment).
 
-:class:`Twin` pairs a plain Python function (a loop over points, say) with its numba
-compilation, made on first use: ``twin.python`` runs interpreted, ``twin(...)`` compiled,
-``twin.in_memory()`` tells whether calling the compiled one would compile (or load from numba's
-disk cache) first. A twin may be *parallel*: its source loops over ``prange`` (bound to the
-builtin ``range`` in the module's namespace, so the Python execution and a serial compilation
-run an ordinary loop), and its compilation sees numba's ``prange`` instead.
+:func:`cached` compiles a plain Python function of the package (a loop over points, say) with
+``cache=True``, once per process and only when asked (the function itself stays the
+interpreted execution); :func:`in_memory` tells whether calling that compilation would compile
+(or load from numba's disk cache) first. A compilation may be *parallel*: the source loops over
+``prange`` (bound to the builtin ``range`` in its module, so the Python execution and a serial
+compilation run an ordinary loop), and the parallel compilation sees numba's ``prange``.
 
 :func:`python` gives the interpreted execution of any function compiled with :func:`njit` (its
 public ``py_func``, with the compiled functions it calls re-bound to their own interpreted
@@ -49,35 +49,17 @@ import types
 from collections.abc import Callable
 from typing import Any
 
-__all__ = [
-    "OPTIONS",
-    "Twin",
-    "activate",
-    "active",
-    "njit",
-    "overload",
-    "python",
-    "register_jitable",
-]
+__all__ = ["OPTIONS", "activate", "active", "cached", "in_memory", "njit", "overload", "python", "register_jitable"]
 
 #: numba options of the compiled code of the package (module docstring)
 OPTIONS: dict[str, Any] = dict(fastmath=False, nogil=True, error_model="numpy")
 
-#: registrations waiting for numba: ("jitable", function, options) or ("overload", function, impl, options)
-_PENDING: list[tuple] = []
+_PENDING: list[Callable[[Any], Any]] = []  # registrations waiting for numba (each takes the numba module)
 _NUMBA: Any = None  # the numba module once activated
 
 
-def _register(entry: tuple) -> None:
-    import numba.extending
-
-    if entry[0] == "jitable":
-        if entry[2]:
-            numba.extending.register_jitable(**entry[2])(entry[1])
-        else:
-            numba.extending.register_jitable(entry[1])
-    else:
-        numba.extending.overload(entry[1], jit_options=entry[3])(entry[2])
+def _defer(register: Callable[[Any], Any]) -> None:
+    _PENDING.append(register) if _NUMBA is None else register(_NUMBA)
 
 
 def register_jitable(fn: Callable | None = None, **options: Any) -> Callable:
@@ -88,11 +70,7 @@ def register_jitable(fn: Callable | None = None, **options: Any) -> Callable:
     """
 
     def mark(f: Callable) -> Callable:
-        entry = ("jitable", f, options)
-        if _NUMBA is not None:
-            _register(entry)
-        else:
-            _PENDING.append(entry)
+        _defer(lambda nb: nb.extending.register_jitable(**options)(f) if options else nb.extending.register_jitable(f))
         return f
 
     return mark if fn is None else mark(fn)
@@ -103,11 +81,7 @@ def overload(python_fn: Callable, jit_options: dict[str, Any] | None = None) -> 
     (the decorated typing function) stands for ``python_fn`` in compiled code."""
 
     def mark(impl: Callable) -> Callable:
-        entry = ("overload", python_fn, impl, dict(jit_options or {}))
-        if _NUMBA is not None:
-            _register(entry)
-        else:
-            _PENDING.append(entry)
+        _defer(lambda nb: nb.extending.overload(python_fn, jit_options=dict(jit_options or {}))(impl))
         return impl
 
     return mark
@@ -121,11 +95,9 @@ def activate() -> Any:
     """
     global _NUMBA
     if _NUMBA is None:
-        import numba
-
-        _NUMBA = numba
+        _NUMBA = __import__("numba")  # numba.extending with it
         while _PENDING:
-            _register(_PENDING.pop(0))
+            _PENDING.pop(0)(_NUMBA)
     return _NUMBA
 
 
@@ -137,10 +109,30 @@ def active() -> bool:
 def njit(fn: Callable | None = None, **options: Any) -> Any:
     """:func:`numba.njit` after :func:`activate`; for modules whose only purpose is compiled code."""
 
-    def make(f: Callable) -> Any:
-        return activate().njit(**options)(f)
+    return activate().njit(**options) if fn is None else activate().njit(fn, **options)
 
-    return make if fn is None else make(fn)
+
+_CACHED: dict[tuple[Callable, bool], Any] = {}
+
+
+def cached(fn: Callable, parallel: bool = False) -> Any:
+    """``fn`` (a plain function of the package) compiled with :data:`OPTIONS` and ``cache=True``:
+    one numba dispatcher per process (made, not compiled, on the first request; imports numba).
+
+    ``parallel=True`` compiles with ``parallel=True``, the name ``prange`` in the source then
+    meaning numba's ``prange`` (module docstring); that copy is named ``<name>_parallel``, so
+    that numba's disk cache keeps it apart from the serial compilation of the same source.
+    """
+    if (fn, parallel) not in _CACHED:
+        f = _copy(fn, {**fn.__globals__, "prange": activate().prange}, "_parallel") if parallel else fn
+        _CACHED[fn, parallel] = activate().njit(f, parallel=parallel, cache=True, **OPTIONS)
+    return _CACHED[fn, parallel]
+
+
+def in_memory(fn: Any, parallel: bool = False) -> bool:
+    """Whether this process holds compiled code of ``fn`` (a numba dispatcher, or a function
+    given to :func:`cached`): calling it compiles and loads nothing. Never imports numba."""
+    return bool(getattr(_CACHED.get((fn, parallel), fn), "signatures", None))
 
 
 # ------------------------------------------------------------------------------------------
@@ -148,11 +140,7 @@ def njit(fn: Callable | None = None, **options: Any) -> Any:
 # ------------------------------------------------------------------------------------------
 #: the packages whose functions :func:`python` re-binds (the rest of the world is left as it is)
 _PACKAGES = ("stability", "continuation")
-
-
-def _is_dispatcher(value: Any) -> bool:
-    """Whether ``value`` is a numba dispatcher (its public ``py_func`` and ``signatures``)."""
-    return callable(value) and hasattr(value, "py_func") and hasattr(value, "signatures")
+_PYTHON: dict[Any, Callable] = {}
 
 
 def _ours(value: Any) -> bool:
@@ -175,110 +163,38 @@ class _Interpreted(types.ModuleType):
 
 
 def _rebound(value: Any) -> Any:
-    if _is_dispatcher(value) or (isinstance(value, types.FunctionType) and _ours(value)):
+    """``value`` as interpreted code sees it: a numba dispatcher (its public ``py_func``) or a
+    function of the package by :func:`python`, a module of the package by :class:`_Interpreted`."""
+    if (callable(value) and hasattr(value, "py_func")) or (isinstance(value, types.FunctionType) and _ours(value)):
         return python(value)
-    if isinstance(value, types.ModuleType) and _ours(value):
-        return _Interpreted(value)
-    return value
-
-
-_PYTHON: dict[Any, Callable] = {}
+    return _Interpreted(value) if isinstance(value, types.ModuleType) and _ours(value) else value
 
 
 def _names(code: types.CodeType) -> set[str]:
     """The global names a code object and the code nested in it refer to."""
-    out = set(code.co_names)
-    for const in code.co_consts:
-        if isinstance(const, types.CodeType):
-            out |= _names(const)
-    return out
+    return set(code.co_names).union(*(_names(c) for c in code.co_consts if isinstance(c, types.CodeType)))
+
+
+def _copy(fn: Callable, scope: dict[str, Any], suffix: str = "") -> Callable:
+    """A copy of the function ``fn`` that reads its globals from ``scope``."""
+    f = types.FunctionType(fn.__code__, scope, fn.__name__ + suffix, fn.__defaults__, fn.__closure__)
+    f.__kwdefaults__, f.__module__, f.__qualname__ = fn.__kwdefaults__, fn.__module__, fn.__qualname__ + suffix
+    return f
 
 
 def python(fn: Any) -> Callable:
     """The interpreted execution of ``fn`` (a numba dispatcher, a plain function of the
-    package, or a module of the package: its functions so executed): its Python source (the dispatcher's public ``py_func``), with every compiled
-    function it reaches (through its globals, or attributes of the package's modules) run the
-    same way. Nothing is compiled and numba's caches are not touched: what a single query runs
-    (:mod:`stability.execution`). The same source as the compiled execution; the floating-point
-    results agree to rounding (numba and numpy may round the library functions differently)."""
+    package, or a module of the package: its functions so executed): its Python source (the
+    dispatcher's public ``py_func``), with every compiled function it reaches (through its
+    globals, or attributes of the package's modules) run the same way. Nothing is compiled and
+    numba's caches are not touched: what a single query runs (:mod:`stability.execution`). The
+    same source as the compiled execution; the floating-point results agree to rounding (numba
+    and numpy may round the library functions differently)."""
     if isinstance(fn, types.ModuleType):
         return _Interpreted(fn)
     key = getattr(fn, "py_func", fn)
-    if key in _PYTHON:
-        return _PYTHON[key]
-    names: dict[str, Any] = {}
-    f = types.FunctionType(key.__code__, names, key.__name__, key.__defaults__, key.__closure__)
-    f.__kwdefaults__ = key.__kwdefaults__
-    f.__doc__, f.__module__, f.__qualname__ = key.__doc__, key.__module__, key.__qualname__
-    _PYTHON[key] = f  # before the globals: recursive functions find themselves
-    used = _names(key.__code__)
-    names.update({k: _rebound(v) for k, v in key.__globals__.items() if k in used})
-    names.setdefault("__builtins__", key.__globals__.get("__builtins__", __builtins__))
-    for k, v in key.__globals__.items():
-        names.setdefault(k, v)
-    return f
-
-
-# ------------------------------------------------------------------------------------------
-# a Python function and its compilation
-# ------------------------------------------------------------------------------------------
-class Twin:
-    """A plain Python function (:attr:`python`) and its numba compilation, made on demand.
-
-    Parameters
-    ----------
-    python : callable
-        The source, run as it is by the interpreter.
-    parallel : bool, default False
-        Compile with ``parallel=True``, the name ``prange`` in the source then meaning numba's
-        ``prange`` (module docstring); the compiled copy is named ``<qualname>_parallel``, so that
-        numba's disk cache keeps it apart from a serial compilation of the same source.
-    **options
-        Further numba options (``cache``, ``fastmath``, ...): :data:`OPTIONS` by default.
-    """
-
-    def __init__(self, python: Callable, *, parallel: bool = False, **options: Any):
-        self.python = python
-        self.parallel = bool(parallel)
-        self.options = {**OPTIONS, **options}
-        self._dispatcher: Any = None
-
-    @property
-    def __name__(self) -> str:
-        return self.python.__name__ + ("_parallel" if self.parallel else "")
-
-    def __repr__(self) -> str:
-        return f"<Twin {self.python.__qualname__}{' (parallel)' if self.parallel else ''}>"
-
-    @property
-    def dispatcher(self) -> Any:
-        """The numba dispatcher (made, not compiled, on first access; imports numba)."""
-        if self._dispatcher is None:
-            numba = activate()
-            f = self.python
-            if self.parallel:
-                f = types.FunctionType(
-                    f.__code__,
-                    {**f.__globals__, "prange": numba.prange},
-                    f.__name__ + "_parallel",
-                    f.__defaults__,
-                    f.__closure__,
-                )
-                f.__qualname__ = self.python.__qualname__ + "_parallel"
-                f.__doc__ = self.python.__doc__
-                f.__module__ = self.python.__module__
-            self._dispatcher = njit(f, parallel=self.parallel, **self.options)
-        return self._dispatcher
-
-    @property
-    def py_func(self) -> Callable:
-        """The function numba compiles (:attr:`python`, or its parallel copy)."""
-        return self.dispatcher.py_func
-
-    def in_memory(self) -> bool:
-        """Whether this process holds the compiled code (calling it compiles nothing, loads nothing)."""
-        return self._dispatcher is not None and bool(self._dispatcher.signatures)
-
-    def __call__(self, *args: Any) -> Any:
-        """The compiled execution (compiled, or loaded from the disk cache, on first call)."""
-        return self.dispatcher(*args)
+    if key not in _PYTHON:
+        names = dict(key.__globals__)
+        _PYTHON[key] = _copy(key, names)  # before the globals: recursive functions find themselves
+        names.update({k: _rebound(names[k]) for k in _names(key.__code__) if k in names})
+    return _PYTHON[key]

@@ -3,7 +3,7 @@
 Two kinds of check, said for each test:
 
 * *engine agreement* (not an independent reference): the kernel's loops and the batched loops
-  (stability.execution; stability.jit.Twin) run interpreted (Python lists) and compiled
+  (stability.execution; stability.jit.cached) run interpreted (Python lists) and compiled
   (numba) on the same points must give the same bits, signed zeros included (a NaN must be a
   NaN in both; its sign bit, which IEEE 754 leaves unspecified, is not compared). The
   independent references of the numbers themselves stay where they are (mpmath in
@@ -33,7 +33,7 @@ import pytest
 import stability
 from stability import execution
 from stability.errors import InputError
-from stability.jit import Twin
+from stability.jit import cached
 from stability.linear import kernel
 from stability.linear.roots import axis_growth_many, cbrt, quadratic_roots_many
 
@@ -173,9 +173,9 @@ def test_batched_loops_same_bits_interpreted_and_compiled(monkeypatch):
     c = _polynomials(4_000, 2, seed=158)
     a, b, k = (np.ascontiguousarray(c[:, j]) for j in range(3))
     roots, exact = np.empty((len(c), 2), complex), np.empty((len(c), 2), bool)
-    quadratic_roots_many(a, b, k, roots, exact)
+    cached(quadratic_roots_many)(a, b, k, roots, exact)
     r_py, e_py = [[0j, 0j] for _ in c], [[False, False] for _ in c]
-    quadratic_roots_many.python(a.tolist(), b.tolist(), k.tolist(), r_py, e_py)
+    quadratic_roots_many(a.tolist(), b.tolist(), k.tolist(), r_py, e_py)
     _assert_same((np.array(r_py), np.array(e_py)), (roots, exact))
 
     cond = NeutralCondition("rolling", ("q", "sigma"), dict(fr_inv=0.3, mu=2.28), form="crossing", compiled=False)
@@ -202,7 +202,7 @@ def test_cube_root_same_bits_in_both_executions():
     x = 10.0 ** rng.uniform(-300, 300, 200_000) * np.where(rng.random(200_000) < 0.5, -1.0, 1.0)
     x[:6] = (0.0, -0.0, np.inf, -np.inf, np.nan, 5e-324)
     compiled = np.empty_like(x)
-    Twin(_cbrt_loop)(x, compiled)
+    cached(_cbrt_loop)(x, compiled)
     _assert_same((np.array([math.cbrt(v) for v in x.tolist()]),), (compiled,))
 
 
@@ -242,26 +242,24 @@ def test_no_float_power_in_the_shared_source():
 def test_engine_rule_and_its_errors(monkeypatch):
     """The execution asked for (stability.execution.engine and use_compiled): the argument wins,
     then TIPPE_KERNEL, then auto; auto runs interpreted below PYTHON_BELOW points unless the
-    compiled loop is in memory. A value that is not known is refused with its name and the
-    allowed ones."""
+    compiled loop is in memory (a numba dispatcher's public ``signatures``). A value that is not
+    known is refused with its name and the allowed ones."""
 
-    class Stub:
+    class Stub:  # a numba dispatcher as the rule sees it
         def __init__(self, in_memory):
-            self._m = in_memory
-
-        def in_memory(self):
-            return self._m
+            self.signatures = [()] if in_memory else []
 
     monkeypatch.delenv(execution.ENVIRONMENT, raising=False)
     small, large = execution.PYTHON_BELOW - 1, execution.PYTHON_BELOW
-    assert not execution.use_compiled(Stub(False), small) and execution.use_compiled(Stub(False), large)
-    assert execution.use_compiled(Stub(True), 1)
-    assert execution.use_compiled(Stub(False), 1, "compiled") and not execution.use_compiled(
-        Stub(True), large, "python"
-    )
-    monkeypatch.setenv(execution.ENVIRONMENT, "Python")
-    assert not execution.use_compiled(Stub(True), large)
-    assert execution.use_compiled(Stub(False), 1, "compiled")
+    with execution.quiet():  # no compile notice from these stubs
+        assert not execution.use_compiled(Stub(False), small) and execution.use_compiled(Stub(False), large)
+        assert execution.use_compiled(Stub(True), 1)
+        assert execution.use_compiled(Stub(False), 1, "compiled") and not execution.use_compiled(
+            Stub(True), large, "python"
+        )
+        monkeypatch.setenv(execution.ENVIRONMENT, "Python")
+        assert not execution.use_compiled(Stub(True), large)
+        assert execution.use_compiled(Stub(False), 1, "compiled")
     monkeypatch.setenv(execution.ENVIRONMENT, "numba")
     with pytest.raises(
         InputError, match=r"TIPPE_KERNEL = 'numba' is not known; set it to one of auto, python, compiled"
@@ -288,18 +286,19 @@ def test_compile_notice_once_per_process_and_only_if_not_cached(tmp_path):
     fresh interpreter, without compiling (the call "runs" for 0.3 s, NOTICE_AFTER is 0.05 s)."""
     code = """
         import sys, time
-        from stability import execution
+        from stability import execution, jit
         from stability.linear import kernel
         execution.NOTICE_AFTER = 0.05
-        loops = kernel._COEFFICIENT_LOOPS
+        execution.COMPILE_SECONDS = 7.0
+        loop = kernel._coefficient_loop
         with execution.quiet():
-            execution.before_compiled_call(loops[1], 7.0)
+            assert execution.use_compiled(loop, 1, "compiled", parallel=True)
         time.sleep(0.3)
         print("after quiet", file=sys.stderr, flush=True)
-        execution.before_compiled_call(loops[1], 7.0)
-        execution.before_compiled_call(loops[0], 7.0)
+        assert execution.use_compiled(loop, 1, "compiled", parallel=True)
+        assert execution.use_compiled(loop, 1, "compiled")
         time.sleep(0.3)
-        assert not loops[0].in_memory()
+        assert not jit.in_memory(loop) and "numba" not in sys.modules
     """
     out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
     assert out.returncode == 0, out.stderr
@@ -318,12 +317,12 @@ def test_compile_notice_before_a_first_compiled_run(tmp_path):
         execution.NOTICE_AFTER = 0.05
         for slice_ in (I.dopri5_slice, I.rk4_slice):
             assert not slice_.signatures
-            execution.before_compiled_call(slice_, I.COMPILE_SECONDS)
+            assert execution.pick(slice_, 1, "compiled") is slice_
         time.sleep(0.3)
     """
     out = _run(code, {"NUMBA_CACHE_DIR": str(tmp_path)})
     assert out.returncode == 0, out.stderr
-    assert out.stderr.splitlines() == [execution.NOTICE.format(seconds=20.0)]
+    assert out.stderr.splitlines() == [execution.NOTICE.format(seconds=execution.COMPILE_SECONDS)]
 
 
 # --- what a fresh process imports -----------------------------------------------------------
@@ -407,16 +406,14 @@ def test_warmup_covers_every_loop_and_lists_its_steps(capsys):
     from stability.linear import neutrality
 
     todo = steps()
-    twins = {id(t) for _, _, ts in todo for t in ts}
+    twins = {loop for _, _, loops in todo for loop in loops}
     sliding = kernel._model_kernels(stability.get_model("sliding"))
     expected = [
-        *sliding.checked,
-        *sliding.masked,
-        *kernel._COEFFICIENT_LOOPS,
-        quadratic_roots_many,
-        neutrality._other_roots_many,
-        axis_growth_many,
+        *((f, p) for f in (sliding.checked, sliding.masked, kernel._coefficient_loop) for p in (False, True)),
+        (quadratic_roots_many, False),
+        (neutrality._other_roots_many, False),
+        (axis_growth_many, False),
     ]
-    assert all(id(t) in twins for t in expected)
+    assert all(t in twins for t in expected)
     assert main(["warmup", "--list"]) == 0
     assert capsys.readouterr().out.splitlines() == [what for what, _, _ in todo]

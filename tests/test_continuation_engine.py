@@ -223,6 +223,7 @@ def test_unrolled_3x3_elimination_is_the_loop():
     either sign and singular matrices too; in Python and compiled."""
     from numba import njit
 
+    import continuation.compiled  # noqa: F401  (registers the building blocks with numba)
     from continuation.linalg import _lu_solve3, _lu_solve_loop
 
     @njit

@@ -39,6 +39,7 @@ from test_kernel import NAMES, _bound_points
 
 import stability
 import stability.jit
+from stability.jit import cached
 from stability.linear import kernel
 from stability.linear.neutral_curves import neutral_curve
 from stability.linear.neutrality import NeutralCondition, _other_roots_list, _other_roots_many
@@ -229,9 +230,10 @@ def test_domain_table_states_the_documented_domain():
 
 def test_margins_same_bits_python_and_compiled():
     """Engine agreement: the constraints of a neutral-curve problem (the table's margins and
-    the ranges) from Python floats and compiled (the compiled step's own,
-    neutral_compiled.constraint_values), on points near the domain's edges in three planes."""
-    from stability.linear.neutral_curves import NeutralProblem, _constraint_values
+    the ranges) from Python floats (neutral_constraints.constraint_values, interpreted) and compiled
+    (the compiled step's own, neutral_compiled.constraint_values), on points near the domain's
+    edges in three planes."""
+    from stability.linear.neutral_curves import NeutralProblem
 
     rng = np.random.default_rng(43)
     for x, y, fixed in (
@@ -240,7 +242,8 @@ def test_margins_same_bits_python_and_compiled():
         ("sigma", "fr_inv", dict(q=-0.1, alpha_v=0.5, mu=2.28)),
     ):
         prob = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=True)
-        assert prob._compiled is not None
+        python = NeutralProblem("sliding", x, y, fixed, {x: (-1.0, 1.0), y: (0.0, 2.0)}, compiled=False)
+        assert prob._compiled is not None and python._compiled is None
         for _ in range(200):
             u = np.array(
                 [
@@ -249,7 +252,7 @@ def test_margins_same_bits_python_and_compiled():
                     rng.uniform(-2, 2),
                 ]
             )
-            ours = _constraint_values(prob._constraints, prob.params(u))
+            ours = python.constraints(u)
             np.testing.assert_array_equal(prob.constraints(u), ours)
 
 
@@ -291,7 +294,7 @@ def test_quadratic_formula_engines_and_mpmath():
     c = _quadratics(1000, 44)
     roots = np.empty((c.shape[0], 2), dtype=complex)
     exact = np.empty((c.shape[0], 2), dtype=bool)
-    quadratic_roots_many(c[:, 0].copy(), c[:, 1].copy(), c[:, 2].copy(), roots, exact)
+    cached(quadratic_roots_many)(c[:, 0].copy(), c[:, 1].copy(), c[:, 2].copy(), roots, exact)
     mp.mp.dps = 40
     n_exact = 0
     for j, (a, b, k) in enumerate(c):
@@ -341,7 +344,7 @@ def test_composite_division_engines_and_mpmath():
         ws.append(w)
     cs, ws = np.array(cs), np.array(ws)
     many = np.empty((len(ws), 2), dtype=complex)
-    _other_roots_many(cs, 4, ws, 1, many)
+    cached(_other_roots_many)(cs, 4, ws, 1, many)
     for j in range(len(ws)):
         assert _other_roots_list(cs[j], ws[j], 1) == many[j].tolist()
 
@@ -434,11 +437,12 @@ _CACHE_KEYS = """
 import hashlib
 from numba.core.serialize import dumps
 import stability
+from stability.jit import cached
 from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
 cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
-funcs = [*ks.checked, *ks.masked, *ks.domain, ks.coefficients,
+funcs = [*(cached(f, p) for f in (ks.checked, ks.masked, ks.domain) for p in (False, True)), cached(ks.coefficients),
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func

@@ -36,10 +36,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def steps() -> list[tuple[str, Callable[[], object], list]]:
-    """``(what, call, twins)``: each step's name, a call that runs it compiled, and the
-    :class:`stability.jit.Twin` objects it compiles (the test that every loop is covered)."""
+    """``(what, call, loops)``: each step's name, a call that runs it compiled, and the
+    ``(function, parallel)`` pairs it compiles by :func:`stability.jit.cached` (the test that
+    every loop is covered)."""
     import numpy as np
 
+    from ..jit import cached
     from ..linear import kernel, neutrality, roots
     from ..linear.growth import growth
     from ..linear.neutral_curves import neutral_curve
@@ -67,35 +69,35 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                 lambda parallel=parallel: kernel.checked_model_spectrum(
                     "sliding", p, engine="compiled", parallel=parallel
                 ),
-                [sliding.checked[int(parallel)]],
+                [(sliding.checked, parallel)],
             )
         )
         out.append(
             (
                 f"eigenvalue kernel, sliding model, masked ({kind})",
                 lambda parallel=parallel: kernel.model_spectrum("sliding", p, engine="compiled", parallel=parallel),
-                [sliding.masked[int(parallel)]],
+                [(sliding.masked, parallel)],
             )
         )
         out.append(
             (
                 f"eigenvalue kernel on coefficients, other models ({kind})",
                 lambda parallel=parallel: kernel.coefficient_spectrum(c, engine="compiled", parallel=parallel),
-                [kernel._COEFFICIENT_LOOPS[int(parallel)]],
+                [(kernel._coefficient_loop, parallel)],
             )
         )
     out.append(
         (
             "batched quadratic formula (method='polynomial')",
-            lambda: roots.quadratic_roots_many(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
-            [roots.quadratic_roots_many],
+            lambda: cached(roots.quadratic_roots_many)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
+            [(roots.quadratic_roots_many, False)],
         )
     )
     out.append(
         (
             "batched other modes of the neutral condition",
-            lambda: neutrality._other_roots_many(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
-            [neutrality._other_roots_many],
+            lambda: cached(neutrality._other_roots_many)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
+            [(neutrality._other_roots_many, False)],
         )
     )
     out.append(
@@ -109,7 +111,7 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
         (
             "growth-rate signs of every mode (batched; the atlases' leading growth rate)",
             lambda: growth("sliding", **p),
-            [roots.axis_growth_many],
+            [(roots.axis_growth_many, False)],
         )
     )
     out.append(
@@ -170,7 +172,7 @@ def run(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     os.environ[execution.ENVIRONMENT] = "compiled"  # this process only: every step runs compiled
     with execution.quiet():
-        for what, call, _twins in todo:
+        for what, call, _loops in todo:
             t0 = time.perf_counter()
             call()
             print(f"{what}: {time.perf_counter() - t0:.1f} s (compiled, or loaded from the disk cache)", flush=True)

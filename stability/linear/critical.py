@@ -348,20 +348,14 @@ def thresholds(
 
     Parameters
     ----------
-    param : {"q", "fr_inv", "sigma", "alpha_v", "mu"}
-        The parameter varied.
-    model : {"fixed_pivot", "rolling", "rolling_eq8", "sliding"} or LinearModel
-        Eqs. (8)-(9) or eq. (11).
-    bracket : pair of float, optional
-        Range searched (inside the physical domain); default :func:`default_bracket`.
-    samples : int
-        Points of each of the uniform and geometric sampling grids.
+    param, model, bracket, samples
+        As :func:`threshold_crossings`.
     return_details : bool, optional
         Deprecated (a ``DeprecationWarning``; removed in the next release): ``True`` returned
         the :class:`Threshold` records instead of the values, which is now
         :func:`threshold_crossings`.
     **fixed
-        All other parameters of the model (``mu`` defaults to 2.28).
+        As :func:`threshold_crossings`.
 
     Returns
     -------
@@ -483,30 +477,15 @@ def _no_threshold_state(state: np.ndarray) -> str:
             "within rounding of neutral at every sample (the sign of the leading growth rate "
             "cannot be decided anywhere; marginal to working precision)"
         )
+    rest = state[state != UNDECIDED]
+    names = ((UNSTABLE, "unstable"), (STABLE, "stable"), (MARGINAL, "marginal (neutrally stable)"))
+    what = next((name for flag, name in names if (rest == flag).all()), "stable or marginal")
     if undecided:
-        rest = state[state != UNDECIDED]
-        what = (
-            "unstable"
-            if (rest == UNSTABLE).all()
-            else "stable"
-            if (rest == STABLE).all()
-            else "marginal (neutrally stable)"
-            if (rest == MARGINAL).all()
-            else "stable or marginal"
-        )
         return (
             f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
             f"decided at {undecided} of {n} samples)"
         )
-    return (
-        "unstable"
-        if (state == UNSTABLE).all()
-        else "stable"
-        if (state == STABLE).all()
-        else "marginal (neutrally stable)"
-        if (state == MARGINAL).all()
-        else "stable or marginal"
-    )
+    return what
 
 
 def threshold(

@@ -128,11 +128,7 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     g = np.empty(flat_r.shape)
     eg = np.empty(flat_r.shape)
     w = np.ascontiguousarray(flat_r.imag)
-    if execution.use_compiled(axis_growth_many, len(flat_c)):  # stability.execution's rule
-        execution.before_compiled_call(axis_growth_many, 2.0)
-        axis_growth_many(flat_c, w, g, eg)
-    else:
-        axis_growth_many.python(flat_c, w, g, eg)
+    execution.pick(axis_growth_many, len(flat_c))(flat_c, w, g, eg)  # stability.execution's rule
     re = flat_r.real
     with np.errstate(invalid="ignore"):
         own = np.abs(re) > 4.0 * flat_e

@@ -63,10 +63,10 @@ Polynomial building blocks (Horner's scheme, the quadratic formula, deflation, t
 square root and modulus, the real cube root) come from :mod:`stability.linear.roots`, where
 they are written once for every engine.
 
-Executions. Every loop is a :class:`stability.jit.Twin`: its source, which loops over
-``prange`` (the builtin ``range`` here) and indexes ``x[i][j]`` and ``len(x)`` only, runs on
-Python lists (interpreted) or on numpy arrays (compiled, serial or parallel; numba's
-``prange`` in the parallel copy). The drivers choose the execution by
+Executions. Every loop is a plain function: its source, which loops over ``prange`` (the
+builtin ``range`` here) and indexes ``x[i][j]`` and ``len(x)`` only, runs on Python lists
+(interpreted) or on numpy arrays (compiled by :func:`stability.jit.cached`, serial or parallel;
+numba's ``prange`` in the parallel copy). The drivers choose the execution by
 :func:`stability.execution.use_compiled` (interpreted below
 :data:`stability.execution.PYTHON_BELOW` points unless the compiled loop is in memory;
 ``engine=`` or ``TIPPE_KERNEL`` force one) and the compiled loop by size (serial below
@@ -87,7 +87,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from stability.jit import Twin, register_jitable
+from stability.jit import cached, register_jitable
 
 from .. import execution
 from ..errors import InputError, ParameterTypeError
@@ -96,7 +96,6 @@ from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_
 from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
-    "COMPILE_SECONDS",
     "MAX_DEGREE",
     "SERIAL_BELOW",
     "CheckedSpectrum",
@@ -119,12 +118,8 @@ MAX_DEGREE = 3
 #: compiled batches below this many points run serially unless a caller asks otherwise
 SERIAL_BELOW = 512
 
-#: what compiling one model's loop takes on a cold cache (s; the estimate of the stderr notice,
-#: measured on a 2-core machine with numba 0.68, docs/performance.md)
-COMPILE_SECONDS = 10.0
-
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
-#: serially, numba's ``prange`` in a parallel compilation (:class:`stability.jit.Twin`)
+#: serially, numba's ``prange`` in a parallel compilation (:func:`stability.jit.cached`)
 prange = range
 
 _U = 2.0**-53
@@ -138,10 +133,6 @@ _THIRD = 1.0 / 3.0
 #: squares in Chebyshev form; largest error 1.1e-5, removed by the Halley step of _cbrt)
 _CB0, _CB1 = 0.3333211994662179, 0.05011247842998644
 _CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
-
-#: options of the compiled loops (numba's disk cache; the arithmetic options are
-#: :data:`stability.jit.OPTIONS`)
-_CACHE = dict(cache=True)
 
 
 class KernelSpectrum(NamedTuple):
@@ -570,10 +561,6 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
         stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
 
 
-#: :func:`_coefficient_loop`, serial and parallel
-_COEFFICIENT_LOOPS = (Twin(_coefficient_loop, **_CACHE), Twin(_coefficient_loop, parallel=True, **_CACHE))
-
-
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
 
 
@@ -661,12 +648,13 @@ def _finish(n, ok, sol, ev, bd, neutral, stab, i):
 
 
 class _Kernels(NamedTuple):
-    """The loops of one model (:func:`_compile`): ``(serial, parallel)`` twins of each."""
+    """The loops of one model (:func:`_compile`), plain functions (:func:`stability.jit.cached`
+    compiles them, serial or parallel)."""
 
-    checked: tuple[Twin, Twin]
-    masked: tuple[Twin, Twin]
-    domain: tuple[Twin, Twin]
-    coefficients: Twin
+    checked: Callable[..., None]
+    masked: Callable[..., None]
+    domain: Callable[..., None]
+    coefficients: Callable[..., tuple]
     n: int
 
 
@@ -676,7 +664,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     degree ``n``) and the domain bounds ``applies`` (:func:`stability.parameters.domain_applies`).
 
     Closures over ``formula``, ``n`` and ``applies``, run interpreted or compiled
-    (:class:`stability.jit.Twin`, nothing is compiled here) with ``cache=True``: numba keys a
+    (:func:`stability.jit.cached`, nothing is compiled here) with ``cache=True``: numba keys a
     closure's disk cache by its captured values, pickled (the formula by reference), so each
     model's loops are compiled once per machine. The loops call the kernel's helpers as globals
     (never captured: a captured ``njit`` dispatcher pickles differently in every process, and
@@ -735,10 +723,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
 
-    def both(f: Callable[..., None]) -> tuple[Twin, Twin]:
-        return Twin(f, **_CACHE), Twin(f, parallel=True, **_CACHE)
-
-    return _Kernels(both(checked), both(masked), both(domain), Twin(point_coefficients, **_CACHE), n)
+    return _Kernels(checked, masked, domain, point_coefficients, n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
@@ -796,28 +781,27 @@ def _serial(npts: int, parallel: bool | None) -> bool:
 
 
 def _run(
-    loops: tuple[Twin, Twin],
+    loop: Callable[..., None],
     npts: int,
     parallel: bool | None,
     engine: str | None,
     inputs: list[Any],
     outputs: tuple[np.ndarray, ...],
 ) -> None:
-    """``loop(*inputs, *outputs)`` for one of ``loops`` (serial, parallel) in one execution.
+    """``loop(*inputs, *outputs)`` in one execution.
 
-    The loop: the serial one if :func:`_serial`. The execution: compiled if
+    Compiled (serial if :func:`_serial`, else parallel) if
     :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
     must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
     floats and complex numbers, the same values; numpy scalars would be slower and complex
     division on them is numpy's, not the one numba copies from CPython), whose results are then
     written into ``outputs`` (every element of which the loops set)."""
-    twin = loops[0] if _serial(npts, parallel) else loops[1]
-    if execution.use_compiled(twin, npts, engine):
-        execution.before_compiled_call(twin, COMPILE_SECONDS)
-        twin(*inputs, *outputs)
+    parallel = not _serial(npts, parallel)
+    if execution.use_compiled(loop, npts, engine, parallel=parallel):
+        cached(loop, parallel)(*inputs, *outputs)
         return
     lists = [o.tolist() for o in outputs]
-    twin.python(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
+    loop(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
     for out, values in zip(outputs, lists):
         out[...] = values
 
@@ -1097,7 +1081,7 @@ def model_coefficients(
     """The coefficients at one point as the compiled kernel forms them (highest power first):
     the numba execution of the model's ``point_coefficients`` (tests compare it, bit for bit,
     with the model's numpy :meth:`~stability.models.base.LinearModel.coefficients`)."""
-    return _require_kernels(get_model(model)).coefficients(
+    return cached(_require_kernels(get_model(model)).coefficients)(
         float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu)
     )
 
@@ -1144,7 +1128,7 @@ def coefficient_spectrum(
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
-    _run(_COEFFICIENT_LOOPS, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
+    _run(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
     return KernelSpectrum(
         ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
     )

@@ -7,14 +7,15 @@ capabilities of :mod:`stability.models.base`; the sliding model, eq. 11), whose 
 are built by :func:`stability.linear.neutrality.crossing_kernels`. One call does what the
 engine's Python path does per step: Newton's method on the bordered system
 ``[F(v); t . (v - v_k) - h] = 0`` from the predicted point (polished to the rounding floor,
-:func:`continuation.compiled.corrector_update`), then the unit tangent oriented by ``t`` and
+:func:`continuation.compiled.newton`), then the unit tangent oriented by ``t`` and
 ``det [J; t^T]`` at the solution (:func:`continuation.compiled.tangent_det`). All in the
 engine's scaled variables ``v = u / scale``.
 
-The constraints of the problem (the physical domain's bounds, from the table
-:data:`stability.parameters.DOMAIN` through :func:`~stability.parameters.domain_sides`, and the
-requested ranges) are evaluated by :func:`constraint_values`, and the second test function (the
-largest growth rate of the other modes) by the model's compiled twin, at the new point.
+The constraints of the problem (the physical domain's bounds and the requested ranges) are
+evaluated by :func:`constraint_values`, the one source of
+:func:`stability.linear.neutral_constraints.constraint_values` compiled, and the second test
+function (the largest growth rate of the other modes) by the model's compiled twin, at the new
+point.
 """
 
 from __future__ import annotations
@@ -25,44 +26,18 @@ from collections.abc import Callable
 
 import numpy as np
 
-from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
+from continuation.compiled import newton, tangent_det
 from stability.jit import OPTIONS, njit
 
-from ..parameters import domain_sides
+from .neutral_constraints import constraint_values as _constraint_values
 from .neutrality import CrossingKernels
 
-__all__ = ["CONSTRAINT_CODES", "constraint_values", "step_kernel"]
+__all__ = ["constraint_values", "step_kernel"]
 
 _JIT = dict(OPTIONS, cache=True)
 
-#: kinds of constraint rows ``(code, index, a)`` for :func:`constraint_values` (parameters
-#: ``p`` indexed as ``(q, fr_inv, sigma, alpha_v, mu)``): the margin ``upper - lower`` of row
-#: ``index`` of :data:`stability.parameters.DOMAIN` minus ``a``, ``p[index] - a``, ``a - p[index]``
-CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
-
-
-@njit(**_JIT)
-def constraint_values(
-    point: np.ndarray, free_index: np.ndarray, u: np.ndarray, codes: np.ndarray, index: np.ndarray, a: np.ndarray
-) -> np.ndarray:
-    """The problem's constraints at ``u`` (problem variables), ``>= 0`` inside, from rows
-    ``(code, index, a)`` (:data:`CONSTRAINT_CODES`): the same source and operations as their
-    Python evaluation in :meth:`stability.linear.neutral_curves.NeutralProblem.constraints`."""
-    p = point.copy()
-    for i in range(free_index.shape[0]):
-        p[free_index[i]] = u[i]
-    sides = domain_sides(p[0], p[1], p[2], p[3], p[4], 0.0)
-    out = np.empty(codes.shape[0])
-    for k in range(codes.shape[0]):
-        c = codes[k]
-        j = index[k]
-        if c == 0:
-            out[k] = (sides[2 * j + 1] - sides[2 * j]) - a[k]
-        elif c == 1:
-            out[k] = p[j] - a[k]
-        else:
-            out[k] = a[k] - p[j]
-    return out
+#: the problem's constraints (:func:`stability.linear.neutral_constraints.constraint_values`), compiled
+constraint_values = njit(**_JIT)(_constraint_values)
 
 
 def step_kernel(kernels: CrossingKernels) -> Callable[..., tuple]:
@@ -79,75 +54,31 @@ def _step_kernel(residual_into: Callable[..., None], other_growth_of: Callable[.
 
     @njit(**_JIT)
     def step(point, free_index, ncoef, codes, index, a, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        """Corrector and tangent of one continuation step (the engine's ``_newton`` with
-        polishing, then ``_tangent_det``), and the problem's constraints and test functions at
-        the new point (so that the engine's loop makes no further call for them).
+        """Corrector and tangent of one continuation step (:func:`continuation.compiled.newton`,
+        then ``tangent_det``), and the problem's constraints and test functions at the new point
+        (so that the engine's loop makes no further call for them).
 
         Arguments: the neutral condition ``(point, free_index, ncoef)``
         (:class:`~stability.linear.neutrality.CrossingKernels`); the constraint rows ``(codes,
-        index, a)`` (:func:`constraint_values`); the predicted point ``guess`` (scaled
-        variables); the plane ``t_plane . (v - anchor) = h``; ``u = v * scale``; accept at
-        ``||F|| <= tol``; at most ``max_iter`` Newton iterations; give up if an iterate moves
-        farther than ``max_move`` from ``guess``.
+        index, a)`` (:func:`constraint_values`); then those of
+        :func:`continuation.compiled.newton`.
 
         Returns ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t,
-        det, g, tests)``: the point, the scaled Jacobian there (the one of the last Newton step
-        when the polish step was kept, as the Python path), and if ``tangent_ok`` the unit
-        tangent oriented by ``t_plane`` and ``det [J; t^T]``; if ``ok``, the constraints ``g``
-        and the test functions ``[w, max Re(other modes)]`` (``-1`` if there is no other mode)
-        at ``u = v * scale``, the operations of ``NeutralProblem.constraints`` and
+        det, g, tests)`` (:mod:`continuation.problem`): if ``ok``, the constraints ``g`` and the
+        test functions ``[w, max Re(other modes)]`` (``-1`` if there is no other mode) at
+        ``u = v * scale``, the operations of ``NeutralProblem.constraints`` and
         ``NeutralProblem.test_functions`` (which the engine would call with the same ``u``).
         """
-        m = guess.shape[0]
-        n = m - 1
-        F = np.empty(n)
-        J = np.empty((n, m))
-        F2 = np.empty(n)
-        J2 = np.empty((n, m))
-        v = guess.copy()
-        n_rj = 0
-        n_r = 0
-        ok = False
-        iterations = max_iter
-        for it in range(max_iter + 1):
-            # F(v * scale) and dF/dv = dF/du * scale (the engine's _Scaled)
-            residual_into(point, free_index, ncoef, v * scale, True, F, J)
-            for i in range(n):
-                for j in range(m):
-                    J[i, j] = J[i, j] * scale[j]
-            n_rj += 1
-            action, dv, fn = corrector_update(it, max_iter, v, guess, F, J, t_plane, anchor, h, tol, True)
-            if action == FAILED:
-                iterations = it
-                break
-            if action == CONVERGED:
-                ok = True
-                iterations = it
-                break
-            if action == POLISH:
-                ok = True
-                iterations = it
-                if math.isfinite(norm(dv)):
-                    v2 = v + dv
-                    residual_into(point, free_index, ncoef, v2 * scale, False, F2, J2)
-                    n_r += 1
-                    if norm(F2) < fn:
-                        v = v2
-                        iterations = it + 1
-                break
-            # CONTINUE
-            v = v + dv
-            moved = norm(v - guess)
-            if not math.isfinite(moved) or moved > max_move:
-                iterations = it + 1
-                break
+        ok, iterations, n_rj, n_r, v, J = newton(
+            residual_into, (point, free_index, ncoef), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
+        )
         tests = np.empty(2)
         if not ok:
             return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests
         t_ok, t_new, det = tangent_det(J, t_plane)
         u = v * scale
         g = constraint_values(point, free_index, u, codes, index, a)
-        tests[0] = u[m - 1]
+        tests[0] = u[guess.shape[0] - 1]
         growth = other_growth_of(point, free_index, ncoef, u)
         tests[1] = growth if math.isfinite(growth) else -1.0
         return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests

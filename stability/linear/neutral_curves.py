@@ -58,7 +58,6 @@ from xarray.indexes import PandasIndex
 
 from continuation.engine import Branch, TraceOptions, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
-from continuation.problem import StepResult
 
 from .. import execution
 from .._version import package_version
@@ -66,9 +65,7 @@ from ..errors import ConvergenceError, DomainError, InputError, ParameterTypeErr
 from ..models import LinearModel, get_model
 from ..parameters import (
     DEFAULT_MU,
-    DOMAIN,
     LONG_NAMES,
-    PARAMETERS,
     UPPER_BOUND,
     WINDOW_UPPER_BOUND,
     as_scalar,
@@ -79,7 +76,6 @@ from ..parameters import (
     check_positive,
     check_range,
     domain_range,
-    domain_sides,
     domain_text,
     parameter_attrs,
 )
@@ -87,6 +83,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
+from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
 from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
 from .spectra import spectrum
@@ -149,18 +146,14 @@ def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[st
     return {k: float(v) for k, v in p.items()}
 
 
-def _default_range(name: str, fixed: Mapping[str, float]) -> tuple[float, float]:
-    """The domain's range of ``name`` given the fixed parameters (the table), its open ends
-    closed by :data:`DEFAULT_RANGES`."""
+def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
+    """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
+    parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
+    if rng is not None:
+        return check_range(f"{name}_range", rng)
     lo, hi = domain_range(name, fixed)
     dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
     return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
-
-
-def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
-    if rng is None:
-        return _default_range(name, fixed)
-    return check_range(f"{name}_range", rng)
 
 
 def _outside_domain_error(
@@ -175,71 +168,6 @@ def _outside_domain_error(
         f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
         f"({domain_text(model.parameters)})"
     )
-
-
-class Constraint(NamedTuple):
-    """One constraint ``g(params) >= 0`` of a neutral-curve problem.
-
-    Attributes
-    ----------
-    name : str
-        The bound as text (a domain bound's text of :data:`stability.parameters.DOMAIN`, or the
-        end of a requested range); the ``detail`` of a point where a branch ends on it.
-    kind : str
-        ``"domain_edge"`` or ``"endpoint"``.
-    code : str
-        ``"domain"`` (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus
-        ``a``), ``"lower"`` (``p[index] - a``) or ``"upper"`` (``a - p[index]``); ``index`` of a
-        parameter counts in :data:`stability.parameters.PARAMETERS`
-        (:data:`stability.linear.neutral_compiled.CONSTRAINT_CODES`).
-    index : int
-    a : float
-    bound : (str, float) or None
-        ``(parameter, value)`` if ``g`` is a simple bound on one parameter.
-    """
-
-    name: str
-    kind: str
-    code: str
-    index: int
-    a: float
-    bound: tuple[str, float] | None
-
-
-def _constraints(
-    model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]], margin: float
-) -> list[Constraint]:
-    """The bounds of the domain table that involve a free parameter (and only parameters of the
-    model), strict ones as ``>= margin``, then the requested ranges."""
-    f = set(free)
-    given = set(model.parameters)
-    out: list[Constraint] = []
-    for k, b in enumerate(DOMAIN):
-        if set(b.involves) <= given and set(b.involves) & f:
-            a = margin if b.strict else 0.0
-            simple = (b.involves[0], a) if len(b.involves) == 1 else None
-            out.append(Constraint(b.text, "domain_edge", "domain", k, a, simple))
-    for name, (lo, hi) in ranges.items():
-        j = PARAMETERS.index(name)
-        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", "lower", j, lo, (name, lo)))
-        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", "upper", j, hi, (name, hi)))
-    return out
-
-
-def _constraint_values(constraints: Sequence[Constraint], p: Mapping[str, float]) -> np.ndarray:
-    """The constraints at the parameters ``p`` (Python floats): the same source and operations
-    as the compiled :func:`stability.linear.neutral_compiled.constraint_values`."""
-    point = [p.get(name, 0.0) for name in PARAMETERS]
-    sides = domain_sides(*point, 0.0)
-    out = np.empty(len(constraints))
-    for k, c in enumerate(constraints):
-        if c.code == "domain":
-            out[k] = (sides[2 * c.index + 1] - sides[2 * c.index]) - c.a
-        elif c.code == "lower":
-            out[k] = point[c.index] - c.a
-        else:
-            out[k] = c.a - point[c.index]
-    return out
 
 
 class NeutralProblem:
@@ -263,7 +191,7 @@ class NeutralProblem:
         Offer the engine the compiled step (:mod:`stability.linear.neutral_compiled`) and evaluate
         constraints and test functions by their compiled twins, where they exist (the sliding
         model's crossing form); False keeps everything in Python. None (default): the rule of
-        :mod:`stability.execution`, :func:`compiled_step_in_memory`.
+        :func:`stability.execution.use_compiled`.
 
     Attributes
     ----------
@@ -289,48 +217,39 @@ class NeutralProblem:
         self.model = get_model(model)
         self.names = (x, y)
         self.fixed = dict(fixed)
-        if compiled is None:
-            compiled = compiled_step_in_memory(self.model)
+        if compiled is None:  # the rule of stability.execution: the compiled step if in memory (or forced)
+            step = sys.modules.get(__package__ + ".neutral_compiled")  # nothing imported to find out
+            f, d = (getattr(self.model, k, None) for k in ("point_coefficients", "point_derivatives"))
+            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(self.model.n_modes)))
+            compiled = execution.use_compiled(known or None, 1)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
-        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
         self.constraint_kinds = tuple(c.kind for c in self._constraints)
         self.constraint_bounds = tuple(c.bound for c in self._constraints)
+        self._point, self._free, self._rows = constraint_arguments(self)
         self._compiled = None
         kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
-            from .neutral_compiled import CONSTRAINT_CODES, step_kernel
+            from .neutral_compiled import step_kernel
 
+            codes, index, a = self._rows
             self._compiled = (
                 *self.cond._compiled,
-                np.array([CONSTRAINT_CODES[c.code] for c in self._constraints], dtype=np.int64),
-                np.array([c.index for c in self._constraints], dtype=np.int64),
-                np.array([c.a for c in self._constraints], dtype=float),
+                np.array(codes, dtype=np.int64),
+                np.array(index, dtype=np.int64),
+                np.array(a, dtype=float),
             )
             self._step_kernel = step_kernel(kernels)
             self._rj_kernel = kernels.residual_and_jacobian
             self._growth_kernel = kernels.other_growth
             self.compiled_step = self._compiled_step
 
-    def _compiled_step(
-        self,
-        guess: np.ndarray,
-        t_plane: np.ndarray,
-        anchor: np.ndarray,
-        h: float,
-        scale: np.ndarray,
-        tol: float,
-        max_iter: int,
-        max_move: float,
-    ) -> StepResult:
-        """The engine's hook (:mod:`continuation.problem`): the step of
-        :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
+    def _compiled_step(self, *corrector: Any) -> tuple:
+        """The engine's hook (:mod:`continuation.problem`, which lists the arguments): the step
+        of :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
-        return StepResult(
-            *self._step_kernel(
-                *self._compiled, guess, t_plane, anchor, float(h), scale, float(tol), int(max_iter), float(max_move)
-            )
-        )
+        return self._step_kernel(*self._compiled, *corrector)
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         """All parameters at ``u``."""
@@ -341,8 +260,7 @@ class NeutralProblem:
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), False)[0]
+            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), False)[0]
         return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian=False)[0]
 
     def jacobian(self, u: np.ndarray) -> np.ndarray:
@@ -352,15 +270,13 @@ class NeutralProblem:
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``F`` and ``dF/du`` from one evaluation of the coefficients (compiled twin if any)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._rj_kernel(point, free, ncoef, np.asarray(u, dtype=float), True)
+            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), True)
         return self.cond.residual_and_jacobian(u[:2], float(u[2]))
 
     def other_growth(self, u: np.ndarray) -> float:
         """Largest growth rate among the other modes (-inf if there is none)."""
         if self._compiled is not None:
-            point, free, ncoef = self._compiled[:3]
-            return self._growth_kernel(point, free, ncoef, np.asarray(u, dtype=float))
+            return self._growth_kernel(*self._compiled[:3], np.asarray(u, dtype=float))
         r = self.cond.other_modes_list(u[:2], float(u[2]))
         return max(z.real for z in r) if r else -np.inf
 
@@ -394,14 +310,11 @@ class NeutralProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
         if self._compiled is not None:
-            from .neutral_compiled import constraint_values
+            from .neutral_compiled import constraint_values as compiled
 
             point, free, _, codes, index, a = self._compiled
-            return constraint_values(point, free, np.asarray(u, dtype=float), codes, index, a)
-        p = self.fixed.copy()
-        p[self.names[0]] = float(u[0])
-        p[self.names[1]] = float(u[1])
-        return _constraint_values(self._constraints, p)
+            return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
+        return constraint_values(self._point, self._free, [float(u[0]), float(u[1])], *self._rows)
 
 
 class FoldProblem:
@@ -433,10 +346,11 @@ class FoldProblem:
         self.fixed = dict(fixed)
         self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
         self.other = 1 if fold_in == x else 0
-        self._constraints = _constraints(self.model, self.names, ranges, edge_margin)
+        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in self._constraints)
         self.constraint_kinds = tuple(c.kind for c in self._constraints)
         self.constraint_bounds = tuple(c.bound for c in self._constraints)
+        self._point, self._free, self._rows = constraint_arguments(self)
 
     def params(self, u: np.ndarray) -> dict[str, float]:
         p = dict(self.fixed)
@@ -452,35 +366,12 @@ class FoldProblem:
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside."""
-        return _constraint_values(self._constraints, self.params(u))
-
-
-def compiled_step_in_memory(model: str | LinearModel) -> bool:
-    """The execution of the neutral curves' corrector by the rule of :mod:`stability.execution`:
-    ``TIPPE_KERNEL`` if it forces one, else whether this process has compiled the model's
-    compiled step (:mod:`stability.linear.neutral_compiled`) already; nothing is compiled or
-    imported to find out."""
-    chosen = execution.engine()
-    if chosen != "auto":
-        return chosen == "compiled"
-    compiled = sys.modules.get(__package__ + ".neutral_compiled")
-    m = get_model(model)
-    formula = getattr(m, "point_coefficients", None)
-    derivative = getattr(m, "point_derivatives", None)
-    if compiled is None or formula is None or derivative is None:
-        return False
-    return bool(compiled.step_kernel(crossing_kernels(formula, derivative, int(m.n_modes))).signatures)
+        return constraint_values(self._point, self._free, [float(u[0]), float(u[1]), float(u[3])], *self._rows)
 
 
 # ------------------------------------------------------------------------------------------
 # start points
 # ------------------------------------------------------------------------------------------
-def _grid_params(x: str, y: str, fixed: Mapping[str, float], X: np.ndarray, Y: np.ndarray) -> dict:
-    p: dict[str, Any] = dict(fixed)
-    p[x], p[y] = X, Y
-    return p
-
-
 class _Guesses(NamedTuple):
     """Start guesses from the coarse atlas, and how many of its points decided every sign."""
 
@@ -506,7 +397,7 @@ def _atlas_guesses(
     # the compiled kernel (stability.linear.kernel), its serial loop: on a thread pool, start-up
     # and contention on a busy machine cost more than the 625 points of a coarse grid (serial,
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
-    gr = growth(model, parallel=False, **_grid_params(x, y, fixed, X, Y))
+    gr = growth(model, parallel=False, **{**fixed, x: X, y: Y})
     sp = gr.spectrum
     if not sp.inside.any():
         raise _outside_domain_error(model, x, y, ranges, fixed)
@@ -680,6 +571,55 @@ def _check_points(
     return near[:, 0].real, radius
 
 
+#: the attributes of the dataset's variables other than the traced parameters
+_DATA_ATTRS: dict[str, dict[str, str]] = {
+    "frequency": {
+        "long_name": "neutral frequency",
+        "units": "Omega",
+        "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
+    },
+    "branch": {"long_name": "branch", "comment": "index of the traced branch"},
+    "kind": {
+        "long_name": "kind of point",
+        "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint",
+    },
+    "detail": {"long_name": "what the special point is"},
+    "residual": {
+        "long_name": "backward error",
+        "units": "1",
+        "comment": "relative backward error of the neutral condition: the larger of its two rows, "
+        "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
+        "(stability.linear.neutrality)",
+    },
+    "leading": {
+        "long_name": "traced mode leads",
+        "comment": "the traced mode is the leading one (the curve is the stability boundary)",
+    },
+    "check_growth_rate": {
+        "long_name": "check: LAPACK Re s",
+        "units": "Omega",
+        "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
+        "(zero within check_bound on a neutral curve)",
+    },
+    "check_bound": {
+        "long_name": "check error bound",
+        "units": "Omega",
+        "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
+        "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
+        "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
+    },
+}
+
+
+def _tangent_attrs(n: str) -> dict[str, str]:
+    return {
+        "long_name": f"tangent, {n}",
+        "units": "1",
+        "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+        "branch; continuation.dense interpolates with it)",
+    }
+
+
 def _dataset(
     model: LinearModel,
     names: Sequence[str],
@@ -694,95 +634,29 @@ def _dataset(
     attrs: Mapping[str, Any],
     tangents: np.ndarray | None = None,
 ) -> xr.Dataset:
-    data: dict[str, Any] = {}
     cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
-    for n, c in zip(names, cols):
-        data[n] = ("point", c, _var_attrs(n))
+    data: dict[str, Any] = {n: (c, _var_attrs(n)) for n, c in zip(names, cols)}
     w = points[:, freq_col] if len(points) else np.zeros(0)
-    data["frequency"] = (
-        "point",
-        w,
-        {
-            "long_name": "neutral frequency",
-            "units": "Omega",
-            "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
-        },
-    )
+    data["frequency"] = (w, _DATA_ATTRS["frequency"])
     if tangents is None:
         tangents = np.zeros_like(points)
     order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (
-            "point",
-            tangents[:, i],
-            {
-                "long_name": f"tangent, {n}",
-                "units": "1",
-                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-                "branch; continuation.dense interpolates with it)",
-            },
-        )
-    data["branch"] = (
-        "point",
-        branch.astype(np.int32),
-        {"long_name": "branch", "comment": "index of the traced branch"},
-    )
-    data["kind"] = (
-        "point",
-        np.array(kinds, dtype=object),
-        {
-            "long_name": "kind of point",
-            "comment": "regular, fold, zero_frequency, double_crossing, domain_edge or endpoint",
-        },
-    )
-    data["detail"] = ("point", np.array(details, dtype=object), {"long_name": "what the special point is"})
-    data["residual"] = (
-        "point",
-        residual,
-        {
-            "long_name": "backward error",
-            "units": "1",
-            "comment": "relative backward error of the neutral condition: the larger of its two rows, "
-            "|Re p(i w)| / S_a and |Im p(i w)| / S_b, each scaled by its own size "
-            "(stability.linear.neutrality)",
-        },
-    )
+        data[f"tangent_{n}"] = (tangents[:, i], _tangent_attrs(n))
+    data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
+    data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
+    data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
+    data["residual"] = (residual, _DATA_ATTRS["residual"])
     if leading is not None:
-        data["leading"] = (
-            "point",
-            leading,
-            {
-                "long_name": "traced mode leads",
-                "comment": "the traced mode is the leading one (the curve is the stability boundary)",
-            },
-        )
+        data["leading"] = (leading, _DATA_ATTRS["leading"])
     if len(points):
         check, check_bound = _check_points(model, names, fixed, cols, w)
     else:
         check, check_bound = np.zeros(0), np.zeros(0)
-    data["check_growth_rate"] = (
-        "point",
-        check,
-        {
-            "long_name": "check: LAPACK Re s",
-            "units": "Omega",
-            "comment": "independent check: Re s of the LAPACK eigenvalue of M^-1 A nearest to i w "
-            "(zero within check_bound on a neutral curve)",
-        },
-    )
-    data["check_bound"] = (
-        "point",
-        check_bound,
-        {
-            "long_name": "check error bound",
-            "units": "Omega",
-            "comment": "error bound of check_growth_rate: max(8 n u ||M^-1 A||, inclusion radius of the "
-            "eigenvalue as a root of the model's polynomial); absolute, so ~u |largest mode| "
-            "(about 1e-8 at a collision, ~1e-4 at alpha_v = 1e12)",
-        },
-    )
+    data["check_growth_rate"] = (check, _DATA_ATTRS["check_growth_rate"])
+    data["check_bound"] = (check_bound, _DATA_ATTRS["check_bound"])
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
-    variables = {k: xr.Variable(("point",), np.asarray(v[1]), v[2], fastpath=True) for k, v in data.items()}
+    variables = {k: xr.Variable(("point",), np.asarray(v[0]), dict(v[1]), fastpath=True) for k, v in data.items()}
     ds_attrs = {
         "Conventions": "CF-1.10",
         "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
@@ -884,7 +758,7 @@ def neutral_curve(
         Use the compiled corrector of :mod:`stability.linear.neutral_compiled` where there is one
         (the sliding model's crossing form; numba, compiled on first use and cached on disk);
         False forces the engine's Python path. The two give the same points to rounding. None
-        (default): the rule of :mod:`stability.execution` (:func:`compiled_step_in_memory`: the
+        (default): the rule of :mod:`stability.execution` (:func:`~stability.execution.use_compiled`: the
         compiled corrector only if this process has compiled it already, unless
         ``TIPPE_KERNEL`` says otherwise); a first curve in a fresh process then compiles nothing.
 
@@ -971,7 +845,7 @@ def neutral_curve(
                 raise InputError(f"start point {s!r}: a start point has 2 or 3 values (x, y[, w])")
             s = [as_scalar("start", v) for v in s]
             if len(s) == 2:
-                p = _grid_params(x, y, fixed, np.asarray(s[0]), np.asarray(s[1]))
+                p = {**fixed, x: np.asarray(s[0]), y: np.asarray(s[1])}
                 sp0 = spectrum(m, mask_unphysical=True, **p)
                 ev = sp0.eigenvalues
                 if np.isnan(ev).all():
@@ -984,11 +858,18 @@ def neutral_curve(
                     if np.isfinite(dist).any()
                     else float(ev[np.nanargmin(np.abs(ev.real))].imag)
                 )
-            if len(s) != 3:
-                raise InputError(f"a start point has 2 or 3 values (x, y[, w]), got {s}")
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
+    options = TraceOptions(
+        fold_components=(0, 1),
+        scale=scale,
+        step=step,
+        max_step=max_step,
+        max_angle=max_angle,
+        max_points=max_points,
+        tol=tol,
+    )
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
@@ -1019,19 +900,7 @@ def neutral_curve(
             )
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(
-            prob,
-            u,
-            TraceOptions(
-                fold_components=(0, 1),
-                scale=scale,
-                step=step,
-                max_step=max_step,
-                max_angle=max_angle,
-                max_points=max_points,
-                tol=tol,
-            ),
-        )
+        br = trace_both(prob, u, options)
         branches.append(br)
         if start is None:
             skip[i + 1 :] |= _near_branch_mask(G[i + 1 :], br.points / scale, cell)
@@ -1153,19 +1022,8 @@ def fold_curve(
     fx = dict(fixed)
     z0 = fx.pop(z)
     full = _fixed_parameters(m, (x, y), {**fx, z: z0})
-    plane = neutral_curve(
-        m,
-        x,
-        y,
-        fixed=full,
-        x_range=x_range,
-        y_range=y_range,
-        step=step,
-        max_step=max_step,
-        max_angle=max_angle,
-        max_points=max_points,
-        edge_margin=edge_margin,
-    )
+    trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
+    plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
     ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full), z: _check_range(z, z_range, full)}
     scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0, ranges[z][1] - ranges[z][0]])
@@ -1173,26 +1031,14 @@ def fold_curve(
     lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
     samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
     prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
+    options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []
     for k in range(folds.sizes["point"]):
         u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
-        br = trace_both(
-            prob,
-            u,
-            TraceOptions(
-                fold_components=(3,),
-                scale=scale,
-                step=step,
-                max_step=max_step,
-                max_angle=max_angle,
-                max_points=max_points,
-                tol=tol,
-            ),
-        )
-        branches.append(br)
+        branches.append(trace_both(prob, u, options))
     # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
     return _assemble(
         m,

@@ -93,7 +93,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from stability.jit import OPTIONS, Twin, njit, register_jitable
+from stability.jit import OPTIONS, cached, njit, register_jitable
 from stability.jit import active as jit_active
 
 from .. import execution
@@ -108,7 +108,6 @@ __all__ = [
     "conservative_phase",
     "crossing_kernels",
     "other_roots",
-    "twins_in_memory",
 ]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
@@ -196,9 +195,9 @@ def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.nda
     return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
-def _other_roots_loop(c, ncoef, w, multiplicity, out):
+def _other_roots_many(c, ncoef, w, multiplicity, out):
     """:func:`_other_roots_into` over a batch: ``c`` (m, >= ncoef; not changed), ``w`` (m,),
-    ``out`` (m, k) with ``k`` the quotient's degree (<= 2). Compiled (:data:`_other_roots_many`);
+    ``out`` (m, k) with ``k`` the quotient's degree (<= 2). Compiled (:func:`stability.jit.cached`);
     the interpreted execution runs :func:`_other_roots_into` on lists row by row
     (:meth:`NeutralCondition.other_modes_many`)."""
     work = np.empty(ncoef, dtype=np.complex128)
@@ -209,10 +208,6 @@ def _other_roots_loop(c, ncoef, w, multiplicity, out):
         k = _other_roots_into(work, ncoef, w[i], multiplicity, roots)
         for j in range(k):
             out[i, j] = roots[j]
-
-
-#: :func:`_other_roots_loop`, compiled on first call (``.python``: the source)
-_other_roots_many = Twin(_other_roots_loop, **_JIT)
 
 
 class NeutralCondition:
@@ -235,7 +230,7 @@ class NeutralCondition:
         compiled twins where they exist (a model with ``point_coefficients`` and
         ``point_derivatives``, crossing form); False keeps numpy and the interpreter. None
         (default): the rule of :mod:`stability.execution` (``TIPPE_KERNEL``; by default only if
-        this process has compiled them already, :func:`twins_in_memory`).
+        this process has compiled them already, :func:`stability.execution.use_compiled`).
 
     Attributes
     ----------
@@ -307,8 +302,10 @@ class NeutralCondition:
             # those the model does not take
             self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
             self._free_index = [PARAMETERS.index(name) for name in self.free]
-            if compiled is None and self.form == "crossing":
-                compiled = twins_in_memory(self.model)
+            if compiled is None and self.form == "crossing":  # in memory (numba active) or forced
+                degree = int(self.model.n_modes)
+                kernels = crossing_kernels(self._formula, self._derivative, degree) if jit_active() else None
+                compiled = execution.use_compiled(kernels and kernels.residuals, 1)
             if self.form == "crossing" and compiled and self._ncoef - 2 <= 2:
                 self.kernels = crossing_kernels(self._formula, self._derivative, int(self.model.n_modes))
                 self._compiled = (
@@ -526,8 +523,7 @@ class NeutralCondition:
             return np.zeros((len(w), 0), dtype=complex)
         if m <= 2 and execution.use_compiled(_other_roots_many, len(w)):
             out = np.empty((len(w), m), dtype=np.complex128)
-            execution.before_compiled_call(_other_roots_many, 2.0)
-            _other_roots_many(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
+            cached(_other_roots_many)(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
         if m <= 2:  # interpreted: the same source on Python numbers, row by row
             rows = []
@@ -579,22 +575,6 @@ class CrossingKernels(NamedTuple):
     other_growth: Callable[..., float]
     residuals: Callable[..., np.ndarray]
     other_modes_many: Callable[..., np.ndarray]
-
-
-def twins_in_memory(model: str | LinearModel) -> bool:
-    """The execution of the neutral condition's compiled twins by the rule of
-    :mod:`stability.execution`: ``TIPPE_KERNEL`` if it forces one, else whether this process
-    has compiled them already (numba imported and the model's :func:`crossing_kernels` compiled;
-    nothing is compiled or imported to find out)."""
-    chosen = execution.engine()
-    if chosen != "auto":
-        return chosen == "compiled"
-    m = get_model(model)
-    formula = getattr(m, "point_coefficients", None)
-    derivative = getattr(m, "point_derivatives", None)
-    if formula is None or derivative is None or not jit_active():
-        return False
-    return bool(crossing_kernels(formula, derivative, int(m.n_modes)).residuals.signatures)
 
 
 @functools.cache

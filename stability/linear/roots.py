@@ -83,7 +83,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stability.jit import OPTIONS, Twin, overload, register_jitable
+from stability.jit import OPTIONS, cached, overload, register_jitable
 
 from .. import execution
 from ..errors import InputError
@@ -252,21 +252,16 @@ def quadratic_roots(a, b, k):
     return 0j, 0j, False
 
 
-def _quadratic_roots_loop(a, b, k, roots, exact):
+def quadratic_roots_many(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
-    ``exact`` (m, 2); lists or arrays (:class:`stability.jit.Twin`)."""
+    ``exact`` (m, 2); lists (interpreted) or arrays (compiled by :func:`stability.jit.cached`;
+    :func:`_quadratic` chooses by :func:`stability.execution.use_compiled`)."""
     for i in range(len(a)):
         r1, r2, ex = quadratic_roots(a[i], b[i], k[i])
         roots[i][0] = r1
         roots[i][1] = r2
         exact[i][0] = ex
         exact[i][1] = ex
-
-
-#: the loop of the batched numpy callers: ``quadratic_roots_many(a, b, k, roots, exact)`` runs it
-#: compiled, ``quadratic_roots_many.python`` interpreted (:func:`_quadratic` chooses by
-#: :func:`stability.execution.use_compiled`)
-quadratic_roots_many = Twin(_quadratic_roots_loop, cache=True)
 
 
 @register_jitable
@@ -448,7 +443,7 @@ def axis_growth(c, ncoef, w):
     return est, eg + ecorr + third + u * abs(est)
 
 
-def _axis_growth_loop(c, w, g, eg):
+def axis_growth_many(c, w, g, eg):
     """:func:`axis_growth` over a batch: ``c`` (m, n+1) complex, ``w`` (m, k) into ``g``, ``eg``
     (m, k) (the roots' frequencies ``w[i, j]`` of polynomial ``c[i]``; NaN gives ``e_g = inf``)."""
     ncoef = c.shape[1]
@@ -460,11 +455,6 @@ def _axis_growth_loop(c, w, g, eg):
             else:
                 g[i, j] = np.nan
                 eg[i, j] = np.inf
-
-
-#: :func:`axis_growth` over a batch, interpreted or compiled (a :class:`stability.jit.Twin`;
-#: the caller picks by :func:`stability.execution.use_compiled`)
-axis_growth_many = Twin(_axis_growth_loop, cache=True)
 
 
 def horner(c: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -575,8 +565,7 @@ def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if execution.use_compiled(quadratic_roots_many, m):
         roots = np.empty((m, 2), dtype=complex)
         exact = np.empty((m, 2), dtype=bool)
-        execution.before_compiled_call(quadratic_roots_many, 2.0)
-        quadratic_roots_many(
+        cached(quadratic_roots_many)(
             np.ascontiguousarray(flat[:, 0]),
             np.ascontiguousarray(flat[:, 1]),
             np.ascontiguousarray(flat[:, 2]),
@@ -586,7 +575,7 @@ def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     else:
         out = [[0j, 0j] for _ in range(m)]
         ex = [[False, False] for _ in range(m)]
-        quadratic_roots_many.python(flat[:, 0].tolist(), flat[:, 1].tolist(), flat[:, 2].tolist(), out, ex)
+        quadratic_roots_many(flat[:, 0].tolist(), flat[:, 1].tolist(), flat[:, 2].tolist(), out, ex)
         roots = np.array(out, dtype=complex).reshape(m, 2)
         exact = np.array(ex, dtype=bool).reshape(m, 2)
     shape = c.shape[:-1] + (2,)

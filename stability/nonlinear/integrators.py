@@ -32,15 +32,16 @@ long one runs compiled (:mod:`stability.execution`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-from stability.jit import njit, python
+from stability.jit import njit
 
 from ..errors import InputError
-from ..execution import before_compiled_call, engine, pick
+from ..execution import engine, pick
 from ..interrupts import checkpoint
 from .kernels import CODES
 from .kernels import normal_force_lower_bound as _normal_force_lower_bound
@@ -668,17 +669,11 @@ def _slices(compiled: Callable, span: float) -> Callable[[int], tuple[Callable, 
     then the compiled one (with the compile notice); every slice interpreted if
     ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so a switch changes
     nothing but the execution."""
-    first = [pick(compiled, 0) if span <= INTERPRETED_SPAN else compiled]
+    small = [span <= INTERPRETED_SPAN]
 
     def next_slice(budget: int) -> tuple[Callable, int]:
-        if engine() == "python":  # forced (TIPPE_KERNEL=python): the whole run interpreted
-            return python(compiled), budget
-        if first:
-            fn = first.pop()
-            if fn is not compiled:
-                return fn, min(budget, INTERPRETED_STEPS)
-        before_compiled_call(compiled, COMPILE_SECONDS)
-        return compiled, budget
+        fn = pick(compiled, 0 if small and small.pop() else math.inf)  # the first slice by size, then compiled
+        return fn, (min(budget, INTERPRETED_STEPS) if fn is not compiled and engine() != "python" else budget)
 
     return next_slice
 
@@ -870,11 +865,6 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
         y[j:] = np.nan
         event = (t_ev, y_ev, j)
     return y, int(solver.nfev), steps, 0, status, event
-
-
-#: the first compiled run's compilation (the integrator and the three models' right-hand sides),
-#: measured ~18 s of CPU on a cold numba cache (docs/performance.md, "The first call")
-COMPILE_SECONDS = 20.0
 
 
 def integrate(

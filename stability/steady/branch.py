@@ -46,7 +46,6 @@ import numpy as np
 import xarray as xr
 
 from continuation.engine import TraceOptions, trace
-from continuation.problem import StepResult
 from stability.jit import python
 
 from ..errors import ConvergenceError, DomainError
@@ -175,40 +174,22 @@ class SteadyBranchProblem:
         j, g = self.jellett(u)
         return np.array([(g[0] * t[0] + g[1] * t[1]) / abs(j)])
 
-    def compiled_step(
-        self,
-        guess: np.ndarray,
-        t_plane: np.ndarray,
-        anchor: np.ndarray,
-        h: float,
-        scale: np.ndarray,
-        tol: float,
-        max_iter: int,
-        max_move: float,
-    ) -> StepResult:
-        """The engine's hook (:mod:`continuation.problem`): :func:`stability.steady.branch_compiled.step`
-        (corrector, tangent, constraints and test function in one compiled call)."""
-        return StepResult(
-            *self.kernels.step(
-                self.p,
-                self.q,
-                self.params["sigma"],
-                self.params["mu"],
-                self.code,
-                self.n_full,
-                self.degenerate,
-                self.weight,
-                float(self.jellett_max),
-                float(self.jellett_min),
-                guess,
-                t_plane,
-                anchor,
-                float(h),
-                scale,
-                float(tol),
-                int(max_iter),
-                float(max_move),
-            )
+    def compiled_step(self, *corrector: Any) -> tuple:
+        """The engine's hook (:mod:`continuation.problem`, which lists the arguments):
+        :func:`stability.steady.branch_compiled.step` (corrector, tangent, constraints and test
+        function in one compiled call)."""
+        return self.kernels.step(
+            self.p,
+            self.q,
+            self.params["sigma"],
+            self.params["mu"],
+            self.code,
+            self.n_full,
+            self.degenerate,
+            self.weight,
+            float(self.jellett_max),
+            float(self.jellett_min),
+            *corrector,
         )
 
     # --- start points -------------------------------------------------------------------

@@ -12,7 +12,7 @@
 * :func:`jellett`: Jellett's integral of the state and its gradient
   (:func:`stability.nonlinear.quantities.jellett_integral`, complex steps);
 * :func:`step`: the engine's ``compiled_step`` hook (:mod:`continuation.problem`): the
-  corrector (Newton on the bordered system, polished), the tangent and ``det [J; t^T]``, and the
+  corrector (:func:`continuation.compiled.newton`), the tangent and ``det [J; t^T]``, and the
   problem's constraints and test function at the new point, with the building blocks of
   :mod:`continuation.compiled` (the same operations as the engine's Python path).
 """
@@ -23,8 +23,8 @@ import math
 
 import numpy as np
 
-from continuation.compiled import CONVERGED, FAILED, POLISH, corrector_update, norm, tangent_det
-from stability.jit import OPTIONS, njit
+from continuation.compiled import newton, norm, tangent_det
+from stability.jit import OPTIONS, njit, register_jitable
 
 from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import jellett_integral
@@ -136,12 +136,10 @@ def constraint_values(theta, jel, jmax, jmin, degenerate):
     return g
 
 
-@njit(**_JIT)
-def _scaled(v, scale, p, q, code, n_full, weight, F, J):
-    r, rt, rl = residual_and_jacobian(v[0] * scale[0], v[1] * scale[1], p, q, code, n_full, weight)
-    F[0] = r
-    J[0, 0] = rt * scale[0]
-    J[0, 1] = rl * scale[1]
+@register_jitable
+def _residual_into(p, q, code, n_full, weight, u, jacobian, F, J):
+    """The residual in the form of :func:`continuation.compiled.newton` (``J`` always filled)."""
+    F[0], J[0, 0], J[0, 1] = residual_and_jacobian(u[0], u[1], p, q, code, n_full, weight)
 
 
 @njit(**_JIT)
@@ -168,42 +166,9 @@ def step(
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
     constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
-    F = np.empty(1)
-    J = np.empty((1, 2))
-    F2 = np.empty(1)
-    J2 = np.empty((1, 2))
-    v = guess.copy()
-    n_rj = 0
-    n_r = 0
-    ok = False
-    iterations = max_iter
-    for it in range(max_iter + 1):
-        _scaled(v, scale, p, q, code, n_full, weight, F, J)
-        n_rj += 1
-        action, dv, fn = corrector_update(it, max_iter, v, guess, F, J, t_plane, anchor, h, tol, True)
-        if action == FAILED:
-            iterations = it
-            break
-        if action == CONVERGED:
-            ok = True
-            iterations = it
-            break
-        if action == POLISH:
-            ok = True
-            iterations = it
-            if math.isfinite(norm(dv)):
-                v2 = v + dv
-                _scaled(v2, scale, p, q, code, n_full, weight, F2, J2)
-                n_r += 1
-                if norm(F2) < fn:
-                    v = v2
-                    iterations = it + 1
-            break
-        v = v + dv
-        moved = norm(v - guess)
-        if not math.isfinite(moved) or moved > max_move:
-            iterations = it + 1
-            break
+    ok, iterations, n_rj, n_r, v, J = newton(
+        _residual_into, (p, q, code, n_full, weight), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
+    )
     tests = np.empty(1)
     if not ok:
         return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests

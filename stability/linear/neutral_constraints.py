@@ -1,0 +1,109 @@
+"""The constraints of a neutral-curve problem: the physical domain's bounds and the ranges.
+
+The bounds of the table :data:`stability.parameters.DOMAIN` that involve a traced parameter
+(through :func:`~stability.parameters.domain_sides`) and the ends of the requested ranges, as
+rows ``(code, index, a)`` (:class:`Constraint`, :func:`constraints_of`), evaluated by one
+function, :func:`constraint_values`, in both executions: interpreted on Python floats by
+:class:`stability.linear.neutral_curves.NeutralProblem` and ``FoldProblem``, compiled in the
+continuation's compiled step (:mod:`stability.linear.neutral_compiled`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..jit import register_jitable
+from ..models import LinearModel
+from ..parameters import DOMAIN, PARAMETERS, domain_sides
+
+__all__ = ["CONSTRAINT_CODES", "Constraint", "constraint_arguments", "constraint_values", "constraints_of"]
+
+
+class Constraint(NamedTuple):
+    """One constraint ``g(params) >= 0`` of a neutral-curve problem.
+
+    Attributes
+    ----------
+    name : str
+        The bound as text (a domain bound's text of :data:`stability.parameters.DOMAIN`, or the
+        end of a requested range); the ``detail`` of a point where a branch ends on it.
+    kind : str
+        ``"domain_edge"`` or ``"endpoint"``.
+    code : str
+        ``"domain"`` (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus
+        ``a``), ``"lower"`` (``p[index] - a``) or ``"upper"`` (``a - p[index]``); ``index`` of a
+        parameter counts in :data:`stability.parameters.PARAMETERS`
+        (:data:`CONSTRAINT_CODES`).
+    index : int
+    a : float
+    bound : (str, float) or None
+        ``(parameter, value)`` if ``g`` is a simple bound on one parameter.
+    """
+
+    name: str
+    kind: str
+    code: str
+    index: int
+    a: float
+    bound: tuple[str, float] | None
+
+
+def constraints_of(
+    model: LinearModel, free: Sequence[str], ranges: Mapping[str, tuple[float, float]], margin: float
+) -> list[Constraint]:
+    """The bounds of the domain table that involve a free parameter (and only parameters of the
+    model), strict ones as ``>= margin``, then the requested ranges."""
+    f = set(free)
+    given = set(model.parameters)
+    out: list[Constraint] = []
+    for k, b in enumerate(DOMAIN):
+        if set(b.involves) <= given and set(b.involves) & f:
+            a = margin if b.strict else 0.0
+            simple = (b.involves[0], a) if len(b.involves) == 1 else None
+            out.append(Constraint(b.text, "domain_edge", "domain", k, a, simple))
+    for name, (lo, hi) in ranges.items():
+        j = PARAMETERS.index(name)
+        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", "lower", j, lo, (name, lo)))
+        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", "upper", j, hi, (name, hi)))
+    return out
+
+
+#: kinds of constraint rows ``(code, index, a)`` for :func:`constraint_values` (parameters
+#: ``p`` indexed as ``(q, fr_inv, sigma, alpha_v, mu)``): the margin ``upper - lower`` of row
+#: ``index`` of :data:`stability.parameters.DOMAIN` minus ``a``, ``p[index] - a``, ``a - p[index]``
+CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
+
+
+def constraint_arguments(problem: Any) -> tuple[list[float], list[int], tuple[list, list, list]]:
+    """``(point, free_index, (codes, index, a))`` of :func:`constraint_values` for a problem
+    (its ``fixed`` parameters, traced ``names`` and ``_constraints``), as Python lists."""
+    cs = problem._constraints
+    rows = ([CONSTRAINT_CODES[c.code] for c in cs], [c.index for c in cs], [c.a for c in cs])
+    return [problem.fixed.get(n, 0.0) for n in PARAMETERS], [PARAMETERS.index(n) for n in problem.names], rows
+
+
+@register_jitable
+def constraint_values(point: Any, free_index: Any, u: Any, codes: Any, index: Any, a: Any) -> np.ndarray:
+    """The problem's constraints at ``u`` (the free parameters' values), ``>= 0`` inside, from
+    rows ``(code, index, a)`` (:data:`CONSTRAINT_CODES`); ``point``: the five parameters
+    ``(q, fr_inv, sigma, alpha_v, mu)``, free ones at ``free_index``. One source for both
+    executions: Python lists of floats on the Python path, arrays inside the compiled step
+    (:mod:`stability.linear.neutral_compiled`)."""
+    p = point.copy()
+    for i in range(len(free_index)):
+        p[free_index[i]] = u[i]
+    sides = domain_sides(p[0], p[1], p[2], p[3], p[4], 0.0)
+    out = np.empty(len(codes))
+    for k in range(len(codes)):
+        c = codes[k]
+        j = index[k]
+        if c == 0:
+            out[k] = (sides[2 * j + 1] - sides[2 * j]) - a[k]
+        elif c == 1:
+            out[k] = p[j] - a[k]
+        else:
+            out[k] = a[k] - p[j]
+    return out
