@@ -48,6 +48,10 @@ thousand points). The two give the same bits (tests/test_kernel.py). Per point:
    ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
    Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
    benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
+   The model loops take two points per iteration and form Cardano's estimates of both
+   (:func:`_estimates`, :func:`_solve_pair`) before finishing either: each is one long chain
+   of dependent operations, and two side by side overlap in the processor (~6 % per point;
+   the same arithmetic, the same bits).
 5. *Error bound*, the one of :mod:`stability.linear.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
    ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
    and ``p''`` evaluated at the final roots.
@@ -275,10 +279,28 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     return r - step, _mod2(step) - 1e-16 * _mod2(r)
 
 
+#: what :func:`_estimates` gives where the cubic path is not taken
+_NO_ESTIMATES = (0j, 0j, 0j)
+
+
 @register_jitable
-def _cubic(c3, c2, c1, c0, polish):
-    """Three roots of a cubic with ``c0 != 0`` (module docstring, step 4)."""
-    r0, r1, r2 = _cardano(c3, c2, c1, c0)
+def _estimates(c3, c2, c1, c0, deg):
+    """Cardano's estimates (:func:`_cardano`) of a polynomial of :func:`_solve` where it takes
+    the cubic path (``deg = 3``, ``c0 != 0``), else :data:`_NO_ESTIMATES`. Formed apart from
+    :func:`_solve` so that a loop can form those of two points before finishing either: the
+    estimates are one long chain of dependent square roots, divisions and a cube root, and two
+    independent chains side by side overlap in the processor (the same arithmetic, the same
+    bits; docs/performance.md)."""
+    if deg == 3 and c0 != 0:
+        return _cardano(c3, c2, c1, c0)
+    return _NO_ESTIMATES
+
+
+@register_jitable
+def _cubic(c3, c2, c1, c0, polish, estimates):
+    """Three roots of a cubic with ``c0 != 0`` from Cardano's ``estimates`` (module docstring,
+    step 4)."""
+    r0, r1, r2 = estimates
     sweeps = polish
     n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
     if min(n0, n1, n2) < 1e-8 * max(n0, n1, n2):
@@ -348,9 +370,10 @@ def _before(a, b):
 
 
 @register_jitable
-def _solve(c3, c2, c1, c0, deg, polish):
+def _solve(c3, c2, c1, c0, deg, polish, estimates):
     """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
-    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
+    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted;
+    ``estimates`` those of :func:`_estimates` for the same arguments."""
     if deg == 2:
         c3, c2, c1, c0 = 0j, c3, c2, c1
     nz = 0
@@ -374,7 +397,7 @@ def _solve(c3, c2, c1, c0, deg, polish):
     x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
     e0 = e1 = e2 = 0.0
     if m == 3:
-        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish)
+        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish, estimates)
         x0 = x1 = x2 = False
     elif m == 2:
         r0, r1, ex = quadratic_roots(d2, d1, d0)
@@ -529,9 +552,10 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
             continue
         ci = c[i]
         if n == 3:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
+            est = _estimates(ci[0], ci[1], ci[2], ci[3], 3)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish, est)
         elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish, _NO_ESTIMATES)
         else:
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
         stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
@@ -541,10 +565,22 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
 
 
 @register_jitable
-def _solve_parts(parts, polish):
+def _parts_estimates(parts, ok):
+    """:func:`_estimates` of :func:`_solve_parts`'s ``parts`` where ``ok`` (the point is computed),
+    else :data:`_NO_ESTIMATES`."""
+    if ok and len(parts) == 8:
+        return _estimates(
+            complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), complex(parts[6], parts[7]), 3
+        )
+    return _NO_ESTIMATES
+
+
+@register_jitable
+def _solve_parts(parts, polish, estimates):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
-    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
+    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time);
+    ``estimates`` those of :func:`_parts_estimates`."""
     if len(parts) == 8:
         return _solve(
             complex(parts[0], parts[1]),
@@ -553,10 +589,17 @@ def _solve_parts(parts, polish):
             complex(parts[6], parts[7]),
             3,
             polish,
+            estimates,
         )
     if len(parts) == 6:
         return _solve(
-            complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), 0j, 2, polish
+            complex(parts[0], parts[1]),
+            complex(parts[2], parts[3]),
+            complex(parts[4], parts[5]),
+            0j,
+            2,
+            polish,
+            _NO_ESTIMATES,
         )
     return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
 
@@ -574,6 +617,34 @@ def _complex_parts(parts):
     if len(parts) == 6:
         return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
     return complex(parts[0], parts[1]), complex(parts[2], parts[3])
+
+
+#: what a model's loop holds for a point it does not solve (:func:`_solve`'s layout)
+_UNSOLVED = (0j, 0j, 0j, 0.0, 0.0, 0.0, False, False, False)
+
+
+@register_jitable
+def _solve_pair(parts_i, ok_i, parts_k, ok_k, polish):
+    """:func:`_solve_parts` of two points (where ``ok``; else :data:`_UNSOLVED`), Cardano's
+    estimates of both formed before either is finished (:func:`_estimates`)."""
+    est_i = _parts_estimates(parts_i, ok_i)
+    est_k = _parts_estimates(parts_k, ok_k)
+    sol_i = _solve_parts(parts_i, polish, est_i) if ok_i else _UNSOLVED
+    sol_k = _solve_parts(parts_k, polish, est_k) if ok_k else _UNSOLVED
+    return sol_i, sol_k
+
+
+@register_jitable(inline="always")
+def _finish(n, ok, sol, ev, bd, neutral, stab, i):
+    """Point ``i`` of a model's loop: its roots ``sol`` (:func:`_solve`'s layout) sorted and
+    decided (:func:`_decide`) where ``ok``, else NaN and flag -1. Compiled into the loop's
+    body, once (two inlined copies of :func:`_decide` in one loop make numba warn)."""
+    r0, r1, r2, e0, e1, e2, x0, x1, x2 = sol
+    if ok:
+        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
+    else:
+        _mark_outside(n, ev[i], bd[i], neutral[i])
+        stab[i] = _OUTSIDE
 
 
 class _Kernels(NamedTuple):
@@ -612,28 +683,36 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         are read into a tuple once: an array handed to the domain test per point is passed and
         reference-counted at every call.)"""
         lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
-        for i in prange(len(stab)):
+        last = len(stab) - 1
+        # two points per iteration (i and k, the same point at the end of an odd count), Cardano's
+        # estimates of both formed before either is finished (_estimates)
+        for j in prange((last + 2) // 2):
+            i = 2 * j
+            k = min(i + 1, last)
             qi, mi = q[i * sq], mu[i * sm]
             fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-            code = _domain_code(qi, fi, si, ai, mi, lt, applies)
-            where[i] = code
-            if code != _INSIDE:
-                _mark_outside(n, ev[i], bd[i], neutral[i])
-                stab[i] = _OUTSIDE
-                continue
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(formula(qi, fi, si, ai, mi), polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
+            qk, mk = q[k * sq], mu[k * sm]
+            fk, sk, ak = fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa]
+            code_i = _domain_code(qi, fi, si, ai, mi, lt, applies)
+            code_k = _domain_code(qk, fk, sk, ak, mk, lt, applies)
+            where[i] = code_i
+            where[k] = code_k
+            ok_i, ok_k = code_i == _INSIDE, code_k == _INSIDE
+            sol_i, sol_k = _solve_pair(formula(qi, fi, si, ai, mi), ok_i, formula(qk, fk, sk, ak, mk), ok_k, polish)
+            for t in range(2):
+                _finish(n, ok_i if t == 0 else ok_k, sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
-        for i in prange(len(stab)):
-            if not inside[i]:
-                _mark_outside(n, ev[i], bd[i], neutral[i])
-                stab[i] = _OUTSIDE
-                continue
-            parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_parts(parts, polish)
-            stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
+        last = len(stab) - 1
+        for j in prange((last + 2) // 2):  # two points per iteration, as in ``checked``
+            i = 2 * j
+            k = min(i + 1, last)
+            parts_i = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+            parts_k = formula(q[k * sq], fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa], mu[k * sm])
+            sol_i, sol_k = _solve_pair(parts_i, inside[i], parts_k, inside[k], polish)
+            for t in range(2):
+                _finish(n, inside[i + t * (k - i)], sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""

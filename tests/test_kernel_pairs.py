@@ -1,0 +1,75 @@
+"""The kernel's model loops take two points per iteration (Cardano's estimates of both formed
+before either is finished, ``stability.linear.kernel._solve_pair``): every point must still get
+its own roots, whatever its neighbour in the pair is (outside the domain, a structural zero,
+the odd point at the end, which is paired with itself).
+
+Reference: the eigenvalues of ``M^-1 A`` of eq. (11) by mpmath at 50 digits
+(``conftest.mp_sliding_eigenvalues``, the matrices typed from the paper). Tolerance: 1e-13
+relative to the root, as tests/test_kernel.py asks of well-conditioned roots (these random
+points are), or the kernel's own stated error bound where that is larger; a structural zero
+(``fr_inv = 0``) must be exactly 0 with bound 0; a point outside the domain NaN with flag -1.
+"""
+
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+import pytest
+from conftest import mp_sliding_eigenvalues, random_domain_points
+
+import stability
+from stability.linear import kernel
+
+NAMES = ("q", "fr_inv", "sigma", "alpha_v", "mu")
+RTOL = 1e-13
+
+
+def _mixed(n: int) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """``n`` random domain points; every third one moved outside the domain (``q`` with
+    ``mu q^2 > 1``), every fourth given ``fr_inv = 0`` (a structural zero root)."""
+    p = random_domain_points(n, seed=40 + n)
+    inside = np.ones(n, dtype=bool)
+    inside[1::3] = False
+    p["q"][~inside] = 2.0 / np.sqrt(p["mu"][~inside])
+    p["fr_inv"][::4] = 0.0
+    return p, inside
+
+
+def _check(p: dict[str, np.ndarray], inside: np.ndarray, ev: np.ndarray, bd: np.ndarray, st: np.ndarray) -> None:
+    for j in range(inside.size):
+        if not inside[j]:
+            assert st[j] == -1 and np.isnan(ev[j]).all(), j
+            continue
+        left = list(range(ev.shape[1]))
+        for r in mp_sliding_eigenvalues(*(p[k][j] for k in NAMES)):
+            d = [float(abs(mp.mpc(complex(ev[j, k])) - r)) for k in left]
+            k = left.pop(int(np.argmin(d)))
+            if abs(r) < mp.mpf(10) ** -40:  # the structural zero (mpmath: ~1e-50)
+                assert ev[j, k] == 0 and bd[j, k] == 0, (j, ev[j])
+                continue
+            err = float(abs(mp.mpc(complex(ev[j, k])) - r))
+            assert err <= max(RTOL * float(abs(r)), bd[j, k]), (j, k, err, bd[j, k])
+
+
+@pytest.mark.parametrize("engine", ["python", "compiled"])
+@pytest.mark.parametrize("n", [1, 2, 3, 7])
+def test_pairs_with_outside_and_structural_neighbours(n, engine):
+    """The fused path (domain test in the loop) and the masked path, odd and even counts."""
+    p, inside = _mixed(n)
+    checked = kernel.checked_sliding_spectrum(*(p[k] for k in NAMES), engine=engine, parallel=False)
+    np.testing.assert_array_equal(checked.inside, inside)
+    _check(p, inside, *checked.spectrum[:2], checked.spectrum.stability)
+    masked = kernel.sliding_spectrum(*(p[k] for k in NAMES), inside=inside, engine=engine, parallel=False)
+    _check(p, inside, masked.eigenvalues, masked.error_bound, masked.stability)
+
+
+def test_parallel_pairs_odd_count():
+    """The parallel loop on an odd count above the serial threshold (pairs split among the
+    threads, the last point paired with itself): the public path, against mpmath on a subset
+    that includes the last point."""
+    n = kernel.SERIAL_BELOW + 13
+    p, inside = _mixed(n)
+    sp = stability.spectrum("sliding", mask_unphysical=True, **p)
+    pick = np.r_[0:9, n - 9 : n]
+    sub = {k: p[k][pick] for k in NAMES}
+    _check(sub, inside[pick], sp.eigenvalues[pick], sp.error_bound[pick], sp.stability[pick])
