@@ -570,7 +570,11 @@ def _parts_estimates(parts, ok):
     else :data:`_NO_ESTIMATES`."""
     if ok and len(parts) == 8:
         return _estimates(
-            complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5]), complex(parts[6], parts[7]), 3
+            complex(parts[0], parts[1]),
+            complex(parts[2], parts[3]),
+            complex(parts[4], parts[5]),
+            complex(parts[6], parts[7]),
+            3,
         )
     return _NO_ESTIMATES
 

@@ -75,6 +75,7 @@ def check_tolerances(**tolerances: Any) -> tuple[float, ...]:
     :data:`TOLERANCE_RANGE` (the message names the one outside), as floats in that order."""
     return tuple(check_interval(name, value, *TOLERANCE_RANGE) for name, value in tolerances.items())
 
+
 # Dormand-Prince 5(4): nodes, stages, 5th-order weights, error weights, dense-output matrix
 _C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
 _A = np.array(
