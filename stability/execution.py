@@ -35,7 +35,7 @@ import os
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 from . import jit
@@ -113,7 +113,7 @@ def _notice(fn: Any, parallel: bool) -> None:
         print(NOTICE.format(seconds=COMPILE_SECONDS), file=sys.stderr, flush=True)  # noqa: T201 (the compile notice)
 
 
-def pick(fn: Any, npts: float, value: str | None = None, **rule: Any) -> Callable:
+def pick(fn: Any, npts: float, value: str | None = None, **rule: Any) -> Any:
     """The code :func:`use_compiled` chooses for ``fn`` (``rule``: its ``below`` and
     ``parallel``): compiled (``fn`` itself if a numba dispatcher, else
     :func:`stability.jit.cached`), or its interpreted execution (:func:`stability.jit.python`)."""

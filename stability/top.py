@@ -429,7 +429,8 @@ class Top:
                     f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
                     "preset or the top's SI data, not both"
                 )
-            return getattr(cls, preset)(**extra)
+            top: Top = getattr(cls, preset)(**extra)
+            return top
         missing = [k for k in required if k not in data]
         if missing:
             raise InputError(

@@ -157,7 +157,9 @@ def var_attrs(long_name: str, units: str = UNITLESS, *, short: str | None = None
     return {"long_name": short, "units": units, "comment": comment, **extra}
 
 
-def variable(dims: Any, values: Any, long_name: str, units: str = UNITLESS, **kw: Any) -> tuple:
+def variable(
+    dims: Any, values: Any, long_name: str, units: str = UNITLESS, **kw: Any
+) -> tuple[Any, Any, dict[str, Any]]:
     """A dataset variable ``(dims, values, attrs)`` with the CF attributes of :func:`var_attrs`."""
     return (dims, values, var_attrs(long_name, units, **kw))
 
