@@ -1,8 +1,12 @@
 """Compiled dispatch from a model code to its right-hand side.
 
-numba cannot cache a compiled function that receives another compiled function as an
-argument, so the integrators take an integer model code instead and call :func:`rhs`, which
-branches to the model's kernel (the branch costs nothing next to the 6 x 6 solve).
+numba cannot cache a compiled function that receives another compiled *dispatcher* as an
+argument (the dispatcher pickles with an identity that changes in every process), so the
+integrators take an integer model code instead and call :func:`rhs`, which branches to the
+model's kernel (the branch costs nothing next to the 6 x 6 solve). A ``register_jitable``
+function can be passed and cached (:func:`continuation.compiled.newton` takes the problem's
+residual that way); the model code is kept because the right-hand sides are dispatchers that
+Python callers use too.
 """
 
 from __future__ import annotations
