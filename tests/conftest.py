@@ -159,6 +159,27 @@ def kept_chunks(out) -> int:
         return int((z["chunk_digest"].values != 0).sum())
 
 
+def interrupt_resumable_run(ds: xr.Dataset, out, monkeypatch, kept: int) -> None:
+    """Run ``write_atlas(ds, out, resume=True)`` and press Ctrl-C once ``kept`` chunks are done:
+    the resumable store then holds those chunks and no output file exists (both asserted)."""
+    import stability.grids.chunked as dist
+
+    real = dist._compute_block
+    calls = []
+
+    def compute(spec, sl):
+        if len(calls) == kept:
+            raise KeyboardInterrupt
+        calls.append(sl)
+        return real(spec, sl)
+
+    monkeypatch.setattr(dist, "_compute_block", compute)
+    with pytest.raises(KeyboardInterrupt):
+        dist.write_atlas(ds, out, resume=True)
+    monkeypatch.undo()
+    assert not out.exists() and kept_chunks(out) == kept
+
+
 def assert_resume_completes(ds: xr.Dataset, out, reference: xr.Dataset, monkeypatch, missing: int) -> None:
     """After a faulted run: ``write_atlas(ds, out, resume=True)`` computes only the ``missing``
     chunks not kept in the parts store, removes the store and writes an atlas identical to

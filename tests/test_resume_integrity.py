@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_same_atlas, kept_chunks
+from conftest import assert_same_atlas, interrupt_resumable_run
 
 import stability
 import stability.grids.chunked as dist
@@ -38,20 +38,7 @@ def reference():
 
 def _interrupted_store(out, monkeypatch, kept: int = 5) -> None:
     """A store of an interrupted run: ``kept`` chunks finished, then Ctrl-C."""
-    real = dist._compute_block
-    calls = []
-
-    def compute(spec, sl):
-        if len(calls) == kept:
-            raise KeyboardInterrupt
-        calls.append(sl)
-        return real(spec, sl)
-
-    monkeypatch.setattr(dist, "_compute_block", compute)
-    with pytest.raises(KeyboardInterrupt):
-        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
-    monkeypatch.undo()
-    assert kept_chunks(out) == kept
+    interrupt_resumable_run(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, monkeypatch, kept)
 
 
 def _chunk_file(store, variable: str, key: str) -> Path:

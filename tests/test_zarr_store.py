@@ -16,7 +16,7 @@ import tracemalloc
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_same_atlas
+from conftest import assert_same_atlas, interrupt_resumable_run
 
 import stability
 import stability.grids.chunked as dist
@@ -44,27 +44,8 @@ def _bitwise(read: xr.Dataset, reference: xr.Dataset) -> None:
         assert read[v].values.tobytes() == reference[v].values.tobytes(), v
 
 
-def _kept(store) -> int:
-    """Chunks the store of an interrupted run marks complete (a non-zero digest)."""
-    with xr.open_dataset(store, engine="zarr", consolidated=False, chunks=None) as z:
-        return int((z["chunk_digest"].values != 0).sum())
-
-
 def _interrupted(out, monkeypatch, kept: int) -> None:
-    real = dist._compute_block
-    calls = []
-
-    def compute(spec, sl):
-        if len(calls) == kept:
-            raise KeyboardInterrupt
-        calls.append(sl)
-        return real(spec, sl)
-
-    monkeypatch.setattr(dist, "_compute_block", compute)
-    with pytest.raises(KeyboardInterrupt):
-        write_atlas(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, resume=True)
-    monkeypatch.undo()
-    assert not out.exists() and _kept(parts_directory(out)) == kept
+    interrupt_resumable_run(stability.atlas("sliding", chunks=CHUNKS, **GRID), out, monkeypatch, kept)
 
 
 def test_store_in_this_process_equals_in_memory(tmp_path, reference):
