@@ -42,48 +42,37 @@ from typing import Any
 from .errors import OutputWriteError, ParameterTypeError, TippeError
 from .interrupts import Temporary, checkpoint
 
-__all__ = [
-    "TEMPORARY_PREFIX",
-    "atomic_output",
-    "check_free_space",
-    "check_output_directory",
-    "check_output_path",
-    "close_quietly",
-    "commit",
-    "describe_kind",
-    "format_bytes",
-    "temporary_name",
-    "write_error",
-]
+__all__ = ["TEMPORARY_PREFIX", "atomic_output", "check_free_space", "check_output_directory", "check_output_path"]
+__all__ += ["close_quietly", "commit", "describe_kind", "format_bytes", "temporary_name", "write_error"]
 
 #: temporary files are ``<dir>/.tippe-tmp-XXXXXXXX-<name>``: hidden, unique, and ending with the
 #: target's name, so that their suffix is the target's (a figure's format is read off it)
 TEMPORARY_PREFIX = ".tippe-tmp-"
 
 #: error numbers that mean "the file could not be written" -> the cause as the message says it
-_WRITE_ERRNOS: dict[int, str] = {
+_CAUSES: dict[int, str] = {
     errno.ENOSPC: "no space left on the file system holding {dir}",
     errno.EFBIG: "file size limit reached",
     errno.EROFS: "the file system holding {dir} is read-only",
     errno.EIO: "input/output error on the file system holding {dir}",
+    getattr(errno, "EDQUOT", -1): "disk quota exceeded on the file system holding {dir}",
 }
-if hasattr(errno, "EDQUOT"):
-    _WRITE_ERRNOS[errno.EDQUOT] = "disk quota exceeded on the file system holding {dir}"
 
-_KINDS = (
-    (stat.S_ISREG, "a regular file"),
-    (stat.S_ISDIR, "a directory"),
-    (stat.S_ISLNK, "a symbolic link"),
-    (stat.S_ISFIFO, "a FIFO (named pipe)"),
-    (stat.S_ISCHR, "a character device"),
-    (stat.S_ISBLK, "a block device"),
-    (stat.S_ISSOCK, "a socket"),
-)
+#: a file's type (``stat.S_IFMT``) in words
+_KINDS = {
+    stat.S_IFREG: "a regular file",
+    stat.S_IFDIR: "a directory",
+    stat.S_IFLNK: "a symbolic link",
+    stat.S_IFIFO: "a FIFO (named pipe)",
+    stat.S_IFCHR: "a character device",
+    stat.S_IFBLK: "a block device",
+    stat.S_IFSOCK: "a socket",
+}
 
 
 def describe_kind(mode: int) -> str:
     """What a file mode is, in words: ``"a FIFO (named pipe)"``, ``"a symbolic link"``, ..."""
-    return next((text for test, text in _KINDS if test(mode)), "not a regular file")
+    return _KINDS.get(stat.S_IFMT(mode), "not a regular file")
 
 
 def format_bytes(n: float) -> str:
@@ -94,25 +83,18 @@ def format_bytes(n: float) -> str:
     return f"{float(n):.0f} bytes"
 
 
-def _lstat(p: Path) -> os.stat_result | None:
+def _refuse_existing(p: Path, overwrite: bool) -> None:
+    """Refuse an existing ``p`` unless it is a regular file and ``overwrite`` (a link is not followed)."""
     try:
-        return os.lstat(p)
+        mode = os.lstat(p).st_mode
     except (FileNotFoundError, NotADirectoryError):  # the directory's problem is reported next
-        return None
-
-
-def _directory(p: Path) -> Path:
-    return p.parent if str(p.parent) else Path(".")
-
-
-def _refuse_existing(p: Path, st: os.stat_result, overwrite: bool) -> None:
-    """Refuse an existing ``p`` unless it is a regular file and ``overwrite``."""
-    if stat.S_ISDIR(st.st_mode):
+        return
+    if stat.S_ISDIR(mode):
         raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
-    if not stat.S_ISREG(st.st_mode):
+    if not stat.S_ISREG(mode):
         raise FileExistsError(
-            f"output path {str(p)!r} is {describe_kind(st.st_mode)}; only a regular file can be "
-            "replaced: remove it or choose another name"
+            f"output path {str(p)!r} is {describe_kind(mode)}; only a regular file can be replaced: remove it or "
+            "choose another name"
         )
     if not overwrite:
         raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
@@ -135,18 +117,16 @@ def check_output_path(path: str | os.PathLike, *, overwrite: bool = False) -> Pa
         raise ParameterTypeError(f"output path = {path!r} must be a file name (a non-empty str or path-like)")
     if not isinstance(overwrite, bool):
         raise ParameterTypeError(f"overwrite = {overwrite!r} must be True or False")
-    p = Path(path)
-    st = _lstat(p)
-    if st is not None:
-        _refuse_existing(p, st, overwrite)
-    check_output_directory(p)
-    return p
+    _refuse_existing(Path(path), overwrite)
+    check_output_directory(path)
+    return Path(path)
 
 
 def check_output_directory(path: str | os.PathLike) -> None:
     """Fail early if the directory that is to hold ``path`` does not exist, is not a directory
-    or is not writable (a probe file is created and removed there); ``path`` itself is not
-    looked at (a Zarr store checks its own name).
+    or is not writable (a probe file is created and removed there: permission bits do not tell
+    everything, for root, read-only mounts, pseudo file systems); ``path`` itself is not looked
+    at (a Zarr store checks its own name).
 
     Raises
     ------
@@ -154,19 +134,15 @@ def check_output_directory(path: str | os.PathLike) -> None:
         Naming the directory and ``path``.
     """
     p = Path(path)
-    parent = _directory(p)
-    if not parent.exists():
-        raise FileNotFoundError(f"output directory {str(parent)!r} of {str(p)!r} does not exist")
-    if not parent.is_dir():
-        raise NotADirectoryError(f"output directory {str(parent)!r} of {str(p)!r} is not a directory")
-    # permission bits do not tell everything (root, read-only mounts, pseudo file systems):
-    # create and remove a probe file, which is what writing will need
+    where = f"output directory {str(p.parent)!r} of {str(p)!r}"
+    if not p.parent.exists():
+        raise FileNotFoundError(f"{where} does not exist")
+    if not p.parent.is_dir():
+        raise NotADirectoryError(f"{where} is not a directory")
     try:
         os.unlink(temporary_name(p))
     except OSError as exc:
-        raise PermissionError(
-            f"output directory {str(parent)!r} of {str(p)!r} is not writable ({exc.strerror})"
-        ) from None
+        raise PermissionError(f"{where} is not writable ({exc.strerror})") from None
 
 
 def _fsize_limit() -> int | None:
@@ -174,13 +150,14 @@ def _fsize_limit() -> int | None:
     try:
         import resource
 
-        soft, _ = resource.getrlimit(resource.RLIMIT_FSIZE)
+        soft = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
     except (ImportError, OSError, ValueError):
         return None
     return None if soft == resource.RLIM_INFINITY or soft < 0 else int(soft)
 
 
 def _free_space(d: Path) -> float | None:
+    """The space available to this user on the file system holding ``d`` (``statvfs``), or None."""
     try:
         vfs = os.statvfs(d)
     except (OSError, AttributeError):
@@ -198,22 +175,15 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
     OutputWriteError
         With ``errno`` ENOSPC or EFBIG, naming the file, the size and the limit.
     """
-    p, d = str(path), _directory(Path(path))
+    p, d = str(path), Path(path).parent
     free, limit = _free_space(d), _fsize_limit()
+    need = f"cannot write {p!r}: the output needs about {format_bytes(nbytes)}"
     if free is not None and nbytes > free:
-        raise OutputWriteError(
-            f"cannot write {p!r}: the output needs about {format_bytes(nbytes)} and the file "
-            f"system holding {str(d)!r} has {format_bytes(free)} free; nothing was written",
-            errno.ENOSPC,
-            p,
-        )
+        where = f"the file system holding {str(d)!r} has {format_bytes(free)} free"
+        raise OutputWriteError(f"{need} and {where}; nothing was written", errno.ENOSPC, p)
     if limit is not None and nbytes > limit:
-        raise OutputWriteError(
-            f"cannot write {p!r}: the output needs about {format_bytes(nbytes)}, above the file "
-            f"size limit (ulimit -f) of {limit} bytes; nothing was written",
-            errno.EFBIG,
-            p,
-        )
+        where = f"the file size limit (ulimit -f) of {limit} bytes"
+        raise OutputWriteError(f"{need}, above {where}; nothing was written", errno.EFBIG, p)
 
 
 # --- the commit --------------------------------------------------------------------------------
@@ -222,13 +192,16 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
 def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
     """Rename the complete temporary file ``tmp`` to ``target``: the last interruption point.
 
-    With ``overwrite=False`` the commit refuses an existing target atomically (``os.link``);
-    with ``overwrite=True`` it replaces only a regular file (``os.replace``).
+    With ``overwrite=False`` the commit refuses an existing target atomically (``os.link``, then
+    ``os.unlink`` of the temporary name); with ``overwrite=True`` it replaces only a regular
+    file (``os.replace``, after ``os.lstat`` again).
 
     Raises
     ------
     FileExistsError
         The target appeared meanwhile (another process), or is not a regular file.
+    OutputWriteError
+        The file system has no hard links (``overwrite=False`` cannot be kept there).
     KeyboardInterrupt
         A signal is pending (:func:`stability.interrupts.checkpoint`): nothing is committed.
     """
@@ -236,24 +209,22 @@ def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
     tmp.state = "committing"
     try:
         if overwrite:
-            st = _lstat(target)
-            if st is not None:
-                _refuse_existing(target, st, True)
+            _refuse_existing(target, True)
             os.replace(tmp.path, target)
         else:
             try:
                 os.link(tmp.path, target)
             except FileExistsError:
                 raise FileExistsError(
-                    f"output file {str(target)!r} was created by another process while this run was "
-                    "computing; nothing was written (pass overwrite=True to replace it)"
+                    f"output file {str(target)!r} was created by another process while this run was computing; "
+                    "nothing was written (pass overwrite=True to replace it)"
                 ) from None
             except OSError as exc:
                 if exc.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.ENOSYS):
                     raise
+                why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
                 raise OutputWriteError(
-                    f"cannot write {str(target)!r}: the file system holding it has no hard links, which "
-                    "the commit that never replaces a file needs; pass overwrite=True (nothing was written)",
+                    f"cannot write {str(target)!r}: the file system holding it {why} (nothing was written)",
                     exc.errno,
                     str(target),
                 ) from None
@@ -269,15 +240,10 @@ def temporary_name(target: Path, directory: bool = False) -> str:
     It gets the mode a new file (directory) gets under the process's umask, which the kernel
     applies (``os.umask`` is never called: it is process-wide)."""
     while True:
-        name = os.path.join(_directory(target), f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}-{target.name}")
-        try:
-            if directory:
-                os.mkdir(name, 0o777)
-            else:
-                os.close(os.open(name, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
+        name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}-{target.name}")
+        with contextlib.suppress(FileExistsError):  # pragma: no cover - 2**32 names
+            os.mkdir(name, 0o777) if directory else os.close(os.open(name, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
             return name
-        except FileExistsError:  # pragma: no cover - 2**32 names
-            continue
 
 
 @contextlib.contextmanager
@@ -323,28 +289,30 @@ def atomic_output(
 # --- translating write errors --------------------------------------------------------------------
 
 
-def _chain(exc: BaseException) -> Iterator[BaseException]:
-    seen = set()
-    e: BaseException | None = exc
-    while e is not None and id(e) not in seen:
-        seen.add(id(e))
-        yield e
-        e = e.__cause__ or e.__context__
+def _chain(exc: BaseException | None) -> list[BaseException]:
+    """``exc`` and the exceptions it was raised from or during."""
+    seen: list[BaseException] = []
+    while exc is not None and exc not in seen:
+        seen.append(exc)
+        exc = exc.__cause__ or exc.__context__
+    return seen
 
 
 def _is_library_write_error(exc: BaseException) -> bool:
     """netCDF4 and h5 report a failed write as a RuntimeError "NetCDF: ..." (no errno)."""
     text = str(exc)
-    return (type(exc) is RuntimeError and ("NetCDF" in text or "HDF" in text)) or type(exc).__name__ in (
-        "HDF5ExtError",
-        "NetCDF4Error",
-    )
+    library = type(exc) is RuntimeError and ("NetCDF" in text or "HDF" in text)
+    return library or type(exc).__name__ in ("HDF5ExtError", "NetCDF4Error")
 
 
 def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> OutputWriteError | None:
     """The :class:`~stability.errors.OutputWriteError` for a failure while writing ``target``,
     or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
     are passed on as they are).
+
+    A write failure is an ``OSError`` in the exception's chain with an error number of
+    :data:`_CAUSES` (its cause), or, without one, a netCDF/HDF5 library error or an ``OSError``
+    on the temporary file ``tmp``, whose probable cause is found now (:func:`_diagnose`).
 
     Parameters
     ----------
@@ -354,49 +322,39 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
     tmp : str, optional
         The temporary file being written (its size is compared with the file size limit).
     """
-    if isinstance(exc, (KeyboardInterrupt, SystemExit, GeneratorExit, OutputWriteError)):
-        return None
+    if not isinstance(exc, Exception) or isinstance(exc, OutputWriteError):
+        return None  # an interruption (KeyboardInterrupt, SystemExit, GeneratorExit), or translated
     if isinstance(exc, TippeError) and not isinstance(exc, OSError):
         return None
-    found = next((e for e in _chain(exc) if isinstance(e, OSError) and e.errno in _WRITE_ERRNOS), None)
-    library = any(_is_library_write_error(e) for e in _chain(exc))
-    own_file = (
-        isinstance(exc, OSError)
-        and exc.filename is not None
-        and tmp is not None
-        and os.path.abspath(str(exc.filename)) == os.path.abspath(tmp)
-    )
-    if found is None and not library and not own_file:
+    chain = _chain(exc)
+    code = next((e.errno for e in chain if isinstance(e, OSError) and e.errno in _CAUSES), None)
+    name = getattr(exc, "filename", None)
+    own_file = name is not None and tmp is not None and os.path.abspath(str(name)) == os.path.abspath(tmp)
+    if code is None and not own_file and not any(map(_is_library_write_error, chain)):
         return None
-    name = str(target)
-    d = str(_directory(Path(target)))
+    d, limit = Path(target).parent, _fsize_limit()
+    code = _diagnose(d, tmp, limit) if code is None else code
+    cause = _CAUSES.get(code, "the netCDF/HDF5 library reported an error").format(dir=repr(str(d)))
+    free = _free_space(d)
+    if code == errno.ENOSPC and free is not None:
+        cause += f" ({format_bytes(free)} free)"
+    elif code == errno.EFBIG and limit is not None:
+        cause = f"file size limit (ulimit -f) of {limit} bytes reached"
     detail = " ".join(str(exc).split())[:160]
-    limit = _fsize_limit()
-    if found is not None:
-        code = found.errno
-        cause = _WRITE_ERRNOS[code].format(dir=repr(d))
-        if code == errno.EFBIG and limit is not None:
-            cause = f"file size limit (ulimit -f) of {limit} bytes reached"
-    else:
-        code, cause = _diagnose(d, tmp, limit)
-    return OutputWriteError(f"cannot write {name!r}: {cause} ({detail}); nothing was written", code, name)
+    return OutputWriteError(f"cannot write {str(target)!r}: {cause} ({detail}); nothing was written", code, str(target))
 
 
-def _diagnose(directory: str, tmp: str | None, limit: int | None) -> tuple[int | None, str]:
-    """The probable cause of a write failure that carries no error number, found now."""
+def _diagnose(d: Path, tmp: str | None, limit: int | None) -> int | None:
+    """The probable cause (an error number) of a write failure that carries none, found now: a
+    read-only mount, less than 1 MB free, the temporary file within 1 MB of ``ulimit -f``."""
     with contextlib.suppress(OSError, AttributeError):
-        if os.statvfs(directory).f_flag & getattr(os, "ST_RDONLY", 1):
-            return errno.EROFS, f"the file system holding {directory!r} is read-only"
-    free = _free_space(Path(directory))
+        if os.statvfs(d).f_flag & os.ST_RDONLY:
+            return errno.EROFS
+    free = _free_space(d)
     if free is not None and free < 1_000_000:
-        return errno.ENOSPC, f"no space left on the file system holding {directory!r} ({format_bytes(free)} free)"
-    if limit is not None:
-        size = 0
-        with contextlib.suppress(OSError, TypeError):
-            size = os.path.getsize(tmp) if tmp else 0
-        if size + 1_000_000 >= limit:
-            return errno.EFBIG, f"file size limit (ulimit -f) of {limit} bytes reached"
-    return None, "the netCDF/HDF5 library reported an error"
+        return errno.ENOSPC
+    size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
+    return errno.EFBIG if limit is not None and size + 1_000_000 >= limit else None
 
 
 @contextlib.contextmanager

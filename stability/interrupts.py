@@ -38,53 +38,23 @@ import threading
 from collections.abc import Iterator
 from types import SimpleNamespace
 
-__all__ = [
-    "SIGNALS",
-    "Temporary",
-    "checkpoint",
-    "committed",
-    "deferred",
-    "hold_until_exit",
-    "install",
-    "label",
-    "mark_reported",
-    "received",
-    "set_kept",
-    "set_label",
-    "uninstall",
-]
+__all__ = ["SIGNALS", "Temporary", "checkpoint", "committed", "deferred", "hold_until_exit", "install", "label"]
+__all__ += ["mark_reported", "received", "set_kept", "set_label", "uninstall"]
 
 #: the signals the command line turns into a flag (SIGHUP where the platform has it)
 SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
-
 #: the module's state (one per process): the first signal received and not yet cleared; the mode
-#: ("cli", "library" or None: nothing installed) and its nesting; the handlers replaced; the
-#: program name and what an interrupted command keeps (chunks), for the emergency exit's line;
-#: whether the command line has printed its own line; the files being written, and those committed
-_state = SimpleNamespace(
-    pending=None,
-    mode=None,
-    depth=0,
-    previous={},
-    label="tippe",
-    kept="",
-    reported=False,
-    temporaries={},
-    committed=[],
-)
+#: ("cli", "library" or None: nothing installed) and the handlers it replaced; the program name and
+#: what an interrupted command keeps (chunks), for the emergency exit's line; whether the command
+#: line has printed its own line; the files being written (by id), and those committed
+_state = SimpleNamespace(pending=None, mode=None, previous={}, label="tippe", kept="", reported=False)
+_state.temporaries, _state.committed = {}, []
 
 
 def received() -> bool:
     """True if a signal was received (and not cleared)."""
     return _state.pending is not None
-
-
-def _name(signum: int | None) -> str:
-    try:
-        return signal.Signals(signum).name
-    except (ValueError, TypeError):
-        return f"signal {signum}"
 
 
 def checkpoint() -> None:
@@ -94,7 +64,7 @@ def checkpoint() -> None:
     attribute read.
     """
     if _state.pending is not None:
-        raise KeyboardInterrupt(f"{_name(_state.pending)} received")
+        raise KeyboardInterrupt(f"{signal.Signals(_state.pending).name} received")
 
 
 def _handler(signum: int, frame: object) -> None:
@@ -102,14 +72,28 @@ def _handler(signum: int, frame: object) -> None:
     if _state.pending is None:
         _state.pending = signum
         return
+    why = f"{signal.Signals(signum).name} received twice"
     if _state.mode == "cli":
-        _emergency_exit(f"{_name(signum)} received twice")
+        _emergency_exit(why)
     _restore()  # library: a second Ctrl-C interrupts at once, as Python's default does
-    raise KeyboardInterrupt(f"{_name(signum)} received twice")
+    raise KeyboardInterrupt(why)
 
 
-def _main_thread() -> bool:
-    return threading.current_thread() is threading.main_thread()
+def _take(mode: str, signals: tuple[int, ...]) -> bool:
+    """Make ``signals`` set the flag, in ``mode``; False outside the main thread (nothing done)."""
+    if threading.current_thread() is not threading.main_thread():
+        return False
+    _restore()
+    _state.mode, _state.previous = mode, {s: signal.signal(s, _handler) for s in signals}
+    return True
+
+
+def _restore() -> None:
+    """Put the previous handlers back; clear the flag."""
+    for s, h in _state.previous.items():
+        with contextlib.suppress(ValueError, OSError, TypeError):
+            signal.signal(s, h if h is not None else signal.SIG_DFL)
+    _state.previous, _state.mode, _state.pending = {}, None, None
 
 
 def install(label: str = "tippe") -> bool:
@@ -125,71 +109,36 @@ def install(label: str = "tippe") -> bool:
     bool
         False outside the main thread (nothing installed; handlers can only be set there).
     """
-    st = _state
-    st.label = label
-    if not _main_thread():
-        return False
-    if st.mode == "cli":
-        st.depth += 1
-        return True
-    _restore()
-    st.pending, st.kept, st.reported, st.committed = None, "", False, []
-    st.mode, st.depth = "cli", 1
-    st.previous = {s: signal.signal(s, _handler) for s in SIGNALS}
-    return True
+    _state.label, _state.kept, _state.reported, _state.committed = label, "", False, []
+    return _take("cli", SIGNALS)
 
 
 def uninstall() -> None:
     """Undo :func:`install` (a command line run as a library function, e.g. in tests)."""
     if _state.mode == "cli":
-        _state.depth -= 1
-        if _state.depth <= 0:
-            _restore()
-
-
-def _restore() -> None:
-    """Put the previous handlers back; clear the flag."""
-    st = _state
-    if st.mode is not None and _main_thread():
-        for s, h in st.previous.items():
-            with contextlib.suppress(ValueError, OSError, TypeError):
-                signal.signal(s, h if h is not None else signal.SIG_DFL)
-    st.previous, st.mode, st.depth, st.pending = {}, None, 0, None
+        _restore()
 
 
 @contextlib.contextmanager
 def deferred() -> Iterator[None]:
     """SIGINT as a flag for the duration of a library call (see the module docstring).
 
-    Inside :func:`install` (the command line) or outside the main thread, or when SIGINT has a
-    handler other than Python's default: nothing changes. Otherwise a SIGINT is recorded, raised
-    at the next :func:`checkpoint`, or at the exit of the block if none came; a second one raises
-    at once.
+    Inside :func:`install` (the command line) or another :func:`deferred`, outside the main
+    thread, or when SIGINT has a handler other than Python's default: nothing changes. Otherwise
+    a SIGINT is recorded, raised at the next :func:`checkpoint`, or at the exit of the block if
+    none came; a second one raises at once.
     """
-    st = _state
-    if (
-        st.mode == "cli"
-        or not _main_thread()
-        or (st.mode is None and signal.getsignal(signal.SIGINT) is not signal.default_int_handler)
-    ):
+    own = _state.mode is None and signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    if not (own and _take("library", (signal.SIGINT,))):
         yield
         return
-    if st.mode == "library":
-        st.depth += 1
-        try:
-            yield
-        finally:
-            st.depth -= 1
-        return
-    st.mode, st.depth, st.pending = "library", 1, None
-    st.previous = {signal.SIGINT: signal.signal(signal.SIGINT, _handler)}
     try:
         yield
-        signum = st.pending
+        signum = _state.pending
     finally:
         _restore()
     if signum is not None:
-        raise KeyboardInterrupt(f"{_name(signum)} received")
+        raise KeyboardInterrupt(f"{signal.Signals(signum).name} received")
 
 
 class Temporary:
@@ -244,7 +193,7 @@ def hold_until_exit() -> bool:
     143 and no line), and say whether one arrived since the command's last check (handled by
     the flag, or now pending behind the block) that its line has not reported yet."""
     arrived = _state.pending is not None
-    if hasattr(signal, "pthread_sigmask") and _main_thread():
+    if hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread():
         signal.pthread_sigmask(signal.SIG_BLOCK, set(SIGNALS))
         arrived = arrived or bool(signal.sigpending() & set(SIGNALS))
     return arrived and not _state.reported
@@ -252,30 +201,21 @@ def hold_until_exit() -> bool:
 
 def _emergency_exit(why: str) -> None:
     """Remove the incomplete temporary files, write one line, end the process with status 130."""
-    st = _state
-    written = list(st.committed)
-    for tmp in list(st.temporaries.values()):
-        if tmp.state == "committing" and tmp.target is not None:
-            # the commit links (or replaces) the temporary to its target: done if they are one file
-            with contextlib.suppress(OSError):
-                if not os.path.exists(tmp.path) or os.path.samefile(tmp.path, tmp.target):
-                    written.append(tmp.target)
-        with contextlib.suppress(OSError):
-            if os.path.isdir(tmp.path) and not os.path.islink(tmp.path):
-                shutil.rmtree(tmp.path, ignore_errors=True)  # a Zarr store being written
-            else:
-                os.unlink(tmp.path)
+    written = list(_state.committed)
+    for tmp in list(_state.temporaries.values()):
+        with contextlib.suppress(OSError, TypeError):  # a commit under way is done if the names are one file
+            if tmp.state == "committing" and (not os.path.exists(tmp.path) or os.path.samefile(tmp.path, tmp.target)):
+                written.append(tmp.target)
+        with contextlib.suppress(OSError):  # a Zarr store being written is a directory
+            shutil.rmtree(tmp.path, ignore_errors=True) if os.path.isdir(tmp.path) else os.unlink(tmp.path)
     mp = sys.modules.get("multiprocessing")  # a local dask cluster's workers: not orphaned
     for child in mp.active_children() if mp is not None else ():
         with contextlib.suppress(Exception):
             child.terminate()
-    if not st.reported:
-        what = (
-            "after " + ", ".join(map(repr, written)) + " was written (complete)"
-            if written
-            else "no output file was written"
-        )
-        kept = f"; {st.kept}" if st.kept and not written else ""
+    if not _state.reported:
+        names = ", ".join(map(repr, written))
+        what = f"after {names} was written (complete)" if written else "no output file was written"
+        kept = f"; {_state.kept}" if _state.kept and not written else ""
         with contextlib.suppress(OSError):
-            os.write(2, f"{st.label}: interrupted ({why}); {what}{kept}\n".encode(errors="replace"))
+            os.write(2, f"{_state.label}: interrupted ({why}); {what}{kept}\n".encode(errors="replace"))
     os._exit(130)

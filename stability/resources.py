@@ -27,23 +27,12 @@ from __future__ import annotations
 import os
 import re
 
+from .errors import InputError, ResourceError
 from .files import format_bytes
 
-__all__ = [
-    "ENV_LIMIT",
-    "HEADROOM",
-    "SIMULATE_BYTES_PER_TIME",
-    "atlas_bytes",
-    "atlas_file_bytes",
-    "check_class_atlas",
-    "check_memory",
-    "check_start_grid",
-    "check_threshold_samples",
-    "format_bytes",
-    "memory_limit",
-    "simulate_bytes",
-    "simulate_file_bytes",
-]
+__all__ = ["ENV_LIMIT", "HEADROOM", "SIMULATE_BYTES_PER_TIME", "atlas_bytes", "atlas_file_bytes", "check_class_atlas"]
+__all__ += ["check_memory", "check_start_grid", "check_threshold_samples", "format_bytes", "memory_limit"]
+__all__ += ["simulate_bytes", "simulate_file_bytes"]
 
 #: environment variable overriding the memory limit (bytes)
 ENV_LIMIT = "TIPPE_MEMORY_LIMIT"
@@ -76,18 +65,11 @@ _THRESHOLD_SAMPLE, _START_GRID_POINT, _CLASS_ATLAS_POINT = 1250.0, 340.0, 140.0
 def _env_limit() -> float | None:
     """``TIPPE_MEMORY_LIMIT`` in bytes (``2e9``, ``500M``, ``8G``, ``1GiB``), or None if unset."""
     text = os.environ.get(ENV_LIMIT, "").strip()
-    if not text:
-        return None
-    m = re.fullmatch(r"([0-9.e+]+)\s*([kmgt]?)(i?)b?", text.lower())
-    try:
-        value = float(m[1]) * (1024.0 if m[3] else 1000.0) ** ("kmgt".find(m[2]) + 1 if m[2] else 0) if m else 0.0
-    except ValueError:
-        value = 0.0
-    if not 0 < value < float("inf"):
-        from .errors import InputError
-
+    m = re.fullmatch(r"(\d+\.?\d*(?:e[+-]?\d+)?)\s*([kmgt]?)(i?)b?", text.lower())
+    value = float(m[1]) * (1024.0 if m[3] else 1000.0) ** " kmgt".index(m[2] or " ") if m else 0.0
+    if text and not 0 < value < float("inf"):
         raise InputError(f"{ENV_LIMIT} = {text!r} is not a memory size: give bytes > 0 (2e9, 500M, 8G)")
-    return value
+    return value if text else None
 
 
 def memory_limit() -> tuple[float, str]:
@@ -96,8 +78,8 @@ def memory_limit() -> tuple[float, str]:
     Returns
     -------
     (float, str)
-        ``TIPPE_MEMORY_LIMIT`` if set; else :data:`HEADROOM` x ``MemAvailable``, with a text
-        naming its source.
+        ``TIPPE_MEMORY_LIMIT`` if set; else :data:`HEADROOM` x ``MemAvailable`` (Linux), with a
+        text naming its source; else no limit.
     """
     env = _env_limit()
     if env is not None:
@@ -133,8 +115,6 @@ def check_memory(nbytes: float, *, what: str, parameter: str, way_out: str) -> N
     """
     limit, source = memory_limit()
     if nbytes > limit:
-        from .errors import ResourceError
-
         raise ResourceError(
             f"{what} would need about {format_bytes(nbytes)} of memory (set by {parameter}); about "
             f"{format_bytes(limit)} is available ({source}); {way_out}"
@@ -168,29 +148,20 @@ def atlas_bytes(n_modes: int, n_points: float, block_points: float, *, domain_ch
 def check_threshold_samples(samples: int) -> None:
     """Refuse a threshold search (``threshold``, ``thresholds``, ``critical_spin``) whose
     ``samples`` cannot fit in memory."""
-    check_memory(
-        _THRESHOLD_SAMPLE * float(samples),
-        what=f"a threshold search over {samples} samples",
-        parameter="samples",
-        way_out="use fewer samples (the default is 257; each crossing is refined between two samples)",
-    )
+    way_out = "use fewer samples (the default is 257; each crossing is refined between two samples)"
+    what = f"a threshold search over {samples} samples"
+    check_memory(_THRESHOLD_SAMPLE * float(samples), what=what, parameter="samples", way_out=way_out)
 
 
 def check_start_grid(nx: int, ny: int) -> None:
     """Refuse a neutral curve whose start grid ``nx x ny`` cannot fit in memory."""
-    check_memory(
-        _START_GRID_POINT * float(nx) * float(ny),
-        what=f"a start grid of {nx} x {ny} points",
-        parameter="grid",
-        way_out="use a coarser grid (the default is 25 x 25), or give start points",
-    )
+    way_out = "use a coarser grid (the default is 25 x 25), or give start points"
+    what = f"a start grid of {nx} x {ny} points"
+    check_memory(_START_GRID_POINT * float(nx) * float(ny), what=what, parameter="grid", way_out=way_out)
 
 
 def check_class_atlas(n_points: int) -> None:
     """Refuse a class atlas of ``n_points`` grid points that cannot fit in memory."""
-    check_memory(
-        _CLASS_ATLAS_POINT * float(n_points),
-        what=f"a class atlas of {n_points} grid points",
-        parameter="the grid's ranges",
-        way_out="use fewer points, or compute it in slices of q",
-    )
+    way_out = "use fewer points, or compute it in slices of q"
+    what, parameter = f"a class atlas of {n_points} grid points", "the grid's ranges"
+    check_memory(_CLASS_ATLAS_POINT * float(n_points), what=what, parameter=parameter, way_out=way_out)
