@@ -50,7 +50,7 @@ __all__ += ["close_quietly", "commit", "describe_kind", "format_bytes", "tempora
 TEMPORARY_PREFIX = ".tippe-tmp-"
 
 #: error numbers that mean "the file could not be written" -> the cause as the message says it
-_CAUSES: dict[int, str] = {
+_CAUSES: dict[int | None, str] = {
     errno.ENOSPC: "no space left on the file system holding {dir}",
     errno.EFBIG: "file size limit reached",
     errno.EROFS: "the file system holding {dir} is read-only",
@@ -58,21 +58,14 @@ _CAUSES: dict[int, str] = {
     getattr(errno, "EDQUOT", -1): "disk quota exceeded on the file system holding {dir}",
 }
 
-#: a file's type (``stat.S_IFMT``) in words
-_KINDS = {
-    stat.S_IFREG: "a regular file",
-    stat.S_IFDIR: "a directory",
-    stat.S_IFLNK: "a symbolic link",
-    stat.S_IFIFO: "a FIFO (named pipe)",
-    stat.S_IFCHR: "a character device",
-    stat.S_IFBLK: "a block device",
-    stat.S_IFSOCK: "a socket",
-}
+#: a file's type in words, by its letter in ``ls -l`` (:func:`stat.filemode`)
+_KINDS = {"-": "a regular file", "d": "a directory", "l": "a symbolic link", "p": "a FIFO (named pipe)"}
+_KINDS |= {"c": "a character device", "b": "a block device", "s": "a socket"}
 
 
 def describe_kind(mode: int) -> str:
     """What a file mode is, in words: ``"a FIFO (named pipe)"``, ``"a symbolic link"``, ..."""
-    return _KINDS.get(stat.S_IFMT(mode), "not a regular file")
+    return _KINDS.get(stat.filemode(mode)[0], "not a regular file")
 
 
 def format_bytes(n: float) -> str:

@@ -173,7 +173,7 @@ def set_label(label: str) -> None:
 
 def label() -> str:
     """The program name set by :func:`set_label`."""
-    return _state.label
+    return str(_state.label)
 
 
 def set_kept(text: str) -> None:
@@ -203,9 +203,10 @@ def _emergency_exit(why: str) -> None:
     """Remove the incomplete temporary files, write one line, end the process with status 130."""
     written = list(_state.committed)
     for tmp in list(_state.temporaries.values()):
-        with contextlib.suppress(OSError, TypeError):  # a commit under way is done if the names are one file
-            if tmp.state == "committing" and (not os.path.exists(tmp.path) or os.path.samefile(tmp.path, tmp.target)):
-                written.append(tmp.target)
+        target = tmp.target if tmp.state == "committing" else None  # a commit under way: done if one file
+        with contextlib.suppress(OSError):
+            if target is not None and (not os.path.exists(tmp.path) or os.path.samefile(tmp.path, target)):
+                written.append(target)
         with contextlib.suppress(OSError):  # a Zarr store being written is a directory
             shutil.rmtree(tmp.path, ignore_errors=True) if os.path.isdir(tmp.path) else os.unlink(tmp.path)
     mp = sys.modules.get("multiprocessing")  # a local dask cluster's workers: not orphaned
