@@ -85,10 +85,8 @@ def _refuse_existing(p: Path, overwrite: bool) -> None:
     if stat.S_ISDIR(mode):
         raise IsADirectoryError(f"output path {str(p)!r} is a directory; give a file name")
     if not stat.S_ISREG(mode):
-        raise FileExistsError(
-            f"output path {str(p)!r} is {describe_kind(mode)}; only a regular file can be replaced: remove it or "
-            "choose another name"
-        )
+        kind = f"{describe_kind(mode)}; only a regular file can be replaced: remove it or choose another name"
+        raise FileExistsError(f"output path {str(p)!r} is {kind}")
     if not overwrite:
         raise FileExistsError(f"output file {str(p)!r} exists; pass overwrite=True to replace it")
 
@@ -138,24 +136,19 @@ def check_output_directory(path: str | os.PathLike) -> None:
         raise PermissionError(f"{where} is not writable ({exc.strerror})") from None
 
 
-def _fsize_limit() -> int | None:
-    """The file size limit (``ulimit -f``, ``RLIMIT_FSIZE``) in bytes, or None."""
-    try:
+def _room(d: Path) -> tuple[float | None, int | None]:
+    """The space available to this user on the file system holding ``d`` (``statvfs``) and the
+    file size limit (``ulimit -f``, ``RLIMIT_FSIZE``), in bytes; None where unknown."""
+    free = limit = None
+    with contextlib.suppress(OSError, AttributeError):
+        vfs = os.statvfs(d)
+        free = float(vfs.f_bavail * vfs.f_frsize)
+    with contextlib.suppress(ImportError, OSError, ValueError):
         import resource
 
         soft = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
-    except (ImportError, OSError, ValueError):
-        return None
-    return None if soft == resource.RLIM_INFINITY or soft < 0 else int(soft)
-
-
-def _free_space(d: Path) -> float | None:
-    """The space available to this user on the file system holding ``d`` (``statvfs``), or None."""
-    try:
-        vfs = os.statvfs(d)
-    except (OSError, AttributeError):
-        return None
-    return float(vfs.f_bavail * vfs.f_frsize)
+        limit = None if soft == resource.RLIM_INFINITY or soft < 0 else int(soft)
+    return free, limit
 
 
 def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
@@ -169,7 +162,7 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
         With ``errno`` ENOSPC or EFBIG, naming the file, the size and the limit.
     """
     p, d = str(path), Path(path).parent
-    free, limit = _free_space(d), _fsize_limit()
+    free, limit = _room(d)
     need = f"cannot write {p!r}: the output needs about {format_bytes(nbytes)}"
     if free is not None and nbytes > free:
         where = f"the file system holding {str(d)!r} has {format_bytes(free)} free"
@@ -208,19 +201,14 @@ def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
             try:
                 os.link(tmp.path, target)
             except FileExistsError:
-                raise FileExistsError(
-                    f"output file {str(target)!r} was created by another process while this run was computing; "
-                    "nothing was written (pass overwrite=True to replace it)"
-                ) from None
+                taken = f"output file {str(target)!r} was created by another process while this run was computing"
+                raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
             except OSError as exc:
                 if exc.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.ENOSYS):
                     raise
                 why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
-                raise OutputWriteError(
-                    f"cannot write {str(target)!r}: the file system holding it {why} (nothing was written)",
-                    exc.errno,
-                    str(target),
-                ) from None
+                msg = f"cannot write {str(target)!r}: the file system holding it {why} (nothing was written)"
+                raise OutputWriteError(msg, exc.errno, str(target)) from None
             os.unlink(tmp.path)
     except BaseException:
         tmp.state = "writing"
@@ -325,10 +313,10 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
     own_file = name is not None and tmp is not None and os.path.abspath(str(name)) == os.path.abspath(tmp)
     if code is None and not own_file and not any(map(_is_library_write_error, chain)):
         return None
-    d, limit = Path(target).parent, _fsize_limit()
-    code = _diagnose(d, tmp, limit) if code is None else code
+    d = Path(target).parent
+    free, limit = _room(d)
+    code = _diagnose(d, tmp, free, limit) if code is None else code
     cause = _CAUSES.get(code, "the netCDF/HDF5 library reported an error").format(dir=repr(str(d)))
-    free = _free_space(d)
     if code == errno.ENOSPC and free is not None:
         cause += f" ({format_bytes(free)} free)"
     elif code == errno.EFBIG and limit is not None:
@@ -337,13 +325,12 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
     return OutputWriteError(f"cannot write {str(target)!r}: {cause} ({detail}); nothing was written", code, str(target))
 
 
-def _diagnose(d: Path, tmp: str | None, limit: int | None) -> int | None:
+def _diagnose(d: Path, tmp: str | None, free: float | None, limit: int | None) -> int | None:
     """The probable cause (an error number) of a write failure that carries none, found now: a
-    read-only mount, less than 1 MB free, the temporary file within 1 MB of ``ulimit -f``."""
+    read-only mount, less than 1 MB ``free``, the temporary file within 1 MB of the size ``limit``."""
     with contextlib.suppress(OSError, AttributeError):
         if os.statvfs(d).f_flag & os.ST_RDONLY:
             return errno.EROFS
-    free = _free_space(d)
     if free is not None and free < 1_000_000:
         return errno.ENOSPC
     size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
