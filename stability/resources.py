@@ -65,7 +65,7 @@ _THRESHOLD_SAMPLE, _START_GRID_POINT, _CLASS_ATLAS_POINT = 1250.0, 340.0, 140.0
 def _env_limit() -> float | None:
     """``TIPPE_MEMORY_LIMIT`` in bytes (``2e9``, ``500M``, ``8G``, ``1GiB``), or None if unset."""
     text = os.environ.get(ENV_LIMIT, "").strip()
-    m = re.fullmatch(r"(\d+\.?\d*(?:e[+-]?\d+)?)\s*([kmgt]?)(i?)b?", text.lower())
+    m = re.fullmatch(r"((?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?)\s*([kmgt]?)(i?)b?", text.lower())
     value = float(m[1]) * (1024.0 if m[3] else 1000.0) ** " kmgt".index(m[2] or " ") if m else 0.0
     if text and not 0 < value < float("inf"):
         raise InputError(f"{ENV_LIMIT} = {text!r} is not a memory size: give bytes > 0 (2e9, 500M, 8G)")
