@@ -21,9 +21,11 @@ from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
-__all__ = ["register", "run"]
-
-
+HELP = "eigenvalues of a linear model over a parameter grid -> netCDF"
+DESCRIPTION = (
+    "Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. Ranges: start:stop:num "
+    "(linspace) or comma lists. Default model: sliding (--alpha-v then required)."
+)
 #: the most lines --plot draws for a second grid dimension; beyond it, the map over the two
 MAX_LINES = 10
 
@@ -40,15 +42,8 @@ def plot_figure(ds, x: str):
     return atlas_figure(ds, x=x)[0]
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``atlas`` subcommand."""
-    p = sub.add_parser(
-        "atlas",
-        help="eigenvalues of a linear model over a parameter grid -> netCDF",
-        description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
-        "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
-        "(--alpha-v then required).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe atlas``."""
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(
         p,
@@ -131,7 +126,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
     )
     g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
-    p.set_defaults(func=run)
 
 
 def parse_chunks(text: str) -> int | dict[str, int]:

@@ -8,19 +8,16 @@ import argparse
 from ._args import add_output_flags, add_state_flags, output_path, write_output
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
-__all__ = ["register", "run"]
+HELP = "predicted final state of a sliding top (Jellett's integral, or a run)"
+DESCRIPTION = (
+    "Where the motion of a sliding top from a given state ends: the steady states of its Jellett level below its "
+    "initial energy decide it when exactly one is stable (method jellett); otherwise a nonlinear run does, and "
+    "says so (method simulation). State arguments as in tippe simulate (fixed frame, K up). Sliding model only."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``final`` subcommand."""
-    p = sub.add_parser(
-        "final",
-        help="predicted final state of a sliding top (Jellett's integral, or a run)",
-        description="Where the motion of a sliding top from a given state ends: the steady states of its "
-        "Jellett level below its initial energy decide it when exactly one is stable (method "
-        "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
-        "arguments as in tippe simulate (fixed frame, K up). Sliding model only.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe final``."""
     add_state_flags(
         p,
         omega="initial angular velocity (units of the spin rate)",
@@ -42,7 +39,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="time limit of a deciding run, units of 1/Omega (default 2e5)",
     )
     add_output_flags(p, "write the prediction and its candidate table as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

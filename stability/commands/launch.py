@@ -6,21 +6,19 @@ import argparse
 
 from ._args import add_top_arguments, required_top
 
-__all__ = ["register", "run"]
+HELP = "what a real top does when you spin it: thresholds, end, flip and settle times"
+DESCRIPTION = (
+    "A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis tilted by --tilt "
+    "degrees, the sphere's centre at rest: the spin above which the upright top is unstable, the launch spin "
+    "above which it inverts completely, its class, where it ends, the time to 90 degrees and to settle, the "
+    "smallest normal force (docs/launch.md). Sliding model only."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``launch`` subcommand."""
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe launch``."""
     from ..top import SPIN_UNITS
 
-    p = sub.add_parser(
-        "launch",
-        help="what a real top does when you spin it: thresholds, end, flip and settle times",
-        description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
-        "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
-        "is unstable, the launch spin above which it inverts completely, its class, where it ends, "
-        "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md). Sliding model only.",
-    )
     add_top_arguments(p, spin=False)
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
@@ -39,7 +37,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="FILE.png",
         help="also draw the top's bifurcation diagram in --unit, the launch and its end marked",
     )
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

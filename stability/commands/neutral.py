@@ -19,19 +19,16 @@ from ._args import (
     write_output,
 )
 
-__all__ = ["register", "run"]
+HELP = "neutral curves of a linear model in a parameter plane -> netCDF"
+DESCRIPTION = (
+    "Trace by pseudo-arclength continuation the curves where a mode is neutral (Re s = 0) in the plane of two "
+    "parameters, print the special points (folds, zero-frequency and double crossings, domain edges) and write "
+    "the curves. Give the parameters other than --x and --y. Default model: sliding (--alpha-v then required)."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``neutral`` subcommand."""
-    p = sub.add_parser(
-        "neutral",
-        help="neutral curves of a linear model in a parameter plane -> netCDF",
-        description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
-        "(Re s = 0) in the plane of two parameters, print the special points (folds, "
-        "zero-frequency and double crossings, domain edges) and write the curves. Give the "
-        "parameters other than --x and --y. Default model: sliding (--alpha-v then required).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe neutral``."""
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter; required")
     p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter; required")
@@ -46,7 +43,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
     add_output_flags(p, "netCDF file to write (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -12,8 +12,12 @@ from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
 from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_state_flags, add_top_arguments, apply_top
 
-__all__ = ["register", "run"]
-
+HELP = "integrate a nonlinear model -> netCDF"
+DESCRIPTION = (
+    "Integrate the sliding, rolling or fixed-pivot top from a given state and write the run (omega, k, energy, "
+    "forces, ...) as netCDF. Default model: sliding (--alpha-v then required). Times are in units of 1/Omega "
+    "(one spin period is 2 pi), rates in units of Omega."
+)
 #: the integrators --method offers, and the default regularisation scale of the Coulomb term:
 #: written here so that ``tippe --help`` does not import scipy and the integrators;
 #: tests/test_cli.py checks them against stability.nonlinear.integrators and simulate()'s defaults
@@ -23,16 +27,8 @@ _SLIP_SCALE = 1e-4
 _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``simulate`` subcommand."""
-    p = sub.add_parser(
-        "simulate",
-        help="integrate a nonlinear model -> netCDF",
-        description="Integrate the sliding, rolling or fixed-pivot top from a given "
-        "state and write the run (omega, k, energy, forces, ...) as netCDF. "
-        "Default model: sliding (--alpha-v then required). Times are in "
-        "units of 1/Omega (one spin period is 2 pi), rates in units of Omega.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe simulate``."""
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="nonlinear model")
     p.add_argument(
         "--t-end", type=float, required=True, metavar="T", help="final time, units of 1/Omega (> 0); required"
@@ -101,7 +97,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="show a progress bar (default: when stderr is a terminal and the run takes over a second)",
     )
     g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
-    p.set_defaults(func=run)
 
 
 #: outputs above this size get a warning on stderr before the run

@@ -18,7 +18,7 @@ from ._args import (
     write_output,
 )
 
-__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
+__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags"]
 
 
 #: the parameters of the sliding top's steady states, and those needed without a top
@@ -43,16 +43,17 @@ def apply_top_flags(args: argparse.Namespace) -> None:
     apply_top(args, _NAMES, required=_REQUIRED)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``steady`` subcommand."""
-    p = sub.add_parser(
-        "steady",
-        help="steady (tilted) states on a Jellett level, or the branch of tilted states",
-        description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
-        "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
-        "the family of tilted states traced against J by continuation, with its branch points and "
-        "folds. Sliding model only. Units: simulate's (J in A0 Omega). docs/steady_states.md.",
-    )
+HELP = "steady (tilted) states on a Jellett level, or the branch of tilted states"
+DESCRIPTION = (
+    "Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett level J, with "
+    "tilt, precession rate, spin, energy, growth rate and stability; with --branch, the family of tilted states "
+    "traced against J by continuation, with its branch points and folds. Sliding model only. Units: simulate's "
+    "(J in A0 Omega). docs/steady_states.md."
+)
+
+
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe steady``."""
     add_top_flags(p)
     p.add_argument(
         "--jellett",
@@ -81,7 +82,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
     )
     add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -18,19 +18,16 @@ from ._args import (
     required_top,
 )
 
-__all__ = ["register", "run"]
+HELP = "threshold of one parameter, or the critical spin of a real top"
+DESCRIPTION = (
+    "PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or 'spin' for a real top in SI units "
+    "(--mass ... or --preset table1): the spin rate above which the upright state is unstable and the inverted "
+    "one stable. Default model: sliding."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``threshold`` subcommand."""
-    p = sub.add_parser(
-        "threshold",
-        help="threshold of one parameter, or the critical spin of a real top",
-        description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
-        "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
-        "rate above which the upright state is unstable and the inverted one stable. "
-        "Default model: sliding.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe threshold``."""
     p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM", help="q, fr_inv, sigma, alpha_v, mu or spin")
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(
@@ -63,7 +60,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
     )
-    p.set_defaults(func=run)
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:

@@ -17,22 +17,18 @@ import os
 import time
 from collections.abc import Callable
 
-__all__ = ["register", "run", "steps"]
+HELP = "compile every compiled kernel now (numba's disk cache) and report the times"
+DESCRIPTION = (
+    "Compile (or load from numba's disk cache) every compiled path: the spectral kernel's loops, the batched root "
+    "finders and growth-rate signs, the neutral curves' corrector, the steady states and their branch, the "
+    "integrators. Later processes then load them instead of compiling (a first call with a large grid, or a "
+    "first simulate, would otherwise compile for seconds)."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``warmup`` subcommand."""
-    p = sub.add_parser(
-        "warmup",
-        help="compile every compiled kernel now (numba's disk cache) and report the times",
-        description="Compile (or load from numba's disk cache) every compiled path: the spectral "
-        "kernel's loops, the batched root finders and growth-rate signs, the neutral "
-        "curves' corrector, the steady states and their branch, the integrators. Later "
-        "processes then load them instead of compiling (a first call "
-        "with a large grid, or a first simulate, would otherwise compile for seconds).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe warmup``."""
     p.add_argument("--list", action="store_true", help="list the steps without running them")
-    p.set_defaults(func=run)
 
 
 def steps() -> list[tuple[str, Callable[[], object], list]]:
