@@ -302,12 +302,12 @@ def load_recipe(path: str | Path) -> Recipe:
         **common,
         model=model,
         grid=grid,
+        mask_unphysical=bool(raw.get("mask_unphysical", True)),
         x=x,
         y=y,
         family=family,
-        quantities=quantities,
-        mask_unphysical=bool(raw.get("mask_unphysical", True)),
         neutral=bool(raw.get("neutral", False)),
+        quantities=quantities,
         top=top,
         spin=spin,
         unit=unit,
@@ -474,11 +474,14 @@ def output_paths(recipe: Recipe) -> list[Path]:
     if recipe.kind == "critical_spin":
         return paths + [recipe.dataset_path]
     for model in recipe.models():
-        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
-        paths.append(path)
-        if recipe.neutral:
-            paths.append(path.with_name(path.stem + "_neutral.nc"))
+        paths += _atlas_paths(recipe, model)
     return paths
+
+
+def _atlas_paths(recipe: Recipe, model: str) -> list[Path]:
+    """The atlas of ``model`` of a lines/map/models recipe and (``neutral``) its neutral curves."""
+    path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+    return [path, path.with_name(path.stem + "_neutral.nc")] if recipe.neutral else [path]
 
 
 def check_outputs(recipe: Recipe) -> None:
@@ -549,6 +552,10 @@ def compute(
         run's label in its ``label`` attribute.
     """
     out: dict[str, xr.Dataset] = {}
+
+    def cached(path: Path, make: Callable[[], xr.Dataset], reader: Callable[[Path], xr.Dataset] = _read) -> xr.Dataset:
+        return _cached(path, recipe.digest, make, force=force, log=log, reader=reader)
+
     if recipe.kind in STEADY_KINDS:
         made: dict[str, xr.Dataset] = {}
 
@@ -557,40 +564,18 @@ def compute(
                 made.update(_STEADY_MAKERS[recipe.kind](recipe))
             return made[key]
 
-        for key in _STEADY_PARTS[recipe.kind]:
-            out[key] = _cached(
-                _steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log, reader=_read
-            )
-        return out
+        return {key: cached(_steady_path(recipe, key), lambda key=key: part(key)) for key in _STEADY_PARTS[recipe.kind]}
     if recipe.kind == "critical_spin":
-        out[recipe.model] = _cached(
-            recipe.dataset_path,
-            recipe.digest,
-            lambda: critical_spin_dataset(recipe),
-            force=force,
-            log=log,
-            reader=_read,
-        )
-        return out
+        return {recipe.model: cached(recipe.dataset_path, lambda: critical_spin_dataset(recipe))}
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
-
-            def made(make=make, label=label) -> xr.Dataset:
-                ds = make()
-                ds.attrs["label"] = label
-                return ds
-
-            out[key] = _cached(
-                recipe.path.with_name(f"{recipe.name}_{key}.nc"),
-                recipe.digest,
-                made,
-                force=force,
-                log=log,
-                reader=_read,
+            # the run's label in its attributes (what the figure's legend shows)
+            out[key] = cached(
+                recipe.path.with_name(f"{recipe.name}_{key}.nc"), lambda m=make, t=label: m().assign_attrs(label=t)
             )
         return out
     for model in recipe.models():
-        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+        path, *neutral = _atlas_paths(recipe, model)
 
         def make(model=model) -> xr.Dataset:
             ds = _spin_coordinate(
@@ -599,16 +584,9 @@ def compute(
             ds.attrs["recipe"] = recipe.path.name
             return ds
 
-        out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
-        if recipe.neutral:
-            out[f"{model}_neutral"] = _cached(
-                path.with_name(path.stem + "_neutral.nc"),
-                recipe.digest,
-                lambda model=model: _neutral(recipe, model),
-                force=force,
-                log=log,
-                reader=_read,
-            )
+        out[model] = cached(path, make, reader=open_atlas)
+        if neutral:
+            out[f"{model}_neutral"] = cached(neutral[0], lambda m=model: _neutral(recipe, m))
     return out
 
 

@@ -14,6 +14,7 @@ __all__ = [
     "FLAGS",
     "PARAMETER_HELP",
     "TOP_FLAGS",
+    "add_float_flags",
     "add_model_flag",
     "add_output_flags",
     "add_parameter_flags",
@@ -149,6 +150,12 @@ def add_output_flags(
     """``-o/--output FILE.nc`` (``help`` says what is written) and ``--overwrite``."""
     p.add_argument("-o", "--output", required=required, default=None, metavar="FILE.nc", help=help)
     p.add_argument("--overwrite", action="store_true", help=overwrite)
+
+
+def add_float_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, *rows: tuple) -> None:
+    """Options that take one number: each row ``(flag, default, metavar, help)``."""
+    for flag, default, metavar, text in rows:
+        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
 
 
 def comma_floats(text: str) -> list[float]:

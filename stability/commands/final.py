@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_output_flags, add_state_flags, output_path, write_output
+from ._args import add_float_flags, add_output_flags, add_state_flags, output_path, write_output
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
 HELP = "predicted final state of a sliding top (Jellett's integral, or a run)"
@@ -31,13 +31,7 @@ def arguments(p: argparse.ArgumentParser) -> None:
         action="store_false",
         help="do not run a simulation when Jellett's integral does not decide (default: run one)",
     )
-    p.add_argument(
-        "--t-max",
-        type=float,
-        default=2e5,
-        metavar="T",
-        help="time limit of a deciding run, units of 1/Omega (default 2e5)",
-    )
+    add_float_flags(p, ("--t-max", 2e5, "T", "time limit of a deciding run, units of 1/Omega (default 2e5)"))
     add_output_flags(p, "write the prediction and its candidate table as netCDF (default: print only)")
 
 

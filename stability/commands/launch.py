@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_top_arguments, required_top
+from ._args import add_float_flags, add_top_arguments, required_top
 
 HELP = "what a real top does when you spin it: thresholds, end, flip and settle times"
 DESCRIPTION = (
@@ -23,12 +23,10 @@ def arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
     g.add_argument("--unit", choices=list(SPIN_UNITS), default="rev/s", help="unit of --spin (default rev/s)")
-    g.add_argument("--tilt", type=float, default=1.0, metavar="DEG", help="initial tilt of the axis (default 1)")
-    g.add_argument(
-        "--alpha-v",
-        type=float,
-        metavar="VALUE",
-        help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)",
+    add_float_flags(
+        g,
+        ("--tilt", 1.0, "DEG", "initial tilt of the axis (default 1)"),
+        ("--alpha-v", None, "VALUE", "viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)"),
     )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
     g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")

@@ -10,7 +10,15 @@ import sys
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_state_flags, add_top_arguments, apply_top
+from ._args import (
+    add_float_flags,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_state_flags,
+    add_top_arguments,
+    apply_top,
+)
 
 HELP = "integrate a nonlinear model -> netCDF"
 DESCRIPTION = (
@@ -72,20 +80,19 @@ def arguments(p: argparse.ArgumentParser) -> None:
         "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
         "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
     )
-    for flag, default, metavar, text in (
+    add_float_flags(
+        p,
         ("--slip-scale", _SLIP_SCALE, "S", "regularisation scale of the Coulomb term, units of Omega R (> 0)"),
         ("--rtol", 1e-9, "R", "relative tolerance of the adaptive integrators (0 < R < 1)"),
         ("--atol", 1e-12, "A", "absolute tolerance of the adaptive integrators (0 < A < 1)"),
         ("--dt", 0.1, "DT", "output interval, units of 1/Omega (> 0)"),
-    ):
-        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
-    p.add_argument(
-        "--step",
-        type=float,
-        default=None,
-        metavar="H",
-        help="step of --method rk4 (required there), first step of the adaptive methods, "
-        "units of 1/Omega (default: chosen by the integrator)",
+        (
+            "--step",
+            None,
+            "H",
+            "step of --method rk4 (required there), first step of the adaptive methods, "
+            "units of 1/Omega (default: chosen by the integrator)",
+        ),
     )
     add_output_flags(p, "netCDF file to write; required", required=True)
     g = p.add_mutually_exclusive_group()

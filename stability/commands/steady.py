@@ -10,6 +10,7 @@ from ..errors import InputError
 from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import (
+    add_float_flags,
     add_output_flags,
     add_parameter_flags,
     add_top_arguments,
@@ -55,31 +56,28 @@ DESCRIPTION = (
 def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe steady``."""
     add_top_flags(p)
-    p.add_argument(
-        "--jellett",
-        type=float,
-        default=None,
-        metavar="J",
-        help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))",
+    add_float_flags(
+        p, ("--jellett", None, "J", "Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))")
     )
     p.add_argument(
         "--branch",
         action="store_true",
         help="trace the branch of tilted states against J instead (--jellett is then not used)",
     )
-    p.add_argument(
-        "--jellett-max",
-        type=float,
-        default=None,
-        metavar="J",
-        help="with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)",
-    )
-    p.add_argument(
-        "--max-step",
-        type=float,
-        default=0.02,
-        metavar="H",
-        help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
+    add_float_flags(
+        p,
+        (
+            "--jellett-max",
+            None,
+            "J",
+            "with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)",
+        ),
+        (
+            "--max-step",
+            0.02,
+            "H",
+            "with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
+        ),
     )
     add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
 

@@ -6,7 +6,15 @@ import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
 from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from ._args import (
+    add_float_flags,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    parameter_values,
+)
 
 HELP = "check linear growth rates against nonlinear runs"
 DESCRIPTION = (
@@ -51,13 +59,7 @@ def arguments(p: argparse.ArgumentParser) -> None:
         | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
     )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument(
-        "--amplitude",
-        type=float,
-        default=1e-4,
-        metavar="A",
-        help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)",
-    )
+    add_float_flags(p, ("--amplitude", 1e-4, "A", "initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)"))
     add_output_flags(p, "also write the Dataset as netCDF (default: print only)")
 
 

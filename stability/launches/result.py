@@ -34,9 +34,6 @@ from .flip import launch_parameters, run_launch
 
 __all__ = ["PRODUCT", "Launch", "inverts_above", "launch", "stick_answer"]
 
-#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
-PRODUCT = "launch"
-
 
 @dataclass(frozen=True)
 class Launch:
@@ -206,6 +203,10 @@ NEVER_INVERTS = {
 }
 
 
+#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
+PRODUCT = "launch"
+
+
 def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
     """The launch spin (rad/s) above which the top launched upright inverts completely: the
     upright-equivalent spin ``J_inv / (sigma (1 + q))`` of the inverted branch point
@@ -323,10 +324,10 @@ def launch(
         spin=w,
         unit=unit,
         tilt=tilt,
+        end_tilt=float(fs.tilt),
         unstable_above=up,
         inverts_above=inv,
         top_class=cls,
-        end_tilt=float(fs.tilt),
         end_kind=fs.kind,
         method=fs.method,
         flip_time=None if run.crossing_time is None else run.crossing_time / w,
