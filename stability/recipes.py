@@ -80,7 +80,7 @@ import importlib.util
 import time
 import tomllib
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -94,6 +94,7 @@ from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
+from .top import PRESETS
 
 __all__ = [
     "KINDS",
@@ -112,27 +113,6 @@ STEADY_KINDS = ("bifurcation", "classes", "settle")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
-_KEYS = {
-    "title",
-    "kind",
-    "model",
-    "x",
-    "y",
-    "family",
-    "quantities",
-    "mask_unphysical",
-    "grid",
-    "caption",
-    "figure",
-    "neutral",
-    "preset",
-    "runs_rpm",
-    "t_end",
-    "top",
-    "spin",
-    "unit",
-    "runs",
-}
 
 
 @dataclass(frozen=True)
@@ -177,6 +157,11 @@ class Recipe:
     def models(self) -> tuple[str, ...]:
         """The models the recipe computes (all three for kind "models")."""
         return tuple(MODELS) if self.kind == "models" else (self.model,)
+
+
+#: the keys a recipe file may hold: the fields of :class:`Recipe` it gives (``figure`` holds a
+#: scene's figure or a preset), ``preset``, and ``runs`` (a bifurcation's launch spins)
+_KEYS = {f.name for f in fields(Recipe)} - {"path", "digest"} | {"preset", "runs"}
 
 
 @functools.cache
@@ -403,16 +388,17 @@ def _spin_coordinate(recipe: Recipe, ds: xr.Dataset) -> xr.Dataset:
         inertia_axial_kg_m2=t.inertia_axial,
         g=t.g,
     )
-    if recipe.spin is None:
-        return ds
-    attrs = {
-        "long_name": "spin rate Omega of the top",
-        "units": recipe.unit,
-        "comment": "fr_inv = g / (Omega^2 R) (eq. 3)",
-    }
-    if np.ndim(recipe.spin) == 1 and "fr_inv" in ds.dims:
-        return ds.assign_coords(spin=("fr_inv", np.asarray(recipe.spin, dtype=float), attrs))
-    ds.attrs.update(spin=float(np.asarray(recipe.spin).ravel()[0]), spin_unit=recipe.unit)
+    return ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
+
+
+def spin_coordinate(ds: xr.Dataset, spin: Any, unit: str) -> xr.Dataset:
+    """The spin of a top (in ``unit``) on an atlas over its ``fr_inv`` (eq. 3): a coordinate along
+    ``fr_inv`` for a grid of spins, the attributes ``spin`` and ``spin_unit`` for one (what
+    ``tippe atlas --spin`` and a recipe with a ``[top]`` write)."""
+    attrs = {"long_name": "spin rate Omega of the top", "units": unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    if np.ndim(spin) == 1 and "fr_inv" in ds.dims:
+        return ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
+    ds.attrs.update(spin=float(np.asarray(spin).ravel()[0]), spin_unit=unit)
     return ds
 
 
@@ -590,10 +576,6 @@ def compute(
     return out
 
 
-#: real tops a critical_spin recipe can name
-PRESETS = ("table1", "table1_measured")
-
-
 def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
     """Critical spin rates (rpm) of the preset top against the recipe's grid parameter.
 
@@ -615,27 +597,19 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
         for orientation in out:
             with contextlib.suppress(ValueError):
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
-    unit = {"units": "min-1"}
+    becomes = {"upright": "unstable", "inverted": "stable"}
     return xr.Dataset(
         {
-            "critical_spin_upright": (
+            f"critical_spin_{o}": (
                 x,
-                out["upright"],
+                v,
                 {
-                    "long_name": "upright critical spin",
-                    **unit,
-                    "comment": "spin rate above which the upright top is unstable",
+                    "long_name": f"{o} critical spin",
+                    "units": "min-1",
+                    "comment": f"spin rate above which the {o} top is {becomes[o]}",
                 },
-            ),
-            "critical_spin_inverted": (
-                x,
-                out["inverted"],
-                {
-                    "long_name": "inverted critical spin",
-                    **unit,
-                    "comment": "spin rate above which the inverted top is stable",
-                },
-            ),
+            )
+            for o, v in out.items()
         },
         coords={x: (x, values, parameter_attrs(x))},
         attrs={

@@ -309,22 +309,13 @@ def _apply_top(args: argparse.Namespace) -> None:
 
 
 def _spin_coordinate(ds, args: argparse.Namespace):
-    """With a top and its spin: the spin in ``--unit`` as a coordinate along ``fr_inv`` (or an
-    attribute for one spin), and the top's SI data in the attributes."""
-    import numpy as np
-
+    """With a top and its spin: the spin in ``--unit`` on the atlas (:func:`stability.recipes.spin_coordinate`)."""
     from ..grids.ranges import parse_values
+    from ..recipes import spin_coordinate
 
     if getattr(args, "spin", None) is None:
         return ds
-    spin = parse_values(args.spin, name="--spin")
-    unit = args.unit or "rad/s"
-    attrs = {"long_name": "spin rate Omega of the top", "units": unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
-    if np.ndim(spin) == 1:
-        ds = ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
-    else:
-        ds.attrs.update(spin=float(spin), spin_unit=unit)
-    return ds
+    return spin_coordinate(ds, parse_values(args.spin, name="--spin"), args.unit or "rad/s")
 
 
 def _check_plot_format(path: str) -> None:
