@@ -22,6 +22,7 @@ __all__ = [
     "add_top_arguments",
     "apply_top",
     "comma_floats",
+    "flag_of",
     "lo_hi",
     "output_path",
     "parameter_help",
@@ -46,6 +47,13 @@ PARAMETER_HELP: dict[str, str] = {
     "alpha_k": "Coulomb friction alpha_k = mu Fr^-1 mu_K (eq. 7)",
     "mu": "scaled mass mu = M R^2 / A0",
 }
+
+
+def flag_of(name: str) -> str:
+    """The flag of a parameter or option: ``fr_inv`` -> ``--fr-inv``; ``g`` (``gravity``) -> ``--g``,
+    ``top_file`` -> ``--top``."""
+    return {"gravity": "--g", "top_file": "--top"}.get(name) or "--" + name.replace("_", "-")
+
 
 _VALUES = {"values": "a number, a comma list, or start:stop:num", "value": "a number"}
 
@@ -87,9 +95,8 @@ def add_parameter_flags(
     required = tuple(required)
     defaults = {"mu": DEFAULT_MU, **(defaults or {})}
     for name in names:
-        flag = FLAGS.get(name, "--" + name.replace("_", "-"))
         p.add_argument(
-            flag,
+            flag_of(name),
             dest=name,
             metavar="VALUES" if kind == "values" else "VALUE",
             type=float if kind == "value" else None,
@@ -236,7 +243,7 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
         'inertia_axial (SI), optional g, mu_v, mu_k, or preset = "table1"',
     )
     for name in TOP_FLAGS:
-        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
+        g.add_argument(flag_of(name), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
     g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2", help="gravity (default 9.80665)")
     g.add_argument(
         "--mu-v",
@@ -268,7 +275,7 @@ def _top_source(args: argparse.Namespace) -> str:
     if getattr(args, "top_file", None):
         return f"--top {args.top_file}"
     given = [n for n in TOP_FLAGS if getattr(args, n, None) is not None]
-    return "--" + given[0].replace("_", "-") if given else "the top"
+    return flag_of(given[0]) if given else "the top"
 
 
 def top_from_args(args: argparse.Namespace):  # -> Top | None
@@ -292,11 +299,10 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         for k, a in (("g", "gravity"), ("mu_v", "mu_v"), ("mu_k", "mu_k"))
         if getattr(args, a, None) is not None
     }
-    flag = {"g": "--g", "mu_v": "--mu-v", "mu_k": "--mu-k"}
     ways = (
         ([f"--preset {preset}"] if preset else [])
         + ([f"--top {path}"] if path else [])
-        + ([", ".join("--" + n.replace("_", "-") for n in si)] if si else [])
+        + ([", ".join(map(flag_of, si))] if si else [])
     )
     if len(ways) > 1:
         raise InputError(f"{' and '.join(ways)} conflict: give the top one way (--preset, --top FILE or its SI data)")
@@ -304,7 +310,7 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         return getattr(Top, preset)(**extra)
     if path:
         top = Top.from_toml(path)
-        clash = [flag[k] for k in extra if getattr(top, k) is not None and k != "g"]
+        clash = [flag_of(k) for k in extra if getattr(top, k) is not None and k != "g"]
         if clash or "g" in extra:
             raise InputError(f"--top {path} and {', '.join(clash or ['--g'])} conflict: give g, mu_v, mu_k in the file")
         return replace(top, **extra) if extra else top
@@ -312,14 +318,14 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         missing = [n for n in TOP_FLAGS if n not in si]
         if missing:
             raise InputError(
-                f"{', '.join('--' + n.replace('_', '-') for n in si)} given without "
-                f"{', '.join('--' + n.replace('_', '-') for n in missing)}: a top in SI units needs all "
+                f"{', '.join(map(flag_of, si))} given without {', '.join(map(flag_of, missing))}: a top in SI "
+                "units needs all "
                 "five (or --top FILE, or --preset)"
             )
         return Top(*(getattr(args, n) for n in TOP_FLAGS), **extra)
     if extra:
         raise InputError(
-            f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., --top FILE or --preset)"
+            f"{', '.join(map(flag_of, extra))} describe a real top: give it too (--mass ..., --top FILE or --preset)"
         )
     return None
 
@@ -330,8 +336,7 @@ def required_top(args: argparse.Namespace, command: str):  # -> Top
 
     top = top_from_args(args)
     if top is None:
-        flags = ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
-        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {flags}")
+        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {', '.join(map(flag_of, TOP_FLAGS))}")
     return top
 
 
@@ -425,7 +430,7 @@ def apply_top(
             )
     if given:
         n = given[0]
-        flag = FLAGS.get(n, "--" + n.replace("_", "-"))
+        flag = flag_of(n)
         raise InputError(
             f"{source} and {flag} {getattr(args, n)} conflict: the top gives {n} "
             f"(eqs. 3, 7); give the top or {flag}, not both"
@@ -461,7 +466,7 @@ def apply_top(
 def _require(args: argparse.Namespace, required: Iterable[str]) -> None:
     from ..errors import InputError
 
-    missing = [FLAGS.get(n, "--" + n.replace("_", "-")) for n in required if getattr(args, n, None) is None]
+    missing = [flag_of(n) for n in required if getattr(args, n, None) is None]
     if missing:
         spin = getattr(args, "_top_spin", False)
         raise InputError(

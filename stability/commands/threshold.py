@@ -14,6 +14,7 @@ from ._args import (
     add_model_flag,
     add_parameter_flags,
     add_top_arguments,
+    flag_of,
     lo_hi,
     required_top,
 )
@@ -65,12 +66,9 @@ def arguments(p: argparse.ArgumentParser) -> None:
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
 
-    def flag(name: str) -> str:
-        return {"gravity": "--g", "top_file": "--top"}.get(name, FLAGS.get(name, "--" + name.replace("_", "-")))
-
     top_given = [n for n in (*TOP_FLAGS, "gravity", "mu_k") if getattr(args, n) is not None]
     if args.param == "spin":
-        unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
+        unused = [flag_of(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
         unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
         if unused:
             raise InputError(
@@ -78,8 +76,8 @@ def _refuse_unused(args: argparse.Namespace) -> None:
                 "mu come from --preset or its SI data; the spin rate is what is searched)"
             )
         return
-    unused = [flag(n) for n in top_given]
-    unused += [flag(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
+    unused = [flag_of(n) for n in top_given]
+    unused += [flag_of(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
         raise InputError(
             f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
