@@ -41,18 +41,8 @@ def run(args: argparse.Namespace) -> int:
 
     apply_top_flags(args)
     out = output_path(args)
-    end = final_state(
-        omega=args.omega,
-        k=args.k,
-        velocity=args.velocity,
-        q=args.q,
-        sigma=args.sigma,
-        fr_inv=args.fr_inv,
-        alpha_v=args.alpha_v,
-        mu=args.mu,
-        simulation=args.simulation,
-        t_max=args.t_max,
-    )
+    keywords = ("omega", "k", "velocity", "q", "sigma", "fr_inv", "alpha_v", "mu", "simulation", "t_max")
+    end = final_state(**{name: getattr(args, name) for name in keywords})
     print(f"final state: {end.kind}, tilt {end.tilt:.6f} deg (method: {end.method})")
     print(
         f"Jellett's integral J = {end.jellett:.12g}, initial energy {end.initial_energy:.10g}, "

@@ -33,6 +33,10 @@ _METHODS = ("auto", "dopri5", "rk4", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 _SLIP_SCALE = 1e-4
 #: the nondimensional parameters simulate takes, and those needed without a top
 _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
+#: simulate()'s keywords that are options of the same name here: the run, and how it is integrated
+#: (alpha_k is 0 when not given)
+_RUN = ("t_end", "omega", "k", "velocity", "q", "fr_inv", "sigma", "alpha_v", "mu")
+_INTEGRATION = ("friction", "normal", "slip_scale", "method", "rtol", "atol", "dt", "step")
 
 
 def arguments(p: argparse.ArgumentParser) -> None:
@@ -139,28 +143,8 @@ def run(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
     show = args.progress if args.progress is not None else sys.stderr.isatty()
-    ds = simulate(
-        args.model,
-        t_end=args.t_end,
-        omega=args.omega,
-        k=args.k,
-        velocity=args.velocity,
-        q=args.q,
-        fr_inv=args.fr_inv,
-        sigma=args.sigma,
-        alpha_v=args.alpha_v,
-        alpha_k=0.0 if args.alpha_k is None else args.alpha_k,
-        mu=args.mu,
-        friction=args.friction,
-        normal=args.normal,
-        slip_scale=args.slip_scale,
-        method=args.method,
-        rtol=args.rtol,
-        atol=args.atol,
-        dt=args.dt,
-        step=args.step,
-        progress=show,
-    )
+    given = {name: getattr(args, name) for name in (*_RUN, *_INTEGRATION)}
+    ds = simulate(args.model, **given, alpha_k=0.0 if args.alpha_k is None else args.alpha_k, progress=show)
     write_dataset(ds, out, overwrite=args.overwrite)
     a = ds.attrs
     t = ds["time"].values
