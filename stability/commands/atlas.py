@@ -152,29 +152,12 @@ def parse_chunks(text: str) -> int | dict[str, int]:
         ) from None
 
 
-def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
-    """``tippe atlas --chunks``: lazy atlas, written chunk by chunk."""
-    from ..grids.atlases import atlas
+def _run_chunked(args: argparse.Namespace, out, ds) -> int:
+    """``tippe atlas --chunks``: the lazy atlas ``ds`` written chunk by chunk."""
     from ..grids.chunked import parts_directory, write_atlas
     from ..grids.cluster import dask_client
 
-    if args.plot:
-        raise InputError(
-            "--plot is not available with --chunks (the grid may not fit in memory); "
-            "plot a slice of the written file instead"
-        )
-    ds = _spin_coordinate(
-        atlas(
-            args.model,
-            mask_unphysical=args.mask_unphysical,
-            method=args.method,
-            chunks=parse_chunks(args.chunks),
-            **values,
-        ),
-        args,
-    )
     store = parts_directory(out)
-    _check_space(out, args.model, values)
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
     if args.resume:
@@ -264,12 +247,22 @@ def run(args: argparse.Namespace) -> int:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
-    if args.chunks is not None:
-        return _run_chunked(args, out, values)
-    if args.workers is not None or args.scheduler is not None or args.resume:
+    if args.chunks is not None and args.plot:
+        raise InputError(
+            "--plot is not available with --chunks (the grid may not fit in memory); "
+            "plot a slice of the written file instead"
+        )
+    if args.chunks is None and (args.workers is not None or args.scheduler is not None or args.resume):
         raise InputError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
-    _check_space(out, args.model, values)
-    ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values), args)
+    chunks = None if args.chunks is None else parse_chunks(args.chunks)
+    if chunks is None:  # before computing; a chunked atlas is lazy, its grid checked first
+        _check_space(out, args.model, values)
+    ds = _spin_coordinate(
+        atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, chunks=chunks, **values), args
+    )
+    if chunks is not None:
+        _check_space(out, args.model, values)
+        return _run_chunked(args, out, ds)
     if args.plot:
         from ..plotting import save_figure, style
 
