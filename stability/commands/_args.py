@@ -69,41 +69,38 @@ def add_parameter_flags(
     p: argparse.ArgumentParser | argparse._ArgumentGroup,
     names: Iterable[str],
     *,
-    required: Iterable[str] = (),
     kind: str = "values",
-    defaults: dict[str, object] | None = None,
+    unless_top: Iterable[str] = (),
     extra: dict[str, str] | None = None,
 ) -> None:
     """Add ``--q``, ``--fr-inv``, ... with their help (what, unit, domain, default).
+
+    A flag not given is None: ``mu`` then takes :data:`stability.parameters.DEFAULT_MU`
+    (:func:`apply_top`, which also fills the parameters a top gives), as its help says.
 
     Parameters
     ----------
     p : argparse parser or group
     names : iterable of str
         Parameter names (keys of :data:`PARAMETER_HELP`).
-    required : iterable of str
-        The names whose flag is required.
     kind : {"values", "value"}
         ``"values"``: a number, a comma list or a range (read later by :func:`parameter_values`);
         ``"value"``: one float.
-    defaults : dict, optional
-        Default per name (``mu`` defaults to :data:`stability.parameters.DEFAULT_MU`, the
-        others to None: not given).
+    unless_top : iterable of str
+        The names whose flag is required unless a top is given (said in their help).
     extra : dict, optional
-        Text added to a name's help (e.g. which model needs it).
+        Text added to a name's help (e.g. which model needs it), instead of the default.
     """
-    required = tuple(required)
-    defaults = {"mu": DEFAULT_MU, **(defaults or {})}
+    required = " (required unless a top is given)"
+    extra = {"mu": f" (default {DEFAULT_MU})", **dict.fromkeys(unless_top, required), **(extra or {})}
     for name in names:
         p.add_argument(
             flag_of(name),
             dest=name,
             metavar="VALUES" if kind == "values" else "VALUE",
             type=float if kind == "value" else None,
-            required=name in required,
-            default=defaults.get(name),
-            help=parameter_help(name, kind=kind, extra=(extra or {}).get(name, ""))
-            + ("; required" if name in required else ""),
+            default=None,
+            help=parameter_help(name, kind=kind, extra=extra.get(name, "")),
         )
 
 

@@ -17,7 +17,6 @@ from ..errors import InputError, Interrupted
 from ..grids.netcdf import check_output_path, write_dataset
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
-from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
@@ -48,9 +47,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
     add_parameter_flags(
         p,
         ("q", "fr_inv", "sigma", "alpha_v", "mu"),
-        defaults={"mu": None},
-        extra={"alpha_v": " (sliding model only)", "mu": f" (default {DEFAULT_MU})"}
-        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+        unless_top=("q", "fr_inv", "sigma"),
+        extra={"alpha_v": " (sliding model only)"},
     )
     add_top_arguments(p, spin=True, grid=True)
     add_output_flags(

@@ -36,7 +36,6 @@ def arguments(p: argparse.ArgumentParser) -> None:
         p,
         FLAGS,
         kind="value",
-        defaults={"mu": None},
         extra={"mu": f" (default {DEFAULT_MU} unless traced)", "alpha_v": " (sliding model only)"},
     )
     add_top_arguments(p, spin=True)

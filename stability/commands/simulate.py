@@ -9,7 +9,6 @@ import sys
 
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
-from ..parameters import DEFAULT_MU
 from ._args import (
     add_float_flags,
     add_model_flag,
@@ -55,13 +54,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
         p,
         _NAMES,
         kind="value",
-        defaults={"mu": None},
-        extra={
-            "alpha_v": " (sliding only; required there)",
-            "alpha_k": " (sliding only; default 0.0)",
-            "mu": f" (default {DEFAULT_MU})",
-        }
-        | dict.fromkeys(_REQUIRED, " (required unless a top is given)"),
+        unless_top=_REQUIRED,
+        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)"},
     )
     add_top_arguments(p, spin=True)
     p.add_argument(

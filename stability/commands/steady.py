@@ -7,7 +7,6 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import (
     add_float_flags,
@@ -33,8 +32,7 @@ def add_top_flags(p: argparse.ArgumentParser) -> None:
         p,
         _NAMES,
         kind="value",
-        defaults={"mu": None},
-        extra=dict.fromkeys(_REQUIRED, " (required unless a top is given)") | {"mu": f" (default {DEFAULT_MU})"},
+        unless_top=_REQUIRED,
     )
     add_top_arguments(p, spin=True)
 

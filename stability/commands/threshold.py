@@ -6,7 +6,6 @@ import argparse
 
 from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
-from ..parameters import DEFAULT_MU
 from ..top import SPIN_UNITS, Top
 from ._args import (
     FLAGS,
@@ -35,11 +34,7 @@ def arguments(p: argparse.ArgumentParser) -> None:
         p,
         FLAGS,
         kind="value",
-        defaults={"mu": None},
-        extra={
-            "mu": f" (default {DEFAULT_MU})",
-            "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)",
-        },
+        extra={"alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)"},
     )
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
     p.add_argument(

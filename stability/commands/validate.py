@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
-from ..parameters import DEFAULT_MU
 from ._args import (
     add_float_flags,
     add_model_flag,
@@ -54,9 +53,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
     add_parameter_flags(
         p,
         _COORDS,
-        defaults={"mu": None},
-        extra={"alpha_v": " (sliding only; > 0 there)", "mu": f" (default {DEFAULT_MU})"}
-        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+        unless_top=("q", "fr_inv", "sigma"),
+        extra={"alpha_v": " (sliding only; > 0 there)"},
     )
     add_top_arguments(p, spin=True, grid=True)
     add_float_flags(p, ("--amplitude", 1e-4, "A", "initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)"))
