@@ -306,9 +306,8 @@ def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
     from .top import Top
 
     if "top" not in raw:
-        for key in ("spin",):
-            if key in raw:
-                raise RecipeError(f"{p}: {key} = {raw[key]!r} needs a [top] table (the top's SI data)")
+        if "spin" in raw:
+            raise RecipeError(f"{p}: spin = {raw['spin']!r} needs a [top] table (the top's SI data)")
         return None
     if kind not in ("lines", "map", "models", "critical_spin", "bifurcation"):
         raise RecipeError(f"{p}: a {kind} recipe takes no [top] table")

@@ -441,11 +441,7 @@ def apply_top(
         value = parse_values(spin, name="--spin") if isinstance(spin, str) else spin
         if not getattr(args, "_top_grid", False) and not isinstance(value, float):
             raise InputError(f"--spin = {spin!r} must be one number here")
-        from ..top import SPIN_UNITS
-
-        unit = getattr(args, "unit", None) or "rad/s"
-        if unit not in SPIN_UNITS:
-            raise InputError(f"--unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+        unit = getattr(args, "unit", None) or "rad/s"  # one of SPIN_UNITS: argparse's choices
         alpha_v = getattr(args, "alpha_v", None)
         if isinstance(alpha_v, str):
             alpha_v = parse_values(alpha_v, name=FLAGS["alpha_v"])

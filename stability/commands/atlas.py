@@ -209,10 +209,8 @@ def _summary(out, model: str, ds, counts: dict[str, int], how: str = "") -> str:
     return f"wrote {out}: {model} model, grid {grid}{how}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
 
 
-def _layout(args: argparse.Namespace | None) -> dict:
-    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags (None: the defaults)."""
-    if args is None:
-        return {"variables": "all", "compression": None, "float32": False}
+def _layout(args: argparse.Namespace) -> dict:
+    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags."""
     return {
         "variables": args.variables,
         "compression": None if args.compression == "none" else args.compression,
@@ -269,13 +267,12 @@ def run(args: argparse.Namespace) -> int:
         # the figure is written before the netCDF file is committed: a failure to draw or save
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)
-    layout = _layout(args)
-    if layout == _layout(None) and not zarr_store:
-        write_dataset(ds, out, overwrite=args.overwrite)
-    else:
+    if zarr_store or (args.variables, args.compression, args.float32) != ("all", "none", False):
         from ..grids.chunked import write_atlas
 
-        write_atlas(ds, out, overwrite=args.overwrite, **layout)
+        write_atlas(ds, out, overwrite=args.overwrite, **_layout(args))
+    else:
+        write_dataset(ds, out, overwrite=args.overwrite)
     print(_summary(out, args.model, ds, {name: int((ds.stability == flag).sum()) for flag, name in _COUNTED.items()}))
     if args.plot:
         print(f"wrote {args.plot}")

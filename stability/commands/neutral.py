@@ -52,15 +52,11 @@ def run(args: argparse.Namespace) -> int:
     model = get_model(args.model)
     traced = (args.x, args.y)
     apply_top(args, [n for n in FLAGS if n in model.parameters], spin_needed="fr_inv" not in traced, skip=traced)
-    fixed = {}
-    for name in model.parameters:
-        v = getattr(args, name)
-        if name in (args.x, args.y):
-            if v is not None:
-                raise InputError(f"{FLAGS[name]} is traced (--x/--y) and cannot also be fixed")
-            continue
-        if v is not None:
-            fixed[name] = v
+    given = {name: getattr(args, name) for name in model.parameters if getattr(args, name) is not None}
+    clash = [name for name in given if name in traced]
+    if clash:
+        raise InputError(f"{FLAGS[clash[0]]} is traced (--x/--y) and cannot also be fixed")
+    fixed = {name: v for name, v in given.items() if name not in traced}
     for name in FLAGS:
         if name not in model.parameters and getattr(args, name) is not None:
             raise InputError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")

@@ -90,10 +90,7 @@ def run(args: argparse.Namespace) -> int:
         orientation = args.orientation or "both"
         alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
         found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
-        if orientation == "both":
-            per = {"upright": found.upright, "inverted": found.inverted}
-        else:
-            per = {orientation: found}
+        per = {"upright": found.upright, "inverted": found.inverted} if orientation == "both" else {orientation: found}
         print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
         for o, c in per.items():
             if c is None:
