@@ -132,15 +132,8 @@ def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Fi
     if ds.sizes.get("point", 0):
         piece = ds.boundary_piece.values
         for n in np.unique(piece):  # each smooth piece (they meet at kinks of N_min)
-            sel = piece == n
-            ax.plot(
-                ds.boundary_x.values[sel],
-                ds.boundary_y.values[sel],
-                color="k",
-                ls="-",
-                lw=1.6,
-                label="$N_{min} = 0$ (traced)" if n == piece[0] else None,
-            )
+            sel, label = piece == n, "$N_{min} = 0$ (traced)" if n == piece[0] else None
+            ax.plot(ds.boundary_x.values[sel], ds.boundary_y.values[sel], color="k", ls="-", lw=1.6, label=label)
         ax.legend(fontsize="small", loc="best")
     xl, yl = (ds[c].attrs for c in ("x", "y"))
     ax.set_xlabel(f"{xl['long_name']} ({xl['units']})")

@@ -40,13 +40,8 @@ def plot_flip_time(
             spin, ds.flip_time.values[i], marker="o", markersize=2.5, label=f"tilt {th:g} deg: simulation"
         )
         if estimate and "flip_time_efold" in ds:
-            ax.plot(
-                spin,
-                ds.flip_time_efold.values[i],
-                ls=":",
-                color=line.get_color(),
-                label=f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}",
-            )
+            label = f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}"
+            ax.plot(spin, ds.flip_time_efold.values[i], ls=":", color=line.get_color(), label=label)
     for s, t, label in marks:
         ax.plot([s], [t], marker="*", markersize=11, color="k", ls="none")
         ax.annotate(label, (s, t), textcoords="offset points", xytext=(6, 4), fontsize=8)

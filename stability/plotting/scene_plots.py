@@ -234,29 +234,16 @@ def fig9(
     )
     if peak > top:
         ax1.set_ylim(0.0, top)
-        ax1.annotate(
-            f"initial slip transient, peak {peak:.3g} (off scale)",
-            xy=(0.0, top),
-            xytext=(0.06, 0.93),
-            textcoords="axes fraction",
-            fontsize=7,
-            va="top",
-        )
+        where = dict(xy=(0.0, top), xytext=(0.06, 0.93), textcoords="axes fraction", fontsize=7, va="top")
+        ax1.annotate(f"initial slip transient, peak {peak:.3g} (off scale)", **where)
     ax1.legend(loc="upper right")
     markers = ("o", "s", "^", "D", "v", "P")
     # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
     for runs, line, width, name in ((cases, "-", 0.8, "{}"), (paper_scheme, ":", 1.0, "{}, paper's scheme")):
         for j, (label, ds) in enumerate(runs.items()):
             marks = {"marker": markers[j % len(markers)], "markevery": (0.03 * (j + 1), 0.12), "markersize": 4}
-            ax2.plot(
-                _periods(ds),
-                ds.polar_angle.values,
-                color=f"C{j}",
-                linestyle=line,
-                linewidth=width,
-                label=name.format(label),
-                **(marks if line == "-" else {}),
-            )
+            style = dict(color=f"C{j}", linestyle=line, linewidth=width, **(marks if line == "-" else {}))
+            ax2.plot(_periods(ds), ds.polar_angle.values, **style, label=name.format(label))
     ax2.set_ylabel("polar angle of $k$ (deg)")
     ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
     for ds, style, label in (

@@ -295,14 +295,13 @@ def plot_bifurcation(
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
-                ax.annotate(
-                    f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg",
-                    (xi, yi),
+                arrow = dict(
                     xytext=(-210, -70),
                     textcoords="offset points",
                     fontsize=7,
                     arrowprops={"arrowstyle": "->", "linewidth": 0.6},
                 )
+                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **arrow)
     if "stick_tilt" in branch.attrs:  # a toy with a stick: no state beyond this tilt
         st = float(branch.attrs["stick_tilt"])
         ax.axhline(st, color="C3", ls="--", lw=1.0, label=f"the stick touches ({st:.4g} deg)")
@@ -400,16 +399,9 @@ def plot_class_map(
     ax.plot(q[neg], b2[neg], color="k", linewidth=1.2, linestyle="--", label=r"$\sigma = A_G/(1-q)$: hangs below")
     ax.plot(q, top, color="0.4", linewidth=0.8, linestyle=":", label=r"$\sigma = 2 A_G$ (domain)")
     band = neg & np.isfinite(b2)
-    ax.fill_between(
-        q[band],
-        b2[band],
-        np.minimum(b1, top)[band],
-        facecolor="none",
-        edgecolor="0.25",
-        hatch="///",
-        linewidth=0.0,
-        label=r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$",
-    )
+    hatched = dict(facecolor="none", edgecolor="0.25", hatch="///", linewidth=0.0)
+    hugenholtz = r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$"
+    ax.fill_between(q[band], b2[band], np.minimum(b1, top)[band], **hatched, label=hugenholtz)
     if mark is not None:
         ax.plot([mark[0]], [mark[1]], "*", markersize=12, color="k", label="the paper's top")
     handles, labels = ax.get_legend_handles_labels()
