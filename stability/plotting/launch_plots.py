@@ -64,9 +64,6 @@ def plot_flip_estimates(records: Sequence[dict[str, Any]], *, ax: Axes | None = 
     for method in dict.fromkeys(r["method"] for r in records):
         rs = [r for r in records if r["method"] == method]
         ax.scatter([r["seconds"] for r in rs], [max(r["rel_error"], 1e-16) for r in rs], s=12, label=method)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("seconds per launch")
-    ax.set_ylabel("relative error of the flip time")
+    ax.set(xscale="log", yscale="log", xlabel="seconds per launch", ylabel="relative error of the flip time")
     ax.legend(fontsize=8)
     return fig, ax

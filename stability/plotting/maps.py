@@ -96,8 +96,7 @@ def plot_stability_map(
         unstable[(ds["stability"] == -1).transpose(y, x).values] = np.nan  # outside (= physical == 0)
         if np.nanmin(unstable) < 0.5 < np.nanmax(unstable):
             ax.contour(ds[x].values, ds[y].values, unstable, levels=[0.5], **NEUTRAL_STYLE)
-    ax.set_xlabel(SYMBOLS.get(x, x))
-    ax.set_ylabel(SYMBOLS.get(y, y))
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=SYMBOLS.get(y, y))
     ax.set_title(f"{ds.attrs.get('model', '')}, eq. {ds.attrs.get('model_equations', '')}", fontsize=9)
     if colorbar:
         cb = fig.colorbar(mesh, ax=ax, extend="both")
@@ -208,7 +207,6 @@ def _draw_curve(
         sel = kinds == kind
         if sel.any():
             ax.plot(curve[x].values[sel], curve[y].values[sel], marker=marker, **_SPECIAL_STYLE, label=text)
-    ax.set_xlabel(SYMBOLS.get(x, x))
-    ax.set_ylabel(SYMBOLS.get(y, y))
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=SYMBOLS.get(y, y))
     ax.legend(loc="best", fontsize=8)
     return fig, ax

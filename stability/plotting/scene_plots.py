@@ -95,8 +95,7 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     ]
     for name, label in parts:
         ax.plot(t, run[name].values, label=label)
-    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
-    ax.set_ylabel(r"energy / $A_0 \Omega^2$")
+    ax.set(xlabel=r"time (spin periods $2\pi/\Omega$)", ylabel=r"energy / $A_0 \Omega^2$")
     ax.legend(ncols=2)
     return fig, ax
 
@@ -125,8 +124,7 @@ def fig7(
         idx = np.arange(0, int(sel.sum()), step)
         ax.quiver(x[idx], y[idx], vx[idx], vy[idx], color="C1", angles="xy", width=0.003)
         ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel(r"$X_0 / R$")
-        ax.set_ylabel(r"$Y_0 / R$")
+        ax.set(xlabel=r"$X_0 / R$", ylabel=r"$Y_0 / R$")
     ax1.set_title("(a) whole run", loc="left", fontsize=9)
     ax2.set_title(f"(b) first {zoom_periods:g} spin periods", loc="left", fontsize=9)
     return fig, [ax1, ax2]
@@ -178,9 +176,7 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
         lim(-1.0, 1.0)
     for ticks in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
         ticks([-1.0, 0.0, 1.0])
-    ax.set_xlabel("$K_1$")
-    ax.set_ylabel("$K_2$")
-    ax.set_zlabel("$K_3$")
+    ax.set(xlabel="$K_1$", ylabel="$K_2$", zlabel="$K_3$")
     ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
     ax.set_title(
