@@ -134,16 +134,12 @@ def run(args: argparse.Namespace) -> int:
 def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
     """The two readings that must not be mixed up, each on its own line (issue 23)."""
     from ..launches.result import NEVER_INVERTS, inverts_above
-    from ..top import from_rad_per_s
-
-    def both(w: float) -> str:
-        text = f"{from_rad_per_s(w, unit):.10g} {unit}"
-        return text if unit in ("rev/s", "Hz") else f"{text} = {from_rad_per_s(w, 'rev/s'):.10g} rev/s"
+    from ..top import spin_text
 
     up = found.upright
     print(
         "the upright top becomes unstable above "
-        + (both(up.spin) if up is not None else f"no spin ({found.reasons['upright']})")
+        + (spin_text(up.spin, unit, digits=10) if up is not None else f"no spin ({found.reasons['upright']})")
     )
     ref = up.spin if up is not None else top.spin_rate(0.3)
     inv = inverts_above(top, ref, alpha_v)
@@ -156,7 +152,7 @@ def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
             + NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
         )
     else:
-        print("launched upright, it inverts completely above " + both(inv))
+        print("launched upright, it inverts completely above " + spin_text(inv, unit, digits=10))
 
 
 def _interval(param: str, t) -> str:

@@ -29,7 +29,7 @@ import xarray as xr
 
 from .._version import package_version
 from ..products import PRODUCT_ATTR
-from ..top import Top, from_rad_per_s
+from ..top import Top, from_rad_per_s, spin_text
 from .flip import launch_parameters, run_launch
 
 __all__ = ["PRODUCT", "Launch", "inverts_above", "launch", "stick_answer"]
@@ -101,9 +101,7 @@ class Launch:
     def _spin(self, w: float | None, name: str) -> str:
         if w is None:
             return f"none ({self.reasons.get(name, '')})"
-        u = from_rad_per_s(w, self.unit)
-        extra = "" if self.unit in ("rev/s", "Hz") else f" = {from_rad_per_s(w, 'rev/s'):.6g} rev/s"
-        return f"{u:.6g} {self.unit}{extra}"
+        return spin_text(w, self.unit)
 
     def _time(self, t: float | None, name: str) -> str:
         if t is None:
