@@ -1,7 +1,9 @@
 """The ``tippe`` command line (also ``python -m stability``).
 
-Each subcommand lives in a module of :mod:`stability.commands` that exposes
-``register(subparsers)`` (adds its parser and sets ``func``); :data:`COMMANDS` lists them.
+Each subcommand lives in a module of :mod:`stability.commands` that states its ``HELP`` (one
+line in ``tippe --help``) and ``DESCRIPTION``, and defines ``arguments(parser)`` (its options)
+and ``run(args)``; :data:`COMMANDS` lists them, and :func:`build_parser` makes every
+subparser from them the same way.
 
 Errors end the program with exactly one line on stderr and no traceback
 (docs/input_checks.md):
@@ -260,7 +262,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     for name in COMMANDS:
-        importlib.import_module(f"stability.commands.{name}").register(sub)
+        command = importlib.import_module(f"stability.commands.{name}")
+        p = sub.add_parser(name, help=command.HELP, description=command.DESCRIPTION)
+        command.arguments(p)
+        p.set_defaults(func=command.run)
     return parser
 
 

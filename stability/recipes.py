@@ -80,7 +80,7 @@ import importlib.util
 import time
 import tomllib
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -94,6 +94,7 @@ from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
+from .top import PRESETS
 
 __all__ = [
     "KINDS",
@@ -112,27 +113,6 @@ STEADY_KINDS = ("bifurcation", "classes", "settle")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
 QUANTITIES = ("growth_rate", "frequency")
-_KEYS = {
-    "title",
-    "kind",
-    "model",
-    "x",
-    "y",
-    "family",
-    "quantities",
-    "mask_unphysical",
-    "grid",
-    "caption",
-    "figure",
-    "neutral",
-    "preset",
-    "runs_rpm",
-    "t_end",
-    "top",
-    "spin",
-    "unit",
-    "runs",
-}
 
 
 @dataclass(frozen=True)
@@ -177,6 +157,11 @@ class Recipe:
     def models(self) -> tuple[str, ...]:
         """The models the recipe computes (all three for kind "models")."""
         return tuple(MODELS) if self.kind == "models" else (self.model,)
+
+
+#: the keys a recipe file may hold: the fields of :class:`Recipe` it gives (``figure`` holds a
+#: scene's figure or a preset), ``preset``, and ``runs`` (a bifurcation's launch spins)
+_KEYS = {f.name for f in fields(Recipe)} - {"path", "digest"} | {"preset", "runs"}
 
 
 @functools.cache
@@ -302,12 +287,12 @@ def load_recipe(path: str | Path) -> Recipe:
         **common,
         model=model,
         grid=grid,
+        mask_unphysical=bool(raw.get("mask_unphysical", True)),
         x=x,
         y=y,
         family=family,
-        quantities=quantities,
-        mask_unphysical=bool(raw.get("mask_unphysical", True)),
         neutral=bool(raw.get("neutral", False)),
+        quantities=quantities,
         top=top,
         spin=spin,
         unit=unit,
@@ -321,9 +306,8 @@ def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
     from .top import Top
 
     if "top" not in raw:
-        for key in ("spin",):
-            if key in raw:
-                raise RecipeError(f"{p}: {key} = {raw[key]!r} needs a [top] table (the top's SI data)")
+        if "spin" in raw:
+            raise RecipeError(f"{p}: spin = {raw['spin']!r} needs a [top] table (the top's SI data)")
         return None
     if kind not in ("lines", "map", "models", "critical_spin", "bifurcation"):
         raise RecipeError(f"{p}: a {kind} recipe takes no [top] table")
@@ -403,16 +387,17 @@ def _spin_coordinate(recipe: Recipe, ds: xr.Dataset) -> xr.Dataset:
         inertia_axial_kg_m2=t.inertia_axial,
         g=t.g,
     )
-    if recipe.spin is None:
-        return ds
-    attrs = {
-        "long_name": "spin rate Omega of the top",
-        "units": recipe.unit,
-        "comment": "fr_inv = g / (Omega^2 R) (eq. 3)",
-    }
-    if np.ndim(recipe.spin) == 1 and "fr_inv" in ds.dims:
-        return ds.assign_coords(spin=("fr_inv", np.asarray(recipe.spin, dtype=float), attrs))
-    ds.attrs.update(spin=float(np.asarray(recipe.spin).ravel()[0]), spin_unit=recipe.unit)
+    return ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
+
+
+def spin_coordinate(ds: xr.Dataset, spin: Any, unit: str) -> xr.Dataset:
+    """The spin of a top (in ``unit``) on an atlas over its ``fr_inv`` (eq. 3): a coordinate along
+    ``fr_inv`` for a grid of spins, the attributes ``spin`` and ``spin_unit`` for one (what
+    ``tippe atlas --spin`` and a recipe with a ``[top]`` write)."""
+    attrs = {"long_name": "spin rate Omega of the top", "units": unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
+    if np.ndim(spin) == 1 and "fr_inv" in ds.dims:
+        return ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
+    ds.attrs.update(spin=float(np.asarray(spin).ravel()[0]), spin_unit=unit)
     return ds
 
 
@@ -474,11 +459,14 @@ def output_paths(recipe: Recipe) -> list[Path]:
     if recipe.kind == "critical_spin":
         return paths + [recipe.dataset_path]
     for model in recipe.models():
-        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
-        paths.append(path)
-        if recipe.neutral:
-            paths.append(path.with_name(path.stem + "_neutral.nc"))
+        paths += _atlas_paths(recipe, model)
     return paths
+
+
+def _atlas_paths(recipe: Recipe, model: str) -> list[Path]:
+    """The atlas of ``model`` of a lines/map/models recipe and (``neutral``) its neutral curves."""
+    path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+    return [path, path.with_name(path.stem + "_neutral.nc")] if recipe.neutral else [path]
 
 
 def check_outputs(recipe: Recipe) -> None:
@@ -549,6 +537,10 @@ def compute(
         run's label in its ``label`` attribute.
     """
     out: dict[str, xr.Dataset] = {}
+
+    def cached(path: Path, make: Callable[[], xr.Dataset], reader: Callable[[Path], xr.Dataset] = _read) -> xr.Dataset:
+        return _cached(path, recipe.digest, make, force=force, log=log, reader=reader)
+
     if recipe.kind in STEADY_KINDS:
         made: dict[str, xr.Dataset] = {}
 
@@ -557,40 +549,18 @@ def compute(
                 made.update(_STEADY_MAKERS[recipe.kind](recipe))
             return made[key]
 
-        for key in _STEADY_PARTS[recipe.kind]:
-            out[key] = _cached(
-                _steady_path(recipe, key), recipe.digest, lambda key=key: part(key), force=force, log=log, reader=_read
-            )
-        return out
+        return {key: cached(_steady_path(recipe, key), lambda key=key: part(key)) for key in _STEADY_PARTS[recipe.kind]}
     if recipe.kind == "critical_spin":
-        out[recipe.model] = _cached(
-            recipe.dataset_path,
-            recipe.digest,
-            lambda: critical_spin_dataset(recipe),
-            force=force,
-            log=log,
-            reader=_read,
-        )
-        return out
+        return {recipe.model: cached(recipe.dataset_path, lambda: critical_spin_dataset(recipe))}
     if recipe.kind == "scene":
         for key, (label, make) in scene_runs(recipe.figure or "").items():
-
-            def made(make=make, label=label) -> xr.Dataset:
-                ds = make()
-                ds.attrs["label"] = label
-                return ds
-
-            out[key] = _cached(
-                recipe.path.with_name(f"{recipe.name}_{key}.nc"),
-                recipe.digest,
-                made,
-                force=force,
-                log=log,
-                reader=_read,
+            # the run's label in its attributes (what the figure's legend shows)
+            out[key] = cached(
+                recipe.path.with_name(f"{recipe.name}_{key}.nc"), lambda m=make, t=label: m().assign_attrs(label=t)
             )
         return out
     for model in recipe.models():
-        path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
+        path, *neutral = _atlas_paths(recipe, model)
 
         def make(model=model) -> xr.Dataset:
             ds = _spin_coordinate(
@@ -599,21 +569,10 @@ def compute(
             ds.attrs["recipe"] = recipe.path.name
             return ds
 
-        out[model] = _cached(path, recipe.digest, make, force=force, log=log, reader=open_atlas)
-        if recipe.neutral:
-            out[f"{model}_neutral"] = _cached(
-                path.with_name(path.stem + "_neutral.nc"),
-                recipe.digest,
-                lambda model=model: _neutral(recipe, model),
-                force=force,
-                log=log,
-                reader=_read,
-            )
+        out[model] = cached(path, make, reader=open_atlas)
+        if neutral:
+            out[f"{model}_neutral"] = cached(neutral[0], lambda m=model: _neutral(recipe, m))
     return out
-
-
-#: real tops a critical_spin recipe can name
-PRESETS = ("table1", "table1_measured")
 
 
 def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
@@ -637,27 +596,19 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
         for orientation in out:
             with contextlib.suppress(ValueError):
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
-    unit = {"units": "min-1"}
+    becomes = {"upright": "unstable", "inverted": "stable"}
     return xr.Dataset(
         {
-            "critical_spin_upright": (
+            f"critical_spin_{o}": (
                 x,
-                out["upright"],
+                v,
                 {
-                    "long_name": "upright critical spin",
-                    **unit,
-                    "comment": "spin rate above which the upright top is unstable",
+                    "long_name": f"{o} critical spin",
+                    "units": "min-1",
+                    "comment": f"spin rate above which the {o} top is {becomes[o]}",
                 },
-            ),
-            "critical_spin_inverted": (
-                x,
-                out["inverted"],
-                {
-                    "long_name": "inverted critical spin",
-                    **unit,
-                    "comment": "spin rate above which the inverted top is stable",
-                },
-            ),
+            )
+            for o, v in out.items()
         },
         coords={x: (x, values, parameter_attrs(x))},
         attrs={

@@ -46,6 +46,7 @@ __all__ = [
     "Top",
     "check_launch_spin",
     "from_rad_per_s",
+    "spin_text",
     "to_rad_per_s",
 ]
 
@@ -113,6 +114,13 @@ def to_rad_per_s(spin: Any, unit: str) -> Any:
 def from_rad_per_s(spin: Any, unit: str) -> Any:
     """A spin rate in rad/s expressed in ``unit`` (:data:`SPIN_UNITS`)."""
     return spin / _unit(unit)
+
+
+def spin_text(spin: float, unit: str, digits: int = 6) -> str:
+    """A spin rate in rad/s as text in ``unit`` and, unless that is a frequency, in rev/s too:
+    ``"600 rpm = 10 rev/s"`` (``digits`` significant digits)."""
+    text = f"{from_rad_per_s(spin, unit):.{digits}g} {unit}"
+    return text if unit in ("rev/s", "Hz") else f"{text} = {from_rad_per_s(spin, 'rev/s'):.{digits}g} rev/s"
 
 
 def check_launch_spin(spin: Any, unit: str) -> float:

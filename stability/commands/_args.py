@@ -14,6 +14,7 @@ __all__ = [
     "FLAGS",
     "PARAMETER_HELP",
     "TOP_FLAGS",
+    "add_float_flags",
     "add_model_flag",
     "add_output_flags",
     "add_parameter_flags",
@@ -21,6 +22,7 @@ __all__ = [
     "add_top_arguments",
     "apply_top",
     "comma_floats",
+    "flag_of",
     "lo_hi",
     "output_path",
     "parameter_help",
@@ -46,6 +48,13 @@ PARAMETER_HELP: dict[str, str] = {
     "mu": "scaled mass mu = M R^2 / A0",
 }
 
+
+def flag_of(name: str) -> str:
+    """The flag of a parameter or option: ``fr_inv`` -> ``--fr-inv``; ``g`` (``gravity``) -> ``--g``,
+    ``top_file`` -> ``--top``."""
+    return {"gravity": "--g", "top_file": "--top"}.get(name) or "--" + name.replace("_", "-")
+
+
 _VALUES = {"values": "a number, a comma list, or start:stop:num", "value": "a number"}
 
 
@@ -60,42 +69,38 @@ def add_parameter_flags(
     p: argparse.ArgumentParser | argparse._ArgumentGroup,
     names: Iterable[str],
     *,
-    required: Iterable[str] = (),
     kind: str = "values",
-    defaults: dict[str, object] | None = None,
+    unless_top: Iterable[str] = (),
     extra: dict[str, str] | None = None,
 ) -> None:
     """Add ``--q``, ``--fr-inv``, ... with their help (what, unit, domain, default).
+
+    A flag not given is None: ``mu`` then takes :data:`stability.parameters.DEFAULT_MU`
+    (:func:`apply_top`, which also fills the parameters a top gives), as its help says.
 
     Parameters
     ----------
     p : argparse parser or group
     names : iterable of str
         Parameter names (keys of :data:`PARAMETER_HELP`).
-    required : iterable of str
-        The names whose flag is required.
     kind : {"values", "value"}
         ``"values"``: a number, a comma list or a range (read later by :func:`parameter_values`);
         ``"value"``: one float.
-    defaults : dict, optional
-        Default per name (``mu`` defaults to :data:`stability.parameters.DEFAULT_MU`, the
-        others to None: not given).
+    unless_top : iterable of str
+        The names whose flag is required unless a top is given (said in their help).
     extra : dict, optional
-        Text added to a name's help (e.g. which model needs it).
+        Text added to a name's help (e.g. which model needs it), instead of the default.
     """
-    required = tuple(required)
-    defaults = {"mu": DEFAULT_MU, **(defaults or {})}
+    required = " (required unless a top is given)"
+    extra = {"mu": f" (default {DEFAULT_MU})", **dict.fromkeys(unless_top, required), **(extra or {})}
     for name in names:
-        flag = FLAGS.get(name, "--" + name.replace("_", "-"))
         p.add_argument(
-            flag,
+            flag_of(name),
             dest=name,
             metavar="VALUES" if kind == "values" else "VALUE",
             type=float if kind == "value" else None,
-            required=name in required,
-            default=defaults.get(name),
-            help=parameter_help(name, kind=kind, extra=(extra or {}).get(name, ""))
-            + ("; required" if name in required else ""),
+            default=None,
+            help=parameter_help(name, kind=kind, extra=extra.get(name, "")),
         )
 
 
@@ -149,6 +154,12 @@ def add_output_flags(
     """``-o/--output FILE.nc`` (``help`` says what is written) and ``--overwrite``."""
     p.add_argument("-o", "--output", required=required, default=None, metavar="FILE.nc", help=help)
     p.add_argument("--overwrite", action="store_true", help=overwrite)
+
+
+def add_float_flags(p: argparse.ArgumentParser | argparse._ArgumentGroup, *rows: tuple) -> None:
+    """Options that take one number: each row ``(flag, default, metavar, help)``."""
+    for flag, default, metavar, text in rows:
+        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
 
 
 def comma_floats(text: str) -> list[float]:
@@ -229,7 +240,7 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
         'inertia_axial (SI), optional g, mu_v, mu_k, or preset = "table1"',
     )
     for name in TOP_FLAGS:
-        g.add_argument("--" + name.replace("_", "-"), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
+        g.add_argument(flag_of(name), dest=name, type=float, metavar="VALUE", help=TOP_HELP[name])
     g.add_argument("--g", dest="gravity", type=float, default=None, metavar="M/S2", help="gravity (default 9.80665)")
     g.add_argument(
         "--mu-v",
@@ -261,7 +272,7 @@ def _top_source(args: argparse.Namespace) -> str:
     if getattr(args, "top_file", None):
         return f"--top {args.top_file}"
     given = [n for n in TOP_FLAGS if getattr(args, n, None) is not None]
-    return "--" + given[0].replace("_", "-") if given else "the top"
+    return flag_of(given[0]) if given else "the top"
 
 
 def top_from_args(args: argparse.Namespace):  # -> Top | None
@@ -285,11 +296,10 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         for k, a in (("g", "gravity"), ("mu_v", "mu_v"), ("mu_k", "mu_k"))
         if getattr(args, a, None) is not None
     }
-    flag = {"g": "--g", "mu_v": "--mu-v", "mu_k": "--mu-k"}
     ways = (
         ([f"--preset {preset}"] if preset else [])
         + ([f"--top {path}"] if path else [])
-        + ([", ".join("--" + n.replace("_", "-") for n in si)] if si else [])
+        + ([", ".join(map(flag_of, si))] if si else [])
     )
     if len(ways) > 1:
         raise InputError(f"{' and '.join(ways)} conflict: give the top one way (--preset, --top FILE or its SI data)")
@@ -297,7 +307,7 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         return getattr(Top, preset)(**extra)
     if path:
         top = Top.from_toml(path)
-        clash = [flag[k] for k in extra if getattr(top, k) is not None and k != "g"]
+        clash = [flag_of(k) for k in extra if getattr(top, k) is not None and k != "g"]
         if clash or "g" in extra:
             raise InputError(f"--top {path} and {', '.join(clash or ['--g'])} conflict: give g, mu_v, mu_k in the file")
         return replace(top, **extra) if extra else top
@@ -305,14 +315,14 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
         missing = [n for n in TOP_FLAGS if n not in si]
         if missing:
             raise InputError(
-                f"{', '.join('--' + n.replace('_', '-') for n in si)} given without "
-                f"{', '.join('--' + n.replace('_', '-') for n in missing)}: a top in SI units needs all "
+                f"{', '.join(map(flag_of, si))} given without {', '.join(map(flag_of, missing))}: a top in SI "
+                "units needs all "
                 "five (or --top FILE, or --preset)"
             )
         return Top(*(getattr(args, n) for n in TOP_FLAGS), **extra)
     if extra:
         raise InputError(
-            f"{', '.join(flag[k] for k in extra)} describe a real top: give it too (--mass ..., --top FILE or --preset)"
+            f"{', '.join(map(flag_of, extra))} describe a real top: give it too (--mass ..., --top FILE or --preset)"
         )
     return None
 
@@ -323,8 +333,7 @@ def required_top(args: argparse.Namespace, command: str):  # -> Top
 
     top = top_from_args(args)
     if top is None:
-        flags = ", ".join("--" + n.replace("_", "-") for n in TOP_FLAGS)
-        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {flags}")
+        raise InputError(f"{command} needs a top: --preset, --top FILE.toml or {', '.join(map(flag_of, TOP_FLAGS))}")
     return top
 
 
@@ -418,7 +427,7 @@ def apply_top(
             )
     if given:
         n = given[0]
-        flag = FLAGS.get(n, "--" + n.replace("_", "-"))
+        flag = flag_of(n)
         raise InputError(
             f"{source} and {flag} {getattr(args, n)} conflict: the top gives {n} "
             f"(eqs. 3, 7); give the top or {flag}, not both"
@@ -432,11 +441,7 @@ def apply_top(
         value = parse_values(spin, name="--spin") if isinstance(spin, str) else spin
         if not getattr(args, "_top_grid", False) and not isinstance(value, float):
             raise InputError(f"--spin = {spin!r} must be one number here")
-        from ..top import SPIN_UNITS
-
-        unit = getattr(args, "unit", None) or "rad/s"
-        if unit not in SPIN_UNITS:
-            raise InputError(f"--unit = {unit!r} is not one of {', '.join(SPIN_UNITS)}")
+        unit = getattr(args, "unit", None) or "rad/s"  # one of SPIN_UNITS: argparse's choices
         alpha_v = getattr(args, "alpha_v", None)
         if isinstance(alpha_v, str):
             alpha_v = parse_values(alpha_v, name=FLAGS["alpha_v"])
@@ -454,7 +459,7 @@ def apply_top(
 def _require(args: argparse.Namespace, required: Iterable[str]) -> None:
     from ..errors import InputError
 
-    missing = [FLAGS.get(n, "--" + n.replace("_", "-")) for n in required if getattr(args, n, None) is None]
+    missing = [flag_of(n) for n in required if getattr(args, n, None) is None]
     if missing:
         spin = getattr(args, "_top_spin", False)
         raise InputError(

@@ -17,13 +17,14 @@ from ..errors import InputError, Interrupted
 from ..grids.netcdf import check_output_path, write_dataset
 from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import DEPRECATED_NAMES, MODELS
-from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
 
-__all__ = ["register", "run"]
-
-
+HELP = "eigenvalues of a linear model over a parameter grid -> netCDF"
+DESCRIPTION = (
+    "Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. Ranges: start:stop:num "
+    "(linspace) or comma lists. Default model: sliding (--alpha-v then required)."
+)
 #: the most lines --plot draws for a second grid dimension; beyond it, the map over the two
 MAX_LINES = 10
 
@@ -40,22 +41,14 @@ def plot_figure(ds, x: str):
     return atlas_figure(ds, x=x)[0]
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``atlas`` subcommand."""
-    p = sub.add_parser(
-        "atlas",
-        help="eigenvalues of a linear model over a parameter grid -> netCDF",
-        description="Compute the spectrum of a linear model over a grid and write it as a netCDF atlas. "
-        "Ranges: start:stop:num (linspace) or comma lists. Default model: sliding "
-        "(--alpha-v then required).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe atlas``."""
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(
         p,
         ("q", "fr_inv", "sigma", "alpha_v", "mu"),
-        defaults={"mu": None},
-        extra={"alpha_v": " (sliding model only)", "mu": f" (default {DEFAULT_MU})"}
-        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+        unless_top=("q", "fr_inv", "sigma"),
+        extra={"alpha_v": " (sliding model only)"},
     )
     add_top_arguments(p, spin=True, grid=True)
     add_output_flags(
@@ -131,7 +124,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
     )
     g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
-    p.set_defaults(func=run)
 
 
 def parse_chunks(text: str) -> int | dict[str, int]:
@@ -158,29 +150,12 @@ def parse_chunks(text: str) -> int | dict[str, int]:
         ) from None
 
 
-def _run_chunked(args: argparse.Namespace, out, values: dict) -> int:
-    """``tippe atlas --chunks``: lazy atlas, written chunk by chunk."""
-    from ..grids.atlases import atlas
+def _run_chunked(args: argparse.Namespace, out, ds) -> int:
+    """``tippe atlas --chunks``: the lazy atlas ``ds`` written chunk by chunk."""
     from ..grids.chunked import parts_directory, write_atlas
     from ..grids.cluster import dask_client
 
-    if args.plot:
-        raise InputError(
-            "--plot is not available with --chunks (the grid may not fit in memory); "
-            "plot a slice of the written file instead"
-        )
-    ds = _spin_coordinate(
-        atlas(
-            args.model,
-            mask_unphysical=args.mask_unphysical,
-            method=args.method,
-            chunks=parse_chunks(args.chunks),
-            **values,
-        ),
-        args,
-    )
     store = parts_directory(out)
-    _check_space(out, args.model, values)
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
     if args.resume:
@@ -234,10 +209,8 @@ def _summary(out, model: str, ds, counts: dict[str, int], how: str = "") -> str:
     return f"wrote {out}: {model} model, grid {grid}{how}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
 
 
-def _layout(args: argparse.Namespace | None) -> dict:
-    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags (None: the defaults)."""
-    if args is None:
-        return {"variables": "all", "compression": None, "float32": False}
+def _layout(args: argparse.Namespace) -> dict:
+    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags."""
     return {
         "variables": args.variables,
         "compression": None if args.compression == "none" else args.compression,
@@ -270,12 +243,22 @@ def run(args: argparse.Namespace) -> int:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
     values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
-    if args.chunks is not None:
-        return _run_chunked(args, out, values)
-    if args.workers is not None or args.scheduler is not None or args.resume:
+    if args.chunks is not None and args.plot:
+        raise InputError(
+            "--plot is not available with --chunks (the grid may not fit in memory); "
+            "plot a slice of the written file instead"
+        )
+    if args.chunks is None and (args.workers is not None or args.scheduler is not None or args.resume):
         raise InputError("--workers, --scheduler and --resume apply to chunked runs: give --chunks too")
-    _check_space(out, args.model, values)
-    ds = _spin_coordinate(atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, **values), args)
+    chunks = None if args.chunks is None else parse_chunks(args.chunks)
+    if chunks is None:  # before computing; a chunked atlas is lazy, its grid checked first
+        _check_space(out, args.model, values)
+    ds = _spin_coordinate(
+        atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, chunks=chunks, **values), args
+    )
+    if chunks is not None:
+        _check_space(out, args.model, values)
+        return _run_chunked(args, out, ds)
     if args.plot:
         from ..plotting import save_figure, style
 
@@ -284,13 +267,12 @@ def run(args: argparse.Namespace) -> int:
         # the figure is written before the netCDF file is committed: a failure to draw or save
         # it leaves no atlas file behind
         save_figure(fig, args.plot, overwrite=args.overwrite)
-    layout = _layout(args)
-    if layout == _layout(None) and not zarr_store:
-        write_dataset(ds, out, overwrite=args.overwrite)
-    else:
+    if zarr_store or (args.variables, args.compression, args.float32) != ("all", "none", False):
         from ..grids.chunked import write_atlas
 
-        write_atlas(ds, out, overwrite=args.overwrite, **layout)
+        write_atlas(ds, out, overwrite=args.overwrite, **_layout(args))
+    else:
+        write_dataset(ds, out, overwrite=args.overwrite)
     print(_summary(out, args.model, ds, {name: int((ds.stability == flag).sum()) for flag, name in _COUNTED.items()}))
     if args.plot:
         print(f"wrote {args.plot}")
@@ -315,22 +297,13 @@ def _apply_top(args: argparse.Namespace) -> None:
 
 
 def _spin_coordinate(ds, args: argparse.Namespace):
-    """With a top and its spin: the spin in ``--unit`` as a coordinate along ``fr_inv`` (or an
-    attribute for one spin), and the top's SI data in the attributes."""
-    import numpy as np
-
+    """With a top and its spin: the spin in ``--unit`` on the atlas (:func:`stability.recipes.spin_coordinate`)."""
     from ..grids.ranges import parse_values
+    from ..recipes import spin_coordinate
 
     if getattr(args, "spin", None) is None:
         return ds
-    spin = parse_values(args.spin, name="--spin")
-    unit = args.unit or "rad/s"
-    attrs = {"long_name": "spin rate Omega of the top", "units": unit, "comment": "fr_inv = g / (Omega^2 R) (eq. 3)"}
-    if np.ndim(spin) == 1:
-        ds = ds.assign_coords(spin=("fr_inv", np.asarray(spin, dtype=float), attrs))
-    else:
-        ds.attrs.update(spin=float(spin), spin_unit=unit)
-    return ds
+    return spin_coordinate(ds, parse_values(args.spin, name="--spin"), args.unit or "rad/s")
 
 
 def _check_plot_format(path: str) -> None:

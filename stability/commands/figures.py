@@ -7,20 +7,16 @@ from pathlib import Path
 
 from ..errors import InputError
 
-__all__ = ["register", "run"]
+HELP = "compute and draw atlas recipes (atlases/*.toml)"
+DESCRIPTION = (
+    "Run atlas recipes: compute the datasets that are missing or out of date (netCDF beside each recipe) and "
+    "draw their figures (PNG). A recipe's own outputs (<name>.png, <name>*.nc beside it) are replaced; a file "
+    "there that no recipe wrote is refused unless --force. Each recipe names its models (default: sliding)."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``figures`` subcommand."""
-    p = sub.add_parser(
-        "figures",
-        help="compute and draw atlas recipes (atlases/*.toml)",
-        description="Run atlas recipes: compute the datasets that are missing or out of date "
-        "(netCDF beside each recipe) and draw their figures (PNG). A recipe's own outputs "
-        "(<name>.png, <name>*.nc beside it) are replaced; a file there that no "
-        "recipe wrote is refused unless --force. Each recipe names its models "
-        "(default: sliding).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe figures``."""
     p.add_argument("recipes", nargs="*", metavar="RECIPE", help="recipe files or directories (default: atlases/)")
     p.add_argument(
         "--force",
@@ -28,7 +24,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="recompute even when a matching dataset exists, and replace a file at a recipe's "
         "output path that was not written by a recipe (default: reuse, refuse)",
     )
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

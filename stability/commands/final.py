@@ -5,22 +5,19 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_output_flags, add_state_flags, output_path, write_output
+from ._args import add_float_flags, add_output_flags, add_state_flags, output_path, write_output
 from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
 
-__all__ = ["register", "run"]
+HELP = "predicted final state of a sliding top (Jellett's integral, or a run)"
+DESCRIPTION = (
+    "Where the motion of a sliding top from a given state ends: the steady states of its Jellett level below its "
+    "initial energy decide it when exactly one is stable (method jellett); otherwise a nonlinear run does, and "
+    "says so (method simulation). State arguments as in tippe simulate (fixed frame, K up). Sliding model only."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``final`` subcommand."""
-    p = sub.add_parser(
-        "final",
-        help="predicted final state of a sliding top (Jellett's integral, or a run)",
-        description="Where the motion of a sliding top from a given state ends: the steady states of its "
-        "Jellett level below its initial energy decide it when exactly one is stable (method "
-        "jellett); otherwise a nonlinear run does, and says so (method simulation). State "
-        "arguments as in tippe simulate (fixed frame, K up). Sliding model only.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe final``."""
     add_state_flags(
         p,
         omega="initial angular velocity (units of the spin rate)",
@@ -34,15 +31,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         action="store_false",
         help="do not run a simulation when Jellett's integral does not decide (default: run one)",
     )
-    p.add_argument(
-        "--t-max",
-        type=float,
-        default=2e5,
-        metavar="T",
-        help="time limit of a deciding run, units of 1/Omega (default 2e5)",
-    )
+    add_float_flags(p, ("--t-max", 2e5, "T", "time limit of a deciding run, units of 1/Omega (default 2e5)"))
     add_output_flags(p, "write the prediction and its candidate table as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -51,18 +41,8 @@ def run(args: argparse.Namespace) -> int:
 
     apply_top_flags(args)
     out = output_path(args)
-    end = final_state(
-        omega=args.omega,
-        k=args.k,
-        velocity=args.velocity,
-        q=args.q,
-        sigma=args.sigma,
-        fr_inv=args.fr_inv,
-        alpha_v=args.alpha_v,
-        mu=args.mu,
-        simulation=args.simulation,
-        t_max=args.t_max,
-    )
+    keywords = ("omega", "k", "velocity", "q", "sigma", "fr_inv", "alpha_v", "mu", "simulation", "t_max")
+    end = final_state(**{name: getattr(args, name) for name in keywords})
     print(f"final state: {end.kind}, tilt {end.tilt:.6f} deg (method: {end.method})")
     print(
         f"Jellett's integral J = {end.jellett:.12g}, initial energy {end.initial_energy:.10g}, "

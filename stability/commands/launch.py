@@ -4,33 +4,29 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_top_arguments, required_top
+from ._args import add_float_flags, add_top_arguments, required_top
 
-__all__ = ["register", "run"]
+HELP = "what a real top does when you spin it: thresholds, end, flip and settle times"
+DESCRIPTION = (
+    "A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis tilted by --tilt "
+    "degrees, the sphere's centre at rest: the spin above which the upright top is unstable, the launch spin "
+    "above which it inverts completely, its class, where it ends, the time to 90 degrees and to settle, the "
+    "smallest normal force (docs/launch.md). Sliding model only."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``launch`` subcommand."""
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe launch``."""
     from ..top import SPIN_UNITS
 
-    p = sub.add_parser(
-        "launch",
-        help="what a real top does when you spin it: thresholds, end, flip and settle times",
-        description="A top in SI units (--mass ... or --preset table1) launched at --spin (in --unit), its axis "
-        "tilted by --tilt degrees, the sphere's centre at rest: the spin above which the upright top "
-        "is unstable, the launch spin above which it inverts completely, its class, where it ends, "
-        "the time to 90 degrees and to settle, the smallest normal force (docs/launch.md). Sliding model only.",
-    )
     add_top_arguments(p, spin=False)
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
     g.add_argument("--unit", choices=list(SPIN_UNITS), default="rev/s", help="unit of --spin (default rev/s)")
-    g.add_argument("--tilt", type=float, default=1.0, metavar="DEG", help="initial tilt of the axis (default 1)")
-    g.add_argument(
-        "--alpha-v",
-        type=float,
-        metavar="VALUE",
-        help="viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)",
+    add_float_flags(
+        g,
+        ("--tilt", 1.0, "DEG", "initial tilt of the axis (default 1)"),
+        ("--alpha-v", None, "VALUE", "viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)"),
     )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
     g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")
@@ -39,7 +35,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="FILE.png",
         help="also draw the top's bifurcation diagram in --unit, the launch and its end marked",
     )
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

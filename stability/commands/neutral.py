@@ -19,19 +19,16 @@ from ._args import (
     write_output,
 )
 
-__all__ = ["register", "run"]
+HELP = "neutral curves of a linear model in a parameter plane -> netCDF"
+DESCRIPTION = (
+    "Trace by pseudo-arclength continuation the curves where a mode is neutral (Re s = 0) in the plane of two "
+    "parameters, print the special points (folds, zero-frequency and double crossings, domain edges) and write "
+    "the curves. Give the parameters other than --x and --y. Default model: sliding (--alpha-v then required)."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``neutral`` subcommand."""
-    p = sub.add_parser(
-        "neutral",
-        help="neutral curves of a linear model in a parameter plane -> netCDF",
-        description="Trace by pseudo-arclength continuation the curves where a mode is neutral "
-        "(Re s = 0) in the plane of two parameters, print the special points (folds, "
-        "zero-frequency and double crossings, domain edges) and write the curves. Give the "
-        "parameters other than --x and --y. Default model: sliding (--alpha-v then required).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe neutral``."""
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     p.add_argument("--x", required=True, choices=list(FLAGS), help="abscissa parameter; required")
     p.add_argument("--y", required=True, choices=list(FLAGS), help="ordinate parameter; required")
@@ -39,14 +36,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         p,
         FLAGS,
         kind="value",
-        defaults={"mu": None},
         extra={"mu": f" (default {DEFAULT_MU} unless traced)", "alpha_v": " (sliding model only)"},
     )
     add_top_arguments(p, spin=True)
     p.add_argument("--x-range", metavar="LO:HI", help="range of x (default: physical domain)")
     p.add_argument("--y-range", metavar="LO:HI", help="range of y (default: physical domain)")
     add_output_flags(p, "netCDF file to write (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -57,15 +52,11 @@ def run(args: argparse.Namespace) -> int:
     model = get_model(args.model)
     traced = (args.x, args.y)
     apply_top(args, [n for n in FLAGS if n in model.parameters], spin_needed="fr_inv" not in traced, skip=traced)
-    fixed = {}
-    for name in model.parameters:
-        v = getattr(args, name)
-        if name in (args.x, args.y):
-            if v is not None:
-                raise InputError(f"{FLAGS[name]} is traced (--x/--y) and cannot also be fixed")
-            continue
-        if v is not None:
-            fixed[name] = v
+    given = {name: getattr(args, name) for name in model.parameters if getattr(args, name) is not None}
+    clash = [name for name in given if name in traced]
+    if clash:
+        raise InputError(f"{FLAGS[clash[0]]} is traced (--x/--y) and cannot also be fixed")
+    fixed = {name: v for name, v in given.items() if name not in traced}
     for name in FLAGS:
         if name not in model.parameters and getattr(args, name) is not None:
             raise InputError(f"model {model.name!r} takes no parameter {name} ({FLAGS[name]})")

@@ -9,11 +9,22 @@ import sys
 
 from ..grids.netcdf import check_output_path, write_dataset
 from ..nonlinear import NONLINEAR_MODELS
-from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_state_flags, add_top_arguments, apply_top
+from ._args import (
+    add_float_flags,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_state_flags,
+    add_top_arguments,
+    apply_top,
+)
 
-__all__ = ["register", "run"]
-
+HELP = "integrate a nonlinear model -> netCDF"
+DESCRIPTION = (
+    "Integrate the sliding, rolling or fixed-pivot top from a given state and write the run (omega, k, energy, "
+    "forces, ...) as netCDF. Default model: sliding (--alpha-v then required). Times are in units of 1/Omega "
+    "(one spin period is 2 pi), rates in units of Omega."
+)
 #: the integrators --method offers, and the default regularisation scale of the Coulomb term:
 #: written here so that ``tippe --help`` does not import scipy and the integrators;
 #: tests/test_cli.py checks them against stability.nonlinear.integrators and simulate()'s defaults
@@ -21,18 +32,14 @@ _METHODS = ("auto", "dopri5", "rk4", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 _SLIP_SCALE = 1e-4
 #: the nondimensional parameters simulate takes, and those needed without a top
 _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
+#: simulate()'s keywords that are options of the same name here: the run, and how it is integrated
+#: (alpha_k is 0 when not given)
+_RUN = ("t_end", "omega", "k", "velocity", "q", "fr_inv", "sigma", "alpha_v", "mu")
+_INTEGRATION = ("friction", "normal", "slip_scale", "method", "rtol", "atol", "dt", "step")
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``simulate`` subcommand."""
-    p = sub.add_parser(
-        "simulate",
-        help="integrate a nonlinear model -> netCDF",
-        description="Integrate the sliding, rolling or fixed-pivot top from a given "
-        "state and write the run (omega, k, energy, forces, ...) as netCDF. "
-        "Default model: sliding (--alpha-v then required). Times are in "
-        "units of 1/Omega (one spin period is 2 pi), rates in units of Omega.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe simulate``."""
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="nonlinear model")
     p.add_argument(
         "--t-end", type=float, required=True, metavar="T", help="final time, units of 1/Omega (> 0); required"
@@ -47,13 +54,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         p,
         _NAMES,
         kind="value",
-        defaults={"mu": None},
-        extra={
-            "alpha_v": " (sliding only; required there)",
-            "alpha_k": " (sliding only; default 0.0)",
-            "mu": f" (default {DEFAULT_MU})",
-        }
-        | dict.fromkeys(_REQUIRED, " (required unless a top is given)"),
+        unless_top=_REQUIRED,
+        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)"},
     )
     add_top_arguments(p, spin=True)
     p.add_argument(
@@ -76,20 +78,19 @@ def register(sub: argparse._SubParsersAction) -> None:
         "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
         "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
     )
-    for flag, default, metavar, text in (
+    add_float_flags(
+        p,
         ("--slip-scale", _SLIP_SCALE, "S", "regularisation scale of the Coulomb term, units of Omega R (> 0)"),
         ("--rtol", 1e-9, "R", "relative tolerance of the adaptive integrators (0 < R < 1)"),
         ("--atol", 1e-12, "A", "absolute tolerance of the adaptive integrators (0 < A < 1)"),
         ("--dt", 0.1, "DT", "output interval, units of 1/Omega (> 0)"),
-    ):
-        p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
-    p.add_argument(
-        "--step",
-        type=float,
-        default=None,
-        metavar="H",
-        help="step of --method rk4 (required there), first step of the adaptive methods, "
-        "units of 1/Omega (default: chosen by the integrator)",
+        (
+            "--step",
+            None,
+            "H",
+            "step of --method rk4 (required there), first step of the adaptive methods, "
+            "units of 1/Omega (default: chosen by the integrator)",
+        ),
     )
     add_output_flags(p, "netCDF file to write; required", required=True)
     g = p.add_mutually_exclusive_group()
@@ -101,7 +102,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="show a progress bar (default: when stderr is a terminal and the run takes over a second)",
     )
     g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
-    p.set_defaults(func=run)
 
 
 #: outputs above this size get a warning on stderr before the run
@@ -137,28 +137,8 @@ def run(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
     show = args.progress if args.progress is not None else sys.stderr.isatty()
-    ds = simulate(
-        args.model,
-        t_end=args.t_end,
-        omega=args.omega,
-        k=args.k,
-        velocity=args.velocity,
-        q=args.q,
-        fr_inv=args.fr_inv,
-        sigma=args.sigma,
-        alpha_v=args.alpha_v,
-        alpha_k=0.0 if args.alpha_k is None else args.alpha_k,
-        mu=args.mu,
-        friction=args.friction,
-        normal=args.normal,
-        slip_scale=args.slip_scale,
-        method=args.method,
-        rtol=args.rtol,
-        atol=args.atol,
-        dt=args.dt,
-        step=args.step,
-        progress=show,
-    )
+    given = {name: getattr(args, name) for name in (*_RUN, *_INTEGRATION)}
+    ds = simulate(args.model, **given, alpha_k=0.0 if args.alpha_k is None else args.alpha_k, progress=show)
     write_dataset(ds, out, overwrite=args.overwrite)
     a = ds.attrs
     t = ds["time"].values

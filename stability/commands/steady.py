@@ -7,9 +7,9 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..parameters import DEFAULT_MU
 from ..products import FLAG_NAMES
 from ._args import (
+    add_float_flags,
     add_output_flags,
     add_parameter_flags,
     add_top_arguments,
@@ -18,7 +18,7 @@ from ._args import (
     write_output,
 )
 
-__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags", "register", "run"]
+__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags"]
 
 
 #: the parameters of the sliding top's steady states, and those needed without a top
@@ -32,8 +32,7 @@ def add_top_flags(p: argparse.ArgumentParser) -> None:
         p,
         _NAMES,
         kind="value",
-        defaults={"mu": None},
-        extra=dict.fromkeys(_REQUIRED, " (required unless a top is given)") | {"mu": f" (default {DEFAULT_MU})"},
+        unless_top=_REQUIRED,
     )
     add_top_arguments(p, spin=True)
 
@@ -43,45 +42,42 @@ def apply_top_flags(args: argparse.Namespace) -> None:
     apply_top(args, _NAMES, required=_REQUIRED)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``steady`` subcommand."""
-    p = sub.add_parser(
-        "steady",
-        help="steady (tilted) states on a Jellett level, or the branch of tilted states",
-        description="Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett "
-        "level J, with tilt, precession rate, spin, energy, growth rate and stability; with --branch, "
-        "the family of tilted states traced against J by continuation, with its branch points and "
-        "folds. Sliding model only. Units: simulate's (J in A0 Omega). docs/steady_states.md.",
-    )
+HELP = "steady (tilted) states on a Jellett level, or the branch of tilted states"
+DESCRIPTION = (
+    "Every steady state of the sliding top (upright, inverted, each tilted one) on one Jellett level J, with "
+    "tilt, precession rate, spin, energy, growth rate and stability; with --branch, the family of tilted states "
+    "traced against J by continuation, with its branch points and folds. Sliding model only. Units: simulate's "
+    "(J in A0 Omega). docs/steady_states.md."
+)
+
+
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe steady``."""
     add_top_flags(p)
-    p.add_argument(
-        "--jellett",
-        type=float,
-        default=None,
-        metavar="J",
-        help="Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))",
+    add_float_flags(
+        p, ("--jellett", None, "J", "Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))")
     )
     p.add_argument(
         "--branch",
         action="store_true",
         help="trace the branch of tilted states against J instead (--jellett is then not used)",
     )
-    p.add_argument(
-        "--jellett-max",
-        type=float,
-        default=None,
-        metavar="J",
-        help="with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)",
-    )
-    p.add_argument(
-        "--max-step",
-        type=float,
-        default=0.02,
-        metavar="H",
-        help="with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
+    add_float_flags(
+        p,
+        (
+            "--jellett-max",
+            None,
+            "J",
+            "with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)",
+        ),
+        (
+            "--max-step",
+            0.02,
+            "H",
+            "with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)",
+        ),
     )
     add_output_flags(p, "write the states (or the branch) as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -6,7 +6,6 @@ import argparse
 
 from ..errors import InputError
 from ..models import DEPRECATED_NAMES, MODELS, get_model
-from ..parameters import DEFAULT_MU
 from ..top import SPIN_UNITS, Top
 from ._args import (
     FLAGS,
@@ -14,34 +13,28 @@ from ._args import (
     add_model_flag,
     add_parameter_flags,
     add_top_arguments,
+    flag_of,
     lo_hi,
     required_top,
 )
 
-__all__ = ["register", "run"]
+HELP = "threshold of one parameter, or the critical spin of a real top"
+DESCRIPTION = (
+    "PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or 'spin' for a real top in SI units "
+    "(--mass ... or --preset table1): the spin rate above which the upright state is unstable and the inverted "
+    "one stable. Default model: sliding."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``threshold`` subcommand."""
-    p = sub.add_parser(
-        "threshold",
-        help="threshold of one parameter, or the critical spin of a real top",
-        description="PARAM is one of q, fr_inv, sigma, alpha_v, mu (give all the others), or "
-        "'spin' for a real top in SI units (--mass ... or --preset table1): the spin "
-        "rate above which the upright state is unstable and the inverted one stable. "
-        "Default model: sliding.",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe threshold``."""
     p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM", help="q, fr_inv, sigma, alpha_v, mu or spin")
     add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
     add_parameter_flags(
         p,
         FLAGS,
         kind="value",
-        defaults={"mu": None},
-        extra={
-            "mu": f" (default {DEFAULT_MU})",
-            "alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)",
-        },
+        extra={"alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)"},
     )
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
     p.add_argument(
@@ -63,18 +56,14 @@ def register(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
     )
-    p.set_defaults(func=run)
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
 
-    def flag(name: str) -> str:
-        return {"gravity": "--g", "top_file": "--top"}.get(name, FLAGS.get(name, "--" + name.replace("_", "-")))
-
     top_given = [n for n in (*TOP_FLAGS, "gravity", "mu_k") if getattr(args, n) is not None]
     if args.param == "spin":
-        unused = [flag(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
+        unused = [flag_of(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
         unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
         if unused:
             raise InputError(
@@ -82,8 +71,8 @@ def _refuse_unused(args: argparse.Namespace) -> None:
                 "mu come from --preset or its SI data; the spin rate is what is searched)"
             )
         return
-    unused = [flag(n) for n in top_given]
-    unused += [flag(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
+    unused = [flag_of(n) for n in top_given]
+    unused += [flag_of(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
     if unused:
         raise InputError(
             f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
@@ -101,10 +90,7 @@ def run(args: argparse.Namespace) -> int:
         orientation = args.orientation or "both"
         alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
         found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
-        if orientation == "both":
-            per = {"upright": found.upright, "inverted": found.inverted}
-        else:
-            per = {orientation: found}
+        per = {"upright": found.upright, "inverted": found.inverted} if orientation == "both" else {orientation: found}
         print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
         for o, c in per.items():
             if c is None:
@@ -148,16 +134,12 @@ def run(args: argparse.Namespace) -> int:
 def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
     """The two readings that must not be mixed up, each on its own line (issue 23)."""
     from ..launches.result import NEVER_INVERTS, inverts_above
-    from ..top import from_rad_per_s
-
-    def both(w: float) -> str:
-        text = f"{from_rad_per_s(w, unit):.10g} {unit}"
-        return text if unit in ("rev/s", "Hz") else f"{text} = {from_rad_per_s(w, 'rev/s'):.10g} rev/s"
+    from ..top import spin_text
 
     up = found.upright
     print(
         "the upright top becomes unstable above "
-        + (both(up.spin) if up is not None else f"no spin ({found.reasons['upright']})")
+        + (spin_text(up.spin, unit, digits=10) if up is not None else f"no spin ({found.reasons['upright']})")
     )
     ref = up.spin if up is not None else top.spin_rate(0.3)
     inv = inverts_above(top, ref, alpha_v)
@@ -170,7 +152,7 @@ def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
             + NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
         )
     else:
-        print("launched upright, it inverts completely above " + both(inv))
+        print("launched upright, it inverts completely above " + spin_text(inv, unit, digits=10))
 
 
 def _interval(param: str, t) -> str:

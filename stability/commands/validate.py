@@ -5,11 +5,22 @@ from __future__ import annotations
 import argparse
 
 from ..nonlinear import NONLINEAR_MODELS
-from ..parameters import DEFAULT_MU
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from ._args import (
+    add_float_flags,
+    add_model_flag,
+    add_output_flags,
+    add_parameter_flags,
+    add_top_arguments,
+    apply_top,
+    parameter_values,
+)
 
-__all__ = ["register", "run"]
-
+HELP = "check linear growth rates against nonlinear runs"
+DESCRIPTION = (
+    "For each point (values broadcast together), perturb the upright spin along the leading eigenvector, "
+    "integrate the nonlinear model, fit growth rate and frequency, and print them beside the predictions. "
+    "Default model: sliding (--alpha-v then required)."
+)
 _COORDS = ("q", "fr_inv", "sigma", "mu", "alpha_v")
 
 
@@ -36,34 +47,18 @@ def format_points(ds) -> str:
     return "\n".join(lines)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``validate`` subcommand."""
-    p = sub.add_parser(
-        "validate",
-        help="check linear growth rates against nonlinear runs",
-        description="For each point (values broadcast together), perturb the upright "
-        "spin along the leading eigenvector, integrate the nonlinear model, "
-        "fit growth rate and frequency, and print them beside the predictions. "
-        "Default model: sliding (--alpha-v then required).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe validate``."""
     add_model_flag(p, NONLINEAR_MODELS, "sliding", what="model (nonlinear, and its linearisation)")
     add_parameter_flags(
         p,
         _COORDS,
-        defaults={"mu": None},
-        extra={"alpha_v": " (sliding only; > 0 there)", "mu": f" (default {DEFAULT_MU})"}
-        | dict.fromkeys(("q", "fr_inv", "sigma"), " (required unless a top is given)"),
+        unless_top=("q", "fr_inv", "sigma"),
+        extra={"alpha_v": " (sliding only; > 0 there)"},
     )
     add_top_arguments(p, spin=True, grid=True)
-    p.add_argument(
-        "--amplitude",
-        type=float,
-        default=1e-4,
-        metavar="A",
-        help="initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)",
-    )
+    add_float_flags(p, ("--amplitude", 1e-4, "A", "initial tilt |Phi| along the leading eigenvector (0 < A <= 0.1)"))
     add_output_flags(p, "also write the Dataset as netCDF (default: print only)")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:

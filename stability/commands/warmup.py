@@ -17,22 +17,18 @@ import os
 import time
 from collections.abc import Callable
 
-__all__ = ["register", "run", "steps"]
+HELP = "compile every compiled kernel now (numba's disk cache) and report the times"
+DESCRIPTION = (
+    "Compile (or load from numba's disk cache) every compiled path: the spectral kernel's loops, the batched root "
+    "finders and growth-rate signs, the neutral curves' corrector, the steady states and their branch, the "
+    "integrators. Later processes then load them instead of compiling (a first call with a large grid, or a "
+    "first simulate, would otherwise compile for seconds)."
+)
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    """Add the ``warmup`` subcommand."""
-    p = sub.add_parser(
-        "warmup",
-        help="compile every compiled kernel now (numba's disk cache) and report the times",
-        description="Compile (or load from numba's disk cache) every compiled path: the spectral "
-        "kernel's loops, the batched root finders and growth-rate signs, the neutral "
-        "curves' corrector, the steady states and their branch, the integrators. Later "
-        "processes then load them instead of compiling (a first call "
-        "with a large grid, or a first simulate, would otherwise compile for seconds).",
-    )
+def arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``tippe warmup``."""
     p.add_argument("--list", action="store_true", help="list the steps without running them")
-    p.set_defaults(func=run)
 
 
 def steps() -> list[tuple[str, Callable[[], object], list]]:
@@ -60,99 +56,71 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     )
     c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
+    top = dict(q=-0.1, sigma=1.0, fr_inv=0.3)  # the paper's top (Sec. 3(ii)) for the one-point steps
     out: list[tuple[str, Callable[[], object], list]] = []
-    for parallel in (False, True):
-        kind = "parallel" if parallel else "serial"
-        out.append(
+    for par in (False, True):
+        kind = "parallel" if par else "serial"
+        out += [
             (
                 f"eigenvalue kernel, sliding model, domain test fused ({kind})",
-                lambda parallel=parallel: kernel.checked_model_spectrum(
-                    "sliding", p, engine="compiled", parallel=parallel
-                ),
-                [(sliding.checked, parallel)],
-            )
-        )
-        out.append(
+                lambda par=par: kernel.checked_model_spectrum("sliding", p, engine="compiled", parallel=par),
+                [(sliding.checked, par)],
+            ),
             (
                 f"eigenvalue kernel, sliding model, masked ({kind})",
-                lambda parallel=parallel: kernel.model_spectrum("sliding", p, engine="compiled", parallel=parallel),
-                [(sliding.masked, parallel)],
-            )
-        )
-        out.append(
+                lambda par=par: kernel.model_spectrum("sliding", p, engine="compiled", parallel=par),
+                [(sliding.masked, par)],
+            ),
             (
                 f"eigenvalue kernel on coefficients, other models ({kind})",
-                lambda parallel=parallel: kernel.coefficient_spectrum(c, engine="compiled", parallel=parallel),
-                [(kernel._coefficient_loop, parallel)],
-            )
-        )
-    out.append(
+                lambda par=par: kernel.coefficient_spectrum(c, engine="compiled", parallel=par),
+                [(kernel._coefficient_loop, par)],
+            ),
+        ]
+    out += [
         (
             "batched quadratic formula (method='polynomial')",
             lambda: cached(roots.quadratic_roots_many)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
             [(roots.quadratic_roots_many, False)],
-        )
-    )
-    out.append(
+        ),
         (
             "batched other modes of the neutral condition",
             lambda: cached(neutrality._other_roots_many)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
             [(neutrality._other_roots_many, False)],
-        )
-    )
-    out.append(
+        ),
         (
             "neutral curves: compiled corrector (sliding model)",
             lambda: neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5), compiled=True),
             [],
-        )
-    )
-    out.append(
+        ),
         (
             "growth-rate signs of every mode (batched; the atlases' leading growth rate)",
             lambda: growth("sliding", **p),
             [(roots.axis_growth_many, False)],
-        )
-    )
-    out.append(
+        ),
         (
             "steady states and the final state (sliding model)",
             lambda: (
-                states.steady_states("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5),
+                states.steady_states("sliding", **top, alpha_v=0.5),
                 final.final_state(
-                    "sliding",
-                    omega=[0.0, 0.0, 1.0],
-                    k=[0.05, 0.0, 1.0],
-                    velocity=[0.0, 0.0],
-                    q=-0.1,
-                    sigma=1.0,
-                    fr_inv=0.3,
-                    alpha_v=0.5,
+                    "sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0], **top, alpha_v=0.5
                 ),
             ),
             [],
-        )
-    )
-    out.append(
+        ),
         (
             "branch of tilted states: compiled step (sliding model)",
-            lambda: branch.steady_branch("sliding", q=-0.1, sigma=1.0, fr_inv=0.3, alpha_v=0.5, compiled=True),
+            lambda: branch.steady_branch("sliding", **top, alpha_v=0.5, compiled=True),
             [],
-        )
-    )
+        ),
+    ]
     for name in NONLINEAR_MODELS:
+        friction = dict(alpha_v=0.5) if name == "sliding" else {}
         out.append(
             (
                 f"integrator, {name} model",
-                lambda name=name: simulate(
-                    name,
-                    t_end=0.5,
-                    omega=[0, 0, 1],
-                    k=[1e-3, 0, 1],
-                    q=-0.1,
-                    fr_inv=0.3,
-                    sigma=1.0,
-                    **(dict(alpha_v=0.5) if name == "sliding" else {}),
+                lambda name=name, friction=friction: simulate(
+                    name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], **top, **friction
                 ),
                 [],
             )

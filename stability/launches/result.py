@@ -29,13 +29,10 @@ import xarray as xr
 
 from .._version import package_version
 from ..products import PRODUCT_ATTR
-from ..top import Top, from_rad_per_s
+from ..top import Top, from_rad_per_s, spin_text
 from .flip import launch_parameters, run_launch
 
 __all__ = ["PRODUCT", "Launch", "inverts_above", "launch", "stick_answer"]
-
-#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
-PRODUCT = "launch"
 
 
 @dataclass(frozen=True)
@@ -104,9 +101,7 @@ class Launch:
     def _spin(self, w: float | None, name: str) -> str:
         if w is None:
             return f"none ({self.reasons.get(name, '')})"
-        u = from_rad_per_s(w, self.unit)
-        extra = "" if self.unit in ("rev/s", "Hz") else f" = {from_rad_per_s(w, 'rev/s'):.6g} rev/s"
-        return f"{u:.6g} {self.unit}{extra}"
+        return spin_text(w, self.unit)
 
     def _time(self, t: float | None, name: str) -> str:
         if t is None:
@@ -204,6 +199,10 @@ NEVER_INVERTS = {
     "never_inverts": "the upright state is stable at high spin (class 'never_inverts'): launched upright, this top "
     "does not invert",
 }
+
+
+#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
+PRODUCT = "launch"
 
 
 def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
@@ -323,10 +322,10 @@ def launch(
         spin=w,
         unit=unit,
         tilt=tilt,
+        end_tilt=float(fs.tilt),
         unstable_above=up,
         inverts_above=inv,
         top_class=cls,
-        end_tilt=float(fs.tilt),
         end_kind=fs.kind,
         method=fs.method,
         flip_time=None if run.crossing_time is None else run.crossing_time / w,

@@ -20,9 +20,8 @@ import warnings
 
 from ..errors import InputError
 from .base import LinearModel
-from .fixed_pivot import FixedPivot
 from .rolling import Rolling
-from .rolling_eq8 import RollingEq8
+from .second_order import FixedPivot, RollingEq8
 from .sliding import Sliding
 
 __all__ = ["DEPRECATED_NAMES", "MODELS", "LinearModel", "get_model"]

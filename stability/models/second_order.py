@@ -1,4 +1,5 @@
-"""Shared form of the two second-order models, eqs. (8)-(9).
+"""The two second-order models of eqs. (8)-(9), the fixed pivot and the rolling top as printed
+(:class:`FixedPivot`, :class:`RollingEq8`), and their shared form.
 
 Both classical tops reduce to one complex equation for the tilt ``Phi = l + i m``,
 
@@ -19,6 +20,8 @@ The paper's ``mu Fr^-1 h`` is a torque divided by the transverse moment that app
 the contact point (``A_G + mu (1 + q)^2`` with ``A_G = 1 - mu q^2``), in units of ``A0``;
 ``sigma_hat = sigma / A_C``. The stability condition ``1 > 4 kappa / sigma_hat^2`` is the
 sign of the discriminant.
+
+Convention: every model's (:mod:`stability.models.base`) (eq. 8's ``lambda = -i s - 1``).
 """
 
 from __future__ import annotations
@@ -28,7 +31,14 @@ import numpy as np
 from .base import LinearModel
 from .inertia import transverse_inertia_contact
 
-__all__ = ["SecondOrderTop", "contact_transverse_inertia", "gyroscopic_coefficients", "gyroscopic_state_form"]
+__all__ = [
+    "FixedPivot",
+    "RollingEq8",
+    "SecondOrderTop",
+    "contact_transverse_inertia",
+    "gyroscopic_coefficients",
+    "gyroscopic_state_form",
+]
 
 
 #: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.models.inertia)
@@ -93,3 +103,50 @@ class SecondOrderTop(LinearModel):
         """``s^2 - i gamma s - kappa``, highest power first (``gamma`` is :attr:`gyroscopic`)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
         return gyroscopic_coefficients(d[self.gyroscopic], d["kappa"])
+
+
+class FixedPivot(SecondOrderTop):
+    """Heavy symmetric top on a fixed pivot at the sphere's bottom point: eqs. (8)-(9), h = 1 + q.
+
+    Eq. (8) with ``h = 1 + q`` (G lies ``(1 + q) R`` above the pivot), ``A_C = 1 + mu (1 + 2 q)``
+    the transverse moment about the pivot, ``sigma_hat = sigma / A_C`` and
+    ``kappa = mu fr_inv (1 + q) / A_C`` (the module docstring).
+
+    First-principles check (docs/models.md): the angular momentum about the pivot is
+    ``A_C omega + (C - A_C)(k . omega) k`` and the gravity torque ``-mu fr_inv (1 + q) k x K``;
+    linearised about ``omega = k = K`` with ``Phi' = i Phi - i omega`` (eq. 11, second line) this
+    gives ``A_C Phi'' - i sigma Phi' - mu fr_inv (1 + q) Phi = 0``: eq. (8) exactly.
+    """
+
+    name = "fixed_pivot"
+    equations = "(8)-(9)"
+    description = "heavy top on a fixed pivot at the sphere's bottom point, eq. (8) with h = 1 + q"
+    support_depth = 1.0  # h = 1 + q (eq. 9): G above the pivot
+
+
+class RollingEq8(SecondOrderTop):
+    """Rolling top, eqs. (8)-(9) as printed: h = q (model ``"rolling_eq8"``).
+
+    Eq. (8) with ``h = q``, ``sigma_hat = sigma / A_C`` (the axial to transverse moment ratio about
+    the contact point, as the paper defines it), ``A_C = 1 + mu (1 + 2 q)`` and
+    ``kappa = mu fr_inv q / A_C``.
+
+    Known difference from first principles (docs/models.md). Linearising the rolling sphere
+    (eqs. 1, 2, 4 with ``V_c = 0`` of eq. 5 and the traction eliminated) gives
+    ``A_C Phi'' - i (sigma + mu (1 + q)) Phi' - mu fr_inv q Phi = 0``: the gyroscopic
+    coefficient gains ``mu (1 + q)`` from the rolling constraint (the translation of O is tied
+    to the rotation); that is the model ``"rolling"``
+    (:mod:`stability.models.rolling`). This class keeps the paper's operator as
+    printed, under the name ``"rolling_eq8"`` (it was ``"rolling"`` in tippe-stability 0.1.0); the two agree on the
+    stiffness ``kappa`` and on stability for ``q < 0`` (both always neutrally stable there), and
+    differ in the frequencies and in the inverted (``q > 0``) threshold. A check: for a uniform
+    ball (``q = 0``, ``sigma = 1``) the rolling frequencies are 0 and 1 from first principles,
+    and ``0`` and ``1 / (1 + mu)`` here. The first-principles polynomial is also the
+    ``alpha_v -> infinity`` limit of the sliding model's (divide eq. 11's ``det(s M - A)`` by
+    ``alpha_v``).
+    """
+
+    name = "rolling_eq8"
+    equations = "(8)-(9) as printed"
+    description = "top rolling on its sphere, eq. (8)-(9) as printed, h = q, sigma_hat = sigma/A_C"
+    # support_depth: the class's 0 (h = q, eq. 9: G above the sphere's centre)

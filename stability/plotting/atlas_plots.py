@@ -106,8 +106,7 @@ def plot_growth_rate(
         ax.plot(ds[x].values, _line(s.transpose(x, "mode").values, quantity, mode), label=ds.attrs.get("model", ""))
     if quantity == "growth_rate":
         ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
-    ax.set_xlabel(SYMBOLS.get(x, x))
-    ax.set_ylabel(label)
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=label)
     fixed = [
         f"{SYMBOLS.get(k, k)} = {_fmt(float(ds[k]))}"
         for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")

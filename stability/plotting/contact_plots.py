@@ -51,8 +51,7 @@ def plot_contact_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tupl
     stick = float(run.attrs.get("stick_tilt", math.nan))
     if np.isfinite(stick):
         ax2.axhline(stick, color="C3", ls="--", label=f"stick touches ({stick:.4g}$^\\circ$)")
-    ax2.set_ylabel("tilt of k (degree)")
-    ax2.set_xlabel(r"time (units of $1/\Omega$)")
+    ax2.set(ylabel="tilt of k (degree)", xlabel=r"time (units of $1/\Omega$)")
     if event != "none":
         what = "contact lost" if event == "contact_lost" else "stick reached"
         for a in axes:
@@ -86,8 +85,7 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     _normal_force_panel(ax, t, run)
     ax2.plot(t, run.height.values, color="C1", label="height of the lowest point")
     ax2.axhline(0.0, color="k", lw=0.8)
-    ax2.set_ylabel("height (units of R)")
-    ax2.set_xlabel(r"time (units of $1/\Omega$)")
+    ax2.set(ylabel="height (units of R)", xlabel=r"time (units of $1/\Omega$)")
     ups = np.atleast_1d(run.attrs.get("takeoff_times", []))
     downs = np.atleast_1d(run.attrs.get("landing_times", []))
     for i, tt in enumerate(ups):
@@ -132,19 +130,11 @@ def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Fi
     if ds.sizes.get("point", 0):
         piece = ds.boundary_piece.values
         for n in np.unique(piece):  # each smooth piece (they meet at kinks of N_min)
-            sel = piece == n
-            ax.plot(
-                ds.boundary_x.values[sel],
-                ds.boundary_y.values[sel],
-                color="k",
-                ls="-",
-                lw=1.6,
-                label="$N_{min} = 0$ (traced)" if n == piece[0] else None,
-            )
+            sel, label = piece == n, "$N_{min} = 0$ (traced)" if n == piece[0] else None
+            ax.plot(ds.boundary_x.values[sel], ds.boundary_y.values[sel], color="k", ls="-", lw=1.6, label=label)
         ax.legend(fontsize="small", loc="best")
     xl, yl = (ds[c].attrs for c in ("x", "y"))
-    ax.set_xlabel(f"{xl['long_name']} ({xl['units']})")
-    ax.set_ylabel(f"{yl['long_name']} ({yl['units']})")
+    ax.set(xlabel=f"{xl['long_name']} ({xl['units']})", ylabel=f"{yl['long_name']} ({yl['units']})")
     held = ", ".join(
         f"{k.removeprefix('launch_').replace('_', ' ')} {v:g}" for k, v in ds.attrs.items() if k.startswith("launch_")
     )

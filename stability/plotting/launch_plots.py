@@ -40,13 +40,8 @@ def plot_flip_time(
             spin, ds.flip_time.values[i], marker="o", markersize=2.5, label=f"tilt {th:g} deg: simulation"
         )
         if estimate and "flip_time_efold" in ds:
-            ax.plot(
-                spin,
-                ds.flip_time_efold.values[i],
-                ls=":",
-                color=line.get_color(),
-                label=f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}",
-            )
+            label = f"tilt {th:g} deg: {ds.flip_time_efold.attrs.get('long_name', 'estimate').split(' of ')[0]}"
+            ax.plot(spin, ds.flip_time_efold.values[i], ls=":", color=line.get_color(), label=label)
     for s, t, label in marks:
         ax.plot([s], [t], marker="*", markersize=11, color="k", ls="none")
         ax.annotate(label, (s, t), textcoords="offset points", xytext=(6, 4), fontsize=8)
@@ -69,9 +64,6 @@ def plot_flip_estimates(records: Sequence[dict[str, Any]], *, ax: Axes | None = 
     for method in dict.fromkeys(r["method"] for r in records):
         rs = [r for r in records if r["method"] == method]
         ax.scatter([r["seconds"] for r in rs], [max(r["rel_error"], 1e-16) for r in rs], s=12, label=method)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("seconds per launch")
-    ax.set_ylabel("relative error of the flip time")
+    ax.set(xscale="log", yscale="log", xlabel="seconds per launch", ylabel="relative error of the flip time")
     ax.legend(fontsize=8)
     return fig, ax

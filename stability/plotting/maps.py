@@ -96,8 +96,7 @@ def plot_stability_map(
         unstable[(ds["stability"] == -1).transpose(y, x).values] = np.nan  # outside (= physical == 0)
         if np.nanmin(unstable) < 0.5 < np.nanmax(unstable):
             ax.contour(ds[x].values, ds[y].values, unstable, levels=[0.5], **NEUTRAL_STYLE)
-    ax.set_xlabel(SYMBOLS.get(x, x))
-    ax.set_ylabel(SYMBOLS.get(y, y))
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=SYMBOLS.get(y, y))
     ax.set_title(f"{ds.attrs.get('model', '')}, eq. {ds.attrs.get('model_equations', '')}", fontsize=9)
     if colorbar:
         cb = fig.colorbar(mesh, ax=ax, extend="both")
@@ -115,6 +114,8 @@ SPECIAL_MARKERS = {
     "double_crossing": ("o", "double crossing"),
     "branch_point": ("s", "branch point"),
 }
+#: how every special point is drawn (an open marker, no line)
+_SPECIAL_STYLE = dict(linestyle="none", markersize=7, markerfacecolor="white", markeredgecolor="black")
 
 
 def plot_neutral_curve(
@@ -195,34 +196,17 @@ def _draw_curve(
         lead = curve["leading"].values[sel] if "leading" in curve else np.ones(sel.sum(), bool)
         solid = np.where(lead, ys, np.nan)
         dashed = np.where(lead, np.nan, ys)
-        ax.plot(
-            xs, solid, color=NEUTRAL_STYLE["colors"], linewidth=2.0, linestyle="-", label=label if first else None
-        )  # explicit: the style cycles line styles
+        colour = NEUTRAL_STYLE["colors"]  # the line style explicit: the style cycles line styles
+        ax.plot(xs, solid, color=colour, linewidth=2.0, linestyle="-", label=label if first else None)
         if np.isfinite(dashed).any():
-            ax.plot(
-                xs,
-                dashed,
-                color=NEUTRAL_STYLE["colors"],
-                linewidth=1.2,
-                linestyle="--",
-                label="neutral, not the leading mode" if first else None,
-            )
+            not_leading = "neutral, not the leading mode" if first else None
+            ax.plot(xs, dashed, color=colour, linewidth=1.2, linestyle="--", label=not_leading)
         first = False
     kinds = curve["kind"].values.astype(str) if "kind" in curve else np.array([], dtype=str)
     for kind, (marker, text) in SPECIAL_MARKERS.items():
         sel = kinds == kind
         if sel.any():
-            ax.plot(
-                curve[x].values[sel],
-                curve[y].values[sel],
-                linestyle="none",
-                marker=marker,
-                markersize=7,
-                markerfacecolor="white",
-                markeredgecolor="black",
-                label=text,
-            )
-    ax.set_xlabel(SYMBOLS.get(x, x))
-    ax.set_ylabel(SYMBOLS.get(y, y))
+            ax.plot(curve[x].values[sel], curve[y].values[sel], marker=marker, **_SPECIAL_STYLE, label=text)
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=SYMBOLS.get(y, y))
     ax.legend(loc="best", fontsize=8)
     return fig, ax

@@ -95,8 +95,7 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     ]
     for name, label in parts:
         ax.plot(t, run[name].values, label=label)
-    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
-    ax.set_ylabel(r"energy / $A_0 \Omega^2$")
+    ax.set(xlabel=r"time (spin periods $2\pi/\Omega$)", ylabel=r"energy / $A_0 \Omega^2$")
     ax.legend(ncols=2)
     return fig, ax
 
@@ -125,8 +124,7 @@ def fig7(
         idx = np.arange(0, int(sel.sum()), step)
         ax.quiver(x[idx], y[idx], vx[idx], vy[idx], color="C1", angles="xy", width=0.003)
         ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel(r"$X_0 / R$")
-        ax.set_ylabel(r"$Y_0 / R$")
+        ax.set(xlabel=r"$X_0 / R$", ylabel=r"$Y_0 / R$")
     ax1.set_title("(a) whole run", loc="left", fontsize=9)
     ax2.set_title(f"(b) first {zoom_periods:g} spin periods", loc="left", fontsize=9)
     return fig, [ax1, ax2]
@@ -178,9 +176,7 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
         lim(-1.0, 1.0)
     for ticks in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
         ticks([-1.0, 0.0, 1.0])
-    ax.set_xlabel("$K_1$")
-    ax.set_ylabel("$K_2$")
-    ax.set_zlabel("$K_3$")
+    ax.set(xlabel="$K_1$", ylabel="$K_2$", zlabel="$K_3$")
     ax.view_init(elev=12, azim=-60)
     ax.set_box_aspect((1, 1, 1))
     ax.set_title(
@@ -234,29 +230,16 @@ def fig9(
     )
     if peak > top:
         ax1.set_ylim(0.0, top)
-        ax1.annotate(
-            f"initial slip transient, peak {peak:.3g} (off scale)",
-            xy=(0.0, top),
-            xytext=(0.06, 0.93),
-            textcoords="axes fraction",
-            fontsize=7,
-            va="top",
-        )
+        where = dict(xy=(0.0, top), xytext=(0.06, 0.93), textcoords="axes fraction", fontsize=7, va="top")
+        ax1.annotate(f"initial slip transient, peak {peak:.3g} (off scale)", **where)
     ax1.legend(loc="upper right")
     markers = ("o", "s", "^", "D", "v", "P")
     # the cases that stick coincide (polar angle ~9 deg): a marker per case keeps each visible
     for runs, line, width, name in ((cases, "-", 0.8, "{}"), (paper_scheme, ":", 1.0, "{}, paper's scheme")):
         for j, (label, ds) in enumerate(runs.items()):
             marks = {"marker": markers[j % len(markers)], "markevery": (0.03 * (j + 1), 0.12), "markersize": 4}
-            ax2.plot(
-                _periods(ds),
-                ds.polar_angle.values,
-                color=f"C{j}",
-                linestyle=line,
-                linewidth=width,
-                label=name.format(label),
-                **(marks if line == "-" else {}),
-            )
+            style = dict(color=f"C{j}", linestyle=line, linewidth=width, **(marks if line == "-" else {}))
+            ax2.plot(_periods(ds), ds.polar_angle.values, **style, label=name.format(label))
     ax2.set_ylabel("polar angle of $k$ (deg)")
     ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
     for ds, style, label in (

@@ -27,14 +27,11 @@ def plot_critical_spin(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figur
     """
     fig, ax = axes_or_new(ax)
     (x,) = ds["critical_spin_upright"].dims
-    ax.plot(ds[x].values, ds["critical_spin_upright"].values, marker="o", markersize=3, label="upright: unstable above")
-    ax.plot(
-        ds[x].values,
-        ds["critical_spin_inverted"].values,
-        marker="s",
-        markersize=3,
-        label="inverted (q -> -q): stable above",
-    )
+    for o, marker, label in (
+        ("upright", "o", "upright: unstable above"),
+        ("inverted", "s", "inverted (q -> -q): stable above"),
+    ):
+        ax.plot(ds[x].values, ds[f"critical_spin_{o}"].values, marker=marker, markersize=3, label=label)
     ax.set_xlabel(SYMBOLS.get(x, x) + ("  (upright offset; inverted: -q)" if x == "q" else ""))
     ax.set_ylabel("critical spin rate (rpm)")
     fixed = ", ".join(f"{SYMBOLS.get(k, k)} = {ds.attrs[k]:.3g}" for k in ("q", "sigma", "mu") if k != x)

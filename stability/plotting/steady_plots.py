@@ -95,26 +95,10 @@ def _level(
     for tilt, energy, flag, kind in zip(tilts, energies, flags, kinds):
         flag, kind = int(flag), str(kind)
         where = f"{kind} {tilt:.4g} deg" if kind == "tilted" else kind
-        ax.plot(
-            [tilt],
-            [energy],
-            linestyle="none",
-            marker="o",
-            markersize=9,
-            markeredgewidth=1.5,
-            fillstyle=FILL_STYLES[flag],
-            color=FLAG_COLOURS[flag],
-            zorder=5,
-            label=f"{where}: {FLAG_NAMES[flag]}",
-        )
-        ax.annotate(
-            kind,
-            (tilt, energy),
-            xytext=(0, -15) if kind == "tilted" else (0, 9),
-            textcoords="offset points",
-            ha="center",
-            fontsize=8,
-        )
+        style = dict(markersize=9, markeredgewidth=1.5, fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag])
+        ax.plot([tilt], [energy], "o", **style, zorder=5, label=f"{where}: {FLAG_NAMES[flag]}")
+        offset = (0, -15) if kind == "tilted" else (0, 9)
+        ax.annotate(kind, (tilt, energy), xytext=offset, textcoords="offset points", ha="center", fontsize=8)
     ax.set_xlabel(_TILT_LABEL)
     ax.set_ylabel(r"$U_J = J^2/(2D) + \mu\,$Fr$^{-1}(1 + q\cos\theta)$ (units $A_0\Omega^2$)", fontsize=9)
     if tilt_range is None:
@@ -156,16 +140,8 @@ def plot_steady_states(
     (Figure, Axes)
     """
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
-    _level(
-        ax,
-        ds.tilt_grid.values,
-        ds.effective_potential.values,
-        ds.tilt.values,
-        ds.energy.values,
-        ds.stability.values,
-        ds.kind.values,
-        tilt_range,
-    )
+    states = (ds[v].values for v in ("tilt", "energy", "stability", "kind"))
+    _level(ax, ds.tilt_grid.values, ds.effective_potential.values, *states, tilt_range)
     ax.set_title(
         f"steady states on the Jellett level J = {float(ds.attrs['jellett']):.6g}: {_parameters_text(ds.attrs)}",
         fontsize=9,
@@ -202,50 +178,16 @@ def plot_final_state(
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     grid, u = ds.tilt_grid.values, ds.effective_potential.values
     e0 = float(ds.initial_energy)
-    ax.fill_between(
-        grid,
-        u,
-        e0,
-        where=u <= e0,
-        interpolate=True,
-        facecolor="C2",
-        alpha=0.15,
-        linewidth=0.0,
-        label=r"$U_J \leq E_0$: reachable",
-    )
+    reachable = dict(where=u <= e0, interpolate=True, facecolor="C2", alpha=0.15, linewidth=0.0)
+    ax.fill_between(grid, u, e0, **reachable, label=r"$U_J \leq E_0$: reachable")
     ax.axhline(e0, color="C2", linestyle="--", linewidth=1.0, label=f"initial energy E0 = {e0:.8g}")
-    _level(
-        ax,
-        grid,
-        u,
-        ds.candidate_tilt.values,
-        ds.candidate_energy.values,
-        ds.candidate_stability.values,
-        ds.candidate_kind.values,
-        tilt_range,
-    )
-    ax.plot(
-        [float(ds.initial_tilt)],
-        [e0],
-        linestyle="none",
-        marker="x",
-        markersize=8,
-        color="C2",
-        label=f"initial state, tilt {float(ds.initial_tilt):.4g} deg",
-    )
+    _level(ax, grid, u, *(ds["candidate_" + v].values for v in ("tilt", "energy", "stability", "kind")), tilt_range)
+    start = float(ds.initial_tilt)
+    ax.plot([start], [e0], "x", markersize=8, color="C2", label=f"initial state, tilt {start:.4g} deg")
     tilt, kind, method = float(ds.tilt), str(ds.attrs["kind"]), str(ds.attrs["method"])
     if np.isfinite(tilt):
-        ax.plot(
-            [tilt],
-            [float(ds.energy)],
-            linestyle="none",
-            marker="*",
-            markersize=22,
-            color="gold",
-            markeredgecolor="k",
-            zorder=4,
-            label=f"end: {kind}, tilt {tilt:.6g} deg",
-        )
+        star = dict(markersize=22, color="gold", markeredgecolor="k", zorder=4)
+        ax.plot([tilt], [float(ds.energy)], "*", **star, label=f"end: {kind}, tilt {tilt:.6g} deg")
         end = f"{kind} at {tilt:.6g} deg"
     else:
         end = kind
@@ -329,21 +271,20 @@ def plot_bifurcation(
     tilt = branch.tilt.values
     flags = branch.stability.values
     marginal = flags == 1
-    labelled = set()
-    for px, py, stable in _pieces(xs, tilt, flags == 0, marginal):
-        style = STABLE_STYLE if stable else UNSTABLE_STYLE
-        label = "stable" if stable else "unstable"
-        ax.plot(px, py, **style, label=None if label in labelled else label)
-        labelled.add(label)
+    labelled: set[str] = set()
+
+    def draw(pieces) -> None:  # stable solid, unstable dashed; each label once
+        for px, py, stable in pieces:
+            label = "stable" if stable else "unstable"
+            ax.plot(px, py, **(STABLE_STYLE if stable else UNSTABLE_STYLE), label=None if label in labelled else label)
+            labelled.add(label)
+
+    draw(_pieces(xs, tilt, flags == 0, marginal))
     if vertical is not None:
         vx = vertical[x].values
         for name, level in (("stability_upright", 0.0), ("stability_inverted", 180.0)):
             vf = vertical[name].values
-            for px, py, stable in _pieces(vx, np.full(vx.shape, level), vf == 0, vf == 1):
-                style = STABLE_STYLE if stable else UNSTABLE_STYLE
-                label = "stable" if stable else "unstable"
-                ax.plot(px, py, **style, label=None if label in labelled else label)
-                labelled.add(label)
+            draw(_pieces(vx, np.full(vx.shape, level), vf == 0, vf == 1))
     kinds = branch.kind.values
     for kind, style in _MARKERS.items():
         sel = kinds == kind
@@ -354,14 +295,13 @@ def plot_bifurcation(
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
-                ax.annotate(
-                    f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg",
-                    (xi, yi),
+                arrow = dict(
                     xytext=(-210, -70),
                     textcoords="offset points",
                     fontsize=7,
                     arrowprops={"arrowstyle": "->", "linewidth": 0.6},
                 )
+                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **arrow)
     if "stick_tilt" in branch.attrs:  # a toy with a stick: no state beyond this tilt
         st = float(branch.attrs["stick_tilt"])
         ax.axhline(st, color="C3", ls="--", lw=1.0, label=f"the stick touches ({st:.4g} deg)")
@@ -459,25 +399,17 @@ def plot_class_map(
     ax.plot(q[neg], b2[neg], color="k", linewidth=1.2, linestyle="--", label=r"$\sigma = A_G/(1-q)$: hangs below")
     ax.plot(q, top, color="0.4", linewidth=0.8, linestyle=":", label=r"$\sigma = 2 A_G$ (domain)")
     band = neg & np.isfinite(b2)
-    ax.fill_between(
-        q[band],
-        b2[band],
-        np.minimum(b1, top)[band],
-        facecolor="none",
-        edgecolor="0.25",
-        hatch="///",
-        linewidth=0.0,
-        label=r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$",
-    )
+    hatched = dict(facecolor="none", edgecolor="0.25", hatch="///", linewidth=0.0)
+    hugenholtz = r"Hugenholtz: $1-\alpha < A_G/C < 1+\alpha$"
+    ax.fill_between(q[band], b2[band], np.minimum(b1, top)[band], **hatched, label=hugenholtz)
     if mark is not None:
-        ax.plot([mark[0]], [mark[1]], marker="*", markersize=12, color="k", linestyle="none", label="the paper's top")
+        ax.plot([mark[0]], [mark[1]], "*", markersize=12, color="k", label="the paper's top")
     handles, labels = ax.get_legend_handles_labels()
     for name, colour in zip(("never inverts", "inverts", "hangs at a tilt"), _CLASS_COLOURS.colors[1:]):
         handles.append(Patch(facecolor=colour, edgecolor="0.5"))
         labels.append(name)
     ax.legend(handles, labels, fontsize=7, loc="upper left", ncol=2)
-    ax.set_xlabel("q (centre-of-mass offset; q < 0: G below O)")
-    ax.set_ylabel(r"$\sigma = C/A_0$")
+    ax.set(xlabel="q (centre-of-mass offset; q < 0: G below O)", ylabel=r"$\sigma = C/A_0$")
     ax.set_ylim(0, max(2.0, float(np.nanmax(sigma))))
     ax.set_xlim(q.min(), q.max())
     ax.set_title(f"high-spin classes, {SYMBOLS['mu']} = {float(ds.mu):g}", fontsize=9)
@@ -508,13 +440,8 @@ def plot_settle(
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values / (2 * np.pi) if periods else run.time.values
     ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
-    ax.axhline(
-        predicted_tilt,
-        color="C3",
-        linestyle="--",
-        linewidth=1.2,
-        label=f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)",
-    )
+    predicted = f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)"
+    ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2, label=predicted)
     ax.axhline(180.0, color="0.5", linestyle=":", linewidth=0.8, label="complete inversion (180 deg)")
     ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
     ax.set_ylabel("polar angle of the axis (deg)")
@@ -551,14 +478,8 @@ def plot_settle_approach(
     ax.semilogy(tt, dist, color="C0", linewidth=0.8, label="|polar angle - predicted tilt|")
     if rate is not None and rate < 0:
         ref = dist[-1] * np.exp(rate * (t - t[-1]))
-        ax.semilogy(
-            tt,
-            ref,
-            color="C3",
-            linestyle="--",
-            linewidth=1.0,
-            label=f"exp(g t), g = {rate:.3g}: the end state's slowest mode",
-        )
+        slowest = f"exp(g t), g = {rate:.3g}: the end state's slowest mode"
+        ax.semilogy(tt, ref, color="C3", linestyle="--", linewidth=1.0, label=slowest)
     for level, style in ((0.05, ":"), (0.01, "-.")):
         ax.axhline(level, color="0.4", linestyle=style, linewidth=0.8, label=f"{level:g} deg")
     ax.set_ylim(max(1e-6, float(np.nanmin(dist[dist > 0])) / 3 if np.any(dist > 0) else 1e-6), 200.0)

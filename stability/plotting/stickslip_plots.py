@@ -54,8 +54,7 @@ def plot_stick_slip(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     ax2.plot(t, run.friction_magnitude.values, color="C1", lw=1.0, label="friction |f|")
     ax2.plot(t, run.friction_limit.values, color="C3", ls="--", lw=0.8, label=r"static limit $\alpha_s n$")
     ax2.axhline(run.attrs["alpha_k"], color="0.4", ls=":", lw=0.8, label=r"kinetic $\alpha_K$")
-    ax2.set_ylabel("friction force")
-    ax2.set_xlabel(r"time (units of $1/\Omega$; stick phases shaded)")
+    ax2.set(ylabel="friction force", xlabel=r"time (units of $1/\Omega$; stick phases shaded)")
     ax2.legend(fontsize="small")
     ax.set_title(
         f"stick and slip: alpha_k = {run.attrs['alpha_k']:.3g}, alpha_s = {run.attrs['alpha_s']:.3g}, "

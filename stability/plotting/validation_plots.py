@@ -59,8 +59,7 @@ def plot_validation(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, 
     if values.size:
         lo, hi = float(values.min()), float(values.max())
         ax.plot([lo, hi], [lo, hi], color="0.4", linewidth=0.8, linestyle="-", zorder=0, label="measured = predicted")
-    ax.set_xlabel("predicted growth rate Re $s$ / $\\Omega$")
-    ax.set_ylabel("growth rate fitted to the run / $\\Omega$")
+    ax.set(xlabel="predicted growth rate Re $s$ / $\\Omega$", ylabel="growth rate fitted to the run / $\\Omega$")
     ax.set_title(f"{ds.attrs.get('title', '')}: {ds.sizes.get('point', 1)} points", fontsize=9)
     ax.legend(fontsize=8)
     return fig, ax
@@ -86,8 +85,7 @@ def plot_coulomb_growth(ds: xr.Dataset, *, axes: Sequence[Axes] | None = None) -
     ax1.plot(t, ds["tilt"].values)
     ax1.set_ylabel(r"tilt $|\Phi|$")
     ax2.semilogy(t, np.maximum(ds["slip_speed"].values, 1e-12))
-    ax2.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
-    ax2.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    ax2.set(ylabel=r"sliding speed $|V_c|$ / $\Omega R$", xlabel=r"time (spin periods $2\pi/\Omega$)")
     a = ds.attrs
     fits = ", ".join(
         f"{name} fit {a[key]:.2g}"
