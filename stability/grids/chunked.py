@@ -23,7 +23,6 @@
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import os
 import shutil
 from collections.abc import Callable
@@ -46,7 +45,7 @@ from .store import (
     BLOCK_VARIABLES,
     IDENTITY_ATTRS,
     check_block,
-    chunk_leading,
+    chunk_variables,
     is_store_path,
     parts_directory,
     slice_block,
@@ -226,41 +225,33 @@ def _file_chunks(shape: list[int], itemsize: int) -> list[int]:
     return out
 
 
-def _stored(ds: xr.Dataset, variables: str) -> list[str]:
-    """The data variables of ``ds`` that a file with ``variables`` stores."""
-    if variables == "map":
-        return [k for k in MAP_VARIABLES if k in ds.data_vars]
-    return list(ds.data_vars)
+#: what a float32 variable says about its rounding (:func:`write_atlas`)
+FLOAT32_ATTRS = {
+    "storage_dtype": "float32",
+    "storage_relative_error": FLOAT32_ROUNDING,
+    "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
+    "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
+    "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
+    "that would round to zero, a subnormal or infinity is refused), and the "
+    "stability flag was decided in float64 before it",
+}
 
 
-def _float32_attrs() -> dict[str, Any]:
-    """What a float32 variable says about its rounding (:func:`write_atlas`)."""
-    return {
-        "storage_dtype": "float32",
-        "storage_relative_error": FLOAT32_ROUNDING,
-        "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
-        "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
-        "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
-        "that would round to zero, a subnormal or infinity is refused), and the "
-        "stability flag was decided in float64 before it",
-    }
+class _Layout(NamedTuple):
+    """What :func:`write_atlas` stores and how."""
+
+    stored: list[str]
+    compression: str | None
+    float32: bool
 
 
-def _create_skeleton(
-    ds: xr.Dataset,
-    path: str,
-    chunk_shape: dict[str, int],
-    stored: list[str] | None = None,
-    compression: str | None = None,
-    float32: bool = False,
-) -> None:
+def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], layout: _Layout) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
-    data variables (``stored``; default all) defined (chunked like the dataset, compressed as
-    asked, floating ones as float32 if asked) but not yet written."""
+    data variables (``layout.stored``) defined (chunked like the dataset, compressed as asked,
+    floating ones as float32 if asked) but not yet written."""
     import netCDF4
 
-    if stored is None:
-        stored = list(ds.data_vars)
+    stored, compression, float32 = layout
     scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
     filters: dict[str, Any] = (
         {} if compression is None else {"compression": compression, "complevel": LEVELS[compression], "shuffle": True}
@@ -295,7 +286,7 @@ def _create_skeleton(
             if scalar_coords:
                 attrs["coordinates"] = " ".join(scalar_coords)
             if dtype != v.dtype:
-                attrs.update(_float32_attrs())
+                attrs.update(FLOAT32_ATTRS)
             var.setncatts(attrs)
         nc.setncatts(dict(ds.attrs))
         if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
@@ -330,16 +321,6 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
             "change it beyond the stated bound: write with float32=False"
         )
     return w
-
-
-def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
-    """What a chunk store must match to be reused: grid, model, method, chunks, version."""
-    h = hashlib.sha256()
-    for k in sorted(ds.coords):
-        h.update(k.encode())
-        h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
-    attrs = {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
-    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **attrs}
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -506,7 +487,8 @@ def write_atlas(
     def run(todo: list, put: Callable, task: Callable, args: tuple = (), here: bool = False) -> None:
         _run_on_cluster(None if here else client, spec, todo, put, window, failed, report, task, args)
 
-    layout = _Layout(_stored(ds, variables), compression, float32)
+    stored = [k for k in MAP_VARIABLES if k in ds] if variables == "map" else list(ds.data_vars)
+    layout = _Layout(stored, compression, float32)
     try:
         with deferred(), contextlib.ExitStack() as held:
             if not (zarr_store or resume):
@@ -519,7 +501,8 @@ def write_atlas(
                 held.enter_context(locked(parts_directory(target)))
             if not zarr_store:
                 check_free_space(target, expected)
-            spec |= {"variables": _stored(ds, "all"), "identity": _identity(ds, chunk_shape), "resume": resume}
+            identity = {"chunks": chunk_shape} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}  # the grid: _reopen
+            spec |= {"variables": list(ds.data_vars), "identity": identity, "resume": resume}
             parts = write_store(
                 ds, target, overwrite=overwrite, resume=resume, spec=spec, blocks=blocks, report=report, run=run,
                 compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl), commit=zarr_store,
@@ -533,14 +516,6 @@ def write_atlas(
             return target
     finally:
         report(close=True)
-
-
-class _Layout(NamedTuple):
-    """What :func:`write_atlas` stores and how."""
-
-    stored: list[str]
-    compression: str | None
-    float32: bool
 
 
 def _write_chunks(
@@ -559,7 +534,7 @@ def _write_chunks(
 
     ``leading_growth_rate`` is written chunk by chunk from the chunk in memory (never read
     back): each chunk with the structural zero mode left out while every chunk so far has it at
-    every point inside (:func:`stability.grids.store.chunk_leading`), else as ``max_growth_rate``;
+    every point inside (:func:`stability.grids.store.chunk_variables`), else as ``max_growth_rate``;
     at the end, unless every chunk has it and one has a point inside (the whole-grid rule of
     :mod:`stability.grids.leading`), the chunks written with it left out are rewritten as
     ``max_growth_rate``, read from the file or recomputed. The values are those of deciding on
@@ -575,7 +550,7 @@ def _write_chunks(
         return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
 
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
-        _create_skeleton(ds, tmp, spec["chunk_shape"], layout.stored, layout.compression, layout.float32)
+        _create_skeleton(ds, tmp, spec["chunk_shape"], layout)
         checkpoint()
         with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
             nc.set_auto_mask(False)
@@ -584,24 +559,17 @@ def _write_chunks(
 
             def write(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
                 check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
-                idx = tuple(sl[d] for d in dims)
-                for k, v in block.items():
-                    if k in var:
-                        var[k][idx] = cast(k, v)
-                # the largest growth rate, rounded once for both variables that may hold it
-                top_name = "max_growth_rate" if "max_growth_rate" in var else "leading_growth_rate"
-                top = cast(top_name, np.ascontiguousarray(block["growth_rate"][..., 0]))
-                if "max_growth_rate" in var:
-                    var["max_growth_rate"][idx] = top
+                out, everywhere, inside = chunk_variables(block, dims, try_drop=not lead["mixed"])
                 if not lead["mixed"]:
-                    value, everywhere, inside = chunk_leading(block, dims)
                     lead["inside"] |= inside
                     lead["mixed"] = not everywhere
                     if everywhere:
                         lead["provisional"].append(sl)
-                        top = cast("leading_growth_rate", value)
-                if "leading_growth_rate" in var:
-                    var["leading_growth_rate"][idx] = top
+                rounded: dict[int, np.ndarray] = {}  # max_growth_rate, rounded once for both that may hold it
+                for k in layout.stored:
+                    if id(out[k]) not in rounded:
+                        rounded[id(out[k])] = cast(k, out[k])
+                    var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
                 checkpoint()
                 report()
 

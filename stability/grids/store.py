@@ -64,7 +64,7 @@ __all__ = [
     "IDENTITY_ATTRS",
     "RECORD_VARIABLES",
     "check_block",
-    "chunk_leading",
+    "chunk_variables",
     "damaged_chunk",
     "is_store_path",
     "locked",
@@ -95,6 +95,7 @@ BLOCK_VARIABLES = tuple(BLOCK_LAYOUT)
 def check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, name: str) -> None:
     """The arrays of chunk ``name`` exactly as the file's variables need them (never broadcast
     or cast), else a :class:`ChunkError`."""
+
     def wrong(text: str) -> ChunkError:
         return ChunkError(f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)")
 
@@ -114,18 +115,24 @@ def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     return {k: ds[k].isel(sl).transpose(*dims, ...).values for k in BLOCK_VARIABLES}
 
 
-def chunk_leading(block: dict[str, np.ndarray], dims: list[str]) -> tuple[np.ndarray, bool, bool]:
-    """One chunk's part of the leading growth rate's whole-grid rule (:mod:`stability.grids.leading`):
-    its leading growth rate with the structural zero mode left out if the chunk has it at every
-    point inside (else ``max_growth_rate`` itself), whether it has (never on a 0-d grid), and
-    whether the chunk has a point inside."""
+def chunk_variables(
+    block: dict[str, np.ndarray], dims: list[str], try_drop: bool = True
+) -> tuple[dict[str, np.ndarray], bool, bool]:
+    """The atlas variables of one chunk, and its part of the leading growth rate's whole-grid
+    rule (:mod:`stability.grids.leading`): ``max_growth_rate``, and ``leading_growth_rate`` with
+    the structural zero mode left out if the chunk has it at every point inside (``try_drop``;
+    else ``max_growth_rate`` itself, the same array); whether it has (never on a 0-d grid), and
+    whether the chunk has a point inside (False where not looked at)."""
+    top = block["growth_rate"][..., 0]
+    out = dict(block, max_growth_rate=top, leading_growth_rate=top)
+    if not (try_drop and dims):
+        return out, False, False
     mdims = (*dims, "mode")
     g, f, b = (xr.DataArray(block[k], dims=mdims) for k in ("growth_rate", "frequency", "eigenvalue_error_bound"))
-    top = np.ascontiguousarray(block["growth_rate"][..., 0])
     everywhere, inside = zero_everywhere(g, f, b)
-    if not (bool(everywhere) and dims):
-        return top, False, bool(inside)
-    return np.ascontiguousarray(leading(g, f, b, xr.DataArray(top, dims=dims), drop=True).values), True, bool(inside)
+    if bool(everywhere):
+        out["leading_growth_rate"] = leading(g, f, b, xr.DataArray(top, dims=dims), drop=True).values
+    return out, bool(everywhere), bool(inside)
 
 
 def is_store_path(path: str | os.PathLike) -> bool:
@@ -241,11 +248,9 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     dims = spec["dims"]
     block = compute(spec, sl)
     check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], "of the store")
-    part = xr.Dataset({k: ((*dims, "mode")[: v.ndim], v) for k, v in block.items()})
-    part["max_growth_rate"] = (dims, np.ascontiguousarray(block["growth_rate"][..., 0]))
-    lead, everywhere, inside = chunk_leading(block, dims)
-    part["leading_growth_rate"] = (dims, lead)
-    part[spec["variables"]].to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
+    out, everywhere, inside = chunk_variables(block, dims)
+    part = xr.Dataset({k: ((*dims, "mode")[: out[k].ndim], out[k]) for k in spec["variables"]})
+    part.to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
     mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
     record = {"chunk_zero_everywhere": np.int8(everywhere), "chunk_inside": np.int8(inside), "chunk_digest": mark}
     for k, v in record.items():  # the digest last: the chunk is complete when it is written
