@@ -27,7 +27,7 @@ import os
 import shutil
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from itertools import product
+from itertools import islice, product
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -641,10 +641,8 @@ def _run_on_cluster(
         ac.add(fut)
 
     try:
-        for name, sl in pending:
+        for name, sl in islice(pending, window):
             submit(name, sl)
-            if len(names) >= window:
-                break
         for fut in ac:
             checkpoint()
             name, sl, _ = names.pop(fut.key)

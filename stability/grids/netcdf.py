@@ -136,29 +136,27 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
     stability.errors.ResourceError
         Loading it would need more memory than is available (pass ``chunks=``).
     """
+    import xarray as xr
+
+    from ..resources import check_memory
     from .store import is_store_path, open_store
 
-    if isinstance(path, (str, os.PathLike)) and is_store_path(path) and Path(path).is_dir():
-        p = Path(path)
-        try:
-            ds = open_store(p)
-        except Exception as exc:
-            raise _unreadable(p, exc) from None
-    else:
-        p = Path(_atlas_path(path))
-        ds = _open(p)
+    store = isinstance(path, (str, os.PathLike)) and is_store_path(path) and Path(path).is_dir()
+    p = Path(path if store else _atlas_path(path))
+    try:
+        ds = open_store(p) if store else xr.open_dataset(p)
+    except Exception as exc:  # netCDF4/h5/zarr raise OSError, ValueError or their own types
+        raise _unreadable(p, exc) from None
     try:
         product = ds.attrs.get(PRODUCT_ATTR)
-        if product is None:
-            raise AtlasFileError(
-                f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global "
-                f"attribute {PRODUCT_ATTR!r} (written by another program, or by xarray "
-                "directly; stability.atlas and tippe atlas set it)"
-            )
         if product != "atlas":
             raise AtlasFileError(
-                f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of "
-                "tippe-stability (open it with xarray.open_dataset)"
+                f"atlas file {str(p)!r} is not an atlas of tippe-stability: it has no global attribute "
+                f"{PRODUCT_ATTR!r} (written by another program, or by xarray directly; stability.atlas and "
+                "tippe atlas set it)"
+                if product is None
+                else f"atlas file {str(p)!r} is not an atlas: it is a {product!r} file of tippe-stability "
+                "(open it with xarray.open_dataset)"
             )
         missing = [v for v in required_variables(ds) if v not in ds]
         if missing:
@@ -181,8 +179,6 @@ def open_atlas(path: str | os.PathLike, *, chunks: int | dict[str, int] | None =
             )
         if chunks is not None:
             return ds.chunk(chunks)
-        from ..resources import check_memory
-
         check_memory(
             float(ds.nbytes),
             what=f"open_atlas({str(p)!r})",
@@ -217,16 +213,6 @@ def _atlas_path(path: object) -> str:
     if not os.access(p, os.R_OK):
         raise AtlasFileError(f"atlas file {p!r} is not readable (permission denied)")
     return p
-
-
-def _open(p: Path) -> xr.Dataset:
-    """The file opened lazily (nothing loaded yet), or an AtlasFileError saying why not."""
-    try:
-        import xarray as xr
-
-        return xr.open_dataset(p)
-    except Exception as exc:  # netCDF4/h5 raise OSError, ValueError or their own types
-        raise _unreadable(p, exc) from None
 
 
 def _unreadable(p: Path, exc: BaseException) -> AtlasFileError:

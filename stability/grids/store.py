@@ -7,19 +7,19 @@ atlas with xarray's public API only:
    (:mod:`stability.grids.schema`, the same names, dimensions, attributes and dtypes as the
    netCDF atlas), chunked like the grid, with its coordinates and attributes, no data yet; plus
    the per-chunk record ``chunk_digest`` (one uint64 per chunk of the grid, dimensions
-   ``<dim>_chunk``, one Zarr chunk each; 0: not written) and ``chunk_zero_everywhere``,
-   ``chunk_inside`` (what the leading growth rate's whole-grid rule needs of each chunk,
-   :mod:`stability.grids.leading`).
+   ``<dim>_chunk``, one Zarr chunk each; 0: not written).
 2. Each chunk of the grid is computed and written into its region with
    ``to_zarr(parts, region=...)`` (:func:`_write_region`) by the process that computed it: on a
-   dask cluster, the workers themselves, which return only the chunk's summary (two flags): the
+   dask cluster, the workers themselves, which return only the chunk's summary (two flags: what
+   the leading growth rate's whole-grid rule needs of it, :func:`chunk_variables`): the
    client never holds a chunk, and its memory does not grow with the grid. The regions are the
    Zarr chunks, so concurrent writers never share a chunk file. The digest (sha256 of the atlas's
    identity, the chunk's slice and the bytes of its arrays, first 8 bytes) is written **last**,
    in a second region write: a chunk is complete exactly when its digest is non-zero.
 3. When every chunk is written, the leading growth rate's rule is decided over the whole grid
-   (from the per-chunk flags, no data read), the few chunks written provisionally with the zero
-   mode left out are rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
+   (from the per-chunk flags; those of a chunk reused on resuming from its data, read anyway to
+   check its digest), the few chunks written provisionally with the zero mode left out are
+   rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
    it (no partial store under the output's name; an existing store is replaced only with
    ``overwrite=True``).
 
@@ -31,8 +31,7 @@ chunks or package version: :class:`~stability.errors.ResumeError` naming what di
 holds: a chunk that disagrees (edited, swapped, copied from another store) is refused naming it;
 a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
 chunks marked incomplete (never written, or interrupted between the data and the digest) are
-computed. The
-result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
+computed. The result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
 (:func:`locked`) until its output is written: a second run on the same store is refused at
 once. The store must be on a file system the workers share with the client (always true of a
 LocalCluster).
@@ -75,7 +74,7 @@ __all__ = [
 ]
 
 #: the per-chunk record of a store (not atlas variables: :func:`open_store` drops them)
-RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
+RECORD_VARIABLES = ("chunk_digest",)
 
 #: the attributes a resumed store must share with the atlas being written
 IDENTITY_ATTRS = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
@@ -218,8 +217,7 @@ def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> x
 
     out = xr.Dataset({k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, ds.coords, ds.attrs)
     counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
-    for k, dtype in zip(RECORD_VARIABLES, (np.uint64, np.int8, np.int8)):
-        out[k] = ([f"{d}_chunk" for d in dims], da.zeros(counts, chunks=(1,) * len(dims), dtype=dtype))
+    out["chunk_digest"] = ([f"{d}_chunk" for d in dims], da.zeros(counts, chunks=(1,) * len(dims), dtype=np.uint64))
     return out
 
 
@@ -252,10 +250,9 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     part = xr.Dataset({k: ((*dims, "mode")[: out[k].ndim], out[k]) for k in spec["variables"]})
     part.to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
     mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
-    record = {"chunk_zero_everywhere": np.int8(everywhere), "chunk_inside": np.int8(inside), "chunk_digest": mark}
-    for k, v in record.items():  # the digest last: the chunk is complete when it is written
-        one = xr.Dataset({k: ([f"{d}_chunk" for d in dims], np.full((1,) * len(dims), v))})
-        one.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
+    # the digest after the data: the chunk is complete when it is written
+    digest = xr.Dataset({"chunk_digest": ([f"{d}_chunk" for d in dims], np.full((1,) * len(dims), mark))})
+    digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
     return everywhere, inside
 
 
@@ -282,12 +279,12 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
                 f"cannot resume from {str(path)!r}: it was written for a different atlas "
                 f"({', '.join(diff)} differ); remove it to start afresh"
             )
-        record = {k: old[k].values for k in RECORD_VARIABLES}
+        digests = old["chunk_digest"].values
         done: dict[str, tuple[bool, bool]] = {}
         for name, sl in blocks:
             checkpoint()
             i = tuple(s.start for s in _index(sl, spec).values())
-            if record["chunk_digest"][i] == 0:
+            if digests[i] == 0:
                 continue
             try:
                 block = slice_block(old, sl)
@@ -298,12 +295,12 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
                     stacklevel=5,
                 )
                 continue
-            if _digest(spec, sl, block) != record["chunk_digest"][i]:
+            if _digest(spec, sl, block) != digests[i]:
                 raise ResumeError(
                     f"cannot resume: chunk {name} of {str(path)!r} does not match its digest (edited, "
                     f"damaged or from another run); remove {str(path)!r} to start afresh"
                 )
-            done[name] = (bool(record["chunk_zero_everywhere"][i]), bool(record["chunk_inside"][i]))
+            done[name] = chunk_variables(block, spec["dims"])[1:]
     return done
 
 
