@@ -571,21 +571,23 @@ def _write_chunks(
                         rounded[id(out[k])] = cast(k, out[k])
                     var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
                 checkpoint()
-                report()
 
             # each chunk is written (rounded, compressed) by one writer thread, in order, while
             # the next is computed: netCDF4's writes and the compiled spectra release the GIL, so
             # the writing overlaps the spectra instead of following them (one chunk more in
-            # memory); on a cluster, as each chunk lands
+            # memory); on a cluster, as each chunk lands. Progress is reported in this thread.
             with ThreadPoolExecutor(max_workers=1) as writer:
-                pending = [writer.submit(lambda: None)]
+                pending: list = []
 
-                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
-                    pending.pop().result()
-                    pending.append(writer.submit(write, name, sl, block))
+                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray] | None) -> None:
+                    if pending:
+                        pending.pop().result()
+                        report()
+                    if block is not None:
+                        pending.append(writer.submit(write, name, sl, block))
 
                 run(blocks, put, _compute_block if lazy else compute, here=not lazy)
-                pending.pop().result()
+                put("", {}, None)
             if lead["provisional"] and (lead["mixed"] or not lead["inside"]):
                 for sl in lead["provisional"]:
                     checkpoint()

@@ -53,6 +53,18 @@ def _checked(block: np.ndarray) -> np.ndarray:
     return block
 
 
+class _Slabs:
+    """A numpy array as dask reads it, slab by slab, with an interruption point before each (not
+    an array itself: ``dask.array.from_array`` would copy an array whole)."""
+
+    def __init__(self, values: np.ndarray) -> None:
+        self.values, self.shape, self.dtype, self.ndim = values, values.shape, values.dtype, values.ndim
+
+    def __getitem__(self, key: object) -> np.ndarray:
+        checkpoint()
+        return self.values[key]
+
+
 def _to_netcdf(ds: xr.Dataset, tmp: str) -> None:
     """``ds.to_netcdf(tmp)`` (xarray's public writer: the file is the one it writes). Every data
     variable above :data:`SLAB_BYTES`, and every dask-backed one, goes as dask slabs along its
@@ -67,9 +79,12 @@ def _to_netcdf(ds: xr.Dataset, tmp: str) -> None:
         out = ds.copy(deep=False)
         for k in large:
             v = ds[k]
-            if v.chunks is None:  # dask views of the array, slab by slab (no copy)
-                v = v.chunk({v.dims[0]: max(1, SLAB_BYTES * v.shape[0] // v.nbytes)})
-            out[k] = v.copy(deep=False, data=da.map_blocks(_checked, v.data, dtype=v.dtype))
+            if v.chunks is None:  # slabs read from the array itself (xarray's chunk() was 3x slower)
+                rows = max(1, SLAB_BYTES * v.shape[0] // v.nbytes)
+                data = da.from_array(_Slabs(v.values), chunks=(rows, *v.shape[1:]), name=False, meta=v.values[:0])
+            else:
+                data = da.map_blocks(_checked, v.data, dtype=v.dtype)
+            out[k] = v.copy(deep=False, data=data)
         out.to_netcdf(tmp, format="NETCDF4", compute=False).compute(scheduler="synchronous")
     else:
         ds.to_netcdf(tmp, format="NETCDF4")
