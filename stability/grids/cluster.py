@@ -55,6 +55,8 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
 
     if workers is not None:
         workers = check_integer("workers", workers, minimum=1)
+        if workers > 1024:
+            raise InputError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
         cluster = LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
