@@ -23,13 +23,11 @@
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import os
 import shutil
-import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from itertools import product
+from itertools import islice, product
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -42,9 +40,16 @@ from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
-from .leading import leading, zero_everywhere
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import BLOCK_VARIABLES, IDENTITY_ATTRS, check_block, is_store_path, parts_directory, slice_block
+from .store import (
+    BLOCK_VARIABLES,
+    IDENTITY_ATTRS,
+    check_block,
+    chunk_variables,
+    is_store_path,
+    parts_directory,
+    slice_block,
+)
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -220,41 +225,33 @@ def _file_chunks(shape: list[int], itemsize: int) -> list[int]:
     return out
 
 
-def _stored(ds: xr.Dataset, variables: str) -> list[str]:
-    """The data variables of ``ds`` that a file with ``variables`` stores."""
-    if variables == "map":
-        return [k for k in MAP_VARIABLES if k in ds.data_vars]
-    return list(ds.data_vars)
+#: what a float32 variable says about its rounding (:func:`write_atlas`)
+FLOAT32_ATTRS = {
+    "storage_dtype": "float32",
+    "storage_relative_error": FLOAT32_ROUNDING,
+    "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
+    "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
+    "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
+    "that would round to zero, a subnormal or infinity is refused), and the "
+    "stability flag was decided in float64 before it",
+}
 
 
-def _float32_attrs() -> dict[str, Any]:
-    """What a float32 variable says about its rounding (:func:`write_atlas`)."""
-    return {
-        "storage_dtype": "float32",
-        "storage_relative_error": FLOAT32_ROUNDING,
-        "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
-        "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
-        "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
-        "that would round to zero, a subnormal or infinity is refused), and the "
-        "stability flag was decided in float64 before it",
-    }
+class _Layout(NamedTuple):
+    """What :func:`write_atlas` stores and how."""
+
+    stored: list[str]
+    compression: str | None
+    float32: bool
 
 
-def _create_skeleton(
-    ds: xr.Dataset,
-    path: str,
-    chunk_shape: dict[str, int],
-    stored: list[str] | None = None,
-    compression: str | None = None,
-    float32: bool = False,
-) -> None:
+def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], layout: _Layout) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
-    data variables (``stored``; default all) defined (chunked like the dataset, compressed as
-    asked, floating ones as float32 if asked) but not yet written."""
+    data variables (``layout.stored``) defined (chunked like the dataset, compressed as asked,
+    floating ones as float32 if asked) but not yet written."""
     import netCDF4
 
-    if stored is None:
-        stored = list(ds.data_vars)
+    stored, compression, float32 = layout
     scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
     filters: dict[str, Any] = (
         {} if compression is None else {"compression": compression, "complevel": LEVELS[compression], "shuffle": True}
@@ -289,7 +286,7 @@ def _create_skeleton(
             if scalar_coords:
                 attrs["coordinates"] = " ".join(scalar_coords)
             if dtype != v.dtype:
-                attrs.update(_float32_attrs())
+                attrs.update(FLOAT32_ATTRS)
             var.setncatts(attrs)
         nc.setncatts(dict(ds.attrs))
         if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
@@ -324,16 +321,6 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
             "change it beyond the stated bound: write with float32=False"
         )
     return w
-
-
-def _identity(ds: xr.Dataset, chunk_shape: dict[str, int]) -> dict[str, Any]:
-    """What a chunk store must match to be reused: grid, model, method, chunks, version."""
-    h = hashlib.sha256()
-    for k in sorted(ds.coords):
-        h.update(k.encode())
-        h.update(np.ascontiguousarray(ds.coords[k].values).tobytes())
-    attrs = {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
-    return {"coordinates_sha256": h.hexdigest(), "chunks": chunk_shape, **attrs}
 
 
 def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
@@ -450,19 +437,19 @@ def write_atlas(
     stability.errors.OutputWriteError
         The output could not be written (named, with the cause).
     """
-    overwrite = check_flag("overwrite", overwrite)
-    resume = check_flag("resume", resume)
+    overwrite, resume, float32 = (
+        check_flag(k, v) for k, v in [("overwrite", overwrite), ("resume", resume), ("float32", float32)]
+    )
     if window is not None:
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
         raise ParameterTypeError(f"ds must be an atlas Dataset from stability.atlas, got {type(ds).__name__}")
-    if variables not in VARIABLE_CHOICES:
-        raise InputError(f"variables = {variables!r} is not a choice; choose one of {', '.join(VARIABLE_CHOICES)}")
-    if compression not in COMPRESSIONS:
-        raise InputError(
-            f"compression = {compression!r} is not a choice; choose one of {', '.join(map(str, COMPRESSIONS))}"
-        )
-    float32 = check_flag("float32", float32)
+    for name, value, choices in [
+        ("variables", variables, VARIABLE_CHOICES),
+        ("compression", compression, COMPRESSIONS),
+    ]:
+        if value not in choices:
+            raise InputError(f"{name} = {value!r} is not a choice; choose one of {', '.join(map(str, choices))}")
     zarr_store = is_store_path(path)
     if zarr_store and (variables, compression, float32) != ("all", None, False):
         raise InputError(
@@ -477,134 +464,58 @@ def write_atlas(
         target = check_output_path(path, overwrite=overwrite)
     dims = list(ds["stability"].dims)
     n_modes = ds.sizes.get("mode", 0)
-    chunk_shape = {}
-    for d in dims:
-        c = ds.chunksizes.get(d) if ds.chunks else None
-        chunk_shape[d] = int(c[0]) if c else ds.sizes[d]
+    chunk_shape = {d: int(ds.chunksizes[d][0]) if d in ds.chunksizes else ds.sizes[d] for d in dims}
     blocks = _chunk_slices(ds, dims, chunk_shape)
-    n_points = int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64))
+    expected = atlas_file_bytes(n_modes, int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64)))
+    spec = _spec(ds, dims) | {"chunk_shape": chunk_shape, "n_modes": n_modes}
     report = _progress(progress, len(blocks))
-    layout = _Layout(_stored(ds, variables), compression, float32)
+    kept = parts_directory(target) if resume else None
+    client = client if ds.chunks else None  # in memory: sliced here
+
+    def failed(name: str, sl: dict[str, slice], exc: BaseException, done: int) -> ChunkError:
+        where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
+        cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
+        how = (
+            f"{done} of {len(blocks)} chunks are kept in {kept}; rerun the same command (resume=True, --resume) "
+            "to compute only the others"
+            if kept
+            else f"no chunks were kept ({done} of {len(blocks)} had been computed); use resume=True (--resume) "
+            "to keep finished chunks across a failure"
+        )
+        return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {how}")
+
+    def run(todo: list, put: Callable, task: Callable, args: tuple = (), here: bool = False) -> None:
+        _run_on_cluster(None if here else client, spec, todo, put, window, failed, report, task, args)
+
+    stored = [k for k in MAP_VARIABLES if k in ds] if variables == "map" else list(ds.data_vars)
+    layout = _Layout(stored, compression, float32)
     try:
         with deferred(), contextlib.ExitStack() as held:
             if not (zarr_store or resume):
-                _write_chunks(
-                    ds, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
-                    chunk_shape, blocks, client, window, report, layout,
-                )  # fmt: skip
+                _write_chunks(ds, target, overwrite, expected, spec, blocks, run, report, layout)
                 return target
             require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
             from .store import locked, open_store, write_store
 
             if resume:  # held until the output is written and the store removed
                 held.enter_context(locked(parts_directory(target)))
-
-            spec = _spec(ds, dims) | {
-                "chunk_shape": chunk_shape,
-                "n_modes": n_modes,
-                "variables": _stored(ds, "all"),
-                "identity": _identity(ds, chunk_shape),
-                "resume": resume,
-            }
             if not zarr_store:
-                check_free_space(target, atlas_file_bytes(n_modes, n_points))
+                check_free_space(target, expected)
+            identity = {"chunks": chunk_shape} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}  # the grid: _reopen
+            spec |= {"variables": list(ds.data_vars), "identity": identity, "resume": resume}
             parts = write_store(
-                ds,
-                target,
-                overwrite=overwrite,
-                client=client if ds.chunks else None,
-                resume=resume,
-                window=window,
-                spec=spec,
-                blocks=blocks,
-                report=report,
-                failed=_Failure(parts_directory(target) if resume else None, len(blocks)),
-                compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl),  # in memory: sliced
-                run_on_cluster=_run_on_cluster,
-                commit=zarr_store,
-            )
+                ds, target, overwrite=overwrite, resume=resume, spec=spec, blocks=blocks, report=report, run=run,
+                compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl), commit=zarr_store,
+            )  # fmt: skip
             if zarr_store:
                 return target
             with open_store(parts) as stored:  # the netCDF file from the complete store
-                _write_chunks(
-                    stored, target, overwrite, atlas_file_bytes(n_modes, n_points), dims, n_modes,
-                    chunk_shape, blocks, None, None, _progress(False, len(blocks)), layout,
-                )  # fmt: skip
+                quiet = _progress(False, len(blocks))
+                _write_chunks(stored, target, overwrite, expected, spec, blocks, run, quiet, layout)
             shutil.rmtree(parts, ignore_errors=True)
             return target
     finally:
         report(close=True)
-
-
-class _Layout(NamedTuple):
-    """What :func:`write_atlas` stores and how."""
-
-    stored: list[str]
-    compression: str | None
-    float32: bool
-
-
-class _Leading:
-    """``leading_growth_rate`` chunk by chunk, from the chunk in memory (never read back).
-
-    The rule (:mod:`stability.grids.leading`) leaves the structural zero mode out only if every
-    part of the grid has it at every point inside and one part has a point inside. Each chunk is
-    written with the zero mode left out while every chunk so far has it everywhere
-    (``zero_everywhere``), else as ``max_growth_rate``; at the first chunk that has not, the
-    chunks written before (each of which has it everywhere) are rewritten as
-    ``max_growth_rate``, read from the file or recomputed (``again``), and at the end, if no
-    chunk had a point inside, the same. The values are those of deciding on the whole grid
-    first, bit for bit."""
-
-    def __init__(
-        self,
-        nc: Any,
-        dims: list[str],
-        again: Callable[[str, dict[str, slice]], dict[str, np.ndarray]],
-        cast: Callable[[str, np.ndarray], np.ndarray],
-    ) -> None:
-        self.nc, self.dims, self.again, self.cast = nc, dims, again, cast
-        self.active = "leading_growth_rate" in nc.variables
-        self.dropping, self.any_inside, self.provisional = True, False, []
-
-    def _max(self, name: str, sl: dict[str, slice]) -> np.ndarray:
-        idx = tuple(sl[d] for d in self.dims)
-        if "max_growth_rate" in self.nc.variables:
-            return np.asarray(self.nc.variables["max_growth_rate"][idx])
-        return self.cast("leading_growth_rate", np.ascontiguousarray(self.again(name, sl)["growth_rate"][..., 0]))
-
-    def _undo(self) -> None:
-        for name, sl in self.provisional:
-            checkpoint()
-            self.nc.variables["leading_growth_rate"][tuple(sl[d] for d in self.dims)] = self._max(name, sl)
-        self.provisional = []
-
-    def put(self, name: str, sl: dict[str, slice], block: dict[str, np.ndarray], top: np.ndarray) -> None:
-        """Write the chunk ``block`` at ``sl``; ``top`` is its ``max_growth_rate`` as stored."""
-        if not self.active:
-            return
-        idx = tuple(sl[d] for d in self.dims)
-        mdims = (*self.dims, "mode")
-        g = xr.DataArray(block["growth_rate"], dims=mdims)
-        f = xr.DataArray(block["frequency"], dims=mdims)
-        b = xr.DataArray(block["eigenvalue_error_bound"], dims=mdims)
-        if self.dropping:
-            everywhere, inside = zero_everywhere(g, f, b)
-            self.any_inside |= bool(inside)
-            if not bool(everywhere) or not self.dims:
-                self.dropping = False
-                self._undo()
-        if not self.dropping:  # leading(..., drop=False) is max_growth_rate itself
-            self.nc.variables["leading_growth_rate"][idx] = top
-            return
-        m = xr.DataArray(np.ascontiguousarray(block["growth_rate"][..., 0]), dims=self.dims)
-        value = leading(g, f, b, m, drop=True).values
-        self.provisional.append((name, sl))
-        self.nc.variables["leading_growth_rate"][idx] = self.cast("leading_growth_rate", np.ascontiguousarray(value))
-
-    def close(self) -> None:
-        if self.active and self.dropping and not self.any_inside:
-            self._undo()
 
 
 def _write_chunks(
@@ -612,113 +523,80 @@ def _write_chunks(
     target: Path,
     overwrite: bool,
     expected: float,
-    dims: list[str],
-    n_modes: int,
-    chunk_shape: dict[str, int],
+    spec: dict[str, Any],
     blocks: list,
-    client: Any,
-    window: int | None,
+    run: Callable,
     report: _progress,
     layout: _Layout,
 ) -> None:
     """The netCDF body of :func:`write_atlas`: skeleton, chunks (computed, or read from ``ds``
-    in memory or in a store), commit."""
+    in memory or in a store), commit.
+
+    ``leading_growth_rate`` is written chunk by chunk from the chunk in memory (never read
+    back): each chunk with the structural zero mode left out while every chunk so far has it at
+    every point inside (:func:`stability.grids.store.chunk_variables`), else as ``max_growth_rate``;
+    at the end, unless every chunk has it and one has a point inside (the whole-grid rule of
+    :mod:`stability.grids.leading`), the chunks written with it left out are rewritten as
+    ``max_growth_rate``, read from the file or recomputed. The values are those of deciding on
+    the whole grid first, bit for bit."""
     import netCDF4
 
-    lazy = bool(ds.chunks)
-    spec = _spec(ds, dims)
+    dims, lazy = spec["dims"], bool(ds.chunks)
 
     def cast(name: str, v: np.ndarray) -> np.ndarray:
         return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
 
-    computing = threading.Lock()  # one chunk's spectra at a time (the compiled loop's threads)
-
-    def compute(name: str, sl: dict[str, slice]) -> dict[str, np.ndarray]:
-        with computing:
-            return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
+    def compute(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
+        return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
 
     with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
-        _create_skeleton(ds, tmp, chunk_shape, layout.stored, layout.compression, layout.float32)
+        _create_skeleton(ds, tmp, spec["chunk_shape"], layout)
         checkpoint()
         with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
             nc.set_auto_mask(False)
-            lead = _Leading(nc, dims, compute, cast)
+            var = nc.variables
+            lead = {"mixed": "leading_growth_rate" not in var, "inside": False, "provisional": []}
 
-            def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
-                shape = tuple(sl[d].stop - sl[d].start for d in dims)
-                check_block(
-                    block,
-                    shape,
-                    n_modes,
-                    lambda text: ChunkError(
-                        f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)"
-                    ),
-                )
-                idx = tuple(sl[d] for d in dims)
-                for k, v in block.items():
-                    if k in nc.variables:
-                        nc.variables[k][idx] = cast(k, v)
-                # the largest growth rate, rounded once for both variables that may hold it
-                top_name = "max_growth_rate" if "max_growth_rate" in nc.variables else "leading_growth_rate"
-                g0 = block["growth_rate"][..., 0]
-                top = cast(top_name, g0) if layout.float32 else np.ascontiguousarray(g0)
-                if "max_growth_rate" in nc.variables:
-                    nc.variables["max_growth_rate"][idx] = top
-                lead.put(name, sl, block, top)
+            def write(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+                check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
+                out, everywhere, inside = chunk_variables(block, dims, try_drop=not lead["mixed"])
+                if not lead["mixed"]:
+                    lead["inside"] |= inside
+                    lead["mixed"] = not everywhere
+                    if everywhere:
+                        lead["provisional"].append(sl)
+                rounded: dict[int, np.ndarray] = {}  # max_growth_rate, rounded once for both that may hold it
+                for k in layout.stored:
+                    if id(out[k]) not in rounded:
+                        rounded[id(out[k])] = cast(k, out[k])
+                    var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
                 checkpoint()
 
-            failed = _Failure(None, len(blocks))
-            if client is None or not lazy:
-                # each chunk is written (rounded, compressed) by one writer thread, in order, while
-                # the next is computed: netCDF4's writes and the compiled spectra release the GIL,
-                # so the writing overlaps the spectra instead of following them (one chunk more in
-                # memory); the file is the one the plain loop writes
-                with ThreadPoolExecutor(max_workers=1) as writer:
-                    pending = None
-                    for name, sl in blocks:
-                        checkpoint()
-                        try:
-                            block = compute(name, sl)
-                        except Exception as exc:
-                            raise failed(name, sl, exc, report.done) from exc
-                        if pending is not None:
-                            pending.result()
-                            report()
-                        pending = writer.submit(put, name, sl, block)
-                        del block
-                    if pending is not None:
-                        pending.result()
+            # each chunk is written (rounded, compressed) by one writer thread, in order, while
+            # the next is computed: netCDF4's writes and the compiled spectra release the GIL, so
+            # the writing overlaps the spectra instead of following them (one chunk more in
+            # memory); on a cluster, as each chunk lands. Progress is reported in this thread.
+            with ThreadPoolExecutor(max_workers=1) as writer:
+                pending: list = []
+
+                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray] | None) -> None:
+                    if pending:
+                        pending.pop().result()
                         report()
-            else:
+                    if block is not None:
+                        pending.append(writer.submit(write, name, sl, block))
 
-                def put_reported(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
-                    put(name, sl, block)
-                    report()
-
-                _run_on_cluster(client, spec, blocks, put_reported, window, failed, report, _compute_block, ())
-            lead.close()
-
-
-class _Failure:
-    """Builds the :class:`ChunkError` of a failed chunk (what failed, what was kept)."""
-
-    def __init__(self, store: Path | None, total: int) -> None:
-        self.store, self.total = store, total
-
-    def __call__(self, name: str, sl: dict[str, slice], exc: BaseException, done: int) -> ChunkError:
-        where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
-        cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
-        if self.store is not None:
-            kept = (
-                f"{done} of {self.total} chunks are kept in {self.store}; rerun the same command "
-                "(resume=True, --resume) to compute only the others"
-            )
-        else:
-            kept = (
-                f"no chunks were kept ({done} of {self.total} had been computed); use "
-                "resume=True (--resume) to keep finished chunks across a failure"
-            )
-        return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {kept}")
+                run(blocks, put, _compute_block if lazy else compute, here=not lazy)
+                put("", {}, None)
+            if lead["provisional"] and (lead["mixed"] or not lead["inside"]):
+                for sl in lead["provisional"]:
+                    checkpoint()
+                    idx = tuple(sl[d] for d in dims)
+                    if "max_growth_rate" in var:
+                        var["leading_growth_rate"][idx] = np.asarray(var["max_growth_rate"][idx])
+                    else:
+                        g0 = np.ascontiguousarray(compute(spec, sl)["growth_rate"][..., 0])
+                        var["leading_growth_rate"][idx] = cast("leading_growth_rate", g0)
 
 
 def _run_on_cluster(
@@ -727,48 +605,58 @@ def _run_on_cluster(
     todo: list,
     put: Callable,
     window: int | None,
-    failed: _Failure,
+    failed: Callable,
     report: _progress,
     task: Callable,
     args: tuple,
 ) -> None:
-    """Submit chunks to ``client`` with at most ``window`` in flight; write each as it lands.
-
-    Each chunk runs ``task(spec, sl, *args)``; ``put`` gets
-    what it returns.
+    """Run ``task(spec, sl, *args)`` for each chunk ``(name, sl)`` of ``todo`` and hand ``put``
+    what it returns: in this process, one after the other (``client`` None), or on ``client``
+    with at most ``window`` chunks in flight, each handed over as it lands.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
-    ``allowed-failures``, dask's ``KilledWorker``) ends the run with a :class:`ChunkError`; the
-    chunks still in flight are cancelled. A worker dying once is retried by dask elsewhere.
+    ``allowed-failures``, dask's ``KilledWorker``) ends the run with ``failed(name, sl, exc,
+    done)``, a :class:`ChunkError`; the chunks still in flight are cancelled. A worker dying once
+    is retried by dask elsewhere.
     """
+    if client is None:
+        for name, sl in todo:
+            checkpoint()
+            try:
+                out = task(spec, sl, *args)
+            except ChunkError:
+                raise
+            except Exception as exc:
+                raise failed(name, sl, exc, report.done) from exc
+            put(name, sl, out)
+        return
     from distributed import as_completed
 
-    if window is None:
-        window = 2 * max(1, sum(client.nthreads().values()))
+    window = window or 2 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)
-    names = {}
+    names: dict[str, tuple] = {}
     ac = as_completed()
+
+    def submit(name: str, sl: dict[str, slice]) -> None:
+        fut = client.submit(task, spec, sl, *args, pure=False)
+        names[fut.key] = (name, sl, fut)
+        ac.add(fut)
+
     try:
-        for name, sl in pending:
-            fut = client.submit(task, spec, sl, *args, pure=False)
-            names[fut.key] = (name, sl, fut)
-            ac.add(fut)
-            if len(names) >= window:
-                break
+        for name, sl in islice(pending, window):
+            submit(name, sl)
         for fut in ac:
             checkpoint()
             name, sl, _ = names.pop(fut.key)
             try:
-                block = fut.result()
+                out = fut.result()
             except Exception as exc:
                 raise failed(name, sl, exc, report.done) from exc
-            put(name, sl, block)
+            put(name, sl, out)
             fut.release()
             nxt = next(pending, None)
             if nxt is not None:
-                f2 = client.submit(task, spec, nxt[1], *args, pure=False)
-                names[f2.key] = (*nxt, f2)
-                ac.add(f2)
+                submit(*nxt)
     finally:
         if names:
             client.cancel([f for _, _, f in names.values()])
@@ -778,10 +666,9 @@ class _progress:
     """Callable reporting chunk progress: a tqdm bar, a user callback, or nothing."""
 
     def __init__(self, how: bool | Callable[[int, int], None], total: int) -> None:
-        self.total, self.done, self.bar, self.fn = total, 0, None, None
-        if callable(how):
-            self.fn = how
-        elif how:
+        self.total, self.done = total, 0
+        self.fn, self.bar = (how if callable(how) else None), None
+        if how and not callable(how):
             from tqdm import tqdm
 
             self.bar = tqdm(total=total, unit="chunk", desc="atlas", leave=True)

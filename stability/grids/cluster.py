@@ -14,12 +14,11 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
-import os
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError, ParameterTypeError, require_extra
+from ..errors import InputError, require_extra
 from ..parameters import check_integer
 
 __all__ = ["dask_client"]
@@ -51,10 +50,6 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
     if workers is None and scheduler is None:
         yield None
         return
-    if scheduler is not None and (not isinstance(scheduler, (str, os.PathLike)) or not str(scheduler).strip()):
-        raise ParameterTypeError(
-            f"scheduler = {scheduler!r} must be an address tcp://host:port or the path of a scheduler file"
-        )
     require_extra("distributed", "cluster", "workers= or scheduler= (a dask cluster)")
     from distributed import Client, LocalCluster
 
@@ -62,48 +57,34 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
         workers = check_integer("workers", workers, minimum=1)
         if workers > 1024:
             raise InputError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
-        with (
-            LocalCluster(
-                n_workers=workers,
-                threads_per_worker=1,
-                processes=True,
-                host="127.0.0.1",
-                dashboard_address=None,
-                silence_logs=logging.CRITICAL,
-            ) as cluster,
-            Client(cluster) as client,
-        ):
+        cluster = LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            host="127.0.0.1",
+            dashboard_address=None,
+            silence_logs=logging.CRITICAL,
+        )
+        with cluster, Client(cluster) as client:
             yield client
         return
-    scheduler = str(scheduler)
-    if "://" in scheduler:
-        client = _connect(scheduler, address=scheduler)
-    else:
-        path = Path(scheduler)
-        if not path.is_file():
+    address = str(scheduler)
+    if "://" not in address:  # a scheduler file, as `dask scheduler --scheduler-file` writes it
+        if not Path(address).is_file():
             raise FileNotFoundError(
-                f"scheduler {scheduler!r} is neither an address (tcp://host:port) nor an existing scheduler file"
+                f"scheduler {address!r} is neither an address (tcp://host:port) nor an existing scheduler file"
             )
         try:
-            info = json.loads(path.read_text())
-            address = info["address"]
+            address = json.loads(Path(address).read_text())["address"]
         except (ValueError, KeyError, TypeError, UnicodeDecodeError):
             raise InputError(
-                f"scheduler file {scheduler!r} is not a dask scheduler file (JSON with an "
+                f"scheduler file {str(scheduler)!r} is not a dask scheduler file (JSON with an "
                 "'address', as written by `dask scheduler --scheduler-file`)"
             ) from None
-        client = _connect(scheduler, scheduler_file=str(path), address=address)
-    with client:
-        yield client
-
-
-def _connect(what: str, *, address: str, **kwargs: Any) -> Any:
-    """A distributed Client, or an OSError naming the scheduler if it cannot be reached."""
-    from distributed import Client
-
     try:
-        return Client(timeout="20s", **kwargs) if kwargs else Client(address, timeout="20s")
+        client = Client(address, timeout="20s")
     except (OSError, TimeoutError) as exc:
         raise ConnectionError(
-            f"cannot reach the dask scheduler {what!r} (address {address}): {type(exc).__name__}: {exc}"
+            f"cannot reach the dask scheduler {str(scheduler)!r} (address {address}): {exc}"
         ) from None
+    with client:
+        yield client

@@ -7,19 +7,19 @@ atlas with xarray's public API only:
    (:mod:`stability.grids.schema`, the same names, dimensions, attributes and dtypes as the
    netCDF atlas), chunked like the grid, with its coordinates and attributes, no data yet; plus
    the per-chunk record ``chunk_digest`` (one uint64 per chunk of the grid, dimensions
-   ``<dim>_chunk``, one Zarr chunk each; 0: not written) and ``chunk_zero_everywhere``,
-   ``chunk_inside`` (what the leading growth rate's whole-grid rule needs of each chunk,
-   :mod:`stability.grids.leading`).
+   ``<dim>_chunk``, one Zarr chunk each; 0: not written).
 2. Each chunk of the grid is computed and written into its region with
    ``to_zarr(parts, region=...)`` (:func:`_write_region`) by the process that computed it: on a
-   dask cluster, the workers themselves, which return only the chunk's summary (two flags): the
+   dask cluster, the workers themselves, which return only the chunk's summary (two flags: what
+   the leading growth rate's whole-grid rule needs of it, :func:`chunk_variables`): the
    client never holds a chunk, and its memory does not grow with the grid. The regions are the
    Zarr chunks, so concurrent writers never share a chunk file. The digest (sha256 of the atlas's
    identity, the chunk's slice and the bytes of its arrays, first 8 bytes) is written **last**,
    in a second region write: a chunk is complete exactly when its digest is non-zero.
 3. When every chunk is written, the leading growth rate's rule is decided over the whole grid
-   (from the per-chunk flags, no data read), the few chunks written provisionally with the zero
-   mode left out are rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
+   (from the per-chunk flags; those of a chunk reused on resuming from its data, read anyway to
+   check its digest), the few chunks written provisionally with the zero mode left out are
+   rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
    it (no partial store under the output's name; an existing store is replaced only with
    ``overwrite=True``).
 
@@ -31,8 +31,7 @@ chunks or package version: :class:`~stability.errors.ResumeError` naming what di
 holds: a chunk that disagrees (edited, swapped, copied from another store) is refused naming it;
 a chunk that cannot be read (a truncated chunk file) is computed again, with a warning; the
 chunks marked incomplete (never written, or interrupted between the data and the digest) are
-computed. The
-result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
+computed. The result equals the atlas computed in one go, bit for bit. A run holds ``<output>.parts`` locked
 (:func:`locked`) until its output is written: a second run on the same store is refused at
 once. The store must be on a file system the workers share with the client (always true of a
 LocalCluster).
@@ -64,6 +63,7 @@ __all__ = [
     "IDENTITY_ATTRS",
     "RECORD_VARIABLES",
     "check_block",
+    "chunk_variables",
     "damaged_chunk",
     "is_store_path",
     "locked",
@@ -74,48 +74,64 @@ __all__ = [
 ]
 
 #: the per-chunk record of a store (not atlas variables: :func:`open_store` drops them)
-RECORD_VARIABLES = ("chunk_digest", "chunk_zero_everywhere", "chunk_inside")
+RECORD_VARIABLES = ("chunk_digest",)
 
 #: the attributes a resumed store must share with the atlas being written
 IDENTITY_ATTRS = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
 
-
-#: per-chunk variables (the rest, max_growth_rate, follows from growth_rate)
-BLOCK_VARIABLES = ("growth_rate", "frequency", "eigenvalue_error_bound", "stability", "physical")
-
-#: the arrays of one chunk: dtype, and whether they have the ``mode`` dimension
-_BLOCK_LAYOUT: dict[str, tuple[np.dtype, bool]] = {
+#: the arrays of one chunk (the rest, max_growth_rate, follows from growth_rate): dtype, and
+#: whether they have the ``mode`` dimension
+BLOCK_LAYOUT = {
     "growth_rate": (np.dtype(np.float64), True),
     "frequency": (np.dtype(np.float64), True),
     "eigenvalue_error_bound": (np.dtype(np.float64), True),
     "stability": (np.dtype(np.int8), False),
     "physical": (np.dtype(np.int8), False),
 }
+BLOCK_VARIABLES = tuple(BLOCK_LAYOUT)
 
 
-def check_block(
-    block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, error: Callable[[str], Exception]
-) -> None:
-    """The arrays of a chunk exactly as the file's variables need them: never broadcast or cast."""
-    if set(block) != set(_BLOCK_LAYOUT):
-        raise error(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(_BLOCK_LAYOUT))}")
-    for k, (dtype, modal) in _BLOCK_LAYOUT.items():
-        a = block[k]
+def check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, name: str) -> None:
+    """The arrays of chunk ``name`` exactly as the file's variables need them (never broadcast
+    or cast), else a :class:`ChunkError`."""
+
+    def wrong(text: str) -> ChunkError:
+        return ChunkError(f"chunk {name} was computed wrongly: it {text} (a bug; nothing was written)")
+
+    if set(block) != set(BLOCK_LAYOUT):
+        raise wrong(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(BLOCK_LAYOUT))}")
+    for k, (dtype, modal) in BLOCK_LAYOUT.items():
         want = shape + ((n_modes,) if modal else ())
-        if a.dtype != dtype:
-            raise error(f"has {k} of dtype {a.dtype}; a chunk stores it as {dtype}")
-        if a.shape != want:
-            raise error(f"has {k} of shape {a.shape}; this chunk of the grid has shape {want}")
+        if block[k].dtype != dtype:
+            raise wrong(f"has {k} of dtype {block[k].dtype}; a chunk stores it as {dtype}")
+        if block[k].shape != want:
+            raise wrong(f"has {k} of shape {block[k].shape}; this chunk of the grid has shape {want}")
 
 
 def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of a chunk of an atlas in memory or in a store."""
     dims = list(ds["stability"].dims)
-    out = {}
-    for k in BLOCK_VARIABLES:
-        v = ds[k].isel(sl)
-        out[k] = np.asarray(v.transpose(*dims, *(["mode"] if "mode" in v.dims else [])).values)
-    return out
+    return {k: ds[k].isel(sl).transpose(*dims, ...).values for k in BLOCK_VARIABLES}
+
+
+def chunk_variables(
+    block: dict[str, np.ndarray], dims: list[str], try_drop: bool = True
+) -> tuple[dict[str, np.ndarray], bool, bool]:
+    """The atlas variables of one chunk, and its part of the leading growth rate's whole-grid
+    rule (:mod:`stability.grids.leading`): ``max_growth_rate``, and ``leading_growth_rate`` with
+    the structural zero mode left out if the chunk has it at every point inside (``try_drop``;
+    else ``max_growth_rate`` itself, the same array); whether it has (never on a 0-d grid), and
+    whether the chunk has a point inside (False where not looked at)."""
+    top = block["growth_rate"][..., 0]
+    out = dict(block, max_growth_rate=top, leading_growth_rate=top)
+    if not (try_drop and dims):
+        return out, False, False
+    mdims = (*dims, "mode")
+    g, f, b = (xr.DataArray(block[k], dims=mdims) for k in ("growth_rate", "frequency", "eigenvalue_error_bound"))
+    everywhere, inside = zero_everywhere(g, f, b)
+    if bool(everywhere):
+        out["leading_growth_rate"] = leading(g, f, b, xr.DataArray(top, dims=dims), drop=True).values
+    return out, bool(everywhere), bool(inside)
 
 
 def is_store_path(path: str | os.PathLike) -> bool:
@@ -134,14 +150,9 @@ def locked(parts: Path) -> Iterator[None]:
     """Hold the resumable store ``parts`` (created empty if new) for a whole run: an exclusive
     ``fcntl.flock`` on its directory, which the kernel releases when the run ends, however it
     ends (a killed run leaves no stale lock). A second run on the same store is refused at once
-    (:class:`ResumeError`), instead of racing the first over the same chunks. Where the file
-    system has no such lock (some network file systems) the run goes unlocked. An empty
-    directory created here is removed at the end (a run refused before writing leaves none)."""
-    try:
-        import fcntl
-    except ImportError:  # pragma: no cover - not POSIX: unlocked
-        yield
-        return
+    (:class:`ResumeError`), instead of racing the first over the same chunks. Where there is no
+    such lock (not POSIX, some network file systems) the run goes unlocked. An empty directory
+    created here is removed at the end (a run refused before writing leaves none)."""
     if os.path.lexists(parts) and not parts.is_dir():
         raise ResumeError(
             f"cannot resume: {str(parts)!r} exists and is not a Zarr store; remove it or choose another output"
@@ -150,14 +161,16 @@ def locked(parts: Path) -> Iterator[None]:
     fd = os.open(parts, os.O_RDONLY)
     try:
         try:
+            import fcntl
+
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             raise ResumeError(
                 f"cannot resume: another run is writing {str(parts)!r} now (it holds the store's lock); "
                 "wait for it to end, or stop it and rerun"
             ) from None
-        except OSError:
-            pass  # no flock on a directory of this file system
+        except (ImportError, OSError):
+            pass  # no flock here: unlocked
         yield
     finally:
         os.close(fd)
@@ -165,10 +178,14 @@ def locked(parts: Path) -> Iterator[None]:
             parts.rmdir()  # only if empty
 
 
+def _open(path: str | os.PathLike) -> xr.Dataset:
+    return xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+
+
 def open_store(path: str | os.PathLike) -> xr.Dataset:
     """The atlas in a complete Zarr store, opened lazily (xarray's zarr backend, not dask),
     without its per-chunk record."""
-    ds = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+    ds = _open(path)
     return ds.drop_vars([v for v in RECORD_VARIABLES if v in ds.variables])
 
 
@@ -180,8 +197,7 @@ def damaged_chunk(path: str | os.PathLike) -> str | None:
 
     import zarr
 
-    group = zarr.open_group(str(path), mode="r")
-    for name, array in sorted(group.arrays()):
+    for name, array in sorted(zarr.open_group(str(path), mode="r").arrays()):
         for index in itertools.product(*(range(n) for n in array.cdata_shape)):
             try:
                 array.blocks[index]
@@ -190,25 +206,18 @@ def damaged_chunk(path: str | os.PathLike) -> str | None:
     return None
 
 
-def _chunk_dims(dims: list[str]) -> tuple[str, ...]:
-    return tuple(f"{d}_chunk" for d in dims)
-
-
 def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> xr.Dataset:
     """The atlas's layout (variables of its dims, dtypes and attributes, chunked as the store;
     their values never computed: the atlas's own graph is not built into the store's) plus the
-    per-chunk record."""
+    per-chunk record (one Zarr chunk per chunk of the grid, dimensions ``<dim>_chunk``)."""
     import dask.array as da
 
     def empty(v: xr.DataArray) -> da.Array:
         return da.empty(v.shape, chunks=tuple(chunk_shape.get(d, n) for d, n in zip(v.dims, v.shape)), dtype=v.dtype)
 
-    out = xr.Dataset(
-        {k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, coords=ds.coords, attrs=ds.attrs
-    )
+    out = xr.Dataset({k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, ds.coords, ds.attrs)
     counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
-    for k, dtype in zip(RECORD_VARIABLES, (np.uint64, np.int8, np.int8)):
-        out[k] = (_chunk_dims(dims), da.zeros(counts, chunks=(1,) * len(dims), dtype=dtype))
+    out["chunk_digest"] = ([f"{d}_chunk" for d in dims], da.zeros(counts, chunks=(1,) * len(dims), dtype=np.uint64))
     return out
 
 
@@ -236,30 +245,14 @@ def _write_region(spec: dict[str, Any], sl: dict[str, slice], path: str, compute
     point inside, a point inside). Runs wherever the chunk is sent."""
     dims = spec["dims"]
     block = compute(spec, sl)
-    shape = tuple(sl[d].stop - sl[d].start for d in dims)
-    check_block(
-        block,
-        shape,
-        spec["n_modes"],
-        lambda text: ChunkError(f"a chunk was computed wrongly: it {text} (a bug; nothing was written)"),
-    )
-    mdims = (*dims, "mode")
-    arrays = {k: (mdims if block[k].ndim == len(dims) + 1 else dims, v) for k, v in block.items()}
-    part = xr.Dataset(arrays)
-    part["max_growth_rate"] = (dims, np.ascontiguousarray(block["growth_rate"][..., 0]))
-    everywhere, inside = zero_everywhere(part["growth_rate"], part["frequency"], part["eigenvalue_error_bound"])
-    everywhere, inside = bool(everywhere) and bool(dims), bool(inside)
-    lead = leading(
-        part["growth_rate"], part["frequency"], part["eigenvalue_error_bound"], part["max_growth_rate"], drop=everywhere
-    )
-    part["leading_growth_rate"] = lead.variable
-    part = part[spec["variables"]]
+    check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], "of the store")
+    out, everywhere, inside = chunk_variables(block, dims)
+    part = xr.Dataset({k: ((*dims, "mode")[: out[k].ndim], out[k]) for k in spec["variables"]})
     part.to_zarr(path, region={d: sl[d] for d in dims}, mode="r+", consolidated=False)
     mark = _digest(spec, sl, block) if spec["resume"] else np.uint64(1)  # only a rerun reads the digest
-    record = {"chunk_zero_everywhere": np.int8(everywhere), "chunk_inside": np.int8(inside), "chunk_digest": mark}
-    for k, v in record.items():  # the digest last: the chunk is complete when it is written
-        one = xr.Dataset({k: (_chunk_dims(dims), np.full((1,) * len(dims), v))})
-        one.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
+    # the digest after the data: the chunk is complete when it is written
+    digest = xr.Dataset({"chunk_digest": ([f"{d}_chunk" for d in dims], np.full((1,) * len(dims), mark))})
+    digest.to_zarr(path, region=_index(sl, spec), mode="r+", consolidated=False)
     return everywhere, inside
 
 
@@ -267,9 +260,8 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
     """The chunks of an earlier run's store that are complete and check out (see module
     docstring), with their summaries; a store of another atlas or a chunk that disagrees with
     its digest is a :class:`ResumeError`."""
-    dims = spec["dims"]
     try:
-        old = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+        old = _open(path)
     except Exception:
         raise ResumeError(
             f"cannot resume: {str(path)!r} exists but is not a readable Zarr store of this package; "
@@ -277,29 +269,22 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
         ) from None
     with old:
         diff = [k for k in IDENTITY_ATTRS if str(old.attrs.get(k)) != str(ds.attrs.get(k))]
-        diff += [
-            k
-            for k in ds.coords
-            if k not in old.coords or not np.array_equal(old[k].values, ds[k].values, equal_nan=True)
-        ]
+        diff += [k for k in ds.coords if k not in old.coords or not np.array_equal(old[k], ds[k], equal_nan=True)]
         if "chunk_digest" not in old or "stability" not in old:
             diff.append("layout")
-        else:
-            stored_chunks = old["stability"].encoding.get("chunks") or old["stability"].encoding.get("preferred_chunks")
-            if stored_chunks is not None and tuple(stored_chunks) != tuple(spec["chunk_shape"][d] for d in dims):
-                diff.append("chunks")
+        elif old["stability"].encoding.get("chunks") not in (None, tuple(spec["chunk_shape"].values())):
+            diff.append("chunks")
         if diff:
             raise ResumeError(
                 f"cannot resume from {str(path)!r}: it was written for a different atlas "
                 f"({', '.join(diff)} differ); remove it to start afresh"
             )
-        record = {k: old[k].values for k in RECORD_VARIABLES}
+        digests = old["chunk_digest"].values
         done: dict[str, tuple[bool, bool]] = {}
         for name, sl in blocks:
             checkpoint()
             i = tuple(s.start for s in _index(sl, spec).values())
-            digest = record["chunk_digest"][i]
-            if digest == 0:
+            if digests[i] == 0:
                 continue
             try:
                 block = slice_block(old, sl)
@@ -310,12 +295,12 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
                     stacklevel=5,
                 )
                 continue
-            if _digest(spec, sl, block) != digest:
+            if _digest(spec, sl, block) != digests[i]:
                 raise ResumeError(
                     f"cannot resume: chunk {name} of {str(path)!r} does not match its digest (edited, "
                     f"damaged or from another run); remove {str(path)!r} to start afresh"
                 )
-            done[name] = (bool(record["chunk_zero_everywhere"][i]), bool(record["chunk_inside"][i]))
+            done[name] = chunk_variables(block, spec["dims"])[1:]
     return done
 
 
@@ -324,15 +309,12 @@ def write_store(
     target: Path,
     *,
     overwrite: bool,
-    client: Any,
     resume: bool,
-    window: int | None,
     spec: dict[str, Any],
     blocks: list,
     report: Callable,
-    failed: Callable,
+    run: Callable,
     compute: Callable,
-    run_on_cluster: Callable,
     commit: bool = True,
 ) -> Path:
     """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
@@ -340,13 +322,13 @@ def write_store(
     netCDF writer (``resume=True`` only); its path.
 
     ``spec`` is :func:`stability.grids.chunked._spec` with ``chunk_shape``, ``n_modes``,
-    ``variables`` (the atlas variables stored) and ``identity``; ``blocks`` the (name, slice)
-    of each chunk; ``report``, ``failed``, ``compute`` (of one chunk) and ``run_on_cluster`` as
-    for the netCDF writer.
+    ``variables`` (the atlas variables stored), ``identity`` and ``resume``; ``blocks`` the
+    (name, slice) of each chunk; ``report`` counts them; ``run(todo, put, task, args)`` runs
+    ``task(spec, sl, *args)`` for each chunk of ``todo`` where the chunks run and hands ``put``
+    what it returns.
     """
     if commit:
         _check_target(target, overwrite)
-    dims = spec["dims"]
     tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
     if resume:
         parts = parts_directory(target)
@@ -358,31 +340,19 @@ def write_store(
         if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
             done = _reopen(parts, ds, spec, blocks)
         else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
-            layout = _template(ds[spec["variables"]], spec["chunk_shape"], dims)
+            layout = _template(ds[spec["variables"]], spec["chunk_shape"], spec["dims"])
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
         for _ in done:
             report()
-        todo = [(name, sl) for name, sl in blocks if name not in done]
-        if client is None:
-            for name, sl in todo:
-                checkpoint()
-                try:
-                    done[name] = _write_region(spec, sl, str(parts), compute)
-                except (ChunkError, KeyboardInterrupt):
-                    raise
-                except Exception as exc:
-                    raise failed(name, sl, exc, report.done) from exc
-                report()
-        else:
 
-            def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
-                done[name] = summary
-                report()
-                checkpoint()
+        def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
+            done[name] = summary
+            report()
+            checkpoint()
 
-            args = (str(parts), compute)  # the function itself goes along (a test's injected fault too)
-            run_on_cluster(client, spec, todo, put, window, failed, report, task=_write_region, args=args)
-        _finish(parts, done, blocks, dims)
+        # the chunk function itself goes along to the workers (a test's injected fault too)
+        run([(name, sl) for name, sl in blocks if name not in done], put, _write_region, (str(parts), compute))
+        _finish(parts, done, blocks, spec["dims"])
         if commit:
             _commit(parts, target, overwrite, tmp)
     except BaseException:
@@ -399,10 +369,9 @@ def _finish(parts: Path, done: dict[str, tuple[bool, bool]], blocks: list, dims:
     """The leading growth rate's whole-grid rule (:mod:`stability.grids.leading`): the zero mode
     is left out iff every chunk has it at every point inside and one chunk has a point inside;
     otherwise the chunks written with it left out get ``max_growth_rate``, read back."""
-    drop = all(e for e, _ in done.values()) and any(i for _, i in done.values())
-    if drop:
+    if all(e for e, _ in done.values()) and any(i for _, i in done.values()):
         return
-    with xr.open_dataset(parts, engine="zarr", consolidated=False, chunks=None) as stored:
+    with _open(parts) as stored:
         if "leading_growth_rate" not in stored:
             return
         for name, sl in blocks:
@@ -443,14 +412,13 @@ def _commit(parts: Path, target: Path, overwrite: bool, tmp: Temporary | None) -
     except OSError as exc:
         if tmp is not None:
             tmp.state = "writing"
-        taken = exc.errno in (errno.EEXIST, errno.ENOTEMPTY, errno.ENOTDIR) and os.path.lexists(target)
         lost = ""
         if old is not None:
             try:
                 os.rename(old, target)
             except OSError:
                 lost = f"; the store it replaces could not be put back and is in {str(old)!r}"
-        if taken:
+        if exc.errno in (errno.EEXIST, errno.ENOTEMPTY, errno.ENOTDIR) and os.path.lexists(target):
             raise FileExistsError(
                 f"output {str(target)!r} was created by another process while this run was computing; "
                 f"nothing was replaced (the complete store: {kept}{lost})"
