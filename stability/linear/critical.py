@@ -50,7 +50,6 @@ import numpy as np
 from ..errors import DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
-    DEFAULT_MU,
     UPPER_BOUND,
     as_scalar,
     check_choice,
@@ -64,7 +63,7 @@ from ..parameters import (
 from ..resources import check_threshold_samples
 from .growth import GROWS, UNDECIDED, growth
 from .neutrality import NeutralCondition
-from .spectra import MARGINAL, STABLE, UNSTABLE
+from .spectra import MARGINAL, STABLE, UNSTABLE, fixed_parameters, parameter_name
 
 __all__ = [
     "UPPER_BOUND",
@@ -127,23 +126,7 @@ def _setup(
     param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
 ) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
     m = get_model(model)
-    if not isinstance(param, str) or param not in m.parameters:
-        raise InputError(
-            f"param = {param!r} is not a parameter of model {m.name!r}; choose one of {', '.join(m.parameters)}"
-        )
-    fx = {k: v for k, v in fixed.items() if v is not None}
-    if param in fx:
-        raise ParameterTypeError(f"{param} is the parameter searched and cannot also be given a value")
-    if "mu" in m.parameters and param != "mu":
-        fx.setdefault("mu", DEFAULT_MU)
-    for k in fx:
-        if k not in m.parameters:
-            raise ParameterTypeError(f"model {m.name!r} takes no parameter {k} (it takes {', '.join(m.parameters)})")
-    missing = [k for k in m.parameters if k != param and k not in fx]
-    if missing:
-        raise ParameterTypeError(f"{', '.join(missing)} required for a threshold in {param} of model {m.name!r}")
-    p, _ = check_domain(scalar=True, **fx)
-    fx = {k: float(v) for k, v in p.items()}
+    fx = fixed_parameters(m, (parameter_name(m, param, "param"),), fixed)
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:

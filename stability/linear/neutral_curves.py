@@ -64,13 +64,11 @@ from .._version import package_version
 from ..errors import ConvergenceError, DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
-    DEFAULT_MU,
     LONG_NAMES,
     UPPER_BOUND,
     WINDOW_UPPER_BOUND,
     as_scalar,
     check_choice,
-    check_domain,
     check_flag,
     check_integer,
     check_positive,
@@ -86,7 +84,7 @@ from .modes import structural_zeros
 from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
 from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
-from .spectra import spectrum
+from .spectra import fixed_parameters, parameter_name, spectrum
 
 __all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neutral_curve"]
 
@@ -117,35 +115,6 @@ _KIND_DETAIL = {
 }
 
 
-def _check_name(name: str, what: str, model: LinearModel) -> str:
-    if not isinstance(name, str) or name not in model.parameters:
-        raise InputError(
-            f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
-        )
-    return name
-
-
-def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
-    """Validate the fixed parameters (all the model's others; mu defaults to 2.28)."""
-    if not isinstance(fixed, Mapping):
-        raise ParameterTypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
-    out = dict(fixed)
-    if "mu" not in free and "mu" not in out:
-        out["mu"] = DEFAULT_MU
-    for name in out:
-        if name in free:
-            raise InputError(f"{name} is traced (x or y) and cannot also be fixed")
-        if name not in model.parameters:
-            raise ParameterTypeError(
-                f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
-            )
-    missing = [n for n in model.parameters if n not in free and n not in out]
-    if missing:
-        raise ParameterTypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
-    p, _ = check_domain(scalar=True, **out)
-    return {k: float(v) for k, v in p.items()}
-
-
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
     """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
     parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
@@ -170,7 +139,44 @@ def _outside_domain_error(
     )
 
 
-class NeutralProblem:
+class _CurveProblem:
+    """What the neutral and fold problems share: the traced parameters ``names`` (the columns
+    ``_columns`` of ``u``), the fixed ones, the neutral condition and the constraints."""
+
+    test_function_names: tuple[str, ...] = ()
+    _columns: tuple[int, ...] = (0, 1)
+
+    def __init__(
+        self,
+        model: str | LinearModel,
+        names: tuple[str, ...],
+        fixed: Mapping[str, float],
+        ranges: Mapping[str, tuple[float, float]],
+        edge_margin: float,
+        samples: np.ndarray | None,
+        form: str | None,
+        compiled: bool | None,
+    ):
+        self.model = get_model(model)
+        self.names = names
+        self.fixed = dict(fixed)
+        self.cond = NeutralCondition(self.model, names, self.fixed, samples, form, compiled)
+        constraints = constraints_of(self.model, names, ranges, edge_margin)
+        self.constraint_names = tuple(c.name for c in constraints)
+        self.constraint_kinds = tuple(c.kind for c in constraints)
+        self.constraint_bounds = tuple(c.bound for c in constraints)
+        self._point, self._free, self._rows = constraint_arguments(self.fixed, names, constraints)
+
+    def params(self, u: np.ndarray) -> dict[str, float]:
+        """All parameters at ``u``."""
+        return {**self.fixed, **{n: float(u[i]) for n, i in zip(self.names, self._columns)}}
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        """Domain and range bounds, ``>= 0`` inside."""
+        return constraint_values(self._point, self._free, [float(u[i]) for i in self._columns], *self._rows)
+
+
+class NeutralProblem(_CurveProblem):
     """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.linear.neutrality`.
 
     Parameters
@@ -214,20 +220,13 @@ class NeutralProblem:
         form: str | None = None,
         compiled: bool | None = None,
     ):
-        self.model = get_model(model)
-        self.names = (x, y)
-        self.fixed = dict(fixed)
+        model = get_model(model)
         if compiled is None:  # the rule of stability.execution: the compiled step if in memory (or forced)
             step = sys.modules.get(__package__ + ".neutral_compiled")  # nothing imported to find out
-            f, d = (getattr(self.model, k, None) for k in ("point_coefficients", "point_derivatives"))
-            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(self.model.n_modes)))
+            f, d = (getattr(model, k, None) for k in ("point_coefficients", "point_derivatives"))
+            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(model.n_modes)))
             compiled = execution.use_compiled(known or None, 1)
-        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
-        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c.name for c in self._constraints)
-        self.constraint_kinds = tuple(c.kind for c in self._constraints)
-        self.constraint_bounds = tuple(c.bound for c in self._constraints)
-        self._point, self._free, self._rows = constraint_arguments(self)
+        super().__init__(model, (x, y), fixed, ranges, edge_margin, samples, form, compiled)
         self._compiled = None
         kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
@@ -250,12 +249,6 @@ class NeutralProblem:
         of :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
         return self._step_kernel(*self._compiled, *corrector)
-
-    def params(self, u: np.ndarray) -> dict[str, float]:
-        """All parameters at ``u``."""
-        p = dict(self.fixed)
-        p.update(zip(self.names, (float(u[0]), float(u[1]))))
-        return p
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
@@ -314,10 +307,10 @@ class NeutralProblem:
 
             point, free, _, codes, index, a = self._compiled
             return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return constraint_values(self._point, self._free, [float(u[0]), float(u[1])], *self._rows)
+        return super().constraints(u)
 
 
-class FoldProblem:
+class FoldProblem(_CurveProblem):
     """Continuation of a fold of a neutral curve in a third parameter: ``u = (x, y, w, z)``.
 
     Equations: the neutral condition ``F(x, y, w; z) = 0`` (two) and the fold condition
@@ -326,7 +319,7 @@ class FoldProblem:
     differences for the Jacobian (:func:`continuation.finite_difference_jacobian`).
     """
 
-    test_function_names: tuple[str, ...] = ()
+    _columns = (0, 1, 3)
 
     def __init__(
         self,
@@ -341,21 +334,8 @@ class FoldProblem:
         samples: np.ndarray | None = None,
         form: str | None = None,
     ):
-        self.model = get_model(model)
-        self.names = (x, y, z)
-        self.fixed = dict(fixed)
-        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
+        super().__init__(model, (x, y, z), fixed, ranges, edge_margin, samples, form, None)
         self.other = 1 if fold_in == x else 0
-        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c.name for c in self._constraints)
-        self.constraint_kinds = tuple(c.kind for c in self._constraints)
-        self.constraint_bounds = tuple(c.bound for c in self._constraints)
-        self._point, self._free, self._rows = constraint_arguments(self)
-
-    def params(self, u: np.ndarray) -> dict[str, float]:
-        p = dict(self.fixed)
-        p.update(zip(self.names, (float(u[0]), float(u[1]), float(u[3]))))
-        return p
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``[F1, F2, det]`` at ``u = (x, y, w, z)``."""
@@ -363,10 +343,6 @@ class FoldProblem:
         F, J = self.cond.residual_and_jacobian(vals, float(u[2]))
         B = J[:, [self.other, 3]]
         return np.array([F[0], F[1], B[0, 0] * B[1, 1] - B[0, 1] * B[1, 0]])
-
-    def constraints(self, u: np.ndarray) -> np.ndarray:
-        """Domain and range bounds, ``>= 0`` inside."""
-        return constraint_values(self._point, self._free, [float(u[0]), float(u[1]), float(u[3])], *self._rows)
 
 
 # ------------------------------------------------------------------------------------------
@@ -788,11 +764,11 @@ def neutral_curve(
     1.1433...
     """
     m = get_model(model)
-    x = _check_name(x, "x", m)
-    y = _check_name(y, "y", m)
+    x = parameter_name(m, x, "x")
+    y = parameter_name(m, y, "y")
     if x == y:
         raise InputError(f"x and y must be two different parameters, got {x!r} twice")
-    fixed = _fixed_parameters(m, (x, y), fixed)
+    fixed = fixed_parameters(m, (x, y), fixed)
     max_step = check_positive("max_step", max_step)
     step = max_step if step is None else check_positive("step", step)
     max_angle = check_positive("max_angle", max_angle)
@@ -1013,7 +989,7 @@ def fold_curve(
         error of the neutral condition) and ``check_growth_rate``.
     """
     m = get_model(model)
-    x, y, z = (_check_name(n, w_, m) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
+    x, y, z = (parameter_name(m, n, w_) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
     if len({x, y, z}) != 3:
         raise InputError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
     check_choice("fold_in", fold_in, (x, y))
@@ -1021,7 +997,7 @@ def fold_curve(
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
     fx = dict(fixed)
     z0 = fx.pop(z)
-    full = _fixed_parameters(m, (x, y), {**fx, z: z0})
+    full = fixed_parameters(m, (x, y), {**fx, z: z0})
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}

@@ -20,6 +20,7 @@ marginal (if no other mode grows), never unstable by a round-off sign.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -115,6 +116,35 @@ def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any
         if name not in out:
             raise ParameterTypeError(f"{name} is required for model {model.name!r}")
     return out
+
+
+def parameter_name(model: LinearModel, name: Any, what: str) -> str:
+    """``name`` (the argument ``what``) if it is one of the model's parameters."""
+    if not isinstance(name, str) or name not in model.parameters:
+        raise InputError(
+            f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
+        )
+    return name
+
+
+def fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
+    """The parameters held fixed while those of ``free`` vary, as floats: ``fixed`` without its
+    None values, ``mu`` defaulting to 2.28, checked by :func:`model_parameters` (with the free
+    ones) and :func:`~stability.parameters.check_domain` (scalars)."""
+    if not isinstance(fixed, Mapping):
+        raise ParameterTypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
+    given = {k: v for k, v in fixed.items() if v is not None}
+    for name in free:
+        if name in given:
+            raise ParameterTypeError(f"{name} is varied ({', '.join(free)}) and cannot also be given a value")
+    if "mu" in model.parameters and "mu" not in free:
+        given.setdefault("mu", DEFAULT_MU)
+    missing = [n for n in model.parameters if n not in free and n not in given]
+    if missing:
+        raise ParameterTypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
+    given = model_parameters(model, {**given, **dict.fromkeys(free, 0.0)})
+    p, _ = check_domain(scalar=True, **{k: v for k, v in given.items() if k not in free})
+    return {k: float(v) for k, v in p.items()}
 
 
 def _lapack(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
