@@ -468,18 +468,14 @@ def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray
 # ------------------------------------------------------------------------------------------
 # the dataset
 # ------------------------------------------------------------------------------------------
-def _var_attrs(name: str) -> dict[str, str]:
-    return parameter_attrs(name) if name in LONG_NAMES else {"long_name": name, "units": "1"}
-
-
-def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> dict[str, list]:
-    """Per-point kinds and details of one branch."""
+def _branch_records(br: Branch, prob: Any, names: Sequence[str]) -> tuple[list[str], list[str]]:
+    """Per-point kinds and details of one branch (``names``: its columns)."""
     kinds, details = [], []
     m = len(br.points)
     for k, (kind, det) in enumerate(zip(br.kinds, br.details)):
         if kind == "fold":
             kinds.append("fold")
-            details.append(f"fold in {names[int(det)] if int(det) < ncols else det}")
+            details.append(f"fold in {names[int(det)] if int(det) < len(names) else det}")
         elif kind in ("test", "branch_point"):
             kd, text = _KIND_DETAIL[det or kind]
             kinds.append(kd)
@@ -507,7 +503,7 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> 
         if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
             kinds[k] = "endpoint"
             details[k] = f"continuation stopped: {end.replace('_', ' ')}"
-    return {"kind": kinds, "detail": details}
+    return kinds, details
 
 
 def _check_points(
@@ -587,48 +583,53 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
 }
 
 
-def _tangent_attrs(n: str) -> dict[str, str]:
-    return {
-        "long_name": f"tangent, {n}",
-        "units": "1",
-        "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-        "branch; continuation.dense interpolates with it)",
-    }
-
-
-def _dataset(
+def _assemble(
     model: LinearModel,
     names: Sequence[str],
     fixed: Mapping[str, float],
-    points: np.ndarray,
-    freq_col: int,
-    branch: np.ndarray,
-    kinds: list[str],
-    details: list[str],
-    residual: np.ndarray,
-    leading: np.ndarray | None,
+    prob: Any,
+    branches: list[Branch],
     attrs: Mapping[str, Any],
-    tangents: np.ndarray | None = None,
 ) -> xr.Dataset:
-    cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
-    data: dict[str, Any] = {n: (c, _var_attrs(n)) for n, c in zip(names, cols)}
-    w = points[:, freq_col] if len(points) else np.zeros(0)
+    """The dataset of the traced branches (columns of ``u``: ``names`` with the frequency at
+    2): points, tangents, kinds, details, the backward error, where the traced mode leads
+    (neutral curves) and the independent check (:func:`_check_points`), all points at once."""
+    order = [*names[:2], "frequency", *names[2:]]
+    kinds, details = [], []
+    for br in branches:
+        k, d = _branch_records(br, prob, order)
+        kinds += k
+        details += d
+    points = np.concatenate([br.points for br in branches]) if branches else np.zeros((0, len(order)))
+    tangents = np.concatenate([br.tangents for br in branches]) if branches else np.zeros((0, len(order)))
+    branch = np.repeat(np.arange(len(branches)), [len(br.points) for br in branches])
+    cols = [points[:, i] for i in range(points.shape[1]) if i != 2]
+    w = points[:, 2]
+    residual = prob.cond.backward_errors(np.delete(points, 2, axis=1), w)
+    leading = prob.traced_modes_lead(points) if isinstance(prob, NeutralProblem) else None
+    if leading is not None:  # the double crossings where the leading mode changes
+        details = [d + "; the leading mode changes" if k == "double_crossing" else d for k, d in zip(kinds, details)]
+    data: dict[str, Any] = {
+        n: (c, parameter_attrs(n) if n in LONG_NAMES else {"long_name": n, "units": "1"}) for n, c in zip(names, cols)
+    }
     data["frequency"] = (w, _DATA_ATTRS["frequency"])
-    if tangents is None:
-        tangents = np.zeros_like(points)
-    order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (tangents[:, i], _tangent_attrs(n))
+        data[f"tangent_{n}"] = (
+            tangents[:, i],
+            {
+                "long_name": f"tangent, {n}",
+                "units": "1",
+                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+                "branch; continuation.dense interpolates with it)",
+            },
+        )
     data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
     data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
     data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
     data["residual"] = (residual, _DATA_ATTRS["residual"])
     if leading is not None:
         data["leading"] = (leading, _DATA_ATTRS["leading"])
-    if len(points):
-        check, check_bound = _check_points(model, names, fixed, cols, w)
-    else:
-        check, check_bound = np.zeros(0), np.zeros(0)
+    check, check_bound = _check_points(model, names, fixed, cols, w) if len(points) else (np.zeros(0), np.zeros(0))
     data["check_growth_rate"] = (check, _DATA_ATTRS["check_growth_rate"])
     data["check_bound"] = (check_bound, _DATA_ATTRS["check_bound"])
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
@@ -638,10 +639,10 @@ def _dataset(
         "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
         "model": model.name,
         "equations": model.equations,
+        **{k: float(v) for k, v in fixed.items()},
+        "fixed": ", ".join(sorted(fixed)),
+        **attrs,
     }
-    ds_attrs.update({k: float(v) for k, v in fixed.items()})
-    ds_attrs["fixed"] = ", ".join(sorted(fixed))
-    ds_attrs.update(attrs)
     return _point_dataset(variables, len(points), ds_attrs)
 
 
@@ -899,43 +900,11 @@ def neutral_curve(
     if note is not None:
         attrs["note"] = note
         warnings.warn(note, UserWarning, stacklevel=2)
-    return _assemble(m, (x, y), fixed, prob, branches, 2, attrs)
+    return _assemble(m, (x, y), fixed, prob, branches, attrs)
 
 
 def _pair(r: tuple[float, float]) -> str:
     return f"({r[0]:g}, {r[1]:g})"
-
-
-def _assemble(
-    m: LinearModel,
-    names: Sequence[str],
-    fixed: Mapping[str, float],
-    prob: Any,
-    branches: list[Branch],
-    freq_col: int,
-    attrs: Mapping[str, Any],
-) -> xr.Dataset:
-    pts, tans, bidx, kinds, details, resid = [], [], [], [], [], []
-    for b, br in enumerate(branches):
-        rec = _branch_records(br, prob, [*names[:freq_col], "frequency", *names[freq_col:]], len(names) + 1)
-        pts.append(br.points)
-        tans.append(br.tangents)
-        bidx.append(np.full(len(br.points), b))
-        kinds += rec["kind"]
-        details += rec["detail"]
-    P = np.concatenate(pts) if pts else np.zeros((0, len(names) + 1))
-    T = np.concatenate(tans) if tans else np.zeros((0, len(names) + 1))
-    B = np.concatenate(bidx) if bidx else np.zeros(0, int)
-    # per-point checks after tracing, all points at once (one batched call of the model)
-    vals = np.delete(P, freq_col, axis=1)
-    resid = prob.cond.backward_errors(vals, P[:, freq_col])
-    lead = prob.traced_modes_lead(P) if isinstance(prob, NeutralProblem) else None
-    # the double crossings where the leading mode changes
-    if lead is not None:
-        for k, kd in enumerate(kinds):
-            if kd == "double_crossing":
-                details[k] += "; the leading mode changes"
-    return _dataset(m, names, fixed, P, freq_col, B, kinds, details, resid, lead, attrs, T)
 
 
 def fold_curve(
@@ -1022,7 +991,6 @@ def fold_curve(
         rest,
         prob,
         branches,
-        2,
         {
             PRODUCT_ATTR: "fold_curve",
             "x": x,

@@ -136,7 +136,7 @@ def fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str
     given = {k: v for k, v in fixed.items() if v is not None}
     for name in free:
         if name in given:
-            raise ParameterTypeError(f"{name} is varied ({', '.join(free)}) and cannot also be given a value")
+            raise ParameterTypeError(f"{name} is varied and cannot also be given a value")
     if "mu" in model.parameters and "mu" not in free:
         given.setdefault("mu", DEFAULT_MU)
     missing = [n for n in model.parameters if n not in free and n not in given]
