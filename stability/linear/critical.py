@@ -122,6 +122,12 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
     return (0.0, UPPER_BOUND[param])
 
 
+def _samples_checked(samples: Any) -> int:
+    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
+    return samples
+
+
 def _setup(
     param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
 ) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
@@ -312,8 +318,7 @@ def threshold_crossings(
     >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
     (1.085777777778, 'below')
     """
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
+    samples = _samples_checked(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     return _search(m, fx, param, lo, hi, samples)[0]
 
@@ -368,12 +373,6 @@ def thresholds(
     return np.array([t.value for t in found])
 
 
-def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) -> np.ndarray:
-    """Largest growth estimate over the modes that are not neutral by structure
-    (:mod:`stability.linear.growth`; ``-inf`` if every mode is)."""
-    return np.max(_states(m, fx, param, x).estimate, axis=-1)
-
-
 def _hidden_pairs(
     m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray, state: np.ndarray, g: np.ndarray
 ) -> list[tuple[float, float, float]]:
@@ -401,7 +400,8 @@ def _hidden_pairs(
         from scipy.optimize import minimize_scalar  # here: most thresholds never refine (0.5 s import)
 
         res = minimize_scalar(
-            lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
+            # the largest growth estimate over the modes not neutral by structure (-inf if none)
+            lambda s: -float(np.max(_states(m, fx, param, np.array([s])).estimate[0])),
             bounds=(a, b),
             method="bounded",
             options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))},
@@ -527,8 +527,7 @@ def _one_threshold(
 ) -> Threshold:
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
+    samples = _samples_checked(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
@@ -715,12 +714,9 @@ def critical_spin(
         if len(reasons) == 2:
             raise InputError("; ".join(reasons.values()))
         return CriticalSpins(upright=found_["upright"], inverted=found_["inverted"], reasons=reasons)
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
-    if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
-        raise ParameterTypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
-    lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)
-    if not 0 < lo < hi:
+    samples = _samples_checked(samples)
+    lo, hi = check_range("fr_inv_range", fr_inv_range)
+    if not lo > 0:
         raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")
     t = top.inverted() if orientation == "inverted" else top
     base = get_model(model)
@@ -742,7 +738,7 @@ def critical_spin(
             )
     else:
         friction = f"none: the {base.name} model has no friction parameter"
-    found, state = _search(m, fixed, "fr_inv", lo, hi, int(samples))
+    found, state = _search(m, fixed, "fr_inv", lo, hi, samples)
     spins = sorted(float(t.spin_rate(th.value)) for th in found)
     if not found:
         undecided = int((state == UNDECIDED).sum())
