@@ -125,6 +125,17 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
 
 
+def _ranges(
+    names: Sequence[str], given: Sequence[Any], fixed: Mapping[str, float]
+) -> tuple[dict[str, tuple[float, float]], np.ndarray, np.ndarray]:
+    """The ranges of the traced ``names`` (:func:`_check_range`), their widths (the scale of
+    those unknowns) and eight seeded points inside them (for the form and the deflation)."""
+    ranges = {n: _check_range(n, r, fixed) for n, r in zip(names, given)}
+    width = np.array([ranges[n][1] - ranges[n][0] for n in names])
+    lo = np.array([ranges[n][0] for n in names])
+    return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
+
+
 def _outside_domain_error(
     model: LinearModel, x: str, y: str, ranges: Mapping[str, tuple[float, float]], fixed: Mapping[str, float]
 ) -> DomainError:
@@ -783,11 +794,8 @@ def neutral_curve(
         raise ParameterTypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
     check_start_grid(*grid)
-    ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
-    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
-    lo = np.array([ranges[x][0], ranges[y][0]])
-    rng = np.random.default_rng(12345)
-    samples = lo + rng.random((8, 2)) * scale[:2]
+    ranges, width, samples = _ranges((x, y), (x_range, y_range), fixed)
+    scale = np.append(width, 1.0)
     prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form, compiled)
 
     note = None
@@ -970,11 +978,8 @@ def fold_curve(
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
-    ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full), z: _check_range(z, z_range, full)}
-    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0, ranges[z][1] - ranges[z][0]])
-    rng = np.random.default_rng(12345)
-    lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
-    samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
+    ranges, width, samples = _ranges((x, y, z), (x_range, y_range, z_range), full)
+    scale = np.insert(width, 2, 1.0)
     prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
     options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)

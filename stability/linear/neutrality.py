@@ -505,7 +505,7 @@ class NeutralCondition:
         return np.abs(self.residuals(values, w)).max(axis=-1) if len(np.atleast_1d(w)) else np.zeros(0)
 
     def other_modes_many(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """:meth:`other_modes` at many points at once, shape ``(m, k)``.
+        """:meth:`other_modes_list` at many points at once, shape ``(m, k)``.
 
         The neutral root(s) ``i w`` are divided out and the quotient solved by the same source
         as the one-point path (:func:`_other_roots_into`, composite division, the stable
@@ -525,30 +525,24 @@ class NeutralCondition:
             out = np.empty((len(w), m), dtype=np.complex128)
             cached(_other_roots_many)(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
-        if m <= 2:  # interpreted: the same source on Python numbers, row by row
-            rows = []
-            for i in range(len(w)):
-                work = c[i].tolist()
-                roots = [0j, 0j]
-                _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
-                rows.append(roots[:m])
-            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
-        quotients = np.empty((len(w), m + 1), dtype=complex)
+        # interpreted: the same source on Python numbers, row by row (the roots, or beyond degree
+        # 2 the quotient)
+        rows = []
         for i in range(len(w)):
-            work = [complex(x) for x in c[i]]
-            _other_roots_into(work, len(work), float(w[i]), multiplicity, [0j, 0j])
-            quotients[i] = work[: m + 1]
+            work, roots = c[i].tolist(), [0j, 0j]
+            _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
+            rows.append(roots[:m] if m <= 2 else work[: m + 1])
+        if m <= 2:
+            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
+        quotients = np.array(rows, dtype=complex).reshape(len(w), m + 1)
         comp = np.zeros((len(w), m, m), dtype=complex)
         comp[:, 0, :] = -quotients[:, 1:] / quotients[:, :1]
         comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
         return np.linalg.eigvals(comp)
 
-    def other_modes(self, values: np.ndarray, w: float) -> np.ndarray:
-        """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros excluded)."""
-        return np.array(self.other_modes_list(values, w), dtype=complex)
-
     def other_modes_list(self, values: Sequence[float], w: float) -> list[complex]:
-        """:meth:`other_modes` as a list of Python complex numbers (the scalar inner loop)."""
+        """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros
+        excluded), as a list of Python complex numbers (the scalar inner loop)."""
         c, _ = self._scalar(values, False)
         return _other_roots_list(c, float(w), 1 if self.form == "crossing" else 2)
 
