@@ -23,7 +23,7 @@ from ..errors import ParameterTypeError, require_extra
 from ..interrupts import checkpoint, deferred
 from ..linear.spectra import DEFAULT_METHOD, model_parameters, spectrum
 from ..models import get_model
-from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
+from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, domain_text, parameter_attrs
 from ..products import FLAG_MEANINGS, MARGINAL, PRODUCT_ATTR, STABLE, UNSTABLE
 from ..resources import atlas_bytes, check_memory
 from .leading import leading, zero_everywhere
@@ -180,8 +180,7 @@ def atlas(
                 "long_name": "in physical domain",
                 "flag_values": np.array([0, 1], dtype=np.int8),
                 "flag_meanings": "outside_domain inside_domain",
-                "comment": "the point lies in the physical domain: 1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), "
-                "mu > 0, fr_inv >= 0, alpha_v >= 0",
+                "comment": "the point lies in the physical domain: " + domain_text(m.parameters),
             },
         ),
     }

@@ -97,9 +97,9 @@ from stability.jit import OPTIONS, cached, njit, register_jitable
 from stability.jit import active as jit_active
 
 from .. import execution
-from ..errors import InputError, ParameterTypeError
+from ..errors import InputError
 from ..models import LinearModel, get_model
-from ..parameters import PARAMETERS
+from ..parameters import PARAMETERS, check_choice
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = [
@@ -220,7 +220,8 @@ class NeutralCondition:
     free : sequence of str
         Names of the free parameters (the unknowns are ``(*free, w)``).
     fixed : mapping
-        Values of all other parameters of the model.
+        Values of all other parameters of the model (checked by the caller,
+        :func:`stability.linear.spectra.fixed_parameters`).
     samples : array_like, shape (m, len(free)), optional
         Points used to decide the form and the deflation (default: the centre of a unit box).
     form : {"crossing", "collision"}, optional
@@ -255,13 +256,6 @@ class NeutralCondition:
         self.model = get_model(model)
         self.free = tuple(free)
         self.fixed = {k: float(v) for k, v in fixed.items()}
-        missing = set(self.model.parameters) - set(self.free) - set(self.fixed)
-        extra = (set(self.free) | set(self.fixed)) - set(self.model.parameters)
-        if missing or extra:
-            raise ParameterTypeError(
-                f"model {self.model.name!r} takes {', '.join(self.model.parameters)}; "
-                f"missing {sorted(missing)}, unknown {sorted(extra)}"
-            )
         if samples is None:
             samples = np.full((1, len(self.free)), 0.1)
         samples = np.atleast_2d(np.asarray(samples, dtype=float))
@@ -271,17 +265,12 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        # the common phase of all samples (None as soon as one has none or two differ)
-        self.phase = conservative_phase(c[0])
-        for ci in c[1:]:
-            if self.phase is None:
-                break
-            if conservative_phase(ci) != self.phase:
-                self.phase = None
+        # the common phase of all samples (None if one has none or two differ)
+        phases = {conservative_phase(ci) for ci in c}
+        self.phase = phases.pop() if len(phases) == 1 else None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
-        if form not in ("crossing", "collision"):
-            raise InputError(f"form = {form!r}; use 'crossing' or 'collision'")
+        check_choice("form", form, ("crossing", "collision"))
         if form == "collision" and self.phase is None:
             raise InputError(
                 f"model {self.model.name!r} with {self.fixed} is not conservative; "
