@@ -52,6 +52,7 @@ def ambiguous_steps(eigenvalues: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     eigenvalues : numpy.ndarray of complex, shape (m, n)
+        Eigenvalues along the path, as for :func:`track_modes`.
 
     Returns
     -------

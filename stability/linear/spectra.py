@@ -28,7 +28,7 @@ import numpy as np
 
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
-from ..parameters import DEFAULT_MU, check_domain, check_flag
+from ..parameters import DEFAULT_MU, check_choice, check_domain, check_flag
 from ..products import MARGINAL, STABLE, UNSTABLE
 from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
@@ -225,6 +225,12 @@ def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, paralle
     return Spectrum(m, p, ev, bound, neutral, stab, out.inside)
 
 
+def mode_order(ev: np.ndarray) -> np.ndarray:
+    """The indices that sort eigenvalues along the last axis by the module's convention:
+    decreasing real part, ties by decreasing imaginary part."""
+    return np.lexsort((-ev.imag, -ev.real), axis=-1)
+
+
 def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
     tol = neutral_tolerance(bound, scale)
@@ -273,8 +279,7 @@ def spectrum(
     Spectrum
     """
     m = get_model(model)
-    if method not in METHODS:
-        raise InputError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
+    check_choice("method", method, METHODS)
     given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     if parallel is not None:
         parallel = check_flag("parallel", parallel)
@@ -302,7 +307,7 @@ def spectrum(
             e, b, x = r.roots, r.error_bound, r.exact_real
         else:
             e, b, x = _lapack(m, sub)
-        order = np.lexsort((-e.imag, -e.real), axis=-1)
+        order = mode_order(e)
         e = np.take_along_axis(e, order, -1)
         b = np.take_along_axis(b, order, -1)
         x = np.take_along_axis(x, order, -1)
@@ -352,8 +357,7 @@ def eigenvalues(
     Examples
     --------
     >>> import stability
-    >>> s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
-    >>> s.shape
+    >>> stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5).shape
     (3,)
     """
     return spectrum(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu, method=method).eigenvalues
