@@ -83,8 +83,8 @@ from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
 from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
-from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
-from .spectra import fixed_parameters, parameter_name, spectrum
+from .roots import root_bound
+from .spectra import fixed_parameters, lapack_eigenvalues, parameter_name, spectrum
 
 __all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neutral_curve"]
 
@@ -527,31 +527,22 @@ def _check_points(
     ``geev`` on ``M^-1 A`` for all points in one call; the traced points lie inside the domain
     (``det M = A_G > 0``). Should ``M`` be singular at some point, :func:`stability.spectrum`
     (method ``"lapack"``, points outside the domain masked) is used instead. The bound is that
-    of the LAPACK method of :mod:`stability.linear.spectra`: ``max(8 n u ||M^-1 A||, r)`` with
+    of the LAPACK method (:func:`stability.linear.spectra.lapack_eigenvalues`): ``max(8 n u ||M^-1 A||, r)`` with
     ``r`` the inclusion radius of the eigenvalue as a root of the model's polynomial
     (:func:`stability.linear.roots.inclusion_radius`): LAPACK's error is absolute, ``~u`` of
     the largest mode, so at ``alpha_v = 1e12`` (slip mode ``-1.3e12``) the check of an O(1)
     neutral mode is good to ``~1e-4``, not ``1e-16``, and says so.
     """
-    p: dict[str, Any] = dict(fixed)
-    for n, c in zip(names, cols):
-        p[n] = c
+    p: dict[str, Any] = {**fixed, **dict(zip(names, cols))}
     try:
-        M, A = model.matrices(**p)
-        MA = np.linalg.solve(M, A)
-        ev = np.linalg.eigvals(MA)
-        scale = np.linalg.norm(MA, axis=(-2, -1))
+        ev, bound, _ = lapack_eigenvalues(
+            model, {n: np.broadcast_to(np.asarray(v, float), w.shape) for n, v in p.items()}
+        )
     except np.linalg.LinAlgError:
         sp = spectrum(model, mask_unphysical=True, method="lapack", **p)
-        ev, scale = sp.eigenvalues, None
-    k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
-    near = np.take_along_axis(ev, k[:, None], -1)
-    radius = inclusion_radius(
-        model.coefficients(**{n: np.broadcast_to(np.asarray(v, float), w.shape) for n, v in p.items()}), near
-    )[:, 0]
-    if scale is not None:
-        radius = np.maximum(radius, 8 * model.n_modes * UNIT_ROUNDOFF * scale)
-    return near[:, 0].real, radius
+        ev, bound = sp.eigenvalues, sp.error_bound
+    k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)[:, None]
+    return np.take_along_axis(ev, k, -1)[:, 0].real, np.take_along_axis(bound, k, -1)[:, 0]
 
 
 #: the attributes of the dataset's variables other than the traced parameters

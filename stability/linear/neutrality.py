@@ -100,6 +100,7 @@ from .. import execution
 from ..errors import InputError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, check_choice
+from .growth import axis_products
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = [
@@ -119,11 +120,6 @@ _IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 _JIT = dict(OPTIONS, cache=True)
 
 
-def _i_power(k: np.ndarray) -> np.ndarray:
-    """``i**k`` exactly (a table lookup, no complex power)."""
-    return np.array([1.0, 1j, -1.0, -1j])[np.asarray(k) % 4]
-
-
 def conservative_phase(c: np.ndarray) -> int | None:
     """Common phase of ``c_k i^k`` (0: all real, 1: all imaginary), or None if there is none.
 
@@ -132,9 +128,7 @@ def conservative_phase(c: np.ndarray) -> int | None:
     c : numpy.ndarray of complex, shape (..., n+1)
         Coefficients, highest power first.
     """
-    c = np.asarray(c, dtype=complex)
-    n = c.shape[-1] - 1
-    d = c * _i_power(np.arange(n, -1, -1))
+    d = axis_products(c)
     # exact products with 1, i, -1, -i: an exact zero imaginary (real) part is structure
     if np.all(d.imag == 0):
         return 0
@@ -362,8 +356,7 @@ class NeutralCondition:
     # -- the equations --------------------------------------------------------------------
     def _real_poly(self, c: np.ndarray) -> np.ndarray:
         """Real coefficients ``a_k`` of ``P(w) = e^{-i theta} p(i w)`` (highest first)."""
-        n = c.shape[-1] - 1
-        d = c * _i_power(np.arange(n, -1, -1))
+        d = axis_products(c)
         return d.real if self.phase == 0 else d.imag
 
     def residual_and_jacobian(

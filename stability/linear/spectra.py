@@ -147,7 +147,11 @@ def fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str
     return {k: float(v) for k, v in p.items()}
 
 
-def _lapack(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def lapack_eigenvalues(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ``"lapack"`` method: eigenvalues of ``M^-1 A`` (unsorted), their error bounds
+    ``max(8 n u ||M^-1 A||, r)`` (``r`` the inclusion radius of each as a root of the model's
+    polynomial) and the flags of exact real parts (none); ``numpy.linalg.LinAlgError`` where
+    ``M`` is singular."""
     M, A = model.matrices(**p)
     ev = np.linalg.eigvals(np.linalg.solve(M, A))
     scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
@@ -306,7 +310,7 @@ def spectrum(
             r = polynomial_roots(m.coefficients(**sub))
             e, b, x = r.roots, r.error_bound, r.exact_real
         else:
-            e, b, x = _lapack(m, sub)
+            e, b, x = lapack_eigenvalues(m, sub)
         order = mode_order(e)
         e = np.take_along_axis(e, order, -1)
         b = np.take_along_axis(b, order, -1)
