@@ -829,11 +829,7 @@ def neutral_curve(
                 # the mode nearest the axis, structural zeros (s = 0 exactly, bound 0: the
                 # sliding top's zero root at fr_inv = 0) excepted: they are neutral everywhere
                 dist = np.where(structural_zeros(ev.real, ev.imag, sp0.error_bound), np.inf, np.abs(ev.real))
-                s.append(
-                    float(ev[int(np.nanargmin(dist))].imag)
-                    if np.isfinite(dist).any()
-                    else float(ev[np.nanargmin(np.abs(ev.real))].imag)
-                )
+                s.append(float(ev[int(np.nanargmin(dist))].imag))  # every mode structural: 0, as any
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
