@@ -451,18 +451,21 @@ def _inexact_warning(found: Sequence[Threshold], param: str) -> None:
         )
 
 
-def _no_threshold_state(state: np.ndarray) -> str:
-    """What holds throughout a range without a change of sign (for the messages)."""
+def _no_threshold_state(state: np.ndarray, quiet: str | None = None) -> str:
+    """What holds throughout a range without a change of sign (for the messages); ``quiet``,
+    if given, names every state that is not unstable."""
     n = state.size
     undecided = int((state == UNDECIDED).sum())
     if undecided == n:
         return (
-            "within rounding of neutral at every sample (the sign of the leading growth rate "
-            "cannot be decided anywhere; marginal to working precision)"
+            "within rounding of neutral (the sign of the leading growth rate cannot be decided at "
+            "any sample; marginal to working precision)"
         )
     rest = state[state != UNDECIDED]
     names = ((UNSTABLE, "unstable"), (STABLE, "stable"), (MARGINAL, "marginal (neutrally stable)"))
     what = next((name for flag, name in names if (rest == flag).all()), "stable or marginal")
+    if quiet is not None and what != "unstable":
+        what = quiet
     if undecided:
         return (
             f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
@@ -741,21 +744,7 @@ def critical_spin(
     found, state = _search(m, fixed, "fr_inv", lo, hi, samples)
     spins = sorted(float(t.spin_rate(th.value)) for th in found)
     if not found:
-        undecided = int((state == UNDECIDED).sum())
-        if undecided == state.size:
-            what = "within rounding of neutral (the sign of its leading growth rate cannot be decided)"
-        else:
-            what = (
-                "unstable"
-                if (state == UNSTABLE).all()
-                else (
-                    "unstable wherever the sign can be decided"
-                    if (state[state != UNDECIDED] == UNSTABLE).all()
-                    else "not unstable (stable or neutrally stable)"
-                )
-            )
-            if undecided:
-                what += f" (the sign cannot be decided at {undecided} of {state.size} samples)"
+        what = _no_threshold_state(state, quiet="not unstable (stable or neutrally stable)")
         s_lo, s_hi = t.spin_rate(hi), t.spin_rate(lo)
         raise _NoTransition(
             f"the {orientation} {base.name} top is {what} at every spin from "
