@@ -118,7 +118,11 @@ def atlas(
         growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, full, mask_unphysical, method)
 
     mdims = (*dims, "mode")
-    rate = {"units": "Omega"}  # xarray labels axes "long_name [units]": rates in units of the spin rate
+
+    def rate(dims: tuple[str, ...], data: np.ndarray, long_name: str, comment: str) -> tuple:
+        # xarray labels axes "long_name [units]": rates in units of the spin rate
+        return dims, data, {"long_name": long_name, "units": "Omega", "comment": comment}
+
     coords: dict[str, Any] = {}
     for k in PARAMETERS:
         if k in values:
@@ -130,38 +134,19 @@ def atlas(
         {"long_name": "mode", "comment": "mode index, modes sorted by decreasing growth rate"},
     )
     data_vars = {
-        "growth_rate": (
-            mdims,
-            growth,
-            {
-                "long_name": "growth rate Re s",
-                **rate,
-                "comment": "growth rate of each mode, x ~ exp(s t), in units of the spin rate",
-            },
+        "growth_rate": rate(
+            mdims, growth, "growth rate Re s", "growth rate of each mode, x ~ exp(s t), in units of the spin rate"
         ),
-        "frequency": (
-            mdims,
-            freq,
-            {
-                "long_name": "frequency Im s",
-                **rate,
-                "comment": "frequency of each mode, fixed frame, in units of the spin rate",
-            },
+        "frequency": rate(
+            mdims, freq, "frequency Im s", "frequency of each mode, fixed frame, in units of the spin rate"
         ),
-        "eigenvalue_error_bound": (
-            mdims,
-            bound,
-            {"long_name": "error bound of s", **rate, "comment": "absolute error bound of each eigenvalue s"},
-        ),
-        "max_growth_rate": (
+        "eigenvalue_error_bound": rate(mdims, bound, "error bound of s", "absolute error bound of each eigenvalue s"),
+        "max_growth_rate": rate(
             tuple(dims),
             growth[..., 0].copy(),
-            {
-                "long_name": "max growth rate",
-                **rate,
-                "comment": "largest growth rate max Re s over every mode, the structural "
-                "s = 0 mode included (leading_growth_rate leaves it out)",
-            },
+            "max growth rate",
+            "largest growth rate max Re s over every mode, the structural s = 0 mode included "
+            "(leading_growth_rate leaves it out)",
         ),
         "stability": (
             tuple(dims),
