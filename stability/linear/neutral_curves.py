@@ -833,15 +833,8 @@ def neutral_curve(
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
-    options = TraceOptions(
-        fold_components=(0, 1),
-        scale=scale,
-        step=step,
-        max_step=max_step,
-        max_angle=max_angle,
-        max_points=max_points,
-        tol=tol,
-    )
+    trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
+    options = TraceOptions(fold_components=(0, 1), scale=scale, tol=tol, **trace)
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
