@@ -259,9 +259,11 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        # the common phase of all samples (None if one has none or two differ)
-        phases = {conservative_phase(ci) for ci in c}
-        self.phase = phases.pop() if len(phases) == 1 else None
+        # the common phase of all samples (:func:`conservative_phase` of each, at once; None if
+        # one has none or two differ)
+        d = axis_products(c)
+        phases = np.where(np.all(d.imag == 0, axis=-1), 0, np.where(np.all(d.real == 0, axis=-1), 1, -1))
+        self.phase = int(phases[0]) if phases[0] >= 0 and (phases == phases[0]).all() else None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
         check_choice("form", form, ("crossing", "collision"))

@@ -153,8 +153,9 @@ def lapack_eigenvalues(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np
     polynomial) and the flags of exact real parts (none); ``numpy.linalg.LinAlgError`` where
     ``M`` is singular."""
     M, A = model.matrices(**p)
-    ev = np.linalg.eigvals(np.linalg.solve(M, A))
-    scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
+    MA = np.linalg.solve(M, A)
+    ev = np.linalg.eigvals(MA)
+    scale = np.linalg.norm(MA, axis=(-2, -1))
     bound = 8 * model.n_modes * UNIT_ROUNDOFF * scale[..., None] * np.ones(ev.shape)
     # the backward-error bound above ignores the conditioning of each eigenvalue (colliding
     # modes, near-singular M): take the rigorous inclusion radius of the computed roots of
