@@ -30,7 +30,7 @@ from typing import Any
 _EXPORTS: dict[str, str] = {
     "dense": ".dense",
     "hermite_samples": ".dense",
-    **dict.fromkeys(("Branch", "TraceOptions", "correct", "project", "tangent", "trace", "trace_both"), ".engine"),
+    **dict.fromkeys(("Branch", "TraceOptions", "project", "tangent", "trace", "trace_both"), ".engine"),
     "ConvergenceError": ".errors",
     "locate": ".events",
     "hermite": ".interpolation",
@@ -39,23 +39,7 @@ _EXPORTS: dict[str, str] = {
     "finite_difference_jacobian": ".problem",
 }
 
-__all__ = [
-    "Branch",
-    "ContinuationProblem",
-    "ConvergenceError",
-    "StepResult",
-    "TraceOptions",
-    "correct",
-    "dense",
-    "finite_difference_jacobian",
-    "hermite",
-    "hermite_samples",
-    "locate",
-    "project",
-    "tangent",
-    "trace",
-    "trace_both",
-]
+__all__ = sorted(_EXPORTS)  # noqa: PLE0605 - the names of _EXPORTS (one list of the public names)
 
 
 def __getattr__(name: str) -> Any:

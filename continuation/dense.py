@@ -105,14 +105,10 @@ def dense(result: Any, n: int = 16) -> Any:
     P = np.stack([result[k].values for k in names], axis=1)
     T = np.stack([result[f"tangent_{k}"].values for k in names], axis=1)
     br = result["branch"].values if "branch" in result else np.zeros(len(P), int)
-    parts, bidx = [], []
-    for b in np.unique(br):
-        sel = br == b
-        s = hermite_samples(P[sel], T[sel], n)
-        parts.append(s)
-        bidx.append(np.full(len(s), b))
+    labels = np.unique(br)
+    parts = [hermite_samples(P[br == b], T[br == b], n) for b in labels]
     S = np.concatenate(parts) if parts else np.zeros((0, len(names)))
-    B = np.concatenate(bidx) if bidx else np.zeros(0, int)
+    B = np.repeat(labels, [len(s) for s in parts])
     data = {k: ("sample", S[:, i], dict(result[k].attrs)) for i, k in enumerate(names)}
     data["branch"] = ("sample", B.astype(np.int32), {"long_name": "index of the traced branch"})
     out = xr.Dataset(data, coords={"sample": np.arange(len(S))})

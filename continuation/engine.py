@@ -51,7 +51,7 @@ from .linalg import bordered_det, bordered_solve, tangent_det
 from .linalg import norm as _norm
 from .problem import ContinuationProblem, StepResult, finite_difference_jacobian, problem_dimension
 
-__all__ = ["Branch", "TraceOptions", "correct", "hermite", "project", "tangent", "trace", "trace_both"]
+__all__ = ["Branch", "TraceOptions", "hermite", "project", "tangent", "trace", "trace_both"]
 
 EPS = float(np.finfo(float).eps)
 #: a residual this small is at the rounding floor: no polishing step
@@ -243,41 +243,6 @@ def _newton(
         if not math.isfinite(moved) or moved > max_move:
             return v, False, it + 1, None
     return v, False, max_iter, None
-
-
-def correct(
-    problem: ContinuationProblem,
-    u_pred: np.ndarray,
-    t: np.ndarray,
-    anchor: np.ndarray,
-    h: float,
-    *,
-    tol: float = 1e-13,
-    max_iter: int = 12,
-    scale: Sequence[float] | None = None,
-) -> np.ndarray:
-    """Pseudo-arclength corrector: solve ``F(u) = 0``, ``t @ (u - anchor) = h`` from ``u_pred``.
-
-    Raises
-    ------
-    ConvergenceError
-        If Newton's method does not reach ``||F|| <= tol``.
-    """
-    sc = np.ones(len(u_pred)) if scale is None else np.asarray(scale, float)
-    sp = _Scaled(problem, sc)
-    v, ok, _, _ = _newton(
-        sp,
-        np.asarray(u_pred, float) / sc,
-        np.asarray(t, float),
-        np.asarray(anchor, float) / sc,
-        h,
-        tol,
-        max_iter,
-        np.inf,
-    )
-    if not ok:
-        raise ConvergenceError(f"the corrector did not converge to ||F|| <= {tol:g}")
-    return v * sc
 
 
 def project(

@@ -258,22 +258,27 @@ def _lu_solve3(A, x):
 # ------------------------------------------------------------------------------------------
 # faces: arrays in, new arrays out (Python: nested lists inside; compiled: array copies)
 # ------------------------------------------------------------------------------------------
+def _solve_rows(A: list, x: list) -> tuple[bool, np.ndarray, float]:
+    """The Python faces' solve of ``A y = x`` (nested lists, overwritten): :func:`lu_solve`, or
+    LAPACK for a system larger than :data:`PYTHON_LU_MAX` (``ok`` False if it reports a
+    singular matrix). Returns ``(ok, y, det A)``."""
+    if len(x) > PYTHON_LU_MAX:
+        G, b = np.array(A), np.array(x)
+        try:
+            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
+        except np.linalg.LinAlgError:
+            return False, b, 0.0
+    ok, d = lu_solve(A, x)
+    return ok, np.array(x), d
+
+
 def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
     """Solve ``G x = b`` (:func:`lu_solve`, inputs untouched): ``(ok, x, det G)``.
 
     ``ok`` is False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK (``ok`` False if it reports a singular matrix).
     """
-    m = b.shape[0]
-    if m > PYTHON_LU_MAX:
-        try:
-            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
-        except np.linalg.LinAlgError:
-            return False, b.copy(), 0.0
-    A = G.tolist()
-    x = b.tolist()
-    ok, d = lu_solve(A, x)
-    return ok, np.array(x), d
+    return _solve_rows(G.tolist(), b.tolist())
 
 
 def _solve_det_compiled(G, b):
@@ -295,21 +300,11 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK.
     """
-    m = J.shape[1]
-    if m > PYTHON_LU_MAX:
-        G = np.empty((m, m))
-        G[:-1] = J
-        G[-1] = c
-        b = np.empty(m)
-        b[:-1] = f
-        b[-1] = r
-        return solve_det(G, b)
     A = J.tolist()
     A.append(c.tolist())
     x = f.tolist()
     x.append(r)
-    ok, d = lu_solve(A, x)
-    return ok, np.array(x), d
+    return _solve_rows(A, x)
 
 
 def _bordered_solve_compiled(J, c, f, r):
@@ -331,17 +326,9 @@ def _bordered_solve_compiled(J, c, f, r):
 
 
 def bordered_det(J: np.ndarray, c: np.ndarray) -> float:
-    """``det [J; c^T]`` by :func:`lu_solve` (its pivots; 0.0 at a zero pivot), from Python;
-    LAPACK above :data:`PYTHON_LU_MAX`."""
-    m = J.shape[1]
-    if m > PYTHON_LU_MAX:
-        G = np.empty((m, m))
-        G[:-1] = J
-        G[-1] = c
-        return float(np.linalg.det(G))
-    A = J.tolist()
-    A.append(c.tolist())
-    return lu_solve(A, [0.0] * m)[1]
+    """``det [J; c^T]`` by :func:`bordered_solve` (the pivots of :func:`lu_solve`; 0.0 at a zero
+    pivot), from Python; LAPACK above :data:`PYTHON_LU_MAX`."""
+    return bordered_solve(J, c, np.zeros(J.shape[0]), 0.0)[2]
 
 
 def norm(x: np.ndarray) -> float:

@@ -4,7 +4,7 @@ A *continuation problem* is a smooth map ``F: R^(n+1) -> R^n`` whose zero set ne
 point is a curve; the continuation parameter is one of the ``n + 1`` unknowns (as in pacopy or
 AUTO, with the parameter not singled out). A problem is any object with the attributes below:
 the engine (:func:`continuation.trace`, :func:`continuation.trace_both`,
-:func:`continuation.project`, :func:`continuation.correct`) looks the optional ones up by name
+:func:`continuation.project`) looks the optional ones up by name
 and knows nothing else about it. All arrays are float64 NumPy arrays in the problem's own
 variables ``u``; the engine measures lengths in ``v = u / scale`` (``trace(..., scale=)``) and
 does the scaling itself. A worked example: docs/continuation.md, "How to write a problem".

@@ -280,7 +280,7 @@ def test_random_hard_points_bound_is_honest(seed, kind):
 
 def test_inclusion_radius_flags_what_lapack_gets_wrong():
     """With the inclusion radius as its bound the LAPACK path would be right or flagged at the
-    points where it now fails (the proposed change to spectra._lapack, docs/hard_cases.md)."""
+    points where it now fails (the proposed change to spectra.lapack_eigenvalues, docs/hard_cases.md)."""
     m = stability.get_model("sliding")
     for case in [COLLISION[0], COLLISION[1], CASES[3]]:
         sp = stability.spectrum("sliding", mu=MU, method="lapack", **case)

@@ -23,7 +23,7 @@ from ..errors import ParameterTypeError, require_extra
 from ..interrupts import checkpoint, deferred
 from ..linear.spectra import DEFAULT_METHOD, model_parameters, spectrum
 from ..models import get_model
-from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, parameter_attrs
+from ..parameters import DEFAULT_MU, PARAMETERS, as_parameter, check_domain, domain_text, parameter_attrs
 from ..products import FLAG_MEANINGS, MARGINAL, PRODUCT_ATTR, STABLE, UNSTABLE
 from ..resources import atlas_bytes, check_memory
 from .leading import leading, zero_everywhere
@@ -98,14 +98,6 @@ def atlas(
         if v.ndim > 1:
             raise ParameterTypeError(f"{k} must be a scalar or a 1-D array for an atlas, got shape {v.shape}")
     dims = [k for k in PARAMETERS if k in values and values[k].ndim == 1]
-    grid = {}
-    for k, v in values.items():
-        if v.ndim == 1:
-            shape = [1] * len(dims)
-            shape[dims.index(k)] = v.size
-            grid[k] = v.reshape(shape)
-        else:
-            grid[k] = v
     if chunks is not None:
         require_extra("dask", "cluster", "an atlas in chunks (chunks=)")
         from .chunked import lazy_spectra
@@ -123,10 +115,14 @@ def atlas(
             way_out="pass chunks=100 (or another chunk size) to compute and write it chunk by chunk, "
             "or use fewer points",
         )
-        growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, grid, full, mask_unphysical, method)
+        growth, freq, bound, stab, inside = _spectra_in_blocks(m, values, dims, full, mask_unphysical, method)
 
     mdims = (*dims, "mode")
-    rate = {"units": "Omega"}  # xarray labels axes "long_name [units]": rates in units of the spin rate
+
+    def rate(dims: tuple[str, ...], data: np.ndarray, long_name: str, comment: str) -> tuple:
+        # xarray labels axes "long_name [units]": rates in units of the spin rate
+        return dims, data, {"long_name": long_name, "units": "Omega", "comment": comment}
+
     coords: dict[str, Any] = {}
     for k in PARAMETERS:
         if k in values:
@@ -138,38 +134,19 @@ def atlas(
         {"long_name": "mode", "comment": "mode index, modes sorted by decreasing growth rate"},
     )
     data_vars = {
-        "growth_rate": (
-            mdims,
-            growth,
-            {
-                "long_name": "growth rate Re s",
-                **rate,
-                "comment": "growth rate of each mode, x ~ exp(s t), in units of the spin rate",
-            },
+        "growth_rate": rate(
+            mdims, growth, "growth rate Re s", "growth rate of each mode, x ~ exp(s t), in units of the spin rate"
         ),
-        "frequency": (
-            mdims,
-            freq,
-            {
-                "long_name": "frequency Im s",
-                **rate,
-                "comment": "frequency of each mode, fixed frame, in units of the spin rate",
-            },
+        "frequency": rate(
+            mdims, freq, "frequency Im s", "frequency of each mode, fixed frame, in units of the spin rate"
         ),
-        "eigenvalue_error_bound": (
-            mdims,
-            bound,
-            {"long_name": "error bound of s", **rate, "comment": "absolute error bound of each eigenvalue s"},
-        ),
-        "max_growth_rate": (
+        "eigenvalue_error_bound": rate(mdims, bound, "error bound of s", "absolute error bound of each eigenvalue s"),
+        "max_growth_rate": rate(
             tuple(dims),
             growth[..., 0].copy(),
-            {
-                "long_name": "max growth rate",
-                **rate,
-                "comment": "largest growth rate max Re s over every mode, the structural "
-                "s = 0 mode included (leading_growth_rate leaves it out)",
-            },
+            "max growth rate",
+            "largest growth rate max Re s over every mode, the structural s = 0 mode included "
+            "(leading_growth_rate leaves it out)",
         ),
         "stability": (
             tuple(dims),
@@ -188,8 +165,7 @@ def atlas(
                 "long_name": "in physical domain",
                 "flag_values": np.array([0, 1], dtype=np.int8),
                 "flag_meanings": "outside_domain inside_domain",
-                "comment": "the point lies in the physical domain: 1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), "
-                "mu > 0, fr_inv >= 0, alpha_v >= 0",
+                "comment": "the point lies in the physical domain: " + domain_text(m.parameters),
             },
         ),
     }
@@ -238,74 +214,35 @@ def _blocks(dims: list[str], full: tuple[int, ...]) -> list[dict[str, slice]]:
 
 
 def _spectra_in_blocks(
-    m: Any,
-    values: dict[str, np.ndarray],
-    dims: list[str],
-    grid: dict[str, np.ndarray],
-    full: tuple[int, ...],
-    mask: bool,
-    method: str,
+    m: Any, values: dict[str, np.ndarray], dims: list[str], full: tuple[int, ...], mask: bool, method: str
 ) -> tuple[np.ndarray, ...]:
     """Growth rate, frequency, bound (grid + mode), stability and physical flags (int8) of the
-    whole grid, computed block by block (:func:`_blocks`) with an interruption point between
-    blocks. Each point's arithmetic does not depend on the block it is in, so the values are
+    whole grid, one spectrum per block (:func:`_blocks`) with an interruption point before
+    each. Each point's arithmetic does not depend on the block it is in, so the values are
     those of one call over the whole grid."""
     n = m.n_modes
-    if int(np.prod(full, dtype=np.int64)) <= BLOCK_POINTS:
-        sp = spectrum(m, mask_unphysical=mask, method=method, **grid)
-        ev = np.broadcast_to(sp.eigenvalues, full + (n,))
-        return (
-            ev.real.copy(),
-            ev.imag.copy(),
-            np.broadcast_to(sp.error_bound, full + (n,)).copy(),
-            np.broadcast_to(sp.stability, full).astype(np.int8),
-            np.broadcast_to(sp.inside, full).astype(np.int8),
-        )
-    if not mask:
-        check_domain(mask=False, **grid)  # the whole grid refused at once, as one call would
-    growth = np.empty(full + (n,))
-    freq = np.empty(full + (n,))
-    bound = np.empty(full + (n,))
-    stab = np.empty(full, dtype=np.int8)
-    inside = np.empty(full, dtype=np.int8)
+
+    def grid(sl: dict[str, slice]) -> dict[str, np.ndarray]:  # the parameters of a block, broadcastable
+        return {k: v[sl[k]].reshape([-1 if d == k else 1 for d in dims]) if k in sl else v for k, v in values.items()}
+
+    blocks = _blocks(dims, full)
+    if not mask and len(blocks) > 1:  # the whole grid refused at once, as one call would
+        check_domain(mask=False, **grid({d: slice(None) for d in dims}))
+    growth, freq, bound = (np.empty(full + (n,)) for _ in range(3))
+    stab, inside = np.empty(full, dtype=np.int8), np.empty(full, dtype=np.int8)
     with deferred():
-        _fill_blocks(m, values, dims, full, mask, method, (growth, freq, bound, stab, inside))
-    return growth, freq, bound, stab, inside
-
-
-def _fill_blocks(
-    m: Any,
-    values: dict[str, np.ndarray],
-    dims: list[str],
-    full: tuple[int, ...],
-    mask: bool,
-    method: str,
-    arrays: tuple[np.ndarray, ...],
-) -> None:
-    """The loop of :func:`_spectra_in_blocks`: one spectrum per block, an interruption point
-    before each."""
-    growth, freq, bound, stab, inside = arrays
-    n = m.n_modes
-    for sl in _blocks(dims, full):
+        for sl in blocks:
+            checkpoint()
+            sp = spectrum(m, mask_unphysical=mask, method=method, **grid(sl))
+            bshape = tuple(sl[d].stop - sl[d].start for d in dims)
+            idx = tuple(sl[d] for d in dims)
+            ev = np.broadcast_to(sp.eigenvalues, bshape + (n,))
+            growth[idx], freq[idx] = ev.real, ev.imag
+            bound[idx] = np.broadcast_to(sp.error_bound, bshape + (n,))
+            stab[idx] = np.broadcast_to(sp.stability, bshape)
+            inside[idx] = np.broadcast_to(sp.inside, bshape)
         checkpoint()
-        part = {}
-        for k, v in values.items():
-            if k in sl:
-                shape = [1] * len(dims)
-                shape[dims.index(k)] = -1
-                part[k] = v[sl[k]].reshape(shape)
-            else:
-                part[k] = v
-        sp = spectrum(m, mask_unphysical=mask, method=method, **part)
-        bshape = tuple(sl[d].stop - sl[d].start for d in dims)
-        idx = tuple(sl[d] for d in dims)
-        ev = np.broadcast_to(sp.eigenvalues, bshape + (n,))
-        growth[idx] = ev.real
-        freq[idx] = ev.imag
-        bound[idx] = np.broadcast_to(sp.error_bound, bshape + (n,))
-        stab[idx] = np.broadcast_to(sp.stability, bshape)
-        inside[idx] = np.broadcast_to(sp.inside, bshape)
-    checkpoint()
+    return growth, freq, bound, stab, inside
 
 
 def leading_growth_rate(ds: xr.Dataset) -> xr.DataArray:

@@ -50,7 +50,6 @@ import numpy as np
 from ..errors import DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
-    DEFAULT_MU,
     UPPER_BOUND,
     as_scalar,
     check_choice,
@@ -64,7 +63,7 @@ from ..parameters import (
 from ..resources import check_threshold_samples
 from .growth import GROWS, UNDECIDED, growth
 from .neutrality import NeutralCondition
-from .spectra import MARGINAL, STABLE, UNSTABLE
+from .spectra import MARGINAL, STABLE, UNSTABLE, fixed_parameters, parameter_name
 
 __all__ = [
     "UPPER_BOUND",
@@ -123,27 +122,17 @@ def default_bracket(param: str, fixed: Mapping[str, float]) -> tuple[float, floa
     return (0.0, UPPER_BOUND[param])
 
 
+def _samples_checked(samples: Any) -> int:
+    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
+    check_threshold_samples(samples)
+    return samples
+
+
 def _setup(
     param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
 ) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
     m = get_model(model)
-    if not isinstance(param, str) or param not in m.parameters:
-        raise InputError(
-            f"param = {param!r} is not a parameter of model {m.name!r}; choose one of {', '.join(m.parameters)}"
-        )
-    fx = {k: v for k, v in fixed.items() if v is not None}
-    if param in fx:
-        raise ParameterTypeError(f"{param} is the parameter searched and cannot also be given a value")
-    if "mu" in m.parameters and param != "mu":
-        fx.setdefault("mu", DEFAULT_MU)
-    for k in fx:
-        if k not in m.parameters:
-            raise ParameterTypeError(f"model {m.name!r} takes no parameter {k} (it takes {', '.join(m.parameters)})")
-    missing = [k for k in m.parameters if k != param and k not in fx]
-    if missing:
-        raise ParameterTypeError(f"{', '.join(missing)} required for a threshold in {param} of model {m.name!r}")
-    p, _ = check_domain(scalar=True, **fx)
-    fx = {k: float(v) for k, v in p.items()}
+    fx = fixed_parameters(m, (parameter_name(m, param, "param"),), fixed)
     if bracket is None:
         lo, hi = default_bracket(param, fx)
     else:
@@ -329,8 +318,7 @@ def threshold_crossings(
     >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
     (1.085777777778, 'below')
     """
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
+    samples = _samples_checked(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     return _search(m, fx, param, lo, hi, samples)[0]
 
@@ -385,12 +373,6 @@ def thresholds(
     return np.array([t.value for t in found])
 
 
-def _growth(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray) -> np.ndarray:
-    """Largest growth estimate over the modes that are not neutral by structure
-    (:mod:`stability.linear.growth`; ``-inf`` if every mode is)."""
-    return np.max(_states(m, fx, param, x).estimate, axis=-1)
-
-
 def _hidden_pairs(
     m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray, state: np.ndarray, g: np.ndarray
 ) -> list[tuple[float, float, float]]:
@@ -418,7 +400,8 @@ def _hidden_pairs(
         from scipy.optimize import minimize_scalar  # here: most thresholds never refine (0.5 s import)
 
         res = minimize_scalar(
-            lambda s: -float(_growth(m, fx, param, np.array([s]))[0]),
+            # the largest growth estimate over the modes not neutral by structure (-inf if none)
+            lambda s: -float(np.max(_states(m, fx, param, np.array([s])).estimate[0])),
             bounds=(a, b),
             method="bounded",
             options={"xatol": 1e-13 * max(1.0, abs(b - a), abs(a), abs(b))},
@@ -468,18 +451,21 @@ def _inexact_warning(found: Sequence[Threshold], param: str) -> None:
         )
 
 
-def _no_threshold_state(state: np.ndarray) -> str:
-    """What holds throughout a range without a change of sign (for the messages)."""
+def _no_threshold_state(state: np.ndarray, quiet: str | None = None) -> str:
+    """What holds throughout a range without a change of sign (for the messages); ``quiet``,
+    if given, names every state that is not unstable."""
     n = state.size
     undecided = int((state == UNDECIDED).sum())
     if undecided == n:
         return (
-            "within rounding of neutral at every sample (the sign of the leading growth rate "
-            "cannot be decided anywhere; marginal to working precision)"
+            "within rounding of neutral (the sign of the leading growth rate cannot be decided at "
+            "any sample; marginal to working precision)"
         )
     rest = state[state != UNDECIDED]
     names = ((UNSTABLE, "unstable"), (STABLE, "stable"), (MARGINAL, "marginal (neutrally stable)"))
     what = next((name for flag, name in names if (rest == flag).all()), "stable or marginal")
+    if quiet is not None and what != "unstable":
+        what = quiet
     if undecided:
         return (
             f"{what} wherever the sign can be decided (the sign of the leading growth rate cannot be "
@@ -544,8 +530,7 @@ def _one_threshold(
 ) -> Threshold:
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
+    samples = _samples_checked(samples)
     m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
     found, state = _search(m, fx, param, lo, hi, samples)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
@@ -732,12 +717,9 @@ def critical_spin(
         if len(reasons) == 2:
             raise InputError("; ".join(reasons.values()))
         return CriticalSpins(upright=found_["upright"], inverted=found_["inverted"], reasons=reasons)
-    samples = check_integer("samples", samples, minimum=3, maximum=MAX_SAMPLES)
-    check_threshold_samples(samples)
-    if isinstance(fr_inv_range, (str, bytes)) or not hasattr(fr_inv_range, "__len__") or len(fr_inv_range) != 2:
-        raise ParameterTypeError(f"fr_inv_range = {fr_inv_range!r} must be a pair (lo, hi) of real numbers")
-    lo, hi = (as_scalar("fr_inv_range", v) for v in fr_inv_range)
-    if not 0 < lo < hi:
+    samples = _samples_checked(samples)
+    lo, hi = check_range("fr_inv_range", fr_inv_range)
+    if not lo > 0:
         raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")
     t = top.inverted() if orientation == "inverted" else top
     base = get_model(model)
@@ -759,24 +741,10 @@ def critical_spin(
             )
     else:
         friction = f"none: the {base.name} model has no friction parameter"
-    found, state = _search(m, fixed, "fr_inv", lo, hi, int(samples))
+    found, state = _search(m, fixed, "fr_inv", lo, hi, samples)
     spins = sorted(float(t.spin_rate(th.value)) for th in found)
     if not found:
-        undecided = int((state == UNDECIDED).sum())
-        if undecided == state.size:
-            what = "within rounding of neutral (the sign of its leading growth rate cannot be decided)"
-        else:
-            what = (
-                "unstable"
-                if (state == UNSTABLE).all()
-                else (
-                    "unstable wherever the sign can be decided"
-                    if (state[state != UNDECIDED] == UNSTABLE).all()
-                    else "not unstable (stable or neutrally stable)"
-                )
-            )
-            if undecided:
-                what += f" (the sign cannot be decided at {undecided} of {state.size} samples)"
+        what = _no_threshold_state(state, quiet="not unstable (stable or neutrally stable)")
         s_lo, s_hi = t.spin_rate(hi), t.spin_rate(lo)
         raise _NoTransition(
             f"the {orientation} {base.name} top is {what} at every spin from "

@@ -51,6 +51,7 @@ __all__ = [
     "UNDECIDED",
     "UNRESOLVED",
     "Growth",
+    "axis_products",
     "conservative_points",
     "growth",
     "mode_signs",
@@ -88,13 +89,18 @@ class Growth(NamedTuple):
     state: np.ndarray
 
 
-def conservative_points(c: np.ndarray) -> np.ndarray:
-    """Whether each polynomial ``c`` (..., n+1) is conservative: every ``c_k i^k`` has one
-    common phase (all real or all imaginary, tested exactly), so that a root with ``Re s = 0``
-    is neutral by structure (docs/conventions.md)."""
+def axis_products(c: np.ndarray) -> np.ndarray:
+    """``c_k i^k`` for the coefficients ``c`` (..., n+1) of ``p(s)`` (highest power ``k`` first):
+    the coefficients of ``p(i w)`` in powers of ``w``, exactly (products with 1, i, -1, -i)."""
     c = np.asarray(c, dtype=complex)
-    n = c.shape[-1] - 1
-    d = c * np.array([1.0, 1j, -1.0, -1j])[np.arange(n, -1, -1) % 4]
+    return c * np.array([1.0, 1j, -1.0, -1j])[np.arange(c.shape[-1] - 1, -1, -1) % 4]
+
+
+def conservative_points(c: np.ndarray) -> np.ndarray:
+    """Whether each polynomial ``c`` (..., n+1) is conservative: every ``c_k i^k``
+    (:func:`axis_products`) has one common phase (all real or all imaginary, tested exactly), so
+    that a root with ``Re s = 0`` is neutral by structure (docs/conventions.md)."""
+    d = axis_products(c)
     conservative: np.ndarray = np.all(d.imag == 0, axis=-1) | np.all(d.real == 0, axis=-1)
     return conservative
 

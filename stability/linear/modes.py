@@ -52,6 +52,7 @@ def ambiguous_steps(eigenvalues: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     eigenvalues : numpy.ndarray of complex, shape (m, n)
+        Eigenvalues along the path, as for :func:`track_modes`.
 
     Returns
     -------
@@ -62,11 +63,15 @@ def ambiguous_steps(eigenvalues: np.ndarray) -> np.ndarray:
     ev = track_modes(eigenvalues)
     perms = [list(p) for p in permutations(range(ev.shape[1]))]
     out = np.zeros(ev.shape[0], dtype=bool)
-    for i in range(1, ev.shape[0]):
-        if np.isnan(ev[i]).any() or np.isnan(ev[i - 1]).any():
-            continue
+    for i in _whole_steps(ev):
         out[i] = _match(ev[i - 1], ev[i], perms)[1]
     return out
+
+
+def _whole_steps(ev: np.ndarray) -> np.ndarray:
+    """The steps ``i - 1 -> i`` of a path (rows of ``ev``) with no NaN at either end."""
+    whole = ~np.isnan(ev).any(axis=1)
+    return np.nonzero(whole[1:] & whole[:-1])[0] + 1
 
 
 def track_modes(
@@ -103,7 +108,7 @@ def track_modes(
             f"eigenvalues has shape {ev.shape}; it must be (points, modes): one row of "
             "eigenvalues per point of the path"
         )
-    m, n = ev.shape
+    n = ev.shape[1]
     if solve is not None and path is None:
         raise InputError("track_modes: solve needs the path parameter values (path=)")
     perms = [list(p) for p in permutations(range(n))]
@@ -116,13 +121,8 @@ def track_modes(
         em = bridge(ta, ea, tm, np.asarray(solve(tm), dtype=complex), depth - 1)
         return bridge(tm, em, tb, eb, depth - 1)
 
-    for i in range(1, m):
-        if np.isnan(ev[i]).any() or np.isnan(ev[i - 1]).any():
-            continue
-        if i >= 2 and not np.isnan(ev[i - 2]).any():
-            pred = 2 * ev[i - 1] - ev[i - 2]
-        else:
-            pred = ev[i - 1]
+    for i in _whole_steps(ev):
+        pred = 2 * ev[i - 1] - ev[i - 2] if i >= 2 and not np.isnan(ev[i - 2]).any() else ev[i - 1]
         best, amb = _match(pred, ev[i], perms)
         if amb and solve is not None:
             best = bridge(float(path[i - 1]), ev[i - 1], float(path[i]), ev[i], max_depth)

@@ -40,17 +40,13 @@ _JIT = dict(OPTIONS, cache=True)
 constraint_values = njit(**_JIT)(_constraint_values)
 
 
+@functools.cache
 def step_kernel(kernels: CrossingKernels) -> Callable[..., tuple]:
     """The compiled step for the crossing form compiled in ``kernels``
-    (:func:`stability.linear.neutrality.crossing_kernels`), built once per model."""
-    return _step_kernel(kernels.residual_into, kernels.other_growth_of)
-
-
-@functools.cache
-def _step_kernel(residual_into: Callable[..., None], other_growth_of: Callable[..., float]) -> Callable[..., tuple]:
-    """A closure over the model's compiled residual and second test function (plain
-    ``register_jitable`` functions, so that numba caches it on disk; see
-    :mod:`stability.linear.kernel`)."""
+    (:func:`stability.linear.neutrality.crossing_kernels`), built once per model: a closure over
+    the model's compiled residual and second test function (plain ``register_jitable``
+    functions, so that numba caches it on disk; see :mod:`stability.linear.kernel`)."""
+    residual_into, other_growth_of = kernels.residual_into, kernels.other_growth_of
 
     @njit(**_JIT)
     def step(point, free_index, ncoef, codes, index, a, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):

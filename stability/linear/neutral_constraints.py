@@ -77,12 +77,13 @@ def constraints_of(
 CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
 
 
-def constraint_arguments(problem: Any) -> tuple[list[float], list[int], tuple[list, list, list]]:
-    """``(point, free_index, (codes, index, a))`` of :func:`constraint_values` for a problem
-    (its ``fixed`` parameters, traced ``names`` and ``_constraints``), as Python lists."""
-    cs = problem._constraints
-    rows = ([CONSTRAINT_CODES[c.code] for c in cs], [c.index for c in cs], [c.a for c in cs])
-    return [problem.fixed.get(n, 0.0) for n in PARAMETERS], [PARAMETERS.index(n) for n in problem.names], rows
+def constraint_arguments(
+    fixed: Mapping[str, float], names: Sequence[str], constraints: Sequence[Constraint]
+) -> tuple[list[float], list[int], tuple[list, list, list]]:
+    """``(point, free_index, (codes, index, a))`` of :func:`constraint_values` for a problem's
+    ``fixed`` parameters, traced ``names`` and ``constraints``, as Python lists."""
+    rows = ([CONSTRAINT_CODES[c.code] for c in constraints], [c.index for c in constraints], [c.a for c in constraints])
+    return [fixed.get(n, 0.0) for n in PARAMETERS], [PARAMETERS.index(n) for n in names], rows
 
 
 @register_jitable

@@ -64,13 +64,11 @@ from .._version import package_version
 from ..errors import ConvergenceError, DomainError, InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import (
-    DEFAULT_MU,
     LONG_NAMES,
     UPPER_BOUND,
     WINDOW_UPPER_BOUND,
     as_scalar,
     check_choice,
-    check_domain,
     check_flag,
     check_integer,
     check_positive,
@@ -85,8 +83,8 @@ from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
 from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
-from .roots import UNIT_ROUNDOFF, inclusion_radius, root_bound
-from .spectra import spectrum
+from .roots import root_bound
+from .spectra import fixed_parameters, lapack_eigenvalues, parameter_name, spectrum
 
 __all__ = ["DEFAULT_RANGES", "FoldProblem", "NeutralProblem", "fold_curve", "neutral_curve"]
 
@@ -117,35 +115,6 @@ _KIND_DETAIL = {
 }
 
 
-def _check_name(name: str, what: str, model: LinearModel) -> str:
-    if not isinstance(name, str) or name not in model.parameters:
-        raise InputError(
-            f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
-        )
-    return name
-
-
-def _fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
-    """Validate the fixed parameters (all the model's others; mu defaults to 2.28)."""
-    if not isinstance(fixed, Mapping):
-        raise ParameterTypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
-    out = dict(fixed)
-    if "mu" not in free and "mu" not in out:
-        out["mu"] = DEFAULT_MU
-    for name in out:
-        if name in free:
-            raise InputError(f"{name} is traced (x or y) and cannot also be fixed")
-        if name not in model.parameters:
-            raise ParameterTypeError(
-                f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
-            )
-    missing = [n for n in model.parameters if n not in free and n not in out]
-    if missing:
-        raise ParameterTypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
-    p, _ = check_domain(scalar=True, **out)
-    return {k: float(v) for k, v in p.items()}
-
-
 def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
     """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
     parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
@@ -154,6 +123,17 @@ def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float
     lo, hi = domain_range(name, fixed)
     dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
     return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
+
+
+def _ranges(
+    names: Sequence[str], given: Sequence[Any], fixed: Mapping[str, float]
+) -> tuple[dict[str, tuple[float, float]], np.ndarray, np.ndarray]:
+    """The ranges of the traced ``names`` (:func:`_check_range`), their widths (the scale of
+    those unknowns) and eight seeded points inside them (for the form and the deflation)."""
+    ranges = {n: _check_range(n, r, fixed) for n, r in zip(names, given)}
+    width = np.array([ranges[n][1] - ranges[n][0] for n in names])
+    lo = np.array([ranges[n][0] for n in names])
+    return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
 
 
 def _outside_domain_error(
@@ -170,7 +150,44 @@ def _outside_domain_error(
     )
 
 
-class NeutralProblem:
+class _CurveProblem:
+    """What the neutral and fold problems share: the traced parameters ``names`` (the columns
+    ``_columns`` of ``u``), the fixed ones, the neutral condition and the constraints."""
+
+    test_function_names: tuple[str, ...] = ()
+    _columns: tuple[int, ...] = (0, 1)
+
+    def __init__(
+        self,
+        model: str | LinearModel,
+        names: tuple[str, ...],
+        fixed: Mapping[str, float],
+        ranges: Mapping[str, tuple[float, float]],
+        edge_margin: float,
+        samples: np.ndarray | None,
+        form: str | None,
+        compiled: bool | None,
+    ):
+        self.model = get_model(model)
+        self.names = names
+        self.fixed = dict(fixed)
+        self.cond = NeutralCondition(self.model, names, self.fixed, samples, form, compiled)
+        constraints = constraints_of(self.model, names, ranges, edge_margin)
+        self.constraint_names = tuple(c.name for c in constraints)
+        self.constraint_kinds = tuple(c.kind for c in constraints)
+        self.constraint_bounds = tuple(c.bound for c in constraints)
+        self._point, self._free, self._rows = constraint_arguments(self.fixed, names, constraints)
+
+    def params(self, u: np.ndarray) -> dict[str, float]:
+        """All parameters at ``u``."""
+        return {**self.fixed, **{n: float(u[i]) for n, i in zip(self.names, self._columns)}}
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        """Domain and range bounds, ``>= 0`` inside."""
+        return constraint_values(self._point, self._free, [float(u[i]) for i in self._columns], *self._rows)
+
+
+class NeutralProblem(_CurveProblem):
     """Continuation problem of a neutral curve: ``u = (x, y, w)``, ``F`` of :mod:`stability.linear.neutrality`.
 
     Parameters
@@ -214,20 +231,13 @@ class NeutralProblem:
         form: str | None = None,
         compiled: bool | None = None,
     ):
-        self.model = get_model(model)
-        self.names = (x, y)
-        self.fixed = dict(fixed)
+        model = get_model(model)
         if compiled is None:  # the rule of stability.execution: the compiled step if in memory (or forced)
             step = sys.modules.get(__package__ + ".neutral_compiled")  # nothing imported to find out
-            f, d = (getattr(self.model, k, None) for k in ("point_coefficients", "point_derivatives"))
-            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(self.model.n_modes)))
+            f, d = (getattr(model, k, None) for k in ("point_coefficients", "point_derivatives"))
+            known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(model.n_modes)))
             compiled = execution.use_compiled(known or None, 1)
-        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form, compiled)
-        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c.name for c in self._constraints)
-        self.constraint_kinds = tuple(c.kind for c in self._constraints)
-        self.constraint_bounds = tuple(c.bound for c in self._constraints)
-        self._point, self._free, self._rows = constraint_arguments(self)
+        super().__init__(model, (x, y), fixed, ranges, edge_margin, samples, form, compiled)
         self._compiled = None
         kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
@@ -250,12 +260,6 @@ class NeutralProblem:
         of :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
         functions at the new point)."""
         return self._step_kernel(*self._compiled, *corrector)
-
-    def params(self, u: np.ndarray) -> dict[str, float]:
-        """All parameters at ``u``."""
-        p = dict(self.fixed)
-        p.update(zip(self.names, (float(u[0]), float(u[1]))))
-        return p
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
@@ -314,10 +318,10 @@ class NeutralProblem:
 
             point, free, _, codes, index, a = self._compiled
             return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return constraint_values(self._point, self._free, [float(u[0]), float(u[1])], *self._rows)
+        return super().constraints(u)
 
 
-class FoldProblem:
+class FoldProblem(_CurveProblem):
     """Continuation of a fold of a neutral curve in a third parameter: ``u = (x, y, w, z)``.
 
     Equations: the neutral condition ``F(x, y, w; z) = 0`` (two) and the fold condition
@@ -326,7 +330,7 @@ class FoldProblem:
     differences for the Jacobian (:func:`continuation.finite_difference_jacobian`).
     """
 
-    test_function_names: tuple[str, ...] = ()
+    _columns = (0, 1, 3)
 
     def __init__(
         self,
@@ -341,21 +345,8 @@ class FoldProblem:
         samples: np.ndarray | None = None,
         form: str | None = None,
     ):
-        self.model = get_model(model)
-        self.names = (x, y, z)
-        self.fixed = dict(fixed)
-        self.cond = NeutralCondition(self.model, self.names, self.fixed, samples, form)
+        super().__init__(model, (x, y, z), fixed, ranges, edge_margin, samples, form, None)
         self.other = 1 if fold_in == x else 0
-        self._constraints = constraints_of(self.model, self.names, ranges, edge_margin)
-        self.constraint_names = tuple(c.name for c in self._constraints)
-        self.constraint_kinds = tuple(c.kind for c in self._constraints)
-        self.constraint_bounds = tuple(c.bound for c in self._constraints)
-        self._point, self._free, self._rows = constraint_arguments(self)
-
-    def params(self, u: np.ndarray) -> dict[str, float]:
-        p = dict(self.fixed)
-        p.update(zip(self.names, (float(u[0]), float(u[1]), float(u[3]))))
-        return p
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``[F1, F2, det]`` at ``u = (x, y, w, z)``."""
@@ -363,10 +354,6 @@ class FoldProblem:
         F, J = self.cond.residual_and_jacobian(vals, float(u[2]))
         B = J[:, [self.other, 3]]
         return np.array([F[0], F[1], B[0, 0] * B[1, 1] - B[0, 1] * B[1, 0]])
-
-    def constraints(self, u: np.ndarray) -> np.ndarray:
-        """Domain and range bounds, ``>= 0`` inside."""
-        return constraint_values(self._point, self._free, [float(u[0]), float(u[1]), float(u[3])], *self._rows)
 
 
 # ------------------------------------------------------------------------------------------
@@ -492,18 +479,14 @@ def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray
 # ------------------------------------------------------------------------------------------
 # the dataset
 # ------------------------------------------------------------------------------------------
-def _var_attrs(name: str) -> dict[str, str]:
-    return parameter_attrs(name) if name in LONG_NAMES else {"long_name": name, "units": "1"}
-
-
-def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> dict[str, list]:
-    """Per-point kinds and details of one branch."""
+def _branch_records(br: Branch, prob: Any, names: Sequence[str]) -> tuple[list[str], list[str]]:
+    """Per-point kinds and details of one branch (``names``: its columns)."""
     kinds, details = [], []
     m = len(br.points)
     for k, (kind, det) in enumerate(zip(br.kinds, br.details)):
         if kind == "fold":
             kinds.append("fold")
-            details.append(f"fold in {names[int(det)] if int(det) < ncols else det}")
+            details.append(f"fold in {names[int(det)] if int(det) < len(names) else det}")
         elif kind in ("test", "branch_point"):
             kd, text = _KIND_DETAIL[det or kind]
             kinds.append(kd)
@@ -531,7 +514,7 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str], ncols: int) -> 
         if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
             kinds[k] = "endpoint"
             details[k] = f"continuation stopped: {end.replace('_', ' ')}"
-    return {"kind": kinds, "detail": details}
+    return kinds, details
 
 
 def _check_points(
@@ -544,31 +527,22 @@ def _check_points(
     ``geev`` on ``M^-1 A`` for all points in one call; the traced points lie inside the domain
     (``det M = A_G > 0``). Should ``M`` be singular at some point, :func:`stability.spectrum`
     (method ``"lapack"``, points outside the domain masked) is used instead. The bound is that
-    of the LAPACK method of :mod:`stability.linear.spectra`: ``max(8 n u ||M^-1 A||, r)`` with
+    of the LAPACK method (:func:`stability.linear.spectra.lapack_eigenvalues`): ``max(8 n u ||M^-1 A||, r)`` with
     ``r`` the inclusion radius of the eigenvalue as a root of the model's polynomial
     (:func:`stability.linear.roots.inclusion_radius`): LAPACK's error is absolute, ``~u`` of
     the largest mode, so at ``alpha_v = 1e12`` (slip mode ``-1.3e12``) the check of an O(1)
     neutral mode is good to ``~1e-4``, not ``1e-16``, and says so.
     """
-    p: dict[str, Any] = dict(fixed)
-    for n, c in zip(names, cols):
-        p[n] = c
+    p: dict[str, Any] = {**fixed, **dict(zip(names, cols))}
     try:
-        M, A = model.matrices(**p)
-        MA = np.linalg.solve(M, A)
-        ev = np.linalg.eigvals(MA)
-        scale = np.linalg.norm(MA, axis=(-2, -1))
+        ev, bound, _ = lapack_eigenvalues(
+            model, {n: np.broadcast_to(np.asarray(v, float), w.shape) for n, v in p.items()}
+        )
     except np.linalg.LinAlgError:
         sp = spectrum(model, mask_unphysical=True, method="lapack", **p)
-        ev, scale = sp.eigenvalues, None
-    k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)
-    near = np.take_along_axis(ev, k[:, None], -1)
-    radius = inclusion_radius(
-        model.coefficients(**{n: np.broadcast_to(np.asarray(v, float), w.shape) for n, v in p.items()}), near
-    )[:, 0]
-    if scale is not None:
-        radius = np.maximum(radius, 8 * model.n_modes * UNIT_ROUNDOFF * scale)
-    return near[:, 0].real, radius
+        ev, bound = sp.eigenvalues, sp.error_bound
+    k = np.nanargmin(np.where(np.isnan(ev), np.inf, np.abs(ev - 1j * w[:, None])), axis=-1)[:, None]
+    return np.take_along_axis(ev, k, -1)[:, 0].real, np.take_along_axis(bound, k, -1)[:, 0]
 
 
 #: the attributes of the dataset's variables other than the traced parameters
@@ -611,48 +585,53 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
 }
 
 
-def _tangent_attrs(n: str) -> dict[str, str]:
-    return {
-        "long_name": f"tangent, {n}",
-        "units": "1",
-        "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-        "branch; continuation.dense interpolates with it)",
-    }
-
-
-def _dataset(
+def _assemble(
     model: LinearModel,
     names: Sequence[str],
     fixed: Mapping[str, float],
-    points: np.ndarray,
-    freq_col: int,
-    branch: np.ndarray,
-    kinds: list[str],
-    details: list[str],
-    residual: np.ndarray,
-    leading: np.ndarray | None,
+    prob: Any,
+    branches: list[Branch],
     attrs: Mapping[str, Any],
-    tangents: np.ndarray | None = None,
 ) -> xr.Dataset:
-    cols = [points[:, i] for i in range(points.shape[1]) if i != freq_col]
-    data: dict[str, Any] = {n: (c, _var_attrs(n)) for n, c in zip(names, cols)}
-    w = points[:, freq_col] if len(points) else np.zeros(0)
+    """The dataset of the traced branches (columns of ``u``: ``names`` with the frequency at
+    2): points, tangents, kinds, details, the backward error, where the traced mode leads
+    (neutral curves) and the independent check (:func:`_check_points`), all points at once."""
+    order = [*names[:2], "frequency", *names[2:]]
+    kinds, details = [], []
+    for br in branches:
+        k, d = _branch_records(br, prob, order)
+        kinds += k
+        details += d
+    points = np.concatenate([br.points for br in branches]) if branches else np.zeros((0, len(order)))
+    tangents = np.concatenate([br.tangents for br in branches]) if branches else np.zeros((0, len(order)))
+    branch = np.repeat(np.arange(len(branches)), [len(br.points) for br in branches])
+    cols = [points[:, i] for i in range(points.shape[1]) if i != 2]
+    w = points[:, 2]
+    residual = prob.cond.backward_errors(np.delete(points, 2, axis=1), w)
+    leading = prob.traced_modes_lead(points) if isinstance(prob, NeutralProblem) else None
+    if leading is not None:  # the double crossings where the leading mode changes
+        details = [d + "; the leading mode changes" if k == "double_crossing" else d for k, d in zip(kinds, details)]
+    data: dict[str, Any] = {
+        n: (c, parameter_attrs(n) if n in LONG_NAMES else {"long_name": n, "units": "1"}) for n, c in zip(names, cols)
+    }
     data["frequency"] = (w, _DATA_ATTRS["frequency"])
-    if tangents is None:
-        tangents = np.zeros_like(points)
-    order = [*names[:freq_col], "frequency", *names[freq_col:]]
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (tangents[:, i], _tangent_attrs(n))
+        data[f"tangent_{n}"] = (
+            tangents[:, i],
+            {
+                "long_name": f"tangent, {n}",
+                "units": "1",
+                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
+                "branch; continuation.dense interpolates with it)",
+            },
+        )
     data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
     data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
     data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
     data["residual"] = (residual, _DATA_ATTRS["residual"])
     if leading is not None:
         data["leading"] = (leading, _DATA_ATTRS["leading"])
-    if len(points):
-        check, check_bound = _check_points(model, names, fixed, cols, w)
-    else:
-        check, check_bound = np.zeros(0), np.zeros(0)
+    check, check_bound = _check_points(model, names, fixed, cols, w) if len(points) else (np.zeros(0), np.zeros(0))
     data["check_growth_rate"] = (check, _DATA_ATTRS["check_growth_rate"])
     data["check_bound"] = (check_bound, _DATA_ATTRS["check_bound"])
     # Variables from plain numpy arrays (fastpath: no conversion), one Dataset
@@ -662,10 +641,10 @@ def _dataset(
         "source": f"continuation.neutral_curve (tippe-stability {package_version()})",
         "model": model.name,
         "equations": model.equations,
+        **{k: float(v) for k, v in fixed.items()},
+        "fixed": ", ".join(sorted(fixed)),
+        **attrs,
     }
-    ds_attrs.update({k: float(v) for k, v in fixed.items()})
-    ds_attrs["fixed"] = ", ".join(sorted(fixed))
-    ds_attrs.update(attrs)
     return _point_dataset(variables, len(points), ds_attrs)
 
 
@@ -788,11 +767,11 @@ def neutral_curve(
     1.1433...
     """
     m = get_model(model)
-    x = _check_name(x, "x", m)
-    y = _check_name(y, "y", m)
+    x = parameter_name(m, x, "x")
+    y = parameter_name(m, y, "y")
     if x == y:
         raise InputError(f"x and y must be two different parameters, got {x!r} twice")
-    fixed = _fixed_parameters(m, (x, y), fixed)
+    fixed = fixed_parameters(m, (x, y), fixed)
     max_step = check_positive("max_step", max_step)
     step = max_step if step is None else check_positive("step", step)
     max_angle = check_positive("max_angle", max_angle)
@@ -806,11 +785,8 @@ def neutral_curve(
         raise ParameterTypeError(f"grid = {grid!r} must be a pair of integers >= 2")
     grid = tuple(check_integer("grid", g, minimum=2, maximum=MAX_GRID) for g in grid)
     check_start_grid(*grid)
-    ranges = {x: _check_range(x, x_range, fixed), y: _check_range(y, y_range, fixed)}
-    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0])
-    lo = np.array([ranges[x][0], ranges[y][0]])
-    rng = np.random.default_rng(12345)
-    samples = lo + rng.random((8, 2)) * scale[:2]
+    ranges, width, samples = _ranges((x, y), (x_range, y_range), fixed)
+    scale = np.append(width, 1.0)
     prob = NeutralProblem(m, x, y, fixed, ranges, edge_margin, samples, form, compiled)
 
     note = None
@@ -853,23 +829,12 @@ def neutral_curve(
                 # the mode nearest the axis, structural zeros (s = 0 exactly, bound 0: the
                 # sliding top's zero root at fr_inv = 0) excepted: they are neutral everywhere
                 dist = np.where(structural_zeros(ev.real, ev.imag, sp0.error_bound), np.inf, np.abs(ev.real))
-                s.append(
-                    float(ev[int(np.nanargmin(dist))].imag)
-                    if np.isfinite(dist).any()
-                    else float(ev[np.nanargmin(np.abs(ev.real))].imag)
-                )
+                s.append(float(ev[int(np.nanargmin(dist))].imag))  # every mode structural: 0, as any
             guesses.append(np.array(s))
         if not guesses:
             raise InputError("start = [] is empty: give at least one point, or None for starts from an atlas")
-    options = TraceOptions(
-        fold_components=(0, 1),
-        scale=scale,
-        step=step,
-        max_step=max_step,
-        max_angle=max_angle,
-        max_points=max_points,
-        tol=tol,
-    )
+    trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
+    options = TraceOptions(fold_components=(0, 1), scale=scale, tol=tol, **trace)
     branches: list[Branch] = []
     cell = 1.5 / (min(grid) - 1)
     skip = np.zeros(len(guesses), dtype=bool)
@@ -923,43 +888,11 @@ def neutral_curve(
     if note is not None:
         attrs["note"] = note
         warnings.warn(note, UserWarning, stacklevel=2)
-    return _assemble(m, (x, y), fixed, prob, branches, 2, attrs)
+    return _assemble(m, (x, y), fixed, prob, branches, attrs)
 
 
 def _pair(r: tuple[float, float]) -> str:
     return f"({r[0]:g}, {r[1]:g})"
-
-
-def _assemble(
-    m: LinearModel,
-    names: Sequence[str],
-    fixed: Mapping[str, float],
-    prob: Any,
-    branches: list[Branch],
-    freq_col: int,
-    attrs: Mapping[str, Any],
-) -> xr.Dataset:
-    pts, tans, bidx, kinds, details, resid = [], [], [], [], [], []
-    for b, br in enumerate(branches):
-        rec = _branch_records(br, prob, [*names[:freq_col], "frequency", *names[freq_col:]], len(names) + 1)
-        pts.append(br.points)
-        tans.append(br.tangents)
-        bidx.append(np.full(len(br.points), b))
-        kinds += rec["kind"]
-        details += rec["detail"]
-    P = np.concatenate(pts) if pts else np.zeros((0, len(names) + 1))
-    T = np.concatenate(tans) if tans else np.zeros((0, len(names) + 1))
-    B = np.concatenate(bidx) if bidx else np.zeros(0, int)
-    # per-point checks after tracing, all points at once (one batched call of the model)
-    vals = np.delete(P, freq_col, axis=1)
-    resid = prob.cond.backward_errors(vals, P[:, freq_col])
-    lead = prob.traced_modes_lead(P) if isinstance(prob, NeutralProblem) else None
-    # the double crossings where the leading mode changes
-    if lead is not None:
-        for k, kd in enumerate(kinds):
-            if kd == "double_crossing":
-                details[k] += "; the leading mode changes"
-    return _dataset(m, names, fixed, P, freq_col, B, kinds, details, resid, lead, attrs, T)
 
 
 def fold_curve(
@@ -1013,7 +946,7 @@ def fold_curve(
         error of the neutral condition) and ``check_growth_rate``.
     """
     m = get_model(model)
-    x, y, z = (_check_name(n, w_, m) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
+    x, y, z = (parameter_name(m, n, w_) for n, w_ in ((x, "x"), (y, "y"), (z, "z")))
     if len({x, y, z}) != 3:
         raise InputError(f"x, y and z must be three different parameters, got {x!r}, {y!r}, {z!r}")
     check_choice("fold_in", fold_in, (x, y))
@@ -1021,15 +954,12 @@ def fold_curve(
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
     fx = dict(fixed)
     z0 = fx.pop(z)
-    full = _fixed_parameters(m, (x, y), {**fx, z: z0})
+    full = fixed_parameters(m, (x, y), {**fx, z: z0})
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
-    ranges = {x: _check_range(x, x_range, full), y: _check_range(y, y_range, full), z: _check_range(z, z_range, full)}
-    scale = np.array([ranges[x][1] - ranges[x][0], ranges[y][1] - ranges[y][0], 1.0, ranges[z][1] - ranges[z][0]])
-    rng = np.random.default_rng(12345)
-    lo = np.array([ranges[x][0], ranges[y][0], ranges[z][0]])
-    samples = lo + rng.random((8, 3)) * scale[[0, 1, 3]]
+    ranges, width, samples = _ranges((x, y, z), (x_range, y_range, z_range), full)
+    scale = np.insert(width, 2, 1.0)
     prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
     options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
@@ -1046,7 +976,6 @@ def fold_curve(
         rest,
         prob,
         branches,
-        2,
         {
             PRODUCT_ATTR: "fold_curve",
             "x": x,

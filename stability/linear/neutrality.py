@@ -97,9 +97,10 @@ from stability.jit import OPTIONS, cached, njit, register_jitable
 from stability.jit import active as jit_active
 
 from .. import execution
-from ..errors import InputError, ParameterTypeError
+from ..errors import InputError
 from ..models import LinearModel, get_model
-from ..parameters import PARAMETERS
+from ..parameters import PARAMETERS, check_choice
+from .growth import axis_products
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = [
@@ -119,11 +120,6 @@ _IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 _JIT = dict(OPTIONS, cache=True)
 
 
-def _i_power(k: np.ndarray) -> np.ndarray:
-    """``i**k`` exactly (a table lookup, no complex power)."""
-    return np.array([1.0, 1j, -1.0, -1j])[np.asarray(k) % 4]
-
-
 def conservative_phase(c: np.ndarray) -> int | None:
     """Common phase of ``c_k i^k`` (0: all real, 1: all imaginary), or None if there is none.
 
@@ -132,9 +128,7 @@ def conservative_phase(c: np.ndarray) -> int | None:
     c : numpy.ndarray of complex, shape (..., n+1)
         Coefficients, highest power first.
     """
-    c = np.asarray(c, dtype=complex)
-    n = c.shape[-1] - 1
-    d = c * _i_power(np.arange(n, -1, -1))
+    d = axis_products(c)
     # exact products with 1, i, -1, -i: an exact zero imaginary (real) part is structure
     if np.all(d.imag == 0):
         return 0
@@ -220,7 +214,8 @@ class NeutralCondition:
     free : sequence of str
         Names of the free parameters (the unknowns are ``(*free, w)``).
     fixed : mapping
-        Values of all other parameters of the model.
+        Values of all other parameters of the model (checked by the caller,
+        :func:`stability.linear.spectra.fixed_parameters`).
     samples : array_like, shape (m, len(free)), optional
         Points used to decide the form and the deflation (default: the centre of a unit box).
     form : {"crossing", "collision"}, optional
@@ -255,13 +250,6 @@ class NeutralCondition:
         self.model = get_model(model)
         self.free = tuple(free)
         self.fixed = {k: float(v) for k, v in fixed.items()}
-        missing = set(self.model.parameters) - set(self.free) - set(self.fixed)
-        extra = (set(self.free) | set(self.fixed)) - set(self.model.parameters)
-        if missing or extra:
-            raise ParameterTypeError(
-                f"model {self.model.name!r} takes {', '.join(self.model.parameters)}; "
-                f"missing {sorted(missing)}, unknown {sorted(extra)}"
-            )
         if samples is None:
             samples = np.full((1, len(self.free)), 0.1)
         samples = np.atleast_2d(np.asarray(samples, dtype=float))
@@ -271,17 +259,14 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        # the common phase of all samples (None as soon as one has none or two differ)
-        self.phase = conservative_phase(c[0])
-        for ci in c[1:]:
-            if self.phase is None:
-                break
-            if conservative_phase(ci) != self.phase:
-                self.phase = None
+        # the common phase of all samples (:func:`conservative_phase` of each, at once; None if
+        # one has none or two differ)
+        d = axis_products(c)
+        phases = np.where(np.all(d.imag == 0, axis=-1), 0, np.where(np.all(d.real == 0, axis=-1), 1, -1))
+        self.phase = int(phases[0]) if phases[0] >= 0 and (phases == phases[0]).all() else None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
-        if form not in ("crossing", "collision"):
-            raise InputError(f"form = {form!r}; use 'crossing' or 'collision'")
+        check_choice("form", form, ("crossing", "collision"))
         if form == "collision" and self.phase is None:
             raise InputError(
                 f"model {self.model.name!r} with {self.fixed} is not conservative; "
@@ -373,8 +358,7 @@ class NeutralCondition:
     # -- the equations --------------------------------------------------------------------
     def _real_poly(self, c: np.ndarray) -> np.ndarray:
         """Real coefficients ``a_k`` of ``P(w) = e^{-i theta} p(i w)`` (highest first)."""
-        n = c.shape[-1] - 1
-        d = c * _i_power(np.arange(n, -1, -1))
+        d = axis_products(c)
         return d.real if self.phase == 0 else d.imag
 
     def residual_and_jacobian(
@@ -505,7 +489,7 @@ class NeutralCondition:
         return np.abs(self.residuals(values, w)).max(axis=-1) if len(np.atleast_1d(w)) else np.zeros(0)
 
     def other_modes_many(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """:meth:`other_modes` at many points at once, shape ``(m, k)``.
+        """:meth:`other_modes_list` at many points at once, shape ``(m, k)``.
 
         The neutral root(s) ``i w`` are divided out and the quotient solved by the same source
         as the one-point path (:func:`_other_roots_into`, composite division, the stable
@@ -525,30 +509,24 @@ class NeutralCondition:
             out = np.empty((len(w), m), dtype=np.complex128)
             cached(_other_roots_many)(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
-        if m <= 2:  # interpreted: the same source on Python numbers, row by row
-            rows = []
-            for i in range(len(w)):
-                work = c[i].tolist()
-                roots = [0j, 0j]
-                _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
-                rows.append(roots[:m])
-            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
-        quotients = np.empty((len(w), m + 1), dtype=complex)
+        # interpreted: the same source on Python numbers, row by row (the roots, or beyond degree
+        # 2 the quotient)
+        rows = []
         for i in range(len(w)):
-            work = [complex(x) for x in c[i]]
-            _other_roots_into(work, len(work), float(w[i]), multiplicity, [0j, 0j])
-            quotients[i] = work[: m + 1]
+            work, roots = c[i].tolist(), [0j, 0j]
+            _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
+            rows.append(roots[:m] if m <= 2 else work[: m + 1])
+        if m <= 2:
+            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
+        quotients = np.array(rows, dtype=complex).reshape(len(w), m + 1)
         comp = np.zeros((len(w), m, m), dtype=complex)
         comp[:, 0, :] = -quotients[:, 1:] / quotients[:, :1]
         comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
         return np.linalg.eigvals(comp)
 
-    def other_modes(self, values: np.ndarray, w: float) -> np.ndarray:
-        """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros excluded)."""
-        return np.array(self.other_modes_list(values, w), dtype=complex)
-
     def other_modes_list(self, values: Sequence[float], w: float) -> list[complex]:
-        """:meth:`other_modes` as a list of Python complex numbers (the scalar inner loop)."""
+        """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros
+        excluded), as a list of Python complex numbers (the scalar inner loop)."""
         c, _ = self._scalar(values, False)
         return _other_roots_list(c, float(w), 1 if self.form == "crossing" else 2)
 

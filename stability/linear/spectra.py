@@ -20,6 +20,7 @@ marginal (if no other mode grows), never unstable by a round-off sign.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -27,7 +28,7 @@ import numpy as np
 
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
-from ..parameters import DEFAULT_MU, check_domain, check_flag
+from ..parameters import DEFAULT_MU, check_choice, check_domain, check_flag
 from ..products import MARGINAL, STABLE, UNSTABLE
 from . import kernel
 from .roots import UNIT_ROUNDOFF, inclusion_radius, neutral_tolerance, polynomial_roots
@@ -117,10 +118,44 @@ def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any
     return out
 
 
-def _lapack(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def parameter_name(model: LinearModel, name: Any, what: str) -> str:
+    """``name`` (the argument ``what``) if it is one of the model's parameters."""
+    if not isinstance(name, str) or name not in model.parameters:
+        raise InputError(
+            f"{what} = {name!r} is not a parameter of model {model.name!r}; choose one of {', '.join(model.parameters)}"
+        )
+    return name
+
+
+def fixed_parameters(model: LinearModel, free: Sequence[str], fixed: Mapping[str, Any]) -> dict[str, float]:
+    """The parameters held fixed while those of ``free`` vary, as floats: ``fixed`` without its
+    None values, ``mu`` defaulting to 2.28, checked by :func:`model_parameters` (with the free
+    ones) and :func:`~stability.parameters.check_domain` (scalars)."""
+    if not isinstance(fixed, Mapping):
+        raise ParameterTypeError(f"fixed must be a mapping of parameter names to values, got {type(fixed).__name__}")
+    given = {k: v for k, v in fixed.items() if v is not None}
+    for name in free:
+        if name in given:
+            raise ParameterTypeError(f"{name} is varied and cannot also be given a value")
+    if "mu" in model.parameters and "mu" not in free:
+        given.setdefault("mu", DEFAULT_MU)
+    missing = [n for n in model.parameters if n not in free and n not in given]
+    if missing:
+        raise ParameterTypeError(f"fixed must give {', '.join(missing)} for model {model.name!r}")
+    given = model_parameters(model, {**given, **dict.fromkeys(free, 0.0)})
+    p, _ = check_domain(scalar=True, **{k: v for k, v in given.items() if k not in free})
+    return {k: float(v) for k, v in p.items()}
+
+
+def lapack_eigenvalues(model: LinearModel, p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ``"lapack"`` method: eigenvalues of ``M^-1 A`` (unsorted), their error bounds
+    ``max(8 n u ||M^-1 A||, r)`` (``r`` the inclusion radius of each as a root of the model's
+    polynomial) and the flags of exact real parts (none); ``numpy.linalg.LinAlgError`` where
+    ``M`` is singular."""
     M, A = model.matrices(**p)
-    ev = np.linalg.eigvals(np.linalg.solve(M, A))
-    scale = np.linalg.norm(np.linalg.solve(M, A), axis=(-2, -1))
+    MA = np.linalg.solve(M, A)
+    ev = np.linalg.eigvals(MA)
+    scale = np.linalg.norm(MA, axis=(-2, -1))
     bound = 8 * model.n_modes * UNIT_ROUNDOFF * scale[..., None] * np.ones(ev.shape)
     # the backward-error bound above ignores the conditioning of each eigenvalue (colliding
     # modes, near-singular M): take the rigorous inclusion radius of the computed roots of
@@ -195,6 +230,12 @@ def _fused(m: LinearModel, given: dict[str, Any], mask_unphysical: bool, paralle
     return Spectrum(m, p, ev, bound, neutral, stab, out.inside)
 
 
+def mode_order(ev: np.ndarray) -> np.ndarray:
+    """The indices that sort eigenvalues along the last axis by the module's convention:
+    decreasing real part, ties by decreasing imaginary part."""
+    return np.lexsort((-ev.imag, -ev.real), axis=-1)
+
+
 def _classify(ev: np.ndarray, bound: np.ndarray, exact: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     scale = np.max(np.abs(ev), axis=-1, keepdims=True)
     tol = neutral_tolerance(bound, scale)
@@ -243,8 +284,7 @@ def spectrum(
     Spectrum
     """
     m = get_model(model)
-    if method not in METHODS:
-        raise InputError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
+    check_choice("method", method, METHODS)
     given = model_parameters(m, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     if parallel is not None:
         parallel = check_flag("parallel", parallel)
@@ -271,8 +311,8 @@ def spectrum(
             r = polynomial_roots(m.coefficients(**sub))
             e, b, x = r.roots, r.error_bound, r.exact_real
         else:
-            e, b, x = _lapack(m, sub)
-        order = np.lexsort((-e.imag, -e.real), axis=-1)
+            e, b, x = lapack_eigenvalues(m, sub)
+        order = mode_order(e)
         e = np.take_along_axis(e, order, -1)
         b = np.take_along_axis(b, order, -1)
         x = np.take_along_axis(x, order, -1)
@@ -322,8 +362,7 @@ def eigenvalues(
     Examples
     --------
     >>> import stability
-    >>> s = stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5)
-    >>> s.shape
+    >>> stability.eigenvalues("sliding", q=-0.1, fr_inv=0.3, sigma=1.0, alpha_v=0.5).shape
     (3,)
     """
     return spectrum(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu, method=method).eigenvalues

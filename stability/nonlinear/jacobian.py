@@ -114,4 +114,6 @@ def jacobian_eigenvalues(
     """
     A, _ = transverse_jacobian(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)
     ev = np.linalg.eigvals(A)
-    return ev[np.lexsort((-ev.imag, -ev.real))]
+    from ..linear.spectra import mode_order  # the spectra's sort convention (here: not imported with this module)
+
+    return ev[mode_order(ev)]
