@@ -307,6 +307,16 @@ def _hermite(y, f0, yn, f1, hh, th, res):
 
 
 @njit(cache=True, nogil=True)
+def _interpolate(y, k, yn, f1, h, th, hermite, res):
+    """The state at the fraction ``th`` of the step: rk4's Hermite cubic (``k[0] = f0``) or
+    dopri5's dense output, into ``res``."""
+    if hermite:
+        _hermite(y, k[0], yn, f1, h, th, res)
+    else:
+        _dopri5_dense(y, k, h, th, res)
+
+
+@njit(cache=True, nogil=True)
 def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_stick):
     """The zero of ``N`` within the step ``[t, t + h]`` (``N(t) = n0 > 0 >= n1 = N(t + h)``) on
     the step's interpolant (dense output of dopri5, or rk4's Hermite cubic with ``k[0] = f0``),
@@ -320,10 +330,7 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
         x = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         if not (a < x < b):
             x = 0.5 * (a + b)
-        if hermite:
-            _hermite(y, k[0], yn, f1, h, x, res)
-        else:
-            _dopri5_dense(y, k, h, x, res)
+        _interpolate(y, k, yn, f1, h, x, hermite, res)
         fx = event_value(res, _model_rhs(code, t + x * h, res, p), p, watch, c_stick)
         if fx > 0.0:
             a, fa = x, fx
@@ -339,11 +346,38 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
             break
     # the event is the first time N <= 0: the bracket's right end
     if x != b:
-        if hermite:
-            _hermite(y, k[0], yn, f1, h, b, res)
-        else:
-            _dopri5_dense(y, k, h, b, res)
+        _interpolate(y, k, yn, f1, h, b, hermite, res)
     return b
+
+
+@njit(cache=True, nogil=True)
+def _outputs(t_eval, j, t, h, t_stop, before, y, k, yn, f1, hermite, out):
+    """The outputs ``out[j], ...`` at the times of ``t_eval`` from ``j`` on up to ``t_stop``
+    (``before``: strictly before it, an event's time), on the interpolant of the step
+    ``[t, t + h]``; returns the next output index."""
+    while j < t_eval.shape[0] and (t_eval[j] < t_stop or (not before and t_eval[j] == t_stop)):
+        _interpolate(y, k, yn, f1, h, (t_eval[j] - t) / h, hermite, out[j])
+        j += 1
+    return j
+
+
+@njit(cache=True, nogil=True)
+def _watched_step(code, p, t, h, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
+    """After an accepted step ``[t, t + h]`` of a watched run (new state ``yn``, derivative
+    ``f1``): -1 if the watched quantity (:func:`event_value`) is still > 0 at its end (kept in
+    ``fs[_N]``); else the event located on the step's interpolant (:func:`_locate_zero`): the
+    outputs before it written, ``y`` the state and ``fs[_TEV]`` the time there, and the next
+    output index returned."""
+    n_new = event_value(yn, f1, p, watch, c_stick)
+    if n_new > 0.0:
+        fs[_N] = n_new
+        return -1
+    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, f1, hermite, ys, watch, c_stick)
+    fs[_TEV] = t + th_ev * h
+    j = _outputs(t_eval, j, t, h, fs[_TEV], True, y, k, yn, f1, hermite, out)
+    for i in range(y.shape[0]):
+        y[i] = ys[i]
+    return j
 
 
 @njit(cache=True, nogil=True)
@@ -520,24 +554,12 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         if en <= 1.0:
             t_new = t_end if last else t + h
             if watch != 0 or c_stick >= -1.0:
-                n_new = event_value(yn, k[6], p, watch, c_stick)
-                if n_new <= 0.0:
-                    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys, watch, c_stick)
-                    t_ev = t + th_ev * h
-                    while j < m and t_eval[j] < t_ev:
-                        _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
-                        j += 1
-                    for i in range(n):
-                        y[i] = ys[i]
-                    t = t_ev
-                    fs[_TEV] = t_ev
+                j_ev = _watched_step(code, p, t, h, y, k, yn, k[6], False, ys, t_eval, j, out, fs, watch, c_stick)
+                if j_ev >= 0:
+                    j, t, status = j_ev, fs[_TEV], EVENT
                     naccept += 1
-                    status = EVENT
                     break
-                fs[_N] = n_new
-            while j < m and t_eval[j] <= t_new:
-                _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
-                j += 1
+            j = _outputs(t_eval, j, t, h, t_new, False, y, k, yn, k[6], False, out)
             t = t_new
             for i in range(n):
                 y[i] = yn[i]
@@ -614,23 +636,11 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         steps += 1
         t_new = t_end if last else t + hh
         if watch != 0 or c_stick >= -1.0:
-            n_new = event_value(yn, f1, p, watch, c_stick)
-            if n_new <= 0.0:
-                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, f0, yn, f1, True, ys, watch, c_stick)
-                t_ev = t + th_ev * hh
-                while j < m and t_eval[j] < t_ev:
-                    _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
-                    j += 1
-                for i in range(n):
-                    y[i] = ys[i]
-                t = t_ev
-                fs[_TEV] = t_ev
-                status = EVENT
+            j_ev = _watched_step(code, p, t, hh, y, f0, yn, f1, True, ys, t_eval, j, out, fs, watch, c_stick)
+            if j_ev >= 0:
+                j, t, status = j_ev, fs[_TEV], EVENT
                 break
-            fs[_N] = n_new
-        while j < m and t_eval[j] <= t_new:
-            _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
-            j += 1
+        j = _outputs(t_eval, j, t, hh, t_new, False, y, f0, yn, f1, True, out)
         finite = True
         for i in range(n):
             y[i] = yn[i]

@@ -54,7 +54,6 @@ __all__ = [
     "candidates",
     "chunk_length",
     "final_state",
-    "final_state_from",
     "predict",
     "settle",
 ]
@@ -497,40 +496,6 @@ def final_state(
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    options = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
-    return final_state_from(y, params, simulation=simulation, **options)
-
-
-def final_state_from(
-    y: np.ndarray,
-    params: dict[str, float],
-    *,
-    simulation: bool = True,
-    t_max: Any = 2e5,
-    settle_tolerance: Any = 1e-4,
-    rtol: Any = 1e-10,
-    stick_tilt: float | None = None,
-) -> FinalState:
-    """:func:`final_state` after its input checks: from a checked state and checked parameters.
-
-    What the steady layer itself does per call: ``J0`` and ``E0`` of the state
-    (:func:`stability.steady.states.point_integrals`), the steady states of the level and the
-    decision (:func:`predict`), the result; and the deciding run when one is needed (its options
-    ``t_max``, ``settle_tolerance``, ``rtol`` are checked then). ``python benchmarks/run.py --suite steady``
-    times it apart from the checks.
-
-    Parameters
-    ----------
-    y : numpy.ndarray
-        State ``(omega, k, V0_h, ...)`` of :func:`stability.nonlinear.runs.initial_state`
-        (``|k| = 1``; only the first 8 entries are used).
-    params : dict of float
-        ``q, fr_inv, sigma, mu, alpha_v`` in the physical domain, ``alpha_v > 0``
-        (:func:`stability.steady.products.sliding_parameters`).
-    simulation, t_max, settle_tolerance, rtol, stick_tilt
-        As in :func:`final_state`.
-    """
-    q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     # one query: interpreted unless compiled code is in memory (stability.execution.pick)
     J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
