@@ -318,25 +318,18 @@ def stick_slip(
     stuck = ph == _STICK
     lim = np.full(t_all.size, a_s)
 
-    def put_forces(sel: np.ndarray, forces: np.ndarray) -> None:
-        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (the
-        friction's vertical component stays 0, as :func:`trajectory_dataset` writes it)."""
-        f = ds.friction.values.copy()
-        f[sel, 0:2] = forces[:, 0:2]
-        ds["friction"].values = f
-        mag = ds.friction_magnitude.values.copy()
-        mag[sel] = np.hypot(forces[:, 0], forces[:, 1])
-        ds["friction_magnitude"].values = mag
-        nf = ds.normal_force.values.copy()
-        nf[sel] = forces[:, 2]
-        ds["normal_force"].values = nf
-
+    # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
+    # while slipping (the run's p_reg is the regularised one); the friction's K component stays 0
+    forces = np.empty((t_all.size, 3))
     if stuck.any():
-        rolling_states = np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]]))
-        put_forces(stuck, rolling.contact_forces(rolling_states, p))
-    slipping = ~stuck
-    if slipping.any():  # the exact law (7) while slipping (the run's p_reg is the regularised one)
-        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p))
+        forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
+    if not stuck.all():
+        forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
+    friction = ds.friction.values.copy()
+    friction[:, 0:2] = forces[:, 0:2]
+    ds["friction"].values = friction
+    ds["friction_magnitude"].values = np.hypot(forces[:, 0], forces[:, 1])
+    ds["normal_force"].values = forces[:, 2].copy()
     if scaled:
         lim = a_s * ds.normal_force.values / n_eq
     ds["friction"].attrs["comment"] = (

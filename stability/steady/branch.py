@@ -57,7 +57,7 @@ from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
 from .linearisation import state_modes
-from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, variable
+from .products import check_scales, product_attrs, sliding_parameters, state_variables, variable
 from .states import state_integrals
 from .verdicts import flag_of
 
@@ -453,61 +453,18 @@ def points_dataset(
             if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
+    values = dict(tilt=np.degrees(theta), precession_rate=lam, axial_spin=axial, energy=E, jellett=J)
+    values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
+    values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
+    note = "at a branch point: spin / (1 + q cos(tilt))"
     data = {
-        "tilt": variable(
-            "point", np.degrees(theta), "polar angle of the axis k from the upward vertical", DEGREE, short="tilt"
-        ),
-        "jellett": variable(
-            "point", J, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
-        ),
-        "precession_rate": variable(
-            "point",
-            lam,
-            "precession rate of the axis about the vertical",
-            "Omega",
-            short="precession rate",
-            comment="at a branch point: spin / (1 + q cos(tilt))",
-        ),
-        "axial_spin": variable("point", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
-        "energy": variable("point", E, "total energy", "A0 Omega^2", short="energy"),
+        **state_variables("point", values, "branch points", precession_rate=note),
         "upright_equivalent_spin": variable(
             "point",
             J / j_upright,
             "spin of the upright state with the same J, J / (sigma (1 + q))",
             "Omega",
             short="upright-equiv. spin",
-        ),
-        "growth_rate": variable(
-            "point",
-            growth,
-            "leading growth rate of the linearisation (frame precessing with the state), structural "
-            "neutral directions removed",
-            "Omega",
-            short="leading growth rate",
-        ),
-        "growth_rate_bound": variable(
-            "point",
-            bound,
-            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
-            "point; tilted states: 1e3 u ||A||_F)",
-            "Omega",
-            short="growth rate bound",
-        ),
-        "n_neutral": variable(
-            "point",
-            np.asarray(n_neutral, dtype=np.int8),
-            "number of physical modes neutral within rounding",
-            short="neutral modes",
-        ),
-        "stability": ("point", flags, flag_attrs("stability of the steady state")),
-        "stability_jacobian": (
-            "point",
-            np.asarray(jac, dtype=np.int8),
-            flag_attrs(
-                "Jacobian verdict",
-                comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
-                "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points",
-            ),
         ),
         "kind": (
             "point",
