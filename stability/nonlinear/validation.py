@@ -241,48 +241,27 @@ def _one_point(
     }
 
 
+_LINEAR, _JACOBIAN = "the registered linear operator", "the nonlinear model's Jacobian"
+_ERROR = "relative error of the measured {} against the {}"
+_UNRESOLVED = " (relative to |s| where the growth rate is not resolved)"
+_RUN = "of the nonlinear run"
+
 #: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
-    "predicted_growth_rate": ("predicted growth rate", "Omega", "growth rate Re s of the registered linear operator"),
-    "predicted_frequency": (
-        "predicted frequency",
-        "Omega",
-        "frequency Im s of the registered linear operator (fixed frame)",
-    ),
-    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", "growth rate Re s of the nonlinear model's Jacobian"),
-    "jacobian_frequency": (
-        "Jacobian frequency",
-        "Omega",
-        "frequency Im s of the nonlinear model's Jacobian (fixed frame)",
-    ),
-    "measured_growth_rate": ("measured growth rate", "Omega", "growth rate fitted to log|Phi(t)| of the nonlinear run"),
-    "measured_frequency": (
-        "measured frequency",
-        "Omega",
-        "frequency fitted to the phase of Phi(t) of the nonlinear run",
-    ),
-    "growth_rate_error": (
-        "growth error (linear)",
-        "1",
-        "relative error of the measured growth rate against the linear operator "
-        "(relative to |s| where the growth rate is not resolved)",
-    ),
-    "frequency_error": (
-        "frequency error (linear)",
-        "1",
-        "relative error of the measured frequency against the linear operator",
-    ),
+    "predicted_growth_rate": ("predicted growth rate", "Omega", f"growth rate Re s of {_LINEAR}"),
+    "predicted_frequency": ("predicted frequency", "Omega", f"frequency Im s of {_LINEAR} (fixed frame)"),
+    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", f"growth rate Re s of {_JACOBIAN}"),
+    "jacobian_frequency": ("Jacobian frequency", "Omega", f"frequency Im s of {_JACOBIAN} (fixed frame)"),
+    "measured_growth_rate": ("measured growth rate", "Omega", f"growth rate fitted to log|Phi(t)| {_RUN}"),
+    "measured_frequency": ("measured frequency", "Omega", f"frequency fitted to the phase of Phi(t) {_RUN}"),
+    "growth_rate_error": ("growth error (linear)", "1", _ERROR.format("growth rate", "linear operator") + _UNRESOLVED),
+    "frequency_error": ("frequency error (linear)", "1", _ERROR.format("frequency", "linear operator")),
     "growth_rate_error_jacobian": (
         "growth error (Jacobian)",
         "1",
-        "relative error of the measured growth rate against the Jacobian "
-        "(relative to |s| where the growth rate is not resolved)",
+        _ERROR.format("growth rate", "Jacobian") + _UNRESOLVED,
     ),
-    "frequency_error_jacobian": (
-        "frequency error (Jacobian)",
-        "1",
-        "relative error of the measured frequency against the Jacobian",
-    ),
+    "frequency_error_jacobian": ("frequency error (Jacobian)", "1", _ERROR.format("frequency", "Jacobian")),
     "jacobian_bound": (
         "Jacobian error bound",
         "Omega",

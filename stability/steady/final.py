@@ -242,42 +242,27 @@ class FinalState:
             "axial_spin": scalar(
                 self.axial_spin, "spin about the axis of the final state, omega . k", "Omega", "axial spin"
             ),
-            "candidate_kind": column(
-                [c.kind for c in cands],
-                {"long_name": "kind of state", "comment": "kind of the steady state of the level"},
-                str,
-            ),
-            "candidate_tilt": column(
-                [c.tilt for c in cands], var_attrs("tilt of the steady state", DEGREE, short="tilt")
-            ),
-            "candidate_energy": column(
-                [c.energy for c in cands],
-                var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"),
-            ),
-            "candidate_precession_rate": column(
-                [c.precession_rate for c in cands],
-                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
-            ),
-            "candidate_axial_spin": column(
-                [c.axial_spin for c in cands],
-                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
-            ),
-            "candidate_stability": column(
-                [c.stability for c in cands], flag_attrs("stability of the steady state"), np.int8
-            ),
-            "candidate_energy_test": column(
-                [c.energy_test for c in cands],
-                var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"),
-            ),
-            "candidate_reachable": column(
-                [c.reachable for c in cands], yes_no("U_J <= initial energy", "unreachable reachable"), np.int8
-            ),
-            "candidate_is_final": column(
-                [c is self.state for c in cands],
-                yes_no("final state", "no yes", comment="the motion ends on this state"),
-                np.int8,
-            ),
         }
+        columns = {  # candidate_<field>: attributes (and dtype) of the column of the candidates' field
+            "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
+            "tilt": (var_attrs("tilt of the steady state", DEGREE, short="tilt"), None),
+            "energy": (var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"), None),
+            "precession_rate": (
+                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
+                None,
+            ),
+            "axial_spin": (
+                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
+                None,
+            ),
+            "stability": (flag_attrs("stability of the steady state"), np.int8),
+            "energy_test": (var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"), None),
+            "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
+        }
+        for name, (attrs, dtype) in columns.items():
+            data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
+        final = yes_no("final state", "no yes", comment="the motion ends on this state")
+        data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
         p = self.parameters
         curve, curve_coords = potential_curve(self.jellett, q=p["q"], sigma=p["sigma"], fr_inv=p["fr_inv"], mu=p["mu"])
         data.update(curve)
