@@ -267,6 +267,17 @@ def contact_loss_boundary(
         return unit if name == "spin" else str(QUANTITIES[name])
 
     held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
+    title = "where a launch loses its contact: the smallest normal force of the run"
+    attrs = {
+        "Conventions": "CF-1.10",
+        PRODUCT_ATTR: PRODUCT,
+        "title": title,
+        "source": f"tippe-stability {package_version()}",
+    }
+    attrs.update(x_quantity=x, y_quantity=y, unit=unit, **{f"launch_{k}": float(v) for k, v in held.items()})
+    ends_text = "; ".join(ends) if ends else "no sign change on the grid"
+    attrs.update(duration=duration, boundary_end_reasons=ends_text, runs=runs, seconds=seconds)
+    attrs.update(q=top.q, mu=top.mu, sigma=top.sigma)
     return xr.Dataset(
         {
             "min_normal_force": (
@@ -296,21 +307,5 @@ def contact_loss_boundary(
             "x": ("x", axis_values(x, xs), {"long_name": x.replace("_", " "), "units": units(x)}),
             "y": ("y", axis_values(y, ys), {"long_name": y.replace("_", " "), "units": units(y)}),
         },
-        attrs={
-            "Conventions": "CF-1.10",
-            PRODUCT_ATTR: PRODUCT,
-            "title": "where a launch loses its contact: the smallest normal force of the run",
-            "source": f"tippe-stability {package_version()}",
-            "x_quantity": x,
-            "y_quantity": y,
-            "unit": unit,
-            **{f"launch_{k}": float(v) for k, v in held.items()},
-            "duration": duration,
-            "boundary_end_reasons": "; ".join(ends) if ends else "no sign change on the grid",
-            "runs": runs,
-            "seconds": seconds,
-            "q": top.q,
-            "mu": top.mu,
-            "sigma": top.sigma,
-        },
+        attrs=attrs,
     )
