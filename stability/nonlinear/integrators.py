@@ -398,6 +398,28 @@ def _start(code, t_eval, p, y, k, fs, cnt, out):
 
 
 @njit(cache=True, nogil=True)
+def _resume(fs, cnt):
+    """The state a slice carries on: ``t, h, j, steps, nfev, naccept, nreject, rejected``."""
+    return fs[_T], fs[_H], cnt[_J], cnt[_STEPS], cnt[_NFEV], cnt[_NACCEPT], cnt[_NREJECT], cnt[_REJECTED] != 0
+
+
+@njit(cache=True, nogil=True)
+def _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status):
+    """Store what :func:`_resume` reads for the next slice, and the status (0 while the run goes
+    on); returns ``status``."""
+    fs[_T] = t
+    fs[_H] = h
+    cnt[_J] = j
+    cnt[_STEPS] = steps
+    cnt[_NFEV] = nfev
+    cnt[_NACCEPT] = naccept
+    cnt[_NREJECT] = nreject
+    cnt[_REJECTED] = 1 if rejected else 0
+    cnt[_STATUS] = 0 if status == CONTINUE else status
+    return status
+
+
+@njit(cache=True, nogil=True)
 def _ends_at_start(y, f0, p, fs, cnt, watch, c_stick):
     """True if the watched quantity is <= 0 at the start (no contact force there): the event is
     the initial state."""
@@ -497,14 +519,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         fs[_H] = min(h, t_end - t)
         if _ends_at_start(y, k[0], p, fs, cnt, watch, c_stick):
             return EVENT
-    t = fs[_T]
-    h = fs[_H]
-    j = cnt[_J]
-    steps = cnt[_STEPS]
-    nfev = cnt[_NFEV]
-    naccept = cnt[_NACCEPT]
-    nreject = cnt[_NREJECT]
-    rejected = cnt[_REJECTED] != 0
+    t, h, j, steps, nfev, naccept, nreject, rejected = _resume(fs, cnt)
     status = 0
     used = 0
     while j < m:
@@ -574,16 +589,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             nreject += 1
             rejected = True
             h *= max(0.2, 0.9 * en**-0.2)
-    fs[_T] = t
-    fs[_H] = h
-    cnt[_J] = j
-    cnt[_STEPS] = steps
-    cnt[_NFEV] = nfev
-    cnt[_NACCEPT] = naccept
-    cnt[_NREJECT] = nreject
-    cnt[_REJECTED] = 1 if rejected else 0
-    cnt[_STATUS] = 0 if status == CONTINUE else status
-    return status
+    return _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status)
 
 
 @njit(cache=True, nogil=True)
@@ -607,10 +613,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         _start(code, t_eval, p, y, f0, fs, cnt, out)
         if _ends_at_start(y, f0[0], p, fs, cnt, watch, c_stick):
             return EVENT
-    t = fs[_T]
-    j = cnt[_J]
-    nfev = cnt[_NFEV]
-    steps = cnt[_STEPS]
+    t, _h, j, steps, nfev, _accepted, _rejected, _flag = _resume(fs, cnt)
     status = 0
     used = 0
     while j < m:
@@ -651,13 +654,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if not finite:
             status = -3
             break
-    fs[_T] = t
-    cnt[_J] = j
-    cnt[_NFEV] = nfev
-    cnt[_STEPS] = steps
-    cnt[_NACCEPT] = steps
-    cnt[_STATUS] = 0 if status == CONTINUE else status
-    return status
+    return _suspend(fs, cnt, t, h, j, steps, nfev, steps, 0, False, status)  # rk4 rejects no step
 
 
 #: a run over at most this span of time (units of the model) runs interpreted

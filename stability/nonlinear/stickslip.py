@@ -60,10 +60,10 @@ import xarray as xr
 from scipy.integrate import solve_ivp
 
 from ..errors import InputError
-from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
+from ..parameters import DEFAULT_MU, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL, check_tolerances
+from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -88,11 +88,6 @@ def _sliding_state(y8: np.ndarray, seed: np.ndarray | None = None) -> np.ndarray
     if seed is not None:
         v0 = v0 + seed
     return np.concatenate([y8[0:6], v0, y8[6:8]])
-
-
-def _slip_velocity(y10: np.ndarray) -> np.ndarray:
-    """``V_c = V0 + K x omega`` (eq. 5), horizontal part."""
-    return np.array([y10[6] - y10[1], y10[7] + y10[0]])
 
 
 def _tilt(y: np.ndarray) -> float:
@@ -183,18 +178,18 @@ def stick_slip(
             "fr_inv = 0 is outside the allowed range of stick_slip: fr_inv > 0 (no gravity, no normal "
             "force to bound the static friction)"
         )
-    a_s = params["alpha_k"] if alpha_s is None else float(as_parameter("alpha_s", alpha_s))
-    if not (a_s >= params["alpha_k"]) or not math.isfinite(a_s):
-        raise InputError(
-            f"alpha_s = {a_s!r} is outside the allowed range: alpha_k = {params['alpha_k']:g} <= alpha_s < inf "
-            "(static friction is at least the kinetic one)"
-        )
+    # static friction is at least the kinetic one
+    a_s = (
+        params["alpha_k"]
+        if alpha_s is None
+        else check_interval("alpha_s", alpha_s, params["alpha_k"], math.inf, closed="left")
+    )
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
     rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_switches = check_integer("max_switches", max_switches, minimum=1)
-    method = check_choice("method", method, ("RK45", "DOP853", "Radau", "BDF", "LSODA"))
+    method = check_choice("method", method, SCIPY_METHODS)
     sliding = get_nonlinear_model("sliding")
     rolling = get_nonlinear_model("rolling")
     # the exact law (7) while slipping: no regularisation (|V_c| >= slip_threshold > 0 there)
@@ -217,7 +212,7 @@ def stick_slip(
         return rolling.rhs(t, y, p)
 
     # every event ends its phase, on a downward crossing
-    def ev_slip_stop(t, y):
+    def ev_slip_stop(t, y):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
     def ev_slip_contact(t, y):
@@ -242,7 +237,7 @@ def stick_slip(
     t = 0.0
     phase = _SLIP
     event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
-    if math.hypot(*_slip_velocity(y)) <= slip_threshold:  # starts without slip: stick if it can
+    if ev_slip_stop(0.0, y) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
         if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
