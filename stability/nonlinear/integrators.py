@@ -351,33 +351,20 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
 
 
 @njit(cache=True, nogil=True)
-def _outputs(t_eval, j, t, h, t_stop, before, y, k, yn, f1, hermite, out):
-    """The outputs ``out[j], ...`` at the times of ``t_eval`` from ``j`` on up to ``t_stop``
-    (``before``: strictly before it, an event's time), on the interpolant of the step
-    ``[t, t + h]``; returns the next output index."""
-    while j < t_eval.shape[0] and (t_eval[j] < t_stop or (not before and t_eval[j] == t_stop)):
+def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
+    """The event in the accepted step ``[t, t + h]`` (the watched quantity > 0 at ``t``, ``n_new
+    <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's interpolant
+    (:func:`_locate_zero`): the outputs before it written, ``y`` the state and ``fs[_TEV]`` the
+    time there; returns the next output index and the event's time."""
+    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, f1, hermite, ys, watch, c_stick)
+    t_ev = t + th_ev * h
+    while j < t_eval.shape[0] and t_eval[j] < t_ev:
         _interpolate(y, k, yn, f1, h, (t_eval[j] - t) / h, hermite, out[j])
         j += 1
-    return j
-
-
-@njit(cache=True, nogil=True)
-def _watched_step(code, p, t, h, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
-    """After an accepted step ``[t, t + h]`` of a watched run (new state ``yn``, derivative
-    ``f1``): -1 if the watched quantity (:func:`event_value`) is still > 0 at its end (kept in
-    ``fs[_N]``); else the event located on the step's interpolant (:func:`_locate_zero`): the
-    outputs before it written, ``y`` the state and ``fs[_TEV]`` the time there, and the next
-    output index returned."""
-    n_new = event_value(yn, f1, p, watch, c_stick)
-    if n_new > 0.0:
-        fs[_N] = n_new
-        return -1
-    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, f1, hermite, ys, watch, c_stick)
-    fs[_TEV] = t + th_ev * h
-    j = _outputs(t_eval, j, t, h, fs[_TEV], True, y, k, yn, f1, hermite, out)
     for i in range(y.shape[0]):
         y[i] = ys[i]
-    return j
+    fs[_TEV] = t_ev
+    return j, t_ev
 
 
 @njit(cache=True, nogil=True)
@@ -569,12 +556,18 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         if en <= 1.0:
             t_new = t_end if last else t + h
             if watch != 0 or c_stick >= -1.0:
-                j_ev = _watched_step(code, p, t, h, y, k, yn, k[6], False, ys, t_eval, j, out, fs, watch, c_stick)
-                if j_ev >= 0:
-                    j, t, status = j_ev, fs[_TEV], EVENT
+                n_new = event_value(yn, k[6], p, watch, c_stick)
+                if n_new <= 0.0:
+                    j, t = _to_event(
+                        code, p, t, h, n_new, y, k, yn, k[6], False, ys, t_eval, j, out, fs, watch, c_stick
+                    )
                     naccept += 1
+                    status = EVENT
                     break
-            j = _outputs(t_eval, j, t, h, t_new, False, y, k, yn, k[6], False, out)
+                fs[_N] = n_new
+            while j < m and t_eval[j] <= t_new:
+                _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
+                j += 1
             t = t_new
             for i in range(n):
                 y[i] = yn[i]
@@ -639,11 +632,15 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         steps += 1
         t_new = t_end if last else t + hh
         if watch != 0 or c_stick >= -1.0:
-            j_ev = _watched_step(code, p, t, hh, y, f0, yn, f1, True, ys, t_eval, j, out, fs, watch, c_stick)
-            if j_ev >= 0:
-                j, t, status = j_ev, fs[_TEV], EVENT
+            n_new = event_value(yn, f1, p, watch, c_stick)
+            if n_new <= 0.0:
+                j, t = _to_event(code, p, t, hh, n_new, y, f0, yn, f1, True, ys, t_eval, j, out, fs, watch, c_stick)
+                status = EVENT
                 break
-        j = _outputs(t_eval, j, t, hh, t_new, False, y, f0, yn, f1, True, out)
+            fs[_N] = n_new
+        while j < m and t_eval[j] <= t_new:
+            _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
+            j += 1
         finite = True
         for i in range(n):
             y[i] = yn[i]

@@ -565,9 +565,8 @@ def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
 
     state = np.zeros((1, 10))
     state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
-    p = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"], alpha_v=params["alpha_v"])
     forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
-    return float(forces(state, p)[0, 2])
+    return float(forces(state, pack(**params))[0, 2])
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
@@ -579,21 +578,15 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    ys, lams, vert, cos_, spins = [], [], [], [], []
-    for c in sel:
-        if c.kind == "tilted":
-            ys.append(family.state_vector(math.radians(c.tilt), c.precession_rate, q))
-            lams.append(c.precession_rate)
-            vert.append(False)
-            spins.append(math.nan)
-        else:
-            spins.append(family.vertical_spin(c.kind, jel, q=q, sigma=sigma))
-            ys.append(family.vertical_state(c.kind, spins[-1]))
-            lams.append(0.0)
-            vert.append(True)
-        cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
-    p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p)
+    vert = [c.kind != "tilted" for c in sel]
+    spins = [family.vertical_spin(c.kind, jel, q=q, sigma=sigma) if v else math.nan for c, v in zip(sel, vert)]
+    ys = [
+        family.vertical_state(c.kind, n) if v else family.state_vector(math.radians(c.tilt), c.precession_rate, q)
+        for c, v, n in zip(sel, vert, spins)
+    ]
+    lams = [0.0 if v else c.precession_rate for c, v in zip(sel, vert)]
+    cos_ = [family.ORIENTATIONS.get(c.kind, math.nan) for c in sel]
+    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), pack(**params))
     growth = state_modes(*states, q=q, sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
