@@ -507,12 +507,8 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         if _ends_at_start(y, k[0], p, fs, cnt, watch, c_stick):
             return EVENT
     t, h, j, steps, nfev, naccept, nreject, rejected = _resume(fs, cnt)
-    status = 0
-    used = 0
-    while j < m:
-        if used >= budget:
-            status = CONTINUE
-            break
+    status = used = 0
+    while j < m and used < budget:
         if steps >= max_steps:
             status = -1
             break
@@ -582,6 +578,8 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             nreject += 1
             rejected = True
             h *= max(0.2, 0.9 * en**-0.2)
+    if status == 0 and j < m:  # the budget is used up before the end
+        status = CONTINUE
     return _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status)
 
 
@@ -607,12 +605,8 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if _ends_at_start(y, f0[0], p, fs, cnt, watch, c_stick):
             return EVENT
     t, _h, j, steps, nfev, _accepted, _rejected, _flag = _resume(fs, cnt)
-    status = 0
-    used = 0
-    while j < m:
-        if used >= budget:
-            status = CONTINUE
-            break
+    status = used = 0
+    while j < m and used < budget:
         used += 1
         hh = min(h, t_end - t)
         last = t + 1.0000001 * hh >= t_end
@@ -651,6 +645,8 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if not finite:
             status = -3
             break
+    if status == 0 and j < m:  # the budget is used up before the end
+        status = CONTINUE
     return _suspend(fs, cnt, t, h, j, steps, nfev, steps, 0, False, status)  # rk4 rejects no step
 
 
