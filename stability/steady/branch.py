@@ -178,19 +178,9 @@ class SteadyBranchProblem:
         """The engine's hook (:mod:`continuation.problem`, which lists the arguments):
         :func:`stability.steady.branch_compiled.step` (corrector, tangent, constraints and test
         function in one compiled call)."""
-        return self.kernels.step(
-            self.p,
-            self.q,
-            self.params["sigma"],
-            self.params["mu"],
-            self.code,
-            self.n_full,
-            self.degenerate,
-            self.weight,
-            float(self.jellett_max),
-            float(self.jellett_min),
-            *corrector,
-        )
+        problem = (self.p, self.q, self.params["sigma"], self.params["mu"], self.code, self.n_full, self.degenerate)
+        cuts = (self.weight, float(self.jellett_max), float(self.jellett_min))
+        return self.kernels.step(*problem, *cuts, *corrector)
 
     # --- start points -------------------------------------------------------------------
     def branch_point(self, orientation: str) -> float | None:
