@@ -166,19 +166,12 @@ def bifurcation_diagram(
 
         params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
         launches.append((float(top.spin_rate(0.3, unit)), params, INITIAL_CONDITIONS[0.3], True))
+    settling = dict(t_max=2e5, settle_tolerance=1e-3, rtol=1e-10, stick_tilt=stick_tilt)
     for r, params, start, paper in launches:
         # the launches' prediction without a run (the run below decides); the paper's with one
         pred = final_state(**params, **start, simulation=paper)
         chunk = chunk_length(pred.candidates, params, pred.jellett) if paper or pred.method == "jellett" else 5000.0
-        end, _, run = settle(
-            initial_state("sliding", **start),
-            params,
-            chunk=chunk,
-            t_max=2e5,
-            settle_tolerance=1e-3,
-            rtol=1e-10,
-            stick_tilt=stick_tilt,
-        )
+        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, **settling)
         jel = abs(pred.jellett) if paper else pred.jellett
         rows.append(
             (r, jel / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), paper)
