@@ -67,12 +67,10 @@ from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, 
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
-__all__ = ["PHASES", "SWITCH_KINDS", "stick_slip"]
+__all__ = ["PHASES", "stick_slip"]
 
 #: the phases of a hybrid run, as stored in its ``phase`` variable
 PHASES = ("slip", "stick")
-#: the kinds of switch (``switch_kind``)
-SWITCH_KINDS = ("stick", "slip", "transit")
 _SLIP, _STICK = 0, 1
 
 
@@ -311,7 +309,6 @@ def stick_slip(
     ph = np.concatenate(phases)
     ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg)
     stuck = ph == _STICK
-    lim = np.full(t_all.size, a_s)
 
     # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
     # while slipping (the run's p_reg is the regularised one); the friction's K component stays 0
@@ -325,8 +322,7 @@ def stick_slip(
     ds["friction"].values = friction
     ds["friction_magnitude"].values = np.hypot(forces[:, 0], forces[:, 1])
     ds["normal_force"].values = forces[:, 2].copy()
-    if scaled:
-        lim = a_s * ds.normal_force.values / n_eq
+    lim = a_s * ds.normal_force.values / n_eq if scaled else np.full(t_all.size, a_s)
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
     )

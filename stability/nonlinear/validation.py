@@ -210,6 +210,9 @@ def _one_point(
     def rel(meas: float, pred: float, scale: float) -> float:
         return abs(meas - pred) / (abs(pred) if abs(pred) > 0 else scale)
 
+    def growth_error(s: complex) -> float:  # relative to |s| where the growth rate is not resolved
+        return rel(g, s.real, abs(s)) if growth_resolved else abs(g - s.real) / abs(s)
+
     if failed:
         agrees = False
     elif growth_resolved:
@@ -225,11 +228,9 @@ def _one_point(
         "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
         "measured_growth_rate": g,
         "measured_frequency": w,
-        "growth_rate_error": rel(g, s_lin.real, abs(s_lin)) if growth_resolved else abs(g - s_lin.real) / abs(s_lin),
+        "growth_rate_error": growth_error(s_lin),
         "frequency_error": rel(w, s_lin.imag, abs(s_lin)),
-        "growth_rate_error_jacobian": (
-            rel(g, s_jac.real, abs(s_jac)) if growth_resolved else abs(g - s_jac.real) / abs(s_jac)
-        ),
+        "growth_rate_error_jacobian": growth_error(s_jac),
         "frequency_error_jacobian": rel(w, s_jac.imag, abs(s_jac)),
         "resolved": bool(resolved),
         "sign_agrees": agrees,
