@@ -225,13 +225,10 @@ class SteadyBranchProblem:
 
 
 def _kind_of(kind: str, detail: str) -> str:
-    if kind == "test":
-        return "fold"
+    """The branch's kind of a point of the engine's kind (a cut of J is an end)."""
     if kind == "boundary":
         return "end" if detail.startswith("jellett") else "branch_point"
-    if kind == "branch_point":
-        return "branch_point"
-    return "regular"
+    return {"test": "fold", "branch_point": "branch_point"}.get(kind, "regular")
 
 
 def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU) -> dict[str, float]:
