@@ -226,6 +226,10 @@ def stick_slip(
     for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
         ev.terminal, ev.direction = True, -1
 
+    def slip_along(y8: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """The slip restarting against the needed friction ``f``, seeded with ``2 slip_threshold``."""
+        return _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
+
     y = initial_state("sliding", omega, k, velocity)
     grid = np.linspace(0.0, t_end, int(np.ceil(t_end / dt - 1e-9)) + 1)
     ts: list[np.ndarray] = []
@@ -243,7 +247,7 @@ def stick_slip(
         elif math.hypot(*f) <= limit(n):
             phase, y, n0 = _STICK, y8, n
         else:
-            y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
+            y = slip_along(y8, f)
             n0 = ev_slip_contact(0.0, y)
     else:
         n0 = ev_slip_contact(0.0, y)
@@ -287,21 +291,15 @@ def stick_slip(
         if len(switches) >= max_switches:
             status, message = CHATTERING, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
             break
-        if phase == _SLIP:  # the slip reached the threshold: stick if rolling's friction is within the limit
-            y8 = _rolling_state(y_ev)
-            f, n = rolling_need(y8)
-            ratio = math.hypot(*f) / limit(n)
-            kind = "stick" if ratio <= 1.0 else "transit"
-            switches.append((t_ev, kind, _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
-            if kind == "stick":
-                phase, y = _STICK, y8
-            else:
-                y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
-        else:  # the needed friction reached the static limit: slip along -f
-            f, n = rolling_need(y_ev)
-            ratio = math.hypot(*f) / limit(n)
-            switches.append((t_ev, "slip", _tilt(y_ev), 0.0, float(y_ev[0:3] @ y_ev[3:6]), ratio))
-            phase, y = _SLIP, _sliding_state(y_ev, -2.0 * slip_threshold * f / math.hypot(*f))
+        # slipping: the slip reached the threshold, stick if rolling's friction is within the limit
+        # (else a transit); sticking: the needed friction reached the static limit, slip along -f
+        y8 = _rolling_state(y_ev) if phase == _SLIP else y_ev
+        f, n = rolling_need(y8)
+        ratio = math.hypot(*f) / limit(n)
+        kind = "slip" if phase == _STICK else "stick" if ratio <= 1.0 else "transit"
+        speed = slip_threshold if phase == _SLIP else 0.0
+        switches.append((t_ev, kind, _tilt(y_ev), speed, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+        phase, y = (_STICK, y8) if kind == "stick" else (_SLIP, slip_along(y8, f))
     if status < 0:
         warnings.warn(f"stick_slip: {message}", RuntimeWarning, stacklevel=2)
     t_all = np.concatenate(ts)
