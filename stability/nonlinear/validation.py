@@ -64,7 +64,7 @@ from ..parameters import DEFAULT_MU, check_choice, check_domain, check_interval,
 from ..products import PRODUCT_ATTR
 from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS, check_tolerances
-from .jacobian import transverse_jacobian, upright_state
+from .jacobian import transverse_jacobian
 from .runs import simulate
 
 __all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "jacobian_modes", "leading_mode", "validate"]
@@ -135,6 +135,15 @@ def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     return float(g_fit[0]), float(w), rms
 
 
+def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
+    """``omega``, ``k`` (and the sliding top's ``velocity``) of the upright spin ``omega = k = K``
+    displaced along the transverse mode ``v`` (``omega, Phi[, V]``, complex, scaled)."""
+    start = {"omega": [v[0].real, v[0].imag, 1.0], "k": [v[1].real, v[1].imag, np.sqrt(1.0 - abs(v[1]) ** 2)]}
+    if model == "sliding":
+        start["velocity"] = [v[2].real, v[2].imag]
+    return start
+
+
 def _one_point(
     model: str,
     params: dict[str, float],
@@ -168,19 +177,12 @@ def _one_point(
     # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
     # model since "rolling" is the first-principles one, issue 15): the same mode
     s_lin = s
-    y = upright_state(model)
-    y[0], y[1] = v[0].real, v[0].imag
-    y[3], y[4] = v[1].real, v[1].imag
-    y[5] = np.sqrt(1.0 - abs(v[1]) ** 2)
-    velocity = None
-    if m.name == "sliding":
-        velocity = [v[2].real, v[2].imag]
     t_end = _duration(s, n_efold, n_periods, max_time)
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
-        start = dict(t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3], k=y[3:6], velocity=velocity)
+        start = dict(t_eval=np.linspace(0.0, t_end, n_samples), **_mode_start(m.name, v))
         top = {k: v for k, v in params.items() if k != "alpha_k"}
         ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **top)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
@@ -472,9 +474,8 @@ def coulomb_growth(
     s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
     i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
-    k = [v[1].real, v[1].imag, np.sqrt(1 - abs(v[1]) ** 2)]
-    run = dict(t_end=t_end, dt=t_end / 3000, omega=[v[0].real, v[0].imag, 1.0], k=k)
-    run.update(velocity=[v[2].real, v[2].imag], **top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
+    run = dict(t_end=t_end, dt=t_end / 3000, **_mode_start("sliding", v))
+    run.update(**top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
     if scheme == "adaptive":
         ds = simulate("sliding", **run, slip_scale=slip_scale, method="LSODA", rtol=rtol, atol=atol)
     else:
