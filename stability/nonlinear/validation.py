@@ -156,11 +156,10 @@ def _one_point(
     method: str = "auto",
 ) -> dict[str, Any]:
     m = get_nonlinear_model(model)
-    lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
     # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
-    fp = spectrum(MODELS[m.linear_model], **lin)
+    fp = spectrum(MODELS[m.linear_model], **params)
     s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, **lin)
+    A, _ = transverse_jacobian(model, **params)
     ev, vec, bound = jacobian_modes(A)
     i = int(np.argmin(np.abs(ev - s)))
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
@@ -183,8 +182,7 @@ def _one_point(
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
         start = dict(t_eval=np.linspace(0.0, t_end, n_samples), **_mode_start(m.name, v))
-        top = {k: v for k, v in params.items() if k != "alpha_k"}
-        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **top)
+        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
     growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
