@@ -245,14 +245,9 @@ def contact_loss_boundary(
             lambda f, p0=p0, p1=p1: problem.residual(p0 + f * (p1 - p0))[0], 0.0, 1.0, xtol=1e-12
         )
         start = p0 + s0 * (p1 - p0)
-        halves = [trace(problem, start, options, direction=d, project_start=False) for d in (1, -1)]
-        pieces.append(
-            (
-                np.concatenate([halves[1].points[::-1], halves[0].points[1:]]),
-                halves[1].kinds[::-1] + halves[0].kinds[1:],
-                [halves[1].end_reasons[0], halves[0].end_reasons[0]],
-            )
-        )
+        ahead, back = (trace(problem, start, options, direction=d, project_start=False) for d in (1, -1))
+        points = np.concatenate([back.points[::-1], ahead.points[1:]])
+        pieces.append((points, back.kinds[::-1] + ahead.kinds[1:], [back.end_reasons[0], ahead.end_reasons[0]]))
     bx = np.concatenate([pts[:, 0] for pts, _, _ in pieces]) if pieces else np.zeros(0)
     by = np.concatenate([pts[:, 1] for pts, _, _ in pieces]) if pieces else np.zeros(0)
     piece = np.concatenate([np.full(len(k), n) for n, (_, k, _) in enumerate(pieces)]) if pieces else np.zeros(0, int)
