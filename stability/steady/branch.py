@@ -129,6 +129,17 @@ class SteadyBranchProblem:
         self.jellett_min = jellett_min
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
+        #: the compiled step's arguments that stay (the cuts of J are set after construction)
+        self._step_head = (
+            p,
+            self.q,
+            params["sigma"],
+            params["mu"],
+            self.code,
+            self.n_full,
+            self.degenerate,
+            self.weight,
+        )
 
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
@@ -178,9 +189,7 @@ class SteadyBranchProblem:
         """The engine's hook (:mod:`continuation.problem`, which lists the arguments):
         :func:`stability.steady.branch_compiled.step` (corrector, tangent, constraints and test
         function in one compiled call)."""
-        problem = (self.p, self.q, self.params["sigma"], self.params["mu"], self.code, self.n_full, self.degenerate)
-        cuts = (self.weight, float(self.jellett_max), float(self.jellett_min))
-        return self.kernels.step(*problem, *cuts, *corrector)
+        return self.kernels.step(*self._step_head, float(self.jellett_max), float(self.jellett_min), *corrector)
 
     # --- start points -------------------------------------------------------------------
     def branch_point(self, orientation: str) -> float | None:
