@@ -245,14 +245,9 @@ def contact_loss_boundary(
             lambda f, p0=p0, p1=p1: problem.residual(p0 + f * (p1 - p0))[0], 0.0, 1.0, xtol=1e-12
         )
         start = p0 + s0 * (p1 - p0)
-        halves = [trace(problem, start, options, direction=d, project_start=False) for d in (1, -1)]
-        pieces.append(
-            (
-                np.concatenate([halves[1].points[::-1], halves[0].points[1:]]),
-                halves[1].kinds[::-1] + halves[0].kinds[1:],
-                [halves[1].end_reasons[0], halves[0].end_reasons[0]],
-            )
-        )
+        ahead, back = (trace(problem, start, options, direction=d, project_start=False) for d in (1, -1))
+        points = np.concatenate([back.points[::-1], ahead.points[1:]])
+        pieces.append((points, back.kinds[::-1] + ahead.kinds[1:], [back.end_reasons[0], ahead.end_reasons[0]]))
     bx = np.concatenate([pts[:, 0] for pts, _, _ in pieces]) if pieces else np.zeros(0)
     by = np.concatenate([pts[:, 1] for pts, _, _ in pieces]) if pieces else np.zeros(0)
     piece = np.concatenate([np.full(len(k), n) for n, (_, k, _) in enumerate(pieces)]) if pieces else np.zeros(0, int)
@@ -267,6 +262,17 @@ def contact_loss_boundary(
         return unit if name == "spin" else str(QUANTITIES[name])
 
     held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
+    title = "where a launch loses its contact: the smallest normal force of the run"
+    attrs = {
+        "Conventions": "CF-1.10",
+        PRODUCT_ATTR: PRODUCT,
+        "title": title,
+        "source": f"tippe-stability {package_version()}",
+    }
+    attrs.update(x_quantity=x, y_quantity=y, unit=unit, **{f"launch_{k}": float(v) for k, v in held.items()})
+    ends_text = "; ".join(ends) if ends else "no sign change on the grid"
+    attrs.update(duration=duration, boundary_end_reasons=ends_text, runs=runs, seconds=seconds)
+    attrs.update(q=top.q, mu=top.mu, sigma=top.sigma)
     return xr.Dataset(
         {
             "min_normal_force": (
@@ -296,21 +302,5 @@ def contact_loss_boundary(
             "x": ("x", axis_values(x, xs), {"long_name": x.replace("_", " "), "units": units(x)}),
             "y": ("y", axis_values(y, ys), {"long_name": y.replace("_", " "), "units": units(y)}),
         },
-        attrs={
-            "Conventions": "CF-1.10",
-            PRODUCT_ATTR: PRODUCT,
-            "title": "where a launch loses its contact: the smallest normal force of the run",
-            "source": f"tippe-stability {package_version()}",
-            "x_quantity": x,
-            "y_quantity": y,
-            "unit": unit,
-            **{f"launch_{k}": float(v) for k, v in held.items()},
-            "duration": duration,
-            "boundary_end_reasons": "; ".join(ends) if ends else "no sign change on the grid",
-            "runs": runs,
-            "seconds": seconds,
-            "q": top.q,
-            "mu": top.mu,
-            "sigma": top.sigma,
-        },
+        attrs=attrs,
     )

@@ -121,21 +121,14 @@ def flip_time_map(
                 if e is not None:
                     t_est[i, j] = e / w
     seconds = time.perf_counter() - t0
+    dims, crosses = ("tilt", "spin"), f"until the axis crosses {crossing:g} degrees"
     data = {
-        "flip_time": (
-            ("tilt", "spin"),
-            t_flip,
-            {"long_name": f"time until the axis crosses {crossing:g} degrees", "units": "s"},
-        ),
-        "flip_periods": (
-            ("tilt", "spin"),
-            periods,
-            {"long_name": f"spin periods until the axis crosses {crossing:g} degrees", "units": "1"},
-        ),
+        "flip_time": (dims, t_flip, {"long_name": f"time {crosses}", "units": "s"}),
+        "flip_periods": (dims, periods, {"long_name": f"spin periods {crosses}", "units": "1"}),
     }
     if estimate:
         data["flip_time_efold"] = (
-            ("tilt", "spin"),
+            dims,
             t_est,
             {"long_name": "projected e-folding estimate of the flip time", "units": "s"},
         )
@@ -144,21 +137,9 @@ def flip_time_map(
         "spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),
         "tilt": ("tilt", tilts, {"long_name": "initial tilt of the axis", "units": "degree"}),
     }
-    attrs = {
-        "Conventions": "CF-1.10",
-        PRODUCT_ATTR: MAP_PRODUCT,
-        "title": "flip time of launches of a real top",
-        "source": f"tippe-stability {package_version()}",
-        "q": top.q,
-        "mu": top.mu,
-        "sigma": top.sigma,
-        "radius_m": top.radius,
-        "mass_kg": top.mass,
-        "alpha_v_source": source,
-        "crossing_deg": crossing,
-        "t_max": t_max,
-        "seconds": seconds,
-        "spin_unit": unit,
-        "spin_rev_s_per_unit": float(from_rad_per_s(1.0, "rev/s") / from_rad_per_s(1.0, unit)),
-    }
+    title, version = "flip time of launches of a real top", f"tippe-stability {package_version()}"
+    attrs = {"Conventions": "CF-1.10", PRODUCT_ATTR: MAP_PRODUCT, "title": title, "source": version}
+    attrs.update(q=top.q, mu=top.mu, sigma=top.sigma, radius_m=top.radius, mass_kg=top.mass, alpha_v_source=source)
+    per_unit = float(from_rad_per_s(1.0, "rev/s") / from_rad_per_s(1.0, unit))
+    attrs.update(crossing_deg=crossing, t_max=t_max, seconds=seconds, spin_unit=unit, spin_rev_s_per_unit=per_unit)
     return xr.Dataset(data, coords=coords, attrs=attrs)

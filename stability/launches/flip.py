@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import ParameterTypeError, RunError
 from ..nonlinear.runs import simulate
-from ..parameters import as_scalar, check_choice, check_positive
+from ..parameters import as_scalar, check_choice, check_interval, check_positive
 from ..top import Top, check_launch_spin
 
 __all__ = ["MODELS", "FlipRun", "flip_time", "launch_parameters", "launch_state", "run_launch"]
@@ -114,17 +114,8 @@ def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, c
     def tilt_minus(t: float) -> float:
         if t <= t0:
             return float(y["tilt"]) - crossing
-        ds = simulate(
-            "sliding",
-            t_end=t - t0,
-            t_eval=np.array([0.0, t - t0]),
-            omega=y["omega"],
-            k=y["k"],
-            velocity=y["velocity"],
-            rtol=rtol,
-            atol=1e-3 * rtol,
-            **params,
-        )
+        start = dict(omega=y["omega"], k=y["k"], velocity=y["velocity"], rtol=rtol, atol=1e-3 * rtol)
+        ds = simulate("sliding", t_end=t - t0, t_eval=np.array([0.0, t - t0]), **start, **params)
         return float(ds.polar_angle[-1]) - crossing
 
     return float(brentq(tilt_minus, t0, t1, xtol=1e-12, rtol=8.9e-16, maxiter=200))
@@ -167,11 +158,7 @@ def run_launch(
         from ..errors import DomainError
 
         raise DomainError(f"tilt = {tilt:g} degrees is outside the allowed range: 0 < tilt < 180")
-    crossing = as_scalar("crossing", crossing)
-    if not 0.0 < crossing <= 180.0:
-        from ..errors import DomainError
-
-        raise DomainError(f"crossing = {crossing:g} degrees is outside the allowed range: 0 < crossing <= 180")
+    crossing = check_interval("crossing", crossing, 0.0, 180.0, closed="right")
     t_max = check_positive("t_max", t_max)
     state = {**launch_state(tilt), "tilt": tilt}
     if start is not None:
@@ -191,18 +178,9 @@ def run_launch(
         # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
         # numbers are read to the 1-degree band and the output step, not to 1e-10
         r = rtol if crossed is None else max(rtol, TAIL_RTOL)
-        ds = simulate(
-            "sliding",
-            t_end=length,
-            t_eval=np.linspace(0.0, length, n + 1),
-            omega=state["omega"],
-            k=state["k"],
-            velocity=state["velocity"],
-            rtol=r,
-            atol=1e-3 * r,
-            stick_tilt=stick_tilt,
-            **params,
-        )
+        start = dict(omega=state["omega"], k=state["k"], velocity=state["velocity"], stick_tilt=stick_tilt)
+        t_eval = np.linspace(0.0, length, n + 1)
+        ds = simulate("sliding", t_end=length, t_eval=t_eval, **start, rtol=r, atol=1e-3 * r, **params)
         attrs = dict(ds.attrs)
         pol = ds.polar_angle.values
         if not np.all(np.isfinite(pol)):
@@ -211,23 +189,16 @@ def run_launch(
         tt = t + ds.time.values
         if crossed is None and (hit := np.nonzero(pol >= crossing)[0]).size and not (crossing <= tilt):
             i = int(hit[0])
-            prev = {
-                "omega": ds.omega.values[i - 1],
-                "k": ds.k.values[i - 1],
-                "velocity": ds.velocity.values[i - 1][:2],
-                "tilt": pol[i - 1],
-            }
+            prev = dict(omega=ds.omega.values[i - 1], k=ds.k.values[i - 1], velocity=ds.velocity.values[i - 1][:2])
+            prev["tilt"] = pol[i - 1]
             crossed = float(t + ds.time.values[i - 1]) + _refine(
                 prev, params, 0.0, float(ds.time.values[i] - ds.time.values[i - 1]), crossing, rtol
             )
         times.append(tt[1:])
         tilts.append(pol[1:])
         t += length
-        state = {
-            "omega": ds.omega.values[-1],
-            "k": ds.k.values[-1] / np.linalg.norm(ds.k.values[-1]),
-            "velocity": ds.velocity.values[-1][:2],
-        }
+        k_end = ds.k.values[-1] / np.linalg.norm(ds.k.values[-1])
+        state = {"omega": ds.omega.values[-1], "k": k_end, "velocity": ds.velocity.values[-1][:2]}
         if attrs.get("event", "none") != "none":  # the model stops holding: contact lost or stick reached
             # omega . k at the event (units of Omega): the spin about the symmetry axis the top
             # carries onto its stick (the stick's sphere has axis -k: the same spin, reversed)
@@ -267,17 +238,7 @@ def run_launch(
         reasons.append(
             f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} spin periods)"
         )
-    return FlipRun(
-        crossing_time=crossed,
-        settle_time=settle_t,
-        end_tilt=float(pp[-1]),
-        settled=settled,
-        t_end=t,
-        min_normal_force=n_min,
-        max_tilt=float(np.max(pp)),
-        reason="; ".join(reasons),
-        attrs=attrs,
-    )
+    return FlipRun(crossed, settle_t, float(pp[-1]), settled, t, n_min, float(np.max(pp)), "; ".join(reasons), attrs)
 
 
 def flip_time(

@@ -30,10 +30,8 @@ from __future__ import annotations
 
 from ..errors import InputError
 
-__all__ = ["EVENTS", "ON_CONTACT_LOSS", "check_on_contact_loss"]
+__all__ = ["ON_CONTACT_LOSS", "check_on_contact_loss"]
 
-#: the values of a run's attribute ``event``
-EVENTS = ("none", "contact_lost", "stick_contact")
 #: the choices of ``simulate(on_contact_loss=...)``
 ON_CONTACT_LOSS = ("stop", "continue")
 

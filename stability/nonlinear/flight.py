@@ -202,13 +202,6 @@ def landing_height(f: Flight, tau: np.ndarray) -> np.ndarray:
     return x_o[:, 2] - 1.0
 
 
-def _longest(f: Flight) -> float:
-    """``T_max`` (module docstring): the flight has ended by then."""
-    c0 = f.x_g[2] + abs(f.q) - 1.0
-    vz = f.v_g[2]
-    return (vz + np.sqrt(vz * vz + 2.0 * f.fr_inv * max(c0, 0.0))) / f.fr_inv
-
-
 def landing_time(f: Flight) -> float:
     """The duration of the flight: the first zero of :func:`landing_height` after the take-off
     (module docstring), to round-off in time; 0 if the sphere does not rise (a graze). Needs
@@ -218,7 +211,8 @@ def landing_time(f: Flight) -> float:
             f"fr_inv = {f.fr_inv!r} is outside the allowed range of landing_time: fr_inv > 0 (without gravity "
             "the top never lands)"
         )
-    t_max = _longest(f)
+    c0, vz = f.x_g[2] + abs(f.q) - 1.0, f.v_g[2]
+    t_max = (vz + np.sqrt(vz * vz + 2.0 * f.fr_inv * max(c0, 0.0))) / f.fr_inv  # T_max (module docstring)
     if not t_max > 0.0:  # h <= z_G + |q| - 1 <= 0 from the take-off on: no rise (a graze)
         return 0.0
     rate = f.precession_rate

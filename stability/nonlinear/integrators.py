@@ -307,6 +307,16 @@ def _hermite(y, f0, yn, f1, hh, th, res):
 
 
 @njit(cache=True, nogil=True)
+def _interpolate(y, k, yn, f1, h, th, hermite, res):
+    """The state at the fraction ``th`` of the step: rk4's Hermite cubic (``k[0] = f0``) or
+    dopri5's dense output, into ``res``."""
+    if hermite:
+        _hermite(y, k[0], yn, f1, h, th, res)
+    else:
+        _dopri5_dense(y, k, h, th, res)
+
+
+@njit(cache=True, nogil=True)
 def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_stick):
     """The zero of ``N`` within the step ``[t, t + h]`` (``N(t) = n0 > 0 >= n1 = N(t + h)``) on
     the step's interpolant (dense output of dopri5, or rk4's Hermite cubic with ``k[0] = f0``),
@@ -320,10 +330,7 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
         x = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         if not (a < x < b):
             x = 0.5 * (a + b)
-        if hermite:
-            _hermite(y, k[0], yn, f1, h, x, res)
-        else:
-            _dopri5_dense(y, k, h, x, res)
+        _interpolate(y, k, yn, f1, h, x, hermite, res)
         fx = event_value(res, _model_rhs(code, t + x * h, res, p), p, watch, c_stick)
         if fx > 0.0:
             a, fa = x, fx
@@ -339,11 +346,25 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
             break
     # the event is the first time N <= 0: the bracket's right end
     if x != b:
-        if hermite:
-            _hermite(y, k[0], yn, f1, h, b, res)
-        else:
-            _dopri5_dense(y, k, h, b, res)
+        _interpolate(y, k, yn, f1, h, b, hermite, res)
     return b
+
+
+@njit(cache=True, nogil=True)
+def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
+    """The event in the accepted step ``[t, t + h]`` (the watched quantity > 0 at ``t``, ``n_new
+    <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's interpolant
+    (:func:`_locate_zero`): the outputs before it written, ``y`` the state and ``fs[_TEV]`` the
+    time there; returns the next output index and the event's time."""
+    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, f1, hermite, ys, watch, c_stick)
+    t_ev = t + th_ev * h
+    while j < t_eval.shape[0] and t_eval[j] < t_ev:
+        _interpolate(y, k, yn, f1, h, (t_eval[j] - t) / h, hermite, out[j])
+        j += 1
+    for i in range(y.shape[0]):
+        y[i] = ys[i]
+    fs[_TEV] = t_ev
+    return j, t_ev
 
 
 @njit(cache=True, nogil=True)
@@ -361,6 +382,28 @@ def _start(code, t_eval, p, y, k, fs, cnt, out):
     cnt[_J] = 1
     _copy_row(k, 0, _model_rhs(code, fs[_T], y, p))
     cnt[_NFEV] = 1
+
+
+@njit(cache=True, nogil=True)
+def _resume(fs, cnt):
+    """The state a slice carries on: ``t, h, j, steps, nfev, naccept, nreject, rejected``."""
+    return fs[_T], fs[_H], cnt[_J], cnt[_STEPS], cnt[_NFEV], cnt[_NACCEPT], cnt[_NREJECT], cnt[_REJECTED] != 0
+
+
+@njit(cache=True, nogil=True)
+def _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status):
+    """Store what :func:`_resume` reads for the next slice, and the status (0 while the run goes
+    on); returns ``status``."""
+    fs[_T] = t
+    fs[_H] = h
+    cnt[_J] = j
+    cnt[_STEPS] = steps
+    cnt[_NFEV] = nfev
+    cnt[_NACCEPT] = naccept
+    cnt[_NREJECT] = nreject
+    cnt[_REJECTED] = 1 if rejected else 0
+    cnt[_STATUS] = 0 if status == CONTINUE else status
+    return status
 
 
 @njit(cache=True, nogil=True)
@@ -463,20 +506,9 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         fs[_H] = min(h, t_end - t)
         if _ends_at_start(y, k[0], p, fs, cnt, watch, c_stick):
             return EVENT
-    t = fs[_T]
-    h = fs[_H]
-    j = cnt[_J]
-    steps = cnt[_STEPS]
-    nfev = cnt[_NFEV]
-    naccept = cnt[_NACCEPT]
-    nreject = cnt[_NREJECT]
-    rejected = cnt[_REJECTED] != 0
-    status = 0
-    used = 0
-    while j < m:
-        if used >= budget:
-            status = CONTINUE
-            break
+    t, h, j, steps, nfev, naccept, nreject, rejected = _resume(fs, cnt)
+    status = used = 0
+    while j < m and used < budget:
         if steps >= max_steps:
             status = -1
             break
@@ -522,15 +554,9 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             if watch != 0 or c_stick >= -1.0:
                 n_new = event_value(yn, k[6], p, watch, c_stick)
                 if n_new <= 0.0:
-                    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, k[6], False, ys, watch, c_stick)
-                    t_ev = t + th_ev * h
-                    while j < m and t_eval[j] < t_ev:
-                        _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
-                        j += 1
-                    for i in range(n):
-                        y[i] = ys[i]
-                    t = t_ev
-                    fs[_TEV] = t_ev
+                    j, t = _to_event(
+                        code, p, t, h, n_new, y, k, yn, k[6], False, ys, t_eval, j, out, fs, watch, c_stick
+                    )
                     naccept += 1
                     status = EVENT
                     break
@@ -552,16 +578,9 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             nreject += 1
             rejected = True
             h *= max(0.2, 0.9 * en**-0.2)
-    fs[_T] = t
-    fs[_H] = h
-    cnt[_J] = j
-    cnt[_STEPS] = steps
-    cnt[_NFEV] = nfev
-    cnt[_NACCEPT] = naccept
-    cnt[_NREJECT] = nreject
-    cnt[_REJECTED] = 1 if rejected else 0
-    cnt[_STATUS] = 0 if status == CONTINUE else status
-    return status
+    if status == 0 and j < m:  # the budget is used up before the end
+        status = CONTINUE
+    return _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status)
 
 
 @njit(cache=True, nogil=True)
@@ -585,16 +604,9 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         _start(code, t_eval, p, y, f0, fs, cnt, out)
         if _ends_at_start(y, f0[0], p, fs, cnt, watch, c_stick):
             return EVENT
-    t = fs[_T]
-    j = cnt[_J]
-    nfev = cnt[_NFEV]
-    steps = cnt[_STEPS]
-    status = 0
-    used = 0
-    while j < m:
-        if used >= budget:
-            status = CONTINUE
-            break
+    t, _h, j, steps, nfev, _accepted, _rejected, _flag = _resume(fs, cnt)
+    status = used = 0
+    while j < m and used < budget:
         used += 1
         hh = min(h, t_end - t)
         last = t + 1.0000001 * hh >= t_end
@@ -616,15 +628,7 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if watch != 0 or c_stick >= -1.0:
             n_new = event_value(yn, f1, p, watch, c_stick)
             if n_new <= 0.0:
-                th_ev = _locate_zero(code, p, t, hh, fs[_N], n_new, y, f0, yn, f1, True, ys, watch, c_stick)
-                t_ev = t + th_ev * hh
-                while j < m and t_eval[j] < t_ev:
-                    _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
-                    j += 1
-                for i in range(n):
-                    y[i] = ys[i]
-                t = t_ev
-                fs[_TEV] = t_ev
+                j, t = _to_event(code, p, t, hh, n_new, y, f0, yn, f1, True, ys, t_eval, j, out, fs, watch, c_stick)
                 status = EVENT
                 break
             fs[_N] = n_new
@@ -641,13 +645,9 @@ def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
         if not finite:
             status = -3
             break
-    fs[_T] = t
-    cnt[_J] = j
-    cnt[_NFEV] = nfev
-    cnt[_STEPS] = steps
-    cnt[_NACCEPT] = steps
-    cnt[_STATUS] = 0 if status == CONTINUE else status
-    return status
+    if status == 0 and j < m:  # the budget is used up before the end
+        status = CONTINUE
+    return _suspend(fs, cnt, t, h, j, steps, nfev, steps, 0, False, status)  # rk4 rejects no step
 
 
 #: a run over at most this span of time (units of the model) runs interpreted

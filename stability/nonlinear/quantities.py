@@ -32,7 +32,6 @@ from ..models.inertia import inertia_g
 
 __all__ = [
     "ENERGY_PARTS",
-    "centre_of_mass_velocity",
     "centre_velocity",
     "energy_parts",
     "energy_terms",
@@ -50,18 +49,6 @@ def centre_velocity(w0, w1, w2, k0, k1, k2, v0, v1, v2, arm):
 
     Plain arithmetic registered with numba (floats, numpy arrays elementwise, compiled callers)."""
     return (v0 + arm * (w1 * k2 - w2 * k1), v1 + arm * (w2 * k0 - w0 * k2), v2 + arm * (w0 * k1 - w1 * k0))
-
-
-def centre_of_mass_velocity(omega: np.ndarray, k: np.ndarray, v0: np.ndarray, arm: float) -> np.ndarray:
-    """``V_G = V0 + arm omega x k`` (arm = q from O, 1 + q from the pivot), shape (n, 3)
-    (:func:`centre_velocity` on the columns; ``numpy.cross`` costs ~30 us of set-up on a few rows)."""
-    w, kk, v = np.asarray(omega), np.asarray(k), np.asarray(v0)
-    return np.stack(
-        centre_velocity(
-            w[..., 0], w[..., 1], w[..., 2], kk[..., 0], kk[..., 1], kk[..., 2], v[..., 0], v[..., 1], v[..., 2], arm
-        ),
-        axis=-1,
-    )
 
 
 @register_jitable
@@ -108,22 +95,7 @@ def energy_parts(
         ``energy``.
     """
     w, kk, g = np.asarray(omega), np.asarray(k), np.asarray(v_g)
-    terms = energy_terms(
-        w[:, 0],
-        w[:, 1],
-        w[:, 2],
-        kk[:, 0],
-        kk[:, 1],
-        kk[:, 2],
-        g[:, 0],
-        g[:, 1],
-        g[:, 2],
-        np.asarray(z_g),
-        q,
-        fr_inv,
-        sigma,
-        mu,
-    )
+    terms = energy_terms(*w.T, *kk.T, *g.T, np.asarray(z_g), q, fr_inv, sigma, mu)
     return dict(zip(ENERGY_PARTS, terms))
 
 

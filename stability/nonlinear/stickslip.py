@@ -60,19 +60,17 @@ import xarray as xr
 from scipy.integrate import solve_ivp
 
 from ..errors import InputError
-from ..parameters import DEFAULT_MU, as_parameter, check_choice, check_integer, check_interval, check_positive
+from ..parameters import DEFAULT_MU, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, STEP_TOO_SMALL, check_tolerances
+from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
-__all__ = ["PHASES", "SWITCH_KINDS", "stick_slip"]
+__all__ = ["PHASES", "stick_slip"]
 
 #: the phases of a hybrid run, as stored in its ``phase`` variable
 PHASES = ("slip", "stick")
-#: the kinds of switch (``switch_kind``)
-SWITCH_KINDS = ("stick", "slip", "transit")
 _SLIP, _STICK = 0, 1
 
 
@@ -88,11 +86,6 @@ def _sliding_state(y8: np.ndarray, seed: np.ndarray | None = None) -> np.ndarray
     if seed is not None:
         v0 = v0 + seed
     return np.concatenate([y8[0:6], v0, y8[6:8]])
-
-
-def _slip_velocity(y10: np.ndarray) -> np.ndarray:
-    """``V_c = V0 + K x omega`` (eq. 5), horizontal part."""
-    return np.array([y10[6] - y10[1], y10[7] + y10[0]])
 
 
 def _tilt(y: np.ndarray) -> float:
@@ -183,18 +176,18 @@ def stick_slip(
             "fr_inv = 0 is outside the allowed range of stick_slip: fr_inv > 0 (no gravity, no normal "
             "force to bound the static friction)"
         )
-    a_s = params["alpha_k"] if alpha_s is None else float(as_parameter("alpha_s", alpha_s))
-    if not (a_s >= params["alpha_k"]) or not math.isfinite(a_s):
-        raise InputError(
-            f"alpha_s = {a_s!r} is outside the allowed range: alpha_k = {params['alpha_k']:g} <= alpha_s < inf "
-            "(static friction is at least the kinetic one)"
-        )
+    # static friction is at least the kinetic one
+    a_s = (
+        params["alpha_k"]
+        if alpha_s is None
+        else check_interval("alpha_s", alpha_s, params["alpha_k"], math.inf, closed="left")
+    )
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
     rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_switches = check_integer("max_switches", max_switches, minimum=1)
-    method = check_choice("method", method, ("RK45", "DOP853", "Radau", "BDF", "LSODA"))
+    method = check_choice("method", method, SCIPY_METHODS)
     sliding = get_nonlinear_model("sliding")
     rolling = get_nonlinear_model("rolling")
     # the exact law (7) while slipping: no regularisation (|V_c| >= slip_threshold > 0 there)
@@ -217,7 +210,7 @@ def stick_slip(
         return rolling.rhs(t, y, p)
 
     # every event ends its phase, on a downward crossing
-    def ev_slip_stop(t, y):
+    def ev_slip_stop(t, y):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
     def ev_slip_contact(t, y):
@@ -233,6 +226,10 @@ def stick_slip(
     for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
         ev.terminal, ev.direction = True, -1
 
+    def slip_along(y8: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """The slip restarting against the needed friction ``f``, seeded with ``2 slip_threshold``."""
+        return _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
+
     y = initial_state("sliding", omega, k, velocity)
     grid = np.linspace(0.0, t_end, int(np.ceil(t_end / dt - 1e-9)) + 1)
     ts: list[np.ndarray] = []
@@ -242,7 +239,7 @@ def stick_slip(
     t = 0.0
     phase = _SLIP
     event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
-    if math.hypot(*_slip_velocity(y)) <= slip_threshold:  # starts without slip: stick if it can
+    if ev_slip_stop(0.0, y) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
         if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
@@ -250,7 +247,7 @@ def stick_slip(
         elif math.hypot(*f) <= limit(n):
             phase, y, n0 = _STICK, y8, n
         else:
-            y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
+            y = slip_along(y8, f)
             n0 = ev_slip_contact(0.0, y)
     else:
         n0 = ev_slip_contact(0.0, y)
@@ -294,21 +291,15 @@ def stick_slip(
         if len(switches) >= max_switches:
             status, message = CHATTERING, f"more than max_switches = {max_switches} stick/slip switches (chattering)"
             break
-        if phase == _SLIP:  # the slip reached the threshold: stick if rolling's friction is within the limit
-            y8 = _rolling_state(y_ev)
-            f, n = rolling_need(y8)
-            ratio = math.hypot(*f) / limit(n)
-            kind = "stick" if ratio <= 1.0 else "transit"
-            switches.append((t_ev, kind, _tilt(y_ev), slip_threshold, float(y_ev[0:3] @ y_ev[3:6]), ratio))
-            if kind == "stick":
-                phase, y = _STICK, y8
-            else:
-                y = _sliding_state(y8, -2.0 * slip_threshold * f / math.hypot(*f))
-        else:  # the needed friction reached the static limit: slip along -f
-            f, n = rolling_need(y_ev)
-            ratio = math.hypot(*f) / limit(n)
-            switches.append((t_ev, "slip", _tilt(y_ev), 0.0, float(y_ev[0:3] @ y_ev[3:6]), ratio))
-            phase, y = _SLIP, _sliding_state(y_ev, -2.0 * slip_threshold * f / math.hypot(*f))
+        # slipping: the slip reached the threshold, stick if rolling's friction is within the limit
+        # (else a transit); sticking: the needed friction reached the static limit, slip along -f
+        y8 = _rolling_state(y_ev) if phase == _SLIP else y_ev
+        f, n = rolling_need(y8)
+        ratio = math.hypot(*f) / limit(n)
+        kind = "slip" if phase == _STICK else "stick" if ratio <= 1.0 else "transit"
+        speed = slip_threshold if phase == _SLIP else 0.0
+        switches.append((t_ev, kind, _tilt(y_ev), speed, float(y_ev[0:3] @ y_ev[3:6]), ratio))
+        phase, y = (_STICK, y8) if kind == "stick" else (_SLIP, slip_along(y8, f))
     if status < 0:
         warnings.warn(f"stick_slip: {message}", RuntimeWarning, stacklevel=2)
     t_all = np.concatenate(ts)
@@ -316,29 +307,20 @@ def stick_slip(
     ph = np.concatenate(phases)
     ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg)
     stuck = ph == _STICK
-    lim = np.full(t_all.size, a_s)
 
-    def put_forces(sel: np.ndarray, forces: np.ndarray) -> None:
-        """Write the contact forces ``(f_x, f_y, N)`` of the samples ``sel`` into the run (the
-        friction's vertical component stays 0, as :func:`trajectory_dataset` writes it)."""
-        f = ds.friction.values.copy()
-        f[sel, 0:2] = forces[:, 0:2]
-        ds["friction"].values = f
-        mag = ds.friction_magnitude.values.copy()
-        mag[sel] = np.hypot(forces[:, 0], forces[:, 1])
-        ds["friction_magnitude"].values = mag
-        nf = ds.normal_force.values.copy()
-        nf[sel] = forces[:, 2]
-        ds["normal_force"].values = nf
-
+    # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
+    # while slipping (the run's p_reg is the regularised one); the friction's K component stays 0
+    forces = np.empty((t_all.size, 3))
     if stuck.any():
-        rolling_states = np.ascontiguousarray(np.vstack([_rolling_state(r) for r in y_all[stuck]]))
-        put_forces(stuck, rolling.contact_forces(rolling_states, p))
-    slipping = ~stuck
-    if slipping.any():  # the exact law (7) while slipping (the run's p_reg is the regularised one)
-        put_forces(slipping, sliding.contact_forces(np.ascontiguousarray(y_all[slipping]), p))
-    if scaled:
-        lim = a_s * ds.normal_force.values / n_eq
+        forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
+    if not stuck.all():
+        forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
+    friction = ds.friction.values.copy()
+    friction[:, 0:2] = forces[:, 0:2]
+    ds["friction"].values = friction
+    ds["friction_magnitude"].values = np.hypot(forces[:, 0], forces[:, 1])
+    ds["normal_force"].values = forces[:, 2].copy()
+    lim = a_s * ds.normal_force.values / n_eq if scaled else np.full(t_all.size, a_s)
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
     )

@@ -64,7 +64,7 @@ from ..parameters import DEFAULT_MU, check_choice, check_domain, check_interval,
 from ..products import PRODUCT_ATTR
 from . import get_nonlinear_model
 from .integrators import SCIPY_METHODS, check_tolerances
-from .jacobian import transverse_jacobian, upright_state
+from .jacobian import transverse_jacobian
 from .runs import simulate
 
 __all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "jacobian_modes", "leading_mode", "validate"]
@@ -135,6 +135,15 @@ def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     return float(g_fit[0]), float(w), rms
 
 
+def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
+    """``omega``, ``k`` (and the sliding top's ``velocity``) of the upright spin ``omega = k = K``
+    displaced along the transverse mode ``v`` (``omega, Phi[, V]``, complex, scaled)."""
+    start = {"omega": [v[0].real, v[0].imag, 1.0], "k": [v[1].real, v[1].imag, np.sqrt(1.0 - abs(v[1]) ** 2)]}
+    if model == "sliding":
+        start["velocity"] = [v[2].real, v[2].imag]
+    return start
+
+
 def _one_point(
     model: str,
     params: dict[str, float],
@@ -147,11 +156,10 @@ def _one_point(
     method: str = "auto",
 ) -> dict[str, Any]:
     m = get_nonlinear_model(model)
-    lin = {k: v for k, v in params.items() if k in ("q", "fr_inv", "sigma", "mu", "alpha_v")}
     # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
-    fp = spectrum(MODELS[m.linear_model], **lin)
+    fp = spectrum(MODELS[m.linear_model], **params)
     s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, **lin)
+    A, _ = transverse_jacobian(model, **params)
     ev, vec, bound = jacobian_modes(A)
     i = int(np.argmin(np.abs(ev - s)))
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
@@ -168,21 +176,13 @@ def _one_point(
     # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
     # model since "rolling" is the first-principles one, issue 15): the same mode
     s_lin = s
-    y = upright_state(model)
-    y[0], y[1] = v[0].real, v[0].imag
-    y[3], y[4] = v[1].real, v[1].imag
-    y[5] = np.sqrt(1.0 - abs(v[1]) ** 2)
-    velocity = None
-    if m.name == "sliding":
-        velocity = [v[2].real, v[2].imag]
     t_end = _duration(s, n_efold, n_periods, max_time)
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
-        start = dict(t_eval=np.linspace(0.0, t_end, n_samples), omega=y[0:3], k=y[3:6], velocity=velocity)
-        top = {k: v for k, v in params.items() if k != "alpha_k"}
-        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **top)
+        start = dict(t_eval=np.linspace(0.0, t_end, n_samples), **_mode_start(m.name, v))
+        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
     growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
@@ -210,6 +210,9 @@ def _one_point(
     def rel(meas: float, pred: float, scale: float) -> float:
         return abs(meas - pred) / (abs(pred) if abs(pred) > 0 else scale)
 
+    def growth_error(s: complex) -> float:  # relative to |s| where the growth rate is not resolved
+        return rel(g, s.real, abs(s)) if growth_resolved else abs(g - s.real) / abs(s)
+
     if failed:
         agrees = False
     elif growth_resolved:
@@ -225,11 +228,9 @@ def _one_point(
         "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
         "measured_growth_rate": g,
         "measured_frequency": w,
-        "growth_rate_error": rel(g, s_lin.real, abs(s_lin)) if growth_resolved else abs(g - s_lin.real) / abs(s_lin),
+        "growth_rate_error": growth_error(s_lin),
         "frequency_error": rel(w, s_lin.imag, abs(s_lin)),
-        "growth_rate_error_jacobian": (
-            rel(g, s_jac.real, abs(s_jac)) if growth_resolved else abs(g - s_jac.real) / abs(s_jac)
-        ),
+        "growth_rate_error_jacobian": growth_error(s_jac),
         "frequency_error_jacobian": rel(w, s_jac.imag, abs(s_jac)),
         "resolved": bool(resolved),
         "sign_agrees": agrees,
@@ -241,48 +242,27 @@ def _one_point(
     }
 
 
+_LINEAR, _JACOBIAN = "the registered linear operator", "the nonlinear model's Jacobian"
+_ERROR = "relative error of the measured {} against the {}"
+_UNRESOLVED = " (relative to |s| where the growth rate is not resolved)"
+_RUN = "of the nonlinear run"
+
 #: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
-    "predicted_growth_rate": ("predicted growth rate", "Omega", "growth rate Re s of the registered linear operator"),
-    "predicted_frequency": (
-        "predicted frequency",
-        "Omega",
-        "frequency Im s of the registered linear operator (fixed frame)",
-    ),
-    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", "growth rate Re s of the nonlinear model's Jacobian"),
-    "jacobian_frequency": (
-        "Jacobian frequency",
-        "Omega",
-        "frequency Im s of the nonlinear model's Jacobian (fixed frame)",
-    ),
-    "measured_growth_rate": ("measured growth rate", "Omega", "growth rate fitted to log|Phi(t)| of the nonlinear run"),
-    "measured_frequency": (
-        "measured frequency",
-        "Omega",
-        "frequency fitted to the phase of Phi(t) of the nonlinear run",
-    ),
-    "growth_rate_error": (
-        "growth error (linear)",
-        "1",
-        "relative error of the measured growth rate against the linear operator "
-        "(relative to |s| where the growth rate is not resolved)",
-    ),
-    "frequency_error": (
-        "frequency error (linear)",
-        "1",
-        "relative error of the measured frequency against the linear operator",
-    ),
+    "predicted_growth_rate": ("predicted growth rate", "Omega", f"growth rate Re s of {_LINEAR}"),
+    "predicted_frequency": ("predicted frequency", "Omega", f"frequency Im s of {_LINEAR} (fixed frame)"),
+    "jacobian_growth_rate": ("Jacobian growth rate", "Omega", f"growth rate Re s of {_JACOBIAN}"),
+    "jacobian_frequency": ("Jacobian frequency", "Omega", f"frequency Im s of {_JACOBIAN} (fixed frame)"),
+    "measured_growth_rate": ("measured growth rate", "Omega", f"growth rate fitted to log|Phi(t)| {_RUN}"),
+    "measured_frequency": ("measured frequency", "Omega", f"frequency fitted to the phase of Phi(t) {_RUN}"),
+    "growth_rate_error": ("growth error (linear)", "1", _ERROR.format("growth rate", "linear operator") + _UNRESOLVED),
+    "frequency_error": ("frequency error (linear)", "1", _ERROR.format("frequency", "linear operator")),
     "growth_rate_error_jacobian": (
         "growth error (Jacobian)",
         "1",
-        "relative error of the measured growth rate against the Jacobian "
-        "(relative to |s| where the growth rate is not resolved)",
+        _ERROR.format("growth rate", "Jacobian") + _UNRESOLVED,
     ),
-    "frequency_error_jacobian": (
-        "frequency error (Jacobian)",
-        "1",
-        "relative error of the measured frequency against the Jacobian",
-    ),
+    "frequency_error_jacobian": ("frequency error (Jacobian)", "1", _ERROR.format("frequency", "Jacobian")),
     "jacobian_bound": (
         "Jacobian error bound",
         "Omega",
@@ -492,9 +472,8 @@ def coulomb_growth(
     s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
     i = int(np.argmin(np.abs(ev - s)))
     v = vec[:, i] / vec[1, i] * amplitude
-    k = [v[1].real, v[1].imag, np.sqrt(1 - abs(v[1]) ** 2)]
-    run = dict(t_end=t_end, dt=t_end / 3000, omega=[v[0].real, v[0].imag, 1.0], k=k)
-    run.update(velocity=[v[2].real, v[2].imag], **top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
+    run = dict(t_end=t_end, dt=t_end / 3000, **_mode_start("sliding", v))
+    run.update(**top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
     if scheme == "adaptive":
         ds = simulate("sliding", **run, slip_scale=slip_scale, method="LSODA", rtol=rtol, atol=atol)
     else:

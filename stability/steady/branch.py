@@ -57,7 +57,7 @@ from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
 from .linearisation import state_modes
-from .products import DEGREE, check_scales, flag_attrs, product_attrs, sliding_parameters, variable
+from .products import check_scales, product_attrs, sliding_parameters, state_variables, variable
 from .states import state_integrals
 from .verdicts import flag_of
 
@@ -129,6 +129,9 @@ class SteadyBranchProblem:
         self.jellett_min = jellett_min
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
+        #: the compiled step's arguments that stay (the cuts of J are set after construction)
+        sigma, mu = params["sigma"], params["mu"]
+        self._step_head = (p, self.q, sigma, mu, self.code, self.n_full, self.degenerate, self.weight)
 
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
@@ -178,19 +181,7 @@ class SteadyBranchProblem:
         """The engine's hook (:mod:`continuation.problem`, which lists the arguments):
         :func:`stability.steady.branch_compiled.step` (corrector, tangent, constraints and test
         function in one compiled call)."""
-        return self.kernels.step(
-            self.p,
-            self.q,
-            self.params["sigma"],
-            self.params["mu"],
-            self.code,
-            self.n_full,
-            self.degenerate,
-            self.weight,
-            float(self.jellett_max),
-            float(self.jellett_min),
-            *corrector,
-        )
+        return self.kernels.step(*self._step_head, float(self.jellett_max), float(self.jellett_min), *corrector)
 
     # --- start points -------------------------------------------------------------------
     def branch_point(self, orientation: str) -> float | None:
@@ -235,13 +226,10 @@ class SteadyBranchProblem:
 
 
 def _kind_of(kind: str, detail: str) -> str:
-    if kind == "test":
-        return "fold"
+    """The branch's kind of a point of the engine's kind (a cut of J is an end)."""
     if kind == "boundary":
         return "end" if detail.startswith("jellett") else "branch_point"
-    if kind == "branch_point":
-        return "branch_point"
-    return "regular"
+    return {"test": "fold", "branch_point": "branch_point"}.get(kind, "regular")
 
 
 def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU) -> dict[str, float]:
@@ -453,61 +441,18 @@ def points_dataset(
             if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
                 kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
     j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
+    values = dict(tilt=np.degrees(theta), precession_rate=lam, axial_spin=axial, energy=E, jellett=J)
+    values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
+    values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
+    note = "at a branch point: spin / (1 + q cos(tilt))"
     data = {
-        "tilt": variable(
-            "point", np.degrees(theta), "polar angle of the axis k from the upward vertical", DEGREE, short="tilt"
-        ),
-        "jellett": variable(
-            "point", J, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
-        ),
-        "precession_rate": variable(
-            "point",
-            lam,
-            "precession rate of the axis about the vertical",
-            "Omega",
-            short="precession rate",
-            comment="at a branch point: spin / (1 + q cos(tilt))",
-        ),
-        "axial_spin": variable("point", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
-        "energy": variable("point", E, "total energy", "A0 Omega^2", short="energy"),
+        **state_variables("point", values, "branch points", precession_rate=note),
         "upright_equivalent_spin": variable(
             "point",
             J / j_upright,
             "spin of the upright state with the same J, J / (sigma (1 + q))",
             "Omega",
             short="upright-equiv. spin",
-        ),
-        "growth_rate": variable(
-            "point",
-            growth,
-            "leading growth rate of the linearisation (frame precessing with the state), structural "
-            "neutral directions removed",
-            "Omega",
-            short="leading growth rate",
-        ),
-        "growth_rate_bound": variable(
-            "point",
-            bound,
-            "absolute error bound of growth_rate (branch points: |n| times eq. (11)'s bound at the equivalent "
-            "point; tilted states: 1e3 u ||A||_F)",
-            "Omega",
-            short="growth rate bound",
-        ),
-        "n_neutral": variable(
-            "point",
-            np.asarray(n_neutral, dtype=np.int8),
-            "number of physical modes neutral within rounding",
-            short="neutral modes",
-        ),
-        "stability": ("point", flags, flag_attrs("stability of the steady state")),
-        "stability_jacobian": (
-            "point",
-            np.asarray(jac, dtype=np.int8),
-            flag_attrs(
-                "Jacobian verdict",
-                comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
-                "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for branch points",
-            ),
         ),
         "kind": (
             "point",

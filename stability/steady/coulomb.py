@@ -117,22 +117,8 @@ def coulomb_end(
     """
     t0 = time.perf_counter()
     q, sigma, fr_inv, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "mu"))
-    ds = stick_slip(
-        t_end=t_max,
-        omega=y[0:3],
-        k=y[3:6],
-        velocity=y[6:8],
-        q=q,
-        fr_inv=fr_inv,
-        sigma=sigma,
-        mu=mu,
-        alpha_v=params["alpha_v"],
-        alpha_k=alpha_k,
-        alpha_s=alpha_s,
-        rtol=rtol,
-        atol=1e-3 * rtol,
-        dt=max(0.1, t_max / 20_000),
-    )
+    start = dict(omega=y[0:3], k=y[3:6], velocity=y[6:8], alpha_k=alpha_k, alpha_s=alpha_s)
+    ds = stick_slip(t_end=t_max, **start, **params, rtol=rtol, atol=1e-3 * rtol, dt=max(0.1, t_max / 20_000))
     j = ds.h_cg.values
     e0 = float(ds.energy[0])
     tilt0 = float(ds.polar_angle[0])
@@ -167,26 +153,13 @@ def coulomb_end(
         contact="lost" if run["event"] == "contact_lost" else "held",  # the hybrid run watched N
     )
     if run["event"] != "none" or phase_end != "stick":  # no rolling end: the run's last sample
+        kind, end, event = "unsettled", f"still slipping at t_max = {t_max:g}", {}
         if run["event"] != "none":
-            kind, end = (
-                run["event"],
-                (
-                    f"{run['event'].replace('_', ' ')} at t = {run['event_time']:.6g}: the model does not hold "
-                    "beyond, no final state"
-                ),
-            )
-            event = dict(event=run["event"], event_time=run["event_time"])
-        else:
-            kind, end, event = "unsettled", f"still slipping at t_max = {t_max:g}", {}
-        fields = dict(
-            tilt=float(ds.polar_angle[-1]),
-            kind=kind,
-            energy=float(ds.energy[-1]),
-            reason=f"Coulomb top (alpha_k > 0): {switches}; {end}",
-            **event,
-            **common,
-        )
-        return fields, run, None
+            kind, event = run["event"], dict(event=run["event"], event_time=run["event_time"])
+            end = f"{kind.replace('_', ' ')} at t = {run['event_time']:.6g}: the model does not hold beyond, no final state"
+        reason = f"Coulomb top (alpha_k > 0): {switches}; {end}"
+        last = dict(tilt=float(ds.polar_angle[-1]), kind=kind, energy=float(ds.energy[-1]), reason=reason)
+        return dict(**last, **event, **common), run, None
     t_stick = float(ds.switch_time.values[last_stick[-1]]) if last_stick.size else 0.0
     i_stick = int(np.searchsorted(ds.time.values, t_stick, side="right"))  # the first rolling sample
     e_s = float(np.mean(ds.energy.values[i_stick:]))  # constant while rolling (to the run's tolerance)

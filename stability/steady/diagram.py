@@ -156,53 +156,27 @@ def bifurcation_diagram(
     rows = []
     stick_times: list[float] = []
     th = math.radians(tilt)
+    launches = []  # (launch spin, parameters, start, the paper's run)
     for r in runs:
-        start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
         params = top.nondimensional(r, unit, alpha_v=None if top.mu_v is not None else alpha_v, model="sliding")
-        params = {k: float(v) for k, v in params.items()}
-        pred = final_state(**params, **start, simulation=False)
-        chunk = chunk_length(pred.candidates, params, pred.jellett) if pred.method == "jellett" else 5000.0
-        end, _, run = settle(
-            initial_state("sliding", **start),
-            params,
-            chunk=chunk,
-            t_max=2e5,
-            settle_tolerance=1e-3,
-            rtol=1e-10,
-            stick_tilt=stick_tilt,
-        )
-        rows.append(
-            (r, pred.jellett / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), 0)
-        )
-        stick_times.append(run.event_time if run.event == "stick_contact" else math.nan)
+        start = dict(omega=[0.0, 0.0, 1.0], k=[math.sin(th), 0.0, math.cos(th)])
+        launches.append((r, {k: float(v) for k, v in params.items()}, start, False))
     if paper_run:  # the paper's Fr^-1 = 0.3 run of Sec. 3(ii), from its printed state
         from ..nonlinear.scene import INITIAL_CONDITIONS
 
-        ic = INITIAL_CONDITIONS[0.3]
         params = dict(q=q, sigma=sigma, fr_inv=0.3, alpha_v=alpha_v, mu=mu)
-        pred = final_state(**params, **ic)
-        end, _, run = settle(
-            initial_state("sliding", **ic),
-            params,
-            t_max=2e5,
-            settle_tolerance=1e-3,
-            rtol=1e-10,
-            chunk=chunk_length(pred.candidates, params, pred.jellett),
-            stick_tilt=stick_tilt,
+        launches.append((float(top.spin_rate(0.3, unit)), params, INITIAL_CONDITIONS[0.3], True))
+    settling = dict(t_max=2e5, settle_tolerance=1e-3, rtol=1e-10, stick_tilt=stick_tilt)
+    for r, params, start, paper in launches:
+        # the launches' prediction without a run (the run below decides); the paper's with one
+        pred = final_state(**params, **start, simulation=paper)
+        chunk = chunk_length(pred.candidates, params, pred.jellett) if paper or pred.method == "jellett" else 5000.0
+        end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, **settling)
+        jel = abs(pred.jellett) if paper else pred.jellett
+        rows.append(
+            (r, jel / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), paper)
         )
         stick_times.append(run.event_time if run.event == "stick_contact" else math.nan)
-        r = float(top.spin_rate(0.3, unit))
-        rows.append(
-            (
-                r,
-                abs(pred.jellett) / upright_jellett(q=q, sigma=sigma) * r,
-                pred.tilt,
-                end,
-                run.t_end,
-                int(run.settled),
-                1,
-            )
-        )
     arr = np.array(rows, dtype=float).reshape(-1, 7)
     runs_ds = xr.Dataset(
         {

@@ -170,13 +170,17 @@ def degenerate_cosine(q, sigma, mu):
 
 def precession_rate(c: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any, sign: float = 1.0) -> Any:
     """``lam = sign sqrt(mu fr_inv q / P(c))`` on the tilted family (S3); NaN where ``q P <= 0``."""
-    p = p_of_c(c, q, sigma, mu)
-    if isinstance(p, float):
-        r = mu * fr_inv * q / p if p != 0.0 else math.nan
-        return sign * math.sqrt(r) if r > 0 else math.nan
+    return sign * _root_of_ratio(mu * fr_inv * q, p_of_c(c, q, sigma, mu))
+
+
+def _root_of_ratio(num: Any, den: Any) -> Any:
+    """``sqrt(num / den)`` where the ratio is positive, NaN elsewhere (floats or arrays)."""
+    if isinstance(den, float):
+        r = num / den if den != 0.0 else math.nan
+        return math.sqrt(r) if r > 0 else math.nan
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = mu * fr_inv * q / p
-    return sign * np.sqrt(np.where(r > 0, r, np.nan))
+        r = num / den
+    return np.sqrt(np.where(r > 0, r, np.nan))
 
 
 def jellett_of_c(c: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any, sign: float = 1.0) -> Any:
@@ -242,13 +246,7 @@ def branch_point_jellett(orientation: str, *, q: Any, sigma: Any, fr_inv: Any, m
     """
     c = ORIENTATIONS[orientation]
     d = d_of_c(c, q, sigma, mu)
-    p = p_of_c(c, q, sigma, mu)
-    if isinstance(p, float):
-        j2 = mu * fr_inv * q * d * d / p if p != 0.0 else math.nan
-        return math.sqrt(j2) if j2 > 0 else math.nan
-    with np.errstate(divide="ignore", invalid="ignore"):
-        j2 = mu * fr_inv * q * d * d / p
-    return np.sqrt(np.where(j2 > 0, j2, np.nan))
+    return _root_of_ratio(mu * fr_inv * q * d * d, p_of_c(c, q, sigma, mu))
 
 
 @register_jitable

@@ -54,7 +54,6 @@ __all__ = [
     "candidates",
     "chunk_length",
     "final_state",
-    "final_state_from",
     "predict",
     "settle",
 ]
@@ -243,42 +242,27 @@ class FinalState:
             "axial_spin": scalar(
                 self.axial_spin, "spin about the axis of the final state, omega . k", "Omega", "axial spin"
             ),
-            "candidate_kind": column(
-                [c.kind for c in cands],
-                {"long_name": "kind of state", "comment": "kind of the steady state of the level"},
-                str,
-            ),
-            "candidate_tilt": column(
-                [c.tilt for c in cands], var_attrs("tilt of the steady state", DEGREE, short="tilt")
-            ),
-            "candidate_energy": column(
-                [c.energy for c in cands],
-                var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"),
-            ),
-            "candidate_precession_rate": column(
-                [c.precession_rate for c in cands],
-                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
-            ),
-            "candidate_axial_spin": column(
-                [c.axial_spin for c in cands],
-                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
-            ),
-            "candidate_stability": column(
-                [c.stability for c in cands], flag_attrs("stability of the steady state"), np.int8
-            ),
-            "candidate_energy_test": column(
-                [c.energy_test for c in cands],
-                var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"),
-            ),
-            "candidate_reachable": column(
-                [c.reachable for c in cands], yes_no("U_J <= initial energy", "unreachable reachable"), np.int8
-            ),
-            "candidate_is_final": column(
-                [c is self.state for c in cands],
-                yes_no("final state", "no yes", comment="the motion ends on this state"),
-                np.int8,
-            ),
         }
+        columns = {  # candidate_<field>: attributes (and dtype) of the column of the candidates' field
+            "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
+            "tilt": (var_attrs("tilt of the steady state", DEGREE, short="tilt"), None),
+            "energy": (var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"), None),
+            "precession_rate": (
+                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
+                None,
+            ),
+            "axial_spin": (
+                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
+                None,
+            ),
+            "stability": (flag_attrs("stability of the steady state"), np.int8),
+            "energy_test": (var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"), None),
+            "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
+        }
+        for name, (attrs, dtype) in columns.items():
+            data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
+        final = yes_no("final state", "no yes", comment="the motion ends on this state")
+        data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
         p = self.parameters
         curve, curve_coords = potential_curve(self.jellett, q=p["q"], sigma=p["sigma"], fr_inv=p["fr_inv"], mu=p["mu"])
         data.update(curve)
@@ -497,40 +481,6 @@ def final_state(
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    options = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
-    return final_state_from(y, params, simulation=simulation, **options)
-
-
-def final_state_from(
-    y: np.ndarray,
-    params: dict[str, float],
-    *,
-    simulation: bool = True,
-    t_max: Any = 2e5,
-    settle_tolerance: Any = 1e-4,
-    rtol: Any = 1e-10,
-    stick_tilt: float | None = None,
-) -> FinalState:
-    """:func:`final_state` after its input checks: from a checked state and checked parameters.
-
-    What the steady layer itself does per call: ``J0`` and ``E0`` of the state
-    (:func:`stability.steady.states.point_integrals`), the steady states of the level and the
-    decision (:func:`predict`), the result; and the deciding run when one is needed (its options
-    ``t_max``, ``settle_tolerance``, ``rtol`` are checked then). ``python benchmarks/run.py --suite steady``
-    times it apart from the checks.
-
-    Parameters
-    ----------
-    y : numpy.ndarray
-        State ``(omega, k, V0_h, ...)`` of :func:`stability.nonlinear.runs.initial_state`
-        (``|k| = 1``; only the first 8 entries are used).
-    params : dict of float
-        ``q, fr_inv, sigma, mu, alpha_v`` in the physical domain, ``alpha_v > 0``
-        (:func:`stability.steady.products.sliding_parameters`).
-    simulation, t_max, settle_tolerance, rtol, stick_tilt
-        As in :func:`final_state`.
-    """
-    q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     # one query: interpreted unless compiled code is in memory (stability.execution.pick)
     J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
@@ -615,9 +565,8 @@ def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
 
     state = np.zeros((1, 10))
     state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
-    p = pack(q=params["q"], fr_inv=params["fr_inv"], sigma=params["sigma"], mu=params["mu"], alpha_v=params["alpha_v"])
     forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
-    return float(forces(state, p)[0, 2])
+    return float(forces(state, pack(**params))[0, 2])
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
@@ -629,21 +578,15 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    ys, lams, vert, cos_, spins = [], [], [], [], []
-    for c in sel:
-        if c.kind == "tilted":
-            ys.append(family.state_vector(math.radians(c.tilt), c.precession_rate, q))
-            lams.append(c.precession_rate)
-            vert.append(False)
-            spins.append(math.nan)
-        else:
-            spins.append(family.vertical_spin(c.kind, jel, q=q, sigma=sigma))
-            ys.append(family.vertical_state(c.kind, spins[-1]))
-            lams.append(0.0)
-            vert.append(True)
-        cos_.append(family.ORIENTATIONS.get(c.kind, math.nan))
-    p = pack(q=q, fr_inv=params["fr_inv"], sigma=sigma, mu=mu, alpha_v=params["alpha_v"])
-    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), p)
+    vert = [c.kind != "tilted" for c in sel]
+    spins = [family.vertical_spin(c.kind, jel, q=q, sigma=sigma) if v else math.nan for c, v in zip(sel, vert)]
+    ys = [
+        family.vertical_state(c.kind, n) if v else family.state_vector(math.radians(c.tilt), c.precession_rate, q)
+        for c, v, n in zip(sel, vert, spins)
+    ]
+    lams = [0.0 if v else c.precession_rate for c, v in zip(sel, vert)]
+    cos_ = [family.ORIENTATIONS.get(c.kind, math.nan) for c in sel]
+    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), pack(**params))
     growth = state_modes(*states, q=q, sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
     g = float(np.max(growth))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0

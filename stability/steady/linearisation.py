@@ -124,12 +124,9 @@ def _jacobians(Y, lam, p, code, n_full):
             for r in range(m):
                 out[i, r, j] = f[r].imag / h
         # - lam G (G: rotation about K on (omega, k, V0_h))
-        out[i, 0, 1] += lam[i]
-        out[i, 1, 0] -= lam[i]
-        out[i, 3, 4] += lam[i]
-        out[i, 4, 3] -= lam[i]
-        out[i, 6, 7] += lam[i]
-        out[i, 7, 6] -= lam[i]
+        for a in (0, 3, 6):
+            out[i, a, a + 1] += lam[i]
+            out[i, a + 1, a] -= lam[i]
     return out
 
 
@@ -218,17 +215,11 @@ def reduced_spectrum(
     A = precessing_jacobians(y, lam, p, model)
     l1, l2 = neutral_covectors(y, q=q, sigma=sigma, mu=mu)
     ev = np.full((n, 6), np.nan + 0j)
-    tilted = ~vertical
-    if tilted.any():
-        L = np.stack([l1[tilted], l2[tilted], y[tilted] @ ROTATION.T], axis=2)  # (m, 8, 3)
-        Q = np.linalg.qr(L, mode="complete")[0][:, :, 3:]
-        M = np.swapaxes(Q, 1, 2) @ A[tilted] @ Q
-        ev[tilted, :5] = np.linalg.eigvals(M)
-    if vertical.any():
-        L = np.stack([l1[vertical], l2[vertical]], axis=2)
-        Q = np.linalg.qr(L, mode="complete")[0][:, :, 2:]
-        M = np.swapaxes(Q, 1, 2) @ A[vertical] @ Q
-        ev[vertical] = np.linalg.eigvals(M)
+    for sel in (~vertical, vertical):  # tilted states: the rotation's direction removed too
+        if sel.any():
+            L = np.stack([l1[sel], l2[sel]] + ([] if sel is vertical else [y[sel] @ ROTATION.T]), axis=2)
+            Q = np.linalg.qr(L, mode="complete")[0][:, :, L.shape[2] :]  # (m, 8, 8 - removed)
+            ev[sel, : 8 - L.shape[2]] = np.linalg.eigvals(np.swapaxes(Q, 1, 2) @ A[sel] @ Q)
     key = np.where(np.isnan(ev.real), -np.inf, ev.real)
     order = np.argsort(-key, axis=1, kind="stable")
     ev = np.take_along_axis(ev, order, axis=1)

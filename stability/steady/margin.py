@@ -139,9 +139,8 @@ def contact_margin(
     from scipy.optimize import brentq
 
     from ..errors import DomainError
-    from ..nonlinear.runs import model_parameter_vector
 
-    params, _ = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
+    params, p = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     if not params["fr_inv"] > 0:
         raise DomainError("fr_inv = 0 is outside the allowed range of contact_margin: fr_inv > 0 (N = 0 at rest)")
     tilt = check_interval("tilt", tilt, 0.0, 180.0, closed="both")
@@ -151,7 +150,6 @@ def contact_margin(
     check_choice("mode", mode, MODES)
     max_size = check_positive("max_size", max_size)
     q, sg, fr, mu_ = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
-    _, p = model_parameter_vector("sliding", **params)
     if tilt in (0.0, 180.0):
         y = family.vertical_state("upright" if tilt == 0.0 else "inverted", float(spin))
         lam = 0.0

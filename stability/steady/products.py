@@ -28,6 +28,7 @@ __all__ = [
     "DEGREE",
     "MODELS",
     "SCALE_RANGE",
+    "STATE_VARIABLES",
     "TILT_GRID_POINTS",
     "UNITLESS",
     "check_scales",
@@ -35,6 +36,7 @@ __all__ = [
     "potential_curve",
     "product_attrs",
     "sliding_parameters",
+    "state_variables",
     "var_attrs",
     "variable",
 ]
@@ -162,6 +164,47 @@ def variable(
 ) -> tuple[Any, Any, dict[str, Any]]:
     """A dataset variable ``(dims, values, attrs)`` with the CF attributes of :func:`var_attrs`."""
     return (dims, values, var_attrs(long_name, units, **kw))
+
+
+#: the variables of a steady state that steady_states and steady_branch share: name -> (long_name,
+#: units, short name); ``{vertical}`` is what each calls its vertical points
+STATE_VARIABLES = {
+    "tilt": ("polar angle of the axis k from the upward vertical (0 upright, 180 inverted)", DEGREE, "tilt"),
+    "precession_rate": ("precession rate of the axis about the vertical", "Omega", "precession rate"),
+    "axial_spin": ("spin about the axis, omega . k", "Omega", "axial spin"),
+    "energy": ("total energy of the state", "A0 Omega^2", "energy"),
+    "jellett": ("Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", "Jellett's J"),
+    "growth_rate": (
+        "leading growth rate of the linearisation about the state (frame precessing with it), structural "
+        "neutral directions removed",
+        "Omega",
+        "leading growth rate",
+    ),
+    "growth_rate_bound": (
+        "absolute error bound of growth_rate ({vertical}: |n| times eq. (11)'s bound at the equivalent point; "
+        "tilted states: 1e3 u ||A||_F)",
+        "Omega",
+        "growth rate bound",
+    ),
+    "n_neutral": ("number of physical modes neutral within rounding", UNITLESS, "neutral modes"),
+}
+
+
+def state_variables(dim: str, values: dict[str, Any], vertical: str, **comments: str) -> dict[str, Any]:
+    """The variables of :data:`STATE_VARIABLES` over ``dim`` from their ``values`` by name, and
+    the flags ``stability`` and ``stability_jacobian`` (``values`` too); ``comments`` by name."""
+    data = {}
+    for name, (long_name, units, short) in STATE_VARIABLES.items():
+        extra = {"comment": comments[name]} if name in comments else {}
+        data[name] = variable(dim, values[name], long_name.format(vertical=vertical), units, short=short, **extra)
+    data["stability"] = (dim, values["stability"], flag_attrs("stability of the steady state"))
+    jacobian = flag_attrs(
+        "Jacobian verdict",
+        comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= 1e3 u ||A||_F) for "
+        f"tilted states, eq. (11)'s at the equivalent point for {vertical}",
+    )
+    data["stability_jacobian"] = (dim, values["stability_jacobian"], jacobian)
+    return data
 
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:

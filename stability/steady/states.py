@@ -28,13 +28,12 @@ from ..parameters import DEFAULT_MU, as_scalar
 from . import family
 from .linearisation import state_modes
 from .products import (
-    DEGREE,
     UNITLESS,
     check_scales,
-    flag_attrs,
     potential_curve,
     product_attrs,
     sliding_parameters,
+    state_variables,
     variable,
 )
 from .verdicts import flag_of
@@ -172,67 +171,20 @@ def steady_states(
         "equivalent_alpha_v": np.where(vertical, av_eq, np.nan),
         "equivalent_q": np.where(vertical, q_eq, np.nan),
     }
+    tilt = np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0)))
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
+    values = dict(tilt=tilt, precession_rate=lam, axial_spin=axial, energy=energy, jellett=jel, growth_rate=growth)
+    values.update(growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability=flags, stability_jacobian=jac)
+    note = "NaN for the vertical states; units of the spin rate Omega (simulate's time unit 1/Omega)"
     data = {
         "kind": (
             "state",
             np.array(kinds, dtype=str),
             {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"},
         ),
-        "tilt": variable(
-            "state",
-            np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))),
-            "polar angle of the axis k from the upward vertical (0 upright, 180 inverted)",
-            DEGREE,
-            short="tilt",
-        ),
-        "precession_rate": variable(
-            "state",
-            lam,
-            "precession rate of the axis about the vertical (NaN for the vertical states)",
-            "Omega",
-            short="precession rate",
-            comment="units of the spin rate Omega (simulate's time unit 1/Omega)",
-        ),
-        "axial_spin": variable("state", axial, "spin about the axis, omega . k", "Omega", short="axial spin"),
+        **state_variables("state", values, "vertical states", precession_rate=note),
         "omega_vertical": variable(
             "state", y[:, 2], "vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"
-        ),
-        "energy": variable("state", energy, "total energy of the state", "A0 Omega^2", short="energy"),
-        "jellett": variable(
-            "state", jel, "Jellett's integral J = (K + q k) . I_G omega", "A0 Omega", short="Jellett's J"
-        ),
-        "growth_rate": variable(
-            "state",
-            growth,
-            "leading growth rate of the linearisation about the state (frame precessing with it), "
-            "structural neutral directions removed",
-            "Omega",
-            short="leading growth rate",
-        ),
-        "growth_rate_bound": variable(
-            "state",
-            bound,
-            "absolute error bound of growth_rate (vertical states: |n| times eq. (11)'s bound at the equivalent "
-            "point; tilted states: 1e3 u ||A||_F)",
-            "Omega",
-            short="growth rate bound",
-        ),
-        "n_neutral": variable(
-            "state",
-            n_neutral.astype(np.int8),
-            "number of physical modes neutral within rounding",
-            short="neutral modes",
-        ),
-        "stability": ("state", flags, flag_attrs("stability of the steady state")),
-        "stability_jacobian": (
-            "state",
-            jac,
-            flag_attrs(
-                "Jacobian verdict",
-                comment="verdict of the spectrum alone: the reduced Jacobian's (neutral if |Re s| <= "
-                "1e3 u ||A||_F) for tilted states, eq. (11)'s at the equivalent point for vertical ones",
-            ),
         ),
         "energy_test": variable(
             "state",
