@@ -87,7 +87,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from stability.jit import cached, register_jitable
+from stability.jit import OPTIONS, cached, overload, register_jitable
 
 from .. import execution
 from ..errors import InputError, ParameterTypeError
@@ -651,6 +651,269 @@ def _finish(n, ok, sol, ev, bd, neutral, stab, i):
         stab[i] = _OUTSIDE
 
 
+# --- the model loops' blocks: the generic cubic, point by point in structure-of-arrays ---------
+#
+# The model loops solve their points in blocks of :data:`BLOCK`: the coefficients of a block are
+# written to a scratch array, one row per quantity (structure of arrays), and the generic cubic
+# (step 4 with one sweep passing its test, step 5) is formed by loops over the block with no
+# branch on data (selects), which the compiler turns into packed (SIMD) arithmetic: the same
+# operations in the same order as :func:`_cardano`, :func:`_cbrt`, :func:`_weierstrass` and
+# :func:`_bound_fast` (their complex products written out as numba forms them, a real factor
+# ``t`` as ``complex(t, 0)``), so the same bits (IEEE arithmetic gives the same result packed or
+# scalar). A point that leaves the generic case anywhere (a complex leading coefficient, a
+# structural zero, a modulus outside the range of its plain formula, widely separated scales, a
+# root not finite, a second sweep wanted) is marked and solved again by :func:`_solve`; the
+# cube root of the modulus (the C library's ``cbrt``) is its own scalar loop. The interpreted
+# execution solves every point by :func:`_solve` (:func:`_compiled`).
+
+#: points per block of the model loops
+BLOCK = 256
+# rows of a block's scratch array: the coefficients (re, im; highest power first), Cardano's
+# intermediates, the roots (re, im) and their error bounds
+_C3R, _C3I, _C2R, _C2I, _C1R, _C1I, _C0R, _C0I = 0, 1, 2, 3, 4, 5, 6, 7
+_A3R, _A3I, _P3R, _P3I, _ZR, _ZI, _TR, _TI, _RW = 8, 9, 10, 11, 12, 13, 14, 15, 16
+_R0R, _R0I, _R1R, _R1I, _R2R, _R2I, _E0, _E1, _E2 = 17, 18, 19, 20, 21, 22, 23, 24, 25
+_ROWS = 26
+
+
+def _compiled():
+    """False when interpreted; True in compiled code (its overload)."""
+    return False
+
+
+@overload(_compiled, jit_options=OPTIONS)
+def _compiled_overload():
+    return lambda: True
+
+
+@register_jitable
+def _plain(s):
+    """The square of a modulus lies where :func:`stability.linear.roots.modulus` takes its
+    plain formula ``sqrt(s)``."""
+    return (s > 1e-290) & (s < 1e290)
+
+
+@register_jitable
+def _store_parts(parts, w, j):
+    """Column ``j`` of a block's scratch ``w``: a cubic's coefficient ``parts`` (nothing for a
+    lower degree, which the blocks do not solve)."""
+    if len(parts) == 8:
+        for k in range(8):
+            w[k, j] = parts[k]
+
+
+@register_jitable
+def _block_start(w, rare, count):
+    """:func:`_cardano` up to the cube root of the modulus (:func:`_cbrt` before ``cbrt``), for
+    the ``count`` points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
+    for j in range(count):
+        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
+        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
+        inv = 1.0 / c3r
+        ar, ai, br, bi, cr, ci = c2r * inv, c2i * inv, c1r * inv, c1i * inv, c0r * inv, c0i * inv
+        a3r, a3i = ar * _THIRD, ai * _THIRD
+        # P3 = (b - a a3) / 3, Q2 = (c - a3 b) / 2 + a3^3
+        p3r = (br - (ar * a3r - ai * a3i)) * _THIRD
+        p3i = (bi - (ar * a3i + ai * a3r)) * _THIRD
+        q2r = (cr - (a3r * br - a3i * bi)) * 0.5
+        q2i = (ci - (a3r * bi + a3i * br)) * 0.5
+        sr, si = a3r * a3r - a3i * a3i, a3r * a3i + a3i * a3r
+        q2r, q2i = q2r + (sr * a3r - si * a3i), q2i + (sr * a3i + si * a3r)
+        # sd = csqrt(Q2^2 + P3^3)
+        sr, si = p3r * p3r - p3i * p3i, p3r * p3i + p3i * p3r
+        xr = (q2r * q2r - q2i * q2i) + (sr * p3r - si * p3i)
+        xi = (q2r * q2i + q2i * q2r) + (sr * p3i + si * p3r)
+        s = xr * xr + xi * xi
+        bad = (c3i != 0) | ((c0r == 0) & (c0i == 0)) | (not _plain(s))
+        t = math.sqrt(0.5 * (abs(xr) + math.sqrt(s)))
+        right = xr >= 0
+        q1, q2 = abs(xi) / (2.0 * t), xi / (2.0 * t)
+        sdr = t if right else q1
+        sdi = q2 if right else math.copysign(t, xi)
+        # w: the larger of -Q2 + sd, -Q2 - sd
+        w1r, w1i, w2r, w2i = -q2r + sdr, -q2i + sdi, -q2r - sdr, -q2i - sdi
+        first = w1r * w1r + w1i * w1i >= w2r * w2r + w2i * w2i
+        x = w1r if first else w2r
+        y = w1i if first else w2i
+        # _cbrt(w) without the modulus' cube root
+        s = x * x + y * y
+        bad = bad | (not _plain(s))
+        r = math.sqrt(s)
+        sx = math.copysign(1.0, x)
+        sy = math.copysign(1.0, y)
+        flat = abs(y) <= abs(x)
+        X = abs(x) if flat else abs(y)
+        Y = sx * y if flat else -sy * x
+        ir = 1.0 / r
+        c = X * ir
+        s = Y * ir
+        s2 = s * s
+        sp = s * (_CB0 + s2 * (_CB1 + s2 * (_CB2 + s2 * _CB3)))
+        cp = math.sqrt(1.0 - sp * sp)
+        a2r = cp * cp - sp * sp
+        a2i = 2.0 * cp * sp
+        z3r = a2r * cp - a2i * sp
+        z3i = a2r * sp + a2i * cp
+        dr, di = c - z3r, s - z3i
+        er, ei = 2.0 * z3r + c, 2.0 * z3i + s
+        inv = 1.0 / (er * er + ei * ei)
+        qr = (dr * er + di * ei) * inv
+        qi = (di * er - dr * ei) * inv
+        w[_ZR, j] = cp + (cp * qr - sp * qi)
+        w[_ZI, j] = sp + (cp * qi + sp * qr)
+        w[_TR, j] = sx if flat else _CBRT_I.real
+        w[_TI, j] = 0.0 if flat else sy * _CBRT_I.imag
+        w[_RW, j] = r
+        w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j] = a3r, a3i, p3r, p3i
+        rare[j] = bad
+
+
+@register_jitable
+def _block_cbrt(w, count):
+    """The cube roots of the moduli (:func:`stability.linear.roots.cbrt`), a scalar loop."""
+    for j in range(count):
+        w[_RW, j] = cbrt(w[_RW, j])
+
+
+@register_jitable
+def _block_roots(w, rare, count):
+    """The rest of :func:`_cardano` for the points of a block, and the tests of :func:`_cubic`
+    before its sweeps (scales not widely separated, roots finite: else ``rare``)."""
+    for j in range(count):
+        m = w[_RW, j]
+        zr, zi = m * w[_ZR, j], m * w[_ZI, j]
+        tr, ti = w[_TR, j], w[_TI, j]
+        ur, ui = zr * tr - zi * ti, zr * ti + zi * tr
+        a3r, a3i, p3r, p3i = w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j]
+        # v = -P3 conj(u) / |u|^2, the real factor as complex(t, 0)
+        n2 = ur * ur + ui * ui
+        bad = rare[j] | (not _plain(n2))
+        t = 1.0 / n2
+        xr, xi = -p3r * ur - -p3i * -ui, -p3r * -ui + -p3i * ur
+        vr, vi = xr * t - xi * 0.0, xr * 0.0 + xi * t
+        r0r, r0i = (ur + vr) - a3r, (ui + vi) - a3i
+        r1r = ((_OMEGA.real * ur - _OMEGA.imag * ui) + (_OMEGA2.real * vr - _OMEGA2.imag * vi)) - a3r
+        r1i = ((_OMEGA.real * ui + _OMEGA.imag * ur) + (_OMEGA2.real * vi + _OMEGA2.imag * vr)) - a3i
+        r2r = ((_OMEGA2.real * ur - _OMEGA2.imag * ui) + (_OMEGA.real * vr - _OMEGA.imag * vi)) - a3r
+        r2i = ((_OMEGA2.real * ui + _OMEGA2.imag * ur) + (_OMEGA.real * vi + _OMEGA.imag * vr)) - a3i
+        n0 = r0r * r0r + r0i * r0i
+        n1 = r1r * r1r + r1i * r1i
+        n2 = r2r * r2r + r2i * r2i
+        lo = n0 if n0 < n1 else n1
+        lo = lo if lo < n2 else n2
+        hi = n0 if n0 > n1 else n1
+        hi = hi if hi > n2 else n2
+        bad = bad | (lo < 1e-8 * hi)
+        finite = math.isfinite(r0r) & math.isfinite(r0i) & math.isfinite(r1r)
+        bad = bad | (not (finite & math.isfinite(r1i) & math.isfinite(r2r) & math.isfinite(r2i)))
+        w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0r, r0i, r1r, r1i, r2r, r2i
+        rare[j] = bad
+
+
+@register_jitable
+def _block_sweep(w, rare, count, more):
+    """One Weierstrass sweep of :func:`_cubic` for the points of a block; ``rare`` where it
+    does not pass the test and ``more`` sweeps are allowed."""
+    for j in range(count):
+        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
+        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
+        r0r, r0i, r1r, r1i, r2r, r2i = w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j]
+        r0r, r0i, e0 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r0r, r0i, r1r, r1i, r2r, r2i)
+        r1r, r1i, e1 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r1r, r1i, r0r, r0i, r2r, r2i)
+        r2r, r2i, e2 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r2r, r2i, r0r, r0i, r1r, r1i)
+        w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0r, r0i, r1r, r1i, r2r, r2i
+        rare[j] = rare[j] | (more & (not ((e0 <= 0) & (e1 <= 0) & (e2 <= 0))))
+
+
+@register_jitable
+def _block_bounds(w, rare, count):
+    """The error bounds of :func:`_solve` (:func:`_bound_fast`) for the roots of a block
+    (``rare`` where a modulus leaves its plain formula)."""
+    for j in range(count):
+        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
+        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
+        s3, s2 = c3r * c3r + c3i * c3i, c2r * c2r + c2i * c2i
+        s1, s0 = c1r * c1r + c1i * c1i, c0r * c0r + c0i * c0i
+        m3, m2, m1, m0 = math.sqrt(s3), math.sqrt(s2), math.sqrt(s1), math.sqrt(s0)
+        e0, ok0 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R0R, j], w[_R0I, j])
+        e1, ok1 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R1R, j], w[_R1I, j])
+        e2, ok2 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R2R, j], w[_R2I, j])
+        w[_E0, j], w[_E1, j], w[_E2, j] = e0, e1, e2
+        plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0) & ok0 & ok1 & ok2
+        rare[j] = rare[j] | (not plain)
+
+
+@register_jitable
+def _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, rr, ri, o1r, o1i, o2r, o2i):
+    """:func:`_weierstrass` written out in real arithmetic, by selects."""
+    # p = ((c3 r + c2) r + c1) r + c0
+    pr, pi = (c3r * rr - c3i * ri) + c2r, (c3r * ri + c3i * rr) + c2i
+    pr, pi = (pr * rr - pi * ri) + c1r, (pr * ri + pi * rr) + c1i
+    pr, pi = (pr * rr - pi * ri) + c0r, (pr * ri + pi * rr) + c0i
+    # den = c3 (r - o1) (r - o2)
+    ar, ai = rr - o1r, ri - o1i
+    dr, di = c3r * ar - c3i * ai, c3r * ai + c3i * ar
+    ar, ai = rr - o2r, ri - o2i
+    dr, di = dr * ar - di * ai, dr * ai + di * ar
+    n2 = dr * dr + di * di
+    keep = (n2 == 0) | (not math.isfinite(n2))
+    t = 1.0 / n2
+    # step = p conj(den) complex(t, 0)
+    xr, xi = pr * dr - pi * -di, pr * -di + pi * dr
+    sr, si = xr * t - xi * 0.0, xr * 0.0 + xi * t
+    e = (sr * sr + si * si) - 1e-16 * (rr * rr + ri * ri)
+    return (rr if keep else rr - sr), (ri if keep else ri - si), (0.0 if keep else e)
+
+
+@register_jitable
+def _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, rr, ri):
+    """:func:`_bound_fast` of a cubic's root in real arithmetic, by selects; and whether the
+    root's modulus took the plain formula."""
+    s = rr * rr + ri * ri
+    a = math.sqrt(s)
+    dp = 7 * _U * (((m3 * a + m2) * a + m1) * a + m0)
+    # t = 3 c3 r + 2 c2, d1 = t r + c1, d2 = 6 c3 r + 2 c2
+    tr = ((c3r * 3.0) * rr - (c3i * 3.0) * ri) + c2r * 2.0
+    ti = ((c3r * 3.0) * ri + (c3i * 3.0) * rr) + c2i * 2.0
+    d1r, d1i = (tr * rr - ti * ri) + c1r, (tr * ri + ti * rr) + c1i
+    d2r = ((c3r * 6.0) * rr - (c3i * 6.0) * ri) + c2r * 2.0
+    d2i = ((c3r * 6.0) * ri + (c3i * 6.0) * rr) + c2i * 2.0
+    n1 = d1r * d1r + d1i * d1i
+    n2 = d2r * d2r + d2i * d2i
+    second = (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
+    e2 = math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
+    e = e2 if second else dp / math.sqrt(n1)
+    return e, _plain(s)
+
+
+@register_jitable
+def _block_solve(w, rare, count, polish):
+    """The generic cubics of a block: :func:`_block_start`, :func:`_block_cbrt`,
+    :func:`_block_roots`, :func:`_block_sweep` (when ``polish > 0``), :func:`_block_bounds`."""
+    _block_start(w, rare, count)
+    _block_cbrt(w, count)
+    _block_roots(w, rare, count)
+    if polish > 0:
+        _block_sweep(w, rare, count, polish > 1)
+    _block_bounds(w, rare, count)
+
+
+@register_jitable
+def _block_solution(w, j):
+    """Point ``j`` of a solved block in :func:`_solve`'s layout."""
+    return (
+        complex(w[_R0R, j], w[_R0I, j]),
+        complex(w[_R1R, j], w[_R1I, j]),
+        complex(w[_R2R, j], w[_R2I, j]),
+        w[_E0, j],
+        w[_E1, j],
+        w[_E2, j],
+        False,
+        False,
+        False,
+    )
+
+
 class _Kernels(NamedTuple):
     """The loops of one model (:func:`_compile`), plain functions (:func:`stability.jit.cached`
     compiles them, serial or parallel)."""
@@ -687,36 +950,52 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         are read into a tuple once: an array handed to the domain test per point is passed and
         reference-counted at every call.)"""
         lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
-        last = len(stab) - 1
-        # two points per iteration (i and k, the same point at the end of an odd count), Cardano's
-        # estimates of both formed before either is finished (_estimates)
-        for j in prange((last + 2) // 2):
-            i = 2 * j
-            k = min(i + 1, last)
-            qi, mi = q[i * sq], mu[i * sm]
-            fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-            qk, mk = q[k * sq], mu[k * sm]
-            fk, sk, ak = fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa]
-            code_i = _domain_code(qi, fi, si, ai, mi, lt, applies)
-            code_k = _domain_code(qk, fk, sk, ak, mk, lt, applies)
-            where[i] = code_i
-            where[k] = code_k
-            ok_i, ok_k = code_i == _INSIDE, code_k == _INSIDE
-            sol_i, sol_k = _solve_pair(formula(qi, fi, si, ai, mi), ok_i, formula(qk, fk, sk, ak, mk), ok_k, polish)
-            for t in range(2):
-                _finish(n, ok_i if t == 0 else ok_k, sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
+        npts = len(stab)
+        blocks = _compiled() and n == 3
+        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points (_block_solve)
+            lo = b * BLOCK
+            count = min(BLOCK, npts - lo)
+            w = np.empty((_ROWS, count if blocks else 0))
+            rare = np.empty(count if blocks else 0, dtype=np.bool_)
+            for i in range(lo, lo + count):
+                qi, fi, si, ai, mi = q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]
+                where[i] = _domain_code(qi, fi, si, ai, mi, lt, applies)
+                if blocks:
+                    _store_parts(formula(qi, fi, si, ai, mi), w, i - lo)
+            if blocks:
+                _block_solve(w, rare, count, polish)
+            for i in range(lo, lo + count):
+                ok = where[i] == _INSIDE
+                sol = _UNSOLVED
+                if ok and blocks and not rare[i - lo]:
+                    sol = _block_solution(w, i - lo)
+                elif ok:
+                    parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                    sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
-        last = len(stab) - 1
-        for j in prange((last + 2) // 2):  # two points per iteration, as in ``checked``
-            i = 2 * j
-            k = min(i + 1, last)
-            parts_i = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-            parts_k = formula(q[k * sq], fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa], mu[k * sm])
-            sol_i, sol_k = _solve_pair(parts_i, inside[i], parts_k, inside[k], polish)
-            for t in range(2):
-                _finish(n, inside[i + t * (k - i)], sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
+        npts = len(stab)
+        blocks = _compiled() and n == 3
+        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points, as in ``checked``
+            lo = b * BLOCK
+            count = min(BLOCK, npts - lo)
+            w = np.empty((_ROWS, count if blocks else 0))
+            rare = np.empty(count if blocks else 0, dtype=np.bool_)
+            if blocks:
+                for i in range(lo, lo + count):
+                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
+                _block_solve(w, rare, count, polish)
+            for i in range(lo, lo + count):
+                ok = inside[i]
+                sol = _UNSOLVED
+                if ok and blocks and not rare[i - lo]:
+                    sol = _block_solution(w, i - lo)
+                elif ok:
+                    parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                    sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
