@@ -727,9 +727,9 @@ def _block_start(w, rare, count):
         bad = (c3i != 0) | ((c0r == 0) & (c0i == 0)) | (not _plain(s))
         t = math.sqrt(0.5 * (abs(xr) + math.sqrt(s)))
         right = xr >= 0
-        q1, q2 = abs(xi) / (2.0 * t), xi / (2.0 * t)
-        sdr = t if right else q1
-        sdi = q2 if right else math.copysign(t, xi)
+        h = (xi if right else abs(xi)) / (2.0 * t)  # one division for either side
+        sdr = t if right else h
+        sdi = h if right else math.copysign(t, xi)
         # w: the larger of -Q2 + sd, -Q2 - sd
         w1r, w1i, w2r, w2i = -q2r + sdr, -q2i + sdi, -q2r - sdr, -q2i - sdi
         first = w1r * w1r + w1i * w1i >= w2r * w2r + w2i * w2i
@@ -867,8 +867,9 @@ def _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, rr, ri, o1r, o1i,
 
 @register_jitable
 def _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, rr, ri):
-    """:func:`_bound_fast` of a cubic's root in real arithmetic, by selects; and whether the
-    root's modulus took the plain formula."""
+    """:func:`_bound_fast` of a cubic's root in real arithmetic where it is ``dp / |p'(r)|``,
+    and whether it is: the root's modulus took the plain formula, and ``sqrt(2 dp / |p''|)``
+    is not the smaller (a nearly double root: solved again by :func:`_solve`)."""
     s = rr * rr + ri * ri
     a = math.sqrt(s)
     dp = 7 * _U * (((m3 * a + m2) * a + m1) * a + m0)
@@ -881,9 +882,7 @@ def _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, rr, ri):
     n1 = d1r * d1r + d1i * d1i
     n2 = d2r * d2r + d2i * d2i
     second = (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
-    e2 = math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
-    e = e2 if second else dp / math.sqrt(n1)
-    return e, _plain(s)
+    return dp / math.sqrt(n1), _plain(s) & (not second)
 
 
 @register_jitable
@@ -899,19 +898,14 @@ def _block_solve(w, rare, count, polish):
 
 
 @register_jitable
-def _block_solution(w, j):
-    """Point ``j`` of a solved block in :func:`_solve`'s layout."""
-    return (
-        complex(w[_R0R, j], w[_R0I, j]),
-        complex(w[_R1R, j], w[_R1I, j]),
-        complex(w[_R2R, j], w[_R2I, j]),
-        w[_E0, j],
-        w[_E1, j],
-        w[_E2, j],
-        False,
-        False,
-        False,
-    )
+def _block_decide(w, count, lo, ev, bd, neutral, stab):
+    """:func:`_decide` of the block's points (the block's first point is ``lo``), written to
+    the outputs; a point that is rare or outside is then written again by its loop."""
+    for j in range(count):
+        r0 = complex(w[_R0R, j], w[_R0I, j])
+        r1 = complex(w[_R1R, j], w[_R1I, j])
+        r2 = complex(w[_R2R, j], w[_R2I, j])
+        stab[lo + j] = _decide(3, r0, r1, r2, w[_E0, j], w[_E1, j], w[_E2, j], False, False, False, ev, bd, neutral, lo + j)
 
 
 class _Kernels(NamedTuple):
@@ -964,15 +958,15 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                     _store_parts(formula(qi, fi, si, ai, mi), w, i - lo)
             if blocks:
                 _block_solve(w, rare, count, polish)
-            for i in range(lo, lo + count):
+                _block_decide(w, count, lo, ev, bd, neutral, stab)
+            for i in range(lo, lo + count):  # the points the blocks did not solve
                 ok = where[i] == _INSIDE
-                sol = _UNSOLVED
-                if ok and blocks and not rare[i - lo]:
-                    sol = _block_solution(w, i - lo)
-                elif ok:
-                    parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-                    sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
-                _finish(n, ok, sol, ev, bd, neutral, stab, i)
+                if not (blocks and ok and not rare[i - lo]):
+                    sol = _UNSOLVED
+                    if ok:
+                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                        sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
@@ -987,15 +981,15 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 for i in range(lo, lo + count):
                     _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
                 _block_solve(w, rare, count, polish)
-            for i in range(lo, lo + count):
+                _block_decide(w, count, lo, ev, bd, neutral, stab)
+            for i in range(lo, lo + count):  # the points the blocks did not solve
                 ok = inside[i]
-                sol = _UNSOLVED
-                if ok and blocks and not rare[i - lo]:
-                    sol = _block_solution(w, i - lo)
-                elif ok:
-                    parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-                    sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
-                _finish(n, ok, sol, ev, bd, neutral, stab, i)
+                if not (blocks and ok and not rare[i - lo]):
+                    sol = _UNSOLVED
+                    if ok:
+                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                        sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
