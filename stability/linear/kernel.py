@@ -48,10 +48,12 @@ thousand points). The two give the same bits (tests/test_kernel.py). Per point:
    ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
    Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
    benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
-   The model loops take two points per iteration and form Cardano's estimates of both
-   (:func:`_estimates`, :func:`_solve_pair`) before finishing either: each is one long chain
-   of dependent operations, and two side by side overlap in the processor (~6 % per point;
-   the same arithmetic, the same bits).
+   The model loops (compiled) solve their points in blocks of :data:`BLOCK`, in
+   structure-of-arrays scratch rows, by loops without a branch on data that the compiler
+   turns into packed (SIMD) arithmetic: the same operations in the same order, so the same
+   bits; a point that leaves the generic cubic anywhere is solved again point by point
+   (:func:`_block_solve`; ~0.2 % of the benchmark's sample). Steps 4-6 then take about half
+   the time they took point by point (docs/performance.md).
 5. *Error bound*, the one of :mod:`stability.linear.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
    ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
    and ``p''`` evaluated at the final roots.
@@ -279,28 +281,11 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     return r - step, _mod2(step) - 1e-16 * _mod2(r)
 
 
-#: what :func:`_estimates` gives where the cubic path is not taken
-_NO_ESTIMATES = (0j, 0j, 0j)
-
-
 @register_jitable
-def _estimates(c3, c2, c1, c0, deg):
-    """Cardano's estimates (:func:`_cardano`) of a polynomial of :func:`_solve` where it takes
-    the cubic path (``deg = 3``, ``c0 != 0``), else :data:`_NO_ESTIMATES`. Formed apart from
-    :func:`_solve` so that a loop can form those of two points before finishing either: the
-    estimates are one long chain of dependent square roots, divisions and a cube root, and two
-    independent chains side by side overlap in the processor (the same arithmetic, the same
-    bits; docs/performance.md)."""
-    if deg == 3 and c0 != 0:
-        return _cardano(c3, c2, c1, c0)
-    return _NO_ESTIMATES
-
-
-@register_jitable
-def _cubic(c3, c2, c1, c0, polish, estimates):
-    """Three roots of a cubic with ``c0 != 0`` from Cardano's ``estimates`` (module docstring,
-    step 4)."""
-    r0, r1, r2 = estimates
+def _cubic(c3, c2, c1, c0, polish):
+    """Three roots of a cubic with ``c0 != 0``: Cardano's estimates (:func:`_cardano`),
+    polished (module docstring, step 4)."""
+    r0, r1, r2 = _cardano(c3, c2, c1, c0)
     sweeps = polish
     n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
     if min(n0, n1, n2) < 1e-8 * max(n0, n1, n2):
@@ -370,10 +355,9 @@ def _before(a, b):
 
 
 @register_jitable
-def _solve(c3, c2, c1, c0, deg, polish, estimates):
+def _solve(c3, c2, c1, c0, deg, polish):
     """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
-    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted;
-    ``estimates`` those of :func:`_estimates` for the same arguments."""
+    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
     if deg == 2:
         c3, c2, c1, c0 = 0j, c3, c2, c1
     nz = 0
@@ -397,7 +381,7 @@ def _solve(c3, c2, c1, c0, deg, polish, estimates):
     x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
     e0 = e1 = e2 = 0.0
     if m == 3:
-        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish, estimates)
+        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish)
         x0 = x1 = x2 = False
     elif m == 2:
         r0, r1, ex = quadratic_roots(d2, d1, d0)
@@ -552,10 +536,9 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
             continue
         ci = c[i]
         if n == 3:
-            est = _estimates(ci[0], ci[1], ci[2], ci[3], 3)
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish, est)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
         elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish, _NO_ESTIMATES)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
         else:
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
         stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
@@ -565,47 +548,16 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
 
 
 @register_jitable
-def _parts_estimates(parts, ok):
-    """:func:`_estimates` of :func:`_solve_parts`'s ``parts`` where ``ok`` (the point is computed),
-    else :data:`_NO_ESTIMATES`."""
-    if ok and len(parts) == 8:
-        return _estimates(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-            3,
-        )
-    return _NO_ESTIMATES
-
-
-@register_jitable
-def _solve_parts(parts, polish, estimates):
+def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
-    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time);
-    ``estimates`` those of :func:`_parts_estimates`."""
-    if len(parts) == 8:
-        return _solve(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-            3,
-            polish,
-            estimates,
-        )
-    if len(parts) == 6:
-        return _solve(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            0j,
-            2,
-            polish,
-            _NO_ESTIMATES,
-        )
-    return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
+    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
+    c = _complex_parts(parts)
+    if len(c) == 4:
+        return _solve(c[0], c[1], c[2], c[3], 3, polish)
+    if len(c) == 3:
+        return _solve(c[0], c[1], c[2], 0j, 2, polish)
+    return _solve_linear(c[0], c[1])
 
 
 @register_jitable
@@ -625,17 +577,6 @@ def _complex_parts(parts):
 
 #: what a model's loop holds for a point it does not solve (:func:`_solve`'s layout)
 _UNSOLVED = (0j, 0j, 0j, 0.0, 0.0, 0.0, False, False, False)
-
-
-@register_jitable
-def _solve_pair(parts_i, ok_i, parts_k, ok_k, polish):
-    """:func:`_solve_parts` of two points (where ``ok``; else :data:`_UNSOLVED`), Cardano's
-    estimates of both formed before either is finished (:func:`_estimates`)."""
-    est_i = _parts_estimates(parts_i, ok_i)
-    est_k = _parts_estimates(parts_k, ok_k)
-    sol_i = _solve_parts(parts_i, polish, est_i) if ok_i else _UNSOLVED
-    sol_k = _solve_parts(parts_k, polish, est_k) if ok_k else _UNSOLVED
-    return sol_i, sol_k
 
 
 @register_jitable(inline="always")
@@ -965,7 +906,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                     sol = _UNSOLVED
                     if ok:
                         parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-                        sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                        sol = _solve_parts(parts, polish)
                     _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
@@ -988,7 +929,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                     sol = _UNSOLVED
                     if ok:
                         parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-                        sol = _solve_parts(parts, polish, _parts_estimates(parts, True))
+                        sol = _solve_parts(parts, polish)
                     _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
@@ -1039,6 +980,12 @@ def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
         np.empty((npts, n), dtype=np.bool_),
         np.empty(npts, dtype=np.int8),
     )
+
+
+def _shaped(ev: np.ndarray, bd: np.ndarray, nt: np.ndarray, st: np.ndarray, shape: tuple[int, ...]) -> KernelSpectrum:
+    """The outputs of :func:`_outputs` in the request's ``shape`` (``shape + (n,)`` for the modes)."""
+    n = ev.shape[-1]
+    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape))
 
 
 def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
@@ -1145,9 +1092,7 @@ def model_spectrum(
         [*(a for pair in flat for a in pair), ins, int(polish)],
         (ev, bd, nt, st),
     )
-    return KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    return _shaped(ev, bd, nt, st, shape)
 
 
 def sliding_spectrum(
@@ -1284,9 +1229,7 @@ def checked_model_spectrum(
     inside = where == _INSIDE
     n_out = npts - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    spec = _shaped(ev, bd, nt, st, shape)
     return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
 
 
@@ -1406,6 +1349,4 @@ def coefficient_spectrum(
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
     _run(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
-    return KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    return _shaped(ev, bd, nt, st, shape)
