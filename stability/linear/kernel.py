@@ -95,7 +95,7 @@ from .. import execution
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_domain
-from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
+from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
     "MAX_DEGREE",
@@ -204,10 +204,17 @@ def _cbrt(w):
     is undone by a cube root of it (``+-1``, ``exp(+-i pi/6)``). ``cbrt(|w|) exp(i atan2(Im w,
     Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one thread); this
     takes ~35."""
-    x, y = w.real, w.imag
     r = modulus(w)
     if not 0.0 < r < math.inf:
         return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
+    return _untwist(cbrt(r), *_turn(w, r))
+
+
+@register_jitable
+def _turn(w, r):
+    """:func:`_cbrt` of ``w`` (modulus ``r``, ``0 < r < inf``) but for the cube root of ``r``:
+    ``(zr, zi, tr, ti)`` with ``cbrt(w) = cbrt(r) (zr + i zi) (tr + i ti)`` (no branch on data)."""
+    x, y = w.real, w.imag
     # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
     # w = i sy W (|x| < |y|), with sx, sy the signs of x and y
     sx = math.copysign(1.0, x)
@@ -231,12 +238,16 @@ def _cbrt(w):
     inv = 1.0 / (er * er + ei * ei)
     qr = (dr * er + di * ei) * inv
     qi = (di * er - dr * ei) * inv
-    m = cbrt(r)
-    zr = m * (cp + (cp * qr - sp * qi))
-    zi = m * (sp + (cp * qi + sp * qr))
     # undo the turn: times a cube root of sx (sx itself) or of i sy (exp(i sy pi/6))
     tr = sx if flat else _CBRT_I.real
     ti = 0.0 if flat else sy * _CBRT_I.imag
+    return cp + (cp * qr - sp * qi), sp + (cp * qi + sp * qr), tr, ti
+
+
+@register_jitable
+def _untwist(m, zr, zi, tr, ti):
+    """The cube root from :func:`_turn`'s parts and ``m = cbrt(r)``."""
+    zr, zi = m * zr, m * zi
     return complex(zr * tr - zi * ti, zr * ti + zi * tr)
 
 
@@ -250,19 +261,38 @@ def _cardano(c3, c2, c1, c0):
     else:
         inv = 1.0 / c3
         a, b, c = c2 * inv, c1 * inv, c0 * inv
-    a3 = _scale(a, _THIRD)
-    P3 = _scale(b - a * a3, _THIRD)
-    Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
-    sd = csqrt(Q2 * Q2 + P3 * P3 * P3)
-    w1 = -Q2 + sd
-    w2 = -Q2 - sd
-    w = w1 if _mod2(w1) >= _mod2(w2) else w2
+    a3, P3, Q2, disc = _depressed(a, b, c)
+    w = _larger(Q2, csqrt(disc))
     u = _cbrt(w)
     n2 = _mod2(u)
     if 1e-290 < n2 < 1e290:
         v = -P3 * u.conjugate() * (1.0 / n2)
     else:
         v = -P3 / u if u != 0 else 0j
+    return _three_roots(u, v, a3)
+
+
+@register_jitable
+def _depressed(a, b, c):
+    """``s^3 + a s^2 + b s + c`` with ``s = x - a/3``: ``x^3 + 3 P3 x + 2 Q2`` (``a/3``, ``P3``,
+    ``Q2``) and Cardano's discriminant ``Q2^2 + P3^3``."""
+    a3 = _scale(a, _THIRD)
+    P3 = _scale(b - a * a3, _THIRD)
+    Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
+    return a3, P3, Q2, Q2 * Q2 + P3 * P3 * P3
+
+
+@register_jitable
+def _larger(Q2, sd):
+    """The larger in modulus of ``-Q2 + sd`` and ``-Q2 - sd`` (no cancellation; a select)."""
+    w1 = -Q2 + sd
+    w2 = -Q2 - sd
+    return w1 if _mod2(w1) >= _mod2(w2) else w2
+
+
+@register_jitable
+def _three_roots(u, v, a3):
+    """Cardano's roots ``u + v``, ``omega u + omega^2 v``, ``omega^2 u + omega v``, less ``a/3``."""
     return u + v - a3, _OMEGA * u + _OMEGA2 * v - a3, _OMEGA2 * u + _OMEGA * v - a3
 
 
@@ -275,10 +305,19 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     p = horner_scheme((c3, c2, c1, c0), r, 0)[0]
     den = c3 * (r - o1) * (r - o2)
     n2 = _mod2(den)
-    if n2 == 0 or not math.isfinite(n2):
-        return r, 0.0
-    step = p * den.conjugate() * (1.0 / n2)
-    return r - step, _mod2(step) - 1e-16 * _mod2(r)
+    keep = (n2 == 0) | (not math.isfinite(n2))  # no step (selects: the compiled blocks pack it)
+    step = p * den.conjugate() * (1.0 / (1.0 if keep else n2))
+    return (r if keep else r - step), (0.0 if keep else _mod2(step) - 1e-16 * _mod2(r))
+
+
+@register_jitable
+def _separated(r0, r1, r2):
+    """Whether the scales of three roots are widely separated (:func:`_cubic`: smallest modulus
+    below 1e-4 x the largest), and their squared moduli."""
+    n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
+    lo = n0 if n0 < n1 else n1
+    hi = n0 if n0 > n1 else n1
+    return (lo if lo < n2 else n2) < 1e-8 * (hi if hi > n2 else n2), n0, n1, n2
 
 
 @register_jitable
@@ -287,8 +326,8 @@ def _cubic(c3, c2, c1, c0, polish):
     polished (module docstring, step 4)."""
     r0, r1, r2 = _cardano(c3, c2, c1, c0)
     sweeps = polish
-    n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
-    if min(n0, n1, n2) < 1e-8 * max(n0, n1, n2):
+    separated, n0, n1, n2 = _separated(r0, r1, r2)
+    if separated:
         # widely separated scales: Cardano's small roots carry an absolute error ~u |largest|;
         # take the largest root (accurate), divide it out by backward deflation, stable for
         # the largest root, p(s) = (s - r0)(b2 s^2 + b1 s + b0), and solve the quadratic
@@ -334,7 +373,17 @@ def _bound(c3, c2, c1, c0, deg, r):
 def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     """:func:`_bound` with the coefficient moduli ``m_k = |c_k|`` given (one square root
     fewer per comparison; the same value up to rounding)."""
-    a = modulus(r)
+    dp, n1, n2, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, modulus(r))
+    if second:
+        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
+    return dp / math.sqrt(n1)
+
+
+@register_jitable
+def _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, a):
+    """``dp``, ``|p'(r)|^2``, ``|p''(r)|^2`` of :func:`_bound_fast` (``a = |r|``) and whether
+    the bound is ``sqrt(2 dp / |p''|)`` (the smaller: ``4 |p'|^4 < dp^2 |p''|^2``) rather than
+    ``dp / |p'|``."""
     dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
     # p' and p'' directly (Horner's scheme would form p as well)
     t = _scale(c3, 3.0) * r + _scale(c2, 2.0)
@@ -342,10 +391,7 @@ def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     d2 = _scale(c3, 6.0) * r + _scale(c2, 2.0)
     n1 = _mod2(d1)
     n2 = _mod2(d2)
-    # min(dp / |p'|, sqrt(2 dp / |p''|)): the second is smaller iff 4 |p'|^4 < dp^2 |p''|^2
-    if 4.0 * n1 * n1 < dp * dp * n2 or n1 == 0:
-        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
-    return dp / math.sqrt(n1)
+    return dp, n1, n2, (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
 
 
 @register_jitable
@@ -645,68 +691,21 @@ def _store_parts(parts, w, j):
 
 @register_jitable
 def _block_start(w, rare, count):
-    """:func:`_cardano` up to the cube root of the modulus (:func:`_cbrt` before ``cbrt``), for
-    the ``count`` points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
+    """:func:`_cardano` up to the cube root of the modulus (:func:`_turn`), for the ``count``
+    points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
     for j in range(count):
-        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
-        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
-        inv = 1.0 / c3r
-        ar, ai, br, bi, cr, ci = c2r * inv, c2i * inv, c1r * inv, c1i * inv, c0r * inv, c0i * inv
-        a3r, a3i = ar * _THIRD, ai * _THIRD
-        # P3 = (b - a a3) / 3, Q2 = (c - a3 b) / 2 + a3^3
-        p3r = (br - (ar * a3r - ai * a3i)) * _THIRD
-        p3i = (bi - (ar * a3i + ai * a3r)) * _THIRD
-        q2r = (cr - (a3r * br - a3i * bi)) * 0.5
-        q2i = (ci - (a3r * bi + a3i * br)) * 0.5
-        sr, si = a3r * a3r - a3i * a3i, a3r * a3i + a3i * a3r
-        q2r, q2i = q2r + (sr * a3r - si * a3i), q2i + (sr * a3i + si * a3r)
-        # sd = csqrt(Q2^2 + P3^3)
-        sr, si = p3r * p3r - p3i * p3i, p3r * p3i + p3i * p3r
-        xr = (q2r * q2r - q2i * q2i) + (sr * p3r - si * p3i)
-        xi = (q2r * q2i + q2i * q2r) + (sr * p3i + si * p3r)
-        s = xr * xr + xi * xi
-        bad = (c3i != 0) | ((c0r == 0) & (c0i == 0)) | (not _plain(s))
-        t = math.sqrt(0.5 * (abs(xr) + math.sqrt(s)))
-        right = xr >= 0
-        h = (xi if right else abs(xi)) / (2.0 * t)  # one division for either side
-        sdr = t if right else h
-        sdi = h if right else math.copysign(t, xi)
-        # w: the larger of -Q2 + sd, -Q2 - sd
-        w1r, w1i, w2r, w2i = -q2r + sdr, -q2i + sdi, -q2r - sdr, -q2i - sdi
-        first = w1r * w1r + w1i * w1i >= w2r * w2r + w2i * w2i
-        x = w1r if first else w2r
-        y = w1i if first else w2i
-        # _cbrt(w) without the modulus' cube root
-        s = x * x + y * y
-        bad = bad | (not _plain(s))
-        r = math.sqrt(s)
-        sx = math.copysign(1.0, x)
-        sy = math.copysign(1.0, y)
-        flat = abs(y) <= abs(x)
-        X = abs(x) if flat else abs(y)
-        Y = sx * y if flat else -sy * x
-        ir = 1.0 / r
-        c = X * ir
-        s = Y * ir
-        s2 = s * s
-        sp = s * (_CB0 + s2 * (_CB1 + s2 * (_CB2 + s2 * _CB3)))
-        cp = math.sqrt(1.0 - sp * sp)
-        a2r = cp * cp - sp * sp
-        a2i = 2.0 * cp * sp
-        z3r = a2r * cp - a2i * sp
-        z3i = a2r * sp + a2i * cp
-        dr, di = c - z3r, s - z3i
-        er, ei = 2.0 * z3r + c, 2.0 * z3i + s
-        inv = 1.0 / (er * er + ei * ei)
-        qr = (dr * er + di * ei) * inv
-        qi = (di * er - dr * ei) * inv
-        w[_ZR, j] = cp + (cp * qr - sp * qi)
-        w[_ZI, j] = sp + (cp * qi + sp * qr)
-        w[_TR, j] = sx if flat else _CBRT_I.real
-        w[_TI, j] = 0.0 if flat else sy * _CBRT_I.imag
-        w[_RW, j] = r
-        w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j] = a3r, a3i, p3r, p3i
-        rare[j] = bad
+        inv = 1.0 / w[_C3R, j]
+        c0 = complex(w[_C0R, j], w[_C0I, j])
+        a3, P3, Q2, disc = _depressed(
+            _scale(complex(w[_C2R, j], w[_C2I, j]), inv), _scale(complex(w[_C1R, j], w[_C1I, j]), inv), _scale(c0, inv)
+        )
+        s = _mod2(disc)
+        x = _larger(Q2, csqrt_nonzero(disc, math.sqrt(s)))
+        r2 = _mod2(x)
+        w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j] = _turn(x, math.sqrt(r2))
+        w[_RW, j] = math.sqrt(r2)
+        w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j] = a3.real, a3.imag, P3.real, P3.imag
+        rare[j] = (w[_C3I, j] != 0) | (c0 == 0) | (not (_plain(s) & _plain(r2)))
 
 
 @register_jitable
@@ -721,34 +720,13 @@ def _block_roots(w, rare, count):
     """The rest of :func:`_cardano` for the points of a block, and the tests of :func:`_cubic`
     before its sweeps (scales not widely separated, roots finite: else ``rare``)."""
     for j in range(count):
-        m = w[_RW, j]
-        zr, zi = m * w[_ZR, j], m * w[_ZI, j]
-        tr, ti = w[_TR, j], w[_TI, j]
-        ur, ui = zr * tr - zi * ti, zr * ti + zi * tr
-        a3r, a3i, p3r, p3i = w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j]
-        # v = -P3 conj(u) / |u|^2, the real factor as complex(t, 0)
-        n2 = ur * ur + ui * ui
-        bad = rare[j] | (not _plain(n2))
-        t = 1.0 / n2
-        xr, xi = -p3r * ur - -p3i * -ui, -p3r * -ui + -p3i * ur
-        vr, vi = xr * t - xi * 0.0, xr * 0.0 + xi * t
-        r0r, r0i = (ur + vr) - a3r, (ui + vi) - a3i
-        r1r = ((_OMEGA.real * ur - _OMEGA.imag * ui) + (_OMEGA2.real * vr - _OMEGA2.imag * vi)) - a3r
-        r1i = ((_OMEGA.real * ui + _OMEGA.imag * ur) + (_OMEGA2.real * vi + _OMEGA2.imag * vr)) - a3i
-        r2r = ((_OMEGA2.real * ur - _OMEGA2.imag * ui) + (_OMEGA.real * vr - _OMEGA.imag * vi)) - a3r
-        r2i = ((_OMEGA2.real * ui + _OMEGA2.imag * ur) + (_OMEGA.real * vi + _OMEGA.imag * vr)) - a3i
-        n0 = r0r * r0r + r0i * r0i
-        n1 = r1r * r1r + r1i * r1i
-        n2 = r2r * r2r + r2i * r2i
-        lo = n0 if n0 < n1 else n1
-        lo = lo if lo < n2 else n2
-        hi = n0 if n0 > n1 else n1
-        hi = hi if hi > n2 else n2
-        bad = bad | (lo < 1e-8 * hi)
-        finite = math.isfinite(r0r) & math.isfinite(r0i) & math.isfinite(r1r)
-        bad = bad | (not (finite & math.isfinite(r1i) & math.isfinite(r2r) & math.isfinite(r2i)))
-        w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0r, r0i, r1r, r1i, r2r, r2i
-        rare[j] = bad
+        u = _untwist(w[_RW, j], w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j])
+        n2 = _mod2(u)
+        v = -complex(w[_P3R, j], w[_P3I, j]) * u.conjugate() * (1.0 / n2)
+        r0, r1, r2 = _three_roots(u, v, complex(w[_A3R, j], w[_A3I, j]))
+        finite = _finite(r0) & _finite(r1) & _finite(r2)
+        rare[j] = rare[j] | (not _plain(n2)) | _separated(r0, r1, r2)[0] | (not finite)
+        _store_roots(w, j, r0, r1, r2)
 
 
 @register_jitable
@@ -756,74 +734,54 @@ def _block_sweep(w, rare, count, more):
     """One Weierstrass sweep of :func:`_cubic` for the points of a block; ``rare`` where it
     does not pass the test and ``more`` sweeps are allowed."""
     for j in range(count):
-        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
-        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
-        r0r, r0i, r1r, r1i, r2r, r2i = w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j]
-        r0r, r0i, e0 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r0r, r0i, r1r, r1i, r2r, r2i)
-        r1r, r1i, e1 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r1r, r1i, r0r, r0i, r2r, r2i)
-        r2r, r2i, e2 = _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, r2r, r2i, r0r, r0i, r1r, r1i)
-        w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0r, r0i, r1r, r1i, r2r, r2i
+        c3, c2, c1, c0 = _block_coefficients(w, j)
+        r0, r1, r2 = _block_roots_of(w, j)
+        r0, e0 = _weierstrass(c3, c2, c1, c0, r0, r1, r2)
+        r1, e1 = _weierstrass(c3, c2, c1, c0, r1, r0, r2)
+        r2, e2 = _weierstrass(c3, c2, c1, c0, r2, r0, r1)
+        _store_roots(w, j, r0, r1, r2)
         rare[j] = rare[j] | (more & (not ((e0 <= 0) & (e1 <= 0) & (e2 <= 0))))
 
 
 @register_jitable
 def _block_bounds(w, rare, count):
-    """The error bounds of :func:`_solve` (:func:`_bound_fast`) for the roots of a block
-    (``rare`` where a modulus leaves its plain formula)."""
+    """The error bounds of :func:`_solve` for the roots of a block where they are
+    ``dp / |p'|`` (:func:`_bound_terms`; else ``rare``, as where a modulus leaves its plain
+    formula)."""
     for j in range(count):
-        c3r, c3i, c2r, c2i = w[_C3R, j], w[_C3I, j], w[_C2R, j], w[_C2I, j]
-        c1r, c1i, c0r, c0i = w[_C1R, j], w[_C1I, j], w[_C0R, j], w[_C0I, j]
-        s3, s2 = c3r * c3r + c3i * c3i, c2r * c2r + c2i * c2i
-        s1, s0 = c1r * c1r + c1i * c1i, c0r * c0r + c0i * c0i
+        c3, c2, c1, c0 = _block_coefficients(w, j)
+        s3, s2, s1, s0 = _mod2(c3), _mod2(c2), _mod2(c1), _mod2(c0)
         m3, m2, m1, m0 = math.sqrt(s3), math.sqrt(s2), math.sqrt(s1), math.sqrt(s0)
-        e0, ok0 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R0R, j], w[_R0I, j])
-        e1, ok1 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R1R, j], w[_R1I, j])
-        e2, ok2 = _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, w[_R2R, j], w[_R2I, j])
-        w[_E0, j], w[_E1, j], w[_E2, j] = e0, e1, e2
-        plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0) & ok0 & ok1 & ok2
+        plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0)
+        roots = _block_roots_of(w, j)
+        for k in range(3):
+            s = _mod2(roots[k])
+            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, roots[k], math.sqrt(s))
+            w[_E0 + k, j] = dp / math.sqrt(n1)
+            plain = plain & _plain(s) & (not second)
         rare[j] = rare[j] | (not plain)
 
 
 @register_jitable
-def _block_weierstrass(c3r, c3i, c2r, c2i, c1r, c1i, c0r, c0i, rr, ri, o1r, o1i, o2r, o2i):
-    """:func:`_weierstrass` written out in real arithmetic, by selects."""
-    # p = ((c3 r + c2) r + c1) r + c0
-    pr, pi = (c3r * rr - c3i * ri) + c2r, (c3r * ri + c3i * rr) + c2i
-    pr, pi = (pr * rr - pi * ri) + c1r, (pr * ri + pi * rr) + c1i
-    pr, pi = (pr * rr - pi * ri) + c0r, (pr * ri + pi * rr) + c0i
-    # den = c3 (r - o1) (r - o2)
-    ar, ai = rr - o1r, ri - o1i
-    dr, di = c3r * ar - c3i * ai, c3r * ai + c3i * ar
-    ar, ai = rr - o2r, ri - o2i
-    dr, di = dr * ar - di * ai, dr * ai + di * ar
-    n2 = dr * dr + di * di
-    keep = (n2 == 0) | (not math.isfinite(n2))
-    t = 1.0 / n2
-    # step = p conj(den) complex(t, 0)
-    xr, xi = pr * dr - pi * -di, pr * -di + pi * dr
-    sr, si = xr * t - xi * 0.0, xr * 0.0 + xi * t
-    e = (sr * sr + si * si) - 1e-16 * (rr * rr + ri * ri)
-    return (rr if keep else rr - sr), (ri if keep else ri - si), (0.0 if keep else e)
+def _block_coefficients(w, j):
+    """The coefficients of point ``j`` of a block (complex, highest power first)."""
+    return (
+        complex(w[_C3R, j], w[_C3I, j]),
+        complex(w[_C2R, j], w[_C2I, j]),
+        complex(w[_C1R, j], w[_C1I, j]),
+        complex(w[_C0R, j], w[_C0I, j]),
+    )
 
 
 @register_jitable
-def _block_bound(c3r, c3i, c2r, c2i, c1r, c1i, m3, m2, m1, m0, rr, ri):
-    """:func:`_bound_fast` of a cubic's root in real arithmetic where it is ``dp / |p'(r)|``,
-    and whether it is: the root's modulus took the plain formula, and ``sqrt(2 dp / |p''|)``
-    is not the smaller (a nearly double root: solved again by :func:`_solve`)."""
-    s = rr * rr + ri * ri
-    a = math.sqrt(s)
-    dp = 7 * _U * (((m3 * a + m2) * a + m1) * a + m0)
-    # t = 3 c3 r + 2 c2, d1 = t r + c1, d2 = 6 c3 r + 2 c2
-    tr = ((c3r * 3.0) * rr - (c3i * 3.0) * ri) + c2r * 2.0
-    ti = ((c3r * 3.0) * ri + (c3i * 3.0) * rr) + c2i * 2.0
-    d1r, d1i = (tr * rr - ti * ri) + c1r, (tr * ri + ti * rr) + c1i
-    d2r = ((c3r * 6.0) * rr - (c3i * 6.0) * ri) + c2r * 2.0
-    d2i = ((c3r * 6.0) * ri + (c3i * 6.0) * rr) + c2i * 2.0
-    n1 = d1r * d1r + d1i * d1i
-    n2 = d2r * d2r + d2i * d2i
-    second = (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
-    return dp / math.sqrt(n1), _plain(s) & (not second)
+def _block_roots_of(w, j):
+    """The roots of point ``j`` of a block."""
+    return complex(w[_R0R, j], w[_R0I, j]), complex(w[_R1R, j], w[_R1I, j]), complex(w[_R2R, j], w[_R2I, j])
+
+
+@register_jitable
+def _store_roots(w, j, r0, r1, r2):
+    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0.real, r0.imag, r1.real, r1.imag, r2.real, r2.imag
 
 
 @register_jitable
@@ -843,9 +801,7 @@ def _block_decide(w, count, lo, ev, bd, neutral, stab):
     """:func:`_decide` of the block's points (the block's first point is ``lo``), written to
     the outputs; a point that is rare or outside is then written again by its loop."""
     for j in range(count):
-        r0 = complex(w[_R0R, j], w[_R0I, j])
-        r1 = complex(w[_R1R, j], w[_R1I, j])
-        r2 = complex(w[_R2R, j], w[_R2I, j])
+        r0, r1, r2 = _block_roots_of(w, j)
         stab[lo + j] = _decide(3, r0, r1, r2, w[_E0, j], w[_E1, j], w[_E2, j], False, False, False, ev, bd, neutral, lo + j)
 
 
