@@ -849,11 +849,10 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             w = np.empty((_ROWS, count if blocks else 0))
             rare = np.empty(count if blocks else 0, dtype=np.bool_)
             for i in range(lo, lo + count):
-                qi, fi, si, ai, mi = q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]
-                where[i] = _domain_code(qi, fi, si, ai, mi, lt, applies)
-                if blocks:
-                    _store_parts(formula(qi, fi, si, ai, mi), w, i - lo)
-            if blocks:
+                where[i] = _domain_code(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies)
+            if blocks:  # the coefficients in a loop of their own, which the compiler packs
+                for i in range(lo, lo + count):
+                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
                 _block_solve(w, rare, count, polish)
                 _block_decide(w, count, lo, ev, bd, neutral, stab)
             for i in range(lo, lo + count):  # the points the blocks did not solve
