@@ -643,15 +643,16 @@ def _finish(n, ok, sol, ev, bd, neutral, stab, i):
 # The model loops solve their points in blocks of :data:`BLOCK`: the coefficients of a block are
 # written to a scratch array, one row per quantity (structure of arrays), and the generic cubic
 # (step 4 with one sweep passing its test, step 5) is formed by loops over the block with no
-# branch on data (selects), which the compiler turns into packed (SIMD) arithmetic: the same
-# operations in the same order as :func:`_cardano`, :func:`_cbrt`, :func:`_weierstrass` and
-# :func:`_bound_fast` (their complex products written out as numba forms them, a real factor
-# ``t`` as ``complex(t, 0)``), so the same bits (IEEE arithmetic gives the same result packed or
-# scalar). A point that leaves the generic case anywhere (a complex leading coefficient, a
-# structural zero, a modulus outside the range of its plain formula, widely separated scales, a
-# root not finite, a second sweep wanted) is marked and solved again by :func:`_solve`; the
-# cube root of the modulus (the C library's ``cbrt``) is its own scalar loop. The interpreted
-# execution solves every point by :func:`_solve` (:func:`_compiled`).
+# branch on data (selects), which the compiler turns into packed (SIMD) arithmetic. The loops
+# call the cores of the point-by-point path (:func:`_depressed`, :func:`_larger`, :func:`_turn`,
+# :func:`_untwist`, :func:`_three_roots`, :func:`_separated`, :func:`_weierstrass`,
+# :func:`_bound_terms`): the same operations in the same order, so the same bits (IEEE
+# arithmetic gives the same result packed or scalar, nothing contracted). A point that leaves
+# the generic case anywhere (a complex leading coefficient, a structural zero, a modulus outside
+# the range of its plain formula, widely separated scales, a root not finite, a second sweep
+# wanted, the bound of a nearly double root) is marked and solved again by :func:`_solve`; the
+# cube root of the modulus (the C library's ``cbrt``, a call) is a scalar loop of its own. The
+# interpreted execution solves every point by :func:`_solve` (:func:`_compiled`).
 
 #: points per block of the model loops
 BLOCK = 256
@@ -664,7 +665,8 @@ _ROWS = 26
 
 
 def _compiled():
-    """False when interpreted; True in compiled code (its overload)."""
+    """Whether the caller runs compiled: False here, True in numba (the overload below), so that
+    the model loops' source takes the blocks only where they are packed."""
     return False
 
 
