@@ -96,16 +96,18 @@ def _blocks_sample() -> tuple[dict[str, np.ndarray], np.ndarray]:
     return p, inside
 
 
-def test_blocks_give_the_point_by_point_bits():
+@pytest.mark.parametrize("polish", [0, 1, 3])
+def test_blocks_give_the_point_by_point_bits(polish):
     """Compiled blocks (serial and parallel) against the interpreted point-by-point path, bit for
-    bit, on both model loops (fused domain test, and masked)."""
+    bit, on both model loops (fused domain test, and masked); no sweep, one sweep with no second
+    allowed, and the default."""
     p, inside = _blocks_sample()
     args = [p[k] for k in NAMES]
-    ref = kernel.checked_sliding_spectrum(*args, engine="python")
+    ref = kernel.checked_sliding_spectrum(*args, engine="python", polish=polish)
     np.testing.assert_array_equal(ref.inside, inside)
     for parallel in (False, True):
-        got = kernel.checked_sliding_spectrum(*args, engine="compiled", parallel=parallel)
-        masked = kernel.sliding_spectrum(*args, inside=inside, engine="compiled", parallel=parallel)
+        got = kernel.checked_sliding_spectrum(*args, engine="compiled", parallel=parallel, polish=polish)
+        masked = kernel.sliding_spectrum(*args, inside=inside, engine="compiled", parallel=parallel, polish=polish)
         for out in (got.spectrum, masked):
             for a, b in zip(ref.spectrum, out):
                 assert a.shape == b.shape and a.tobytes() == b.tobytes()
