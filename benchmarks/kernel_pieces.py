@@ -13,10 +13,11 @@ line before, from the kernel's own building blocks (:mod:`stability.linear.kerne
 * ``+ sort and decision``: :func:`~stability.linear.kernel._decide` writing the outputs, the whole
   loop of :func:`stability.linear.kernel.sliding_spectrum` without the mask test, one point per
   iteration;
-* ``two points an iteration``: :func:`stability.linear.kernel.sliding_spectrum` itself (serial,
-  compiled: the same work, two points per iteration with both points' Cardano estimates formed
-  first, plus the mask test and the driver's allocations); not a piece, so its difference to
-  the line above is the gain of the pairing.
+* ``in blocks (the kernel)``: :func:`stability.linear.kernel.sliding_spectrum` itself (serial,
+  compiled: the same work in blocks of points, structure of arrays, the loops packed into SIMD
+  arithmetic, :func:`~stability.linear.kernel._block_solve`, plus the mask test and the
+  driver's allocations); not a piece, so its difference to the line above is the gain of the
+  blocks.
 
 The differences between consecutive lines are the pieces' costs (ns per point of the calling
 thread's CPU time, ``time.thread_time``, which does not count the time spent waiting for a core
@@ -49,7 +50,7 @@ def main(argv: list[str] | None = None) -> None:
     jit.activate()
     import numba
 
-    from stability.linear.kernel import _cardano, _cubic, _decide, _estimates, _solve, sliding_spectrum
+    from stability.linear.kernel import _cardano, _cubic, _decide, _solve, sliding_spectrum
     from stability.models.sliding import coefficient_parts as formula
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -77,7 +78,7 @@ def main(argv: list[str] | None = None) -> None:
         for i in range(len(q)):
             c = formula(q[i], f[i], s[i], al[i], m[i])
             c3, c2, c1, c0 = complex(c[0], c[1]), complex(c[2], c[3]), complex(c[4], c[5]), complex(c[6], c[7])
-            r0, r1, r2 = _cubic(c3, c2, c1, c0, polish, _cardano(c3, c2, c1, c0))
+            r0, r1, r2 = _cubic(c3, c2, c1, c0, polish)
             ev[i, 0] = r0
             ev[i, 1] = r1
             ev[i, 2] = r2
@@ -87,7 +88,7 @@ def main(argv: list[str] | None = None) -> None:
         for i in range(len(q)):
             c = formula(q[i], f[i], s[i], al[i], m[i])
             c3, c2, c1, c0 = complex(c[0], c[1]), complex(c[2], c[3]), complex(c[4], c[5]), complex(c[6], c[7])
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, 3, _estimates(c3, c2, c1, c0, 3))
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, 3)
             ev[i, 0] = r0
             ev[i, 1] = r1
             ev[i, 2] = r2
@@ -100,7 +101,7 @@ def main(argv: list[str] | None = None) -> None:
         for i in range(len(q)):
             c = formula(q[i], f[i], s[i], al[i], m[i])
             c3, c2, c1, c0 = complex(c[0], c[1]), complex(c[2], c[3]), complex(c[4], c[5]), complex(c[6], c[7])
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, 3, _estimates(c3, c2, c1, c0, 3))
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(c3, c2, c1, c0, 3, 3)
             st[i] = _decide(3, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, nt, i)
 
     n = a.points
@@ -117,7 +118,7 @@ def main(argv: list[str] | None = None) -> None:
         "+ Weierstrass sweeps": lambda: cubic(*args, ev, 3),
         "+ error bounds": lambda: solve(*args, ev, bd),
         "+ sort and decision": lambda: whole(*args, ev, bd, nt, st),
-        "two points an iteration": lambda: sliding_spectrum(*args, parallel=False, engine="compiled"),
+        "in blocks (the kernel)": lambda: sliding_spectrum(*args, parallel=False, engine="compiled"),
     }
     best = dict.fromkeys(lines, np.inf)
     for f in lines.values():

@@ -48,10 +48,12 @@ thousand points). The two give the same bits (tests/test_kernel.py). Per point:
    ``polish`` sweeps. This test is the per-point a-posteriori check: over the physical domain
    Cardano's roots are good to ~1e-11, so one sweep passes it everywhere (every point of the
    benchmark's sample, 2x10^5 counted); the sweep cannot be skipped: it is what certifies them.
-   The model loops take two points per iteration and form Cardano's estimates of both
-   (:func:`_estimates`, :func:`_solve_pair`) before finishing either: each is one long chain
-   of dependent operations, and two side by side overlap in the processor (~6 % per point;
-   the same arithmetic, the same bits).
+   The model loops (compiled) solve their points in blocks of :data:`BLOCK`, in
+   structure-of-arrays scratch rows, by loops without a branch on data that the compiler
+   turns into packed (SIMD) arithmetic: the same operations in the same order, so the same
+   bits; a point that leaves the generic cubic anywhere is solved again point by point
+   (:func:`_block_solve`; ~0.2 % of the benchmark's sample). Steps 4-6 then take about half
+   the time they took point by point (docs/performance.md).
 5. *Error bound*, the one of :mod:`stability.linear.roots`: ``dp = (deg + 4) u sum_k |c_k| |r|^k``,
    ``e = min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))`` (finite at colliding roots), with ``p'``
    and ``p''`` evaluated at the final roots.
@@ -87,13 +89,13 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from stability.jit import cached, register_jitable
+from stability.jit import OPTIONS, cached, overload, register_jitable
 
 from .. import execution
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_domain
-from .roots import cbrt, csqrt, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
+from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
     "MAX_DEGREE",
@@ -202,10 +204,17 @@ def _cbrt(w):
     is undone by a cube root of it (``+-1``, ``exp(+-i pi/6)``). ``cbrt(|w|) exp(i atan2(Im w,
     Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one thread); this
     takes ~35."""
-    x, y = w.real, w.imag
     r = modulus(w)
     if not 0.0 < r < math.inf:
         return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
+    return _untwist(cbrt(r), *_turn(w, r))
+
+
+@register_jitable
+def _turn(w, r):
+    """:func:`_cbrt` of ``w`` (modulus ``r``, ``0 < r < inf``) but for the cube root of ``r``:
+    ``(zr, zi, tr, ti)`` with ``cbrt(w) = cbrt(r) (zr + i zi) (tr + i ti)`` (no branch on data)."""
+    x, y = w.real, w.imag
     # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
     # w = i sy W (|x| < |y|), with sx, sy the signs of x and y
     sx = math.copysign(1.0, x)
@@ -229,12 +238,16 @@ def _cbrt(w):
     inv = 1.0 / (er * er + ei * ei)
     qr = (dr * er + di * ei) * inv
     qi = (di * er - dr * ei) * inv
-    m = cbrt(r)
-    zr = m * (cp + (cp * qr - sp * qi))
-    zi = m * (sp + (cp * qi + sp * qr))
     # undo the turn: times a cube root of sx (sx itself) or of i sy (exp(i sy pi/6))
     tr = sx if flat else _CBRT_I.real
     ti = 0.0 if flat else sy * _CBRT_I.imag
+    return cp + (cp * qr - sp * qi), sp + (cp * qi + sp * qr), tr, ti
+
+
+@register_jitable
+def _untwist(m, zr, zi, tr, ti):
+    """The cube root from :func:`_turn`'s parts and ``m = cbrt(r)``."""
+    zr, zi = m * zr, m * zi
     return complex(zr * tr - zi * ti, zr * ti + zi * tr)
 
 
@@ -248,19 +261,38 @@ def _cardano(c3, c2, c1, c0):
     else:
         inv = 1.0 / c3
         a, b, c = c2 * inv, c1 * inv, c0 * inv
-    a3 = _scale(a, _THIRD)
-    P3 = _scale(b - a * a3, _THIRD)
-    Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
-    sd = csqrt(Q2 * Q2 + P3 * P3 * P3)
-    w1 = -Q2 + sd
-    w2 = -Q2 - sd
-    w = w1 if _mod2(w1) >= _mod2(w2) else w2
+    a3, P3, Q2, disc = _depressed(a, b, c)
+    w = _larger(Q2, csqrt(disc))
     u = _cbrt(w)
     n2 = _mod2(u)
     if 1e-290 < n2 < 1e290:
         v = -P3 * u.conjugate() * (1.0 / n2)
     else:
         v = -P3 / u if u != 0 else 0j
+    return _three_roots(u, v, a3)
+
+
+@register_jitable
+def _depressed(a, b, c):
+    """``s^3 + a s^2 + b s + c`` with ``s = x - a/3``: ``x^3 + 3 P3 x + 2 Q2`` (``a/3``, ``P3``,
+    ``Q2``) and Cardano's discriminant ``Q2^2 + P3^3``."""
+    a3 = _scale(a, _THIRD)
+    P3 = _scale(b - a * a3, _THIRD)
+    Q2 = _scale(c - a3 * b, 0.5) + a3 * a3 * a3
+    return a3, P3, Q2, Q2 * Q2 + P3 * P3 * P3
+
+
+@register_jitable
+def _larger(Q2, sd):
+    """The larger in modulus of ``-Q2 + sd`` and ``-Q2 - sd`` (no cancellation; a select)."""
+    w1 = -Q2 + sd
+    w2 = -Q2 - sd
+    return w1 if _mod2(w1) >= _mod2(w2) else w2
+
+
+@register_jitable
+def _three_roots(u, v, a3):
+    """Cardano's roots ``u + v``, ``omega u + omega^2 v``, ``omega^2 u + omega v``, less ``a/3``."""
     return u + v - a3, _OMEGA * u + _OMEGA2 * v - a3, _OMEGA2 * u + _OMEGA * v - a3
 
 
@@ -273,37 +305,29 @@ def _weierstrass(c3, c2, c1, c0, r, o1, o2):
     p = horner_scheme((c3, c2, c1, c0), r, 0)[0]
     den = c3 * (r - o1) * (r - o2)
     n2 = _mod2(den)
-    if n2 == 0 or not math.isfinite(n2):
-        return r, 0.0
-    step = p * den.conjugate() * (1.0 / n2)
-    return r - step, _mod2(step) - 1e-16 * _mod2(r)
-
-
-#: what :func:`_estimates` gives where the cubic path is not taken
-_NO_ESTIMATES = (0j, 0j, 0j)
+    keep = (n2 == 0) | (not math.isfinite(n2))  # no step (selects: the compiled blocks pack it)
+    step = p * den.conjugate() * (1.0 / (1.0 if keep else n2))
+    return (r if keep else r - step), (0.0 if keep else _mod2(step) - 1e-16 * _mod2(r))
 
 
 @register_jitable
-def _estimates(c3, c2, c1, c0, deg):
-    """Cardano's estimates (:func:`_cardano`) of a polynomial of :func:`_solve` where it takes
-    the cubic path (``deg = 3``, ``c0 != 0``), else :data:`_NO_ESTIMATES`. Formed apart from
-    :func:`_solve` so that a loop can form those of two points before finishing either: the
-    estimates are one long chain of dependent square roots, divisions and a cube root, and two
-    independent chains side by side overlap in the processor (the same arithmetic, the same
-    bits; docs/performance.md)."""
-    if deg == 3 and c0 != 0:
-        return _cardano(c3, c2, c1, c0)
-    return _NO_ESTIMATES
-
-
-@register_jitable
-def _cubic(c3, c2, c1, c0, polish, estimates):
-    """Three roots of a cubic with ``c0 != 0`` from Cardano's ``estimates`` (module docstring,
-    step 4)."""
-    r0, r1, r2 = estimates
-    sweeps = polish
+def _separated(r0, r1, r2):
+    """Whether the scales of three roots are widely separated (:func:`_cubic`: smallest modulus
+    below 1e-4 x the largest), and their squared moduli."""
     n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
-    if min(n0, n1, n2) < 1e-8 * max(n0, n1, n2):
+    lo = n0 if n0 < n1 else n1
+    hi = n0 if n0 > n1 else n1
+    return (lo if lo < n2 else n2) < 1e-8 * (hi if hi > n2 else n2), n0, n1, n2
+
+
+@register_jitable
+def _cubic(c3, c2, c1, c0, polish):
+    """Three roots of a cubic with ``c0 != 0``: Cardano's estimates (:func:`_cardano`),
+    polished (module docstring, step 4)."""
+    r0, r1, r2 = _cardano(c3, c2, c1, c0)
+    sweeps = polish
+    separated, n0, n1, n2 = _separated(r0, r1, r2)
+    if separated:
         # widely separated scales: Cardano's small roots carry an absolute error ~u |largest|;
         # take the largest root (accurate), divide it out by backward deflation, stable for
         # the largest root, p(s) = (s - r0)(b2 s^2 + b1 s + b0), and solve the quadratic
@@ -349,7 +373,17 @@ def _bound(c3, c2, c1, c0, deg, r):
 def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     """:func:`_bound` with the coefficient moduli ``m_k = |c_k|`` given (one square root
     fewer per comparison; the same value up to rounding)."""
-    a = modulus(r)
+    dp, n1, n2, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, modulus(r))
+    if second:
+        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
+    return dp / math.sqrt(n1)
+
+
+@register_jitable
+def _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, a):
+    """``dp``, ``|p'(r)|^2``, ``|p''(r)|^2`` of :func:`_bound_fast` (``a = |r|``) and whether
+    the bound is ``sqrt(2 dp / |p''|)`` (the smaller: ``4 |p'|^4 < dp^2 |p''|^2``) rather than
+    ``dp / |p'|``."""
     dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
     # p' and p'' directly (Horner's scheme would form p as well)
     t = _scale(c3, 3.0) * r + _scale(c2, 2.0)
@@ -357,10 +391,7 @@ def _bound_fast(c3, c2, c1, c0, m3, m2, m1, m0, deg, r):
     d2 = _scale(c3, 6.0) * r + _scale(c2, 2.0)
     n1 = _mod2(d1)
     n2 = _mod2(d2)
-    # min(dp / |p'|, sqrt(2 dp / |p''|)): the second is smaller iff 4 |p'|^4 < dp^2 |p''|^2
-    if 4.0 * n1 * n1 < dp * dp * n2 or n1 == 0:
-        return math.sqrt(2.0 * dp / math.sqrt(n2)) if n2 > 0 else math.inf
-    return dp / math.sqrt(n1)
+    return dp, n1, n2, (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
 
 
 @register_jitable
@@ -370,10 +401,9 @@ def _before(a, b):
 
 
 @register_jitable
-def _solve(c3, c2, c1, c0, deg, polish, estimates):
+def _solve(c3, c2, c1, c0, deg, polish):
     """Roots, error bounds and exact-zero-real flags of ``c3 s^3 + c2 s^2 + c1 s + c0``
-    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted;
-    ``estimates`` those of :func:`_estimates` for the same arguments."""
+    (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
     if deg == 2:
         c3, c2, c1, c0 = 0j, c3, c2, c1
     nz = 0
@@ -397,7 +427,7 @@ def _solve(c3, c2, c1, c0, deg, polish, estimates):
     x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
     e0 = e1 = e2 = 0.0
     if m == 3:
-        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish, estimates)
+        r0, r1, r2 = _cubic(d3, d2, d1, d0, polish)
         x0 = x1 = x2 = False
     elif m == 2:
         r0, r1, ex = quadratic_roots(d2, d1, d0)
@@ -552,10 +582,9 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
             continue
         ci = c[i]
         if n == 3:
-            est = _estimates(ci[0], ci[1], ci[2], ci[3], 3)
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish, est)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
         elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish, _NO_ESTIMATES)
+            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
         else:
             r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
         stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
@@ -565,47 +594,16 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
 
 
 @register_jitable
-def _parts_estimates(parts, ok):
-    """:func:`_estimates` of :func:`_solve_parts`'s ``parts`` where ``ok`` (the point is computed),
-    else :data:`_NO_ESTIMATES`."""
-    if ok and len(parts) == 8:
-        return _estimates(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-            3,
-        )
-    return _NO_ESTIMATES
-
-
-@register_jitable
-def _solve_parts(parts, polish, estimates):
+def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
-    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time);
-    ``estimates`` those of :func:`_parts_estimates`."""
-    if len(parts) == 8:
-        return _solve(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-            3,
-            polish,
-            estimates,
-        )
-    if len(parts) == 6:
-        return _solve(
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            0j,
-            2,
-            polish,
-            _NO_ESTIMATES,
-        )
-    return _solve_linear(complex(parts[0], parts[1]), complex(parts[2], parts[3]))
+    ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
+    c = _complex_parts(parts)
+    if len(c) == 4:
+        return _solve(c[0], c[1], c[2], c[3], 3, polish)
+    if len(c) == 3:
+        return _solve(c[0], c[1], c[2], 0j, 2, polish)
+    return _solve_linear(c[0], c[1])
 
 
 @register_jitable
@@ -627,17 +625,6 @@ def _complex_parts(parts):
 _UNSOLVED = (0j, 0j, 0j, 0.0, 0.0, 0.0, False, False, False)
 
 
-@register_jitable
-def _solve_pair(parts_i, ok_i, parts_k, ok_k, polish):
-    """:func:`_solve_parts` of two points (where ``ok``; else :data:`_UNSOLVED`), Cardano's
-    estimates of both formed before either is finished (:func:`_estimates`)."""
-    est_i = _parts_estimates(parts_i, ok_i)
-    est_k = _parts_estimates(parts_k, ok_k)
-    sol_i = _solve_parts(parts_i, polish, est_i) if ok_i else _UNSOLVED
-    sol_k = _solve_parts(parts_k, polish, est_k) if ok_k else _UNSOLVED
-    return sol_i, sol_k
-
-
 @register_jitable(inline="always")
 def _finish(n, ok, sol, ev, bd, neutral, stab, i):
     """Point ``i`` of a model's loop: its roots ``sol`` (:func:`_solve`'s layout) sorted and
@@ -649,6 +636,175 @@ def _finish(n, ok, sol, ev, bd, neutral, stab, i):
     else:
         _mark_outside(n, ev[i], bd[i], neutral[i])
         stab[i] = _OUTSIDE
+
+
+# --- the model loops' blocks: the generic cubic, point by point in structure-of-arrays ---------
+#
+# The model loops solve their points in blocks of :data:`BLOCK`: the coefficients of a block are
+# written to a scratch array, one row per quantity (structure of arrays), and the generic cubic
+# (step 4 with one sweep passing its test, step 5) is formed by loops over the block with no
+# branch on data (selects), which the compiler turns into packed (SIMD) arithmetic. The loops
+# call the cores of the point-by-point path (:func:`_depressed`, :func:`_larger`, :func:`_turn`,
+# :func:`_untwist`, :func:`_three_roots`, :func:`_separated`, :func:`_weierstrass`,
+# :func:`_bound_terms`): the same operations in the same order, so the same bits (IEEE
+# arithmetic gives the same result packed or scalar, nothing contracted). A point that leaves
+# the generic case anywhere (a complex leading coefficient, a structural zero, a modulus outside
+# the range of its plain formula, widely separated scales, a root not finite, a second sweep
+# wanted, the bound of a nearly double root) is marked and solved again by :func:`_solve`; the
+# cube root of the modulus (the C library's ``cbrt``, a call) is a scalar loop of its own. The
+# interpreted execution solves every point by :func:`_solve` (:func:`_compiled`).
+
+#: points per block of the model loops
+BLOCK = 256
+# rows of a block's scratch array: the coefficients (re, im; highest power first), Cardano's
+# intermediates, the roots (re, im) and their error bounds
+_C3R, _C3I, _C2R, _C2I, _C1R, _C1I, _C0R, _C0I = 0, 1, 2, 3, 4, 5, 6, 7
+_A3R, _A3I, _P3R, _P3I, _ZR, _ZI, _TR, _TI, _RW = 8, 9, 10, 11, 12, 13, 14, 15, 16
+_R0R, _R0I, _R1R, _R1I, _R2R, _R2I, _E0, _E1, _E2 = 17, 18, 19, 20, 21, 22, 23, 24, 25
+_ROWS = 26
+
+
+def _compiled():
+    """Whether the caller runs compiled: False here, True in numba (the overload below), so that
+    the model loops' source takes the blocks only where they are packed."""
+    return False
+
+
+@overload(_compiled, jit_options=OPTIONS)
+def _compiled_overload():
+    return lambda: True
+
+
+@register_jitable
+def _plain(s):
+    """The square of a modulus lies where :func:`stability.linear.roots.modulus` takes its
+    plain formula ``sqrt(s)``."""
+    return (s > 1e-290) & (s < 1e290)
+
+
+@register_jitable
+def _store_parts(parts, w, j):
+    """Column ``j`` of a block's scratch ``w``: a cubic's coefficient ``parts`` (nothing for a
+    lower degree, which the blocks do not solve)."""
+    if len(parts) == 8:
+        for k in range(8):
+            w[k, j] = parts[k]
+
+
+@register_jitable
+def _block_start(w, rare, count):
+    """:func:`_cardano` up to the cube root of the modulus (:func:`_turn`), for the ``count``
+    points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
+    for j in range(count):
+        inv = 1.0 / w[_C3R, j]
+        c0 = complex(w[_C0R, j], w[_C0I, j])
+        a3, P3, Q2, disc = _depressed(
+            _scale(complex(w[_C2R, j], w[_C2I, j]), inv), _scale(complex(w[_C1R, j], w[_C1I, j]), inv), _scale(c0, inv)
+        )
+        s = _mod2(disc)
+        x = _larger(Q2, csqrt_nonzero(disc, math.sqrt(s)))
+        r2 = _mod2(x)
+        w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j] = _turn(x, math.sqrt(r2))
+        w[_RW, j] = math.sqrt(r2)
+        w[_A3R, j], w[_A3I, j], w[_P3R, j], w[_P3I, j] = a3.real, a3.imag, P3.real, P3.imag
+        rare[j] = (w[_C3I, j] != 0) | (c0 == 0) | (not (_plain(s) & _plain(r2)))
+
+
+@register_jitable
+def _block_cbrt(w, count):
+    """The cube roots of the moduli (:func:`stability.linear.roots.cbrt`), a scalar loop."""
+    for j in range(count):
+        w[_RW, j] = cbrt(w[_RW, j])
+
+
+@register_jitable
+def _block_roots(w, rare, count):
+    """The rest of :func:`_cardano` for the points of a block, and the tests of :func:`_cubic`
+    before its sweeps (scales not widely separated, roots finite: else ``rare``)."""
+    for j in range(count):
+        u = _untwist(w[_RW, j], w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j])
+        n2 = _mod2(u)
+        v = -complex(w[_P3R, j], w[_P3I, j]) * u.conjugate() * (1.0 / n2)
+        r0, r1, r2 = _three_roots(u, v, complex(w[_A3R, j], w[_A3I, j]))
+        finite = _finite(r0) & _finite(r1) & _finite(r2)
+        rare[j] = rare[j] | (not _plain(n2)) | _separated(r0, r1, r2)[0] | (not finite)
+        _store_roots(w, j, r0, r1, r2)
+
+
+@register_jitable
+def _block_sweep(w, rare, count, more):
+    """One Weierstrass sweep of :func:`_cubic` for the points of a block; ``rare`` where it
+    does not pass the test and ``more`` sweeps are allowed."""
+    for j in range(count):
+        c3, c2, c1, c0 = _block_coefficients(w, j)
+        r0, r1, r2 = _block_roots_of(w, j)
+        r0, e0 = _weierstrass(c3, c2, c1, c0, r0, r1, r2)
+        r1, e1 = _weierstrass(c3, c2, c1, c0, r1, r0, r2)
+        r2, e2 = _weierstrass(c3, c2, c1, c0, r2, r0, r1)
+        _store_roots(w, j, r0, r1, r2)
+        rare[j] = rare[j] | (more & (not ((e0 <= 0) & (e1 <= 0) & (e2 <= 0))))
+
+
+@register_jitable
+def _block_bounds(w, rare, count):
+    """The error bounds of :func:`_solve` for the roots of a block where they are
+    ``dp / |p'|`` (:func:`_bound_terms`; else ``rare``, as where a modulus leaves its plain
+    formula)."""
+    for j in range(count):
+        c3, c2, c1, c0 = _block_coefficients(w, j)
+        s3, s2, s1, s0 = _mod2(c3), _mod2(c2), _mod2(c1), _mod2(c0)
+        m3, m2, m1, m0 = math.sqrt(s3), math.sqrt(s2), math.sqrt(s1), math.sqrt(s0)
+        plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0)
+        roots = _block_roots_of(w, j)
+        for k in range(3):
+            s = _mod2(roots[k])
+            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, roots[k], math.sqrt(s))
+            w[_E0 + k, j] = dp / math.sqrt(n1)
+            plain = plain & _plain(s) & (not second)
+        rare[j] = rare[j] | (not plain)
+
+
+@register_jitable
+def _block_coefficients(w, j):
+    """The coefficients of point ``j`` of a block (complex, highest power first)."""
+    return (
+        complex(w[_C3R, j], w[_C3I, j]),
+        complex(w[_C2R, j], w[_C2I, j]),
+        complex(w[_C1R, j], w[_C1I, j]),
+        complex(w[_C0R, j], w[_C0I, j]),
+    )
+
+
+@register_jitable
+def _block_roots_of(w, j):
+    """The roots of point ``j`` of a block."""
+    return complex(w[_R0R, j], w[_R0I, j]), complex(w[_R1R, j], w[_R1I, j]), complex(w[_R2R, j], w[_R2I, j])
+
+
+@register_jitable
+def _store_roots(w, j, r0, r1, r2):
+    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0.real, r0.imag, r1.real, r1.imag, r2.real, r2.imag
+
+
+@register_jitable
+def _block_solve(w, rare, count, polish):
+    """The generic cubics of a block: :func:`_block_start`, :func:`_block_cbrt`,
+    :func:`_block_roots`, :func:`_block_sweep` (when ``polish > 0``), :func:`_block_bounds`."""
+    _block_start(w, rare, count)
+    _block_cbrt(w, count)
+    _block_roots(w, rare, count)
+    if polish > 0:
+        _block_sweep(w, rare, count, polish > 1)
+    _block_bounds(w, rare, count)
+
+
+@register_jitable
+def _block_decide(w, count, lo, ev, bd, neutral, stab):
+    """:func:`_decide` of the block's points (the block's first point is ``lo``), written to
+    the outputs; a point that is rare or outside is then written again by its loop."""
+    for j in range(count):
+        r0, r1, r2 = _block_roots_of(w, j)
+        stab[lo + j] = _decide(3, r0, r1, r2, w[_E0, j], w[_E1, j], w[_E2, j], False, False, False, ev, bd, neutral, lo + j)
 
 
 class _Kernels(NamedTuple):
@@ -687,36 +843,51 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         are read into a tuple once: an array handed to the domain test per point is passed and
         reference-counted at every call.)"""
         lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
-        last = len(stab) - 1
-        # two points per iteration (i and k, the same point at the end of an odd count), Cardano's
-        # estimates of both formed before either is finished (_estimates)
-        for j in prange((last + 2) // 2):
-            i = 2 * j
-            k = min(i + 1, last)
-            qi, mi = q[i * sq], mu[i * sm]
-            fi, si, ai = fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa]
-            qk, mk = q[k * sq], mu[k * sm]
-            fk, sk, ak = fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa]
-            code_i = _domain_code(qi, fi, si, ai, mi, lt, applies)
-            code_k = _domain_code(qk, fk, sk, ak, mk, lt, applies)
-            where[i] = code_i
-            where[k] = code_k
-            ok_i, ok_k = code_i == _INSIDE, code_k == _INSIDE
-            sol_i, sol_k = _solve_pair(formula(qi, fi, si, ai, mi), ok_i, formula(qk, fk, sk, ak, mk), ok_k, polish)
-            for t in range(2):
-                _finish(n, ok_i if t == 0 else ok_k, sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
+        npts = len(stab)
+        blocks = _compiled() and n == 3
+        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points (_block_solve)
+            lo = b * BLOCK
+            count = min(BLOCK, npts - lo)
+            w = np.empty((_ROWS, count if blocks else 0))
+            rare = np.empty(count if blocks else 0, dtype=np.bool_)
+            for i in range(lo, lo + count):
+                where[i] = _domain_code(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies)
+            if blocks:  # the coefficients in a loop of their own, which the compiler packs
+                for i in range(lo, lo + count):
+                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
+                _block_solve(w, rare, count, polish)
+                _block_decide(w, count, lo, ev, bd, neutral, stab)
+            for i in range(lo, lo + count):  # the points the blocks did not solve
+                ok = where[i] == _INSIDE
+                if not (blocks and ok and not rare[i - lo]):
+                    sol = _UNSOLVED
+                    if ok:
+                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                        sol = _solve_parts(parts, polish)
+                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
         """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
-        last = len(stab) - 1
-        for j in prange((last + 2) // 2):  # two points per iteration, as in ``checked``
-            i = 2 * j
-            k = min(i + 1, last)
-            parts_i = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-            parts_k = formula(q[k * sq], fr_inv[k * sf], sigma[k * ss], alpha_v[k * sa], mu[k * sm])
-            sol_i, sol_k = _solve_pair(parts_i, inside[i], parts_k, inside[k], polish)
-            for t in range(2):
-                _finish(n, inside[i + t * (k - i)], sol_i if t == 0 else sol_k, ev, bd, neutral, stab, i + t * (k - i))
+        npts = len(stab)
+        blocks = _compiled() and n == 3
+        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points, as in ``checked``
+            lo = b * BLOCK
+            count = min(BLOCK, npts - lo)
+            w = np.empty((_ROWS, count if blocks else 0))
+            rare = np.empty(count if blocks else 0, dtype=np.bool_)
+            if blocks:
+                for i in range(lo, lo + count):
+                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
+                _block_solve(w, rare, count, polish)
+                _block_decide(w, count, lo, ev, bd, neutral, stab)
+            for i in range(lo, lo + count):  # the points the blocks did not solve
+                ok = inside[i]
+                if not (blocks and ok and not rare[i - lo]):
+                    sol = _UNSOLVED
+                    if ok:
+                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                        sol = _solve_parts(parts, polish)
+                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
@@ -766,6 +937,12 @@ def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
         np.empty((npts, n), dtype=np.bool_),
         np.empty(npts, dtype=np.int8),
     )
+
+
+def _shaped(ev: np.ndarray, bd: np.ndarray, nt: np.ndarray, st: np.ndarray, shape: tuple[int, ...]) -> KernelSpectrum:
+    """The outputs of :func:`_outputs` in the request's ``shape`` (``shape + (n,)`` for the modes)."""
+    n = ev.shape[-1]
+    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape))
 
 
 def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
@@ -872,9 +1049,7 @@ def model_spectrum(
         [*(a for pair in flat for a in pair), ins, int(polish)],
         (ev, bd, nt, st),
     )
-    return KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    return _shaped(ev, bd, nt, st, shape)
 
 
 def sliding_spectrum(
@@ -1011,9 +1186,7 @@ def checked_model_spectrum(
     inside = where == _INSIDE
     n_out = npts - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    spec = _shaped(ev, bd, nt, st, shape)
     return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
 
 
@@ -1133,6 +1306,4 @@ def coefficient_spectrum(
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
     _run(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
-    return KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
+    return _shaped(ev, bd, nt, st, shape)

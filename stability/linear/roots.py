@@ -180,13 +180,19 @@ def _cbrt_compiled(x):
 def csqrt(z):
     """Principal complex square root, without cancellation (a few ulp; in numba faster than
     ``numpy.sqrt``, which calls ``hypot``)."""
+    if z.real == 0 and z.imag == 0:
+        return complex(0.0, z.imag)
+    return csqrt_nonzero(z, modulus(z))
+
+
+@register_jitable
+def csqrt_nonzero(z, m):
+    """:func:`csqrt` of ``z != 0`` of modulus ``m`` (no branch on data: compiled loops pack it)."""
     x, y = z.real, z.imag
-    if x == 0 and y == 0:
-        return complex(0.0, y)
-    t = math.sqrt(0.5 * (abs(x) + modulus(z)))
-    if x >= 0:
-        return complex(t, y / (2.0 * t))
-    return complex(abs(y) / (2.0 * t), math.copysign(t, y))
+    t = math.sqrt(0.5 * (abs(x) + m))
+    right = x >= 0
+    h = (y if right else abs(y)) / (2.0 * t)
+    return complex(t, h) if right else complex(h, math.copysign(t, y))
 
 
 @register_jitable
