@@ -40,7 +40,7 @@ def main() -> None:
     loop = cached(kernel._model_kernels(get_model("sliding")).checked)
     asm = loop.inspect_asm(loop.signatures[0])
     counts: collections.Counter = collections.Counter()
-    for m in re.finditer(r"^\s+(v?(?:sqrt|div|mul|add|sub)(?:pd|sd))\s+[^\n]*?%([xyz]mm)\d+\s*$", asm, re.M):
+    for m in re.finditer(r"^\s+(v?(?:sqrt|div|mul|add|sub)(?:pd|sd))\s+[^\n]*?%([xyz]mm)\d+\s*$", asm, re.MULTILINE):
         op, reg = m.groups()
         counts[op, reg if op.endswith("pd") else "scalar"] += 1
     print(f"{'instruction':12s} {'registers':9s} {'count':>6s}   (the sliding model's fused loop, serial)")

@@ -93,7 +93,8 @@ def axis_products(c: np.ndarray) -> np.ndarray:
     """``c_k i^k`` for the coefficients ``c`` (..., n+1) of ``p(s)`` (highest power ``k`` first):
     the coefficients of ``p(i w)`` in powers of ``w``, exactly (products with 1, i, -1, -i)."""
     c = np.asarray(c, dtype=complex)
-    return c * np.array([1.0, 1j, -1.0, -1j])[np.arange(c.shape[-1] - 1, -1, -1) % 4]
+    products: np.ndarray = c * np.array([1.0, 1j, -1.0, -1j])[np.arange(c.shape[-1] - 1, -1, -1) % 4]
+    return products
 
 
 def conservative_points(c: np.ndarray) -> np.ndarray:

@@ -315,9 +315,10 @@ def _separated(r0, r1, r2):
     """Whether the scales of three roots are widely separated (:func:`_cubic`: smallest modulus
     below 1e-4 x the largest), and their squared moduli."""
     n0, n1, n2 = _mod2(r0), _mod2(r1), _mod2(r2)
-    lo = n0 if n0 < n1 else n1
-    hi = n0 if n0 > n1 else n1
-    return (lo if lo < n2 else n2) < 1e-8 * (hi if hi > n2 else n2), n0, n1, n2
+    # selects written out (not min/max): the compiled blocks pack them (benchmarks/kernel_simd.py)
+    lo = n0 if n0 < n1 else n1  # noqa: FURB136
+    hi = n0 if n0 > n1 else n1  # noqa: FURB136
+    return (lo if lo < n2 else n2) < 1e-8 * (hi if hi > n2 else n2), n0, n1, n2  # noqa: FURB136
 
 
 @register_jitable

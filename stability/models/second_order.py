@@ -87,19 +87,24 @@ class SecondOrderTop(LinearModel):
         q = np.asarray(q, dtype=float)
         return q + self.support_depth if self.support_depth else q
 
-    def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
+    def derived(self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray) -> dict[str, np.ndarray]:
         """Derived quantities: ``A_C``, ``sigma_hat``, ``h`` and ``kappa`` (eqs. 8-9)."""
         a_c = contact_transverse_inertia(q, mu)
         h = self.h(q)
         return {"A_C": a_c, "sigma_hat": sigma / a_c, "h": h, "kappa": mu * fr_inv * h / a_c}
 
-    def matrices(self, *, q, fr_inv, sigma, mu):
+    # the model's own parameters by name (LinearModel states any keywords: the registry passes them)
+    def matrices(  # type: ignore[override]
+        self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
         """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8; ``gamma`` is
         :attr:`gyroscopic`)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
         return gyroscopic_state_form(d[self.gyroscopic], d["kappa"])
 
-    def coefficients(self, *, q, fr_inv, sigma, mu):
+    def coefficients(  # type: ignore[override]
+        self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
+    ) -> np.ndarray:
         """``s^2 - i gamma s - kappa``, highest power first (``gamma`` is :attr:`gyroscopic`)."""
         d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
         return gyroscopic_coefficients(d[self.gyroscopic], d["kappa"])

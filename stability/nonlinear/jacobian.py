@@ -116,4 +116,5 @@ def jacobian_eigenvalues(
     ev = np.linalg.eigvals(A)
     from ..linear.spectra import mode_order  # the spectra's sort convention (here: not imported with this module)
 
-    return ev[mode_order(ev)]
+    ordered: np.ndarray = ev[mode_order(ev)]
+    return ordered
