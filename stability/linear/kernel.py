@@ -858,10 +858,10 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
         :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block, packed,
         and ``_domain_code`` only for the points it leaves undecided; the same codes). Each
-        parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
-        (No reduction variables, which slowed the loop by ~15%: the driver counts. The limits
-        are read into a tuple once: an array handed to the domain test per point is passed and
-        reference-counted at every call.)"""
+        parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
+        scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
+        the loop by ~15%: the driver counts. The limits are read into a tuple once: an array
+        handed to the domain test per point is passed and reference-counted at every call.)"""
         lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         npts = len(stab)
         blocks = _compiled() and n == 3
