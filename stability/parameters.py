@@ -90,6 +90,7 @@ __all__ = [
     "check_positive",
     "check_range",
     "domain_applies",
+    "domain_clearly_inside",
     "domain_mask",
     "domain_range",
     "domain_sides",
@@ -390,6 +391,10 @@ def _sigma_interval(v: Mapping[str, float]) -> tuple[float, float]:
 #: the unit round-off of double precision (the margins of :func:`domain_sides_quick`)
 _U_DOMAIN = 2.0**-53
 
+#: the threshold below which :func:`domain_sides_quick`'s plain ``mu q^2`` and ``sigma/2 + mu q^2``
+#: prove ``A_G > 0`` and ``sigma <= 2 A_G`` (its docstring derives the margin ``4u``)
+_PLAIN_BELOW = 1.0 - 4.0 * _U_DOMAIN
+
 
 @register_jitable
 def _exact_margins(q: Any, mu: Any, sigma: Any) -> tuple[Any, Any]:
@@ -519,7 +524,7 @@ def domain_sides_quick(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any, a
     a = mu * (q * q)
     w = 0.5 * sigma + a
     plain = (mu >= 0.0) & (sigma >= 0.0)
-    lo = 1.0 - 4.0 * _U_DOMAIN
+    lo = _PLAIN_BELOW
     q_easy = plain & ((a <= lo) | (a >= 1.0 + 4.0 * _U_DOMAIN))
     s_easy = plain & ((w <= lo) | (w >= 1.0 + 4.0 * _U_DOMAIN))
     if q_easy & s_easy:
@@ -528,6 +533,37 @@ def domain_sides_quick(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any, a
     else:
         a_g, room = _exact_margins(q, mu, sigma)
     return (0.0, mu, 0.0, fr_inv, 0.0, alpha_v, 0.0, alpha_k, 0.0, a_g, 0.0, sigma, 0.0, 2.0 * room)
+
+
+@register_jitable
+def domain_clearly_inside(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any, alpha_k: Any, applies: Any) -> Any:
+    """Whether the plain comparisons alone put a point inside every bound of :data:`DOMAIN` whose
+    ``applies[k]`` is true: no branch on data (``&``, ``|``), so that a compiled loop over many
+    points packs it; false where the exact test is needed (or the point is outside).
+
+    True only if :func:`inside_domain` of :func:`domain_sides_quick` is true, by construction:
+    the bounds ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``, ``alpha_k >= 0``, ``sigma > 0`` are
+    the same comparisons as :func:`bound_holds` on their sides (``x - 0 > 0`` is ``x > 0``), and
+    the two through ``A_G`` are true here only in :func:`domain_sides_quick`'s plain case
+    ``mu >= 0``, ``sigma >= 0``, ``fl(mu fl(q q)) <= 1 - 4u``, ``fl(sigma/2 + fl(mu fl(q q))) <= 1 - 4u``,
+    where its derivation gives ``1 - mu q^2 > 0`` and ``sigma < 2 (1 - mu q^2)`` exactly (the
+    rounding of the three operations moves each value by a factor within ``(1 +- u)^3``, less
+    than the ``4u`` of the threshold) and it returns the sides ``1`` and ``2``, which hold.
+    NaN fails every comparison (false). tests/test_domain_quick.py checks it against the exact
+    rule within a few ulp of every bound.
+    """
+    a = mu * (q * q)
+    w = 0.5 * sigma + a
+    plain = (mu >= 0.0) & (sigma >= 0.0)
+    return (
+        ((mu > 0.0) | (not applies[0]))
+        & ((fr_inv >= 0.0) | (not applies[1]))
+        & ((alpha_v >= 0.0) | (not applies[2]))
+        & ((alpha_k >= 0.0) | (not applies[3]))
+        & ((plain & (a <= _PLAIN_BELOW)) | (not applies[4]))
+        & ((sigma > 0.0) | (not applies[5]))
+        & ((plain & (w <= _PLAIN_BELOW)) | (not applies[6]))
+    )
 
 
 @register_jitable

@@ -17,8 +17,16 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from stability.linear.kernel import sliding_domain
-from stability.parameters import domain_applies, domain_sides, domain_sides_quick, inside_domain, sigma_max
+from stability.linear.kernel import checked_sliding_spectrum, sliding_domain
+from stability.parameters import (
+    COMPUTABLE_MAX,
+    domain_applies,
+    domain_clearly_inside,
+    domain_sides,
+    domain_sides_quick,
+    inside_domain,
+    sigma_max,
+)
 
 APPLIES = domain_applies(("q", "fr_inv", "sigma", "alpha_v", "mu"))
 
@@ -122,3 +130,82 @@ def test_quick_decision_refuses_what_the_exact_one_refuses(bad):
         quick = inside_domain(domain_sides_quick(q, 0.1, sigma, 0.5, mu, 0.0), APPLIES)
         slow = inside_domain(domain_sides(q, 0.1, sigma, 0.5, mu, 0.0), APPLIES)
         assert quick == slow is False
+
+
+# --- the packed first pass of the fused loop (domain_clearly_inside) ----------------------------
+
+
+def exact_code(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float) -> int:
+    """The fused loop's code in rationals: 2 outside the computable range (NaN, inf,
+    ``|x| > 1e30``, ``0 < mu < 1e-30``), 1 outside the physical domain, 0 inside."""
+    values = (q, fr_inv, sigma, alpha_v, mu)
+    if not all(math.isfinite(x) and abs(x) <= COMPUTABLE_MAX for x in values) or 0 < mu < 1e-30:
+        return 2
+    return 0 if fr_inv >= 0 and alpha_v >= 0 and exact_inside(q, sigma, mu) else 1
+
+
+def near_every_bound() -> list[tuple[float, float, float, float, float]]:
+    """The A_G cases above, each also with fr_inv, alpha_v, mu and sigma moved to within a few
+    ulp of their sign bounds (0, the smallest subnormals either side, -0.0), and points in the
+    band ``(1 - 8u, 1 + 8u)`` of the plain ``mu q^2`` and ``sigma/2 + mu q^2`` where the first
+    pass must leave the decision to the exact test."""
+    tiny = 5e-324
+    signs = (-2 * tiny, -tiny, -0.0, 0.0, tiny, 2 * tiny, 2.2250738585072014e-308)
+    pts = [(q, 0.1, sigma, 0.5, mu) for q, sigma, mu in CASES]
+    for x in signs:
+        pts += [(0.3, x, 0.5, 0.5, 2.28), (0.3, 0.1, 0.5, x, 2.28), (0.3, 0.1, x, 0.5, 2.28), (0.3, 0.1, 0.5, 0.5, x)]
+    pts += [(0.3, 0.1, 0.5, 0.5, m) for m in (down(1e-30), 1e-30, up(1e-30), down(1e30), 1e30, up(1e30))]
+    rng = np.random.default_rng(17)
+    for _ in range(200):
+        mu = float(rng.uniform(0.1, 10.0))
+        q = math.sqrt((1.0 + float(rng.integers(-12, 13)) * 2.0**-53) / mu)  # mu q^2 within ~12u of 1
+        pts.append((q, 0.1, 1e-3, 0.5, mu))
+        q = float(rng.uniform(-0.9, 0.9)) / math.sqrt(mu)
+        a_g = 1.0 - mu * q * q
+        pts.append((q, 0.1, 2.0 * a_g * (1.0 + float(rng.integers(-12, 13)) * 2.0**-53), 0.5, mu))
+    return pts
+
+
+NEAR = near_every_bound()
+
+
+def test_first_pass_calls_inside_only_what_is_inside():
+    """:func:`domain_clearly_inside` (interpreted, the same operations as compiled) is true only
+    where the rational rule is inside; it decides the far points and leaves the band to the exact
+    test. Reference: :mod:`fractions` on the doubles given, no rounding at all, so independent of
+    both the plain comparisons with their 4u margin and the two_product expansions of the exact
+    test; a decision is a yes or no, so there is no tolerance. (The computable range is the
+    kernel's own refusal, tested with the fused loop below.)"""
+    clear_count = 0
+    for q, fr_inv, sigma, alpha_v, mu in NEAR:
+        clear = domain_clearly_inside(q, fr_inv, sigma, alpha_v, mu, 0.0, APPLIES)
+        if clear:
+            assert exact_inside(q, sigma, mu) and fr_inv >= 0 and alpha_v >= 0, (q, fr_inv, sigma, alpha_v, mu)
+        clear_count += bool(clear)
+    assert 0 < clear_count < len(NEAR)  # both answers occur near the bounds
+    rng = np.random.default_rng(19)
+    mu = rng.uniform(0.5, 6.0, 500)
+    q = rng.uniform(-0.9, 0.9, 500) / np.sqrt(mu)
+    sigma = (1.0 - mu * q * q) * rng.uniform(0.1, 1.9, 500)
+    far = [bool(domain_clearly_inside(*p, 0.0, APPLIES)) for p in zip(q, np.full(500, 0.1), sigma, np.full(500, 0.5), mu)]
+    assert all(far)  # far from every bound the first pass decides alone
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+def test_fused_loop_codes_are_exact_near_every_bound(parallel):
+    """The compiled fused loop (first pass packed over blocks of 256 points, the exact test for
+    the points it leaves) gives the rational rule's inside mask and count of refused points on
+    the points near every bound, shuffled among far points so that every block mixes both.
+    Reference: :func:`exact_code` in :mod:`fractions`, independent as above."""
+    rng = np.random.default_rng(23)
+    mu = rng.uniform(0.5, 6.0, 3000)
+    q = rng.uniform(-0.9, 0.9, 3000) / np.sqrt(mu)
+    far = list(zip(q, np.full(3000, 0.1), (1.0 - mu * q * q) * rng.uniform(0.1, 1.9, 3000), np.full(3000, 0.5), mu))
+    pts = [tuple(float(x) for x in p) for p in far] + NEAR
+    pts = [pts[k] for k in rng.permutation(len(pts))]
+    want = np.array([exact_code(*p) for p in pts])
+    arrays = [np.array(c) for c in zip(*pts)]
+    got = checked_sliding_spectrum(*arrays, engine="compiled", parallel=parallel)
+    np.testing.assert_array_equal(got.inside, want == 0)
+    assert got.n_not_finite == int(np.sum(want == 2))
+    assert got.n_outside == int(np.sum(want != 0))

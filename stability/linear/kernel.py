@@ -94,7 +94,7 @@ from stability.jit import OPTIONS, cached, overload, register_jitable
 from .. import execution
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
-from ..parameters import PARAMETERS, domain_applies, domain_sides_quick, inside_domain
+from ..parameters import PARAMETERS, domain_applies, domain_clearly_inside, domain_sides_quick, inside_domain
 from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
@@ -127,6 +127,7 @@ prange = range
 _U = 2.0**-53
 _STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
 _INSIDE, _OUTSIDE_DOMAIN, _NOT_FINITE = 0, 1, 2  # codes of _domain_code
+_UNDECIDED = 3  # a point _domain_clear leaves to _domain_code
 _OMEGA = complex(-0.5, math.sqrt(3.0) / 2.0)  # primitive cube root of unity
 _OMEGA2 = complex(-0.5, -math.sqrt(3.0) / 2.0)
 _CBRT_I = complex(math.sqrt(3.0) / 2.0, 0.5)  # exp(i pi / 6), a cube root of i
@@ -573,6 +574,24 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
 
 
+@register_jitable
+def _domain_clear(q, fr_inv, sigma, alpha_v, mu, lim, applies):
+    """``_INSIDE`` where plain comparisons alone show that :func:`_domain_code` gives
+    ``_INSIDE`` (:func:`_refused` of no parameter and
+    :func:`stability.parameters.domain_clearly_inside`, which proves the exact rule's answer),
+    ``_UNDECIDED`` elsewhere. No branch on data, so a loop over a block is packed; the points
+    left undecided (near a bound, outside, not finite) go to :func:`_domain_code`."""
+    bad = (
+        _refused(q, lim[0], lim[1])
+        | _refused(fr_inv, lim[2], lim[3])
+        | _refused(sigma, lim[4], lim[5])
+        | _refused(alpha_v, lim[6], lim[7])
+        | _refused(mu, lim[8], lim[9])
+    )
+    clear = domain_clearly_inside(q, fr_inv, sigma, alpha_v, mu, 0.0, applies) & (not bad)
+    return _INSIDE if clear else _UNDECIDED
+
+
 def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
     """The spectrum of the polynomials ``c[i]`` (``n + 1`` complex coefficients, highest power
     first) at the points ``inside`` (the others: NaN, flag -1)."""
@@ -838,11 +857,12 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
 
     def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
-        :func:`_domain_code` per point. Each parameter is a 1-D array read at ``i * stride``
-        (stride 1: one value per point; 0: a scalar), so scalars are not broadcast in memory.
-        (No reduction variables, which slowed the loop by ~15%: the driver counts. The limits
-        are read into a tuple once: an array handed to the domain test per point is passed and
-        reference-counted at every call.)"""
+        :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block, packed,
+        and ``_domain_code`` only for the points it leaves undecided; the same codes). Each
+        parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
+        scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
+        the loop by ~15%: the driver counts. The limits are read into a tuple once: an array
+        handed to the domain test per point is passed and reference-counted at every call.)"""
         lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         npts = len(stab)
         blocks = _compiled() and n == 3
@@ -851,11 +871,19 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             count = min(BLOCK, npts - lo)
             w = np.empty((_ROWS, count if blocks else 0))
             rare = np.empty(count if blocks else 0, dtype=np.bool_)
-            for i in range(lo, lo + count):
-                where[i] = _domain_code(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies)
+            p = np.empty((5, count if blocks else 0))  # the block's parameters, contiguous
+            if blocks:  # the domain test of the easy majority, in a loop the compiler packs
+                for j in range(count):
+                    i = lo + j
+                    p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]
+                for j in range(count):
+                    where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
+            for i in range(lo, lo + count):  # the exact test for the others (all points when interpreted)
+                if not (blocks and where[i] == _INSIDE):
+                    where[i] = _domain_code(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies)
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
-                for i in range(lo, lo + count):
-                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
+                for j in range(count):
+                    _store_parts(formula(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j]), w, j)
                 _block_solve(w, rare, count, polish)
                 _block_decide(w, count, lo, ev, bd, neutral, stab)
             for i in range(lo, lo + count):  # the points the blocks did not solve
