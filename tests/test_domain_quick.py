@@ -187,7 +187,9 @@ def test_first_pass_calls_inside_only_what_is_inside():
     mu = rng.uniform(0.5, 6.0, 500)
     q = rng.uniform(-0.9, 0.9, 500) / np.sqrt(mu)
     sigma = (1.0 - mu * q * q) * rng.uniform(0.1, 1.9, 500)
-    far = [bool(domain_clearly_inside(*p, 0.0, APPLIES)) for p in zip(q, np.full(500, 0.1), sigma, np.full(500, 0.5), mu)]
+    far = [
+        bool(domain_clearly_inside(*p, 0.0, APPLIES)) for p in zip(q, np.full(500, 0.1), sigma, np.full(500, 0.5), mu)
+    ]
     assert all(far)  # far from every bound the first pass decides alone
 
 

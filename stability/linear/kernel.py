@@ -803,7 +803,14 @@ def _block_roots_of(w, j):
 
 @register_jitable
 def _store_roots(w, j, r0, r1, r2):
-    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = r0.real, r0.imag, r1.real, r1.imag, r2.real, r2.imag
+    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = (
+        r0.real,
+        r0.imag,
+        r1.real,
+        r1.imag,
+        r2.real,
+        r2.imag,
+    )
 
 
 @register_jitable
@@ -824,7 +831,9 @@ def _block_decide(w, count, lo, ev, bd, neutral, stab):
     the outputs; a point that is rare or outside is then written again by its loop."""
     for j in range(count):
         r0, r1, r2 = _block_roots_of(w, j)
-        stab[lo + j] = _decide(3, r0, r1, r2, w[_E0, j], w[_E1, j], w[_E2, j], False, False, False, ev, bd, neutral, lo + j)
+        stab[lo + j] = _decide(
+            3, r0, r1, r2, w[_E0, j], w[_E1, j], w[_E2, j], False, False, False, ev, bd, neutral, lo + j
+        )
 
 
 class _Kernels(NamedTuple):
@@ -875,12 +884,20 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             if blocks:  # the domain test of the easy majority, in a loop the compiler packs
                 for j in range(count):
                     i = lo + j
-                    p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]
+                    p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = (
+                        q[i * sq],
+                        fr_inv[i * sf],
+                        sigma[i * ss],
+                        alpha_v[i * sa],
+                        mu[i * sm],
+                    )
                 for j in range(count):
                     where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
             for i in range(lo, lo + count):  # the exact test for the others (all points when interpreted)
                 if not (blocks and where[i] == _INSIDE):
-                    where[i] = _domain_code(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies)
+                    where[i] = _domain_code(
+                        q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies
+                    )
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
                 for j in range(count):
                     _store_parts(formula(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j]), w, j)
@@ -906,7 +923,9 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             rare = np.empty(count if blocks else 0, dtype=np.bool_)
             if blocks:
                 for i in range(lo, lo + count):
-                    _store_parts(formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo)
+                    _store_parts(
+                        formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo
+                    )
                 _block_solve(w, rare, count, polish)
                 _block_decide(w, count, lo, ev, bd, neutral, stab)
             for i in range(lo, lo + count):  # the points the blocks did not solve
@@ -971,7 +990,9 @@ def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
 def _shaped(ev: np.ndarray, bd: np.ndarray, nt: np.ndarray, st: np.ndarray, shape: tuple[int, ...]) -> KernelSpectrum:
     """The outputs of :func:`_outputs` in the request's ``shape`` (``shape + (n,)`` for the modes)."""
     n = ev.shape[-1]
-    return KernelSpectrum(ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape))
+    return KernelSpectrum(
+        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
+    )
 
 
 def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
