@@ -553,6 +553,19 @@ def _refused(x, lo, hi):
 
 
 @register_jitable
+def _any_refused(q, fr_inv, sigma, alpha_v, mu, lim):
+    """Whether a parameter is not finite or outside the computable range ``lim`` (:func:`_refused`
+    of each; ``|``, no short circuit, so a loop over a block is packed)."""
+    return (
+        _refused(q, lim[0], lim[1])
+        | _refused(fr_inv, lim[2], lim[3])
+        | _refused(sigma, lim[4], lim[5])
+        | _refused(alpha_v, lim[6], lim[7])
+        | _refused(mu, lim[8], lim[9])
+    )
+
+
+@register_jitable
 def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     """Where a point lies: ``_INSIDE``, ``_OUTSIDE_DOMAIN`` (a bound of
     :data:`stability.parameters.DOMAIN` whose ``applies[k]`` is true is violated) or
@@ -563,13 +576,7 @@ def _domain_code(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     of ``check_domain``'s numpy test, decided cheaply where a plain comparison suffices)
     (NaN fails). Every test is evaluated (``|``, no short circuit): the point is inside nearly
     always, and the branches cost more."""
-    bad = (
-        _refused(q, lim[0], lim[1])
-        | _refused(fr_inv, lim[2], lim[3])
-        | _refused(sigma, lim[4], lim[5])
-        | _refused(alpha_v, lim[6], lim[7])
-        | _refused(mu, lim[8], lim[9])
-    )
+    bad = _any_refused(q, fr_inv, sigma, alpha_v, mu, lim)
     out = not inside_domain(domain_sides_quick(q, fr_inv, sigma, alpha_v, mu, 0.0), applies)
     return _NOT_FINITE if bad else (_OUTSIDE_DOMAIN if out else _INSIDE)
 
@@ -581,13 +588,7 @@ def _domain_clear(q, fr_inv, sigma, alpha_v, mu, lim, applies):
     :func:`stability.parameters.domain_clearly_inside`, which proves the exact rule's answer),
     ``_UNDECIDED`` elsewhere. No branch on data, so a loop over a block is packed; the points
     left undecided (near a bound, outside, not finite) go to :func:`_domain_code`."""
-    bad = (
-        _refused(q, lim[0], lim[1])
-        | _refused(fr_inv, lim[2], lim[3])
-        | _refused(sigma, lim[4], lim[5])
-        | _refused(alpha_v, lim[6], lim[7])
-        | _refused(mu, lim[8], lim[9])
-    )
+    bad = _any_refused(q, fr_inv, sigma, alpha_v, mu, lim)
     clear = domain_clearly_inside(q, fr_inv, sigma, alpha_v, mu, 0.0, applies) & (not bad)
     return _INSIDE if clear else _UNDECIDED
 
