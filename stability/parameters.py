@@ -542,9 +542,8 @@ def domain_clearly_inside(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any
     points packs it; false where the exact test is needed (or the point is outside).
 
     True only if :func:`inside_domain` of :func:`domain_sides_quick` is true, by construction:
-    the bounds ``mu > 0``, ``fr_inv >= 0``, ``alpha_v >= 0``, ``alpha_k >= 0``, ``sigma > 0`` are
-    the same comparisons as :func:`bound_holds` on their sides (``x - 0 > 0`` is ``x > 0``), and
-    the two through ``A_G`` are true here only in :func:`domain_sides_quick`'s plain case
+    it is :func:`inside_domain` of the same sides, except that the two through ``A_G`` are
+    ``+1`` (hold) only in :func:`domain_sides_quick`'s plain case
     ``mu >= 0``, ``sigma >= 0``, ``fl(mu fl(q q)) <= 1 - 4u``, ``fl(sigma/2 + fl(mu fl(q q))) <= 1 - 4u``,
     where its derivation gives ``1 - mu q^2 > 0`` and ``sigma < 2 (1 - mu q^2)`` exactly (the
     rounding of the three operations moves each value by a factor within ``(1 +- u)^3``, less
@@ -555,14 +554,10 @@ def domain_clearly_inside(q: Any, fr_inv: Any, sigma: Any, alpha_v: Any, mu: Any
     a = mu * (q * q)
     w = 0.5 * sigma + a
     plain = (mu >= 0.0) & (sigma >= 0.0)
-    return (
-        ((mu > 0.0) | (not applies[0]))
-        & ((fr_inv >= 0.0) | (not applies[1]))
-        & ((alpha_v >= 0.0) | (not applies[2]))
-        & ((alpha_k >= 0.0) | (not applies[3]))
-        & ((plain & (a <= _PLAIN_BELOW)) | (not applies[4]))
-        & ((sigma > 0.0) | (not applies[5]))
-        & ((plain & (w <= _PLAIN_BELOW)) | (not applies[6]))
+    a_g = 1.0 if plain & (a <= _PLAIN_BELOW) else -1.0  # selects: the sides of the plain case
+    room = 1.0 if plain & (w <= _PLAIN_BELOW) else -1.0
+    return inside_domain(
+        (0.0, mu, 0.0, fr_inv, 0.0, alpha_v, 0.0, alpha_k, 0.0, a_g, 0.0, sigma, 0.0, 2.0 * room), applies
     )
 
 
