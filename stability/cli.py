@@ -296,7 +296,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     # (the interpreter's shutdown restores the default handlers); one that came after the
     # command's last check is reported as the others are
     if argv is None and interrupts.hold_until_exit():
-        status = _interrupted(interrupts.label(), None)
+        status = _interrupted(interrupts.run.label, None)
     return status
 
 
@@ -304,13 +304,13 @@ def _interrupted(prog: str, text: str | None) -> int:
     """Print the one line of an interrupted command, truthful about what was written."""
     from . import interrupts
 
-    done = interrupts.committed()
+    done = interrupts.run.committed
     if done:
         what = ", ".join(repr(f) for f in done)
         line = f"{prog}: interrupted after {what} {'was' if len(done) == 1 else 'were'} written (complete)"
     else:
         line = f"{prog}: interrupted; {_one_line(text) if text else 'no output file was left behind'}"
-    interrupts.mark_reported()
+    interrupts.run.reported = True
     print(line, file=sys.stderr)
     return EXIT_INTERRUPTED
 
@@ -360,7 +360,7 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         parser = build_parser()
         args = parser.parse_args(args_list)
         prog = f"tippe {args.command}"
-        interrupts.set_label(prog)
+        interrupts.run.label = prog
         flags = _command_flags(parser, args.command)
         interrupts.checkpoint()  # a signal during start-up
         with warnings.catch_warnings():
@@ -381,7 +381,7 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         if not _stdout_broken():
             print(f"{prog}: error: broken pipe", file=sys.stderr)
             return EXIT_USAGE
-        done = interrupts.committed()
+        done = interrupts.run.committed
         if done:  # the output is complete; only the report on stdout was lost
             print(
                 f"{prog}: wrote {', '.join(repr(f) for f in done)}; the report on stdout could not be printed "

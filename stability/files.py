@@ -50,17 +50,22 @@ __all__ += ["close_quietly", "commit", "describe_kind", "format_bytes", "tempora
 TEMPORARY_PREFIX = ".tippe-tmp-"
 
 #: error numbers that mean "the file could not be written" -> the cause as the message says it
+#: (``{dir}``: the directory; ``{free}``, ``{limit}``: what :func:`_room` found, where known)
 _CAUSES: dict[int | None, str] = {
-    errno.ENOSPC: "no space left on the file system holding {dir}",
-    errno.EFBIG: "file size limit reached",
+    errno.ENOSPC: "no space left on the file system holding {dir}{free}",
+    errno.EFBIG: "file size limit{limit} reached",
     errno.EROFS: "the file system holding {dir} is read-only",
     errno.EIO: "input/output error on the file system holding {dir}",
     getattr(errno, "EDQUOT", -1): "disk quota exceeded on the file system holding {dir}",
+    None: "the netCDF/HDF5 library reported an error",
 }
 
 #: a file's type in words, by its letter in ``ls -l`` (:func:`stat.filemode`)
 _KINDS = {"-": "a regular file", "d": "a directory", "l": "a symbolic link", "p": "a FIFO (named pipe)"}
 _KINDS |= {"c": "a character device", "b": "a block device", "s": "a socket"}
+
+#: the errors of ``os.link`` that mean "this file system has no hard links" (vfat)
+_NO_LINKS = (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.ENOSYS)
 
 
 def describe_kind(mode: int) -> str:
@@ -70,10 +75,8 @@ def describe_kind(mode: int) -> str:
 
 def format_bytes(n: float) -> str:
     """``1234567`` -> ``"1.23 MB"`` (decimal units)."""
-    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if n >= size:
-            return f"{n / size:.3g} {unit}"
-    return f"{float(n):.0f} bytes"
+    unit, size = next((u, s) for u, s in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3), ("", 0)) if n >= s)
+    return f"{n / size:.3g} {unit}" if size else f"{float(n):.0f} bytes"
 
 
 def _refuse_existing(p: Path, overwrite: bool) -> None:
@@ -136,19 +139,20 @@ def check_output_directory(path: str | os.PathLike) -> None:
         raise PermissionError(f"{where} is not writable ({exc.strerror})") from None
 
 
-def _room(d: Path) -> tuple[float | None, int | None]:
-    """The space available to this user on the file system holding ``d`` (``statvfs``) and the
-    file size limit (``ulimit -f``, ``RLIMIT_FSIZE``), in bytes; None where unknown."""
-    free = limit = None
+def _room(d: Path) -> tuple[float | None, int | None, bool]:
+    """The space available to this user on the file system holding ``d`` (``statvfs``), the
+    file size limit (``ulimit -f``, ``RLIMIT_FSIZE``), in bytes (None where unknown), and
+    whether the file system is mounted read-only."""
+    free, limit, readonly = None, None, False
     with contextlib.suppress(OSError, AttributeError):
         vfs = os.statvfs(d)
-        free = float(vfs.f_bavail * vfs.f_frsize)
+        free, readonly = float(vfs.f_bavail * vfs.f_frsize), bool(vfs.f_flag & os.ST_RDONLY)
     with contextlib.suppress(ImportError, OSError, ValueError):
         import resource
 
         soft = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
         limit = None if soft == resource.RLIM_INFINITY or soft < 0 else int(soft)
-    return free, limit
+    return free, limit, readonly
 
 
 def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
@@ -162,7 +166,7 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
         With ``errno`` ENOSPC or EFBIG, naming the file, the size and the limit.
     """
     p, d = str(path), Path(path).parent
-    free, limit = _room(d)
+    free, limit, _ = _room(d)
     need = f"cannot write {p!r}: the output needs about {format_bytes(nbytes)}"
     if free is not None and nbytes > free:
         where = f"the file system holding {str(d)!r} has {format_bytes(free)} free"
@@ -170,9 +174,6 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
     if limit is not None and nbytes > limit:
         where = f"the file size limit (ulimit -f) of {limit} bytes"
         raise OutputWriteError(f"{need}, above {where}; nothing was written", errno.EFBIG, p)
-
-
-# --- the commit --------------------------------------------------------------------------------
 
 
 def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
@@ -204,7 +205,7 @@ def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
                 taken = f"output file {str(target)!r} was created by another process while this run was computing"
                 raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
             except OSError as exc:
-                if exc.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EMLINK, errno.ENOSYS):
+                if exc.errno not in _NO_LINKS:
                     raise
                 why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
                 msg = f"cannot write {str(target)!r}: the file system holding it {why} (nothing was written)"
@@ -267,23 +268,10 @@ def atomic_output(
             tmp.done(committed=False)
 
 
-# --- translating write errors --------------------------------------------------------------------
-
-
-def _chain(exc: BaseException | None) -> list[BaseException]:
-    """``exc`` and the exceptions it was raised from or during."""
-    seen: list[BaseException] = []
-    while exc is not None and exc not in seen:
-        seen.append(exc)
-        exc = exc.__cause__ or exc.__context__
-    return seen
-
-
-def _is_library_write_error(exc: BaseException) -> bool:
+def _library_error(exc: BaseException) -> bool:
     """netCDF4 and h5 report a failed write as a RuntimeError "NetCDF: ..." (no errno)."""
-    text = str(exc)
-    library = type(exc) is RuntimeError and ("NetCDF" in text or "HDF" in text)
-    return library or type(exc).__name__ in ("HDF5ExtError", "NetCDF4Error")
+    name, text = type(exc).__name__, str(exc)
+    return name in ("HDF5ExtError", "NetCDF4Error") or (name == "RuntimeError" and ("NetCDF" in text or "HDF" in text))
 
 
 def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> OutputWriteError | None:
@@ -291,9 +279,11 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
     or None if ``exc`` is not a write failure (bad input, an interruption, a failed computation
     are passed on as they are).
 
-    A write failure is an ``OSError`` in the exception's chain with an error number of
-    :data:`_CAUSES` (its cause), or, without one, a netCDF/HDF5 library error or an ``OSError``
-    on the temporary file ``tmp``, whose probable cause is found now (:func:`_diagnose`).
+    A write failure is an ``OSError`` in the exception's chain (``exc``, the exceptions it was
+    raised from or during) with an error number of :data:`_CAUSES` (its cause), or, without one,
+    a netCDF/HDF5 library error or an ``OSError`` on the temporary file ``tmp``, whose probable
+    cause is found now: a read-only mount, less than 1 MB free, the temporary file within 1 MB of
+    the file size limit (else: "the library reported an error").
 
     Parameters
     ----------
@@ -303,38 +293,27 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
     tmp : str, optional
         The temporary file being written (its size is compared with the file size limit).
     """
-    if not isinstance(exc, Exception) or isinstance(exc, OutputWriteError):
-        return None  # an interruption (KeyboardInterrupt, SystemExit, GeneratorExit), or translated
-    if isinstance(exc, TippeError) and not isinstance(exc, OSError):
-        return None
-    chain = _chain(exc)
+    if not isinstance(exc, Exception) or isinstance(exc, TippeError):
+        return None  # an interruption (KeyboardInterrupt, SystemExit, GeneratorExit), bad input, or translated
+    chain = [exc]
+    while (e := chain[-1].__cause__ or chain[-1].__context__) is not None and e not in chain:
+        chain.append(e)
     code = next((e.errno for e in chain if isinstance(e, OSError) and e.errno in _CAUSES), None)
     name = getattr(exc, "filename", None)
     own_file = name is not None and tmp is not None and os.path.abspath(str(name)) == os.path.abspath(tmp)
-    if code is None and not own_file and not any(map(_is_library_write_error, chain)):
+    if code is None and not own_file and not any(map(_library_error, chain)):
         return None
     d = Path(target).parent
-    free, limit = _room(d)
-    code = _diagnose(d, tmp, free, limit) if code is None else code
-    cause = _CAUSES.get(code, "the netCDF/HDF5 library reported an error").format(dir=repr(str(d)))
-    if code == errno.ENOSPC and free is not None:
-        cause += f" ({format_bytes(free)} free)"
-    elif code == errno.EFBIG and limit is not None:
-        cause = f"file size limit (ulimit -f) of {limit} bytes reached"
+    free, limit, readonly = _room(d)
+    size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
+    if code is None and (readonly or (free is not None and free < 1e6) or (limit is not None and size + 1e6 >= limit)):
+        code = errno.EROFS if readonly else errno.ENOSPC if free is not None and free < 1e6 else errno.EFBIG
+    free_text, limit_text = f" ({format_bytes(free or 0)} free)", f" (ulimit -f) of {limit} bytes"
+    cause = _CAUSES[code].format(
+        dir=repr(str(d)), free=free_text * (free is not None), limit=limit_text * (limit is not None)
+    )
     detail = " ".join(str(exc).split())[:160]
     return OutputWriteError(f"cannot write {str(target)!r}: {cause} ({detail}); nothing was written", code, str(target))
-
-
-def _diagnose(d: Path, tmp: str | None, free: float | None, limit: int | None) -> int | None:
-    """The probable cause (an error number) of a write failure that carries none, found now: a
-    read-only mount, less than 1 MB ``free``, the temporary file within 1 MB of the size ``limit``."""
-    with contextlib.suppress(OSError, AttributeError):
-        if os.statvfs(d).f_flag & os.ST_RDONLY:
-            return errno.EROFS
-    if free is not None and free < 1_000_000:
-        return errno.ENOSPC
-    size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
-    return errno.EFBIG if limit is not None and size + 1_000_000 >= limit else None
 
 
 @contextlib.contextmanager

@@ -25,6 +25,10 @@ land in the wrong place.
   exit of the block. A second SIGINT raises at once, as Python does.
 * :class:`Temporary`: files (and Zarr stores, directories) being written register themselves,
   so that the emergency exit removes what is not complete and says truthfully what was written.
+* :data:`run`: what the command line's lines need, one small object: ``label`` (the program
+  name, ``tippe atlas``), ``kept`` (what an interrupted command keeps, ``"the finished chunks are
+  kept in ..."``), ``reported`` (the command line has printed its own line: the emergency exit
+  prints none), ``committed`` (the output files committed, complete, since :func:`install`).
 """
 
 from __future__ import annotations
@@ -38,18 +42,19 @@ import threading
 from collections.abc import Iterator
 from types import SimpleNamespace
 
-__all__ = ["SIGNALS", "Temporary", "checkpoint", "committed", "deferred", "hold_until_exit", "install", "label"]
-__all__ += ["mark_reported", "received", "set_kept", "set_label", "uninstall"]
+__all__ = ["SIGNALS", "Temporary", "checkpoint", "deferred", "hold_until_exit", "install", "received", "run"]
+__all__ += ["uninstall"]
 
 #: the signals the command line turns into a flag (SIGHUP where the platform has it)
 SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
-#: the module's state (one per process): the first signal received and not yet cleared; the mode
-#: ("cli", "library" or None: nothing installed) and the handlers it replaced; the program name and
-#: what an interrupted command keeps (chunks), for the emergency exit's line; whether the command
-#: line has printed its own line; the files being written (by id), and those committed
-_state = SimpleNamespace(pending=None, mode=None, previous={}, label="tippe", kept="", reported=False)
-_state.temporaries, _state.committed = {}, []
+#: the command line's state (module docstring): program name, what is kept, whether its line was
+#: printed, the output files committed
+run = SimpleNamespace(label="tippe", kept="", reported=False, committed=[])
+
+#: the flag's state: the first signal received and not yet cleared; the mode ("cli", "library" or
+#: None: nothing installed) and the handlers it replaced; the files being written (by id)
+_state = SimpleNamespace(pending=None, mode=None, previous={}, temporaries={})
 
 
 def received() -> bool:
@@ -97,19 +102,19 @@ def _restore() -> None:
 
 
 def install(label: str = "tippe") -> bool:
-    """Make SIGINT, SIGTERM and SIGHUP set the flag (the command line).
+    """Make SIGINT, SIGTERM and SIGHUP set the flag (the command line); reset :data:`run`.
 
     Parameters
     ----------
     label : str
-        The program name the emergency exit's line starts with (see :func:`set_label`).
+        The program name the emergency exit's line starts with (``run.label``).
 
     Returns
     -------
     bool
         False outside the main thread (nothing installed; handlers can only be set there).
     """
-    _state.label, _state.kept, _state.reported, _state.committed = label, "", False, []
+    run.label, run.kept, run.reported, run.committed = label, "", False, []
     return _take("cli", SIGNALS)
 
 
@@ -134,8 +139,8 @@ def deferred() -> Iterator[None]:
         return
     try:
         yield
-        signum = _state.pending
     finally:
+        signum = _state.pending
         _restore()
     if signum is not None:
         raise KeyboardInterrupt(f"{signal.Signals(signum).name} received")
@@ -157,34 +162,8 @@ class Temporary:
         """The file was committed to its target (``committed``) or removed; forget it."""
         self.state = "committed" if committed else "removed"
         if committed and self.target is not None:
-            _state.committed.append(self.target)
+            run.committed.append(self.target)
         _state.temporaries.pop(id(self), None)
-
-
-def committed() -> list[str]:
-    """Output files committed (complete) in this process since :func:`install`."""
-    return list(_state.committed)
-
-
-def set_label(label: str) -> None:
-    """The program name of the emergency exit's line (``tippe atlas``)."""
-    _state.label = str(label)
-
-
-def label() -> str:
-    """The program name set by :func:`set_label`."""
-    return str(_state.label)
-
-
-def set_kept(text: str) -> None:
-    """What an interrupted command keeps (``"the finished chunks are kept in ..."``), for the
-    emergency exit's line; empty for nothing."""
-    _state.kept = str(text)
-
-
-def mark_reported() -> None:
-    """The command line has printed its own interruption line: the emergency exit prints none."""
-    _state.reported = True
 
 
 def hold_until_exit() -> bool:
@@ -196,27 +175,26 @@ def hold_until_exit() -> bool:
     if hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread():
         signal.pthread_sigmask(signal.SIG_BLOCK, set(SIGNALS))
         arrived = arrived or bool(signal.sigpending() & set(SIGNALS))
-    return arrived and not _state.reported
+    return arrived and not run.reported
 
 
 def _emergency_exit(why: str) -> None:
     """Remove the incomplete temporary files, write one line, end the process with status 130."""
-    written = list(_state.committed)
+    written = list(run.committed)
     for tmp in list(_state.temporaries.values()):
-        target = tmp.target if tmp.state == "committing" else None  # a commit under way: done if one file
-        with contextlib.suppress(OSError):
-            if target is not None and (not os.path.exists(tmp.path) or os.path.samefile(tmp.path, target)):
-                written.append(target)
+        with contextlib.suppress(OSError):  # a commit under way: done if the two names are one file
+            if tmp.state == "committing" and (not os.path.exists(tmp.path) or os.path.samefile(tmp.path, tmp.target)):
+                written.append(tmp.target)
         with contextlib.suppress(OSError):  # a Zarr store being written is a directory
             shutil.rmtree(tmp.path, ignore_errors=True) if os.path.isdir(tmp.path) else os.unlink(tmp.path)
     mp = sys.modules.get("multiprocessing")  # a local dask cluster's workers: not orphaned
     for child in mp.active_children() if mp is not None else ():
         with contextlib.suppress(Exception):
             child.terminate()
-    if not _state.reported:
+    if not run.reported:
         names = ", ".join(map(repr, written))
         what = f"after {names} was written (complete)" if written else "no output file was written"
-        kept = f"; {_state.kept}" if _state.kept and not written else ""
+        kept = f"; {run.kept}" if run.kept and not written else ""
         with contextlib.suppress(OSError):
-            os.write(2, f"{_state.label}: interrupted ({why}); {what}{kept}\n".encode(errors="replace"))
+            os.write(2, f"{run.label}: interrupted ({why}); {what}{kept}\n".encode(errors="replace"))
     os._exit(130)

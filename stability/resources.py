@@ -55,22 +55,6 @@ SIMULATE_BYTES_PER_TIME: dict[str, float] = {k: 1.6 * v for k, v in SIMULATE_FIL
 #: whole grid first (its broadcast parameters and one mask per bound, :data:`_DOMAIN_CHECK`)
 _PER_MODE, _PER_POINT, _BLOCK, _DOMAIN_CHECK = 24.0, 18.0, 90.0, 45.0
 
-#: peak bytes per point of the requests that store little: the samples of a threshold search
-#: (the spectra and growth signs of the uniform and geometric samples), the start grid of a
-#: neutral curve (its meshgrid, spectrum and signs), a class atlas (meshgrids, parameters, codes,
-#: tilts)
-_THRESHOLD_SAMPLE, _START_GRID_POINT, _CLASS_ATLAS_POINT = 1250.0, 340.0, 140.0
-
-
-def _env_limit() -> float | None:
-    """``TIPPE_MEMORY_LIMIT`` in bytes (``2e9``, ``500M``, ``8G``, ``1GiB``), or None if unset."""
-    text = os.environ.get(ENV_LIMIT, "").strip()
-    m = re.fullmatch(r"((?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?)\s*([kmgt]?)(i?)b?", text.lower())
-    value = float(m[1]) * (1024.0 if m[3] else 1000.0) ** " kmgt".index(m[2] or " ") if m else 0.0
-    if text and not 0 < value < float("inf"):
-        raise InputError(f"{ENV_LIMIT} = {text!r} is not a memory size: give bytes > 0 (2e9, 500M, 8G)")
-    return value if text else None
-
 
 def memory_limit() -> tuple[float, str]:
     """The memory a request may take, in bytes, and where the number comes from.
@@ -78,12 +62,16 @@ def memory_limit() -> tuple[float, str]:
     Returns
     -------
     (float, str)
-        ``TIPPE_MEMORY_LIMIT`` if set; else :data:`HEADROOM` x ``MemAvailable`` (Linux), with a
-        text naming its source; else no limit.
+        ``TIPPE_MEMORY_LIMIT`` if set (bytes: ``2e9``, ``500M``, ``8G``, ``1GiB``); else
+        :data:`HEADROOM` x ``MemAvailable`` (Linux), with a text naming its source; else no limit.
     """
-    env = _env_limit()
-    if env is not None:
-        return env, f"the limit {ENV_LIMIT}"
+    text = os.environ.get(ENV_LIMIT, "").strip()
+    if text:
+        m = re.fullmatch(r"((?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?)\s*([kmgt]?)(i?)b?", text.lower())
+        value = float(m[1]) * (1024.0 if m[3] else 1000.0) ** " kmgt".index(m[2] or " ") if m else 0.0
+        if not 0 < value < float("inf"):
+            raise InputError(f"{ENV_LIMIT} = {text!r} is not a memory size: give bytes > 0 (2e9, 500M, 8G)")
+        return value, f"the limit {ENV_LIMIT}"
     try:
         with open("/proc/meminfo") as f:
             avail = next(float(ln.split()[1]) * 1024.0 for ln in f if ln.startswith("MemAvailable:"))
@@ -121,14 +109,15 @@ def check_memory(nbytes: float, *, what: str, parameter: str, way_out: str) -> N
         )
 
 
+def simulate_file_bytes(model: str, n_times: int, per_time: dict[str, float] = SIMULATE_FILE_BYTES_PER_TIME) -> float:
+    """Size of the netCDF file of a run of ``n_times`` output times (``per_time``: its bytes per
+    output time, by model; the largest for a model not listed)."""
+    return per_time.get(model, max(per_time.values())) * float(n_times)
+
+
 def simulate_bytes(model: str, n_times: int) -> float:
     """Peak memory of :func:`stability.simulate` for ``n_times`` output times."""
-    return SIMULATE_BYTES_PER_TIME.get(model, max(SIMULATE_BYTES_PER_TIME.values())) * float(n_times)
-
-
-def simulate_file_bytes(model: str, n_times: int) -> float:
-    """Size of the netCDF file of a run of ``n_times`` output times."""
-    return SIMULATE_FILE_BYTES_PER_TIME.get(model, max(SIMULATE_FILE_BYTES_PER_TIME.values())) * float(n_times)
+    return simulate_file_bytes(model, n_times, SIMULATE_BYTES_PER_TIME)
 
 
 def atlas_file_bytes(n_modes: int, n_points: float) -> float:
@@ -140,9 +129,15 @@ def atlas_bytes(n_modes: int, n_points: float, block_points: float, *, domain_ch
     """Peak memory of an in-memory atlas of ``n_points`` grid points computed in blocks of at
     most ``block_points``; ``domain_check``: the whole grid's domain is checked first (without
     ``mask_unphysical``)."""
-    n = float(n_points)
-    stored = atlas_file_bytes(n_modes, n) + _BLOCK * min(n, float(block_points))
-    return max(stored, _DOMAIN_CHECK * n) if domain_check else stored
+    stored = atlas_file_bytes(n_modes, n_points) + _BLOCK * min(float(n_points), float(block_points))
+    return max(stored, _DOMAIN_CHECK * float(n_points)) if domain_check else stored
+
+
+#: peak bytes per point of the requests that store little: the samples of a threshold search
+#: (the spectra and growth signs of the uniform and geometric samples), the start grid of a
+#: neutral curve (its meshgrid, spectrum and signs), a class atlas (meshgrids, parameters, codes,
+#: tilts)
+_THRESHOLD_SAMPLE, _START_GRID_POINT, _CLASS_ATLAS_POINT = 1250.0, 340.0, 140.0
 
 
 def check_threshold_samples(samples: int) -> None:
@@ -155,13 +150,14 @@ def check_threshold_samples(samples: int) -> None:
 
 def check_start_grid(nx: int, ny: int) -> None:
     """Refuse a neutral curve whose start grid ``nx x ny`` cannot fit in memory."""
-    way_out = "use a coarser grid (the default is 25 x 25), or give start points"
-    what = f"a start grid of {nx} x {ny} points"
+    way_out, what = (
+        "use a coarser grid (the default is 25 x 25), or give start points",
+        f"a start grid of {nx} x {ny} points",
+    )
     check_memory(_START_GRID_POINT * float(nx) * float(ny), what=what, parameter="grid", way_out=way_out)
 
 
 def check_class_atlas(n_points: int) -> None:
     """Refuse a class atlas of ``n_points`` grid points that cannot fit in memory."""
-    way_out = "use fewer points, or compute it in slices of q"
-    what, parameter = f"a class atlas of {n_points} grid points", "the grid's ranges"
-    check_memory(_CLASS_ATLAS_POINT * float(n_points), what=what, parameter=parameter, way_out=way_out)
+    what, way_out = f"a class atlas of {n_points} grid points", "use fewer points, or compute it in slices of q"
+    check_memory(_CLASS_ATLAS_POINT * float(n_points), what=what, parameter="the grid's ranges", way_out=way_out)

@@ -159,7 +159,7 @@ def _run_chunked(args: argparse.Namespace, out, ds) -> int:
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
     if args.resume:
-        interrupts.set_kept(f"the finished chunks are kept in {store}; rerun the same command to continue")
+        interrupts.run.kept = f"the finished chunks are kept in {store}; rerun the same command to continue"
 
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
