@@ -305,9 +305,10 @@ def write_error(exc: BaseException, target: Path, tmp: str | None = None) -> Out
         return None
     d = Path(target).parent
     free, limit, readonly = _room(d)
-    size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
-    if code is None and (readonly or (free is not None and free < 1e6) or (limit is not None and size + 1e6 >= limit)):
-        code = errno.EROFS if readonly else errno.ENOSPC if free is not None and free < 1e6 else errno.EFBIG
+    if code is None:  # found now: a read-only mount, < 1 MB free, the file within 1 MB of the size limit
+        size = os.path.getsize(tmp) if tmp is not None and os.path.isfile(tmp) else 0
+        full, at_limit = free is not None and free < 1e6, limit is not None and size + 1e6 >= limit
+        code = errno.EROFS if readonly else errno.ENOSPC if full else errno.EFBIG if at_limit else None
     free_text, limit_text = f" ({format_bytes(free or 0)} free)", f" (ulimit -f) of {limit} bytes"
     cause = _CAUSES[code].format(
         dir=repr(str(d)), free=free_text * (free is not None), limit=limit_text * (limit is not None)
