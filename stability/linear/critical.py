@@ -195,17 +195,6 @@ def _newton(cond: NeutralCondition, x0: float, w0: float) -> tuple[float, float]
     return None
 
 
-def _on_edge(fx: Mapping[str, float], param: str, x: float, outward: float) -> bool:
-    """Whether ``x`` is inside the domain and the next double towards ``outward`` is not."""
-    _, inside = check_domain(mask=True, **{**fx, param: np.array([x, math.nextafter(x, outward)])})
-    return bool(inside[0] and not inside[1])
-
-
-def _ulps(lo: float, hi: float) -> float:
-    """``hi - lo`` in units of the spacing of doubles at ``max(|lo|, |hi|)``."""
-    return (hi - lo) / float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
-
-
 def _polish(
     m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float, unstable_a: bool, w_start: float
 ) -> Threshold:
@@ -252,11 +241,12 @@ def _polish(
     lo, hi = min(a, b), max(a, b)
     if root is not None:
         value, w, exact = root[0], root[1], True
-    else:
-        value, w, exact = 0.5 * (a + b), w_unstable, _ulps(lo, hi) <= 4.0
-        if not exact:  # an interval that reaches the domain's edge: the edge is the value given
+    else:  # exact: a bracket at most 4 ulp wide
+        value, w, exact = 0.5 * (a + b), w_unstable, hi - lo <= 4.0 * float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
+        if not exact:  # an interval that reaches the domain's edge (inside, the next double out not): the edge
             for end, out in ((lo, -math.inf), (hi, math.inf)):
-                if _on_edge(fx, param, end, out):
+                _, inside = check_domain(mask=True, **{**fx, param: np.array([end, math.nextafter(end, out)])})
+                if inside[0] and not inside[1]:
                     value = end
     # a change of stability at the domain's edge (e.g. alpha_v = 0: every friction destabilises)
     # is polished by Newton to a rounding error on either side of it (alpha_v = -2e-27): the
