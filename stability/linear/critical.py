@@ -66,7 +66,6 @@ from .neutrality import NeutralCondition
 from .spectra import MARGINAL, STABLE, UNSTABLE, fixed_parameters, parameter_name
 
 __all__ = [
-    "UPPER_BOUND",
     "CriticalSpin",
     "CriticalSpins",
     "Threshold",
@@ -128,9 +127,12 @@ def _samples_checked(samples: Any) -> int:
     return samples
 
 
-def _setup(
-    param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
-) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
+def _crossings(
+    param: str, model: str | LinearModel, bracket: Sequence[float] | None, samples: Any, fixed: Mapping[str, Any]
+) -> tuple[list[Threshold], np.ndarray, LinearModel, dict[str, float], tuple[float, float]]:
+    """The arguments of the threshold queries checked, then every threshold in the bracket and
+    the states of the samples (:func:`_search`), the model, the fixed parameters and the bracket."""
+    samples = _samples_checked(samples)
     m = get_model(model)
     fx = fixed_parameters(m, (parameter_name(m, param, "param"),), fixed)
     if bracket is None:
@@ -143,7 +145,7 @@ def _setup(
             except DomainError as exc:
                 a, b = fmt_against(lo, hi)
                 raise DomainError(f"bracket = ({a}, {b}) leaves the physical domain: {exc}") from None
-    return m, fx, (lo, hi)
+    return (*_search(m, fx, param, lo, hi, samples), m, fx, (lo, hi))
 
 
 def _samples(lo: float, hi: float, n: int) -> np.ndarray:
@@ -308,9 +310,7 @@ def threshold_crossings(
     >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
     (1.085777777778, 'below')
     """
-    samples = _samples_checked(samples)
-    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    return _search(m, fx, param, lo, hi, samples)[0]
+    return _crossings(param, model, bracket, samples, fixed)[0]
 
 
 def thresholds(
@@ -520,9 +520,7 @@ def _one_threshold(
 ) -> Threshold:
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
-    samples = _samples_checked(samples)
-    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found, state = _search(m, fx, param, lo, hi, samples)
+    found, state, m, fx, (lo, hi) = _crossings(param, model, bracket, samples, fixed)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
         raise InputError(

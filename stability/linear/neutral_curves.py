@@ -603,26 +603,21 @@ def _assemble(
 _POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
 
 
-def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any], direct: bool = True) -> xr.Dataset:
+def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any]) -> xr.Dataset:
     """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
     coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
 
-    ``direct``: hand the constructor the coordinate with its index already built
-    (:class:`xarray.Coordinates` with a :class:`xarray.indexes.PandasIndex`), so that it does
-    not infer one; else a plain coordinate variable (the index created by xarray). The two give
-    identical datasets (tests/test_neutral.py). The constructor's merge and alignment of the
+    The coordinate is handed over with its index already built (:class:`xarray.Coordinates`
+    with a :class:`xarray.indexes.PandasIndex`), so that the constructor does not infer one;
+    the dataset is identical to the one from a plain coordinate variable (tests/test_neutral.py). The constructor's merge and alignment of the
     variables, which are aligned by construction, cost ~0.3 ms of a ~3 ms call
     (docs/continuation.md); no public path skips them.
     """
     positions = np.arange(n)
-    if direct:
-        index = PandasIndex(pd.Index(positions), "point")
-        coords = xr.Coordinates(
-            index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}),
-            indexes={"point": index},
-        )
-    else:
-        coords = {"point": xr.IndexVariable(("point",), positions, _POINT_ATTRS)}
+    index = PandasIndex(pd.Index(positions), "point")
+    coords = xr.Coordinates(
+        index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}), indexes={"point": index}
+    )
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
