@@ -139,34 +139,22 @@ def _ranges(
 
 class _CurveProblem:
     """What the neutral and fold problems share: the traced parameters ``names`` (the columns
-    ``_columns`` of ``u``), the fixed ones, the neutral condition and the constraints (the
-    other arguments: those of :class:`NeutralProblem`)."""
+    ``_columns`` of ``u``), the fixed ones, the neutral condition ``cond`` (its free parameters
+    ``names``) and the constraints (the domain's, with the margin ``edge_margin``, and the
+    ``ranges``)."""
 
     test_function_names: tuple[str, ...] = ()
     _columns: tuple[int, ...] = (0, 1)
     compiled_step: Callable[..., tuple] | None = None
     _compiled: tuple | None = None
 
-    def __init__(
-        self,
-        model: str | LinearModel,
-        names: tuple[str, ...],
-        fixed: Mapping[str, float],
-        ranges: Mapping[str, tuple[float, float]],
-        edge_margin: float = 1e-9,
-        samples: np.ndarray | None = None,
-        form: str | None = None,
-        compiled: bool | None = None,
-    ):
-        self.model = get_model(model)
-        self.names = names
-        self.fixed = dict(fixed)
-        self.cond = NeutralCondition(self.model, names, self.fixed, samples, form, compiled)
-        constraints = constraints_of(self.model, names, ranges, edge_margin)
+    def __init__(self, cond: NeutralCondition, ranges: Mapping[str, tuple[float, float]], edge_margin: float):
+        self.cond, self.model, self.names, self.fixed = cond, cond.model, cond.free, cond.fixed
+        constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in constraints)
         self.constraint_kinds = tuple(c.kind for c in constraints)
         self.constraint_bounds = tuple(c.bound for c in constraints)
-        self._point, self._free, self._rows = constraint_arguments(self.fixed, names, constraints)
+        self._point, self._free, self._rows = constraint_arguments(self.fixed, self.names, constraints)
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside (compiled twin if any)."""
@@ -229,7 +217,7 @@ class NeutralProblem(_CurveProblem):
             f, d = (getattr(model, k, None) for k in ("point_coefficients", "point_derivatives"))
             known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(model.n_modes)))
             compiled = execution.use_compiled(known or None, 1)
-        super().__init__(model, (x, y), fixed, ranges, edge_margin, samples, form, compiled)
+        super().__init__(NeutralCondition(model, (x, y), fixed, samples, form, compiled), ranges, edge_margin)
         self._kernels = kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
             from .neutral_compiled import step_kernel
@@ -292,13 +280,16 @@ class FoldProblem(_CurveProblem):
     ``det [dF/d other, dF/d w] = 0`` (the tangent of the ``(x, y)`` curve has no component in
     ``fold_in``, ``other`` being the plane's other parameter). The engine uses central
     differences for the Jacobian (:func:`continuation.finite_difference_jacobian`). Arguments:
-    ``fold_in``, then those of :class:`_CurveProblem` with ``names = (x, y, z)``.
+    ``fold_in``, then those of :class:`_CurveProblem` (the condition's free parameters
+    ``(x, y, z)``).
     """
 
     _columns = (0, 1, 3)
 
-    def __init__(self, fold_in: str, *problem: Any):
-        super().__init__(*problem)
+    def __init__(
+        self, fold_in: str, cond: NeutralCondition, ranges: Mapping[str, tuple[float, float]], edge_margin: float
+    ):
+        super().__init__(cond, ranges, edge_margin)
         self.other = 1 if fold_in == self.names[0] else 0
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -907,7 +898,7 @@ def fold_curve(
     rest = {k: v for k, v in full.items() if k != z}
     ranges, width, samples = _ranges((x, y, z), (x_range, y_range, z_range), full)
     scale = np.insert(width, 2, 1.0)
-    prob = FoldProblem(fold_in, m, (x, y, z), rest, ranges, edge_margin, samples, plane.attrs["form"])
+    prob = FoldProblem(fold_in, NeutralCondition(m, (x, y, z), rest, samples, plane.attrs["form"]), ranges, edge_margin)
     options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []
