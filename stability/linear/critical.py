@@ -612,7 +612,7 @@ class _SpinScaled(LinearModel):
         return self.base.coefficients(**self._p(params))
 
 
-class _NoTransition(ValueError):
+class _NoTransition(InputError):
     """No change of stability in the spin range searched (the message says which state holds)."""
 
 

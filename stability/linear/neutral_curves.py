@@ -890,9 +890,8 @@ def fold_curve(
     check_choice("fold_in", fold_in, (x, y))
     if not isinstance(fixed, Mapping) or z not in fixed:
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
-    fx = dict(fixed)
-    z0 = fx.pop(z)
-    full = fixed_parameters(m, (x, y), {**fx, z: z0})
+    full = fixed_parameters(m, (x, y), fixed)
+    z0 = full[z]
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
