@@ -420,7 +420,8 @@ def test_dataset_assembled_directly_is_identical_to_the_constructors():
     ds = neutral_curve("sliding", "q", "sigma", fixed=dict(fr_inv=0.0, alpha_v=0.5, mu=MU))
     for n, variables in ((ds.sizes["point"], {k: ds[k].variable for k in ds.data_vars}), (0, {})):
         fast = _point_dataset(variables, n, dict(ds.attrs))
-        slow = _point_dataset(variables, n, dict(ds.attrs), direct=False)
+        point = xr.IndexVariable(("point",), np.arange(n), dict(ds.point.attrs))
+        slow = xr.Dataset(variables, coords={"point": point}, attrs=dict(ds.attrs))
         xr.testing.assert_identical(fast, slow)
         assert type(fast.indexes["point"]) is type(slow.indexes["point"])
     assert ds.where(ds.kind == "fold", drop=True).sizes["point"] == 1

@@ -66,7 +66,6 @@ from .neutrality import NeutralCondition
 from .spectra import MARGINAL, STABLE, UNSTABLE, fixed_parameters, parameter_name
 
 __all__ = [
-    "UPPER_BOUND",
     "CriticalSpin",
     "CriticalSpins",
     "Threshold",
@@ -128,9 +127,12 @@ def _samples_checked(samples: Any) -> int:
     return samples
 
 
-def _setup(
-    param: str, model: str | LinearModel, bracket: Sequence[float] | None, fixed: Mapping[str, Any]
-) -> tuple[LinearModel, dict[str, float], tuple[float, float]]:
+def _crossings(
+    param: str, model: str | LinearModel, bracket: Sequence[float] | None, samples: Any, fixed: Mapping[str, Any]
+) -> tuple[list[Threshold], np.ndarray, LinearModel, dict[str, float], tuple[float, float]]:
+    """The arguments of the threshold queries checked, then every threshold in the bracket and
+    the states of the samples (:func:`_search`), the model, the fixed parameters and the bracket."""
+    samples = _samples_checked(samples)
     m = get_model(model)
     fx = fixed_parameters(m, (parameter_name(m, param, "param"),), fixed)
     if bracket is None:
@@ -143,7 +145,7 @@ def _setup(
             except DomainError as exc:
                 a, b = fmt_against(lo, hi)
                 raise DomainError(f"bracket = ({a}, {b}) leaves the physical domain: {exc}") from None
-    return m, fx, (lo, hi)
+    return (*_search(m, fx, param, lo, hi, samples), m, fx, (lo, hi))
 
 
 def _samples(lo: float, hi: float, n: int) -> np.ndarray:
@@ -195,17 +197,6 @@ def _newton(cond: NeutralCondition, x0: float, w0: float) -> tuple[float, float]
     return None
 
 
-def _on_edge(fx: Mapping[str, float], param: str, x: float, outward: float) -> bool:
-    """Whether ``x`` is inside the domain and the next double towards ``outward`` is not."""
-    _, inside = check_domain(mask=True, **{**fx, param: np.array([x, math.nextafter(x, outward)])})
-    return bool(inside[0] and not inside[1])
-
-
-def _ulps(lo: float, hi: float) -> float:
-    """``hi - lo`` in units of the spacing of doubles at ``max(|lo|, |hi|)``."""
-    return (hi - lo) / float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
-
-
 def _polish(
     m: LinearModel, fx: Mapping[str, float], param: str, a: float, b: float, unstable_a: bool, w_start: float
 ) -> Threshold:
@@ -252,11 +243,12 @@ def _polish(
     lo, hi = min(a, b), max(a, b)
     if root is not None:
         value, w, exact = root[0], root[1], True
-    else:
-        value, w, exact = 0.5 * (a + b), w_unstable, _ulps(lo, hi) <= 4.0
-        if not exact:  # an interval that reaches the domain's edge: the edge is the value given
+    else:  # exact: a bracket at most 4 ulp wide
+        value, w, exact = 0.5 * (a + b), w_unstable, hi - lo <= 4.0 * float(np.spacing(max(abs(lo), abs(hi), 1e-300)))
+        if not exact:  # an interval that reaches the domain's edge (inside, the next double out not): the edge
             for end, out in ((lo, -math.inf), (hi, math.inf)):
-                if _on_edge(fx, param, end, out):
+                _, inside = check_domain(mask=True, **{**fx, param: np.array([end, math.nextafter(end, out)])})
+                if inside[0] and not inside[1]:
                     value = end
     # a change of stability at the domain's edge (e.g. alpha_v = 0: every friction destabilises)
     # is polished by Newton to a rounding error on either side of it (alpha_v = -2e-27): the
@@ -318,9 +310,7 @@ def threshold_crossings(
     >>> round(t.value, 12), t.unstable_side  # (1 - mu q^2)/(1 + q), unstable for smaller sigma
     (1.085777777778, 'below')
     """
-    samples = _samples_checked(samples)
-    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    return _search(m, fx, param, lo, hi, samples)[0]
+    return _crossings(param, model, bracket, samples, fixed)[0]
 
 
 def thresholds(
@@ -530,9 +520,7 @@ def _one_threshold(
 ) -> Threshold:
     """The record behind :func:`threshold` (and ``tippe threshold``): exactly one threshold in
     the bracket, or the errors of :func:`threshold`."""
-    samples = _samples_checked(samples)
-    m, fx, (lo, hi) = _setup(param, model, bracket, fixed)
-    found, state = _search(m, fx, param, lo, hi, samples)
+    found, state, m, fx, (lo, hi) = _crossings(param, model, bracket, samples, fixed)
     given = ", ".join(f"{k} = {v:g}" for k, v in fx.items())
     if not found:
         raise InputError(
@@ -624,7 +612,7 @@ class _SpinScaled(LinearModel):
         return self.base.coefficients(**self._p(params))
 
 
-class _NoTransition(ValueError):
+class _NoTransition(InputError):
     """No change of stability in the spin range searched (the message says which state holds)."""
 
 

@@ -155,13 +155,8 @@ def point_states(sign: np.ndarray) -> np.ndarray:
     some mode grows, else ``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some
     mode is neutral by structure, else ``STABLE``."""
     sign = np.asarray(sign)
-    return np.where(
-        (sign == GROWS).any(axis=-1),
-        UNSTABLE,
-        np.where(
-            (sign == UNRESOLVED).any(axis=-1), UNDECIDED, np.where((sign == NEUTRAL).any(axis=-1), MARGINAL, STABLE)
-        ),
-    ).astype(np.int8)
+    cases = [(sign == k).any(axis=-1) for k in (GROWS, UNRESOLVED, NEUTRAL)]
+    return np.select(cases, [UNSTABLE, UNDECIDED, MARGINAL], STABLE).astype(np.int8)
 
 
 def growth(

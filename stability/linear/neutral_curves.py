@@ -45,6 +45,7 @@ a mode touches the axis without crossing) is not found from the atlas; pass ``st
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
 import warnings
@@ -136,54 +137,32 @@ def _ranges(
     return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
 
 
-def _outside_domain_error(
-    model: LinearModel, x: str, y: str, ranges: Mapping[str, tuple[float, float]], fixed: Mapping[str, float]
-) -> DomainError:
-    """Ranges that miss the physical domain (no point of the start atlas's grid over them lies
-    inside): tracing there finds nothing, and an empty dataset would look like "no neutral
-    curve" rather than the input error it is."""
-    fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
-    return DomainError(
-        f"{x}_range = ({ranges[x][0]:g}, {ranges[x][1]:g}) and {y}_range = "
-        f"({ranges[y][0]:g}, {ranges[y][1]:g}) lie outside the physical domain at {fx} "
-        f"({domain_text(model.parameters)})"
-    )
-
-
 class _CurveProblem:
     """What the neutral and fold problems share: the traced parameters ``names`` (the columns
-    ``_columns`` of ``u``), the fixed ones, the neutral condition and the constraints."""
+    ``_columns`` of ``u``), the fixed ones, the neutral condition ``cond`` (its free parameters
+    ``names``) and the constraints (the domain's, with the margin ``edge_margin``, and the
+    ``ranges``)."""
 
     test_function_names: tuple[str, ...] = ()
     _columns: tuple[int, ...] = (0, 1)
+    compiled_step: Callable[..., tuple] | None = None
+    _compiled: tuple | None = None
 
-    def __init__(
-        self,
-        model: str | LinearModel,
-        names: tuple[str, ...],
-        fixed: Mapping[str, float],
-        ranges: Mapping[str, tuple[float, float]],
-        edge_margin: float,
-        samples: np.ndarray | None,
-        form: str | None,
-        compiled: bool | None,
-    ):
-        self.model = get_model(model)
-        self.names = names
-        self.fixed = dict(fixed)
-        self.cond = NeutralCondition(self.model, names, self.fixed, samples, form, compiled)
-        constraints = constraints_of(self.model, names, ranges, edge_margin)
+    def __init__(self, cond: NeutralCondition, ranges: Mapping[str, tuple[float, float]], edge_margin: float):
+        self.cond, self.model, self.names, self.fixed = cond, cond.model, cond.free, cond.fixed
+        constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in constraints)
         self.constraint_kinds = tuple(c.kind for c in constraints)
         self.constraint_bounds = tuple(c.bound for c in constraints)
-        self._point, self._free, self._rows = constraint_arguments(self.fixed, names, constraints)
-
-    def params(self, u: np.ndarray) -> dict[str, float]:
-        """All parameters at ``u``."""
-        return {**self.fixed, **{n: float(u[i]) for n, i in zip(self.names, self._columns)}}
+        self._point, self._free, self._rows = constraint_arguments(self.fixed, self.names, constraints)
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
-        """Domain and range bounds, ``>= 0`` inside."""
+        """Domain and range bounds, ``>= 0`` inside (compiled twin if any)."""
+        if self._compiled is not None:
+            from .neutral_compiled import constraint_values as compiled
+
+            point, free, _, codes, index, a = self._compiled
+            return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
         return constraint_values(self._point, self._free, [float(u[i]) for i in self._columns], *self._rows)
 
 
@@ -213,11 +192,12 @@ class NeutralProblem(_CurveProblem):
     Attributes
     ----------
     compiled_step : callable or None
-        The engine's hook (:mod:`continuation.problem`); None without a compiled path.
+        The engine's hook (:mod:`continuation.problem`): the step of
+        :func:`stability.linear.neutral_compiled.step_kernel` with this problem's arguments;
+        None without a compiled path.
     """
 
     test_function_names = ("frequency", "other_modes")
-    compiled_step: Callable[..., tuple] | None = None
 
     def __init__(
         self,
@@ -237,52 +217,29 @@ class NeutralProblem(_CurveProblem):
             f, d = (getattr(model, k, None) for k in ("point_coefficients", "point_derivatives"))
             known = step and f and d and step.step_kernel(crossing_kernels(f, d, int(model.n_modes)))
             compiled = execution.use_compiled(known or None, 1)
-        super().__init__(model, (x, y), fixed, ranges, edge_margin, samples, form, compiled)
-        self._compiled = None
-        kernels = self.cond.kernels
+        super().__init__(NeutralCondition(model, (x, y), fixed, samples, form, compiled), ranges, edge_margin)
+        self._kernels = kernels = self.cond.kernels
         if kernels is not None:  # the crossing form of a model with formulas, compiled
             from .neutral_compiled import step_kernel
 
-            codes, index, a = self._rows
-            self._compiled = (
-                *self.cond._compiled,
-                np.array(codes, dtype=np.int64),
-                np.array(index, dtype=np.int64),
-                np.array(a, dtype=float),
-            )
-            self._step_kernel = step_kernel(kernels)
-            self._rj_kernel = kernels.residual_and_jacobian
-            self._growth_kernel = kernels.other_growth
-            self.compiled_step = self._compiled_step
+            rows = (np.array(r, dtype=t) for r, t in zip(self._rows, (np.int64, np.int64, float)))
+            self._compiled = (*self.cond._compiled, *rows)
+            self.compiled_step = functools.partial(step_kernel(kernels), *self._compiled)
 
-    def _compiled_step(self, *corrector: Any) -> tuple:
-        """The engine's hook (:mod:`continuation.problem`, which lists the arguments): the step
-        of :func:`stability.linear.neutral_compiled.step_kernel` (with the constraints and test
-        functions at the new point)."""
-        return self._step_kernel(*self._compiled, *corrector)
+    def residual_and_jacobian(self, u: np.ndarray, jacobian: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """``F`` (2,) and ``dF/d(x, y, w)`` (2, 3) from one evaluation of the coefficients
+        (compiled twin if any; no Jacobian if not ``jacobian``)."""
+        if self._compiled is not None:
+            return self._kernels.residual_and_jacobian(*self._compiled[:3], np.asarray(u, dtype=float), jacobian)
+        return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian)
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``F(x, y, w)`` (2,)."""
-        if self._compiled is not None:
-            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), False)[0]
-        return self.cond.residual_and_jacobian(u[:2], float(u[2]), jacobian=False)[0]
+        return self.residual_and_jacobian(u, False)[0]
 
     def jacobian(self, u: np.ndarray) -> np.ndarray:
         """``dF/d(x, y, w)`` (2, 3)."""
         return self.residual_and_jacobian(u)[1]
-
-    def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``F`` and ``dF/du`` from one evaluation of the coefficients (compiled twin if any)."""
-        if self._compiled is not None:
-            return self._rj_kernel(*self._compiled[:3], np.asarray(u, dtype=float), True)
-        return self.cond.residual_and_jacobian(u[:2], float(u[2]))
-
-    def other_growth(self, u: np.ndarray) -> float:
-        """Largest growth rate among the other modes (-inf if there is none)."""
-        if self._compiled is not None:
-            return self._growth_kernel(*self._compiled[:3], np.asarray(u, dtype=float))
-        r = self.cond.other_modes_list(u[:2], float(u[2]))
-        return max(z.real for z in r) if r else -np.inf
 
     def traced_modes_lead(self, U: np.ndarray) -> np.ndarray:
         """Whether no other mode grows at the points ``U`` (m, 3), so that the curve is the
@@ -307,18 +264,13 @@ class NeutralProblem(_CurveProblem):
         return ~(sign == GROWS).any(axis=1)
 
     def test_functions(self, u: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """``[w, max Re(other modes)]``."""
-        g = self.other_growth(u)
-        return np.array([u[2], g if math.isfinite(g) else -1.0])
-
-    def constraints(self, u: np.ndarray) -> np.ndarray:
-        """Domain and range bounds, ``>= 0`` inside."""
+        """``[w, max Re(other modes)]`` (-1 for the second if there is no other mode)."""
         if self._compiled is not None:
-            from .neutral_compiled import constraint_values as compiled
-
-            point, free, _, codes, index, a = self._compiled
-            return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return super().constraints(u)
+            g = self._kernels.other_growth(*self._compiled[:3], np.asarray(u, dtype=float))
+        else:
+            r = self.cond.other_modes_list(u[:2], float(u[2]))
+            g = max(z.real for z in r) if r else -np.inf
+        return np.array([u[2], g if math.isfinite(g) else -1.0])
 
 
 class FoldProblem(_CurveProblem):
@@ -327,26 +279,18 @@ class FoldProblem(_CurveProblem):
     Equations: the neutral condition ``F(x, y, w; z) = 0`` (two) and the fold condition
     ``det [dF/d other, dF/d w] = 0`` (the tangent of the ``(x, y)`` curve has no component in
     ``fold_in``, ``other`` being the plane's other parameter). The engine uses central
-    differences for the Jacobian (:func:`continuation.finite_difference_jacobian`).
+    differences for the Jacobian (:func:`continuation.finite_difference_jacobian`). Arguments:
+    ``fold_in``, then those of :class:`_CurveProblem` (the condition's free parameters
+    ``(x, y, z)``).
     """
 
     _columns = (0, 1, 3)
 
     def __init__(
-        self,
-        model: str | LinearModel,
-        x: str,
-        y: str,
-        z: str,
-        fold_in: str,
-        fixed: Mapping[str, float],
-        ranges: Mapping[str, tuple[float, float]],
-        edge_margin: float = 1e-9,
-        samples: np.ndarray | None = None,
-        form: str | None = None,
+        self, fold_in: str, cond: NeutralCondition, ranges: Mapping[str, tuple[float, float]], edge_margin: float
     ):
-        super().__init__(model, (x, y, z), fixed, ranges, edge_margin, samples, form, None)
-        self.other = 1 if fold_in == x else 0
+        super().__init__(cond, ranges, edge_margin)
+        self.other = 1 if fold_in == self.names[0] else 0
 
     def residual(self, u: np.ndarray) -> np.ndarray:
         """``[F1, F2, det]`` at ``u = (x, y, w, z)``."""
@@ -386,8 +330,12 @@ def _atlas_guesses(
     # it is ~5x faster than the batched polynomial root finder, the cross-check method)
     gr = growth(model, parallel=False, **{**fixed, x: X, y: Y})
     sp = gr.spectrum
-    if not sp.inside.any():
-        raise _outside_domain_error(model, x, y, ranges, fixed)
+    if not sp.inside.any():  # tracing finds nothing: an input error, not "no neutral curve"
+        fx = ", ".join(f"{k} = {v:g}" for k, v in fixed.items())
+        raise DomainError(
+            f"{x}_range = {_pair(ranges[x])} and {y}_range = {_pair(ranges[y])} lie outside the physical "
+            f"domain at {fx} ({domain_text(model.parameters)})"
+        )
     ev = sp.eigenvalues
     grows = gr.sign == GROWS
     decided = sp.inside & ~(gr.sign == UNRESOLVED).any(axis=-1)
@@ -403,7 +351,7 @@ def _atlas_guesses(
     inside_flat = sp.inside.reshape(-1)
     pa_list, pb_list = [], []
     for lines in (flat.T, flat):  # rows of `lines`: the grid lines along axis 0, then axis 1
-        a_parts, b_parts = [], []
+        a_parts, b_parts = [np.zeros(0, dtype=int)], [np.zeros(0, dtype=int)]
         for line in lines:
             d = np.nonzero(count.flat[line] >= 0)[0]
             if len(d) < 2:
@@ -412,19 +360,13 @@ def _atlas_guesses(
             ok = out_before[d[1:]] == out_before[d[:-1]]
             a_parts.append(line[d[:-1][ok]])
             b_parts.append(line[d[1:][ok]])
-        if not a_parts:
-            continue
         a, b = np.concatenate(a_parts), np.concatenate(b_parts)
         order = np.argsort(a, kind="stable")
         a, b = a[order], b[order]
         sel = count.flat[a] != count.flat[b]
         pa_list.append(a[sel])
         pb_list.append(b[sel])
-    if not pa_list:
-        return out
     PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
-    if PA.size == 0:
-        return out
     # a: the end with more growing modes
     swap = count.flat[PA] < count.flat[PB]
     PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
@@ -607,7 +549,8 @@ def _assemble(
     branch = np.repeat(np.arange(len(branches)), [len(br.points) for br in branches])
     cols = [points[:, i] for i in range(points.shape[1]) if i != 2]
     w = points[:, 2]
-    residual = prob.cond.backward_errors(np.delete(points, 2, axis=1), w)
+    # the larger of the two rows' normwise relative backward errors (stability.linear.neutrality)
+    residual = np.abs(prob.cond.residuals(np.delete(points, 2, axis=1), w)).max(axis=-1)
     leading = prob.traced_modes_lead(points) if isinstance(prob, NeutralProblem) else None
     if leading is not None:  # the double crossings where the leading mode changes
         details = [d + "; the leading mode changes" if k == "double_crossing" else d for k, d in zip(kinds, details)]
@@ -651,26 +594,21 @@ def _assemble(
 _POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
 
 
-def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any], direct: bool = True) -> xr.Dataset:
+def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any]) -> xr.Dataset:
     """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
     coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
 
-    ``direct``: hand the constructor the coordinate with its index already built
-    (:class:`xarray.Coordinates` with a :class:`xarray.indexes.PandasIndex`), so that it does
-    not infer one; else a plain coordinate variable (the index created by xarray). The two give
-    identical datasets (tests/test_neutral.py). The constructor's merge and alignment of the
+    The coordinate is handed over with its index already built (:class:`xarray.Coordinates`
+    with a :class:`xarray.indexes.PandasIndex`), so that the constructor does not infer one;
+    the dataset is identical to the one from a plain coordinate variable (tests/test_neutral.py). The constructor's merge and alignment of the
     variables, which are aligned by construction, cost ~0.3 ms of a ~3 ms call
     (docs/continuation.md); no public path skips them.
     """
     positions = np.arange(n)
-    if direct:
-        index = PandasIndex(pd.Index(positions), "point")
-        coords = xr.Coordinates(
-            index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}),
-            indexes={"point": index},
-        )
-    else:
-        coords = {"point": xr.IndexVariable(("point",), positions, _POINT_ATTRS)}
+    index = PandasIndex(pd.Index(positions), "point")
+    coords = xr.Coordinates(
+        index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}), indexes={"point": index}
+    )
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
@@ -952,15 +890,14 @@ def fold_curve(
     check_choice("fold_in", fold_in, (x, y))
     if not isinstance(fixed, Mapping) or z not in fixed:
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
-    fx = dict(fixed)
-    z0 = fx.pop(z)
-    full = fixed_parameters(m, (x, y), {**fx, z: z0})
+    full = fixed_parameters(m, (x, y), fixed)
+    z0 = full[z]
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
     ranges, width, samples = _ranges((x, y, z), (x_range, y_range, z_range), full)
     scale = np.insert(width, 2, 1.0)
-    prob = FoldProblem(m, x, y, z, fold_in, rest, ranges, edge_margin, samples, plane.attrs["form"])
+    prob = FoldProblem(fold_in, NeutralCondition(m, (x, y, z), rest, samples, plane.attrs["form"]), ranges, edge_margin)
     options = TraceOptions(fold_components=(3,), scale=scale, tol=tol, **trace)
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []

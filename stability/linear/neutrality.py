@@ -259,11 +259,7 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        # the common phase of all samples (:func:`conservative_phase` of each, at once; None if
-        # one has none or two differ)
-        d = axis_products(c)
-        phases = np.where(np.all(d.imag == 0, axis=-1), 0, np.where(np.all(d.real == 0, axis=-1), 1, -1))
-        self.phase = int(phases[0]) if phases[0] >= 0 and (phases == phases[0]).all() else None
+        self.phase = conservative_phase(c)  # the common phase of all samples (None if none)
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
         check_choice("form", form, ("crossing", "collision"))
@@ -273,8 +269,7 @@ class NeutralCondition:
                 "the collision form needs p(i w) = e^(i theta) P(w) with P real"
             )
         self.form = form
-        self.degree = n - self.deflate
-        self._ncoef = self.degree + 1
+        self._ncoef = n - self.deflate + 1
         # exact derivatives from the model's formulas, if it offers them (stability.models.base)
         self._formula = getattr(self.model, "point_coefficients", None)
         self._derivative = getattr(self.model, "point_derivatives", None)
@@ -481,12 +476,6 @@ class NeutralCondition:
             return out
         rows = [self.coefficients_and_derivatives(v)[1] for v in values]
         return [np.array([r[j] for r in rows]).reshape(m, -1) for j in range(len(self.free))]
-
-    def backward_errors(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """``max |F_i|`` at many points at once, shape ``(m,)``: the larger of the two rows'
-        normwise relative backward errors, ``|A(w)| / S_a`` and ``|B(w)| / S_b`` (module
-        docstring; ``P`` and ``P'`` in the collision form)."""
-        return np.abs(self.residuals(values, w)).max(axis=-1) if len(np.atleast_1d(w)) else np.zeros(0)
 
     def other_modes_many(self, values: np.ndarray, w: np.ndarray) -> np.ndarray:
         """:meth:`other_modes_list` at many points at once, shape ``(m, k)``.
