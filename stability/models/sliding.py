@@ -207,20 +207,15 @@ class Sliding(LinearModel):
     point_coefficients = staticmethod(coefficient_parts)
     point_derivatives = staticmethod(derivative_parts)
 
-    def mass_matrix(self, *, q, mu) -> np.ndarray:
-        """``M`` of eq. (11), shape (..., 3, 3)."""
-        q, mu = np.broadcast_arrays(np.asarray(q, float), np.asarray(mu, float))
+    def matrices(self, *, q, fr_inv, sigma, alpha_v, mu):
+        """``M`` and ``A`` of eq. (11), shape (..., 3, 3)."""
+        q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
+            *map(np.asarray, (q, fr_inv, sigma, alpha_v, mu), [float] * 5)
+        )
         M = np.zeros(q.shape + (3, 3), dtype=complex)
         M[..., 0, 0] = M[..., 1, 1] = M[..., 2, 2] = 1.0
         M[..., 0, 2] = 1j * mu * q
         M[..., 2, 0] = -1j * q
-        return M
-
-    def matrices(self, *, q, fr_inv, sigma, alpha_v, mu):
-        """``M`` and ``A`` of eq. (11)."""
-        q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
-        )
         A = np.zeros(q.shape + (3, 3), dtype=complex)
         A[..., 0, 0] = -alpha_v + 1j * (sigma - 1)
         A[..., 0, 1] = 1j * (-(sigma - 1) + mu * q * fr_inv)
@@ -230,18 +225,17 @@ class Sliding(LinearModel):
         A[..., 2, 0] = -(q + 1j * alpha_v / mu)
         A[..., 2, 1] = q
         A[..., 2, 2] = -alpha_v / mu
-        return self.mass_matrix(q=q, mu=mu), A
+        return M, A
 
     def coefficients(self, *, q, fr_inv, sigma, alpha_v, mu):
         """``mu det(s M - A)``, highest power first (:func:`coefficient_parts` on arrays)."""
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
+            *map(np.asarray, (q, fr_inv, sigma, alpha_v, mu), [float] * 5)
         )
         parts = coefficient_parts(q, fr_inv, sigma, alpha_v, mu)
         c = np.empty(q.shape + (4,), dtype=complex)
         for j in range(4):
-            c.real[..., j] = parts[2 * j]
-            c.imag[..., j] = parts[2 * j + 1]
+            c.real[..., j], c.imag[..., j] = parts[2 * j], parts[2 * j + 1]
         return c
 
     def friction_plant(self, *, q, fr_inv, sigma, mu):
