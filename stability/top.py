@@ -139,13 +139,24 @@ def check_launch_spin(spin: Any, unit: str) -> float:
     return w * factor
 
 
+def _positive(name: str, value: Any, shown: str = "", note: str = "") -> np.ndarray:
+    """``value`` as a float array, each entry > 0 (the message gives the smallest as ``shown``, e.g.
+    with the caller's unit, and a ``note``)."""
+    v = as_parameter(name, value)
+    if np.any(v <= 0):
+        raise DomainError(f"{name} = {float(np.min(v)):.6g}{shown} is outside the allowed range: {name} > 0{note}")
+    return v
+
+
 def _spin(spin: Any, unit: str) -> np.ndarray:
     """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
     factor = _unit(unit)
-    w = as_parameter("spin", spin)
-    if np.any(w <= 0):
-        raise DomainError(f"spin = {float(np.min(w)):.6g} {unit} is outside the allowed range: spin > 0")
-    return w * factor
+    return _positive("spin", spin, f" {unit}") * factor
+
+
+def _number(out: np.ndarray) -> np.ndarray | float:
+    """A 0-d result as a float, an array as itself."""
+    return float(out) if out.ndim == 0 else out
 
 
 @dataclass(frozen=True)
@@ -282,28 +293,18 @@ class Top:
     # -- spin-dependent ones ---------------------------------------------------------------
     def fr_inv(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Inverse Froude number ``g / (Omega^2 R)`` at spin rate ``spin`` (in ``unit``)."""
-        w = _spin(spin, unit)
-        out = self.g / (w**2 * self.radius)
-        return float(out) if out.ndim == 0 else out
+        return _number(self.g / (_spin(spin, unit) ** 2 * self.radius))
 
     def spin_rate(self, fr_inv: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Spin rate (in ``unit``) at which the inverse Froude number is ``fr_inv`` (> 0)."""
-        f = as_parameter("fr_inv", fr_inv)
-        if np.any(f <= 0):
-            raise DomainError(
-                f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
-                "(fr_inv = 0 is an infinite spin)"
-            )
-        out = np.sqrt(self.g / (f * self.radius)) / _unit(unit)
-        return float(out) if out.ndim == 0 else out
+        f = _positive("fr_inv", fr_inv, note=" (fr_inv = 0 is an infinite spin)")
+        return _number(np.sqrt(self.g / (f * self.radius)) / _unit(unit))
 
     def alpha_v(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Viscous friction parameter ``mu mu_v g / Omega`` (eq. 7); needs ``mu_v``."""
         if self.mu_v is None:
             raise InputError("mu_v is not set on this Top; give mu_v (s/m) to compute alpha_v")
-        w = _spin(spin, unit)
-        out = self.mu * self.mu_v * self.g / w
-        return float(out) if out.ndim == 0 else out
+        return _number(self.mu * self.mu_v * self.g / _spin(spin, unit))
 
     def alpha_k(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Coulomb friction parameter ``mu fr_inv mu_K`` (eq. 7); needs ``mu_k``."""
