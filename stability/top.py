@@ -27,6 +27,7 @@ give mu ~ 3.7, not the 2.28 it lists and the simulations use. Two presets are of
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -238,14 +239,10 @@ class Top:
         warn: list[str] = []
         for name, (r_lo, w_lo, w_hi, r_hi) in PLAUSIBLE.items():
             v = values[name]
-            if name == "abs_q" and v == 0.0:
-                continue
             side = "low" if v < w_lo else "high" if v > w_hi else None
-            if side is None:
-                continue
-            shown = "|q|" if name == "abs_q" else name
-            text = f"{shown} = {v:.3g} ({_CAUSES[(name, side)]})"
-            (refuse if (v < r_lo or v > r_hi) else warn).append(text)
+            if side is not None and not (name == "abs_q" and v == 0.0):
+                text = f"{'|q|' if name == 'abs_q' else name} = {v:.3g} ({_CAUSES[(name, side)]})"
+                (refuse if (v < r_lo or v > r_hi) else warn).append(text)
         if not refuse and not warn:
             return
         data = (
@@ -261,8 +258,6 @@ class Top:
                 f"this top is outside the plausible range of real tops: {'; '.join(refuse + warn)}. "
                 f"The data: {data}; {ranges}"
             )
-        import warnings
-
         warnings.warn(
             f"this top is unusual for a tippe top: {'; '.join(warn)}. The data: {data}; {ranges}",
             ImplausibleTopWarning,

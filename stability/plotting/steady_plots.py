@@ -253,8 +253,7 @@ def plot_bifurcation(
         vertical = branch.get("vertical") if vertical is None else vertical
         runs = branch.get("runs") if runs is None else runs
         branch = branch["branch"]
-    if x is None:
-        x = "spin" if "spin" in branch else "jellett"
+    x = ("spin" if "spin" in branch else "jellett") if x is None else x
     units = str(branch[x].attrs.get("units", "")) if x in branch else ""
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     xs = branch[x].values
@@ -286,13 +285,7 @@ def plot_bifurcation(
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
-                arrow = dict(
-                    xytext=(-210, -70),
-                    textcoords="offset points",
-                    fontsize=7,
-                    arrowprops={"arrowstyle": "->", "linewidth": 0.6},
-                )
-                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **arrow)
+                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **_PAPER_ARROW)
     if "stick_tilt" in branch.attrs:  # a toy with a stick: no state beyond this tilt
         st = float(branch.attrs["stick_tilt"])
         ax.axhline(st, color="C3", ls="--", lw=1.0, label=f"the stick touches ({st:.4g} deg)")
@@ -310,6 +303,10 @@ def plot_bifurcation(
 
 #: the marker style of where a run ends (a nonlinear run's, a launch's) on the diagram
 _END_MARK = {"markersize": 11, "color": "C2", "markeredgecolor": "k", "linestyle": "none"}
+#: the arrow naming the paper's run on the diagram
+_PAPER_ARROW = dict(
+    xytext=(-210, -70), textcoords="offset points", fontsize=7, arrowprops={"arrowstyle": "->", "linewidth": 0.6}
+)
 
 
 def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None:
