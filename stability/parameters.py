@@ -838,15 +838,9 @@ def check_flag(name: str, value: Any) -> bool:
 def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
     """An integer (Python or numpy, not bool) in ``[minimum, maximum]``; the message names the
     bounds (a huge integer by its number of digits)."""
-    top = (
-        None
-        if maximum is None
-        else (
-            str(maximum)
-            if maximum < 10**5 or f"{maximum:.0e}" != f"{maximum:.1e}".replace(".0e", "e")
-            else f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
-        )
-    )
+    top = str(maximum)  # a round maximum of 10^5 or more as 1e9, 5e5
+    if maximum is not None and maximum >= 10**5 and f"{maximum:.0e}" == f"{maximum:.1e}".replace(".0e", "e"):
+        top = f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
     if minimum is not None and maximum is not None:
         both, rng = f" in [{minimum}, {top}]", f"{minimum} <= {name} <= {top}"
     else:  # one bound or none: ``>= 1`` after "an integer" and after the name
@@ -949,10 +943,7 @@ def check_domain(
     fast = _plain_point_inside(params)
     if fast is not None:
         return fast, np.ones((), dtype=bool)
-    if scalar:
-        p = {k: np.asarray(as_scalar(k, v)) for k, v in params.items()}
-    else:
-        p = {k: as_parameter(k, v) for k, v in params.items()}
+    p = {k: np.asarray(as_scalar(k, v)) if scalar else as_parameter(k, v) for k, v in params.items()}
     _check_computable(p)
     try:
         b = np.broadcast_arrays(*p.values())
