@@ -75,11 +75,10 @@ import numpy as np
 
 from stability.jit import register_jitable
 
-from ..errors import InputError
 from .base import LinearModel
 from .inertia import inertia_contact, inertia_g
 
-__all__ = ["Sliding", "coefficient_parts", "derivative_parts", "scalar_coefficients"]
+__all__ = ["Sliding", "coefficient_parts", "derivative_parts"]
 
 #: the parameters of eq. (11), in the order of :data:`stability.parameters.PARAMETERS` (the
 #: index ``k`` of :func:`derivative_parts`)
@@ -149,48 +148,6 @@ def derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
         -alpha_v * q * fr_inv,
         0.0,
     )
-
-
-def scalar_coefficients(
-    q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float, derivatives: bool = True, which=None
-) -> tuple[list[complex], dict[str, list[complex]] | None]:
-    """Eq. (11)'s coefficients at one point as Python complex numbers, and their derivatives.
-
-    The Python-float engine of :func:`coefficient_parts` and :func:`derivative_parts` (the same
-    values as :meth:`Sliding.coefficients` and as the compiled kernels, bit for bit).
-
-    Parameters
-    ----------
-    q, fr_inv, sigma, alpha_v, mu : float
-        One point.
-    derivatives : bool
-        Also return ``dc/dparameter``.
-    which : sequence of str, optional
-        The parameters to differentiate by (default all five).
-
-    Returns
-    -------
-    c : list of complex
-        ``[c3, c2, c1, c0]``.
-    dc : dict of str to list of complex, or None
-        ``{name: [dc3, dc2, dc1, dc0]}`` for each parameter of ``which``.
-    """
-    point = (float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu))
-    c = _assemble(coefficient_parts(*point))
-    if not derivatives:
-        return c, None
-    dc: dict[str, list[complex]] = {}
-    for name in PARAMETER_ORDER if which is None else which:
-        if name not in PARAMETER_ORDER:
-            raise InputError(f"{name!r} is not a parameter of eq. (11); use {', '.join(PARAMETER_ORDER)}")
-        dc[name] = _assemble(derivative_parts(*point, PARAMETER_ORDER.index(name)))
-    return c, dc
-
-
-def _assemble(parts: tuple[float, ...]) -> list[complex]:
-    """``[complex(re, im), ...]`` of a flat ``(re, im, re, im, ...)`` tuple."""
-    it = iter(parts)
-    return list(map(complex, it, it))
 
 
 class Sliding(LinearModel):
