@@ -362,9 +362,7 @@ def _largest_holding(x: Any, holds: Callable[[Any], Any]) -> Any:
 
 def _q_limit(v: Mapping[str, float], bound: str) -> str:
     mu = v["mu"]
-    if not mu > 0:
-        return ", i.e. |q| < 1/sqrt(mu)"
-    return f", i.e. |q| < 1/sqrt(mu) (the largest |q| allowed at mu = {mu!r} is {bound})"
+    return ", i.e. |q| < 1/sqrt(mu)" + (f" (the largest |q| allowed at mu = {mu!r} is {bound})" if mu > 0 else "")
 
 
 def _sigma_limit(v: Mapping[str, float], bound: str) -> str:
@@ -386,9 +384,7 @@ def _q_interval(v: Mapping[str, float]) -> tuple[float, float]:
 def _sigma_interval(v: Mapping[str, float]) -> tuple[float, float]:
     """``sigma <= 2 (1 - mu q^2)``: ``sigma_max(q, mu)``, or 2 (its largest value, at
     ``mu q^2 = 0``) if q or mu is not given."""
-    if v.get("q") is None or v.get("mu") is None:
-        return (-math.inf, 2.0)
-    return (-math.inf, _sigma_largest(v))
+    return (-math.inf, 2.0 if v.get("q") is None or v.get("mu") is None else _sigma_largest(v))
 
 
 #: the unit round-off of double precision (the margins of :func:`domain_sides_quick`)

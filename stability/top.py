@@ -347,7 +347,7 @@ class Top:
             a = as_parameter("alpha_v", alpha_v)
             if np.any(a < 0):
                 raise DomainError(f"alpha_v = {alpha_v!r} is outside the physical domain: alpha_v >= 0")
-            out["alpha_v"] = float(a) if np.ndim(a) == 0 else a
+            out["alpha_v"] = _number(a)
         if self.mu_k is not None:
             out["alpha_k"] = self.alpha_k(spin, unit)
         if model is not None:
@@ -433,8 +433,7 @@ class Top:
                     f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
                     "preset or the top's SI data, not both"
                 )
-            top: Top = getattr(cls, preset)(**extra)
-            return top
+            return getattr(cls, preset)(**extra)  # type: ignore[no-any-return]
         missing = [k for k in required if k not in data]
         if missing:
             raise InputError(

@@ -13,7 +13,7 @@ from ..grids.atlases import leading_growth_rate
 from ..recipes import Recipe
 from . import scene_plots
 from ._layout import panels_or_new
-from .atlas_plots import plot_growth_rate
+from .figures import _quantity_panels
 from .maps import growth_norm, plot_stability_map
 from .spin_plots import plot_critical_spin
 from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_settle_approach
@@ -57,14 +57,7 @@ def recipe_figure(
     elif recipe.kind == "lines":
         n = len(recipe.quantities)
         fig, axes = panels_or_new(axes, n, (6.4, 3.4 * n), sharex=True)
-        ds = datasets[recipe.model]
-        for k, (ax, quantity) in enumerate(zip(axes, recipe.quantities)):
-            plot_growth_rate(ds, recipe.x, quantity=quantity, ax=ax)
-            if k:
-                ax.set_title("")
-                ax.get_legend().remove()
-            if k < n - 1:
-                ax.set_xlabel("")
+        _quantity_panels(datasets[recipe.model], recipe.x, recipe.quantities, axes)
     else:  # models side by side
         names = [k for k in datasets if not k.endswith("_neutral")]
         fig, axes = panels_or_new(axes, len(names), (4.2 * len(names), 4.0), row=True, sharey=True)
