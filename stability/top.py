@@ -379,14 +379,7 @@ class Top:
             a0 = m_ * r_**2 / mu
             d = q * r_
             a_g = a0 - m_ * d**2
-        return cls(
-            mass=mass,
-            radius=radius,
-            com_offset=float(d),
-            inertia_transverse=float(a_g),
-            inertia_axial=float(sigma * a0),
-            **kwargs,
-        )
+        return cls(mass, radius, float(d), float(a_g), float(sigma * a0), **kwargs)  # com_offset, A_G, C
 
     @classmethod
     def from_mapping(cls, data: Any, *, source: str = "top") -> Top:
@@ -481,15 +474,8 @@ class Top:
     @classmethod
     def table1_measured(cls, **kwargs: Any) -> Top:
         """Table 1's measured entries taken literally (gives mu ~ 3.7, not the listed 2.28)."""
-        r = 0.63 * INCH
-        return cls(
-            mass=0.64 * OUNCE,
-            radius=r,
-            com_offset=-0.094 * r,
-            inertia_transverse=0.066 * OUNCE * INCH**2,
-            inertia_axial=0.066 * OUNCE * INCH**2,
-            **kwargs,
-        )
+        r, moment = 0.63 * INCH, 0.066 * OUNCE * INCH**2
+        return cls(0.64 * OUNCE, r, -0.094 * r, moment, moment, **kwargs)  # mass, radius, com_offset, A_G, C
 
     def stick_contact(self) -> tuple[float, str]:
         """The tilt (degrees) at which the stick first touches the floor, and the part that
