@@ -21,7 +21,7 @@ from matplotlib.patches import Patch
 from ..errors import InputError
 from ..parameters import SYMBOLS
 from ..products import FLAG_NAMES
-from ._layout import axes_or_new
+from ._layout import PERIODS_LABEL, axes_or_new, periods
 
 __all__ = [
     "FILL_STYLES",
@@ -399,10 +399,10 @@ def plot_class_map(
     return fig, ax
 
 
-def _time_axis(ax: Axes, run: xr.Dataset, periods: bool) -> np.ndarray:
+def _time_axis(ax: Axes, run: xr.Dataset, in_periods: bool) -> np.ndarray:
     """A run's times in spin periods (``t / 2 pi``) or in ``1 / Omega``, and the axis labelled so."""
-    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
-    return run.time.values / (2 * np.pi) if periods else run.time.values
+    ax.set_xlabel(PERIODS_LABEL if in_periods else r"time ($1/\Omega$)")
+    return periods(run) if in_periods else run.time.values
 
 
 def plot_settle(
