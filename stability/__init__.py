@@ -78,22 +78,10 @@ __all__ = sorted(_EXPORTS)  # noqa: PLE0605 - the names of _EXPORTS (one list of
 #: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
 #: docstrings)
 _DATASETS = frozenset(
-    {
-        "atlas",
-        "open_atlas",
-        "simulate",
-        "stick_slip",
-        "validate",
-        "coulomb_growth",
-        "steady_states",
-        "final_state",
-        "class_atlas",
-        "neutral_curve",
-        "fold_curve",
-        "steady_branch",
-        "bifurcation_diagram",
-        "contact_loss_boundary",
-    }
+    str.split(
+        "atlas open_atlas simulate stick_slip validate coulomb_growth steady_states final_state class_atlas "
+        "neutral_curve fold_curve steady_branch bifurcation_diagram contact_loss_boundary"
+    )
 )
 
 
@@ -140,16 +128,14 @@ def _register_accessor() -> None:
                 return None
             sys.meta_path.remove(_AfterXarray)
             spec = importlib.util.find_spec("xarray")
-            if spec is None or spec.loader is None:
-                return spec
-            loader = spec.loader
-            run = loader.exec_module
+            if spec is not None and spec.loader is not None:
+                run = spec.loader.exec_module
 
-            def exec_module(module: Any) -> None:
-                run(module)
-                importlib.import_module(".plotting.accessor", __name__)
+                def exec_module(module: Any) -> None:
+                    run(module)
+                    importlib.import_module(".plotting.accessor", __name__)
 
-            loader.exec_module = exec_module  # type: ignore[method-assign]
+                spec.loader.exec_module = exec_module  # type: ignore[method-assign]
             return spec
 
     sys.meta_path.insert(0, _AfterXarray)

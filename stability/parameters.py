@@ -160,14 +160,9 @@ SYMBOLS: dict[str, str] = {
 COMPUTABLE_MAX = 1e30
 
 #: name -> (smallest, largest) magnitude accepted (the computable range, module docstring)
-COMPUTABLE_RANGE: dict[str, tuple[float, float]] = {
-    "q": (0.0, COMPUTABLE_MAX),
-    "fr_inv": (0.0, COMPUTABLE_MAX),
-    "sigma": (0.0, COMPUTABLE_MAX),
-    "alpha_v": (0.0, COMPUTABLE_MAX),
-    "alpha_k": (0.0, COMPUTABLE_MAX),
-    "mu": (1e-30, COMPUTABLE_MAX),
-}
+COMPUTABLE_RANGE: dict[str, tuple[float, float]] = dict.fromkeys(
+    ("q", "fr_inv", "sigma", "alpha_v", "alpha_k"), (0.0, COMPUTABLE_MAX)
+) | {"mu": (1e-30, COMPUTABLE_MAX)}
 
 
 def _show(value: Any, width: int = 60) -> str:
@@ -344,24 +339,30 @@ def _q_largest(v: Mapping[str, float]) -> float:
     mu = v["mu"]
     if not mu > 0:
         return math.inf
-    b = 1.0 / math.sqrt(mu)
-    for _ in range(64):  # 1/sqrt(mu) is within an ulp or two of the bound
-        if _exact_margins(b, mu, 0.0)[0] > 0:
-            break
-        b = math.nextafter(b, 0.0)
+    # 1/sqrt(mu) is within an ulp or two of the bound
+    return float(_largest_holding(np.float64(1.0 / math.sqrt(mu)), lambda b: _exact_margins(b, mu, 0.0)[0] > 0))
+
+
+def _largest_holding(x: Any, holds: Callable[[Any], Any]) -> Any:
+    """The largest double(s) at which ``holds`` is true (elementwise), from a start ``x`` within
+    a few ulp of them: down while it fails, then up while the next double holds."""
     for _ in range(64):
-        up = math.nextafter(b, math.inf)
-        if not _exact_margins(up, mu, 0.0)[0] > 0:
+        ok = holds(x)
+        if np.all(ok):
             break
-        b = up
-    return b
+        x = np.where(ok, x, np.nextafter(x, -np.inf))
+    for _ in range(64):
+        up = np.nextafter(x, np.inf)
+        more = holds(up)
+        if not np.any(more):
+            break
+        x = np.where(more, up, x)
+    return x
 
 
 def _q_limit(v: Mapping[str, float], bound: str) -> str:
     mu = v["mu"]
-    if not mu > 0:
-        return ", i.e. |q| < 1/sqrt(mu)"
-    return f", i.e. |q| < 1/sqrt(mu) (the largest |q| allowed at mu = {mu!r} is {bound})"
+    return ", i.e. |q| < 1/sqrt(mu)" + (f" (the largest |q| allowed at mu = {mu!r} is {bound})" if mu > 0 else "")
 
 
 def _sigma_limit(v: Mapping[str, float], bound: str) -> str:
@@ -383,9 +384,7 @@ def _q_interval(v: Mapping[str, float]) -> tuple[float, float]:
 def _sigma_interval(v: Mapping[str, float]) -> tuple[float, float]:
     """``sigma <= 2 (1 - mu q^2)``: ``sigma_max(q, mu)``, or 2 (its largest value, at
     ``mu q^2 = 0``) if q or mu is not given."""
-    if v.get("q") is None or v.get("mu") is None:
-        return (-math.inf, 2.0)
-    return (-math.inf, _sigma_largest(v))
+    return (-math.inf, 2.0 if v.get("q") is None or v.get("mu") is None else _sigma_largest(v))
 
 
 #: the unit round-off of double precision (the margins of :func:`domain_sides_quick`)
@@ -614,22 +613,8 @@ def sigma_max(q: Any, mu: Any = DEFAULT_MU, *, _checked: bool = False) -> float 
     else:
         p, _ = check_domain(q=q, mu=mu)
         qa, ma = p["q"], p["mu"]
-    s = 2.0 * inertia_g(qa, ma)  # within a few ulp of the bound
-
-    def holds(x: Any) -> Any:
-        return _exact_margins(qa, ma, x)[1] >= 0.0
-
-    for _ in range(64):
-        ok = holds(s)
-        if np.all(ok):
-            break
-        s = np.where(ok, s, np.nextafter(s, -np.inf))
-    for _ in range(64):
-        up = np.nextafter(s, np.inf)
-        more = holds(up)
-        if not np.any(more):
-            break
-        s = np.where(more, up, s)
+    # 2 A_G is within a few ulp of the bound
+    s = _largest_holding(2.0 * inertia_g(qa, ma), lambda x: _exact_margins(qa, ma, x)[1] >= 0.0)
     return float(s) if np.ndim(s) == 0 else s
 
 
@@ -729,13 +714,7 @@ def domain_mask(**params: Any) -> np.ndarray:
     numpy.ndarray of bool
         True where every bound holds.
     """
-    p = {k: as_parameter(k, v) for k, v in params.items()}
-    b = np.broadcast_arrays(*p.values())
-    p = dict(zip(p.keys(), b))
-    ok = np.ones(b[0].shape, dtype=bool)
-    for _, bad in _violations(p):
-        ok &= ~bad
-    return ok
+    return check_domain(mask=True, **params)[1]
 
 
 @register_jitable
@@ -770,12 +749,8 @@ def _check_computable(p: Mapping[str, np.ndarray]) -> None:
         bad = outside_computable(name, v)
         if bad.any():
             val = float(v[bad].flat[0])
-            if abs(val) > hi:
-                v_text = fmt_against(val, math.copysign(hi, val))[0]
-                rng = computable_range_text(name)
-            else:
-                v_text, lo_text = fmt_against(val, lo)
-                rng = f"{lo_text} <= {name} <= {hi:g}"
+            v_text, edge = fmt_against(val, math.copysign(hi, val) if abs(val) > hi else lo)
+            rng = computable_range_text(name) if abs(val) > hi else f"{edge} <= {name} <= {hi:g}"
             raise DomainError(
                 f"{name} = {v_text} is outside the computable range: {rng} "
                 "(beyond it the eigenvalues overflow double precision)"
@@ -859,15 +834,9 @@ def check_flag(name: str, value: Any) -> bool:
 def check_integer(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
     """An integer (Python or numpy, not bool) in ``[minimum, maximum]``; the message names the
     bounds (a huge integer by its number of digits)."""
-    top = (
-        None
-        if maximum is None
-        else (
-            str(maximum)
-            if maximum < 10**5 or f"{maximum:.0e}" != f"{maximum:.1e}".replace(".0e", "e")
-            else f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
-        )
-    )
+    top = str(maximum)  # a round maximum of 10^5 or more as 1e9, 5e5
+    if maximum is not None and maximum >= 10**5 and f"{maximum:.0e}" == f"{maximum:.1e}".replace(".0e", "e"):
+        top = f"{maximum:.0e}".replace("e+0", "e").replace("e+", "e")
     if minimum is not None and maximum is not None:
         both, rng = f" in [{minimum}, {top}]", f"{minimum} <= {name} <= {top}"
     else:  # one bound or none: ``>= 1`` after "an integer" and after the name
@@ -970,10 +939,7 @@ def check_domain(
     fast = _plain_point_inside(params)
     if fast is not None:
         return fast, np.ones((), dtype=bool)
-    if scalar:
-        p = {k: np.asarray(as_scalar(k, v)) for k, v in params.items()}
-    else:
-        p = {k: as_parameter(k, v) for k, v in params.items()}
+    p = {k: np.asarray(as_scalar(k, v)) if scalar else as_parameter(k, v) for k, v in params.items()}
     _check_computable(p)
     try:
         b = np.broadcast_arrays(*p.values())

@@ -27,6 +27,7 @@ give mu ~ 3.7, not the 2.28 it lists and the simulations use. Two presets are of
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -139,13 +140,24 @@ def check_launch_spin(spin: Any, unit: str) -> float:
     return w * factor
 
 
+def _positive(name: str, value: Any, shown: str = "", note: str = "") -> np.ndarray:
+    """``value`` as a float array, each entry > 0 (the message gives the smallest as ``shown``, e.g.
+    with the caller's unit, and a ``note``)."""
+    v = as_parameter(name, value)
+    if np.any(v <= 0):
+        raise DomainError(f"{name} = {float(np.min(v)):.6g}{shown} is outside the allowed range: {name} > 0{note}")
+    return v
+
+
 def _spin(spin: Any, unit: str) -> np.ndarray:
     """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
     factor = _unit(unit)
-    w = as_parameter("spin", spin)
-    if np.any(w <= 0):
-        raise DomainError(f"spin = {float(np.min(w)):.6g} {unit} is outside the allowed range: spin > 0")
-    return w * factor
+    return _positive("spin", spin, f" {unit}") * factor
+
+
+def _number(out: np.ndarray) -> np.ndarray | float:
+    """A 0-d result as a float, an array as itself."""
+    return float(out) if out.ndim == 0 else out
 
 
 @dataclass(frozen=True)
@@ -227,14 +239,10 @@ class Top:
         warn: list[str] = []
         for name, (r_lo, w_lo, w_hi, r_hi) in PLAUSIBLE.items():
             v = values[name]
-            if name == "abs_q" and v == 0.0:
-                continue
             side = "low" if v < w_lo else "high" if v > w_hi else None
-            if side is None:
-                continue
-            shown = "|q|" if name == "abs_q" else name
-            text = f"{shown} = {v:.3g} ({_CAUSES[(name, side)]})"
-            (refuse if (v < r_lo or v > r_hi) else warn).append(text)
+            if side is not None and not (name == "abs_q" and v == 0.0):
+                text = f"{'|q|' if name == 'abs_q' else name} = {v:.3g} ({_CAUSES[(name, side)]})"
+                (refuse if (v < r_lo or v > r_hi) else warn).append(text)
         if not refuse and not warn:
             return
         data = (
@@ -250,8 +258,6 @@ class Top:
                 f"this top is outside the plausible range of real tops: {'; '.join(refuse + warn)}. "
                 f"The data: {data}; {ranges}"
             )
-        import warnings
-
         warnings.warn(
             f"this top is unusual for a tippe top: {'; '.join(warn)}. The data: {data}; {ranges}",
             ImplausibleTopWarning,
@@ -282,28 +288,18 @@ class Top:
     # -- spin-dependent ones ---------------------------------------------------------------
     def fr_inv(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Inverse Froude number ``g / (Omega^2 R)`` at spin rate ``spin`` (in ``unit``)."""
-        w = _spin(spin, unit)
-        out = self.g / (w**2 * self.radius)
-        return float(out) if out.ndim == 0 else out
+        return _number(self.g / (_spin(spin, unit) ** 2 * self.radius))
 
     def spin_rate(self, fr_inv: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Spin rate (in ``unit``) at which the inverse Froude number is ``fr_inv`` (> 0)."""
-        f = as_parameter("fr_inv", fr_inv)
-        if np.any(f <= 0):
-            raise DomainError(
-                f"fr_inv = {float(np.min(f)):.6g} is outside the allowed range: fr_inv > 0 "
-                "(fr_inv = 0 is an infinite spin)"
-            )
-        out = np.sqrt(self.g / (f * self.radius)) / _unit(unit)
-        return float(out) if out.ndim == 0 else out
+        f = _positive("fr_inv", fr_inv, note=" (fr_inv = 0 is an infinite spin)")
+        return _number(np.sqrt(self.g / (f * self.radius)) / _unit(unit))
 
     def alpha_v(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Viscous friction parameter ``mu mu_v g / Omega`` (eq. 7); needs ``mu_v``."""
         if self.mu_v is None:
             raise InputError("mu_v is not set on this Top; give mu_v (s/m) to compute alpha_v")
-        w = _spin(spin, unit)
-        out = self.mu * self.mu_v * self.g / w
-        return float(out) if out.ndim == 0 else out
+        return _number(self.mu * self.mu_v * self.g / _spin(spin, unit))
 
     def alpha_k(self, spin: Any, unit: str = "rad/s") -> np.ndarray | float:
         """Coulomb friction parameter ``mu fr_inv mu_K`` (eq. 7); needs ``mu_k``."""
@@ -351,7 +347,7 @@ class Top:
             a = as_parameter("alpha_v", alpha_v)
             if np.any(a < 0):
                 raise DomainError(f"alpha_v = {alpha_v!r} is outside the physical domain: alpha_v >= 0")
-            out["alpha_v"] = float(a) if np.ndim(a) == 0 else a
+            out["alpha_v"] = _number(a)
         if self.mu_k is not None:
             out["alpha_k"] = self.alpha_k(spin, unit)
         if model is not None:
@@ -383,14 +379,7 @@ class Top:
             a0 = m_ * r_**2 / mu
             d = q * r_
             a_g = a0 - m_ * d**2
-        return cls(
-            mass=mass,
-            radius=radius,
-            com_offset=float(d),
-            inertia_transverse=float(a_g),
-            inertia_axial=float(sigma * a0),
-            **kwargs,
-        )
+        return cls(mass, radius, float(d), float(a_g), float(sigma * a0), **kwargs)  # com_offset, A_G, C
 
     @classmethod
     def from_mapping(cls, data: Any, *, source: str = "top") -> Top:
@@ -437,8 +426,7 @@ class Top:
                     f"{source}: preset = {preset!r} and {', '.join(clash)} conflict: give a "
                     "preset or the top's SI data, not both"
                 )
-            top: Top = getattr(cls, preset)(**extra)
-            return top
+            return getattr(cls, preset)(**extra)  # type: ignore[no-any-return]
         missing = [k for k in required if k not in data]
         if missing:
             raise InputError(
@@ -486,15 +474,8 @@ class Top:
     @classmethod
     def table1_measured(cls, **kwargs: Any) -> Top:
         """Table 1's measured entries taken literally (gives mu ~ 3.7, not the listed 2.28)."""
-        r = 0.63 * INCH
-        return cls(
-            mass=0.64 * OUNCE,
-            radius=r,
-            com_offset=-0.094 * r,
-            inertia_transverse=0.066 * OUNCE * INCH**2,
-            inertia_axial=0.066 * OUNCE * INCH**2,
-            **kwargs,
-        )
+        r, moment = 0.63 * INCH, 0.066 * OUNCE * INCH**2
+        return cls(0.64 * OUNCE, r, -0.094 * r, moment, moment, **kwargs)  # mass, radius, com_offset, A_G, C
 
     def stick_contact(self) -> tuple[float, str]:
         """The tilt (degrees) at which the stick first touches the floor, and the part that

@@ -36,9 +36,21 @@ from continuation import dense
 from stability import fold_curve, neutral_curve
 from stability.models import get_model
 from stability.models.base import LinearModel
-from stability.models.sliding import scalar_coefficients as sliding_coefficients
+from stability.models.sliding import coefficient_parts, derivative_parts
+from stability.parameters import PARAMETERS
 
 MU = 2.28
+
+
+def sliding_coefficients(**p):
+    """Eq. (11)'s coefficients ``[c3, c2, c1, c0]`` at one point as Python complex numbers
+    (coefficient_parts on floats), and their derivatives by each parameter (derivative_parts)."""
+    point = tuple(float(p[k]) for k in PARAMETERS)
+
+    def pairs(parts):
+        return [complex(parts[i], parts[i + 1]) for i in range(0, len(parts), 2)]
+
+    return pairs(coefficient_parts(*point)), {k: pairs(derivative_parts(*point, i)) for i, k in enumerate(PARAMETERS)}
 
 
 def sigma_closed(q, f, mu=MU):
@@ -105,7 +117,7 @@ def test_dense_output_against_the_closed_form(curve_fr0):
 
 
 def test_sliding_analytic_coefficients_match_the_model():
-    """The scalar fast path of the neutral condition (stability.models.sliding.scalar_coefficients)
+    """The scalar path of the neutral condition (coefficient_parts and derivative_parts on floats)
     against the model's batched coefficients (the same operations: bit for bit) and its
     derivatives against the 4th-order central stencil on the model (the coefficients are
     polynomials of degree <= 2 in each parameter, so the stencil is exact up to rounding,

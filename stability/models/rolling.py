@@ -29,7 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .second_order import SecondOrderTop, contact_transverse_inertia
+from .inertia import transverse_inertia_contact
+from .second_order import SecondOrderTop
 
 __all__ = ["Rolling"]
 
@@ -45,5 +46,5 @@ class Rolling(SecondOrderTop):
     def derived(self, *, q, fr_inv, sigma, mu) -> dict[str, np.ndarray]:
         """``A_C``, the gyroscopic coefficient ``gamma`` and the stiffness ``kappa``."""
         q, fr_inv, sigma, mu = np.broadcast_arrays(*(np.asarray(v, float) for v in (q, fr_inv, sigma, mu)))
-        a_c = contact_transverse_inertia(q, mu)
+        a_c = transverse_inertia_contact(q, mu)
         return {"A_C": a_c, "gamma": (sigma + mu * (1.0 + q)) / a_c, "kappa": mu * fr_inv * q / a_c}

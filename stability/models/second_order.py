@@ -31,47 +31,16 @@ import numpy as np
 from .base import LinearModel
 from .inertia import transverse_inertia_contact
 
-__all__ = [
-    "FixedPivot",
-    "RollingEq8",
-    "SecondOrderTop",
-    "contact_transverse_inertia",
-    "gyroscopic_coefficients",
-    "gyroscopic_state_form",
-]
-
-
-#: transverse moment about the contact point, ``A_C = 1 + mu (1 + 2 q)`` (see stability.models.inertia)
-contact_transverse_inertia = transverse_inertia_contact
-
-
-def gyroscopic_state_form(gamma: np.ndarray, kappa: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """State form of ``Phi'' - i gamma Phi' - kappa Phi = 0`` with ``x = (Phi, Phi')``.
-
-    Returns ``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (complex, batched over the shape of
-    ``gamma`` and ``kappa`` broadcast together).
-    """
-    gamma, kappa = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(kappa, float))
-    A = np.zeros(kappa.shape + (2, 2), dtype=complex)
-    A[..., 0, 1] = 1.0
-    A[..., 1, 0] = kappa
-    A[..., 1, 1] = 1j * gamma
-    M = np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy()
-    return M, A
-
-
-def gyroscopic_coefficients(gamma: np.ndarray, kappa: np.ndarray) -> np.ndarray:
-    """``det(s 1 - A) = s^2 - i gamma s - kappa`` of :func:`gyroscopic_state_form`, highest power first."""
-    gamma, kappa = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(kappa, float))
-    c = np.empty(kappa.shape + (3,), dtype=complex)
-    c[..., 0] = 1.0
-    c[..., 1] = -1j * gamma
-    c[..., 2] = -kappa
-    return c
+__all__ = ["FixedPivot", "RollingEq8", "SecondOrderTop"]
 
 
 class SecondOrderTop(LinearModel):
-    """A top described by eq. (8): subclasses define ``h`` (eq. 9)."""
+    """A top described by eq. (8): subclasses define ``h`` (eq. 9) by their :attr:`support_depth`.
+
+    Its state form, with ``x = (Phi, Phi')``, is ``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]``,
+    ``det(s 1 - A) = s^2 - i gamma s - kappa`` (module docstring), with ``gamma`` the
+    :attr:`gyroscopic` entry of :meth:`derived`.
+    """
 
     parameters = ("q", "fr_inv", "sigma", "mu")
     state = ("Phi", "dPhi_dt")
@@ -82,32 +51,40 @@ class SecondOrderTop(LinearModel):
     #: depth of the support point below the sphere's centre, units of R: ``h = q + depth`` (eq. 9)
     support_depth: float = 0.0
 
-    def h(self, q: np.ndarray) -> np.ndarray:
-        """Height of G above the support point, eq. (9), in units of R: ``q + support_depth``."""
-        q = np.asarray(q, dtype=float)
-        return q + self.support_depth if self.support_depth else q
-
     def derived(self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray) -> dict[str, np.ndarray]:
-        """Derived quantities: ``A_C``, ``sigma_hat``, ``h`` and ``kappa`` (eqs. 8-9)."""
-        a_c = contact_transverse_inertia(q, mu)
-        h = self.h(q)
+        """Derived quantities: ``A_C``, ``sigma_hat``, ``h = q + support_depth`` and ``kappa`` (eqs. 8-9)."""
+        a_c = transverse_inertia_contact(q, mu)
+        q = np.asarray(q, dtype=float)
+        h = q + self.support_depth if self.support_depth else q
         return {"A_C": a_c, "sigma_hat": sigma / a_c, "h": h, "kappa": mu * fr_inv * h / a_c}
+
+    def _gamma_kappa(self, **params: np.ndarray) -> list[np.ndarray]:
+        """``gamma`` (:attr:`gyroscopic`) and ``kappa`` of :meth:`derived`, broadcast together."""
+        d = self.derived(**params)
+        return np.broadcast_arrays(np.asarray(d[self.gyroscopic], float), np.asarray(d["kappa"], float))
 
     # the model's own parameters by name (LinearModel states any keywords: the registry passes them)
     def matrices(  # type: ignore[override]
         self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray]:
-        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8; ``gamma`` is
-        :attr:`gyroscopic`)."""
-        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_state_form(d[self.gyroscopic], d["kappa"])
+        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8), batched."""
+        gamma, kappa = self._gamma_kappa(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        A = np.zeros(kappa.shape + (2, 2), dtype=complex)
+        A[..., 0, 1] = 1.0
+        A[..., 1, 0] = kappa
+        A[..., 1, 1] = 1j * gamma
+        return np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy(), A
 
     def coefficients(  # type: ignore[override]
         self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
     ) -> np.ndarray:
-        """``s^2 - i gamma s - kappa``, highest power first (``gamma`` is :attr:`gyroscopic`)."""
-        d = self.derived(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-        return gyroscopic_coefficients(d[self.gyroscopic], d["kappa"])
+        """``s^2 - i gamma s - kappa``, highest power first."""
+        gamma, kappa = self._gamma_kappa(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+        c = np.empty(kappa.shape + (3,), dtype=complex)
+        c[..., 0] = 1.0
+        c[..., 1] = -1j * gamma
+        c[..., 2] = -kappa
+        return c
 
 
 class FixedPivot(SecondOrderTop):

@@ -75,11 +75,10 @@ import numpy as np
 
 from stability.jit import register_jitable
 
-from ..errors import InputError
 from .base import LinearModel
 from .inertia import inertia_contact, inertia_g
 
-__all__ = ["Sliding", "coefficient_parts", "derivative_parts", "scalar_coefficients"]
+__all__ = ["Sliding", "coefficient_parts", "derivative_parts"]
 
 #: the parameters of eq. (11), in the order of :data:`stability.parameters.PARAMETERS` (the
 #: index ``k`` of :func:`derivative_parts`)
@@ -151,48 +150,6 @@ def derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
     )
 
 
-def scalar_coefficients(
-    q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float, derivatives: bool = True, which=None
-) -> tuple[list[complex], dict[str, list[complex]] | None]:
-    """Eq. (11)'s coefficients at one point as Python complex numbers, and their derivatives.
-
-    The Python-float engine of :func:`coefficient_parts` and :func:`derivative_parts` (the same
-    values as :meth:`Sliding.coefficients` and as the compiled kernels, bit for bit).
-
-    Parameters
-    ----------
-    q, fr_inv, sigma, alpha_v, mu : float
-        One point.
-    derivatives : bool
-        Also return ``dc/dparameter``.
-    which : sequence of str, optional
-        The parameters to differentiate by (default all five).
-
-    Returns
-    -------
-    c : list of complex
-        ``[c3, c2, c1, c0]``.
-    dc : dict of str to list of complex, or None
-        ``{name: [dc3, dc2, dc1, dc0]}`` for each parameter of ``which``.
-    """
-    point = (float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu))
-    c = _assemble(coefficient_parts(*point))
-    if not derivatives:
-        return c, None
-    dc: dict[str, list[complex]] = {}
-    for name in PARAMETER_ORDER if which is None else which:
-        if name not in PARAMETER_ORDER:
-            raise InputError(f"{name!r} is not a parameter of eq. (11); use {', '.join(PARAMETER_ORDER)}")
-        dc[name] = _assemble(derivative_parts(*point, PARAMETER_ORDER.index(name)))
-    return c, dc
-
-
-def _assemble(parts: tuple[float, ...]) -> list[complex]:
-    """``[complex(re, im), ...]`` of a flat ``(re, im, re, im, ...)`` tuple."""
-    it = iter(parts)
-    return list(map(complex, it, it))
-
-
 class Sliding(LinearModel):
     """Viscous-sliding top, eq. (11)."""
 
@@ -207,20 +164,15 @@ class Sliding(LinearModel):
     point_coefficients = staticmethod(coefficient_parts)
     point_derivatives = staticmethod(derivative_parts)
 
-    def mass_matrix(self, *, q, mu) -> np.ndarray:
-        """``M`` of eq. (11), shape (..., 3, 3)."""
-        q, mu = np.broadcast_arrays(np.asarray(q, float), np.asarray(mu, float))
+    def matrices(self, *, q, fr_inv, sigma, alpha_v, mu):
+        """``M`` and ``A`` of eq. (11), shape (..., 3, 3)."""
+        q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
+            *map(np.asarray, (q, fr_inv, sigma, alpha_v, mu), [float] * 5)
+        )
         M = np.zeros(q.shape + (3, 3), dtype=complex)
         M[..., 0, 0] = M[..., 1, 1] = M[..., 2, 2] = 1.0
         M[..., 0, 2] = 1j * mu * q
         M[..., 2, 0] = -1j * q
-        return M
-
-    def matrices(self, *, q, fr_inv, sigma, alpha_v, mu):
-        """``M`` and ``A`` of eq. (11)."""
-        q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
-        )
         A = np.zeros(q.shape + (3, 3), dtype=complex)
         A[..., 0, 0] = -alpha_v + 1j * (sigma - 1)
         A[..., 0, 1] = 1j * (-(sigma - 1) + mu * q * fr_inv)
@@ -230,18 +182,17 @@ class Sliding(LinearModel):
         A[..., 2, 0] = -(q + 1j * alpha_v / mu)
         A[..., 2, 1] = q
         A[..., 2, 2] = -alpha_v / mu
-        return self.mass_matrix(q=q, mu=mu), A
+        return M, A
 
     def coefficients(self, *, q, fr_inv, sigma, alpha_v, mu):
         """``mu det(s M - A)``, highest power first (:func:`coefficient_parts` on arrays)."""
         q, fr_inv, sigma, alpha_v, mu = np.broadcast_arrays(
-            *(np.asarray(v, float) for v in (q, fr_inv, sigma, alpha_v, mu))
+            *map(np.asarray, (q, fr_inv, sigma, alpha_v, mu), [float] * 5)
         )
         parts = coefficient_parts(q, fr_inv, sigma, alpha_v, mu)
         c = np.empty(q.shape + (4,), dtype=complex)
         for j in range(4):
-            c.real[..., j] = parts[2 * j]
-            c.imag[..., j] = parts[2 * j + 1]
+            c.real[..., j], c.imag[..., j] = parts[2 * j], parts[2 * j + 1]
         return c
 
     def friction_plant(self, *, q, fr_inv, sigma, mu):

@@ -39,35 +39,23 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-#: public name -> the module of this package that defines it
-_EXPORTS: dict[str, str] = {
-    "plot_atlas": "figures",
-    "atlas_figure": "figures",
-    "plot_flip_time": "launch_plots",
-    "plot_flip_estimates": "launch_plots",
-    "plot_growth_rate": "atlas_plots",
-    "save_figure": "atlas_plots",
-    "style": "atlas_plots",
-    "plot_stability_map": "maps",
-    "plot_neutral_curve": "maps",
-    "plot_fold_curve": "maps",
-    "growth_norm": "maps",
-    "plot_run": "scene_plots",
-    "plot_contact_loss_map": "contact_plots",
-    "plot_contact_run": "contact_plots",
-    "plot_flight_run": "contact_plots",
-    "plot_stick_slip": "stickslip_plots",
-    "plot_validation": "validation_plots",
-    "plot_coulomb_growth": "validation_plots",
-    "plot_critical_spin": "spin_plots",
-    "plot_steady_states": "steady_plots",
-    "plot_final_state": "steady_plots",
-    "plot_bifurcation": "steady_plots",
-    "plot_class_map": "steady_plots",
-    "plot_settle": "steady_plots",
-    "plot_settle_approach": "steady_plots",
-    "recipe_figure": "recipe_figures",
+#: module of this package -> the public names it defines
+_MODULES: dict[str, str] = {
+    "figures": "plot_atlas atlas_figure",
+    "launch_plots": "plot_flip_time plot_flip_estimates",
+    "atlas_plots": "plot_growth_rate save_figure style",
+    "maps": "plot_stability_map plot_neutral_curve plot_fold_curve growth_norm",
+    "scene_plots": "plot_run",
+    "contact_plots": "plot_contact_loss_map plot_contact_run plot_flight_run",
+    "stickslip_plots": "plot_stick_slip",
+    "validation_plots": "plot_validation plot_coulomb_growth",
+    "spin_plots": "plot_critical_spin",
+    "steady_plots": "plot_steady_states plot_final_state plot_bifurcation plot_class_map plot_settle "
+    "plot_settle_approach",
+    "recipe_figures": "recipe_figure",
 }
+#: public name -> the module of this package that defines it (imported on first use)
+_EXPORTS: dict[str, str] = {name: module for module, names in _MODULES.items() for name in names.split()}
 
 __all__ = sorted(_EXPORTS)
 

@@ -5,16 +5,24 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..errors import InputError
 
 if TYPE_CHECKING:
-    import numpy as np
     import xarray as xr
 
-__all__ = ["axes_or_new", "panels_or_new", "run_panels"]
+__all__ = ["PERIODS_LABEL", "axes_or_new", "panels_or_new", "periods", "run_panels"]
+
+#: the label of a time axis in spin periods (one period is ``2 pi / Omega``), as the paper draws them
+PERIODS_LABEL = r"time (spin periods $2\pi/\Omega$)"
+
+
+def periods(run: xr.Dataset) -> np.ndarray:
+    """A run's times ``run.time`` in spin periods, ``t / 2 pi``."""
+    return run.time.values / (2.0 * np.pi)
 
 
 def axes_or_new(

@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..files import atomic_output
 from ..grids.netcdf import require_atlas
 from ..linear.modes import principal_mode
-from ..parameters import SYMBOLS
+from ..parameters import SYMBOLS, check_choice
 from ._layout import axes_or_new
 
 __all__ = ["STYLE_FILE", "plot_growth_rate", "save_figure", "style"]
@@ -32,10 +32,7 @@ MODES = ("principal", "leading")
 
 def _line(da_s: np.ndarray, quantity: str, mode: str) -> np.ndarray:
     """Values along one line: ``da_s`` is (m, n_modes) complex."""
-    if mode == "principal":
-        s = principal_mode(da_s)
-    else:
-        s = da_s[:, 0]
+    s = principal_mode(da_s) if mode == "principal" else da_s[:, 0]
     return s.real if quantity == "growth_rate" else s.imag
 
 
@@ -46,10 +43,6 @@ def style() -> Iterator[None]:
 
     with plt.style.context(str(STYLE_FILE)):
         yield
-
-
-def _fmt(v: float) -> str:
-    return f"{v:g}"
 
 
 def plot_growth_rate(
@@ -84,10 +77,8 @@ def plot_growth_rate(
             "ds is a map atlas (atlas_variables = 'map': leading_growth_rate and stability only); "
             "growth rates and frequencies per mode need an atlas written with variables='all'"
         )
-    if quantity not in QUANTITIES:
-        raise InputError(f"quantity = {quantity!r} is not known; choose one of {', '.join(QUANTITIES)}")
-    if mode not in MODES:
-        raise InputError(f"mode = {mode!r} is not known; choose one of {', '.join(MODES)}")
+    check_choice("quantity", quantity, QUANTITIES)
+    check_choice("mode", mode, MODES)
     grid = list(ds["max_growth_rate"].dims)
     if x not in grid:
         raise InputError(f"x = {x!r} is not a grid dimension of the atlas (it has {', '.join(grid) or 'none'})")
@@ -95,20 +86,19 @@ def plot_growth_rate(
     if len(others) > 1:
         raise InputError(f"the atlas has grid dimensions {', '.join(grid)}; select all but {x!r} and one family first")
     fig, ax = axes_or_new(ax)
-    label = QUANTITIES[quantity]
     s = ds["growth_rate"] + 1j * ds["frequency"]
     if others:
         fam = others[0]
         for v in ds[fam].values:
             line = s.sel({fam: v}).transpose(x, "mode").values
-            ax.plot(ds[x].values, _line(line, quantity, mode), label=f"{SYMBOLS.get(fam, fam)} = {_fmt(v)}")
+            ax.plot(ds[x].values, _line(line, quantity, mode), label=f"{SYMBOLS.get(fam, fam)} = {v:g}")
     else:
         ax.plot(ds[x].values, _line(s.transpose(x, "mode").values, quantity, mode), label=ds.attrs.get("model", ""))
     if quantity == "growth_rate":
         ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
-    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=label)
+    ax.set(xlabel=SYMBOLS.get(x, x), ylabel=QUANTITIES[quantity])
     fixed = [
-        f"{SYMBOLS.get(k, k)} = {_fmt(float(ds[k]))}"
+        f"{SYMBOLS.get(k, k)} = {float(ds[k]):g}"
         for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")
         if k in ds.coords and ds[k].ndim == 0
     ]

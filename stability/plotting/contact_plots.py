@@ -9,8 +9,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
+from matplotlib.colors import TwoSlopeNorm
 
-from ._layout import run_panels
+from ._layout import axes_or_new, run_panels
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -88,14 +89,10 @@ def plot_flight_run(run: xr.Dataset, *, axes: list[Axes] | None = None) -> tuple
     ax2.set(ylabel="height (units of R)", xlabel=r"time (units of $1/\Omega$)")
     ups = np.atleast_1d(run.attrs.get("takeoff_times", []))
     downs = np.atleast_1d(run.attrs.get("landing_times", []))
-    for i, tt in enumerate(ups):
-        for a in axes:
-            a.axvline(tt, color="C3", lw=0.8, ls="-", label="take-off" if (i == 0 and a is ax) else None)
-    for i, tt in enumerate(downs):
-        for a in axes:
-            a.axvline(
-                tt, color="C2", lw=0.8, ls="--", label="landing (plastic impact)" if (i == 0 and a is ax) else None
-            )
+    for times, colour, line, label in ((ups, "C3", "-", "take-off"), (downs, "C2", "--", "landing (plastic impact)")):
+        for i, tt in enumerate(times):
+            for a in axes:
+                a.axvline(tt, color=colour, lw=0.8, ls=line, label=label if (i == 0 and a is ax) else None)
     ax.legend(fontsize="small")
     ax2.legend(fontsize="small")
     ax.set_title(f"{run.attrs.get('model', '')} run: {len(ups)} flight(s), {len(downs)} landing(s)", fontsize="medium")
@@ -117,10 +114,6 @@ def plot_contact_loss_map(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Fi
     -------
     (Figure, Axes)
     """
-    from matplotlib.colors import TwoSlopeNorm
-
-    from ._layout import axes_or_new
-
     fig, ax = axes_or_new(ax)
     z = ds.min_normal_force.values
     lo, hi = float(np.nanmin(z)), float(np.nanmax(z))

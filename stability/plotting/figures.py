@@ -34,13 +34,22 @@ def atlas_figure(ds: xr.Dataset, x: str = "q", *, axes: Sequence[Axes] | None = 
     -------
     (Figure, list of 2 Axes)
     """
-    fig, (ax1, ax2) = panels_or_new(axes, 2, (6.4, 6.4), sharex=True)
-    plot_growth_rate(ds, x, quantity="growth_rate", ax=ax1)
-    plot_growth_rate(ds, x, quantity="frequency", ax=ax2)
-    ax1.set_xlabel("")
-    ax2.set_title("")
-    ax2.get_legend().remove()
-    return fig, [ax1, ax2]
+    fig, axes = panels_or_new(axes, 2, (6.4, 6.4), sharex=True)
+    _quantity_panels(ds, x, ("growth_rate", "frequency"), axes)
+    return fig, axes
+
+
+def _quantity_panels(ds: xr.Dataset, x: str, quantities: Sequence[str], axes: Sequence[Axes]) -> None:
+    """:func:`~stability.plotting.atlas_plots.plot_growth_rate` of each quantity in a column of
+    panels sharing ``x``: the title and legend on the first panel only, the abscissa's label on
+    the last."""
+    for k, (ax, quantity) in enumerate(zip(axes, quantities)):
+        plot_growth_rate(ds, x, quantity=quantity, ax=ax)
+        if k:
+            ax.set_title("")
+            ax.get_legend().remove()
+        if k < len(quantities) - 1:
+            ax.set_xlabel("")
 
 
 def plot_atlas(

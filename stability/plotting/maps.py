@@ -16,6 +16,9 @@ from ._layout import axes_or_new
 
 __all__ = ["NEUTRAL_STYLE", "growth_norm", "plot_fold_curve", "plot_neutral_curve", "plot_stability_map"]
 
+#: the type of the keywords naming a curve's variables (None: the curve's own plane)
+_Var = str | None
+
 #: the neutral curve's line: contrasting with the cividis colour map, also in grey
 NEUTRAL_STYLE = dict(colors="#D55E00", linewidths=2.0)
 
@@ -150,12 +153,7 @@ def plot_neutral_curve(
 
 
 def plot_fold_curve(
-    curve: xr.Dataset,
-    *,
-    ax: Axes | None = None,
-    x: str | None = None,
-    y: str | None = None,
-    label: str = "fold curve (continued)",
+    curve: xr.Dataset, *, ax: Axes | None = None, x: _Var = None, y: _Var = None, label: str = "fold curve (continued)"
 ) -> tuple[Figure, Axes]:
     """Draw a continued fold curve (:func:`stability.fold_curve`): where a neutral curve's
     fold sits as a third parameter varies.

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import xarray as xr
 from matplotlib.axes import Axes
@@ -13,7 +13,7 @@ from ..grids.atlases import leading_growth_rate
 from ..recipes import Recipe
 from . import scene_plots
 from ._layout import panels_or_new
-from .atlas_plots import plot_growth_rate
+from .figures import _quantity_panels
 from .maps import growth_norm, plot_stability_map
 from .spin_plots import plot_critical_spin
 from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_settle_approach
@@ -42,47 +42,48 @@ def recipe_figure(
     (Figure, list of Axes)
         The figure and its panels.
     """
-    if recipe.kind in ("bifurcation", "classes", "settle"):
-        fig, axes = _steady_figure(recipe, datasets, axes)
+    if recipe.kind in _ONE_PANEL:
+        size, draw = _ONE_PANEL[recipe.kind]
+        fig, axes = panels_or_new(axes, 1, size)
+        draw(recipe, datasets, axes[0])
+    elif recipe.kind == "settle":
+        run = datasets["run"]
+        fig, axes = panels_or_new(axes, 2, (7.4, 5.6))
+        plot_settle(run, predicted_tilt=run.attrs["predicted_tilt"], label=run.attrs.get("label", ""), ax=axes[0])
+        rate = run.attrs.get("predicted_growth_rate")
+        plot_settle_approach(run, predicted_tilt=run.attrs["predicted_tilt"], rate=rate, ax=axes[1])
     elif recipe.kind == "scene":
         fig, axes = _scene_figure(recipe.figure, datasets, axes)
-    elif recipe.kind == "critical_spin":
-        fig, axes = panels_or_new(axes, 1, (6.4, 4.2))
-        plot_critical_spin(datasets[recipe.model], ax=axes[0])
     elif recipe.kind == "lines":
         n = len(recipe.quantities)
         fig, axes = panels_or_new(axes, n, (6.4, 3.4 * n), sharex=True)
-        ds = datasets[recipe.model]
-        for k, (ax, quantity) in enumerate(zip(axes, recipe.quantities)):
-            plot_growth_rate(ds, recipe.x, quantity=quantity, ax=ax)
-            if k:
-                ax.set_title("")
-                ax.get_legend().remove()
-            if k < n - 1:
-                ax.set_xlabel("")
-    elif recipe.kind == "map":
-        fig, axes = panels_or_new(axes, 1, (6.4, 4.8))
-        plot_stability_map(
-            datasets[recipe.model], recipe.x, recipe.y, ax=axes[0], curve=datasets.get(f"{recipe.model}_neutral")
-        )
+        _quantity_panels(datasets[recipe.model], recipe.x, recipe.quantities, axes)
     else:  # models side by side
         names = [k for k in datasets if not k.endswith("_neutral")]
         fig, axes = panels_or_new(axes, len(names), (4.2 * len(names), 4.0), row=True, sharey=True)
         norm = growth_norm(*(leading_growth_rate(datasets[k]).values for k in names))
         for ax, name in zip(axes, names):
-            plot_stability_map(
-                datasets[name],
-                recipe.x,
-                recipe.y,
-                ax=ax,
-                colorbar=name == names[-1],
-                norm=norm,
-                curve=datasets.get(f"{name}_neutral"),
-            )
+            curve, last = datasets.get(f"{name}_neutral"), name == names[-1]
+            plot_stability_map(datasets[name], recipe.x, recipe.y, ax=ax, colorbar=last, norm=norm, curve=curve)
             if name != names[0]:
                 ax.set_ylabel("")
     fig.suptitle(recipe.title, fontsize=10)
     return fig, axes
+
+
+#: the recipes of one panel: kind -> (figure size, ``draw(recipe, datasets, ax)``)
+_ONE_PANEL: dict[str, tuple[tuple[float, float], Callable[[Recipe, dict[str, xr.Dataset], Axes], object]]] = {
+    "critical_spin": ((6.4, 4.2), lambda r, d, ax: plot_critical_spin(d[r.model], ax=ax)),
+    "map": (
+        (6.4, 4.8),
+        lambda r, d, ax: plot_stability_map(d[r.model], r.x, r.y, ax=ax, curve=d.get(f"{r.model}_neutral")),
+    ),
+    "bifurcation": (
+        (7.4, 4.8),
+        lambda r, d, ax: plot_bifurcation(d["branch"], vertical=d["vertical"], runs=d["runs"], x="spin", ax=ax),
+    ),
+    "classes": ((6.8, 5.0), lambda r, d, ax: plot_class_map(d["classes"], ax=ax)),
+}
 
 
 def _scene_figure(
@@ -103,24 +104,3 @@ def _scene_figure(
     cases = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.startswith("case") and "paper" not in k}
     paper = {runs[k].attrs["label"]: runs[k] for k in sorted(runs) if k.endswith("_paper_scheme")}
     return scene_plots.fig9(main, runs["rolling"], cases, paper, slip_case=list(cases)[-1], axes=axes)
-
-
-def _steady_figure(
-    recipe: Recipe, datasets: dict[str, xr.Dataset], axes: Sequence[Axes] | None
-) -> tuple[Figure, list[Axes]]:
-    """The steady-state figures (stability.recipes' bifurcation, classes and settle kinds)."""
-    if recipe.kind == "bifurcation":
-        fig, axes = panels_or_new(axes, 1, (7.4, 4.8))
-        plot_bifurcation(datasets["branch"], vertical=datasets["vertical"], runs=datasets["runs"], x="spin", ax=axes[0])
-        return fig, axes
-    if recipe.kind == "classes":
-        fig, axes = panels_or_new(axes, 1, (6.8, 5.0))
-        plot_class_map(datasets["classes"], ax=axes[0])
-        return fig, axes
-    run = datasets["run"]
-    fig, axes = panels_or_new(axes, 2, (7.4, 5.6))
-    plot_settle(run, predicted_tilt=run.attrs["predicted_tilt"], label=run.attrs.get("label", ""), ax=axes[0])
-    plot_settle_approach(
-        run, predicted_tilt=run.attrs["predicted_tilt"], rate=run.attrs.get("predicted_growth_rate"), ax=axes[1]
-    )
-    return fig, axes

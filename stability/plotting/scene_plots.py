@@ -16,15 +16,9 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..errors import InputError
-from ._layout import axes_or_new, panels_or_new
+from ._layout import PERIODS_LABEL, axes_or_new, panels_or_new, periods
 
-__all__ = ["SCENE_FIGURES", "fig5", "fig6", "fig7", "fig8", "fig9", "plot_run"]
-
-TWO_PI = 2.0 * np.pi
-
-
-def _periods(ds: xr.Dataset) -> np.ndarray:
-    return ds.time.values / TWO_PI
+__all__ = ["fig5", "fig6", "fig7", "fig8", "fig9", "plot_run"]
 
 
 def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> tuple[Figure, list[Axes]]:
@@ -43,7 +37,7 @@ def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> 
     """
     fig, axes = panels_or_new(axes, 3, (6.4, 7.6), sharex=True)
     for label, ds in runs.items():
-        t = _periods(ds)
+        t = periods(ds)
         axes[0].plot(t, ds.spin.values, label=label)
         axes[1].plot(t, ds.transverse_rate.values, label=label)
         axes[2].plot(t, ds.polar_angle.values, label=label)
@@ -51,7 +45,7 @@ def fig5(runs: dict[str, xr.Dataset], *, axes: Sequence[Axes] | None = None) -> 
     axes[1].set_ylabel(r"transverse rate $|\omega_\perp|$ / $\Omega$")
     axes[2].set_ylabel(r"polar angle of $k$ (deg)")
     axes[2].axhline(90.0, color="0.3", linewidth=0.8, zorder=0)
-    axes[2].set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+    axes[2].set_xlabel(PERIODS_LABEL)
     axes[0].legend()
     for ax, tag in zip(axes, "abc"):
         ax.set_title(f"({tag})", loc="left", fontsize=9)
@@ -85,7 +79,7 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     (Figure, Axes)
     """
     fig, ax = axes_or_new(ax, figsize=(6.4, 4.2), layout="constrained")
-    t = _periods(run)
+    t = periods(run)
     parts = [
         ("energy", "total"),
         ("kinetic_spin", "spin (about G)"),
@@ -95,7 +89,7 @@ def fig6(run: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
     ]
     for name, label in parts:
         ax.plot(t, run[name].values, label=label)
-    ax.set(xlabel=r"time (spin periods $2\pi/\Omega$)", ylabel=r"energy / $A_0 \Omega^2$")
+    ax.set(xlabel=PERIODS_LABEL, ylabel=r"energy / $A_0 \Omega^2$")
     ax.legend(ncols=2)
     return fig, ax
 
@@ -117,7 +111,7 @@ def fig7(
     vx, vy = run.velocity.sel(axis=1).values, run.velocity.sel(axis=2).values
     t = run.time.values
     dt = float(t[1] - t[0])
-    for ax, every, tmax in ((ax1, arrow_every, t[-1]), (ax2, 1.0, zoom_periods * TWO_PI)):
+    for ax, every, tmax in ((ax1, arrow_every, t[-1]), (ax2, 1.0, zoom_periods * (2.0 * np.pi))):
         sel = t <= tmax
         ax.plot(x[sel], y[sel], color="C0", linewidth=1.0)
         step = max(1, int(round(every / dt)))
@@ -166,12 +160,12 @@ def fig8(run: xr.Dataset, *, until_angle: float = 150.0, ax: Axes | None = None)
     past = np.nonzero(pol >= until_angle)[0]
     end = int(past[0]) + 1 if past.size else pol.size
     k = run.k.values[:end]
-    periods = _periods(run)[:end]
+    times = periods(run)[:end]
     pts = k.reshape(-1, 1, 3)
     lines = Line3DCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", linewidths=0.45)
-    lines.set_array(0.5 * (periods[:-1] + periods[1:]))
+    lines.set_array(0.5 * (times[:-1] + times[1:]))
     ax.add_collection3d(lines)
-    fig.colorbar(lines, ax=ax, shrink=0.6, pad=0.08, label="time (spin periods $2\\pi/\\Omega$)")
+    fig.colorbar(lines, ax=ax, shrink=0.6, pad=0.08, label=PERIODS_LABEL)
     for lim in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
         lim(-1.0, 1.0)
     for ticks in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
@@ -218,12 +212,12 @@ def fig9(
     (Figure, list of 3 Axes)
     """
     fig, (ax1, ax2, ax3) = panels_or_new(axes, 3, (6.4, 9.0))
-    ax1.plot(_periods(sliding), sliding.friction_magnitude.values, label="sliding model")
-    ax1.plot(_periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
+    ax1.plot(periods(sliding), sliding.friction_magnitude.values, label="sliding model")
+    ax1.plot(periods(rolling), rolling.friction_magnitude.values, linestyle=":", label="rolling model")
     ax1.set_ylabel(r"$|f|$ / $A_0\Omega^2 R^{-1}$")
     # the start from rest in the contact (a slip impulse) peaks far above the rest of the run:
     # the axis is scaled to the run after the first two periods and the peak is named
-    later = _periods(sliding) > 2.0
+    later = periods(sliding) > 2.0
     peak = float(np.nanmax(sliding.friction_magnitude.values))
     top = 1.25 * float(
         np.nanmax(np.concatenate([sliding.friction_magnitude.values[later], rolling.friction_magnitude.values]))
@@ -239,20 +233,17 @@ def fig9(
         for j, (label, ds) in enumerate(runs.items()):
             marks = {"marker": markers[j % len(markers)], "markevery": (0.03 * (j + 1), 0.12), "markersize": 4}
             style = dict(color=f"C{j}", linestyle=line, linewidth=width, **(marks if line == "-" else {}))
-            ax2.plot(_periods(ds), ds.polar_angle.values, **style, label=name.format(label))
+            ax2.plot(periods(ds), ds.polar_angle.values, **style, label=name.format(label))
     ax2.set_ylabel("polar angle of $k$ (deg)")
     ax2.legend(fontsize=7, ncols=2, loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
     for ds, style, label in (
         (cases[slip_case], "-", "integrated to tolerance"),
         (paper_scheme[slip_case], ":", "paper's scheme (RK4, sign law)"),
     ):
-        ax3.semilogy(_periods(ds), np.maximum(ds.slip_speed.values, 1e-12), linestyle=style, label=label)
+        ax3.semilogy(periods(ds), np.maximum(ds.slip_speed.values, 1e-12), linestyle=style, label=label)
     ax3.set_ylabel(r"sliding speed $|V_c|$ / $\Omega R$")
     ax3.legend(fontsize=8)
     for ax, tag in zip((ax1, ax2, ax3), ("(a)", "(b)", f"(c) case {slip_case}")):
         ax.set_title(tag, loc="left", fontsize=9)
-        ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)")
+        ax.set_xlabel(PERIODS_LABEL)
     return fig, [ax1, ax2, ax3]
-
-
-SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")

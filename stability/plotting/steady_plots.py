@@ -21,7 +21,7 @@ from matplotlib.patches import Patch
 from ..errors import InputError
 from ..parameters import SYMBOLS
 from ..products import FLAG_NAMES
-from ._layout import axes_or_new
+from ._layout import PERIODS_LABEL, axes_or_new, periods
 
 __all__ = [
     "FILL_STYLES",
@@ -56,28 +56,18 @@ FILL_STYLES = {0: "full", 1: "left", 2: "none"}
 FLAG_COLOURS = {0: STABLE_STYLE["color"], 1: "0.35", 2: UNSTABLE_STYLE["color"]}
 _TILT_LABEL = "tilt of the axis (deg): 0 upright, 180 inverted"
 
+#: the special points of a branch by kind: (marker, size, colour, face colour (None: the colour), label)
 _MARKERS = {
-    "branch_point": dict(
-        marker="o",
-        markersize=7,
-        color="k",
-        markerfacecolor="w",
-        linestyle="none",
-        label="branch point (on a vertical state)",
-    ),
-    "fold": dict(marker="D", markersize=6, color="k", linestyle="none", label="fold in J"),
-    "stability_change": dict(marker="X", markersize=7, color="m", linestyle="none", label="stability change"),
-    "end": dict(marker="|", markersize=12, color="0.3", linestyle="none", label="end of the branch (cut)"),
+    "branch_point": ("o", 7, "k", "w", "branch point (on a vertical state)"),
+    "fold": ("D", 6, "k", None, "fold in J"),
+    "stability_change": ("X", 7, "m", None, "stability change"),
+    "end": ("|", 12, "0.3", None, "end of the branch (cut)"),
 }
 
 
-def _parameters_text(attrs: dict) -> str:
-    """``q = .., sigma = .., Fr^-1 = .., alpha_v = ..`` from a dataset's attributes."""
-    return ", ".join(
-        f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}"
-        for name in ("q", "sigma", "fr_inv", "alpha_v")
-        if name in attrs
-    )
+def _parameters_text(attrs: dict, names: tuple[str, ...] = ("q", "sigma", "fr_inv", "alpha_v")) -> str:
+    """``q = .., sigma = .., Fr^-1 = .., alpha_v = ..`` from a dataset's attributes (those it has)."""
+    return ", ".join(f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}" for name in names if name in attrs)
 
 
 def _level(
@@ -263,8 +253,7 @@ def plot_bifurcation(
         vertical = branch.get("vertical") if vertical is None else vertical
         runs = branch.get("runs") if runs is None else runs
         branch = branch["branch"]
-    if x is None:
-        x = "spin" if "spin" in branch else "jellett"
+    x = ("spin" if "spin" in branch else "jellett") if x is None else x
     units = str(branch[x].attrs.get("units", "")) if x in branch else ""
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     xs = branch[x].values
@@ -286,22 +275,17 @@ def plot_bifurcation(
             vf = vertical[name].values
             draw(_pieces(vx, np.full(vx.shape, level), vf == 0, vf == 1))
     kinds = branch.kind.values
-    for kind, style in _MARKERS.items():
+    for kind, (marker, size, colour, face, label) in _MARKERS.items():
         sel = kinds == kind
         if sel.any():
-            ax.plot(xs[sel], tilt[sel], **style, zorder=5)
+            style = dict(marker=marker, markersize=size, color=colour, markerfacecolor=face, linestyle="none")
+            ax.plot(xs[sel], tilt[sel], **style, label=label, zorder=5)
     if runs is not None and runs.sizes.get("run", 0):
         ax.plot(runs[x].values, runs.end_tilt.values, marker="*", **_END_MARK, zorder=6, label="end of a nonlinear run")
         if "paper_run" in runs:
             for i in np.nonzero(runs.paper_run.values == 1)[0]:
                 xi, yi = float(runs[x][i]), float(runs.end_tilt[i])
-                arrow = dict(
-                    xytext=(-210, -70),
-                    textcoords="offset points",
-                    fontsize=7,
-                    arrowprops={"arrowstyle": "->", "linewidth": 0.6},
-                )
-                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **arrow)
+                ax.annotate(f"the paper's Fr$^{{-1}}$ = 0.3 run: {yi:.1f} deg", (xi, yi), **_PAPER_ARROW)
     if "stick_tilt" in branch.attrs:  # a toy with a stick: no state beyond this tilt
         st = float(branch.attrs["stick_tilt"])
         ax.axhline(st, color="C3", ls="--", lw=1.0, label=f"the stick touches ({st:.4g} deg)")
@@ -311,19 +295,18 @@ def plot_bifurcation(
     ax.set_ylabel(_TILT_LABEL)
     ax.set_ylim(-8, 188)
     ax.set_yticks([0, 30, 60, 90, 120, 150, 180])
-    a = branch.attrs
-    ax.set_title(
-        f"q = {a.get('q', float('nan')):g}, {SYMBOLS['sigma']} = {a.get('sigma', float('nan')):g}, "
-        f"{SYMBOLS['mu']} = {a.get('mu', float('nan')):g}, {SYMBOLS['alpha_v']} = "
-        f"{a.get('alpha_v', float('nan')):g}",
-        fontsize=9,
-    )
+    attrs = {name: float("nan") for name in ("q", "sigma", "mu", "alpha_v")} | dict(branch.attrs)
+    ax.set_title(_parameters_text(attrs, ("q", "sigma", "mu", "alpha_v")), fontsize=9)
     ax.legend(fontsize=7, loc="best")
     return fig, ax
 
 
 #: the marker style of where a run ends (a nonlinear run's, a launch's) on the diagram
 _END_MARK = {"markersize": 11, "color": "C2", "markeredgecolor": "k", "linestyle": "none"}
+#: the arrow naming the paper's run on the diagram
+_PAPER_ARROW = dict(
+    xytext=(-210, -70), textcoords="offset points", fontsize=7, arrowprops={"arrowstyle": "->", "linewidth": 0.6}
+)
 
 
 def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None:
@@ -416,6 +399,12 @@ def plot_class_map(
     return fig, ax
 
 
+def _time_axis(ax: Axes, run: xr.Dataset, in_periods: bool) -> np.ndarray:
+    """A run's times in spin periods (``t / 2 pi``) or in ``1 / Omega``, and the axis labelled so."""
+    ax.set_xlabel(PERIODS_LABEL if in_periods else r"time ($1/\Omega$)")
+    return periods(run) if in_periods else run.time.values
+
+
 def plot_settle(
     run: xr.Dataset, *, predicted_tilt: float, ax: Axes | None = None, label: str = "", periods: bool = True
 ) -> tuple[Figure, Axes]:
@@ -438,12 +427,11 @@ def plot_settle(
     (Figure, Axes)
     """
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
-    t = run.time.values / (2 * np.pi) if periods else run.time.values
+    t = _time_axis(ax, run, periods)
     ax.plot(t, run.polar_angle.values, color="C0", linewidth=1.0, label=label or "nonlinear run")
     predicted = f"predicted final tilt {predicted_tilt:.3f} deg (Jellett's integral)"
     ax.axhline(predicted_tilt, color="C3", linestyle="--", linewidth=1.2, label=predicted)
     ax.axhline(180.0, color="0.5", linestyle=":", linewidth=0.8, label="complete inversion (180 deg)")
-    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
     ax.set_ylabel("polar angle of the axis (deg)")
     ax.legend(fontsize=7, loc="lower right")
     return fig, ax
@@ -473,7 +461,7 @@ def plot_settle_approach(
     """
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
     t = run.time.values
-    tt = t / (2 * np.pi) if periods else t
+    tt = _time_axis(ax, run, periods)
     dist = np.abs(run.polar_angle.values - predicted_tilt)
     ax.semilogy(tt, dist, color="C0", linewidth=0.8, label="|polar angle - predicted tilt|")
     if rate is not None and rate < 0:
@@ -483,7 +471,6 @@ def plot_settle_approach(
     for level, style in ((0.05, ":"), (0.01, "-.")):
         ax.axhline(level, color="0.4", linestyle=style, linewidth=0.8, label=f"{level:g} deg")
     ax.set_ylim(max(1e-6, float(np.nanmin(dist[dist > 0])) / 3 if np.any(dist > 0) else 1e-6), 200.0)
-    ax.set_xlabel(r"time (spin periods $2\pi/\Omega$)" if periods else r"time ($1/\Omega$)")
     ax.set_ylabel("distance from the predicted tilt (deg)")
     ax.legend(fontsize=7, loc="upper right")
     return fig, ax

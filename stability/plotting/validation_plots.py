@@ -11,7 +11,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..errors import InputError, ParameterTypeError
-from ._layout import axes_or_new, panels_or_new
+from ._layout import PERIODS_LABEL, axes_or_new, panels_or_new, periods
 
 __all__ = ["plot_coulomb_growth", "plot_validation"]
 
@@ -81,11 +81,11 @@ def plot_coulomb_growth(ds: xr.Dataset, *, axes: Sequence[Axes] | None = None) -
     """
     _require(ds, _COULOMB, "stability.coulomb_growth")
     fig, (ax1, ax2) = panels_or_new(axes, 2, (6.4, 6.0), sharex=True)
-    t = ds["time"].values / (2.0 * np.pi)
+    t = periods(ds)
     ax1.plot(t, ds["tilt"].values)
     ax1.set_ylabel(r"tilt $|\Phi|$")
     ax2.semilogy(t, np.maximum(ds["slip_speed"].values, 1e-12))
-    ax2.set(ylabel=r"sliding speed $|V_c|$ / $\Omega R$", xlabel=r"time (spin periods $2\pi/\Omega$)")
+    ax2.set(ylabel=r"sliding speed $|V_c|$ / $\Omega R$", xlabel=PERIODS_LABEL)
     a = ds.attrs
     fits = ", ".join(
         f"{name} fit {a[key]:.2g}"
