@@ -47,13 +47,8 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     from ..steady import branch, final, states
 
     sliding = kernel._model_kernels(get_model("sliding"))
-    p = dict(
-        q=np.linspace(-0.4, 0.4, 64),
-        fr_inv=np.full(64, 0.3),
-        sigma=np.ones(64),
-        alpha_v=np.full(64, 0.5),
-        mu=np.full(64, 2.28),
-    )
+    p = dict(q=np.linspace(-0.4, 0.4, 64), fr_inv=np.full(64, 0.3), sigma=np.ones(64), alpha_v=np.full(64, 0.5))
+    p["mu"] = np.full(64, 2.28)
     c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
     top = dict(q=-0.1, sigma=1.0, fr_inv=0.3)  # the paper's top (Sec. 3(ii)) for the one-point steps
@@ -77,16 +72,18 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                 [(kernel._coefficient_loop, par)],
             ),
         ]
+    quadratic, others = roots.quadratic_roots_many, neutrality._other_roots_many
+    sliding_top = dict(top, alpha_v=0.5)
     out += [
         (
             "batched quadratic formula (method='polynomial')",
-            lambda: cached(roots.quadratic_roots_many)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
-            [(roots.quadratic_roots_many, False)],
+            lambda: cached(quadratic)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
+            [(quadratic, False)],
         ),
         (
             "batched other modes of the neutral condition",
-            lambda: cached(neutrality._other_roots_many)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
-            [(neutrality._other_roots_many, False)],
+            lambda: cached(others)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
+            [(others, False)],
         ),
         (
             "neutral curves: compiled corrector (sliding model)",
@@ -101,27 +98,25 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
         (
             "steady states and the final state (sliding model)",
             lambda: (
-                states.steady_states("sliding", **top, alpha_v=0.5),
+                states.steady_states("sliding", **sliding_top),
                 final.final_state(
-                    "sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0], **top, alpha_v=0.5
+                    "sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0], **sliding_top
                 ),
             ),
             [],
         ),
         (
             "branch of tilted states: compiled step (sliding model)",
-            lambda: branch.steady_branch("sliding", **top, alpha_v=0.5, compiled=True),
+            lambda: branch.steady_branch("sliding", **sliding_top, compiled=True),
             [],
         ),
     ]
     for name in NONLINEAR_MODELS:
-        friction = dict(alpha_v=0.5) if name == "sliding" else {}
+        run = dict(top, alpha_v=0.5) if name == "sliding" else top
         out.append(
             (
                 f"integrator, {name} model",
-                lambda name=name, friction=friction: simulate(
-                    name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], **top, **friction
-                ),
+                lambda n=name, r=run: simulate(n, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], **r),
                 [],
             )
         )
