@@ -306,10 +306,6 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         if interrupts.received():  # after the last safe point: the command had finished
             return _interrupted(prog, None)
         return status
-    except (Interrupted, KeyboardInterrupt) as exc:
-        if debug:
-            raise
-        return _interrupted(prog, str(exc) if isinstance(exc, Interrupted) else None)
     except BrokenPipeError:
         if not _stdout_broken():
             print(f"{prog}: error: broken pipe", file=sys.stderr)
@@ -323,22 +319,22 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
             )
             return 0
         return EXIT_FAILURE
-    except (ValueError, TypeError, OSError, TippeError, ConvergenceError) as exc:
+    except (Interrupted, KeyboardInterrupt, Exception) as exc:
         if debug:
             raise
+        if isinstance(exc, (Interrupted, KeyboardInterrupt)):
+            return _interrupted(prog, str(exc) if isinstance(exc, Interrupted) else None)
+        if not isinstance(exc, (ValueError, TypeError, OSError, TippeError, ConvergenceError)):  # a bug: one line
+            print(
+                f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+                "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)",
+                file=sys.stderr,
+            )
+            return EXIT_FAILURE
         print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
         # bad input (every InputError is a ValueError) or a file: 2; a failure to compute
         # (ChunkError, ConvergenceError, any other TippeError): 1
         return EXIT_USAGE if isinstance(exc, (ValueError, TypeError, OSError)) else EXIT_FAILURE
-    except Exception as exc:  # a bug: still one line unless asked
-        if debug:
-            raise
-        print(
-            f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
-            "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)",
-            file=sys.stderr,
-        )
-        return EXIT_FAILURE
 
 
 def _model_name_warnings_as_lines(prog: str) -> None:

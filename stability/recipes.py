@@ -251,6 +251,7 @@ def load_recipe(path: str | Path) -> Recipe:
     except ValueError:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
     x = raw.get("x", "q")
+    common.update(model=model, x=x, top=top)
     if kind == "critical_spin":
         preset = None if top is not None else _one_of(p, raw, "preset", "table1", PRESETS)
         _check(
@@ -259,7 +260,7 @@ def load_recipe(path: str | Path) -> Recipe:
         )
         grid = {x: _grid_value(p, x, raw["grid"][x])}
         _check(np.ndim(grid[x]) == 1, f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
-        return Recipe(**common, model=model, grid=grid, x=x, figure=preset, top=top)
+        return Recipe(**common, grid=grid, figure=preset)
     grid = _grid(p, raw, PARAMETERS, "grid has unknown parameters {bad} (allowed: {allowed})")
     spin, unit = _top_grid(p, raw, top, grid)
     quantities = tuple(raw.get("quantities", ["growth_rate"]))
@@ -275,20 +276,8 @@ def load_recipe(path: str | Path) -> Recipe:
         sorted(arrays) == sorted(wanted),
         f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws ({', '.join(wanted)})",
     )
-    return Recipe(
-        **common,
-        model=model,
-        grid=grid,
-        mask_unphysical=bool(raw.get("mask_unphysical", True)),
-        x=x,
-        y=y,
-        family=family,
-        neutral=bool(raw.get("neutral", False)),
-        quantities=quantities,
-        top=top,
-        spin=spin,
-        unit=unit,
-    )
+    flags = {k: bool(raw.get(k, k == "mask_unphysical")) for k in ("mask_unphysical", "neutral")}
+    return Recipe(**common, **flags, grid=grid, y=y, family=family, quantities=quantities, spin=spin, unit=unit)
 
 
 def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
@@ -371,43 +360,6 @@ def find_recipes(directory: str | Path) -> list[Recipe]:
 
 def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in grid.items() if k in MODELS[model].parameters}
-
-
-def _cached(
-    path: Path,
-    digest: str,
-    make: Callable[[], xr.Dataset],
-    reader: Callable[[Path], xr.Dataset],
-    force: bool,
-    log: list[tuple[Path, str, float]] | None,
-) -> xr.Dataset:
-    """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
-
-    A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
-    docstring)."""
-    if path.exists() and not force:
-        try:
-            ds = reader(path)
-        except (AtlasFileError, OSError, ValueError) as exc:
-            raise RecipeError(
-                f"{path} exists and was not written by a recipe ({exc}); remove it or pass force=True to replace it"
-            ) from None
-        if ds.attrs.get("recipe_digest") == digest:
-            if log is not None:
-                log.append((path, "reused", 0.0))
-            return ds
-        _check(
-            "recipe_digest" in ds.attrs,
-            f"{path} exists and was not written by a recipe (it has no recipe_digest "
-            "attribute); remove it or pass force=True to replace it",
-        )
-    start = time.perf_counter()
-    ds = make()
-    ds.attrs["recipe_digest"] = digest
-    write_dataset(ds, path, overwrite=True)
-    if log is not None:
-        log.append((path, "computed", time.perf_counter() - start))
-    return ds
 
 
 def _read(path: Path) -> xr.Dataset:
@@ -506,10 +458,29 @@ def compute(
         model name -> atlas dataset, or (scene recipes) run key -> simulate() dataset with the
         run's label in its ``label`` attribute.
     """
-    return {
-        key: _cached(path, recipe.digest, make, reader, force, log)
-        for key, (path, make, reader) in _datasets(recipe).items()
-    }
+    out, log = {}, [] if log is None else log
+    for key, (path, make, reader) in _datasets(recipe).items():
+        if path.exists() and not force:  # reused if it holds this recipe version's dataset
+            try:
+                out[key] = ds = reader(path)
+            except (AtlasFileError, OSError, ValueError) as exc:
+                raise RecipeError(
+                    f"{path} exists and was not written by a recipe ({exc}); remove it or pass force=True to replace it"
+                ) from None
+            if ds.attrs.get("recipe_digest") == recipe.digest:
+                log.append((path, "reused", 0.0))
+                continue
+            _check(
+                "recipe_digest" in ds.attrs,
+                f"{path} exists and was not written by a recipe (it has no recipe_digest "
+                "attribute); remove it or pass force=True to replace it",
+            )
+        start = time.perf_counter()
+        out[key] = ds = make()
+        ds.attrs["recipe_digest"] = recipe.digest
+        write_dataset(ds, path, overwrite=True)
+        log.append((path, "computed", time.perf_counter() - start))
+    return out
 
 
 def _atlas(recipe: Recipe, model: str) -> xr.Dataset:
@@ -517,14 +488,11 @@ def _atlas(recipe: Recipe, model: str) -> xr.Dataset:
     attributes and its spin (in the recipe's unit) on it (:func:`spin_coordinate`)."""
     ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
     if (t := recipe.top) is not None:
-        ds.attrs.update(
-            mass_kg=t.mass,
-            radius_m=t.radius,
-            com_offset_m=t.com_offset,
-            inertia_transverse_kg_m2=t.inertia_transverse,
-            inertia_axial_kg_m2=t.inertia_axial,
-            g=t.g,
+        si = zip(
+            ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial", "g"),
+            ("_kg", "_m", "_m", *["_kg_m2"] * 2, ""),
         )
+        ds.attrs.update({name + unit: getattr(t, name) for name, unit in si})
         ds = ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
     ds.attrs["recipe"] = recipe.path.name
     return ds
@@ -550,24 +518,14 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
             with contextlib.suppress(ValueError):
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
     becomes = {"upright": "unstable", "inverted": "stable"}
-    attrs = {o: f"spin rate above which the {o} top is {becomes[o]}" for o in out}
-    return xr.Dataset(
-        {
-            f"critical_spin_{o}": (x, v, {"long_name": f"{o} critical spin", "units": "min-1", "comment": attrs[o]})
-            for o, v in out.items()
-        },
-        coords={x: (x, values, parameter_attrs(x))},
-        attrs={
-            "Conventions": "CF-1.10",
-            "title": recipe.title,
-            PRODUCT_ATTR: "critical_spin",
-            "model": recipe.model,
-            "preset": recipe.figure or "",
-            "mass_kg": base.mass,
-            "radius_m": base.radius,
-            **{k: getattr(base, k) for k in ("q", "mu", "sigma")},
-        },
+    var = {o: {"long_name": f"{o} critical spin", "units": "min-1"} for o in out}
+    var = {o: dict(a, comment=f"spin rate above which the {o} top is {becomes[o]}") for o, a in var.items()}
+    attrs = {"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin", "model": recipe.model}
+    attrs.update(
+        preset=recipe.figure or "", mass_kg=base.mass, radius_m=base.radius, q=base.q, mu=base.mu, sigma=base.sigma
     )
+    data = {f"critical_spin_{o}": (x, v, var[o]) for o, v in out.items()}
+    return xr.Dataset(data, coords={x: (x, values, parameter_attrs(x))}, attrs=attrs)
 
 
 def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
@@ -688,15 +646,8 @@ def settle_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
     end = final_state(fr_inv=fr, alpha_v=0.5, **scene.PAPER, **scene.INITIAL_CONDITIONS[fr])
     states = steady_states(fr_inv=fr, alpha_v=0.5, **scene.PAPER, jellett=end.jellett)
     rate = float(states.growth_rate[np.argmin(np.abs(states.tilt.values - end.tilt))])
-    run.attrs.update(
-        predicted_tilt=end.tilt,
-        predicted_kind=end.kind,
-        predicted_method=end.method,
-        predicted_axial_spin=end.axial_spin,
-        predicted_growth_rate=rate,
-        jellett=end.jellett,
-        label=f"Fr$^{{-1}}$ = {fr:g}",
-    )
+    run.attrs.update({f"predicted_{k}": getattr(end, k) for k in ("tilt", "kind", "method", "axial_spin")})
+    run.attrs.update(predicted_growth_rate=rate, jellett=end.jellett, label=f"Fr$^{{-1}}$ = {fr:g}")
     return {"run": run}
 
 

@@ -105,6 +105,12 @@ def add_float_flags(p: argparse.ArgumentParser, *rows: tuple) -> None:
         p.add_argument(flag, type=float, default=default, metavar=metavar, help=text)
 
 
+def add_switches(p: argparse.ArgumentParser, *rows: tuple[str, str]) -> None:
+    """Options that are on when given: each row ``(flag, help)``."""
+    for flag, text in rows:
+        p.add_argument(flag, action="store_true", help=text)
+
+
 def comma_floats(text: str) -> list[float]:
     """A comma list of numbers (``--omega 0,0,1``), or an argparse error naming the text."""
     try:
@@ -149,15 +155,22 @@ def table(row: str, header: Iterable[str], rows: Iterable[Iterable]) -> list[str
 # ------------------------------------------------------------------------------------------
 # a real top in SI units instead of the nondimensional parameters (docs/your_top.md)
 # ------------------------------------------------------------------------------------------
-#: the SI data of a top: Top's constructor keywords, in its order, and their help
-TOP_HELP = {
-    "mass": "mass M, kg",
-    "radius": "radius R of the sphere, m",
-    "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
-    "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
-    "inertia_axial": "axial moment of inertia C, kg m^2",
+#: the options of a real top: its SI data (Top's constructor keywords, in its order), then
+#: gravity and the friction coefficients; each with its metavar and help
+TOP_OPTIONS = {
+    "mass": ("VALUE", "mass M, kg"),
+    "radius": ("VALUE", "radius R of the sphere, m"),
+    "com_offset": ("VALUE", "offset d of G from the sphere's centre along the axis, m (d < 0: G below)"),
+    "inertia_transverse": ("VALUE", "transverse moment of inertia about G, A_G, kg m^2"),
+    "inertia_axial": ("VALUE", "axial moment of inertia C, kg m^2"),
+    "g": ("M/S2", "gravity (default 9.80665)"),
+    "mu_v": (
+        "S/M",
+        "viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) (default: none, --alpha-v given)",
+    ),
+    "mu_k": ("MU_K", "Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)"),
 }
-TOP_FLAGS = tuple(TOP_HELP)
+TOP_FLAGS, _TOP_EXTRA = tuple(TOP_OPTIONS)[:5], tuple(TOP_OPTIONS)[5:]
 #: the parameters a top gives whatever the spin (eq. 3)
 TOP_PARAMETERS = ("q", "sigma", "mu")
 
@@ -193,19 +206,7 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
         help="a TOML file with a [top] table: mass, radius, com_offset, inertia_transverse, "
         'inertia_axial (SI), optional g, mu_v, mu_k, or preset = "table1"',
     )
-    add_float_flags(
-        g,
-        *((flag_of(name), None, "VALUE", text) for name, text in TOP_HELP.items()),
-        ("--g", None, "M/S2", "gravity (default 9.80665)"),
-        (
-            "--mu-v",
-            None,
-            "S/M",
-            "viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
-            "(default: none, --alpha-v given)",
-        ),
-        ("--mu-k", None, "MU_K", "Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)"),
-    )
+    add_float_flags(g, *((flag_of(name), None, metavar, text) for name, (metavar, text) in TOP_OPTIONS.items()))
     if spin:
         g.add_argument(
             "--spin",
@@ -230,7 +231,7 @@ def top_from_args(args: argparse.Namespace):  # -> Top | None
     from ..top import Top
 
     si = [n for n in TOP_FLAGS if getattr(args, n) is not None]
-    extra = {k: getattr(args, k) for k in ("g", "mu_v", "mu_k") if getattr(args, k) is not None}
+    extra = {k: getattr(args, k) for k in _TOP_EXTRA if getattr(args, k) is not None}
     ways = [f"--preset {args.preset}"] * bool(args.preset) + [f"--top {args.top}"] * bool(args.top)
     ways += [", ".join(map(flag_of, si))] * bool(si)
     if len(ways) > 1:

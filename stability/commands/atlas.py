@@ -19,7 +19,8 @@ from ..linear.spectra import DEFAULT_METHOD, METHODS
 from ..models import get_model
 from ..parameters import PARAMETERS
 from ..products import FLAG_NAMES
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from . import _args
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_switches, add_top_arguments, apply_top
 
 HELP = "eigenvalues of a linear model over a parameter grid -> netCDF"
 DESCRIPTION = (
@@ -52,11 +53,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
     add_top_arguments(p, spin=True, grid=True)
     overwrite = "replace an existing output file (and --plot file)"
     add_output_flags(p, "netCDF file to write (atomically); required", required=True, overwrite=overwrite)
-    p.add_argument(
-        "--mask-unphysical",
-        action="store_true",
-        help="mask grid points outside the physical domain (NaN) instead of refusing the grid",
-    )
+    mask = "mask grid points outside the physical domain (NaN) instead of refusing the grid"
+    add_switches(p, ("--mask-unphysical", mask))
     p.add_argument(
         "--method",
         choices=list(METHODS),
@@ -113,12 +111,11 @@ def arguments(p: argparse.ArgumentParser) -> None:
         metavar="ADDRESS|FILE",
         help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file",
     )
-    g.add_argument(
-        "--resume",
-        action="store_true",
-        help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
+    add_switches(
+        g,
+        ("--resume", "keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run"),
+        ("--no-progress", "no progress bar (default: a bar on a terminal)"),
     )
-    g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
 
 
 def parse_chunks(text: str) -> int | dict[str, int]:
@@ -191,7 +188,8 @@ def _check_space(out, model: str, values: dict) -> None:
     from ..files import check_free_space
     from ..resources import atlas_file_bytes
 
-    check_free_space(out, atlas_file_bytes(get_model(model, warn=False).n_modes, np.prod([np.size(v) for v in values.values()])))
+    points = np.prod([np.size(v) for v in values.values()])
+    check_free_space(out, atlas_file_bytes(get_model(model, warn=False).n_modes, points))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -205,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
-    values = parameter_values(args, PARAMETERS)
+    values = _args.parameter_values(args, PARAMETERS)
     if args.chunks is not None and args.plot:
         raise InputError(
             "--plot is not available with --chunks (the grid may not fit in memory); "
@@ -220,7 +218,7 @@ def run(args: argparse.Namespace) -> int:
     if args.spin is not None:  # a top and its spin: the spin in --unit on the atlas
         from ..recipes import spin_coordinate
 
-        ds = spin_coordinate(ds, parameter_values(args, ("spin",))["spin"], args.unit or "rad/s")
+        ds = spin_coordinate(ds, _args.parameter_values(args, ("spin",))["spin"], args.unit or "rad/s")
     compression = None if args.compression == "none" else args.compression
     layout = dict(variables=args.variables, compression=compression, float32=args.float32)
     if chunks is not None:

@@ -7,7 +7,6 @@ import math
 import os
 import sys
 
-from ..files import check_output_path
 from . import _args
 
 HELP = "integrate a nonlinear model -> netCDF"
@@ -96,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
     from ..resources import format_bytes, simulate_file_bytes
 
     _args.apply_top(args, _NAMES if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"), required=_REQUIRED)
-    out = check_output_path(args.output, overwrite=args.overwrite)
+    out = _args.output_path(args)
     t_end, dt = args.t_end, args.dt
     valid = math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0 and t_end / dt <= 1e8
     if valid:  # else simulate says why

@@ -41,10 +41,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
     add_top_flags(p)
     level = "Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))"
     _args.add_float_flags(p, ("--jellett", None, "J", level))
-    p.add_argument(
-        "--branch",
-        action="store_true",
-        help="trace the branch of tilted states against J instead (--jellett is then not used)",
+    _args.add_switches(
+        p, ("--branch", "trace the branch of tilted states against J instead (--jellett is then not used)")
     )
     cut = "with --branch: where a branch running to J = infinity is cut (default 10 x J at its branch point)"
     step = "with --branch: largest continuation step in (tilt, log precession rate) (default 0.02)"

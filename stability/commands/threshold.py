@@ -9,7 +9,6 @@ from ..models import get_model
 from ..parameters import PARAMETERS
 from ..top import SPIN_UNITS, Top
 from . import _args
-from ._args import flag_of
 
 HELP = "threshold of one parameter, or the critical spin of a real top"
 DESCRIPTION = (
@@ -28,11 +27,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
     spin = " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)"
     _args.add_parameter_flags(p, PARAMETERS, "value", extra={"alpha_v": spin})
     p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
-    p.add_argument(
-        "--all",
-        action="store_true",
-        help="list every threshold in the range (default: the one threshold, an error if there are several)",
-    )
+    every = "list every threshold in the range (default: the one threshold, an error if there are several)"
+    _args.add_switches(p, ("--all", every))
     _args.add_top_arguments(p, spin=False)
     g = p.add_argument_group("PARAM = spin")
     g.add_argument(
@@ -51,7 +47,7 @@ def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
     if args.param == "spin":
         given = [n for n in ("q", "fr_inv", "sigma", "mu", "bracket") if getattr(args, n) is not None]
-        unused = [flag_of(n) for n in given] + ["--all"] * args.all
+        unused = [_args.flag_of(n) for n in given] + ["--all"] * args.all
         if unused:
             raise InputError(
                 f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
@@ -59,7 +55,7 @@ def _refuse_unused(args: argparse.Namespace) -> None:
             )
         return
     top = (*_args.TOP_FLAGS, "g", "mu_k", "preset", "top", "mu_v", "orientation")
-    unused = [flag_of(n) for n in top if getattr(args, n) is not None]
+    unused = [_args.flag_of(n) for n in top if getattr(args, n) is not None]
     if unused:
         raise InputError(
             f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
@@ -77,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
     model = get_model(args.model)
     fixed = {n: getattr(args, n) for n in PARAMETERS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
-        raise InputError(f"{flag_of(args.param)} is the parameter searched; do not give its value")
+        raise InputError(f"{_args.flag_of(args.param)} is the parameter searched; do not give its value")
     bracket = _args.lo_hi(args.bracket, "--bracket")
     if not args.all:
         t = _one_threshold(args.param, model, bracket, 257, fixed)

@@ -13,6 +13,7 @@ integrators of the nonlinear runs. Each line names a step and its time.
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import time
 from collections.abc import Callable
@@ -52,26 +53,20 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
     top = dict(q=-0.1, sigma=1.0, fr_inv=0.3)  # the paper's top (Sec. 3(ii)) for the one-point steps
-    out: list[tuple[str, Callable[[], object], list]] = []
-    for par in (False, True):
-        kind = "parallel" if par else "serial"
-        out += [
-            (
-                f"eigenvalue kernel, sliding model, domain test fused ({kind})",
-                lambda par=par: kernel.checked_model_spectrum("sliding", p, engine="compiled", parallel=par),
-                [(sliding.checked, par)],
-            ),
-            (
-                f"eigenvalue kernel, sliding model, masked ({kind})",
-                lambda par=par: kernel.model_spectrum("sliding", p, engine="compiled", parallel=par),
-                [(sliding.masked, par)],
-            ),
-            (
-                f"eigenvalue kernel on coefficients, other models ({kind})",
-                lambda par=par: kernel.coefficient_spectrum(c, engine="compiled", parallel=par),
-                [(kernel._coefficient_loop, par)],
-            ),
-        ]
+    kernels = (  # (what, the loop compiled, the call that compiles it)
+        ("eigenvalue kernel, sliding model, domain test fused", sliding.checked, kernel.checked_model_spectrum),
+        ("eigenvalue kernel, sliding model, masked", sliding.masked, kernel.model_spectrum),
+        ("eigenvalue kernel on coefficients, other models", kernel._coefficient_loop, kernel.coefficient_spectrum),
+    )
+    out = [
+        (
+            f"{what} ({'parallel' if par else 'serial'})",
+            functools.partial(call, *inputs, engine="compiled", parallel=par),
+            [(loop, par)],
+        )
+        for par in (False, True)
+        for (what, loop, call), inputs in zip(kernels, (("sliding", p), ("sliding", p), (c,)))
+    ]
     quadratic, others = roots.quadratic_roots_many, neutrality._other_roots_many
     sliding_top = dict(top, alpha_v=0.5)
     out += [
