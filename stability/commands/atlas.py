@@ -223,34 +223,31 @@ def run(args: argparse.Namespace) -> int:
     layout = dict(variables=args.variables, compression=compression, float32=args.float32)
     if chunks is not None:
         _check_space(out, args.model, values)
-        print(_summary(out, args.model, ds, _run_chunked(args, out, ds, layout), " in chunks"))
-        return 0
-    if args.plot:
-        from ..plotting import save_figure, style
-
-        with style():
-            fig = plot_figure(ds, args.x)
-        # the figure is written before the netCDF file is committed: a failure to draw or save
-        # it leaves no atlas file behind
-        save_figure(fig, args.plot, overwrite=args.overwrite)
-    if zarr_store or layout != dict(variables="all", compression=None, float32=False):
-        from ..grids.chunked import write_atlas
-
-        write_atlas(ds, out, overwrite=args.overwrite, **layout)
+        counts, how = _run_chunked(args, out, ds, layout), " in chunks"
     else:
-        from ..grids.netcdf import write_dataset
+        if args.plot:
+            from ..plotting import save_figure, style
 
-        write_dataset(ds, out, overwrite=args.overwrite)
-    print(_summary(out, args.model, ds, _counts(ds.stability)))
-    if args.plot:
-        print(f"wrote {args.plot}")
-    return 0
+            with style():
+                fig = plot_figure(ds, args.x)
+            # the figure is written before the netCDF file is committed: a failure to draw or
+            # save it leaves no atlas file behind
+            save_figure(fig, args.plot, overwrite=args.overwrite)
+        if zarr_store or layout != dict(variables="all", compression=None, float32=False):
+            from ..grids.chunked import write_atlas
 
+            write_atlas(ds, out, overwrite=args.overwrite, **layout)
+        else:
+            from ..grids.netcdf import write_dataset
 
-def _summary(out, model: str, ds, counts: dict[str, int], how: str = "") -> str:
-    """The line that says what was written: the model, the grid and the points of each flag."""
+            write_dataset(ds, out, overwrite=args.overwrite)
+        counts, how = _counts(ds.stability), ""
     grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    return f"wrote {out}: {model} model, grid {grid}{how}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
+    summary = ", ".join(f"{v} {k}" for k, v in counts.items() if v)
+    print(
+        f"wrote {out}: {args.model} model, grid {grid}{how}; {summary}" + (f"\nwrote {args.plot}" if args.plot else "")
+    )
+    return 0
 
 
 def _apply_top(args: argparse.Namespace) -> None:

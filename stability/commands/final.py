@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import argparse
 
+from ..products import FLAG_NAMES
 from . import _args
-from .steady import FLAG_NAMES, add_top_flags, apply_top_flags
+from .steady import NAMES, REQUIRED
 
 HELP = "predicted final state of a sliding top (Jellett's integral, or a run)"
 DESCRIPTION = (
@@ -24,7 +25,8 @@ def arguments(p: argparse.ArgumentParser) -> None:
         k="initial symmetry axis, within 1 %% of unit length (normalised)",
         velocity="initial horizontal velocity of the sphere's centre, units of Omega R (default 0,0)",
     )
-    add_top_flags(p)
+    _args.add_parameter_flags(p, NAMES, "value", unless_top=REQUIRED)
+    _args.add_top_arguments(p, spin=True)
     p.add_argument(
         "--no-simulation",
         dest="simulation",
@@ -39,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe final``."""
     from ..steady.final import final_state
 
-    apply_top_flags(args)
+    _args.apply_top(args, NAMES, required=REQUIRED)
     out = _args.output_path(args)
     end = final_state(**_args.keywords(final_state, args))
     print(f"final state: {end.kind}, tilt {end.tilt:.6f} deg (method: {end.method})")

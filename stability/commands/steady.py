@@ -10,10 +10,9 @@ from ..errors import InputError
 from ..products import FLAG_NAMES
 from . import _args
 
-__all__ = ["FLAG_NAMES", "add_top_flags", "apply_top_flags"]
-
-#: the parameters of the sliding top's steady states, and those needed without a top
-_NAMES, _REQUIRED = ("q", "sigma", "fr_inv", "alpha_v", "mu"), ("q", "sigma", "fr_inv", "alpha_v")
+#: the parameters of the sliding top's steady states (a single number each: ``tippe final`` too),
+#: and those needed without a top
+NAMES, REQUIRED = ("q", "sigma", "fr_inv", "alpha_v", "mu"), ("q", "sigma", "fr_inv", "alpha_v")
 
 HELP = "steady (tilted) states on a Jellett level, or the branch of tilted states"
 DESCRIPTION = (
@@ -24,21 +23,10 @@ DESCRIPTION = (
 )
 
 
-def add_top_flags(p: argparse.ArgumentParser) -> None:
-    """``--q``, ``--sigma``, ``--fr-inv``, ``--alpha-v`` (required unless a top is given) and
-    ``--mu`` (single numbers), or a real top in SI units with ``--spin`` (:func:`_args.add_top_arguments`)."""
-    _args.add_parameter_flags(p, _NAMES, "value", unless_top=_REQUIRED)
-    _args.add_top_arguments(p, spin=True)
-
-
-def apply_top_flags(args: argparse.Namespace) -> None:
-    """The nondimensional parameters from the flags or from the top and its spin (:func:`_args.apply_top`)."""
-    _args.apply_top(args, _NAMES, required=_REQUIRED)
-
-
 def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe steady``."""
-    add_top_flags(p)
+    _args.add_parameter_flags(p, NAMES, "value", unless_top=REQUIRED)
+    _args.add_top_arguments(p, spin=True)
     level = "Jellett's integral of the level (default: the upright spin 1, J = sigma (1 + q))"
     _args.add_float_flags(p, ("--jellett", None, "J", level))
     _args.add_switches(
@@ -59,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--jellett is not used with --branch (the branch runs over J); give one of them")
     if not args.branch and (args.jellett_max is not None or args.max_step != 0.02):
         raise InputError("--jellett-max and --max-step are only used with --branch")
-    apply_top_flags(args)
+    _args.apply_top(args, NAMES, required=REQUIRED)
     out = _args.output_path(args)
     if args.branch:
         ds = steady_branch(**_args.keywords(steady_branch, args))
