@@ -362,11 +362,6 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in grid.items() if k in MODELS[model].parameters}
 
 
-def _read(path: Path) -> xr.Dataset:
-    with xr.open_dataset(path) as ds:
-        return ds.load()
-
-
 #: the datasets each steady kind writes (the first is <name>.nc, the others <name>_<key>.nc)
 _STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("classes",), "settle": ("run",)}
 
@@ -375,24 +370,26 @@ def _datasets(recipe: Recipe) -> dict[str, tuple[Path, Callable[[], xr.Dataset],
     """Every dataset of ``recipe``: its key (in :func:`compute`'s result) -> its path, the call
     that makes it and the call that reads it back; the one list of what a recipe writes."""
 
+    read = xr.load_dataset  # each dataset but the atlases (open_atlas checks what it reads)
+
     def beside(key: str) -> Path:
         return recipe.path.with_name(f"{recipe.name}_{key}.nc")
 
     if recipe.kind in STEADY_KINDS:  # one call makes every part
         parts, made = _STEADY_PARTS[recipe.kind], functools.cache(lambda: _STEADY_MAKERS[recipe.kind](recipe))
-        return {k: (recipe.dataset_path if k == parts[0] else beside(k), lambda k=k: made()[k], _read) for k in parts}
+        return {k: (recipe.dataset_path if k == parts[0] else beside(k), lambda k=k: made()[k], read) for k in parts}
     if recipe.kind == "critical_spin":
-        return {recipe.model: (recipe.dataset_path, lambda: critical_spin_dataset(recipe), _read)}
+        return {recipe.model: (recipe.dataset_path, lambda: critical_spin_dataset(recipe), read)}
     if recipe.kind == "scene":  # the run's label in its attributes (what the figure's legend shows)
         runs = scene_runs(recipe.figure or "").items()
-        return {k: (beside(k), lambda m=make, t=label: m().assign_attrs(label=t), _read) for k, (label, make) in runs}
+        return {k: (beside(k), lambda m=make, t=label: m().assign_attrs(label=t), read) for k, (label, make) in runs}
     out = {}
     for model in recipe.models():
         path = recipe.dataset_path if recipe.kind != "models" else beside(model)
         out[model] = (path, functools.partial(_atlas, recipe, model), open_atlas)
         if recipe.neutral:
             neutral = path.with_name(path.stem + "_neutral.nc")
-            out[f"{model}_neutral"] = (neutral, functools.partial(_neutral, recipe, model), _read)
+            out[f"{model}_neutral"] = (neutral, functools.partial(_neutral, recipe, model), read)
     return out
 
 
