@@ -362,10 +362,6 @@ def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in grid.items() if k in MODELS[model].parameters}
 
 
-#: the datasets each steady kind writes (the first is <name>.nc, the others <name>_<key>.nc)
-_STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("classes",), "settle": ("run",)}
-
-
 def _datasets(recipe: Recipe) -> dict[str, tuple[Path, Callable[[], xr.Dataset], Callable[[Path], xr.Dataset]]]:
     """Every dataset of ``recipe``: its key (in :func:`compute`'s result) -> its path, the call
     that makes it and the call that reads it back; the one list of what a recipe writes."""
@@ -376,7 +372,8 @@ def _datasets(recipe: Recipe) -> dict[str, tuple[Path, Callable[[], xr.Dataset],
         return recipe.path.with_name(f"{recipe.name}_{key}.nc")
 
     if recipe.kind in STEADY_KINDS:  # one call makes every part
-        parts, made = _STEADY_PARTS[recipe.kind], functools.cache(lambda: _STEADY_MAKERS[recipe.kind](recipe))
+        parts, maker = _STEADY[recipe.kind]
+        made = functools.cache(lambda: maker(recipe))
         return {k: (recipe.dataset_path if k == parts[0] else beside(k), lambda k=k: made()[k], read) for k in parts}
     if recipe.kind == "critical_spin":
         return {recipe.model: (recipe.dataset_path, lambda: critical_spin_dataset(recipe), read)}
@@ -648,8 +645,10 @@ def settle_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
     return {"run": run}
 
 
-_STEADY_MAKERS: dict[str, Callable[[Recipe], dict[str, xr.Dataset]]] = {
-    "bifurcation": bifurcation_datasets,
-    "classes": classes_dataset,
-    "settle": settle_dataset,
+#: each steady kind: the datasets it writes (the first is <name>.nc, the others <name>_<key>.nc)
+#: and the call that makes them all
+_STEADY: dict[str, tuple[tuple[str, ...], Callable[[Recipe], dict[str, xr.Dataset]]]] = {
+    "bifurcation": (("branch", "vertical", "runs"), bifurcation_datasets),
+    "classes": (("classes",), classes_dataset),
+    "settle": (("run",), settle_dataset),
 }
