@@ -156,20 +156,19 @@ def table(row: str, header: Iterable[str], rows: Iterable[Iterable]) -> list[str
 # a real top in SI units instead of the nondimensional parameters (docs/your_top.md)
 # ------------------------------------------------------------------------------------------
 #: the options of a real top: its SI data (Top's constructor keywords, in its order), then
-#: gravity and the friction coefficients; each with its metavar and help
+#: gravity and the friction coefficients; each with its help (and metavar, VALUE unless said)
 TOP_OPTIONS = {
-    "mass": ("VALUE", "mass M, kg"),
-    "radius": ("VALUE", "radius R of the sphere, m"),
-    "com_offset": ("VALUE", "offset d of G from the sphere's centre along the axis, m (d < 0: G below)"),
-    "inertia_transverse": ("VALUE", "transverse moment of inertia about G, A_G, kg m^2"),
-    "inertia_axial": ("VALUE", "axial moment of inertia C, kg m^2"),
-    "g": ("M/S2", "gravity (default 9.80665)"),
-    "mu_v": (
-        "S/M",
-        "viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) (default: none, --alpha-v given)",
-    ),
-    "mu_k": ("MU_K", "Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)"),
+    "mass": "mass M, kg",
+    "radius": "radius R of the sphere, m",
+    "com_offset": "offset d of G from the sphere's centre along the axis, m (d < 0: G below)",
+    "inertia_transverse": "transverse moment of inertia about G, A_G, kg m^2",
+    "inertia_axial": "axial moment of inertia C, kg m^2",
+    "g": "gravity (default 9.80665)",
+    "mu_v": "viscous friction coefficient mu_v, s/m: alpha_v = mu mu_v g / Omega (eq. 7) "
+    "(default: none, --alpha-v given)",
+    "mu_k": "Coulomb friction coefficient mu_K: alpha_k = mu Fr^-1 mu_K (eq. 7) (default: none)",
 }
+_METAVARS = {"g": "M/S2", "mu_v": "S/M", "mu_k": "MU_K"}
 TOP_FLAGS, _TOP_EXTRA = tuple(TOP_OPTIONS)[:5], tuple(TOP_OPTIONS)[5:]
 #: the parameters a top gives whatever the spin (eq. 3)
 TOP_PARAMETERS = ("q", "sigma", "mu")
@@ -206,7 +205,7 @@ def add_top_arguments(p: argparse.ArgumentParser, spin: bool = True, *, grid: bo
         help="a TOML file with a [top] table: mass, radius, com_offset, inertia_transverse, "
         'inertia_axial (SI), optional g, mu_v, mu_k, or preset = "table1"',
     )
-    add_float_flags(g, *((flag_of(name), None, metavar, text) for name, (metavar, text) in TOP_OPTIONS.items()))
+    add_float_flags(g, *((flag_of(n), None, _METAVARS.get(n, "VALUE"), text) for n, text in TOP_OPTIONS.items()))
     if spin:
         g.add_argument(
             "--spin",

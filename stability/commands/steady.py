@@ -55,9 +55,8 @@ def run(args: argparse.Namespace) -> int:
         if n == 0:
             print(f"no tilted steady states: {ds.attrs.get('note', '')}")
         else:
-            print(
-                f"branch of tilted states: {n} points, from the {ds.attrs['start']} branch point (ends: {ds.attrs['ends']})"
-            )
+            start, ends = ds.attrs["start"], ds.attrs["ends"]
+            print(f"branch of tilted states: {n} points, from the {start} branch point (ends: {ends})")
             columns = (ds[v].values for v in ("kind", "tilt", "jellett", "precession_rate", "stability", "detail"))
             rows = [(str(k), t, j, w, FLAG_NAMES[int(s)], d) for k, t, j, w, s, d in zip(*columns) if k != "regular"]
             header = ("kind", "tilt (deg)", "J", "precession", "stability", "detail")
