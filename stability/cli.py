@@ -32,7 +32,9 @@ of :data:`KEYWORD_FLAGS` is followed by its flag when the command has it (``pass
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import itertools
 import os
 import re
 import sys
@@ -43,37 +45,27 @@ from typing import NoReturn
 __all__ = ["COMMANDS", "EXIT_FAILURE", "EXIT_INTERRUPTED", "EXIT_USAGE", "KEYWORD_FLAGS", "main", "render_message"]
 
 #: subcommand modules under stability.commands, in the order ``tippe --help`` lists them
-COMMANDS: tuple[str, ...] = (
-    "atlas",
-    "figures",
-    "simulate",
-    "validate",
-    "neutral",
-    "threshold",
-    "steady",
-    "final",
-    "launch",
-    "warmup",
-)
+COMMANDS = ("atlas", "figures", "simulate", "validate", "neutral", "threshold", "steady", "final", "launch", "warmup")
 
 #: exit statuses: bad input or file (2), a failed computation or a bug (1), interrupted (130)
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED = 2, 1, 130
 
 _NEGATIVE_VALUE = re.compile(r"^-[\d.]")
 
-#: library keyword -> the flag of ``tippe`` that sets it: the one table by which the error line
-#: shows a library message's ``keyword=value`` with its flag (:func:`render_message`)
+#: library keyword -> the flag of ``tippe`` that sets it (its argparse ``dest`` is the keyword):
+#: the one table by which the error line shows a library message's ``keyword=value`` with its
+#: flag (:func:`render_message`)
 KEYWORD_FLAGS: dict[str, str] = {
-    "overwrite": "--overwrite",
-    "mask_unphysical": "--mask-unphysical",
-    "force": "--force",
-    "resume": "--resume",
-    "workers": "--workers",
-    "scheduler": "--scheduler",
-    "chunks": "--chunks",
+    k: "--" + k.replace("_", "-")
+    for k in ("overwrite", "mask_unphysical", "force", "resume", "workers", "scheduler", "chunks")
 }
 
 _KEYWORD_VALUE = re.compile(r"\b(" + "|".join(KEYWORD_FLAGS) + r")=[^\s,;)]+")
+#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``
+_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|and [\w-]+ must) )"
+_AS_BOUND = r"((?:<=|<|>=|>) )({kw})(?![\w(])"
+#: the neutral curve's library phrase for a parameter that must be held fixed
+_FIXED_MUST_GIVE = re.compile(r"\bfixed must give (\w+)")
 
 
 def render_message(text: str, flags: Collection[str] | None = None) -> str:
@@ -81,13 +73,19 @@ def render_message(text: str, flags: Collection[str] | None = None) -> str:
     :data:`KEYWORD_FLAGS` is followed by the flag, ``"pass overwrite=True (--overwrite) to
     replace it"``.
 
+    With the flags of the command that failed (``flags``), a keyword whose flag the command
+    does not have is left as it is, and the parameters the message names as a value or a bound
+    become the command's flags: ``alpha_v = 2 is outside ...: 0 <= alpha_v`` -> ``--alpha-v = 2
+    ...: 0 <= --alpha-v``; the neutral curve's ``fixed must give fr_inv`` -> ``give --fr-inv``.
+    Formulas (``1 - mu q^2``) are left as they are: only a name beside ``=`` or a comparison is
+    a parameter's value or bound.
+
     Parameters
     ----------
     text : str
         The message (it names keywords, never flags).
     flags : collection of str, optional
-        The flags of the command that failed: a keyword whose flag the command does not have
-        is left as it is. None: every flag of the table.
+        The flags of the command that failed. None: every flag of the table, no parameter flags.
 
     Returns
     -------
@@ -96,50 +94,18 @@ def render_message(text: str, flags: Collection[str] | None = None) -> str:
 
     def with_flag(m: re.Match[str]) -> str:
         flag = KEYWORD_FLAGS[m.group(1)]
-        if (flags is not None and flag not in flags) or flag in text:
-            return m.group(0)
-        return f"{m.group(0)} ({flag})"
+        return m.group(0) if (flags is not None and flag not in flags) or flag in text else f"{m.group(0)} ({flag})"
 
     text = _KEYWORD_VALUE.sub(with_flag, text)
-    return _parameters_as_flags(text, flags) if flags is not None else text
-
-
-#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``
-_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|and [\w-]+ must) )"
-_AS_BOUND = r"((?:<=|<|>=|>) )({kw})(?![\w(])"
-#: the neutral curve's library phrase for a parameter that must be held fixed
-_FIXED_MUST_GIVE = re.compile(r"\bfixed must give (\w+)")
-
-
-def _parameters_as_flags(text: str, flags: Collection[str]) -> str:
-    """``alpha_v = 2 is outside ...: 0 <= alpha_v`` -> ``--alpha-v = 2 ...: 0 <= --alpha-v``, for
-    the keywords whose flag (``--`` and the keyword with dashes) the command has; the library's
-    ``fixed must give fr_inv`` (the neutral curve's ``fixed=`` dict) -> ``give --fr-inv``.
-    Formulas (``1 - mu q^2``) are left as they are: only a name beside ``=`` or a comparison
-    is a parameter's value or bound."""
-
-    def flag_of(kw: str) -> str | None:
-        flag = "--" + kw.replace("_", "-")
-        return flag if flag in flags else None
-
-    def fixed(m: re.Match[str]) -> str:
-        flag = flag_of(m.group(1))
-        return f"give {flag}" if flag else m.group(0)
-
-    text = _FIXED_MUST_GIVE.sub(fixed, text)
-    for kw in {f[2:].replace("-", "_") for f in flags if f.startswith("--")}:
-        flag = flag_of(kw)
-        if flag is None or kw not in text:
-            continue
-        for pattern in (_AS_VALUE, _AS_BOUND):
-            text = re.sub(pattern.format(kw=re.escape(kw)), lambda m, f=flag: m.group(1) + f, text)
+    if flags is None:
+        return text
+    given = {flag[2:].replace("-", "_"): flag for flag in flags if flag.startswith("--")}
+    text = _FIXED_MUST_GIVE.sub(lambda m: f"give {given[m[1]]}" if m[1] in given else m[0], text)
+    for kw, flag in given.items():
+        if kw in text:
+            for pattern in (_AS_VALUE, _AS_BOUND):
+                text = re.sub(pattern.format(kw=re.escape(kw)), lambda m, f=flag: m.group(1) + f, text)
     return text
-
-
-def _command_flags(parser: argparse.ArgumentParser, command: str) -> set[str]:
-    """The option strings of the subcommand ``command`` of the ``tippe`` parser."""
-    sub = parser._subcommand(command)
-    return set(sub._options()) if sub is not None else set()
 
 
 class HelpFormatter(argparse.HelpFormatter):
@@ -147,12 +113,10 @@ class HelpFormatter(argparse.HelpFormatter):
     names it or there is none to show (None, a flag that is off)."""
 
     def _get_help_string(self, action: argparse.Action) -> str:
-        text = action.help or ""
-        default = action.default
+        text, default = action.help or "", action.default
         if (
             "default" in text
-            or default is None
-            or default is argparse.SUPPRESS
+            or default in (None, argparse.SUPPRESS)
             or isinstance(default, bool)
             or not action.option_strings
         ):
@@ -160,9 +124,16 @@ class HelpFormatter(argparse.HelpFormatter):
         return f"{text} (default: %(default)s)"
 
 
+def _option_tokens(args: Sequence[str]) -> list[str]:
+    """The options (``--name``, without ``=value``) among ``args``, up to ``--``."""
+    tokens = itertools.takewhile(lambda a: a != "--", args)
+    return [a.split("=", 1)[0] for a in tokens if a.startswith("-") and len(a) > 1 and not _NEGATIVE_VALUE.match(a)]
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse with errors on one line (``prog: error: message``), without the usage block;
-    every option's default shown in its help (:class:`HelpFormatter`)."""
+    every option's default shown in its help (:class:`HelpFormatter`); arguments it does not
+    know reported by the subcommand that got them, with its help and ``did you mean``."""
 
     def __init__(self, *args, **kwargs) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
@@ -172,44 +143,31 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
 
     def parse_args(self, args=None, namespace=None):
-        """As argparse's, but arguments left over are reported by the subcommand that got them
-        (its own help and ``did you mean``), not by ``tippe``."""
+        """As argparse's, but arguments left over are reported by the subcommand that got them."""
         ns, extras = self.parse_known_args(args, namespace)
         if extras:
-            sub = self._subcommand(getattr(ns, "command", None))
-            (sub or self).unrecognized(extras)
+            (self._subcommand(getattr(ns, "command", None)) or self).unrecognized(extras)
         return ns
 
     def parse_known_args(self, args=None, namespace=None):
         """A subcommand checks its options first: a mistyped one is reported before a missing
         required one (``tippe final --alpha_v 0.5``: did you mean --alpha-v)."""
         if self._subparsers is None and args is not None:
-            unknown = [a for a in self._option_tokens(args) if not self._known_option(a)]
+            unknown = [a for a in _option_tokens(args) if not self._known_option(a)]
             if unknown:
                 self.unrecognized(unknown)
         return super().parse_known_args(args, namespace)
 
     def _subcommand(self, command: str | None) -> _Parser | None:
-        for action in self._actions:
-            if isinstance(action, argparse._SubParsersAction) and command in action.choices:
-                return action.choices[command]
-        return None
+        actions = [a for a in self._actions if isinstance(a, argparse._SubParsersAction)]
+        return next((a.choices[command] for a in actions if command in a.choices), None)
 
-    @staticmethod
-    def _option_tokens(args: Sequence[str]) -> list[str]:
-        out = []
-        for a in args:
-            if a == "--":
-                break
-            if a.startswith("-") and len(a) > 1 and not _NEGATIVE_VALUE.match(a):
-                out.append(a.split("=", 1)[0])
-        return out
-
-    def _options(self) -> list[str]:
+    def options(self) -> list[str]:
+        """Every option string of the parser."""
         return [s for a in self._actions for s in a.option_strings]
 
     def _known_option(self, token: str) -> bool:
-        opts = self._options()
+        opts = self.options()
         return token in opts or (token.startswith("--") and any(o.startswith(token) for o in opts))
 
     def unrecognized(self, extras: Sequence[str]) -> NoReturn:
@@ -217,13 +175,12 @@ class _Parser(argparse.ArgumentParser):
         arguments and, for a mistyped option, the closest one (``difflib``)."""
         import difflib
 
-        opts = [o for o in self._options() if o.startswith("--")]
+        opts = [o for o in self.options() if o.startswith("--")]
         hints = []
-        for tok in self._option_tokens(extras):
-            if not self._known_option(tok):
-                close = difflib.get_close_matches(tok.replace("_", "-").lower(), opts, n=1, cutoff=0.6)
-                if close:
-                    hints.append(f"did you mean {close[0]} (for {tok})?")
+        for tok in _option_tokens(extras):
+            close = difflib.get_close_matches(tok.replace("_", "-").lower(), opts, n=1, cutoff=0.6)
+            if close and not self._known_option(tok):
+                hints.append(f"did you mean {close[0]} (for {tok})?")
         sys.stderr.write(self.format_help() + "\n")
         self.error(f"unrecognized arguments: {' '.join(extras)}" + (f"; {' '.join(hints)}" if hints else ""))
 
@@ -235,15 +192,11 @@ def _one_line(text: str) -> str:
 def _join_negative_values(argv: list[str]) -> list[str]:
     """Turn ``--q -0.6:0.6:241`` into ``--q=-0.6:0.6:241`` (argparse would take it for an option)."""
     out: list[str] = []
-    i = 0
-    while i < len(argv):
-        a = argv[i]
-        if a.startswith("--") and "=" not in a and i + 1 < len(argv) and _NEGATIVE_VALUE.match(argv[i + 1]):
-            out.append(f"{a}={argv[i + 1]}")
-            i += 2
-            continue
-        out.append(a)
-        i += 1
+    for a in argv:
+        if out and out[-1].startswith("--") and "=" not in out[-1] and _NEGATIVE_VALUE.match(a):
+            out[-1] += "=" + a
+        else:
+            out.append(a)
     return out
 
 
@@ -251,26 +204,20 @@ def build_parser() -> argparse.ArgumentParser:
     """The ``tippe`` parser with every registered subcommand."""
     from ._version import package_version
 
-    ver = package_version()
     parser = _Parser(
         prog="tippe",
         description="Linear stability and bifurcation analysis of the Tippe top.",
         epilog="Errors are reported on one line; add --debug (or set TIPPE_DEBUG=1) for a traceback.",
     )
-    parser.add_argument("--version", action="version", version=f"tippe-stability {ver}")
+    parser.add_argument("--version", action="version", version=f"tippe-stability {package_version()}")
     parser.add_argument("--debug", action="store_true", help="show the traceback of any error")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    sub.required = True
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser, required=True)
     for name in COMMANDS:
         command = importlib.import_module(f"stability.commands.{name}")
         p = sub.add_parser(name, help=command.HELP, description=command.DESCRIPTION)
         command.arguments(p)
         p.set_defaults(func=command.run)
     return parser
-
-
-def _debug_env() -> bool:
-    return os.environ.get("TIPPE_DEBUG", "").strip().lower() not in ("", "0", "no", "false")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -315,35 +262,24 @@ def _interrupted(prog: str, text: str | None) -> int:
     return EXIT_INTERRUPTED
 
 
-def _reader_gone(fd: int) -> bool:
-    """True if ``fd`` is the write end of a pipe whose reader has closed it (``poll`` reports
-    POLLERR): the failed write's data may have been dropped from the buffer, so a flush alone
-    does not tell."""
+def _stdout_broken() -> bool:
+    """True if stdout is a pipe whose reader has closed it (``poll`` reports POLLERR: the failed
+    write's data may have been dropped from the buffer, so a flush alone does not tell); stdout
+    is then sent to devnull so that the interpreter's final flush does not complain."""
     import select
 
-    if not hasattr(select, "poll"):  # pragma: no cover - not POSIX
-        return False
-    poller = select.poll()
-    poller.register(fd, select.POLLOUT)
-    return any(ev & select.POLLERR for _, ev in poller.poll(0))
-
-
-def _stdout_broken() -> bool:
-    """True if stdout is a closed pipe (the reader went away); stdout is then sent to devnull so
-    that the interpreter's final flush does not complain."""
     try:
         sys.stdout.flush()
-        if not _reader_gone(sys.stdout.fileno()):
+        poller = select.poll()  # not on every platform: AttributeError, not broken
+        poller.register(sys.stdout.fileno(), select.POLLOUT)
+        if not any(ev & select.POLLERR for _, ev in poller.poll(0)):
             return False
     except BrokenPipeError:
         pass
     except (OSError, ValueError, AttributeError):
         return False
-    try:
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError, AttributeError):
-        pass
+    with contextlib.suppress(OSError, ValueError, AttributeError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return True
 
 
@@ -353,7 +289,8 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
     from .errors import Interrupted, TippeError
 
     args_list = list(sys.argv[1:] if argv is None else argv)
-    debug = "--debug" in args_list or _debug_env()
+    env = os.environ.get("TIPPE_DEBUG", "").strip().lower()
+    debug = "--debug" in args_list or env not in ("", "0", "no", "false")
     args_list = _join_negative_values([a for a in args_list if a != "--debug"])
     prog, flags = "tippe", None
     try:
@@ -361,7 +298,7 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         args = parser.parse_args(args_list)
         prog = f"tippe {args.command}"
         interrupts.run.label = prog
-        flags = _command_flags(parser, args.command)
+        flags = set(parser._subcommand(args.command).options())
         interrupts.checkpoint()  # a signal during start-up
         with warnings.catch_warnings():
             _model_name_warnings_as_lines(prog)
@@ -369,14 +306,6 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         if interrupts.received():  # after the last safe point: the command had finished
             return _interrupted(prog, None)
         return status
-    except Interrupted as exc:
-        if debug:
-            raise
-        return _interrupted(prog, str(exc))
-    except KeyboardInterrupt:
-        if debug:
-            raise
-        return _interrupted(prog, None)
     except BrokenPipeError:
         if not _stdout_broken():
             print(f"{prog}: error: broken pipe", file=sys.stderr)
@@ -390,22 +319,22 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
             )
             return 0
         return EXIT_FAILURE
-    except (ValueError, TypeError, OSError, TippeError, ConvergenceError) as exc:
+    except (Interrupted, KeyboardInterrupt, Exception) as exc:
         if debug:
             raise
+        if isinstance(exc, (Interrupted, KeyboardInterrupt)):
+            return _interrupted(prog, str(exc) if isinstance(exc, Interrupted) else None)
+        if not isinstance(exc, (ValueError, TypeError, OSError, TippeError, ConvergenceError)):  # a bug: one line
+            print(
+                f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+                "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)",
+                file=sys.stderr,
+            )
+            return EXIT_FAILURE
         print(f"{prog}: error: {render_message(_one_line(exc), flags)}", file=sys.stderr)
         # bad input (every InputError is a ValueError) or a file: 2; a failure to compute
         # (ChunkError, ConvergenceError, any other TippeError): 1
         return EXIT_USAGE if isinstance(exc, (ValueError, TypeError, OSError)) else EXIT_FAILURE
-    except Exception as exc:  # a bug: still one line unless asked
-        if debug:
-            raise
-        print(
-            f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
-            "(rerun with --debug or TIPPE_DEBUG=1 for the traceback)",
-            file=sys.stderr,
-        )
-        return EXIT_FAILURE
 
 
 def _model_name_warnings_as_lines(prog: str) -> None:

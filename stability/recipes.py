@@ -94,21 +94,13 @@ from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
-from .top import PRESETS
+from .top import PRESETS, SPIN_UNITS, Top
 
-__all__ = [
-    "KINDS",
-    "Recipe",
-    "check_outputs",
-    "compute",
-    "find_recipes",
-    "load_recipe",
-    "output_paths",
-]
+__all__ = ["KINDS", "Recipe", "check_outputs", "compute", "find_recipes", "load_recipe", "output_paths"]
 
 #: what a recipe can draw
 KINDS = ("lines", "map", "models", "scene", "critical_spin", "bifurcation", "classes", "settle")
-#: the steady-state kinds (their own loader, compute and outputs below)
+#: the steady-state kinds (their own loader and makers below)
 STEADY_KINDS = ("bifurcation", "classes", "settle")
 #: the paper's nonlinear figures a scene recipe can draw
 SCENE_FIGURES = ("fig5", "fig6", "fig7", "fig8", "fig9")
@@ -181,30 +173,45 @@ def code_fingerprint() -> str:
     return h.hexdigest()
 
 
+def _check(ok: Any, message: str) -> None:
+    """A :class:`RecipeError` with ``message`` (it names the file and the key) unless ``ok``."""
+    if not ok:
+        raise RecipeError(message)
+
+
 def _grid_value(path: Path, key: str, value: Any) -> float | np.ndarray:
-    if isinstance(value, bool):
-        raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
-    if isinstance(value, (int, float)):
-        return float(value)
-    if isinstance(value, list):
-        try:
-            return np.array([float(v) for v in value])
-        except (TypeError, ValueError):
-            raise RecipeError(f"{path}: grid.{key} = {value!r} is not a list of numbers") from None
     if isinstance(value, str):
         try:
             return parse_values(value, name=f"grid.{key}")
         except ValueError as exc:
             raise RecipeError(f"{path}: {exc}") from None
-    raise RecipeError(f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'")
+    if isinstance(value, list):
+        try:
+            return np.array([float(v) for v in value])
+        except (TypeError, ValueError):
+            raise RecipeError(f"{path}: grid.{key} = {value!r} is not a list of numbers") from None
+    _check(
+        isinstance(value, (int, float)) and not isinstance(value, bool),
+        f"{path}: grid.{key} = {value!r} is not a number, a list or 'start:stop:num'",
+    )
+    return float(value)
 
 
 def _one_of(p: Path, raw: dict[str, Any], key: str, default: Any, choices: Sequence[str]) -> Any:
     """The recipe's ``key`` (``default`` if absent), or a :class:`RecipeError` naming the choices."""
     value = raw.get(key, default)
-    if value not in choices:
-        raise RecipeError(f"{p}: {key} = {value!r} is not one of {', '.join(choices)}")
+    _check(value in choices, f"{p}: {key} = {value!r} is not one of {', '.join(choices)}")
     return value
+
+
+def _grid(p: Path, raw: dict[str, Any], allowed: Sequence[str], refusal: str) -> dict[str, Any]:
+    """The ``[grid]`` table read (:func:`_grid_value`); a key outside ``allowed`` is refused with
+    ``refusal`` (formatted with the allowed and the refused keys)."""
+    grid_raw = raw.get("grid", {})
+    _check(isinstance(grid_raw, dict), f"{p}: [grid] must be a table of parameter values")
+    bad = ", ".join(sorted(set(grid_raw) - set(allowed)))
+    _check(not bad, f"{p}: " + refusal.format(allowed=", ".join(allowed), bad=bad))
+    return {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
 
 
 def load_recipe(path: str | Path) -> Recipe:
@@ -217,105 +224,75 @@ def load_recipe(path: str | Path) -> Recipe:
         names the file and the key.
     """
     p = Path(path)
-    if not p.is_file():
-        raise RecipeError(f"recipe {str(p)!r} does not exist")
+    _check(p.is_file(), f"recipe {str(p)!r} does not exist")
     raw_bytes = p.read_bytes()
     try:
         raw = tomllib.loads(raw_bytes.decode())
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise RecipeError(f"{p}: not valid TOML ({exc})") from None
-    unknown = set(raw) - _KEYS
-    if unknown:
-        raise RecipeError(f"{p}: unknown keys {', '.join(sorted(unknown))} (allowed: {', '.join(sorted(_KEYS))})")
+    unknown = ", ".join(sorted(set(raw) - _KEYS))
+    _check(not unknown, f"{p}: unknown keys {unknown} (allowed: {', '.join(sorted(_KEYS))})")
     for key in ("title", "kind"):
-        if key not in raw:
-            raise RecipeError(f"{p}: the key {key!r} is required")
+        _check(key in raw, f"{p}: the key {key!r} is required")
     kind = _one_of(p, raw, "kind", None, KINDS)
     digest = hashlib.sha256(raw_bytes + code_fingerprint().encode()).hexdigest()[:16]
     top = _load_top(p, raw, kind)
     common = dict(path=p, title=str(raw["title"]), kind=kind, caption=str(raw.get("caption", "")), digest=digest)
     if kind == "scene":
         figure = _one_of(p, raw, "figure", None, SCENE_FIGURES)
-        if "grid" in raw:
-            raise RecipeError(f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
+        _check("grid" not in raw, f"{p}: a scene recipe has no [grid] (its runs are those of Sec. 3(ii))")
         return Recipe(**common, model="sliding", grid={}, figure=figure)
     if kind in STEADY_KINDS:
         return _load_steady(p, raw, kind, common, top)
-    if "grid" not in raw:
-        raise RecipeError(f"{p}: the key 'grid' is required")
+    _check("grid" in raw, f"{p}: the key 'grid' is required")
     model = raw.get("model", "sliding")
     try:  # a recipe's model is a public lookup: "rolling" warns once, a deprecated name is mapped
         model = get_model(model).name
     except ValueError:
         raise RecipeError(f"{p}: model = {model!r} is not one of {', '.join(MODELS)}") from None
+    x = raw.get("x", "q")
+    common.update(model=model, x=x, top=top)
     if kind == "critical_spin":
         preset = None if top is not None else _one_of(p, raw, "preset", "table1", PRESETS)
-        x = raw.get("x", "q")
-        if x not in ("q", "sigma") or set(raw["grid"]) != {x}:
-            raise RecipeError(f"{p}: a critical_spin recipe varies one of q, sigma: [grid] must hold only x = {x!r}")
-        grid = {x: _grid_value(p, x, raw["grid"][x])}
-        if np.ndim(grid[x]) != 1:
-            raise RecipeError(f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
-        return Recipe(**common, model=model, grid=grid, x=x, figure=preset, top=top)
-    grid_raw = raw["grid"]
-    if not isinstance(grid_raw, dict):
-        raise RecipeError(f"{p}: [grid] must be a table of parameter values")
-    bad = set(grid_raw) - set(PARAMETERS)
-    if bad:
-        raise RecipeError(
-            f"{p}: grid has unknown parameters {', '.join(sorted(bad))} (allowed: {', '.join(PARAMETERS)})"
+        _check(
+            x in ("q", "sigma") and set(raw["grid"]) == {x},
+            f"{p}: a critical_spin recipe varies one of q, sigma: [grid] must hold only x = {x!r}",
         )
-    grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
-    spin, unit = _top_grid(p, raw, top, grid, model)
+        grid = {x: _grid_value(p, x, raw["grid"][x])}
+        _check(np.ndim(grid[x]) == 1, f"{p}: {x!r} must be a 1-D grid (a list or 'start:stop:num')")
+        return Recipe(**common, grid=grid, figure=preset)
+    grid = _grid(p, raw, PARAMETERS, "grid has unknown parameters {bad} (allowed: {allowed})")
+    spin, unit = _top_grid(p, raw, top, grid)
     quantities = tuple(raw.get("quantities", ["growth_rate"]))
     for qn in quantities:
-        if qn not in QUANTITIES:
-            raise RecipeError(f"{p}: quantities has {qn!r}, not one of {', '.join(QUANTITIES)}")
+        _check(qn in QUANTITIES, f"{p}: quantities has {qn!r}, not one of {', '.join(QUANTITIES)}")
     arrays = [k for k, v in grid.items() if np.ndim(v) == 1]
-    x, y, family = raw.get("x", "q"), raw.get("y"), raw.get("family")
+    y, family = raw.get("y"), raw.get("family")
     wanted = {"lines": [x] + ([family] if family else []), "map": [x, y], "models": [x, y]}[kind]
     for name in wanted:
-        if name is None:
-            raise RecipeError(f"{p}: kind = {kind!r} needs the key 'y'")
-        if name not in arrays:
-            raise RecipeError(f"{p}: {name!r} must be a 1-D grid (a list or 'start:stop:num') for kind = {kind!r}")
-    if sorted(arrays) != sorted(wanted):
-        raise RecipeError(
-            f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws ({', '.join(wanted)})"
-        )
-    return Recipe(
-        **common,
-        model=model,
-        grid=grid,
-        mask_unphysical=bool(raw.get("mask_unphysical", True)),
-        x=x,
-        y=y,
-        family=family,
-        neutral=bool(raw.get("neutral", False)),
-        quantities=quantities,
-        top=top,
-        spin=spin,
-        unit=unit,
+        _check(name is not None, f"{p}: kind = {kind!r} needs the key 'y'")
+        _check(name in arrays, f"{p}: {name!r} must be a 1-D grid (a list or 'start:stop:num') for kind = {kind!r}")
+    _check(
+        sorted(arrays) == sorted(wanted),
+        f"{p}: grid dimensions {', '.join(arrays)} do not match what kind = {kind!r} draws ({', '.join(wanted)})",
     )
+    flags = {k: bool(raw.get(k, k == "mask_unphysical")) for k in ("mask_unphysical", "neutral")}
+    return Recipe(**common, **flags, grid=grid, y=y, family=family, quantities=quantities, spin=spin, unit=unit)
 
 
 def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
     """The recipe's ``[top]`` table as a :class:`stability.Top` (None without one); a ``[top]``
     beside ``preset``, or on a kind that takes no top, is refused; so are ``spin`` and ``unit``
     without a ``[top]``."""
-    from .top import Top
-
     if "top" not in raw:
-        if "spin" in raw:
-            raise RecipeError(f"{p}: spin = {raw['spin']!r} needs a [top] table (the top's SI data)")
+        _check("spin" not in raw, f"{p}: spin = {raw.get('spin')!r} needs a [top] table (the top's SI data)")
         return None
-    if kind not in ("lines", "map", "models", "critical_spin", "bifurcation"):
-        raise RecipeError(f"{p}: a {kind} recipe takes no [top] table")
-    if "preset" in raw:
-        raise RecipeError(
-            f"{p}: preset = {raw['preset']!r} and [top] conflict: give a preset or a [top] table "
-            "(which may hold preset = ... itself), not both"
-        )
+    _check(kind in (*KINDS[:3], "critical_spin", "bifurcation"), f"{p}: a {kind} recipe takes no [top] table")
+    _check(
+        "preset" not in raw,
+        f"{p}: preset = {raw.get('preset')!r} and [top] conflict: give a preset or a [top] table "
+        "(which may hold preset = ... itself), not both",
+    )
     try:
         return Top.from_mapping(raw["top"], source=f"{p} [top]")
     except RecipeError:
@@ -324,23 +301,18 @@ def _load_top(p: Path, raw: dict[str, Any], kind: str) -> Any:
         raise RecipeError(str(exc) if str(p) in str(exc) else f"{p} [top]: {exc}") from None
 
 
-def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], model: str) -> tuple[Any, str]:
+def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any]) -> tuple[Any, str]:
     """Fold a ``[top]`` and its ``spin`` (in ``unit``) into the grid of a lines/map/models
     recipe: q, sigma, mu from the top (eq. 3), fr_inv and (with ``mu_v``) alpha_v from the spin
     (eqs. 3, 7). A grid value of a parameter the top gives is refused, naming both. A 1-D spin
     is a 1-D grid of fr_inv (the spin is recorded as a coordinate along it)."""
-    from .top import SPIN_UNITS
-
     unit = _one_of(p, raw, "unit", "rad/s", SPIN_UNITS)
     if top is None:
-        if "unit" in raw:
-            raise RecipeError(f"{p}: unit = {unit!r} needs a [top] table and a spin")
+        _check("unit" not in raw, f"{p}: unit = {unit!r} needs a [top] table and a spin")
         return None, unit
     given = [k for k in ("q", "sigma", "mu") if k in grid]
     if "spin" in raw:
-        given += [k for k in ("fr_inv",) if k in grid]
-        if top.mu_v is not None and "alpha_v" in grid:
-            given.append("alpha_v")
+        given += [k for k in ("fr_inv",) if k in grid] + ["alpha_v"] * (top.mu_v is not None and "alpha_v" in grid)
     if given:
         raise RecipeError(
             f"{p}: [top] and grid.{given[0]} conflict: the top gives {given[0]} (eqs. 3, 7); "
@@ -350,44 +322,24 @@ def _top_grid(p: Path, raw: dict[str, Any], top: Any, grid: dict[str, Any], mode
     if "spin" not in raw:
         return None, unit
     spin = _grid_value(p, "spin", raw["spin"])
-    if np.ndim(spin) > 1:
-        raise RecipeError(f"{p}: spin must be a number or a 1-D grid")
+    _check(np.ndim(spin) <= 1, f"{p}: spin must be a number or a 1-D grid")
     try:
         nd = top.nondimensional(spin, unit, alpha_v=grid.get("alpha_v"))
     except (ValueError, TypeError) as exc:
         raise RecipeError(f"{p}: spin = {raw['spin']!r} {unit}: {exc}") from None
-    if np.ndim(nd.get("alpha_v", 0.0)) == 1 and np.ndim(nd["fr_inv"]) == 1:
-        raise RecipeError(
-            f"{p}: a grid of spins and mu_v = {top.mu_v:g} s/m: alpha_v = mu mu_v g / Omega would "
-            "change along the spin grid, and an atlas holds one dimension per parameter; give "
-            "grid.alpha_v (held fixed) instead of mu_v, or one spin"
-        )
+    _check(
+        np.ndim(nd.get("alpha_v", 0.0)) != 1 or np.ndim(nd["fr_inv"]) != 1,
+        f"{p}: a grid of spins and mu_v = {top.mu_v or 0:g}: alpha_v = mu mu_v g / Omega would "
+        "change along the spin grid, and an atlas holds one dimension per parameter; give "
+        "grid.alpha_v (held fixed) instead of mu_v, or one spin",
+    )
     grid.update({k: v for k, v in nd.items() if k in ("fr_inv", "alpha_v")})
     return spin, unit
 
 
 def _recipe_top(recipe: Recipe) -> Any:
     """The recipe's top: its ``[top]`` table, or its preset (default Table 1)."""
-    from .top import Top
-
     return recipe.top if recipe.top is not None else getattr(Top, recipe.figure or "table1")()
-
-
-def _spin_coordinate(recipe: Recipe, ds: xr.Dataset) -> xr.Dataset:
-    """The spin of a recipe with a [top] (in its unit) on its atlas: a coordinate along fr_inv for a
-    grid of spins, attributes for one; and the top's SI data in the attributes."""
-    if recipe.top is None:
-        return ds
-    t = recipe.top
-    ds.attrs.update(
-        mass_kg=t.mass,
-        radius_m=t.radius,
-        com_offset_m=t.com_offset,
-        inertia_transverse_kg_m2=t.inertia_transverse,
-        inertia_axial_kg_m2=t.inertia_axial,
-        g=t.g,
-    )
-    return ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
 
 
 def spin_coordinate(ds: xr.Dataset, spin: Any, unit: str) -> xr.Dataset:
@@ -407,66 +359,40 @@ def find_recipes(directory: str | Path) -> list[Recipe]:
 
 
 def _grid_for(model: str, grid: dict[str, Any]) -> dict[str, Any]:
-    takes = MODELS[model].parameters
-    return {k: v for k, v in grid.items() if k in takes}
+    return {k: v for k, v in grid.items() if k in MODELS[model].parameters}
 
 
-def _cached(
-    path: Path,
-    digest: str,
-    make: Callable[[], xr.Dataset],
-    *,
-    force: bool,
-    reader: Callable[[Path], xr.Dataset],
-    log: list[tuple[Path, str, float]] | None = None,
-) -> xr.Dataset:
-    """Reuse ``path`` if it holds the dataset of this recipe version, else make and write it.
+def _datasets(recipe: Recipe) -> dict[str, tuple[Path, Callable[[], xr.Dataset], Callable[[Path], xr.Dataset]]]:
+    """Every dataset of ``recipe``: its key (in :func:`compute`'s result) -> its path, the call
+    that makes it and the call that reads it back; the one list of what a recipe writes."""
 
-    A file at ``path`` that is not a recipe's dataset is refused unless ``force`` (module
-    docstring)."""
-    if path.exists() and not force:
-        try:
-            ds = reader(path)
-        except (AtlasFileError, OSError, ValueError) as exc:
-            raise RecipeError(
-                f"{path} exists and was not written by a recipe ({exc}); remove it or pass force=True to replace it"
-            ) from None
-        if ds.attrs.get("recipe_digest") == digest:
-            if log is not None:
-                log.append((path, "reused", 0.0))
-            return ds
-        if "recipe_digest" not in ds.attrs:
-            raise RecipeError(
-                f"{path} exists and was not written by a recipe (it has no recipe_digest "
-                "attribute); remove it or pass force=True to replace it"
-            )
-    start = time.perf_counter()
-    ds = make()
-    ds.attrs["recipe_digest"] = digest
-    write_dataset(ds, path, overwrite=True)
-    if log is not None:
-        log.append((path, "computed", time.perf_counter() - start))
-    return ds
+    read = xr.load_dataset  # each dataset but the atlases (open_atlas checks what it reads)
+
+    def beside(key: str) -> Path:
+        return recipe.path.with_name(f"{recipe.name}_{key}.nc")
+
+    if recipe.kind in STEADY_KINDS:  # one call makes every part
+        parts, maker = _STEADY[recipe.kind]
+        made = functools.cache(lambda: maker(recipe))
+        return {k: (recipe.dataset_path if k == parts[0] else beside(k), lambda k=k: made()[k], read) for k in parts}
+    if recipe.kind == "critical_spin":
+        return {recipe.model: (recipe.dataset_path, lambda: critical_spin_dataset(recipe), read)}
+    if recipe.kind == "scene":  # the run's label in its attributes (what the figure's legend shows)
+        runs = scene_runs(recipe.figure or "").items()
+        return {k: (beside(k), lambda m=make, t=label: m().assign_attrs(label=t), read) for k, (label, make) in runs}
+    out = {}
+    for model in recipe.models():
+        path = recipe.dataset_path if recipe.kind != "models" else beside(model)
+        out[model] = (path, functools.partial(_atlas, recipe, model), open_atlas)
+        if recipe.neutral:
+            neutral = path.with_name(path.stem + "_neutral.nc")
+            out[f"{model}_neutral"] = (neutral, functools.partial(_neutral, recipe, model), read)
+    return out
 
 
 def output_paths(recipe: Recipe) -> list[Path]:
     """Every file :func:`compute` and ``tippe figures`` may write for ``recipe``."""
-    paths = [recipe.figure_path]
-    if recipe.kind in STEADY_KINDS:
-        return paths + [_steady_path(recipe, key) for key in _STEADY_PARTS[recipe.kind]]
-    if recipe.kind == "scene":
-        return paths + [recipe.path.with_name(f"{recipe.name}_{k}.nc") for k in scene_runs(recipe.figure or "")]
-    if recipe.kind == "critical_spin":
-        return paths + [recipe.dataset_path]
-    for model in recipe.models():
-        paths += _atlas_paths(recipe, model)
-    return paths
-
-
-def _atlas_paths(recipe: Recipe, model: str) -> list[Path]:
-    """The atlas of ``model`` of a lines/map/models recipe and (``neutral``) its neutral curves."""
-    path = recipe.dataset_path if recipe.kind != "models" else recipe.path.with_name(f"{recipe.name}_{model}.nc")
-    return [path, path.with_name(path.stem + "_neutral.nc")] if recipe.neutral else [path]
+    return [recipe.figure_path, *(path for path, _, _ in _datasets(recipe).values())]
 
 
 def check_outputs(recipe: Recipe) -> None:
@@ -482,33 +408,23 @@ def check_outputs(recipe: Recipe) -> None:
         check_output_path(path, overwrite=True)
 
 
-def _read(path: Path) -> xr.Dataset:
-    with xr.open_dataset(path) as ds:
-        return ds.load()
-
-
 def scene_runs(figure: str) -> dict[str, tuple[str, Callable[[], xr.Dataset]]]:
     """The runs a scene figure needs: key -> (label, function making the run)."""
     from .nonlinear import scene
 
     paper = dict(method="rk4", step=0.1, friction="componentwise", slip_scale=1e-12)
-    runs: dict[str, tuple[str, Callable[[], xr.Dataset]]] = {
-        "fr_inv_0.3": ("Fr$^{-1}$ = 0.3", lambda: scene.run(0.3)),
-    }
+    runs: dict[str, tuple[str, Callable[[], xr.Dataset]]] = {"fr_inv_0.3": ("Fr$^{-1}$ = 0.3", lambda: scene.run(0.3))}
     if figure == "fig5":
         runs["fr_inv_0.1"] = ("Fr$^{-1}$ = 0.1", lambda: scene.run(0.1))
     if figure == "fig9":
         runs["rolling"] = ("rolling", lambda: scene.run(0.3, model="rolling"))
         for j, (ak, av) in enumerate(scene.FRICTION_CASES, start=1):
             label = f"({j}) $\\alpha_K$ = {ak:g}, $\\alpha_v$ = {av:g}"
-            runs[f"case{j}"] = (
-                label,
-                lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5),
-            )
-            runs[f"case{j}_paper_scheme"] = (
-                label,
-                lambda ak=ak, av=av: scene.run(0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5, **paper),
-            )
+            for key, scheme in ((f"case{j}", {}), (f"case{j}_paper_scheme", paper)):
+                runs[key] = (
+                    label,
+                    lambda ak=ak, av=av, s=scheme: scene.run(0.3, alpha_k=ak, alpha_v=av, t_end=1500.0, dt=0.5, **s),
+                )
     return runs
 
 
@@ -536,43 +452,44 @@ def compute(
         model name -> atlas dataset, or (scene recipes) run key -> simulate() dataset with the
         run's label in its ``label`` attribute.
     """
-    out: dict[str, xr.Dataset] = {}
-
-    def cached(path: Path, make: Callable[[], xr.Dataset], reader: Callable[[Path], xr.Dataset] = _read) -> xr.Dataset:
-        return _cached(path, recipe.digest, make, force=force, log=log, reader=reader)
-
-    if recipe.kind in STEADY_KINDS:
-        made: dict[str, xr.Dataset] = {}
-
-        def part(key: str) -> xr.Dataset:
-            if not made:
-                made.update(_STEADY_MAKERS[recipe.kind](recipe))
-            return made[key]
-
-        return {key: cached(_steady_path(recipe, key), lambda key=key: part(key)) for key in _STEADY_PARTS[recipe.kind]}
-    if recipe.kind == "critical_spin":
-        return {recipe.model: cached(recipe.dataset_path, lambda: critical_spin_dataset(recipe))}
-    if recipe.kind == "scene":
-        for key, (label, make) in scene_runs(recipe.figure or "").items():
-            # the run's label in its attributes (what the figure's legend shows)
-            out[key] = cached(
-                recipe.path.with_name(f"{recipe.name}_{key}.nc"), lambda m=make, t=label: m().assign_attrs(label=t)
+    out, log = {}, [] if log is None else log
+    for key, (path, make, reader) in _datasets(recipe).items():
+        if path.exists() and not force:  # reused if it holds this recipe version's dataset
+            try:
+                out[key] = ds = reader(path)
+            except (AtlasFileError, OSError, ValueError) as exc:
+                raise RecipeError(
+                    f"{path} exists and was not written by a recipe ({exc}); remove it or pass force=True to replace it"
+                ) from None
+            if ds.attrs.get("recipe_digest") == recipe.digest:
+                log.append((path, "reused", 0.0))
+                continue
+            _check(
+                "recipe_digest" in ds.attrs,
+                f"{path} exists and was not written by a recipe (it has no recipe_digest "
+                "attribute); remove it or pass force=True to replace it",
             )
-        return out
-    for model in recipe.models():
-        path, *neutral = _atlas_paths(recipe, model)
-
-        def make(model=model) -> xr.Dataset:
-            ds = _spin_coordinate(
-                recipe, atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
-            )
-            ds.attrs["recipe"] = recipe.path.name
-            return ds
-
-        out[model] = cached(path, make, reader=open_atlas)
-        if neutral:
-            out[f"{model}_neutral"] = cached(neutral[0], lambda m=model: _neutral(recipe, m))
+        start = time.perf_counter()
+        out[key] = ds = make()
+        ds.attrs["recipe_digest"] = recipe.digest
+        write_dataset(ds, path, overwrite=True)
+        log.append((path, "computed", time.perf_counter() - start))
     return out
+
+
+def _atlas(recipe: Recipe, model: str) -> xr.Dataset:
+    """The atlas of ``model`` over the recipe's grid; with a ``[top]``, the top's SI data in the
+    attributes and its spin (in the recipe's unit) on it (:func:`spin_coordinate`)."""
+    ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
+    if (t := recipe.top) is not None:
+        si = zip(
+            ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial", "g"),
+            ("_kg", "_m", "_m", *["_kg_m2"] * 2, ""),
+        )
+        ds.attrs.update({name + unit: getattr(t, name) for name, unit in si})
+        ds = ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
+    ds.attrs["recipe"] = recipe.path.name
+    return ds
 
 
 def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
@@ -584,10 +501,8 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
     transition in the range searched.
     """
     from .linear.critical import critical_spin
-    from .top import Top
 
-    base = _recipe_top(recipe)
-    x = recipe.x
+    base, x = _recipe_top(recipe), recipe.x
     values = np.asarray(recipe.grid[x], dtype=float)
     out = {"upright": np.full(values.size, np.nan), "inverted": np.full(values.size, np.nan)}
     for j, v in enumerate(values):
@@ -597,33 +512,14 @@ def critical_spin_dataset(recipe: Recipe) -> xr.Dataset:
             with contextlib.suppress(ValueError):
                 out[orientation][j] = critical_spin(top, recipe.model, orientation).rpm
     becomes = {"upright": "unstable", "inverted": "stable"}
-    return xr.Dataset(
-        {
-            f"critical_spin_{o}": (
-                x,
-                v,
-                {
-                    "long_name": f"{o} critical spin",
-                    "units": "min-1",
-                    "comment": f"spin rate above which the {o} top is {becomes[o]}",
-                },
-            )
-            for o, v in out.items()
-        },
-        coords={x: (x, values, parameter_attrs(x))},
-        attrs={
-            "Conventions": "CF-1.10",
-            "title": recipe.title,
-            PRODUCT_ATTR: "critical_spin",
-            "model": recipe.model,
-            "preset": recipe.figure or "",
-            "mass_kg": base.mass,
-            "radius_m": base.radius,
-            "q": base.q,
-            "mu": base.mu,
-            "sigma": base.sigma,
-        },
+    var = {o: {"long_name": f"{o} critical spin", "units": "min-1"} for o in out}
+    var = {o: dict(a, comment=f"spin rate above which the {o} top is {becomes[o]}") for o, a in var.items()}
+    attrs = {"Conventions": "CF-1.10", "title": recipe.title, PRODUCT_ATTR: "critical_spin", "model": recipe.model}
+    attrs.update(
+        preset=recipe.figure or "", mass_kg=base.mass, radius_m=base.radius, q=base.q, mu=base.mu, sigma=base.sigma
     )
+    data = {f"critical_spin_{o}": (x, v, var[o]) for o, v in out.items()}
+    return xr.Dataset(data, coords={x: (x, values, parameter_attrs(x))}, attrs=attrs)
 
 
 def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
@@ -633,14 +529,8 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
     grid = _grid_for(model, recipe.grid)
     fixed = {k: float(v) for k, v in grid.items() if np.ndim(v) == 0}
     xs, ys = np.asarray(grid[recipe.x]), np.asarray(grid[recipe.y or ""])
-    ds = neutral_curve(
-        MODELS[model],
-        recipe.x,
-        recipe.y,
-        fixed=fixed,
-        x_range=(float(xs.min()), float(xs.max())),
-        y_range=(float(ys.min()), float(ys.max())),
-    )
+    ranges = {"x_range": (float(xs.min()), float(xs.max())), "y_range": (float(ys.min()), float(ys.max()))}
+    ds = neutral_curve(MODELS[model], recipe.x, recipe.y, fixed=fixed, **ranges)
     for name in ("kind", "detail"):
         if name in ds:
             ds[name] = ds[name].astype(str)
@@ -650,72 +540,54 @@ def _neutral(recipe: Recipe, model: str) -> xr.Dataset:
 # ------------------------------------------------------------------------------------------
 # steady states: the bifurcation diagram, the class map, a run settling (stability.steady)
 # ------------------------------------------------------------------------------------------
-#: the datasets each steady kind writes (the first is <name>.nc, the others <name>_<key>.nc)
-_STEADY_PARTS = {"bifurcation": ("branch", "vertical", "runs"), "classes": ("classes",), "settle": ("run",)}
-
-
-def _steady_path(recipe: Recipe, key: str) -> Path:
-    return (
-        recipe.dataset_path
-        if key == _STEADY_PARTS[recipe.kind][0]
-        else recipe.path.with_name(f"{recipe.name}_{key}.nc")
-    )
-
-
 def _load_steady(p: Path, raw: dict[str, Any], kind: str, common: dict[str, Any], top: Any = None) -> Recipe:
     """The steady kinds' keys (module docstring); ``common``: the keywords of every kind."""
-    grid_raw = raw.get("grid", {})
-    if not isinstance(grid_raw, dict):
-        raise RecipeError(f"{p}: [grid] must be a table of parameter values")
-    allowed = {"bifurcation": {"alpha_v"}, "classes": {"q", "sigma", "mu"}, "settle": {"fr_inv"}}[kind]
-    bad = set(grid_raw) - allowed
-    if bad:
-        raise RecipeError(
-            f"{p}: a {kind} recipe's grid takes {', '.join(sorted(allowed))}, not {', '.join(sorted(bad))}"
-        )
-    grid = {k: _grid_value(p, k, v) for k, v in grid_raw.items()}
+    allowed = {"bifurcation": ("alpha_v",), "classes": ("mu", "q", "sigma"), "settle": ("fr_inv",)}[kind]
+    grid = _grid(p, raw, allowed, f"a {kind} recipe's grid takes {{allowed}}, not {{bad}}")
     common = dict(common, model="sliding", grid=grid)
     if kind == "bifurcation":
-        from .top import SPIN_UNITS
-
         preset = None if top is not None else _one_of(p, raw, "preset", "table1", PRESETS)
         unit = _one_of(p, raw, "unit", "rpm", SPIN_UNITS)
-        if "runs_rpm" in raw and "runs" in raw:
-            raise RecipeError(f"{p}: runs_rpm and runs conflict: give the launch spins once (runs, in unit)")
+        _check(
+            "runs_rpm" not in raw or "runs" not in raw,
+            f"{p}: runs_rpm and runs conflict: give the launch spins once (runs, in unit)",
+        )
         key = "runs" if "runs" in raw else "runs_rpm"
         runs = raw.get(key, [])
-        if not isinstance(runs, list) or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0 for v in runs
-        ):
-            raise RecipeError(
-                f"{p}: {key} = {runs!r} must be a list of spin rates > 0 ({'rpm' if key == 'runs_rpm' else unit})"
-            )
+        _check(
+            isinstance(runs, list)
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0 for v in runs),
+            f"{p}: {key} = {runs!r} must be a list of spin rates > 0 ({'rpm' if key == 'runs_rpm' else unit})",
+        )
         runs = [float(v) * (SPIN_UNITS["rpm"] / SPIN_UNITS[unit] if key == "runs_rpm" else 1.0) for v in runs]
-        if "alpha_v" in grid and top is not None and top.mu_v is not None:
-            raise RecipeError(f"{p}: [top] mu_v and grid.alpha_v conflict: alpha_v follows from mu_v (eq. 7)")
-        if np.ndim(grid.get("alpha_v", 0.5)) != 0 or not float(grid.get("alpha_v", 0.5)) > 0:
-            raise RecipeError(f"{p}: grid.alpha_v must be one number > 0")
+        _check(
+            "alpha_v" not in grid or top is None or top.mu_v is None,
+            f"{p}: [top] mu_v and grid.alpha_v conflict: alpha_v follows from mu_v (eq. 7)",
+        )
+        alpha_v = grid.get("alpha_v", 0.5)
+        _check(np.ndim(alpha_v) == 0 and float(alpha_v) > 0, f"{p}: grid.alpha_v must be one number > 0")
         return Recipe(**common, figure=preset, runs_rpm=tuple(runs), top=top, unit=unit)
-    if "spin" in raw or "unit" in raw:
-        raise RecipeError(f"{p}: a {kind} recipe takes no spin or unit")
+    _check("spin" not in raw and "unit" not in raw, f"{p}: a {kind} recipe takes no spin or unit")
     if kind == "classes":
         for k in ("q", "sigma"):
-            if np.ndim(grid.get(k)) != 1:
-                raise RecipeError(f"{p}: a classes recipe needs grid.{k} as a 1-D grid (a list or 'start:stop:num')")
-        if np.ndim(grid.get("mu", 2.28)) != 0:
-            raise RecipeError(f"{p}: grid.mu must be one number")
+            _check(
+                np.ndim(grid.get(k)) == 1,
+                f"{p}: a classes recipe needs grid.{k} as a 1-D grid (a list or 'start:stop:num')",
+            )
+        _check(np.ndim(grid.get("mu", 2.28)) == 0, f"{p}: grid.mu must be one number")
         return Recipe(**common)
-    fr = grid.get("fr_inv", 0.3)
-    t_end = raw.get("t_end", 15000.0)
     from .nonlinear.scene import INITIAL_CONDITIONS
 
-    if np.ndim(fr) != 0 or float(fr) not in INITIAL_CONDITIONS:
-        raise RecipeError(
-            f"{p}: grid.fr_inv = {fr!r} must be one of {', '.join(map(str, INITIAL_CONDITIONS))} "
-            "(the paper's runs of Sec. 3(ii))"
-        )
-    if not isinstance(t_end, (int, float)) or isinstance(t_end, bool) or not t_end > 0:
-        raise RecipeError(f"{p}: t_end = {t_end!r} must be a number > 0")
+    fr, t_end = grid.get("fr_inv", 0.3), raw.get("t_end", 15000.0)
+    _check(
+        np.ndim(fr) == 0 and float(fr) in INITIAL_CONDITIONS,
+        f"{p}: grid.fr_inv = {fr!r} must be one of {', '.join(map(str, INITIAL_CONDITIONS))} "
+        "(the paper's runs of Sec. 3(ii))",
+    )
+    _check(
+        isinstance(t_end, (int, float)) and not isinstance(t_end, bool) and t_end > 0,
+        f"{p}: t_end = {t_end!r} must be a number > 0",
+    )
     return Recipe(**common, t_end=float(t_end))
 
 
@@ -761,28 +633,22 @@ def settle_dataset(recipe: Recipe) -> dict[str, xr.Dataset]:
     :func:`stability.final_state` predicts from its initial state in the attributes."""
     from .nonlinear import scene
     from .steady.final import final_state
+    from .steady.states import steady_states
 
     fr = float(recipe.grid.get("fr_inv", 0.3))
     run = scene.run(fr, t_end=recipe.t_end, dt=max(0.5, recipe.t_end / 20000.0))
-    from .steady.states import steady_states
-
     end = final_state(fr_inv=fr, alpha_v=0.5, **scene.PAPER, **scene.INITIAL_CONDITIONS[fr])
     states = steady_states(fr_inv=fr, alpha_v=0.5, **scene.PAPER, jellett=end.jellett)
     rate = float(states.growth_rate[np.argmin(np.abs(states.tilt.values - end.tilt))])
-    run.attrs.update(
-        predicted_tilt=end.tilt,
-        predicted_kind=end.kind,
-        predicted_method=end.method,
-        predicted_axial_spin=end.axial_spin,
-        predicted_growth_rate=rate,
-        jellett=end.jellett,
-        label=f"Fr$^{{-1}}$ = {fr:g}",
-    )
+    run.attrs.update({f"predicted_{k}": getattr(end, k) for k in ("tilt", "kind", "method", "axial_spin")})
+    run.attrs.update(predicted_growth_rate=rate, jellett=end.jellett, label=f"Fr$^{{-1}}$ = {fr:g}")
     return {"run": run}
 
 
-_STEADY_MAKERS: dict[str, Callable[[Recipe], dict[str, xr.Dataset]]] = {
-    "bifurcation": bifurcation_datasets,
-    "classes": classes_dataset,
-    "settle": settle_dataset,
+#: each steady kind: the datasets it writes (the first is <name>.nc, the others <name>_<key>.nc)
+#: and the call that makes them all
+_STEADY: dict[str, tuple[tuple[str, ...], Callable[[Recipe], dict[str, xr.Dataset]]]] = {
+    "bifurcation": (("branch", "vertical", "runs"), bifurcation_datasets),
+    "classes": (("classes",), classes_dataset),
+    "settle": (("run",), settle_dataset),
 }

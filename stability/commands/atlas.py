@@ -14,11 +14,13 @@ from pathlib import Path
 
 from .. import interrupts
 from ..errors import InputError, Interrupted
-from ..grids.netcdf import check_output_path, write_dataset
+from ..files import check_output_path
 from ..linear.spectra import DEFAULT_METHOD, METHODS
-from ..models import DEPRECATED_NAMES, MODELS
+from ..models import get_model
+from ..parameters import PARAMETERS
 from ..products import FLAG_NAMES
-from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_top_arguments, apply_top, parameter_values
+from . import _args
+from ._args import add_model_flag, add_output_flags, add_parameter_flags, add_switches, add_top_arguments, apply_top
 
 HELP = "eigenvalues of a linear model over a parameter grid -> netCDF"
 DESCRIPTION = (
@@ -27,6 +29,8 @@ DESCRIPTION = (
 )
 #: the most lines --plot draws for a second grid dimension; beyond it, the map over the two
 MAX_LINES = 10
+#: the flags an atlas's summary counts, in its order (-1: outside the domain)
+_COUNTED = {**FLAG_NAMES, -1: "outside domain"}
 
 
 def plot_figure(ds, x: str):
@@ -43,25 +47,14 @@ def plot_figure(ds, x: str):
 
 def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe atlas``."""
-    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
-    add_parameter_flags(
-        p,
-        ("q", "fr_inv", "sigma", "alpha_v", "mu"),
-        unless_top=("q", "fr_inv", "sigma"),
-        extra={"alpha_v": " (sliding model only)"},
-    )
+    add_model_flag(p)
+    unless_top, only = ("q", "fr_inv", "sigma"), {"alpha_v": " (sliding model only)"}
+    add_parameter_flags(p, PARAMETERS, unless_top=unless_top, extra=only)
     add_top_arguments(p, spin=True, grid=True)
-    add_output_flags(
-        p,
-        "netCDF file to write (atomically); required",
-        required=True,
-        overwrite="replace an existing output file (and --plot file)",
-    )
-    p.add_argument(
-        "--mask-unphysical",
-        action="store_true",
-        help="mask grid points outside the physical domain (NaN) instead of refusing the grid",
-    )
+    overwrite = "replace an existing output file (and --plot file)"
+    add_output_flags(p, "netCDF file to write (atomically); required", required=True, overwrite=overwrite)
+    mask = "mask grid points outside the physical domain (NaN) instead of refusing the grid"
+    add_switches(p, ("--mask-unphysical", mask))
     p.add_argument(
         "--method",
         choices=list(METHODS),
@@ -118,12 +111,11 @@ def arguments(p: argparse.ArgumentParser) -> None:
         metavar="ADDRESS|FILE",
         help="run the chunks on an existing dask cluster: tcp://host:port or a scheduler file",
     )
-    g.add_argument(
-        "--resume",
-        action="store_true",
-        help="keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run",
+    add_switches(
+        g,
+        ("--resume", "keep finished chunks in OUTPUT.parts/ and reuse those of an interrupted run"),
+        ("--no-progress", "no progress bar (default: a bar on a terminal)"),
     )
-    g.add_argument("--no-progress", action="store_true", help="no progress bar (default: a bar on a terminal)")
 
 
 def parse_chunks(text: str) -> int | dict[str, int]:
@@ -131,18 +123,13 @@ def parse_chunks(text: str) -> int | dict[str, int]:
 
     Raises
     ------
-    ValueError
+    InputError
         With the offending text.
     """
-    t = text.strip()
     try:
-        if "=" not in t:
-            return int(t)
-        out = {}
-        for part in t.split(","):
-            k, v = part.split("=")
-            out[k.strip().replace("-", "_")] = int(v)
-        return out
+        if "=" not in text:
+            return int(text.strip())
+        return {k.strip().replace("-", "_"): int(v) for k, v in (part.split("=") for part in text.strip().split(","))}
     except ValueError:
         raise InputError(
             f"--chunks = {text!r} is not a size or a list dim=size,... (sizes are integers "
@@ -150,72 +137,48 @@ def parse_chunks(text: str) -> int | dict[str, int]:
         ) from None
 
 
-def _run_chunked(args: argparse.Namespace, out, ds) -> int:
-    """``tippe atlas --chunks``: the lazy atlas ``ds`` written chunk by chunk."""
-    from ..grids.chunked import parts_directory, write_atlas
+def _counts(var) -> dict[str, int]:
+    """The points of each flag of the stability variable ``var`` (in memory, or read lazily
+    from the written file), counted in slabs of <= 2e7 points: memory does not grow with the grid."""
+    counts = dict.fromkeys(_COUNTED.values(), 0)
+    n0 = var.shape[0] if var.ndim else 1
+    step = max(1, int(2e7 // max(1, var.size // n0)))
+    for i in range(0, n0, step):
+        flags = var[i : i + step].values if var.ndim else var.values
+        for flag, name in _COUNTED.items():
+            counts[name] += int((flags == flag).sum())
+    return counts
+
+
+def _run_chunked(args: argparse.Namespace, out, ds, layout: dict) -> dict[str, int]:
+    """``tippe atlas --chunks``: the lazy atlas ``ds`` written chunk by chunk; the counts of its flags."""
+    import xarray as xr
+
+    from ..grids.chunked import write_atlas
     from ..grids.cluster import dask_client
+    from ..grids.store import is_store_path, open_store, parts_directory
 
     store = parts_directory(out)
     if args.resume and store.is_dir():
         print(f"found {store}: its chunks are reused if it was written for this atlas", file=sys.stderr)
+    kept = f"the finished chunks are kept in {store}; rerun the same command to continue"
     if args.resume:
-        interrupts.run.kept = f"the finished chunks are kept in {store}; rerun the same command to continue"
-
+        interrupts.run.kept = kept
     try:
         with dask_client(workers=args.workers, scheduler=args.scheduler) as client:
+            progress = not args.no_progress and sys.stderr.isatty()
             write_atlas(
-                ds,
-                out,
-                overwrite=args.overwrite,
-                client=client,
-                resume=args.resume,
-                progress=not args.no_progress and sys.stderr.isatty(),
-                **_layout(args),
+                ds, out, overwrite=args.overwrite, client=client, resume=args.resume, progress=progress, **layout
             )
     except KeyboardInterrupt:
-        if args.resume:
-            raise Interrupted(
-                f"no output file was written; the finished chunks are kept in {store}; "
-                "rerun the same command to continue"
-            ) from None
         raise Interrupted(
-            "no output file was written and no chunks were kept (run with --resume to keep them across an interruption)"
+            f"no output file was written; {kept}"
+            if args.resume
+            else "no output file was written and no chunks were kept (run with --resume to keep them across an "
+            "interruption)"
         ) from None
-    import xarray as xr
-
-    counts = dict.fromkeys(_COUNTED.values(), 0)
-    from ..grids.store import is_store_path, open_store
-
-    # counted in slabs of <= 2e7 points: memory does not grow with the grid
     with open_store(out) if is_store_path(out) else xr.open_dataset(out) as f:
-        var = f["stability"]
-        n0 = var.shape[0] if var.ndim else 1
-        step = max(1, int(2e7 // max(1, var.size // n0)))
-        for i in range(0, n0, step):
-            flags = var[i : i + step].values if var.ndim else var.values
-            for flag, name in _COUNTED.items():
-                counts[name] += int((flags == flag).sum())
-    print(_summary(out, args.model, ds, counts, " in chunks"))
-    return 0
-
-
-#: the flags an atlas's summary counts, in its order (-1: outside the domain)
-_COUNTED = {**FLAG_NAMES, -1: "outside domain"}
-
-
-def _summary(out, model: str, ds, counts: dict[str, int], how: str = "") -> str:
-    """The line that says what was written: the model, the grid and the points of each flag."""
-    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
-    return f"wrote {out}: {model} model, grid {grid}{how}; " + ", ".join(f"{v} {k}" for k, v in counts.items() if v)
-
-
-def _layout(args: argparse.Namespace) -> dict:
-    """``write_atlas``'s ``variables``, ``compression``, ``float32`` from the flags."""
-    return {
-        "variables": args.variables,
-        "compression": None if args.compression == "none" else args.compression,
-        "float32": bool(args.float32),
-    }
+        return _counts(f["stability"])
 
 
 def _check_space(out, model: str, values: dict) -> None:
@@ -225,10 +188,8 @@ def _check_space(out, model: str, values: dict) -> None:
     from ..files import check_free_space
     from ..resources import atlas_file_bytes
 
-    n = 1
-    for v in values.values():
-        n *= int(np.size(v))
-    check_free_space(out, atlas_file_bytes(MODELS[model].n_modes, n))
+    points = np.prod([np.size(v) for v in values.values()])
+    check_free_space(out, atlas_file_bytes(get_model(model, warn=False).n_modes, points))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -242,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         check_output_path(args.plot, overwrite=args.overwrite)
         _check_plot_format(args.plot)
-    values = parameter_values(args, ("q", "fr_inv", "sigma", "alpha_v", "mu"))
+    values = _args.parameter_values(args, PARAMETERS)
     if args.chunks is not None and args.plot:
         raise InputError(
             "--plot is not available with --chunks (the grid may not fit in memory); "
@@ -253,29 +214,39 @@ def run(args: argparse.Namespace) -> int:
     chunks = None if args.chunks is None else parse_chunks(args.chunks)
     if chunks is None:  # before computing; a chunked atlas is lazy, its grid checked first
         _check_space(out, args.model, values)
-    ds = _spin_coordinate(
-        atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, chunks=chunks, **values), args
-    )
+    ds = atlas(args.model, mask_unphysical=args.mask_unphysical, method=args.method, chunks=chunks, **values)
+    if args.spin is not None:  # a top and its spin: the spin in --unit on the atlas
+        from ..recipes import spin_coordinate
+
+        ds = spin_coordinate(ds, _args.parameter_values(args, ("spin",))["spin"], args.unit or "rad/s")
+    compression = None if args.compression == "none" else args.compression
+    layout = dict(variables=args.variables, compression=compression, float32=args.float32)
     if chunks is not None:
         _check_space(out, args.model, values)
-        return _run_chunked(args, out, ds)
-    if args.plot:
-        from ..plotting import save_figure, style
-
-        with style():
-            fig = plot_figure(ds, args.x)
-        # the figure is written before the netCDF file is committed: a failure to draw or save
-        # it leaves no atlas file behind
-        save_figure(fig, args.plot, overwrite=args.overwrite)
-    if zarr_store or (args.variables, args.compression, args.float32) != ("all", "none", False):
-        from ..grids.chunked import write_atlas
-
-        write_atlas(ds, out, overwrite=args.overwrite, **_layout(args))
+        counts, how = _run_chunked(args, out, ds, layout), " in chunks"
     else:
-        write_dataset(ds, out, overwrite=args.overwrite)
-    print(_summary(out, args.model, ds, {name: int((ds.stability == flag).sum()) for flag, name in _COUNTED.items()}))
-    if args.plot:
-        print(f"wrote {args.plot}")
+        if args.plot:
+            from ..plotting import save_figure, style
+
+            with style():
+                fig = plot_figure(ds, args.x)
+            # the figure is written before the netCDF file is committed: a failure to draw or
+            # save it leaves no atlas file behind
+            save_figure(fig, args.plot, overwrite=args.overwrite)
+        if zarr_store or layout != dict(variables="all", compression=None, float32=False):
+            from ..grids.chunked import write_atlas
+
+            write_atlas(ds, out, overwrite=args.overwrite, **layout)
+        else:
+            from ..grids.netcdf import write_dataset
+
+            write_dataset(ds, out, overwrite=args.overwrite)
+        counts, how = _counts(ds.stability), ""
+    grid = " x ".join(f"{d}({ds.sizes[d]})" for d in ds.max_growth_rate.dims) or "one point"
+    summary = ", ".join(f"{v} {k}" for k, v in counts.items() if v)
+    print(
+        f"wrote {out}: {args.model} model, grid {grid}{how}; {summary}" + (f"\nwrote {args.plot}" if args.plot else "")
+    )
     return 0
 
 
@@ -286,7 +257,7 @@ def _apply_top(args: argparse.Namespace) -> None:
     dimension per parameter) cannot hold: refused, give ``--alpha-v`` instead (held fixed)."""
     import numpy as np
 
-    names = [n for n in ("q", "fr_inv", "sigma", "alpha_v", "mu") if n in MODELS[args.model].parameters]
+    names = [n for n in PARAMETERS if n in get_model(args.model, warn=False).parameters]
     top = apply_top(args, names, required=("q", "fr_inv", "sigma"))
     if top is not None and np.ndim(args.fr_inv) == 1 and np.ndim(getattr(args, "alpha_v", None)) == 1:
         raise InputError(
@@ -296,21 +267,9 @@ def _apply_top(args: argparse.Namespace) -> None:
         )
 
 
-def _spin_coordinate(ds, args: argparse.Namespace):
-    """With a top and its spin: the spin in ``--unit`` on the atlas (:func:`stability.recipes.spin_coordinate`)."""
-    from ..grids.ranges import parse_values
-    from ..recipes import spin_coordinate
-
-    if getattr(args, "spin", None) is None:
-        return ds
-    return spin_coordinate(ds, parse_values(args.spin, name="--spin"), args.unit or "rad/s")
-
-
 def _check_plot_format(path: str) -> None:
     """Refuse a ``--plot`` file whose suffix names no format matplotlib can write, before any
     computation (the format comes from the suffix, :func:`stability.plotting.save_figure`)."""
-    from pathlib import Path
-
     from matplotlib.backend_bases import FigureCanvasBase
 
     known = FigureCanvasBase.get_supported_filetypes()

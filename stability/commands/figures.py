@@ -28,33 +28,27 @@ def arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe figures``."""
+    from .. import recipes as r
     from ..plotting import save_figure, style
     from ..plotting.recipe_figures import recipe_figure
-    from ..recipes import check_outputs, compute, find_recipes, load_recipe
 
-    targets = args.recipes or ["atlases"]
-    recipes = []
-    for t in targets:
-        path = Path(t)
+    found = []
+    for target in args.recipes or ["atlases"]:
+        path = Path(target)
         if not path.exists():
-            raise FileNotFoundError(f"recipe {t!r} does not exist (give recipe files or directories)")
-        if path.is_dir():
-            found = find_recipes(path)
-            if not found:
-                raise InputError(f"no recipes (*.toml) in {str(path)!r}")
-            recipes.extend(found)
-        else:
-            recipes.append(load_recipe(path))
-    for recipe in recipes:  # every output writable before anything is computed
-        check_outputs(recipe)
-    for recipe in recipes:
+            raise FileNotFoundError(f"recipe {target!r} does not exist (give recipe files or directories)")
+        recipes = r.find_recipes(path) if path.is_dir() else [r.load_recipe(path)]
+        if not recipes:
+            raise InputError(f"no recipes (*.toml) in {str(path)!r}")
+        found += recipes
+    for recipe in found:  # every output writable before anything is computed
+        r.check_outputs(recipe)
+    for recipe in found:
         log: list = []
-        datasets = compute(recipe, force=args.force, log=log)
+        datasets = r.compute(recipe, force=args.force, log=log)
         for path, action, seconds in log:
-            if action == "reused":
-                print(f"{recipe.name}: reused {path} (recipe and code unchanged)")
-            else:
-                print(f"{recipe.name}: computed {path} ({seconds:.1f} s)")
+            why = "(recipe and code unchanged)" if action == "reused" else f"({seconds:.1f} s)"
+            print(f"{recipe.name}: {action} {path} {why}")
         with style():
             fig, _ = recipe_figure(recipe, datasets)
             save_figure(fig, recipe.figure_path)

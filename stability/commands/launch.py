@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._args import add_float_flags, add_top_arguments, required_top
+from . import _args
 
 HELP = "what a real top does when you spin it: thresholds, end, flip and settle times"
 DESCRIPTION = (
@@ -19,14 +19,13 @@ def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe launch``."""
     from ..top import SPIN_UNITS
 
-    add_top_arguments(p, spin=False)
+    _args.add_top_arguments(p, spin=False)
     g = p.add_argument_group("the launch")
     g.add_argument("--spin", type=float, required=True, metavar="VALUE", help="launch spin, in --unit")
     g.add_argument("--unit", choices=list(SPIN_UNITS), default="rev/s", help="unit of --spin (default rev/s)")
-    add_float_flags(
-        g,
-        ("--tilt", 1.0, "DEG", "initial tilt of the axis (default 1)"),
-        ("--alpha-v", None, "VALUE", "viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)"),
+    alpha_v = "viscous parameter alpha_v (eq. 7) when the top has no --mu-v (default 0.5)"
+    _args.add_float_flags(
+        g, ("--tilt", 1.0, "DEG", "initial tilt of the axis (default 1)"), ("--alpha-v", None, "VALUE", alpha_v)
     )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
     g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")
@@ -41,8 +40,8 @@ def run(args: argparse.Namespace) -> int:
     """Run ``tippe launch``."""
     from ..launches.result import launch
 
-    top = required_top(args, "tippe launch")
-    res = launch(top, args.spin, unit=args.unit, tilt=args.tilt, alpha_v=args.alpha_v, model=args.model)
+    top = _args.required_top(args, "tippe launch")
+    res = launch(**_args.keywords(launch, args, top=top))
     print(res)
     if args.plot:
         _plot(top, res, args)

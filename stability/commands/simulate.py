@@ -7,17 +7,7 @@ import math
 import os
 import sys
 
-from ..grids.netcdf import check_output_path, write_dataset
-from ..nonlinear import NONLINEAR_MODELS
-from ._args import (
-    add_float_flags,
-    add_model_flag,
-    add_output_flags,
-    add_parameter_flags,
-    add_state_flags,
-    add_top_arguments,
-    apply_top,
-)
+from . import _args
 
 HELP = "integrate a nonlinear model -> netCDF"
 DESCRIPTION = (
@@ -32,32 +22,25 @@ _METHODS = ("auto", "dopri5", "rk4", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 _SLIP_SCALE = 1e-4
 #: the nondimensional parameters simulate takes, and those needed without a top
 _NAMES, _REQUIRED = ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"), ("q", "fr_inv", "sigma")
-#: simulate()'s keywords that are options of the same name here: the run, and how it is integrated
-#: (alpha_k is 0 when not given)
-_RUN = ("t_end", "omega", "k", "velocity", "q", "fr_inv", "sigma", "alpha_v", "mu")
-_INTEGRATION = ("friction", "normal", "slip_scale", "method", "rtol", "atol", "dt", "step")
+#: outputs above this size get a warning on stderr before the run
+WARN_BYTES = 100e6
 
 
 def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe simulate``."""
-    add_model_flag(p, NONLINEAR_MODELS, "sliding", what="nonlinear model")
+    _args.add_model_flag(p, "nonlinear model")
     p.add_argument(
         "--t-end", type=float, required=True, metavar="T", help="final time, units of 1/Omega (> 0); required"
     )
-    add_state_flags(
+    _args.add_state_flags(
         p,
         omega="initial angular velocity, fixed frame, units of Omega",
         k="initial symmetry axis, fixed frame (normalised)",
         velocity="initial velocity of the sphere's centre O, units of Omega R (sliding only; default 0,0)",
     )
-    add_parameter_flags(
-        p,
-        _NAMES,
-        kind="value",
-        unless_top=_REQUIRED,
-        extra={"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)"},
-    )
-    add_top_arguments(p, spin=True)
+    only = {"alpha_v": " (sliding only; required there)", "alpha_k": " (sliding only; default 0.0)"}
+    _args.add_parameter_flags(p, _NAMES, "value", unless_top=_REQUIRED, extra=only)
+    _args.add_top_arguments(p, spin=True)
     p.add_argument(
         "--friction",
         choices=("isotropic", "componentwise"),
@@ -78,7 +61,7 @@ def arguments(p: argparse.ArgumentParser) -> None:
         "or alpha_k > 0), dopri5 (compiled Dormand-Prince 5(4)), rk4 (fixed step "
         "--step), or scipy's RK45, DOP853, Radau, BDF, LSODA",
     )
-    add_float_flags(
+    _args.add_float_flags(
         p,
         ("--slip-scale", _SLIP_SCALE, "S", "regularisation scale of the Coulomb term, units of Omega R (> 0)"),
         ("--rtol", 1e-9, "R", "relative tolerance of the adaptive integrators (0 < R < 1)"),
@@ -92,61 +75,51 @@ def arguments(p: argparse.ArgumentParser) -> None:
             "units of 1/Omega (default: chosen by the integrator)",
         ),
     )
-    add_output_flags(p, "netCDF file to write; required", required=True)
+    _args.add_output_flags(p, "netCDF file to write; required", required=True)
     g = p.add_mutually_exclusive_group()
     g.add_argument(
         "--progress",
         action="store_true",
-        dest="progress",
         default=None,
         help="show a progress bar (default: when stderr is a terminal and the run takes over a second)",
     )
     g.add_argument("--no-progress", action="store_false", dest="progress", help="no progress bar")
 
 
-#: outputs above this size get a warning on stderr before the run
-WARN_BYTES = 100e6
-
-
-def _output_times(t_end: float, dt: float) -> int | None:
-    """The number of output times of ``--t-end`` and ``--dt``, or None if they are not valid
-    (``simulate`` then says why)."""
-    if not (math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0) or t_end / dt > 1e8:
-        return None
-    return int(math.ceil(t_end / dt - 1e-9)) + 1
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe simulate``: check the output, the memory and the disk first; warn before a
     large output; show progress on a terminal; say what was written."""
     from ..files import check_free_space
+    from ..grids.netcdf import write_dataset
     from ..nonlinear.runs import check_run_memory, simulate
     from ..resources import format_bytes, simulate_file_bytes
 
-    apply_top(args, _NAMES if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"), required=_REQUIRED)
-    out = check_output_path(args.output, overwrite=args.overwrite)
-    n = _output_times(args.t_end, args.dt)
-    if n is not None:
-        check_run_memory(args.model, n, t_end=args.t_end, dt=args.dt)
+    _args.apply_top(args, _NAMES if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu"), required=_REQUIRED)
+    out = _args.output_path(args)
+    t_end, dt = args.t_end, args.dt
+    valid = math.isfinite(t_end) and math.isfinite(dt) and t_end > 0 and dt > 0 and t_end / dt <= 1e8
+    if valid:  # else simulate says why
+        n = int(math.ceil(t_end / dt - 1e-9)) + 1  # the output times
+        check_run_memory(args.model, n, t_end=t_end, dt=dt)
         size = simulate_file_bytes(args.model, n)
         check_free_space(out, size)
         if size > WARN_BYTES:
             print(
                 f"tippe simulate: warning: the output will be about {format_bytes(size)} ({n} output times at "
-                f"--dt {args.dt:g}); use a larger --dt or a shorter --t-end for a smaller file",
+                f"--dt {dt:g}); use a larger --dt or a shorter --t-end for a smaller file",
                 file=sys.stderr,
             )
     show = args.progress if args.progress is not None else sys.stderr.isatty()
-    given = {name: getattr(args, name) for name in (*_RUN, *_INTEGRATION)}
-    ds = simulate(args.model, **given, alpha_k=0.0 if args.alpha_k is None else args.alpha_k, progress=show)
+    ds = simulate(
+        **_args.keywords(simulate, args, alpha_k=0.0 if args.alpha_k is None else args.alpha_k, progress=show)
+    )
     write_dataset(ds, out, overwrite=args.overwrite)
-    a = ds.attrs
-    t = ds["time"].values
-    tol = f"rtol {a['rtol']:g}" if a["method"] != "rk4" else f"step {args.step:g}"
-    rejected = f" ({a['nreject']} rejected)" if a["method"] != "rk4" else ""
+    a, t = ds.attrs, ds["time"].values
+    rk4 = a["method"] == "rk4"
+    tol, rejected = (f"step {args.step:g}", "") if rk4 else (f"rtol {a['rtol']:g}", f" ({a['nreject']} rejected)")
     print(
         f"wrote {out} ({format_bytes(os.path.getsize(out))}): {a['model']} model, t = {t[0]:g} ... {t[-1]:g} "
-        f"({t.size} output times, dt {args.dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
+        f"({t.size} output times, dt {dt:g}), {a['method']} {tol}: {a['naccept']} steps{rejected}, "
         f"{a['nfev']} evaluations, status: {a['message']}"
     )
     return 0

@@ -5,18 +5,10 @@ from __future__ import annotations
 import argparse
 
 from ..errors import InputError
-from ..models import DEPRECATED_NAMES, MODELS, get_model
+from ..models import get_model
+from ..parameters import PARAMETERS
 from ..top import SPIN_UNITS, Top
-from ._args import (
-    FLAGS,
-    TOP_FLAGS,
-    add_model_flag,
-    add_parameter_flags,
-    add_top_arguments,
-    flag_of,
-    lo_hi,
-    required_top,
-)
+from . import _args
 
 HELP = "threshold of one parameter, or the critical spin of a real top"
 DESCRIPTION = (
@@ -28,51 +20,42 @@ DESCRIPTION = (
 
 def arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``tippe threshold``."""
-    p.add_argument("param", choices=[*FLAGS, "spin"], metavar="PARAM", help="q, fr_inv, sigma, alpha_v, mu or spin")
-    add_model_flag(p, MODELS, "sliding", deprecated=DEPRECATED_NAMES)
-    add_parameter_flags(
-        p,
-        FLAGS,
-        kind="value",
-        extra={"alpha_v": " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)"},
-    )
-    p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
     p.add_argument(
-        "--all",
-        action="store_true",
-        help="list every threshold in the range (default: the one threshold, an error if there are several)",
+        "param", choices=[*PARAMETERS, "spin"], metavar="PARAM", help="q, fr_inv, sigma, alpha_v, mu or spin"
     )
-    add_top_arguments(p, spin=False)
+    _args.add_model_flag(p)
+    spin = " (sliding model; with PARAM = spin, held fixed when there is no --mu-v; default 0.5 there)"
+    _args.add_parameter_flags(p, PARAMETERS, "value", extra={"alpha_v": spin})
+    p.add_argument("--bracket", metavar="LO:HI", help="range searched (default: physical range)")
+    every = "list every threshold in the range (default: the one threshold, an error if there are several)"
+    _args.add_switches(p, ("--all", every))
+    _args.add_top_arguments(p, spin=False)
     g = p.add_argument_group("PARAM = spin")
     g.add_argument(
         "--unit",
         choices=list(SPIN_UNITS),
-        default=None,
         help="spin unit of the two launch readings (default rpm; rev/s is printed too)",
     )
     g.add_argument(
         "--orientation",
         choices=["upright", "inverted", "both"],
-        default=None,
         help="which state: upright (as given), inverted (q -> -q) or both (default: both)",
     )
 
 
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
-
-    top_given = [n for n in (*TOP_FLAGS, "gravity", "mu_k") if getattr(args, n) is not None]
     if args.param == "spin":
-        unused = [flag_of(n) for n in ("q", "fr_inv", "sigma", "mu") if getattr(args, n) is not None]
-        unused += ["--bracket"] * bool(args.bracket) + ["--all"] * bool(args.all)
+        given = [n for n in ("q", "fr_inv", "sigma", "mu", "bracket") if getattr(args, n) is not None]
+        unused = [_args.flag_of(n) for n in given] + ["--all"] * args.all
         if unused:
             raise InputError(
                 f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
                 "mu come from --preset or its SI data; the spin rate is what is searched)"
             )
         return
-    unused = [flag_of(n) for n in top_given]
-    unused += [flag_of(n) for n in ("preset", "top_file", "mu_v", "orientation") if getattr(args, n) is not None]
+    top = (*_args.TOP_FLAGS, "g", "mu_k", "preset", "top", "mu_v", "orientation")
+    unused = [_args.flag_of(n) for n in top if getattr(args, n) is not None]
     if unused:
         raise InputError(
             f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
@@ -86,71 +69,69 @@ def run(args: argparse.Namespace) -> int:
 
     _refuse_unused(args)
     if args.param == "spin":
-        top = required_top(args, "tippe threshold spin")
-        orientation = args.orientation or "both"
-        alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
-        found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
-        per = {"upright": found.upright, "inverted": found.inverted} if orientation == "both" else {orientation: found}
-        print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
-        for o, c in per.items():
-            if c is None:
-                print(f"{o:>8}: no critical spin: {found.reasons[o]}")
-                continue
-            state = "unstable" if c.unstable_above else "stable"
-            print(
-                f"{o:>8}: {state} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
-                f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})"
-            )
-            if not c.exact:
-                print(
-                    f"{'':>8}  an interval, not a value: the change of stability lies between "
-                    f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
-                    "cannot be decided inside it)"
-                )
-        print(f"friction: {next(c for c in per.values() if c is not None).friction}")
-        if args.model == "sliding" and orientation == "both":
-            _launch_readings(top, found, alpha_v, args.unit or "rpm")
-        return 0
+        return _spin(args, critical_spin)
     model = get_model(args.model)
-    fixed = {n: getattr(args, n) for n in FLAGS if getattr(args, n) is not None and n != args.param}
+    fixed = {n: getattr(args, n) for n in PARAMETERS if getattr(args, n) is not None and n != args.param}
     if getattr(args, args.param) is not None:
-        raise InputError(f"{FLAGS[args.param]} is the parameter searched; do not give its value")
-    bracket = lo_hi(args.bracket, "--bracket") if args.bracket else None
-    if args.all:
-        found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
-        if not found:
-            print(f"no threshold in {args.param}")
-        for t in found:
-            print(
-                f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
-                + _interval(args.param, t)
-            )
+        raise InputError(f"{_args.flag_of(args.param)} is the parameter searched; do not give its value")
+    bracket = _args.lo_hi(args.bracket, "--bracket")
+    if not args.all:
+        t = _one_threshold(args.param, model, bracket, 257, fixed)
+        print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
         return 0
-    t = _one_threshold(args.param, model, bracket, 257, fixed)
-    print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
+    found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
+    if not found:
+        print(f"no threshold in {args.param}")
+    for t in found:
+        print(
+            f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
+            + _interval(args.param, t)
+        )
+    return 0
+
+
+def _spin(args: argparse.Namespace, critical_spin) -> int:
+    """``tippe threshold spin``: the critical spins of a real top, and its two launch readings."""
+    top = _args.required_top(args, "tippe threshold spin")
+    orientation = args.orientation or "both"
+    alpha_v = args.alpha_v if args.alpha_v is not None else 0.5
+    found = critical_spin(top, args.model, orientation, alpha_v=alpha_v)
+    per = {"upright": found.upright, "inverted": found.inverted} if orientation == "both" else {orientation: found}
+    print(f"top: q = {top.q:.6g}, mu = {top.mu:.6g}, sigma = {top.sigma:.6g} ({args.model} model)")
+    for o, c in per.items():
+        if c is None:
+            print(f"{o:>8}: no critical spin: {found.reasons[o]}")
+            continue
+        print(
+            f"{o:>8}: {'unstable' if c.unstable_above else 'stable'} above {c.spin:.10g} rad/s = {c.rpm:.10g} rpm "
+            f"(fr_inv = {c.fr_inv:.12g}, neutral frequency {c.frequency:.12g})"
+        )
+        if not c.exact:
+            print(
+                f"{'':>8}  an interval, not a value: the change of stability lies between "
+                f"{c.spin_interval[0]!r} and {c.spin_interval[1]!r} rad/s (the sign of the growth rate "
+                "cannot be decided inside it)"
+            )
+    print(f"friction: {next(c for c in per.values() if c is not None).friction}")
+    if args.model == "sliding" and orientation == "both":
+        _launch_readings(top, found, alpha_v, args.unit or "rpm")
     return 0
 
 
 def _launch_readings(top: Top, found, alpha_v: float, unit: str) -> None:
     """The two readings that must not be mixed up, each on its own line (issue 23)."""
     from ..launches.result import NEVER_INVERTS, inverts_above
+    from ..steady.classes import top_class
     from ..top import spin_text
 
     up = found.upright
-    print(
-        "the upright top becomes unstable above "
-        + (spin_text(up.spin, unit, digits=10) if up is not None else f"no spin ({found.reasons['upright']})")
-    )
-    ref = up.spin if up is not None else top.spin_rate(0.3)
-    inv = inverts_above(top, ref, alpha_v)
+    unstable = spin_text(up.spin, unit, digits=10) if up is not None else f"no spin ({found.reasons['upright']})"
+    print("the upright top becomes unstable above " + unstable)
+    inv = inverts_above(top, up.spin if up is not None else top.spin_rate(0.3), alpha_v)
     if inv is None:
-        from ..steady.classes import top_class
-
         cls = top_class(q=top.q, sigma=top.sigma, mu=top.mu)
-        print(
-            "launched upright, it inverts completely above no spin: "
-            + NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
-        )
+        never = NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
+        print("launched upright, it inverts completely above no spin: " + never)
     else:
         print("launched upright, it inverts completely above " + spin_text(inv, unit, digits=10))
 

@@ -13,6 +13,7 @@ integrators of the nonlinear runs. Each line names a step and its time.
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import time
 from collections.abc import Callable
@@ -47,46 +48,37 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
     from ..steady import branch, final, states
 
     sliding = kernel._model_kernels(get_model("sliding"))
-    p = dict(
-        q=np.linspace(-0.4, 0.4, 64),
-        fr_inv=np.full(64, 0.3),
-        sigma=np.ones(64),
-        alpha_v=np.full(64, 0.5),
-        mu=np.full(64, 2.28),
-    )
+    p = dict(q=np.linspace(-0.4, 0.4, 64), fr_inv=np.full(64, 0.3), sigma=np.ones(64), alpha_v=np.full(64, 0.5))
+    p["mu"] = np.full(64, 2.28)
     c = get_model("rolling", warn=False).coefficients(q=p["q"], fr_inv=p["fr_inv"], sigma=p["sigma"], mu=p["mu"])
     quad = [np.ascontiguousarray(c[:, j]) for j in range(3)]
     top = dict(q=-0.1, sigma=1.0, fr_inv=0.3)  # the paper's top (Sec. 3(ii)) for the one-point steps
-    out: list[tuple[str, Callable[[], object], list]] = []
-    for par in (False, True):
-        kind = "parallel" if par else "serial"
-        out += [
-            (
-                f"eigenvalue kernel, sliding model, domain test fused ({kind})",
-                lambda par=par: kernel.checked_model_spectrum("sliding", p, engine="compiled", parallel=par),
-                [(sliding.checked, par)],
-            ),
-            (
-                f"eigenvalue kernel, sliding model, masked ({kind})",
-                lambda par=par: kernel.model_spectrum("sliding", p, engine="compiled", parallel=par),
-                [(sliding.masked, par)],
-            ),
-            (
-                f"eigenvalue kernel on coefficients, other models ({kind})",
-                lambda par=par: kernel.coefficient_spectrum(c, engine="compiled", parallel=par),
-                [(kernel._coefficient_loop, par)],
-            ),
-        ]
+    kernels = (  # (what, the loop compiled, the call that compiles it)
+        ("eigenvalue kernel, sliding model, domain test fused", sliding.checked, kernel.checked_model_spectrum),
+        ("eigenvalue kernel, sliding model, masked", sliding.masked, kernel.model_spectrum),
+        ("eigenvalue kernel on coefficients, other models", kernel._coefficient_loop, kernel.coefficient_spectrum),
+    )
+    out = [
+        (
+            f"{what} ({'parallel' if par else 'serial'})",
+            functools.partial(call, *inputs, engine="compiled", parallel=par),
+            [(loop, par)],
+        )
+        for par in (False, True)
+        for (what, loop, call), inputs in zip(kernels, (("sliding", p), ("sliding", p), (c,)))
+    ]
+    quadratic, others = roots.quadratic_roots_many, neutrality._other_roots_many
+    sliding_top = dict(top, alpha_v=0.5)
     out += [
         (
             "batched quadratic formula (method='polynomial')",
-            lambda: cached(roots.quadratic_roots_many)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
-            [(roots.quadratic_roots_many, False)],
+            lambda: cached(quadratic)(*quad, np.empty((64, 2), complex), np.empty((64, 2), bool)),
+            [(quadratic, False)],
         ),
         (
             "batched other modes of the neutral condition",
-            lambda: cached(neutrality._other_roots_many)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
-            [(neutrality._other_roots_many, False)],
+            lambda: cached(others)(c, 3, p["sigma"], 1, np.empty((64, 1), complex)),
+            [(others, False)],
         ),
         (
             "neutral curves: compiled corrector (sliding model)",
@@ -101,27 +93,25 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
         (
             "steady states and the final state (sliding model)",
             lambda: (
-                states.steady_states("sliding", **top, alpha_v=0.5),
+                states.steady_states("sliding", **sliding_top),
                 final.final_state(
-                    "sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0], **top, alpha_v=0.5
+                    "sliding", omega=[0.0, 0.0, 1.0], k=[0.05, 0.0, 1.0], velocity=[0.0, 0.0], **sliding_top
                 ),
             ),
             [],
         ),
         (
             "branch of tilted states: compiled step (sliding model)",
-            lambda: branch.steady_branch("sliding", **top, alpha_v=0.5, compiled=True),
+            lambda: branch.steady_branch("sliding", **sliding_top, compiled=True),
             [],
         ),
     ]
     for name in NONLINEAR_MODELS:
-        friction = dict(alpha_v=0.5) if name == "sliding" else {}
+        run = dict(top, alpha_v=0.5) if name == "sliding" else top
         out.append(
             (
                 f"integrator, {name} model",
-                lambda name=name, friction=friction: simulate(
-                    name, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], **top, **friction
-                ),
+                lambda n=name, r=run: simulate(n, t_end=0.5, omega=[0, 0, 1], k=[1e-3, 0, 1], **r),
                 [],
             )
         )
