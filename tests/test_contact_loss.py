@@ -158,7 +158,7 @@ def test_final_state_run_reports_the_contact_loss():
     from stability.nonlinear.runs import initial_state, model_parameter_vector
     from stability.steady.final import settle
 
-    params, _ = model_parameter_vector("sliding", q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5)
+    params, _ = model_parameter_vector("sliding", dict(q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5))
     params.pop("alpha_k")
     y0 = initial_state("sliding", [2.0, 0.0, 1.0], _unit([0.3, 0, 1]), [0.0, 0.0])
     tilt, _, run = settle(y0, params, chunk=50.0, t_max=200.0, settle_tolerance=1e-4, rtol=1e-10)

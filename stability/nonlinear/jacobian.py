@@ -61,7 +61,7 @@ def transverse_jacobian(
     from .runs import model_parameter_vector
 
     m = get_nonlinear_model(model)
-    _, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=0.0, mu=mu)
+    _, p = model_parameter_vector(m.name, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     y0 = upright_state(m.name).astype(complex)
     re = [i for i, _ in m.transverse]
     im = [j for _, j in m.transverse]

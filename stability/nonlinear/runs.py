@@ -16,7 +16,7 @@ coefficient ``alpha_k / slip_scale``; see
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -91,18 +91,23 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
 
 def model_parameter_vector(
     model: str,
+    top: Mapping[str, Any],
     *,
-    q: Any,
-    fr_inv: Any,
-    sigma: Any,
-    alpha_v: Any = None,
-    alpha_k: Any = 0.0,
-    mu: Any = DEFAULT_MU,
     friction: str = "isotropic",
     normal: str = "equilibrium",
     slip_scale: float = DEFAULT_SLIP_SCALE,
 ) -> tuple[dict[str, float], np.ndarray]:
     """Check the physical parameters of a nonlinear model and pack them for the kernels.
+
+    Parameters
+    ----------
+    model : str
+    top : mapping
+        ``q``, ``fr_inv``, ``sigma`` and optionally ``mu`` (default :data:`DEFAULT_MU`),
+        ``alpha_v`` (required for ``"sliding"``, refused otherwise) and ``alpha_k`` (default 0;
+        nonzero refused but for ``"sliding"``), as :func:`simulate` takes them.
+    friction, normal, slip_scale
+        As :func:`simulate` takes them.
 
     Returns
     -------
@@ -119,7 +124,8 @@ def model_parameter_vector(
         A value outside the physical domain or an unknown option.
     """
     m = get_nonlinear_model(model)
-    given = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    given = {"mu": DEFAULT_MU, "alpha_k": 0.0, **top}
+    alpha_v, alpha_k = given.pop("alpha_v", None), given.pop("alpha_k")
     if m.name == "sliding":
         if alpha_v is None:
             raise ParameterTypeError("alpha_v is required for model 'sliding' (alpha_v >= 0)")
@@ -358,7 +364,7 @@ def simulate(
     """
     m = get_nonlinear_model(model)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
-    params, p = model_parameter_vector(m.name, **top, friction=friction, normal=normal, slip_scale=slip_scale)
+    params, p = model_parameter_vector(m.name, top, friction=friction, normal=normal, slip_scale=slip_scale)
     t_end = check_positive("t_end", t_end)
     rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_steps = check_integer("max_steps", max_steps, minimum=1)

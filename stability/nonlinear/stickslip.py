@@ -163,9 +163,8 @@ def stick_slip(
         alpha_k``, ``fr_inv = 0`` (no normal force to bound the friction), or a bad option; the
         physical domain of :func:`stability.simulate`.
     """
-    params, p_reg = model_parameter_vector(
-        "sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu, normal=normal
-    )
+    top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
+    params, p_reg = model_parameter_vector("sliding", top, normal=normal)
     if params["alpha_k"] <= 0.0:
         raise InputError(
             f"alpha_k = {params['alpha_k']:g} is outside the allowed range of stick_slip: alpha_k > 0 "
