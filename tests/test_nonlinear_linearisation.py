@@ -16,10 +16,11 @@ import itertools
 import numpy as np
 import pytest
 from conftest import random_domain_points
+from suites import reference
 
 import stability
 from stability import jacobian_eigenvalues
-from stability.nonlinear import reference, rolling, sliding
+from stability.nonlinear import rolling, sliding
 from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear.parameters import pack
 

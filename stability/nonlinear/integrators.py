@@ -517,7 +517,9 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
             if watching:
                 n_new = event_value(yn, k[6], p, watch, c_stick)
                 if n_new <= 0.0:
-                    j, t = _to_event(code, p, t, hh, n_new, y, k, yn, k[6], fixed, ys, t_eval, j, out, fs, watch, c_stick)
+                    j, t = _to_event(
+                        code, p, t, hh, n_new, y, k, yn, k[6], fixed, ys, t_eval, j, out, fs, watch, c_stick
+                    )
                     status = EVENT
                     break
                 fs[_N] = n_new

@@ -41,10 +41,10 @@ from ..parameters import (
 from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
-from .contact import check_on_contact_loss
+from .contact import ON_CONTACT_LOSS
 from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, check_tolerances, integrate
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, check_tolerances, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
@@ -389,22 +389,22 @@ def simulate(
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = auto_method(m.name, params)
-    check_on_contact_loss(on_contact_loss)
+    check_choice("on_contact_loss", on_contact_loss, ON_CONTACT_LOSS)
     if on_contact_loss == "continue" and stick_tilt is not None:
         raise InputError(
             f"stick_tilt = {stick_tilt!r} with on_contact_loss = 'continue': the stick is not watched in "
             "flight (not built); give one of them"
         )
     if on_contact_loss == "continue" and (m.name != "sliding" or normal != "actual"):
-        why = (
-            f"model {m.name!r}: its contact force does not vanish with N (the rolling constraint needs a "
-            "traction as N reaches 0), so the top cannot leave the floor smoothly"
-            if m.name != "sliding"
-            else "normal = 'equilibrium': the paper's friction law keeps its full force as N reaches 0, so a "
-            "free top would turn into the floor at once"
+        why = {
+            "fixed_pivot": "model 'fixed_pivot': it has no floor to leave",
+            "rolling": "model 'rolling': its contact force does not vanish with N (the rolling constraint needs a "
+            "traction as N reaches 0), so the top cannot leave the floor smoothly",
+        }.get(
+            m.name,
+            "normal = 'equilibrium': the paper's friction law keeps its full force as N reaches 0, so a "
+            "free top would turn into the floor at once",
         )
-        if not m.has_translation:
-            why = f"model {m.name!r}: it has no floor to leave"
         raise InputError(
             f"on_contact_loss = 'continue' is not available for {why}; use model = 'sliding' with "
             "normal = 'actual' (friction proportional to N, zero at the take-off), or on_contact_loss = 'stop'"
@@ -418,30 +418,24 @@ def simulate(
     # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
     # says nothing there, the contact is the model's assumption; not watched (attrs say so)
     watched = m.has_translation and params["fr_inv"] > 0.0
-    flights = None
+    flights = on_contact_loss == "continue" and watched
     try:
         with deferred():
             options = dict(method=method, rtol=rtol, atol=atol, step=step, max_steps=max_steps)
             options.update(progress=report, stick_tilt=stick_tilt)
-            if on_contact_loss == "continue" and watched:
-                flights = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
-                f = flights
-                sol = Solution(f.t, f.y, f.nfev, f.naccept, f.nreject, f.status, method, f.event_time, f.event)
+            if flights:  # a HybridRun: the Solution's fields, the flights and its own message
+                sol = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
             else:
                 sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
     finally:
         close()
-    message = sol.message if flights is None else flights.message
     if sol.status < 0:
-        warnings.warn(f"simulate({m.name!r}): integration stopped: {message}", RuntimeWarning, stacklevel=2)
-    if flights is None:
-        ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
-    else:
-        ds = flight_dataset(m.name, flights, params, p)
+        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning, stacklevel=2)
+    ds = flight_dataset(m.name, sol, params, p) if flights else trajectory_dataset(m.name, sol.t, sol.y, params, p)
     ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss)
     ds.attrs.update(contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept, nreject=sol.nreject)
-    ds.attrs.update(status=sol.status, message=message)
+    ds.attrs.update(status=sol.status, message=sol.message)
     friction_law = friction if m.name == "sliding" else "none (constraint force)"
     ds.attrs.update(friction_law=friction_law, normal_force_scaling=normal, slip_scale=float(slip_scale))
     return ds
@@ -456,6 +450,7 @@ def trajectory_dataset(
     *,
     centre: tuple[np.ndarray, np.ndarray] | None = None,
     contact: np.ndarray | None = None,
+    forces: np.ndarray | None = None,
 ) -> xr.Dataset:
     """Build the output Dataset of :func:`simulate` from the states of a run.
 
@@ -468,14 +463,13 @@ def trajectory_dataset(
     omega = y[:, 0:3]
     k = y[:, 3:6]
     n = t.size
-    good = np.isfinite(y).all(axis=1)
-    if contact is not None:
-        good &= contact == 1
-    forces = np.full((n, 3), np.nan)
-    if good.any():
-        forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
-    if contact is not None:
-        forces[contact == 0] = 0.0  # in flight: no contact force
+    if forces is None:
+        good = np.isfinite(y).all(axis=1) & (True if contact is None else contact == 1)
+        forces = np.full((n, 3), np.nan)
+        if good.any():
+            forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
+        if contact is not None:
+            forces[contact == 0] = 0.0  # in flight: no contact force
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis

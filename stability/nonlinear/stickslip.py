@@ -202,24 +202,18 @@ def stick_slip(
         f = rolling.contact_forces(np.ascontiguousarray(y8[None, :]), p)[0]
         return f[:2], float(f[2])
 
-    def slip_rhs(t, y):
-        return sliding.rhs(t, y, p)
-
-    def roll_rhs(t, y):
-        return rolling.rhs(t, y, p)
-
-    # every event ends its phase, on a downward crossing
-    def ev_slip_stop(t, y):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
+    # every event ends its phase, on a downward crossing (solve_ivp passes p to them too)
+    def ev_slip_stop(t, y, p):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
-    def ev_slip_contact(t, y):
+    def ev_slip_contact(t, y, p):
         return float(sliding.contact_forces(np.ascontiguousarray(y[None, :]), p)[0, 2])
 
-    def ev_stick_break(t, y):
+    def ev_stick_break(t, y, p):
         f, n = rolling_need(y)
         return limit(n) - math.hypot(f[0], f[1])
 
-    def ev_stick_contact(t, y):
+    def ev_stick_contact(t, y, p):
         return rolling_need(y)[1]
 
     for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
@@ -238,18 +232,16 @@ def stick_slip(
     t = 0.0
     phase = _SLIP
     event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
-    if ev_slip_stop(0.0, y) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
+    if ev_slip_stop(0.0, y, p) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
-        if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
-            phase, y, n0 = _STICK, y8, n  # no slip: the sample shows rolling's forces
-        elif math.hypot(*f) <= limit(n):
-            phase, y, n0 = _STICK, y8, n
+        # rolling's N <= 0 at the start (its limit would be <= 0 with normal="actual"): no slip, the
+        # sample shows rolling's forces
+        if n <= 0.0 or math.hypot(*f) <= limit(n):
+            phase, y = _STICK, y8
         else:
             y = slip_along(y8, f)
-            n0 = ev_slip_contact(0.0, y)
-    else:
-        n0 = ev_slip_contact(0.0, y)
+    n0 = ev_slip_contact(0.0, y, p) if phase == _SLIP else n
     if n0 <= 0.0:  # the events fire on a crossing only: a start without contact force is its own event
         event, event_time = "contact_lost", 0.0
         message = f"the normal force is N = {n0:.6g} <= 0 at the start (contact lost at once)"
@@ -260,10 +252,10 @@ def stick_slip(
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:
-            rhs, events = slip_rhs, (ev_slip_stop, ev_slip_contact)
+            rhs, events = sliding.rhs, (ev_slip_stop, ev_slip_contact)
         else:
-            rhs, events = roll_rhs, (ev_stick_break, ev_stick_contact)
-        sol = solve_ivp(rhs, (t, t_end), y, method=method, t_eval=t_eval, events=events, rtol=rtol, atol=atol)
+            rhs, events = rolling.rhs, (ev_stick_break, ev_stick_contact)
+        sol = solve_ivp(rhs, (t, t_end), y, method, t_eval, events=events, rtol=rtol, atol=atol, args=(p,))
         if sol.status < 0:  # what was integrated is kept, then the loop ends (hit is empty)
             status = STEP_TOO_SMALL if "step size" in sol.message else NOT_FINITE  # as integrators.py maps scipy's
             message = f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
@@ -304,21 +296,15 @@ def stick_slip(
     t_all = np.concatenate(ts)
     y_all = np.vstack(ys)
     ph = np.concatenate(phases)
-    ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg)
     stuck = ph == _STICK
-
     # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
-    # while slipping (the run's p_reg is the regularised one); the friction's K component stays 0
+    # while slipping (the run's p_reg is the regularised one)
     forces = np.empty((t_all.size, 3))
     if stuck.any():
         forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
     if not stuck.all():
         forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
-    friction = ds.friction.values.copy()
-    friction[:, 0:2] = forces[:, 0:2]
-    ds["friction"].values = friction
-    ds["friction_magnitude"].values = np.hypot(forces[:, 0], forces[:, 1])
-    ds["normal_force"].values = forces[:, 2].copy()
+    ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg, forces=forces)
     lim = a_s * ds.normal_force.values / n_eq if scaled else np.full(t_all.size, a_s)
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
@@ -330,14 +316,12 @@ def stick_slip(
     ds["friction_limit"] = ("time", lim, {"long_name": "static friction limit", "units": "1", "comment": limit_comment})
     cols = list(zip(*switches)) if switches else [[]] * 6
     kinds = "stick (slip -> stick), slip (stick -> slip), transit"
+    speed = {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"}
     switch_attrs = {  # name: (dtype, attributes), in the order of the switch tuples
         "switch_time": (float, {"long_name": "switch time", "units": "1/Omega"}),
         "switch_kind": ("<U7", {"long_name": "kind of switch", "comment": kinds}),
         "switch_tilt": (float, {"long_name": "tilt at the switch", "units": "degree"}),
-        "switch_slip_speed": (
-            float,
-            {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"},
-        ),
+        "switch_slip_speed": (float, speed),
         "switch_spin": (float, {"long_name": "spin omega . k at the switch", "units": "Omega"}),
         "switch_friction_ratio": (float, {"long_name": "needed friction / static limit at the switch", "units": "1"}),
     }
