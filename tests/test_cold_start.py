@@ -315,7 +315,7 @@ def test_compile_notice_before_a_first_compiled_run(tmp_path):
         from stability import execution
         from stability.nonlinear import integrators as I
         execution.NOTICE_AFTER = 0.05
-        for slice_ in (I.run_slice,):
+        for slice_ in (I.dopri5_slice, I.rk4_slice):
             assert not slice_.signatures
             assert execution.pick(slice_, 1, "compiled") is slice_
         time.sleep(0.3)

@@ -17,7 +17,7 @@
 Every integrator returns the states at the requested times and the work counters.
 
 The compiled integrators run in slices of at most :data:`SLICE_STEPS` steps (one kernel for
-both, :func:`run_slice`: the whole state of the run, step size, first-same-as-last stage, rejection flag
+both, :func:`run_slice`, compiled once for each, ``dopri5_slice`` and ``rk4_slice``: the whole state of the run, step size, first-same-as-last stage, rejection flag
 and counters, is carried from one slice to the next, so the steps and the results are those of
 one uninterrupted call, bit for bit). Between slices the run reports its progress and checks for
 an interruption (:func:`stability.interrupts.checkpoint`): Ctrl-C or SIGTERM ends a run of hours
@@ -57,7 +57,9 @@ __all__ = [
     "SLICE_STEPS",
     "Solution",
     "check_tolerances",
+    "dopri5_slice",
     "integrate",
+    "rk4_slice",
     "run_slice",
 ]
 
@@ -344,7 +346,7 @@ def _copy_row(dst, i, src):
         dst[i, c] = src[c]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of a compiled run (without the GIL), continuing the run
     held in the state arrays: adaptive Dormand-Prince 5(4) with its dense output at ``t_eval``
@@ -458,20 +460,13 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
         if fixed:
             hh = min(h, t_end - t)
             last = t + 1.0000001 * hh >= t_end
+            for s in range(1, 4):  # the classical stages at t + hh / 2, t + hh / 2, t + hh
+                c = 0.5 if s < 3 else 1.0
+                for i in range(n):
+                    ys[i] = y[i] + c * hh * k[s - 1, i]
+                _copy_row(k, s, _model_rhs(code, t + c * hh, ys, p))
             for i in range(n):
-                ys[i] = y[i] + 0.5 * hh * k[0, i]
-            k2 = _model_rhs(code, t + 0.5 * hh, ys, p)
-            for i in range(n):
-                ys[i] = y[i] + 0.5 * hh * k2[i]
-            k3 = _model_rhs(code, t + 0.5 * hh, ys, p)
-            for i in range(n):
-                ys[i] = y[i] + hh * k3[i]
-            k4 = _model_rhs(code, t + hh, ys, p)
-            for i in range(n):
-                yn[i] = y[i] + hh / 6.0 * (k[0, i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-            _copy_row(k, 6, _model_rhs(code, t + hh, yn, p))
-            nfev += 4
-            en = 0.0
+                yn[i] = y[i] + hh / 6.0 * (k[0, i] + 2.0 * k[1, i] + 2.0 * k[2, i] + k[3, i])
         else:
             last = False
             if t + h >= t_end or t + 1.0000001 * h >= t_end:
@@ -493,9 +488,10 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 for r in range(6):
                     acc += _B[r] * k[r, i]
                 yn[i] = y[i] + h * acc
-            _copy_row(k, 6, _model_rhs(code, t + h, yn, p))
-            nfev += 6
-            en = 0.0  # the RMS norm of the error estimate (Hairer et al. II.4)
+        _copy_row(k, 6, _model_rhs(code, t + hh, yn, p))
+        nfev += 4 if fixed else 6
+        en = 0.0  # dopri5: the RMS norm of the error estimate (Hairer et al. II.4); rk4 accepts every step
+        if not fixed:
             for i in range(n):
                 acc = 0.0
                 for r in range(7):
@@ -527,14 +523,14 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 _interpolate(y, k, yn, k[6], hh, (t_eval[j] - t) / hh, fixed, out[j])
                 j += 1
             t = t_new
-            finite = True
             for i in range(n):
                 y[i] = yn[i]
                 k[0, i] = k[6, i]
-                finite = finite and np.isfinite(yn[i])
             if fixed:
-                if not finite:
-                    status = -3
+                for i in range(n):
+                    if not np.isfinite(y[i]):
+                        status = -3
+                if status != 0:
                     break
                 continue
             fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en**-0.2))
@@ -553,6 +549,19 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
     cnt[_REJECTED] = 1 if rejected else 0
     cnt[_STATUS] = 0 if status == CONTINUE else status
     return status
+
+
+@njit(cache=True, nogil=True)
+def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
+    """:func:`run_slice` of dopri5, compiled apart (the slice inlined with ``fixed`` False: the
+    compiled code of rk4's branch is dropped)."""
+    return run_slice(code, t_eval, p, rtol, atol, max_steps, False, budget, y, k, fs, cnt, out, watch, c_stick)
+
+
+@njit(cache=True, nogil=True)
+def rk4_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
+    """:func:`run_slice` of rk4, compiled apart (inlined with ``fixed`` True)."""
+    return run_slice(code, t_eval, p, rtol, atol, max_steps, True, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 #: a run over at most this span of time (units of the model) runs interpreted
@@ -582,12 +591,13 @@ def _compiled(code, y0, t_eval, p, rtol, atol, max_steps, step, fixed, progress,
     fs = np.array([t_eval[0], step, np.nan, np.nan])
     cnt = np.zeros(8, dtype=np.int64)
     small = float(t_eval[-1] - t_eval[0]) <= INTERPRETED_SPAN
+    kernel = rk4_slice if fixed else dopri5_slice
     while True:
         checkpoint()
-        fn = pick(run_slice, 0 if small else math.inf)  # the first slice by size, then compiled
+        fn = pick(kernel, 0 if small else math.inf)  # the first slice by size, then compiled
         small = False
-        budget = min(SLICE_STEPS, INTERPRETED_STEPS) if fn is not run_slice and engine() != "python" else SLICE_STEPS
-        status = fn(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, cnt, out, watch, c_stick)
+        budget = min(SLICE_STEPS, INTERPRETED_STEPS) if fn is not kernel and engine() != "python" else SLICE_STEPS
+        status = fn(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick)
         if progress is not None:
             progress(fs[_T])
         if status != CONTINUE:

@@ -418,12 +418,11 @@ def simulate(
     # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
     # says nothing there, the contact is the model's assumption; not watched (attrs say so)
     watched = m.has_translation and params["fr_inv"] > 0.0
-    flights = on_contact_loss == "continue" and watched
     try:
         with deferred():
             options = dict(method=method, rtol=rtol, atol=atol, step=step, max_steps=max_steps)
             options.update(progress=report, stick_tilt=stick_tilt)
-            if flights:  # a HybridRun: the Solution's fields, the flights and its own message
+            if on_contact_loss == "continue" and watched:  # a HybridRun: the fields of a Solution, and more
                 sol = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
             else:
                 sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
@@ -431,7 +430,7 @@ def simulate(
         close()
     if sol.status < 0:
         warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning, stacklevel=2)
-    ds = flight_dataset(m.name, sol, params, p) if flights else trajectory_dataset(m.name, sol.t, sol.y, params, p)
+    ds = trajectory_dataset(m.name, sol, params, p)
     ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss)
     ds.attrs.update(contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept, nreject=sol.nreject)
@@ -441,25 +440,24 @@ def simulate(
     return ds
 
 
-def trajectory_dataset(
-    model: str,
-    t: np.ndarray,
-    y: np.ndarray,
-    params: dict[str, float],
-    p: np.ndarray,
-    *,
-    centre: tuple[np.ndarray, np.ndarray] | None = None,
-    contact: np.ndarray | None = None,
-    forces: np.ndarray | None = None,
-) -> xr.Dataset:
-    """Build the output Dataset of :func:`simulate` from the states of a run.
+def trajectory_dataset(model: str, run: Any, params: dict[str, float], p: np.ndarray, forces: Any = None) -> xr.Dataset:
+    """Build the output Dataset of :func:`simulate` from a run (its times ``run.t`` and states
+    ``run.y``), the contact forces computed from the states unless given (``forces``, shape (n, 3)).
 
-    ``centre = (v_o, x_o)`` (shape (n, 3) each) and ``contact`` (1 on the floor, 0 in flight)
-    describe a run with flights (:func:`stability.nonlinear.flight.run_with_flights`): in
-    flight the contact forces are 0 and O's height and vertical velocity are the free motion's.
+    A run with flights (``on_contact_loss="continue"``, a
+    :class:`~stability.nonlinear.flight.HybridRun` of
+    :func:`~stability.nonlinear.flight.run_with_flights`) gives O's velocity and position and
+    ``contact`` (1 on the floor, 0 in flight): in flight the contact forces are 0 and O's height
+    and vertical velocity are the free motion's. Its Dataset also has the variables ``contact``
+    and ``height`` (of the sphere's lowest point), and the phases in the attributes
+    (``takeoff_times``, ``landing_times``, and per landing the vertical impulse, the contact
+    point's velocity before and after, the energy dissipated).
     """
+    t, y = run.t, run.y
+    flights = run if isinstance(run, HybridRun) else None
+    contact = None if flights is None else flights.contact
     m = get_nonlinear_model(model)
-    q, fr_inv, sigma, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
+    q, sigma, mu = params["q"], params["sigma"], params["mu"]
     omega = y[:, 0:3]
     k = y[:, 3:6]
     n = t.size
@@ -473,14 +471,8 @@ def trajectory_dataset(
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
-    coords = {
-        "time": (
-            "time",
-            t,
-            _attrs("time", "1/Omega", axis="T", comment="in units of 1/Omega; one spin period is 2 pi"),
-        ),
-        "axis": ("axis", np.array([1, 2, 3]), comp),
-    }
+    time = _attrs("time", "1/Omega", axis="T", comment="in units of 1/Omega; one spin period is 2 pi")
+    coords = {"time": ("time", t, time), "axis": ("axis", np.array([1, 2, 3]), comp)}
     data: dict[str, tuple] = {}
 
     def put(name: str, values: np.ndarray, long_name: str, units: str, comment: str) -> None:
@@ -499,7 +491,7 @@ def trajectory_dataset(
     what = "transverse angular rate |omega_1 + i omega_2| (fixed frame)"
     put("transverse_rate", transverse, "transverse rate", "Omega", what)
     if m.has_translation:
-        v0, x0 = centre if centre is not None else floor_centre(m.name, y)
+        v0, x0 = floor_centre(m.name, y) if flights is None else (flights.v_o, flights.x_o)
         v_g = v0 + q * np.cross(omega, k)
         z_g = x0[:, 2] + q * k[:, 2]
         put("velocity", v0, "velocity of O", "Omega R", "velocity of the sphere's centre O")
@@ -532,7 +524,7 @@ def trajectory_dataset(
         "potential": ("potential energy", "potential energy mu fr_inv z_G"),
         "energy": ("energy", "total energy"),
     }
-    for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu).items():
+    for name, val in energy_parts(omega, k, v_g, z_g, params).items():
         short, what = names[name]
         put(name, val, short, "A0 Omega^2", f"{what}, in units of A0 Omega^2")
     ds = xr.Dataset(data, coords=coords)
@@ -543,24 +535,17 @@ def trajectory_dataset(
     for name, val in params.items():
         ds.attrs[name] = val
         ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]
-    return ds
-
-
-def flight_dataset(model: str, run: HybridRun, params: dict[str, float], p: np.ndarray) -> xr.Dataset:
-    """The Dataset of a run with flights (``on_contact_loss="continue"``): :func:`trajectory_dataset`
-    with O's height, the variables ``contact`` and ``height`` (of the sphere's lowest point), and
-    the phases in the attributes (``takeoff_times``, ``landing_times``, and per landing the
-    vertical impulse, the contact point's velocity before and after, the energy dissipated)."""
-    ds = trajectory_dataset(model, run.t, run.y, params, p, centre=(run.v_o, run.x_o), contact=run.contact)
+    if flights is None:
+        return ds
     contact = _attrs("in contact", _ONE, comment="1 on the floor, 0 in flight (stability.nonlinear.flight)")
-    ds["contact"] = ("time", run.contact, contact)
+    ds["contact"] = ("time", flights.contact, contact)
     height = _attrs("height of the lowest point", "R", comment="height of the sphere's lowest point above the floor")
-    ds["height"] = ("time", run.x_o[:, 2] - 1.0, height)
-    lands = run.landings
+    ds["height"] = ("time", flights.x_o[:, 2] - 1.0, height)
+    lands = flights.landings
     ds.attrs.update(
-        impact_law=IMPACT_LAWS[model],
-        flights=len(run.takeoffs),
-        takeoff_times=np.array(run.takeoffs, float),
+        impact_law=IMPACT_LAWS[m.name],
+        flights=len(flights.takeoffs),
+        takeoff_times=np.array(flights.takeoffs, float),
         landing_times=np.array([x.time for x in lands], float),
         impact_impulse_vertical=np.array([x.impulse[2] for x in lands], float),
         impact_impulse_horizontal=np.array([np.hypot(x.impulse[0], x.impulse[1]) for x in lands], float),

@@ -63,7 +63,7 @@ from ..errors import InputError
 from ..parameters import DEFAULT_MU, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, check_tolerances
+from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, Solution, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -165,9 +165,10 @@ def stick_slip(
     """
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
     params, p_reg = model_parameter_vector("sliding", top, normal=normal)
-    if params["alpha_k"] <= 0.0:
+    a_k = params["alpha_k"]
+    if a_k <= 0.0:
         raise InputError(
-            f"alpha_k = {params['alpha_k']:g} is outside the allowed range of stick_slip: alpha_k > 0 "
+            f"alpha_k = {a_k:g} is outside the allowed range of stick_slip: alpha_k > 0 "
             "(without the Coulomb term the slip never vanishes in finite time; use simulate)"
         )
     if params["fr_inv"] <= 0.0:
@@ -176,11 +177,7 @@ def stick_slip(
             "force to bound the static friction)"
         )
     # static friction is at least the kinetic one
-    a_s = (
-        params["alpha_k"]
-        if alpha_s is None
-        else check_interval("alpha_s", alpha_s, params["alpha_k"], math.inf, closed="left")
-    )
+    a_s = a_k if alpha_s is None else check_interval("alpha_s", alpha_s, a_k, math.inf, closed="left")
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
@@ -304,7 +301,7 @@ def stick_slip(
         forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
     if not stuck.all():
         forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
-    ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg, forces=forces)
+    ds = trajectory_dataset("sliding", Solution(t_all, y_all, 0, 0, 0, status, method), params, p_reg, forces)
     lim = a_s * ds.normal_force.values / n_eq if scaled else np.full(t_all.size, a_s)
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
@@ -327,12 +324,10 @@ def stick_slip(
     }
     variables = zip(switch_attrs.items(), cols)
     ds = ds.assign({name: ("switch", np.array(col, dtype), attrs) for (name, (dtype, attrs)), col in variables})
-    ds.attrs.update(
-        switching_model=(
-            "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases "
-            "with the rolling model; stick when |V_c| reaches slip_threshold and rolling's friction is "
-            "within alpha_s n; slip when it reaches alpha_s n"
-        ),
+    ds.attrs["switching_model"] = (
+        "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases with the rolling "
+        "model; stick when |V_c| reaches slip_threshold and rolling's friction is within alpha_s n; slip when it "
+        "reaches alpha_s n"
     )
     ds.attrs.update(alpha_s=a_s, slip_threshold=float(slip_threshold), n_switches=len(switches))
     ds.attrs.update(final_phase=PHASES[int(ph[-1])], event=event, event_time=event_time, status=status, message=message)

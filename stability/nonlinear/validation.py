@@ -153,7 +153,7 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
     # model since "rolling" is the first-principles one, issue 15)
     fp = spectrum(MODELS[m.linear_model], **params)
     s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, **params)
+    A, _ = transverse_jacobian(model, params)
     ev, vec, bound = jacobian_modes(A)
     i = int(np.argmin(np.abs(ev - s)))
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
@@ -430,7 +430,7 @@ def coulomb_growth(
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
     t_end = check_positive("t_end", t_end)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-    A, _ = transverse_jacobian("sliding", **top, alpha_v=alpha_k)
+    A, _ = transverse_jacobian("sliding", {**top, "alpha_v": alpha_k})
     ev, vec = np.linalg.eig(A)
     lead = spectrum("sliding", **top, alpha_v=alpha_k)
     s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
