@@ -48,7 +48,7 @@ _BATCH = integrators.WATCH_BATCH
 
 
 def _case(model, t_end, method, omega, k, velocity=None, **params):
-    _, p = model_parameter_vector(model, **params)
+    _, p = model_parameter_vector(model, params)
     y0 = initial_state(model, omega, k, velocity)
     t_eval = np.linspace(0.0, t_end, int(t_end / 0.1) + 1)
 
@@ -71,7 +71,7 @@ def _check_alone(model, t_end, omega, k, velocity=None, **params):
     accepted LSODA states, batches of ``WATCH_BATCH``), screened and solved, best of 51: a tight
     compiled loop, steadier on a loaded machine than the difference of two runs."""
     code = CODES[model]
-    _, p = model_parameter_vector(model, **params)
+    _, p = model_parameter_vector(model, params)
     y0 = initial_state(model, omega, k, velocity)
     solver = LSODA(lambda t, y: rhs(code, t, y, p), 0.0, y0, t_end, rtol=1e-9, atol=1e-12)
     ts, ys = [], []

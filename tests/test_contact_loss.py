@@ -158,7 +158,7 @@ def test_final_state_run_reports_the_contact_loss():
     from stability.nonlinear.runs import initial_state, model_parameter_vector
     from stability.steady.final import settle
 
-    params, _ = model_parameter_vector("sliding", q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5)
+    params, _ = model_parameter_vector("sliding", dict(q=-0.1, fr_inv=0.05, sigma=1.0, alpha_v=0.5))
     params.pop("alpha_k")
     y0 = initial_state("sliding", [2.0, 0.0, 1.0], _unit([0.3, 0, 1]), [0.0, 0.0])
     tilt, _, run = settle(y0, params, chunk=50.0, t_max=200.0, settle_tolerance=1e-4, rtol=1e-10)
@@ -298,14 +298,14 @@ def test_scipy_batched_check_locates_the_event(batch, monkeypatch):
 def test_rolling_contact_loss_time_against_independent_dop853():
     """The rolling model's constraint force can point down too: its run stops at the first zero
     of N with event contact_lost. Reference: the rolling sphere of
-    stability.nonlinear.reference.rolling_rhs (plain numpy, the centre's acceleration eliminated
+    suites.reference.rolling_rhs (plain numpy, the centre's acceleration eliminated
     first and a 3 x 3 system for omega', not the kernels' 6 x 6 one), integrated by scipy's
     DOP853 with a terminal event on N = mu fr_inv + mu q (k'')_3, k'' = omega' x k + omega x
     (omega x k) (the vertical component of eq. 1 with O at height R). Tolerance 1e-6 relative on
     the time (the issue's; both runs at rtol 1e-11 agree to ~1e-9); N of the run against the
     same vertical equation at the run's own states to 1e-10 (round-off of two eliminations of
     an O(1) system)."""
-    from stability.nonlinear.reference import rolling_rhs
+    from suites.reference import rolling_rhs
 
     q, fr, sg = -0.1, 0.05, 1.0
     k0 = _unit([0.3, 0, 1])
@@ -378,11 +378,12 @@ def test_screened_batch_check_finds_the_first_nonpositive_n():
 
 def test_rolling_closed_form_normal_force_against_reference():
     """stability.nonlinear.rolling.normal_force (closed form) against N from the plain-numpy
-    rolling sphere of stability.nonlinear.reference (its 3 x 3 solve for omega', then the
+    rolling sphere of suites.reference (its 3 x 3 solve for omega', then the
     vertical equation N = mu fr_inv + mu q (k'')_3), at random states with k off the unit
     sphere too; tolerance 1e-12 of the closed form's scale (round-off of two eliminations)."""
+    from suites.reference import rolling_rhs
+
     from stability.nonlinear.parameters import pack
-    from stability.nonlinear.reference import rolling_rhs
     from stability.nonlinear.rolling import normal_force
 
     rng = np.random.default_rng(11)

@@ -279,7 +279,7 @@ def test_linearised_change_of_n_against_runs():
 
     m = contact_margin(tilt=90.0, duration=50.0, max_size=5.0, **MARGIN)
     y = _tilted_state(90.0)
-    _, p = model_parameter_vector("sliding", mu=MU, **MARGIN)
+    _, p = model_parameter_vector("sliding", dict(mu=MU, **MARGIN))
     linear = m.normal_force / m.linear_size
     errs = []
     for eps in (0.5, 0.25):

@@ -16,10 +16,11 @@ import itertools
 import numpy as np
 import pytest
 from conftest import random_domain_points
+from suites import reference
 
 import stability
 from stability import jacobian_eigenvalues
-from stability.nonlinear import reference, rolling, sliding
+from stability.nonlinear import rolling, sliding
 from stability.nonlinear.jacobian import transverse_jacobian
 from stability.nonlinear.parameters import pack
 
@@ -54,7 +55,7 @@ def test_jacobian_matches_linear_operator(nonlinear, linear, with_alpha):
 def test_transverse_jacobian_is_complex_linear():
     """Rotational symmetry about K: the real block has the form [[Re A, -Im A], [Im A, Re A]]."""
     for model, extra in (("sliding", {"alpha_v": 0.7}), ("rolling", {}), ("fixed_pivot", {})):
-        _, asym = transverse_jacobian(model, q=0.17, fr_inv=1.3, sigma=0.8, **extra)
+        _, asym = transverse_jacobian(model, dict(q=0.17, fr_inv=1.3, sigma=0.8, **extra))
         assert asym < 1e-14
 
 

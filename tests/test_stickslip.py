@@ -1,7 +1,7 @@
 """Stick and slip with Coulomb friction (stability.stick_slip) and a Coulomb top's end.
 
 References: an independent hybrid built here on the plain-numpy right-hand sides of
-stability.nonlinear.reference (a different elimination of the same equations) with the needed
+suites.reference (benchmarks/) (a different elimination of the same equations) with the needed
 rolling friction and N from Newton's law for G written here, integrated by scipy's DOP853 with
 its own events; a closed form of the slip's extinction for the uniform ball (q = 0, sigma = 1);
 the integrals of pure rolling (energy, Jellett's h_cg); the Coulomb bound |f| <= alpha_s.
@@ -14,11 +14,11 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from suites.reference import rolling_rhs, sliding_rhs
 
 import stability
 from stability.errors import InputError
 from stability.nonlinear.friction import traction
-from stability.nonlinear.reference import rolling_rhs, sliding_rhs
 from stability.steady.coulomb import rolling_band
 
 TOP = dict(q=-0.1, sigma=1.0, mu=2.28, fr_inv=0.3)

@@ -12,7 +12,7 @@ Three problems, all the sliding top (eqs. 1, 2, 4, 5, 7) with ``q = -0.1``, ``si
   default ``rtol = 1e-9``, ``atol = 1e-12``), scipy's RK45, DOP853, LSODA, Radau and BDF (all
   on the compiled right-hand side) at several ``rtol`` (``atol = 1e-3 rtol``), the paper's
   fixed-step RK4 at several steps, and the first thing a user would write, scipy RK45 calling
-  the numpy right-hand side (:mod:`stability.nonlinear.reference`);
+  the numpy right-hand side (:mod:`suites.reference`);
 * *the stiff slip mode*: a linear-regime run (tilt 1e-3, spin +1, 200 time units) at large
   ``alpha_v``, where the slip decays at ``alpha_v A_C / (mu A_G)``: explicit methods are held
   to steps of ``~3 / rate`` by stability, not accuracy, so their cost grows like ``alpha_v``;
@@ -174,13 +174,14 @@ def crossing_run(
 
 def numpy_rhs_crossing_run(rtol: float) -> tuple[float, int]:
     """The same run by ``scipy.integrate.solve_ivp(RK45)`` on the numpy right-hand side
-    (:func:`stability.nonlinear.reference.sliding_rhs`), ``atol = 1e-3 rtol``."""
+    (:func:`suites.reference.sliding_rhs`), ``atol = 1e-3 rtol``."""
     import xarray as xr
     from scipy.integrate import solve_ivp
 
-    from stability.nonlinear.reference import sliding_rhs
     from stability.nonlinear.runs import initial_state
     from stability.nonlinear.scene import INITIAL_CONDITIONS, PAPER, crossing_time
+
+    from .reference import sliding_rhs
 
     _check_tol(rtol)
     ic = INITIAL_CONDITIONS[FR_INV]

@@ -76,7 +76,7 @@ def launch_min_normal_force(
     degrees."""
     w, params, _ = launch_parameters(top, spin, "rad/s", alpha_v, "sliding")
     nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
-    _, p = model_parameter_vector("sliding", **nd)
+    _, p = model_parameter_vector("sliding", nd)
     th = math.radians(tilt)
     k = np.array([math.sin(th), 0.0, math.cos(th)])
     y0 = initial_state("sliding", k + (tilt_rate / w) * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0])

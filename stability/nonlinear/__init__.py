@@ -20,16 +20,17 @@ the validation of the linear predictions (:mod:`~stability.nonlinear.validation`
 Layer 3 (docs/architecture.md): imports the models, the linear layer and the small dense solves
 of :mod:`continuation.linalg`, never the grids, recipes, figures or command line. This ``__init__`` holds the
 registry and imports no model module: :data:`NONLINEAR_MODELS` knows the names without them (the
-command line lists them without importing numba) and imports a model's compiled module when the
-model is first asked for; ``runs``, ``jacobian`` and ``validation`` import the registry from here
+command line lists them without importing numba) and imports a model's compiled module when its
+kernels are first asked for; ``runs``, ``jacobian`` and ``validation`` import the registry from here
 without a cycle.
 """
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 
 from ..errors import InputError
 
@@ -40,34 +41,51 @@ __all__ = ["NONLINEAR_MODELS", "NonlinearModel", "get_nonlinear_model"]
 class NonlinearModel:
     """A nonlinear model: its compiled kernels and the layout of its state.
 
+    The kernels and the state's names come from the model's compiled module (of the same name),
+    imported when one of them is first asked for: the registry knows the names, equations and
+    parameters without importing numba (the command line lists them).
+
     Attributes
     ----------
     name : str
     equations : str
         The paper's equation numbers.
+    parameters : tuple of str
+        Physical parameters the model takes.
+    transverse : tuple of tuple of int
+        Index pairs ``(re, im)`` of the complex transverse variables at the upright spin, in
+        the order of the linear model's state (``omega, Phi[, V]``).
     rhs : callable
         Compiled ``rhs(t, y, p)``.
     contact_forces : callable
         Compiled ``contact_forces(states, p) -> (n, 3)``.
     state : tuple of str
         Names of the state components.
-    parameters : tuple of str
-        Physical parameters the model takes.
-    transverse : tuple of tuple of int
-        Index pairs ``(re, im)`` of the complex transverse variables at the upright spin, in
-        the order of the linear model's state (``omega, Phi[, V]``).
     linear_model : str
-        Name of the registered linear model that is the first-principles linearisation.
+        Name of the registered linear model that is the first-principles linearisation (the
+        linear model of the same name).
     """
 
     name: str
     equations: str
-    rhs: Callable
-    contact_forces: Callable
-    state: tuple[str, ...]
     parameters: tuple[str, ...]
     transverse: tuple[tuple[int, int], ...]
-    linear_model: str
+
+    @cached_property
+    def rhs(self) -> Callable:
+        return importlib.import_module(f"{__name__}.{self.name}").rhs
+
+    @cached_property
+    def contact_forces(self) -> Callable:
+        return importlib.import_module(f"{__name__}.{self.name}").contact_forces
+
+    @cached_property
+    def state(self) -> tuple[str, ...]:
+        return importlib.import_module(f"{__name__}.{self.name}").STATE
+
+    @property
+    def linear_model(self) -> str:
+        return self.name
 
     @property
     def has_translation(self) -> bool:
@@ -77,47 +95,20 @@ class NonlinearModel:
 
 #: the parameters of the tops without friction parameters (rolling, fixed pivot)
 _CLASSICAL = ("q", "fr_inv", "sigma", "mu")
-#: name -> (equations, parameters, transverse index pairs): what the registry knows before the
-#: model's compiled module (of the same name) is imported; its linear model has the same name too
-_MODELS: dict[str, tuple[str, tuple[str, ...], tuple[tuple[int, int], ...]]] = {
-    "sliding": (
+
+#: name -> :class:`NonlinearModel` (a model's compiled module is imported on first use of its kernels)
+NONLINEAR_MODELS: Mapping[str, NonlinearModel] = {
+    "sliding": NonlinearModel(
+        "sliding",
         "(1), (2), (4), (5), (7)/(16)",
         ("q", "fr_inv", "sigma", "alpha_v", "alpha_k", "mu"),
         ((0, 1), (3, 4), (6, 7)),
     ),
-    "rolling": ("(1), (2), (4), (5) with V_c = 0", _CLASSICAL, ((0, 1), (3, 4))),
-    "fixed_pivot": ("(2), (4) about the pivot; (8)-(9) with h = 1 + q", _CLASSICAL, ((0, 1), (3, 4))),
+    "rolling": NonlinearModel("rolling", "(1), (2), (4), (5) with V_c = 0", _CLASSICAL, ((0, 1), (3, 4))),
+    "fixed_pivot": NonlinearModel(
+        "fixed_pivot", "(2), (4) about the pivot; (8)-(9) with h = 1 + q", _CLASSICAL, ((0, 1), (3, 4))
+    ),
 }
-
-
-class _Registry(Mapping[str, NonlinearModel]):
-    """The nonlinear models by name: the names (iteration, ``in``) without importing anything, a
-    model (its compiled module imported, its :class:`NonlinearModel` built) on first access."""
-
-    def __init__(self) -> None:
-        self._built: dict[str, NonlinearModel] = {}
-
-    def __getitem__(self, name: str) -> NonlinearModel:
-        if name not in self._built:
-            equations, parameters, transverse = _MODELS[name]
-            mod = importlib.import_module(f"{__name__}.{name}")
-            self._built[name] = NonlinearModel(
-                name, equations, mod.rhs, mod.contact_forces, mod.STATE, parameters, transverse, name
-            )
-        return self._built[name]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(_MODELS)
-
-    def __len__(self) -> int:
-        return len(_MODELS)
-
-    def __repr__(self) -> str:
-        return f"NONLINEAR_MODELS({', '.join(_MODELS)})"
-
-
-#: name -> :class:`NonlinearModel` (a mapping; a model's module is imported on first access)
-NONLINEAR_MODELS: Mapping[str, NonlinearModel] = _Registry()
 
 
 def get_nonlinear_model(model: str) -> NonlinearModel:

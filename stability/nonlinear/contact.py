@@ -28,24 +28,7 @@ plastic landing (:mod:`stability.nonlinear.flight`), then on the floor again.
 
 from __future__ import annotations
 
-from ..errors import InputError
-
-__all__ = ["ON_CONTACT_LOSS", "check_on_contact_loss"]
+__all__ = ["ON_CONTACT_LOSS"]
 
 #: the choices of ``simulate(on_contact_loss=...)``
 ON_CONTACT_LOSS = ("stop", "continue")
-
-
-def check_on_contact_loss(value: str) -> str:
-    """Check ``on_contact_loss`` (:data:`ON_CONTACT_LOSS`).
-
-    Raises
-    ------
-    stability.errors.InputError
-        An unknown value.
-    """
-    if value not in ON_CONTACT_LOSS:
-        raise InputError(
-            f"on_contact_loss = {value!r} is not known; choose one of {', '.join(map(repr, ON_CONTACT_LOSS))}"
-        )
-    return value

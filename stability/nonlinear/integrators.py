@@ -16,8 +16,8 @@
 
 Every integrator returns the states at the requested times and the work counters.
 
-The compiled integrators run in slices of at most :data:`SLICE_STEPS` steps (``dopri5_slice``,
-``rk4_slice``: the whole state of the run, step size, first-same-as-last stage, rejection flag
+The compiled integrators run in slices of at most :data:`SLICE_STEPS` steps (one kernel for
+both, :func:`run_slice`, compiled once for each, ``dopri5_slice`` and ``rk4_slice``: the whole state of the run, step size, first-same-as-last stage, rejection flag
 and counters, is carried from one slice to the next, so the steps and the results are those of
 one uninterrupted call, bit for bit). Between slices the run reports its progress and checks for
 an interruption (:func:`stability.interrupts.checkpoint`): Ctrl-C or SIGTERM ends a run of hours
@@ -57,11 +57,10 @@ __all__ = [
     "SLICE_STEPS",
     "Solution",
     "check_tolerances",
-    "dopri5",
     "dopri5_slice",
     "integrate",
-    "rk4",
     "rk4_slice",
+    "run_slice",
 ]
 
 COMPILED_METHODS = ("dopri5", "rk4")
@@ -153,15 +152,6 @@ class Solution:
     def message(self) -> str:
         """Text of the status code."""
         return STATUS_MESSAGES.get(self.status, "scipy: failed")
-
-
-@njit(cache=True)
-def _rms(e, y, yn, rtol, atol):
-    s = 0.0
-    for i in range(e.shape[0]):
-        sc = atol + rtol * max(abs(y[i]), abs(yn[i]))
-        s += (e[i] / sc) ** 2
-    return np.sqrt(s / e.shape[0])
 
 
 #: scipy steps between two interruption points (each step is a Python call of a few hundred us)
@@ -288,7 +278,18 @@ def _relocate(make_solver, n_of, t_a, y_a, t_b, y_b, max_steps):
 
 
 @njit(cache=True, nogil=True)
-def _dopri5_dense(y, k, h, th, res):
+def _interpolate(y, k, yn, f1, h, th, hermite, res):
+    """The state at the fraction ``th`` of the step ``[t, t + h]`` into ``res``: rk4's cubic
+    Hermite interpolant of ``y, k[0]`` and ``yn, f1`` (fourth-order accurate), or dopri5's
+    dense output (the stages ``k``, the matrix ``_P``)."""
+    if hermite:
+        h00 = (1 + 2 * th) * (1 - th) ** 2
+        h10 = th * (1 - th) ** 2
+        h01 = th * th * (3 - 2 * th)
+        h11 = th * th * (th - 1)
+        for i in range(y.shape[0]):
+            res[i] = h00 * y[i] + h10 * h * k[0, i] + h01 * yn[i] + h11 * h * f1[i]
+        return
     for i in range(y.shape[0]):
         acc = 0.0
         for r in range(7):
@@ -297,41 +298,24 @@ def _dopri5_dense(y, k, h, th, res):
 
 
 @njit(cache=True, nogil=True)
-def _hermite(y, f0, yn, f1, hh, th, res):
-    h00 = (1 + 2 * th) * (1 - th) ** 2
-    h10 = th * (1 - th) ** 2
-    h01 = th * th * (3 - 2 * th)
-    h11 = th * th * (th - 1)
-    for i in range(y.shape[0]):
-        res[i] = h00 * y[i] + h10 * hh * f0[i] + h01 * yn[i] + h11 * hh * f1[i]
-
-
-@njit(cache=True, nogil=True)
-def _interpolate(y, k, yn, f1, h, th, hermite, res):
-    """The state at the fraction ``th`` of the step: rk4's Hermite cubic (``k[0] = f0``) or
-    dopri5's dense output, into ``res``."""
-    if hermite:
-        _hermite(y, k[0], yn, f1, h, th, res)
-    else:
-        _dopri5_dense(y, k, h, th, res)
-
-
-@njit(cache=True, nogil=True)
-def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_stick):
-    """The zero of ``N`` within the step ``[t, t + h]`` (``N(t) = n0 > 0 >= n1 = N(t + h)``) on
-    the step's interpolant (dense output of dopri5, or rk4's Hermite cubic with ``k[0] = f0``),
-    ``N`` exact at each interpolated state (one right-hand side). Illinois regula falsi on the
-    step fraction. Leaves the state at the zero in ``res``; returns the fraction."""
+def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
+    """The event in the accepted step ``[t, t + h]`` (the watched quantity ``fs[_N] > 0`` at ``t``,
+    ``n_new <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's
+    interpolant (:func:`_interpolate`) with the watched quantity exact at each interpolated
+    state (one right-hand side): Illinois regula falsi on the step fraction, to round-off in
+    time; the event is the first time it is <= 0, the bracket's right end. The outputs before
+    it are written, ``y`` is the state and ``fs[_TEV]`` the time there; returns the next output
+    index and the event's time."""
     a, b = 0.0, 1.0
-    fa, fb = n0, n1
+    fa, fb = fs[_N], n_new
     side = 0
     x = 1.0
     for _ in range(_ROOT_ITERATIONS):
         x = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         if not (a < x < b):
             x = 0.5 * (a + b)
-        _interpolate(y, k, yn, f1, h, x, hermite, res)
-        fx = event_value(res, _model_rhs(code, t + x * h, res, p), p, watch, c_stick)
+        _interpolate(y, k, yn, f1, h, x, hermite, ys)
+        fx = event_value(ys, _model_rhs(code, t + x * h, ys, p), p, watch, c_stick)
         if fx > 0.0:
             a, fa = x, fx
             if side == -1:
@@ -344,20 +328,9 @@ def _locate_zero(code, p, t, h, n0, n1, y, k, yn, f1, hermite, res, watch, c_sti
             side = 1
         if (b - a) * abs(h) <= 4e-16 * max(1.0, abs(t)):
             break
-    # the event is the first time N <= 0: the bracket's right end
     if x != b:
-        _interpolate(y, k, yn, f1, h, b, hermite, res)
-    return b
-
-
-@njit(cache=True, nogil=True)
-def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
-    """The event in the accepted step ``[t, t + h]`` (the watched quantity > 0 at ``t``, ``n_new
-    <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's interpolant
-    (:func:`_locate_zero`): the outputs before it written, ``y`` the state and ``fs[_TEV]`` the
-    time there; returns the next output index and the event's time."""
-    th_ev = _locate_zero(code, p, t, h, fs[_N], n_new, y, k, yn, f1, hermite, ys, watch, c_stick)
-    t_ev = t + th_ev * h
+        _interpolate(y, k, yn, f1, h, b, hermite, ys)
+    t_ev = t + b * h
     while j < t_eval.shape[0] and t_eval[j] < t_ev:
         _interpolate(y, k, yn, f1, h, (t_eval[j] - t) / h, hermite, out[j])
         j += 1
@@ -373,56 +346,13 @@ def _copy_row(dst, i, src):
         dst[i, c] = src[c]
 
 
-@njit(cache=True, nogil=True)
-def _start(code, t_eval, p, y, k, fs, cnt, out):
-    """The first call of a run: output row 0 and the derivative at ``y`` in ``k[0]``."""
-    cnt[_STARTED] = 1
-    fs[_T] = t_eval[0]
-    _copy_row(out, 0, y)
-    cnt[_J] = 1
-    _copy_row(k, 0, _model_rhs(code, fs[_T], y, p))
-    cnt[_NFEV] = 1
-
-
-@njit(cache=True, nogil=True)
-def _resume(fs, cnt):
-    """The state a slice carries on: ``t, h, j, steps, nfev, naccept, nreject, rejected``."""
-    return fs[_T], fs[_H], cnt[_J], cnt[_STEPS], cnt[_NFEV], cnt[_NACCEPT], cnt[_NREJECT], cnt[_REJECTED] != 0
-
-
-@njit(cache=True, nogil=True)
-def _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status):
-    """Store what :func:`_resume` reads for the next slice, and the status (0 while the run goes
-    on); returns ``status``."""
-    fs[_T] = t
-    fs[_H] = h
-    cnt[_J] = j
-    cnt[_STEPS] = steps
-    cnt[_NFEV] = nfev
-    cnt[_NACCEPT] = naccept
-    cnt[_NREJECT] = nreject
-    cnt[_REJECTED] = 1 if rejected else 0
-    cnt[_STATUS] = 0 if status == CONTINUE else status
-    return status
-
-
-@njit(cache=True, nogil=True)
-def _ends_at_start(y, f0, p, fs, cnt, watch, c_stick):
-    """True if the watched quantity is <= 0 at the start (no contact force there): the event is
-    the initial state."""
-    if watch != 0 or c_stick >= -1.0:
-        fs[_N] = event_value(y, f0, p, watch, c_stick)
-        if fs[_N] <= 0.0:
-            fs[_TEV] = fs[_T]
-            cnt[_STATUS] = EVENT
-            return True
-    return False
-
-
-@njit(cache=True, nogil=True)
-def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
-    """At most ``budget`` attempted steps of adaptive Dormand-Prince 5(4) with dense output at
-    ``t_eval`` (compiled, without the GIL), continuing the run held in the state arrays.
+@njit(cache=True, nogil=True, inline="always")
+def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, cnt, out, watch, c_stick):
+    """At most ``budget`` attempted steps of a compiled run (without the GIL), continuing the run
+    held in the state arrays: adaptive Dormand-Prince 5(4) with its dense output at ``t_eval``
+    (``fixed`` False), or the classical fixed-step fourth-order Runge-Kutta of the paper
+    (``fixed`` True: steps of ``fs[_H]``, the last one shortened to end at ``t_eval[-1]``,
+    outputs by cubic Hermite interpolation, no step rejected).
 
     A run is a sequence of calls on the same state: its steps, and so its results, do not depend
     on how it is cut into slices (nothing is clipped at a slice's end; the state carries
@@ -437,9 +367,11 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
     p : numpy.ndarray
         Parameter vector passed to ``rhs``.
     rtol, atol : float
-        Tolerances.
+        Tolerances (dopri5).
     max_steps : int
         Limit on attempted steps over the whole run.
+    fixed : bool
+        rk4 (True) or dopri5 (False).
     budget : int
         Attempted steps in this call.
     y : numpy.ndarray, shape (n,)
@@ -448,8 +380,8 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         Stages (``k[0]``: the derivative at ``y``, first-same-as-last); updated.
     fs : numpy.ndarray, shape (4,)
         ``[t, h, N, t_event]``: the time of ``y`` (``t_eval[0]`` at first), the next step (at
-        first the initial step, 0 for the automatic choice of Hairer et al. II.4), the normal
-        force at ``t`` and the time of the event (watched runs); updated.
+        first the initial step, 0 for the automatic choice of Hairer et al. II.4; rk4's step),
+        the watched quantity at ``t`` and the time of the event; updated.
     cnt : numpy.ndarray of int64, shape (8,)
         Output index, evaluations, accepted, rejected and attempted steps, status, the
         "rejected last" flag, "started" (0 before the first call); updated.
@@ -457,7 +389,7 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
         Outputs, written from row ``cnt[_J]`` on (rows not reached stay as they are).
     watch : int
         1: watch the normal force (:func:`normal_force_of`) after every accepted step and stop
-        at its first zero, located on the dense output (:func:`_locate_zero`): status
+        at its first zero, located on the step's interpolant (:func:`_to_event`): status
         :data:`EVENT`, ``y`` the state and ``fs[_TEV]`` the time of the zero, outputs written
         before it only. 0: no watching (a model without a contact point).
     c_stick : float
@@ -476,11 +408,16 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
     yn = np.empty(n)
     err = np.empty(n)
     t_end = t_eval[m - 1]
-    if cnt[_STARTED] == 0:
-        _start(code, t_eval, p, y, k, fs, cnt, out)
-        t = fs[_T]
+    watching = watch != 0 or c_stick >= -1.0
+    if cnt[_STARTED] == 0:  # the first call: output row 0, the derivative at y in k[0]
+        cnt[_STARTED] = 1
+        t = fs[_T] = t_eval[0]
+        _copy_row(out, 0, y)
+        cnt[_J] = 1
+        _copy_row(k, 0, _model_rhs(code, t, y, p))
+        cnt[_NFEV] = 1
         h = fs[_H]
-        if h <= 0.0:
+        if not fixed and h <= 0.0:
             # Hairer, Norsett & Wanner II.4: starting step size
             d0 = 0.0
             d1 = 0.0
@@ -503,10 +440,16 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             dm = max(d1, d2)
             h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
             h = min(100.0 * h0, h1)
-        fs[_H] = min(h, t_end - t)
-        if _ends_at_start(y, k[0], p, fs, cnt, watch, c_stick):
-            return EVENT
-    t, h, j, steps, nfev, naccept, nreject, rejected = _resume(fs, cnt)
+        if not fixed:
+            fs[_H] = min(h, t_end - t)
+        if watching:  # the watched quantity <= 0 at the start: the event is the initial state
+            fs[_N] = event_value(y, k[0], p, watch, c_stick)
+            if fs[_N] <= 0.0:
+                fs[_TEV] = fs[_T]
+                cnt[_STATUS] = EVENT
+                return EVENT
+    t, h, j, steps, nfev = fs[_T], fs[_H], cnt[_J], cnt[_STEPS], cnt[_NFEV]
+    naccept, nreject, rejected = cnt[_NACCEPT], cnt[_NREJECT], cnt[_REJECTED] != 0
     status = used = 0
     while j < m and used < budget:
         if steps >= max_steps:
@@ -514,61 +457,82 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             break
         steps += 1
         used += 1
-        last = False
-        if t + h >= t_end or t + 1.0000001 * h >= t_end:
-            h = t_end - t
-            last = True
-        if h <= 1e-14 * max(1.0, abs(t)):
-            status = -2
-            break
-        for s in range(1, 6):
+        if fixed:
+            hh = min(h, t_end - t)
+            last = t + 1.0000001 * hh >= t_end
+            for s in range(1, 4):  # the classical stages at t + hh / 2, t + hh / 2, t + hh
+                c = 0.5 if s < 3 else 1.0
+                for i in range(n):
+                    ys[i] = y[i] + c * hh * k[s - 1, i]
+                _copy_row(k, s, _model_rhs(code, t + c * hh, ys, p))
+            for i in range(n):
+                yn[i] = y[i] + hh / 6.0 * (k[0, i] + 2.0 * k[1, i] + 2.0 * k[2, i] + k[3, i])
+        else:
+            last = False
+            if t + h >= t_end or t + 1.0000001 * h >= t_end:
+                h = t_end - t
+                last = True
+            if h <= 1e-14 * max(1.0, abs(t)):
+                status = -2
+                break
+            hh = h
+            for s in range(1, 6):
+                for i in range(n):
+                    acc = 0.0
+                    for r in range(s):
+                        acc += _A[s, r] * k[r, i]
+                    ys[i] = y[i] + h * acc
+                _copy_row(k, s, _model_rhs(code, t + _C[s] * h, ys, p))
             for i in range(n):
                 acc = 0.0
-                for r in range(s):
-                    acc += _A[s, r] * k[r, i]
-                ys[i] = y[i] + h * acc
-            _copy_row(k, s, _model_rhs(code, t + _C[s] * h, ys, p))
-        for i in range(n):
-            acc = 0.0
-            for r in range(6):
-                acc += _B[r] * k[r, i]
-            yn[i] = y[i] + h * acc
-        _copy_row(k, 6, _model_rhs(code, t + h, yn, p))
-        nfev += 6
-        for i in range(n):
-            acc = 0.0
-            for r in range(7):
-                acc += _E[r] * k[r, i]
-            err[i] = h * acc
-        en = _rms(err, y, yn, rtol, atol)
-        if not np.isfinite(en):
-            if h < 1e-12:
-                status = -3
-                break
-            h *= 0.2
-            nreject += 1
-            rejected = True
-            continue
+                for r in range(6):
+                    acc += _B[r] * k[r, i]
+                yn[i] = y[i] + h * acc
+        _copy_row(k, 6, _model_rhs(code, t + hh, yn, p))
+        nfev += 4 if fixed else 6
+        en = 0.0  # dopri5: the RMS norm of the error estimate (Hairer et al. II.4); rk4 accepts every step
+        if not fixed:
+            for i in range(n):
+                acc = 0.0
+                for r in range(7):
+                    acc += _E[r] * k[r, i]
+                err[i] = h * acc
+                en += (err[i] / (atol + rtol * max(abs(y[i]), abs(yn[i])))) ** 2
+            en = np.sqrt(en / n)
+            if not np.isfinite(en):
+                if h < 1e-12:
+                    status = -3
+                    break
+                h *= 0.2
+                nreject += 1
+                rejected = True
+                continue
         if en <= 1.0:
-            t_new = t_end if last else t + h
-            if watch != 0 or c_stick >= -1.0:
+            t_new = t_end if last else t + hh
+            naccept += 1
+            if watching:
                 n_new = event_value(yn, k[6], p, watch, c_stick)
                 if n_new <= 0.0:
                     j, t = _to_event(
-                        code, p, t, h, n_new, y, k, yn, k[6], False, ys, t_eval, j, out, fs, watch, c_stick
+                        code, p, t, hh, n_new, y, k, yn, k[6], fixed, ys, t_eval, j, out, fs, watch, c_stick
                     )
-                    naccept += 1
                     status = EVENT
                     break
                 fs[_N] = n_new
             while j < m and t_eval[j] <= t_new:
-                _dopri5_dense(y, k, h, (t_eval[j] - t) / h, out[j])
+                _interpolate(y, k, yn, k[6], hh, (t_eval[j] - t) / hh, fixed, out[j])
                 j += 1
             t = t_new
             for i in range(n):
                 y[i] = yn[i]
                 k[0, i] = k[6, i]
-            naccept += 1
+            if fixed:
+                for i in range(n):
+                    if not np.isfinite(y[i]):
+                        status = -3
+                if status != 0:
+                    break
+                continue
             fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en**-0.2))
             if rejected:
                 fac = min(1.0, fac)
@@ -580,74 +544,24 @@ def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, 
             h *= max(0.2, 0.9 * en**-0.2)
     if status == 0 and j < m:  # the budget is used up before the end
         status = CONTINUE
-    return _suspend(fs, cnt, t, h, j, steps, nfev, naccept, nreject, rejected, status)
+    fs[_T], fs[_H] = t, h
+    cnt[_J], cnt[_STEPS], cnt[_NFEV], cnt[_NACCEPT], cnt[_NREJECT] = j, steps, nfev, naccept, nreject
+    cnt[_REJECTED] = 1 if rejected else 0
+    cnt[_STATUS] = 0 if status == CONTINUE else status
+    return status
 
 
 @njit(cache=True, nogil=True)
-def rk4_slice(code, t_eval, p, h, budget, y, f0, fs, cnt, out, watch, c_stick):
-    """At most ``budget`` steps of the classical fixed-step fourth-order Runge-Kutta (the paper's
-    scheme), compiled without the GIL, continuing the run held in the state arrays.
+def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
+    """:func:`run_slice` of dopri5, compiled apart (the slice inlined with ``fixed`` False: the
+    compiled code of rk4's branch is dropped)."""
+    return run_slice(code, t_eval, p, rtol, atol, max_steps, False, budget, y, k, fs, cnt, out, watch, c_stick)
 
-    Steps of size ``h`` (the last one shortened to end at ``t_eval[-1]``); outputs by cubic
-    Hermite interpolation between steps. ``y`` (the state at ``fs[0]``), ``f0`` (shape (1, n):
-    its derivative),
-    ``fs = [t, h, N, t_event]`` and ``cnt`` (layout of :func:`dopri5_slice`) are updated;
-    ``watch`` as there (the zero of N located on the Hermite cubic). Returns :data:`CONTINUE`
-    or the final status.
-    """
-    n = y.shape[0]
-    m = t_eval.shape[0]
-    t_end = t_eval[m - 1]
-    ys = np.empty(n)
-    yn = np.empty(n)
-    if cnt[_STARTED] == 0:
-        _start(code, t_eval, p, y, f0, fs, cnt, out)
-        if _ends_at_start(y, f0[0], p, fs, cnt, watch, c_stick):
-            return EVENT
-    t, _h, j, steps, nfev, _accepted, _rejected, _flag = _resume(fs, cnt)
-    status = used = 0
-    while j < m and used < budget:
-        used += 1
-        hh = min(h, t_end - t)
-        last = t + 1.0000001 * hh >= t_end
-        for i in range(n):
-            ys[i] = y[i] + 0.5 * hh * f0[0, i]
-        k2 = _model_rhs(code, t + 0.5 * hh, ys, p)
-        for i in range(n):
-            ys[i] = y[i] + 0.5 * hh * k2[i]
-        k3 = _model_rhs(code, t + 0.5 * hh, ys, p)
-        for i in range(n):
-            ys[i] = y[i] + hh * k3[i]
-        k4 = _model_rhs(code, t + hh, ys, p)
-        for i in range(n):
-            yn[i] = y[i] + hh / 6.0 * (f0[0, i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-        f1 = _model_rhs(code, t + hh, yn, p)
-        nfev += 4
-        steps += 1
-        t_new = t_end if last else t + hh
-        if watch != 0 or c_stick >= -1.0:
-            n_new = event_value(yn, f1, p, watch, c_stick)
-            if n_new <= 0.0:
-                j, t = _to_event(code, p, t, hh, n_new, y, f0, yn, f1, True, ys, t_eval, j, out, fs, watch, c_stick)
-                status = EVENT
-                break
-            fs[_N] = n_new
-        while j < m and t_eval[j] <= t_new:
-            _hermite(y, f0[0], yn, f1, hh, (t_eval[j] - t) / hh, out[j])
-            j += 1
-        finite = True
-        for i in range(n):
-            y[i] = yn[i]
-            f0[0, i] = f1[i]
-            if not np.isfinite(yn[i]):
-                finite = False
-        t = t_new
-        if not finite:
-            status = -3
-            break
-    if status == 0 and j < m:  # the budget is used up before the end
-        status = CONTINUE
-    return _suspend(fs, cnt, t, h, j, steps, nfev, steps, 0, False, status)  # rk4 rejects no step
+
+@njit(cache=True, nogil=True)
+def rk4_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
+    """:func:`run_slice` of rk4, compiled apart (inlined with ``fixed`` True)."""
+    return run_slice(code, t_eval, p, rtol, atol, max_steps, True, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 #: a run over at most this span of time (units of the model) runs interpreted
@@ -663,44 +577,27 @@ INTERPRETED_SPAN = 100.0
 INTERPRETED_STEPS = 2000
 
 
-def _slices(compiled: Callable, span: float) -> Callable[[int], tuple[Callable, int]]:
-    """The slice function and budget of each call of a run over ``span`` units of time: the
-    interpreted execution first if the span is at most :data:`INTERPRETED_SPAN` and
-    :func:`stability.execution.pick` chooses it, for at most :data:`INTERPRETED_STEPS` steps;
-    then the compiled one (with the compile notice); every slice interpreted if
-    ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so a switch changes
-    nothing but the execution."""
-    small = [span <= INTERPRETED_SPAN]
-
-    def next_slice(budget: int) -> tuple[Callable, int]:
-        fn = pick(compiled, 0 if small and small.pop() else math.inf)  # the first slice by size, then compiled
-        return fn, (min(budget, INTERPRETED_STEPS) if fn is not compiled and engine() != "python" else budget)
-
-    return next_slice
-
-
-def _compiled_run(kernel, head: tuple, y0, t_eval, h: float, stages: int, budget: int, progress, watch, c_stick):
-    """A compiled run: ``kernel(*head, budget, y, stages, fs, cnt, out, watch, c_stick)`` called
-    in slices of ``budget`` steps until it returns a final status, with an interruption point
-    and a progress report (the time reached) between calls.
-
-    Returns
-    -------
-    tuple
-        ``(y_out, nfev, naccept, nreject, status, event)``; rows of ``y_out`` not reached are
-        NaN; ``event`` is None or ``(t_event, y_event, rows)`` (``watch``: the first zero of the
-        normal force, after ``rows`` output rows). An :data:`EVENT` is a success with its event.
-    """
+def _compiled(code, y0, t_eval, p, rtol, atol, max_steps, step, fixed, progress, watch, c_stick):
+    """A compiled run: :func:`run_slice` called in slices of :data:`SLICE_STEPS` steps until it
+    returns a final status, with an interruption point and a progress report (the time
+    reached) between calls. The first slice runs interpreted if the span is at most
+    :data:`INTERPRETED_SPAN` and :func:`stability.execution.pick` chooses it, for at most
+    :data:`INTERPRETED_STEPS` steps; then compiled (with the compile notice); every slice
+    interpreted if ``TIPPE_KERNEL=python``. The slices carry the whole state of the run, so a
+    switch changes nothing but the execution. Returns as :func:`_scipy`."""
     y = np.array(y0, dtype=np.float64)
     out = np.full((t_eval.size, y.size), np.nan)
-    k = np.empty((stages, y.size))
-    fs = np.array([t_eval[0], h, np.nan, np.nan])
+    k = np.empty((7, y.size))
+    fs = np.array([t_eval[0], step, np.nan, np.nan])
     cnt = np.zeros(8, dtype=np.int64)
-    slices = _slices(kernel, float(t_eval[-1] - t_eval[0]))
+    small = float(t_eval[-1] - t_eval[0]) <= INTERPRETED_SPAN
+    kernel = rk4_slice if fixed else dopri5_slice
     while True:
         checkpoint()
-        fn, b = slices(budget)
-        status = fn(*head, b, y, k, fs, cnt, out, 1 if watch else 0, float(c_stick))
+        fn = pick(kernel, 0 if small else math.inf)  # the first slice by size, then compiled
+        small = False
+        budget = min(SLICE_STEPS, INTERPRETED_STEPS) if fn is not kernel and engine() != "python" else SLICE_STEPS
+        status = fn(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick)
         if progress is not None:
             progress(fs[_T])
         if status != CONTINUE:
@@ -709,22 +606,6 @@ def _compiled_run(kernel, head: tuple, y0, t_eval, h: float, stages: int, budget
     if cnt[_STATUS] == EVENT:
         return *work, SUCCESS, (float(fs[_TEV]), y.copy(), int(cnt[_J]))
     return *work, int(cnt[_STATUS]), None
-
-
-def dopri5(
-    code, y0, t_eval, p, rtol, atol, h_init, max_steps, *, budget=SLICE_STEPS, progress=None, watch=False, c_stick=-2.0
-):
-    """Adaptive Dormand-Prince 5(4) with dense output at ``t_eval``: the compiled
-    :func:`dopri5_slice` called in slices of ``budget`` steps; returns as :func:`_compiled_run`."""
-    head = (code, t_eval, p, rtol, atol, max_steps)
-    return _compiled_run(dopri5_slice, head, y0, t_eval, float(h_init), 7, budget, progress, watch, c_stick)
-
-
-def rk4(code, y0, t_eval, p, h, *, budget=SLICE_STEPS, progress=None, watch=False, c_stick=-2.0):
-    """Classical fixed-step RK4 (the paper's scheme): the compiled :func:`rk4_slice` called in
-    slices of ``budget`` steps; returns as :func:`_compiled_run` (``naccept`` the steps)."""
-    head = (code, t_eval, p, float(h))
-    return _compiled_run(rk4_slice, head, y0, t_eval, float(h), 1, budget, progress, watch, c_stick)
 
 
 def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=None, watch=False, c_stick=-2.0):
@@ -877,14 +758,13 @@ def integrate(
     c_stick = -2.0 if stick_tilt is None else float(np.cos(np.radians(stick_tilt)))
     y0 = np.ascontiguousarray(y0, dtype=np.float64)
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-    watch = dict(progress=progress, watch=watch_contact, c_stick=c_stick)
-    if method == "dopri5":
-        tolerances = (float(rtol), float(atol), float(step or 0.0), int(max_steps))
-        y, nfev, na, nr, st, ev = dopri5(code, y0, t_eval, p, *tolerances, **watch)
-    elif method == "rk4":
-        if step is None or not step > 0:
+    if method in COMPILED_METHODS:
+        fixed = method == "rk4"
+        if fixed and (step is None or not step > 0):
             raise InputError(f"step = {step!r}: the fixed-step rk4 method needs a step > 0")
-        y, nfev, na, nr, st, ev = rk4(code, y0, t_eval, p, float(step), **watch)
+        limit = np.iinfo(np.int64).max if fixed else int(max_steps)  # rk4 runs to its end
+        run = (float(rtol), float(atol), limit, float(step or 0.0), fixed)
+        y, nfev, na, nr, st, ev = _compiled(code, y0, t_eval, p, *run, progress, 1 if watch_contact else 0, c_stick)
     elif method in SCIPY_METHODS:
         y, nfev, na, nr, st, ev = _scipy(
             code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress, watch_contact, c_stick

@@ -18,6 +18,7 @@ is the linearisation. Rotational symmetry about ``K`` makes it complex-linear:
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -25,30 +26,21 @@ import numpy as np
 from ..parameters import DEFAULT_MU
 from . import get_nonlinear_model
 
-__all__ = ["jacobian_eigenvalues", "transverse_jacobian", "upright_state"]
+__all__ = ["jacobian_eigenvalues", "transverse_jacobian"]
 
 _STEP = 1e-30
 
 
-def upright_state(model: str) -> np.ndarray:
-    """The upright spin ``omega = k = K`` (centre at rest, at the origin) of a model."""
-    m = get_nonlinear_model(model)
-    y = np.zeros(len(m.state))
-    y[2] = 1.0
-    y[5] = 1.0
-    return y
-
-
-def transverse_jacobian(
-    model: str, *, q: Any, fr_inv: Any, sigma: Any, alpha_v: Any = None, mu: Any = DEFAULT_MU
-) -> tuple[np.ndarray, float]:
-    """Complex transverse Jacobian ``A`` at the upright spin, and its departure from C-linearity.
+def transverse_jacobian(model: str, params: Mapping[str, Any]) -> tuple[np.ndarray, float]:
+    """Complex transverse Jacobian ``A`` at the upright spin ``omega = k = K`` (centre at rest, at
+    the origin), and its departure from C-linearity.
 
     Parameters
     ----------
     model : {"sliding", "rolling", "fixed_pivot"}
-    q, fr_inv, sigma, alpha_v, mu : float
-        Parameters (``alpha_v`` for ``"sliding"`` only).
+    params : mapping
+        ``q, fr_inv, sigma`` and ``mu``, ``alpha_v`` (``"sliding"`` only), as
+        :func:`stability.nonlinear.runs.model_parameter_vector` takes them.
 
     Returns
     -------
@@ -61,8 +53,9 @@ def transverse_jacobian(
     from .runs import model_parameter_vector
 
     m = get_nonlinear_model(model)
-    _, p = model_parameter_vector(m.name, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=0.0, mu=mu)
-    y0 = upright_state(m.name).astype(complex)
+    _, p = model_parameter_vector(m.name, params)
+    y0 = np.zeros(len(m.state), complex)
+    y0[2] = y0[5] = 1.0
     re = [i for i, _ in m.transverse]
     im = [j for _, j in m.transverse]
     idx = re + im
@@ -112,7 +105,7 @@ def jacobian_eigenvalues(
     >>> s.shape
     (3,)
     """
-    A, _ = transverse_jacobian(model, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)
+    A, _ = transverse_jacobian(model, dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     ev = np.linalg.eigvals(A)
     from ..linear.spectra import mode_order  # the spectra's sort convention (here: not imported with this module)
 

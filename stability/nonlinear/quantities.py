@@ -23,6 +23,8 @@ registered with numba (:func:`centre_velocity`, :func:`energy_terms`) or compile
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from stability.jit import njit, register_jitable
@@ -68,15 +70,7 @@ def energy_terms(w0, w1, w2, k0, k1, k2, g0, g1, g2, z_g, q, fr_inv, sigma, mu):
 
 
 def energy_parts(
-    omega: np.ndarray,
-    k: np.ndarray,
-    v_g: np.ndarray,
-    z_g: np.ndarray,
-    *,
-    q: float,
-    fr_inv: float,
-    sigma: float,
-    mu: float,
+    omega: np.ndarray, k: np.ndarray, v_g: np.ndarray, z_g: np.ndarray, params: Mapping[str, float]
 ) -> dict[str, np.ndarray]:
     """Kinetic (translational, spin, transverse) and potential energy, and their sum.
 
@@ -86,7 +80,8 @@ def energy_parts(
         Angular velocity, axis, velocity of G (fixed frame).
     z_g : numpy.ndarray, shape (n,)
         Height of G above the reference level of the potential.
-    q, fr_inv, sigma, mu : float
+    params : mapping
+        ``q, fr_inv, sigma, mu`` (floats; others are ignored).
 
     Returns
     -------
@@ -95,8 +90,8 @@ def energy_parts(
         ``energy``.
     """
     w, kk, g = np.asarray(omega), np.asarray(k), np.asarray(v_g)
-    terms = energy_terms(*w.T, *kk.T, *g.T, np.asarray(z_g), q, fr_inv, sigma, mu)
-    return dict(zip(ENERGY_PARTS, terms))
+    top = (params["q"], params["fr_inv"], params["sigma"], params["mu"])
+    return dict(zip(ENERGY_PARTS, energy_terms(*w.T, *kk.T, *g.T, np.asarray(z_g), *top)))
 
 
 @njit(cache=True)

@@ -100,7 +100,7 @@ def normal_force(y, p):
 
     As :func:`stability.nonlinear.sliding.normal_force` (``u = k x K``,
     ``N = mu fr_inv + mu q (d_3 + omega' . u)``, ``d = omega x (omega x k)``), with the
-    rolling sphere's reduced system (:mod:`stability.nonlinear.reference`: ``f`` eliminated by
+    rolling sphere's reduced system (``benchmarks/suites/reference.py``: ``f`` eliminated by
     the horizontal part of eq. 1) ``M a = I0 a + mu q (K x a) x k + mu K x (-K x a + q a x k)``,
     ``R = -(sigma - 1)(k . omega)(omega x k) - mu q fr_inv k x K - mu q K x d``. ``u`` is an
     eigenvector of ``M^T`` for any ``k``: ``I0 u = u``; the second term's transpose

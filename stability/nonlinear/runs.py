@@ -16,7 +16,7 @@ coefficient ``alpha_k / slip_scale``; see
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -41,10 +41,10 @@ from ..parameters import (
 from ..products import PRODUCT_ATTR
 from ..resources import check_memory, memory_limit, simulate_bytes
 from . import get_nonlinear_model
-from .contact import check_on_contact_loss
+from .contact import ON_CONTACT_LOSS
 from .flight import IMPACT_LAWS, HybridRun, floor_centre, run_with_flights
 from .friction import DEFAULT_SLIP_SCALE, FRICTION_LAWS, NORMAL_FORCE
-from .integrators import COMPILED_METHODS, SCIPY_METHODS, Solution, check_tolerances, integrate
+from .integrators import COMPILED_METHODS, SCIPY_METHODS, check_tolerances, integrate
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
@@ -91,18 +91,23 @@ def _vector(name: str, value: Any, n: tuple[int, ...]) -> np.ndarray:
 
 def model_parameter_vector(
     model: str,
+    top: Mapping[str, Any],
     *,
-    q: Any,
-    fr_inv: Any,
-    sigma: Any,
-    alpha_v: Any = None,
-    alpha_k: Any = 0.0,
-    mu: Any = DEFAULT_MU,
     friction: str = "isotropic",
     normal: str = "equilibrium",
     slip_scale: float = DEFAULT_SLIP_SCALE,
 ) -> tuple[dict[str, float], np.ndarray]:
     """Check the physical parameters of a nonlinear model and pack them for the kernels.
+
+    Parameters
+    ----------
+    model : str
+    top : mapping
+        ``q``, ``fr_inv``, ``sigma`` and optionally ``mu`` (default :data:`DEFAULT_MU`),
+        ``alpha_v`` (required for ``"sliding"``, refused otherwise) and ``alpha_k`` (default 0;
+        nonzero refused but for ``"sliding"``), as :func:`simulate` takes them.
+    friction, normal, slip_scale
+        As :func:`simulate` takes them.
 
     Returns
     -------
@@ -119,7 +124,8 @@ def model_parameter_vector(
         A value outside the physical domain or an unknown option.
     """
     m = get_nonlinear_model(model)
-    given = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    given = {"mu": DEFAULT_MU, "alpha_k": 0.0, **top}
+    alpha_v, alpha_k = given.pop("alpha_v", None), given.pop("alpha_k")
     if m.name == "sliding":
         if alpha_v is None:
             raise ParameterTypeError("alpha_v is required for model 'sliding' (alpha_v >= 0)")
@@ -358,7 +364,7 @@ def simulate(
     """
     m = get_nonlinear_model(model)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
-    params, p = model_parameter_vector(m.name, **top, friction=friction, normal=normal, slip_scale=slip_scale)
+    params, p = model_parameter_vector(m.name, top, friction=friction, normal=normal, slip_scale=slip_scale)
     t_end = check_positive("t_end", t_end)
     rtol, atol = check_tolerances(rtol=rtol, atol=atol)
     max_steps = check_integer("max_steps", max_steps, minimum=1)
@@ -383,22 +389,22 @@ def simulate(
     method = check_choice("method", method, ("auto",) + tuple(COMPILED_METHODS) + tuple(SCIPY_METHODS))
     if method == "auto":
         method = auto_method(m.name, params)
-    check_on_contact_loss(on_contact_loss)
+    check_choice("on_contact_loss", on_contact_loss, ON_CONTACT_LOSS)
     if on_contact_loss == "continue" and stick_tilt is not None:
         raise InputError(
             f"stick_tilt = {stick_tilt!r} with on_contact_loss = 'continue': the stick is not watched in "
             "flight (not built); give one of them"
         )
     if on_contact_loss == "continue" and (m.name != "sliding" or normal != "actual"):
-        why = (
-            f"model {m.name!r}: its contact force does not vanish with N (the rolling constraint needs a "
-            "traction as N reaches 0), so the top cannot leave the floor smoothly"
-            if m.name != "sliding"
-            else "normal = 'equilibrium': the paper's friction law keeps its full force as N reaches 0, so a "
-            "free top would turn into the floor at once"
+        why = {
+            "fixed_pivot": "model 'fixed_pivot': it has no floor to leave",
+            "rolling": "model 'rolling': its contact force does not vanish with N (the rolling constraint needs a "
+            "traction as N reaches 0), so the top cannot leave the floor smoothly",
+        }.get(
+            m.name,
+            "normal = 'equilibrium': the paper's friction law keeps its full force as N reaches 0, so a "
+            "free top would turn into the floor at once",
         )
-        if not m.has_translation:
-            why = f"model {m.name!r}: it has no floor to leave"
         raise InputError(
             f"on_contact_loss = 'continue' is not available for {why}; use model = 'sliding' with "
             "normal = 'actual' (friction proportional to N, zero at the take-off), or on_contact_loss = 'stop'"
@@ -412,75 +418,61 @@ def simulate(
     # fr_inv = 0 (no gravity, the paper's high-spin limit) has N = 0 at equilibrium: the sign of N
     # says nothing there, the contact is the model's assumption; not watched (attrs say so)
     watched = m.has_translation and params["fr_inv"] > 0.0
-    flights = None
     try:
         with deferred():
             options = dict(method=method, rtol=rtol, atol=atol, step=step, max_steps=max_steps)
             options.update(progress=report, stick_tilt=stick_tilt)
-            if on_contact_loss == "continue" and watched:
-                flights = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
-                f = flights
-                sol = Solution(f.t, f.y, f.nfev, f.naccept, f.nreject, f.status, method, f.event_time, f.event)
+            if on_contact_loss == "continue" and watched:  # a HybridRun: the fields of a Solution, and more
+                sol = run_with_flights(integrate, m.name, y0, t_eval, p, params, **options)
             else:
                 sol = integrate(m.name, y0, t_eval, p, watch_contact=watched, **options)
     finally:
         close()
-    message = sol.message if flights is None else flights.message
     if sol.status < 0:
-        warnings.warn(f"simulate({m.name!r}): integration stopped: {message}", RuntimeWarning, stacklevel=2)
-    if flights is None:
-        ds = trajectory_dataset(m.name, sol.t, sol.y, params, p)
-    else:
-        ds = flight_dataset(m.name, flights, params, p)
+        warnings.warn(f"simulate({m.name!r}): integration stopped: {sol.message}", RuntimeWarning, stacklevel=2)
+    ds = trajectory_dataset(m.name, sol, params, p)
     ds.attrs.update(event=sol.event, event_time=sol.event_time, on_contact_loss=on_contact_loss)
     ds.attrs.update(contact_watched=int(watched), stick_tilt=float("nan") if stick_tilt is None else stick_tilt)
     ds.attrs.update(method=method, rtol=rtol, atol=atol, nfev=sol.nfev, naccept=sol.naccept, nreject=sol.nreject)
-    ds.attrs.update(status=sol.status, message=message)
+    ds.attrs.update(status=sol.status, message=sol.message)
     friction_law = friction if m.name == "sliding" else "none (constraint force)"
     ds.attrs.update(friction_law=friction_law, normal_force_scaling=normal, slip_scale=float(slip_scale))
     return ds
 
 
-def trajectory_dataset(
-    model: str,
-    t: np.ndarray,
-    y: np.ndarray,
-    params: dict[str, float],
-    p: np.ndarray,
-    *,
-    centre: tuple[np.ndarray, np.ndarray] | None = None,
-    contact: np.ndarray | None = None,
-) -> xr.Dataset:
-    """Build the output Dataset of :func:`simulate` from the states of a run.
+def trajectory_dataset(model: str, run: Any, params: dict[str, float], p: np.ndarray, forces: Any = None) -> xr.Dataset:
+    """Build the output Dataset of :func:`simulate` from a run (its times ``run.t`` and states
+    ``run.y``), the contact forces computed from the states unless given (``forces``, shape (n, 3)).
 
-    ``centre = (v_o, x_o)`` (shape (n, 3) each) and ``contact`` (1 on the floor, 0 in flight)
-    describe a run with flights (:func:`stability.nonlinear.flight.run_with_flights`): in
-    flight the contact forces are 0 and O's height and vertical velocity are the free motion's.
+    A run with flights (``on_contact_loss="continue"``, a
+    :class:`~stability.nonlinear.flight.HybridRun` of
+    :func:`~stability.nonlinear.flight.run_with_flights`) gives O's velocity and position and
+    ``contact`` (1 on the floor, 0 in flight): in flight the contact forces are 0 and O's height
+    and vertical velocity are the free motion's. Its Dataset also has the variables ``contact``
+    and ``height`` (of the sphere's lowest point), and the phases in the attributes
+    (``takeoff_times``, ``landing_times``, and per landing the vertical impulse, the contact
+    point's velocity before and after, the energy dissipated).
     """
+    t, y = run.t, run.y
+    flights = run if isinstance(run, HybridRun) else None
+    contact = None if flights is None else flights.contact
     m = get_nonlinear_model(model)
-    q, fr_inv, sigma, mu = params["q"], params["fr_inv"], params["sigma"], params["mu"]
+    q, sigma, mu = params["q"], params["sigma"], params["mu"]
     omega = y[:, 0:3]
     k = y[:, 3:6]
     n = t.size
-    good = np.isfinite(y).all(axis=1)
-    if contact is not None:
-        good &= contact == 1
-    forces = np.full((n, 3), np.nan)
-    if good.any():
-        forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
-    if contact is not None:
-        forces[contact == 0] = 0.0  # in flight: no contact force
+    if forces is None:
+        good = np.isfinite(y).all(axis=1) & (True if contact is None else contact == 1)
+        forces = np.full((n, 3), np.nan)
+        if good.any():
+            forces[good] = pick(m.contact_forces, int(good.sum()))(np.ascontiguousarray(y[good]), p)  # by size
+        if contact is not None:
+            forces[contact == 0] = 0.0  # in flight: no contact force
     comp = {"long_name": "component", "comment": "component along I, J, K of the fixed frame F_a (K up)"}
     # no CF standard_name "time": CF requires it to carry units of time ("s since ..."), and
     # this time is dimensionless (units of 1/Omega); axis = "T" still marks it as the time axis
-    coords = {
-        "time": (
-            "time",
-            t,
-            _attrs("time", "1/Omega", axis="T", comment="in units of 1/Omega; one spin period is 2 pi"),
-        ),
-        "axis": ("axis", np.array([1, 2, 3]), comp),
-    }
+    time = _attrs("time", "1/Omega", axis="T", comment="in units of 1/Omega; one spin period is 2 pi")
+    coords = {"time": ("time", t, time), "axis": ("axis", np.array([1, 2, 3]), comp)}
     data: dict[str, tuple] = {}
 
     def put(name: str, values: np.ndarray, long_name: str, units: str, comment: str) -> None:
@@ -499,7 +491,7 @@ def trajectory_dataset(
     what = "transverse angular rate |omega_1 + i omega_2| (fixed frame)"
     put("transverse_rate", transverse, "transverse rate", "Omega", what)
     if m.has_translation:
-        v0, x0 = centre if centre is not None else floor_centre(m.name, y)
+        v0, x0 = floor_centre(m.name, y) if flights is None else (flights.v_o, flights.x_o)
         v_g = v0 + q * np.cross(omega, k)
         z_g = x0[:, 2] + q * k[:, 2]
         put("velocity", v0, "velocity of O", "Omega R", "velocity of the sphere's centre O")
@@ -532,7 +524,7 @@ def trajectory_dataset(
         "potential": ("potential energy", "potential energy mu fr_inv z_G"),
         "energy": ("energy", "total energy"),
     }
-    for name, val in energy_parts(omega, k, v_g, z_g, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu).items():
+    for name, val in energy_parts(omega, k, v_g, z_g, params).items():
         short, what = names[name]
         put(name, val, short, "A0 Omega^2", f"{what}, in units of A0 Omega^2")
     ds = xr.Dataset(data, coords=coords)
@@ -543,24 +535,17 @@ def trajectory_dataset(
     for name, val in params.items():
         ds.attrs[name] = val
         ds.attrs[f"{name}_long_name"] = LONG_NAMES[name]
-    return ds
-
-
-def flight_dataset(model: str, run: HybridRun, params: dict[str, float], p: np.ndarray) -> xr.Dataset:
-    """The Dataset of a run with flights (``on_contact_loss="continue"``): :func:`trajectory_dataset`
-    with O's height, the variables ``contact`` and ``height`` (of the sphere's lowest point), and
-    the phases in the attributes (``takeoff_times``, ``landing_times``, and per landing the
-    vertical impulse, the contact point's velocity before and after, the energy dissipated)."""
-    ds = trajectory_dataset(model, run.t, run.y, params, p, centre=(run.v_o, run.x_o), contact=run.contact)
+    if flights is None:
+        return ds
     contact = _attrs("in contact", _ONE, comment="1 on the floor, 0 in flight (stability.nonlinear.flight)")
-    ds["contact"] = ("time", run.contact, contact)
+    ds["contact"] = ("time", flights.contact, contact)
     height = _attrs("height of the lowest point", "R", comment="height of the sphere's lowest point above the floor")
-    ds["height"] = ("time", run.x_o[:, 2] - 1.0, height)
-    lands = run.landings
+    ds["height"] = ("time", flights.x_o[:, 2] - 1.0, height)
+    lands = flights.landings
     ds.attrs.update(
-        impact_law=IMPACT_LAWS[model],
-        flights=len(run.takeoffs),
-        takeoff_times=np.array(run.takeoffs, float),
+        impact_law=IMPACT_LAWS[m.name],
+        flights=len(flights.takeoffs),
+        takeoff_times=np.array(flights.takeoffs, float),
         landing_times=np.array([x.time for x in lands], float),
         impact_impulse_vertical=np.array([x.impulse[2] for x in lands], float),
         impact_impulse_horizontal=np.array([np.hypot(x.impulse[0], x.impulse[1]) for x in lands], float),

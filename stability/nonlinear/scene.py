@@ -142,43 +142,27 @@ def friction_cases(
         if scheme == "fixed_step":
             kw = dict(method="rk4", step=step, friction="componentwise", slip_scale=1e-12)
         ds = run(fr_inv, alpha_v=alpha_v, alpha_k=alpha_k, t_end=t_end, dt=0.5, **kw)
-        rows.append(
-            (
-                crossing_time(ds) / (2 * np.pi),
-                float(ds.polar_angle.max()),
-                float(np.median(ds.slip_speed.values)),
-                float(ds.slip_speed.min()),
-            )
-        )
+        slip = ds.slip_speed.values
+        rows.append((crossing_time(ds) / (2 * np.pi), float(ds.polar_angle.max()), float(np.median(slip)), slip.min()))
+    crossing = {"long_name": "time of the 90-degree crossing", "units": "1"}
+    crossing["comment"] = "in spin periods 2 pi / Omega; NaN if none"
+    variables = {  # name: attributes, in the order of the rows
+        "crossing_periods": crossing,
+        "max_polar_angle": {"long_name": "largest polar angle of k", "units": "degree"},
+        "median_slip_speed": {"long_name": "median sliding speed", "units": "1"},
+        "min_slip_speed": {"long_name": "smallest sliding speed", "units": "1"},
+    }
     r = np.array(rows)
-    case = np.arange(1, len(FRICTION_CASES) + 1)
-    return xr.Dataset(
-        {
-            "crossing_periods": (
-                "case",
-                r[:, 0],
-                {
-                    "long_name": "time of the 90-degree crossing",
-                    "units": "1",
-                    "comment": "in spin periods 2 pi / Omega; NaN if none",
-                },
-            ),
-            "max_polar_angle": ("case", r[:, 1], {"long_name": "largest polar angle of k", "units": "degree"}),
-            "median_slip_speed": ("case", r[:, 2], {"long_name": "median sliding speed", "units": "1"}),
-            "min_slip_speed": ("case", r[:, 3], {"long_name": "smallest sliding speed", "units": "1"}),
-        },
-        coords={
-            "case": ("case", case, {"long_name": "friction case of Fig. 9(b)", "units": "1"}),
-            "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
-            "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"}),
-        },
-        attrs={
-            "Conventions": "CF-1.10",
-            "title": "friction cases of Fig. 9(b)",
-            PRODUCT_ATTR: "friction_cases",
-            "fr_inv": fr_inv,
-            "scheme": scheme,
-            "step": step if scheme == "fixed_step" else 0.0,
-            **PAPER,
-        },
-    )
+    coords = {
+        "case": (
+            "case",
+            np.arange(1, len(FRICTION_CASES) + 1),
+            {"long_name": "friction case of Fig. 9(b)", "units": "1"},
+        ),
+        "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
+        "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"}),
+    }
+    attrs = {"Conventions": "CF-1.10", "title": "friction cases of Fig. 9(b)", PRODUCT_ATTR: "friction_cases"}
+    attrs.update(fr_inv=fr_inv, scheme=scheme, step=step if scheme == "fixed_step" else 0.0, **PAPER)
+    data = {name: ("case", r[:, i], a) for i, (name, a) in enumerate(variables.items())}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

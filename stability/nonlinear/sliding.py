@@ -135,7 +135,7 @@ def normal_force(y, p):
     ``u = k x K = (k_2, -k_1, 0)``, the vertical component of (1) reads
     ``N = mu fr_inv + mu q (d_3 + omega' . u)``, ``d = omega x (omega x k)``, since
     ``(omega' x k)_3 = omega' . (k x K)``. Eliminating ``V0'`` from (2) by the horizontal part of
-    (1) gives ``M omega' = R`` (:mod:`stability.nonlinear.reference`), ``M a = I0 a
+    (1) gives ``M omega' = R`` (``benchmarks/suites/reference.py``), ``M a = I0 a
     + mu q^2 (P (a x k)) x k = I0 a + mu q^2 [k]x P [k]x a``, symmetric. ``u`` is an
     eigenvector of ``M``: ``I0 u = u`` (``k . u = 0``), ``[k]x u = k_3 k - |k|^2 K``,
     ``P [k]x u = k_3 k_h``, ``[k]x (k_3 k_h) = -k_3^2 u``; so ``M u = (1 - mu q^2 k_3^2) u`` and

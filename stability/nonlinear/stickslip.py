@@ -63,7 +63,7 @@ from ..errors import InputError
 from ..parameters import DEFAULT_MU, check_choice, check_integer, check_interval, check_positive
 from . import get_nonlinear_model
 from .friction import NORMAL_FORCE
-from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, check_tolerances
+from .integrators import CHATTERING, NOT_FINITE, SCIPY_METHODS, STEP_TOO_SMALL, Solution, check_tolerances
 from .parameters import EPSILON, FR_INV, MU, NORMAL
 from .runs import initial_state, model_parameter_vector, trajectory_dataset
 
@@ -163,12 +163,12 @@ def stick_slip(
         alpha_k``, ``fr_inv = 0`` (no normal force to bound the friction), or a bad option; the
         physical domain of :func:`stability.simulate`.
     """
-    params, p_reg = model_parameter_vector(
-        "sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu, normal=normal
-    )
-    if params["alpha_k"] <= 0.0:
+    top = dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, alpha_k=alpha_k, mu=mu)
+    params, p_reg = model_parameter_vector("sliding", top, normal=normal)
+    a_k = params["alpha_k"]
+    if a_k <= 0.0:
         raise InputError(
-            f"alpha_k = {params['alpha_k']:g} is outside the allowed range of stick_slip: alpha_k > 0 "
+            f"alpha_k = {a_k:g} is outside the allowed range of stick_slip: alpha_k > 0 "
             "(without the Coulomb term the slip never vanishes in finite time; use simulate)"
         )
     if params["fr_inv"] <= 0.0:
@@ -177,11 +177,7 @@ def stick_slip(
             "force to bound the static friction)"
         )
     # static friction is at least the kinetic one
-    a_s = (
-        params["alpha_k"]
-        if alpha_s is None
-        else check_interval("alpha_s", alpha_s, params["alpha_k"], math.inf, closed="left")
-    )
+    a_s = a_k if alpha_s is None else check_interval("alpha_s", alpha_s, a_k, math.inf, closed="left")
     t_end = check_positive("t_end", t_end)
     dt = check_positive("dt", dt)
     slip_threshold = check_interval("slip_threshold", slip_threshold, 0.0, 1e-3)
@@ -203,24 +199,18 @@ def stick_slip(
         f = rolling.contact_forces(np.ascontiguousarray(y8[None, :]), p)[0]
         return f[:2], float(f[2])
 
-    def slip_rhs(t, y):
-        return sliding.rhs(t, y, p)
-
-    def roll_rhs(t, y):
-        return rolling.rhs(t, y, p)
-
-    # every event ends its phase, on a downward crossing
-    def ev_slip_stop(t, y):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
+    # every event ends its phase, on a downward crossing (solve_ivp passes p to them too)
+    def ev_slip_stop(t, y, p):  # |V_c| - slip_threshold, V_c = V0 + K x omega (eq. 5)
         return math.hypot(y[6] - y[1], y[7] + y[0]) - slip_threshold
 
-    def ev_slip_contact(t, y):
+    def ev_slip_contact(t, y, p):
         return float(sliding.contact_forces(np.ascontiguousarray(y[None, :]), p)[0, 2])
 
-    def ev_stick_break(t, y):
+    def ev_stick_break(t, y, p):
         f, n = rolling_need(y)
         return limit(n) - math.hypot(f[0], f[1])
 
-    def ev_stick_contact(t, y):
+    def ev_stick_contact(t, y, p):
         return rolling_need(y)[1]
 
     for ev in (ev_slip_stop, ev_slip_contact, ev_stick_break, ev_stick_contact):
@@ -239,18 +229,16 @@ def stick_slip(
     t = 0.0
     phase = _SLIP
     event, event_time, status, message = "none", math.nan, 0, "end of the time span reached"
-    if ev_slip_stop(0.0, y) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
+    if ev_slip_stop(0.0, y, p) <= 0.0:  # starts without slip (|V_c| <= slip_threshold): stick if it can
         y8 = _rolling_state(y)
         f, n = rolling_need(y8)
-        if n <= 0.0:  # rolling's N at the start (its limit would be <= 0 with normal="actual")
-            phase, y, n0 = _STICK, y8, n  # no slip: the sample shows rolling's forces
-        elif math.hypot(*f) <= limit(n):
-            phase, y, n0 = _STICK, y8, n
+        # rolling's N <= 0 at the start (its limit would be <= 0 with normal="actual"): no slip, the
+        # sample shows rolling's forces
+        if n <= 0.0 or math.hypot(*f) <= limit(n):
+            phase, y = _STICK, y8
         else:
             y = slip_along(y8, f)
-            n0 = ev_slip_contact(0.0, y)
-    else:
-        n0 = ev_slip_contact(0.0, y)
+    n0 = ev_slip_contact(0.0, y, p) if phase == _SLIP else n
     if n0 <= 0.0:  # the events fire on a crossing only: a start without contact force is its own event
         event, event_time = "contact_lost", 0.0
         message = f"the normal force is N = {n0:.6g} <= 0 at the start (contact lost at once)"
@@ -261,10 +249,10 @@ def stick_slip(
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
         if phase == _SLIP:
-            rhs, events = slip_rhs, (ev_slip_stop, ev_slip_contact)
+            rhs, events = sliding.rhs, (ev_slip_stop, ev_slip_contact)
         else:
-            rhs, events = roll_rhs, (ev_stick_break, ev_stick_contact)
-        sol = solve_ivp(rhs, (t, t_end), y, method=method, t_eval=t_eval, events=events, rtol=rtol, atol=atol)
+            rhs, events = rolling.rhs, (ev_stick_break, ev_stick_contact)
+        sol = solve_ivp(rhs, (t, t_end), y, method, t_eval, events=events, rtol=rtol, atol=atol, args=(p,))
         if sol.status < 0:  # what was integrated is kept, then the loop ends (hit is empty)
             status = STEP_TOO_SMALL if "step size" in sol.message else NOT_FINITE  # as integrators.py maps scipy's
             message = f"integration failed in a {PHASES[phase]} phase at t = {sol.t[-1]:.6g}: {sol.message}"
@@ -305,21 +293,15 @@ def stick_slip(
     t_all = np.concatenate(ts)
     y_all = np.vstack(ys)
     ph = np.concatenate(phases)
-    ds = trajectory_dataset("sliding", t_all, y_all, params, p_reg)
     stuck = ph == _STICK
-
     # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
-    # while slipping (the run's p_reg is the regularised one); the friction's K component stays 0
+    # while slipping (the run's p_reg is the regularised one)
     forces = np.empty((t_all.size, 3))
     if stuck.any():
         forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
     if not stuck.all():
         forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
-    friction = ds.friction.values.copy()
-    friction[:, 0:2] = forces[:, 0:2]
-    ds["friction"].values = friction
-    ds["friction_magnitude"].values = np.hypot(forces[:, 0], forces[:, 1])
-    ds["normal_force"].values = forces[:, 2].copy()
+    ds = trajectory_dataset("sliding", Solution(t_all, y_all, 0, 0, 0, status, method), params, p_reg, forces)
     lim = a_s * ds.normal_force.values / n_eq if scaled else np.full(t_all.size, a_s)
     ds["friction"].attrs["comment"] = (
         "tangential contact force: the law (7) while slipping, the force needed to keep rolling while sticking"
@@ -331,25 +313,21 @@ def stick_slip(
     ds["friction_limit"] = ("time", lim, {"long_name": "static friction limit", "units": "1", "comment": limit_comment})
     cols = list(zip(*switches)) if switches else [[]] * 6
     kinds = "stick (slip -> stick), slip (stick -> slip), transit"
+    speed = {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"}
     switch_attrs = {  # name: (dtype, attributes), in the order of the switch tuples
         "switch_time": (float, {"long_name": "switch time", "units": "1/Omega"}),
         "switch_kind": ("<U7", {"long_name": "kind of switch", "comment": kinds}),
         "switch_tilt": (float, {"long_name": "tilt at the switch", "units": "degree"}),
-        "switch_slip_speed": (
-            float,
-            {"long_name": "slip speed at the switch", "units": "Omega R", "comment": "slip_threshold at a stick"},
-        ),
+        "switch_slip_speed": (float, speed),
         "switch_spin": (float, {"long_name": "spin omega . k at the switch", "units": "Omega"}),
         "switch_friction_ratio": (float, {"long_name": "needed friction / static limit at the switch", "units": "1"}),
     }
     variables = zip(switch_attrs.items(), cols)
     ds = ds.assign({name: ("switch", np.array(col, dtype), attrs) for (name, (dtype, attrs)), col in variables})
-    ds.attrs.update(
-        switching_model=(
-            "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases "
-            "with the rolling model; stick when |V_c| reaches slip_threshold and rolling's friction is "
-            "within alpha_s n; slip when it reaches alpha_s n"
-        ),
+    ds.attrs["switching_model"] = (
+        "hybrid (Kane and Levinson): slip phases with the unregularised law (7), stick phases with the rolling "
+        "model; stick when |V_c| reaches slip_threshold and rolling's friction is within alpha_s n; slip when it "
+        "reaches alpha_s n"
     )
     ds.attrs.update(alpha_s=a_s, slip_threshold=float(slip_threshold), n_switches=len(switches))
     ds.attrs.update(final_phase=PHASES[int(ph[-1])], event=event, event_time=event_time, status=status, message=message)

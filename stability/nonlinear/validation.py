@@ -144,22 +144,16 @@ def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
     return start
 
 
-def _one_point(
-    model: str,
-    params: dict[str, float],
-    amplitude: float,
-    n_efold: float,
-    n_periods: float,
-    max_time: float,
-    rtol: float,
-    atol: float,
-    method: str = "auto",
-) -> dict[str, Any]:
+def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dict[str, Any]:
+    """The row of one point (module docstring); ``run`` holds the checked options of
+    :func:`validate` (``amplitude, n_efold, n_periods, max_time, rtol, atol, method``)."""
     m = get_nonlinear_model(model)
-    # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy)
+    # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy);
+    # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
+    # model since "rolling" is the first-principles one, issue 15)
     fp = spectrum(MODELS[m.linear_model], **params)
     s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, **params)
+    A, _ = transverse_jacobian(model, params)
     ev, vec, bound = jacobian_modes(A)
     i = int(np.argmin(np.abs(ev - s)))
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
@@ -172,40 +166,30 @@ def _one_point(
         if not np.all(np.isfinite(y)) or not np.any(y):
             break
         x = y / np.linalg.norm(y)
-    v = x / x[1] * amplitude  # |Phi| = amplitude, Phi real at t = 0
-    # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
-    # model since "rolling" is the first-principles one, issue 15): the same mode
-    s_lin = s
-    t_end = _duration(s, n_efold, n_periods, max_time)
+    v = x / x[1] * run["amplitude"]  # |Phi| = amplitude, Phi real at t = 0
+    t_end = _duration(s, run["n_efold"], run["n_periods"], run["max_time"])
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # reported below, once, with the point
         start = dict(t_eval=np.linspace(0.0, t_end, n_samples), **_mode_start(m.name, v))
-        ds = simulate(model, t_end=t_end, **start, rtol=rtol, atol=atol, method=method, **params)
+        tolerances = {k: run[k] for k in ("rtol", "atol", "method")}
+        ds = simulate(model, t_end=t_end, **start, **tolerances, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
-    growth_resolved = abs(s_lin.real) > RESOLVED * abs(s_lin)
-    run_status = int(ds.attrs.get("status", 0))
-    finite = bool(np.all(np.isfinite(phi)))
-    contact_lost = ds.attrs.get("event", "none") != "none"
-    if contact_lost:
-        status = (
-            f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the "
-            "model does not hold beyond)"
-        )
-    elif run_status != 0:
-        status = f"integration failed ({ds.attrs.get('method')}): {ds.attrs.get('message', run_status)}"
-    elif not finite:
-        status = "the run's samples are not all finite"
-    elif not rms <= FIT_RMS:
-        status = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
-    elif not growth_resolved:
+    growth_resolved = abs(s.real) > RESOLVED * abs(s)
+    lost = f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the model does not hold"
+    lost += " beyond)"
+    poor = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
+    failures = (  # (failed, why): the first that holds is the status
+        (ds.attrs["event"] != "none", lost),
+        (ds.attrs["status"] != 0, f"integration failed ({ds.attrs['method']}): {ds.attrs['message']}"),
+        (not np.all(np.isfinite(phi)), "the run's samples are not all finite"),
+        (not rms <= FIT_RMS, poor),
+    )
+    failed, status = next((f for f in failures if f[0]), (False, "ok"))
+    if status == "ok" and not growth_resolved:
         status = f"growth rate not resolved: |Re s| <= {RESOLVED:g} |s| (its error is relative to |s|)"
-    else:
-        status = "ok"
-    failed = contact_lost or run_status != 0 or not finite or not rms <= FIT_RMS
-    resolved = status == "ok"
 
     def rel(meas: float, pred: float, scale: float) -> float:
         return abs(meas - pred) / (abs(pred) if abs(pred) > 0 else scale)
@@ -220,19 +204,19 @@ def _one_point(
     else:
         agrees = bool(abs(g) <= RESOLVED * abs(s))
     return {
-        "predicted_growth_rate": s_lin.real,
-        "predicted_frequency": s_lin.imag,
+        "predicted_growth_rate": s.real,
+        "predicted_frequency": s.imag,
         "jacobian_growth_rate": s_jac.real,
         "jacobian_frequency": s_jac.imag,
         "jacobian_bound": jac_bound,
         "jacobian_resolved": bool(abs(s_jac.real) > 4.0 * jac_bound),
         "measured_growth_rate": g,
         "measured_frequency": w,
-        "growth_rate_error": growth_error(s_lin),
-        "frequency_error": rel(w, s_lin.imag, abs(s_lin)),
+        "growth_rate_error": growth_error(s),
+        "frequency_error": rel(w, s.imag, abs(s)),
         "growth_rate_error_jacobian": growth_error(s_jac),
         "frequency_error_jacobian": rel(w, s_jac.imag, abs(s_jac)),
-        "resolved": bool(resolved),
+        "resolved": status == "ok",
         "sign_agrees": agrees,
         "duration": t_end,
         "final_tilt": float(abs(phi[-1])),
@@ -247,6 +231,14 @@ _ERROR = "relative error of the measured {} against the {}"
 _UNRESOLVED = " (relative to |s| where the growth rate is not resolved)"
 _RUN = "of the nonlinear run"
 
+_ERROR_LIN, _ERROR_JAC = (_ERROR.format("{}", w) for w in ("linear operator", "Jacobian"))
+_BOUND = "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number (absolute: ~u of the"
+_JAC_RESOLVED = (
+    "the Jacobian's growth rate exceeds four times its error bound (else compare with predicted_growth_rate,"
+)
+_RESOLVED = "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its samples are"
+_AGREES = "sign of the measured growth rate agrees with the linearisation's (neutral where the growth rate is"
+
 #: name -> (long_name, units, comment) of the validation dataset's variables
 _VAR_ATTRS = {
     "predicted_growth_rate": ("predicted growth rate", "Omega", f"growth rate Re s of {_LINEAR}"),
@@ -255,38 +247,14 @@ _VAR_ATTRS = {
     "jacobian_frequency": ("Jacobian frequency", "Omega", f"frequency Im s of {_JACOBIAN} (fixed frame)"),
     "measured_growth_rate": ("measured growth rate", "Omega", f"growth rate fitted to log|Phi(t)| {_RUN}"),
     "measured_frequency": ("measured frequency", "Omega", f"frequency fitted to the phase of Phi(t) {_RUN}"),
-    "growth_rate_error": ("growth error (linear)", "1", _ERROR.format("growth rate", "linear operator") + _UNRESOLVED),
-    "frequency_error": ("frequency error (linear)", "1", _ERROR.format("frequency", "linear operator")),
-    "growth_rate_error_jacobian": (
-        "growth error (Jacobian)",
-        "1",
-        _ERROR.format("growth rate", "Jacobian") + _UNRESOLVED,
-    ),
-    "frequency_error_jacobian": ("frequency error (Jacobian)", "1", _ERROR.format("frequency", "Jacobian")),
-    "jacobian_bound": (
-        "Jacobian error bound",
-        "Omega",
-        "error bound of the Jacobian's eigenvalue: 8 n u ||A||_F times its condition number "
-        "(absolute: ~u of the largest mode)",
-    ),
-    "jacobian_resolved": (
-        "Jacobian resolved",
-        None,
-        "the Jacobian's growth rate exceeds four times its error bound (else compare "
-        "with predicted_growth_rate, from the spectral kernel)",
-    ),
-    "resolved": (
-        "growth resolved",
-        None,
-        "the measurement holds: growth rate resolved (|Re s| > 1e-3 |s|), the run succeeded, its "
-        "samples are finite and log|Phi| fits a straight line (see status)",
-    ),
-    "sign_agrees": (
-        "sign agrees",
-        None,
-        "sign of the measured growth rate agrees with the linearisation's (neutral where the "
-        "growth rate is unresolved; False where the run failed)",
-    ),
+    "growth_rate_error": ("growth error (linear)", "1", _ERROR_LIN.format("growth rate") + _UNRESOLVED),
+    "frequency_error": ("frequency error (linear)", "1", _ERROR_LIN.format("frequency")),
+    "growth_rate_error_jacobian": ("growth error (Jacobian)", "1", _ERROR_JAC.format("growth rate") + _UNRESOLVED),
+    "frequency_error_jacobian": ("frequency error (Jacobian)", "1", _ERROR_JAC.format("frequency")),
+    "jacobian_bound": ("Jacobian error bound", "Omega", _BOUND + " largest mode)"),
+    "jacobian_resolved": ("Jacobian resolved", None, _JAC_RESOLVED + " from the spectral kernel)"),
+    "resolved": ("growth resolved", None, _RESOLVED + " finite and log|Phi| fits a straight line (see status)"),
+    "sign_agrees": ("sign agrees", None, _AGREES + " unresolved; False where the run failed)"),
     "duration": ("duration", "1/Omega", "length of the run"),
     "final_tilt": ("final tilt |Phi|", "1", "tilt |Phi| at the end of the run"),
     "fit_rms": ("fit RMS residual", "1", "RMS residual of the straight-line fit of log|Phi(t)|"),
@@ -380,16 +348,14 @@ def validate(
             "Coulomb only); the allowed range here is alpha_v > 0 (coulomb_growth "
             "handles alpha_k > 0)"
         )
-    amplitude = check_interval("amplitude", amplitude, 0.0, 0.1)
-    n_efold = check_positive("n_efold", n_efold)
-    n_periods = check_positive("n_periods", n_periods)
-    max_time = check_positive("max_time", max_time)
-    rtol, atol = check_tolerances(rtol=rtol, atol=atol)
-    method = check_choice("method", method, ("auto", "dopri5") + tuple(SCIPY_METHODS))
+    run = dict(amplitude=check_interval("amplitude", amplitude, 0.0, 0.1), n_efold=check_positive("n_efold", n_efold))
+    run.update(n_periods=check_positive("n_periods", n_periods), max_time=check_positive("max_time", max_time))
+    run.update(zip(("rtol", "atol"), check_tolerances(rtol=rtol, atol=atol)))
+    run["method"] = check_choice("method", method, ("auto", "dopri5") + tuple(SCIPY_METHODS))
     rows = []
     for j in range(flat["q"].size):
         pt = {k: float(v[j]) for k, v in flat.items()}
-        row = _one_point(m.name, pt, amplitude, n_efold, n_periods, max_time, rtol, atol, method)
+        row = _one_point(m.name, pt, run)
         if row.pop("_failed"):
             where = ", ".join(f"{k} = {v:g}" for k, v in pt.items())
             warnings.warn(
@@ -402,16 +368,14 @@ def validate(
     for name in rows[0]:
         vals = np.array([r[name] for r in rows], dtype=object if name == "status" else None)
         long_name, units, comment = _VAR_ATTRS[name]
-        attrs = {"long_name": long_name, "comment": comment}
-        if units is not None:
-            attrs["units"] = units
-        data[name] = ("point", vals, attrs)
+        units = {} if units is None else {"units": units}
+        data[name] = ("point", vals, {"long_name": long_name, "comment": comment, **units})
     coords = {k: ("point", v, parameter_attrs(k)) for k, v in flat.items()}
     ds = xr.Dataset(data, coords=coords)
     title = f"validation of the linear {m.name} model by nonlinear runs"
     ds.attrs.update(Conventions="CF-1.10", title=title, source="stability.validate", model=m.name)
     ds.attrs.update(linear_model=m.linear_model, jacobian_of=f"nonlinear {m.name} model ({m.equations})")
-    ds.attrs.update(amplitude=amplitude, n_efold=n_efold, n_periods=n_periods, rtol=rtol, atol=atol, method=method)
+    ds.attrs.update(run)
     ds.attrs["convention"] = "x ~ exp(s t), fixed frame, spin +1, t in 1/Omega"
     ds.attrs[PRODUCT_ATTR] = "validation"
     return ds
@@ -466,7 +430,7 @@ def coulomb_growth(
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
     t_end = check_positive("t_end", t_end)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-    A, _ = transverse_jacobian("sliding", **top, alpha_v=alpha_k)
+    A, _ = transverse_jacobian("sliding", {**top, "alpha_v": alpha_k})
     ev, vec = np.linalg.eig(A)
     lead = spectrum("sliding", **top, alpha_v=alpha_k)
     s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]

@@ -90,7 +90,7 @@ def sliding_parameters(
     if not kernel:
         checked, _ = check_domain(scalar=True, q=q, fr_inv=fr_inv, sigma=sigma, mu=mu, alpha_v=alpha_v)
         return {name: float(v) for name, v in checked.items()}, None
-    params, p = model_parameter_vector("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu)
+    params, p = model_parameter_vector("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu))
     params.pop("alpha_k", None)
     return params, p
 

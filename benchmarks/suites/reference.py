@@ -1,7 +1,8 @@
-"""Plain-numpy right-hand sides in vector form: a second, slower implementation.
+"""Plain-numpy right-hand sides in vector form: a second, slower implementation of the sliding
+and rolling spheres (:mod:`stability.nonlinear.sliding`, :mod:`stability.nonlinear.rolling`).
 
-Used to cross-check the compiled kernels and as the baseline of the speed benchmark
-(``benchmarks/work_precision.py``). The elimination differs from the kernels': the centre's
+The tests' independent reference for the compiled kernels and the baseline of the integrator
+suite (:mod:`suites.integrators`); beside the package, not installed. The elimination differs from the kernels': the centre's
 acceleration is eliminated first and only a 3 x 3 system for ``omega'`` is solved.
 
 Sliding (friction scaled by the equilibrium normal force), from (1) horizontal:
@@ -23,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .friction import traction
+from stability.nonlinear.friction import traction
 
 __all__ = ["rolling_rhs", "sliding_rhs"]
 
