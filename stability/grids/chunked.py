@@ -275,10 +275,10 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
     """The per-chunk variables of one chunk of the grid (runs wherever the chunk is sent)."""
     from ..models import get_model
 
-    values = spec["values"]
+    values, atlas = spec["values"], spec["identity"]
     args = [_grid_shaped(values[k][sl[k]] if values[k].ndim else values[k], k, spec["dims"]) for k in spec["names"]]
-    model = get_model(spec["model"], warn=False)
-    out = _block_spectra(*args, model=model, names=tuple(spec["names"]), mask=spec["mask"], method=spec["method"])
+    how = dict(mask=bool(int(atlas["mask_unphysical"])), method=atlas["eigenvalue_method"])
+    out = _block_spectra(*args, model=get_model(atlas["model"], warn=False), names=tuple(spec["names"]), **how)
     return dict(zip(BLOCK_LAYOUT, out))
 
 
@@ -350,9 +350,7 @@ def write_atlas(
     stability.errors.OutputWriteError
         The output could not be written (named, with the cause).
     """
-    overwrite, resume, float32 = (
-        check_flag(k, v) for k, v in [("overwrite", overwrite), ("resume", resume), ("float32", float32)]
-    )
+    overwrite, resume, float32 = map(check_flag, ("overwrite", "resume", "float32"), (overwrite, resume, float32))
     if window is not None:
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
@@ -380,40 +378,40 @@ def write_atlas(
     for starts in product(*(range(0, ds.sizes[d], ch[d]) for d in dims)):
         name = "chunk-" + "-".join(str(s // ch[d]) for d, s in zip(dims, starts)) if dims else "chunk"
         blocks.append((name, {d: slice(s, min(s + ch[d], ds.sizes[d])) for d, s in zip(dims, starts)}))
-    spec = {
-        "model": str(ds.attrs["model"]),
-        "method": str(ds.attrs["eigenvalue_method"]),
-        "mask": bool(int(ds.attrs["mask_unphysical"])),
-        "names": names,
-        "dims": dims,
-        "values": {k: np.asarray(ds.coords[k].values, dtype=np.float64) for k in names},
-        "chunk_shape": ch,
-        "n_modes": ds.sizes.get("mode", 0),
-        "variables": list(ds.data_vars),
-        "identity": {"chunks": ch} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS},  # the grid: a store's
-        "resume": resume,
-    }
+    # what a chunk needs wherever it runs; the identity (the grid, model, method, masking, version) binds a store
+    spec = dict(dims=dims, chunk_shape=ch, n_modes=ds.sizes.get("mode", 0), resume=resume, overwrite=overwrite)
+    spec |= dict(names=names, values={k: np.asarray(ds[k].values, dtype=np.float64) for k in names})
+    spec |= dict(
+        variables=list(ds.data_vars), identity={"chunks": ch} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
+    )
     expected = atlas_file_bytes(spec["n_modes"], int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64)))
-    report = _Progress(progress, len(blocks))
-    kept = parts_directory(target) if resume else None
+    kept, done, bar = parts_directory(target) if resume else None, [0], None
     client = client if ds.chunks else None  # in memory: sliced here
+
+    def report() -> None:  # one chunk more done: the bar, the callback
+        done[0] += 1
+        if bar is not None:
+            bar.update(1)
+        if callable(progress):
+            progress(done[0], len(blocks))
 
     def failed(name: str, sl: dict[str, slice], exc: BaseException) -> ChunkError:
         where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
         cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
-        how = (
-            f"{report.done} of {len(blocks)} chunks are kept in {kept}; rerun the same command (resume=True, "
-            "--resume) to compute only the others"
-            if kept
-            else f"no chunks were kept ({report.done} of {len(blocks)} had been computed); use resume=True "
-            "(--resume) to keep finished chunks across a failure"
-        )
+        if kept:
+            how = (
+                f"{done[0]} of {len(blocks)} chunks are kept in {kept}; rerun the same command (resume=True, --resume)"
+            )
+            how += " to compute only the others"
+        else:
+            how = f"no chunks were kept ({done[0]} of {len(blocks)} had been computed); use resume=True (--resume)"
+            how += " to keep finished chunks across a failure"
         return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {how}")
 
-    def run(todo: list, put: Callable, task: Callable, args: tuple = (), here: bool = False) -> None:
-        _run_on_cluster(None if here else client, spec, todo, put, window, failed, task, args)
+    def run(todo: list, put: Callable, task: Callable, here: bool = False) -> None:
+        _run_on_cluster(None if here else client, spec, todo, put, task, window, failed)
 
-    def netcdf(src: xr.Dataset, report: _Progress) -> None:
+    def netcdf(src: xr.Dataset, report: Callable[[], None]) -> None:
         """The netCDF file from ``src`` (the atlas, or the complete store): skeleton, chunks
         (computed, or read from ``src`` in memory or in a store), commit.
 
@@ -476,41 +474,36 @@ def write_atlas(
                         var["leading_growth_rate"][idx] = cast("leading_growth_rate", g0)
 
     stored = [k for k in MAP_VARIABLES if k in ds] if variables == "map" else list(ds.data_vars)
-    try:
-        with deferred(), contextlib.ExitStack() as held:
-            if not (zarr_store or resume):
-                netcdf(ds, report)
-                return target
-            require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
-            from .store import locked, open_store, write_store
+    with deferred(), contextlib.ExitStack() as held:
+        if progress and not callable(progress):
+            from tqdm import tqdm
 
-            if resume:  # held until the output is written and the store removed
-                held.enter_context(locked(parts_directory(target)))
-            if not zarr_store:
-                check_free_space(target, expected)
-            compute = _compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl)  # in memory: no client
-            parts = write_store(
-                ds, target, overwrite=overwrite, spec=spec, blocks=blocks, report=report, run=run, compute=compute,
-                commit=zarr_store,
-            )  # fmt: skip
-            if zarr_store:
-                return target
-            with open_store(parts) as src:  # the netCDF file from the complete store
-                netcdf(src, _Progress(False, len(blocks)))
-            shutil.rmtree(parts, ignore_errors=True)
+            bar = held.enter_context(tqdm(total=len(blocks), unit="chunk", desc="atlas", leave=True))
+        if not (zarr_store or resume):
+            netcdf(ds, report)
             return target
-    finally:
-        report.close()
+        require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
+        from .store import locked, open_store, write_store
+
+        if resume:  # held until the output is written and the store removed
+            held.enter_context(locked(parts_directory(target)))
+        if not zarr_store:
+            check_free_space(target, expected)
+        task = _compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl)  # in memory: no client
+        parts = write_store(ds, target, spec, blocks, run, task, report)
+        if not zarr_store:
+            with open_store(parts) as src:  # the netCDF file from the complete store
+                netcdf(src, lambda: None)
+            shutil.rmtree(parts, ignore_errors=True)
+        return target
 
 
 def _run_on_cluster(
-    client: Any, spec: dict[str, Any], todo: list, put: Callable, window: int | None, failed: Callable,
-    task: Callable, args: tuple,
-) -> None:  # fmt: skip
-    """Run ``task(spec, sl, *args)`` for each chunk ``(name, sl)`` of ``todo`` and hand ``put``
-    what it returns: in this process, one after the other (``client`` None), or on ``client``
-    with at most ``window`` chunks in flight (default: twice its threads), each handed over as
-    it lands.
+    client: Any, spec: dict, todo: list, put: Callable, task: Callable, window: int | None, failed: Callable
+) -> None:
+    """Run ``task(spec, sl)`` for each chunk ``(name, sl)`` of ``todo`` and hand ``put`` what it
+    returns: in this process, one after the other (``client`` None), or on ``client`` with at
+    most ``window`` chunks in flight (default: twice its threads), each handed over as it lands.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
     ``allowed-failures``, dask's ``KilledWorker``) ends the run with ``failed(name, sl, exc)``,
@@ -529,11 +522,11 @@ def _run_on_cluster(
                 checkpoint()
                 fut = Future()
                 try:
-                    fut.set_result(task(spec, sl, *args))
+                    fut.set_result(task(spec, sl))
                 except Exception as exc:
                     fut.set_exception(exc)
             else:
-                landed.add(fut := client.submit(task, spec, sl, *args, pure=False))
+                landed.add(fut := client.submit(task, spec, sl, pure=False))
             live[fut] = (name, sl)
 
     try:
@@ -556,26 +549,3 @@ def _run_on_cluster(
     finally:
         if live and client is not None:
             client.cancel(list(live))
-
-
-class _Progress:
-    """Chunk progress: a tqdm bar (``how`` True), ``how(done, total)`` (a callable), or nothing."""
-
-    def __init__(self, how: bool | Callable[[int, int], None], total: int) -> None:
-        self.done, self.total, self.fn = 0, total, how if callable(how) else None
-        self.bar = None
-        if how and not callable(how):
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=total, unit="chunk", desc="atlas", leave=True)
-
-    def __call__(self) -> None:
-        self.done += 1
-        if self.bar is not None:
-            self.bar.update(1)
-        if self.fn is not None:
-            self.fn(self.done, self.total)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()

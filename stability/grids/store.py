@@ -47,6 +47,7 @@ import secrets
 import shutil
 import warnings
 from collections.abc import Callable, Iterator
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -270,63 +271,50 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
 
 
 def write_store(
-    ds: xr.Dataset,
-    target: Path,
-    *,
-    overwrite: bool,
-    spec: dict[str, Any],
-    blocks: list,
-    report: Callable,
-    run: Callable,
-    compute: Callable,
-    commit: bool = True,
+    ds: xr.Dataset, target: Path, spec: dict, blocks: list, run: Callable, task: Callable, report: Callable
 ) -> Path:
     """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
-    complete store, renamed to ``target`` (``commit``) or left in ``<target>.parts`` for the
-    netCDF writer (``spec["resume"]`` only); its path.
+    complete store, renamed to ``target`` (a store's name, :func:`is_store_path`) or left in
+    ``<target>.parts`` for the netCDF writer (``spec["resume"]`` only); its path.
 
     ``spec`` is :func:`stability.grids.chunked.write_atlas`'s: the grid (``dims``,
-    ``chunk_shape``, ``n_modes``), ``variables`` (the atlas variables stored), ``identity`` and
-    ``resume``; ``blocks`` the (name, slice) of each chunk; ``report`` counts them; ``run(todo,
-    put, task, args)`` runs ``task(spec, sl, *args)`` for each chunk of ``todo`` where the
-    chunks run and hands ``put`` what it returns.
+    ``chunk_shape``, ``n_modes``), ``variables`` (the atlas variables stored), ``identity``,
+    ``resume`` and ``overwrite``; ``blocks`` the (name, slice) of each chunk; ``run(todo, put,
+    task)`` runs ``task(spec, sl)`` for each chunk of ``todo`` where the chunks run
+    and hands ``put`` what it returns; ``task(spec, sl)`` computes a chunk; ``report()`` counts
+    one (done or reused).
     """
     import dask.array as da
 
+    resume, commit, overwrite = spec["resume"], is_store_path(target), spec["overwrite"]
     if commit:
         _check_target(target, overwrite)
-    resume, tmp = spec["resume"], None  # a hidden store of this call only, removed by the emergency exit too
+    tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
     parts = parts_directory(target) if resume else Path(temporary_name(target, directory=True))
     if not resume:
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
+
+    def put(name: str, sl: dict[str, slice] | None, summary: tuple[bool, bool]) -> None:
+        done[name] = summary
+        report()
+        checkpoint()
+
     try:
         if resume and any(parts.iterdir()):  # empty: just created by the lock
-            done = _reopen(parts, ds, spec, blocks)
+            for name, summary in _reopen(parts, ds, spec, blocks).items():
+                put(name, None, summary)
         else:  # the layout, no values (resume: into the locked directory as it is: mode "a")
-            ch, dims = spec["chunk_shape"], spec["dims"]
-            empty = {
-                k: (
-                    v.dims,
-                    da.empty(v.shape, dtype=v.dtype, chunks=[ch.get(d, n) for d, n in v.sizes.items()]),
-                    v.attrs,
-                )
-                for k, v in ds[spec["variables"]].data_vars.items()
-            }
-            layout = xr.Dataset(empty, ds.coords, ds.attrs)
-            counts = tuple(-(-ds.sizes[d] // ch[d]) for d in dims)
-            layout["chunk_digest"] = ([f"{d}_chunk" for d in dims], da.zeros(counts, dtype=np.uint64, chunks=1))
+            layout = xr.zeros_like(ds[spec["variables"]].chunk(spec["chunk_shape"]))
+            counts = [-(-ds.sizes[d] // n) for d, n in spec["chunk_shape"].items()]
+            layout["chunk_digest"] = ([f"{d}_chunk" for d in spec["dims"]], da.zeros(counts, dtype=np.uint64, chunks=1))
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
-        for _ in done:
-            report()
-
-        def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
-            done[name] = summary
-            report()
-            checkpoint()
-
         # the chunk function itself goes along to the workers (a test's injected fault too)
-        run([(name, sl) for name, sl in blocks if name not in done], put, _write_region, (str(parts), compute))
+        run(
+            [(name, sl) for name, sl in blocks if name not in done],
+            put,
+            partial(_write_region, path=str(parts), compute=task),
+        )
         for sl in provisional(done, blocks) if "leading_growth_rate" in spec["variables"] else ():
             checkpoint()
             with open_store(parts) as stored:
