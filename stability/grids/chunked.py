@@ -40,17 +40,9 @@ from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
+from . import store
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import (
-    BLOCK_LAYOUT,
-    IDENTITY_ATTRS,
-    check_block,
-    chunk_variables,
-    is_store_path,
-    parts_directory,
-    provisional,
-    slice_block,
-)
+from .store import parts_directory
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -279,7 +271,7 @@ def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.n
     args = [_grid_shaped(values[k][sl[k]] if values[k].ndim else values[k], k, spec["dims"]) for k in spec["names"]]
     how = dict(mask=bool(int(atlas["mask_unphysical"])), method=atlas["eigenvalue_method"])
     out = _block_spectra(*args, model=get_model(atlas["model"], warn=False), names=tuple(spec["names"]), **how)
-    return dict(zip(BLOCK_LAYOUT, out))
+    return dict(zip(store.BLOCK_LAYOUT, out))
 
 
 def write_atlas(
@@ -361,7 +353,7 @@ def write_atlas(
     ]:
         if value not in choices:
             raise InputError(f"{name} = {value!r} is not a choice; choose one of {', '.join(map(str, choices))}")
-    zarr_store = is_store_path(path)
+    zarr_store = store.is_store_path(path)
     if zarr_store and (variables, compression, float32) != ("all", None, False):
         raise InputError(
             f"a Zarr store ({str(path)!r}) stores every variable of the atlas in float64, with Zarr's "
@@ -382,7 +374,7 @@ def write_atlas(
     spec = dict(dims=dims, chunk_shape=ch, n_modes=ds.sizes.get("mode", 0), resume=resume, overwrite=overwrite)
     spec |= dict(names=names, values={k: np.asarray(ds[k].values, dtype=np.float64) for k in names})
     spec |= dict(
-        variables=list(ds.data_vars), identity={"chunks": ch} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}
+        variables=list(ds.data_vars), identity={"chunks": ch} | {k: str(ds.attrs.get(k)) for k in store.IDENTITY_ATTRS}
     )
     expected = atlas_file_bytes(spec["n_modes"], int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64)))
     kept, done, bar = parts_directory(target) if resume else None, [0], None
@@ -424,10 +416,10 @@ def write_atlas(
         of deciding on the whole grid first, bit for bit."""
         import netCDF4
 
-        lazy, done = bool(src.chunks), {}
+        lazy, summary = bool(src.chunks), {}  # each chunk's part of the whole-grid rule
 
         def compute(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
-            return _compute_block(spec, sl) if lazy else slice_block(src, sl)
+            return _compute_block(spec, sl) if lazy else store.slice_block(src, sl)
 
         def cast(name: str, v: np.ndarray) -> np.ndarray:
             return _as_float32(name, v) if float32 and v.dtype.kind == "f" else v
@@ -440,12 +432,14 @@ def write_atlas(
                 var = nc.variables
 
                 def write(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
-                    check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
-                    try_drop = "leading_growth_rate" in var and all(e for e, _ in done.values())
-                    out, *done[name] = chunk_variables(block, dims, try_drop)
+                    store.check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
+                    try_drop = "leading_growth_rate" in var and all(e for e, _ in summary.values())
+                    out, *summary[name] = store.chunk_variables(block, dims, try_drop)
                     rounded: dict[int, np.ndarray] = {}  # max_growth_rate, rounded once for both that may hold it
                     for k in stored:
-                        var[k][tuple(sl[d] for d in dims)] = rounded.setdefault(id(out[k]), cast(k, out[k]))
+                        if id(out[k]) not in rounded:
+                            rounded[id(out[k])] = cast(k, out[k])
+                        var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
                     checkpoint()
 
                 # each chunk is written (rounded, compressed) by one writer thread, in order, while
@@ -464,7 +458,7 @@ def write_atlas(
 
                     run(blocks, put, _compute_block if lazy else compute, here=not lazy)
                     put("", {}, None)
-                for sl in provisional(done, blocks) if "leading_growth_rate" in var else ():
+                for sl in store.provisional(summary, blocks) if "leading_growth_rate" in var else ():
                     checkpoint()
                     idx = tuple(sl[d] for d in dims)
                     if "max_growth_rate" in var:
@@ -483,16 +477,14 @@ def write_atlas(
             netcdf(ds, report)
             return target
         require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
-        from .store import locked, open_store, write_store
-
         if resume:  # held until the output is written and the store removed
-            held.enter_context(locked(parts_directory(target)))
+            held.enter_context(store.locked(parts_directory(target)))
         if not zarr_store:
             check_free_space(target, expected)
-        task = _compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl)  # in memory: no client
-        parts = write_store(ds, target, spec, blocks, run, task, report)
+        task = _compute_block if ds.chunks else lambda spec, sl: store.slice_block(ds, sl)  # in memory: no client
+        parts = store.write_store(ds, target, spec, blocks, run, task, report)
         if not zarr_store:
-            with open_store(parts) as src:  # the netCDF file from the complete store
+            with store.open_store(parts) as src:  # the netCDF file from the complete store
                 netcdf(src, lambda: None)
             shutil.rmtree(parts, ignore_errors=True)
         return target
