@@ -500,7 +500,7 @@ def _run_on_cluster(
     A chunk whose task raises (or whose worker died more often than the scheduler's
     ``allowed-failures``, dask's ``KilledWorker``) ends the run with ``failed(name, sl, exc)``,
     a :class:`ChunkError`; the chunks still in flight are cancelled. A worker dying once is
-    retried by dask elsewhere. A :class:`ChunkError` of the task itself is passed on as it is.
+    retried by dask elsewhere. A :class:`ChunkError` of a task run here is passed on as it is.
     """
     if client is not None:
         from distributed import as_completed
@@ -530,9 +530,9 @@ def _run_on_cluster(
             name, sl = live.pop(fut)
             try:
                 out = fut.result()
-            except ChunkError:
-                raise
             except Exception as exc:
+                if isinstance(exc, ChunkError) and client is None:
+                    raise
                 raise failed(name, sl, exc) from exc
             put(name, sl, out)
             if client is not None:
