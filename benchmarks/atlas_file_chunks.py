@@ -40,7 +40,8 @@ def main() -> None:
     import netCDF4
 
     import stability
-    from stability.grids.chunked import _as_float32, _compute_block, _spec
+    from stability.grids.chunked import _as_float32
+    from stability.grids.store import slice_block
 
     grid = dict(
         q=np.linspace(-0.6, 0.6, 1000)[490:510],
@@ -50,7 +51,7 @@ def main() -> None:
     )
     ds = stability.atlas("sliding", mask_unphysical=True, chunks={"q": 20}, **grid)
     dims = list(ds["stability"].dims)
-    block = _compute_block(_spec(ds, dims), {d: slice(0, ds.sizes[d]) for d in dims})
+    block = slice_block(ds.compute(), {})  # the arrays of one chunk: the whole grid
     n = int(np.prod([ds.sizes[d] for d in dims]))
     variants = {}
     for f32 in (True, False):

@@ -26,10 +26,10 @@ import contextlib
 import os
 import shutil
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 from itertools import islice, product
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -40,16 +40,9 @@ from ..interrupts import checkpoint, deferred
 from ..models import LinearModel
 from ..parameters import check_domain, check_flag, check_integer
 from ..resources import atlas_file_bytes
+from . import store
 from .schema import MAP_VARIABLES, STORED_ATTR
-from .store import (
-    BLOCK_VARIABLES,
-    IDENTITY_ATTRS,
-    check_block,
-    chunk_variables,
-    is_store_path,
-    parts_directory,
-    slice_block,
-)
+from .store import parts_directory
 
 __all__ = ["COMPRESSIONS", "VARIABLE_CHOICES", "lazy_spectra", "normalize_chunks", "parts_directory", "write_atlas"]
 
@@ -75,40 +68,22 @@ def normalize_chunks(chunks: int | dict[str, int], dims: list[str], sizes: dict[
     ValueError
         A size below 1 or a dimension the grid does not have.
     """
-    if isinstance(chunks, dict):
-        unknown = [k for k in chunks if k not in dims]
-        if unknown:
-            raise InputError(
-                f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
-                f"(the grid has {', '.join(dims) or 'none'})"
-            )
-        out = {d: check_integer(f"chunks[{d!r}]", chunks[d], minimum=1) if d in chunks else sizes[d] for d in dims}
-    else:
-        size = check_integer("chunks", chunks, minimum=1)
-        out = dict.fromkeys(dims, size)
-    return {d: min(v, sizes[d]) for d, v in out.items()}
+    if not isinstance(chunks, dict):
+        chunks = dict.fromkeys(dims, check_integer("chunks", chunks, minimum=1))
+    elif unknown := [k for k in chunks if k not in dims]:
+        raise InputError(
+            f"chunks name {', '.join(map(repr, unknown))}, not grid dimensions "
+            f"(the grid has {', '.join(dims) or 'none'})"
+        )
+    return {
+        d: min(check_integer(f"chunks[{d!r}]", chunks[d], minimum=1), sizes[d]) if d in chunks else sizes[d]
+        for d in dims
+    }
 
 
-def _check_grid_domain(values: dict[str, np.ndarray], dims: list[str], mask: bool) -> None:
-    """Refuse a grid with a point outside the domain without building the whole grid.
-
-    The bounds couple only (q, sigma, mu); fr_inv and alpha_v are checked alone.
-    """
-    if mask:
-        return
-
-    def shaped(k: str) -> np.ndarray:
-        v = values[k]
-        if v.ndim == 0:
-            return v
-        shape = [1] * len(dims)
-        shape[dims.index(k)] = v.size
-        return v.reshape(shape)
-
-    check_domain(mask=False, **{k: shaped(k) for k in ("q", "sigma", "mu") if k in values})
-    for k in ("fr_inv", "alpha_v"):
-        if k in values:
-            check_domain(mask=False, **{k: values[k]})
+def _grid_shaped(v: np.ndarray, k: str, dims: list[str]) -> np.ndarray:
+    """The values of parameter ``k`` shaped to broadcast over the grid ``dims`` (a 0-d one as it is)."""
+    return v if v.ndim == 0 else v.reshape([-1 if d == k else 1 for d in dims])
 
 
 def _block_spectra(
@@ -117,19 +92,13 @@ def _block_spectra(
     """Spectra of one chunk: growth rate, frequency, bound, flag, physical."""
     from ..linear.spectra import spectrum
 
-    p = dict(zip(names, args))
     shape = np.broadcast_shapes(*(np.shape(a) for a in args))
-    sp = spectrum(model, mask_unphysical=mask, method=method, **p)
+    sp = spectrum(model, mask_unphysical=mask, method=method, **dict(zip(names, args)))
     ev = np.broadcast_to(sp.eigenvalues, shape + (model.n_modes,))
     # views of the fresh arrays, no copies (a writer that keeps only a map never reads most of
     # them; copying them cost a quarter of a map's writing time)
-    return (
-        ev.real,
-        ev.imag,
-        np.broadcast_to(sp.error_bound, ev.shape),
-        np.broadcast_to(sp.stability, shape).astype(np.int8),
-        np.broadcast_to(sp.inside, shape).astype(np.int8),
-    )
+    flags = (np.broadcast_to(f, shape).astype(np.int8) for f in (sp.stability, sp.inside))
+    return ev.real, ev.imag, np.broadcast_to(sp.error_bound, ev.shape), *flags
 
 
 def lazy_spectra(
@@ -142,6 +111,9 @@ def lazy_spectra(
     method: str,
 ) -> tuple:
     """Dask-backed spectra over a grid (see module docstring).
+
+    The domain is checked first without building the whole grid (the bounds couple only q,
+    sigma and mu; fr_inv and alpha_v are checked alone).
 
     Parameters
     ----------
@@ -167,24 +139,24 @@ def lazy_spectra(
 
     if method not in METHODS:
         raise InputError(f"method = {method!r} is not known; choose one of {', '.join(METHODS)}")
-    sizes = {d: values[d].size for d in dims}
-    ch = normalize_chunks(chunks, dims, sizes)
-    _check_grid_domain(values, dims, mask_unphysical)
-    names = tuple(values)
-    inputs = []
-    for k in names:
-        v = values[k]
-        inputs.append(xr.DataArray(v, dims=(k,)).chunk({k: ch[k]}) if v.ndim == 1 else xr.DataArray(v))
-    n = model.n_modes
+    ch = normalize_chunks(chunks, dims, {d: values[d].size for d in dims})
+    if not mask_unphysical:
+        check_domain(mask=False, **{k: _grid_shaped(values[k], k, dims) for k in ("q", "sigma", "mu") if k in values})
+        for k in ("fr_inv", "alpha_v"):
+            if k in values:
+                check_domain(mask=False, **{k: values[k]})
+    inputs = [
+        xr.DataArray(v, dims=(k,)).chunk({k: ch[k]}) if v.ndim == 1 else xr.DataArray(v) for k, v in values.items()
+    ]
     out = xr.apply_ufunc(
         _block_spectra,
         *inputs,
-        kwargs=dict(model=model, names=names, mask=mask_unphysical, method=method),
+        kwargs=dict(model=model, names=tuple(values), mask=mask_unphysical, method=method),
         input_core_dims=[[]] * len(inputs),
         output_core_dims=[["mode"], ["mode"], ["mode"], [], []],
         dask="parallelized",
         output_dtypes=[np.float64, np.float64, np.float64, np.int8, np.int8],
-        dask_gufunc_kwargs={"output_sizes": {"mode": n}},
+        dask_gufunc_kwargs={"output_sizes": {"mode": model.n_modes}},
     )
     return tuple(da.transpose(*[d for d in dims if d in da.dims], ...).data for da in out)
 
@@ -198,9 +170,6 @@ VARIABLE_CHOICES = ("all", "map")
 #: compressions of :func:`write_atlas` (netCDF4's filters; None: none)
 COMPRESSIONS = (None, "zlib", "zstd")
 
-#: the relative rounding error of a value stored as float32 (round to nearest, 24-bit significand)
-FLOAT32_ROUNDING = 2.0**-24
-
 #: the filter level of each compression: zstd's fastest standard level is 1, its "fast" levels
 #: (negative) trade a few percent of size for speed; -1 compressed a chunk of the atlas 1.4x
 #: faster than level 1 for 6 % more bytes (docs/performance.md), zlib's fastest level is 1
@@ -210,6 +179,18 @@ LEVELS = {"zlib": 1, "zstd": -1}
 #: written as several file chunks of at most this size (shuffling and compressing ~1 MB pieces
 #: was 1.5x faster than one 24 MB piece, and an uncompressed float64 file 1.7x)
 FILE_CHUNK_BYTES = 2**21
+
+#: what a float32 variable says about its rounding (:func:`write_atlas`): round to nearest with a
+#: 24-bit significand, a relative error of at most 2**-24
+FLOAT32_ATTRS = {
+    "storage_dtype": "float32",
+    "storage_relative_error": 2.0**-24,
+    "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
+    "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
+    "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
+    "that would round to zero, a subnormal or infinity is refused), and the "
+    "stability flag was decided in float64 before it",
+}
 
 
 def _file_chunks(shape: list[int], itemsize: int) -> list[int]:
@@ -225,74 +206,38 @@ def _file_chunks(shape: list[int], itemsize: int) -> list[int]:
     return out
 
 
-#: what a float32 variable says about its rounding (:func:`write_atlas`)
-FLOAT32_ATTRS = {
-    "storage_dtype": "float32",
-    "storage_relative_error": FLOAT32_ROUNDING,
-    "storage_comment": "computed in float64 and rounded to float32 when written: relative error "
-    "<= 2**-24 (5.96e-08) from the rounding, on top of the eigenvalue error bound "
-    "(eigenvalue_error_bound, ~1e-15 |s|); the rounding keeps every sign (a value "
-    "that would round to zero, a subnormal or infinity is refused), and the "
-    "stability flag was decided in float64 before it",
-}
-
-
-class _Layout(NamedTuple):
-    """What :func:`write_atlas` stores and how."""
-
-    stored: list[str]
-    compression: str | None
-    float32: bool
-
-
-def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], layout: _Layout) -> None:
+def _create_skeleton(ds: xr.Dataset, path: str, chunk_shape: dict[str, int], stored: list[str], how: tuple) -> None:
     """Create the netCDF file: dimensions, coordinates and attributes as xarray writes them,
-    data variables (``layout.stored``) defined (chunked like the dataset, compressed as asked,
-    floating ones as float32 if asked) but not yet written."""
+    data variables (``stored``) defined (chunked like the dataset, compressed as asked,
+    floating ones as float32 if asked: ``how = (compression, float32)``) but not yet written."""
     import netCDF4
 
-    stored, compression, float32 = layout
-    scalar_coords = [k for k, c in ds.coords.items() if c.ndim == 0]
-    filters: dict[str, Any] = (
-        {} if compression is None else {"compression": compression, "complevel": LEVELS[compression], "shuffle": True}
-    )
+    (compression, float32), scalar = how, " ".join(k for k, c in ds.coords.items() if c.ndim == 0)
+    level = {"compression": compression, "complevel": LEVELS[compression], "shuffle": True} if compression else {}
     with close_quietly(netCDF4.Dataset(path, "w", format="NETCDF4")) as nc:
         for d, n in ds.sizes.items():
-            if d == "mode" and not any("mode" in ds[k].dims for k in stored):
-                continue
-            nc.createDimension(d, n)
+            if d != "mode" or any("mode" in ds[k].dims for k in stored):
+                nc.createDimension(d, n)
         for k, c in ds.coords.items():
-            if "mode" in c.dims and "mode" not in nc.dimensions:
-                continue
-            fill = np.nan if c.dtype.kind == "f" else None
-            var = nc.createVariable(k, c.dtype.newbyteorder("="), c.dims, fill_value=fill)  # "<f8" read from Zarr
-            var.setncatts(dict(c.attrs))
-            var[...] = c.values
+            if set(c.dims) <= set(nc.dimensions):  # "<f8" read from Zarr: native order
+                var = nc.createVariable(k, c.dtype.newbyteorder("="), c.dims, fill_value=_fill(c.dtype))
+                var.setncatts(dict(c.attrs))
+                var[...] = c.values
         for k in stored:
             v = ds[k]
             dtype = np.dtype(np.float32) if (float32 and v.dtype.kind == "f") else v.dtype.newbyteorder("=")
-            fill = dtype.type(np.nan) if dtype.kind == "f" else None
             cs = _file_chunks([chunk_shape.get(d, ds.sizes[d]) for d in v.dims], dtype.itemsize)
-            var = nc.createVariable(
-                k,
-                dtype,
-                v.dims,
-                fill_value=fill,
-                chunksizes=cs or None,
-                contiguous=not cs and not filters,
-                **(filters if cs else {}),
-            )
-            attrs = dict(v.attrs)
-            if scalar_coords:
-                attrs["coordinates"] = " ".join(scalar_coords)
-            if dtype != v.dtype:
-                attrs.update(FLOAT32_ATTRS)
-            var.setncatts(attrs)
-        nc.setncatts(dict(ds.attrs))
-        if "growth_rate" not in stored:  # the default file keeps the attributes of the atlas, as xarray writes it
-            nc.setncatts({STORED_ATTR: "map"})
-        if compression is not None:
+            filters = dict(chunksizes=cs or None, contiguous=not cs and not level, **(level if cs else {}))
+            var = nc.createVariable(k, dtype, v.dims, fill_value=_fill(dtype), **filters)
+            attrs = v.attrs | ({"coordinates": scalar} if scalar else {})
+            var.setncatts(attrs | (FLOAT32_ATTRS if dtype != v.dtype else {}))
+        nc.setncatts(dict(ds.attrs) | ({STORED_ATTR: "map"} if "growth_rate" not in stored else {}))
+        if compression:  # the default file keeps the attributes of the atlas, as xarray writes it
             nc.setncatts({"compression": f"{compression} level {LEVELS[compression]}, byte shuffle (lossless)"})
+
+
+def _fill(dtype: np.dtype) -> Any:
+    return dtype.type(np.nan) if dtype.kind == "f" else None
 
 
 def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
@@ -301,72 +246,32 @@ def _as_float32(name: str, v: np.ndarray) -> np.ndarray:
     zero, subnormal or infinite."""
     with np.errstate(over="ignore"):  # an overflow is refused below, by name
         w = v.astype(np.float32)
-    tiny = np.finfo(np.float32).tiny
+    tiny, big = np.finfo(np.float32).tiny, np.finfo(np.float32).max
     # two passes in the usual case: values below float32's normal range (the exact zeros of the
     # structural mode, anything that underflowed) and infinities are rare, and only they are
     # looked at again
     small = np.abs(w) < tiny
-    bad = np.zeros(0, dtype=v.dtype)
-    if small.any():
-        x = v[small]
-        bad = x[x != 0]
+    bad = v[small][v[small] != 0] if small.any() else v[:0]
     if not bad.size and np.isinf(w).any():
-        x = v[np.isinf(w)]
-        bad = x[np.isfinite(x)]
+        bad = v[np.isinf(w)][np.isfinite(v[np.isinf(w)])]
     if bad.size:
-        x = float(bad[0])
         raise InputError(
-            f"float32=True: {name} = {x!r} is outside the normal range of float32 "
-            f"({float(tiny)!r} to {float(np.finfo(np.float32).max)!r} in magnitude); its rounding would "
+            f"float32=True: {name} = {float(bad[0])!r} is outside the normal range of float32 "
+            f"({float(tiny)!r} to {float(big)!r} in magnitude); its rounding would "
             "change it beyond the stated bound: write with float32=False"
         )
     return w
-
-
-def _chunk_slices(ds: xr.Dataset, dims: list[str], chunk_shape: dict[str, int]) -> list[tuple[str, dict[str, slice]]]:
-    ranges = [range(0, ds.sizes[d], chunk_shape[d]) for d in dims]
-    out = []
-    for starts in product(*ranges):
-        sl = {d: slice(s, min(s + chunk_shape[d], ds.sizes[d])) for d, s in zip(dims, starts)}
-        name = "chunk-" + "-".join(str(s // chunk_shape[d]) for d, s in zip(dims, starts)) if dims else "chunk"
-        out.append((name, sl))
-    return out
-
-
-def _spec(ds: xr.Dataset, dims: list[str]) -> dict[str, Any]:
-    """What computing a chunk needs, read from an atlas's coordinates and attributes."""
-    names = str(ds.attrs["parameters"]).split()
-    return {
-        "model": str(ds.attrs["model"]),
-        "method": str(ds.attrs["eigenvalue_method"]),
-        "mask": bool(int(ds.attrs["mask_unphysical"])),
-        "names": names,
-        "dims": dims,
-        "values": {k: np.asarray(ds.coords[k].values, dtype=np.float64) for k in names},
-    }
 
 
 def _compute_block(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of one chunk of the grid (runs wherever the chunk is sent)."""
     from ..models import get_model
 
-    dims = spec["dims"]
-    args = []
-    for k in spec["names"]:
-        v = spec["values"][k]
-        if v.ndim == 1:
-            shape = [1] * len(dims)
-            shape[dims.index(k)] = -1
-            v = v[sl[k]].reshape(shape)
-        args.append(v)
-    out = _block_spectra(
-        *args,
-        model=get_model(spec["model"], warn=False),
-        names=tuple(spec["names"]),
-        mask=spec["mask"],
-        method=spec["method"],
-    )
-    return dict(zip(BLOCK_VARIABLES, out))
+    values, atlas = spec["values"], spec["identity"]
+    args = [_grid_shaped(values[k][sl[k]] if values[k].ndim else values[k], k, spec["dims"]) for k in spec["names"]]
+    how = dict(mask=bool(int(atlas["mask_unphysical"])), method=atlas["eigenvalue_method"])
+    out = _block_spectra(*args, model=get_model(atlas["model"], warn=False), names=tuple(spec["names"]), **how)
+    return dict(zip(store.BLOCK_LAYOUT, out))
 
 
 def write_atlas(
@@ -437,9 +342,7 @@ def write_atlas(
     stability.errors.OutputWriteError
         The output could not be written (named, with the cause).
     """
-    overwrite, resume, float32 = (
-        check_flag(k, v) for k, v in [("overwrite", overwrite), ("resume", resume), ("float32", float32)]
-    )
+    overwrite, resume, float32 = map(check_flag, ("overwrite", "resume", "float32"), (overwrite, resume, float32))
     if window is not None:
         window = check_integer("window", window, minimum=1)
     if not isinstance(ds, xr.Dataset) or "stability" not in ds or "parameters" not in ds.attrs:
@@ -450,7 +353,7 @@ def write_atlas(
     ]:
         if value not in choices:
             raise InputError(f"{name} = {value!r} is not a choice; choose one of {', '.join(map(str, choices))}")
-    zarr_store = is_store_path(path)
+    zarr_store = store.is_store_path(path)
     if zarr_store and (variables, compression, float32) != ("all", None, False):
         raise InputError(
             f"a Zarr store ({str(path)!r}) stores every variable of the atlas in float64, with Zarr's "
@@ -458,138 +361,104 @@ def write_atlas(
             f"float32 = {float32!r} apply to netCDF files only"
         )
     if zarr_store:  # its name is checked by the store (a directory), its directory here
-        target = Path(path)
-        check_output_directory(target)
+        check_output_directory(target := Path(path))
     else:
         target = check_output_path(path, overwrite=overwrite)
-    dims = list(ds["stability"].dims)
-    n_modes = ds.sizes.get("mode", 0)
-    chunk_shape = {d: int(ds.chunksizes[d][0]) if d in ds.chunksizes else ds.sizes[d] for d in dims}
-    blocks = _chunk_slices(ds, dims, chunk_shape)
-    expected = atlas_file_bytes(n_modes, int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64)))
-    spec = _spec(ds, dims) | {"chunk_shape": chunk_shape, "n_modes": n_modes}
-    report = _progress(progress, len(blocks))
-    kept = parts_directory(target) if resume else None
+    dims, names = list(ds["stability"].dims), str(ds.attrs["parameters"]).split()
+    ch = {d: int(ds.chunksizes[d][0]) if d in ds.chunksizes else ds.sizes[d] for d in dims}
+    blocks = []  # (name, slice) of each chunk, in order
+    for starts in product(*(range(0, ds.sizes[d], ch[d]) for d in dims)):
+        name = "chunk-" + "-".join(str(s // ch[d]) for d, s in zip(dims, starts)) if dims else "chunk"
+        blocks.append((name, {d: slice(s, min(s + ch[d], ds.sizes[d])) for d, s in zip(dims, starts)}))
+    # what a chunk needs wherever it runs; the identity (the grid, model, method, masking, version) binds a store
+    spec = dict(dims=dims, chunk_shape=ch, n_modes=ds.sizes.get("mode", 0), resume=resume, overwrite=overwrite)
+    spec |= dict(names=names, values={k: np.asarray(ds[k].values, dtype=np.float64) for k in names})
+    spec |= dict(
+        variables=list(ds.data_vars), identity={"chunks": ch} | {k: str(ds.attrs.get(k)) for k in store.IDENTITY_ATTRS}
+    )
+    expected = atlas_file_bytes(spec["n_modes"], int(np.prod([ds.sizes[d] for d in dims], dtype=np.int64)))
+    kept, done, bar = parts_directory(target) if resume else None, [0], None
     client = client if ds.chunks else None  # in memory: sliced here
 
-    def failed(name: str, sl: dict[str, slice], exc: BaseException, done: int) -> ChunkError:
+    def report() -> None:  # one chunk more done: the bar, the callback
+        done[0] += 1
+        if bar is not None:
+            bar.update(1)
+        if callable(progress):
+            progress(done[0], len(blocks))
+
+    def failed(name: str, sl: dict[str, slice], exc: BaseException) -> ChunkError:
         where = ", ".join(f"{d}[{s.start}:{s.stop}]" for d, s in sl.items()) or "the whole grid"
         cause = f"{type(exc).__name__}: {exc}".strip().rstrip(":")
-        how = (
-            f"{done} of {len(blocks)} chunks are kept in {kept}; rerun the same command (resume=True, --resume) "
-            "to compute only the others"
-            if kept
-            else f"no chunks were kept ({done} of {len(blocks)} had been computed); use resume=True (--resume) "
-            "to keep finished chunks across a failure"
-        )
+        if kept:
+            how = (
+                f"{done[0]} of {len(blocks)} chunks are kept in {kept}; rerun the same command (resume=True, --resume)"
+            )
+            how += " to compute only the others"
+        else:
+            how = f"no chunks were kept ({done[0]} of {len(blocks)} had been computed); use resume=True (--resume)"
+            how += " to keep finished chunks across a failure"
         return ChunkError(f"chunk {name} ({where}) failed: {cause}; the output file was not written; {how}")
 
-    def run(todo: list, put: Callable, task: Callable, args: tuple = (), here: bool = False) -> None:
-        _run_on_cluster(None if here else client, spec, todo, put, window, failed, report, task, args)
+    def run(todo: list, put: Callable, task: Callable, here: bool = False) -> None:
+        _run_on_cluster(None if here else client, spec, todo, put, task, window, failed)
 
-    stored = [k for k in MAP_VARIABLES if k in ds] if variables == "map" else list(ds.data_vars)
-    layout = _Layout(stored, compression, float32)
-    try:
-        with deferred(), contextlib.ExitStack() as held:
-            if not (zarr_store or resume):
-                _write_chunks(ds, target, overwrite, expected, spec, blocks, run, report, layout)
-                return target
-            require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
-            from .store import locked, open_store, write_store
+    def netcdf(src: xr.Dataset, report: Callable[[], None]) -> None:
+        """The netCDF file from ``src`` (the atlas, or the complete store): skeleton, chunks
+        (computed, or read from ``src`` in memory or in a store), commit.
 
-            if resume:  # held until the output is written and the store removed
-                held.enter_context(locked(parts_directory(target)))
-            if not zarr_store:
-                check_free_space(target, expected)
-            identity = {"chunks": chunk_shape} | {k: str(ds.attrs.get(k)) for k in IDENTITY_ATTRS}  # the grid: _reopen
-            spec |= {"variables": list(ds.data_vars), "identity": identity, "resume": resume}
-            parts = write_store(
-                ds, target, overwrite=overwrite, resume=resume, spec=spec, blocks=blocks, report=report, run=run,
-                compute=_compute_block if ds.chunks else lambda spec, sl: slice_block(ds, sl), commit=zarr_store,
-            )  # fmt: skip
-            if zarr_store:
-                return target
-            with open_store(parts) as stored:  # the netCDF file from the complete store
-                quiet = _progress(False, len(blocks))
-                _write_chunks(stored, target, overwrite, expected, spec, blocks, run, quiet, layout)
-            shutil.rmtree(parts, ignore_errors=True)
-            return target
-    finally:
-        report(close=True)
+        ``leading_growth_rate`` is written chunk by chunk from the chunk in memory (never read
+        back): each chunk with the structural zero mode left out while every chunk so far has it
+        at every point inside (:func:`stability.grids.store.chunk_variables`), else as
+        ``max_growth_rate``; at the end, unless every chunk has it and one has a point inside
+        (:func:`stability.grids.store.provisional`), the chunks written with it left out are
+        rewritten as ``max_growth_rate``, read from the file or recomputed. The values are those
+        of deciding on the whole grid first, bit for bit."""
+        import netCDF4
 
+        lazy, summary = bool(src.chunks), {}  # each chunk's part of the whole-grid rule
 
-def _write_chunks(
-    ds: xr.Dataset,
-    target: Path,
-    overwrite: bool,
-    expected: float,
-    spec: dict[str, Any],
-    blocks: list,
-    run: Callable,
-    report: _progress,
-    layout: _Layout,
-) -> None:
-    """The netCDF body of :func:`write_atlas`: skeleton, chunks (computed, or read from ``ds``
-    in memory or in a store), commit.
+        def compute(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
+            return _compute_block(spec, sl) if lazy else store.slice_block(src, sl)
 
-    ``leading_growth_rate`` is written chunk by chunk from the chunk in memory (never read
-    back): each chunk with the structural zero mode left out while every chunk so far has it at
-    every point inside (:func:`stability.grids.store.chunk_variables`), else as ``max_growth_rate``;
-    at the end, unless every chunk has it and one has a point inside (the whole-grid rule of
-    :mod:`stability.grids.leading`), the chunks written with it left out are rewritten as
-    ``max_growth_rate``, read from the file or recomputed. The values are those of deciding on
-    the whole grid first, bit for bit."""
-    import netCDF4
+        def cast(name: str, v: np.ndarray) -> np.ndarray:
+            return _as_float32(name, v) if float32 and v.dtype.kind == "f" else v
 
-    dims, lazy = spec["dims"], bool(ds.chunks)
+        with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
+            _create_skeleton(src, tmp, ch, stored, (compression, float32))
+            checkpoint()
+            with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
+                nc.set_auto_mask(False)
+                var = nc.variables
 
-    def cast(name: str, v: np.ndarray) -> np.ndarray:
-        return _as_float32(name, v) if layout.float32 and v.dtype.kind == "f" else v
+                def write(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
+                    store.check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
+                    try_drop = "leading_growth_rate" in var and all(e for e, _ in summary.values())
+                    out, *summary[name] = store.chunk_variables(block, dims, try_drop)
+                    rounded: dict[int, np.ndarray] = {}  # max_growth_rate, rounded once for both that may hold it
+                    for k in stored:
+                        if id(out[k]) not in rounded:
+                            rounded[id(out[k])] = cast(k, out[k])
+                        var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
+                    checkpoint()
 
-    def compute(spec: dict[str, Any], sl: dict[str, slice]) -> dict[str, np.ndarray]:
-        return _compute_block(spec, sl) if lazy else slice_block(ds, sl)
+                # each chunk is written (rounded, compressed) by one writer thread, in order, while
+                # the next is computed: netCDF4's writes and the compiled spectra release the GIL, so
+                # the writing overlaps the spectra instead of following them (one chunk more in
+                # memory); on a cluster, as each chunk lands. Progress is reported in this thread.
+                with ThreadPoolExecutor(max_workers=1) as writer:
+                    pending: list = []
 
-    with atomic_output(target, overwrite=overwrite, expected_bytes=expected) as tmp:
-        _create_skeleton(ds, tmp, spec["chunk_shape"], layout)
-        checkpoint()
-        with close_quietly(netCDF4.Dataset(tmp, "a")) as nc:
-            nc.set_auto_mask(False)
-            var = nc.variables
-            lead = {"mixed": "leading_growth_rate" not in var, "inside": False, "provisional": []}
+                    def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray] | None) -> None:
+                        if pending:
+                            pending.pop().result()
+                            report()
+                        if block is not None:
+                            pending.append(writer.submit(write, name, sl, block))
 
-            def write(name: str, sl: dict[str, slice], block: dict[str, np.ndarray]) -> None:
-                check_block(block, tuple(sl[d].stop - sl[d].start for d in dims), spec["n_modes"], name)
-                out, everywhere, inside = chunk_variables(block, dims, try_drop=not lead["mixed"])
-                if not lead["mixed"]:
-                    lead["inside"] |= inside
-                    lead["mixed"] = not everywhere
-                    if everywhere:
-                        lead["provisional"].append(sl)
-                rounded: dict[int, np.ndarray] = {}  # max_growth_rate, rounded once for both that may hold it
-                for k in layout.stored:
-                    if id(out[k]) not in rounded:
-                        rounded[id(out[k])] = cast(k, out[k])
-                    var[k][tuple(sl[d] for d in dims)] = rounded[id(out[k])]
-                checkpoint()
-
-            # each chunk is written (rounded, compressed) by one writer thread, in order, while
-            # the next is computed: netCDF4's writes and the compiled spectra release the GIL, so
-            # the writing overlaps the spectra instead of following them (one chunk more in
-            # memory); on a cluster, as each chunk lands. Progress is reported in this thread.
-            with ThreadPoolExecutor(max_workers=1) as writer:
-                pending: list = []
-
-                def put(name: str, sl: dict[str, slice], block: dict[str, np.ndarray] | None) -> None:
-                    if pending:
-                        pending.pop().result()
-                        report()
-                    if block is not None:
-                        pending.append(writer.submit(write, name, sl, block))
-
-                run(blocks, put, _compute_block if lazy else compute, here=not lazy)
-                put("", {}, None)
-            if lead["provisional"] and (lead["mixed"] or not lead["inside"]):
-                for sl in lead["provisional"]:
+                    run(blocks, put, _compute_block if lazy else compute, here=not lazy)
+                    put("", {}, None)
+                for sl in store.provisional(summary, blocks) if "leading_growth_rate" in var else ():
                     checkpoint()
                     idx = tuple(sl[d] for d in dims)
                     if "max_growth_rate" in var:
@@ -598,89 +467,77 @@ def _write_chunks(
                         g0 = np.ascontiguousarray(compute(spec, sl)["growth_rate"][..., 0])
                         var["leading_growth_rate"][idx] = cast("leading_growth_rate", g0)
 
+    stored = [k for k in MAP_VARIABLES if k in ds] if variables == "map" else list(ds.data_vars)
+    with deferred(), contextlib.ExitStack() as held:
+        if progress and not callable(progress):
+            from tqdm import tqdm
+
+            bar = held.enter_context(tqdm(total=len(blocks), unit="chunk", desc="atlas", leave=True))
+        if not (zarr_store or resume):
+            netcdf(ds, report)
+            return target
+        require_extra("zarr", "cluster", "a Zarr store (an output ending in .zarr, or resume=True)")
+        if resume:  # held until the output is written and the store removed
+            held.enter_context(store.locked(parts_directory(target)))
+        if not zarr_store:
+            check_free_space(target, expected)
+        task = _compute_block if ds.chunks else lambda spec, sl: store.slice_block(ds, sl)  # in memory: no client
+        parts = store.write_store(ds, target, spec, blocks, run, task, report)
+        if not zarr_store:
+            with store.open_store(parts) as src:  # the netCDF file from the complete store
+                netcdf(src, lambda: None)
+            shutil.rmtree(parts, ignore_errors=True)
+        return target
+
 
 def _run_on_cluster(
-    client: Any,
-    spec: dict[str, Any],
-    todo: list,
-    put: Callable,
-    window: int | None,
-    failed: Callable,
-    report: _progress,
-    task: Callable,
-    args: tuple,
+    client: Any, spec: dict, todo: list, put: Callable, task: Callable, window: int | None, failed: Callable
 ) -> None:
-    """Run ``task(spec, sl, *args)`` for each chunk ``(name, sl)`` of ``todo`` and hand ``put``
-    what it returns: in this process, one after the other (``client`` None), or on ``client``
-    with at most ``window`` chunks in flight, each handed over as it lands.
+    """Run ``task(spec, sl)`` for each chunk ``(name, sl)`` of ``todo`` and hand ``put`` what it
+    returns: in this process, one after the other (``client`` None), or on ``client`` with at
+    most ``window`` chunks in flight (default: twice its threads), each handed over as it lands.
 
     A chunk whose task raises (or whose worker died more often than the scheduler's
-    ``allowed-failures``, dask's ``KilledWorker``) ends the run with ``failed(name, sl, exc,
-    done)``, a :class:`ChunkError`; the chunks still in flight are cancelled. A worker dying once
-    is retried by dask elsewhere.
+    ``allowed-failures``, dask's ``KilledWorker``) ends the run with ``failed(name, sl, exc)``,
+    a :class:`ChunkError`; the chunks still in flight are cancelled. A worker dying once is
+    retried by dask elsewhere. A :class:`ChunkError` of a task run here is passed on as it is.
     """
-    if client is None:
-        for name, sl in todo:
-            checkpoint()
-            try:
-                out = task(spec, sl, *args)
-            except ChunkError:
-                raise
-            except Exception as exc:
-                raise failed(name, sl, exc, report.done) from exc
-            put(name, sl, out)
-        return
-    from distributed import as_completed
+    if client is not None:
+        from distributed import as_completed
 
-    window = window or 2 * max(1, sum(client.nthreads().values()))
-    pending = iter(todo)
-    names: dict[str, tuple] = {}
-    ac = as_completed()
+        landed = as_completed()
+    pending, live = iter(todo), {}
 
-    def submit(name: str, sl: dict[str, slice]) -> None:
-        fut = client.submit(task, spec, sl, *args, pure=False)
-        names[fut.key] = (name, sl, fut)
-        ac.add(fut)
+    def submit() -> None:
+        for name, sl in islice(pending, 1):
+            if client is None:  # here, now: a finished future
+                checkpoint()
+                fut = Future()
+                try:
+                    fut.set_result(task(spec, sl))
+                except Exception as exc:
+                    fut.set_exception(exc)
+            else:
+                landed.add(fut := client.submit(task, spec, sl, pure=False))
+            live[fut] = (name, sl)
 
     try:
-        for name, sl in islice(pending, window):
-            submit(name, sl)
-        for fut in ac:
+        for _ in range(1 if client is None else window or 2 * max(1, sum(client.nthreads().values()))):
+            submit()
+        while live:
+            fut = next(iter(live)) if client is None else next(landed)
             checkpoint()
-            name, sl, _ = names.pop(fut.key)
+            name, sl = live.pop(fut)
             try:
                 out = fut.result()
             except Exception as exc:
-                raise failed(name, sl, exc, report.done) from exc
+                if isinstance(exc, ChunkError) and client is None:
+                    raise
+                raise failed(name, sl, exc) from exc
             put(name, sl, out)
-            fut.release()
-            nxt = next(pending, None)
-            if nxt is not None:
-                submit(*nxt)
+            if client is not None:
+                fut.release()
+            submit()
     finally:
-        if names:
-            client.cancel([f for _, _, f in names.values()])
-
-
-class _progress:
-    """Callable reporting chunk progress: a tqdm bar, a user callback, or nothing."""
-
-    def __init__(self, how: bool | Callable[[int, int], None], total: int) -> None:
-        self.total, self.done = total, 0
-        self.fn, self.bar = (how if callable(how) else None), None
-        if how and not callable(how):
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=total, unit="chunk", desc="atlas", leave=True)
-
-    def __call__(self, close: bool = False) -> None:
-        if close:
-            if self.bar is not None:
-                self.bar.close()
-                self.bar = None
-            return
-        self.done += 1
-        if self.bar is not None:
-            self.bar.update(1)
-        if self.fn is not None:
-            self.fn(self.done, self.total)
+        if live and client is not None:
+            client.cancel(list(live))

@@ -54,17 +54,10 @@ def dask_client(*, workers: int | None = None, scheduler: str | None = None) -> 
     from distributed import Client, LocalCluster
 
     if workers is not None:
-        workers = check_integer("workers", workers, minimum=1)
-        if workers > 1024:
+        if (workers := check_integer("workers", workers, minimum=1)) > 1024:
             raise InputError(f"workers = {workers} is outside the allowed range: 1 <= workers <= 1024")
-        cluster = LocalCluster(
-            n_workers=workers,
-            threads_per_worker=1,
-            host="127.0.0.1",
-            dashboard_address=None,
-            silence_logs=logging.CRITICAL,
-        )
-        with cluster, Client(cluster) as client:
+        local = dict(threads_per_worker=1, host="127.0.0.1", dashboard_address=None, silence_logs=logging.CRITICAL)
+        with LocalCluster(n_workers=workers, **local) as cluster, Client(cluster) as client:
             yield client
         return
     address = str(scheduler)

@@ -48,17 +48,8 @@ from ..errors import InputError, ParameterTypeError
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = [
-    "ATLAS_VARIABLES",
-    "FLAG_VALUES",
-    "MAP_VARIABLES",
-    "SLAB_POINTS",
-    "STORED_ATTR",
-    "missing_variables",
-    "require_atlas",
-    "required_variables",
-    "validate_atlas",
-]
+__all__ = ["ATLAS_VARIABLES", "FLAG_VALUES", "MAP_VARIABLES", "SLAB_POINTS", "STORED_ATTR", "require_atlas"]
+__all__ += ["required_variables", "validate_atlas"]
 
 #: the variables every atlas has
 ATLAS_VARIABLES = ("growth_rate", "frequency", "max_growth_rate", "stability")
@@ -76,11 +67,6 @@ def required_variables(ds: xr.Dataset) -> tuple[str, ...]:
     """The variables ``ds`` must have: :data:`MAP_VARIABLES` for a map atlas (its attribute
     :data:`STORED_ATTR` is ``"map"``), else :data:`ATLAS_VARIABLES`."""
     return MAP_VARIABLES if str(ds.attrs.get(STORED_ATTR, "all")) == "map" else ATLAS_VARIABLES
-
-
-def missing_variables(ds: xr.Dataset) -> list[str]:
-    """The variables of :func:`required_variables` that ``ds`` does not have."""
-    return [v for v in required_variables(ds) if v not in ds]
 
 
 #: the values of the ``stability`` flag: outside the domain, stable, marginal, unstable
@@ -105,7 +91,7 @@ def require_atlas(ds: object, name: str = "ds") -> xr.Dataset:
             f"{name} is a {type(ds).__name__}; it must be an atlas, an xarray.Dataset from "
             "stability.atlas or stability.open_atlas"
         )
-    if missing := missing_variables(ds):
+    if missing := [v for v in required_variables(ds) if v not in ds]:
         raise InputError(
             f"{name} has no {', '.join(missing)}: it is not an atlas (stability.atlas or "
             f"stability.open_atlas; a simulate() run or a neutral curve has its own plots)"

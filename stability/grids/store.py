@@ -17,11 +17,11 @@ atlas with xarray's public API only:
    identity, the chunk's slice and the bytes of its arrays, first 8 bytes) is written **last**,
    in a second region write: a chunk is complete exactly when its digest is non-zero.
 3. When every chunk is written, the leading growth rate's rule is decided over the whole grid
-   (from the per-chunk flags; those of a chunk reused on resuming from its data, read anyway to
-   check its digest), the few chunks written provisionally with the zero mode left out are
-   rewritten from ``max_growth_rate``, and the directory is renamed to its name: the rename commits
-   it (no partial store under the output's name; an existing store is replaced only with
-   ``overwrite=True``).
+   (:func:`provisional`: from the per-chunk flags; those of a chunk reused on resuming from its
+   data, read anyway to check its digest), the few chunks written provisionally with the zero
+   mode left out are rewritten from ``max_growth_rate``, and the directory is renamed to its
+   name: the rename commits it (no partial store under the output's name; an existing store is
+   replaced only with ``overwrite=True``).
 
 Resuming (``resume=True``): the store is built in ``<output>.parts`` (:func:`parts_directory`)
 instead of a hidden temporary directory, and kept when the run is interrupted or fails. A rerun
@@ -47,6 +47,7 @@ import secrets
 import shutil
 import warnings
 from collections.abc import Callable, Iterator
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -58,37 +59,16 @@ from ..files import TEMPORARY_PREFIX, temporary_name
 from ..interrupts import Temporary, checkpoint
 from .leading import leading, zero_everywhere
 
-__all__ = [
-    "BLOCK_VARIABLES",
-    "IDENTITY_ATTRS",
-    "RECORD_VARIABLES",
-    "check_block",
-    "chunk_variables",
-    "damaged_chunk",
-    "is_store_path",
-    "locked",
-    "open_store",
-    "parts_directory",
-    "slice_block",
-    "write_store",
-]
-
-#: the per-chunk record of a store (not atlas variables: :func:`open_store` drops them)
-RECORD_VARIABLES = ("chunk_digest",)
+__all__ = ["IDENTITY_ATTRS", "check_block", "chunk_variables", "damaged_chunk", "is_store_path", "locked"]
+__all__ += ["open_store", "parts_directory", "provisional", "slice_block", "write_store"]
 
 #: the attributes a resumed store must share with the atlas being written
 IDENTITY_ATTRS = ("model", "eigenvalue_method", "mask_unphysical", "source", "parameters", "grid_dimensions")
 
-#: the arrays of one chunk (the rest, max_growth_rate, follows from growth_rate): dtype, and
-#: whether they have the ``mode`` dimension
-BLOCK_LAYOUT = {
-    "growth_rate": (np.dtype(np.float64), True),
-    "frequency": (np.dtype(np.float64), True),
-    "eigenvalue_error_bound": (np.dtype(np.float64), True),
-    "stability": (np.dtype(np.int8), False),
-    "physical": (np.dtype(np.int8), False),
-}
-BLOCK_VARIABLES = tuple(BLOCK_LAYOUT)
+#: the arrays of one chunk (the rest, max_growth_rate, follows from growth_rate): their dtype;
+#: the first three have the ``mode`` dimension
+BLOCK_LAYOUT = dict.fromkeys(("growth_rate", "frequency", "eigenvalue_error_bound"), np.dtype(np.float64))
+BLOCK_LAYOUT |= dict.fromkeys(("stability", "physical"), np.dtype(np.int8))
 
 
 def check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: int, name: str) -> None:
@@ -100,8 +80,8 @@ def check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: i
 
     if set(block) != set(BLOCK_LAYOUT):
         raise wrong(f"has the arrays {', '.join(sorted(block))}; a chunk has {', '.join(sorted(BLOCK_LAYOUT))}")
-    for k, (dtype, modal) in BLOCK_LAYOUT.items():
-        want = shape + ((n_modes,) if modal else ())
+    for k, dtype in BLOCK_LAYOUT.items():
+        want = shape + ((n_modes,) if dtype.kind == "f" else ())
         if block[k].dtype != dtype:
             raise wrong(f"has {k} of dtype {block[k].dtype}; a chunk stores it as {dtype}")
         if block[k].shape != want:
@@ -110,8 +90,7 @@ def check_block(block: dict[str, np.ndarray], shape: tuple[int, ...], n_modes: i
 
 def slice_block(ds: xr.Dataset, sl: dict[str, slice]) -> dict[str, np.ndarray]:
     """The per-chunk variables of a chunk of an atlas in memory or in a store."""
-    dims = list(ds["stability"].dims)
-    return {k: ds[k].isel(sl).transpose(*dims, ...).values for k in BLOCK_VARIABLES}
+    return {k: ds[k].isel(sl).transpose(*ds["stability"].dims, ...).values for k in BLOCK_LAYOUT}
 
 
 def chunk_variables(
@@ -126,12 +105,23 @@ def chunk_variables(
     out = dict(block, max_growth_rate=top, leading_growth_rate=top)
     if not (try_drop and dims):
         return out, False, False
-    mdims = (*dims, "mode")
-    g, f, b = (xr.DataArray(block[k], dims=mdims) for k in ("growth_rate", "frequency", "eigenvalue_error_bound"))
+    g, f, b = (
+        xr.DataArray(block[k], dims=(*dims, "mode")) for k in ("growth_rate", "frequency", "eigenvalue_error_bound")
+    )
     everywhere, inside = zero_everywhere(g, f, b)
     if bool(everywhere):
         out["leading_growth_rate"] = leading(g, f, b, xr.DataArray(top, dims=dims), drop=True).values
     return out, bool(everywhere), bool(inside)
+
+
+def provisional(done: dict[str, tuple[bool, bool]], blocks: list) -> list[dict[str, slice]]:
+    """The leading growth rate's whole-grid rule (:mod:`stability.grids.leading`) from the chunks'
+    summaries ``done[name] = (zero mode at every point inside, a point inside)``: the zero mode is
+    left out iff every chunk has it at every point inside and one chunk has a point inside; else
+    the slices of the chunks written with it left out, to be rewritten as ``max_growth_rate``."""
+    if all(e for e, _ in done.values()) and any(i for _, i in done.values()):
+        return []
+    return [sl for name, sl in blocks if done[name][0]]
 
 
 def is_store_path(path: str | os.PathLike) -> bool:
@@ -141,8 +131,7 @@ def is_store_path(path: str | os.PathLike) -> bool:
 
 def parts_directory(path: str | os.PathLike) -> Path:
     """The store of a resumable run of output ``path``: ``<output>.parts``."""
-    p = Path(path)
-    return p.with_name(p.name + ".parts")
+    return Path(path).with_name(Path(path).name + ".parts")
 
 
 @contextlib.contextmanager
@@ -160,17 +149,16 @@ def locked(parts: Path) -> Iterator[None]:
     parts.mkdir(exist_ok=True)
     fd = os.open(parts, os.O_RDONLY)
     try:
-        try:
+        with contextlib.suppress(ImportError, OSError):  # no flock here: unlocked
             import fcntl
 
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise ResumeError(
-                f"cannot resume: another run is writing {str(parts)!r} now (it holds the store's lock); "
-                "wait for it to end, or stop it and rerun"
-            ) from None
-        except (ImportError, OSError):
-            pass  # no flock here: unlocked
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                raise ResumeError(
+                    f"cannot resume: another run is writing {str(parts)!r} now (it holds the store's lock); "
+                    "wait for it to end, or stop it and rerun"
+                ) from None
         yield
     finally:
         os.close(fd)
@@ -178,15 +166,11 @@ def locked(parts: Path) -> Iterator[None]:
             parts.rmdir()  # only if empty
 
 
-def _open(path: str | os.PathLike) -> xr.Dataset:
-    return xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
-
-
-def open_store(path: str | os.PathLike) -> xr.Dataset:
+def open_store(path: str | os.PathLike, record: bool = False) -> xr.Dataset:
     """The atlas in a complete Zarr store, opened lazily (xarray's zarr backend, not dask),
-    without its per-chunk record."""
-    ds = _open(path)
-    return ds.drop_vars([v for v in RECORD_VARIABLES if v in ds.variables])
+    without its per-chunk record ``chunk_digest`` unless ``record``."""
+    ds = xr.open_dataset(path, engine="zarr", consolidated=False, chunks=None)
+    return ds if record else ds.drop_vars([v for v in ("chunk_digest",) if v in ds.variables])
 
 
 def damaged_chunk(path: str | os.PathLike) -> str | None:
@@ -204,21 +188,6 @@ def damaged_chunk(path: str | os.PathLike) -> str | None:
             except Exception:
                 return f"{name}/{array.metadata.encode_chunk_key(index)}"
     return None
-
-
-def _template(ds: xr.Dataset, chunk_shape: dict[str, int], dims: list[str]) -> xr.Dataset:
-    """The atlas's layout (variables of its dims, dtypes and attributes, chunked as the store;
-    their values never computed: the atlas's own graph is not built into the store's) plus the
-    per-chunk record (one Zarr chunk per chunk of the grid, dimensions ``<dim>_chunk``)."""
-    import dask.array as da
-
-    def empty(v: xr.DataArray) -> da.Array:
-        return da.empty(v.shape, chunks=tuple(chunk_shape.get(d, n) for d, n in zip(v.dims, v.shape)), dtype=v.dtype)
-
-    out = xr.Dataset({k: (v.dims, empty(v), v.attrs) for k, v in ds.data_vars.items()}, ds.coords, ds.attrs)
-    counts = tuple(-(-ds.sizes[d] // chunk_shape[d]) for d in dims)
-    out["chunk_digest"] = ([f"{d}_chunk" for d in dims], da.zeros(counts, chunks=(1,) * len(dims), dtype=np.uint64))
-    return out
 
 
 def _digest(spec: dict[str, Any], sl: dict[str, slice], block: dict[str, np.ndarray]) -> np.uint64:
@@ -261,7 +230,7 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
     docstring), with their summaries; a store of another atlas or a chunk that disagrees with
     its digest is a :class:`ResumeError`."""
     try:
-        old = _open(path)
+        old = open_store(path, record=True)
     except Exception:
         raise ResumeError(
             f"cannot resume: {str(path)!r} exists but is not a readable Zarr store of this package; "
@@ -279,23 +248,20 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
                 f"cannot resume from {str(path)!r}: it was written for a different atlas "
                 f"({', '.join(diff)} differ); remove it to start afresh"
             )
-        digests = old["chunk_digest"].values
-        done: dict[str, tuple[bool, bool]] = {}
+        digests, done = old["chunk_digest"].values, {}
         for name, sl in blocks:
             checkpoint()
-            i = tuple(s.start for s in _index(sl, spec).values())
-            if digests[i] == 0:
+            mark = digests[tuple(s.start for s in _index(sl, spec).values())]
+            if mark == 0:
                 continue
             try:
                 block = slice_block(old, sl)
             except Exception as exc:  # a chunk file truncated or damaged: computed again
                 warnings.warn(
-                    f"chunk {name} of {str(path)!r} cannot be read ({type(exc).__name__}): computed again",
-                    UserWarning,
-                    stacklevel=5,
+                    f"chunk {name} of {str(path)!r} cannot be read ({type(exc).__name__}): computed again", stacklevel=5
                 )
                 continue
-            if _digest(spec, sl, block) != digests[i]:
+            if _digest(spec, sl, block) != mark:
                 raise ResumeError(
                     f"cannot resume: chunk {name} of {str(path)!r} does not match its digest (edited, "
                     f"damaged or from another run); remove {str(path)!r} to start afresh"
@@ -305,54 +271,55 @@ def _reopen(path: Path, ds: xr.Dataset, spec: dict[str, Any], blocks: list) -> d
 
 
 def write_store(
-    ds: xr.Dataset,
-    target: Path,
-    *,
-    overwrite: bool,
-    resume: bool,
-    spec: dict[str, Any],
-    blocks: list,
-    report: Callable,
-    run: Callable,
-    compute: Callable,
-    commit: bool = True,
+    ds: xr.Dataset, target: Path, spec: dict, blocks: list, run: Callable, task: Callable, report: Callable
 ) -> Path:
     """The Zarr part of :func:`stability.grids.chunked.write_atlas` (module docstring): the
-    complete store, renamed to ``target`` (``commit``) or left in ``<target>.parts`` for the
-    netCDF writer (``resume=True`` only); its path.
+    complete store, renamed to ``target`` (a store's name, :func:`is_store_path`) or left in
+    ``<target>.parts`` for the netCDF writer (``spec["resume"]`` only); its path.
 
-    ``spec`` is :func:`stability.grids.chunked._spec` with ``chunk_shape``, ``n_modes``,
-    ``variables`` (the atlas variables stored), ``identity`` and ``resume``; ``blocks`` the
-    (name, slice) of each chunk; ``report`` counts them; ``run(todo, put, task, args)`` runs
-    ``task(spec, sl, *args)`` for each chunk of ``todo`` where the chunks run and hands ``put``
-    what it returns.
+    ``spec`` is :func:`stability.grids.chunked.write_atlas`'s: the grid (``dims``,
+    ``chunk_shape``, ``n_modes``), ``variables`` (the atlas variables stored), ``identity``,
+    ``resume`` and ``overwrite``; ``blocks`` the (name, slice) of each chunk; ``run(todo, put,
+    task)`` runs ``task(spec, sl)`` for each chunk of ``todo`` where the chunks run
+    and hands ``put`` what it returns; ``task(spec, sl)`` computes a chunk; ``report()`` counts
+    one (done or reused).
     """
+    import dask.array as da
+
+    resume, commit, overwrite = spec["resume"], is_store_path(target), spec["overwrite"]
     if commit:
         _check_target(target, overwrite)
     tmp = None  # a hidden store of this call only, removed by the emergency exit too (not .parts: kept)
-    if resume:
-        parts = parts_directory(target)
-    else:
-        parts = Path(temporary_name(target, directory=True))
+    parts = parts_directory(target) if resume else Path(temporary_name(target, directory=True))
+    if not resume:
         tmp = Temporary(str(parts), str(target))
     done: dict[str, tuple[bool, bool]] = {}
+
+    def put(name: str, sl: dict[str, slice] | None, summary: tuple[bool, bool]) -> None:
+        done[name] = summary
+        report()
+        checkpoint()
+
     try:
-        if resume and parts.is_dir() and any(parts.iterdir()):  # empty: just created by the lock
-            done = _reopen(parts, ds, spec, blocks)
-        else:  # resume: into the directory as it is, the one locked (mode "w" would make another)
-            layout = _template(ds[spec["variables"]], spec["chunk_shape"], spec["dims"])
+        if resume and any(parts.iterdir()):  # empty: just created by the lock
+            for name, summary in _reopen(parts, ds, spec, blocks).items():
+                put(name, None, summary)
+        else:  # the layout, no values (resume: into the locked directory as it is: mode "a")
+            layout = xr.zeros_like(ds[spec["variables"]].chunk(spec["chunk_shape"]))
+            counts = [-(-ds.sizes[d] // n) for d, n in spec["chunk_shape"].items()]
+            layout["chunk_digest"] = ([f"{d}_chunk" for d in spec["dims"]], da.zeros(counts, dtype=np.uint64, chunks=1))
             layout.to_zarr(parts, mode="a" if resume else "w", compute=False, consolidated=False)
-        for _ in done:
-            report()
-
-        def put(name: str, sl: dict[str, slice], summary: tuple[bool, bool]) -> None:
-            done[name] = summary
-            report()
-            checkpoint()
-
         # the chunk function itself goes along to the workers (a test's injected fault too)
-        run([(name, sl) for name, sl in blocks if name not in done], put, _write_region, (str(parts), compute))
-        _finish(parts, done, blocks, spec["dims"])
+        run(
+            [(name, sl) for name, sl in blocks if name not in done],
+            put,
+            partial(_write_region, path=str(parts), compute=task),
+        )
+        for sl in provisional(done, blocks) if "leading_growth_rate" in spec["variables"] else ():
+            checkpoint()
+            with open_store(parts) as stored:
+                fixed = stored["max_growth_rate"].isel(sl).load().rename("leading_growth_rate")
+            fixed.to_dataset().drop_vars(list(fixed.coords)).to_zarr(parts, region=sl, mode="r+", consolidated=False)
         if commit:
             _commit(parts, target, overwrite, tmp)
     except BaseException:
@@ -365,31 +332,11 @@ def write_store(
     return target if commit else parts
 
 
-def _finish(parts: Path, done: dict[str, tuple[bool, bool]], blocks: list, dims: list[str]) -> None:
-    """The leading growth rate's whole-grid rule (:mod:`stability.grids.leading`): the zero mode
-    is left out iff every chunk has it at every point inside and one chunk has a point inside;
-    otherwise the chunks written with it left out get ``max_growth_rate``, read back."""
-    if all(e for e, _ in done.values()) and any(i for _, i in done.values()):
-        return
-    with _open(parts) as stored:
-        if "leading_growth_rate" not in stored:
-            return
-        for name, sl in blocks:
-            if done[name][0]:
-                checkpoint()
-                fixed = stored["max_growth_rate"].isel(sl).load().rename("leading_growth_rate")
-                fixed.to_dataset().drop_vars(list(fixed.coords)).to_zarr(
-                    parts, region={d: sl[d] for d in dims}, mode="r+", consolidated=False
-                )
-
-
 def _check_target(target: Path, overwrite: bool) -> None:
     """A new name, or (``overwrite=True``) an existing Zarr store; never anything else."""
-    if not os.path.lexists(target):
-        return
-    if not overwrite:
+    if os.path.lexists(target) and not overwrite:
         raise FileExistsError(f"output {str(target)!r} exists; pass overwrite=True to replace it")
-    if target.is_symlink() or not (target / "zarr.json").is_file():
+    if os.path.lexists(target) and (target.is_symlink() or not (target / "zarr.json").is_file()):
         raise FileExistsError(f"output {str(target)!r} exists and is not a Zarr store; it is never replaced")
 
 
@@ -399,8 +346,7 @@ def _commit(parts: Path, target: Path, overwrite: bool, tmp: Temporary | None) -
     meanwhile wins (the rename of a directory onto a non-empty one fails): FileExistsError; any
     other failure of the rename: OutputWriteError naming the cause."""
     checkpoint()
-    kept = "it was removed" if tmp is not None else f"it is kept in {str(parts)!r}"
-    old = None
+    kept, old = "it was removed" if tmp is not None else f"it is kept in {str(parts)!r}", None
     if os.path.lexists(target):
         _check_target(target, overwrite)
         old = target.with_name(f"{TEMPORARY_PREFIX}old-{secrets.token_hex(6)}-{target.name}")
@@ -412,23 +358,18 @@ def _commit(parts: Path, target: Path, overwrite: bool, tmp: Temporary | None) -
     except OSError as exc:
         if tmp is not None:
             tmp.state = "writing"
-        lost = ""
         if old is not None:
             try:
                 os.rename(old, target)
             except OSError:
-                lost = f"; the store it replaces could not be put back and is in {str(old)!r}"
+                kept += f"; the store it replaces could not be put back and is in {str(old)!r}"
+        nothing = f"nothing was replaced (the complete store: {kept})"
         if exc.errno in (errno.EEXIST, errno.ENOTEMPTY, errno.ENOTDIR) and os.path.lexists(target):
             raise FileExistsError(
-                f"output {str(target)!r} was created by another process while this run was computing; "
-                f"nothing was replaced (the complete store: {kept}{lost})"
+                f"output {str(target)!r} was created by another process while this run was computing; {nothing}"
             ) from None
-        raise OutputWriteError(
-            f"cannot write {str(target)!r}: renaming the complete store to it failed ({exc.strerror}); "
-            f"nothing was replaced (the complete store: {kept}{lost})",
-            exc.errno,
-            str(target),
-        ) from exc
+        why = f"renaming the complete store to it failed ({exc.strerror})"
+        raise OutputWriteError(f"cannot write {str(target)!r}: {why}; {nothing}", exc.errno, str(target)) from exc
     if tmp is not None:
         tmp.done(committed=True)
     if old is not None:
