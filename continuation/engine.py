@@ -39,11 +39,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 from typing import NamedTuple
 
 import numpy as np
 
 from . import interpolation
+from .corrector import FLOOR, newton, step
 from .errors import ConvergenceError
 from .events import locate
 from .interpolation import hermite
@@ -54,8 +56,6 @@ from .problem import ContinuationProblem, StepResult, finite_difference_jacobian
 __all__ = ["Branch", "TraceOptions", "hermite", "project", "tangent", "trace", "trace_both"]
 
 EPS = float(np.finfo(float).eps)
-#: a residual this small is at the rounding floor: no polishing step
-_FLOOR = 4.0 * EPS
 
 
 @dataclass
@@ -108,8 +108,18 @@ class _Scaled:
         self.n_jacobian = 0
         self.test_names: tuple[str, ...] = tuple(getattr(problem, "test_function_names", ()))
         self.constraint_names: tuple[str, ...] = tuple(getattr(problem, "constraint_names", ()))
-        self._has_jac = hasattr(problem, "jacobian")
         self._has_rj = hasattr(problem, "residual_and_jacobian")
+        self._jac = getattr(problem, "jacobian", None) or partial(finite_difference_jacobian, problem.residual)
+
+    def into(self, u: np.ndarray, jacobian: bool, F: np.ndarray, J: np.ndarray) -> None:
+        """``F(u)`` into ``F`` and, if ``jacobian``, ``dF/du`` into ``J``, at the problem's ``u``:
+        the residual of :func:`continuation.corrector.newton`, which counts the calls."""
+        if jacobian and self._has_rj:
+            F[:], J[:] = self.p.residual_and_jacobian(u)
+        else:
+            F[:] = self.p.residual(u)
+            if jacobian:
+                J[:] = self._jac(u)
 
     def residual(self, v: np.ndarray) -> np.ndarray:
         self.n_residual += 1
@@ -117,12 +127,7 @@ class _Scaled:
 
     def jacobian(self, v: np.ndarray) -> np.ndarray:
         self.n_jacobian += 1
-        u = v * self.scale
-        if self._has_jac:
-            J = np.asarray(self.p.jacobian(u), dtype=float)
-        else:
-            J = finite_difference_jacobian(self.p.residual, u)
-        return J * self.scale
+        return np.asarray(self._jac(v * self.scale), dtype=float) * self.scale
 
     def residual_and_jacobian(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if self._has_rj:
@@ -131,6 +136,17 @@ class _Scaled:
             f, J = self.p.residual_and_jacobian(v * self.scale)
             return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale
         return self.residual(v), self.jacobian(v)
+
+    def count(self, n_rj: int, n_r: int) -> None:
+        """Add the work of a corrector solve (:func:`continuation.corrector.newton`)."""
+        self.n_residual += n_rj + n_r
+        self.n_jacobian += n_rj
+
+    def project(self, v: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple[np.ndarray, bool, int]:
+        """Minimum-norm Newton steps from ``v`` onto the curve: ``(v, ok, iterations)``."""
+        ok, it, n_rj, n_r, v, _ = newton(_Scaled.into, (self,), v, None, v, 0.0, self.scale, tol, max_iter, max_move)
+        self.count(n_rj, n_r)
+        return v, ok, it
 
     def unscaled_tangent(self, t: np.ndarray) -> np.ndarray:
         tu = t * self.scale
@@ -148,18 +164,6 @@ class _Scaled:
 
 
 _EMPTY = np.zeros(0)
-
-
-# ------------------------------------------------------------------------------------------
-# linear algebra of the Python path (continuation.linalg; LinAlgError on a singular system)
-# ------------------------------------------------------------------------------------------
-def _bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> np.ndarray:
-    """Solve ``[J; c^T] x = [f; r]`` (:func:`continuation.linalg.bordered_solve`);
-    ``numpy.linalg.LinAlgError`` at a zero pivot."""
-    ok, x, _ = bordered_solve(J, c, f, r)
-    if not ok:
-        raise np.linalg.LinAlgError("singular matrix")
-    return x
 
 
 def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
@@ -190,61 +194,6 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     return _tangent_det(J, t_ref)[0]
 
 
-# ------------------------------------------------------------------------------------------
-# Newton's method: the corrector and the projection onto the curve
-# ------------------------------------------------------------------------------------------
-def _newton(
-    sp: _Scaled,
-    v: np.ndarray,
-    t_plane: np.ndarray | None,
-    anchor: np.ndarray | None,
-    h: float,
-    tol: float,
-    max_iter: int,
-    max_move: float,
-    polish: bool = True,
-) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
-    """Newton on ``[F; t_plane . (v - anchor) - h]`` (minimum-norm Newton if ``t_plane`` is None).
-
-    Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``; skipped when
-    ``||F|| <= 4 eps`` already), so points sit at the rounding floor rather than just below
-    ``tol``. Returns the point, success, the
-    number of iterations and the Jacobian at (or next to) the point.
-    """
-    start = v
-    J = None
-    for it in range(max_iter + 1):
-        f, J = sp.residual_and_jacobian(v)
-        fn = _norm(f)
-        if not math.isfinite(fn):
-            return v, False, it, None
-        plane = 0.0 if t_plane is None else float(t_plane @ (v - anchor) - h)
-        converged = fn <= tol and abs(plane) <= 1e3 * EPS * (1.0 + abs(h))
-        if it == max_iter and not converged:
-            break
-        if converged and not (polish and fn > _FLOOR):
-            return v, True, it, J  # at the rounding floor: no Newton step to take
-        try:
-            if t_plane is None:
-                dv = -np.linalg.lstsq(J, f, rcond=None)[0]
-            else:
-                dv = -_bordered_solve(J, t_plane, f, plane)
-        except np.linalg.LinAlgError:
-            return v, converged, it, J
-        if converged:
-            if math.isfinite(_norm(dv)):
-                v2 = v + dv
-                f2 = sp.residual(v2)
-                if _norm(f2) < fn:
-                    return v2, True, it + 1, J
-            return v, True, it, J
-        v = v + dv
-        moved = _norm(v - start)
-        if not math.isfinite(moved) or moved > max_move:
-            return v, False, it + 1, None
-    return v, False, max_iter, None
-
-
 def project(
     problem: ContinuationProblem,
     u0: np.ndarray,
@@ -264,9 +213,8 @@ def project(
     """
     u0 = np.asarray(u0, float)
     sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
-    sp = _Scaled(problem, sc)
     problem_dimension(problem, u0)
-    v, ok, _, _ = _newton(sp, u0 / sc, None, None, 0.0, tol, max_iter, max_move)
+    v, ok, _ = _Scaled(problem, sc).project(u0 / sc, tol, max_iter, max_move)
     if not ok:
         raise ConvergenceError(f"no point of the curve with ||F|| <= {tol:g} found near {u0}")
     return v * sc
@@ -455,7 +403,7 @@ class _Tracer:
         sp, sc, tol = self.sp, self.sc, self.o.tol
         v = u0 / sc
         if project_start:
-            v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
+            v, ok, it = sp.project(v, tol, 30, np.inf)
             self.n_newton += it
             if not ok:
                 raise ConvergenceError(
@@ -527,27 +475,20 @@ class _Tracer:
     ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
         """Corrector from ``guess`` on the plane ``t . (v' - v) = h`` of the current point, then
         the tangent and ``det [J; t^T]`` at the solution: the problem's compiled step if it has
-        one, else :func:`_newton` and :func:`_tangent_det`. Returns ``(v', ok, iterations, t',
+        one, else :func:`continuation.corrector.step` on the Python residual. Returns ``(v', ok, iterations, t',
         det, extra)``; ``extra``: the constraints and test functions at ``v'`` if the compiled
         step gave them (and its tangent is the one used), else None."""
         sp, t = self.sp, self.t
-        if self.cstep is not None:
-            r = self.cstep(guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
-            r = StepResult(*r)
-            sp.n_residual += r.n_residual_and_jacobian + r.n_residual
-            sp.n_jacobian += r.n_residual_and_jacobian
-            if not r.ok:
-                return r.v, False, r.iterations, None, 0.0, None
-            if not r.tangent_ok:  # singular bordered matrix: the SVD fallback
-                tt, d = _tangent_det(r.jacobian, t)
-                return r.v, True, r.iterations, tt, d, None
-            extra = None if r.constraints is None else (r.constraints, r.tests)
-            return r.v, True, r.iterations, r.tangent, r.det, extra
-        vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.o.tol, max_it, max_move)
-        if not ok:
-            return vv, False, it, None, 0.0, None
-        tt, d = _tangent_det(JJ, t)
-        return vv, True, it, tt, d, None
+        args = (guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
+        r = StepResult(*(self.cstep(*args) if self.cstep is not None else step(_Scaled.into, (sp,), *args)))
+        sp.count(r.n_residual_and_jacobian, r.n_residual)
+        if not r.ok:
+            return r.v, False, r.iterations, None, 0.0, None
+        if not r.tangent_ok:  # singular bordered matrix: the SVD fallback
+            tt, d = _tangent_det(r.jacobian, t)
+            return r.v, True, r.iterations, tt, d, None
+        extra = None if r.constraints is None else (r.constraints, r.tests)
+        return r.v, True, r.iterations, r.tangent, r.det, extra
 
     def _point_on_step(self, h: float) -> tuple[np.ndarray, np.ndarray]:
         """The point of the curve and its tangent at pseudo-arclength ``h`` of the current step
@@ -676,12 +617,11 @@ class _Tracer:
                 # point, so a fixed gradient converges as fast (the accuracy is set by the
                 # residual tests above, not by the gradient)
                 grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta) for e in eye])
-            try:
-                du = _bordered_solve(JJ, grad, f, gj)
-            except np.linalg.LinAlgError:
+            solved, du, _ = bordered_solve(JJ, grad, f, gj)
+            if not solved:
                 return None
             if converged:
-                if fn > _FLOOR:  # polish, as the corrector does
+                if fn > FLOOR:  # polish, as the corrector does
                     u2 = uu - du
                     if _norm(sp.residual(u2)) < fn and abs(float(sp.constraints(u2)[j])) <= 8 * EPS * gscale:
                         uu = u2

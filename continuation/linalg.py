@@ -51,6 +51,8 @@ __all__ = [
     "PYTHON_LU_MAX",
     "bordered_det",
     "bordered_solve",
+    "dot",
+    "least_squares",
     "lu_solve",
     "norm",
     "solve_det",
@@ -336,6 +338,38 @@ def norm(x: np.ndarray) -> float:
     for a few entries). Compiled: a loop (its own summation, so the two worlds agree to
     rounding)."""
     return math.sqrt(float(x @ x))
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> float:
+    """``a . b`` of two short vectors (Python: one BLAS dot product; compiled: a loop, summed in
+    order, as :func:`norm`)."""
+    return float(a @ b)
+
+
+def _dot_compiled(a, b):
+    def impl(a, b):
+        s = 0.0
+        for i in range(a.shape[0]):
+            s += a[i] * b[i]
+        return s
+
+    return impl
+
+
+def least_squares(J: np.ndarray, f: np.ndarray) -> tuple[bool, np.ndarray]:
+    """The minimum-norm solution of ``J x = f`` (``numpy.linalg.lstsq``; Python only): ``(ok,
+    x)``, ``ok`` False if the SVD fails."""
+    try:
+        return True, np.linalg.lstsq(J, f, rcond=None)[0]
+    except np.linalg.LinAlgError:
+        return False, f
+
+
+def _least_squares_compiled(J, f):
+    def impl(J, f):  # no compiled caller projects (a projection is Python's): a failed solve
+        return False, f
+
+    return impl
 
 
 def _norm_compiled(x):

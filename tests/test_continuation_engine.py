@@ -10,6 +10,7 @@ from an exact Jacobian, so 1e-12 leaves a margin of ten.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -426,36 +427,39 @@ def test_solve_dense_complex_step_and_singular():
 
 
 class HopfWithHook(HopfNormalForm):
-    """The Hopf normal form with a ``compiled_step`` hook (continuation.problem), written in
-    Python from the compiled building blocks: the engine must give the branch of its Python
-    path, and count the work the hook reports."""
+    """The Hopf normal form with a ``compiled_step`` hook (continuation.problem): its residual
+    compiled (a ``register_jitable`` function) and the engine's corrector and tangent compiled
+    (``continuation.compiled.step``): the engine must give the branch of its Python path, and
+    count the work the hook reports."""
 
     calls = 0
 
-    def compiled_step(self, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        from continuation import compiled as c
-
+    def compiled_step(self, *corrector):
         type(self).calls += 1
-        v = guess.copy()
-        n_rj = n_r = 0
-        for it in range(max_iter + 1):
-            u = v * scale
-            f, J = self.residual(u), self.jacobian(u) * scale
-            n_rj += 1
-            action, dv, fn = c.corrector_update(it, max_iter, v, guess, f, J, t_plane, anchor, h, tol, True)
-            if action == c.FAILED:
-                return False, it, n_rj, n_r, v, J, False, t_plane, 0.0
-            if action == c.POLISH:
-                n_r += 1
-                if np.linalg.norm(self.residual((v + dv) * scale)) < fn:
-                    v, it = v + dv, it + 1
-            if action in (c.POLISH, c.CONVERGED):
-                ok, t, det = c.tangent_det(J, t_plane)
-                return True, it, n_rj, n_r, v, J, ok, t, det
-            v = v + dv
-            if not np.linalg.norm(v - guess) <= max_move:
-                return False, it + 1, n_rj, n_r, v, J, False, t_plane, 0.0
-        return False, max_iter, n_rj, n_r, v, J, False, t_plane, 0.0
+        return _hopf_step()(*corrector)
+
+
+@functools.cache
+def _hopf_step():
+    from numba import njit
+    from numba.extending import register_jitable
+
+    from continuation.compiled import step
+
+    @register_jitable
+    def residual(u, jacobian, F, J):
+        x, y, w = u[0], u[1], u[2]
+        a = (x * x + y * y - 1) / 2
+        F[0], F[1] = -w * w + a * a + 2 + x, -2 * a * w
+        if jacobian:
+            J[0, 0], J[0, 1], J[0, 2] = 2 * a * x + 1, 2 * a * y, -2 * w
+            J[1, 0], J[1, 1], J[1, 2] = -2 * x * w, -2 * y * w, -2 * a
+
+    @njit
+    def hook(guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
+        return step(residual, (), guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
+
+    return hook
 
 
 def test_compiled_step_hook_gives_the_python_branch():
