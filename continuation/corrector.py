@@ -55,7 +55,7 @@ def newton(
     there (the one of the last Newton step when the polishing step was kept).
     """
     n = guess.shape[0] - 1
-    F, J, F2, J2 = np.empty(n), np.empty((n, n + 1)), np.empty(n), np.empty((n, n + 1))
+    F, J = np.empty(n), np.empty((n, n + 1))
     v = guess.copy()
     n_rj, n_r, ok, iterations = 0, 0, False, max_iter
     for it in range(max_iter + 1):
@@ -80,6 +80,7 @@ def newton(
         dv = -x
         if converged:  # polish: one more step, kept if it lowers ||F||
             if math.isfinite(norm(dv)):
+                F2, J2 = np.empty(n), np.empty((n, n + 1))  # J stays the step's (a residual may fill J2)
                 residual(*args, (v + dv) * scale, False, F2, J2)
                 n_r += 1
                 if norm(F2) < fn:

@@ -231,22 +231,6 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[floa
 # ------------------------------------------------------------------------------------------
 # the stepper
 # ------------------------------------------------------------------------------------------
-@dataclass(slots=True)
-class _Step:
-    """A corrected step of length ``h`` from the current point, before its events: the new
-    point ``v`` with its tangent ``t`` and ``det [J; t^T]``, the constraints and test functions
-    there if the compiled step gave them (``extra``), the corrector's Newton iterations and the
-    angle the tangent turned by."""
-
-    h: float
-    v: np.ndarray
-    t: np.ndarray
-    det: float
-    extra: tuple[np.ndarray, np.ndarray] | None
-    iterations: int
-    angle: float
-
-
 class _Event(NamedTuple):
     """A special point located on a step, at pseudo-arclength ``h`` from the current point."""
 
@@ -448,47 +432,39 @@ class _Tracer:
         self.done = True
 
     # --- predictor, corrector, rejection -------------------------------------------------------
-    def _step(self) -> _Step | None:
-        """Predict and correct a step of length ``h``; None if it was rejected (``h`` halved,
-        the tangent predictor next) or failed at ``min_step`` (the branch ends)."""
-        v, t, h = self.v, self.t, self.h
-        prev = self.prev
-        guess = self.predictor(v, t, *(prev if prev is not None else (v, t)), prev is not None and self.use_hermite, h)
-        v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.o.max_iter, 2.0 * h + 1e-12)
-        self.n_newton += it
-        angle = 0.0
-        if ok:
-            angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
-            ok = angle <= self.o.max_angle or h <= self.o.min_step
-        if not ok:
-            if h <= self.o.min_step:
-                self._finish("step_failure")
-            else:
-                self.h = max(h / 2.0, self.o.min_step)
-                self.use_hermite = False
-            return None
-        self.use_hermite = True
-        return _Step(h, v_new, t_new, bp_new, extra, it, angle)
+    def _step(self) -> StepResult | None:
+        """Predict and correct a step of length ``h`` (:meth:`_correct`); None if it was rejected
+        (``h`` halved, the tangent predictor next) or failed at ``min_step`` (the branch ends).
+        Sets ``angle``, the turn of the tangent over the step."""
+        v, t, h, prev = self.v, self.t, self.h, self.prev
+        guess = self.predictor(v, t, *(prev or (v, t)), prev is not None and self.use_hermite, h)
+        r = self._correct(guess, h, self.o.max_iter, 2.0 * h + 1e-12)
+        self.n_newton += r.iterations
+        self.angle = math.acos(min(1.0, max(-1.0, float(t @ r.tangent)))) if r.ok else 0.0
+        if r.ok and (self.angle <= self.o.max_angle or h <= self.o.min_step):
+            self.use_hermite = True
+            return r
+        if h <= self.o.min_step:
+            self._finish("step_failure")
+        else:
+            self.h = max(h / 2.0, self.o.min_step)
+            self.use_hermite = False
+        return None
 
-    def _correct(
-        self, guess: np.ndarray, h: float, max_it: int, max_move: float
-    ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
+    def _correct(self, guess: np.ndarray, h: float, max_it: int, max_move: float) -> StepResult:
         """Corrector from ``guess`` on the plane ``t . (v' - v) = h`` of the current point, then
         the tangent and ``det [J; t^T]`` at the solution: the problem's compiled step if it has
-        one, else :func:`continuation.corrector.step` on the Python residual. Returns ``(v', ok, iterations, t',
-        det, extra)``; ``extra``: the constraints and test functions at ``v'`` if the compiled
-        step gave them (and its tangent is the one used), else None."""
+        one, else :func:`continuation.corrector.step` on the Python residual; the tangent from
+        the SVD where the bordered matrix is singular (then without the compiled step's
+        constraints and test functions)."""
         sp, t = self.sp, self.t
         args = (guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
         r = StepResult(*(self.cstep(*args) if self.cstep is not None else step(_Scaled.into, (sp,), *args)))
         sp.count(r.n_residual_and_jacobian, r.n_residual)
-        if not r.ok:
-            return r.v, False, r.iterations, None, 0.0, None
-        if not r.tangent_ok:  # singular bordered matrix: the SVD fallback
+        if r.ok and not r.tangent_ok:  # singular bordered matrix: the SVD fallback
             tt, d = _tangent_det(r.jacobian, t)
-            return r.v, True, r.iterations, tt, d, None
-        extra = None if r.constraints is None else (r.constraints, r.tests)
-        return r.v, True, r.iterations, r.tangent, r.det, extra
+            return r._replace(tangent=tt, det=d, constraints=None, tests=None)
+        return r
 
     def _point_on_step(self, h: float) -> tuple[np.ndarray, np.ndarray]:
         """The point of the curve and its tangent at pseudo-arclength ``h`` of the current step
@@ -504,47 +480,47 @@ class _Tracer:
             guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
         else:
             guess = v + h * t
-        vv, ok, _, tt, _, _ = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
-        if not ok:
-            vv, ok, _, tt, _, _ = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
-        if not ok:
+        r = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not r.ok:
+            r = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not r.ok:
             raise ConvergenceError("corrector failed while locating a special point")
         if ha < h < hb:
-            known.insert(k, (h, vv, tt))
-        return vv, tt
+            known.insert(k, (h, r.v, r.tangent))
+        return r.v, r.tangent
 
     # --- one accepted step: boundary, events, closure, the new points, the next step length ----
-    def _advance(self, s: _Step) -> None:
+    def _advance(self, s: StepResult) -> None:
         """Everything after an accepted corrector step ``s``: where a constraint ends the
         branch on it, the special points on it, whether it closes the branch; the points to
         keep, and the next step length."""
         sp = self.sp
-        self.known[:] = [(0.0, self.v, self.t), (s.h, s.v, s.t)]
+        self.known[:] = [(0.0, self.v, self.t), (self.h, s.v, s.tangent)]
         # the constraints and test functions at the new point: from the compiled step if it gave them
-        g_new = s.extra[0] if s.extra is not None and sp.constraint_names else sp.constraints(s.v)
+        g_new = s.constraints if s.constraints is not None and sp.constraint_names else sp.constraints(s.v)
         stop, v_b, t_b = self._boundary(s, g_new)
-        tests_new = s.extra[1] if s.extra is not None and sp.test_names else sp.tests(s.v, s.t)
+        tests_new = s.tests if s.tests is not None and sp.test_names else sp.tests(s.v, s.tangent)
         events, at_new = self._special_points(s, stop, v_b, t_b, tests_new)
         seg = _norm(s.v - self.v)  # the step's chord (also the arclength increment)
         close_at = self._closure(s, seg)
         if self._append(s, events, stop, close_at, at_new, seg):
             return
         self.prev = (self.v, self.t)
-        self.v, self.t, self.g, self.tests, self.bp = s.v, s.t, g_new, tests_new, s.det
+        self.v, self.t, self.g, self.tests, self.bp = s.v, s.tangent, g_new, tests_new, s.det
         self._adapt_step(s)
 
-    def _adapt_step(self, s: _Step) -> None:
+    def _adapt_step(self, s: StepResult) -> None:
         """Step control after an accepted step: grow after an easy corrector (<= 3 Newton
         iterations), keep after a moderate one, shrink after a hard one; and keep the next turn
         of the tangent below ``max_angle`` (if it turns by ``angle`` over ``h``, about ``0.9
         max_angle`` next)."""
         factor = self.o.grow if s.iterations <= 3 else (1.0 if s.iterations <= 5 else 0.7)
-        if s.angle > 0:
-            factor = min(factor, 0.9 * self.o.max_angle / s.angle)
+        if self.angle > 0:
+            factor = min(factor, 0.9 * self.o.max_angle / self.angle)
         self.h = min(max(self.h * factor, self.o.min_step), self.o.max_step)
 
     # --- boundary handling (constraints) ---------------------------------------------------
-    def _boundary(self, s: _Step, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
+    def _boundary(self, s: StepResult, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
         """Where the step leaves the constraints, if it does: ``(stop, v_b, t_b)``, the
         boundary point that ends the branch (None if none) and the end of the part of the step
         that counts (the boundary point, or the new point).
@@ -555,12 +531,12 @@ class _Tracer:
         """
         negative = np.nonzero(g_new < 0)[0]
         if negative.size == 0:  # most steps
-            return None, s.v, s.t
+            return None, s.v, s.tangent
         sp, g = self.sp, self.g
         stop = None
         crossed = [j for j in negative if g[j] >= 0]
         crossed.sort(key=lambda j: (g[j] / (g[j] - g_new[j]), j))
-        h_b, at_b, g_b = s.h, (s.v, s.t), g_new
+        h_b, at_b, g_b = self.h, (s.v, s.tangent), g_new
         while crossed:
             j = crossed.pop(0)
             found = self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
@@ -581,7 +557,7 @@ class _Tracer:
                 except (ConvergenceError, ValueError):
                     hs, vs, ts = h_b, at_b[0], at_b[1]
             # j is violated at the current stop point, so its zero comes first (ties included)
-            if stop is None or hs <= stop.h + 1e-9 * s.h:
+            if stop is None or hs <= stop.h + 1e-9 * self.h:
                 stop = _Event(hs, "boundary", sp.constraint_names[j], vs, ts)
                 g_s = sp.constraints(vs)
                 crossed = [k for k in crossed if g_s[k] < 0]
@@ -589,7 +565,7 @@ class _Tracer:
         return stop, at_b[0], at_b[1]
 
     def _boundary_point(
-        self, s: _Step, j: int, h_b: float, ga: float, gb: float
+        self, s: StepResult, j: int, h_b: float, ga: float, gb: float
     ) -> tuple[float, np.ndarray, np.ndarray] | None:
         """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
         the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
@@ -598,9 +574,9 @@ class _Tracer:
         then brackets with :func:`continuation.events.locate`)."""
         if not (ga > 0 > gb):
             return None
-        sp, v, t, h, tol = self.sp, self.v, self.t, s.h, self.o.tol
+        sp, v, t, h, tol = self.sp, self.v, self.t, self.h, self.o.tol
         h0 = h_b * ga / (ga - gb)
-        uu = hermite(v, t, s.v, s.t, h0 / h) if h > 0 else v + h0 * t
+        uu = hermite(v, t, s.v, s.tangent, h0 / h) if h > 0 else v + h0 * t
         gscale = max(1.0, abs(ga), abs(gb))
         delta = 1e-6
         eye = np.eye(uu.size) * delta
@@ -634,7 +610,7 @@ class _Tracer:
 
     # --- event location: folds, test functions, branch points -------------------------------
     def _special_points(
-        self, s: _Step, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray, tests_new: np.ndarray
+        self, s: StepResult, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray, tests_new: np.ndarray
     ) -> tuple[list[_Event], list[tuple[str, str]]]:
         """The special points strictly inside the step (up to the boundary ``v_b`` if ``stop``),
         located, and ``at_new``: the ``(kind, detail)`` of the tests that are exactly 0.0 at the
@@ -672,7 +648,7 @@ class _Tracer:
                 candidates.append((kind, name, phi, pa, pb))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append((kind, name))
-        h_b = s.h if stop is None else stop.h
+        h_b = self.h if stop is None else stop.h
         events: list[_Event] = []
         for kind, name, phi, pa, pb in candidates:
             if max(abs(pa), abs(pb)) > floor:
@@ -682,28 +658,28 @@ class _Tracer:
                     continue  # a special point that cannot be located is not reported
                 # a special point at the end of the branch (within 1e-6 of the last step) is
                 # not reported separately from the end point
-                if stop is None or hs < stop.h - 1e-6 * s.h:
+                if stop is None or hs < stop.h - 1e-6 * self.h:
                     events.append(_Event(hs, kind, name, vs, ts))
         return events, at_new
 
     # --- closure detection ---------------------------------------------------------------------
-    def _closure(self, s: _Step, seg: float) -> float | None:
+    def _closure(self, s: StepResult, seg: float) -> float | None:
         """Pseudo-arclength on the step where the branch passes its start point again (within 5%
         of the step's chord ``seg``, in the start's direction), or None. Only once the branch
         has at least 4 points and has gone more than 3 steps' length."""
-        if not (self.o.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * s.h):
+        if not (self.o.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * self.h):
             return None
         v, v_start = self.v, self.v_start
         # the distance to the segment is at least |v_start - v| - seg: most steps stop here
         dist, lam = (np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9 else _segment_distance(v_start, v, s.v)
         if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (s.v - v) @ self.t_start > 0:
-            return lam * s.h
+            return lam * self.h
         return None
 
     # --- the points kept ---------------------------------------------------------------------
     def _append(
         self,
-        s: _Step,
+        s: StepResult,
         events: list[_Event],
         stop: _Event | None,
         close_at: float | None,
@@ -726,14 +702,14 @@ class _Tracer:
             self._finish("closed")
             return True
         if stop is not None:
-            if stop.h <= 1e-12 * s.h and len(events) == 0:  # the boundary is the current point itself
+            if stop.h <= 1e-12 * self.h and len(events) == 0:  # the boundary is the current point itself
                 self.kinds[-1], self.details[-1] = stop.kind, stop.detail
             else:
                 self._add(stop.v, stop.t, stop.kind, stop.detail)
             self._finish("boundary")
             return True
         kind, detail = at_new[0] if at_new else ("regular", "")
-        if self._add(s.v, s.t, kind, detail, seg) is False:
+        if self._add(s.v, s.tangent, kind, detail, seg) is False:
             self._finish("callback")
             return True
         return False
