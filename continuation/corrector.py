@@ -22,7 +22,6 @@ moves farther than ``max_move`` from ``guess``.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 
 import numpy as np
 
@@ -35,22 +34,13 @@ EPS = float(np.finfo(float).eps)
 FLOOR = 4.0 * EPS
 
 
-def newton(
-    residual: Callable[..., None],
-    args: tuple,
-    guess: np.ndarray,
-    t_plane: np.ndarray | None,
-    anchor: np.ndarray,
-    h: float,
-    scale: np.ndarray,
-    tol: float,
-    max_iter: int,
-    max_move: float,
-) -> tuple[bool, int, int, int, np.ndarray, np.ndarray]:
+def newton(residual, args, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
     """The corrector of one step, in the scaled variables ``v = u / scale`` (module docstring).
 
     ``residual(*args, u, jacobian, F, J)`` writes ``F(u)`` into ``F`` (n,) and, if ``jacobian``,
-    ``dF/du`` into ``J`` (n, n+1), at the problem's variables ``u = v * scale``. Returns ``(ok,
+    ``dF/du`` into ``J`` (n, n+1), at the problem's variables ``u = v * scale``; ``guess``,
+    ``t_plane`` (None: minimum-norm steps, no plane), ``anchor`` and ``scale`` are float arrays of
+    shape (n+1,), ``h``, ``tol`` and ``max_move`` floats, ``max_iter`` an int. Returns ``(ok,
     iterations, n_residual_and_jacobian, n_residual, v, J)``: the point and the scaled Jacobian
     there (the one of the last Newton step when the polishing step was kept).
     """
@@ -94,18 +84,7 @@ def newton(
     return ok, iterations, n_rj, n_r, v, J
 
 
-def step(
-    residual: Callable[..., None],
-    args: tuple,
-    guess: np.ndarray,
-    t_plane: np.ndarray,
-    anchor: np.ndarray,
-    h: float,
-    scale: np.ndarray,
-    tol: float,
-    max_iter: int,
-    max_move: float,
-) -> tuple:
+def step(residual, args, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
     """:func:`newton`, then the unit tangent ``t`` (``t . t_plane > 0``) and ``det [J; t^T]`` at
     the point (:func:`continuation.linalg.tangent_det`): the first nine fields of a
     :class:`continuation.StepResult`, ``(ok, iterations, n_residual_and_jacobian, n_residual, v,

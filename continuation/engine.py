@@ -342,18 +342,7 @@ class _Tracer:
     and Jacobian evaluations in ``sp``). Arguments: those of :func:`trace`, checked there.
     """
 
-    def __init__(
-        self,
-        problem: ContinuationProblem,
-        u0: np.ndarray,
-        sc: np.ndarray,
-        o: TraceOptions,
-        *,
-        direction: int,
-        tangent0: Sequence[float] | None,
-        callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
-        project_start: bool,
-    ):
+    def __init__(self, problem: ContinuationProblem, sc: np.ndarray, o: TraceOptions, callback: Callable | None):
         self.sp = _Scaled(problem, sc)
         self.sc = sc
         self.o = o  # the settings (TraceOptions)
@@ -378,11 +367,8 @@ class _Tracer:
         # a new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
         # Brent's iterates close in on a special point one Newton step (or none) suffices
         self.known: list[tuple[float, np.ndarray, np.ndarray]] = []
-        self._start(u0, direction, tangent0, project_start, o.start_slack)
 
-    def _start(
-        self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool, start_slack: float
-    ) -> None:
+    def start(self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool) -> _Tracer:
         """The start point: on the curve, inside the constraints, with its tangent and tests."""
         sp, sc, tol = self.sp, self.sc, self.o.tol
         v = u0 / sc
@@ -396,7 +382,7 @@ class _Tracer:
         g0 = sp.constraints(v)
         # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
         # errors) may sit a few ulp outside it: that is "on the boundary"
-        g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
+        g0 = np.where((g0 < 0) & (g0 >= -self.o.start_slack), 0.0, g0)
         if np.any(g0 < 0):
             j = int(np.argmin(g0))
             raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} (value {g0[j]:.3g} < 0)")
@@ -414,6 +400,7 @@ class _Tracer:
         self.bp = bordered_det(sp.jacobian(v), t)
         if self.callback is not None and self.callback(v * sc, sp.unscaled_tangent(t), "start") is False:
             self._finish("callback")
+        return self
 
     # --- the loop ----------------------------------------------------------------------------
     def run(self) -> Branch:
@@ -539,23 +526,12 @@ class _Tracer:
         h_b, at_b, g_b = self.h, (s.v, s.tangent), g_new
         while crossed:
             j = crossed.pop(0)
-            found = self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
-            if found is not None:
-                hs, vs, ts = found
-            else:
-                try:
-                    hs, vs, ts = locate(
-                        self._point_on_step,
-                        lambda vv, tt, j=j: sp.constraints(vv)[j],
-                        0.0,
-                        h_b,
-                        float(g[j]),
-                        float(g_b[j]),
-                        (self.v, self.t),
-                        at_b,
-                    )
-                except (ConvergenceError, ValueError):
-                    hs, vs, ts = h_b, at_b[0], at_b[1]
+            phi = lambda vv, tt, j=j: sp.constraints(vv)[j]  # noqa: E731
+            hs, vs, ts = (
+                self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
+                or self._locate(phi, h_b, float(g[j]), float(g_b[j]), at_b)
+                or (h_b, *at_b)
+            )
             # j is violated at the current stop point, so its zero comes first (ties included)
             if stop is None or hs <= stop.h + 1e-9 * self.h:
                 stop = _Event(hs, "boundary", sp.constraint_names[j], vs, ts)
@@ -652,15 +628,26 @@ class _Tracer:
         events: list[_Event] = []
         for kind, name, phi, pa, pb in candidates:
             if max(abs(pa), abs(pb)) > floor:
-                try:
-                    hs, vs, ts = locate(self._point_on_step, phi, 0.0, h_b, pa, pb, (self.v, self.t), (v_b, t_b))
-                except (ConvergenceError, ValueError):
+                found = self._locate(phi, h_b, pa, pb, (v_b, t_b))
+                if found is None:
                     continue  # a special point that cannot be located is not reported
+                hs, vs, ts = found
                 # a special point at the end of the branch (within 1e-6 of the last step) is
                 # not reported separately from the end point
                 if stop is None or hs < stop.h - 1e-6 * self.h:
                     events.append(_Event(hs, kind, name, vs, ts))
         return events, at_new
+
+    def _locate(
+        self, phi: Callable, h_b: float, pa: float, pb: float, at_b: tuple[np.ndarray, np.ndarray]
+    ) -> tuple[float, np.ndarray, np.ndarray] | None:
+        """The zero of ``phi`` on the step between ``h = 0`` (value ``pa``) and ``h_b`` (``pb``,
+        point and tangent ``at_b``) by :func:`continuation.events.locate` on
+        :meth:`_point_on_step`; None if it cannot be located (a corrector failure inside)."""
+        try:
+            return locate(self._point_on_step, phi, 0.0, h_b, pa, pb, (self.v, self.t), at_b)
+        except (ConvergenceError, ValueError):
+            return None
 
     # --- closure detection ---------------------------------------------------------------------
     def _closure(self, s: StepResult, seg: float) -> float | None:
@@ -734,18 +721,8 @@ class _Tracer:
         P = np.array(self.pts) * self.sc
         T = np.array(self.tans) * self.sc  # the unscaled unit tangents, all at once
         T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
-        return Branch(
-            P,
-            T,
-            np.array(self.arc),
-            self.kinds,
-            self.details,
-            self.closed,
-            [self.end],
-            self.n_newton,
-            self.sp.n_residual,
-            self.sp.n_jacobian,
-        )
+        counts = (self.n_newton, self.sp.n_residual, self.sp.n_jacobian)
+        return Branch(P, T, np.array(self.arc), self.kinds, self.details, self.closed, [self.end], *counts)
 
 
 def trace(
@@ -791,9 +768,7 @@ def trace(
     sc = np.ones(u0.size) if o.scale is None else np.asarray(o.scale, float)
     if sc.shape != u0.shape or np.any(sc <= 0):
         raise ValueError(f"scale must be {u0.size} positive numbers, got {o.scale!r}")
-    return _Tracer(
-        problem, u0, sc, o, direction=direction, tangent0=tangent0, callback=callback, project_start=project_start
-    ).run()
+    return _Tracer(problem, sc, o, callback).start(u0, direction, tangent0, project_start).run()
 
 
 def trace_both(
@@ -833,15 +808,5 @@ def trace_both(
     details = bwd.details[::-1] + fwd.details[1:]
     if bwd.kinds[0] == "start" and fwd.kinds[0] != "start":  # the start is a special point
         kinds[len(bwd.kinds) - 1], details[len(bwd.kinds) - 1] = fwd.kinds[0], fwd.details[0]
-    return Branch(
-        pts,
-        tans,
-        arc,
-        kinds,
-        details,
-        False,
-        [bwd.end_reasons[0], fwd.end_reasons[0]],
-        fwd.n_newton + bwd.n_newton,
-        fwd.n_residual + bwd.n_residual,
-        fwd.n_jacobian + bwd.n_jacobian,
-    )
+    counts = (fwd.n_newton + bwd.n_newton, fwd.n_residual + bwd.n_residual, fwd.n_jacobian + bwd.n_jacobian)
+    return Branch(pts, tans, arc, kinds, details, False, [bwd.end_reasons[0], fwd.end_reasons[0]], *counts)
