@@ -15,8 +15,6 @@ building block compiled, not a copy of it:
 * :func:`step` and :func:`newton`: :func:`continuation.corrector.step` (the corrector, then the
   tangent and ``det [J; t^T]``) and :func:`continuation.corrector.newton` (the corrector), the
   loop the engine's Python path runs too;
-* :func:`solve_det`: :func:`continuation.linalg.solve_det` (Gaussian elimination with partial
-  pivoting, :func:`continuation.linalg.lu_solve`, and the determinant from the pivots);
 * :func:`tangent_det`: :func:`continuation.linalg.tangent_det`, the unit tangent from the
   bordered system ``[J; t_ref^T] y = e`` and ``det [J; t^T]`` (``ok`` False on a singular
   bordered matrix: the engine then takes the tangent from the SVD, in Python);
@@ -43,7 +41,7 @@ from numba.extending import overload, register_jitable
 
 from . import corrector, interpolation, linalg
 
-__all__ = ["newton", "norm", "predict", "solve_dense", "solve_det", "step", "tangent_det"]
+__all__ = ["newton", "norm", "predict", "solve_dense", "step", "tangent_det"]
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
 njit = numba.njit
@@ -59,7 +57,6 @@ def register() -> None:
     options = {k: _JIT[k] for k in ("fastmath", "nogil", "error_model")}
     for fn, impl in (
         (linalg.lu_solve, linalg._lu_solve_compiled),
-        (linalg.solve_det, linalg._solve_det_compiled),
         (linalg.bordered_solve, linalg._bordered_solve_compiled),
         (linalg.norm, linalg._norm_compiled),
         (linalg.dot, linalg._dot_compiled),
@@ -78,13 +75,6 @@ newton, step = corrector.newton, corrector.step
 def norm(x: np.ndarray) -> float:
     """Euclidean norm of a short vector (:func:`continuation.linalg.norm`, compiled)."""
     return linalg.norm(x)
-
-
-@njit(**_JIT)
-def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
-    """Solve ``G x = b``: ``(ok, x, det G)``, ``ok`` False at a zero or NaN pivot
-    (:func:`continuation.linalg.solve_det`, compiled)."""
-    return linalg.solve_det(G, b)
 
 
 #: ``(ok, t, det)``: the unit null vector ``t`` of ``J`` (n, n+1) with ``t . t_ref > 0`` and

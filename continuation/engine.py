@@ -130,12 +130,10 @@ class _Scaled:
         return np.asarray(self._jac(v * self.scale), dtype=float) * self.scale
 
     def residual_and_jacobian(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        if self._has_rj:
-            self.n_residual += 1
-            self.n_jacobian += 1
-            f, J = self.p.residual_and_jacobian(v * self.scale)
-            return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale
-        return self.residual(v), self.jacobian(v)
+        F, J = np.empty(v.size - 1), np.empty((v.size - 1, v.size))
+        self.into(v * self.scale, True, F, J)
+        self.count(1, 0)
+        return F, J * self.scale
 
     def count(self, n_rj: int, n_r: int) -> None:
         """Add the work of a corrector solve (:func:`continuation.corrector.newton`)."""
@@ -615,27 +613,20 @@ class _Tracer:
         if self.o.detect_branch_points:
             bp_b = s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
             tests.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), self.bp, bp_b))
-        candidates: list[tuple[str, str, Callable, float, float]] = []
+        h_b = self.h if stop is None else stop.h
+        events: list[_Event] = []
         at_new: list[tuple[str, str]] = []
         for kind, name, phi, pa, pb in tests:
             if at_start and abs(pa) <= floor and abs(pb) > floor:
                 self.kinds[0], self.details[0] = kind, name
             elif pa * pb < 0:
-                candidates.append((kind, name, phi, pa, pb))
+                # one that cannot be located is not reported, nor one at the end of the branch
+                # (within 1e-6 of the last step) apart from the end point
+                found = self._locate(phi, h_b, pa, pb, (v_b, t_b)) if max(abs(pa), abs(pb)) > floor else None
+                if found is not None and (stop is None or found[0] < stop.h - 1e-6 * self.h):
+                    events.append(_Event(found[0], kind, name, *found[1:]))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append((kind, name))
-        h_b = self.h if stop is None else stop.h
-        events: list[_Event] = []
-        for kind, name, phi, pa, pb in candidates:
-            if max(abs(pa), abs(pb)) > floor:
-                found = self._locate(phi, h_b, pa, pb, (v_b, t_b))
-                if found is None:
-                    continue  # a special point that cannot be located is not reported
-                hs, vs, ts = found
-                # a special point at the end of the branch (within 1e-6 of the last step) is
-                # not reported separately from the end point
-                if stop is None or hs < stop.h - 1e-6 * self.h:
-                    events.append(_Event(hs, kind, name, vs, ts))
         return events, at_new
 
     def _locate(

@@ -55,7 +55,6 @@ __all__ = [
     "least_squares",
     "lu_solve",
     "norm",
-    "solve_det",
     "tangent_det",
 ]
 
@@ -258,41 +257,8 @@ def _lu_solve3(A, x):
 
 
 # ------------------------------------------------------------------------------------------
-# faces: arrays in, new arrays out (Python: nested lists inside; compiled: array copies)
+# the bordered faces: arrays in, new arrays out (Python: nested lists inside; compiled: copies)
 # ------------------------------------------------------------------------------------------
-def _solve_rows(A: list, x: list) -> tuple[bool, np.ndarray, float]:
-    """The Python faces' solve of ``A y = x`` (nested lists, overwritten): :func:`lu_solve`, or
-    LAPACK for a system larger than :data:`PYTHON_LU_MAX` (``ok`` False if it reports a
-    singular matrix). Returns ``(ok, y, det A)``."""
-    if len(x) > PYTHON_LU_MAX:
-        G, b = np.array(A), np.array(x)
-        try:
-            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
-        except np.linalg.LinAlgError:
-            return False, b, 0.0
-    ok, d = lu_solve(A, x)
-    return ok, np.array(x), d
-
-
-def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
-    """Solve ``G x = b`` (:func:`lu_solve`, inputs untouched): ``(ok, x, det G)``.
-
-    ``ok`` is False at a zero or NaN pivot. From Python, a system larger than
-    :data:`PYTHON_LU_MAX` goes to LAPACK (``ok`` False if it reports a singular matrix).
-    """
-    return _solve_rows(G.tolist(), b.tolist())
-
-
-def _solve_det_compiled(G, b):
-    def impl(G, b):
-        A = G.copy()
-        x = b.copy()
-        ok, d = lu_solve(A, x)
-        return ok, x, d
-
-    return impl
-
-
 def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tuple[bool, np.ndarray, float]:
     """Solve the bordered system ``[J; c^T] x = [f; r]`` (:func:`lu_solve`): ``(ok, x, det)``.
 
@@ -302,25 +268,22 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK.
     """
-    A = J.tolist()
-    A.append(c.tolist())
-    x = f.tolist()
-    x.append(r)
-    return _solve_rows(A, x)
+    A, x = J.tolist() + [c.tolist()], f.tolist() + [r]  # nested lists (module docstring)
+    if len(x) > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
+        G, b = np.array(A), np.array(x)
+        try:
+            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
+        except np.linalg.LinAlgError:
+            return False, b, 0.0
+    ok, d = lu_solve(A, x)
+    return ok, np.array(x), d
 
 
 def _bordered_solve_compiled(J, c, f, r):
     def impl(J, c, f, r):
-        n, m = J.shape
-        G = np.empty((m, m))
-        x = np.empty(m)
-        for i in range(n):
-            for j in range(m):
-                G[i, j] = J[i, j]
-            x[i] = f[i]
-        for j in range(m):
-            G[n, j] = c[j]
-        x[n] = r
+        n = J.shape[0]
+        G, x = np.empty((n + 1, n + 1)), np.empty(n + 1)
+        G[:n], G[n], x[:n], x[n] = J, c, f, r
         ok, d = lu_solve(G, x)
         return ok, x, d
 

@@ -216,6 +216,23 @@ def _random_systems(rng, m, count):
         yield G, b
 
 
+@functools.cache
+def _compiled_bordered_solve():
+    from numba import njit
+
+    from continuation import compiled, linalg  # noqa: F401  (compiled registers linalg with numba)
+
+    return njit(lambda J, c, f, r: linalg.bordered_solve(J, c, f, r))
+
+
+def _solve_det(G, b, compiled=False):
+    """``G x = b`` and ``det G`` by ``continuation.linalg.bordered_solve`` with the last row of
+    ``G`` as the border (the engine's systems), from Python or compiled: ``(ok, x, det)``."""
+    from continuation import linalg
+
+    return (_compiled_bordered_solve() if compiled else linalg.bordered_solve)(G[:-1], G[-1], b[:-1], float(b[-1]))
+
+
 def test_unrolled_3x3_elimination_is_the_loop():
     """continuation.linalg solves 3 x 3 systems (the engine's most frequent) unrolled, for the
     Python path's speed. Reference: the loop version of the same elimination
@@ -259,11 +276,11 @@ def test_array_elimination_is_the_loop(m):
     agree bit for bit (the same operations in the same order), on ties, zero multipliers, zeros
     of either sign and singular matrices: the float loop in Python on lists against the array
     coding in Python and compiled (``solve_dense``, the nonlinear runs' 6 x 6 solve, and the
-    compiled ``lu_solve`` inside ``solve_det``); complex systems (a complex-step Jacobian) both
+    compiled ``lu_solve`` inside ``bordered_solve``); complex systems (a complex-step Jacobian) both
     codings compiled, where the same complex arithmetic runs in both."""
     from numba import njit
 
-    from continuation.compiled import solve_dense, solve_det
+    from continuation.compiled import solve_dense
     from continuation.linalg import _lu_solve_array, _lu_solve_loop
 
     @njit
@@ -279,7 +296,7 @@ def test_array_elimination_is_the_loop(m):
         ok1, d1 = _lu_solve_loop(G.tolist(), x1)
         x2 = b.copy()
         ok2, d2 = _lu_solve_array(G.copy(), x2)
-        ok3, x3, d3 = solve_det(G, b)
+        ok3, x3, d3 = _solve_det(G, b, compiled=True)
         x4 = solve_dense(G.copy(), b.copy())
         assert (ok2, _bits(d2)) == (ok1, _bits(d1)) and (ok3, _bits(d3)) == (ok1, _bits(d1))
         n_singular += not ok1
@@ -307,7 +324,7 @@ def test_small_solves_against_lapack(m):
     of well-conditioned matrices (condition < 1e4, checked). The Python and compiled faces do
     the same operations (up to LAPACK above PYTHON_LU_MAX), so below it they agree bit for
     bit: that is what lets the engine's two paths give the same points."""
-    from continuation import compiled, linalg
+    from continuation import linalg
 
     rng = np.random.default_rng(100 + m)
     eps = np.finfo(float).eps
@@ -316,7 +333,7 @@ def test_small_solves_against_lapack(m):
         if np.linalg.cond(G) > 1e4:
             continue
         det_ref = np.linalg.det(G)
-        for ok, x, d in (linalg.solve_det(G, b), compiled.solve_det(G, b)):
+        for ok, x, d in (_solve_det(G, b), _solve_det(G, b, compiled=True)):
             assert ok
             assert np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
             assert abs(d - det_ref) <= 1e-13 * abs(det_ref)
@@ -325,13 +342,13 @@ def test_small_solves_against_lapack(m):
         assert ok and np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
         assert abs(linalg.bordered_det(J, c) - det_ref) <= 1e-13 * abs(det_ref)
         if m <= linalg.PYTHON_LU_MAX:
-            okc, xc, dc = compiled.solve_det(G, b)
-            assert np.array_equal(_bits(xc), _bits(linalg.solve_det(G, b)[1]))
-            assert _bits(dc) == _bits(linalg.solve_det(G, b)[2]) == _bits(d)
+            okc, xc, dc = _solve_det(G, b, compiled=True)
+            assert np.array_equal(_bits(xc), _bits(_solve_det(G, b)[1]))
+            assert _bits(dc) == _bits(_solve_det(G, b)[2]) == _bits(d)
             assert np.array_equal(_bits(x), _bits(xc))
     # an exactly singular matrix: no solution, determinant 0.0
     S = np.ones((m, m))
-    assert not linalg.solve_det(S, np.ones(m))[0] and not compiled.solve_det(S, np.ones(m))[0]
+    assert not _solve_det(S, np.ones(m))[0] and not _solve_det(S, np.ones(m), compiled=True)[0]
     assert linalg.bordered_det(S[:-1], S[-1]) == 0.0
 
 
