@@ -46,7 +46,7 @@ def newton(residual, args, guess, t_plane, anchor, h, scale, tol, max_iter, max_
     """
     n = guess.shape[0] - 1
     F, J = np.empty(n), np.empty((n, n + 1))
-    v = guess.copy()
+    v = guess  # never written: each iterate is a new array
     n_rj, n_r, ok, iterations = 0, 0, False, max_iter
     for it in range(max_iter + 1):
         residual(*args, v * scale, True, F, J)

@@ -218,14 +218,6 @@ def project(
     return v * sc
 
 
-def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
-    """Distance from ``p`` to segment ``[a, b]`` and the segment parameter of the foot."""
-    d = b - a
-    L2 = float(d @ d)
-    lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((p - a) @ d) / L2))
-    return _norm(p - (a + lam * d)), lam
-
-
 # ------------------------------------------------------------------------------------------
 # the stepper
 # ------------------------------------------------------------------------------------------
@@ -649,8 +641,12 @@ class _Tracer:
             return None
         v, v_start = self.v, self.v_start
         # the distance to the segment is at least |v_start - v| - seg: most steps stop here
-        dist, lam = (np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9 else _segment_distance(v_start, v, s.v)
-        if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (s.v - v) @ self.t_start > 0:
+        if _norm(v_start - v) > 1.05 * seg + 1e-9:
+            return None
+        d = s.v - v  # the foot of v_start on the segment [v, s.v] at v + lam d
+        L2 = float(d @ d)
+        lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((v_start - v) @ d) / L2))
+        if lam > 0.0 and _norm(v_start - (v + lam * d)) <= 0.05 * seg + 1e-9 and d @ self.t_start > 0:
             return lam * self.h
         return None
 
