@@ -320,7 +320,7 @@ class _Tracer:
     Reading order: :meth:`run` (the loop) calls :meth:`_step` (predictor, corrector, rejection:
     :meth:`_correct`) and :meth:`_advance` for an accepted step, which calls :meth:`_boundary`
     (constraints; :meth:`_boundary_point`), :meth:`_special_points` (folds, test functions,
-    branch points; each located by :func:`continuation.events.locate` on
+    branch points; each located by :meth:`_locate`, :func:`continuation.events.locate` on
     :meth:`_point_on_step`), :meth:`_closure`, :meth:`_append` (the points kept) and
     :meth:`_adapt_step` (step control); :meth:`_branch` assembles the result.
 
