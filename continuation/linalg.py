@@ -35,10 +35,11 @@ problem's compiled step and the engine's Python path agree to rounding, not bit 
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
 elimination costs ``m^3 / 3`` Python operations).
 
-numba keys its on-disk cache of a compiled function by that function's own source file only:
-after editing this file in a development install, clear the ``__pycache__`` of
-:mod:`continuation.compiled` (the stamping of :mod:`stability.jit` covers the compiled code of
-``stability``, whose sources it hashes with this package's).
+numba keys its on-disk cache of a compiled function by that function's own source file only: after
+editing this file or :mod:`continuation.corrector` in a development install, clear the numba
+caches (``*.nbi``/``*.nbc`` under ``__pycache__``) of :mod:`continuation.compiled` and of the
+compiled code that inlines them (the steps of :mod:`stability.linear.neutral_compiled` and
+:mod:`stability.steady.branch_compiled`, the nonlinear right-hand sides; :mod:`stability.jit`).
 """
 
 from __future__ import annotations
