@@ -435,13 +435,9 @@ class _Tracer:
         the SVD where the bordered matrix is singular (then without the compiled step's
         constraints and test functions)."""
         sp, t = self.sp, self.t
-        if self.cstep is None:
-            r = StepResult(*step(_Scaled.into, (sp,), guess, t, self.v, h, self.sc, self.o.tol, max_it, max_move))
-        else:
-            r = self.cstep(guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
-            r = StepResult(*r)
-        sp.n_residual += r.n_residual_and_jacobian + r.n_residual
-        sp.n_jacobian += r.n_residual_and_jacobian
+        args = (guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
+        r = StepResult(*(self.cstep(*args) if self.cstep is not None else step(_Scaled.into, (sp,), *args)))
+        sp.count(r.n_residual_and_jacobian, r.n_residual)
         if r.ok and not r.tangent_ok:  # singular bordered matrix: the SVD fallback
             tt, d = _tangent_det(r.jacobian, t)
             return r._replace(tangent=tt, det=d, constraints=None, tests=None)
