@@ -22,6 +22,7 @@ nonlinear runs, which use the shared building blocks too.
 
 from __future__ import annotations
 
+import functools
 import json
 import sys
 
@@ -59,29 +60,33 @@ class Hopf:
 
 
 class HopfWithHook(Hopf):
-    def compiled_step(self, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        from continuation import compiled as c
+    def compiled_step(self, *corrector):
+        return _hopf_step()(*corrector)
 
-        v = guess.copy()
-        n_rj = n_r = 0
-        for it in range(max_iter + 1):
-            u = v * scale
-            f, J = self.residual(u), self.jacobian(u) * scale
-            n_rj += 1
-            action, dv, fn = c.corrector_update(it, max_iter, v, guess, f, J, t_plane, anchor, h, tol, True)
-            if action == c.FAILED:
-                return False, it, n_rj, n_r, v, J, False, t_plane, 0.0
-            if action == c.POLISH:
-                n_r += 1
-                if np.linalg.norm(self.residual((v + dv) * scale)) < fn:
-                    v, it = v + dv, it + 1
-            if action in (c.POLISH, c.CONVERGED):
-                ok, t, det = c.tangent_det(J, t_plane)
-                return True, it, n_rj, n_r, v, J, ok, t, det
-            v = v + dv
-            if not np.linalg.norm(v - guess) <= max_move:
-                return False, it + 1, n_rj, n_r, v, J, False, t_plane, 0.0
-        return False, max_iter, n_rj, n_r, v, J, False, t_plane, 0.0
+
+@functools.cache
+def _hopf_step():
+    """The Hopf problem's compiled step: its residual compiled, the engine's corrector and tangent
+    (``continuation.compiled.step``)."""
+    from numba import njit
+    from numba.extending import register_jitable
+
+    from continuation.compiled import step
+
+    @register_jitable
+    def residual(u, jacobian, F, J):
+        x, y, w = u[0], u[1], u[2]
+        a = (x * x + y * y - 1) / 2
+        F[0], F[1] = -w * w + a * a + 2 + x, -2 * a * w
+        if jacobian:
+            J[0, 0], J[0, 1], J[0, 2] = 2 * a * x + 1, 2 * a * y, -2 * w
+            J[1, 0], J[1, 1], J[1, 2] = -2 * x * w, -2 * y * w, -2 * a
+
+    @njit
+    def hook(guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
+        return step(residual, (), guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
+
+    return hook
 
 
 class Lines:

@@ -2,8 +2,9 @@
 
 The engine (the stepper :mod:`continuation.engine`, :mod:`continuation.events`, the problem
 protocol :mod:`continuation.problem`, the dense output :mod:`continuation.dense`, and its
-numerical building blocks, each written once for Python and numba: the small dense solves and
-the bordered tangent :mod:`continuation.linalg`, the cubic Hermite curve
+numerical building blocks, each written once for Python and numba: the corrector
+:mod:`continuation.corrector`, the small dense solves and the bordered tangent
+:mod:`continuation.linalg`, the cubic Hermite curve
 :mod:`continuation.interpolation`, and their compiled faces :mod:`continuation.compiled`) knows
 nothing about tops and imports nothing from :mod:`stability`. A problem may bring its own compiled corrector
 (the ``compiled_step`` hook of :mod:`continuation.problem`, built from

@@ -39,11 +39,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 from typing import NamedTuple
 
 import numpy as np
 
 from . import interpolation
+from .corrector import FLOOR, newton, step
 from .errors import ConvergenceError
 from .events import locate
 from .interpolation import hermite
@@ -54,8 +56,6 @@ from .problem import ContinuationProblem, StepResult, finite_difference_jacobian
 __all__ = ["Branch", "TraceOptions", "hermite", "project", "tangent", "trace", "trace_both"]
 
 EPS = float(np.finfo(float).eps)
-#: a residual this small is at the rounding floor: no polishing step
-_FLOOR = 4.0 * EPS
 
 
 @dataclass
@@ -108,8 +108,18 @@ class _Scaled:
         self.n_jacobian = 0
         self.test_names: tuple[str, ...] = tuple(getattr(problem, "test_function_names", ()))
         self.constraint_names: tuple[str, ...] = tuple(getattr(problem, "constraint_names", ()))
-        self._has_jac = hasattr(problem, "jacobian")
         self._has_rj = hasattr(problem, "residual_and_jacobian")
+        self._jac = getattr(problem, "jacobian", None) or partial(finite_difference_jacobian, problem.residual)
+
+    def into(self, u: np.ndarray, jacobian: bool, F: np.ndarray, J: np.ndarray) -> None:
+        """``F(u)`` into ``F`` and, if ``jacobian``, ``dF/du`` into ``J``, at the problem's ``u``:
+        the residual of :func:`continuation.corrector.newton`, which counts the calls."""
+        if jacobian and self._has_rj:
+            F[:], J[:] = self.p.residual_and_jacobian(u)
+        else:
+            F[:] = self.p.residual(u)
+            if jacobian:
+                J[:] = self._jac(u)
 
     def residual(self, v: np.ndarray) -> np.ndarray:
         self.n_residual += 1
@@ -117,20 +127,24 @@ class _Scaled:
 
     def jacobian(self, v: np.ndarray) -> np.ndarray:
         self.n_jacobian += 1
-        u = v * self.scale
-        if self._has_jac:
-            J = np.asarray(self.p.jacobian(u), dtype=float)
-        else:
-            J = finite_difference_jacobian(self.p.residual, u)
-        return J * self.scale
+        return np.asarray(self._jac(v * self.scale), dtype=float) * self.scale
 
     def residual_and_jacobian(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        if self._has_rj:
-            self.n_residual += 1
-            self.n_jacobian += 1
-            f, J = self.p.residual_and_jacobian(v * self.scale)
-            return np.asarray(f, dtype=float), np.asarray(J, dtype=float) * self.scale
-        return self.residual(v), self.jacobian(v)
+        F, J = np.empty(v.size - 1), np.empty((v.size - 1, v.size))
+        self.into(v * self.scale, True, F, J)
+        self.count(1, 0)
+        return F, J * self.scale
+
+    def count(self, n_rj: int, n_r: int) -> None:
+        """Add the work of a corrector solve (:func:`continuation.corrector.newton`)."""
+        self.n_residual += n_rj + n_r
+        self.n_jacobian += n_rj
+
+    def project(self, v: np.ndarray, tol: float, max_iter: int, max_move: float) -> tuple[np.ndarray, bool, int]:
+        """Minimum-norm Newton steps from ``v`` onto the curve: ``(v, ok, iterations)``."""
+        ok, it, n_rj, n_r, v, _ = newton(_Scaled.into, (self,), v, None, v, 0.0, self.scale, tol, max_iter, max_move)
+        self.count(n_rj, n_r)
+        return v, ok, it
 
     def unscaled_tangent(self, t: np.ndarray) -> np.ndarray:
         tu = t * self.scale
@@ -148,18 +162,6 @@ class _Scaled:
 
 
 _EMPTY = np.zeros(0)
-
-
-# ------------------------------------------------------------------------------------------
-# linear algebra of the Python path (continuation.linalg; LinAlgError on a singular system)
-# ------------------------------------------------------------------------------------------
-def _bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> np.ndarray:
-    """Solve ``[J; c^T] x = [f; r]`` (:func:`continuation.linalg.bordered_solve`);
-    ``numpy.linalg.LinAlgError`` at a zero pivot."""
-    ok, x, _ = bordered_solve(J, c, f, r)
-    if not ok:
-        raise np.linalg.LinAlgError("singular matrix")
-    return x
 
 
 def _tangent_det(J: np.ndarray, t_ref: np.ndarray) -> tuple[np.ndarray, float]:
@@ -190,61 +192,6 @@ def tangent(J: np.ndarray, t_ref: np.ndarray | None = None) -> np.ndarray:
     return _tangent_det(J, t_ref)[0]
 
 
-# ------------------------------------------------------------------------------------------
-# Newton's method: the corrector and the projection onto the curve
-# ------------------------------------------------------------------------------------------
-def _newton(
-    sp: _Scaled,
-    v: np.ndarray,
-    t_plane: np.ndarray | None,
-    anchor: np.ndarray | None,
-    h: float,
-    tol: float,
-    max_iter: int,
-    max_move: float,
-    polish: bool = True,
-) -> tuple[np.ndarray, bool, int, np.ndarray | None]:
-    """Newton on ``[F; t_plane . (v - anchor) - h]`` (minimum-norm Newton if ``t_plane`` is None).
-
-    Once ``||F|| <= tol``, one more step is taken if it lowers ``||F||`` (``polish``; skipped when
-    ``||F|| <= 4 eps`` already), so points sit at the rounding floor rather than just below
-    ``tol``. Returns the point, success, the
-    number of iterations and the Jacobian at (or next to) the point.
-    """
-    start = v
-    J = None
-    for it in range(max_iter + 1):
-        f, J = sp.residual_and_jacobian(v)
-        fn = _norm(f)
-        if not math.isfinite(fn):
-            return v, False, it, None
-        plane = 0.0 if t_plane is None else float(t_plane @ (v - anchor) - h)
-        converged = fn <= tol and abs(plane) <= 1e3 * EPS * (1.0 + abs(h))
-        if it == max_iter and not converged:
-            break
-        if converged and not (polish and fn > _FLOOR):
-            return v, True, it, J  # at the rounding floor: no Newton step to take
-        try:
-            if t_plane is None:
-                dv = -np.linalg.lstsq(J, f, rcond=None)[0]
-            else:
-                dv = -_bordered_solve(J, t_plane, f, plane)
-        except np.linalg.LinAlgError:
-            return v, converged, it, J
-        if converged:
-            if math.isfinite(_norm(dv)):
-                v2 = v + dv
-                f2 = sp.residual(v2)
-                if _norm(f2) < fn:
-                    return v2, True, it + 1, J
-            return v, True, it, J
-        v = v + dv
-        moved = _norm(v - start)
-        if not math.isfinite(moved) or moved > max_move:
-            return v, False, it + 1, None
-    return v, False, max_iter, None
-
-
 def project(
     problem: ContinuationProblem,
     u0: np.ndarray,
@@ -264,41 +211,16 @@ def project(
     """
     u0 = np.asarray(u0, float)
     sc = np.ones(u0.size) if scale is None else np.asarray(scale, float)
-    sp = _Scaled(problem, sc)
     problem_dimension(problem, u0)
-    v, ok, _, _ = _newton(sp, u0 / sc, None, None, 0.0, tol, max_iter, max_move)
+    v, ok, _ = _Scaled(problem, sc).project(u0 / sc, tol, max_iter, max_move)
     if not ok:
         raise ConvergenceError(f"no point of the curve with ||F|| <= {tol:g} found near {u0}")
     return v * sc
 
 
-def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
-    """Distance from ``p`` to segment ``[a, b]`` and the segment parameter of the foot."""
-    d = b - a
-    L2 = float(d @ d)
-    lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((p - a) @ d) / L2))
-    return _norm(p - (a + lam * d)), lam
-
-
 # ------------------------------------------------------------------------------------------
 # the stepper
 # ------------------------------------------------------------------------------------------
-@dataclass(slots=True)
-class _Step:
-    """A corrected step of length ``h`` from the current point, before its events: the new
-    point ``v`` with its tangent ``t`` and ``det [J; t^T]``, the constraints and test functions
-    there if the compiled step gave them (``extra``), the corrector's Newton iterations and the
-    angle the tangent turned by."""
-
-    h: float
-    v: np.ndarray
-    t: np.ndarray
-    det: float
-    extra: tuple[np.ndarray, np.ndarray] | None
-    iterations: int
-    angle: float
-
-
 class _Event(NamedTuple):
     """A special point located on a step, at pseudo-arclength ``h`` from the current point."""
 
@@ -398,7 +320,7 @@ class _Tracer:
     Reading order: :meth:`run` (the loop) calls :meth:`_step` (predictor, corrector, rejection:
     :meth:`_correct`) and :meth:`_advance` for an accepted step, which calls :meth:`_boundary`
     (constraints; :meth:`_boundary_point`), :meth:`_special_points` (folds, test functions,
-    branch points; each located by :func:`continuation.events.locate` on
+    branch points; each located by :meth:`_locate`, :func:`continuation.events.locate` on
     :meth:`_point_on_step`), :meth:`_closure`, :meth:`_append` (the points kept) and
     :meth:`_adapt_step` (step control); :meth:`_branch` assembles the result.
 
@@ -410,18 +332,7 @@ class _Tracer:
     and Jacobian evaluations in ``sp``). Arguments: those of :func:`trace`, checked there.
     """
 
-    def __init__(
-        self,
-        problem: ContinuationProblem,
-        u0: np.ndarray,
-        sc: np.ndarray,
-        o: TraceOptions,
-        *,
-        direction: int,
-        tangent0: Sequence[float] | None,
-        callback: Callable[[np.ndarray, np.ndarray, str], bool | None] | None,
-        project_start: bool,
-    ):
+    def __init__(self, problem: ContinuationProblem, sc: np.ndarray, o: TraceOptions, callback: Callable | None):
         self.sp = _Scaled(problem, sc)
         self.sc = sc
         self.o = o  # the settings (TraceOptions)
@@ -446,16 +357,13 @@ class _Tracer:
         # a new one is the cubic Hermite curve between its two neighbours (error O(dh^4)), so as
         # Brent's iterates close in on a special point one Newton step (or none) suffices
         self.known: list[tuple[float, np.ndarray, np.ndarray]] = []
-        self._start(u0, direction, tangent0, project_start, o.start_slack)
 
-    def _start(
-        self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool, start_slack: float
-    ) -> None:
+    def start(self, u0: np.ndarray, direction: int, tangent0: Sequence[float] | None, project_start: bool) -> _Tracer:
         """The start point: on the curve, inside the constraints, with its tangent and tests."""
         sp, sc, tol = self.sp, self.sc, self.o.tol
         v = u0 / sc
         if project_start:
-            v, ok, it, _ = _newton(sp, v, None, None, 0.0, tol, 30, np.inf)
+            v, ok, it = sp.project(v, tol, 30, np.inf)
             self.n_newton += it
             if not ok:
                 raise ConvergenceError(
@@ -464,7 +372,7 @@ class _Tracer:
         g0 = sp.constraints(v)
         # a start point on a constraint (e.g. a fold found at fr_inv = 0, projected with rounding
         # errors) may sit a few ulp outside it: that is "on the boundary"
-        g0 = np.where((g0 < 0) & (g0 >= -start_slack), 0.0, g0)
+        g0 = np.where((g0 < 0) & (g0 >= -self.o.start_slack), 0.0, g0)
         if np.any(g0 < 0):
             j = int(np.argmin(g0))
             raise ValueError(f"the start point violates constraint {sp.constraint_names[j]!r} (value {g0[j]:.3g} < 0)")
@@ -482,6 +390,7 @@ class _Tracer:
         self.bp = bordered_det(sp.jacobian(v), t)
         if self.callback is not None and self.callback(v * sc, sp.unscaled_tangent(t), "start") is False:
             self._finish("callback")
+        return self
 
     # --- the loop ----------------------------------------------------------------------------
     def run(self) -> Branch:
@@ -500,54 +409,39 @@ class _Tracer:
         self.done = True
 
     # --- predictor, corrector, rejection -------------------------------------------------------
-    def _step(self) -> _Step | None:
-        """Predict and correct a step of length ``h``; None if it was rejected (``h`` halved,
-        the tangent predictor next) or failed at ``min_step`` (the branch ends)."""
-        v, t, h = self.v, self.t, self.h
-        prev = self.prev
-        guess = self.predictor(v, t, *(prev if prev is not None else (v, t)), prev is not None and self.use_hermite, h)
-        v_new, ok, it, t_new, bp_new, extra = self._correct(guess, h, self.o.max_iter, 2.0 * h + 1e-12)
-        self.n_newton += it
-        angle = 0.0
-        if ok:
-            angle = math.acos(min(1.0, max(-1.0, float(t @ t_new))))
-            ok = angle <= self.o.max_angle or h <= self.o.min_step
-        if not ok:
-            if h <= self.o.min_step:
-                self._finish("step_failure")
-            else:
-                self.h = max(h / 2.0, self.o.min_step)
-                self.use_hermite = False
-            return None
-        self.use_hermite = True
-        return _Step(h, v_new, t_new, bp_new, extra, it, angle)
+    def _step(self) -> StepResult | None:
+        """Predict and correct a step of length ``h`` (:meth:`_correct`); None if it was rejected
+        (``h`` halved, the tangent predictor next) or failed at ``min_step`` (the branch ends).
+        Sets ``angle``, the turn of the tangent over the step."""
+        v, t, h, prev = self.v, self.t, self.h, self.prev
+        guess = self.predictor(v, t, *(prev or (v, t)), prev is not None and self.use_hermite, h)
+        r = self._correct(guess, h, self.o.max_iter, 2.0 * h + 1e-12)
+        self.n_newton += r.iterations
+        self.angle = math.acos(min(1.0, max(-1.0, float(t @ r.tangent)))) if r.ok else 0.0
+        if r.ok and (self.angle <= self.o.max_angle or h <= self.o.min_step):
+            self.use_hermite = True
+            return r
+        if h <= self.o.min_step:
+            self._finish("step_failure")
+        else:
+            self.h = max(h / 2.0, self.o.min_step)
+            self.use_hermite = False
+        return None
 
-    def _correct(
-        self, guess: np.ndarray, h: float, max_it: int, max_move: float
-    ) -> tuple[np.ndarray, bool, int, np.ndarray | None, float, tuple | None]:
+    def _correct(self, guess: np.ndarray, h: float, max_it: int, max_move: float) -> StepResult:
         """Corrector from ``guess`` on the plane ``t . (v' - v) = h`` of the current point, then
         the tangent and ``det [J; t^T]`` at the solution: the problem's compiled step if it has
-        one, else :func:`_newton` and :func:`_tangent_det`. Returns ``(v', ok, iterations, t',
-        det, extra)``; ``extra``: the constraints and test functions at ``v'`` if the compiled
-        step gave them (and its tangent is the one used), else None."""
+        one, else :func:`continuation.corrector.step` on the Python residual; the tangent from
+        the SVD where the bordered matrix is singular (then without the compiled step's
+        constraints and test functions)."""
         sp, t = self.sp, self.t
-        if self.cstep is not None:
-            r = self.cstep(guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
-            r = StepResult(*r)
-            sp.n_residual += r.n_residual_and_jacobian + r.n_residual
-            sp.n_jacobian += r.n_residual_and_jacobian
-            if not r.ok:
-                return r.v, False, r.iterations, None, 0.0, None
-            if not r.tangent_ok:  # singular bordered matrix: the SVD fallback
-                tt, d = _tangent_det(r.jacobian, t)
-                return r.v, True, r.iterations, tt, d, None
-            extra = None if r.constraints is None else (r.constraints, r.tests)
-            return r.v, True, r.iterations, r.tangent, r.det, extra
-        vv, ok, it, JJ = _newton(sp, guess, t, self.v, h, self.o.tol, max_it, max_move)
-        if not ok:
-            return vv, False, it, None, 0.0, None
-        tt, d = _tangent_det(JJ, t)
-        return vv, True, it, tt, d, None
+        args = (guess, t, self.v, float(h), self.sc, float(self.o.tol), int(max_it), float(max_move))
+        r = StepResult(*(self.cstep(*args) if self.cstep is not None else step(_Scaled.into, (sp,), *args)))
+        sp.count(r.n_residual_and_jacobian, r.n_residual)
+        if r.ok and not r.tangent_ok:  # singular bordered matrix: the SVD fallback
+            tt, d = _tangent_det(r.jacobian, t)
+            return r._replace(tangent=tt, det=d, constraints=None, tests=None)
+        return r
 
     def _point_on_step(self, h: float) -> tuple[np.ndarray, np.ndarray]:
         """The point of the curve and its tangent at pseudo-arclength ``h`` of the current step
@@ -563,47 +457,47 @@ class _Tracer:
             guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
         else:
             guess = v + h * t
-        vv, ok, _, tt, _, _ = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
-        if not ok:
-            vv, ok, _, tt, _, _ = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
-        if not ok:
+        r = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not r.ok:
+            r = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
+        if not r.ok:
             raise ConvergenceError("corrector failed while locating a special point")
         if ha < h < hb:
-            known.insert(k, (h, vv, tt))
-        return vv, tt
+            known.insert(k, (h, r.v, r.tangent))
+        return r.v, r.tangent
 
     # --- one accepted step: boundary, events, closure, the new points, the next step length ----
-    def _advance(self, s: _Step) -> None:
+    def _advance(self, s: StepResult) -> None:
         """Everything after an accepted corrector step ``s``: where a constraint ends the
         branch on it, the special points on it, whether it closes the branch; the points to
         keep, and the next step length."""
         sp = self.sp
-        self.known[:] = [(0.0, self.v, self.t), (s.h, s.v, s.t)]
+        self.known[:] = [(0.0, self.v, self.t), (self.h, s.v, s.tangent)]
         # the constraints and test functions at the new point: from the compiled step if it gave them
-        g_new = s.extra[0] if s.extra is not None and sp.constraint_names else sp.constraints(s.v)
+        g_new = s.constraints if s.constraints is not None and sp.constraint_names else sp.constraints(s.v)
         stop, v_b, t_b = self._boundary(s, g_new)
-        tests_new = s.extra[1] if s.extra is not None and sp.test_names else sp.tests(s.v, s.t)
+        tests_new = s.tests if s.tests is not None and sp.test_names else sp.tests(s.v, s.tangent)
         events, at_new = self._special_points(s, stop, v_b, t_b, tests_new)
         seg = _norm(s.v - self.v)  # the step's chord (also the arclength increment)
         close_at = self._closure(s, seg)
         if self._append(s, events, stop, close_at, at_new, seg):
             return
         self.prev = (self.v, self.t)
-        self.v, self.t, self.g, self.tests, self.bp = s.v, s.t, g_new, tests_new, s.det
+        self.v, self.t, self.g, self.tests, self.bp = s.v, s.tangent, g_new, tests_new, s.det
         self._adapt_step(s)
 
-    def _adapt_step(self, s: _Step) -> None:
+    def _adapt_step(self, s: StepResult) -> None:
         """Step control after an accepted step: grow after an easy corrector (<= 3 Newton
         iterations), keep after a moderate one, shrink after a hard one; and keep the next turn
         of the tangent below ``max_angle`` (if it turns by ``angle`` over ``h``, about ``0.9
         max_angle`` next)."""
         factor = self.o.grow if s.iterations <= 3 else (1.0 if s.iterations <= 5 else 0.7)
-        if s.angle > 0:
-            factor = min(factor, 0.9 * self.o.max_angle / s.angle)
+        if self.angle > 0:
+            factor = min(factor, 0.9 * self.o.max_angle / self.angle)
         self.h = min(max(self.h * factor, self.o.min_step), self.o.max_step)
 
     # --- boundary handling (constraints) ---------------------------------------------------
-    def _boundary(self, s: _Step, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
+    def _boundary(self, s: StepResult, g_new: np.ndarray) -> tuple[_Event | None, np.ndarray, np.ndarray]:
         """Where the step leaves the constraints, if it does: ``(stop, v_b, t_b)``, the
         boundary point that ends the branch (None if none) and the end of the part of the step
         that counts (the boundary point, or the new point).
@@ -614,33 +508,22 @@ class _Tracer:
         """
         negative = np.nonzero(g_new < 0)[0]
         if negative.size == 0:  # most steps
-            return None, s.v, s.t
+            return None, s.v, s.tangent
         sp, g = self.sp, self.g
         stop = None
         crossed = [j for j in negative if g[j] >= 0]
         crossed.sort(key=lambda j: (g[j] / (g[j] - g_new[j]), j))
-        h_b, at_b, g_b = s.h, (s.v, s.t), g_new
+        h_b, at_b, g_b = self.h, (s.v, s.tangent), g_new
         while crossed:
             j = crossed.pop(0)
-            found = self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
-            if found is not None:
-                hs, vs, ts = found
-            else:
-                try:
-                    hs, vs, ts = locate(
-                        self._point_on_step,
-                        lambda vv, tt, j=j: sp.constraints(vv)[j],
-                        0.0,
-                        h_b,
-                        float(g[j]),
-                        float(g_b[j]),
-                        (self.v, self.t),
-                        at_b,
-                    )
-                except (ConvergenceError, ValueError):
-                    hs, vs, ts = h_b, at_b[0], at_b[1]
+            phi = lambda vv, tt, j=j: sp.constraints(vv)[j]  # noqa: E731
+            hs, vs, ts = (
+                self._boundary_point(s, j, h_b, float(g[j]), float(g_b[j]))
+                or self._locate(phi, h_b, float(g[j]), float(g_b[j]), at_b)
+                or (h_b, *at_b)
+            )
             # j is violated at the current stop point, so its zero comes first (ties included)
-            if stop is None or hs <= stop.h + 1e-9 * s.h:
+            if stop is None or hs <= stop.h + 1e-9 * self.h:
                 stop = _Event(hs, "boundary", sp.constraint_names[j], vs, ts)
                 g_s = sp.constraints(vs)
                 crossed = [k for k in crossed if g_s[k] < 0]
@@ -648,7 +531,7 @@ class _Tracer:
         return stop, at_b[0], at_b[1]
 
     def _boundary_point(
-        self, s: _Step, j: int, h_b: float, ga: float, gb: float
+        self, s: StepResult, j: int, h_b: float, ga: float, gb: float
     ) -> tuple[float, np.ndarray, np.ndarray] | None:
         """Where constraint ``j`` reaches zero between ``h = 0`` and ``h_b``: Newton's method on
         the square system ``[F(u); g_j(u)] = 0`` (``grad g_j`` by central differences, exact
@@ -657,9 +540,9 @@ class _Tracer:
         then brackets with :func:`continuation.events.locate`)."""
         if not (ga > 0 > gb):
             return None
-        sp, v, t, h, tol = self.sp, self.v, self.t, s.h, self.o.tol
+        sp, v, t, h, tol = self.sp, self.v, self.t, self.h, self.o.tol
         h0 = h_b * ga / (ga - gb)
-        uu = hermite(v, t, s.v, s.t, h0 / h) if h > 0 else v + h0 * t
+        uu = hermite(v, t, s.v, s.tangent, h0 / h) if h > 0 else v + h0 * t
         gscale = max(1.0, abs(ga), abs(gb))
         delta = 1e-6
         eye = np.eye(uu.size) * delta
@@ -676,12 +559,11 @@ class _Tracer:
                 # point, so a fixed gradient converges as fast (the accuracy is set by the
                 # residual tests above, not by the gradient)
                 grad = np.array([(sp.constraints(uu + e)[j] - sp.constraints(uu - e)[j]) / (2 * delta) for e in eye])
-            try:
-                du = _bordered_solve(JJ, grad, f, gj)
-            except np.linalg.LinAlgError:
+            solved, du, _ = bordered_solve(JJ, grad, f, gj)
+            if not solved:
                 return None
             if converged:
-                if fn > _FLOOR:  # polish, as the corrector does
+                if fn > FLOOR:  # polish, as the corrector does
                     u2 = uu - du
                     if _norm(sp.residual(u2)) < fn and abs(float(sp.constraints(u2)[j])) <= 8 * EPS * gscale:
                         uu = u2
@@ -694,7 +576,7 @@ class _Tracer:
 
     # --- event location: folds, test functions, branch points -------------------------------
     def _special_points(
-        self, s: _Step, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray, tests_new: np.ndarray
+        self, s: StepResult, stop: _Event | None, v_b: np.ndarray, t_b: np.ndarray, tests_new: np.ndarray
     ) -> tuple[list[_Event], list[tuple[str, str]]]:
         """The special points strictly inside the step (up to the boundary ``v_b`` if ``stop``),
         located, and ``at_new``: the ``(kind, detail)`` of the tests that are exactly 0.0 at the
@@ -723,47 +605,55 @@ class _Tracer:
         if self.o.detect_branch_points:
             bp_b = s.det if stop is None else bordered_det(sp.jacobian(v_b), t_b)
             tests.append(("branch_point", "", lambda vv, tt: bordered_det(sp.jacobian(vv), tt), self.bp, bp_b))
-        candidates: list[tuple[str, str, Callable, float, float]] = []
+        h_b = self.h if stop is None else stop.h
+        events: list[_Event] = []
         at_new: list[tuple[str, str]] = []
         for kind, name, phi, pa, pb in tests:
             if at_start and abs(pa) <= floor and abs(pb) > floor:
                 self.kinds[0], self.details[0] = kind, name
             elif pa * pb < 0:
-                candidates.append((kind, name, phi, pa, pb))
+                # one that cannot be located is not reported, nor one at the end of the branch
+                # (within 1e-6 of the last step) apart from the end point
+                found = self._locate(phi, h_b, pa, pb, (v_b, t_b)) if max(abs(pa), abs(pb)) > floor else None
+                if found is not None and (stop is None or found[0] < stop.h - 1e-6 * self.h):
+                    events.append(_Event(found[0], kind, name, *found[1:]))
             elif pb == 0.0 and abs(pa) > floor and stop is None:
                 at_new.append((kind, name))
-        h_b = s.h if stop is None else stop.h
-        events: list[_Event] = []
-        for kind, name, phi, pa, pb in candidates:
-            if max(abs(pa), abs(pb)) > floor:
-                try:
-                    hs, vs, ts = locate(self._point_on_step, phi, 0.0, h_b, pa, pb, (self.v, self.t), (v_b, t_b))
-                except (ConvergenceError, ValueError):
-                    continue  # a special point that cannot be located is not reported
-                # a special point at the end of the branch (within 1e-6 of the last step) is
-                # not reported separately from the end point
-                if stop is None or hs < stop.h - 1e-6 * s.h:
-                    events.append(_Event(hs, kind, name, vs, ts))
         return events, at_new
 
+    def _locate(
+        self, phi: Callable, h_b: float, pa: float, pb: float, at_b: tuple[np.ndarray, np.ndarray]
+    ) -> tuple[float, np.ndarray, np.ndarray] | None:
+        """The zero of ``phi`` on the step between ``h = 0`` (value ``pa``) and ``h_b`` (``pb``,
+        point and tangent ``at_b``) by :func:`continuation.events.locate` on
+        :meth:`_point_on_step`; None if it cannot be located (a corrector failure inside)."""
+        try:
+            return locate(self._point_on_step, phi, 0.0, h_b, pa, pb, (self.v, self.t), at_b)
+        except (ConvergenceError, ValueError):
+            return None
+
     # --- closure detection ---------------------------------------------------------------------
-    def _closure(self, s: _Step, seg: float) -> float | None:
+    def _closure(self, s: StepResult, seg: float) -> float | None:
         """Pseudo-arclength on the step where the branch passes its start point again (within 5%
         of the step's chord ``seg``, in the start's direction), or None. Only once the branch
         has at least 4 points and has gone more than 3 steps' length."""
-        if not (self.o.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * s.h):
+        if not (self.o.detect_closed and len(self.pts) >= 4 and self.arc[-1] > 3.0 * self.h):
             return None
         v, v_start = self.v, self.v_start
         # the distance to the segment is at least |v_start - v| - seg: most steps stop here
-        dist, lam = (np.inf, 0.0) if _norm(v_start - v) > 1.05 * seg + 1e-9 else _segment_distance(v_start, v, s.v)
-        if lam > 0.0 and dist <= 0.05 * seg + 1e-9 and (s.v - v) @ self.t_start > 0:
-            return lam * s.h
+        if _norm(v_start - v) > 1.05 * seg + 1e-9:
+            return None
+        d = s.v - v  # the foot of v_start on the segment [v, s.v] at v + lam d
+        L2 = float(d @ d)
+        lam = 0.0 if L2 == 0 else min(1.0, max(0.0, float((v_start - v) @ d) / L2))
+        if lam > 0.0 and _norm(v_start - (v + lam * d)) <= 0.05 * seg + 1e-9 and d @ self.t_start > 0:
+            return lam * self.h
         return None
 
     # --- the points kept ---------------------------------------------------------------------
     def _append(
         self,
-        s: _Step,
+        s: StepResult,
         events: list[_Event],
         stop: _Event | None,
         close_at: float | None,
@@ -786,14 +676,14 @@ class _Tracer:
             self._finish("closed")
             return True
         if stop is not None:
-            if stop.h <= 1e-12 * s.h and len(events) == 0:  # the boundary is the current point itself
+            if stop.h <= 1e-12 * self.h and len(events) == 0:  # the boundary is the current point itself
                 self.kinds[-1], self.details[-1] = stop.kind, stop.detail
             else:
                 self._add(stop.v, stop.t, stop.kind, stop.detail)
             self._finish("boundary")
             return True
         kind, detail = at_new[0] if at_new else ("regular", "")
-        if self._add(s.v, s.t, kind, detail, seg) is False:
+        if self._add(s.v, s.tangent, kind, detail, seg) is False:
             self._finish("callback")
             return True
         return False
@@ -818,18 +708,8 @@ class _Tracer:
         P = np.array(self.pts) * self.sc
         T = np.array(self.tans) * self.sc  # the unscaled unit tangents, all at once
         T /= np.sqrt(np.einsum("ij,ij->i", T, T))[:, None]
-        return Branch(
-            P,
-            T,
-            np.array(self.arc),
-            self.kinds,
-            self.details,
-            self.closed,
-            [self.end],
-            self.n_newton,
-            self.sp.n_residual,
-            self.sp.n_jacobian,
-        )
+        counts = (self.n_newton, self.sp.n_residual, self.sp.n_jacobian)
+        return Branch(P, T, np.array(self.arc), self.kinds, self.details, self.closed, [self.end], *counts)
 
 
 def trace(
@@ -875,9 +755,7 @@ def trace(
     sc = np.ones(u0.size) if o.scale is None else np.asarray(o.scale, float)
     if sc.shape != u0.shape or np.any(sc <= 0):
         raise ValueError(f"scale must be {u0.size} positive numbers, got {o.scale!r}")
-    return _Tracer(
-        problem, u0, sc, o, direction=direction, tangent0=tangent0, callback=callback, project_start=project_start
-    ).run()
+    return _Tracer(problem, sc, o, callback).start(u0, direction, tangent0, project_start).run()
 
 
 def trace_both(
@@ -917,15 +795,5 @@ def trace_both(
     details = bwd.details[::-1] + fwd.details[1:]
     if bwd.kinds[0] == "start" and fwd.kinds[0] != "start":  # the start is a special point
         kinds[len(bwd.kinds) - 1], details[len(bwd.kinds) - 1] = fwd.kinds[0], fwd.details[0]
-    return Branch(
-        pts,
-        tans,
-        arc,
-        kinds,
-        details,
-        False,
-        [bwd.end_reasons[0], fwd.end_reasons[0]],
-        fwd.n_newton + bwd.n_newton,
-        fwd.n_residual + bwd.n_residual,
-        fwd.n_jacobian + bwd.n_jacobian,
-    )
+    counts = (fwd.n_newton + bwd.n_newton, fwd.n_residual + bwd.n_residual, fwd.n_jacobian + bwd.n_jacobian)
+    return Branch(pts, tans, arc, kinds, details, False, [bwd.end_reasons[0], fwd.end_reasons[0]], *counts)

@@ -35,10 +35,11 @@ problem's compiled step and the engine's Python path agree to rounding, not bit 
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
 elimination costs ``m^3 / 3`` Python operations).
 
-numba keys its on-disk cache of a compiled function by that function's own source file only:
-after editing this file in a development install, clear the ``__pycache__`` of
-:mod:`continuation.compiled` (the stamping of :mod:`stability.jit` covers the compiled code of
-``stability``, whose sources it hashes with this package's).
+numba keys its on-disk cache of a compiled function by that function's own source file only: after
+editing this file or :mod:`continuation.corrector` in a development install, clear the numba
+caches (``*.nbi``/``*.nbc`` under ``__pycache__``) of :mod:`continuation.compiled` and of the
+compiled code that inlines them (the steps of :mod:`stability.linear.neutral_compiled` and
+:mod:`stability.steady.branch_compiled`, the nonlinear right-hand sides; :mod:`stability.jit`).
 """
 
 from __future__ import annotations
@@ -51,9 +52,10 @@ __all__ = [
     "PYTHON_LU_MAX",
     "bordered_det",
     "bordered_solve",
+    "dot",
+    "least_squares",
     "lu_solve",
     "norm",
-    "solve_det",
     "tangent_det",
 ]
 
@@ -256,41 +258,8 @@ def _lu_solve3(A, x):
 
 
 # ------------------------------------------------------------------------------------------
-# faces: arrays in, new arrays out (Python: nested lists inside; compiled: array copies)
+# the bordered faces: arrays in, new arrays out (Python: nested lists inside; compiled: copies)
 # ------------------------------------------------------------------------------------------
-def _solve_rows(A: list, x: list) -> tuple[bool, np.ndarray, float]:
-    """The Python faces' solve of ``A y = x`` (nested lists, overwritten): :func:`lu_solve`, or
-    LAPACK for a system larger than :data:`PYTHON_LU_MAX` (``ok`` False if it reports a
-    singular matrix). Returns ``(ok, y, det A)``."""
-    if len(x) > PYTHON_LU_MAX:
-        G, b = np.array(A), np.array(x)
-        try:
-            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
-        except np.linalg.LinAlgError:
-            return False, b, 0.0
-    ok, d = lu_solve(A, x)
-    return ok, np.array(x), d
-
-
-def solve_det(G: np.ndarray, b: np.ndarray) -> tuple[bool, np.ndarray, float]:
-    """Solve ``G x = b`` (:func:`lu_solve`, inputs untouched): ``(ok, x, det G)``.
-
-    ``ok`` is False at a zero or NaN pivot. From Python, a system larger than
-    :data:`PYTHON_LU_MAX` goes to LAPACK (``ok`` False if it reports a singular matrix).
-    """
-    return _solve_rows(G.tolist(), b.tolist())
-
-
-def _solve_det_compiled(G, b):
-    def impl(G, b):
-        A = G.copy()
-        x = b.copy()
-        ok, d = lu_solve(A, x)
-        return ok, x, d
-
-    return impl
-
-
 def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tuple[bool, np.ndarray, float]:
     """Solve the bordered system ``[J; c^T] x = [f; r]`` (:func:`lu_solve`): ``(ok, x, det)``.
 
@@ -300,25 +269,22 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK.
     """
-    A = J.tolist()
-    A.append(c.tolist())
-    x = f.tolist()
-    x.append(r)
-    return _solve_rows(A, x)
+    A, x = J.tolist() + [c.tolist()], f.tolist() + [r]  # nested lists (module docstring)
+    if len(x) > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
+        G, b = np.array(A), np.array(x)
+        try:
+            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
+        except np.linalg.LinAlgError:
+            return False, b, 0.0
+    ok, d = lu_solve(A, x)
+    return ok, np.array(x), d
 
 
 def _bordered_solve_compiled(J, c, f, r):
     def impl(J, c, f, r):
-        n, m = J.shape
-        G = np.empty((m, m))
-        x = np.empty(m)
-        for i in range(n):
-            for j in range(m):
-                G[i, j] = J[i, j]
-            x[i] = f[i]
-        for j in range(m):
-            G[n, j] = c[j]
-        x[n] = r
+        n = J.shape[0]
+        G, x = np.empty((n + 1, n + 1)), np.empty(n + 1)
+        G[:n], G[n], x[:n], x[n] = J, c, f, r
         ok, d = lu_solve(G, x)
         return ok, x, d
 
@@ -336,6 +302,38 @@ def norm(x: np.ndarray) -> float:
     for a few entries). Compiled: a loop (its own summation, so the two worlds agree to
     rounding)."""
     return math.sqrt(float(x @ x))
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> float:
+    """``a . b`` of two short vectors (Python: one BLAS dot product; compiled: a loop, summed in
+    order, as :func:`norm`)."""
+    return float(a @ b)
+
+
+def _dot_compiled(a, b):
+    def impl(a, b):
+        s = 0.0
+        for i in range(a.shape[0]):
+            s += a[i] * b[i]
+        return s
+
+    return impl
+
+
+def least_squares(J: np.ndarray, f: np.ndarray) -> tuple[bool, np.ndarray]:
+    """The minimum-norm solution of ``J x = f`` (``numpy.linalg.lstsq``; Python only): ``(ok,
+    x)``, ``ok`` False if the SVD fails."""
+    try:
+        return True, np.linalg.lstsq(J, f, rcond=None)[0]
+    except np.linalg.LinAlgError:
+        return False, f
+
+
+def _least_squares_compiled(J, f):
+    def impl(J, f):  # no compiled caller projects (a projection is Python's): a failed solve
+        return False, f
+
+    return impl
 
 
 def _norm_compiled(x):

@@ -10,6 +10,7 @@ from an exact Jacobian, so 1e-12 leaves a margin of ten.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -215,6 +216,23 @@ def _random_systems(rng, m, count):
         yield G, b
 
 
+@functools.cache
+def _compiled_bordered_solve():
+    from numba import njit
+
+    from continuation import compiled, linalg  # noqa: F401  (compiled registers linalg with numba)
+
+    return njit(lambda J, c, f, r: linalg.bordered_solve(J, c, f, r))
+
+
+def _solve_det(G, b, compiled=False):
+    """``G x = b`` and ``det G`` by ``continuation.linalg.bordered_solve`` with the last row of
+    ``G`` as the border (the engine's systems), from Python or compiled: ``(ok, x, det)``."""
+    from continuation import linalg
+
+    return (_compiled_bordered_solve() if compiled else linalg.bordered_solve)(G[:-1], G[-1], b[:-1], float(b[-1]))
+
+
 def test_unrolled_3x3_elimination_is_the_loop():
     """continuation.linalg solves 3 x 3 systems (the engine's most frequent) unrolled, for the
     Python path's speed. Reference: the loop version of the same elimination
@@ -258,11 +276,11 @@ def test_array_elimination_is_the_loop(m):
     agree bit for bit (the same operations in the same order), on ties, zero multipliers, zeros
     of either sign and singular matrices: the float loop in Python on lists against the array
     coding in Python and compiled (``solve_dense``, the nonlinear runs' 6 x 6 solve, and the
-    compiled ``lu_solve`` inside ``solve_det``); complex systems (a complex-step Jacobian) both
+    compiled ``lu_solve`` inside ``bordered_solve``); complex systems (a complex-step Jacobian) both
     codings compiled, where the same complex arithmetic runs in both."""
     from numba import njit
 
-    from continuation.compiled import solve_dense, solve_det
+    from continuation.compiled import solve_dense
     from continuation.linalg import _lu_solve_array, _lu_solve_loop
 
     @njit
@@ -278,7 +296,7 @@ def test_array_elimination_is_the_loop(m):
         ok1, d1 = _lu_solve_loop(G.tolist(), x1)
         x2 = b.copy()
         ok2, d2 = _lu_solve_array(G.copy(), x2)
-        ok3, x3, d3 = solve_det(G, b)
+        ok3, x3, d3 = _solve_det(G, b, compiled=True)
         x4 = solve_dense(G.copy(), b.copy())
         assert (ok2, _bits(d2)) == (ok1, _bits(d1)) and (ok3, _bits(d3)) == (ok1, _bits(d1))
         n_singular += not ok1
@@ -306,7 +324,7 @@ def test_small_solves_against_lapack(m):
     of well-conditioned matrices (condition < 1e4, checked). The Python and compiled faces do
     the same operations (up to LAPACK above PYTHON_LU_MAX), so below it they agree bit for
     bit: that is what lets the engine's two paths give the same points."""
-    from continuation import compiled, linalg
+    from continuation import linalg
 
     rng = np.random.default_rng(100 + m)
     eps = np.finfo(float).eps
@@ -315,7 +333,7 @@ def test_small_solves_against_lapack(m):
         if np.linalg.cond(G) > 1e4:
             continue
         det_ref = np.linalg.det(G)
-        for ok, x, d in (linalg.solve_det(G, b), compiled.solve_det(G, b)):
+        for ok, x, d in (_solve_det(G, b), _solve_det(G, b, compiled=True)):
             assert ok
             assert np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
             assert abs(d - det_ref) <= 1e-13 * abs(det_ref)
@@ -324,13 +342,13 @@ def test_small_solves_against_lapack(m):
         assert ok and np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(x)
         assert abs(linalg.bordered_det(J, c) - det_ref) <= 1e-13 * abs(det_ref)
         if m <= linalg.PYTHON_LU_MAX:
-            okc, xc, dc = compiled.solve_det(G, b)
-            assert np.array_equal(_bits(xc), _bits(linalg.solve_det(G, b)[1]))
-            assert _bits(dc) == _bits(linalg.solve_det(G, b)[2]) == _bits(d)
+            okc, xc, dc = _solve_det(G, b, compiled=True)
+            assert np.array_equal(_bits(xc), _bits(_solve_det(G, b)[1]))
+            assert _bits(dc) == _bits(_solve_det(G, b)[2]) == _bits(d)
             assert np.array_equal(_bits(x), _bits(xc))
     # an exactly singular matrix: no solution, determinant 0.0
     S = np.ones((m, m))
-    assert not linalg.solve_det(S, np.ones(m))[0] and not compiled.solve_det(S, np.ones(m))[0]
+    assert not _solve_det(S, np.ones(m))[0] and not _solve_det(S, np.ones(m), compiled=True)[0]
     assert linalg.bordered_det(S[:-1], S[-1]) == 0.0
 
 
@@ -426,36 +444,39 @@ def test_solve_dense_complex_step_and_singular():
 
 
 class HopfWithHook(HopfNormalForm):
-    """The Hopf normal form with a ``compiled_step`` hook (continuation.problem), written in
-    Python from the compiled building blocks: the engine must give the branch of its Python
-    path, and count the work the hook reports."""
+    """The Hopf normal form with a ``compiled_step`` hook (continuation.problem): its residual
+    compiled (a ``register_jitable`` function) and the engine's corrector and tangent compiled
+    (``continuation.compiled.step``): the engine must give the branch of its Python path, and
+    count the work the hook reports."""
 
     calls = 0
 
-    def compiled_step(self, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        from continuation import compiled as c
-
+    def compiled_step(self, *corrector):
         type(self).calls += 1
-        v = guess.copy()
-        n_rj = n_r = 0
-        for it in range(max_iter + 1):
-            u = v * scale
-            f, J = self.residual(u), self.jacobian(u) * scale
-            n_rj += 1
-            action, dv, fn = c.corrector_update(it, max_iter, v, guess, f, J, t_plane, anchor, h, tol, True)
-            if action == c.FAILED:
-                return False, it, n_rj, n_r, v, J, False, t_plane, 0.0
-            if action == c.POLISH:
-                n_r += 1
-                if np.linalg.norm(self.residual((v + dv) * scale)) < fn:
-                    v, it = v + dv, it + 1
-            if action in (c.POLISH, c.CONVERGED):
-                ok, t, det = c.tangent_det(J, t_plane)
-                return True, it, n_rj, n_r, v, J, ok, t, det
-            v = v + dv
-            if not np.linalg.norm(v - guess) <= max_move:
-                return False, it + 1, n_rj, n_r, v, J, False, t_plane, 0.0
-        return False, max_iter, n_rj, n_r, v, J, False, t_plane, 0.0
+        return _hopf_step()(*corrector)
+
+
+@functools.cache
+def _hopf_step():
+    from numba import njit
+    from numba.extending import register_jitable
+
+    from continuation.compiled import step
+
+    @register_jitable
+    def residual(u, jacobian, F, J):
+        x, y, w = u[0], u[1], u[2]
+        a = (x * x + y * y - 1) / 2
+        F[0], F[1] = -w * w + a * a + 2 + x, -2 * a * w
+        if jacobian:
+            J[0, 0], J[0, 1], J[0, 2] = 2 * a * x + 1, 2 * a * y, -2 * w
+            J[1, 0], J[1, 1], J[1, 2] = -2 * x * w, -2 * y * w, -2 * a
+
+    @njit
+    def hook(guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
+        return step(residual, (), guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
+
+    return hook
 
 
 def test_compiled_step_hook_gives_the_python_branch():

@@ -6,9 +6,9 @@ offers its coefficients and their exact parameter derivatives as formulas (the o
 capabilities of :mod:`stability.models.base`; the sliding model, eq. 11), whose compiled twins
 are built by :func:`stability.linear.neutrality.crossing_kernels`. One call does what the
 engine's Python path does per step: Newton's method on the bordered system
-``[F(v); t . (v - v_k) - h] = 0`` from the predicted point (polished to the rounding floor,
-:func:`continuation.compiled.newton`), then the unit tangent oriented by ``t`` and
-``det [J; t^T]`` at the solution (:func:`continuation.compiled.tangent_det`). All in the
+``[F(v); t . (v - v_k) - h] = 0`` from the predicted point (polished to the rounding floor),
+then the unit tangent oriented by ``t`` and ``det [J; t^T]`` at the solution: the engine's own
+corrector compiled, :func:`continuation.compiled.step`. All in the
 engine's scaled variables ``v = u / scale``.
 
 The constraints of the problem (the physical domain's bounds and the requested ranges) are
@@ -26,7 +26,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from continuation.compiled import newton, tangent_det
+from continuation.compiled import step as corrector_step
 from stability.jit import OPTIONS, njit
 
 from .neutral_constraints import constraint_values as _constraint_values
@@ -50,14 +50,13 @@ def step_kernel(kernels: CrossingKernels) -> Callable[..., tuple]:
 
     @njit(**_JIT)
     def step(point, free_index, ncoef, codes, index, a, guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        """Corrector and tangent of one continuation step (:func:`continuation.compiled.newton`,
-        then ``tangent_det``), and the problem's constraints and test functions at the new point
+        """Corrector and tangent of one continuation step (:func:`continuation.compiled.step`), and the problem's constraints and test functions at the new point
         (so that the engine's loop makes no further call for them).
 
         Arguments: the neutral condition ``(point, free_index, ncoef)``
         (:class:`~stability.linear.neutrality.CrossingKernels`); the constraint rows ``(codes,
         index, a)`` (:func:`constraint_values`); then those of
-        :func:`continuation.compiled.newton`.
+        :func:`continuation.compiled.step`.
 
         Returns ``(ok, iterations, n_residual_and_jacobian, n_residual, v, J, tangent_ok, t,
         det, g, tests)`` (:mod:`continuation.problem`): if ``ok``, the constraints ``g`` and the
@@ -65,18 +64,17 @@ def step_kernel(kernels: CrossingKernels) -> Callable[..., tuple]:
         ``u = v * scale``, the operations of ``NeutralProblem.constraints`` and
         ``NeutralProblem.test_functions`` (which the engine would call with the same ``u``).
         """
-        ok, iterations, n_rj, n_r, v, J = newton(
+        r = corrector_step(
             residual_into, (point, free_index, ncoef), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
         )
         tests = np.empty(2)
-        if not ok:
-            return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests
-        t_ok, t_new, det = tangent_det(J, t_plane)
-        u = v * scale
+        if not r[0]:
+            return (*r, np.empty(0), tests)
+        u = r[4] * scale
         g = constraint_values(point, free_index, u, codes, index, a)
         tests[0] = u[guess.shape[0] - 1]
         growth = other_growth_of(point, free_index, ncoef, u)
         tests[1] = growth if math.isfinite(growth) else -1.0
-        return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests
+        return (*r, g, tests)
 
     return step

@@ -12,9 +12,8 @@
 * :func:`jellett`: Jellett's integral of the state and its gradient
   (:func:`stability.nonlinear.quantities.jellett_integral`, complex steps);
 * :func:`step`: the engine's ``compiled_step`` hook (:mod:`continuation.problem`): the
-  corrector (:func:`continuation.compiled.newton`), the tangent and ``det [J; t^T]``, and the
-  problem's constraints and test function at the new point, with the building blocks of
-  :mod:`continuation.compiled` (the same operations as the engine's Python path).
+  engine's corrector, tangent and ``det [J; t^T]`` compiled (:func:`continuation.compiled.step`,
+  the loop of its Python path), then the problem's constraints and test function at the new point.
 """
 
 from __future__ import annotations
@@ -23,7 +22,8 @@ import math
 
 import numpy as np
 
-from continuation.compiled import newton, norm, tangent_det
+from continuation.compiled import norm
+from continuation.compiled import step as corrector_step
 from stability.jit import OPTIONS, njit, register_jitable
 
 from ..nonlinear.kernels import rhs as model_rhs
@@ -138,7 +138,7 @@ def constraint_values(theta, jel, jmax, jmin, degenerate):
 
 @register_jitable
 def _residual_into(p, q, code, n_full, weight, u, jacobian, F, J):
-    """The residual in the form of :func:`continuation.compiled.newton` (``J`` always filled)."""
+    """The residual in the form of :func:`continuation.corrector.newton` (``J`` always filled)."""
     F[0], J[0, 0], J[0, 1] = residual_and_jacobian(u[0], u[1], p, q, code, n_full, weight)
 
 
@@ -166,17 +166,16 @@ def step(
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
     constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
-    ok, iterations, n_rj, n_r, v, J = newton(
+    r = corrector_step(
         _residual_into, (p, q, code, n_full, weight), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
     )
     tests = np.empty(1)
-    if not ok:
-        return False, iterations, n_rj, n_r, v, J, False, t_plane, 0.0, np.empty(0), tests
-    t_ok, t_new, det = tangent_det(J, t_plane)
-    u = v * scale
+    if not r[0]:
+        return (*r, np.empty(0), tests)
+    u = r[4] * scale
     jel, jt, jl = jellett(u[0], u[1], q, sigma, mu)
     g = constraint_values(u[0], jel, jmax, jmin, degenerate)
-    tu = t_new * scale
+    tu = r[7] * scale
     tu = tu / norm(tu)
     tests[0] = (jt * tu[0] + jl * tu[1]) / abs(jel)  # d(log |J|)/ds: scale-free
-    return True, iterations, n_rj, n_r, v, J, t_ok, t_new, det, g, tests
+    return (*r, g, tests)
