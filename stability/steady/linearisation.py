@@ -57,17 +57,7 @@ from ..nonlinear.kernels import CODES
 from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import h_cg
 
-__all__ = [
-    "NEUTRAL_FACTOR",
-    "REMOVED_NEUTRAL",
-    "ROTATION",
-    "modes_verdict",
-    "neutral_covectors",
-    "precessing_jacobians",
-    "reduced_spectrum",
-    "state_modes",
-    "vertical_spectrum",
-]
+__all__ = ["REMOVED_NEUTRAL", "ROTATION", "modes_verdict", "precessing_jacobians", "reduced_spectrum", "state_modes"]
 
 #: the structural neutral directions removed before the growth rate is taken
 REMOVED_NEUTRAL: dict[str, str] = {
@@ -251,7 +241,7 @@ def modes_verdict(ev: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.nda
 
 
 def vertical_spectrum(
-    cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
+    cosines: np.ndarray, spins: np.ndarray, params: dict[str, float]
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The spectrum of vertical states from eq. (11): the one home of their growth rates.
 
@@ -272,8 +262,8 @@ def vertical_spectrum(
     n_neutral : numpy.ndarray of int
     verdict : numpy.ndarray of int8 (-1 where NaN)
     """
-    cosines = np.atleast_1d(np.asarray(cosines, float))
-    spins = np.atleast_1d(np.asarray(spins, float))
+    q, fr_inv, alpha_v = params["q"], params["fr_inv"], params["alpha_v"]
+    cosines, spins = np.atleast_1d(np.asarray(cosines, float)), np.atleast_1d(np.asarray(spins, float))
     m = cosines.size
     ev = np.full((m, 6), np.nan + 0j)
     bound = np.full(m, np.nan)
@@ -284,7 +274,8 @@ def vertical_spectrum(
         if not (n > 0.0 and math.isfinite(n)):
             continue
         try:
-            sp = spectrum("sliding", q=q * cosines[i], fr_inv=fr_inv / (n * n), sigma=sigma, alpha_v=alpha_v / n, mu=mu)
+            point = dict(q=q * cosines[i], fr_inv=fr_inv / (n * n), alpha_v=alpha_v / n)
+            sp = spectrum("sliding", **point, sigma=params["sigma"], mu=params["mu"])
         except InputError:
             continue
         s = sp.eigenvalues * n
@@ -303,26 +294,19 @@ def state_modes(
     cosines: np.ndarray,
     spins: np.ndarray,
     p: np.ndarray,
-    *,
-    q: float,
-    sigma: float,
-    fr_inv: float,
-    alpha_v: float,
-    mu: float,
+    params: dict[str, float],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues, leading growth rate, its error bound, neutral count and verdict of steady
     states: tilted ones from the reduced Jacobian (:func:`reduced_spectrum`,
     :func:`modes_verdict`; bound ``NEUTRAL_FACTOR u ||A||_F``), vertical ones from eq. (11)
     (:func:`vertical_spectrum`; the Jacobian's only where eq. (11) cannot be evaluated).
     What :func:`stability.steady_states` and :func:`stability.steady_branch` report."""
-    ev, scale = reduced_spectrum(y, lam, vertical, p, q=q, sigma=sigma, mu=mu)
+    ev, scale = reduced_spectrum(y, lam, vertical, p, q=params["q"], sigma=params["sigma"], mu=params["mu"])
     growth, n_neutral, verdict = modes_verdict(ev, scale)
     bound = NEUTRAL_FACTOR * _U * np.asarray(scale, float)
     idx = np.nonzero(vertical)[0]
     if idx.size:
-        ev_v, b_v, nn_v, ver_v = vertical_spectrum(
-            np.asarray(cosines)[idx], np.asarray(spins)[idx], q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
-        )
+        ev_v, b_v, nn_v, ver_v = vertical_spectrum(np.asarray(cosines)[idx], np.asarray(spins)[idx], params)
         ok = ver_v >= 0
         j = idx[ok]
         ev[j], bound[j], n_neutral[j], verdict[j] = ev_v[ok], b_v[ok], nn_v[ok], ver_v[ok]
