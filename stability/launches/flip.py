@@ -24,12 +24,14 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterTypeError, RunError
+from .._version import package_version
+from ..errors import DomainError, ParameterTypeError, RunError
 from ..nonlinear.runs import simulate
 from ..parameters import as_scalar, check_choice, check_interval, check_positive
+from ..products import PRODUCT_ATTR
 from ..top import Top, check_launch_spin
 
-__all__ = ["MODELS", "FlipRun", "flip_time", "launch_parameters", "launch_state", "run_launch"]
+__all__ = ["FlipRun", "flip_time", "launch_parameters", "launch_state", "product_header", "run_launch"]
 
 #: the models a launch can be asked of (the launch state has the centre at rest: sliding only)
 MODELS = ("sliding",)
@@ -47,6 +49,16 @@ def launch_state(tilt: float) -> dict[str, list[float]]:
     return {"omega": list(k), "k": k, "velocity": [0.0, 0.0]}
 
 
+def product_header(product: str, title: str) -> dict[str, str]:
+    """The global attributes that open every dataset of the launches (the product: docs/datasets.md)."""
+    return {
+        "Conventions": "CF-1.10",
+        PRODUCT_ATTR: product,
+        "title": title,
+        "source": f"tippe-stability {package_version()}",
+    }
+
+
 def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) -> tuple[float, dict[str, float], str]:
     """The launch spin in rad/s, the nondimensional set at it (``Omega`` = the launch spin) and
     where ``alpha_v`` came from: the top's ``mu_v`` by eq. (7) (``alpha_v = mu mu_v g / Omega``,
@@ -62,9 +74,7 @@ def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) 
     else:
         alpha_v = DEFAULT_ALPHA_V
         source = f"default {DEFAULT_ALPHA_V:g} (the paper's; the top has no mu_v and no alpha_v was given)"
-    params = top.nondimensional(w, alpha_v=alpha_v)
-    params = {k: float(v) for k, v in params.items()}
-    return w, params, source
+    return w, {k: float(v) for k, v in top.nondimensional(w, alpha_v=alpha_v).items()}, source
 
 
 @dataclass(frozen=True)
@@ -155,8 +165,6 @@ def run_launch(
     """
     tilt = as_scalar("tilt", tilt)
     if not 0.0 < tilt < 180.0:
-        from ..errors import DomainError
-
         raise DomainError(f"tilt = {tilt:g} degrees is outside the allowed range: 0 < tilt < 180")
     crossing = check_interval("crossing", crossing, 0.0, 180.0, closed="right")
     t_max = check_positive("t_max", t_max)
