@@ -120,11 +120,6 @@ def _crosses(p0: np.ndarray, p1: np.ndarray, pts: np.ndarray, widths: np.ndarray
     return bool(np.any((s1 * s2 <= 0) & (s3 * s4 <= 0)))
 
 
-def _to_si(name: str, values: Any, unit: str) -> np.ndarray:
-    v = np.asarray(values, dtype=float)
-    return to_rad_per_s(v, unit) if name == "spin" else v
-
-
 def contact_loss_boundary(
     top: Top,
     *,
@@ -201,7 +196,8 @@ def contact_loss_boundary(
         "tilt": check_interval("tilt", tilt, 0.0, 180.0),
         "tilt_rate": as_scalar("tilt_rate", tilt_rate),
     }
-    box = np.array([_to_si(x, x_range, unit), _to_si(y, y_range, unit)], dtype=float)
+    ranges = [np.asarray(r, dtype=float) for r in (x_range, y_range)]
+    box = np.array([to_rad_per_s(r, unit) if n == "spin" else r for n, r in zip((x, y), ranges)], dtype=float)
     for name, (lo, hi) in zip((x, y), box):
         if name == "spin":
             check_launch_spin(lo, "rad/s")

@@ -27,8 +27,8 @@ import numpy as np
 import xarray as xr
 
 from ..errors import InputError
-from ..products import FLAG_MEANINGS, FLAG_VALUES
 from ..top import SPIN_UNITS, Top
+from .products import FLAGS
 
 __all__ = ["REFERENCE_RPM", "bifurcation_diagram"]
 
@@ -141,13 +141,12 @@ def bifurcation_diagram(
         ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=s * j_per_unit)
         for kind in flags:
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    flags_of = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
     vertical = xr.Dataset(
         {
             f"stability_{k}": (
                 "level",
                 np.array(v, dtype=np.int8),
-                {"long_name": f"stability of the {k} spin", **flags_of},
+                {"long_name": f"stability of the {k} spin", **FLAGS},
             )
             for k, v in flags.items()
         },

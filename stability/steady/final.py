@@ -222,23 +222,21 @@ class FinalState:
             "axial_spin": ("spin about the axis of the final state, omega . k", "Omega", "axial spin"),
         }
         data = {k: ((), getattr(self, k), var_attrs(long, u, short=short)) for k, (long, u, short) in scalars.items()}
-        columns = {  # candidate_<field>: attributes (and dtype) of the column of the candidates' field
+        columns = {  # candidate_<field>: long name, units and short name (var_attrs) or attributes; dtype
             "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
-            "tilt": (var_attrs("tilt of the steady state", DEGREE, short="tilt"), None),
-            "energy": (var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"), None),
+            "tilt": (("tilt of the steady state", DEGREE, "tilt"), None),
+            "energy": (("energy U_J of the steady state", "A0 Omega^2", "energy U_J"), None),
             "precession_rate": (
-                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
+                ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
                 None,
             ),
-            "axial_spin": (
-                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
-                None,
-            ),
+            "axial_spin": (("spin about the axis of the steady state, omega . k", "Omega", "axial spin"), None),
             "stability": (flag_attrs("stability of the steady state"), np.int8),
-            "energy_test": (var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"), None),
+            "energy_test": (("energy criterion (> 0 at a minimum of U_J)", "energy criterion"), None),
             "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
         }
-        for name, (attrs, dtype) in columns.items():
+        for name, (a, dtype) in columns.items():
+            attrs = var_attrs(a[0], *a[1:-1], short=a[-1]) if isinstance(a, tuple) else a  # units default 1
             data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
         final = yes_no("final state", "no yes", comment="the motion ends on this state")
         data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
@@ -538,40 +536,31 @@ def settle(
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
     w, kk, v = y0[0:3], y0[3:6], y0[6:8]
-    t = 0.0
-    n = 0
-    t0 = time.perf_counter()
-    j0 = None
-    event = "none"
-    settled = False
-    change = math.inf
+    t, n, t0, j0, event, settled = 0.0, 0, time.perf_counter(), None, "none", False
+    change = slip = math.inf
     while t < t_max:
         length = min(chunk, t_max - t)
         start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
         ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
-        n += 1
-        t += length
-        if j0 is None:
-            j0 = float(ds.h_cg[0])
+        n, t = n + 1, t + length
+        j0 = float(ds.h_cg[0]) if j0 is None else j0
         pol = ds.polar_angle.values
+        change, slip = float(np.max(pol) - np.min(pol)), float(ds.slip_speed[-1])  # change: NaN if the run failed
         if ds.attrs.get("event", "none") != "none":  # the model stops holding: the run ends there
             event, t = ds.attrs["event"], t - length + float(ds.attrs["event_time"])
-            change, slip = float(np.max(pol) - np.min(pol)), float(ds.slip_speed[-1])
             break
         if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
-            change, slip = math.nan, math.nan
+            slip = math.nan
             break
         w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
         kk = kk / np.linalg.norm(kk)
-        change = float(np.max(pol) - np.min(pol))
-        slip = float(ds.slip_speed[-1])
-        if change < settle_tolerance and slip < 1e-6:
-            settled = True
+        if settled := change < settle_tolerance and slip < 1e-6:
             break
     drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
-    seconds = time.perf_counter() - t0
-    work = dict(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=seconds)
-    event_time = t if event != "none" else math.nan
-    run = SettleRun(**work, jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=event_time)
-    ok = np.isfinite(pol)
-    return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run
+    work = dict(
+        t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=time.perf_counter() - t0
+    )
+    end = dict(
+        jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=t if event != "none" else math.nan
+    )
+    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), SettleRun(**work, **end)

@@ -77,11 +77,7 @@ _H = 1e-30
 
 #: the generator of rotations about K on (omega, k, V0_h): G y = (K x omega, K x k, K x V0)
 ROTATION = np.zeros((8, 8))
-for _i in (0, 3):
-    ROTATION[_i, _i + 1] = -1.0
-    ROTATION[_i + 1, _i] = 1.0
-ROTATION[6, 7] = -1.0
-ROTATION[7, 6] = 1.0
+ROTATION[[0, 3, 6], [1, 4, 7]], ROTATION[[1, 4, 7], [0, 3, 6]] = -1.0, 1.0
 
 
 #: batches of at least this many states get their Jacobians compiled; fewer run interpreted

@@ -24,7 +24,15 @@ from . import family
 from .linearisation import REMOVED_NEUTRAL
 from .verdicts import RULE
 
-__all__ = ["check_scales", "flag_attrs", "potential_curve", "product_attrs", "sliding_parameters", "state_variables"]
+__all__ = [
+    "FLAGS",
+    "check_scales",
+    "flag_attrs",
+    "potential_curve",
+    "product_attrs",
+    "sliding_parameters",
+    "state_variables",
+]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
 MODELS = ("sliding",)
@@ -103,28 +111,17 @@ def check_scales(params: dict[str, float], jellett: float | None = None, *, jell
     """
     lo, hi = SCALE_RANGE
     q, sigma, fr_inv, mu = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
-    checks = [
-        ("sigma", sigma, "sigma", ""),
-        ("mu", mu, "mu", ""),
-        ("mu fr_inv", mu * fr_inv, "fr_inv", f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"),
-        (
-            "mu fr_inv |q|",
-            mu * fr_inv * abs(q),
-            "q" if abs(q) < 1e-3 else "fr_inv",
-            f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
-            "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0",
-        ),
-    ]
+    gravity = f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"
+    checks = [("sigma", sigma, "sigma", ""), ("mu", mu, "mu", ""), ("mu fr_inv", mu * fr_inv, "fr_inv", gravity)]
+    below = "below it the family is q = 0's to far below rounding: pass q = 0"
+    why = f"q = {q:.6g}, {gravity}; the scale of the precession rate squared on the tilted family; {below}"
+    checks.append(("mu fr_inv |q|", mu * fr_inv * abs(q), "q" if abs(q) < 1e-3 else "fr_inv", why))
     if jellett is not None:
-        checks += [
-            (f"|{jellett_name}|", abs(jellett), jellett_name, ""),
-            (
-                f"|{jellett_name}| / sigma",
-                abs(jellett) / sigma,
-                jellett_name,
-                f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
-            ),
-        ]
+        j, vertical = (
+            jellett_name,
+            f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
+        )
+        checks += [(f"|{j}|", abs(jellett), j, ""), (f"|{j}| / sigma", abs(jellett) / sigma, j, vertical)]
     for label, value, name, why in checks:
         if value != 0.0 and not lo <= value <= hi:
             raise DomainError(
@@ -192,14 +189,14 @@ def state_variables(dim: str, values: dict[str, Any], vertical: str, **comments:
     return data
 
 
+#: the CF flag attributes of every stability variable of the layer (stability.products' flags)
+FLAGS = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
+FLAGS["flag_values"].setflags(write=False)  # shared by every dataset: read-only
+
+
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
     """CF flag attributes of a stability variable (0 stable, 1 marginal, 2 unstable)."""
-    return {
-        "long_name": long_name,
-        "flag_values": np.array(FLAG_VALUES, dtype=np.int8),
-        "flag_meanings": FLAG_MEANINGS,
-        "comment": comment,
-    }
+    return {"long_name": long_name, **FLAGS, "comment": comment}
 
 
 def product_attrs(
