@@ -388,12 +388,8 @@ def level_states(jellett, q, sigma, fr_inv, mu):
         else:
             lam = jellett / d_of_c(c, q, sigma, mu)
             axial = axial_spin(c, lam, q)
-        out[i, 0] = c
-        out[i, 1] = effective_potential(c, jellett, q, sigma, fr_inv, mu)
-        out[i, 2] = test
-        out[i, 3] = scale
-        out[i, 4] = lam
-        out[i, 5] = axial
+        u = effective_potential(c, jellett, q, sigma, fr_inv, mu)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4], out[i, 5] = c, u, test, scale, lam, axial
     return out
 
 
@@ -406,20 +402,10 @@ def state_core(theta, lam, q, phi, y):
     ``theta`` may be complex (complex-step derivatives); ``y`` real or complex of length >= 8.
     """
     s = np.sin(theta)
-    k0 = s * np.cos(phi)
-    k1 = s * np.sin(phi)
-    k2 = np.cos(theta)
-    w0 = lam * q * k0
-    w1 = lam * q * k1
-    w2 = lam * (1.0 + q * k2)
-    y[0] = w0
-    y[1] = w1
-    y[2] = w2
-    y[3] = k0
-    y[4] = k1
-    y[5] = k2
-    y[6] = w1  # (omega x K)_1 = omega_2
-    y[7] = -w0  # (omega x K)_2 = -omega_1
+    k0, k1, k2 = s * np.cos(phi), s * np.sin(phi), np.cos(theta)
+    w0, w1, w2 = lam * q * k0, lam * q * k1, lam * (1.0 + q * k2)
+    # V0 = omega x K: (omega x K)_1 = omega_2, (omega x K)_2 = -omega_1
+    y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7] = w0, w1, w2, k0, k1, k2, w1, -w0
 
 
 def state_vector(theta: Any, lam: Any, q: float, phi: Any = 0.0) -> np.ndarray:
