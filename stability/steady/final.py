@@ -37,7 +37,9 @@ import xarray as xr
 
 from ..errors import DomainError, InputError
 from ..execution import announce, pick
+from ..nonlinear import get_nonlinear_model
 from ..nonlinear.integrators import check_tolerances
+from ..nonlinear.parameters import pack
 from ..nonlinear.runs import auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
@@ -497,9 +499,6 @@ def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
     """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
     equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve (interpreted
     unless compiled code is in memory: :func:`stability.execution.pick`)."""
-    from ..nonlinear import get_nonlinear_model
-    from ..nonlinear.parameters import pack
-
     state = np.zeros((1, 10))
     state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
     forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
@@ -509,8 +508,6 @@ def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
     """About ``8 / |g|``, ``g`` the slowest decay rate of the reachable candidates that are not
     unstable (0.01 degree after the transit), within ``[500, 5e4]``; 2000 if none decays."""
-    from ..nonlinear.parameters import pack
-
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
