@@ -407,8 +407,6 @@ def final_state(
     params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
     simulation = check_flag("simulation", simulation)
-    t_max, settle_tolerance = check_positive("t_max", t_max), check_positive("settle_tolerance", settle_tolerance)
-    (rtol,) = check_tolerances(rtol=rtol)
     y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls (steady/coulomb.py)
         from .coulomb import coulomb_end
@@ -420,7 +418,10 @@ def final_state(
                     f"top's end is always a hybrid run (stability.stick_slip), which does not watch the "
                     f"stick; allowed: {name} = {allowed!r}"
                 )
-        fields, run, level = coulomb_end(y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(t_max, 1e3), rtol=rtol)
+        check_positive("settle_tolerance", settle_tolerance)  # checked, not used: the hybrid run's last phase decides
+        fields, run, level = coulomb_end(
+            y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol
+        )
         # the level's steady states, flagged for the viscous sliding top (none without alpha_v)
         cands = () if level is None or alpha_v == 0.0 else candidates(*level, **params)
         return FinalState(**fields, candidates=cands, run=SettleRun(**run))
@@ -458,6 +459,9 @@ def final_state(
     if not simulation:
         undecided = dict(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan)
         return FinalState(**undecided, reason=reason + "; no run (simulation=False)", **common)
+    # the run's own checks, only where a run is needed (the answers without one stay fast)
+    t_max, settle_tolerance = check_positive("t_max", t_max), check_positive("settle_tolerance", settle_tolerance)
+    (rtol,) = check_tolerances(rtol=rtol)
     if auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
         announce(
             f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
