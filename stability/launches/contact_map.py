@@ -199,16 +199,14 @@ def contact_loss_boundary(
     ranges = [np.asarray(r, dtype=float) for r in (x_range, y_range)]
     box = np.array([to_rad_per_s(r, unit) if n == "spin" else r for n, r in zip((x, y), ranges)], dtype=float)
     for name, (lo, hi) in zip((x, y), box):
-        if name == "spin":
-            check_launch_spin(lo, "rad/s")
-            check_launch_spin(hi, "rad/s")
+        for v in (lo, hi) if name == "spin" else ():
+            check_launch_spin(v, "rad/s")
         if name == "tilt" and not (lo > 0.0 and hi < 180.0):
             raise InputError(f"the tilt range {lo:g} to {hi:g} degrees is outside the allowed range: 0 < tilt < 180")
     problem = ContactLossProblem(top, (x, y), launch, box, duration=duration, alpha_v=alpha_v)
     t0 = time.perf_counter()
     xs, ys = np.linspace(*box[0], nx), np.linspace(*box[1], ny)
-    n_min = np.empty((ny, nx))
-    t_min = np.empty((ny, nx))
+    n_min, t_min = np.empty((ny, nx)), np.empty((ny, nx))
     for j, yv in enumerate(ys):
         for i, xv in enumerate(xs):
             n_min[j, i], t_min[j, i] = problem.min_force(np.array([xv, yv]))
@@ -216,15 +214,9 @@ def contact_loss_boundary(
     edges = [(0, i, int(j)) for i in range(nx) for j in np.nonzero(n_min[:-1, i] * n_min[1:, i] < 0)[0]]
     edges += [(1, j, int(i)) for j in range(ny) for i in np.nonzero(n_min[j, :-1] * n_min[j, 1:] < 0)[0]]
     widths = box[:, 1] - box[:, 0]
+    quiet, scale = dict(detect_branch_points=False, detect_closed=False), (float(widths[0]), float(widths[1]))
     options = TraceOptions(
-        step=0.02,
-        max_step=0.05,
-        tol=1e-8,
-        scale=(float(widths[0]), float(widths[1])),
-        detect_branch_points=False,
-        detect_closed=False,
-        max_points=max_points,
-        max_angle=0.3,
+        step=0.02, max_step=0.05, tol=1e-8, scale=scale, max_points=max_points, max_angle=0.3, **quiet
     )
     pieces: list[tuple[np.ndarray, list[str], list[str]]] = []
     for axis, a_i, c_j in edges:

@@ -363,6 +363,9 @@ def steady_branch(
             k = "regular"
         kinds.append(k)
         details.append(d)
+    for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
+        if end != "boundary" and kinds[k] == "regular":
+            kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
     if "step_failure" in ends:
         a_g = family.a_g(q, mu)
         why = []
