@@ -429,20 +429,12 @@ def points_dataset(
     values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
     values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
     note = "at a branch point: spin / (1 + q cos(tilt))"
+    kind_attrs = {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"}
+    equivalent = "spin of the upright state with the same J, J / (sigma (1 + q))"
     data = {
         **state_variables("point", values, "branch points", precession_rate=note),
-        "upright_equivalent_spin": variable(
-            "point",
-            J / j_upright,
-            "spin of the upright state with the same J, J / (sigma (1 + q))",
-            "Omega",
-            short="upright-equiv. spin",
-        ),
-        "kind": (
-            "point",
-            np.array(kinds, dtype=str),
-            {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"},
-        ),
+        "upright_equivalent_spin": variable("point", J / j_upright, equivalent, "Omega", short="upright-equiv. spin"),
+        "kind": ("point", np.array(kinds, dtype=str), kind_attrs),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     index = {"long_name": "point", "comment": "index along the branch"}

@@ -207,12 +207,8 @@ class FinalState:
             return ("candidate", np.array(values, dtype=dtype), attrs)
 
         def yes_no(long_name: str, meanings: str, **extra: str) -> dict[str, Any]:
-            return {
-                "long_name": long_name,
-                **extra,
-                "flag_values": np.array([0, 1], np.int8),
-                "flag_meanings": meanings,
-            }
+            flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": meanings}
+            return {"long_name": long_name, **extra, **flags}
 
         scalars = {  # name: long_name, units, short name
             "tilt": ("final polar angle of the axis from the upward vertical", DEGREE, "final tilt"),

@@ -24,15 +24,7 @@ from . import family
 from .linearisation import REMOVED_NEUTRAL
 from .verdicts import RULE
 
-__all__ = [
-    "FLAGS",
-    "check_scales",
-    "flag_attrs",
-    "potential_curve",
-    "product_attrs",
-    "sliding_parameters",
-    "state_variables",
-]
+__all__ = ["FLAGS", "check_scales", "flag_attrs", "potential_curve", "product_attrs", "sliding_parameters"]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
 MODELS = ("sliding",)
