@@ -51,12 +51,8 @@ def launch_state(tilt: float) -> dict[str, list[float]]:
 
 def product_header(product: str, title: str) -> dict[str, str]:
     """The global attributes that open every dataset of the launches (the product: docs/datasets.md)."""
-    return {
-        "Conventions": "CF-1.10",
-        PRODUCT_ATTR: product,
-        "title": title,
-        "source": f"tippe-stability {package_version()}",
-    }
+    source = f"tippe-stability {package_version()}"
+    return {"Conventions": "CF-1.10", PRODUCT_ATTR: product, "title": title, "source": source}
 
 
 def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) -> tuple[float, dict[str, float], str]:

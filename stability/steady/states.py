@@ -93,12 +93,8 @@ def level_modes(
     spins = np.array(
         [family.vertical_spin(k, jellett, q=q, sigma=sigma) if v else math.nan for k, v in zip(kinds, vertical)]
     )
-    y = np.array(
-        [
-            family.vertical_state(k, n) if v else family.state_vector(t, la, q)
-            for k, v, n, t, la in zip(kinds, vertical, spins, theta, lam)
-        ]
-    )
+    rows = zip(kinds, vertical, spins, theta, lam)
+    y = np.array([family.vertical_state(k, n) if v else family.state_vector(t, la, q) for k, v, n, t, la in rows])
     cosines = np.array([family.ORIENTATIONS.get(k, math.nan) for k in kinds])
     return y, spins, vertical, state_modes(y, np.where(vertical, 0.0, lam), vertical, cosines, spins, p, params)
 
@@ -169,47 +165,34 @@ def steady_states(
     flags = [flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v)) for k, t, s, v in verdicts]
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     with np.errstate(divide="ignore", invalid="ignore"):
-        eq = dict(
-            zip(("q", "fr_inv", "alpha_v"), family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v))
-        )
+        point = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
     tilt = np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0)))
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
     values = dict(tilt=tilt, precession_rate=lam, axial_spin=axial, energy=energy, jellett=jel, growth_rate=growth)
-    values.update(
-        growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability=np.array(flags, dtype=np.int8)
-    )
-    values["stability_jacobian"] = jac
+    values.update(growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability_jacobian=jac)
+    values["stability"] = np.array(flags, dtype=np.int8)
+    kind = "upright, inverted or tilted"
+    test = "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum"
     note = "NaN for the vertical states; units of the spin rate Omega (simulate's time unit 1/Omega)"
     frequency = (
         "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)"
     )
     data = {
-        "kind": (
-            "state",
-            np.array(kinds, dtype=str),
-            {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"},
-        ),
+        "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state", "comment": kind}),
         **state_variables("state", values, "vertical states", precession_rate=note),
         "omega_vertical": variable(
             "state", y[:, 2], "vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"
         ),
-        "energy_test": variable(
-            "state",
-            tests,
-            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
-            short="energy criterion",
-        ),
+        "energy_test": variable("state", tests, test, short="energy criterion"),
         "mode_growth_rate": variable(
             ("state", "mode"), ev.real, "growth rate Re s of each physical mode", "Omega", short="growth rate Re s"
         ),
         "mode_frequency": variable(("state", "mode"), ev.imag, frequency, "Omega", short="frequency Im s"),
     }
-    for what in ("fr_inv", "alpha_v", "q"):
+    for what, i, units in (("fr_inv", 1, UNITLESS), ("alpha_v", 2, UNITLESS), ("q", 0, "R")):
         long_name = f"{what} of eq. (11) at the equivalent spin (vertical states)"
-        units = "R" if what == "q" else UNITLESS
-        data[f"equivalent_{what}"] = variable(
-            "state", np.where(vertical, eq[what], np.nan), long_name, units, short=f"equivalent {what}"
-        )
+        v = np.where(vertical, point[i], np.nan)
+        data[f"equivalent_{what}"] = variable("state", v, long_name, units, short=f"equivalent {what}")
     curve, curve_coords = potential_curve(J, params)
     mode_index = "index of the physical mode, by decreasing growth rate (tilted states have 5: the 6th is NaN)"
     coords = {
