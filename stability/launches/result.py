@@ -164,15 +164,11 @@ class Launch:
             v = getattr(self, f)
             why = {} if v is not None else {"comment": self.reasons.get(f, "")}
             data[name] = ((), math.nan if v is None else float(v), {"long_name": long_name, "units": units} | why)
-        attrs = product_header(PRODUCT, "launch of a real top") | {"unit": self.unit, "top_class": self.top_class}
-        for name in ("end_kind", "method", "alpha_v_source", "event"):
-            attrs[name] = getattr(self, name)
+        fields = ("unit", "top_class", "end_kind", "method", "alpha_v_source", "event")
+        attrs = product_header(PRODUCT, "launch of a real top") | {k: getattr(self, k) for k in fields}
         attrs.update({k: float(v) for k, v in self.parameters.items()})
-        for name in ("event_time", "event_tilt", "stick_spin", "stick_critical_spin"):
-            if getattr(self, name) is not None:
-                attrs[name] = float(getattr(self, name))
-        if self.on_stick is not None:
-            attrs["on_stick"] = self.on_stick
+        optional = ("event_time", "event_tilt", "on_stick", "stick_spin", "stick_critical_spin")  # None: left out
+        attrs.update({k: v if k == "on_stick" else float(v) for k in optional if (v := getattr(self, k)) is not None})
         return xr.Dataset(data, attrs=attrs)
 
 

@@ -141,17 +141,9 @@ def bifurcation_diagram(
         ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=s * j_per_unit)
         for kind in flags:
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    vertical = xr.Dataset(
-        {
-            f"stability_{k}": (
-                "level",
-                np.array(v, dtype=np.int8),
-                {"long_name": f"stability of the {k} spin", **FLAGS},
-            )
-            for k, v in flags.items()
-        },
-        coords={"spin": ("level", spins, spin_attrs)},
-    )
+    flag = {k: {"long_name": f"stability of the {k} spin", **FLAGS} for k in flags}
+    data = {f"stability_{k}": ("level", np.array(v, dtype=np.int8), flag[k]) for k, v in flags.items()}
+    vertical = xr.Dataset(data, coords={"spin": ("level", spins, spin_attrs)})
     rows = []
     th = math.radians(tilt)
     launches = []  # (launch spin, parameters, start, the paper's run)
@@ -184,13 +176,12 @@ def bifurcation_diagram(
         "settled": ("the run settled (tilt moved < 1e-3 deg per chunk)", None, np.int8),
         "paper_run": ("the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)", None, np.int8),
     }
-    runs_ds = xr.Dataset(
-        {
-            name: ("run", arr[:, i].astype(dtype or float), {"long_name": long} | ({"units": u} if u else {}))
-            for i, (name, (long, u, dtype)) in enumerate(columns.items())
-        },
-        coords={"run": ("run", np.arange(len(rows)))},
-    )
+    attrs_of = {name: {"long_name": long} | ({"units": u} if u else {}) for name, (long, u, _) in columns.items()}
+    data = {
+        name: ("run", arr[:, i].astype(dt or float), attrs_of[name])
+        for i, (name, (_, _, dt)) in enumerate(columns.items())
+    }
+    runs_ds = xr.Dataset(data, coords={"run": ("run", np.arange(len(rows)))})
     place = dict(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)
     attrs = {"Conventions": "CF-1.10", **place, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v}
     attrs["initial_tilt_deg"] = float(tilt)
