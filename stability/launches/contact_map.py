@@ -60,25 +60,18 @@ RUN_RTOL = 1e-10
 
 
 def launch_min_normal_force(
-    top: Top,
-    spin: float,
-    tilt: float,
-    tilt_rate: float,
-    *,
-    duration: float = 1.0,
-    alpha_v: Any = None,
-    rtol: float = RUN_RTOL,
+    top: Top, spin: float, tilt: float, tilt_rate: float, *, duration: float = 1.0, alpha_v: Any = None
 ) -> tuple[float, float]:
     """The smallest normal force of a launch over ``duration`` seconds, in units of ``M g``,
-    and its time (s) (module docstring). ``spin`` and ``tilt_rate`` in rad/s, ``tilt`` in
-    degrees."""
+    and its time (s) (module docstring), by runs at :data:`RUN_RTOL`. ``spin`` and ``tilt_rate``
+    in rad/s, ``tilt`` in degrees."""
     w, params, _ = launch_parameters(top, spin, "rad/s", alpha_v, "sliding")
     nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
     _, p = model_parameter_vector("sliding", **nd)
     th = math.radians(tilt)
     k = np.array([math.sin(th), 0.0, math.cos(th)])
     y0 = initial_state("sliding", k + (tilt_rate / w) * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0])
-    n_min, t_min = min_normal_force("sliding", y0, p, duration * w, rtol=rtol)
+    n_min, t_min = min_normal_force("sliding", y0, p, duration * w, rtol=RUN_RTOL)
     return n_min / (nd["mu"] * nd["fr_inv"]), t_min / w
 
 

@@ -32,9 +32,6 @@ from .flip import launch_parameters, launch_state, product_header, run_launch
 
 __all__ = ["PRODUCT", "Launch", "inverts_above", "launch"]
 
-#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
-PRODUCT = "launch"
-
 
 @dataclass(frozen=True)
 class Launch:
@@ -178,6 +175,10 @@ NEVER_INVERTS = {
     "never_inverts": "the upright state is stable at high spin (class 'never_inverts'): launched upright, this top "
     "does not invert",
 }
+
+
+#: the product attribute of :meth:`Launch.to_dataset` (docs/datasets.md)
+PRODUCT = "launch"
 
 
 def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
