@@ -102,9 +102,7 @@ def flip_time_map(
     """
     spins = np.atleast_1d(np.asarray(spins, dtype=float))
     tilts = np.atleast_1d(np.asarray(tilts, dtype=float))
-    t_flip = np.full((tilts.size, spins.size), np.nan)
-    t_est = np.full_like(t_flip, np.nan)
-    periods = np.full_like(t_flip, np.nan)
+    t_flip, t_est, periods = (np.full((tilts.size, spins.size), np.nan) for _ in range(3))
     source = ""
     t0 = time.perf_counter()
     for j, s in enumerate(spins):

@@ -278,10 +278,10 @@ def predict(
     candidate table (:func:`candidates`). No input checks: :func:`final_state` does them."""
     cands = candidates(jellett, initial_energy, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
-    n_st = sum(c.stability == STABLE for c in reach)
-    if len(reach) == 1 and n_st == 1:
+    if len(reach) == 1 and reach[0].stability == STABLE:
         why = "one steady state of the Jellett level lies below the initial energy without being unstable"
         return reach[0], why + ", and it is strictly stable", cands
+    n_st = sum(c.stability == STABLE for c in reach)
     n_mg = len(reach) - n_st
     reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
     if n_st >= 2:
