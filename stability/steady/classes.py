@@ -42,6 +42,7 @@ __all__ = ["CLASSES", "class_atlas", "class_boundaries", "class_codes", "top_cla
 #: class names by code (-1: outside the physical domain)
 CLASSES: tuple[str, ...] = ("never_inverts", "inverts", "hangs")
 OUTSIDE = -1
+_NAMES = np.array(CLASSES + ("outside_domain",))
 #: the row of the physical domain's table that bounds sigma from above, sigma <= 2 A_G (its one home)
 _SIGMA_TOP = next(i for i, b in enumerate(DOMAIN) if b.parameter == "sigma" and "q" in b.involves)
 
@@ -90,7 +91,7 @@ def top_class(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bool
     """
     p, inside = check_domain(q=q, sigma=sigma, mu=mu, mask=check_flag("mask_unphysical", mask_unphysical))
     code, _ = class_codes(p["q"], p["sigma"], p["mu"])
-    out = np.array(CLASSES + ("outside_domain",))[np.where(inside, code, len(CLASSES))]
+    out = _NAMES[np.where(inside, code, len(CLASSES))]
     return str(out) if out.ndim == 0 else out
 
 
