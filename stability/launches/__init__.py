@@ -1,11 +1,9 @@
-"""What a real top does when it is launched: :func:`launch` and :func:`flip_time` (issue 23).
+"""What a real top does when it is launched: :func:`~stability.launches.result.launch` and
+:func:`~stability.launches.flip.flip_time` (issue 23).
 
 Layer 5 (docs/architecture.md), beside the recipes: it asks the linear layer (critical spin),
 the nonlinear runs (:func:`stability.simulate`) and the steady layer (final state, branch
-points, classes) and converts between a top in SI units and the nondimensional sets.
+points, classes) and converts between a top in SI units and the nondimensional sets. This
+``__init__`` imports nothing (the public names are re-exported by the ``stability`` facade;
+inside the package, import a name from its module).
 """
-
-from .flip import FlipRun, flip_time, launch_state, run_launch
-from .result import Launch, launch
-
-__all__ = ["FlipRun", "Launch", "flip_time", "launch", "launch_state", "run_launch"]

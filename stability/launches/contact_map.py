@@ -42,16 +42,14 @@ import xarray as xr
 
 from continuation.engine import TraceOptions, trace
 
-from .._version import package_version
 from ..errors import InputError
 from ..nonlinear.min_force import min_normal_force
 from ..nonlinear.runs import initial_state, model_parameter_vector
 from ..parameters import as_scalar, check_choice, check_integer, check_interval, check_positive
-from ..products import PRODUCT_ATTR
 from ..top import Top, check_launch_spin, from_rad_per_s, to_rad_per_s
-from .flip import launch_parameters
+from .flip import launch_parameters, product_header
 
-__all__ = ["PRODUCT", "QUANTITIES", "ContactLossProblem", "contact_loss_boundary", "launch_min_normal_force"]
+__all__ = ["QUANTITIES", "ContactLossProblem", "contact_loss_boundary", "launch_min_normal_force"]
 
 #: the product attribute of :func:`contact_loss_boundary` (docs/datasets.md)
 PRODUCT = "contact_loss_map"
@@ -62,25 +60,18 @@ RUN_RTOL = 1e-10
 
 
 def launch_min_normal_force(
-    top: Top,
-    spin: float,
-    tilt: float,
-    tilt_rate: float,
-    *,
-    duration: float = 1.0,
-    alpha_v: Any = None,
-    rtol: float = RUN_RTOL,
+    top: Top, spin: float, tilt: float, tilt_rate: float, *, duration: float = 1.0, alpha_v: Any = None
 ) -> tuple[float, float]:
     """The smallest normal force of a launch over ``duration`` seconds, in units of ``M g``,
-    and its time (s) (module docstring). ``spin`` and ``tilt_rate`` in rad/s, ``tilt`` in
-    degrees."""
+    and its time (s) (module docstring), by runs at :data:`RUN_RTOL`. ``spin`` and ``tilt_rate``
+    in rad/s, ``tilt`` in degrees."""
     w, params, _ = launch_parameters(top, spin, "rad/s", alpha_v, "sliding")
     nd = {k: params[k] for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")}
     _, p = model_parameter_vector("sliding", nd)
     th = math.radians(tilt)
     k = np.array([math.sin(th), 0.0, math.cos(th)])
     y0 = initial_state("sliding", k + (tilt_rate / w) * np.array([0.0, 1.0, 0.0]), k, [0.0, 0.0])
-    n_min, t_min = min_normal_force("sliding", y0, p, duration * w, rtol=rtol)
+    n_min, t_min = min_normal_force("sliding", y0, p, duration * w, rtol=RUN_RTOL)
     return n_min / (nd["mu"] * nd["fr_inv"]), t_min / w
 
 
@@ -120,11 +111,6 @@ def _crosses(p0: np.ndarray, p1: np.ndarray, pts: np.ndarray, widths: np.ndarray
     s1, s2 = side(a, b, c), side(a, b, d)
     s3, s4 = side(c, d, a), side(c, d, b)
     return bool(np.any((s1 * s2 <= 0) & (s3 * s4 <= 0)))
-
-
-def _to_si(name: str, values: Any, unit: str) -> np.ndarray:
-    v = np.asarray(values, dtype=float)
-    return to_rad_per_s(v, unit) if name == "spin" else v
 
 
 def contact_loss_boundary(
@@ -203,35 +189,27 @@ def contact_loss_boundary(
         "tilt": check_interval("tilt", tilt, 0.0, 180.0),
         "tilt_rate": as_scalar("tilt_rate", tilt_rate),
     }
-    box = np.array([_to_si(x, x_range, unit), _to_si(y, y_range, unit)], dtype=float)
+    ranges = [np.asarray(r, dtype=float) for r in (x_range, y_range)]
+    box = np.array([to_rad_per_s(r, unit) if n == "spin" else r for n, r in zip((x, y), ranges)], dtype=float)
     for name, (lo, hi) in zip((x, y), box):
-        if name == "spin":
-            check_launch_spin(lo, "rad/s")
-            check_launch_spin(hi, "rad/s")
+        for v in (lo, hi) if name == "spin" else ():
+            check_launch_spin(v, "rad/s")
         if name == "tilt" and not (lo > 0.0 and hi < 180.0):
             raise InputError(f"the tilt range {lo:g} to {hi:g} degrees is outside the allowed range: 0 < tilt < 180")
     problem = ContactLossProblem(top, (x, y), launch, box, duration=duration, alpha_v=alpha_v)
     t0 = time.perf_counter()
     xs, ys = np.linspace(*box[0], nx), np.linspace(*box[1], ny)
-    n_min = np.empty((ny, nx))
-    t_min = np.empty((ny, nx))
+    n_min, t_min = np.empty((ny, nx)), np.empty((ny, nx))
     for j, yv in enumerate(ys):
         for i, xv in enumerate(xs):
             n_min[j, i], t_min[j, i] = problem.min_force(np.array([xv, yv]))
-    runs = nx * ny
     # every grid edge where N_min changes sign, as (fixed axis, index along it, cell index)
     edges = [(0, i, int(j)) for i in range(nx) for j in np.nonzero(n_min[:-1, i] * n_min[1:, i] < 0)[0]]
     edges += [(1, j, int(i)) for j in range(ny) for i in np.nonzero(n_min[j, :-1] * n_min[j, 1:] < 0)[0]]
     widths = box[:, 1] - box[:, 0]
+    quiet, scale = dict(detect_branch_points=False, detect_closed=False), (float(widths[0]), float(widths[1]))
     options = TraceOptions(
-        step=0.02,
-        max_step=0.05,
-        tol=1e-8,
-        scale=(float(widths[0]), float(widths[1])),
-        detect_branch_points=False,
-        detect_closed=False,
-        max_points=max_points,
-        max_angle=0.3,
+        step=0.02, max_step=0.05, tol=1e-8, scale=scale, max_points=max_points, max_angle=0.3, **quiet
     )
     pieces: list[tuple[np.ndarray, list[str], list[str]]] = []
     for axis, a_i, c_j in edges:
@@ -248,59 +226,34 @@ def contact_loss_boundary(
         ahead, back = (trace(problem, start, options, direction=d, project_start=False) for d in (1, -1))
         points = np.concatenate([back.points[::-1], ahead.points[1:]])
         pieces.append((points, back.kinds[::-1] + ahead.kinds[1:], [back.end_reasons[0], ahead.end_reasons[0]]))
-    bx = np.concatenate([pts[:, 0] for pts, _, _ in pieces]) if pieces else np.zeros(0)
-    by = np.concatenate([pts[:, 1] for pts, _, _ in pieces]) if pieces else np.zeros(0)
+    bxy = np.concatenate([pts for pts, _, _ in pieces]) if pieces else np.zeros((0, 2))
     piece = np.concatenate([np.full(len(k), n) for n, (_, k, _) in enumerate(pieces)]) if pieces else np.zeros(0, int)
     kinds = [k for _, ks, _ in pieces for k in ks]
-    ends = [f"piece {n}: {' and '.join(e)}" for n, (_, _, e) in enumerate(pieces)]
+    ends = "; ".join(f"piece {n}: {' and '.join(e)}" for n, (_, _, e) in enumerate(pieces))
     seconds = time.perf_counter() - t0
 
-    def axis_values(name: str, v: np.ndarray) -> np.ndarray:
-        return from_rad_per_s(v, unit) if name == "spin" else v
-
-    def units(name: str) -> str:
-        return unit if name == "spin" else str(QUANTITIES[name])
+    def axis(dim: Any, name: str, v: np.ndarray, long_name: str) -> tuple:
+        si = name == "spin"
+        return (
+            dim,
+            from_rad_per_s(v, unit) if si else v,
+            {"long_name": long_name, "units": unit if si else QUANTITIES[name]},
+        )
 
     held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
-    title = "where a launch loses its contact: the smallest normal force of the run"
-    attrs = {
-        "Conventions": "CF-1.10",
-        PRODUCT_ATTR: PRODUCT,
-        "title": title,
-        "source": f"tippe-stability {package_version()}",
-    }
+    attrs = product_header(PRODUCT, "where a launch loses its contact: the smallest normal force of the run")
     attrs.update(x_quantity=x, y_quantity=y, unit=unit, **{f"launch_{k}": float(v) for k, v in held.items()})
-    ends_text = "; ".join(ends) if ends else "no sign change on the grid"
-    attrs.update(duration=duration, boundary_end_reasons=ends_text, runs=runs, seconds=seconds)
-    attrs.update(q=top.q, mu=top.mu, sigma=top.sigma)
-    return xr.Dataset(
-        {
-            "min_normal_force": (
-                ("y", "x"),
-                n_min,
-                {"long_name": "smallest normal force of the run", "units": "M g", "comment": "below 0: contact lost"},
-            ),
-            "min_time": (("y", "x"), t_min, {"long_name": "time of the smallest normal force", "units": "s"}),
-            "boundary_x": (
-                "point",
-                axis_values(x, bx),
-                {"long_name": f"{x} on the boundary N_min = 0", "units": units(x)},
-            ),
-            "boundary_y": (
-                "point",
-                axis_values(y, by),
-                {"long_name": f"{y} on the boundary N_min = 0", "units": units(y)},
-            ),
-            "boundary_kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of the traced point"}),
-            "boundary_piece": (
-                "point",
-                piece.astype(np.int32),
-                {"long_name": "traced piece (a smooth piece of N_min = 0; pieces meet at kinks of N_min)"},
-            ),
-        },
-        coords={
-            "x": ("x", axis_values(x, xs), {"long_name": x.replace("_", " "), "units": units(x)}),
-            "y": ("y", axis_values(y, ys), {"long_name": y.replace("_", " "), "units": units(y)}),
-        },
-        attrs=attrs,
-    )
+    attrs.update(duration=duration, boundary_end_reasons=ends or "no sign change on the grid", runs=nx * ny)
+    attrs.update(seconds=seconds, q=top.q, mu=top.mu, sigma=top.sigma)
+    force = {"long_name": "smallest normal force of the run", "units": "M g", "comment": "below 0: contact lost"}
+    pieces_text = "traced piece (a smooth piece of N_min = 0; pieces meet at kinks of N_min)"
+    data = {
+        "min_normal_force": (("y", "x"), n_min, force),
+        "min_time": (("y", "x"), t_min, {"long_name": "time of the smallest normal force", "units": "s"}),
+        "boundary_x": axis("point", x, bxy[:, 0], f"{x} on the boundary N_min = 0"),
+        "boundary_y": axis("point", y, bxy[:, 1], f"{y} on the boundary N_min = 0"),
+        "boundary_kind": ("point", np.array(kinds, dtype=str), {"long_name": "kind of the traced point"}),
+        "boundary_piece": ("point", piece.astype(np.int32), {"long_name": pieces_text}),
+    }
+    coords = {"x": axis("x", x, xs, x.replace("_", " ")), "y": axis("y", y, ys, y.replace("_", " "))}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

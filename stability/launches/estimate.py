@@ -39,13 +39,11 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .._version import package_version
 from ..linear.spectra import eigenvalues
-from ..products import PRODUCT_ATTR
 from ..top import Top, from_rad_per_s
-from .flip import launch_parameters, run_launch
+from .flip import launch_parameters, product_header, run_launch
 
-__all__ = ["ESTIMATES", "MAP_PRODUCT", "efold_flip_time", "flip_time_map"]
+__all__ = ["efold_flip_time", "flip_time_map"]
 
 #: the cheap estimates, by name (module docstring: (*) and (**))
 ESTIMATES = ("efold", "projected")
@@ -104,9 +102,7 @@ def flip_time_map(
     """
     spins = np.atleast_1d(np.asarray(spins, dtype=float))
     tilts = np.atleast_1d(np.asarray(tilts, dtype=float))
-    t_flip = np.full((tilts.size, spins.size), np.nan)
-    t_est = np.full_like(t_flip, np.nan)
-    periods = np.full_like(t_flip, np.nan)
+    t_flip, t_est, periods = (np.full((tilts.size, spins.size), np.nan) for _ in range(3))
     source = ""
     t0 = time.perf_counter()
     for j, s in enumerate(spins):
@@ -137,8 +133,7 @@ def flip_time_map(
         "spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),
         "tilt": ("tilt", tilts, {"long_name": "initial tilt of the axis", "units": "degree"}),
     }
-    title, version = "flip time of launches of a real top", f"tippe-stability {package_version()}"
-    attrs = {"Conventions": "CF-1.10", PRODUCT_ATTR: MAP_PRODUCT, "title": title, "source": version}
+    attrs = product_header(MAP_PRODUCT, "flip time of launches of a real top")
     attrs.update(q=top.q, mu=top.mu, sigma=top.sigma, radius_m=top.radius, mass_kg=top.mass, alpha_v_source=source)
     per_unit = float(from_rad_per_s(1.0, "rev/s") / from_rad_per_s(1.0, unit))
     attrs.update(crossing_deg=crossing, t_max=t_max, seconds=seconds, spin_unit=unit, spin_rev_s_per_unit=per_unit)

@@ -24,12 +24,14 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterTypeError, RunError
+from .._version import package_version
+from ..errors import DomainError, ParameterTypeError, RunError
 from ..nonlinear.runs import simulate
 from ..parameters import as_scalar, check_choice, check_interval, check_positive
+from ..products import PRODUCT_ATTR
 from ..top import Top, check_launch_spin
 
-__all__ = ["MODELS", "FlipRun", "flip_time", "launch_parameters", "launch_state", "run_launch"]
+__all__ = ["FlipRun", "flip_time", "launch_parameters", "launch_state", "product_header", "run_launch"]
 
 #: the models a launch can be asked of (the launch state has the centre at rest: sliding only)
 MODELS = ("sliding",)
@@ -47,6 +49,12 @@ def launch_state(tilt: float) -> dict[str, list[float]]:
     return {"omega": list(k), "k": k, "velocity": [0.0, 0.0]}
 
 
+def product_header(product: str, title: str) -> dict[str, str]:
+    """The global attributes that open every dataset of the launches (the product: docs/datasets.md)."""
+    source = f"tippe-stability {package_version()}"
+    return {"Conventions": "CF-1.10", PRODUCT_ATTR: product, "title": title, "source": source}
+
+
 def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) -> tuple[float, dict[str, float], str]:
     """The launch spin in rad/s, the nondimensional set at it (``Omega`` = the launch spin) and
     where ``alpha_v`` came from: the top's ``mu_v`` by eq. (7) (``alpha_v = mu mu_v g / Omega``,
@@ -62,9 +70,7 @@ def launch_parameters(top: Top, spin: Any, unit: str, alpha_v: Any, model: str) 
     else:
         alpha_v = DEFAULT_ALPHA_V
         source = f"default {DEFAULT_ALPHA_V:g} (the paper's; the top has no mu_v and no alpha_v was given)"
-    params = top.nondimensional(w, alpha_v=alpha_v)
-    params = {k: float(v) for k, v in params.items()}
-    return w, params, source
+    return w, {k: float(v) for k, v in top.nondimensional(w, alpha_v=alpha_v).items()}, source
 
 
 @dataclass(frozen=True)
@@ -107,20 +113,6 @@ class FlipRun:
     attrs: dict
 
 
-def _refine(y: dict[str, Any], params: dict[str, float], t0: float, t1: float, crossing: float, rtol: float) -> float:
-    """The event time in ``[t0, t1]`` by Brent's method on runs restarted from the state ``y`` at t0."""
-    from scipy.optimize import brentq
-
-    def tilt_minus(t: float) -> float:
-        if t <= t0:
-            return float(y["tilt"]) - crossing
-        start = dict(omega=y["omega"], k=y["k"], velocity=y["velocity"], rtol=rtol, atol=1e-3 * rtol)
-        ds = simulate("sliding", t_end=t - t0, t_eval=np.array([0.0, t - t0]), **start, **params)
-        return float(ds.polar_angle[-1]) - crossing
-
-    return float(brentq(tilt_minus, t0, t1, xtol=1e-12, rtol=8.9e-16, maxiter=200))
-
-
 def run_launch(
     params: dict[str, float],
     *,
@@ -153,47 +145,49 @@ def run_launch(
     (:mod:`stability.nonlinear.contact`): ``attrs`` then holds ``event``, ``event_time`` (time
     units from the launch) and ``event_tilt`` (degrees).
     """
+    from scipy.optimize import brentq
+
     tilt = as_scalar("tilt", tilt)
     if not 0.0 < tilt < 180.0:
-        from ..errors import DomainError
-
         raise DomainError(f"tilt = {tilt:g} degrees is outside the allowed range: 0 < tilt < 180")
     crossing = check_interval("crossing", crossing, 0.0, 180.0, closed="right")
     t_max = check_positive("t_max", t_max)
-    state = {**launch_state(tilt), "tilt": tilt}
+    state = launch_state(tilt)
     if start is not None:
         k0 = np.asarray(start["k"], dtype=float)
         tilt = float(np.degrees(np.arccos(np.clip(k0[2] / np.linalg.norm(k0), -1.0, 1.0))))
-        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0]), "tilt": tilt}
-    t = 0.0
+        state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0])}
+    t, n_min, event_note, crossed, settled, attrs = 0.0, math.inf, "", None, False, {}
     times, tilts = [np.array([0.0])], [np.array([tilt])]
-    n_min = math.inf
-    event_note = ""
-    crossed: float | None = None
-    settled = False
-    attrs: dict = {}
+
+    def tilt_minus(dt_: float, y: dict[str, Any], tilt0: float) -> float:  # the tilt dt_ after y, less crossing
+        if dt_ <= 0.0:
+            return tilt0 - crossing
+        ds = simulate("sliding", t_end=dt_, t_eval=np.array([0.0, dt_]), **y, rtol=rtol, atol=1e-3 * rtol, **params)
+        return float(ds.polar_angle[-1]) - crossing
+
     while t < t_max:
         length = min(chunk, t_max - t)
         n = max(2, int(math.ceil(length / dt)))
         # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
         # numbers are read to the 1-degree band and the output step, not to 1e-10
         r = rtol if crossed is None else max(rtol, TAIL_RTOL)
-        start = dict(omega=state["omega"], k=state["k"], velocity=state["velocity"], stick_tilt=stick_tilt)
         t_eval = np.linspace(0.0, length, n + 1)
-        ds = simulate("sliding", t_end=length, t_eval=t_eval, **start, rtol=r, atol=1e-3 * r, **params)
-        attrs = dict(ds.attrs)
-        pol = ds.polar_angle.values
+        ds = simulate(
+            "sliding", t_end=length, t_eval=t_eval, **state, stick_tilt=stick_tilt, rtol=r, atol=1e-3 * r, **params
+        )
+        attrs, pol, ts = dict(ds.attrs), ds.polar_angle.values, ds.time.values
         if not np.all(np.isfinite(pol)):
             raise RunError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")
         n_min = min(n_min, float(ds.normal_force.min()))
-        tt = t + ds.time.values
+        tt = t + ts
         if crossed is None and (hit := np.nonzero(pol >= crossing)[0]).size and not (crossing <= tilt):
+            # Brent's method on runs restarted from the output before the crossing (module docstring)
             i = int(hit[0])
-            prev = dict(omega=ds.omega.values[i - 1], k=ds.k.values[i - 1], velocity=ds.velocity.values[i - 1][:2])
-            prev["tilt"] = pol[i - 1]
-            crossed = float(t + ds.time.values[i - 1]) + _refine(
-                prev, params, 0.0, float(ds.time.values[i] - ds.time.values[i - 1]), crossing, rtol
-            )
+            y = dict(omega=ds.omega.values[i - 1], k=ds.k.values[i - 1], velocity=ds.velocity.values[i - 1][:2])
+            bracket = (0.0, float(ts[i] - ts[i - 1]))
+            step = brentq(tilt_minus, *bracket, args=(y, float(pol[i - 1])), xtol=1e-12, rtol=8.9e-16, maxiter=200)
+            crossed = float(t + ts[i - 1]) + float(step)
         times.append(tt[1:])
         tilts.append(pol[1:])
         t += length
@@ -207,37 +201,31 @@ def run_launch(
             break
         if stop_at_crossing and crossed is not None:
             break
-        if float(np.max(pol) - np.min(pol)) < settle_tolerance:
-            settled = True
-            break
-        if end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * band:
-            settled = True  # a whole chunk within half the band of the predicted end
+        # settled: the tilt moved less than settle_tolerance, or a whole chunk within half the band of the predicted end
+        settled = float(np.max(pol) - np.min(pol)) < settle_tolerance or (
+            end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * band
+        )
+        if settled:
             break
     tt, pp = np.concatenate(times), np.concatenate(tilts)
     end = float(pp[-1]) if end_tilt is None else float(end_tilt)
     reasons = [event_note] if event_note else []
     if crossed is None:
-        reasons.append(
-            f"the axis never reaches {crossing:g} degrees (largest tilt {float(np.max(pp)):.4g} degrees "
-            f"in {t:.6g} time units)"
-        )
+        largest = f"largest tilt {float(np.max(pp)):.4g} degrees in {t:.6g} time units"
+        reasons.append(f"the axis never reaches {crossing:g} degrees ({largest})")
     settle_t: float | None = None
-    if settled:
-        out = np.nonzero(np.abs(pp - end) > band)[0]
-        if out.size == 0:
-            settle_t = 0.0
-        else:
-            i = int(out[-1])
-            if i + 1 < tt.size:  # linear interpolation of |tilt - end| = band between two outputs
-                a, b = abs(pp[i] - end) - band, abs(pp[i + 1] - end) - band
-                settle_t = float(tt[i] + a / (a - b) * (tt[i + 1] - tt[i]))
-            else:
-                settle_t = None
-                reasons.append("the tilt is not yet within the band at the end of the run")
+    out = np.nonzero(np.abs(pp - end) > band)[0]
+    if settled and out.size == 0:
+        settle_t = 0.0
+    elif settled and out[-1] + 1 < tt.size:  # linear interpolation of |tilt - end| = band between two outputs
+        i = int(out[-1])
+        a, b = abs(pp[i] - end) - band, abs(pp[i + 1] - end) - band
+        settle_t = float(tt[i] + a / (a - b) * (tt[i + 1] - tt[i]))
+    elif settled:
+        reasons.append("the tilt is not yet within the band at the end of the run")
     elif not stop_at_crossing and not event_note:
-        reasons.append(
-            f"the tilt did not settle within t_max = {t_max:g} time units ({t_max / (2 * math.pi):.6g} spin periods)"
-        )
+        periods = f"{t_max / (2 * math.pi):.6g} spin periods"
+        reasons.append(f"the tilt did not settle within t_max = {t_max:g} time units ({periods})")
     return FlipRun(crossed, settle_t, float(pp[-1]), settled, t, n_min, float(np.max(pp)), "; ".join(reasons), attrs)
 
 

@@ -27,12 +27,10 @@ from typing import Any
 
 import xarray as xr
 
-from .._version import package_version
-from ..products import PRODUCT_ATTR
 from ..top import Top, from_rad_per_s, spin_text
-from .flip import launch_parameters, run_launch
+from .flip import launch_parameters, launch_state, product_header, run_launch
 
-__all__ = ["PRODUCT", "Launch", "inverts_above", "launch", "stick_answer"]
+__all__ = ["PRODUCT", "Launch", "inverts_above", "launch"]
 
 
 @dataclass(frozen=True)
@@ -98,31 +96,29 @@ class Launch:
     stick_critical_spin: float | None = None
     reasons: dict[str, str] = field(default_factory=dict)
 
-    def _spin(self, w: float | None, name: str) -> str:
-        if w is None:
-            return f"none ({self.reasons.get(name, '')})"
-        return spin_text(w, self.unit)
-
-    def _time(self, t: float | None, name: str) -> str:
-        if t is None:
-            return f"never ({self.reasons.get(name, '')})"
-        return f"{t:.4g} s ({t * self.spin / (2 * math.pi):.4g} spin periods)"
-
     def __str__(self) -> str:
+        def spin(name: str) -> str:
+            w = getattr(self, name)
+            return f"none ({self.reasons.get(name, '')})" if w is None else spin_text(w, self.unit)
+
+        def when(name: str) -> str:
+            t = getattr(self, name)
+            if t is None:
+                return f"never ({self.reasons.get(name, '')})"
+            return f"{t:.4g} s ({t * self.spin / (2 * math.pi):.4g} spin periods)"
+
         p = self.parameters
+        ends = f"{self.end_kind} at {self.end_tilt:.4g} degrees"
         lines = [
-            f"launch at {self._spin(self.spin, 'spin')}, axis tilted {self.tilt:g} deg from the vertical, centre at rest",
-            f"  the upright top becomes unstable above:        {self._spin(self.unstable_above, 'unstable_above')}",
-            f"  launched upright, it inverts completely above: {self._spin(self.inverts_above, 'inverts_above')}",
+            f"launch at {spin('spin')}, axis tilted {self.tilt:g} deg from the vertical, centre at rest",
+            f"  the upright top becomes unstable above:        {spin('unstable_above')}",
+            f"  launched upright, it inverts completely above: {spin('inverts_above')}",
             f"  high-spin class: {self.top_class}",
-            (
-                f"  ends: {self.reasons['end']} (the sphere model alone would end {self.end_kind} at "
-                f"{self.end_tilt:.4g} degrees, by {self.method})"
-                if self.event != "none"
-                else f"  ends: {self.end_kind} at {self.end_tilt:.4g} degrees (decided by {self.method})"
-            ),
-            f"  time to 90 degrees: {self._time(self.flip_time, 'flip_time')}",
-            f"  settles (within 1 degree of its end) after: {self._time(self.settle_time, 'settle_time')}",
+            f"  ends: {self.reasons['end']} (the sphere model alone would end {ends}, by {self.method})"
+            if self.event != "none"
+            else f"  ends: {ends} (decided by {self.method})",
+            f"  time to 90 degrees: {when('flip_time')}",
+            f"  settles (within 1 degree of its end) after: {when('settle_time')}",
             f"  smallest normal force: {self.min_normal_force:.4g} N ({self.min_normal_force_nd:.4g} A0 Omega^2/R; "
             f"equilibrium {p['mu'] * p['fr_inv']:.4g})",
             "  parameters: " + ", ".join(f"{k} = {v:.6g}" for k, v in p.items()),
@@ -148,48 +144,28 @@ class Launch:
     def to_dataset(self) -> xr.Dataset:
         """The answer as a CF Dataset of 0-d variables (product ``launch``, docs/datasets.md);
         a field that is None is NaN with its reason in the variable's ``comment``."""
-        nan = math.nan
-
-        def var(name: str, long_name: str, units: str) -> tuple:
-            v = getattr(self, name)
-            attrs = {"long_name": long_name, "units": units}
-            if v is None:
-                attrs["comment"] = self.reasons.get(name, "")
-            return ((), nan if v is None else float(v), attrs)
-
         force = "smallest normal force along the run"
-        data = {  # variable: var(field, long name, units)
-            "spin": var("spin", "launch spin", "rad s-1"),
-            "initial_tilt": var("tilt", "initial tilt of the axis", "degree"),
-            "unstable_above": var("unstable_above", "spin above which the upright top is unstable", "rad s-1"),
-            "inverts_above": var("inverts_above", "launch spin above which the top inverts completely", "rad s-1"),
-            "end_tilt": var("end_tilt", "tilt where the launch ends", "degree"),
-            "flip_time": var("flip_time", "time until the axis first crosses 90 degrees", "s"),
-            "settle_time": var("settle_time", "time until the tilt stays within 1 degree of its end", "s"),
-            "min_normal_force": var("min_normal_force", force, "N"),
-            "min_normal_force_nd": var("min_normal_force_nd", force, "A0 Omega2 R-1"),
+        variables = {  # variable: field, long name, units
+            "spin": ("spin", "launch spin", "rad s-1"),
+            "initial_tilt": ("tilt", "initial tilt of the axis", "degree"),
+            "unstable_above": ("unstable_above", "spin above which the upright top is unstable", "rad s-1"),
+            "inverts_above": ("inverts_above", "launch spin above which the top inverts completely", "rad s-1"),
+            "end_tilt": ("end_tilt", "tilt where the launch ends", "degree"),
+            "flip_time": ("flip_time", "time until the axis first crosses 90 degrees", "s"),
+            "settle_time": ("settle_time", "time until the tilt stays within 1 degree of its end", "s"),
+            "min_normal_force": ("min_normal_force", force, "N"),
+            "min_normal_force_nd": ("min_normal_force_nd", force, "A0 Omega2 R-1"),
         }
-        attrs = {
-            "Conventions": "CF-1.10",
-            PRODUCT_ATTR: PRODUCT,
-            "title": "launch of a real top",
-            "source": f"tippe-stability {package_version()}",
-            "unit": self.unit,
-            "top_class": self.top_class,
-            "end_kind": self.end_kind,
-            "method": self.method,
-            "alpha_v_source": self.alpha_v_source,
-            "event": self.event,
-            **{k: float(v) for k, v in self.parameters.items()},
-        }
-        if self.event_time is not None:
-            attrs.update(event_time=float(self.event_time), event_tilt=float(self.event_tilt))
-        if self.on_stick is not None:
-            attrs.update(
-                on_stick=self.on_stick,
-                stick_spin=float(self.stick_spin),  # type: ignore[arg-type]
-                stick_critical_spin=float(self.stick_critical_spin),  # type: ignore[arg-type]
-            )
+        data = {}
+        for name, (f, long_name, units) in variables.items():
+            v = getattr(self, f)
+            why = {} if v is not None else {"comment": self.reasons.get(f, "")}
+            data[name] = ((), math.nan if v is None else float(v), {"long_name": long_name, "units": units} | why)
+        fields = ("unit", "top_class", "end_kind", "method", "alpha_v_source", "event")
+        attrs = product_header(PRODUCT, "launch of a real top") | {k: getattr(self, k) for k in fields}
+        attrs.update({k: float(v) for k, v in self.parameters.items()})
+        optional = ("event_time", "event_tilt", "on_stick", "stick_spin", "stick_critical_spin")  # None: left out
+        attrs.update({k: v if k == "on_stick" else float(v) for k in optional if (v := getattr(self, k)) is not None})
         return xr.Dataset(data, attrs=attrs)
 
 
@@ -226,24 +202,6 @@ def inverts_above(top: Top, reference: float, alpha_v: float) -> float | None:
     return j_inv / float(upright_jellett(q=nd["q"], sigma=nd["sigma"])) * reference
 
 
-def stick_answer(top: Top, spin: float, alpha_v: float) -> tuple[str, float, float]:
-    """What a top that reaches its stick spinning at ``spin`` rad/s about its symmetry axis
-    does: ``("spins", spin, critical)`` if ``spin`` is above the critical spin of the top on its
-    stick (:func:`stability.critical_spin` of :meth:`stability.Top.on_stick`, upright: the
-    spin above which the upright spin on the tip is stable, the tip's sphere with its own
-    ``q' = (tip_center - com_offset) / tip_radius``), ``("falls_back", spin, critical)`` below.
-
-    The spin about the axis is a body quantity: on the stick's sphere (axis ``k' = -k``) it is
-    the same number reversed, and the upright state's stability does not depend on the sense.
-    ``alpha_v`` is used only when the top has no ``mu_v`` (the sliding threshold does not
-    depend on ``alpha_v > 0``: :func:`stability.critical_spin`)."""
-    from ..linear.critical import critical_spin
-
-    on = top.on_stick()
-    crit = critical_spin(on, "sliding", "upright", alpha_v=alpha_v).spin
-    return ("spins" if spin > crit else "falls_back"), float(spin), float(crit)
-
-
 def launch(
     top: Top, spin: Any, *, unit: str = "rad/s", tilt: float = 1.0, alpha_v: Any = None, model: str = "sliding"
 ) -> Launch:
@@ -271,7 +229,6 @@ def launch(
     from ..linear.critical import critical_spin
     from ..steady.classes import top_class
     from ..steady.final import final_state
-    from .flip import launch_state
 
     w, params, source = launch_parameters(top, spin, unit, alpha_v, model)
     tilt = float(tilt)
@@ -286,37 +243,33 @@ def launch(
     inv = inverts_above(top, w, nd["alpha_v"])
     if inv is None:
         reasons["inverts_above"] = NEVER_INVERTS.get(cls, "the tilted family does not reach the inverted state")
-    start = launch_state(tilt)
-    fs = final_state(omega=start["omega"], k=start["k"], velocity=start["velocity"], **nd)
+    fs = final_state(**launch_state(tilt), **nd)
     stick = top.stick_contact()[0] if top.stick is not None else None
     run = run_launch(params, tilt=tilt, end_tilt=fs.tilt if math.isfinite(fs.tilt) else None, stick_tilt=stick)
     if run.crossing_time is None:
         reasons["flip_time"] = run.reason.split("; ")[0]
-    settle = run.settle_time
-    if fs.kind == "unsettled":
-        settle = None
-        reasons["settle_time"] = f"the end is not decided: {fs.reason}"
-    elif settle is None:
-        reasons["settle_time"] = run.reason
-    force_unit = top.inertia_centre * w * w / top.radius
-    ev = str(run.attrs.get("event", "none"))
+    settle = None if fs.kind == "unsettled" else run.settle_time
+    if settle is None:
+        reasons["settle_time"] = f"the end is not decided: {fs.reason}" if fs.kind == "unsettled" else run.reason
+    ev, a = str(run.attrs.get("event", "none")), run.attrs
     on_stick = stick_spin = stick_critical = None
+    after = f"{a.get('event_tilt', math.nan):.4g} degrees after {a.get('event_time', math.nan) / w:.3g} s"
     if ev == "stick_contact":
-        on_stick, stick_spin, stick_critical = stick_answer(top, abs(run.attrs["event_spin"]) * w, nd["alpha_v"])
-    if ev != "none":  # the run stopped where the model stops holding: its end is not the prediction's
+        # a top that reaches its stick spinning faster than the critical spin of the top on its stick
+        # (stability.critical_spin of Top.on_stick, upright) spins on, else falls back; the spin about
+        # the axis is a body quantity (on the stick's sphere, axis -k, the same number reversed)
+        stick_spin = abs(a["event_spin"]) * w
+        stick_critical = float(critical_spin(top.on_stick(), "sliding", "upright", alpha_v=nd["alpha_v"]).spin)
+        on_stick = "spins" if stick_spin > stick_critical else "falls_back"
+        how = "spins on its stick" if on_stick == "spins" else "falls back"
+        side = "above" if on_stick == "spins" else "below"
         reasons["end"] = (
-            f"the motion reaches its stick at {run.attrs['event_tilt']:.4g} degrees after "
-            f"{run.attrs['event_time'] / w:.3g} s, then "
-            + (
-                f"spins on its stick (spin {stick_spin:.4g} rad/s about its axis, above the stick's "
-                f"critical spin {stick_critical:.4g} rad/s)"
-                if on_stick == "spins"
-                else f"falls back (spin {stick_spin:.4g} rad/s about its axis, below the stick's critical "
-                f"spin {stick_critical:.4g} rad/s)"
-            )
-            if ev == "stick_contact"
-            else f"the sphere leaves the floor (normal force zero) at {run.attrs['event_tilt']:.4g} "
-            f"degrees after {run.attrs['event_time'] / w:.3g} s: the sliding model no longer holds"
+            f"the motion reaches its stick at {after}, then {how} (spin {stick_spin:.4g} rad/s about its axis, "
+            f"{side} the stick's critical spin {stick_critical:.4g} rad/s)"
+        )
+    elif ev != "none":  # the run stopped where the model stops holding: its end is not the prediction's
+        reasons["end"] = (
+            f"the sphere leaves the floor (normal force zero) at {after}: the sliding model no longer holds"
         )
     return Launch(
         spin=w,
@@ -330,13 +283,13 @@ def launch(
         method=fs.method,
         flip_time=None if run.crossing_time is None else run.crossing_time / w,
         settle_time=None if settle is None else settle / w,
-        min_normal_force=run.min_normal_force * force_unit,
+        min_normal_force=run.min_normal_force * (top.inertia_centre * w * w / top.radius),
         min_normal_force_nd=run.min_normal_force,
         parameters={k: params[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v", "alpha_k") if k in params},
         alpha_v_source=source,
-        event=str(ev),
-        event_time=float(run.attrs["event_time"]) / w if ev != "none" else None,
-        event_tilt=float(run.attrs["event_tilt"]) if ev != "none" else None,
+        event=ev,
+        event_time=float(a["event_time"]) / w if ev != "none" else None,
+        event_tilt=float(a["event_tilt"]) if ev != "none" else None,
         on_stick=on_stick,
         stick_spin=stick_spin,
         stick_critical_spin=stick_critical,

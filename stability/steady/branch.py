@@ -66,7 +66,7 @@ from .verdicts import flag_of
 #: the crossover measured by benchmarks/cold_start.py, docs/performance.md)
 BRANCH_COMPILED_FROM = 1000
 
-__all__ = ["KINDS", "SteadyBranchProblem", "branch_points", "points_dataset", "steady_branch"]
+__all__ = ["SteadyBranchProblem", "branch_points", "points_dataset", "steady_branch"]
 
 #: the smallest max_step (a branch is ~pi / max_step points, within the trace's 100000)
 MIN_MAX_STEP = 1e-4
@@ -87,15 +87,14 @@ class SteadyBranchProblem:
         ``q, sigma, fr_inv, alpha_v, mu``.
     p : numpy.ndarray
         The kernels' parameter vector.
-    jellett_max : float
-        Where the branch is cut if it runs to ``J = inf``.
-    jellett_min : float
-        (Degenerate parameters only) the lower cut of the vertical line.
-    model : str
-        The nonlinear model whose right-hand side is used.
+    compiled : bool
+        The compiled residual, or its interpreted execution.
 
     Attributes
     ----------
+    jellett_max, jellett_min : float
+        Where the branch is cut if it runs to ``J = inf``, and (degenerate parameters only) the
+        lower cut of the vertical line; set by :func:`steady_branch`.
     constraint_names : tuple of str
         ``"upright"`` (``theta >= 0``), ``"inverted"`` (``theta <= pi``), ``"jellett_max"``
         (``|J| <= jellett_max``) and, degenerate, ``"jellett_min"``.
@@ -105,33 +104,29 @@ class SteadyBranchProblem:
 
     test_function_names = ("jellett_fold",)
 
-    def __init__(
-        self,
-        params: dict[str, float],
-        p: np.ndarray,
-        jellett_max: float = math.inf,
-        jellett_min: float = 0.0,
-        model: str = "sliding",
-        compiled: bool = True,
-    ):
-        m = get_nonlinear_model(model)
+    def __init__(self, params: dict[str, float], p: np.ndarray, compiled: bool = True):
+        m = get_nonlinear_model("sliding")
         #: the residual's functions: compiled, or their interpreted execution (stability.jit.python)
         self.kernels = kernels if compiled else python(kernels)
-        self.params = dict(params)
-        self.p = p
-        self.q = params["q"]
-        self.code = CODES[m.name]
-        self.n_full = len(m.state)
+        self.params, self.p, self.q = dict(params), p, params["q"]
+        self.code, self.n_full = CODES[m.name], len(m.state)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
         #: the scale of lam^2 on the family, mu fr_inv |q| (the residual is relative to it)
         self.weight = kernels.residual_weight(params["q"], params["fr_inv"], params["mu"], self.degenerate)
-        self.jellett_max = jellett_max
-        self.jellett_min = jellett_min
+        self.jellett_max, self.jellett_min = math.inf, 0.0  # the cuts of J, set by steady_branch
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
         #: the compiled step's arguments that stay (the cuts of J are set after construction)
-        sigma, mu = params["sigma"], params["mu"]
-        self._step_head = (p, self.q, sigma, mu, self.code, self.n_full, self.degenerate, self.weight)
+        self._step_head = (
+            p,
+            self.q,
+            params["sigma"],
+            params["mu"],
+            self.code,
+            self.n_full,
+            self.degenerate,
+            self.weight,
+        )
 
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
@@ -223,13 +218,6 @@ class SteadyBranchProblem:
             return float(th[exact[0]]) if exact.size == 1 and idx.size == 0 else None
         i = int(idx[0])
         return float(brentq(lambda t: self.divided_residual(t, 1.0), th[i], th[i + 1], xtol=1e-16, rtol=8.9e-16))
-
-
-def _kind_of(kind: str, detail: str) -> str:
-    """The branch's kind of a point of the engine's kind (a cut of J is an end)."""
-    if kind == "boundary":
-        return "end" if detail.startswith("jellett") else "branch_point"
-    return {"test": "fold", "branch_point": "branch_point"}.get(kind, "regular")
 
 
 def branch_points(*, q: Any, sigma: Any, fr_inv: Any, alpha_v: Any = 0.5, mu: Any = DEFAULT_MU) -> dict[str, float]:
@@ -334,24 +322,20 @@ def steady_branch(
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
         ell0 = math.log(math.sqrt(jmax * prob.jellett_min) / j_unit)
-        halves = [trace(prob, [theta0, ell0], options, tangent0=[0.0, d], project_start=True) for d in (-1, 1)]
-        ends = [half.end_reasons[0] for half in halves]
-        lo, hi = halves
+        lo, hi = branches = [
+            trace(prob, [theta0, ell0], options, tangent0=[0.0, d], project_start=True) for d in (-1, 1)
+        ]
         pts = np.concatenate([lo.points[::-1], hi.points[1:]])
-        kinds = [_kind_of(k, d) for k, d in zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:])]
-        details = lo.details[::-1] + hi.details[1:]
-        kinds = ["regular" if k == "branch_point" and d == "" else k for k, d in zip(kinds, details)]
-        work = (lo.n_newton + hi.n_newton, lo.n_residual + hi.n_residual, lo.n_jacobian + hi.n_jacobian)
+        raw = list(zip(lo.kinds[::-1] + hi.kinds[1:], lo.details[::-1] + hi.details[1:]))
+        ends = [half.end_reasons[0] for half in branches]
         start = "vertical line (fr_inv = 0 or q = 0)"
     else:
-        start = "upright"
-        lam_b = prob.branch_point("upright")
-        theta_b, t0 = 0.0, [1.0, 0.0]
+        lam_b = prob.branch_point(start := "upright")
         if lam_b is None:
-            start, theta_b, t0 = "inverted", math.pi, [-1.0, 0.0]
-            lam_b = prob.branch_point("inverted")
+            lam_b = prob.branch_point(start := "inverted")
         if lam_b is None:
             return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
+        theta_b, t0 = (0.0, 1.0) if start == "upright" else (math.pi, -1.0)
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
         if jmax is not None and not jmax > j_b:
             raise DomainError(
@@ -359,25 +343,26 @@ def steady_branch(
                 f"the Jellett integral at the {start} branch point where the family starts"
             )
         prob.jellett_max = 10.0 * j_b if jmax is None else jmax
-        br = trace(prob, [theta_b, math.log(lam_b)], options, tangent0=t0, project_start=False)
-        pts = br.points.copy()
-        kinds = [_kind_of(k, d) for k, d in zip(br.kinds, br.details)]
-        details = list(br.details)
-        kinds[0], details[0] = "branch_point", f"{start} spin"
-        ends = br.end_reasons
-        work = (br.n_newton, br.n_residual, br.n_jacobian)
-    for i, (k, d) in enumerate(zip(kinds, details)):
-        if k == "branch_point" and d in ("upright", "inverted"):
-            pts[i, 0] = 0.0 if d == "upright" else math.pi  # on the bound (within rounding of it)
-            details[i] = f"{d} spin"
-        elif k == "fold" and abs(math.sin(pts[i, 0])) < 1e-6:
+        branches = [trace(prob, [theta_b, math.log(lam_b)], options, tangent0=[t0, 0.0], project_start=False)]
+        pts = branches[0].points.copy()
+        raw = [("branch_point", f"{start} spin")] + list(zip(branches[0].kinds[1:], branches[0].details[1:]))
+        ends = branches[0].end_reasons
+    kinds, details = [], []
+    for i, (k, d) in enumerate(raw):  # the engine's kinds of points (module docstring) in the branch's words
+        if k == "boundary" and d.startswith("jellett"):
+            k, d = "end", f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
+        elif k == "boundary":  # a vertical state: the branch point, on the bound (within rounding of it)
+            k, d, pts[i, 0] = "branch_point", f"{d} spin", 0.0 if d == "upright" else math.pi
+        elif k == "test" and abs(math.sin(pts[i, 0])) < 1e-6:
             # dJ/ds vanishes at the branch point itself (J is even in the tilt about a vertical
             # state: the vertex of the pitchfork); rounding there is no fold
-            kinds[i], details[i] = "regular", ""
-        elif k == "fold":
-            details[i] = "fold in J (dJ/ds = 0)"
-        elif k == "end":
-            details[i] = f"|J| = {prob.jellett_max if d == 'jellett_max' else prob.jellett_min:.6g} (cut)"
+            k, d = "regular", ""
+        elif k == "test":
+            k, d = "fold", "fold in J (dJ/ds = 0)"
+        elif k != "branch_point" or (d == "" and prob.degenerate):
+            k = "regular"
+        kinds.append(k)
+        details.append(d)
     for k, end in ((0, ends[0]), (-1, ends[-1])) if len(ends) == 2 else ((-1, ends[-1]),):
         if end != "boundary" and kinds[k] == "regular":
             kinds[k], details[k] = "end", f"continuation stopped: {end.replace('_', ' ')}"
@@ -399,7 +384,8 @@ def steady_branch(
             + (f": {'; '.join(why)}. stability.steady_states (closed forms) answers at any J there" if why else "")
         )
     attrs.update(start=start, ends=", ".join(ends), jellett_max=prob.jellett_max)
-    attrs.update(n_newton=work[0], n_residual=work[1], n_jacobian=work[2], degenerate=int(prob.degenerate))
+    attrs.update({n: sum(getattr(b, n) for b in branches) for n in ("n_newton", "n_residual", "n_jacobian")})
+    attrs["degenerate"] = int(prob.degenerate)
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
@@ -428,9 +414,7 @@ def points_dataset(
         for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
             y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
         spins = family.omega_vertical(c, lam, q)
-        ev, growth, bound, n_neutral, jac = state_modes(
-            y, lam, vertical, c, spins, prob.p, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
-        )
+        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, pr)
         J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
         axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
         for i in range(n):
@@ -445,20 +429,12 @@ def points_dataset(
     values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
     values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
     note = "at a branch point: spin / (1 + q cos(tilt))"
+    kind_attrs = {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"}
+    equivalent = "spin of the upright state with the same J, J / (sigma (1 + q))"
     data = {
         **state_variables("point", values, "branch points", precession_rate=note),
-        "upright_equivalent_spin": variable(
-            "point",
-            J / j_upright,
-            "spin of the upright state with the same J, J / (sigma (1 + q))",
-            "Omega",
-            short="upright-equiv. spin",
-        ),
-        "kind": (
-            "point",
-            np.array(kinds, dtype=str),
-            {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"},
-        ),
+        "upright_equivalent_spin": variable("point", J / j_upright, equivalent, "Omega", short="upright-equiv. spin"),
+        "kind": ("point", np.array(kinds, dtype=str), kind_attrs),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     index = {"long_name": "point", "comment": "index along the branch"}

@@ -37,22 +37,14 @@ from ..resources import check_class_atlas
 from . import family
 from .products import DEGREE, product_attrs, var_attrs
 
-__all__ = ["CLASSES", "CLASS_CODES", "OUTSIDE", "class_atlas", "class_boundaries", "class_codes", "top_class"]
+__all__ = ["CLASSES", "class_atlas", "class_boundaries", "class_codes", "top_class"]
 
-#: class names by code
+#: class names by code (-1: outside the physical domain)
 CLASSES: tuple[str, ...] = ("never_inverts", "inverts", "hangs")
-#: name -> code; -1 outside the physical domain
-CLASS_CODES: dict[str, int] = {name: i for i, name in enumerate(CLASSES)}
 OUTSIDE = -1
 _NAMES = np.array(CLASSES + ("outside_domain",))
-#: the row of the physical domain's table that bounds sigma from above, sigma <= 2 A_G
+#: the row of the physical domain's table that bounds sigma from above, sigma <= 2 A_G (its one home)
 _SIGMA_TOP = next(i for i, b in enumerate(DOMAIN) if b.parameter == "sigma" and "q" in b.involves)
-
-
-def _sigma_domain(q: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """The top of the physical domain in ``sigma`` at ``(q, mu)``: the upper side of the bound
-    ``sigma <= 2 (1 - mu q^2)`` of :data:`stability.parameters.DOMAIN` (its one home)."""
-    return domain_sides(q, 0.0, 0.0, 0.0, mu, 0.0)[2 * _SIGMA_TOP + 1]
 
 
 def class_codes(q: np.ndarray, sigma: np.ndarray, mu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -99,8 +91,7 @@ def top_class(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bool
     """
     p, inside = check_domain(q=q, sigma=sigma, mu=mu, mask=check_flag("mask_unphysical", mask_unphysical))
     code, _ = class_codes(p["q"], p["sigma"], p["mu"])
-    code = np.where(inside, code, len(CLASSES))
-    out = _NAMES[code]
+    out = _NAMES[np.where(inside, code, len(CLASSES))]
     return str(out) if out.ndim == 0 else out
 
 
@@ -119,7 +110,7 @@ def class_boundaries(q: Any, mu: Any = DEFAULT_MU) -> dict[str, np.ndarray]:
     return {
         "never_inverts": family.sigma_of_c0(1.0, q, mu),
         "hangs": np.where(q < 0, family.sigma_of_c0(-1.0, q, mu), np.nan),
-        "domain": _sigma_domain(q, mu),
+        "domain": domain_sides(q, 0.0, 0.0, 0.0, mu, 0.0)[2 * _SIGMA_TOP + 1],
     }
 
 
@@ -141,12 +132,10 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
         ``q`` (and ``mu``), the closed-form boundaries ``sigma_never_inverts = A_G / (1 + q)``,
         ``sigma_hangs = A_G / (1 - q)`` (``q < 0``) and ``sigma_domain = 2 A_G``.
     """
-    values = {}
-    for name, v in (("q", q), ("sigma", sigma), ("mu", mu)):
-        arr = as_parameter(name, v)
+    values = {name: as_parameter(name, v) for name, v in (("q", q), ("sigma", sigma), ("mu", mu))}
+    for name, arr in values.items():
         if arr.ndim > 1:
             raise ParameterTypeError(f"{name} must be a number or a 1-D array here, got shape {arr.shape}")
-        values[name] = arr
     dims = [k for k, v in values.items() if v.ndim == 1]
     check_class_atlas(int(np.prod([values[d].size for d in dims], dtype=np.int64)))
     grids = np.meshgrid(*(values[d] for d in dims), indexing="ij") if dims else []
@@ -155,31 +144,20 @@ def class_atlas(*, q: Any, sigma: Any, mu: Any = DEFAULT_MU, mask_unphysical: bo
     code, tilt = class_codes(p["q"], p["sigma"], p["mu"])
     code = np.where(inside, code, OUTSIDE).astype(np.int8)
     tilt = np.where(inside, tilt, np.nan)
-    coords: dict[str, Any] = {}
-    for k, v in values.items():
-        attrs = parameter_attrs(k)
-        coords[k] = (k, v, attrs) if v.ndim == 1 else ((), float(v), attrs)
+    coords = {
+        k: (k, v, parameter_attrs(k)) if v.ndim == 1 else ((), float(v), parameter_attrs(k)) for k, v in values.items()
+    }
+    comment = (
+        "high-spin class of the top (launched near upright with a large spin); never_inverts: sigma (1 + q) > A_G; "
+        "inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: otherwise (ties: the class of every large finite spin)"
+    )
+    flags = dict(
+        flag_values=np.array([OUTSIDE, 0, 1, 2], dtype=np.int8), flag_meanings="outside_domain " + " ".join(CLASSES)
+    )
+    high = "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))"
     data: dict[str, Any] = {
-        "top_class": (
-            tuple(dims),
-            code,
-            {
-                "long_name": "high-spin class",
-                "flag_values": np.array([OUTSIDE, 0, 1, 2], dtype=np.int8),
-                "flag_meanings": "outside_domain " + " ".join(CLASSES),
-                "comment": "high-spin class of the top (launched near upright with a large spin); never_inverts: sigma (1 + q) > A_G; inverts: sigma (1 + q) < A_G < sigma (1 - q); hangs: "
-                "otherwise (ties: the class of every large finite spin)",
-            },
-        ),
-        "high_spin_tilt": (
-            tuple(dims),
-            tilt,
-            var_attrs(
-                "end tilt of an upright launch at high spin: 0, 180 or arccos(sigma q / (A_G - sigma))",
-                DEGREE,
-                short="high-spin end tilt",
-            ),
-        ),
+        "top_class": (tuple(dims), code, {"long_name": "high-spin class", **flags, "comment": comment}),
+        "high_spin_tilt": (tuple(dims), tilt, var_attrs(high, DEGREE, short="high-spin end tilt")),
     }
     bdims = tuple(d for d in dims if d in ("q", "mu"))
     if bdims:

@@ -30,7 +30,7 @@ from ..errors import DomainError, RunError
 from ..nonlinear.stickslip import stick_slip
 from . import family
 
-__all__ = ["ROLLING_BAND_POINTS", "ROLLING_BAND_SLACK", "coulomb_end", "rolling_band"]
+__all__ = ["coulomb_end", "rolling_band"]
 
 #: points of the grid in cos(tilt) on which the rolling band is bracketed before refinement
 ROLLING_BAND_POINTS = 2001
@@ -82,8 +82,8 @@ def rolling_band(
                 end = lo
                 break
             lo = c
-        ends.append(end)
-    return math.degrees(math.acos(max(-1.0, min(1.0, ends[0])))), math.degrees(math.acos(max(-1.0, min(1.0, ends[1]))))
+        ends.append(math.degrees(math.acos(max(-1.0, min(1.0, end)))))
+    return ends[0], ends[1]
 
 
 def coulomb_end(
@@ -116,43 +116,26 @@ def coulomb_end(
         None if it does not end rolling.
     """
     t0 = time.perf_counter()
-    q, sigma, fr_inv, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "mu"))
     start = dict(omega=y[0:3], k=y[3:6], velocity=y[6:8], alpha_k=alpha_k, alpha_s=alpha_s)
     ds = stick_slip(t_end=t_max, **start, **params, rtol=rtol, atol=1e-3 * rtol, dt=max(0.1, t_max / 20_000))
-    j = ds.h_cg.values
-    e0 = float(ds.energy[0])
-    tilt0 = float(ds.polar_angle[0])
-    kinds = ds.switch_kind.values
-    n_sw = int(ds.attrs["n_switches"])
-    last_stick = np.flatnonzero(kinds == "stick")
-    phase_end = ds.attrs["final_phase"]
-    run = dict(
-        t_end=float(ds.time[-1]),
-        settled=phase_end == "stick" and ds.attrs["event"] == "none",
-        tilt_change=math.nan,
-        slip_speed=0.0 if phase_end == "stick" else float(ds.slip_speed[-1]),
-        chunks=1,
-        seconds=time.perf_counter() - t0,
-        jellett_drift=abs(float(j[-1]) - float(j[0])) / max(abs(float(j[0])), 1e-300),
-        axial_spin=float(ds.spin[-1]),
-        event=ds.attrs["event"],
-        event_time=ds.attrs["event_time"],
+    j, a = ds.h_cg.values, ds.attrs
+    last_stick = np.flatnonzero(ds.switch_kind.values == "stick")
+    sticks = a["final_phase"] == "stick"
+    run = dict(t_end=float(ds.time[-1]), settled=sticks and a["event"] == "none", tilt_change=math.nan)
+    run.update(slip_speed=0.0 if sticks else float(ds.slip_speed[-1]), chunks=1, seconds=time.perf_counter() - t0)
+    run.update(jellett_drift=abs(float(j[-1]) - float(j[0])) / max(abs(float(j[0])), 1e-300))
+    run.update(axial_spin=float(ds.spin[-1]), event=a["event"], event_time=a["event_time"])
+    switches = (
+        f"static limit alpha_s = {float(a['alpha_s']):.6g}; {int(a['n_switches'])} stick/slip switches "
+        f"(hybrid run to t = {run['t_end']:.6g})"
     )
-    par = dict(params, alpha_k=float(ds.attrs["alpha_k"]))
-    switches = f"static limit alpha_s = {float(ds.attrs['alpha_s']):.6g}; {n_sw} stick/slip switches (hybrid run to t = {run['t_end']:.6g})"
     jel = float(j[-1])
     common = dict(
-        method="simulation",
-        jellett=float(j[0]),
-        initial_energy=e0,
-        precession_rate=math.nan,
-        axial_spin=run["axial_spin"],
-        state=None,
-        parameters=par,
-        initial_tilt=tilt0,
-        contact="lost" if run["event"] == "contact_lost" else "held",  # the hybrid run watched N
+        method="simulation", jellett=float(j[0]), initial_energy=float(ds.energy[0]), precession_rate=math.nan
     )
-    if run["event"] != "none" or phase_end != "stick":  # no rolling end: the run's last sample
+    common.update(axial_spin=run["axial_spin"], state=None, parameters=dict(params, alpha_k=float(a["alpha_k"])))
+    common.update(initial_tilt=float(ds.polar_angle[0]), contact="lost" if run["event"] == "contact_lost" else "held")
+    if run["event"] != "none" or not sticks:  # no rolling end: the run's last sample
         kind, end, event = "unsettled", f"still slipping at t_max = {t_max:g}", {}
         if run["event"] != "none":
             kind, event = run["event"], dict(event=run["event"], event_time=run["event_time"])
@@ -164,7 +147,7 @@ def coulomb_end(
     i_stick = int(np.searchsorted(ds.time.values, t_stick, side="right"))  # the first rolling sample
     e_s = float(np.mean(ds.energy.values[i_stick:]))  # constant while rolling (to the run's tolerance)
     tilt_s = float(ds.switch_tilt.values[last_stick[-1]]) if last_stick.size else float(ds.polar_angle[0])
-    lo, hi = rolling_band(tilt_s, e_s, jel, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    lo, hi = rolling_band(tilt_s, e_s, jel, **{k: params[k] for k in ("q", "sigma", "fr_inv", "mu")})
     seen = ds.polar_angle.values[i_stick:]
     need = float(np.max(ds.friction_magnitude.values[i_stick:] / ds.friction_limit.values[i_stick:]))
     if not math.isfinite(need):  # N > 0 while sticking (the run's event), so the limit is positive
@@ -179,6 +162,5 @@ def coulomb_end(
         f"the rolling band [{lo:.6g}, {hi:.6g}] deg where U_J <= E (seen: [{seen.min():.6g}, {seen.max():.6g}] deg "
         f"up to t_max = {t_max:g}); the friction rolling needs peaks at {need:.3g} of the static limit"
     )
-    fields = dict(tilt=tilt_s, kind="rolling", energy=e_s, reason=reason, **common)
     run["tilt_change"] = float(np.ptp(seen))
-    return fields, run, (jel, e_s)
+    return dict(tilt=tilt_s, kind="rolling", energy=e_s, reason=reason, **common), run, (jel, e_s)

@@ -27,8 +27,8 @@ import numpy as np
 import xarray as xr
 
 from ..errors import InputError
-from ..products import FLAG_MEANINGS, FLAG_VALUES
 from ..top import SPIN_UNITS, Top
+from .products import FLAGS
 
 __all__ = ["REFERENCE_RPM", "bifurcation_diagram"]
 
@@ -141,20 +141,10 @@ def bifurcation_diagram(
         ds = steady_states(q=q, sigma=sigma, fr_inv=fr_ref, alpha_v=alpha_v, mu=mu, jellett=s * j_per_unit)
         for kind in flags:
             flags[kind].append(int(ds.stability.values[ds.kind.values == kind][0]))
-    flag_attrs = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
-    vertical = xr.Dataset(
-        {
-            f"stability_{k}": (
-                "level",
-                np.array(v, dtype=np.int8),
-                {"long_name": f"stability of the {k} spin", **flag_attrs},
-            )
-            for k, v in flags.items()
-        },
-        coords={"spin": ("level", spins, spin_attrs)},
-    )
+    flag = {k: {"long_name": f"stability of the {k} spin", **FLAGS} for k in flags}
+    data = {f"stability_{k}": ("level", np.array(v, dtype=np.int8), flag[k]) for k, v in flags.items()}
+    vertical = xr.Dataset(data, coords={"spin": ("level", spins, spin_attrs)})
     rows = []
-    stick_times: list[float] = []
     th = math.radians(tilt)
     launches = []  # (launch spin, parameters, start, the paper's run)
     for r in runs:
@@ -173,69 +163,43 @@ def bifurcation_diagram(
         chunk = chunk_length(pred.candidates, params, pred.jellett) if paper or pred.method == "jellett" else 5000.0
         end, _, run = settle(initial_state("sliding", **start), params, chunk=chunk, **settling)
         jel = abs(pred.jellett) if paper else pred.jellett
-        rows.append(
-            (r, jel / upright_jellett(q=q, sigma=sigma) * r, pred.tilt, end, run.t_end, int(run.settled), paper)
-        )
-        stick_times.append(run.event_time if run.event == "stick_contact" else math.nan)
-    arr = np.array(rows, dtype=float).reshape(-1, 7)
-    runs_ds = xr.Dataset(
-        {
-            "launch_spin": ("run", arr[:, 0], {"long_name": "launch spin", "units": unit}),
-            "spin": ("run", arr[:, 1], {"long_name": "equivalent upright spin of the launch's J", "units": unit}),
-            "predicted_tilt": (
-                "run",
-                arr[:, 2],
-                {"long_name": "final tilt predicted by Jellett's integral", "units": "degree"},
-            ),
-            "end_tilt": ("run", arr[:, 3], {"long_name": "tilt at the end of the nonlinear run", "units": "degree"}),
-            "t_end": ("run", arr[:, 4], {"long_name": "length of the run", "units": "1"}),
-            "settled": (
-                "run",
-                arr[:, 5].astype(np.int8),
-                {"long_name": "the run settled (tilt moved < 1e-3 deg per chunk)"},
-            ),
-            "paper_run": (
-                "run",
-                arr[:, 6].astype(np.int8),
-                {"long_name": "the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)"},
-            ),
-        },
-        coords={"run": ("run", np.arange(len(rows)))},
-    )
-    attrs = {
-        "Conventions": "CF-1.10",
-        "spin_unit": unit,
-        "reference_spin": ref,
-        "radius_m": top.radius,
-        "mass_kg": top.mass,
-        "q": q,
-        "sigma": sigma,
-        "mu": mu,
-        "alpha_v": alpha_v,
-        "initial_tilt_deg": float(tilt),
+        stick_time = run.event_time if run.event == "stick_contact" else math.nan
+        spin = jel / upright_jellett(q=q, sigma=sigma) * r
+        rows.append((r, spin, pred.tilt, end, run.t_end, int(run.settled), paper, stick_time))
+    arr = np.array(rows, dtype=float).reshape(-1, 8)
+    columns = {  # name: long_name, units (None: none), dtype
+        "launch_spin": ("launch spin", unit, None),
+        "spin": ("equivalent upright spin of the launch's J", unit, None),
+        "predicted_tilt": ("final tilt predicted by Jellett's integral", "degree", None),
+        "end_tilt": ("tilt at the end of the nonlinear run", "degree", None),
+        "t_end": ("length of the run", "1", None),
+        "settled": ("the run settled (tilt moved < 1e-3 deg per chunk)", None, np.int8),
+        "paper_run": ("the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)", None, np.int8),
     }
+    attrs_of = {name: {"long_name": long} | ({"units": u} if u else {}) for name, (long, u, _) in columns.items()}
+    data = {
+        name: ("run", arr[:, i].astype(dt or float), attrs_of[name])
+        for i, (name, (_, _, dt)) in enumerate(columns.items())
+    }
+    runs_ds = xr.Dataset(data, coords={"run": ("run", np.arange(len(rows)))})
+    place = dict(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)
+    attrs = {"Conventions": "CF-1.10", **place, "q": q, "sigma": sigma, "mu": mu, "alpha_v": alpha_v}
+    attrs["initial_tilt_deg"] = float(tilt)
     if stick_tilt is not None:
         attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
         branch.attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
-        branch["beyond_stick"] = (
-            "point",
-            (branch.tilt.values >= stick_tilt).astype(np.int8),
-            {"long_name": "the state's tilt is at or beyond the stick's: a state the toy cannot have"},
-        )
-        times = np.array(stick_times, dtype=float)
+        beyond = "the state's tilt is at or beyond the stick's: a state the toy cannot have"
+        branch["beyond_stick"] = ("point", (branch.tilt.values >= stick_tilt).astype(np.int8), {"long_name": beyond})
         runs_ds["reaches_stick"] = (
             "run",
-            np.isfinite(times).astype(np.int8),
+            np.isfinite(arr[:, 7]).astype(np.int8),
             {"long_name": "the run reaches the stick"},
         )
-        runs_ds["stick_time"] = (
-            "run",
-            times,
-            {"long_name": "time at which the run reaches the stick", "units": "1/Omega of the launch spin"},
-        )
+        when = {"long_name": "time at which the run reaches the stick", "units": "1/Omega of the launch spin"}
+        runs_ds["stick_time"] = ("run", arr[:, 7], when)
     for ds in (vertical, runs_ds):
         ds.attrs.update(attrs)
-    branch.attrs.update(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)
+    branch.attrs.update(place)
     for name in ("kind", "detail"):
         branch[name] = branch[name].astype(str)
     return {"branch": branch, "vertical": vertical, "runs": runs_ds}

@@ -27,7 +27,7 @@ which are the critical points of ``U_J`` on ``(-1, 1)`` plus the two ends (S6-S7
 
 * the tilted states of a level ``J``: roots of the quartic
   ``Q(c) = mu fr_inv q D(c)^2 - J^2 P(c)`` where ``q P(c) > 0`` (:func:`tilted_roots`,
-  :func:`tilted_cosines`);
+  :func:`level_states`);
 * the family against ``J``: ``J(c)^2 = mu fr_inv q D(c)^2 / P(c)``; it runs to ``J = inf``
   at ``c0 = sigma q / (A_G - sigma)`` (the root of ``P``) and meets the vertical states at
   the branch points ``J_up``, ``J_inv`` (:func:`branch_point_jellett`), which are eq. (11)'s
@@ -57,39 +57,6 @@ from stability.jit import njit, register_jitable
 
 from ..execution import pick
 from ..models.inertia import inertia_g, transverse_inertia_g
-
-__all__ = [
-    "LEVEL_COLUMNS",
-    "ORIENTATIONS",
-    "a_g",
-    "axial_spin",
-    "branch_point_jellett",
-    "c0",
-    "c0_point",
-    "d_of_c",
-    "degenerate_cosine",
-    "detuning",
-    "effective_potential",
-    "energy_test",
-    "energy_test_at",
-    "equivalent_point",
-    "fold_cosines",
-    "jellett_of_c",
-    "level_quartic",
-    "level_states",
-    "omega_vertical",
-    "p_of_c",
-    "precession_rate",
-    "sigma_of_c0",
-    "state_core",
-    "state_vector",
-    "tilted_cosines",
-    "tilted_roots",
-    "upright_jellett",
-    "vertical_jellett",
-    "vertical_spin",
-    "vertical_state",
-]
 
 #: the two vertical states: name -> cos(theta)
 ORIENTATIONS: dict[str, float] = {"upright": 1.0, "inverted": -1.0}
@@ -157,15 +124,6 @@ def sigma_of_c0(c: Any, q: Any, mu: Any) -> Any:
     At ``c = 1``, ``A_G / (1 + q)``; at ``c = -1``, ``A_G / (1 - q)``: the boundaries of the
     high-spin classes (:func:`stability.steady.classes.class_boundaries`)."""
     return a_g(q, mu) * c / (c + q)
-
-
-@register_jitable
-def degenerate_cosine(q, sigma, mu):
-    """The one tilted cosine of every level when ``fr_inv = 0`` or ``q = 0`` (sec. 3): ``c0``
-    (``0`` for ``q = 0``); NaN when undefined (``q = 0``, ``sigma = A_G``: every tilt is steady)."""
-    if detuning(q, sigma, mu) == 0.0:
-        return math.nan
-    return c0_point(q, sigma, mu)
 
 
 def precession_rate(c: Any, *, q: Any, sigma: Any, fr_inv: Any, mu: Any, sign: float = 1.0) -> Any:
@@ -326,14 +284,14 @@ def tilted_roots(jellett, q, sigma, fr_inv, mu, out):
     ``[-1, 1]`` is cut at ``c0`` and at the folds (:func:`fold_cosines`); on each piece where
     ``q P > 0`` the function ``J^2(c)`` is monotone, so ``Q`` changes sign at most once there,
     and a safeguarded Newton step on the bracket finds the root to the last bit (``Q`` has no
-    pole). ``fr_inv = 0`` or ``q = 0``: the single cosine of :func:`degenerate_cosine` at every
-    ``J != 0``. A level exactly at a fold (a double root) is found only if rounding gives a
+    pole). ``fr_inv = 0`` or ``q = 0``: the single cosine ``c0`` (sec. 3; ``0`` for ``q = 0``) at
+    every ``J != 0``. A level exactly at a fold (a double root) is found only if rounding gives a
     sign change: the state is then marginal (:func:`energy_test`).
     """
     if jellett == 0.0:
         return 0
     if fr_inv == 0.0 or q == 0.0:
-        cc = degenerate_cosine(q, sigma, mu)
+        cc = c0_point(q, sigma, mu)  # c0 (0 for q = 0); NaN or inf at sigma = A_G (no tilt or every tilt)
         if -1.0 < cc < 1.0:
             out[0] = cc
             return 1
@@ -398,16 +356,12 @@ def energy_test(
     return energy_test_at(ORIENTATIONS[kind] if vertical else c, vertical, jellett, q, sigma, fr_inv, mu)
 
 
-#: the columns of :func:`level_states`
-LEVEL_COLUMNS = ("cos_tilt", "energy", "energy_test", "energy_scale", "precession_rate", "axial_spin")
-
-
 @njit(cache=True)
 def level_states(jellett, q, sigma, fr_inv, mu):
     """Every steady state of the Jellett level ``J``, in one compiled call.
 
     Rows: the upright state, each tilted state (:func:`tilted_roots`, increasing tilt), the
-    inverted state. Columns (:data:`LEVEL_COLUMNS`): ``c``, its energy ``U_J(c)``
+    inverted state. Columns: ``c``, its energy ``U_J(c)``
     (:func:`effective_potential`), the energy criterion and its scale (:func:`energy_test_at`),
     the precession rate ``J / D(c)`` (NaN for the vertical states) and the axial spin
     ``omega . k`` (vertical: ``c n``, ``n = J / (sigma (1 + q c))``).
@@ -434,20 +388,9 @@ def level_states(jellett, q, sigma, fr_inv, mu):
         else:
             lam = jellett / d_of_c(c, q, sigma, mu)
             axial = axial_spin(c, lam, q)
-        out[i, 0] = c
-        out[i, 1] = effective_potential(c, jellett, q, sigma, fr_inv, mu)
-        out[i, 2] = test
-        out[i, 3] = scale
-        out[i, 4] = lam
-        out[i, 5] = axial
+        u = effective_potential(c, jellett, q, sigma, fr_inv, mu)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4], out[i, 5] = c, u, test, scale, lam, axial
     return out
-
-
-def tilted_cosines(jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float) -> list[float]:
-    """Cosines of every tilted steady state (``-1 < c < 1``) on the Jellett level ``J``,
-    decreasing (increasing tilt): :func:`tilted_roots`, through :func:`level_states`."""
-    rows = pick(level_states, 1)(float(jellett), float(q), float(sigma), float(fr_inv), float(mu))
-    return rows[1:-1, 0].tolist()
 
 
 @njit(cache=True)
@@ -459,20 +402,10 @@ def state_core(theta, lam, q, phi, y):
     ``theta`` may be complex (complex-step derivatives); ``y`` real or complex of length >= 8.
     """
     s = np.sin(theta)
-    k0 = s * np.cos(phi)
-    k1 = s * np.sin(phi)
-    k2 = np.cos(theta)
-    w0 = lam * q * k0
-    w1 = lam * q * k1
-    w2 = lam * (1.0 + q * k2)
-    y[0] = w0
-    y[1] = w1
-    y[2] = w2
-    y[3] = k0
-    y[4] = k1
-    y[5] = k2
-    y[6] = w1  # (omega x K)_1 = omega_2
-    y[7] = -w0  # (omega x K)_2 = -omega_1
+    k0, k1, k2 = s * np.cos(phi), s * np.sin(phi), np.cos(theta)
+    w0, w1, w2 = lam * q * k0, lam * q * k1, lam * (1.0 + q * k2)
+    # V0 = omega x K: (omega x K)_1 = omega_2, (omega x K)_2 = -omega_1
+    y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7] = w0, w1, w2, k0, k1, k2, w1, -w0
 
 
 def state_vector(theta: Any, lam: Any, q: float, phi: Any = 0.0) -> np.ndarray:

@@ -37,26 +37,18 @@ import xarray as xr
 
 from ..errors import DomainError, InputError
 from ..execution import announce, pick
+from ..nonlinear import get_nonlinear_model
 from ..nonlinear.integrators import check_tolerances
+from ..nonlinear.parameters import pack
 from ..nonlinear.runs import auto_method, initial_state, simulate
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
+from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
-from .linearisation import state_modes
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
-from .states import point_integrals
-from .verdicts import STABLE, UNSTABLE, flag_of
+from .states import level_modes, point_integrals
+from .verdicts import flag_of
 
-__all__ = [
-    "MATCH_DEG",
-    "Candidate",
-    "FinalState",
-    "SettleRun",
-    "candidates",
-    "chunk_length",
-    "final_state",
-    "predict",
-    "settle",
-]
+__all__ = ["Candidate", "FinalState", "SettleRun", "candidates", "chunk_length", "final_state", "predict", "settle"]
 
 #: a run's end tilt within this of a steady state (degrees) is that state
 MATCH_DEG = 0.05
@@ -99,11 +91,6 @@ class Candidate(NamedTuple):
     stability: int
     energy_test: float
     reachable: bool
-
-    @property
-    def cos_tilt(self) -> float:
-        """``c = k . K``."""
-        return -1.0 if self.kind == "inverted" else 1.0 if self.kind == "upright" else math.cos(math.radians(self.tilt))
 
 
 @dataclass(frozen=True)
@@ -215,11 +202,6 @@ class FinalState:
         :func:`stability.plotting.plot_final_state`); ``kind``, ``method``, ``reason`` and the
         run's numbers as attributes."""
         cands = self.candidates
-        n = len(cands)
-        index = "index of the steady state"
-
-        def scalar(value: float, long_name: str, units: str, short: str | None = None) -> tuple:
-            return ((), value, var_attrs(long_name, units, short=short))
 
         def column(values: list, attrs: dict[str, Any], dtype: Any = None) -> tuple:
             return ("candidate", np.array(values, dtype=dtype), attrs)
@@ -228,64 +210,44 @@ class FinalState:
             flags = {"flag_values": np.array([0, 1], np.int8), "flag_meanings": meanings}
             return {"long_name": long_name, **extra, **flags}
 
-        tilt_long = "final polar angle of the axis from the upward vertical"
-        jellett_long = "Jellett's integral J = (K + q k) . I_G omega of the motion"
-        data = {
-            "tilt": scalar(self.tilt, tilt_long, DEGREE, "final tilt"),
-            "initial_tilt": scalar(self.initial_tilt, "initial polar angle of the axis", DEGREE, "initial tilt"),
-            "jellett": scalar(self.jellett, jellett_long, "A0 Omega", "Jellett's J"),
-            "initial_energy": scalar(self.initial_energy, "initial energy", "A0 Omega^2"),
-            "energy": scalar(self.energy, "energy of the final state", "A0 Omega^2", "final energy"),
-            "precession_rate": scalar(
-                self.precession_rate, "precession rate of the final state", "Omega", "precession rate"
-            ),
-            "axial_spin": scalar(
-                self.axial_spin, "spin about the axis of the final state, omega . k", "Omega", "axial spin"
-            ),
+        scalars = {  # name: long_name, units, short name
+            "tilt": ("final polar angle of the axis from the upward vertical", DEGREE, "final tilt"),
+            "initial_tilt": ("initial polar angle of the axis", DEGREE, "initial tilt"),
+            "jellett": ("Jellett's integral J = (K + q k) . I_G omega of the motion", "A0 Omega", "Jellett's J"),
+            "initial_energy": ("initial energy", "A0 Omega^2", None),
+            "energy": ("energy of the final state", "A0 Omega^2", "final energy"),
+            "precession_rate": ("precession rate of the final state", "Omega", "precession rate"),
+            "axial_spin": ("spin about the axis of the final state, omega . k", "Omega", "axial spin"),
         }
-        columns = {  # candidate_<field>: attributes (and dtype) of the column of the candidates' field
+        data = {k: ((), getattr(self, k), var_attrs(long, u, short=short)) for k, (long, u, short) in scalars.items()}
+        columns = {  # candidate_<field>: long name, units and short name (var_attrs) or attributes; dtype
             "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
-            "tilt": (var_attrs("tilt of the steady state", DEGREE, short="tilt"), None),
-            "energy": (var_attrs("energy U_J of the steady state", "A0 Omega^2", short="energy U_J"), None),
+            "tilt": (("tilt of the steady state", DEGREE, "tilt"), None),
+            "energy": (("energy U_J of the steady state", "A0 Omega^2", "energy U_J"), None),
             "precession_rate": (
-                var_attrs("precession rate of the steady state (NaN: vertical)", "Omega", short="precession rate"),
+                ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
                 None,
             ),
-            "axial_spin": (
-                var_attrs("spin about the axis of the steady state, omega . k", "Omega", short="axial spin"),
-                None,
-            ),
+            "axial_spin": (("spin about the axis of the steady state, omega . k", "Omega", "axial spin"), None),
             "stability": (flag_attrs("stability of the steady state"), np.int8),
-            "energy_test": (var_attrs("energy criterion (> 0 at a minimum of U_J)", short="energy criterion"), None),
+            "energy_test": (("energy criterion (> 0 at a minimum of U_J)", "energy criterion"), None),
             "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
         }
-        for name, (attrs, dtype) in columns.items():
+        for name, (a, dtype) in columns.items():
+            attrs = var_attrs(a[0], *a[1:-1], short=a[-1]) if isinstance(a, tuple) else a  # units default 1
             data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
         final = yes_no("final state", "no yes", comment="the motion ends on this state")
         data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
-        p = self.parameters
-        curve, curve_coords = potential_curve(self.jellett, q=p["q"], sigma=p["sigma"], fr_inv=p["fr_inv"], mu=p["mu"])
-        data.update(curve)
+        curve, curve_coords = potential_curve(self.jellett, self.parameters)
         attrs = product_attrs(
             "final_state", "Final state of a sliding Tippe top", "stability.final_state", self.parameters
         )
-        attrs.update(
-            kind=self.kind,
-            method=self.method,
-            reason=self.reason,
-            model="sliding",
-            event=self.event,
-            event_time=self.event_time,
-            contact=self.contact,
-        )
+        attrs.update({k: getattr(self, k) for k in ("kind", "method", "reason", "event", "event_time", "contact")})
+        attrs["model"] = "sliding"
         if self.run is not None:
-            for name, value in self.run.__dict__.items():
-                attrs[f"run_{name}"] = int(value) if isinstance(value, bool) else value
-        return xr.Dataset(
-            data,
-            coords={"candidate": column(np.arange(n), {"long_name": "candidate", "comment": index})} | curve_coords,
-            attrs=attrs,
-        )
+            attrs.update({f"run_{k}": int(v) if isinstance(v, bool) else v for k, v in self.run.__dict__.items()})
+        index = column(np.arange(len(cands)), {"long_name": "candidate", "comment": "index of the steady state"})
+        return xr.Dataset(data | curve, coords={"candidate": index} | curve_coords, attrs=attrs)
 
 
 def candidates(
@@ -299,11 +261,10 @@ def candidates(
     J, E0 = float(jellett), float(initial_energy)
     tol = ENERGY_REL_TOL * (abs(E0) + J * J + mu * fr_inv)
     rows = pick(family.level_states, 1)(J, float(q), float(sigma), float(fr_inv), float(mu)).tolist()
-    last = len(rows) - 1
     out = []
     for i, (c, u, test, scale, lam, axial) in enumerate(rows):
-        kind = "upright" if i == 0 else "inverted" if i == last else "tilted"
-        tilt = 0.0 if i == 0 else 180.0 if i == last else math.degrees(math.acos(c))
+        kind = "upright" if i == 0 else "inverted" if i == len(rows) - 1 else "tilted"
+        tilt = 0.0 if i == 0 else 180.0 if kind == "inverted" else math.degrees(math.acos(c))
         flag = flag_of(kind, test, scale, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
         out.append(Candidate(kind, tilt, u, lam, axial, flag, test, u <= E0 + tol))
     return tuple(out)
@@ -316,8 +277,24 @@ def predict(
     state the motion ends on (None if ``J`` and ``E`` do not decide), the reason, and the
     candidate table (:func:`candidates`). No input checks: :func:`final_state` does them."""
     cands = candidates(jellett, initial_energy, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
-    end, reason = _decide(cands, fr_inv == 0.0 or q == 0.0)
-    return end, reason, cands
+    reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
+    if len(reach) == 1 and reach[0].stability == STABLE:
+        why = "one steady state of the Jellett level lies below the initial energy without being unstable"
+        return reach[0], why + ", and it is strictly stable", cands
+    n_st = sum(c.stability == STABLE for c in reach)
+    n_mg = len(reach) - n_st
+    reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
+    if n_st >= 2:
+        reason += " (bistable: the energy cannot tell which one the motion reaches)"
+    if n_mg and (fr_inv == 0.0 or q == 0.0):
+        reason += (
+            " (fr_inv = 0 or q = 0: the normal force has no moment about G at a no-slip state, and "
+            "continua of rolling motions next to the marginal states are steady too, so J and E do not "
+            "fix the end)"
+        )
+    elif n_mg:
+        reason += " (a marginal state: the level is at a fold or a branch point)"
+    return None, reason, cands
 
 
 def start_note(
@@ -334,38 +311,11 @@ def start_note(
     tol = ENERGY_REL_TOL * (abs(initial_energy) + jellett * jellett + gravity)
     for c in cands:
         if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
-            flag = ("stable", "marginal", "unstable")[c.stability]
+            note = f"; the start is itself a steady state (the {c.kind} one, {FLAG_NAMES[c.stability]})"
             if c.stability == UNSTABLE:
-                return (
-                    f"; the start is itself a steady state (the {c.kind} one, {flag}), where the top stays "
-                    "forever: the end given is where any perturbation of it leads"
-                )
-            return f"; the start is itself a steady state (the {c.kind} one, {flag}): the top stays there"
+                return note + ", where the top stays forever: the end given is where any perturbation of it leads"
+            return note + ": the top stays there"
     return ""
-
-
-def _decide(cands: tuple[Candidate, ...], degenerate: bool) -> tuple[Candidate | None, str]:
-    """The candidate decided by ``J`` and ``E``, or None and the reason a run is needed."""
-    reach = [c for c in cands if c.reachable and c.stability != UNSTABLE]
-    if len(reach) == 1 and reach[0].stability == STABLE:
-        return reach[0], (
-            "one steady state of the Jellett level lies below the initial energy without being "
-            "unstable, and it is strictly stable"
-        )
-    n_st = sum(c.stability == STABLE for c in reach)
-    n_mg = len(reach) - n_st
-    reason = f"{n_st} stable and {n_mg} marginal steady states of the Jellett level lie below the initial energy"
-    if n_st >= 2:
-        reason += " (bistable: the energy cannot tell which one the motion reaches)"
-    if degenerate and n_mg:
-        reason += (
-            " (fr_inv = 0 or q = 0: the normal force has no moment about G at a no-slip state, and "
-            "continua of rolling motions next to the marginal states are steady too, so J and E do not "
-            "fix the end)"
-        )
-    elif n_mg:
-        reason += " (a marginal state: the level is at a fold or a branch point)"
-    return None, reason
 
 
 def final_state(
@@ -452,20 +402,19 @@ def final_state(
     """
     params, _ = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu, kernel=False)
     q, sigma, fr_inv, alpha_v, mu = (params[k_] for k_ in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+    simulation = check_flag("simulation", simulation)
+    y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if np.any(as_parameter("alpha_k", alpha_k) != 0):  # a Coulomb top sticks and rolls (steady/coulomb.py)
         from .coulomb import coulomb_end
 
-        refused = {"stick_tilt": stick_tilt, "simulation": check_flag("simulation", simulation)}
-        for name, allowed in (("stick_tilt", None), ("simulation", True)):
-            if refused[name] is not allowed:  # the hybrid run has no stick event and no run-less answer
+        for name, value, allowed in (("stick_tilt", stick_tilt, None), ("simulation", simulation, True)):
+            if value is not allowed:  # the hybrid run has no stick event and no run-less answer
                 raise InputError(
-                    f"{name} = {refused[name]!r} is not allowed with alpha_k = {alpha_k!r} > 0: the Coulomb "
+                    f"{name} = {value!r} is not allowed with alpha_k = {alpha_k!r} > 0: the Coulomb "
                     f"top's end is always a hybrid run (stability.stick_slip), which does not watch the "
                     f"stick; allowed: {name} = {allowed!r}"
                 )
         check_positive("settle_tolerance", settle_tolerance)  # checked, not used: the hybrid run's last phase decides
-
-        y = initial_state("sliding", omega, k, velocity)
         fields, run, level = coulomb_end(
             y, params, alpha_k=alpha_k, alpha_s=alpha_s, t_max=min(float(t_max), 1e3), rtol=rtol
         )
@@ -477,24 +426,22 @@ def final_state(
             "alpha_v = 0 is outside the allowed range of final_state: alpha_v > 0 (without "
             "friction the energy is conserved and the motion has no final state)"
         )
-    simulation = check_flag("simulation", simulation)
-    y = initial_state("sliding", omega, k, velocity)  # shapes, finiteness, |k| within 1 %, horizontal velocity
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
     # one query: interpreted unless compiled code is in memory (stability.execution.pick)
     J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
-    end, reason, cands = predict(J0, E0, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
+    end, reason, cands = predict(J0, E0, **params)
     reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
     n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
         why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
+        lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost", method="jellett")
         reason = f"{reason}; {why}, the model does not hold, no final state"
-        lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost")
-        return FinalState(tilt=tilt0, method="jellett", energy=E0, reason=reason, **lost, **common)
+        return FinalState(tilt=tilt0, energy=E0, reason=reason, **lost, **common)
     if end is not None and fr_inv > 0.0:
         reason += (
             f"; contact not checked on the way (no run): N = {n0:.6g} at the start and mu Fr^-1 = "
@@ -508,10 +455,9 @@ def final_state(
     if not simulation:
         undecided = dict(tilt=math.nan, kind="undecided", method="simulation", energy=math.nan)
         return FinalState(**undecided, reason=reason + "; no run (simulation=False)", **common)
-    t_max = check_positive("t_max", t_max)
-    settle_tolerance = check_positive("settle_tolerance", settle_tolerance)
+    # the run's own checks, only where a run is needed (the answers without one stay fast)
+    t_max, settle_tolerance = check_positive("t_max", t_max), check_positive("settle_tolerance", settle_tolerance)
     (rtol,) = check_tolerances(rtol=rtol)
-    chunk = chunk_length(cands, params, J0)
     if auto_method("sliding", dict(params, alpha_k=0.0)) == "LSODA":
         announce(
             f"final_state's deciding run is stiff (alpha_v = {alpha_v:.3g}: scipy's LSODA, about "
@@ -519,50 +465,40 @@ def final_state(
             f"{STIFF_SECONDS_PER_UNIT * t_max:.2g} s for t_max = {t_max:g} (a smaller t_max bounds it; "
             "simulation=False skips it)"
         )
-    tilt, energy, run = settle(
-        y, params, chunk=chunk, t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt
-    )
-    if run.event != "none":
-        if run.event == "stick_contact":
-            what = (
-                f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
-                "1/Omega): the sphere model's end"
-                + (f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else "")
-                + " is a tilt the toy cannot have"
-            )
-            contact = {}  # stays "not checked": the stick ended the run first
-        else:
-            what = (
-                f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
-                "does not hold beyond, no final state"
-            )
-            contact = {"contact": "lost" if run.event == "contact_lost" else "held"}
-        stopped = dict(kind=run.event, event=run.event, event_time=run.event_time, **contact)
-        reason = f"{reason}; a run decided: {what}"
-        on_way = dict(tilt=tilt, method="simulation", energy=energy, axial_spin=run.axial_spin, reason=reason, run=run)
-        return FinalState(**on_way, **stopped, **common)
-    near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
-    state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
-    outcome = dict(kind="rolling" if run.settled else "unsettled", energy=energy, axial_spin=run.axial_spin)
-    if state is not None and run.settled:
-        outcome = dict(kind=state.kind, energy=state.energy, axial_spin=state.axial_spin, state=state)
-        outcome.update(precession_rate=state.precession_rate)
-    how = (
-        "settled"
-        if run.settled
-        else f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
-    )
-    reason = f"{reason}; a run decided: {how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)"
-    return FinalState(tilt=tilt, method="simulation", reason=reason, run=run, contact="held", **outcome, **common)
+    settling = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
+    tilt, energy, run = settle(y, params, chunk=chunk_length(cands, params, J0), **settling)
+    outcome = dict(tilt=tilt, method="simulation", run=run, energy=energy, axial_spin=run.axial_spin)
+    if run.event == "stick_contact":
+        end_text = f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else ""
+        what = (
+            f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
+            f"1/Omega): the sphere model's end{end_text} is a tilt the toy cannot have"
+        )  # contact stays "not checked": the stick ended the run first
+        outcome.update(kind=run.event, event=run.event, event_time=run.event_time)
+    elif run.event != "none":
+        what = (
+            f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
+            "does not hold beyond, no final state"
+        )
+        contact = "lost" if run.event == "contact_lost" else "held"
+        outcome.update(kind=run.event, event=run.event, event_time=run.event_time, contact=contact)
+    else:
+        near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
+        state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
+        outcome.update(kind="rolling" if run.settled else "unsettled", contact="held")
+        if state is not None and run.settled:
+            outcome.update(kind=state.kind, energy=state.energy, axial_spin=state.axial_spin, state=state)
+            outcome.update(precession_rate=state.precession_rate)
+        moving = f"not settled at t_max = {t_max:g} (tilt still moving {run.tilt_change:.2g} deg per chunk)"
+        how = "settled" if run.settled else moving
+        what = f"{how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)"
+    return FinalState(**outcome, reason=f"{reason}; a run decided: {what}", **common)
 
 
 def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
     """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
     equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve (interpreted
     unless compiled code is in memory: :func:`stability.execution.pick`)."""
-    from ..nonlinear import get_nonlinear_model
-    from ..nonlinear.parameters import pack
-
     state = np.zeros((1, 10))
     state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
     forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
@@ -572,23 +508,11 @@ def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
     """About ``8 / |g|``, ``g`` the slowest decay rate of the reachable candidates that are not
     unstable (0.01 degree after the transit), within ``[500, 5e4]``; 2000 if none decays."""
-    from ..nonlinear.parameters import pack
-
-    q, sigma, mu = params["q"], params["sigma"], params["mu"]
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    vert = [c.kind != "tilted" for c in sel]
-    spins = [family.vertical_spin(c.kind, jel, q=q, sigma=sigma) if v else math.nan for c, v in zip(sel, vert)]
-    ys = [
-        family.vertical_state(c.kind, n) if v else family.state_vector(math.radians(c.tilt), c.precession_rate, q)
-        for c, v, n in zip(sel, vert, spins)
-    ]
-    lams = [0.0 if v else c.precession_rate for c, v in zip(sel, vert)]
-    cos_ = [family.ORIENTATIONS.get(c.kind, math.nan) for c in sel]
-    states = (np.array(ys), np.array(lams), np.array(vert), np.array(cos_), np.array(spins), pack(**params))
-    growth = state_modes(*states, q=q, sigma=sigma, fr_inv=params["fr_inv"], alpha_v=params["alpha_v"], mu=mu)[1]
-    g = float(np.max(growth))
+    states = [c.kind for c in sel], [math.radians(c.tilt) for c in sel], [c.precession_rate for c in sel]
+    g = float(np.max(level_modes(*states, jel, pack(**params), params)[3][1]))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
 
@@ -609,40 +533,31 @@ def settle(
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
     w, kk, v = y0[0:3], y0[3:6], y0[6:8]
-    t = 0.0
-    n = 0
-    t0 = time.perf_counter()
-    j0 = None
-    event = "none"
-    settled = False
-    change = math.inf
+    t, n, t0, j0, event, settled = 0.0, 0, time.perf_counter(), None, "none", False
+    change = slip = math.inf
     while t < t_max:
         length = min(chunk, t_max - t)
         start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
         ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
-        n += 1
-        t += length
-        if j0 is None:
-            j0 = float(ds.h_cg[0])
+        n, t = n + 1, t + length
+        j0 = float(ds.h_cg[0]) if j0 is None else j0
         pol = ds.polar_angle.values
+        change, slip = float(np.max(pol) - np.min(pol)), float(ds.slip_speed[-1])  # change: NaN if the run failed
         if ds.attrs.get("event", "none") != "none":  # the model stops holding: the run ends there
             event, t = ds.attrs["event"], t - length + float(ds.attrs["event_time"])
-            change, slip = float(np.max(pol) - np.min(pol)), float(ds.slip_speed[-1])
             break
         if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
-            change, slip = math.nan, math.nan
+            slip = math.nan
             break
         w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
         kk = kk / np.linalg.norm(kk)
-        change = float(np.max(pol) - np.min(pol))
-        slip = float(ds.slip_speed[-1])
-        if change < settle_tolerance and slip < 1e-6:
-            settled = True
+        if settled := change < settle_tolerance and slip < 1e-6:
             break
     drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
-    seconds = time.perf_counter() - t0
-    work = dict(t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=seconds)
-    event_time = t if event != "none" else math.nan
-    run = SettleRun(**work, jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=event_time)
-    ok = np.isfinite(pol)
-    return (float(pol[-1]) if ok.all() else math.nan), float(ds.energy[-1]), run
+    work = dict(
+        t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=time.perf_counter() - t0
+    )
+    end = dict(
+        jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=t if event != "none" else math.nan
+    )
+    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), SettleRun(**work, **end)

@@ -57,17 +57,7 @@ from ..nonlinear.kernels import CODES
 from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import h_cg
 
-__all__ = [
-    "NEUTRAL_FACTOR",
-    "REMOVED_NEUTRAL",
-    "ROTATION",
-    "modes_verdict",
-    "neutral_covectors",
-    "precessing_jacobians",
-    "reduced_spectrum",
-    "state_modes",
-    "vertical_spectrum",
-]
+__all__ = ["REMOVED_NEUTRAL", "ROTATION", "modes_verdict", "precessing_jacobians", "reduced_spectrum", "state_modes"]
 
 #: the structural neutral directions removed before the growth rate is taken
 REMOVED_NEUTRAL: dict[str, str] = {
@@ -87,11 +77,7 @@ _H = 1e-30
 
 #: the generator of rotations about K on (omega, k, V0_h): G y = (K x omega, K x k, K x V0)
 ROTATION = np.zeros((8, 8))
-for _i in (0, 3):
-    ROTATION[_i, _i + 1] = -1.0
-    ROTATION[_i + 1, _i] = 1.0
-ROTATION[6, 7] = -1.0
-ROTATION[7, 6] = 1.0
+ROTATION[[0, 3, 6], [1, 4, 7]], ROTATION[[1, 4, 7], [0, 3, 6]] = -1.0, 1.0
 
 
 #: batches of at least this many states get their Jacobians compiled; fewer run interpreted
@@ -250,52 +236,6 @@ def modes_verdict(ev: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.nda
     return growth, neutral.sum(-1), verdict
 
 
-def vertical_spectrum(
-    cosines: np.ndarray, spins: np.ndarray, *, q: float, sigma: float, fr_inv: float, alpha_v: float, mu: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The spectrum of vertical states from eq. (11): the one home of their growth rates.
-
-    The vertical state ``c = +-1`` with spin ``n`` has ``|n|`` times the spectrum of eq. (11)
-    at the equivalent point :func:`stability.steady.family.equivalent_point`
-    (``q c, fr_inv / n^2, alpha_v / |n|``), computed by :func:`stability.linear.spectra.spectrum`
-    with its error bounds and its decision (which is rigorous where the reduced Jacobian's
-    eigenvalues lose every digit: near ``A_G -> 0`` or at ``alpha_v >> |n|``). The real state
-    space carries each mode ``s`` of eq. (11) with ``conj(s)``.
-
-    Returns
-    -------
-    eigenvalues : numpy.ndarray of complex, shape (n, 6)
-        By decreasing real part; NaN rows where eq. (11) cannot be evaluated (``n = 0``, or an
-        equivalent point outside its computable range).
-    bound : numpy.ndarray, shape (n,)
-        Absolute error bound of the leading growth rate (``|n|`` times eq. (11)'s).
-    n_neutral : numpy.ndarray of int
-    verdict : numpy.ndarray of int8 (-1 where NaN)
-    """
-    cosines = np.atleast_1d(np.asarray(cosines, float))
-    spins = np.atleast_1d(np.asarray(spins, float))
-    m = cosines.size
-    ev = np.full((m, 6), np.nan + 0j)
-    bound = np.full(m, np.nan)
-    n_neutral = np.zeros(m, dtype=np.int64)
-    verdict = np.full(m, -1, dtype=np.int8)
-    for i in range(m):
-        n = abs(spins[i])
-        if not (n > 0.0 and math.isfinite(n)):
-            continue
-        try:
-            sp = spectrum("sliding", q=q * cosines[i], fr_inv=fr_inv / (n * n), sigma=sigma, alpha_v=alpha_v / n, mu=mu)
-        except InputError:
-            continue
-        s = sp.eigenvalues * n
-        pair = np.concatenate([s, np.conj(s)])
-        ev[i] = pair[np.argsort(-pair.real, kind="stable")]
-        bound[i] = float(sp.error_bound[0]) * n
-        n_neutral[i] = 2 * int(np.sum(sp.neutral))
-        verdict[i] = int(sp.stability)
-    return ev, bound, n_neutral, verdict
-
-
 def state_modes(
     y: np.ndarray,
     lam: np.ndarray,
@@ -303,28 +243,39 @@ def state_modes(
     cosines: np.ndarray,
     spins: np.ndarray,
     p: np.ndarray,
-    *,
-    q: float,
-    sigma: float,
-    fr_inv: float,
-    alpha_v: float,
-    mu: float,
+    params: dict[str, float],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues, leading growth rate, its error bound, neutral count and verdict of steady
     states: tilted ones from the reduced Jacobian (:func:`reduced_spectrum`,
     :func:`modes_verdict`; bound ``NEUTRAL_FACTOR u ||A||_F``), vertical ones from eq. (11)
-    (:func:`vertical_spectrum`; the Jacobian's only where eq. (11) cannot be evaluated).
+    (the Jacobian's only where eq. (11) cannot be evaluated: ``n = 0`` or an equivalent point
+    outside its computable range). The vertical state ``c = +-1`` with spin ``n`` has ``|n|``
+    times the spectrum of eq. (11) at the equivalent point
+    :func:`stability.steady.family.equivalent_point` (``q c, fr_inv / n^2, alpha_v / |n|``),
+    computed by :func:`stability.linear.spectra.spectrum` with its error bounds and its decision
+    (rigorous where the reduced Jacobian's eigenvalues lose every digit: near ``A_G -> 0`` or at
+    ``alpha_v >> |n|``); its bound is ``|n|`` times eq. (11)'s.
     What :func:`stability.steady_states` and :func:`stability.steady_branch` report."""
-    ev, scale = reduced_spectrum(y, lam, vertical, p, q=q, sigma=sigma, mu=mu)
+    ev, scale = reduced_spectrum(y, lam, vertical, p, q=params["q"], sigma=params["sigma"], mu=params["mu"])
     growth, n_neutral, verdict = modes_verdict(ev, scale)
     bound = NEUTRAL_FACTOR * _U * np.asarray(scale, float)
-    idx = np.nonzero(vertical)[0]
-    if idx.size:
-        ev_v, b_v, nn_v, ver_v = vertical_spectrum(
-            np.asarray(cosines)[idx], np.asarray(spins)[idx], q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
+    q, fr_inv, alpha_v = params["q"], params["fr_inv"], params["alpha_v"]
+    for i in np.nonzero(vertical)[0]:  # eq. (11)'s spectrum at the equivalent point, times |n|
+        n = abs(spins[i])
+        if not (n > 0.0 and math.isfinite(n)):
+            continue  # eq. (11) cannot be evaluated: the Jacobian's
+        point = dict(q=q * cosines[i], fr_inv=fr_inv / (n * n), alpha_v=alpha_v / n)
+        try:
+            sp = spectrum("sliding", **point, sigma=params["sigma"], mu=params["mu"])
+        except InputError:  # an equivalent point outside eq. (11)'s computable range: the Jacobian's
+            continue
+        s = sp.eigenvalues * n
+        pair = np.concatenate([s, np.conj(s)])  # the real state space carries each mode with conj(s)
+        ev[i] = pair[np.argsort(-pair.real, kind="stable")]
+        bound[i], n_neutral[i], verdict[i] = (
+            float(sp.error_bound[0]) * n,
+            2 * int(np.sum(sp.neutral)),
+            int(sp.stability),
         )
-        ok = ver_v >= 0
-        j = idx[ok]
-        ev[j], bound[j], n_neutral[j], verdict[j] = ev_v[ok], b_v[ok], nn_v[ok], ver_v[ok]
-        growth[j] = ev_v[ok, 0].real
+        growth[i] = ev[i, 0].real
     return ev, growth, bound, n_neutral, verdict

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import DomainError
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.integrators import check_tolerances
 from ..nonlinear.min_force import min_normal_force
@@ -137,8 +138,6 @@ def contact_margin(
         A ``tilt``, ``spin`` or ``rtol`` that is not a real number.
     """
     from scipy.optimize import brentq
-
-    from ..errors import DomainError
 
     params, p = sliding_parameters("sliding", q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     if not params["fr_inv"] > 0:

@@ -19,27 +19,12 @@ from .._version import package_version
 from ..errors import DomainError, InputError
 from ..nonlinear.runs import model_parameter_vector
 from ..parameters import LONG_NAMES, check_domain
-from ..products import PRODUCT_ATTR
+from ..products import FLAG_MEANINGS, FLAG_VALUES, PRODUCT_ATTR
 from . import family
 from .linearisation import REMOVED_NEUTRAL
-from .verdicts import FLAG_MEANINGS, FLAG_VALUES, RULE
+from .verdicts import RULE
 
-__all__ = [
-    "DEGREE",
-    "MODELS",
-    "SCALE_RANGE",
-    "STATE_VARIABLES",
-    "TILT_GRID_POINTS",
-    "UNITLESS",
-    "check_scales",
-    "flag_attrs",
-    "potential_curve",
-    "product_attrs",
-    "sliding_parameters",
-    "state_variables",
-    "var_attrs",
-    "variable",
-]
+__all__ = ["FLAGS", "check_scales", "flag_attrs", "potential_curve", "product_attrs", "sliding_parameters"]
 
 #: the models whose steady states the layer analyses (docs/steady_states.md says why only this one)
 MODELS = ("sliding",)
@@ -118,28 +103,17 @@ def check_scales(params: dict[str, float], jellett: float | None = None, *, jell
     """
     lo, hi = SCALE_RANGE
     q, sigma, fr_inv, mu = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
-    checks = [
-        ("sigma", sigma, "sigma", ""),
-        ("mu", mu, "mu", ""),
-        ("mu fr_inv", mu * fr_inv, "fr_inv", f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"),
-        (
-            "mu fr_inv |q|",
-            mu * fr_inv * abs(q),
-            "q" if abs(q) < 1e-3 else "fr_inv",
-            f"q = {q:.6g}, fr_inv = {fr_inv:.6g}, mu = {mu:.6g}; the scale of the precession rate squared "
-            "on the tilted family; below it the family is q = 0's to far below rounding: pass q = 0",
-        ),
-    ]
+    gravity = f"fr_inv = {fr_inv:.6g}, mu = {mu:.6g}"
+    checks = [("sigma", sigma, "sigma", ""), ("mu", mu, "mu", ""), ("mu fr_inv", mu * fr_inv, "fr_inv", gravity)]
+    below = "below it the family is q = 0's to far below rounding: pass q = 0"
+    why = f"q = {q:.6g}, {gravity}; the scale of the precession rate squared on the tilted family; {below}"
+    checks.append(("mu fr_inv |q|", mu * fr_inv * abs(q), "q" if abs(q) < 1e-3 else "fr_inv", why))
     if jellett is not None:
-        checks += [
-            (f"|{jellett_name}|", abs(jellett), jellett_name, ""),
-            (
-                f"|{jellett_name}| / sigma",
-                abs(jellett) / sigma,
-                jellett_name,
-                f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
-            ),
-        ]
+        j, vertical = (
+            jellett_name,
+            f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
+        )
+        checks += [(f"|{j}|", abs(jellett), j, ""), (f"|{j}| / sigma", abs(jellett) / sigma, j, vertical)]
     for label, value, name, why in checks:
         if value != 0.0 and not lo <= value <= hi:
             raise DomainError(
@@ -207,14 +181,14 @@ def state_variables(dim: str, values: dict[str, Any], vertical: str, **comments:
     return data
 
 
+#: the CF flag attributes of every stability variable of the layer (stability.products' flags)
+FLAGS = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
+FLAGS["flag_values"].setflags(write=False)  # shared by every dataset: read-only
+
+
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
     """CF flag attributes of a stability variable (0 stable, 1 marginal, 2 unstable)."""
-    return {
-        "long_name": long_name,
-        "flag_values": np.array(FLAG_VALUES, dtype=np.int8),
-        "flag_meanings": FLAG_MEANINGS,
-        "comment": comment,
-    }
+    return {"long_name": long_name, **FLAGS, "comment": comment}
 
 
 def product_attrs(
@@ -245,9 +219,7 @@ def product_attrs(
     return attrs
 
 
-def potential_curve(
-    jellett: float, *, q: float, sigma: float, fr_inv: float, mu: float
-) -> tuple[dict[str, Any], dict[str, Any]]:
+def potential_curve(jellett: float, params: dict[str, float]) -> tuple[dict[str, Any], dict[str, Any]]:
     """The effective potential of the level ``J`` against the tilt, for the figures.
 
     ``U_J(c) = J^2 / (2 D(c)) + mu fr_inv (1 + q c)`` (S5;
@@ -263,28 +235,18 @@ def potential_curve(
         entries for an :class:`xarray.Dataset`.
     """
     grid = np.linspace(0.0, 180.0, TILT_GRID_POINTS)
+    q, sigma, fr_inv, mu = (params[k] for k in ("q", "sigma", "fr_inv", "mu"))
     u = family.effective_potential(np.cos(np.radians(grid)), jellett, q, sigma, fr_inv, mu)
+    comment = (
+        "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
+        "a lower bound of the energy of every state of the level with this tilt, "
+        "reached at the steady states (its critical points and the two ends)"
+    )
+    long_name = "effective potential U_J of the Jellett level"
     data = {
-        "effective_potential": (
-            "tilt_grid",
-            u,
-            var_attrs(
-                "effective potential U_J of the Jellett level",
-                "A0 Omega^2",
-                short="U_J of the level",
-                comment=(
-                    "U_J = J^2 / (2 D) + mu fr_inv (1 + q cos(tilt)), D = sigma (cos(tilt) + q)^2 + A_G sin(tilt)^2; "
-                    "a lower bound of the energy of every state of the level with this tilt, "
-                    "reached at the steady states (its critical points and the two ends)"
-                ),
-            ),
+        "effective_potential": variable(
+            "tilt_grid", u, long_name, "A0 Omega^2", short="U_J of the level", comment=comment
         )
     }
-    coords = {
-        "tilt_grid": (
-            "tilt_grid",
-            grid,
-            var_attrs("tilt at which U_J is sampled (0 upright, 180 inverted)", DEGREE, short="tilt"),
-        )
-    }
-    return data, coords
+    long_name = "tilt at which U_J is sampled (0 upright, 180 inverted)"
+    return data, {"tilt_grid": variable("tilt_grid", grid, long_name, DEGREE, short="tilt")}

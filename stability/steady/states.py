@@ -38,10 +38,7 @@ from .products import (
 )
 from .verdicts import flag_of
 
-__all__ = ["point_integrals", "state_integrals", "steady_states", "upright_jellett"]
-
-#: Jellett's integral of the upright spin 1 (:func:`stability.steady.family.upright_jellett`)
-upright_jellett = family.upright_jellett
+__all__ = ["level_modes", "point_integrals", "state_integrals", "steady_states"]
 
 
 @register_jitable
@@ -82,6 +79,24 @@ def state_integrals(
     reports ``h_cg`` and ``energy`` with), compiled."""
     y = np.ascontiguousarray(np.atleast_2d(y)[:, :8], dtype=np.float64)
     return pick(_integrals, y.shape[0])(y, float(q), float(sigma), float(fr_inv), float(mu))
+
+
+def level_modes(
+    kinds: list[str], theta: Any, lam: Any, jellett: float, p: np.ndarray, params: dict[str, float]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple]:
+    """The states ``(omega, k, V0_h)`` of steady states of the level ``J`` given by kind, tilt
+    (radians) and precession rate (of the tilted ones; a vertical one spins at
+    :func:`~stability.steady.family.vertical_spin`), their spins (NaN: tilted), which are
+    vertical, and their modes (:func:`~stability.steady.linearisation.state_modes`)."""
+    q, sigma = params["q"], params["sigma"]
+    vertical = np.array([k != "tilted" for k in kinds])
+    spins = np.array(
+        [family.vertical_spin(k, jellett, q=q, sigma=sigma) if v else math.nan for k, v in zip(kinds, vertical)]
+    )
+    rows = zip(kinds, vertical, spins, theta, lam)
+    y = np.array([family.vertical_state(k, n) if v else family.state_vector(t, la, q) for k, v, n, t, la in rows])
+    cosines = np.array([family.ORIENTATIONS.get(k, math.nan) for k in kinds])
+    return y, spins, vertical, state_modes(y, np.where(vertical, 0.0, lam), vertical, cosines, spins, p, params)
 
 
 def steady_states(
@@ -138,97 +153,54 @@ def steady_states(
     """
     params, p = sliding_parameters(model, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu)
     q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-    J = upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
+    J = family.upright_jellett(q=q, sigma=sigma) if jellett is None else as_scalar("jellett", jellett)
     check_scales(params, J)
     table = pick(family.level_states, 1)(J, q, sigma, fr_inv, mu)  # upright, tilted by increasing tilt, inverted
     n = table.shape[0]
     kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
     cosines, tests, scales, lam = table[:, 0], table[:, 2], table[:, 3], table[:, 4]
-    vertical = np.array([k != "tilted" for k in kinds])
-    spin = np.full(n, np.nan)
-    y = np.empty((n, 8))
-    for i, kind in enumerate(kinds):
-        if vertical[i]:
-            spin[i] = family.vertical_spin(kind, J, q=q, sigma=sigma)
-            y[i] = family.vertical_state(kind, spin[i])
-        else:
-            y[i] = family.state_vector(math.acos(cosines[i]), lam[i], q)
-    ev, growth, bound, n_neutral, jac = state_modes(
-        y, np.nan_to_num(lam), vertical, cosines, spin, p, q=q, sigma=sigma, fr_inv=fr_inv, alpha_v=alpha_v, mu=mu
-    )
-    flags = np.array(
-        [
-            flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v))
-            for k, t, s, v in zip(kinds, tests, scales, jac)
-        ],
-        dtype=np.int8,
-    )
+    theta = [math.acos(c) for c in cosines]
+    y, spin, vertical, (ev, growth, bound, n_neutral, jac) = level_modes(kinds, theta, lam, J, p, params)
+    verdicts = zip(kinds, tests, scales, jac)
+    flags = [flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v)) for k, t, s, v in verdicts]
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     with np.errstate(divide="ignore", invalid="ignore"):
-        q_eq, fr_eq, av_eq = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
-    eq = {
-        "equivalent_fr_inv": np.where(vertical, fr_eq, np.nan),
-        "equivalent_alpha_v": np.where(vertical, av_eq, np.nan),
-        "equivalent_q": np.where(vertical, q_eq, np.nan),
-    }
+        point = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
     tilt = np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0)))
     axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
     values = dict(tilt=tilt, precession_rate=lam, axial_spin=axial, energy=energy, jellett=jel, growth_rate=growth)
-    values.update(growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability=flags, stability_jacobian=jac)
+    values.update(growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability_jacobian=jac)
+    values["stability"] = np.array(flags, dtype=np.int8)
+    kind = "upright, inverted or tilted"
+    test = "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum"
     note = "NaN for the vertical states; units of the spin rate Omega (simulate's time unit 1/Omega)"
+    frequency = (
+        "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)"
+    )
     data = {
-        "kind": (
-            "state",
-            np.array(kinds, dtype=str),
-            {"long_name": "kind of steady state", "comment": "upright, inverted or tilted"},
-        ),
+        "kind": ("state", np.array(kinds, dtype=str), {"long_name": "kind of steady state", "comment": kind}),
         **state_variables("state", values, "vertical states", precession_rate=note),
         "omega_vertical": variable(
             "state", y[:, 2], "vertical component of the angular velocity, omega . K", "Omega", short="vertical omega"
         ),
-        "energy_test": variable(
-            "state",
-            tests,
-            "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum",
-            short="energy criterion",
-        ),
+        "energy_test": variable("state", tests, test, short="energy criterion"),
         "mode_growth_rate": variable(
             ("state", "mode"), ev.real, "growth rate Re s of each physical mode", "Omega", short="growth rate Re s"
         ),
-        "mode_frequency": variable(
-            ("state", "mode"),
-            ev.imag,
-            "frequency Im s of each physical mode (frame precessing with the state; fixed frame for the vertical states)",
-            "Omega",
-            short="frequency Im s",
-        ),
+        "mode_frequency": variable(("state", "mode"), ev.imag, frequency, "Omega", short="frequency Im s"),
     }
-    for name, values in eq.items():
-        what, units = name.split("_", 1)[1], "R" if name == "equivalent_q" else UNITLESS
+    for what, i, units in (("fr_inv", 1, UNITLESS), ("alpha_v", 2, UNITLESS), ("q", 0, "R")):
         long_name = f"{what} of eq. (11) at the equivalent spin (vertical states)"
-        data[name] = variable("state", values, long_name, units, short=f"equivalent {what}")
-    curve, curve_coords = potential_curve(J, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-    data.update(curve)
+        v = np.where(vertical, point[i], np.nan)
+        data[f"equivalent_{what}"] = variable("state", v, long_name, units, short=f"equivalent {what}")
+    curve, curve_coords = potential_curve(J, params)
+    mode_index = "index of the physical mode, by decreasing growth rate (tilted states have 5: the 6th is NaN)"
     coords = {
         "state": ("state", np.arange(n), {"long_name": "state", "comment": "index of the steady state"}),
-        "mode": (
-            "mode",
-            np.arange(6),
-            {
-                "long_name": "mode",
-                "comment": "index of the physical mode, by "
-                "decreasing growth rate (tilted states have 5: the 6th is NaN)",
-            },
-        ),
+        "mode": ("mode", np.arange(6), {"long_name": "mode", "comment": mode_index}),
         **curve_coords,
     }
-    attrs = product_attrs(
-        "steady_states",
-        "Steady states of the sliding Tippe top on one Jellett level",
-        "stability.steady_states",
-        params,
-        removed_neutral=True,
-    )
-    attrs["model"] = "sliding"
-    attrs["jellett"] = J
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    title = "Steady states of the sliding Tippe top on one Jellett level"
+    attrs = product_attrs("steady_states", title, "stability.steady_states", params, removed_neutral=True)
+    attrs.update(model="sliding", jellett=J)
+    return xr.Dataset(data | curve, coords=coords, attrs=attrs)

@@ -26,19 +26,9 @@ fold or a branch point, or a level that touches one.
 from __future__ import annotations
 
 from ..errors import InputError
-from ..products import FLAG_MEANINGS, FLAG_VALUES, MARGINAL, STABLE, UNSTABLE
+from ..products import MARGINAL, STABLE, UNSTABLE
 
-__all__ = [
-    "FLAG_MEANINGS",
-    "FLAG_VALUES",
-    "MARGINAL",
-    "REL_TOL",
-    "RULE",
-    "STABLE",
-    "UNSTABLE",
-    "flag_of",
-    "structural_zero",
-]
+__all__ = ["REL_TOL", "RULE", "flag_of"]
 
 #: relative tolerance of the energy test (a test below it in magnitude is marginal)
 REL_TOL = 1e-12
@@ -50,15 +40,6 @@ RULE = (
     "(fr_inv = 0 or q = 0 at the vertical states, q = 0 at the tilted state) marginal; alpha_v = 0: "
     "the reduced Jacobian's verdict with stable demoted to marginal"
 )
-
-
-def structural_zero(kind: str, *, q: float, fr_inv: float) -> bool:
-    """Whether a steady state has a structurally neutral mode (a neighbouring continuum of
-    no-slip motions): vertical states at ``fr_inv = 0`` or ``q = 0``; the tilted state at
-    ``q = 0``."""
-    if kind == "tilted":
-        return q == 0.0
-    return fr_inv == 0.0 or q == 0.0
 
 
 def flag_of(
@@ -81,6 +62,10 @@ def flag_of(
     q, fr_inv, alpha_v : float
     jacobian_verdict : int, optional
         :func:`stability.steady.linearisation.modes_verdict`; required when ``alpha_v = 0``.
+
+    A state with a structurally neutral mode (a neighbouring continuum of no-slip motions:
+    vertical states at ``fr_inv = 0`` or ``q = 0``, the tilted state at ``q = 0``) is at best
+    marginal.
     """
     if alpha_v == 0.0:
         if jacobian_verdict is None:
@@ -89,6 +74,5 @@ def flag_of(
     tol = REL_TOL * scale
     if test < -tol:
         return UNSTABLE
-    if test <= tol:
-        return MARGINAL
-    return MARGINAL if structural_zero(kind, q=q, fr_inv=fr_inv) else STABLE
+    structural = q == 0.0 or (kind != "tilted" and fr_inv == 0.0)
+    return MARGINAL if test <= tol or structural else STABLE
