@@ -58,7 +58,7 @@ class SecondOrderTop(LinearModel):
         h = q + self.support_depth if self.support_depth else q
         return {"A_C": a_c, "sigma_hat": sigma / a_c, "h": h, "kappa": mu * fr_inv * h / a_c}
 
-    def _gamma_kappa(self, **params: np.ndarray) -> list[np.ndarray]:
+    def _gamma_kappa(self, **params: np.ndarray) -> tuple[np.ndarray, ...]:
         """``gamma`` (:attr:`gyroscopic`) and ``kappa`` of :meth:`derived`, broadcast together."""
         d = self.derived(**params)
         return np.broadcast_arrays(np.asarray(d[self.gyroscopic], float), np.asarray(d["kappa"], float))

@@ -182,8 +182,9 @@ def state_variables(dim: str, values: dict[str, Any], vertical: str, **comments:
 
 
 #: the CF flag attributes of every stability variable of the layer (stability.products' flags)
-FLAGS = {"flag_values": np.array(FLAG_VALUES, dtype=np.int8), "flag_meanings": FLAG_MEANINGS}
-FLAGS["flag_values"].setflags(write=False)  # shared by every dataset: read-only
+_FLAG_VALUES = np.array(FLAG_VALUES, dtype=np.int8)
+_FLAG_VALUES.setflags(write=False)  # shared by every dataset: read-only
+FLAGS: dict[str, Any] = {"flag_values": _FLAG_VALUES, "flag_meanings": FLAG_MEANINGS}
 
 
 def flag_attrs(long_name: str, comment: str = RULE) -> dict[str, Any]:
