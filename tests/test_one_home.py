@@ -442,7 +442,7 @@ from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
 cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
-funcs = [*(cached(f, p) for f in (ks.checked, ks.masked, ks.domain) for p in (False, True)), cached(ks.coefficients),
+funcs = [*(cached(f, p) for f in (ks.checked, ks.domain) for p in (False, True)), cached(ks.coefficients),
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func

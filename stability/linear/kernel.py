@@ -842,7 +842,6 @@ class _Kernels(NamedTuple):
     compiles them, serial or parallel)."""
 
     checked: Callable[..., None]
-    masked: Callable[..., None]
     domain: Callable[..., None]
     coefficients: Callable[..., tuple]
     n: int
@@ -865,11 +864,12 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     if not 1 <= n <= MAX_DEGREE:
         raise InputError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
 
-    def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
-        """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
-        :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block, packed,
-        and ``_domain_code`` only for the points it leaves undecided; the same codes). Each
-        parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
+    def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, test, polish, ev, bd, neutral, stab, where):
+        """The spectrum at the points whose code ``where`` (int8) is ``_INSIDE`` (the others:
+        NaN, flag -1); with ``test``, the domain test in the same pass first writes ``where``, the
+        code of :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block,
+        packed, and ``_domain_code`` only for the points it leaves undecided; the same codes).
+        Each parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
         scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
         the loop by ~15%: the driver counts. The limits are read into a tuple once: an array
         handed to the domain test per point is passed and reference-counted at every call.)"""
@@ -882,7 +882,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             w = np.empty((_ROWS, count if blocks else 0))
             rare = np.empty(count if blocks else 0, dtype=np.bool_)
             p = np.empty((5, count if blocks else 0))  # the block's parameters, contiguous
-            if blocks:  # the domain test of the easy majority, in a loop the compiler packs
+            if blocks:
                 for j in range(count):
                     i = lo + j
                     p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = (
@@ -892,13 +892,15 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                         alpha_v[i * sa],
                         mu[i * sm],
                     )
-                for j in range(count):
-                    where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
-            for i in range(lo, lo + count):  # the exact test for the others (all points when interpreted)
-                if not (blocks and where[i] == _INSIDE):
-                    where[i] = _domain_code(
-                        q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies
-                    )
+                if test:  # the domain test of the easy majority, in a loop the compiler packs
+                    for j in range(count):
+                        where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
+            if test:  # the exact test for the others (all points when interpreted)
+                for i in range(lo, lo + count):
+                    if not (blocks and where[i] == _INSIDE):
+                        where[i] = _domain_code(
+                            q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies
+                        )
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
                 for j in range(count):
                     _store_parts(formula(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j]), w, j)
@@ -906,31 +908,6 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 _block_decide(w, count, lo, ev, bd, neutral, stab)
             for i in range(lo, lo + count):  # the points the blocks did not solve
                 ok = where[i] == _INSIDE
-                if not (blocks and ok and not rare[i - lo]):
-                    sol = _UNSOLVED
-                    if ok:
-                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
-                        sol = _solve_parts(parts, polish)
-                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
-
-    def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
-        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
-        npts = len(stab)
-        blocks = _compiled() and n == 3
-        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points, as in ``checked``
-            lo = b * BLOCK
-            count = min(BLOCK, npts - lo)
-            w = np.empty((_ROWS, count if blocks else 0))
-            rare = np.empty(count if blocks else 0, dtype=np.bool_)
-            if blocks:
-                for i in range(lo, lo + count):
-                    _store_parts(
-                        formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo
-                    )
-                _block_solve(w, rare, count, polish)
-                _block_decide(w, count, lo, ev, bd, neutral, stab)
-            for i in range(lo, lo + count):  # the points the blocks did not solve
-                ok = inside[i]
                 if not (blocks and ok and not rare[i - lo]):
                     sol = _UNSOLVED
                     if ok:
@@ -947,7 +924,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
 
-    return _Kernels(checked, masked, domain, point_coefficients, n)
+    return _Kernels(checked, domain, point_coefficients, n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
@@ -1005,13 +982,6 @@ def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np
     return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
 
 
-def _serial(npts: int, parallel: bool | None) -> bool:
-    """Whether to run the serial loop: asked for (``parallel=False``), or by default
-    (``parallel=None``) below :data:`SERIAL_BELOW` points (a parallel launch costs more than a
-    few points, and much more on a loaded machine)."""
-    return (npts < SERIAL_BELOW) if parallel is None else not parallel
-
-
 def _run(
     loop: Callable[..., None],
     npts: int,
@@ -1022,13 +992,14 @@ def _run(
 ) -> None:
     """``loop(*inputs, *outputs)`` in one execution.
 
-    Compiled (serial if :func:`_serial`, else parallel) if
+    Compiled (serially as asked by ``parallel``, by default below :data:`SERIAL_BELOW` points: a
+    parallel launch costs more than a few points, and much more on a loaded machine) if
     :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
     must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
     floats and complex numbers, the same values; numpy scalars would be slower and complex
     division on them is numpy's, not the one numba copies from CPython), whose results are then
     written into ``outputs`` (every element of which the loops set)."""
-    parallel = not _serial(npts, parallel)
+    parallel = (npts >= SERIAL_BELOW) if parallel is None else parallel
     if execution.use_compiled(loop, npts, engine, parallel=parallel):
         cached(loop, parallel)(*inputs, *outputs)
         return
@@ -1038,13 +1009,40 @@ def _run(
         out[...] = values
 
 
-def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
-    """The five linear parameters in :data:`stability.parameters.PARAMETERS` order (the
-    arguments of ``point_coefficients``); ``0.0`` for those the model does not take."""
-    missing = [n for n in model.parameters if n not in params]
+def _points(model: str | LinearModel, params: Mapping[str, Any]) -> tuple[_Kernels, list[Any], tuple[int, ...], int]:
+    """The loops of ``model``, its five linear parameters in :data:`stability.parameters.PARAMETERS`
+    order (the arguments of ``point_coefficients``; ``0.0`` for those the model does not take),
+    their broadcast shape and its number of points."""
+    m = get_model(model)
+    kernels = _require_kernels(m)
+    missing = [n for n in m.parameters if n not in params]
     if missing:
-        raise ParameterTypeError(f"model {model.name!r} needs {', '.join(missing)}")
-    return [params[n] if n in model.parameters else 0.0 for n in PARAMETERS]
+        raise ParameterTypeError(f"model {m.name!r} needs {', '.join(missing)}")
+    values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    return kernels, values, shape, math.prod(shape)
+
+
+def _spectrum(
+    model: str | LinearModel,
+    params: Mapping[str, Any],
+    inside: np.ndarray | None,
+    polish: int,
+    parallel: bool | None,
+    engine: str | None,
+) -> tuple[KernelSpectrum, np.ndarray]:
+    """The model loop (:func:`_compile`'s ``checked``): the domain tested in the same pass if
+    ``inside`` is None, else at the points ``inside`` only; the spectrum and the domain codes."""
+    kernels, values, shape, npts = _points(model, params)
+    if inside is None:
+        where = np.empty(npts, dtype=np.int8)
+    else:
+        where = np.where(_flat(inside, shape, np.bool_), np.int8(_INSIDE), np.int8(_OUTSIDE_DOMAIN))
+    ev, bd, nt, st = _outputs(npts, kernels.n)
+    flat = [a for v in values for a in _strided(v, shape)]
+    inputs = [*flat, _computable_limits(), inside is None, int(polish)]
+    _run(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
+    return _shaped(ev, bd, nt, st, shape), where
 
 
 def model_spectrum(
@@ -1083,24 +1081,7 @@ def model_spectrum(
     KernelSpectrum
         Shapes ``broadcast + (n_modes,)`` (and ``broadcast`` for the flag).
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    npts = math.prod(shape)
-    flat = [_strided(v, shape) for v in values]
-    ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
-    n = kernels.n
-    ev, bd, nt, st = _outputs(npts, n)
-    _run(
-        kernels.masked,
-        npts,
-        parallel,
-        engine,
-        [*(a for pair in flat for a in pair), ins, int(polish)],
-        (ev, bd, nt, st),
-    )
-    return _shaped(ev, bd, nt, st, shape)
+    return _spectrum(model, params, inside, polish, parallel, engine)[0]
 
 
 def sliding_spectrum(
@@ -1217,28 +1198,11 @@ def checked_model_spectrum(
     ValueError
         If the shapes do not broadcast together.
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    npts = math.prod(shape)
-    flat = [_strided(v, shape) for v in values]
-    n = kernels.n
-    ev, bd, nt, st = _outputs(npts, n)
-    where = np.empty(npts, dtype=np.int8)
-    _run(
-        kernels.checked,
-        npts,
-        parallel,
-        engine,
-        [*(a for pair in flat for a in pair), _computable_limits(), int(polish)],
-        (ev, bd, nt, st, where),
-    )
+    spec, where = _spectrum(model, params, None, polish, parallel, engine)
     inside = where == _INSIDE
-    n_out = npts - int(np.count_nonzero(inside))
+    n_out = where.size - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = _shaped(ev, bd, nt, st, shape)
-    return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
+    return CheckedSpectrum(spec, inside.reshape(spec.stability.shape), int(n_out), int(n_bad))
 
 
 def checked_sliding_spectrum(
@@ -1279,14 +1243,9 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     -------
     numpy.ndarray of int8, broadcast shape
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    args = [_flat(v, shape) for v in values]
-    npts = math.prod(shape)
+    kernels, values, shape, npts = _points(model, params)
     code = np.empty(npts, dtype=np.int8)
-    _run(kernels.domain, npts, None, engine, [*args, _computable_limits()], (code,))
+    _run(kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,))
     return code.reshape(shape)
 
 
