@@ -91,11 +91,20 @@ import numpy as np
 
 from stability.jit import OPTIONS, cached, overload, register_jitable
 
-from .. import execution
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_clearly_inside, domain_sides_quick, inside_domain
-from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
+from .roots import (
+    SERIAL_BELOW,  # the loops' rule, here for their callers
+    cbrt,
+    csqrt,
+    csqrt_nonzero,
+    deflate_cubic_backward,
+    horner_scheme,
+    modulus,
+    quadratic_roots,
+    run_loop,
+)
 
 __all__ = [
     "MAX_DEGREE",
@@ -117,8 +126,6 @@ __all__ = [
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
 
-#: compiled batches below this many points run serially unless a caller asks otherwise
-SERIAL_BELOW = 512
 
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
 #: serially, numba's ``prange`` in a parallel compilation (:func:`stability.jit.cached`)
@@ -408,23 +415,13 @@ def _solve(c3, c2, c1, c0, deg, polish):
     (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
     if deg == 2:
         c3, c2, c1, c0 = 0j, c3, c2, c1
+    # exact deflation of the ``nz`` zero trailing coefficients (right-aligned, leading zeros)
+    d3, d2, d1, d0 = c3, c2, c1, c0
     nz = 0
-    if c0 == 0:
-        nz = 1
-        if c1 == 0:
-            nz = 2
-            if deg == 3 and c2 == 0:
-                nz = 3
+    while nz < deg and d0 == 0:
+        d3, d2, d1, d0 = 0j, d3, d2, d1
+        nz += 1
     m = deg - nz  # degree after exact deflation
-    # deflated coefficients, right-aligned with leading zeros
-    if nz == 0:
-        d3, d2, d1, d0 = c3, c2, c1, c0
-    elif nz == 1:
-        d3, d2, d1, d0 = 0j, c3, c2, c1
-    elif nz == 2:
-        d3, d2, d1, d0 = 0j, 0j, c3, c2
-    else:
-        d3, d2, d1, d0 = 0j, 0j, 0j, c3
     r0 = r1 = r2 = 0j
     x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
     e0 = e1 = e2 = 0.0
@@ -466,6 +463,17 @@ def _swap(s, a, b):
 
 
 @register_jitable
+def _exchange(ra, rb, ea, eb, xa, xb):
+    """A compare-exchange of :func:`_decide`: modes ``a`` and ``b`` (root, bound, flag) swapped
+    where ``b`` sorts before ``a`` (:func:`_before`; selects)."""
+    s = _before(rb, ra)
+    ra, rb = _swap(s, ra, rb)
+    ea, eb = _swap(s, ea, eb)
+    xa, xb = _swap(s, xa, xb)
+    return ra, rb, ea, eb, xa, xb
+
+
+@register_jitable
 def _mode(r, e, x, floor):
     """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
     whether it grows (module docstring, step 6)."""
@@ -485,19 +493,10 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
     arrays' passing and reference counting cost ~25-30 ns per point, a sixth of the loop on one
     thread (benchmarks/kernel_pieces.py, docs/performance.md)."""
     if n >= 2:
-        s = _before(r1, r0)
-        r0, r1 = _swap(s, r0, r1)
-        e0, e1 = _swap(s, e0, e1)
-        x0, x1 = _swap(s, x0, x1)
+        r0, r1, e0, e1, x0, x1 = _exchange(r0, r1, e0, e1, x0, x1)
     if n == 3:
-        s = _before(r2, r1)
-        r1, r2 = _swap(s, r1, r2)
-        e1, e2 = _swap(s, e1, e2)
-        x1, x2 = _swap(s, x1, x2)
-        s = _before(r1, r0)
-        r0, r1 = _swap(s, r0, r1)
-        e0, e1 = _swap(s, e0, e1)
-        x0, x1 = _swap(s, x0, x1)
+        r1, r2, e1, e2, x1, x2 = _exchange(r1, r2, e1, e2, x1, x2)
+        r0, r1, e0, e1, x0, x1 = _exchange(r0, r1, e0, e1, x0, x1)
     scale2 = _mod2(r0)
     if n >= 2:
         scale2 = max(scale2, _mod2(r1))
@@ -804,14 +803,9 @@ def _block_roots_of(w, j):
 
 @register_jitable
 def _store_roots(w, j, r0, r1, r2):
-    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = (
-        r0.real,
-        r0.imag,
-        r1.real,
-        r1.imag,
-        r2.real,
-        r2.imag,
-    )
+    w[_R0R, j], w[_R0I, j] = r0.real, r0.imag
+    w[_R1R, j], w[_R1I, j] = r1.real, r1.imag
+    w[_R2R, j], w[_R2I, j] = r2.real, r2.imag
 
 
 @register_jitable
@@ -861,8 +855,6 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     the point's work out in the loop body rather than in a local helper function (an inlined
     local ``register_jitable`` helper compiled half as fast again).
     """
-    if not 1 <= n <= MAX_DEGREE:
-        raise InputError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
 
     def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, test, polish, ev, bd, neutral, stab, where):
         """The spectrum at the points whose code ``where`` (int8) is ``_INSIDE`` (the others:
@@ -885,13 +877,8 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             if blocks:
                 for j in range(count):
                     i = lo + j
-                    p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = (
-                        q[i * sq],
-                        fr_inv[i * sf],
-                        sigma[i * ss],
-                        alpha_v[i * sa],
-                        mu[i * sm],
-                    )
+                    p[0, j], p[1, j], p[2, j] = q[i * sq], fr_inv[i * sf], sigma[i * ss]
+                    p[3, j], p[4, j] = alpha_v[i * sa], mu[i * sm]
                 if test:  # the domain test of the easy majority, in a loop the compiler packs
                     for j in range(count):
                         where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
@@ -982,33 +969,6 @@ def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np
     return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
 
 
-def _run(
-    loop: Callable[..., None],
-    npts: int,
-    parallel: bool | None,
-    engine: str | None,
-    inputs: list[Any],
-    outputs: tuple[np.ndarray, ...],
-) -> None:
-    """``loop(*inputs, *outputs)`` in one execution.
-
-    Compiled (serially as asked by ``parallel``, by default below :data:`SERIAL_BELOW` points: a
-    parallel launch costs more than a few points, and much more on a loaded machine) if
-    :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
-    must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
-    floats and complex numbers, the same values; numpy scalars would be slower and complex
-    division on them is numpy's, not the one numba copies from CPython), whose results are then
-    written into ``outputs`` (every element of which the loops set)."""
-    parallel = (npts >= SERIAL_BELOW) if parallel is None else parallel
-    if execution.use_compiled(loop, npts, engine, parallel=parallel):
-        cached(loop, parallel)(*inputs, *outputs)
-        return
-    lists = [o.tolist() for o in outputs]
-    loop(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
-    for out, values in zip(outputs, lists):
-        out[...] = values
-
-
 def _points(model: str | LinearModel, params: Mapping[str, Any]) -> tuple[_Kernels, list[Any], tuple[int, ...], int]:
     """The loops of ``model``, its five linear parameters in :data:`stability.parameters.PARAMETERS`
     order (the arguments of ``point_coefficients``; ``0.0`` for those the model does not take),
@@ -1041,7 +1001,7 @@ def _spectrum(
     ev, bd, nt, st = _outputs(npts, kernels.n)
     flat = [a for v in values for a in _strided(v, shape)]
     inputs = [*flat, _computable_limits(), inside is None, int(polish)]
-    _run(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
+    run_loop(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
     return _shaped(ev, bd, nt, st, shape), where
 
 
@@ -1137,8 +1097,7 @@ def _computable_limits() -> np.ndarray:
     none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
     from .. import parameters
 
-    rng = getattr(parameters, "COMPUTABLE_RANGE", {})
-    lim = np.array([float(x) for k in ("q", "fr_inv", "sigma", "alpha_v", "mu") for x in rng.get(k, (0.0, math.inf))])
+    lim = np.array([float(x) for k in PARAMETERS for x in parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf))])
     lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
     return lim
 
@@ -1245,7 +1204,7 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     """
     kernels, values, shape, npts = _points(model, params)
     code = np.empty(npts, dtype=np.int8)
-    _run(kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,))
+    run_loop(kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,))
     return code.reshape(shape)
 
 
@@ -1315,5 +1274,5 @@ def coefficient_spectrum(
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
-    _run(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
+    run_loop(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
     return _shaped(ev, bd, nt, st, shape)
