@@ -94,17 +94,8 @@ from stability.jit import OPTIONS, cached, overload, register_jitable
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_clearly_inside, domain_sides_quick, inside_domain
-from .roots import (
-    SERIAL_BELOW,  # the loops' rule, here for their callers
-    cbrt,
-    csqrt,
-    csqrt_nonzero,
-    deflate_cubic_backward,
-    horner_scheme,
-    modulus,
-    quadratic_roots,
-    run_loop,
-)
+from . import roots
+from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
     "MAX_DEGREE",
@@ -126,6 +117,9 @@ __all__ = [
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
 
+
+#: compiled batches below this many points run serially unless a caller asks otherwise
+SERIAL_BELOW = roots.SERIAL_BELOW
 
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
 #: serially, numba's ``prange`` in a parallel compilation (:func:`stability.jit.cached`)
@@ -596,18 +590,15 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
     """The spectrum of the polynomials ``c[i]`` (``n + 1`` complex coefficients, highest power
     first) at the points ``inside`` (the others: NaN, flag -1)."""
     for i in prange(len(stab)):
-        if not inside[i]:
-            _mark_outside(n, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            continue
         ci = c[i]
-        if n == 3:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
-        elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
-        else:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
+        sol = _UNSOLVED
+        if inside[i] and n == 3:
+            sol = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
+        elif inside[i] and n == 2:
+            sol = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
+        elif inside[i]:
+            sol = _solve_linear(ci[0], ci[1])
+        _finish(n, inside[i], sol, ev, bd, neutral, stab, i)
 
 
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
@@ -775,10 +766,10 @@ def _block_bounds(w, rare, count):
         s3, s2, s1, s0 = _mod2(c3), _mod2(c2), _mod2(c1), _mod2(c0)
         m3, m2, m1, m0 = math.sqrt(s3), math.sqrt(s2), math.sqrt(s1), math.sqrt(s0)
         plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0)
-        roots = _block_roots_of(w, j)
+        rs = _block_roots_of(w, j)
         for k in range(3):
-            s = _mod2(roots[k])
-            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, roots[k], math.sqrt(s))
+            s = _mod2(rs[k])
+            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, rs[k], math.sqrt(s))
             w[_E0 + k, j] = dp / math.sqrt(n1)
             plain = plain & _plain(s) & (not second)
         rare[j] = rare[j] | (not plain)
@@ -863,9 +854,8 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
         packed, and ``_domain_code`` only for the points it leaves undecided; the same codes).
         Each parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
         scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
-        the loop by ~15%: the driver counts. The limits are read into a tuple once: an array
-        handed to the domain test per point is passed and reference-counted at every call.)"""
-        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
+        the loop by ~15%: the driver counts. The limits come as a tuple: an array handed to the
+        domain test per point is passed and reference-counted at every call.)"""
         npts = len(stab)
         blocks = _compiled() and n == 3
         for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points (_block_solve)
@@ -881,12 +871,12 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                     p[3, j], p[4, j] = alpha_v[i * sa], mu[i * sm]
                 if test:  # the domain test of the easy majority, in a loop the compiler packs
                     for j in range(count):
-                        where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
+                        where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lim, applies)
             if test:  # the exact test for the others (all points when interpreted)
                 for i in range(lo, lo + count):
                     if not (blocks and where[i] == _INSIDE):
                         where[i] = _domain_code(
-                            q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies
+                            q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lim, applies
                         )
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
                 for j in range(count):
@@ -904,9 +894,8 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
-        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(code)):
-            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lt, applies)
+            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
 
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
@@ -1001,7 +990,7 @@ def _spectrum(
     ev, bd, nt, st = _outputs(npts, kernels.n)
     flat = [a for v in values for a in _strided(v, shape)]
     inputs = [*flat, _computable_limits(), inside is None, int(polish)]
-    run_loop(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
+    roots.run_loop(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
     return _shaped(ev, bd, nt, st, shape), where
 
 
@@ -1090,7 +1079,7 @@ class CheckedSpectrum(NamedTuple):
     n_not_finite: int
 
 
-def _computable_limits() -> np.ndarray:
+def _computable_limits() -> tuple[float, ...]:
     """``lo, hi`` magnitudes accepted for q, fr_inv, sigma, alpha_v, mu (10 floats), read from
     :data:`stability.parameters.COMPUTABLE_RANGE` at each call (passed to the kernel as data, so
     a change there is never hidden by numba's cache); ``0`` and the largest float where it names
@@ -1099,7 +1088,7 @@ def _computable_limits() -> np.ndarray:
 
     lim = np.array([float(x) for k in PARAMETERS for x in parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf))])
     lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
-    return lim
+    return tuple(lim.tolist())
 
 
 def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
@@ -1204,7 +1193,9 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     """
     kernels, values, shape, npts = _points(model, params)
     code = np.empty(npts, dtype=np.int8)
-    run_loop(kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,))
+    roots.run_loop(
+        kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,)
+    )
     return code.reshape(shape)
 
 
@@ -1274,5 +1265,5 @@ def coefficient_spectrum(
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
-    run_loop(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
+    roots.run_loop(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
     return _shaped(ev, bd, nt, st, shape)

@@ -364,20 +364,7 @@ def _axis_horner(c, ncoef, w):
     and the scales of their rounding: ``sum_k |a_k| |w|^k`` and its first two derivatives in
     ``|w|`` (and the same for ``b``)."""
     n = ncoef - 1
-    A = 0.0
-    dA = 0.0
-    ddA = 0.0
-    dddA = 0.0
-    B = 0.0
-    dB = 0.0
-    ddB = 0.0
-    dddB = 0.0
-    sa = 0.0
-    sda = 0.0
-    sdda = 0.0
-    sb = 0.0
-    sdb = 0.0
-    sddb = 0.0
+    A = dA = ddA = dddA = B = dB = ddB = dddB = sa = sda = sdda = sb = sdb = sddb = 0.0
     aw = abs(w)
     for k in range(ncoef):
         ck = c[k]
