@@ -409,7 +409,7 @@ def test_warmup_covers_every_loop_and_lists_its_steps(capsys):
     twins = {loop for _, _, loops in todo for loop in loops}
     sliding = kernel._model_kernels(stability.get_model("sliding"))
     expected = [
-        *((f, p) for f in (sliding.checked, kernel._coefficient_loop) for p in (False, True)),
+        *((f, p) for f in (sliding.checked, sliding.masked, kernel._coefficient_loop) for p in (False, True)),
         (quadratic_roots_many, False),
         (neutrality._other_roots_many, False),
         (axis_growth_many, False),

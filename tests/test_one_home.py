@@ -442,7 +442,7 @@ from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
 cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
-funcs = [*(cached(f, p) for f in (ks.checked, ks.domain) for p in (False, True)), cached(ks.coefficients),
+funcs = [*(cached(f, p) for f in (ks.checked, ks.masked, ks.domain) for p in (False, True)), cached(ks.coefficients),
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func
@@ -462,7 +462,7 @@ def test_compiled_closures_have_the_same_cache_key_in_every_process():
         subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
         for _ in range(2)
     ]
-    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 11
+    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 13
 
 
 # --- models added through the registry only ----------------------------------------------------

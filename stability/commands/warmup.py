@@ -67,6 +67,11 @@ def steps() -> list[tuple[str, Callable[[], object], list]]:
                 [(sliding.checked, par)],
             ),
             (
+                f"eigenvalue kernel, sliding model, masked ({kind})",
+                lambda par=par: kernel.model_spectrum("sliding", p, engine="compiled", parallel=par),
+                [(sliding.masked, par)],
+            ),
+            (
                 f"eigenvalue kernel on coefficients, other models ({kind})",
                 lambda par=par: kernel.coefficient_spectrum(c, engine="compiled", parallel=par),
                 [(kernel._coefficient_loop, par)],

@@ -827,6 +827,7 @@ class _Kernels(NamedTuple):
     compiles them, serial or parallel)."""
 
     checked: Callable[..., None]
+    masked: Callable[..., None]
     domain: Callable[..., None]
     coefficients: Callable[..., tuple]
     n: int
@@ -847,11 +848,10 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     local ``register_jitable`` helper compiled half as fast again).
     """
 
-    def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, test, polish, ev, bd, neutral, stab, where):
-        """The spectrum at the points whose code ``where`` (int8) is ``_INSIDE`` (the others:
-        NaN, flag -1); with ``test``, the domain test in the same pass first writes ``where``, the
-        code of :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block,
-        packed, and ``_domain_code`` only for the points it leaves undecided; the same codes).
+    def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
+        """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
+        :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block, packed,
+        and ``_domain_code`` only for the points it leaves undecided; the same codes).
         Each parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
         scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
         the loop by ~15%: the driver counts. The limits come as a tuple: an array handed to the
@@ -864,20 +864,18 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             w = np.empty((_ROWS, count if blocks else 0))
             rare = np.empty(count if blocks else 0, dtype=np.bool_)
             p = np.empty((5, count if blocks else 0))  # the block's parameters, contiguous
-            if blocks:
+            if blocks:  # the domain test of the easy majority, in a loop the compiler packs
                 for j in range(count):
                     i = lo + j
                     p[0, j], p[1, j], p[2, j] = q[i * sq], fr_inv[i * sf], sigma[i * ss]
                     p[3, j], p[4, j] = alpha_v[i * sa], mu[i * sm]
-                if test:  # the domain test of the easy majority, in a loop the compiler packs
-                    for j in range(count):
-                        where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lim, applies)
-            if test:  # the exact test for the others (all points when interpreted)
-                for i in range(lo, lo + count):
-                    if not (blocks and where[i] == _INSIDE):
-                        where[i] = _domain_code(
-                            q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lim, applies
-                        )
+                for j in range(count):
+                    where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lim, applies)
+            for i in range(lo, lo + count):  # the exact test for the others (all points when interpreted)
+                if not (blocks and where[i] == _INSIDE):
+                    where[i] = _domain_code(
+                        q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lim, applies
+                    )
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
                 for j in range(count):
                     _store_parts(formula(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j]), w, j)
@@ -885,6 +883,33 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                 _block_decide(w, count, lo, ev, bd, neutral, stab)
             for i in range(lo, lo + count):  # the points the blocks did not solve
                 ok = where[i] == _INSIDE
+                if not (blocks and ok and not rare[i - lo]):
+                    sol = _UNSOLVED
+                    if ok:
+                        parts = formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm])
+                        sol = _solve_parts(parts, polish)
+                    _finish(n, ok, sol, ev, bd, neutral, stab, i)
+
+    def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
+        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test. (Not
+        ``checked`` with the mask as its codes: the gathering of the block's parameters, which
+        the domain test wants, made this loop 2 % slower; its last loop is ``checked``'s.)"""
+        npts = len(stab)
+        blocks = _compiled() and n == 3
+        for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points, as in ``checked``
+            lo = b * BLOCK
+            count = min(BLOCK, npts - lo)
+            w = np.empty((_ROWS, count if blocks else 0))
+            rare = np.empty(count if blocks else 0, dtype=np.bool_)
+            if blocks:
+                for i in range(lo, lo + count):
+                    _store_parts(
+                        formula(q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm]), w, i - lo
+                    )
+                _block_solve(w, rare, count, polish)
+                _block_decide(w, count, lo, ev, bd, neutral, stab)
+            for i in range(lo, lo + count):  # the points the blocks did not solve
+                ok = inside[i]
                 if not (blocks and ok and not rare[i - lo]):
                     sol = _UNSOLVED
                     if ok:
@@ -900,7 +925,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
 
-    return _Kernels(checked, domain, point_coefficients, n)
+    return _Kernels(checked, masked, domain, point_coefficients, n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
@@ -979,18 +1004,19 @@ def _spectrum(
     polish: int,
     parallel: bool | None,
     engine: str | None,
-) -> tuple[KernelSpectrum, np.ndarray]:
-    """The model loop (:func:`_compile`'s ``checked``): the domain tested in the same pass if
-    ``inside`` is None, else at the points ``inside`` only; the spectrum and the domain codes."""
+) -> tuple[KernelSpectrum, np.ndarray | None]:
+    """A model loop of :func:`_compile`: ``checked`` (the domain tested in the same pass) if
+    ``inside`` is None, else ``masked`` (the points ``inside`` only); the spectrum and the
+    domain codes (None for ``masked``)."""
     kernels, values, shape, npts = _points(model, params)
-    if inside is None:
-        where = np.empty(npts, dtype=np.int8)
-    else:
-        where = np.where(_flat(inside, shape, np.bool_), np.int8(_INSIDE), np.int8(_OUTSIDE_DOMAIN))
     ev, bd, nt, st = _outputs(npts, kernels.n)
     flat = [a for v in values for a in _strided(v, shape)]
-    inputs = [*flat, _computable_limits(), inside is None, int(polish)]
-    roots.run_loop(kernels.checked, npts, parallel, engine, inputs, (ev, bd, nt, st, where))
+    if inside is None:  # the domain limits, and the codes out
+        loop, given, where = kernels.checked, _computable_limits(), np.empty(npts, dtype=np.int8)
+    else:
+        loop, given, where = kernels.masked, _flat(inside, shape, np.bool_), None
+    outputs = (ev, bd, nt, st) if where is None else (ev, bd, nt, st, where)
+    roots.run_loop(loop, npts, parallel, engine, [*flat, given, int(polish)], outputs)
     return _shaped(ev, bd, nt, st, shape), where
 
 
