@@ -625,11 +625,7 @@ def polynomial_roots(c: np.ndarray) -> PolynomialRoots:
     bound = np.zeros((flat.shape[0], n))
     exact = np.zeros((flat.shape[0], n), dtype=bool)
     # number of exactly zero trailing coefficients (structural zero roots), at most n
-    nz = np.zeros(flat.shape[0], dtype=int)
-    still = np.ones(flat.shape[0], dtype=bool)
-    for k in range(n, 0, -1):
-        still &= flat[:, k] == 0
-        nz += still
+    nz = np.cumprod(flat[:, :0:-1] == 0, axis=1).sum(axis=1)
     for z in np.unique(nz):
         sel = nz == z
         m = n - z
