@@ -1073,14 +1073,8 @@ def sliding_spectrum(
 ) -> KernelSpectrum:
     """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
     kernel of the benchmarks)."""
-    return model_spectrum(
-        "sliding",
-        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-        inside,
-        polish=polish,
-        parallel=parallel,
-        engine=engine,
-    )
+    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
+    return model_spectrum("sliding", sliding, inside, polish=polish, parallel=parallel, engine=engine)
 
 
 class CheckedSpectrum(NamedTuple):
@@ -1191,13 +1185,8 @@ def checked_sliding_spectrum(
     engine: str | None = None,
 ) -> CheckedSpectrum:
     """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
-    return checked_model_spectrum(
-        "sliding",
-        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-        polish=polish,
-        parallel=parallel,
-        engine=engine,
-    )
+    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
+    return checked_model_spectrum("sliding", sliding, polish=polish, parallel=parallel, engine=engine)
 
 
 def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine: str | None = None) -> np.ndarray:
