@@ -91,10 +91,10 @@ import numpy as np
 
 from stability.jit import OPTIONS, cached, overload, register_jitable
 
-from .. import execution
 from ..errors import InputError, ParameterTypeError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_clearly_inside, domain_sides_quick, inside_domain
+from . import roots
 from .roots import cbrt, csqrt, csqrt_nonzero, deflate_cubic_backward, horner_scheme, modulus, quadratic_roots
 
 __all__ = [
@@ -117,8 +117,9 @@ __all__ = [
 #: highest polynomial degree the kernel solves
 MAX_DEGREE = 3
 
+
 #: compiled batches below this many points run serially unless a caller asks otherwise
-SERIAL_BELOW = 512
+SERIAL_BELOW = roots.SERIAL_BELOW
 
 #: the loops' source iterates over ``prange``: the builtin ``range`` when interpreted or compiled
 #: serially, numba's ``prange`` in a parallel compilation (:func:`stability.jit.cached`)
@@ -408,23 +409,13 @@ def _solve(c3, c2, c1, c0, deg, polish):
     (``deg = 3``) or of ``c3 s^2 + c2 s + c1`` (``deg = 2``, ``c0`` ignored), unsorted."""
     if deg == 2:
         c3, c2, c1, c0 = 0j, c3, c2, c1
+    # exact deflation of the ``nz`` zero trailing coefficients (right-aligned, leading zeros)
+    d3, d2, d1, d0 = c3, c2, c1, c0
     nz = 0
-    if c0 == 0:
-        nz = 1
-        if c1 == 0:
-            nz = 2
-            if deg == 3 and c2 == 0:
-                nz = 3
+    while nz < deg and d0 == 0:
+        d3, d2, d1, d0 = 0j, d3, d2, d1
+        nz += 1
     m = deg - nz  # degree after exact deflation
-    # deflated coefficients, right-aligned with leading zeros
-    if nz == 0:
-        d3, d2, d1, d0 = c3, c2, c1, c0
-    elif nz == 1:
-        d3, d2, d1, d0 = 0j, c3, c2, c1
-    elif nz == 2:
-        d3, d2, d1, d0 = 0j, 0j, c3, c2
-    else:
-        d3, d2, d1, d0 = 0j, 0j, 0j, c3
     r0 = r1 = r2 = 0j
     x0 = x1 = x2 = True  # structural zeros: exactly zero, bound 0
     e0 = e1 = e2 = 0.0
@@ -466,6 +457,17 @@ def _swap(s, a, b):
 
 
 @register_jitable
+def _exchange(ra, rb, ea, eb, xa, xb):
+    """A compare-exchange of :func:`_decide`: modes ``a`` and ``b`` (root, bound, flag) swapped
+    where ``b`` sorts before ``a`` (:func:`_before`; selects)."""
+    s = _before(rb, ra)
+    ra, rb = _swap(s, ra, rb)
+    ea, eb = _swap(s, ea, eb)
+    xa, xb = _swap(s, xa, xb)
+    return ra, rb, ea, eb, xa, xb
+
+
+@register_jitable
 def _mode(r, e, x, floor):
     """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
     whether it grows (module docstring, step 6)."""
@@ -485,19 +487,10 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
     arrays' passing and reference counting cost ~25-30 ns per point, a sixth of the loop on one
     thread (benchmarks/kernel_pieces.py, docs/performance.md)."""
     if n >= 2:
-        s = _before(r1, r0)
-        r0, r1 = _swap(s, r0, r1)
-        e0, e1 = _swap(s, e0, e1)
-        x0, x1 = _swap(s, x0, x1)
+        r0, r1, e0, e1, x0, x1 = _exchange(r0, r1, e0, e1, x0, x1)
     if n == 3:
-        s = _before(r2, r1)
-        r1, r2 = _swap(s, r1, r2)
-        e1, e2 = _swap(s, e1, e2)
-        x1, x2 = _swap(s, x1, x2)
-        s = _before(r1, r0)
-        r0, r1 = _swap(s, r0, r1)
-        e0, e1 = _swap(s, e0, e1)
-        x0, x1 = _swap(s, x0, x1)
+        r1, r2, e1, e2, x1, x2 = _exchange(r1, r2, e1, e2, x1, x2)
+        r0, r1, e0, e1, x0, x1 = _exchange(r0, r1, e0, e1, x0, x1)
     scale2 = _mod2(r0)
     if n >= 2:
         scale2 = max(scale2, _mod2(r1))
@@ -597,18 +590,15 @@ def _coefficient_loop(c, n, inside, polish, ev, bd, neutral, stab):
     """The spectrum of the polynomials ``c[i]`` (``n + 1`` complex coefficients, highest power
     first) at the points ``inside`` (the others: NaN, flag -1)."""
     for i in prange(len(stab)):
-        if not inside[i]:
-            _mark_outside(n, ev[i], bd[i], neutral[i])
-            stab[i] = _OUTSIDE
-            continue
         ci = c[i]
-        if n == 3:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
-        elif n == 2:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
-        else:
-            r0, r1, r2, e0, e1, e2, x0, x1, x2 = _solve_linear(ci[0], ci[1])
-        stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
+        sol = _UNSOLVED
+        if inside[i] and n == 3:
+            sol = _solve(ci[0], ci[1], ci[2], ci[3], 3, polish)
+        elif inside[i] and n == 2:
+            sol = _solve(ci[0], ci[1], ci[2], 0j, 2, polish)
+        elif inside[i]:
+            sol = _solve_linear(ci[0], ci[1])
+        _finish(n, inside[i], sol, ev, bd, neutral, stab, i)
 
 
 # --- the loops of a model that offers its coefficients as a formula ---------------------------
@@ -776,10 +766,10 @@ def _block_bounds(w, rare, count):
         s3, s2, s1, s0 = _mod2(c3), _mod2(c2), _mod2(c1), _mod2(c0)
         m3, m2, m1, m0 = math.sqrt(s3), math.sqrt(s2), math.sqrt(s1), math.sqrt(s0)
         plain = _plain(s3) & _plain(s2) & _plain(s1) & _plain(s0)
-        roots = _block_roots_of(w, j)
+        rs = _block_roots_of(w, j)
         for k in range(3):
-            s = _mod2(roots[k])
-            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, roots[k], math.sqrt(s))
+            s = _mod2(rs[k])
+            dp, n1, _, second = _bound_terms(c3, c2, c1, m3, m2, m1, m0, 3, rs[k], math.sqrt(s))
             w[_E0 + k, j] = dp / math.sqrt(n1)
             plain = plain & _plain(s) & (not second)
         rare[j] = rare[j] | (not plain)
@@ -804,14 +794,9 @@ def _block_roots_of(w, j):
 
 @register_jitable
 def _store_roots(w, j, r0, r1, r2):
-    w[_R0R, j], w[_R0I, j], w[_R1R, j], w[_R1I, j], w[_R2R, j], w[_R2I, j] = (
-        r0.real,
-        r0.imag,
-        r1.real,
-        r1.imag,
-        r2.real,
-        r2.imag,
-    )
+    w[_R0R, j], w[_R0I, j] = r0.real, r0.imag
+    w[_R1R, j], w[_R1I, j] = r1.real, r1.imag
+    w[_R2R, j], w[_R2I, j] = r2.real, r2.imag
 
 
 @register_jitable
@@ -862,18 +847,15 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
     the point's work out in the loop body rather than in a local helper function (an inlined
     local ``register_jitable`` helper compiled half as fast again).
     """
-    if not 1 <= n <= MAX_DEGREE:
-        raise InputError(f"the kernel solves degrees 1 to {MAX_DEGREE}, got {n}")
 
     def checked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, lim, polish, ev, bd, neutral, stab, where):
         """The domain test and the spectrum in one pass; ``where`` (int8) gets the code of
         :func:`_domain_code` per point (compiled: :func:`_domain_clear` over the block, packed,
-        and ``_domain_code`` only for the points it leaves undecided; the same codes). Each
-        parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
+        and ``_domain_code`` only for the points it leaves undecided; the same codes).
+        Each parameter is a 1-D array read at ``i * stride`` (stride 1: one value per point; 0: a
         scalar), so scalars are not broadcast in memory. (No reduction variables, which slowed
-        the loop by ~15%: the driver counts. The limits are read into a tuple once: an array
-        handed to the domain test per point is passed and reference-counted at every call.)"""
-        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
+        the loop by ~15%: the driver counts. The limits come as a tuple: an array handed to the
+        domain test per point is passed and reference-counted at every call.)"""
         npts = len(stab)
         blocks = _compiled() and n == 3
         for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points (_block_solve)
@@ -885,19 +867,14 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
             if blocks:  # the domain test of the easy majority, in a loop the compiler packs
                 for j in range(count):
                     i = lo + j
-                    p[0, j], p[1, j], p[2, j], p[3, j], p[4, j] = (
-                        q[i * sq],
-                        fr_inv[i * sf],
-                        sigma[i * ss],
-                        alpha_v[i * sa],
-                        mu[i * sm],
-                    )
+                    p[0, j], p[1, j], p[2, j] = q[i * sq], fr_inv[i * sf], sigma[i * ss]
+                    p[3, j], p[4, j] = alpha_v[i * sa], mu[i * sm]
                 for j in range(count):
-                    where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lt, applies)
+                    where[lo + j] = _domain_clear(p[0, j], p[1, j], p[2, j], p[3, j], p[4, j], lim, applies)
             for i in range(lo, lo + count):  # the exact test for the others (all points when interpreted)
                 if not (blocks and where[i] == _INSIDE):
                     where[i] = _domain_code(
-                        q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lt, applies
+                        q[i * sq], fr_inv[i * sf], sigma[i * ss], alpha_v[i * sa], mu[i * sm], lim, applies
                     )
             if blocks:  # the coefficients in a loop of their own, which the compiler packs
                 for j in range(count):
@@ -914,7 +891,9 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                     _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
     def masked(q, sq, fr_inv, sf, sigma, ss, alpha_v, sa, mu, sm, inside, polish, ev, bd, neutral, stab):
-        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test."""
+        """The spectrum at the points ``inside`` (the others: NaN, flag -1), no domain test. (Not
+        ``checked`` with the mask as its codes: the gathering of the block's parameters, which
+        the domain test wants, made this loop 2 % slower; its last loop is ``checked``'s.)"""
         npts = len(stab)
         blocks = _compiled() and n == 3
         for b in prange((npts + BLOCK - 1) // BLOCK):  # blocks of points, as in ``checked``
@@ -940,9 +919,8 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
 
     def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
         """The code of :func:`_domain_code` per point."""
-        lt = (lim[0], lim[1], lim[2], lim[3], lim[4], lim[5], lim[6], lim[7], lim[8], lim[9])
         for i in prange(len(code)):
-            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lt, applies)
+            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
 
     def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
         return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
@@ -1005,46 +983,41 @@ def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np
     return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
 
 
-def _serial(npts: int, parallel: bool | None) -> bool:
-    """Whether to run the serial loop: asked for (``parallel=False``), or by default
-    (``parallel=None``) below :data:`SERIAL_BELOW` points (a parallel launch costs more than a
-    few points, and much more on a loaded machine)."""
-    return (npts < SERIAL_BELOW) if parallel is None else not parallel
+def _points(model: str | LinearModel, params: Mapping[str, Any]) -> tuple[_Kernels, list[Any], tuple[int, ...], int]:
+    """The loops of ``model``, its five linear parameters in :data:`stability.parameters.PARAMETERS`
+    order (the arguments of ``point_coefficients``; ``0.0`` for those the model does not take),
+    their broadcast shape and its number of points."""
+    m = get_model(model)
+    kernels = _require_kernels(m)
+    missing = [n for n in m.parameters if n not in params]
+    if missing:
+        raise ParameterTypeError(f"model {m.name!r} needs {', '.join(missing)}")
+    values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    return kernels, values, shape, math.prod(shape)
 
 
-def _run(
-    loop: Callable[..., None],
-    npts: int,
+def _spectrum(
+    model: str | LinearModel,
+    params: Mapping[str, Any],
+    inside: np.ndarray | None,
+    polish: int,
     parallel: bool | None,
     engine: str | None,
-    inputs: list[Any],
-    outputs: tuple[np.ndarray, ...],
-) -> None:
-    """``loop(*inputs, *outputs)`` in one execution.
-
-    Compiled (serial if :func:`_serial`, else parallel) if
-    :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
-    must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
-    floats and complex numbers, the same values; numpy scalars would be slower and complex
-    division on them is numpy's, not the one numba copies from CPython), whose results are then
-    written into ``outputs`` (every element of which the loops set)."""
-    parallel = not _serial(npts, parallel)
-    if execution.use_compiled(loop, npts, engine, parallel=parallel):
-        cached(loop, parallel)(*inputs, *outputs)
-        return
-    lists = [o.tolist() for o in outputs]
-    loop(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
-    for out, values in zip(outputs, lists):
-        out[...] = values
-
-
-def _canonical(model: LinearModel, params: Mapping[str, Any]) -> list[Any]:
-    """The five linear parameters in :data:`stability.parameters.PARAMETERS` order (the
-    arguments of ``point_coefficients``); ``0.0`` for those the model does not take."""
-    missing = [n for n in model.parameters if n not in params]
-    if missing:
-        raise ParameterTypeError(f"model {model.name!r} needs {', '.join(missing)}")
-    return [params[n] if n in model.parameters else 0.0 for n in PARAMETERS]
+) -> tuple[KernelSpectrum, np.ndarray | None]:
+    """A model loop of :func:`_compile`: ``checked`` (the domain tested in the same pass) if
+    ``inside`` is None, else ``masked`` (the points ``inside`` only); the spectrum and the
+    domain codes (None for ``masked``)."""
+    kernels, values, shape, npts = _points(model, params)
+    ev, bd, nt, st = _outputs(npts, kernels.n)
+    flat = [a for v in values for a in _strided(v, shape)]
+    if inside is None:  # the domain limits, and the codes out
+        loop, given, where = kernels.checked, _computable_limits(), np.empty(npts, dtype=np.int8)
+    else:
+        loop, given, where = kernels.masked, _flat(inside, shape, np.bool_), None
+    outputs = (ev, bd, nt, st) if where is None else (ev, bd, nt, st, where)
+    roots.run_loop(loop, npts, parallel, engine, [*flat, given, int(polish)], outputs)
+    return _shaped(ev, bd, nt, st, shape), where
 
 
 def model_spectrum(
@@ -1083,24 +1056,7 @@ def model_spectrum(
     KernelSpectrum
         Shapes ``broadcast + (n_modes,)`` (and ``broadcast`` for the flag).
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    npts = math.prod(shape)
-    flat = [_strided(v, shape) for v in values]
-    ins = np.ones(npts, dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
-    n = kernels.n
-    ev, bd, nt, st = _outputs(npts, n)
-    _run(
-        kernels.masked,
-        npts,
-        parallel,
-        engine,
-        [*(a for pair in flat for a in pair), ins, int(polish)],
-        (ev, bd, nt, st),
-    )
-    return _shaped(ev, bd, nt, st, shape)
+    return _spectrum(model, params, inside, polish, parallel, engine)[0]
 
 
 def sliding_spectrum(
@@ -1117,14 +1073,8 @@ def sliding_spectrum(
 ) -> KernelSpectrum:
     """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
     kernel of the benchmarks)."""
-    return model_spectrum(
-        "sliding",
-        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-        inside,
-        polish=polish,
-        parallel=parallel,
-        engine=engine,
-    )
+    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
+    return model_spectrum("sliding", sliding, inside, polish=polish, parallel=parallel, engine=engine)
 
 
 class CheckedSpectrum(NamedTuple):
@@ -1149,17 +1099,16 @@ class CheckedSpectrum(NamedTuple):
     n_not_finite: int
 
 
-def _computable_limits() -> np.ndarray:
+def _computable_limits() -> tuple[float, ...]:
     """``lo, hi`` magnitudes accepted for q, fr_inv, sigma, alpha_v, mu (10 floats), read from
     :data:`stability.parameters.COMPUTABLE_RANGE` at each call (passed to the kernel as data, so
     a change there is never hidden by numba's cache); ``0`` and the largest float where it names
     none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
     from .. import parameters
 
-    rng = getattr(parameters, "COMPUTABLE_RANGE", {})
-    lim = np.array([float(x) for k in ("q", "fr_inv", "sigma", "alpha_v", "mu") for x in rng.get(k, (0.0, math.inf))])
+    lim = np.array([float(x) for k in PARAMETERS for x in parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf))])
     lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
-    return lim
+    return tuple(lim.tolist())
 
 
 def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
@@ -1217,28 +1166,11 @@ def checked_model_spectrum(
     ValueError
         If the shapes do not broadcast together.
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    npts = math.prod(shape)
-    flat = [_strided(v, shape) for v in values]
-    n = kernels.n
-    ev, bd, nt, st = _outputs(npts, n)
-    where = np.empty(npts, dtype=np.int8)
-    _run(
-        kernels.checked,
-        npts,
-        parallel,
-        engine,
-        [*(a for pair in flat for a in pair), _computable_limits(), int(polish)],
-        (ev, bd, nt, st, where),
-    )
+    spec, where = _spectrum(model, params, None, polish, parallel, engine)
     inside = where == _INSIDE
-    n_out = npts - int(np.count_nonzero(inside))
+    n_out = where.size - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    spec = _shaped(ev, bd, nt, st, shape)
-    return CheckedSpectrum(spec, inside.reshape(shape), int(n_out), int(n_bad))
+    return CheckedSpectrum(spec, inside.reshape(spec.stability.shape), int(n_out), int(n_bad))
 
 
 def checked_sliding_spectrum(
@@ -1253,13 +1185,8 @@ def checked_sliding_spectrum(
     engine: str | None = None,
 ) -> CheckedSpectrum:
     """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
-    return checked_model_spectrum(
-        "sliding",
-        dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu),
-        polish=polish,
-        parallel=parallel,
-        engine=engine,
-    )
+    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
+    return checked_model_spectrum("sliding", sliding, polish=polish, parallel=parallel, engine=engine)
 
 
 def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine: str | None = None) -> np.ndarray:
@@ -1279,14 +1206,11 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     -------
     numpy.ndarray of int8, broadcast shape
     """
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    values = _canonical(m, params)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    args = [_flat(v, shape) for v in values]
-    npts = math.prod(shape)
+    kernels, values, shape, npts = _points(model, params)
     code = np.empty(npts, dtype=np.int8)
-    _run(kernels.domain, npts, None, engine, [*args, _computable_limits()], (code,))
+    roots.run_loop(
+        kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,)
+    )
     return code.reshape(shape)
 
 
@@ -1356,5 +1280,5 @@ def coefficient_spectrum(
     ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
     npts = flat.shape[0]
     ev, bd, nt, st = _outputs(npts, n)
-    _run(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
+    roots.run_loop(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
     return _shaped(ev, bd, nt, st, shape)

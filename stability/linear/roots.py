@@ -79,7 +79,9 @@ rate of the root near ``i w``.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -258,6 +260,38 @@ def quadratic_roots(a, b, k):
     return 0j, 0j, False
 
 
+#: compiled batches below this many points run serially unless a caller asks otherwise
+SERIAL_BELOW = 512
+
+
+def run_loop(
+    loop: Callable[..., None],
+    npts: int,
+    parallel: bool | None,
+    engine: str | None,
+    inputs: list[Any],
+    outputs: tuple[np.ndarray, ...],
+) -> None:
+    """``loop(*inputs, *outputs)`` (a batch loop of this module or of :mod:`stability.linear.kernel`)
+    in one execution.
+
+    Compiled (serially as asked by ``parallel``, by default below :data:`SERIAL_BELOW` points: a
+    parallel launch costs more than a few points, and much more on a loaded machine) if
+    :func:`stability.execution.use_compiled` says so (after the once-per-process notice if it
+    must be compiled first); else interpreted, on Python lists (the arrays' ``tolist()``: Python
+    floats and complex numbers, the same values; numpy scalars would be slower and complex
+    division on them is numpy's, not the one numba copies from CPython), whose results are then
+    written into ``outputs`` (every element of which the loops set)."""
+    parallel = (npts >= SERIAL_BELOW) if parallel is None else parallel
+    if execution.use_compiled(loop, npts, engine, parallel=parallel):
+        cached(loop, parallel)(*inputs, *outputs)
+        return
+    lists = [o.tolist() for o in outputs]
+    loop(*(x.tolist() if isinstance(x, np.ndarray) else x for x in inputs), *lists)
+    for out, values in zip(outputs, lists):
+        out[...] = values
+
+
 def quadratic_roots_many(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
     ``exact`` (m, 2); lists (interpreted) or arrays (compiled by :func:`stability.jit.cached`;
@@ -330,20 +364,7 @@ def _axis_horner(c, ncoef, w):
     and the scales of their rounding: ``sum_k |a_k| |w|^k`` and its first two derivatives in
     ``|w|`` (and the same for ``b``)."""
     n = ncoef - 1
-    A = 0.0
-    dA = 0.0
-    ddA = 0.0
-    dddA = 0.0
-    B = 0.0
-    dB = 0.0
-    ddB = 0.0
-    dddB = 0.0
-    sa = 0.0
-    sda = 0.0
-    sdda = 0.0
-    sb = 0.0
-    sdb = 0.0
-    sddb = 0.0
+    A = dA = ddA = dddA = B = dB = ddB = dddB = sa = sda = sdda = sb = sdb = sddb = 0.0
     aw = abs(w)
     for k in range(ncoef):
         ck = c[k]
@@ -481,19 +502,11 @@ def horner(c: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return horner_scheme(np.moveaxis(np.asarray(c), -1, 0), s)
 
 
-def _abs_horner(c: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """``sum_k |c_k| |s|**k``: the scale of rounding errors in ``p(s)``."""
-    a = np.abs(s)
-    out = np.zeros(s.shape) + np.abs(c[..., 0])
-    for k in range(1, c.shape[-1]):
-        out = out * a + np.abs(c[..., k])
-    return out
-
-
 def _bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Absolute error bound of roots ``r`` of ``c`` (see module docstring)."""
     deg = c.shape[-1] - 1
-    dp_scale = (deg + 4) * UNIT_ROUNDOFF * _abs_horner(c, r)
+    # sum_k |c_k| |r|^k: the scale of rounding errors in p(r)
+    dp_scale = (deg + 4) * UNIT_ROUNDOFF * horner_scheme(np.moveaxis(np.abs(c), -1, 0), np.abs(r), 0)[0]
     _, d1, d2 = horner(c, r)
     with np.errstate(divide="ignore", invalid="ignore"):
         first = np.where(np.abs(d1) > 0, dp_scale / np.abs(d1), np.inf)
@@ -531,12 +544,7 @@ def inclusion_radius(c: np.ndarray, r: np.ndarray) -> np.ndarray:
     r = np.asarray(r, dtype=complex)
     n = c.shape[-1] - 1
     p, d1, _ = horner(c, r)
-    a = np.abs(r)
-    scale = np.zeros(r.shape) + np.abs(c[..., 0])
-    dscale = np.zeros(r.shape)
-    for k in range(1, n + 1):
-        dscale = dscale * a + scale
-        scale = scale * a + np.abs(c[..., k])
+    scale, dscale, _ = horner_scheme(np.moveaxis(np.abs(c), -1, 0), np.abs(r), 1)  # sum_k |c_k| |r|^k, d/d|r|
     # rounding of Horner in complex arithmetic (<= 2 sqrt 2 n u per level, taken as 4 n u) and of
     # the coefficients ((n + 4) u each)
     g = (5 * n + 4) * UNIT_ROUNDOFF
@@ -566,24 +574,11 @@ def _newton_polish(c: np.ndarray, r: np.ndarray, iterations: int = 3) -> np.ndar
 def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Roots of ``a s^2 + b s + c`` for a batch (..., 3) (:func:`quadratic_roots` compiled over
     the batch); returns roots and exact_real mask."""
-    flat = np.ascontiguousarray(np.asarray(c, dtype=complex).reshape(-1, 3))
+    flat = np.asarray(c, dtype=complex).reshape(-1, 3)
     m = flat.shape[0]
-    if execution.use_compiled(quadratic_roots_many, m):
-        roots = np.empty((m, 2), dtype=complex)
-        exact = np.empty((m, 2), dtype=bool)
-        cached(quadratic_roots_many)(
-            np.ascontiguousarray(flat[:, 0]),
-            np.ascontiguousarray(flat[:, 1]),
-            np.ascontiguousarray(flat[:, 2]),
-            roots,
-            exact,
-        )
-    else:
-        out = [[0j, 0j] for _ in range(m)]
-        ex = [[False, False] for _ in range(m)]
-        quadratic_roots_many(flat[:, 0].tolist(), flat[:, 1].tolist(), flat[:, 2].tolist(), out, ex)
-        roots = np.array(out, dtype=complex).reshape(m, 2)
-        exact = np.array(ex, dtype=bool).reshape(m, 2)
+    roots = np.empty((m, 2), dtype=complex)
+    exact = np.empty((m, 2), dtype=bool)
+    run_loop(quadratic_roots_many, m, False, None, [np.ascontiguousarray(flat[:, k]) for k in range(3)], (roots, exact))
     shape = c.shape[:-1] + (2,)
     return roots.reshape(shape), exact.reshape(shape)
 
@@ -630,11 +625,7 @@ def polynomial_roots(c: np.ndarray) -> PolynomialRoots:
     bound = np.zeros((flat.shape[0], n))
     exact = np.zeros((flat.shape[0], n), dtype=bool)
     # number of exactly zero trailing coefficients (structural zero roots), at most n
-    nz = np.zeros(flat.shape[0], dtype=int)
-    still = np.ones(flat.shape[0], dtype=bool)
-    for k in range(n, 0, -1):
-        still &= flat[:, k] == 0
-        nz += still
+    nz = np.cumprod(flat[:, :0:-1] == 0, axis=1).sum(axis=1)
     for z in np.unique(nz):
         sel = nz == z
         m = n - z
