@@ -40,7 +40,7 @@ from ..execution import announce, pick
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.integrators import check_tolerances
 from ..nonlinear.parameters import pack
-from ..nonlinear.runs import auto_method, initial_state, simulate
+from ..nonlinear.runs import auto_method, initial_state, run_in_chunks
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
@@ -532,13 +532,11 @@ def settle(
     ``t_max`` (or a failed integration: then unsettled, tilt NaN), or an event (contact lost, the
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
-    w, kk, v = y0[0:3], y0[3:6], y0[6:8]
-    t, n, t0, j0, event, settled = 0.0, 0, time.perf_counter(), None, "none", False
+    n, t0, j0, event, settled = 0, time.perf_counter(), None, "none", False
     change = slip = math.inf
-    while t < t_max:
-        length = min(chunk, t_max - t)
-        start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
-        ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
+    state = dict(omega=y0[0:3], k=y0[3:6], velocity=y0[6:8])
+    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=samples, rtol=rtol, stick_tilt=stick_tilt)
+    for t, length, ds in chunks:
         n, t = n + 1, t + length
         j0 = float(ds.h_cg[0]) if j0 is None else j0
         pol = ds.polar_angle.values
@@ -549,8 +547,6 @@ def settle(
         if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
             slip = math.nan
             break
-        w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
-        kk = kk / np.linalg.norm(kk)
         if settled := change < settle_tolerance and slip < 1e-6:
             break
     drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
