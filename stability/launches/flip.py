@@ -168,16 +168,9 @@ def run_launch(
 
     # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
     # numbers are read to the 1-degree band and the output step, not to 1e-10
-    chunks = run_in_chunks(
-        state,
-        params,
-        chunk=chunk,
-        t_max=t_max,
-        samples=lambda length: max(2, int(math.ceil(length / dt))),
-        rtol=lambda: rtol if crossed is None else max(rtol, TAIL_RTOL),
-        stick_tilt=stick_tilt,
-    )
-    for t, length, ds in chunks:
+    steps = dict(chunk=chunk, t_max=t_max, samples=lambda length: max(2, math.ceil(length / dt)), stick_tilt=stick_tilt)
+    tolerance = dict(rtol=lambda: rtol if crossed is None else max(rtol, TAIL_RTOL))
+    for t, length, ds in run_in_chunks(state, params, **steps, **tolerance):
         attrs, pol, ts = dict(ds.attrs), ds.polar_angle.values, ds.time.values
         if not np.all(np.isfinite(pol)):
             raise RunError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")

@@ -48,15 +48,7 @@ from .integrators import COMPILED_METHODS, SCIPY_METHODS, check_tolerances, inte
 from .parameters import pack
 from .quantities import energy_parts, h_cg
 
-__all__ = [
-    "STIFF_RATE",
-    "auto_method",
-    "check_run_memory",
-    "initial_state",
-    "model_parameter_vector",
-    "run_in_chunks",
-    "simulate",
-]
+__all__ = ["STIFF_RATE", "auto_method", "check_run_memory", "initial_state", "model_parameter_vector", "simulate"]
 
 #: decay rate of the fast slip mode above which "auto" picks LSODA: where the measured costs of
 #: the compiled dopri5 (held to steps ~3.3 / rate by stability) and of LSODA cross, below which
@@ -565,32 +557,22 @@ def trajectory_dataset(model: str, run: Any, params: dict[str, float], p: np.nda
 
 
 def run_in_chunks(
-    state: Mapping[str, Any],
-    params: Mapping[str, float],
-    *,
-    chunk: float,
-    t_max: float,
-    samples: int | Callable[[float], int],
-    rtol: float | Callable[[], float],
-    stick_tilt: float | None = None,
+    state: dict, params: dict, *, chunk: float, t_max: float, samples: Any, rtol: Any, stick_tilt: float | None = None
 ) -> Iterator[tuple[float, float, xr.Dataset]]:
     """A sliding run in chunks until its caller stops it (settled, failed, an event) or ``t_max``:
     the one loop of :func:`stability.steady.final.settle` and :func:`stability.launches.flip.run_launch`.
 
     Yields ``(t, length, ds)`` per chunk: its start ``t``, its ``length = min(chunk, t_max - t)``
     and :func:`simulate` from ``state`` (``omega``, ``k``, ``velocity``) over it with ``params``,
-    ``samples`` output intervals (or ``samples(length)``), tolerance ``rtol`` (or ``rtol()``,
-    read at each chunk's start) and ``atol = 1e-3 rtol``, stopped at ``stick_tilt``. The next
-    chunk starts from the last output, ``k`` renormalised to unit length."""
+    ``samples`` output intervals (an int, or ``samples(length)``), tolerance ``rtol`` (a float, or
+    ``rtol()`` read at each chunk's start) and ``atol = 1e-3 rtol``, stopped at ``stick_tilt``.
+    The next chunk starts from the last output, ``k`` renormalised to unit length."""
     t = 0.0
     while t < t_max:
         length = min(chunk, t_max - t)
         n, r = samples(length) if callable(samples) else samples, rtol() if callable(rtol) else rtol
-        t_eval = np.linspace(0.0, length, n + 1)
-        ds = simulate(
-            "sliding", t_end=length, t_eval=t_eval, **state, stick_tilt=stick_tilt, rtol=r, atol=1e-3 * r, **params
-        )
+        run = dict(state, t_end=length, t_eval=np.linspace(0.0, length, n + 1), rtol=r, atol=1e-3 * r)
+        ds = simulate("sliding", **run, stick_tilt=stick_tilt, **params)
         yield t, length, ds
-        t += length
-        k = ds.k.values[-1]
+        t, k = t + length, ds.k.values[-1]
         state = {"omega": ds.omega.values[-1], "k": k / np.linalg.norm(k), "velocity": ds.velocity.values[-1][:2]}
