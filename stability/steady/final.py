@@ -468,20 +468,20 @@ def final_state(
     settling = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
     tilt, energy, run = settle(y, params, chunk=chunk_length(cands, params, J0), **settling)
     outcome = dict(tilt=tilt, method="simulation", run=run, energy=energy, axial_spin=run.axial_spin)
+    if run.event != "none":
+        outcome.update(kind=run.event, event=run.event, event_time=run.event_time)
     if run.event == "stick_contact":
         end_text = f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else ""
         what = (
             f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
             f"1/Omega): the sphere model's end{end_text} is a tilt the toy cannot have"
         )  # contact stays "not checked": the stick ended the run first
-        outcome.update(kind=run.event, event=run.event, event_time=run.event_time)
     elif run.event != "none":
         what = (
             f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
             "does not hold beyond, no final state"
         )
-        contact = "lost" if run.event == "contact_lost" else "held"
-        outcome.update(kind=run.event, event=run.event, event_time=run.event_time, contact=contact)
+        outcome["contact"] = "lost" if run.event == "contact_lost" else "held"
     else:
         near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
         state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
@@ -533,7 +533,6 @@ def settle(
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
     n, t0, j0, event, settled = 0, time.perf_counter(), None, "none", False
-    change = slip = math.inf
     state = dict(omega=y0[0:3], k=y0[3:6], velocity=y0[6:8])
     chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=samples, rtol=rtol, stick_tilt=stick_tilt)
     for t, length, ds in chunks:
@@ -550,10 +549,6 @@ def settle(
         if settled := change < settle_tolerance and slip < 1e-6:
             break
     drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
-    work = dict(
-        t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=time.perf_counter() - t0
-    )
-    end = dict(
-        jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=t if event != "none" else math.nan
-    )
-    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), SettleRun(**work, **end)
+    when = t if event != "none" else math.nan
+    run = SettleRun(t, settled, change, slip, n, time.perf_counter() - t0, drift, float(ds.spin[-1]), event, when)
+    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), run
