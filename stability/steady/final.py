@@ -220,21 +220,18 @@ class FinalState:
             "axial_spin": ("spin about the axis of the final state, omega . k", "Omega", "axial spin"),
         }
         data = {k: ((), getattr(self, k), var_attrs(long, u, short=short)) for k, (long, u, short) in scalars.items()}
-        columns = {  # candidate_<field>: long name, units and short name (var_attrs) or attributes; dtype
+        columns = {  # candidate_<field>: a float's long name, units (default 1), short name; or attributes, dtype
             "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
-            "tilt": (("tilt of the steady state", DEGREE, "tilt"), None),
-            "energy": (("energy U_J of the steady state", "A0 Omega^2", "energy U_J"), None),
-            "precession_rate": (
-                ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
-                None,
-            ),
-            "axial_spin": (("spin about the axis of the steady state, omega . k", "Omega", "axial spin"), None),
+            "tilt": ("tilt of the steady state", DEGREE, "tilt"),
+            "energy": ("energy U_J of the steady state", "A0 Omega^2", "energy U_J"),
+            "precession_rate": ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
+            "axial_spin": ("spin about the axis of the steady state, omega . k", "Omega", "axial spin"),
             "stability": (flag_attrs("stability of the steady state"), np.int8),
-            "energy_test": (("energy criterion (> 0 at a minimum of U_J)", "energy criterion"), None),
+            "energy_test": ("energy criterion (> 0 at a minimum of U_J)", "energy criterion"),  # units: 1
             "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
         }
-        for name, (a, dtype) in columns.items():
-            attrs = var_attrs(a[0], *a[1:-1], short=a[-1]) if isinstance(a, tuple) else a  # units default 1
+        for name, spec in columns.items():
+            attrs, dtype = (var_attrs(spec[0], *spec[1:-1], short=spec[-1]), None) if isinstance(spec[0], str) else spec
             data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
         final = yes_no("final state", "no yes", comment="the motion ends on this state")
         data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
