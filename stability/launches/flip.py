@@ -26,7 +26,7 @@ import numpy as np
 
 from .._version import package_version
 from ..errors import DomainError, ParameterTypeError, RunError
-from ..nonlinear.runs import simulate
+from ..nonlinear.runs import run_in_chunks, simulate
 from ..parameters import as_scalar, check_choice, check_interval, check_positive
 from ..products import PRODUCT_ATTR
 from ..top import Top, check_launch_spin
@@ -157,7 +157,7 @@ def run_launch(
         k0 = np.asarray(start["k"], dtype=float)
         tilt = float(np.degrees(np.arccos(np.clip(k0[2] / np.linalg.norm(k0), -1.0, 1.0))))
         state = {"omega": start["omega"], "k": start["k"], "velocity": start.get("velocity", [0.0, 0.0])}
-    t, n_min, event_note, crossed, settled, attrs = 0.0, math.inf, "", None, False, {}
+    n_min, event_note, crossed, settled, attrs = math.inf, "", None, False, {}
     times, tilts = [np.array([0.0])], [np.array([tilt])]
 
     def tilt_minus(dt_: float, y: dict[str, Any], tilt0: float) -> float:  # the tilt dt_ after y, less crossing
@@ -166,16 +166,11 @@ def run_launch(
         ds = simulate("sliding", t_end=dt_, t_eval=np.array([0.0, dt_]), **y, rtol=rtol, atol=1e-3 * rtol, **params)
         return float(ds.polar_angle[-1]) - crossing
 
-    while t < t_max:
-        length = min(chunk, t_max - t)
-        n = max(2, int(math.ceil(length / dt)))
-        # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
-        # numbers are read to the 1-degree band and the output step, not to 1e-10
-        r = rtol if crossed is None else max(rtol, TAIL_RTOL)
-        t_eval = np.linspace(0.0, length, n + 1)
-        ds = simulate(
-            "sliding", t_end=length, t_eval=t_eval, **state, stick_tilt=stick_tilt, rtol=r, atol=1e-3 * r, **params
-        )
+    # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
+    # numbers are read to the 1-degree band and the output step, not to 1e-10
+    steps = dict(chunk=chunk, t_max=t_max, samples=lambda length: max(2, math.ceil(length / dt)), stick_tilt=stick_tilt)
+    tolerance = dict(rtol=lambda: rtol if crossed is None else max(rtol, TAIL_RTOL))
+    for t, length, ds in run_in_chunks(state, params, **steps, **tolerance):
         attrs, pol, ts = dict(ds.attrs), ds.polar_angle.values, ds.time.values
         if not np.all(np.isfinite(pol)):
             raise RunError(f"the launch run failed at t = {t:.6g}: {ds.attrs.get('message', '')}")
@@ -191,8 +186,6 @@ def run_launch(
         times.append(tt[1:])
         tilts.append(pol[1:])
         t += length
-        k_end = ds.k.values[-1] / np.linalg.norm(ds.k.values[-1])
-        state = {"omega": ds.omega.values[-1], "k": k_end, "velocity": ds.velocity.values[-1][:2]}
         if attrs.get("event", "none") != "none":  # the model stops holding: contact lost or stick reached
             # omega . k at the event (units of Omega): the spin about the symmetry axis the top
             # carries onto its stick (the stick's sphere has axis -k: the same spin, reversed)

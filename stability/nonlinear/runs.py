@@ -16,7 +16,7 @@ coefficient ``alpha_k / slip_scale``; see
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
 import numpy as np
@@ -554,3 +554,25 @@ def trajectory_dataset(model: str, run: Any, params: dict[str, float], p: np.nda
         impact_energy_loss=np.array([x.energy_loss for x in lands], float),
     )
     return ds
+
+
+def run_in_chunks(
+    state: dict, params: dict, *, chunk: float, t_max: float, samples: Any, rtol: Any, stick_tilt: float | None = None
+) -> Iterator[tuple[float, float, xr.Dataset]]:
+    """A sliding run in chunks until its caller stops it (settled, failed, an event) or ``t_max``:
+    the one loop of :func:`stability.steady.final.settle` and :func:`stability.launches.flip.run_launch`.
+
+    Yields ``(t, length, ds)`` per chunk: its start ``t``, its ``length = min(chunk, t_max - t)``
+    and :func:`simulate` from ``state`` (``omega``, ``k``, ``velocity``) over it with ``params``,
+    ``samples`` output intervals (an int, or ``samples(length)``), tolerance ``rtol`` (a float, or
+    ``rtol()`` read at each chunk's start) and ``atol = 1e-3 rtol``, stopped at ``stick_tilt``.
+    The next chunk starts from the last output, ``k`` renormalised to unit length."""
+    t = 0.0
+    while t < t_max:
+        length = min(chunk, t_max - t)
+        n, r = samples(length) if callable(samples) else samples, rtol() if callable(rtol) else rtol
+        run = dict(state, t_end=length, t_eval=np.linspace(0.0, length, n + 1), rtol=r, atol=1e-3 * r)
+        ds = simulate("sliding", **run, stick_tilt=stick_tilt, **params)
+        yield t, length, ds
+        t, k = t + length, ds.k.values[-1]
+        state = {"omega": ds.omega.values[-1], "k": k / np.linalg.norm(k), "velocity": ds.velocity.values[-1][:2]}

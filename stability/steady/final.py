@@ -40,7 +40,7 @@ from ..execution import announce, pick
 from ..nonlinear import get_nonlinear_model
 from ..nonlinear.integrators import check_tolerances
 from ..nonlinear.parameters import pack
-from ..nonlinear.runs import auto_method, initial_state, simulate
+from ..nonlinear.runs import auto_method, initial_state, run_in_chunks
 from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, check_positive
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
@@ -220,21 +220,18 @@ class FinalState:
             "axial_spin": ("spin about the axis of the final state, omega . k", "Omega", "axial spin"),
         }
         data = {k: ((), getattr(self, k), var_attrs(long, u, short=short)) for k, (long, u, short) in scalars.items()}
-        columns = {  # candidate_<field>: long name, units and short name (var_attrs) or attributes; dtype
+        columns = {  # candidate_<field>: a float's long name, units (default 1), short name; or attributes, dtype
             "kind": ({"long_name": "kind of state", "comment": "kind of the steady state of the level"}, str),
-            "tilt": (("tilt of the steady state", DEGREE, "tilt"), None),
-            "energy": (("energy U_J of the steady state", "A0 Omega^2", "energy U_J"), None),
-            "precession_rate": (
-                ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
-                None,
-            ),
-            "axial_spin": (("spin about the axis of the steady state, omega . k", "Omega", "axial spin"), None),
+            "tilt": ("tilt of the steady state", DEGREE, "tilt"),
+            "energy": ("energy U_J of the steady state", "A0 Omega^2", "energy U_J"),
+            "precession_rate": ("precession rate of the steady state (NaN: vertical)", "Omega", "precession rate"),
+            "axial_spin": ("spin about the axis of the steady state, omega . k", "Omega", "axial spin"),
             "stability": (flag_attrs("stability of the steady state"), np.int8),
-            "energy_test": (("energy criterion (> 0 at a minimum of U_J)", "energy criterion"), None),
+            "energy_test": ("energy criterion (> 0 at a minimum of U_J)", "energy criterion"),  # units: 1
             "reachable": (yes_no("U_J <= initial energy", "unreachable reachable"), np.int8),
         }
-        for name, (a, dtype) in columns.items():
-            attrs = var_attrs(a[0], *a[1:-1], short=a[-1]) if isinstance(a, tuple) else a  # units default 1
+        for name, spec in columns.items():
+            attrs, dtype = (var_attrs(spec[0], *spec[1:-1], short=spec[-1]), None) if isinstance(spec[0], str) else spec
             data[f"candidate_{name}"] = column([getattr(c, name) for c in cands], attrs, dtype)
         final = yes_no("final state", "no yes", comment="the motion ends on this state")
         data["candidate_is_final"] = column([c is self.state for c in cands], final, np.int8)
@@ -468,20 +465,20 @@ def final_state(
     settling = dict(t_max=t_max, settle_tolerance=settle_tolerance, rtol=rtol, stick_tilt=stick_tilt)
     tilt, energy, run = settle(y, params, chunk=chunk_length(cands, params, J0), **settling)
     outcome = dict(tilt=tilt, method="simulation", run=run, energy=energy, axial_spin=run.axial_spin)
+    if run.event != "none":
+        outcome.update(kind=run.event, event=run.event, event_time=run.event_time)
     if run.event == "stick_contact":
         end_text = f" ({end.kind} at {end.tilt:.4g} degrees)" if end is not None else ""
         what = (
             f"the motion reaches its stick at {tilt:.4g} degrees after t = {run.event_time:.6g} (units of "
             f"1/Omega): the sphere model's end{end_text} is a tilt the toy cannot have"
         )  # contact stays "not checked": the stick ended the run first
-        outcome.update(kind=run.event, event=run.event, event_time=run.event_time)
     elif run.event != "none":
         what = (
             f"{run.event.replace('_', ' ')} at t = {run.event_time:.6g} (tilt {tilt:.6g} deg): the model "
             "does not hold beyond, no final state"
         )
-        contact = "lost" if run.event == "contact_lost" else "held"
-        outcome.update(kind=run.event, event=run.event, event_time=run.event_time, contact=contact)
+        outcome["contact"] = "lost" if run.event == "contact_lost" else "held"
     else:
         near = [c for c in cands if abs(c.tilt - tilt) <= MATCH_DEG and c.stability != UNSTABLE]
         state = min(near, key=lambda c: abs(c.tilt - tilt)) if near else None
@@ -532,13 +529,10 @@ def settle(
     ``t_max`` (or a failed integration: then unsettled, tilt NaN), or an event (contact lost, the
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
-    w, kk, v = y0[0:3], y0[3:6], y0[6:8]
-    t, n, t0, j0, event, settled = 0.0, 0, time.perf_counter(), None, "none", False
-    change = slip = math.inf
-    while t < t_max:
-        length = min(chunk, t_max - t)
-        start = dict(t_eval=np.linspace(0.0, length, samples + 1), omega=w, k=kk, velocity=v)
-        ds = simulate("sliding", t_end=length, **start, rtol=rtol, atol=1e-3 * rtol, stick_tilt=stick_tilt, **params)
+    n, t0, j0, event, settled = 0, time.perf_counter(), None, "none", False
+    state = dict(omega=y0[0:3], k=y0[3:6], velocity=y0[6:8])
+    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=samples, rtol=rtol, stick_tilt=stick_tilt)
+    for t, length, ds in chunks:
         n, t = n + 1, t + length
         j0 = float(ds.h_cg[0]) if j0 is None else j0
         pol = ds.polar_angle.values
@@ -549,15 +543,9 @@ def settle(
         if not np.all(np.isfinite(pol)):  # the integration failed (simulate warned): stop, unsettled
             slip = math.nan
             break
-        w, kk, v = ds.omega.values[-1], ds.k.values[-1], ds.velocity.values[-1][:2]
-        kk = kk / np.linalg.norm(kk)
         if settled := change < settle_tolerance and slip < 1e-6:
             break
     drift = abs(float(ds.h_cg[-1]) - j0) / max(abs(j0), 1e-300)
-    work = dict(
-        t_end=t, settled=settled, tilt_change=change, slip_speed=slip, chunks=n, seconds=time.perf_counter() - t0
-    )
-    end = dict(
-        jellett_drift=drift, axial_spin=float(ds.spin[-1]), event=event, event_time=t if event != "none" else math.nan
-    )
-    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), SettleRun(**work, **end)
+    when = t if event != "none" else math.nan
+    run = SettleRun(t, settled, change, slip, n, time.perf_counter() - t0, drift, float(ds.spin[-1]), event, when)
+    return (float(pol[-1]) if np.isfinite(pol).all() else math.nan), float(ds.energy[-1]), run
