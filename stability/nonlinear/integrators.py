@@ -25,8 +25,8 @@ within milliseconds, with an ordinary exception, never from inside compiled code
 hold no GIL and assign no array slices (a slice assignment makes numba compile its
 shape-mismatch message formatting, seconds of compile time for nothing).
 
-A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted
-(:func:`stability.jit.python`) unless the compiled ones are in memory: it compiles nothing; a
+A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted (their public
+``py_func``: every function they call is a plain ``register_jitable`` one) unless the compiled ones are in memory: it compiles nothing; a
 long one runs compiled (:mod:`stability.execution`).
 """
 
@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from stability.jit import njit
+from stability.jit import cached, njit, register_jitable
 
 from ..errors import InputError
 from ..execution import engine, pick
@@ -176,7 +176,7 @@ _T, _H, _N, _TEV = 0, 1, 2, 3
 _ROOT_ITERATIONS = 100
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def normal_force_of(y, dy, p):
     """The normal force from the state ``y`` and its derivative ``dy`` (sliding and rolling).
 
@@ -192,7 +192,7 @@ def normal_force_of(y, dy, p):
     return mu * fr + mu * q * ((dy[0] * y[4] - dy[1] * y[3]) + d2)
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def event_value(y, dy, p, watch, c_stick):
     """The watched quantity whose first zero ends a run: the smaller of the normal force
     (``watch != 0``) and the stick's gap ``k_3 - c_stick |k|`` (``c_stick >= -1``: the cosine
@@ -208,7 +208,7 @@ def event_value(y, dy, p, watch, c_stick):
     return g
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def event_value_at(code, t, y, p, watch, c_stick):
     """:func:`event_value` at a state alone (one right-hand side when ``N`` is watched)."""
     if watch == 0:
@@ -277,7 +277,7 @@ def _relocate(make_solver, n_of, t_a, y_a, t_b, y_b, max_steps):
     return float(t_b), np.asarray(y_b, dtype=float)
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def _interpolate(y, k, yn, f1, h, th, hermite, res):
     """The state at the fraction ``th`` of the step ``[t, t + h]`` into ``res``: rk4's cubic
     Hermite interpolant of ``y, k[0]`` and ``yn, f1`` (fourth-order accurate), or dopri5's
@@ -297,7 +297,7 @@ def _interpolate(y, k, yn, f1, h, th, hermite, res):
         res[i] = y[i] + h * acc
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
     """The event in the accepted step ``[t, t + h]`` (the watched quantity ``fs[_N] > 0`` at ``t``,
     ``n_new <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's
@@ -340,13 +340,13 @@ def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, f
     return j, t_ev
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def _copy_row(dst, i, src):
     for c in range(src.shape[0]):
         dst[i, c] = src[c]
 
 
-@njit(cache=True, nogil=True, inline="always")
+@register_jitable
 def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of a compiled run (without the GIL), continuing the run
     held in the state arrays: adaptive Dormand-Prince 5(4) with its dense output at ``t_eval``
@@ -553,19 +553,18 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
 
 @njit(cache=True, nogil=True)
 def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
-    """:func:`run_slice` of dopri5, compiled apart (the slice inlined with ``fixed`` False: the
-    compiled code of rk4's branch is dropped)."""
+    """:func:`run_slice` of dopri5, compiled apart (``fixed`` False)."""
     return run_slice(code, t_eval, p, rtol, atol, max_steps, False, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 @njit(cache=True, nogil=True)
 def rk4_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
-    """:func:`run_slice` of rk4, compiled apart (inlined with ``fixed`` True)."""
+    """:func:`run_slice` of rk4, compiled apart (``fixed`` True)."""
     return run_slice(code, t_eval, p, rtol, atol, max_steps, True, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 #: a run over at most this span of time (units of the model) runs interpreted
-#: (:func:`stability.jit.python`) unless the compiled slice is in memory; a longer one compiled
+#: (the slice's ``py_func``) unless the compiled slice is in memory; a longer one compiled
 #: from its first step. Measured (``python benchmarks/cold_start.py --crossover``,
 #: docs/performance.md): ~15 dopri5 steps per unit of time at the default tolerances, 0.35 ms
 #: per interpreted step against 0.0046 ms compiled, 7.9 s to compile on a cold cache (~22,600
@@ -617,8 +616,10 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     located on the step's dense output by Brent's method (as ``solve_ivp``'s events; a step
     before the last of its batch is integrated again from its start, :func:`_relocate`)."""
 
+    rhs = cached(_model_rhs)
+
     def fun(t, yy):
-        return _model_rhs(code, t, yy, p)
+        return rhs(code, t, yy, p)
 
     w = 1 if watch else 0
 
