@@ -283,8 +283,8 @@ def _interpolate(y, k, yn, f1, h, th, hermite, res):
     Hermite interpolant of ``y, k[0]`` and ``yn, f1`` (fourth-order accurate), or dopri5's
     dense output (the stages ``k``, the matrix ``_P``)."""
     if hermite:
-        h00 = (1 + 2 * th) * (1 - th) ** 2
-        h10 = th * (1 - th) ** 2
+        h00 = (1 + 2 * th) * ((1 - th) * (1 - th))
+        h10 = th * ((1 - th) * (1 - th))
         h01 = th * th * (3 - 2 * th)
         h11 = th * th * (th - 1)
         for i in range(y.shape[0]):
@@ -423,8 +423,8 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
             d1 = 0.0
             for i in range(n):
                 sc = atol + rtol * abs(y[i])
-                d0 += (y[i] / sc) ** 2
-                d1 += (k[0, i] / sc) ** 2
+                d0 += (y[i] / sc) * (y[i] / sc)
+                d1 += (k[0, i] / sc) * (k[0, i] / sc)
             d0 = np.sqrt(d0 / n)
             d1 = np.sqrt(d1 / n)
             h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
@@ -435,10 +435,10 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
             d2 = 0.0
             for i in range(n):
                 sc = atol + rtol * abs(y[i])
-                d2 += ((f1[i] - k[0, i]) / sc) ** 2
+                d2 += ((f1[i] - k[0, i]) / sc) * ((f1[i] - k[0, i]) / sc)
             d2 = np.sqrt(d2 / n) / h0
             dm = max(d1, d2)
-            h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
+            h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else math.pow(0.01 / dm, 0.2)
             h = min(100.0 * h0, h1)
         if not fixed:
             fs[_H] = min(h, t_end - t)
@@ -497,7 +497,8 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 for r in range(7):
                     acc += _E[r] * k[r, i]
                 err[i] = h * acc
-                en += (err[i] / (atol + rtol * max(abs(y[i]), abs(yn[i])))) ** 2
+                e = err[i] / (atol + rtol * max(abs(y[i]), abs(yn[i])))
+                en += e * e
             en = np.sqrt(en / n)
             if not np.isfinite(en):
                 if h < 1e-12:
@@ -533,7 +534,7 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 if status != 0:
                     break
                 continue
-            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en**-0.2))
+            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * math.pow(en, -0.2)))
             if rejected:
                 fac = min(1.0, fac)
             rejected = False
@@ -541,7 +542,7 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
         else:
             nreject += 1
             rejected = True
-            h *= max(0.2, 0.9 * en**-0.2)
+            h *= max(0.2, 0.9 * math.pow(en, -0.2))
     if status == 0 and j < m:  # the budget is used up before the end
         status = CONTINUE
     fs[_T], fs[_H] = t, h
