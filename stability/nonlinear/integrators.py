@@ -624,8 +624,10 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
 
     w = 1 if watch else 0
 
+    event_at = cached(event_value_at)
+
     def n_of(t, yy):
-        return event_value_at(code, t, yy, p, w, c_stick)
+        return event_at(code, t, yy, p, w, c_stick)
 
     watch = watch or c_stick >= -1.0
 
