@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from ..errors import InputError
+from ..jit import cached
 
 __all__ = ["NONLINEAR_MODELS", "NonlinearModel", "get_nonlinear_model"]
 
@@ -73,7 +74,7 @@ class NonlinearModel:
 
     @cached_property
     def rhs(self) -> Callable:
-        return importlib.import_module(f"{__name__}.{self.name}").rhs
+        return cached(importlib.import_module(f"{__name__}.{self.name}").rhs)  # the source is register_jitable
 
     @cached_property
     def contact_forces(self) -> Callable:

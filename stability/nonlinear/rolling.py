@@ -27,8 +27,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from continuation.compiled import solve_dense
-from stability.jit import njit
+import continuation.compiled  # noqa: F401 (registers the engine's linear algebra with numba)
+from continuation.linalg import solve_dense
+from stability.jit import njit, register_jitable
 
 from .parameters import MU, Q
 from .sphere import normal_force_terms, sphere_rows
@@ -40,7 +41,7 @@ __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
 
 
-@njit(cache=True)
+@register_jitable
 def _solve(y, p):
     """``x = (omega', f_1, f_2, N)`` from the 6 x 6 system of the module docstring (the rows
     it shares with the sliding sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
@@ -63,7 +64,7 @@ def _solve(y, p):
     return solve_dense(a, b)
 
 
-@njit(cache=True)
+@register_jitable
 def rhs(t, y, p):
     """Right-hand side ``y'`` of the rolling sphere (state layout in :data:`STATE`).
 
@@ -94,7 +95,7 @@ def contact_forces(states, p):
     return out
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def normal_force(y, p):
     """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
 

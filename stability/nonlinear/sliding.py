@@ -30,8 +30,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from continuation.compiled import solve_dense
-from stability.jit import njit
+import continuation.compiled  # noqa: F401 (registers the engine's linear algebra with numba)
+from continuation.linalg import solve_dense
+from stability.jit import njit, register_jitable
 
 from .friction import traction
 from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q
@@ -44,7 +45,7 @@ __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_1", "X_2")
 
 
-@njit(cache=True)
+@register_jitable
 def _solve(y, p):
     """Accelerations, normal force and friction: ``(x, f1, f2)``, ``x`` as in the docstring (the
     rows it shares with the rolling sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
@@ -83,7 +84,7 @@ def _solve(y, p):
     return x, g1 * r, g2 * r
 
 
-@njit(cache=True)
+@register_jitable
 def rhs(t, y, p):
     """Right-hand side ``y'`` of the sliding sphere (state layout in :data:`STATE`).
 
@@ -127,7 +128,7 @@ def contact_forces(states, p):
     return out
 
 
-@njit(cache=True, nogil=True)
+@register_jitable
 def normal_force(y, p):
     """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
 
