@@ -25,7 +25,7 @@ import numpy as np
 from scipy.integrate import LSODA
 from suites.timing import best_times
 
-from stability.jit import cached, njit
+from stability.jit import njit
 from stability.nonlinear import integrators
 from stability.nonlinear.integrators import event_value_at, integrate
 from stability.nonlinear.kernels import CODES, rhs
@@ -73,8 +73,7 @@ def _check_alone(model, t_end, omega, k, velocity=None, **params):
     code = CODES[model]
     _, p = model_parameter_vector(model, params)
     y0 = initial_state(model, omega, k, velocity)
-    rhs_c = cached(rhs)  # compiled (the source is register_jitable)
-    solver = LSODA(lambda t, y: rhs_c(code, t, y, p), 0.0, y0, t_end, rtol=1e-9, atol=1e-12)
+    solver = LSODA(lambda t, y: rhs(code, t, y, p), 0.0, y0, t_end, rtol=1e-9, atol=1e-12)
     ts, ys = [], []
     while solver.status == "running":
         solver.step()

@@ -21,7 +21,7 @@ building block compiled, not a copy of it:
 * :func:`predict`: :func:`continuation.interpolation.predict`, the Hermite extrapolation of the
   last step, or the tangent;
 * :func:`norm`: :func:`continuation.linalg.norm` (compiled: a loop);
-* :func:`solve_dense`: ``continuation.linalg.solve_dense``, ``a x = b`` in place (float or
+* :func:`solve_dense`: ``continuation.linalg._solve_dense``, ``a x = b`` in place (float or
   complex; all NaN at a zero pivot), the compiled 6 x 6 solve of the nonlinear models'
   right-hand sides.
 
@@ -63,7 +63,6 @@ def register() -> None:
         (linalg.least_squares, linalg._least_squares_compiled),
     ):
         overload(fn, jit_options=options)(impl)
-    register_jitable(**options)(linalg.solve_dense)  # called by the nonlinear models' plain kernels
 
 
 register()
@@ -87,4 +86,4 @@ predict = njit(**_JIT)(interpolation.predict)
 
 #: ``a x = b`` in place by :func:`continuation.linalg.lu_solve` (``a`` overwritten, ``b`` holds
 #: and is the solution; all NaN at a zero or NaN pivot), for float and complex arrays
-solve_dense = njit(**_JIT)(linalg.solve_dense)
+solve_dense = njit(**_JIT)(linalg._solve_dense)

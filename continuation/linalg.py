@@ -16,7 +16,7 @@ Python path never imports numba. Users:
   problem's ``compiled_step``, e.g. :mod:`stability.linear.neutral_compiled`);
 * the compiled right-hand sides of the nonlinear models (:mod:`stability.nonlinear`), whose
   sliding and rolling spheres solve a 6 x 6 system at every evaluation
-  (:func:`solve_dense`, compiled as :func:`continuation.compiled.solve_dense`).
+  (:func:`_solve_dense`, compiled as :func:`continuation.compiled.solve_dense`).
 
 The algorithm (:func:`lu_solve`): Gaussian elimination with partial pivoting, the first largest
 ``|a_ik|`` of a column as pivot (ties go to the upper row), the multipliers ``a_ik / a_kk``, a
@@ -56,7 +56,6 @@ __all__ = [
     "least_squares",
     "lu_solve",
     "norm",
-    "solve_dense",
     "tangent_det",
 ]
 
@@ -381,7 +380,7 @@ def tangent_det(J, t_ref):
 # ------------------------------------------------------------------------------------------
 # in place, for compiled code (the nonlinear models' right-hand sides)
 # ------------------------------------------------------------------------------------------
-def solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _solve_dense(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Solve ``a x = b`` in place by :func:`lu_solve` (compiled; float or complex).
 
     Parameters

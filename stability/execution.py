@@ -2,7 +2,7 @@
 
 The spectral kernel's loops, the batched root finders, the neutral curves' corrector, the
 steady layer's closed forms and the integrators are each one plain Python source with two
-executions that give the same bits (the source itself, or a dispatcher's public ``py_func``, and
+executions that give the same bits (:func:`stability.jit.python` or the source itself, and
 :func:`stability.jit.cached` or an ``njit`` function): the interpreter, which needs no
 compilation but costs ~50-100 us per point, and numba, ~0.3 us per point once compiled but
 several seconds to compile on a machine whose numba disk cache does not hold it yet (a fresh
@@ -116,11 +116,10 @@ def _notice(fn: Any, parallel: bool) -> None:
 def pick(fn: Any, npts: float, value: str | None = None, **rule: Any) -> Any:
     """The code :func:`use_compiled` chooses for ``fn`` (``rule``: its ``below`` and
     ``parallel``): compiled (``fn`` itself if a numba dispatcher, else
-    :func:`stability.jit.cached`), or interpreted: the plain function (a dispatcher's public
-    ``py_func``; the functions it calls are plain ``register_jitable`` ones, so nothing compiles)."""
+    :func:`stability.jit.cached`), or its interpreted execution (:func:`stability.jit.python`)."""
     if use_compiled(fn, npts, value, **rule):
         return fn if hasattr(fn, "signatures") else jit.cached(fn, rule.get("parallel", False))
-    return getattr(fn, "py_func", fn)
+    return jit.python(fn)
 
 
 def announce(text: str) -> None:

@@ -27,11 +27,10 @@ interpreted execution); :func:`in_memory` tells whether calling that compilation
 ``prange`` (bound to the builtin ``range`` in its module, so the Python execution and a serial
 compilation run an ordinary loop), and the parallel compilation sees numba's ``prange``.
 
-The interpreted execution of a compiled function is its plain source: the function given to
-:func:`cached`, or the public ``py_func`` of an :func:`njit` dispatcher, whose callees are plain
-:func:`register_jitable` functions (so that nothing compiles when it runs in Python): what a
-single query runs (the steady states, a final state, a short run's first steps);
-:func:`stability.execution.pick` chooses between the two by size.
+:func:`python` gives the interpreted execution of any function compiled with :func:`njit` (its
+public ``py_func``, with the compiled functions it calls re-bound to their own interpreted
+executions): what a single query runs (the steady states, a final state, a short run's first
+steps), compiling nothing; :func:`stability.execution.pick` chooses between the two by size.
 
 Disk cache. Functions compiled with ``cache=True`` use numba's own disk cache, through its
 public options only. numba revalidates a cached function against its own source file: after
@@ -50,7 +49,7 @@ import types
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["OPTIONS", "activate", "active", "cached", "in_memory", "njit", "overload", "register_jitable"]
+__all__ = ["OPTIONS", "activate", "active", "cached", "in_memory", "njit", "overload", "python", "register_jitable"]
 
 #: numba options of the compiled code of the package (module docstring)
 OPTIONS: dict[str, Any] = dict(fastmath=False, nogil=True, error_model="numpy")
@@ -125,10 +124,7 @@ def cached(fn: Callable, parallel: bool = False) -> Any:
     that numba's disk cache keeps it apart from the serial compilation of the same source.
     """
     if (fn, parallel) not in _CACHED:
-        f, scope, suffix = fn, {**fn.__globals__, "prange": activate().prange}, "_parallel"
-        if parallel:  # a copy of fn reading its globals from scope
-            f = types.FunctionType(fn.__code__, scope, fn.__name__ + suffix, fn.__defaults__, fn.__closure__)
-            f.__kwdefaults__, f.__module__, f.__qualname__ = fn.__kwdefaults__, fn.__module__, fn.__qualname__ + suffix
+        f = _copy(fn, {**fn.__globals__, "prange": activate().prange}, "_parallel") if parallel else fn
         _CACHED[fn, parallel] = activate().njit(f, parallel=parallel, cache=True, **OPTIONS)
     return _CACHED[fn, parallel]
 
@@ -137,3 +133,68 @@ def in_memory(fn: Any, parallel: bool = False) -> bool:
     """Whether this process holds compiled code of ``fn`` (a numba dispatcher, or a function
     given to :func:`cached`): calling it compiles and loads nothing. Never imports numba."""
     return bool(getattr(_CACHED.get((fn, parallel), fn), "signatures", None))
+
+
+# ------------------------------------------------------------------------------------------
+# the interpreted execution of compiled functions
+# ------------------------------------------------------------------------------------------
+#: the packages whose functions :func:`python` re-binds (the rest of the world is left as it is)
+_PACKAGES = ("stability", "continuation")
+_PYTHON: dict[Any, Callable] = {}
+
+
+def _ours(value: Any) -> bool:
+    module = getattr(value, "__module__", None) or getattr(value, "__name__", "")
+    return isinstance(module, str) and module.split(".")[0] in _PACKAGES
+
+
+class _Interpreted(types.ModuleType):
+    """A module of the package seen from interpreted code: its compiled functions are their
+    :func:`python` executions (``sliding.rhs(...)`` inside a function run by :func:`python`)."""
+
+    def __init__(self, module: types.ModuleType) -> None:
+        super().__init__(module.__name__)
+        self._module = module
+
+    def __getattr__(self, name: str) -> Any:
+        value = _rebound(getattr(self._module, name))
+        setattr(self, name, value)  # found once
+        return value
+
+
+def _rebound(value: Any) -> Any:
+    """``value`` as interpreted code sees it: a numba dispatcher (its public ``py_func``) or a
+    function of the package by :func:`python`, a module of the package by :class:`_Interpreted`."""
+    if (callable(value) and hasattr(value, "py_func")) or (isinstance(value, types.FunctionType) and _ours(value)):
+        return python(value)
+    return _Interpreted(value) if isinstance(value, types.ModuleType) and _ours(value) else value
+
+
+def _names(code: types.CodeType) -> set[str]:
+    """The global names a code object and the code nested in it refer to."""
+    return set(code.co_names).union(*(_names(c) for c in code.co_consts if isinstance(c, types.CodeType)))
+
+
+def _copy(fn: Callable, scope: dict[str, Any], suffix: str = "") -> Callable:
+    """A copy of the function ``fn`` that reads its globals from ``scope``."""
+    f = types.FunctionType(fn.__code__, scope, fn.__name__ + suffix, fn.__defaults__, fn.__closure__)
+    f.__kwdefaults__, f.__module__, f.__qualname__ = fn.__kwdefaults__, fn.__module__, fn.__qualname__ + suffix
+    return f
+
+
+def python(fn: Any) -> Callable:
+    """The interpreted execution of ``fn`` (a numba dispatcher, a plain function of the
+    package, or a module of the package: its functions so executed): its Python source (the
+    dispatcher's public ``py_func``), with every compiled function it reaches (through its
+    globals, or attributes of the package's modules) run the same way. Nothing is compiled and
+    numba's caches are not touched: what a single query runs (:mod:`stability.execution`). The
+    same source as the compiled execution; the floating-point results agree to rounding (numba
+    and numpy may round the library functions differently)."""
+    if isinstance(fn, types.ModuleType):
+        return _Interpreted(fn)
+    key = getattr(fn, "py_func", fn)
+    if key not in _PYTHON:
+        names = dict(key.__globals__)
+        _PYTHON[key] = _copy(key, names)  # before the globals: recursive functions find themselves
+        names.update({k: _rebound(names[k]) for k in _names(key.__code__) if k in names})
+    return _PYTHON[key]

@@ -24,13 +24,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from stability.jit import cached
-from stability.nonlinear import friction
+from stability.nonlinear.friction import traction
 
 __all__ = ["rolling_rhs", "sliding_rhs"]
-
-#: the package's friction law, compiled (its source is a plain register_jitable function)
-traction = cached(friction.traction)
 
 _K = np.array([0.0, 0.0, 1.0])
 _P = np.diag([1.0, 1.0, 0.0])

@@ -187,7 +187,6 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
     step and Python path) and by brentq per tilt, each with its error against the closed form."""
     from scipy.optimize import brentq
 
-    from stability.jit import cached
     from stability.nonlinear.kernels import CODES
     from stability.steady import branch_compiled, family
     from stability.steady.branch import points_dataset, steady_branch
@@ -209,12 +208,10 @@ def branch_measurements(repeat: int = 5, max_step: float = 0.0155) -> dict[str, 
     lam_e = float(ds.precession_rate[-1])
     thetas = np.linspace(1e-3, math.pi - 1e-3, n)
 
-    divided = cached(branch_compiled.divided)  # the compiled residual (its source is register_jitable)
-
     def columns():
         lam = np.empty(n)
         for i, th in enumerate(thetas):
-            f = lambda la: divided(th, la, p, q, code, n_full)[0]  # noqa: E731
+            f = lambda la: branch_compiled.divided(th, la, p, q, code, n_full)[0]  # noqa: E731
             lam[i] = brentq(f, 0.5 * min(lam_b, lam_e), 2.0 * max(lam_b, lam_e), xtol=1e-15, rtol=8.9e-16)
         from stability.steady.branch import SteadyBranchProblem
 

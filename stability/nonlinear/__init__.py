@@ -33,7 +33,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from ..errors import InputError
-from ..jit import cached
 
 __all__ = ["NONLINEAR_MODELS", "NonlinearModel", "get_nonlinear_model"]
 
@@ -74,7 +73,7 @@ class NonlinearModel:
 
     @cached_property
     def rhs(self) -> Callable:
-        return cached(importlib.import_module(f"{__name__}.{self.name}").rhs)  # the source is register_jitable
+        return importlib.import_module(f"{__name__}.{self.name}").rhs
 
     @cached_property
     def contact_forces(self) -> Callable:

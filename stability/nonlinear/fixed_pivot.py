@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stability.jit import njit, register_jitable
+from stability.jit import njit
 
 from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
@@ -30,7 +30,7 @@ __all__ = ["STATE", "contact_forces", "rhs"]
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3")
 
 
-@register_jitable
+@njit(cache=True)
 def rhs(t, y, p):
     """Right-hand side ``y'`` of the top on a fixed pivot (state layout in :data:`STATE`)."""
     q, fr, sg, mu = p[Q], p[FR_INV], p[SIGMA], p[MU]

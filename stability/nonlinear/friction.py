@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stability.jit import register_jitable
+from stability.jit import njit
 
 __all__ = ["DEFAULT_SLIP_SCALE", "FRICTION_LAWS", "NORMAL_FORCE", "traction"]
 
@@ -41,7 +41,7 @@ NORMAL_FORCE: dict[str, int] = {"equilibrium": 0, "actual": 1}
 DEFAULT_SLIP_SCALE: float = 1e-4
 
 
-@register_jitable
+@njit(cache=True)
 def traction(vc1, vc2, alpha_v: float, alpha_k: float, epsilon: float, law: float):
     """Friction force per unit normal-force factor, eq. (7) or eq. (16).
 

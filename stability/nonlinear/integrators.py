@@ -25,8 +25,8 @@ within milliseconds, with an ordinary exception, never from inside compiled code
 hold no GIL and assign no array slices (a slice assignment makes numba compile its
 shape-mismatch message formatting, seconds of compile time for nothing).
 
-A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted (their public
-``py_func``: every function they call is a plain ``register_jitable`` one) unless the compiled ones are in memory: it compiles nothing; a
+A short run (:data:`INTERPRETED_SPAN`) runs the same slices interpreted
+(:func:`stability.jit.python`) unless the compiled ones are in memory: it compiles nothing; a
 long one runs compiled (:mod:`stability.execution`).
 """
 
@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from stability.jit import cached, njit, register_jitable
+from stability.jit import njit
 
 from ..errors import InputError
 from ..execution import engine, pick
@@ -176,7 +176,7 @@ _T, _H, _N, _TEV = 0, 1, 2, 3
 _ROOT_ITERATIONS = 100
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def normal_force_of(y, dy, p):
     """The normal force from the state ``y`` and its derivative ``dy`` (sliding and rolling).
 
@@ -192,7 +192,7 @@ def normal_force_of(y, dy, p):
     return mu * fr + mu * q * ((dy[0] * y[4] - dy[1] * y[3]) + d2)
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def event_value(y, dy, p, watch, c_stick):
     """The watched quantity whose first zero ends a run: the smaller of the normal force
     (``watch != 0``) and the stick's gap ``k_3 - c_stick |k|`` (``c_stick >= -1``: the cosine
@@ -208,7 +208,7 @@ def event_value(y, dy, p, watch, c_stick):
     return g
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def event_value_at(code, t, y, p, watch, c_stick):
     """:func:`event_value` at a state alone (one right-hand side when ``N`` is watched)."""
     if watch == 0:
@@ -277,14 +277,14 @@ def _relocate(make_solver, n_of, t_a, y_a, t_b, y_b, max_steps):
     return float(t_b), np.asarray(y_b, dtype=float)
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def _interpolate(y, k, yn, f1, h, th, hermite, res):
     """The state at the fraction ``th`` of the step ``[t, t + h]`` into ``res``: rk4's cubic
     Hermite interpolant of ``y, k[0]`` and ``yn, f1`` (fourth-order accurate), or dopri5's
     dense output (the stages ``k``, the matrix ``_P``)."""
     if hermite:
-        h00 = (1 + 2 * th) * ((1 - th) * (1 - th))
-        h10 = th * ((1 - th) * (1 - th))
+        h00 = (1 + 2 * th) * (1 - th) ** 2
+        h10 = th * (1 - th) ** 2
         h01 = th * th * (3 - 2 * th)
         h11 = th * th * (th - 1)
         for i in range(y.shape[0]):
@@ -297,7 +297,7 @@ def _interpolate(y, k, yn, f1, h, th, hermite, res):
         res[i] = y[i] + h * acc
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, fs, watch, c_stick):
     """The event in the accepted step ``[t, t + h]`` (the watched quantity ``fs[_N] > 0`` at ``t``,
     ``n_new <= 0`` at its end; new state ``yn``, derivative ``f1``), located on the step's
@@ -340,13 +340,13 @@ def _to_event(code, p, t, h, n_new, y, k, yn, f1, hermite, ys, t_eval, j, out, f
     return j, t_ev
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def _copy_row(dst, i, src):
     for c in range(src.shape[0]):
         dst[i, c] = src[c]
 
 
-@register_jitable
+@njit(cache=True, nogil=True, inline="always")
 def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, cnt, out, watch, c_stick):
     """At most ``budget`` attempted steps of a compiled run (without the GIL), continuing the run
     held in the state arrays: adaptive Dormand-Prince 5(4) with its dense output at ``t_eval``
@@ -423,8 +423,8 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
             d1 = 0.0
             for i in range(n):
                 sc = atol + rtol * abs(y[i])
-                d0 += (y[i] / sc) * (y[i] / sc)
-                d1 += (k[0, i] / sc) * (k[0, i] / sc)
+                d0 += (y[i] / sc) ** 2
+                d1 += (k[0, i] / sc) ** 2
             d0 = np.sqrt(d0 / n)
             d1 = np.sqrt(d1 / n)
             h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
@@ -435,10 +435,10 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
             d2 = 0.0
             for i in range(n):
                 sc = atol + rtol * abs(y[i])
-                d2 += ((f1[i] - k[0, i]) / sc) * ((f1[i] - k[0, i]) / sc)
+                d2 += ((f1[i] - k[0, i]) / sc) ** 2
             d2 = np.sqrt(d2 / n) / h0
             dm = max(d1, d2)
-            h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else math.pow(0.01 / dm, 0.2)
+            h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** 0.2
             h = min(100.0 * h0, h1)
         if not fixed:
             fs[_H] = min(h, t_end - t)
@@ -497,8 +497,7 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 for r in range(7):
                     acc += _E[r] * k[r, i]
                 err[i] = h * acc
-                e = err[i] / (atol + rtol * max(abs(y[i]), abs(yn[i])))
-                en += e * e
+                en += (err[i] / (atol + rtol * max(abs(y[i]), abs(yn[i])))) ** 2
             en = np.sqrt(en / n)
             if not np.isfinite(en):
                 if h < 1e-12:
@@ -534,7 +533,7 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
                 if status != 0:
                     break
                 continue
-            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * math.pow(en, -0.2)))
+            fac = 10.0 if en == 0.0 else min(10.0, max(0.2, 0.9 * en**-0.2))
             if rejected:
                 fac = min(1.0, fac)
             rejected = False
@@ -542,7 +541,7 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
         else:
             nreject += 1
             rejected = True
-            h *= max(0.2, 0.9 * math.pow(en, -0.2))
+            h *= max(0.2, 0.9 * en**-0.2)
     if status == 0 and j < m:  # the budget is used up before the end
         status = CONTINUE
     fs[_T], fs[_H] = t, h
@@ -554,18 +553,19 @@ def run_slice(code, t_eval, p, rtol, atol, max_steps, fixed, budget, y, k, fs, c
 
 @njit(cache=True, nogil=True)
 def dopri5_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
-    """:func:`run_slice` of dopri5, compiled apart (``fixed`` False)."""
+    """:func:`run_slice` of dopri5, compiled apart (the slice inlined with ``fixed`` False: the
+    compiled code of rk4's branch is dropped)."""
     return run_slice(code, t_eval, p, rtol, atol, max_steps, False, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 @njit(cache=True, nogil=True)
 def rk4_slice(code, t_eval, p, rtol, atol, max_steps, budget, y, k, fs, cnt, out, watch, c_stick):
-    """:func:`run_slice` of rk4, compiled apart (``fixed`` True)."""
+    """:func:`run_slice` of rk4, compiled apart (inlined with ``fixed`` True)."""
     return run_slice(code, t_eval, p, rtol, atol, max_steps, True, budget, y, k, fs, cnt, out, watch, c_stick)
 
 
 #: a run over at most this span of time (units of the model) runs interpreted
-#: (the slice's ``py_func``) unless the compiled slice is in memory; a longer one compiled
+#: (:func:`stability.jit.python`) unless the compiled slice is in memory; a longer one compiled
 #: from its first step. Measured (``python benchmarks/cold_start.py --crossover``,
 #: docs/performance.md): ~15 dopri5 steps per unit of time at the default tolerances, 0.35 ms
 #: per interpreted step against 0.0046 ms compiled, 7.9 s to compile on a cold cache (~22,600
@@ -617,17 +617,13 @@ def _scipy(code, y0, t_eval, p, method, rtol, atol, step, max_steps, progress=No
     located on the step's dense output by Brent's method (as ``solve_ivp``'s events; a step
     before the last of its batch is integrated again from its start, :func:`_relocate`)."""
 
-    rhs = cached(_model_rhs)
-
     def fun(t, yy):
-        return rhs(code, t, yy, p)
+        return _model_rhs(code, t, yy, p)
 
     w = 1 if watch else 0
 
-    event_at = cached(event_value_at)
-
     def n_of(t, yy):
-        return event_at(code, t, yy, p, w, c_stick)
+        return event_value_at(code, t, yy, p, w, c_stick)
 
     watch = watch or c_stick >= -1.0
 

@@ -5,16 +5,15 @@ argument (the dispatcher pickles with an identity that changes in every process)
 integrators take an integer model code instead and call :func:`rhs`, which branches to the
 model's kernel (the branch costs nothing next to the 6 x 6 solve). A ``register_jitable``
 function can be passed and cached (:func:`continuation.compiled.newton` takes the problem's
-residual that way). :func:`rhs` and the models' right-hand sides are such plain functions: run
-as written by an interpreted run, compiled into the compiled ones; Python callers that want
-them compiled take :func:`stability.jit.cached` of them (the model registry's ``rhs``).
+residual that way); the model code is kept because the right-hand sides are dispatchers that
+Python callers use too.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from stability.jit import register_jitable
+from stability.jit import njit
 
 from . import fixed_pivot, rolling, sliding
 
@@ -24,7 +23,7 @@ __all__ = ["CODES", "NORMAL_FORCE_MARGIN", "normal_force_lower_bound", "rhs"]
 CODES: dict[str, int] = {"sliding": 0, "rolling": 1, "fixed_pivot": 2}
 
 
-@register_jitable
+@njit(cache=True)
 def rhs(code, t, y, p):
     """``y'`` of the model with the given code (see :data:`CODES`)."""
     if code == 0:
@@ -39,7 +38,7 @@ def rhs(code, t, y, p):
 NORMAL_FORCE_MARGIN = 1e-10
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def normal_force_lower_bound(code, y, p):
     """A lower bound of the normal force at ``y`` without the model's 6 x 6 solve, or ``-inf``
     where the model has none (the fixed pivot) or its closed form is not defined there.

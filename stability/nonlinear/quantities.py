@@ -94,7 +94,7 @@ def energy_parts(
     return dict(zip(ENERGY_PARTS, energy_terms(*w.T, *kk.T, *g.T, np.asarray(z_g), *top)))
 
 
-@register_jitable
+@njit(cache=True)
 def jellett_integral(w0, w1, w2, k0, k1, k2, q, sigma, mu):
     """The integral of eq. (10) at one state, ``(q k + K) . I_G omega`` (Jellett's integral).
 

@@ -27,9 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-import continuation.compiled  # noqa: F401 (registers the engine's linear algebra with numba)
-from continuation.linalg import solve_dense
-from stability.jit import njit, register_jitable
+from continuation.compiled import solve_dense
+from stability.jit import njit
 
 from .parameters import MU, Q
 from .sphere import normal_force_terms, sphere_rows
@@ -41,7 +40,7 @@ __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "X_1", "X_2")
 
 
-@register_jitable
+@njit(cache=True)
 def _solve(y, p):
     """``x = (omega', f_1, f_2, N)`` from the 6 x 6 system of the module docstring (the rows
     it shares with the sliding sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
@@ -64,7 +63,7 @@ def _solve(y, p):
     return solve_dense(a, b)
 
 
-@register_jitable
+@njit(cache=True)
 def rhs(t, y, p):
     """Right-hand side ``y'`` of the rolling sphere (state layout in :data:`STATE`).
 
@@ -95,7 +94,7 @@ def contact_forces(states, p):
     return out
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def normal_force(y, p):
     """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
 

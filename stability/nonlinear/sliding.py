@@ -30,9 +30,8 @@ from __future__ import annotations
 
 import numpy as np
 
-import continuation.compiled  # noqa: F401 (registers the engine's linear algebra with numba)
-from continuation.linalg import solve_dense
-from stability.jit import njit, register_jitable
+from continuation.compiled import solve_dense
+from stability.jit import njit
 
 from .friction import traction
 from .parameters import ALPHA_K, ALPHA_V, EPSILON, FR_INV, LAW, MU, NORMAL, Q
@@ -45,7 +44,7 @@ __all__ = ["STATE", "contact_forces", "normal_force", "rhs"]
 STATE = ("omega_1", "omega_2", "omega_3", "k_1", "k_2", "k_3", "V_1", "V_2", "X_1", "X_2")
 
 
-@register_jitable
+@njit(cache=True)
 def _solve(y, p):
     """Accelerations, normal force and friction: ``(x, f1, f2)``, ``x`` as in the docstring (the
     rows it shares with the rolling sphere: :func:`stability.nonlinear.sphere.sphere_rows`)."""
@@ -84,7 +83,7 @@ def _solve(y, p):
     return x, g1 * r, g2 * r
 
 
-@register_jitable
+@njit(cache=True)
 def rhs(t, y, p):
     """Right-hand side ``y'`` of the sliding sphere (state layout in :data:`STATE`).
 
@@ -128,7 +127,7 @@ def contact_forces(states, p):
     return out
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def normal_force(y, p):
     """The normal force ``N`` in closed form, without the 6 x 6 solve: ``(N, scale)``.
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stability.jit import register_jitable
+from stability.jit import njit
 
 from .parameters import FR_INV, MU, SIGMA, Q
 from .vectors import cross
@@ -27,7 +27,7 @@ from .vectors import cross
 __all__ = ["normal_force_terms", "sphere_rows"]
 
 
-@register_jitable
+@njit(cache=True)
 def sphere_rows(y, p):
     """``(a, b)``: the 6 x 6 matrix and right-hand side with the shared rows of the module
     docstring filled in (the ``u`` columns zero), at the state ``y`` (``omega = y[0:3]``,
@@ -63,7 +63,7 @@ def sphere_rows(y, p):
     return a, b
 
 
-@register_jitable
+@njit(cache=True, nogil=True)
 def normal_force_terms(y, p):
     """The pieces of the closed-form normal force the two spheres share
     (:func:`stability.nonlinear.sliding.normal_force`, :func:`stability.nonlinear.rolling.normal_force`).

@@ -40,14 +40,13 @@ with ``R / lam^2`` from ``jellett_max / 1000`` to ``jellett_max`` (both ends kin
 from __future__ import annotations
 
 import math
-import types
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from continuation.engine import TraceOptions, trace
-from stability.jit import cached
+from stability.jit import python
 
 from ..errors import ConvergenceError, DomainError
 from ..execution import pick
@@ -74,9 +73,6 @@ MIN_MAX_STEP = 1e-4
 
 #: kinds of points of a branch ("regular" for an ordinary point, as neutral_curve says)
 KINDS = ("regular", "branch_point", "fold", "stability_change", "end")
-
-#: the functions of :mod:`.branch_compiled` the problem calls (compiled by stability.jit.cached)
-_CALLED = ("divided", "residual_and_jacobian", "jellett", "constraint_values", "step")
 
 
 class SteadyBranchProblem:
@@ -110,10 +106,8 @@ class SteadyBranchProblem:
 
     def __init__(self, params: dict[str, float], p: np.ndarray, compiled: bool = True):
         m = get_nonlinear_model("sliding")
-        #: the residual's functions: compiled (stability.jit.cached), or as written (interpreted)
-        self.kernels = (
-            types.SimpleNamespace(**{n: cached(getattr(kernels, n)) for n in _CALLED}) if compiled else kernels
-        )
+        #: the residual's functions: compiled, or their interpreted execution (stability.jit.python)
+        self.kernels = kernels if compiled else python(kernels)
         self.params, self.p, self.q = dict(params), p, params["q"]
         self.code, self.n_full = CODES[m.name], len(m.state)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
@@ -304,7 +298,7 @@ def steady_branch(
     max_step = check_interval("max_step", max_step, MIN_MAX_STEP, math.inf, closed="left")
     max_angle = check_interval("max_angle", max_angle, 1e-6, math.pi, closed="both")
     if compiled is None:  # by size (stability.execution.pick); the compiled step if in memory
-        compiled = pick(kernels.step, math.pi / max_step, below=BRANCH_COMPILED_FROM) is not kernels.step
+        compiled = pick(kernels.step, math.pi / max_step, below=BRANCH_COMPILED_FROM) is kernels.step
     compiled = check_flag("compiled", compiled)
     q, sigma, mu = params["q"], params["sigma"], params["mu"]
     jmax = None if jellett_max is None else check_positive("jellett_max", jellett_max)

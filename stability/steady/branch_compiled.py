@@ -1,6 +1,4 @@
-"""Compiled pieces of the steady branch's continuation problem (:mod:`stability.steady.branch`):
-plain ``register_jitable`` functions, run as written by a short branch and compiled by
-:func:`stability.jit.cached` (with the functions they call) for a long one.
+"""Compiled pieces of the steady branch's continuation problem (:mod:`stability.steady.branch`).
 
 * :func:`component`: the one non-trivial component of the precessing-frame residual
   ``F = f(y) - lam G y`` of the nonlinear model's compiled right-hand side
@@ -26,7 +24,7 @@ import numpy as np
 
 from continuation.compiled import norm
 from continuation.compiled import step as corrector_step
-from stability.jit import register_jitable
+from stability.jit import OPTIONS, njit, register_jitable
 
 from ..nonlinear.kernels import rhs as model_rhs
 from ..nonlinear.quantities import jellett_integral
@@ -43,13 +41,15 @@ __all__ = [
     "step",
 ]
 
+_JIT = dict(OPTIONS, cache=True)
+
 #: the complex step
 H = 1e-30
 #: below this |sin(theta)| (but not 0) dR/dtheta is interpolated from the vertical state
 NEAR_VERTICAL = 1e-4
 
 
-@register_jitable
+@njit(**_JIT)
 def component(theta, lam, p, q, code, n_full):
     """``F . e_2`` at the steady state ``(theta, lam)`` (both may be complex), azimuth 0:
     ``F = f(y) - lam G y`` with ``(G y)_2 = (K x omega)_2 = omega_1``."""
@@ -59,7 +59,7 @@ def component(theta, lam, p, q, code, n_full):
     return f[1] - lam * y[0]
 
 
-@register_jitable
+@njit(**_JIT)
 def divided(theta, lam, p, q, code, n_full):
     """``(F . e_2) / sin(theta)`` and its ``theta`` derivative (complex step at ``theta + i h``)."""
     z = theta + 1j * H
@@ -67,7 +67,7 @@ def divided(theta, lam, p, q, code, n_full):
     return r.real, r.imag / H
 
 
-@register_jitable
+@njit(**_JIT)
 def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
     """``R = divided / (lam^2 + weight)`` and ``dR/d(theta, ell)``, ``ell = log lam``.
 
@@ -110,7 +110,7 @@ def residual_weight(q, fr_inv, mu, degenerate):
     return 0.0 if degenerate else mu * fr_inv * abs(q)
 
 
-@register_jitable
+@njit(**_JIT)
 def jellett(theta, ell, q, sigma, mu):
     """``J`` at the state of ``(theta, log lam)`` and ``dJ/dtheta``, ``dJ/d(log lam)``."""
     lam = np.exp(ell)
@@ -122,7 +122,7 @@ def jellett(theta, ell, q, sigma, mu):
     return j1.real, j1.imag / H, j2.imag / H
 
 
-@register_jitable
+@njit(**_JIT)
 def constraint_values(theta, jel, jmax, jmin, degenerate):
     """``[theta, pi - theta, 1 - |J| / jmax(, |J| / jmin - 1)]`` (``>= 0`` on the branch; the
     cuts of ``J`` relative to their own size, so that the engine locates them to rounding at
@@ -142,7 +142,7 @@ def _residual_into(p, q, code, n_full, weight, u, jacobian, F, J):
     F[0], J[0, 0], J[0, 1] = residual_and_jacobian(u[0], u[1], p, q, code, n_full, weight)
 
 
-@register_jitable
+@njit(**_JIT)
 def step(
     p,
     q,

@@ -393,7 +393,7 @@ def level_states(jellett, q, sigma, fr_inv, mu):
     return out
 
 
-@register_jitable
+@njit(cache=True)
 def state_core(theta, lam, q, phi, y):
     """Fill ``y[:8] = (omega, k, V0_h)`` with the steady state at tilt ``theta`` (S1, S2).
 
