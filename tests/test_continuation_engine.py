@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from trace_snapshot import _hopf_step  # the Hopf problem's compiled step (benchmarks/, on sys.path)
 
 from continuation import ConvergenceError, TraceOptions, project, trace, trace_both
 
@@ -454,29 +455,6 @@ class HopfWithHook(HopfNormalForm):
     def compiled_step(self, *corrector):
         type(self).calls += 1
         return _hopf_step()(*corrector)
-
-
-@functools.cache
-def _hopf_step():
-    from numba import njit
-    from numba.extending import register_jitable
-
-    from continuation.compiled import step
-
-    @register_jitable
-    def residual(u, jacobian, F, J):
-        x, y, w = u[0], u[1], u[2]
-        a = (x * x + y * y - 1) / 2
-        F[0], F[1] = -w * w + a * a + 2 + x, -2 * a * w
-        if jacobian:
-            J[0, 0], J[0, 1], J[0, 2] = 2 * a * x + 1, 2 * a * y, -2 * w
-            J[1, 0], J[1, 1], J[1, 2] = -2 * x * w, -2 * y * w, -2 * a
-
-    @njit
-    def hook(guess, t_plane, anchor, h, scale, tol, max_iter, max_move):
-        return step(residual, (), guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
-
-    return hook
 
 
 def test_compiled_step_hook_gives_the_python_branch():
