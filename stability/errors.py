@@ -35,23 +35,9 @@ from __future__ import annotations
 
 from continuation.errors import ConvergenceError as _EngineConvergenceError
 
-__all__ = [
-    "AtlasFileError",
-    "ChunkError",
-    "ConvergenceError",
-    "DomainError",
-    "InputError",
-    "Interrupted",
-    "MissingExtraError",
-    "OutputWriteError",
-    "ParameterTypeError",
-    "RecipeError",
-    "ResourceError",
-    "ResumeError",
-    "RunError",
-    "TippeError",
-    "require_extra",
-]
+__all__ = ["AtlasFileError", "ChunkError", "ConvergenceError", "DomainError", "InputError", "Interrupted"]
+__all__ += ["MissingExtraError", "OutputWriteError", "ParameterTypeError", "RecipeError", "ResourceError"]
+__all__ += ["ResumeError", "RunError", "TippeError", "require_extra"]
 
 
 class TippeError(Exception):
@@ -146,11 +132,9 @@ def require_extra(module: str, extra: str, feature: str) -> None:
     """
     import importlib.util
 
-    try:
-        found = importlib.util.find_spec(module) is not None
-    except (ImportError, ValueError):
-        found = False
-    if not found:
+    # a top-level name (dask, distributed, zarr): no parent package is imported, so find_spec
+    # raises nothing unless an import hook put a module without a spec under that name
+    if importlib.util.find_spec(module) is None:
         raise MissingExtraError(
             f"{feature} needs {module}, which is not installed; install the package with "
             f"its {extra!r} extra: pip install 'tippe-stability[{extra}]' "

@@ -4,7 +4,7 @@ Layer 0 (docs/architecture.md): the standard library, the error hierarchy and th
 
 Every writer (netCDF datasets, chunk-wise atlases, figures, benchmark records) goes through
 :func:`atomic_output`: the content is written under a unique temporary name in the target's
-directory and committed by :func:`commit` only when complete.
+directory and committed only when complete.
 
 * **No partial file.** Any exception or interruption removes the temporary file; the temporary
   is registered with :mod:`stability.interrupts`, whose emergency exit removes it too.
@@ -43,7 +43,7 @@ from .errors import OutputWriteError, ParameterTypeError, TippeError
 from .interrupts import Temporary, checkpoint
 
 __all__ = ["TEMPORARY_PREFIX", "atomic_output", "check_free_space", "check_output_directory", "check_output_path"]
-__all__ += ["close_quietly", "commit", "describe_kind", "format_bytes", "temporary_name", "write_error"]
+__all__ += ["close_quietly", "describe_kind", "format_bytes", "temporary_name", "write_error"]
 
 #: temporary files are ``<dir>/.tippe-tmp-XXXXXXXX-<name>``: hidden, unique, and ending with the
 #: target's name, so that their suffix is the target's (a figure's format is read off it)
@@ -176,56 +176,15 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
         raise OutputWriteError(f"{need}, above {where}; nothing was written", errno.EFBIG, p)
 
 
-def commit(tmp: Temporary, target: Path, *, overwrite: bool) -> None:
-    """Rename the complete temporary file ``tmp`` to ``target``: the last interruption point.
-
-    With ``overwrite=False`` the commit refuses an existing target atomically (``os.link``, then
-    ``os.unlink`` of the temporary name); with ``overwrite=True`` it replaces only a regular
-    file (``os.replace``, after ``os.lstat`` again).
-
-    Raises
-    ------
-    FileExistsError
-        The target appeared meanwhile (another process), or is not a regular file.
-    OutputWriteError
-        The file system has no hard links (``overwrite=False`` cannot be kept there).
-    KeyboardInterrupt
-        A signal is pending (:func:`stability.interrupts.checkpoint`): nothing is committed.
-    """
-    checkpoint()
-    tmp.state = "committing"
-    try:
-        if overwrite:
-            _refuse_existing(target, True)
-            os.replace(tmp.path, target)
-        else:
-            try:
-                os.link(tmp.path, target)
-            except FileExistsError:
-                taken = f"output file {str(target)!r} was created by another process while this run was computing"
-                raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
-            except OSError as exc:
-                if exc.errno not in _NO_LINKS:
-                    raise
-                why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
-                msg = f"cannot write {str(target)!r}: the file system holding it {why} (nothing was written)"
-                raise OutputWriteError(msg, exc.errno, str(target)) from None
-            os.unlink(tmp.path)
-    except BaseException:
-        tmp.state = "writing"
-        raise
-    tmp.done(committed=True)
-
-
 def temporary_name(target: Path, directory: bool = False) -> str:
     """Create an empty, unique temporary file (or directory) next to ``target``; return its name.
     It gets the mode a new file (directory) gets under the process's umask, which the kernel
-    applies (``os.umask`` is never called: it is process-wide)."""
-    while True:
-        name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}-{target.name}")
-        with contextlib.suppress(FileExistsError):  # pragma: no cover - 2**32 names
-            os.mkdir(name, 0o777) if directory else os.close(os.open(name, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
-            return name
+    applies (``os.umask`` is never called: it is process-wide). Created exclusively, with 64
+    random bits in the name: a clash with one of the n temporaries in the directory (a chance of
+    n / 2**64) raises ``FileExistsError``, never replaces a file."""
+    name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(8)}-{target.name}")
+    os.mkdir(name) if directory else open(name, "x").close()  # noqa: SIM115 (created, not written)
+    return name
 
 
 @contextlib.contextmanager
@@ -247,6 +206,22 @@ def atomic_output(
     The temporary file is removed on any exception, including an interruption; an error while
     writing is translated by :func:`write_error`. The file gets the usual permissions (umask:
     :func:`temporary_name`).
+
+    The commit is the last interruption point (:func:`stability.interrupts.checkpoint`). With
+    ``overwrite=False`` it refuses an existing target atomically (``os.link``, then
+    ``os.unlink`` of the temporary name); with ``overwrite=True`` it replaces only a regular file
+    (``os.replace``, after ``os.lstat`` again).
+
+    Raises
+    ------
+    FileExistsError
+        The target exists (``overwrite=False``), appeared meanwhile (another process), or is not
+        a regular file.
+    OutputWriteError
+        The write failed (:func:`write_error`), or the file system has no hard links
+        (``overwrite=False`` cannot be kept there).
+    KeyboardInterrupt
+        A signal is pending at the commit: nothing is committed.
     """
     p = check_output_path(path, overwrite=overwrite)
     if expected_bytes is not None:
@@ -260,7 +235,25 @@ def atomic_output(
             if translated is not None:
                 raise translated from exc
             raise
-        commit(tmp, p, overwrite=overwrite)
+        checkpoint()  # the last interruption point: after a signal nothing is committed
+        tmp.state = "committing"
+        if overwrite:
+            _refuse_existing(p, True)  # again at the commit: only a regular file is replaced
+            os.replace(tmp.path, p)
+        else:
+            try:
+                os.link(tmp.path, p)  # fails atomically if the name exists: exactly one winner
+            except FileExistsError:
+                taken = f"output file {str(p)!r} was created by another process while this run was computing"
+                raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
+            except OSError as exc:
+                if exc.errno not in _NO_LINKS:
+                    raise
+                why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
+                msg = f"cannot write {str(p)!r}: the file system holding it {why} (nothing was written)"
+                raise OutputWriteError(msg, exc.errno, str(p)) from None
+            os.unlink(tmp.path)
+        tmp.done(committed=True)
     finally:
         if tmp.state != "committed":
             with contextlib.suppress(OSError):  # an error here never replaces the one being handled

@@ -139,11 +139,9 @@ def deferred() -> Iterator[None]:
         return
     try:
         yield
+        checkpoint()  # a SIGINT that no checkpoint of the block took
     finally:
-        signum = _state.pending
         _restore()
-    if signum is not None:
-        raise KeyboardInterrupt(f"{signal.Signals(signum).name} received")
 
 
 class Temporary:

@@ -109,23 +109,23 @@ def test_file_created_during_the_run_is_not_replaced(tmp_path):
 
 
 def test_the_commit_links_and_refuses_an_existing_target(tmp_path):
-    """The one no-replace commit, ``os.link`` then ``unlink``: called directly on a complete
-    temporary, it commits to a new name; with the target created meanwhile it refuses, leaves the
-    target as it was and the temporary in place for the caller (atomic_output) to remove."""
-    from stability.files import commit
-    from stability.interrupts import Temporary
+    """The one no-replace commit, ``os.link`` then ``unlink``: a complete temporary is committed
+    to a new name (and counted as committed); with the target created meanwhile the commit
+    refuses, leaves the target as it was, counts nothing as committed and leaves no temporary."""
+    from stability import interrupts
 
-    tmp = Temporary(temporary_name(tmp_path / "d"), str(tmp_path / "d"))
-    Path(tmp.path).write_text("x")
-    commit(tmp, tmp_path / "d", overwrite=False)
-    assert (tmp_path / "d").read_text() == "x" and tmp.state == "committed"
+    target = tmp_path / "d"
+    with atomic_output(target) as tmp:
+        Path(tmp).write_text("x")
+    assert target.read_text() == "x" and interrupts.run.committed[-1] == str(target)
     assert _leftovers(tmp_path) == []
-    tmp = Temporary(temporary_name(tmp_path / "d"), str(tmp_path / "d"))
-    Path(tmp.path).write_text("y")
+    committed = list(interrupts.run.committed)
     with pytest.raises(FileExistsError, match="created by another process"):
-        commit(tmp, tmp_path / "d", overwrite=False)
-    assert (tmp_path / "d").read_text() == "x" and tmp.state == "writing"
-    os.unlink(tmp.path)
+        with atomic_output(tmp_path / "e") as tmp:
+            Path(tmp).write_text("y")
+            (tmp_path / "e").write_text("theirs")
+    assert (tmp_path / "e").read_text() == "theirs" and interrupts.run.committed == committed
+    assert target.read_text() == "x" and _leftovers(tmp_path) == []
 
 
 def test_a_file_system_without_hard_links_is_named(tmp_path, monkeypatch):
