@@ -303,8 +303,7 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         with warnings.catch_warnings():
             _model_name_warnings_as_lines(prog)
             status = int(args.func(args) or 0)
-        if interrupts.received():  # after the last safe point: the command had finished
-            return _interrupted(prog, None)
+        interrupts.checkpoint()  # after the command's last safe point: its line says what was written
         return status
     except BrokenPipeError:
         if not _stdout_broken():

@@ -183,7 +183,7 @@ def temporary_name(target: Path, directory: bool = False) -> str:
     random bits in the name: a clash with one of the n temporaries in the directory (a chance of
     n / 2**64) raises ``FileExistsError``, never replaces a file."""
     name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(8)}-{target.name}")
-    os.mkdir(name) if directory else open(name, "x").close()  # noqa: SIM115 (created, not written)
+    os.mkdir(name) if directory else open(name, "x").close()
     return name
 
 

@@ -42,8 +42,7 @@ import threading
 from collections.abc import Iterator
 from types import SimpleNamespace
 
-__all__ = ["SIGNALS", "Temporary", "checkpoint", "deferred", "hold_until_exit", "install", "received", "run"]
-__all__ += ["uninstall"]
+__all__ = ["SIGNALS", "Temporary", "checkpoint", "deferred", "hold_until_exit", "install", "run", "uninstall"]
 
 #: the signals the command line turns into a flag (SIGHUP where the platform has it)
 SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
@@ -55,11 +54,6 @@ run = SimpleNamespace(label="tippe", kept="", reported=False, committed=[])
 #: the flag's state: the first signal received and not yet cleared; the mode ("cli", "library" or
 #: None: nothing installed) and the handlers it replaced; the files being written (by id)
 _state = SimpleNamespace(pending=None, mode=None, previous={}, temporaries={})
-
-
-def received() -> bool:
-    """True if a signal was received (and not cleared)."""
-    return _state.pending is not None
 
 
 def checkpoint() -> None:

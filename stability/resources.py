@@ -150,10 +150,8 @@ def check_threshold_samples(samples: int) -> None:
 
 def check_start_grid(nx: int, ny: int) -> None:
     """Refuse a neutral curve whose start grid ``nx x ny`` cannot fit in memory."""
-    way_out, what = (
-        "use a coarser grid (the default is 25 x 25), or give start points",
-        f"a start grid of {nx} x {ny} points",
-    )
+    way_out = "use a coarser grid (the default is 25 x 25), or give start points"
+    what = f"a start grid of {nx} x {ny} points"
     check_memory(_START_GRID_POINT * float(nx) * float(ny), what=what, parameter="grid", way_out=way_out)
 
 
