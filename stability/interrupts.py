@@ -88,10 +88,12 @@ def _take(mode: str, signals: tuple[int, ...]) -> bool:
 
 
 def _restore() -> None:
-    """Put the previous handlers back; clear the flag."""
+    """Put the previous handlers back; clear the flag. Cannot fail: the handlers were taken in
+    the main thread (:func:`_take`), where they are given back (the handler, the end of
+    :func:`deferred` and :func:`uninstall` run there), and a handler that Python did not set
+    (None) becomes the default one."""
     for s, h in _state.previous.items():
-        with contextlib.suppress(ValueError, OSError, TypeError):
-            signal.signal(s, h if h is not None else signal.SIG_DFL)
+        signal.signal(s, h if h is not None else signal.SIG_DFL)
     _state.previous, _state.mode, _state.pending = {}, None, None
 
 
