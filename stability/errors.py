@@ -35,9 +35,23 @@ from __future__ import annotations
 
 from continuation.errors import ConvergenceError as _EngineConvergenceError
 
-__all__ = ["AtlasFileError", "ChunkError", "ConvergenceError", "DomainError", "InputError", "Interrupted"]
-__all__ += ["MissingExtraError", "OutputWriteError", "ParameterTypeError", "RecipeError", "ResourceError"]
-__all__ += ["ResumeError", "RunError", "TippeError", "require_extra"]
+__all__ = [
+    "AtlasFileError",
+    "ChunkError",
+    "ConvergenceError",
+    "DomainError",
+    "InputError",
+    "Interrupted",
+    "MissingExtraError",
+    "OutputWriteError",
+    "ParameterTypeError",
+    "RecipeError",
+    "ResourceError",
+    "ResumeError",
+    "RunError",
+    "TippeError",
+    "require_extra",
+]
 
 
 class TippeError(Exception):
