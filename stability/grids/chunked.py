@@ -484,8 +484,8 @@ def write_atlas(
         task = _compute_block if ds.chunks else lambda spec, sl: store.slice_block(ds, sl)  # in memory: no client
         parts = store.write_store(ds, target, spec, blocks, run, task, report)
         if not zarr_store:
-            with store.open_store(parts) as src:  # the netCDF file from the complete store
-                netcdf(src, lambda: None)
+            with store.open_store(parts) as src:  # the netCDF file from the complete store, in the atlas's order
+                netcdf(src[list(ds.variables)], lambda: None)
             shutil.rmtree(parts, ignore_errors=True)
         return target
 

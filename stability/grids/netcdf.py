@@ -228,10 +228,7 @@ def _unreadable(p: Path, exc: BaseException) -> AtlasFileError:
     if p.is_dir():  # a Zarr store: the chunk file that does not read
         from .store import damaged_chunk
 
-        try:
-            chunk = damaged_chunk(p)
-        except Exception:
-            chunk = None
+        chunk = damaged_chunk(p)
         where = f"its chunk file {chunk!r} is damaged" if chunk else "it cannot be read"
         return AtlasFileError(f"atlas store {str(p)!r} is not a readable Zarr store: {where} ({cause})")
     with open(p, "rb") as f:

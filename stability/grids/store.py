@@ -176,17 +176,19 @@ def open_store(path: str | os.PathLike, record: bool = False) -> xr.Dataset:
 def damaged_chunk(path: str | os.PathLike) -> str | None:
     """The first chunk file of the store ``path`` that cannot be read (``"growth_rate/c/0/0/0/0"``,
     relative to the store), or None if every chunk reads: each chunk of each array read once,
-    through zarr's public API (for the message of a store that failed to load)."""
+    through zarr's public API (for the message of a store that failed to load; None too if its
+    metadata does not read)."""
     import itertools
 
     import zarr
 
-    for name, array in sorted(zarr.open_group(str(path), mode="r").arrays()):
-        for index in itertools.product(*(range(n) for n in array.cdata_shape)):
-            try:
-                array.blocks[index]
-            except Exception:
-                return f"{name}/{array.metadata.encode_chunk_key(index)}"
+    with contextlib.suppress(Exception):
+        for name, array in sorted(zarr.open_group(str(path), mode="r").arrays()):
+            for index in itertools.product(*(range(n) for n in array.cdata_shape)):
+                try:
+                    array.blocks[index]
+                except Exception:
+                    return f"{name}/{array.metadata.encode_chunk_key(index)}"
     return None
 
 
