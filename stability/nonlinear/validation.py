@@ -110,17 +110,6 @@ def jacobian_modes(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return ev, vec, 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
 
 
-def _duration(s: complex, n_efold: float, n_periods: float, max_time: float) -> float:
-    t = 0.0
-    if abs(s.real) > RESOLVED * abs(s):
-        t = n_efold / abs(s.real)
-    elif s.imag != 0.0:
-        t = n_periods * 2.0 * np.pi / abs(s.imag)
-    if t == 0.0:
-        t = max_time
-    return min(t, max_time)
-
-
 def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
     """Slopes of ``log|Phi|`` and of the unwrapped phase (least squares), and the RMS residual
     of the first fit; NaN if fewer than two samples are finite and nonzero."""
@@ -144,18 +133,24 @@ def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
     return start
 
 
+def _leading(model: str, params: dict[str, Any]) -> tuple[complex, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+    """``(s, A, ev, vec, bound, i)``: the leading mode ``s`` of the first-principles linearisation,
+    from the kernel (per-root accuracy; the registered operator
+    ``NONLINEAR_MODELS[model].linear_model`` is the linearisation for every model since
+    ``"rolling"`` is the first-principles one, issue 15), the model's transverse Jacobian ``A``,
+    its modes (:func:`jacobian_modes`) and the index ``i`` of the one nearest ``s``."""
+    fp = spectrum(MODELS[get_nonlinear_model(model).linear_model], **params)
+    s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
+    A, _ = transverse_jacobian(model, params)
+    ev, vec, bound = jacobian_modes(A)
+    return s, A, ev, vec, bound, int(np.argmin(np.abs(ev - s)))
+
+
 def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dict[str, Any]:
     """The row of one point (module docstring); ``run`` holds the checked options of
     :func:`validate` (``amplitude, n_efold, n_periods, max_time, rtol, atol, method``)."""
     m = get_nonlinear_model(model)
-    # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy);
-    # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
-    # model since "rolling" is the first-principles one, issue 15)
-    fp = spectrum(MODELS[m.linear_model], **params)
-    s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, params)
-    ev, vec, bound = jacobian_modes(A)
-    i = int(np.argmin(np.abs(ev - s)))
+    s, A, ev, vec, bound, i = _leading(m.name, params)
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
     x = vec[:, i]
     for _ in range(2):  # inverse iteration with the kernel's eigenvalue as the shift
@@ -167,7 +162,14 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
             break
         x = y / np.linalg.norm(y)
     v = x / x[1] * run["amplitude"]  # |Phi| = amplitude, Phi real at t = 0
-    t_end = _duration(s, run["n_efold"], run["n_periods"], run["max_time"])
+    growth_resolved = abs(s.real) > RESOLVED * abs(s)
+    # n_efold e-folding times, else n_periods periods, else (s = 0) max_time, at most max_time
+    t_end = run["max_time"]
+    if growth_resolved:
+        t_end = run["n_efold"] / abs(s.real)
+    elif s.imag != 0.0:
+        t_end = run["n_periods"] * 2.0 * np.pi / abs(s.imag)
+    t_end = min(t_end, run["max_time"])
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
@@ -177,7 +179,6 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
         ds = simulate(model, t_end=t_end, **start, **tolerances, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
     g, w, rms = _fit(ds.time.values, phi)
-    growth_resolved = abs(s.real) > RESOLVED * abs(s)
     lost = f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the model does not hold"
     lost += " beyond)"
     poor = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
@@ -197,12 +198,8 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
     def growth_error(s: complex) -> float:  # relative to |s| where the growth rate is not resolved
         return rel(g, s.real, abs(s)) if growth_resolved else abs(g - s.real) / abs(s)
 
-    if failed:
-        agrees = False
-    elif growth_resolved:
-        agrees = bool(np.sign(g) == np.sign(s.real))
-    else:
-        agrees = bool(abs(g) <= RESOLVED * abs(s))
+    # the signs agree (neutral within RESOLVED |s| where the growth rate is not resolved); never for a failed run
+    agrees = not failed and bool(np.sign(g) == np.sign(s.real) if growth_resolved else abs(g) <= RESOLVED * abs(s))
     return {
         "predicted_growth_rate": s.real,
         "predicted_frequency": s.imag,
@@ -430,11 +427,7 @@ def coulomb_growth(
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
     t_end = check_positive("t_end", t_end)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-    A, _ = transverse_jacobian("sliding", {**top, "alpha_v": alpha_k})
-    ev, vec = np.linalg.eig(A)
-    lead = spectrum("sliding", **top, alpha_v=alpha_k)
-    s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
-    i = int(np.argmin(np.abs(ev - s)))
+    _, _, _, vec, _, i = _leading("sliding", {**top, "alpha_v": alpha_k})
     v = vec[:, i] / vec[1, i] * amplitude
     run = dict(t_end=t_end, dt=t_end / 3000, **_mode_start("sliding", v))
     run.update(**top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
