@@ -127,11 +127,6 @@ class Flight:
         """``A_G = 1 - mu q^2``."""
         return float(inertia_g(self.q, self.mu))
 
-    @property
-    def precession_rate(self) -> float:
-        """``Omega_p = |L_G| / A_G``, the rate at which ``k`` turns about ``L_G``."""
-        return float(np.linalg.norm(self.l_g)) / self.a_g
-
 
 @dataclass(frozen=True)
 class Landing:
@@ -215,7 +210,7 @@ def landing_time(f: Flight) -> float:
     t_max = (vz + np.sqrt(vz * vz + 2.0 * f.fr_inv * max(c0, 0.0))) / f.fr_inv  # T_max (module docstring)
     if not t_max > 0.0:  # h <= z_G + |q| - 1 <= 0 from the take-off on: no rise (a graze)
         return 0.0
-    rate = f.precession_rate
+    rate = float(np.linalg.norm(f.l_g)) / f.a_g  # Omega_p = |L_G| / A_G, the rate at which k turns about L_G
     dt = t_max / 256.0
     if rate > 0.0:
         dt = min(dt, 2.0 * np.pi / rate / 64.0)

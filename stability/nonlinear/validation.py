@@ -67,7 +67,7 @@ from .integrators import SCIPY_METHODS, check_tolerances
 from .jacobian import transverse_jacobian
 from .runs import simulate
 
-__all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "jacobian_modes", "leading_mode", "validate"]
+__all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "validate"]
 
 #: a growth rate is compared relatively where |Re s| > RESOLVED |s|
 RESOLVED: float = 1e-3
@@ -75,39 +75,6 @@ RESOLVED: float = 1e-3
 #: the largest RMS residual of the fit of log|Phi(t)| by a straight line for a resolved measurement
 #: (an exponential mode fits to ~1e-8: the O(|Phi|^2) terms and the integrator's error)
 FIT_RMS: float = 1e-3
-
-
-def leading_mode(values: np.ndarray, bound: np.ndarray | None = None) -> int:
-    """Index of the leading mode: the largest real part among the modes that are not
-    structural zeros (``s = 0`` exactly with an error bound of exactly 0,
-    :func:`stability.linear.modes.structural_zeros`; without ``bound``, ``s = 0`` exactly);
-    real parts equal within their error bounds (``bound``; exactly equal without it) tie, and
-    the larger ``Im s`` wins. Every mode counts, however small beside the largest."""
-    values = np.asarray(values, dtype=complex)
-    e = np.zeros(values.shape) if bound is None else np.asarray(bound, dtype=float)
-    zero = structural_zeros(values.real, values.imag, None if bound is None else e)
-    cand = [i for i in range(values.size) if not zero[i]] or list(range(values.size))
-    best = max(cand, key=lambda i: values[i].real)
-    near = [i for i in cand if values[i].real >= values[best].real - (e[i] + e[best])]
-    return max(near, key=lambda i: values[i].imag)
-
-
-def jacobian_modes(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eigenvalues, unit eigenvectors (columns) and error bounds of a Jacobian ``A`` (n, n).
-
-    The bound of eigenvalue ``j`` is ``8 n u ||A||_F kappa_j`` with the condition number
-    ``kappa_j = ||x_j|| ||y_j|| / |y_j^H x_j|`` (right and left eigenvectors; the rows of
-    ``V^-1`` are the left ones scaled so that ``y_j^H x_j = 1``): LAPACK's backward error
-    ``~n u ||A||`` carried to the eigenvalue to first order. Absolute: a mode far smaller than
-    the largest is known only to ``~u ||A||``.
-    """
-    ev, vec = np.linalg.eig(A)
-    n = A.shape[0]
-    try:
-        kappa = np.linalg.norm(np.linalg.inv(vec), axis=1) * np.linalg.norm(vec, axis=0)
-    except np.linalg.LinAlgError:  # defective to working precision
-        kappa = np.full(n, np.inf)
-    return ev, vec, 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
 
 
 def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
@@ -135,14 +102,38 @@ def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
 
 def _leading(model: str, params: dict[str, Any]) -> tuple[complex, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
     """``(s, A, ev, vec, bound, i)``: the leading mode ``s`` of the first-principles linearisation,
-    from the kernel (per-root accuracy; the registered operator
+    the model's transverse Jacobian ``A``, its eigenvalues, unit eigenvectors (columns) and
+    error bounds, and the index ``i`` of the eigenvalue nearest ``s``.
+
+    ``s`` comes from the kernel (per-root accuracy; the registered operator
     ``NONLINEAR_MODELS[model].linear_model`` is the linearisation for every model since
-    ``"rolling"`` is the first-principles one, issue 15), the model's transverse Jacobian ``A``,
-    its modes (:func:`jacobian_modes`) and the index ``i`` of the one nearest ``s``."""
+    ``"rolling"`` is the first-principles one, issue 15): the largest real part among the modes
+    that are not structural zeros (``s = 0`` exactly with an error bound of exactly 0,
+    :func:`stability.linear.modes.structural_zeros`); real parts equal within their error
+    bounds tie, and the larger ``Im s`` wins. Every mode counts, however small beside the
+    largest.
+
+    The bound of the Jacobian's eigenvalue ``j`` is ``8 n u ||A||_F kappa_j`` with the condition
+    number ``kappa_j = ||x_j|| ||y_j|| / |y_j^H x_j|`` (right and left eigenvectors; the rows of
+    ``V^-1`` are the left ones scaled so that ``y_j^H x_j = 1``): LAPACK's backward error
+    ``~n u ||A||`` carried to the eigenvalue to first order. Absolute: a mode far smaller than
+    the largest is known only to ``~u ||A||``.
+    """
     fp = spectrum(MODELS[get_nonlinear_model(model).linear_model], **params)
-    s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
+    values, e = np.asarray(fp.eigenvalues, dtype=complex), np.asarray(fp.error_bound, dtype=float)
+    zero = structural_zeros(values.real, values.imag, e)
+    cand = [i for i in range(values.size) if not zero[i]] or list(range(values.size))
+    best = max(cand, key=lambda i: values[i].real)
+    near = [i for i in cand if values[i].real >= values[best].real - (e[i] + e[best])]
+    s = complex(values[max(near, key=lambda i: values[i].imag)])
     A, _ = transverse_jacobian(model, params)
-    ev, vec, bound = jacobian_modes(A)
+    ev, vec = np.linalg.eig(A)
+    n = A.shape[0]
+    try:
+        kappa = np.linalg.norm(np.linalg.inv(vec), axis=1) * np.linalg.norm(vec, axis=0)
+    except np.linalg.LinAlgError:  # defective to working precision
+        kappa = np.full(n, np.inf)
+    bound = 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
     return s, A, ev, vec, bound, int(np.argmin(np.abs(ev - s)))
 
 
