@@ -77,20 +77,6 @@ RESOLVED: float = 1e-3
 FIT_RMS: float = 1e-3
 
 
-def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
-    """Slopes of ``log|Phi|`` and of the unwrapped phase (least squares), and the RMS residual
-    of the first fit; NaN if fewer than two samples are finite and nonzero."""
-    ok = np.isfinite(phi) & (phi != 0)
-    if ok.sum() < 2:
-        return np.nan, np.nan, np.nan
-    t, phi = t[ok], phi[ok]
-    log_amp = np.log(np.abs(phi))
-    g_fit = np.polyfit(t, log_amp, 1)
-    w = np.polyfit(t, np.unwrap(np.angle(phi)), 1)[0]
-    rms = float(np.sqrt(np.mean((np.polyval(g_fit, t) - log_amp) ** 2)))
-    return float(g_fit[0]), float(w), rms
-
-
 def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
     """``omega``, ``k`` (and the sliding top's ``velocity``) of the upright spin ``omega = k = K``
     displaced along the transverse mode ``v`` (``omega, Phi[, V]``, complex, scaled)."""
@@ -169,7 +155,17 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
         tolerances = {k: run[k] for k in ("rtol", "atol", "method")}
         ds = simulate(model, t_end=t_end, **start, **tolerances, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
-    g, w, rms = _fit(ds.time.values, phi)
+    # the slopes of log|Phi| and of the unwrapped phase (least squares), and the RMS residual of
+    # the first fit; NaN if fewer than two samples are finite and nonzero
+    g = w = rms = np.nan
+    ok = np.isfinite(phi) & (phi != 0)
+    if ok.sum() >= 2:
+        t, phi_ok = ds.time.values[ok], phi[ok]
+        log_amp = np.log(np.abs(phi_ok))
+        g_fit = np.polyfit(t, log_amp, 1)
+        g = float(g_fit[0])
+        w = float(np.polyfit(t, np.unwrap(np.angle(phi_ok)), 1)[0])
+        rms = float(np.sqrt(np.mean((np.polyval(g_fit, t) - log_amp) ** 2)))
     lost = f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the model does not hold"
     lost += " beyond)"
     poor = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
