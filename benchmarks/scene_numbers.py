@@ -6,16 +6,17 @@ Usage: python benchmarks/scene_numbers.py
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import numpy as np
 
 from stability.nonlinear.scene import crossing_time, friction_cases, run
 
 #: the paper's numbers
-PAPER_NUMBERS = {"crossing_periods": {0.3: 78.0, 0.1: 41.0}, "peak_transverse_rate": 0.12}
+PAPER_NUMBERS: dict[str, Any] = {"crossing_periods": {0.3: 78.0, 0.1: 41.0}, "peak_transverse_rate": 0.12}
 
 
-def scene_numbers(fr_inv: float = 0.3, **kw) -> dict[str, float]:
+def scene_numbers(fr_inv: float = 0.3, **kw: Any) -> dict[str, float]:
     """The numbers of Figs. 5-9 for one run of Sec. 3(ii) (the module docstring of :mod:`stability.nonlinear.scene`).
 
     Returns
