@@ -65,7 +65,7 @@ energy ``Lambda^2 / (2 (1/mu + (r x K) . I_G^-1 (r x K)))`` (reported per landin
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -126,11 +126,6 @@ class Flight:
     def a_g(self) -> float:
         """``A_G = 1 - mu q^2``."""
         return float(inertia_g(self.q, self.mu))
-
-    @property
-    def precession_rate(self) -> float:
-        """``Omega_p = |L_G| / A_G``, the rate at which ``k`` turns about ``L_G``."""
-        return float(np.linalg.norm(self.l_g)) / self.a_g
 
 
 @dataclass(frozen=True)
@@ -215,7 +210,7 @@ def landing_time(f: Flight) -> float:
     t_max = (vz + np.sqrt(vz * vz + 2.0 * f.fr_inv * max(c0, 0.0))) / f.fr_inv  # T_max (module docstring)
     if not t_max > 0.0:  # h <= z_G + |q| - 1 <= 0 from the take-off on: no rise (a graze)
         return 0.0
-    rate = f.precession_rate
+    rate = float(np.linalg.norm(f.l_g)) / f.a_g  # Omega_p = |L_G| / A_G, the rate at which k turns about L_G
     dt = t_max / 256.0
     if rate > 0.0:
         dt = min(dt, 2.0 * np.pi / rate / 64.0)
@@ -281,60 +276,45 @@ def impact(f: Flight, tau: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, L
 
 
 def model_state(model: str, omega: np.ndarray, k: np.ndarray, v_o: np.ndarray, x_o: np.ndarray) -> np.ndarray:
-    """The model's state vector on the floor (O at height 1): sliding ``omega, k, V_h, X_h``,
-    rolling ``omega, k, X_h``."""
-    if model == "sliding":
-        return np.concatenate([omega, k, v_o[:2], x_o[:2]])
-    return np.concatenate([omega, k, x_o[:2]])
+    """The model's state vectors on the floor (O at height 1), one per row of the arguments (or
+    one of vectors): sliding ``omega, k, V_h, X_h``, rolling ``omega, k, X_h``."""
+    horizontal = (v_o[..., :2], x_o[..., :2]) if model == "sliding" else (x_o[..., :2],)
+    return np.concatenate([omega, k, *horizontal], axis=-1)
 
 
 #: flights at most in one run (a top that bounces ever more often, a Zeno sequence, stops there)
 MAX_FLIGHTS = 1000
 
 
-@dataclass
-class HybridRun:
-    """A run through contact phases, flights and landings (:func:`run_with_flights`).
+@dataclass(frozen=True)
+class HybridRun(Solution):
+    """A run through contact phases, flights and landings (:func:`run_with_flights`): the fields
+    of a :class:`~stability.nonlinear.integrators.Solution`, and the phases.
+
+    ``y`` holds the model states on the floor; in flight the model's layout filled from the free
+    motion (the horizontal part of O's velocity and position). ``status`` is 0, an integrator's
+    failure code, or :data:`~stability.nonlinear.integrators.TOO_MANY_FLIGHTS` (more than
+    :data:`MAX_FLIGHTS`) or :data:`~stability.nonlinear.integrators.GRAZE` (a take-off without
+    rise), which stop the run there (its ``message``:
+    :data:`~stability.nonlinear.integrators.STATUS_MESSAGES`). ``event`` is ``"stick_contact"``
+    if the run ended at the stick, else ``"contact_lost"`` if it took off at least once, else
+    ``"none"``; ``event_time`` the time of that event (the first take-off), NaN for none.
 
     Attributes
     ----------
-    t : numpy.ndarray, shape (m,)
-    y : numpy.ndarray, shape (m, n)
-        Model states on the floor; in flight the model's layout filled from the free motion
-        (the horizontal part of O's velocity and position).
     v_o, x_o : numpy.ndarray, shape (m, 3)
         Velocity and position of the sphere's centre O.
     contact : numpy.ndarray of int8, shape (m,)
         1 on the floor, 0 in flight.
     takeoffs : list of float
     landings : list of Landing
-    nfev, naccept, nreject, status : int
-        ``status`` 0, an integrator's failure code, or
-        :data:`~stability.nonlinear.integrators.TOO_MANY_FLIGHTS` (more than :data:`MAX_FLIGHTS`)
-        or :data:`~stability.nonlinear.integrators.GRAZE` (a take-off without rise), which stop
-        the run there (:data:`~stability.nonlinear.integrators.STATUS_MESSAGES`).
-    message : str
-    event : str
-        ``"stick_contact"`` if the run ended at the stick, else ``"contact_lost"`` if it took
-        off at least once, else ``"none"``.
-    event_time : float
-        The time of that event (the first take-off), NaN for none.
     """
 
-    t: np.ndarray
-    y: np.ndarray
-    v_o: np.ndarray
-    x_o: np.ndarray
-    contact: np.ndarray
-    takeoffs: list
-    landings: list
-    nfev: int
-    naccept: int
-    nreject: int
-    status: int
-    message: str
-    event: str = "none"
-    event_time: float = float("nan")
+    v_o: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))
+    x_o: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))
+    contact: np.ndarray = field(default_factory=lambda: np.empty(0, np.int8))
+    takeoffs: list = field(default_factory=list)
+    landings: list = field(default_factory=list)
 
 
 def floor_centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -369,7 +349,6 @@ def run_with_flights(
     takeoffs: list = []
     landings: list = []
     nfev = naccept = nreject = 0
-    status, message = 0, "success"
     event, event_time = "none", float("nan")
     y, seg = np.asarray(y0, float), np.asarray(t_eval, float)
     while True:
@@ -380,14 +359,13 @@ def run_with_flights(
         if sol.event == "contact_lost" and sol.t.size == 1:
             on[0] = 0  # landed and left again at once (N < 0 just after the impact): no contact force
         ts.append(sol.t), ys.append(sol.y), vs.append(v_o), xs.append(x_o), cs.append(on)
+        status = sol.status
         if sol.status != 0 or sol.event != "contact_lost":
-            status, message = sol.status, sol.message
             if sol.event == "stick_contact":
                 event, event_time = sol.event, sol.event_time
             break
         if len(takeoffs) >= MAX_FLIGHTS:
             status = TOO_MANY_FLIGHTS
-            message = f"more than {MAX_FLIGHTS} flights: the top bounces ever more often (stopped there)"
             break
         t0 = sol.event_time
         takeoffs.append(t0)
@@ -396,18 +374,14 @@ def run_with_flights(
         f = body_state(model, sol.y[-1], q=q, fr_inv=fr, sigma=sg, mu=mu)
         tau = landing_time(f)
         if tau == 0.0:  # N = 0 but no rise: the floor model cannot go on (N <= 0) and no flight starts
-            status = GRAZE
-            message = (
-                f"at t = {t0:.9g} the normal force reached zero but the sphere does not rise (a graze): "
-                "neither the floor model nor the flight holds there (stopped)"
-            )
+            status = GRAZE  # at t0, the last take-off
             break
         t_land = t0 + tau
         inside = t_eval[(t_eval > t0) & ((t_eval < t_land) | (t_land >= t_eval[-1]))]
         if inside.size:
             w, k, x_o, v_o = flight_motion(f, inside - t0)
             ts.append(inside), vs.append(v_o), xs.append(x_o), cs.append(np.zeros(inside.size, np.int8))
-            ys.append(np.vstack([model_state(model, w[i], k[i], v_o[i], x_o[i]) for i in range(inside.size)]))
+            ys.append(model_state(model, w, k, v_o, x_o))
         if t_land >= t_eval[-1]:
             break  # still in the air at the end
         w, k, v_o, landing = impact(f, tau)
@@ -415,5 +389,6 @@ def run_with_flights(
         landings.append(replace(landing, time=t_land))
         y = model_state(model, w, k, v_o, x_o)
         seg = np.concatenate([[t_land], t_eval[t_eval > t_land]])
-    samples = (np.concatenate(ts), np.vstack(ys), np.vstack(vs), np.vstack(xs), np.concatenate(cs))
-    return HybridRun(*samples, takeoffs, landings, nfev, naccept, nreject, status, message, event, event_time)
+    t, y = np.concatenate(ts), np.vstack(ys)
+    work = (nfev, naccept, nreject, status, sol.method, event_time, event)
+    return HybridRun(t, y, *work, np.vstack(vs), np.vstack(xs), np.concatenate(cs), takeoffs, landings)

@@ -5,7 +5,7 @@ initial conditions as printed for ``fr_inv = 0.3`` and ``0.1`` (a clockwise spin
 ``omega_3 ~ -1``: the mirror image of the linear analysis' spin +1). One spin period is
 ``2 pi`` time units. ``k`` as printed has ``|k| = 0.99998`` and is normalised.
 
-Numbers (:func:`scene_numbers`): the time of the 90-degree crossing of the axis (in spin
+Numbers (``python benchmarks/scene_numbers.py``): the time of the 90-degree crossing of the axis (in spin
 periods, linear interpolation between output samples, 0.05 time units apart), the spin
 ``omega . k`` at the start and the end, the peak transverse angular rate and its value at the
 crossing, the energy parts at start and end, the excursion of the centre, the sliding speed
@@ -22,15 +22,7 @@ from ..errors import InputError
 from ..products import PRODUCT_ATTR
 from .runs import simulate
 
-__all__ = [
-    "FRICTION_CASES",
-    "INITIAL_CONDITIONS",
-    "PAPER",
-    "crossing_time",
-    "friction_cases",
-    "run",
-    "scene_numbers",
-]
+__all__ = ["FRICTION_CASES", "INITIAL_CONDITIONS", "PAPER", "crossing_time", "friction_cases", "run"]
 
 #: the paper's parameters of Sec. 3(ii)
 PAPER = dict(q=-0.1, sigma=1.0, mu=2.28)
@@ -43,9 +35,6 @@ INITIAL_CONDITIONS: dict[float, dict[str, list[float]]] = {
 
 #: (alpha_k, alpha_v) of the four cases of Fig. 9(b), at fr_inv = 0.3
 FRICTION_CASES: tuple[tuple[float, float], ...] = ((0.0, 0.5), (0.5, 0.5), (0.5, 0.1), (0.5, 0.0))
-
-#: the paper's numbers
-PAPER_NUMBERS = {"crossing_periods": {0.3: 78.0, 0.1: 41.0}, "peak_transverse_rate": 0.12}
 
 
 def run(
@@ -88,45 +77,6 @@ def crossing_time(ds: xr.Dataset, angle: float = 90.0) -> float:
     return float(t[i - 1] + (angle - pol[i - 1]) * (t[i] - t[i - 1]) / (pol[i] - pol[i - 1]))
 
 
-def scene_numbers(fr_inv: float = 0.3, **kw) -> dict[str, float]:
-    """The numbers of Figs. 5-9 for one run of Sec. 3(ii) (see module docstring).
-
-    Returns
-    -------
-    dict of float
-        ``crossing_periods``, ``spin_start``, ``spin_end``, ``peak_transverse_rate``,
-        ``transverse_rate_at_crossing``, ``min_slip_speed_before_crossing``,
-        ``min_slip_speed``, energy parts at start and end, ``centre_excursion``,
-        ``mean_friction_sliding`` and ``mean_friction_rolling`` (over the first
-        ``crossing`` time units), ``seconds`` (wall time of the sliding run).
-    """
-    import time
-
-    t0 = time.perf_counter()
-    ds = run(fr_inv, **kw)
-    wall = time.perf_counter() - t0
-    tc = crossing_time(ds)
-    out = {
-        "crossing_periods": tc / (2 * np.pi),
-        "crossing_time": tc,
-        "spin_start": float(ds.spin[0]),
-        "spin_end": float(ds.spin[-1]),
-        "peak_transverse_rate": float(ds.transverse_rate.max()),
-        "transverse_rate_at_crossing": float(ds.transverse_rate.interp(time=tc)),
-        "min_slip_speed_before_crossing": float(ds.slip_speed.sel(time=slice(0, tc)).min()),
-        "min_slip_speed": float(ds.slip_speed.min()),
-        "centre_excursion": float(np.max(np.hypot(ds.position[:, 0], ds.position[:, 1]))),
-        "seconds": wall,
-    }
-    for part in ("kinetic_translational", "kinetic_spin", "kinetic_transverse", "potential", "energy"):
-        out[f"{part}_start"] = float(ds[part][0])
-        out[f"{part}_end"] = float(ds[part][-1])
-    roll = run(fr_inv, model="rolling", t_end=float(tc), dt=0.05)
-    out["mean_friction_rolling"] = float(roll.friction_magnitude.mean())
-    out["mean_friction_sliding"] = float(ds.friction_magnitude.sel(time=slice(0, tc)).mean())
-    return out
-
-
 def friction_cases(
     fr_inv: float = 0.3, *, t_end: float = 1500.0, scheme: str = "adaptive", step: float = 0.1
 ) -> xr.Dataset:
@@ -153,12 +103,9 @@ def friction_cases(
         "min_slip_speed": {"long_name": "smallest sliding speed", "units": "1"},
     }
     r = np.array(rows)
+    case = {"long_name": "friction case of Fig. 9(b)", "units": "1"}
     coords = {
-        "case": (
-            "case",
-            np.arange(1, len(FRICTION_CASES) + 1),
-            {"long_name": "friction case of Fig. 9(b)", "units": "1"},
-        ),
+        "case": ("case", np.arange(1, len(FRICTION_CASES) + 1), case),
         "alpha_k": ("case", [c[0] for c in FRICTION_CASES], {"long_name": "Coulomb friction", "units": "1"}),
         "alpha_v": ("case", [c[1] for c in FRICTION_CASES], {"long_name": "viscous friction", "units": "1"}),
     }

@@ -75,17 +75,18 @@ _SLIP, _STICK = 0, 1
 
 
 def _rolling_state(y10: np.ndarray) -> np.ndarray:
-    """The rolling model's state ``(omega, k, X0)`` of a sliding state (``V0`` dropped)."""
-    return np.concatenate([y10[0:6], y10[8:10]])
+    """The rolling model's state ``(omega, k, X0)`` of a sliding state (``V0`` dropped); of each
+    row of an array of them."""
+    return np.concatenate([y10[..., 0:6], y10[..., 8:10]], axis=-1)
 
 
 def _sliding_state(y8: np.ndarray, seed: np.ndarray | None = None) -> np.ndarray:
     """The sliding model's state of a rolling state: ``V0 = -K x omega = (omega_2, -omega_1)``
-    (eq. 5 with ``V_c = 0``), plus a seed slip if given."""
-    v0 = np.array([y8[1], -y8[0]])
+    (eq. 5 with ``V_c = 0``), plus a seed slip if given; of each row of an array of them."""
+    v0 = np.stack([y8[..., 1], -y8[..., 0]], axis=-1)
     if seed is not None:
         v0 = v0 + seed
-    return np.concatenate([y8[0:6], v0, y8[6:8]])
+    return np.concatenate([y8[..., 0:6], v0, y8[..., 6:8]], axis=-1)
 
 
 def _tilt(y: np.ndarray) -> float:
@@ -222,9 +223,7 @@ def stick_slip(
 
     y = initial_state("sliding", omega, k, velocity)
     grid = np.linspace(0.0, t_end, int(np.ceil(t_end / dt - 1e-9)) + 1)
-    ts: list[np.ndarray] = []
-    ys: list[np.ndarray] = []
-    phases: list[np.ndarray] = []
+    segments: list[tuple[np.ndarray, np.ndarray, int]] = []  # (times, sliding states, phase) of each phase
     switches: list[tuple] = []
     t = 0.0
     phase = _SLIP
@@ -242,9 +241,7 @@ def stick_slip(
     if n0 <= 0.0:  # the events fire on a crossing only: a start without contact force is its own event
         event, event_time = "contact_lost", 0.0
         message = f"the normal force is N = {n0:.6g} <= 0 at the start (contact lost at once)"
-    ts.append(np.array([0.0]))
-    ys.append((y if phase == _SLIP else _sliding_state(y))[None, :])
-    phases.append(np.array([phase], np.int8))
+    segments.append((np.array([0.0]), (y if phase == _SLIP else _sliding_state(y))[None, :], phase))
     while t < t_end and event == "none":
         inside = grid[(grid > t) & (grid < t_end)]
         t_eval = np.concatenate([inside, [t_end]])
@@ -266,9 +263,7 @@ def stick_slip(
             sel = keep < t_ev
             keep = np.concatenate([keep[sel], [t_ev]])
             out = np.vstack([out[sel], y_ev[None, :]])
-        ts.append(keep)
-        ys.append(out if phase == _SLIP else np.array([_sliding_state(r) for r in out]).reshape(-1, 10))
-        phases.append(np.full(keep.size, phase, np.int8))
+        segments.append((keep, out if phase == _SLIP else _sliding_state(out), phase))
         if not hit:
             break
         t = t_ev
@@ -290,15 +285,15 @@ def stick_slip(
         phase, y = (_STICK, y8) if kind == "stick" else (_SLIP, slip_along(y8, f))
     if status < 0:
         warnings.warn(f"stick_slip: {message}", RuntimeWarning, stacklevel=2)
-    t_all = np.concatenate(ts)
-    y_all = np.vstack(ys)
-    ph = np.concatenate(phases)
+    t_all = np.concatenate([times for times, _, _ in segments])
+    y_all = np.vstack([states for _, states, _ in segments])
+    ph = np.concatenate([np.full(times.size, phase, np.int8) for times, _, phase in segments])
     stuck = ph == _STICK
     # the contact forces (f_x, f_y, N): rolling's constraint force while sticking, the exact law (7)
     # while slipping (the run's p_reg is the regularised one)
     forces = np.empty((t_all.size, 3))
     if stuck.any():
-        forces[stuck] = rolling.contact_forces(np.ascontiguousarray(y_all[stuck][:, [0, 1, 2, 3, 4, 5, 8, 9]]), p)
+        forces[stuck] = rolling.contact_forces(np.ascontiguousarray(_rolling_state(y_all[stuck])), p)
     if not stuck.all():
         forces[~stuck] = sliding.contact_forces(np.ascontiguousarray(y_all[~stuck]), p)
     ds = trajectory_dataset("sliding", Solution(t_all, y_all, 0, 0, 0, status, method), params, p_reg, forces)

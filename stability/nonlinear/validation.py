@@ -67,7 +67,7 @@ from .integrators import SCIPY_METHODS, check_tolerances
 from .jacobian import transverse_jacobian
 from .runs import simulate
 
-__all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "jacobian_modes", "leading_mode", "validate"]
+__all__ = ["FIT_RMS", "RESOLVED", "coulomb_growth", "validate"]
 
 #: a growth rate is compared relatively where |Re s| > RESOLVED |s|
 RESOLVED: float = 1e-3
@@ -75,64 +75,6 @@ RESOLVED: float = 1e-3
 #: the largest RMS residual of the fit of log|Phi(t)| by a straight line for a resolved measurement
 #: (an exponential mode fits to ~1e-8: the O(|Phi|^2) terms and the integrator's error)
 FIT_RMS: float = 1e-3
-
-
-def leading_mode(values: np.ndarray, bound: np.ndarray | None = None) -> int:
-    """Index of the leading mode: the largest real part among the modes that are not
-    structural zeros (``s = 0`` exactly with an error bound of exactly 0,
-    :func:`stability.linear.modes.structural_zeros`; without ``bound``, ``s = 0`` exactly);
-    real parts equal within their error bounds (``bound``; exactly equal without it) tie, and
-    the larger ``Im s`` wins. Every mode counts, however small beside the largest."""
-    values = np.asarray(values, dtype=complex)
-    e = np.zeros(values.shape) if bound is None else np.asarray(bound, dtype=float)
-    zero = structural_zeros(values.real, values.imag, None if bound is None else e)
-    cand = [i for i in range(values.size) if not zero[i]] or list(range(values.size))
-    best = max(cand, key=lambda i: values[i].real)
-    near = [i for i in cand if values[i].real >= values[best].real - (e[i] + e[best])]
-    return max(near, key=lambda i: values[i].imag)
-
-
-def jacobian_modes(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eigenvalues, unit eigenvectors (columns) and error bounds of a Jacobian ``A`` (n, n).
-
-    The bound of eigenvalue ``j`` is ``8 n u ||A||_F kappa_j`` with the condition number
-    ``kappa_j = ||x_j|| ||y_j|| / |y_j^H x_j|`` (right and left eigenvectors; the rows of
-    ``V^-1`` are the left ones scaled so that ``y_j^H x_j = 1``): LAPACK's backward error
-    ``~n u ||A||`` carried to the eigenvalue to first order. Absolute: a mode far smaller than
-    the largest is known only to ``~u ||A||``.
-    """
-    ev, vec = np.linalg.eig(A)
-    n = A.shape[0]
-    try:
-        kappa = np.linalg.norm(np.linalg.inv(vec), axis=1) * np.linalg.norm(vec, axis=0)
-    except np.linalg.LinAlgError:  # defective to working precision
-        kappa = np.full(n, np.inf)
-    return ev, vec, 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
-
-
-def _duration(s: complex, n_efold: float, n_periods: float, max_time: float) -> float:
-    t = 0.0
-    if abs(s.real) > RESOLVED * abs(s):
-        t = n_efold / abs(s.real)
-    elif s.imag != 0.0:
-        t = n_periods * 2.0 * np.pi / abs(s.imag)
-    if t == 0.0:
-        t = max_time
-    return min(t, max_time)
-
-
-def _fit(t: np.ndarray, phi: np.ndarray) -> tuple[float, float, float]:
-    """Slopes of ``log|Phi|`` and of the unwrapped phase (least squares), and the RMS residual
-    of the first fit; NaN if fewer than two samples are finite and nonzero."""
-    ok = np.isfinite(phi) & (phi != 0)
-    if ok.sum() < 2:
-        return np.nan, np.nan, np.nan
-    t, phi = t[ok], phi[ok]
-    log_amp = np.log(np.abs(phi))
-    g_fit = np.polyfit(t, log_amp, 1)
-    w = np.polyfit(t, np.unwrap(np.angle(phi)), 1)[0]
-    rms = float(np.sqrt(np.mean((np.polyval(g_fit, t) - log_amp) ** 2)))
-    return float(g_fit[0]), float(w), rms
 
 
 def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
@@ -144,18 +86,48 @@ def _mode_start(model: str, v: np.ndarray) -> dict[str, Any]:
     return start
 
 
+def _leading(model: str, params: dict[str, Any]) -> tuple[complex, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+    """``(s, A, ev, vec, bound, i)``: the leading mode ``s`` of the first-principles linearisation,
+    the model's transverse Jacobian ``A``, its eigenvalues, unit eigenvectors (columns) and
+    error bounds, and the index ``i`` of the eigenvalue nearest ``s``.
+
+    ``s`` comes from the kernel (per-root accuracy; the registered operator
+    ``NONLINEAR_MODELS[model].linear_model`` is the linearisation for every model since
+    ``"rolling"`` is the first-principles one, issue 15): the largest real part among the modes
+    that are not structural zeros (``s = 0`` exactly with an error bound of exactly 0,
+    :func:`stability.linear.modes.structural_zeros`); real parts equal within their error
+    bounds tie, and the larger ``Im s`` wins. Every mode counts, however small beside the
+    largest.
+
+    The bound of the Jacobian's eigenvalue ``j`` is ``8 n u ||A||_F kappa_j`` with the condition
+    number ``kappa_j = ||x_j|| ||y_j|| / |y_j^H x_j|`` (right and left eigenvectors; the rows of
+    ``V^-1`` are the left ones scaled so that ``y_j^H x_j = 1``): LAPACK's backward error
+    ``~n u ||A||`` carried to the eigenvalue to first order. Absolute: a mode far smaller than
+    the largest is known only to ``~u ||A||``.
+    """
+    fp = spectrum(MODELS[get_nonlinear_model(model).linear_model], **params)
+    values, e = np.asarray(fp.eigenvalues, dtype=complex), np.asarray(fp.error_bound, dtype=float)
+    zero = structural_zeros(values.real, values.imag, e)
+    cand = [i for i in range(values.size) if not zero[i]] or list(range(values.size))
+    best = max(cand, key=lambda i: values[i].real)
+    near = [i for i in cand if values[i].real >= values[best].real - (e[i] + e[best])]
+    s = complex(values[max(near, key=lambda i: values[i].imag)])
+    A, _ = transverse_jacobian(model, params)
+    ev, vec = np.linalg.eig(A)
+    n = A.shape[0]
+    try:
+        kappa = np.linalg.norm(np.linalg.inv(vec), axis=1) * np.linalg.norm(vec, axis=0)
+    except np.linalg.LinAlgError:  # defective to working precision
+        kappa = np.full(n, np.inf)
+    bound = 8 * n * UNIT_ROUNDOFF * np.linalg.norm(A) * kappa
+    return s, A, ev, vec, bound, int(np.argmin(np.abs(ev - s)))
+
+
 def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dict[str, Any]:
     """The row of one point (module docstring); ``run`` holds the checked options of
     :func:`validate` (``amplitude, n_efold, n_periods, max_time, rtol, atol, method``)."""
     m = get_nonlinear_model(model)
-    # the leading mode of the first-principles linearisation, from the kernel (per-root accuracy);
-    # the registered operator NONLINEAR_MODELS[model].linear_model is the linearisation (for every
-    # model since "rolling" is the first-principles one, issue 15)
-    fp = spectrum(MODELS[m.linear_model], **params)
-    s = complex(fp.eigenvalues[leading_mode(fp.eigenvalues, fp.error_bound)])
-    A, _ = transverse_jacobian(model, params)
-    ev, vec, bound = jacobian_modes(A)
-    i = int(np.argmin(np.abs(ev - s)))
+    s, A, ev, vec, bound, i = _leading(m.name, params)
     s_jac, jac_bound = complex(ev[i]), float(bound[i])
     x = vec[:, i]
     for _ in range(2):  # inverse iteration with the kernel's eigenvalue as the shift
@@ -167,7 +139,14 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
             break
         x = y / np.linalg.norm(y)
     v = x / x[1] * run["amplitude"]  # |Phi| = amplitude, Phi real at t = 0
-    t_end = _duration(s, run["n_efold"], run["n_periods"], run["max_time"])
+    growth_resolved = abs(s.real) > RESOLVED * abs(s)
+    # n_efold e-folding times, else n_periods periods, else (s = 0) max_time, at most max_time
+    t_end = run["max_time"]
+    if growth_resolved:
+        t_end = run["n_efold"] / abs(s.real)
+    elif s.imag != 0.0:
+        t_end = run["n_periods"] * 2.0 * np.pi / abs(s.imag)
+    t_end = min(t_end, run["max_time"])
     # at least 8 samples per period so that the phase unwraps without aliasing
     n_samples = max(401, int(8 * t_end * abs(s.imag) / (2 * np.pi)) + 1)
     with warnings.catch_warnings():
@@ -176,8 +155,17 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
         tolerances = {k: run[k] for k in ("rtol", "atol", "method")}
         ds = simulate(model, t_end=t_end, **start, **tolerances, **params)
     phi = ds.k.values[:, 0] + 1j * ds.k.values[:, 1]
-    g, w, rms = _fit(ds.time.values, phi)
-    growth_resolved = abs(s.real) > RESOLVED * abs(s)
+    # the slopes of log|Phi| and of the unwrapped phase (least squares), and the RMS residual of
+    # the first fit; NaN if fewer than two samples are finite and nonzero
+    g = w = rms = np.nan
+    ok = np.isfinite(phi) & (phi != 0)
+    if ok.sum() >= 2:
+        t, phi_ok = ds.time.values[ok], phi[ok]
+        log_amp = np.log(np.abs(phi_ok))
+        g_fit = np.polyfit(t, log_amp, 1)
+        g = float(g_fit[0])
+        w = float(np.polyfit(t, np.unwrap(np.angle(phi_ok)), 1)[0])
+        rms = float(np.sqrt(np.mean((np.polyval(g_fit, t) - log_amp) ** 2)))
     lost = f"contact lost at t = {ds.attrs['event_time']:.6g} (the normal force reached zero; the model does not hold"
     lost += " beyond)"
     poor = f"poor fit: RMS residual {rms:.2g} of log|Phi| (at most {FIT_RMS:g} for a resolved measurement)"
@@ -197,12 +185,8 @@ def _one_point(model: str, params: dict[str, float], run: dict[str, Any]) -> dic
     def growth_error(s: complex) -> float:  # relative to |s| where the growth rate is not resolved
         return rel(g, s.real, abs(s)) if growth_resolved else abs(g - s.real) / abs(s)
 
-    if failed:
-        agrees = False
-    elif growth_resolved:
-        agrees = bool(np.sign(g) == np.sign(s.real))
-    else:
-        agrees = bool(abs(g) <= RESOLVED * abs(s))
+    # the signs agree (neutral within RESOLVED |s| where the growth rate is not resolved); never for a failed run
+    agrees = not failed and bool(np.sign(g) == np.sign(s.real) if growth_resolved else abs(g) <= RESOLVED * abs(s))
     return {
         "predicted_growth_rate": s.real,
         "predicted_frequency": s.imag,
@@ -430,11 +414,7 @@ def coulomb_growth(
     amplitude = check_interval("amplitude", amplitude, 0.0, 0.1, closed="right")
     t_end = check_positive("t_end", t_end)
     top = dict(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
-    A, _ = transverse_jacobian("sliding", {**top, "alpha_v": alpha_k})
-    ev, vec = np.linalg.eig(A)
-    lead = spectrum("sliding", **top, alpha_v=alpha_k)
-    s = lead.eigenvalues[leading_mode(lead.eigenvalues, lead.error_bound)]
-    i = int(np.argmin(np.abs(ev - s)))
+    _, _, _, vec, _, i = _leading("sliding", {**top, "alpha_v": alpha_k})
     v = vec[:, i] / vec[1, i] * amplitude
     run = dict(t_end=t_end, dt=t_end / 3000, **_mode_start("sliding", v))
     run.update(**top, alpha_v=0.0, alpha_k=alpha_k, friction=friction)
