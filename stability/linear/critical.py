@@ -148,12 +148,6 @@ def _crossings(
     return (*_search(m, fx, param, lo, hi, samples), m, fx, (lo, hi))
 
 
-def _samples(lo: float, hi: float, n: int) -> np.ndarray:
-    w = hi - lo
-    g = np.geomspace(1e-8, 1.0, n)
-    return np.unique(np.concatenate([np.linspace(lo, hi, n), lo + w * g, hi - w * g]))
-
-
 def _states(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray):
     """The signs at the samples ``x`` (:func:`stability.linear.growth.growth`)."""
     return growth(m, parallel=False, **{**fx, param: np.asarray(x, dtype=float)})
@@ -403,7 +397,8 @@ def _hidden_pairs(
 
 def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: float, n: int):
     """Every threshold in ``[lo, hi]`` (module docstring) and the states of the samples."""
-    x = _samples(lo, hi, n)
+    g = (hi - lo) * np.geomspace(1e-8, 1.0, n)
+    x = np.unique(np.concatenate([np.linspace(lo, hi, n), lo + g, hi - g]))
     gr = _states(m, fx, param, x)
     keep = gr.state >= 0
     x, state = x[keep], gr.state[keep]

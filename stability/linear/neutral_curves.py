@@ -116,22 +116,18 @@ _KIND_DETAIL = {
 }
 
 
-def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
-    """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
-    parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
-    if rng is not None:
-        return check_range(f"{name}_range", rng)
-    lo, hi = domain_range(name, fixed)
-    dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
-    return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
-
-
 def _ranges(
     names: Sequence[str], given: Sequence[Any], fixed: Mapping[str, float]
 ) -> tuple[dict[str, tuple[float, float]], np.ndarray, np.ndarray]:
-    """The ranges of the traced ``names`` (:func:`_check_range`), their widths (the scale of
-    those unknowns) and eight seeded points inside them (for the form and the deflation)."""
-    ranges = {n: _check_range(n, r, fixed) for n, r in zip(names, given)}
+    """The ranges of the traced ``names`` (each checked; default: the domain's range given the
+    fixed parameters, :func:`stability.parameters.domain_range`, its open ends closed by
+    :data:`DEFAULT_RANGES`), their widths (the scale of those unknowns) and eight seeded points
+    inside them (for the form and the deflation)."""
+    ranges = {}
+    for n, r in zip(names, given):
+        lo, hi = domain_range(n, fixed) if r is None else check_range(f"{n}_range", r)
+        dlo, dhi = DEFAULT_RANGES.get(n, (lo, hi))
+        ranges[n] = (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
     width = np.array([ranges[n][1] - ranges[n][0] for n in names])
     lo = np.array([ranges[n][0] for n in names])
     return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
@@ -346,37 +342,31 @@ def _atlas_guesses(
     # across the undecided points between them (a curve through grid points, e.g. q = 0 on a
     # grid that holds it, leaves those points within rounding of neutral), never across a point
     # outside the domain
-    nx, ny = count.shape
-    flat = np.arange(nx * ny).reshape(nx, ny)
-    inside_flat = sp.inside.reshape(-1)
-    pa_list, pb_list = [], []
-    for lines in (flat.T, flat):  # rows of `lines`: the grid lines along axis 0, then axis 1
-        a_parts, b_parts = [np.zeros(0, dtype=int)], [np.zeros(0, dtype=int)]
-        for line in lines:
-            d = np.nonzero(count.flat[line] >= 0)[0]
-            if len(d) < 2:
-                continue
-            out_before = np.cumsum(~inside_flat[line])
-            ok = out_before[d[1:]] == out_before[d[:-1]]
-            a_parts.append(line[d[:-1][ok]])
-            b_parts.append(line[d[1:][ok]])
-        a, b = np.concatenate(a_parts), np.concatenate(b_parts)
-        order = np.argsort(a, kind="stable")
-        a, b = a[order], b[order]
-        sel = count.flat[a] != count.flat[b]
-        pa_list.append(a[sel])
-        pb_list.append(b[sel])
-    PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
+    flat = np.arange(count.size).reshape(count.shape)
+    PA, PB = [], []
+    for F in (flat.T, flat):  # rows of F: the grid lines along axis 0, then axis 1
+        C, n = count.flat[F], F.shape[1]
+        # the next decided point after each point of its line (n: none), and no outside point between
+        after = np.minimum.accumulate(np.where(C >= 0, np.arange(n), n)[:, ::-1], axis=1)[:, ::-1][:, 1:]
+        b = np.minimum(after, n - 1)
+        out_before = np.cumsum(~sp.inside.flat[F], axis=1)
+        ok = (C[:, :-1] >= 0) & (after < n) & (np.take_along_axis(out_before, b, 1) == out_before[:, :-1])
+        order = np.argsort(F[:, :-1][ok], kind="stable")
+        pa, pb = F[:, :-1][ok][order], np.take_along_axis(F, b, 1)[ok][order]
+        sel = count.flat[pa] != count.flat[pb]
+        PA.append(pa[sel])
+        PB.append(pb[sel])
+    PA, PB = np.concatenate(PA), np.concatenate(PB)
     # a: the end with more growing modes
     swap = count.flat[PA] < count.flat[PB]
     PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
-    EV = ev.reshape(nx * ny, -1)
-    EST = gr.estimate.reshape(nx * ny, -1)
+    EV = ev.reshape(count.size, -1)
+    EST = gr.estimate.reshape(count.size, -1)
     ea, eb = EV[PA], EV[PB]
     k = np.arange(len(PA))
     # the mode that crossed: the least growing of the growing modes at a, and the eigenvalue
     # nearest to it at b; linear interpolation of its growth estimate to zero along the edge
-    ia = np.argmin(np.where(grows.reshape(nx * ny, -1)[PA], EST[PA], np.inf), axis=-1)
+    ia = np.argmin(np.where(grows.reshape(count.size, -1)[PA], EST[PA], np.inf), axis=-1)
     ra = ea[k, ia]
     ib = np.argmin(np.abs(eb - ra[:, None]), axis=-1)
     rb = eb[k, ib]
@@ -389,33 +379,29 @@ def _atlas_guesses(
     return out._replace(points=list(ua + t[:, None] * (ub - ua)))
 
 
+def _feet(V: np.ndarray, pts: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The feet (m, segments, 3) of the scaled points ``V`` (m, 3) on the segments of the scaled
+    polyline ``pts``, projected in the first ``k`` columns, and the segments' squared lengths there."""
+    a, d = pts[:-1, :], pts[1:] - pts[:-1]
+    L2 = (d[:, :k] * d[:, :k]).sum(axis=1)
+    lam = np.clip(((V[:, None, :k] - a[:, :k]) * d[:, :k]).sum(axis=2) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
+    return a + lam[..., None] * d, L2
+
+
 def _on_branch(v: np.ndarray, pts: np.ndarray) -> bool:
     """Whether scaled point ``v`` lies on the scaled polyline ``pts`` (within its chord error)."""
     if len(pts) == 1:
         return bool(np.linalg.norm(v - pts[0]) < 1e-7)
-    a, b = pts[:-1], pts[1:]
-    d = b - a
-    L2 = (d * d).sum(axis=1)
-    lam = np.clip(((v - a) * d).sum(axis=1) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
-    dist = np.linalg.norm(v - (a + lam[:, None] * d), axis=1)
-    return bool(np.any(dist <= 0.05 * np.sqrt(L2) + 1e-7))
+    foot, L2 = _feet(v[None], pts, 3)
+    return bool(np.any(np.linalg.norm(v - foot[0], axis=1) <= 0.05 * np.sqrt(L2) + 1e-7))
 
 
 def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray:
     """For each scaled guess ``(x, y, w)`` (rows of ``G``), whether it lies within ``cell`` of a
     scaled branch in ``(x, y)`` with a frequency within 0.1 (all guesses at once)."""
-    if len(pts) < 2 or len(G) == 0:
-        return np.zeros(len(G), dtype=bool)
-    a, b = pts[:-1], pts[1:]
-    d = b - a
-    d2 = d[:, :2]
-    L2 = (d2 * d2).sum(axis=1)
-    rel = G[:, None, :2] - a[None, :, :2]  # (guess, segment, 2)
-    lam = np.clip((rel * d2[None]).sum(axis=2) / np.where(L2 > 0, L2, 1.0)[None], 0, 1)
-    foot = a[None] + lam[..., None] * d[None]  # (guess, segment, 3)
+    foot, _ = _feet(G, pts, 2)
     dxy = G[:, None, :2] - foot[..., :2]
-    near = ((dxy * dxy).sum(axis=2) <= cell * cell) & (np.abs(G[:, None, 2] - foot[..., 2]) <= 0.1)
-    return near.any(axis=1)
+    return (((dxy * dxy).sum(axis=2) <= cell * cell) & (np.abs(G[:, None, 2] - foot[..., 2]) <= 0.1)).any(axis=1)
 
 
 # ------------------------------------------------------------------------------------------
@@ -533,11 +519,14 @@ def _assemble(
     fixed: Mapping[str, float],
     prob: Any,
     branches: list[Branch],
+    ranges: Mapping[str, tuple[float, float]],
     attrs: Mapping[str, Any],
 ) -> xr.Dataset:
     """The dataset of the traced branches (columns of ``u``: ``names`` with the frequency at
     2): points, tangents, kinds, details, the backward error, where the traced mode leads
-    (neutral curves) and the independent check (:func:`_check_points`), all points at once."""
+    (neutral curves) and the independent check (:func:`_check_points`), all points at once;
+    its attributes: the parameters, the traced ``names`` (as ``x``, ``y``, ``z``), the form,
+    the ``ranges`` and ``attrs``."""
     order = [*names[:2], "frequency", *names[2:]]
     kinds, details = [], []
     for br in branches:
@@ -586,6 +575,9 @@ def _assemble(
         "equations": model.equations,
         **{k: float(v) for k, v in fixed.items()},
         "fixed": ", ".join(sorted(fixed)),
+        **dict(zip("xyz", names)),
+        "form": prob.cond.form,
+        **{f"{n}_range": list(ranges[n]) for n in names},
         **attrs,
     }
     return _point_dataset(variables, len(points), ds_attrs)
@@ -815,18 +807,13 @@ def neutral_curve(
         )
     attrs = {
         PRODUCT_ATTR: "neutral_curve",
-        "x": x,
-        "y": y,
-        "form": prob.cond.form,
         "deflated_zero_roots": prob.cond.deflate,
-        f"{x}_range": list(ranges[x]),
-        f"{y}_range": list(ranges[y]),
         "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane",
     }
     if note is not None:
         attrs["note"] = note
         warnings.warn(note, UserWarning, stacklevel=2)
-    return _assemble(m, (x, y), fixed, prob, branches, attrs)
+    return _assemble(m, (x, y), fixed, prob, branches, ranges, attrs)
 
 
 def _pair(r: tuple[float, float]) -> str:
@@ -906,23 +893,6 @@ def fold_curve(
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
         branches.append(trace_both(prob, u, options))
-    # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
-    return _assemble(
-        m,
-        (x, y, z),
-        rest,
-        prob,
-        branches,
-        {
-            PRODUCT_ATTR: "fold_curve",
-            "x": x,
-            "y": y,
-            "z": z,
-            "fold_in": fold_in,
-            "form": prob.cond.form,
-            f"{x}_range": list(ranges[x]),
-            f"{y}_range": list(ranges[y]),
-            f"{z}_range": list(ranges[z]),
-            "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model as {z} varies",
-        },
-    )
+    title = f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model as {z} varies"
+    attrs = {PRODUCT_ATTR: "fold_curve", "fold_in": fold_in, "title": title}
+    return _assemble(m, (x, y, z), rest, prob, branches, ranges, attrs)

@@ -99,7 +99,7 @@ from stability.jit import active as jit_active
 from .. import execution
 from ..errors import InputError
 from ..models import LinearModel, get_model
-from ..parameters import PARAMETERS, check_choice
+from ..parameters import PARAMETERS
 from .growth import axis_products
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
@@ -262,7 +262,6 @@ class NeutralCondition:
         self.phase = conservative_phase(c)  # the common phase of all samples (None if none)
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
-        check_choice("form", form, ("crossing", "collision"))
         if form == "collision" and self.phase is None:
             raise InputError(
                 f"model {self.model.name!r} with {self.fixed} is not conservative; "
