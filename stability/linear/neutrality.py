@@ -76,12 +76,13 @@ For a model with both formulas and the crossing form, :func:`crossing_kernels` c
 evaluation (numba; closures over the model's formulas, cached on disk), which the compiled
 continuation step (:mod:`stability.linear.neutral_compiled`) and the batched checks use.
 
-The modes other than the neutral one (:func:`other_roots`) come from one source for every
-engine, :func:`_other_roots_into`: the neutral root divided out by composite synthetic
-division and the quotient solved by the stable quadratic formula
-(:func:`stability.linear.roots.divide_root`, :func:`~stability.linear.roots.quadratic_roots`),
-run in Python floats (one point), compiled (the continuation step) and compiled over a batch
-(:meth:`NeutralCondition.other_modes_many`).
+The modes other than the neutral one come from one source for every engine,
+:func:`_other_roots_into`: the neutral root divided out by composite synthetic division and the
+quotient solved by the stable quadratic formula (:func:`stability.linear.roots.divide_root`,
+:func:`~stability.linear.roots.quadratic_roots`), run in Python floats (one point,
+:func:`_other_roots_list`), compiled (the continuation step) and over a batch of coefficients
+(:meth:`NeutralCondition.other_modes_many`, compiled or interpreted by the rule of
+:mod:`stability.execution`).
 """
 
 from __future__ import annotations
@@ -108,7 +109,6 @@ __all__ = [
     "NeutralCondition",
     "conservative_phase",
     "crossing_kernels",
-    "other_roots",
 ]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
@@ -166,7 +166,15 @@ def _other_roots_into(c, ncoef, w, multiplicity, out):
 
 
 def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
-    """:func:`other_roots` as a list (Python numbers; ``numpy.roots`` beyond degree 2)."""
+    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one), as a list
+    of Python numbers (``numpy.roots`` beyond degree 2).
+
+    The division is composite (:func:`stability.linear.roots.divide_root`), so a root much
+    smaller than ``i w`` keeps its relative accuracy, and an exact zero root
+    (``c0 = -mu alpha_v q fr_inv = 0`` at ``fr_inv = 0`` or ``q = 0``) comes out exactly zero:
+    ``Re s = 0``, which brackets no sign change of the double-crossing test (removing it instead
+    made that test jump at ``c0 = 0`` from ~0 to the next mode's growth rate, and the jump was
+    reported as a double crossing)."""
     work = [complex(x) for x in c]
     out = [0j, 0j]
     m = _other_roots_into(work, len(work), float(w), multiplicity, out)
@@ -175,18 +183,6 @@ def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> 
     if m <= 2:
         return out[:m]
     return [complex(r) for r in np.roots(work[: m + 1])]
-
-
-def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.ndarray:
-    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one).
-
-    The division is composite (:func:`stability.linear.roots.divide_root`), so a root much
-    smaller than ``i w`` keeps its relative accuracy, and an exact zero root
-    (``c0 = -mu alpha_v q fr_inv = 0`` at ``fr_inv = 0`` or ``q = 0``) comes out exactly zero:
-    ``Re s = 0``, which brackets no sign change of the double-crossing test (removing it instead
-    made that test jump at ``c0 = 0`` from ~0 to the next mode's growth rate, and the jump was
-    reported as a double crossing)."""
-    return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
 def _other_roots_many(c, ncoef, w, multiplicity, out):
@@ -221,8 +217,7 @@ class NeutralCondition:
     form : {"crossing", "collision"}, optional
         Force the form (default: decided from the samples, see the module docstring).
     compiled : bool, optional
-        Evaluate :meth:`residuals` and :meth:`other_modes_many` (many points at once) by their
-        compiled twins where they exist (a model with ``point_coefficients`` and
+        Evaluate :meth:`residuals` (many points at once) by its compiled twin where it exists (a model with ``point_coefficients`` and
         ``point_derivatives``, crossing form); False keeps numpy and the interpreter. None
         (default): the rule of :mod:`stability.execution` (``TIPPE_KERNEL``; by default only if
         this process has compiled them already, :func:`stability.execution.use_compiled`).
@@ -486,8 +481,6 @@ class NeutralCondition:
         """
         values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
         w = np.asarray(w, dtype=float).reshape(-1)
-        if self._compiled is not None:
-            return self.kernels.other_modes_many(*self._compiled, values, w)
         c = np.ascontiguousarray(self.coefficients(values), dtype=np.complex128)
         multiplicity = 1 if self.form == "crossing" else 2
         m = c.shape[1] - 1 - multiplicity
@@ -536,18 +529,16 @@ class CrossingKernels(NamedTuple):
 
     residual_into: Callable[..., None]
     other_growth_of: Callable[..., float]
-    residual: Callable[..., None]
     residual_and_jacobian: Callable[..., tuple[np.ndarray, np.ndarray]]
     other_growth: Callable[..., float]
     residuals: Callable[..., np.ndarray]
-    other_modes_many: Callable[..., np.ndarray]
 
 
 @functools.cache
 def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tuple], n: int) -> CrossingKernels:
     """Compiled twins of :meth:`NeutralCondition.residual_and_jacobian`,
-    :meth:`~NeutralCondition.residuals`, :func:`other_roots` and
-    :meth:`~NeutralCondition.other_modes_many` (crossing form) for the formulas ``formula`` and
+    :meth:`~NeutralCondition.residuals` and the largest growth rate of the other modes
+    (:func:`_other_roots_list`) (crossing form) for the formulas ``formula`` and
     ``derivative`` of a model of degree ``n`` (its ``point_coefficients`` and
     ``point_derivatives``): the same floating-point operations as the scalar Python path, so the
     same bits. Closures over the formulas, compiled on first use and cached on disk (numba keys
@@ -626,10 +617,6 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         return g
 
     @njit(**_JIT)
-    def residual(point, free_index, ncoef, u, jacobian, F, J):
-        residual_into(point, free_index, ncoef, u, jacobian, F, J)
-
-    @njit(**_JIT)
     def residual_and_jacobian(point, free_index, ncoef, u, jacobian):
         F = np.empty(2)
         J = np.empty((2, u.shape[0]))
@@ -656,22 +643,4 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
             out[i, 1] = F[1]
         return out
 
-    @njit(**_JIT)
-    def other_modes_many(point, free_index, ncoef, values, w):
-        m, k = values.shape
-        out = np.zeros((m, max(ncoef - 2, 0)), dtype=np.complex128)
-        p = point.copy()
-        c = np.empty(n + 1, dtype=np.complex128)
-        roots = np.empty(2, dtype=np.complex128)
-        for i in range(m):
-            for j in range(k):
-                p[free_index[j]] = values[i, j]
-            fill(p, c)
-            q = _other_roots_into(c, ncoef, w[i], 1, roots)
-            for j in range(q):
-                out[i, j] = roots[j]
-        return out
-
-    return CrossingKernels(
-        residual_into, other_growth_of, residual, residual_and_jacobian, other_growth, residuals, other_modes_many
-    )
+    return CrossingKernels(residual_into, other_growth_of, residual_and_jacobian, other_growth, residuals)
