@@ -185,9 +185,7 @@ def atlas(
         "parameters": " ".join(values),
         "grid_dimensions": " ".join(dims),
     }
-    for k, v in values.items():
-        if v.ndim == 0:
-            attrs[k] = float(v)
+    attrs.update({k: float(v) for k, v in values.items() if v.ndim == 0})
     ds = xr.Dataset(data_vars, coords=coords, attrs=attrs)
     ds["leading_growth_rate"] = leading_growth_rate(ds)
     return ds

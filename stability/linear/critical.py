@@ -591,11 +591,9 @@ class _SpinScaled(LinearModel):
         self.base = base
         self.k = k
         self.name = f"{base.name} (alpha_v = {k:.6g} sqrt(fr_inv))"
-        self.equations = base.equations
         self.parameters = tuple(p for p in base.parameters if p != "alpha_v")
-        self.state = base.state
-        self.n_modes = base.n_modes
-        self.description = base.description
+        for attr in ("equations", "state", "n_modes", "description"):
+            setattr(self, attr, getattr(base, attr))
 
     def _p(self, params: dict) -> dict:
         return {**params, "alpha_v": self.k * np.sqrt(np.abs(np.asarray(params["fr_inv"], float)))}
@@ -706,8 +704,7 @@ def critical_spin(
         raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")
     t = top.inverted() if orientation == "inverted" else top
     base = get_model(model)
-    fixed: dict[str, float] = {"q": t.q, "sigma": t.sigma, "mu": t.mu}
-    fixed = {k: v for k, v in fixed.items() if k in base.parameters}
+    fixed: dict[str, float] = {k: getattr(t, k) for k in ("q", "sigma", "mu") if k in base.parameters}
     m: LinearModel = base
     if "alpha_v" in base.parameters:
         if t.mu_v is not None:
@@ -737,9 +734,7 @@ def critical_spin(
     th = found[0]  # smallest fr_inv = highest spin
     _inexact_warning([th], "fr_inv (the critical spin)")
     spin = float(t.spin_rate(th.value))
-    a_v = None
-    if "alpha_v" in base.parameters:
-        a_v = float(fixed["alpha_v"]) if "alpha_v" in fixed else float(t.alpha_v(spin))
+    a_v = fixed.get("alpha_v", float(t.alpha_v(spin)) if m is not base else None)
     interval = (float(t.spin_rate(th.upper)), float(t.spin_rate(th.lower)))
     return CriticalSpin(
         orientation=orientation,

@@ -148,8 +148,7 @@ class _CurveProblem:
         self.cond, self.model, self.names, self.fixed = cond, cond.model, cond.free, cond.fixed
         constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in constraints)
-        self.constraint_kinds = tuple(c.kind for c in constraints)
-        self.constraint_bounds = tuple(c.bound for c in constraints)
+        self.constraint_rows = constraints
         self._point, self._free, self._rows = constraint_arguments(self.fixed, self.names, constraints)
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
@@ -413,31 +412,25 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str]) -> tuple[list[s
     m = len(br.points)
     for k, (kind, det) in enumerate(zip(br.kinds, br.details)):
         if kind == "fold":
-            kinds.append("fold")
-            details.append(f"fold in {names[int(det)] if int(det) < len(names) else det}")
+            kd, text = "fold", f"fold in {names[int(det)] if int(det) < len(names) else det}"
         elif kind in ("test", "branch_point"):
             kd, text = _KIND_DETAIL[det or kind]
-            kinds.append(kd)
-            details.append(text)
         elif kind == "boundary":
-            j = prob.constraint_names.index(det)
-            kinds.append(prob.constraint_kinds[j])
-            details.append(det)
-            bound = prob.constraint_bounds[j]
-            if bound is not None:
+            c = prob.constraint_rows[prob.constraint_names.index(det)]
+            kd, text = c.kind, det
+            if c.bound is not None:
                 # put the point exactly on a simple bound (it is within ~1e-16 of it) unless
                 # that would spoil the residual (near a corner where everything is tiny)
-                col = {n: i for i, n in enumerate(names)}[bound[0]]
                 moved = br.points[k].copy()
-                moved[col] = bound[1]
+                moved[list(names).index(c.bound[0])] = c.bound[1]
                 if np.linalg.norm(prob.residual(moved)) <= max(1e-13, np.linalg.norm(prob.residual(br.points[k]))):
                     br.points[k] = moved
         elif kind == "closed":
-            kinds.append("regular")
-            details.append("closes the curve (repeats the branch's first point)")
+            kd, text = "regular", "closes the curve (repeats the branch's first point)"
         else:
-            kinds.append("regular")
-            details.append("")
+            kd, text = "regular", ""
+        kinds.append(kd)
+        details.append(text)
     for end, k in zip(br.end_reasons if len(br.end_reasons) == 2 else [None] + br.end_reasons, (0, m - 1)):
         if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
             kinds[k] = "endpoint"

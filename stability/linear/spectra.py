@@ -102,20 +102,15 @@ class Spectrum:
 
 def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any]:
     """Select the parameters a model takes, refusing missing or foreign ones."""
-    out = {}
     for name, value in given.items():
-        if name in model.parameters:
-            if value is None:
-                raise ParameterTypeError(f"{name} is required for model {model.name!r}")
-            out[name] = value
-        elif value is not None:
+        if name not in model.parameters and value is not None:
             raise ParameterTypeError(
                 f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
             )
     for name in model.parameters:
-        if name not in out:
+        if given.get(name) is None:
             raise ParameterTypeError(f"{name} is required for model {model.name!r}")
-    return out
+    return {k: v for k, v in given.items() if k in model.parameters}
 
 
 def parameter_name(model: LinearModel, name: Any, what: str) -> str:
