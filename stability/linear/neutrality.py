@@ -476,8 +476,8 @@ class NeutralCondition:
 
         The neutral root(s) ``i w`` are divided out and the quotient solved by the same source
         as the one-point path (:func:`_other_roots_into`, composite division, the stable
-        quadratic formula), compiled over the batch; LAPACK on the companion matrices beyond
-        degree 2.
+        quadratic formula), compiled over the batch or :func:`_other_roots_list` row by row
+        (``numpy.roots`` beyond degree 2).
         """
         values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
         w = np.asarray(w, dtype=float).reshape(-1)
@@ -490,20 +490,9 @@ class NeutralCondition:
             out = np.empty((len(w), m), dtype=np.complex128)
             cached(_other_roots_many)(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
-        # interpreted: the same source on Python numbers, row by row (the roots, or beyond degree
-        # 2 the quotient)
-        rows = []
-        for i in range(len(w)):
-            work, roots = c[i].tolist(), [0j, 0j]
-            _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
-            rows.append(roots[:m] if m <= 2 else work[: m + 1])
-        if m <= 2:
-            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
-        quotients = np.array(rows, dtype=complex).reshape(len(w), m + 1)
-        comp = np.zeros((len(w), m, m), dtype=complex)
-        comp[:, 0, :] = -quotients[:, 1:] / quotients[:, :1]
-        comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
-        return np.linalg.eigvals(comp)
+        # interpreted: the one-point source on Python numbers, row by row
+        rows = [_other_roots_list(c[i].tolist(), w[i], multiplicity) for i in range(len(w))]
+        return np.array(rows, dtype=np.complex128).reshape(len(w), m)
 
     def other_modes_list(self, values: Sequence[float], w: float) -> list[complex]:
         """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros
