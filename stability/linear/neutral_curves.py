@@ -53,9 +53,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
-import pandas as pd
 import xarray as xr
-from xarray.indexes import PandasIndex
 
 from continuation.engine import Branch, TraceOptions, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
@@ -573,28 +571,12 @@ def _assemble(
         **{f"{n}_range": list(ranges[n]) for n in names},
         **attrs,
     }
-    return _point_dataset(variables, len(points), ds_attrs)
-
-
-_POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
-
-
-def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any]) -> xr.Dataset:
-    """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
-    coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
-
-    The coordinate is handed over with its index already built (:class:`xarray.Coordinates`
-    with a :class:`xarray.indexes.PandasIndex`), so that the constructor does not infer one;
-    the dataset is identical to the one from a plain coordinate variable (tests/test_neutral.py). The constructor's merge and alignment of the
-    variables, which are aligned by construction, cost ~0.3 ms of a ~3 ms call
-    (docs/continuation.md); no public path skips them.
-    """
-    positions = np.arange(n)
-    index = PandasIndex(pd.Index(positions), "point")
-    coords = xr.Coordinates(
-        index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}), indexes={"point": index}
+    point = (
+        "point",
+        np.arange(len(points)),
+        {"long_name": "point", "comment": "index of the point along the traced branches"},
     )
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return xr.Dataset(variables, coords={"point": point}, attrs=ds_attrs)
 
 
 # ------------------------------------------------------------------------------------------
