@@ -368,8 +368,6 @@ def _hidden_pairs(
     relative). Returns ``(a, x_max, b)`` for each refined maximum where a mode grows: the window
     ``(a, b)`` holds two thresholds, one on each side of ``x_max``.
     """
-    if len(x) < 3:
-        return []
     out = []
     quiet = (state == STABLE) | (state == MARGINAL)
     for k in range(1, len(x) - 1):

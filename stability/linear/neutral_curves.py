@@ -80,7 +80,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
-from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
+from .neutral_constraints import constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
 from .roots import root_bound
 from .spectra import fixed_parameters, lapack_eigenvalues, parameter_name, spectrum
@@ -147,7 +147,7 @@ class _CurveProblem:
         constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in constraints)
         self.constraint_rows = constraints
-        self._point, self._free, self._rows = constraint_arguments(self.fixed, self.names, constraints)
+        self._rows = tuple(list(r) for r in zip(*((c.code, c.index, c.a) for c in constraints)))
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside (compiled twin if any)."""
@@ -156,7 +156,8 @@ class _CurveProblem:
 
             point, free, _, codes, index, a = self._compiled
             return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return constraint_values(self._point, self._free, [float(u[i]) for i in self._columns], *self._rows)
+        values = [float(u[i]) for i in self._columns]
+        return constraint_values(self.cond._point, self.cond._free_index, values, *self._rows)
 
 
 class NeutralProblem(_CurveProblem):
@@ -247,8 +248,6 @@ class NeutralProblem(_CurveProblem):
         growing; a structural zero root is neutral.
         """
         U = np.asarray(U, dtype=float).reshape(-1, 3)
-        if len(U) == 0:
-            return np.zeros(0, dtype=bool)
         r = self.cond.other_modes_many(U[:, :2], U[:, 2])
         if r.shape[1] == 0:
             return np.ones(len(U), dtype=bool)
@@ -261,8 +260,7 @@ class NeutralProblem(_CurveProblem):
         if self._compiled is not None:
             g = self._kernels.other_growth(*self._compiled[:3], np.asarray(u, dtype=float))
         else:
-            r = self.cond.other_modes_list(u[:2], float(u[2]))
-            g = max(z.real for z in r) if r else -np.inf
+            g = max((z.real for z in self.cond.other_modes_list(u[:2], float(u[2]))), default=-np.inf)
         return np.array([u[2], g if math.isfinite(g) else -1.0])
 
 
@@ -504,6 +502,9 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
 }
 
 
+_POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
+
+
 def _assemble(
     model: LinearModel,
     names: Sequence[str],
@@ -571,12 +572,7 @@ def _assemble(
         **{f"{n}_range": list(ranges[n]) for n in names},
         **attrs,
     }
-    point = (
-        "point",
-        np.arange(len(points)),
-        {"long_name": "point", "comment": "index of the point along the traced branches"},
-    )
-    return xr.Dataset(variables, coords={"point": point}, attrs=ds_attrs)
+    return xr.Dataset(variables, coords={"point": ("point", np.arange(len(points)), _POINT_ATTRS)}, attrs=ds_attrs)
 
 
 # ------------------------------------------------------------------------------------------
@@ -706,16 +702,15 @@ def neutral_curve(
             )
         guesses = found.points
         if not guesses:
+            undecided = found.inside - found.decided
+            left_out = (
+                f" ({undecided} points inside the domain have a mode within rounding of neutral and were left out)"
+            )
             note = (
                 f"no neutral curve crosses the ranges: the number of growing modes is the same at all "
                 f"{found.decided} points of the {grid[0]} x {grid[1]} start grid where every sign is decided"
-                + (
-                    f" ({found.inside - found.decided} points inside the domain have a mode within rounding "
-                    "of neutral and were left out)"
-                    if found.decided < found.inside
-                    else ""
-                )
-                + "; a closed curve inside one grid cell is not found this way: pass start= or a finer grid"
+                f"{left_out if undecided else ''}; a closed curve inside one grid cell is not found this way: "
+                "pass start= or a finer grid"
             )
     else:
         guesses = []

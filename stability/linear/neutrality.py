@@ -271,11 +271,11 @@ class NeutralCondition:
         self.kernels: CrossingKernels | None = None
         #: (point, free_index, ncoef): the arguments of the compiled twins, or None
         self._compiled: tuple[np.ndarray, np.ndarray, int] | None = None
+        # the five linear parameters (the formulas' and the constraints' arguments), free ones
+        # at 0, and 0.0 for those the model does not take
+        self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
+        self._free_index = [PARAMETERS.index(name) for name in self.free]
         if self._analytic:
-            # the five linear parameters (the formulas' arguments), free ones at 0, and 0.0 for
-            # those the model does not take
-            self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
-            self._free_index = [PARAMETERS.index(name) for name in self.free]
             if compiled is None and self.form == "crossing":  # in memory (numba active) or forced
                 degree = int(self.model.n_modes)
                 kernels = crossing_kernels(self._formula, self._derivative, degree) if jit_active() else None
