@@ -22,8 +22,9 @@ Per mode (:func:`mode_signs`):
    separately) decides where ``|g| > 4 e_g``;
 4. else the mode is ``UNRESOLVED``: its growth rate is within rounding of zero.
 
-A point (:func:`point_states`) is ``UNSTABLE`` if some mode grows, else ``UNRESOLVED`` if some
-mode is unresolved, else ``MARGINAL`` if some mode is neutral by structure, else ``STABLE``.
+A point (the ``state`` of :func:`growth`) is ``UNSTABLE`` if some mode grows, else
+``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some mode is neutral by
+structure, else ``STABLE``.
 The growth estimate of each mode (``Re s`` where it is resolved, ``g`` otherwise, ``-inf`` for
 the structurally neutral ones) is returned too, for searches that follow the largest growth
 rate (the pairs of thresholds near a fold, the interpolation of a start point).
@@ -55,7 +56,6 @@ __all__ = [
     "conservative_points",
     "growth",
     "mode_signs",
-    "point_states",
 ]
 
 #: mode codes of :func:`mode_signs`
@@ -150,15 +150,6 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     return sign.reshape(shape), estimate.reshape(shape)
 
 
-def point_states(sign: np.ndarray) -> np.ndarray:
-    """The state of each point from its modes' signs (``..., m`` -> ``...``): ``UNSTABLE`` if
-    some mode grows, else ``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some
-    mode is neutral by structure, else ``STABLE``."""
-    sign = np.asarray(sign)
-    cases = [(sign == k).any(axis=-1) for k in (GROWS, UNRESOLVED, NEUTRAL)]
-    return np.select(cases, [UNSTABLE, UNDECIDED, MARGINAL], STABLE).astype(np.int8)
-
-
 def growth(
     model: str | LinearModel, *, mask_unphysical: bool = True, parallel: bool | None = None, **params: Any
 ) -> Growth:
@@ -191,5 +182,8 @@ def growth(
         c = np.asarray(m.coefficients(**{k: np.asarray(v)[inside] for k, v in sp.params.items()}), dtype=complex)
         s, est = mode_signs(c, sp.eigenvalues[inside], sp.error_bound[inside])
         sign[inside], estimate[inside] = s, est
-        state[inside] = point_states(s)
+        # the point's state (module docstring): the first that holds of a growing, an unresolved,
+        # a structurally neutral mode
+        cases = [(s == k).any(axis=-1) for k in (GROWS, UNRESOLVED, NEUTRAL)]
+        state[inside] = np.select(cases, [UNSTABLE, UNDECIDED, MARGINAL], STABLE)
     return Growth(sp, sign, estimate, state)
