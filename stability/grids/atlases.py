@@ -126,8 +126,8 @@ def atlas(
     coords: dict[str, Any] = {}
     for k in PARAMETERS:
         if k in values:
-            attrs = parameter_attrs(k)
-            coords[k] = (k, values[k], attrs) if values[k].ndim == 1 else ((), float(values[k]), attrs)
+            cf = parameter_attrs(k)
+            coords[k] = (k, values[k], cf) if values[k].ndim == 1 else ((), float(values[k]), cf)
     coords["mode"] = (
         "mode",
         np.arange(m.n_modes),

@@ -127,8 +127,8 @@ def _ranges(
         dlo, dhi = DEFAULT_RANGES.get(n, (lo, hi))
         ranges[n] = (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
     width = np.array([ranges[n][1] - ranges[n][0] for n in names])
-    lo = np.array([ranges[n][0] for n in names])
-    return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
+    low = np.array([ranges[n][0] for n in names])
+    return ranges, width, low + np.random.default_rng(12345).random((8, len(names))) * width
 
 
 class _CurveProblem:
@@ -337,8 +337,8 @@ def _atlas_guesses(
     # across the undecided points between them (a curve through grid points, e.g. q = 0 on a
     # grid that holds it, leaves those points within rounding of neutral), never across a point
     # outside the domain
-    flat = np.arange(count.size).reshape(count.shape)
-    PA, PB = [], []
+    flat: np.ndarray = np.arange(count.size).reshape(count.shape)
+    pa_list, pb_list = [], []
     for F in (flat.T, flat):  # rows of F: the grid lines along axis 0, then axis 1
         C, n = count.flat[F], F.shape[1]
         # the next decided point after each point of its line (n: none), and no outside point between
@@ -349,9 +349,9 @@ def _atlas_guesses(
         order = np.argsort(F[:, :-1][ok], kind="stable")
         pa, pb = F[:, :-1][ok][order], np.take_along_axis(F, b, 1)[ok][order]
         sel = count.flat[pa] != count.flat[pb]
-        PA.append(pa[sel])
-        PB.append(pb[sel])
-    PA, PB = np.concatenate(PA), np.concatenate(PB)
+        pa_list.append(pa[sel])
+        pb_list.append(pb[sel])
+    PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
     # a: the end with more growing modes
     swap = count.flat[PA] < count.flat[PB]
     PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
