@@ -53,7 +53,7 @@ __all__ = [
     "UNRESOLVED",
     "Growth",
     "axis_products",
-    "conservative_points",
+    "conservative_phases",
     "growth",
     "mode_signs",
 ]
@@ -97,13 +97,13 @@ def axis_products(c: np.ndarray) -> np.ndarray:
     return products
 
 
-def conservative_points(c: np.ndarray) -> np.ndarray:
-    """Whether each polynomial ``c`` (..., n+1) is conservative: every ``c_k i^k``
-    (:func:`axis_products`) has one common phase (all real or all imaginary, tested exactly), so
-    that a root with ``Re s = 0`` is neutral by structure (docs/conventions.md)."""
+def conservative_phases(c: np.ndarray) -> np.ndarray:
+    """The common phase of the ``c_k i^k`` (:func:`axis_products`) of each polynomial ``c``
+    (..., n+1): 0 if all are real, 1 if all are imaginary (tested exactly: products with 1, i,
+    -1, -i, so an exact zero part is structure), -1 if neither. A polynomial with a phase is
+    conservative: a root with ``Re s = 0`` is neutral by structure (docs/conventions.md)."""
     d = axis_products(c)
-    conservative: np.ndarray = np.all(d.imag == 0, axis=-1) | np.all(d.real == 0, axis=-1)
-    return conservative
+    return np.where(np.all(d.imag == 0, axis=-1), 0, np.where(np.all(d.real == 0, axis=-1), 1, -1))
 
 
 def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -140,7 +140,9 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     with np.errstate(invalid="ignore"):
         own = np.abs(re) > 4.0 * flat_e
         by_g = ~own & (np.abs(g) > 4.0 * eg)
-    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | ((re == 0) & conservative_points(flat_c)[:, None])
+    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | (
+        (re == 0) & (conservative_phases(flat_c) >= 0)[:, None]
+    )
     sign = np.full(flat_r.shape, UNRESOLVED, dtype=np.int8)
     sign[own] = np.where(re[own] > 0, GROWS, DECAYS)
     sign[by_g] = np.where(g[by_g] > 0, GROWS, DECAYS)

@@ -101,13 +101,12 @@ from .. import execution
 from ..errors import InputError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS
-from .growth import axis_products
+from .growth import axis_products, conservative_phases
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = [
     "CrossingKernels",
     "NeutralCondition",
-    "conservative_phase",
     "crossing_kernels",
 ]
 
@@ -118,23 +117,6 @@ _IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 #: numba options: IEEE arithmetic (no fastmath: no reassociation or contraction, so the
 #: compiled twins do the same floating-point operations as the scalar Python code)
 _JIT = dict(OPTIONS, cache=True)
-
-
-def conservative_phase(c: np.ndarray) -> int | None:
-    """Common phase of ``c_k i^k`` (0: all real, 1: all imaginary), or None if there is none.
-
-    Parameters
-    ----------
-    c : numpy.ndarray of complex, shape (..., n+1)
-        Coefficients, highest power first.
-    """
-    d = axis_products(c)
-    # exact products with 1, i, -1, -i: an exact zero imaginary (real) part is structure
-    if np.all(d.imag == 0):
-        return 0
-    if np.all(d.real == 0):
-        return 1
-    return None
 
 
 # ------------------------------------------------------------------------------------------
@@ -254,7 +236,8 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        self.phase = conservative_phase(c)  # the common phase of all samples (None if none)
+        phases = np.unique(conservative_phases(c))  # the common phase of all samples (None if none)
+        self.phase = int(phases[0]) if len(phases) == 1 and phases[0] >= 0 else None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
         if form == "collision" and self.phase is None:
