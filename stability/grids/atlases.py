@@ -232,13 +232,11 @@ def _spectra_in_blocks(
         for sl in blocks:
             checkpoint()
             sp = spectrum(m, mask_unphysical=mask, method=method, **grid(sl))
-            bshape = tuple(sl[d].stop - sl[d].start for d in dims)
-            idx = tuple(sl[d] for d in dims)
-            ev = np.broadcast_to(sp.eigenvalues, bshape + (n,))
-            growth[idx], freq[idx] = ev.real, ev.imag
-            bound[idx] = np.broadcast_to(sp.error_bound, bshape + (n,))
-            stab[idx] = np.broadcast_to(sp.stability, bshape)
-            inside[idx] = np.broadcast_to(sp.inside, bshape)
+            idx = tuple(sl[d] for d in dims)  # the block's values broadcast to it by the assignments
+            growth[idx], freq[idx] = sp.eigenvalues.real, sp.eigenvalues.imag
+            bound[idx] = sp.error_bound
+            stab[idx] = sp.stability
+            inside[idx] = sp.inside
         checkpoint()
     return growth, freq, bound, stab, inside
 

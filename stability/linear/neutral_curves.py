@@ -469,6 +469,12 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
         "units": "Omega",
         "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
     },
+    "tangent": {  # of each column {n}
+        "long_name": "tangent, {n}",
+        "units": "1",
+        "comment": "{n} component of the unit tangent of the curve (oriented along the branch; continuation.dense "
+        "interpolates with it)",
+    },
     "branch": {"long_name": "branch", "comment": "index of the traced branch"},
     "kind": {
         "long_name": "kind of point",
@@ -540,15 +546,7 @@ def _assemble(
     }
     data["frequency"] = (w, _DATA_ATTRS["frequency"])
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (
-            tangents[:, i],
-            {
-                "long_name": f"tangent, {n}",
-                "units": "1",
-                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-                "branch; continuation.dense interpolates with it)",
-            },
-        )
+        data[f"tangent_{n}"] = (tangents[:, i], {k: v.format(n=n) for k, v in _DATA_ATTRS["tangent"].items()})
     data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
     data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
     data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
