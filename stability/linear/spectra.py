@@ -308,9 +308,7 @@ def spectrum(
         else:
             e, b, x = lapack_eigenvalues(m, sub)
         order = mode_order(e)
-        e = np.take_along_axis(e, order, -1)
-        b = np.take_along_axis(b, order, -1)
-        x = np.take_along_axis(x, order, -1)
+        e, b, x = (np.take_along_axis(a, order, -1) for a in (e, b, x))
         nt, st = _classify(e, b, x)
         ev[inside], bound[inside], neutral[inside], stab[inside] = e, b, nt, st
     return Spectrum(m, p, ev, bound, neutral, stab, inside)
