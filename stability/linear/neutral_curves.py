@@ -331,7 +331,6 @@ def _atlas_guesses(
     grows = gr.sign == GROWS
     decided = sp.inside & ~(gr.sign == UNRESOLVED).any(axis=-1)
     count = np.where(decided, grows.sum(axis=-1), -1)
-    out = _Guesses([], int(sp.inside.sum()), int(decided.sum()))
     # grid edges (a, b) on which the number of growing modes changes: axis 0 first, then
     # axis 1, each in row-major order; an edge joins neighbouring decided points of a grid line,
     # across the undecided points between them (a curve through grid points, e.g. q = 0 on a
@@ -371,7 +370,7 @@ def _atlas_guesses(
     t = np.clip(np.nan_to_num(t, nan=0.5), 0.0, 1.0)
     ua = np.stack([X.flat[PA], Y.flat[PA], ra.imag], axis=-1)
     ub = np.stack([X.flat[PB], Y.flat[PB], rb.imag], axis=-1)
-    return out._replace(points=list(ua + t[:, None] * (ub - ua)))
+    return _Guesses(list(ua + t[:, None] * (ub - ua)), int(sp.inside.sum()), int(decided.sum()))
 
 
 def _feet(V: np.ndarray, pts: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -846,7 +845,6 @@ def fold_curve(
     if not isinstance(fixed, Mapping) or z not in fixed:
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
     full = fixed_parameters(m, (x, y), fixed)
-    z0 = full[z]
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
@@ -857,7 +855,7 @@ def fold_curve(
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []
     for k in range(folds.sizes["point"]):
-        u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
+        u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(full[z])])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
         branches.append(trace_both(prob, u, options))
