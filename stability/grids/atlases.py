@@ -126,8 +126,8 @@ def atlas(
     coords: dict[str, Any] = {}
     for k in PARAMETERS:
         if k in values:
-            attrs = parameter_attrs(k)
-            coords[k] = (k, values[k], attrs) if values[k].ndim == 1 else ((), float(values[k]), attrs)
+            cf = parameter_attrs(k)
+            coords[k] = (k, values[k], cf) if values[k].ndim == 1 else ((), float(values[k]), cf)
     coords["mode"] = (
         "mode",
         np.arange(m.n_modes),
@@ -185,9 +185,7 @@ def atlas(
         "parameters": " ".join(values),
         "grid_dimensions": " ".join(dims),
     }
-    for k, v in values.items():
-        if v.ndim == 0:
-            attrs[k] = float(v)
+    attrs.update({k: float(v) for k, v in values.items() if v.ndim == 0})
     ds = xr.Dataset(data_vars, coords=coords, attrs=attrs)
     ds["leading_growth_rate"] = leading_growth_rate(ds)
     return ds
@@ -234,13 +232,11 @@ def _spectra_in_blocks(
         for sl in blocks:
             checkpoint()
             sp = spectrum(m, mask_unphysical=mask, method=method, **grid(sl))
-            bshape = tuple(sl[d].stop - sl[d].start for d in dims)
-            idx = tuple(sl[d] for d in dims)
-            ev = np.broadcast_to(sp.eigenvalues, bshape + (n,))
-            growth[idx], freq[idx] = ev.real, ev.imag
-            bound[idx] = np.broadcast_to(sp.error_bound, bshape + (n,))
-            stab[idx] = np.broadcast_to(sp.stability, bshape)
-            inside[idx] = np.broadcast_to(sp.inside, bshape)
+            idx = tuple(sl[d] for d in dims)  # the block's values broadcast to it by the assignments
+            growth[idx], freq[idx] = sp.eigenvalues.real, sp.eigenvalues.imag
+            bound[idx] = sp.error_bound
+            stab[idx] = sp.stability
+            inside[idx] = sp.inside
         checkpoint()
     return growth, freq, bound, stab, inside
 

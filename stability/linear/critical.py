@@ -148,12 +148,6 @@ def _crossings(
     return (*_search(m, fx, param, lo, hi, samples), m, fx, (lo, hi))
 
 
-def _samples(lo: float, hi: float, n: int) -> np.ndarray:
-    w = hi - lo
-    g = np.geomspace(1e-8, 1.0, n)
-    return np.unique(np.concatenate([np.linspace(lo, hi, n), lo + w * g, hi - w * g]))
-
-
 def _states(m: LinearModel, fx: Mapping[str, float], param: str, x: np.ndarray):
     """The signs at the samples ``x`` (:func:`stability.linear.growth.growth`)."""
     return growth(m, parallel=False, **{**fx, param: np.asarray(x, dtype=float)})
@@ -374,8 +368,6 @@ def _hidden_pairs(
     relative). Returns ``(a, x_max, b)`` for each refined maximum where a mode grows: the window
     ``(a, b)`` holds two thresholds, one on each side of ``x_max``.
     """
-    if len(x) < 3:
-        return []
     out = []
     quiet = (state == STABLE) | (state == MARGINAL)
     for k in range(1, len(x) - 1):
@@ -403,7 +395,8 @@ def _hidden_pairs(
 
 def _search(m: LinearModel, fx: Mapping[str, float], param: str, lo: float, hi: float, n: int):
     """Every threshold in ``[lo, hi]`` (module docstring) and the states of the samples."""
-    x = _samples(lo, hi, n)
+    g = (hi - lo) * np.geomspace(1e-8, 1.0, n)
+    x = np.unique(np.concatenate([np.linspace(lo, hi, n), lo + g, hi - g]))
     gr = _states(m, fx, param, x)
     keep = gr.state >= 0
     x, state = x[keep], gr.state[keep]
@@ -596,11 +589,9 @@ class _SpinScaled(LinearModel):
         self.base = base
         self.k = k
         self.name = f"{base.name} (alpha_v = {k:.6g} sqrt(fr_inv))"
-        self.equations = base.equations
         self.parameters = tuple(p for p in base.parameters if p != "alpha_v")
-        self.state = base.state
-        self.n_modes = base.n_modes
-        self.description = base.description
+        for attr in ("equations", "state", "n_modes", "description"):
+            setattr(self, attr, getattr(base, attr))
 
     def _p(self, params: dict) -> dict:
         return {**params, "alpha_v": self.k * np.sqrt(np.abs(np.asarray(params["fr_inv"], float)))}
@@ -711,8 +702,7 @@ def critical_spin(
         raise DomainError(f"fr_inv_range = ({lo:g}, {hi:g}) is outside the allowed range: 0 < lo < hi")
     t = top.inverted() if orientation == "inverted" else top
     base = get_model(model)
-    fixed: dict[str, float] = {"q": t.q, "sigma": t.sigma, "mu": t.mu}
-    fixed = {k: v for k, v in fixed.items() if k in base.parameters}
+    fixed: dict[str, float] = {k: getattr(t, k) for k in ("q", "sigma", "mu") if k in base.parameters}
     m: LinearModel = base
     if "alpha_v" in base.parameters:
         if t.mu_v is not None:
@@ -742,9 +732,7 @@ def critical_spin(
     th = found[0]  # smallest fr_inv = highest spin
     _inexact_warning([th], "fr_inv (the critical spin)")
     spin = float(t.spin_rate(th.value))
-    a_v = None
-    if "alpha_v" in base.parameters:
-        a_v = float(fixed["alpha_v"]) if "alpha_v" in fixed else float(t.alpha_v(spin))
+    a_v = fixed.get("alpha_v", float(t.alpha_v(spin)) if m is not base else None)
     interval = (float(t.spin_rate(th.upper)), float(t.spin_rate(th.lower)))
     return CriticalSpin(
         orientation=orientation,

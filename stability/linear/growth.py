@@ -22,8 +22,9 @@ Per mode (:func:`mode_signs`):
    separately) decides where ``|g| > 4 e_g``;
 4. else the mode is ``UNRESOLVED``: its growth rate is within rounding of zero.
 
-A point (:func:`point_states`) is ``UNSTABLE`` if some mode grows, else ``UNRESOLVED`` if some
-mode is unresolved, else ``MARGINAL`` if some mode is neutral by structure, else ``STABLE``.
+A point (the ``state`` of :func:`growth`) is ``UNSTABLE`` if some mode grows, else
+``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some mode is neutral by
+structure, else ``STABLE``.
 The growth estimate of each mode (``Re s`` where it is resolved, ``g`` otherwise, ``-inf`` for
 the structurally neutral ones) is returned too, for searches that follow the largest growth
 rate (the pairs of thresholds near a fold, the interpolation of a start point).
@@ -52,10 +53,9 @@ __all__ = [
     "UNRESOLVED",
     "Growth",
     "axis_products",
-    "conservative_points",
+    "conservative_phases",
     "growth",
     "mode_signs",
-    "point_states",
 ]
 
 #: mode codes of :func:`mode_signs`
@@ -97,13 +97,13 @@ def axis_products(c: np.ndarray) -> np.ndarray:
     return products
 
 
-def conservative_points(c: np.ndarray) -> np.ndarray:
-    """Whether each polynomial ``c`` (..., n+1) is conservative: every ``c_k i^k``
-    (:func:`axis_products`) has one common phase (all real or all imaginary, tested exactly), so
-    that a root with ``Re s = 0`` is neutral by structure (docs/conventions.md)."""
+def conservative_phases(c: np.ndarray) -> np.ndarray:
+    """The common phase of the ``c_k i^k`` (:func:`axis_products`) of each polynomial ``c``
+    (..., n+1): 0 if all are real, 1 if all are imaginary (tested exactly: products with 1, i,
+    -1, -i, so an exact zero part is structure), -1 if neither. A polynomial with a phase is
+    conservative: a root with ``Re s = 0`` is neutral by structure (docs/conventions.md)."""
     d = axis_products(c)
-    conservative: np.ndarray = np.all(d.imag == 0, axis=-1) | np.all(d.real == 0, axis=-1)
-    return conservative
+    return np.where(np.all(d.imag == 0, axis=-1), 0, np.where(np.all(d.real == 0, axis=-1), 1, -1))
 
 
 def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -140,7 +140,9 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     with np.errstate(invalid="ignore"):
         own = np.abs(re) > 4.0 * flat_e
         by_g = ~own & (np.abs(g) > 4.0 * eg)
-    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | ((re == 0) & conservative_points(flat_c)[:, None])
+    structural = ((re == 0) & (flat_r.imag == 0) & (flat_e == 0)) | (
+        (re == 0) & (conservative_phases(flat_c) >= 0)[:, None]
+    )
     sign = np.full(flat_r.shape, UNRESOLVED, dtype=np.int8)
     sign[own] = np.where(re[own] > 0, GROWS, DECAYS)
     sign[by_g] = np.where(g[by_g] > 0, GROWS, DECAYS)
@@ -148,15 +150,6 @@ def mode_signs(c: np.ndarray, roots: np.ndarray, bound: np.ndarray) -> tuple[np.
     estimate = np.where(own | ~np.isfinite(g), re, g)
     estimate = np.where(structural, -np.inf, estimate)
     return sign.reshape(shape), estimate.reshape(shape)
-
-
-def point_states(sign: np.ndarray) -> np.ndarray:
-    """The state of each point from its modes' signs (``..., m`` -> ``...``): ``UNSTABLE`` if
-    some mode grows, else ``UNDECIDED`` if some mode is unresolved, else ``MARGINAL`` if some
-    mode is neutral by structure, else ``STABLE``."""
-    sign = np.asarray(sign)
-    cases = [(sign == k).any(axis=-1) for k in (GROWS, UNRESOLVED, NEUTRAL)]
-    return np.select(cases, [UNSTABLE, UNDECIDED, MARGINAL], STABLE).astype(np.int8)
 
 
 def growth(
@@ -191,5 +184,8 @@ def growth(
         c = np.asarray(m.coefficients(**{k: np.asarray(v)[inside] for k, v in sp.params.items()}), dtype=complex)
         s, est = mode_signs(c, sp.eigenvalues[inside], sp.error_bound[inside])
         sign[inside], estimate[inside] = s, est
-        state[inside] = point_states(s)
+        # the point's state (module docstring): the first that holds of a growing, an unresolved,
+        # a structurally neutral mode
+        cases = [(s == k).any(axis=-1) for k in (GROWS, UNRESOLVED, NEUTRAL)]
+        state[inside] = np.select(cases, [UNSTABLE, UNDECIDED, MARGINAL], STABLE)
     return Growth(sp, sign, estimate, state)

@@ -19,7 +19,7 @@ from ..jit import register_jitable
 from ..models import LinearModel
 from ..parameters import DOMAIN, PARAMETERS, domain_sides
 
-__all__ = ["CONSTRAINT_CODES", "Constraint", "constraint_arguments", "constraint_values", "constraints_of"]
+__all__ = ["Constraint", "constraint_values", "constraints_of"]
 
 
 class Constraint(NamedTuple):
@@ -32,11 +32,10 @@ class Constraint(NamedTuple):
         end of a requested range); the ``detail`` of a point where a branch ends on it.
     kind : str
         ``"domain_edge"`` or ``"endpoint"``.
-    code : str
-        ``"domain"`` (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus
-        ``a``), ``"lower"`` (``p[index] - a``) or ``"upper"`` (``a - p[index]``); ``index`` of a
-        parameter counts in :data:`stability.parameters.PARAMETERS`
-        (:data:`CONSTRAINT_CODES`).
+    code : int
+        0 (``g`` = the margin ``upper - lower`` of row ``index`` of ``DOMAIN`` minus ``a``), 1
+        (a lower end, ``p[index] - a``) or 2 (an upper end, ``a - p[index]``); ``index`` of a
+        parameter counts in :data:`stability.parameters.PARAMETERS`.
     index : int
     a : float
     bound : (str, float) or None
@@ -45,7 +44,7 @@ class Constraint(NamedTuple):
 
     name: str
     kind: str
-    code: str
+    code: int
     index: int
     a: float
     bound: tuple[str, float] | None
@@ -63,33 +62,18 @@ def constraints_of(
         if set(b.involves) <= given and set(b.involves) & f:
             a = margin if b.strict else 0.0
             simple = (b.involves[0], a) if len(b.involves) == 1 else None
-            out.append(Constraint(b.text, "domain_edge", "domain", k, a, simple))
+            out.append(Constraint(b.text, "domain_edge", 0, k, a, simple))
     for name, (lo, hi) in ranges.items():
         j = PARAMETERS.index(name)
-        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", "lower", j, lo, (name, lo)))
-        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", "upper", j, hi, (name, hi)))
+        out.append(Constraint(f"{name} >= {lo:g} (end of {name}_range)", "endpoint", 1, j, lo, (name, lo)))
+        out.append(Constraint(f"{name} <= {hi:g} (end of {name}_range)", "endpoint", 2, j, hi, (name, hi)))
     return out
-
-
-#: kinds of constraint rows ``(code, index, a)`` for :func:`constraint_values` (parameters
-#: ``p`` indexed as ``(q, fr_inv, sigma, alpha_v, mu)``): the margin ``upper - lower`` of row
-#: ``index`` of :data:`stability.parameters.DOMAIN` minus ``a``, ``p[index] - a``, ``a - p[index]``
-CONSTRAINT_CODES = {"domain": 0, "lower": 1, "upper": 2}
-
-
-def constraint_arguments(
-    fixed: Mapping[str, float], names: Sequence[str], constraints: Sequence[Constraint]
-) -> tuple[list[float], list[int], tuple[list, list, list]]:
-    """``(point, free_index, (codes, index, a))`` of :func:`constraint_values` for a problem's
-    ``fixed`` parameters, traced ``names`` and ``constraints``, as Python lists."""
-    rows = ([CONSTRAINT_CODES[c.code] for c in constraints], [c.index for c in constraints], [c.a for c in constraints])
-    return [fixed.get(n, 0.0) for n in PARAMETERS], [PARAMETERS.index(n) for n in names], rows
 
 
 @register_jitable
 def constraint_values(point: Any, free_index: Any, u: Any, codes: Any, index: Any, a: Any) -> np.ndarray:
     """The problem's constraints at ``u`` (the free parameters' values), ``>= 0`` inside, from
-    rows ``(code, index, a)`` (:data:`CONSTRAINT_CODES`); ``point``: the five parameters
+    rows ``(code, index, a)`` (the fields of :class:`Constraint`); ``point``: the five parameters
     ``(q, fr_inv, sigma, alpha_v, mu)``, free ones at ``free_index``. One source for both
     executions: Python lists of floats on the Python path, arrays inside the compiled step
     (:mod:`stability.linear.neutral_compiled`)."""

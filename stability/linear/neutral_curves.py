@@ -53,9 +53,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
-import pandas as pd
 import xarray as xr
-from xarray.indexes import PandasIndex
 
 from continuation.engine import Branch, TraceOptions, project, trace_both
 from continuation.errors import ConvergenceError as EngineConvergenceError
@@ -82,7 +80,7 @@ from ..products import PRODUCT_ATTR
 from ..resources import check_start_grid
 from .growth import GROWS, UNRESOLVED, growth, mode_signs
 from .modes import structural_zeros
-from .neutral_constraints import constraint_arguments, constraint_values, constraints_of
+from .neutral_constraints import constraint_values, constraints_of
 from .neutrality import NeutralCondition, crossing_kernels
 from .roots import root_bound
 from .spectra import fixed_parameters, lapack_eigenvalues, parameter_name, spectrum
@@ -116,25 +114,21 @@ _KIND_DETAIL = {
 }
 
 
-def _check_range(name: str, rng: Any, fixed: Mapping[str, float]) -> tuple[float, float]:
-    """The range ``rng`` of ``name`` checked; default: the domain's range given the fixed
-    parameters (the table), its open ends closed by :data:`DEFAULT_RANGES`."""
-    if rng is not None:
-        return check_range(f"{name}_range", rng)
-    lo, hi = domain_range(name, fixed)
-    dlo, dhi = DEFAULT_RANGES.get(name, (lo, hi))
-    return (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
-
-
 def _ranges(
     names: Sequence[str], given: Sequence[Any], fixed: Mapping[str, float]
 ) -> tuple[dict[str, tuple[float, float]], np.ndarray, np.ndarray]:
-    """The ranges of the traced ``names`` (:func:`_check_range`), their widths (the scale of
-    those unknowns) and eight seeded points inside them (for the form and the deflation)."""
-    ranges = {n: _check_range(n, r, fixed) for n, r in zip(names, given)}
+    """The ranges of the traced ``names`` (each checked; default: the domain's range given the
+    fixed parameters, :func:`stability.parameters.domain_range`, its open ends closed by
+    :data:`DEFAULT_RANGES`), their widths (the scale of those unknowns) and eight seeded points
+    inside them (for the form and the deflation)."""
+    ranges = {}
+    for n, r in zip(names, given):
+        lo, hi = domain_range(n, fixed) if r is None else check_range(f"{n}_range", r)
+        dlo, dhi = DEFAULT_RANGES.get(n, (lo, hi))
+        ranges[n] = (lo if math.isfinite(lo) else dlo, hi if math.isfinite(hi) else dhi)
     width = np.array([ranges[n][1] - ranges[n][0] for n in names])
-    lo = np.array([ranges[n][0] for n in names])
-    return ranges, width, lo + np.random.default_rng(12345).random((8, len(names))) * width
+    low = np.array([ranges[n][0] for n in names])
+    return ranges, width, low + np.random.default_rng(12345).random((8, len(names))) * width
 
 
 class _CurveProblem:
@@ -152,9 +146,8 @@ class _CurveProblem:
         self.cond, self.model, self.names, self.fixed = cond, cond.model, cond.free, cond.fixed
         constraints = constraints_of(self.model, self.names, ranges, edge_margin)
         self.constraint_names = tuple(c.name for c in constraints)
-        self.constraint_kinds = tuple(c.kind for c in constraints)
-        self.constraint_bounds = tuple(c.bound for c in constraints)
-        self._point, self._free, self._rows = constraint_arguments(self.fixed, self.names, constraints)
+        self.constraint_rows = constraints
+        self._rows = tuple(list(r) for r in zip(*((c.code, c.index, c.a) for c in constraints)))
 
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """Domain and range bounds, ``>= 0`` inside (compiled twin if any)."""
@@ -163,7 +156,8 @@ class _CurveProblem:
 
             point, free, _, codes, index, a = self._compiled
             return compiled(point, free, np.asarray(u, dtype=float), codes, index, a)
-        return constraint_values(self._point, self._free, [float(u[i]) for i in self._columns], *self._rows)
+        values = [float(u[i]) for i in self._columns]
+        return constraint_values(self.cond._point, self.cond._free_index, values, *self._rows)
 
 
 class NeutralProblem(_CurveProblem):
@@ -254,8 +248,6 @@ class NeutralProblem(_CurveProblem):
         growing; a structural zero root is neutral.
         """
         U = np.asarray(U, dtype=float).reshape(-1, 3)
-        if len(U) == 0:
-            return np.zeros(0, dtype=bool)
         r = self.cond.other_modes_many(U[:, :2], U[:, 2])
         if r.shape[1] == 0:
             return np.ones(len(U), dtype=bool)
@@ -268,8 +260,7 @@ class NeutralProblem(_CurveProblem):
         if self._compiled is not None:
             g = self._kernels.other_growth(*self._compiled[:3], np.asarray(u, dtype=float))
         else:
-            r = self.cond.other_modes_list(u[:2], float(u[2]))
-            g = max(z.real for z in r) if r else -np.inf
+            g = max((z.real for z in self.cond.other_modes_list(u[:2], float(u[2]))), default=-np.inf)
         return np.array([u[2], g if math.isfinite(g) else -1.0])
 
 
@@ -340,43 +331,36 @@ def _atlas_guesses(
     grows = gr.sign == GROWS
     decided = sp.inside & ~(gr.sign == UNRESOLVED).any(axis=-1)
     count = np.where(decided, grows.sum(axis=-1), -1)
-    out = _Guesses([], int(sp.inside.sum()), int(decided.sum()))
     # grid edges (a, b) on which the number of growing modes changes: axis 0 first, then
     # axis 1, each in row-major order; an edge joins neighbouring decided points of a grid line,
     # across the undecided points between them (a curve through grid points, e.g. q = 0 on a
     # grid that holds it, leaves those points within rounding of neutral), never across a point
     # outside the domain
-    nx, ny = count.shape
-    flat = np.arange(nx * ny).reshape(nx, ny)
-    inside_flat = sp.inside.reshape(-1)
+    flat: np.ndarray = np.arange(count.size).reshape(count.shape)
     pa_list, pb_list = [], []
-    for lines in (flat.T, flat):  # rows of `lines`: the grid lines along axis 0, then axis 1
-        a_parts, b_parts = [np.zeros(0, dtype=int)], [np.zeros(0, dtype=int)]
-        for line in lines:
-            d = np.nonzero(count.flat[line] >= 0)[0]
-            if len(d) < 2:
-                continue
-            out_before = np.cumsum(~inside_flat[line])
-            ok = out_before[d[1:]] == out_before[d[:-1]]
-            a_parts.append(line[d[:-1][ok]])
-            b_parts.append(line[d[1:][ok]])
-        a, b = np.concatenate(a_parts), np.concatenate(b_parts)
-        order = np.argsort(a, kind="stable")
-        a, b = a[order], b[order]
-        sel = count.flat[a] != count.flat[b]
-        pa_list.append(a[sel])
-        pb_list.append(b[sel])
+    for F in (flat.T, flat):  # rows of F: the grid lines along axis 0, then axis 1
+        C, n = count.flat[F], F.shape[1]
+        # the next decided point after each point of its line (n: none), and no outside point between
+        after = np.minimum.accumulate(np.where(C >= 0, np.arange(n), n)[:, ::-1], axis=1)[:, ::-1][:, 1:]
+        b = np.minimum(after, n - 1)
+        out_before = np.cumsum(~sp.inside.flat[F], axis=1)
+        ok = (C[:, :-1] >= 0) & (after < n) & (np.take_along_axis(out_before, b, 1) == out_before[:, :-1])
+        order = np.argsort(F[:, :-1][ok], kind="stable")
+        pa, pb = F[:, :-1][ok][order], np.take_along_axis(F, b, 1)[ok][order]
+        sel = count.flat[pa] != count.flat[pb]
+        pa_list.append(pa[sel])
+        pb_list.append(pb[sel])
     PA, PB = np.concatenate(pa_list), np.concatenate(pb_list)
     # a: the end with more growing modes
     swap = count.flat[PA] < count.flat[PB]
     PA, PB = np.where(swap, PB, PA), np.where(swap, PA, PB)
-    EV = ev.reshape(nx * ny, -1)
-    EST = gr.estimate.reshape(nx * ny, -1)
+    EV = ev.reshape(count.size, -1)
+    EST = gr.estimate.reshape(count.size, -1)
     ea, eb = EV[PA], EV[PB]
     k = np.arange(len(PA))
     # the mode that crossed: the least growing of the growing modes at a, and the eigenvalue
     # nearest to it at b; linear interpolation of its growth estimate to zero along the edge
-    ia = np.argmin(np.where(grows.reshape(nx * ny, -1)[PA], EST[PA], np.inf), axis=-1)
+    ia = np.argmin(np.where(grows.reshape(count.size, -1)[PA], EST[PA], np.inf), axis=-1)
     ra = ea[k, ia]
     ib = np.argmin(np.abs(eb - ra[:, None]), axis=-1)
     rb = eb[k, ib]
@@ -386,36 +370,32 @@ def _atlas_guesses(
     t = np.clip(np.nan_to_num(t, nan=0.5), 0.0, 1.0)
     ua = np.stack([X.flat[PA], Y.flat[PA], ra.imag], axis=-1)
     ub = np.stack([X.flat[PB], Y.flat[PB], rb.imag], axis=-1)
-    return out._replace(points=list(ua + t[:, None] * (ub - ua)))
+    return _Guesses(list(ua + t[:, None] * (ub - ua)), int(sp.inside.sum()), int(decided.sum()))
+
+
+def _feet(V: np.ndarray, pts: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The feet (m, segments, 3) of the scaled points ``V`` (m, 3) on the segments of the scaled
+    polyline ``pts``, projected in the first ``k`` columns, and the segments' squared lengths there."""
+    a, d = pts[:-1, :], pts[1:] - pts[:-1]
+    L2 = (d[:, :k] * d[:, :k]).sum(axis=1)
+    lam = np.clip(((V[:, None, :k] - a[:, :k]) * d[:, :k]).sum(axis=2) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
+    return a + lam[..., None] * d, L2
 
 
 def _on_branch(v: np.ndarray, pts: np.ndarray) -> bool:
     """Whether scaled point ``v`` lies on the scaled polyline ``pts`` (within its chord error)."""
     if len(pts) == 1:
         return bool(np.linalg.norm(v - pts[0]) < 1e-7)
-    a, b = pts[:-1], pts[1:]
-    d = b - a
-    L2 = (d * d).sum(axis=1)
-    lam = np.clip(((v - a) * d).sum(axis=1) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
-    dist = np.linalg.norm(v - (a + lam[:, None] * d), axis=1)
-    return bool(np.any(dist <= 0.05 * np.sqrt(L2) + 1e-7))
+    foot, L2 = _feet(v[None], pts, 3)
+    return bool(np.any(np.linalg.norm(v - foot[0], axis=1) <= 0.05 * np.sqrt(L2) + 1e-7))
 
 
 def _near_branch_mask(G: np.ndarray, pts: np.ndarray, cell: float) -> np.ndarray:
     """For each scaled guess ``(x, y, w)`` (rows of ``G``), whether it lies within ``cell`` of a
     scaled branch in ``(x, y)`` with a frequency within 0.1 (all guesses at once)."""
-    if len(pts) < 2 or len(G) == 0:
-        return np.zeros(len(G), dtype=bool)
-    a, b = pts[:-1], pts[1:]
-    d = b - a
-    d2 = d[:, :2]
-    L2 = (d2 * d2).sum(axis=1)
-    rel = G[:, None, :2] - a[None, :, :2]  # (guess, segment, 2)
-    lam = np.clip((rel * d2[None]).sum(axis=2) / np.where(L2 > 0, L2, 1.0)[None], 0, 1)
-    foot = a[None] + lam[..., None] * d[None]  # (guess, segment, 3)
+    foot, _ = _feet(G, pts, 2)
     dxy = G[:, None, :2] - foot[..., :2]
-    near = ((dxy * dxy).sum(axis=2) <= cell * cell) & (np.abs(G[:, None, 2] - foot[..., 2]) <= 0.1)
-    return near.any(axis=1)
+    return (((dxy * dxy).sum(axis=2) <= cell * cell) & (np.abs(G[:, None, 2] - foot[..., 2]) <= 0.1)).any(axis=1)
 
 
 # ------------------------------------------------------------------------------------------
@@ -427,31 +407,25 @@ def _branch_records(br: Branch, prob: Any, names: Sequence[str]) -> tuple[list[s
     m = len(br.points)
     for k, (kind, det) in enumerate(zip(br.kinds, br.details)):
         if kind == "fold":
-            kinds.append("fold")
-            details.append(f"fold in {names[int(det)] if int(det) < len(names) else det}")
+            kd, text = "fold", f"fold in {names[int(det)] if int(det) < len(names) else det}"
         elif kind in ("test", "branch_point"):
             kd, text = _KIND_DETAIL[det or kind]
-            kinds.append(kd)
-            details.append(text)
         elif kind == "boundary":
-            j = prob.constraint_names.index(det)
-            kinds.append(prob.constraint_kinds[j])
-            details.append(det)
-            bound = prob.constraint_bounds[j]
-            if bound is not None:
+            c = prob.constraint_rows[prob.constraint_names.index(det)]
+            kd, text = c.kind, det
+            if c.bound is not None:
                 # put the point exactly on a simple bound (it is within ~1e-16 of it) unless
                 # that would spoil the residual (near a corner where everything is tiny)
-                col = {n: i for i, n in enumerate(names)}[bound[0]]
                 moved = br.points[k].copy()
-                moved[col] = bound[1]
+                moved[list(names).index(c.bound[0])] = c.bound[1]
                 if np.linalg.norm(prob.residual(moved)) <= max(1e-13, np.linalg.norm(prob.residual(br.points[k]))):
                     br.points[k] = moved
         elif kind == "closed":
-            kinds.append("regular")
-            details.append("closes the curve (repeats the branch's first point)")
+            kd, text = "regular", "closes the curve (repeats the branch's first point)"
         else:
-            kinds.append("regular")
-            details.append("")
+            kd, text = "regular", ""
+        kinds.append(kd)
+        details.append(text)
     for end, k in zip(br.end_reasons if len(br.end_reasons) == 2 else [None] + br.end_reasons, (0, m - 1)):
         if end in ("step_failure", "max_points", "max_arclength", "callback") and kinds[k] == "regular":
             kinds[k] = "endpoint"
@@ -494,6 +468,12 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
         "units": "Omega",
         "comment": "Im s of the neutral mode, fixed frame, in units of the spin rate",
     },
+    "tangent": {  # of each column {n}
+        "long_name": "tangent, {n}",
+        "units": "1",
+        "comment": "{n} component of the unit tangent of the curve (oriented along the branch; continuation.dense "
+        "interpolates with it)",
+    },
     "branch": {"long_name": "branch", "comment": "index of the traced branch"},
     "kind": {
         "long_name": "kind of point",
@@ -527,17 +507,23 @@ _DATA_ATTRS: dict[str, dict[str, str]] = {
 }
 
 
+_POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
+
+
 def _assemble(
     model: LinearModel,
     names: Sequence[str],
     fixed: Mapping[str, float],
     prob: Any,
     branches: list[Branch],
+    ranges: Mapping[str, tuple[float, float]],
     attrs: Mapping[str, Any],
 ) -> xr.Dataset:
     """The dataset of the traced branches (columns of ``u``: ``names`` with the frequency at
     2): points, tangents, kinds, details, the backward error, where the traced mode leads
-    (neutral curves) and the independent check (:func:`_check_points`), all points at once."""
+    (neutral curves) and the independent check (:func:`_check_points`), all points at once;
+    its attributes: the parameters, the traced ``names`` (as ``x``, ``y``, ``z``), the form,
+    the ``ranges`` and ``attrs``."""
     order = [*names[:2], "frequency", *names[2:]]
     kinds, details = [], []
     for br in branches:
@@ -559,15 +545,7 @@ def _assemble(
     }
     data["frequency"] = (w, _DATA_ATTRS["frequency"])
     for i, n in enumerate(order):
-        data[f"tangent_{n}"] = (
-            tangents[:, i],
-            {
-                "long_name": f"tangent, {n}",
-                "units": "1",
-                "comment": f"{n} component of the unit tangent of the curve (oriented along the "
-                "branch; continuation.dense interpolates with it)",
-            },
-        )
+        data[f"tangent_{n}"] = (tangents[:, i], {k: v.format(n=n) for k, v in _DATA_ATTRS["tangent"].items()})
     data["branch"] = (branch.astype(np.int32), _DATA_ATTRS["branch"])
     data["kind"] = (np.array(kinds, dtype=object), _DATA_ATTRS["kind"])
     data["detail"] = (np.array(details, dtype=object), _DATA_ATTRS["detail"])
@@ -586,30 +564,12 @@ def _assemble(
         "equations": model.equations,
         **{k: float(v) for k, v in fixed.items()},
         "fixed": ", ".join(sorted(fixed)),
+        **dict(zip("xyz", names)),
+        "form": prob.cond.form,
+        **{f"{n}_range": list(ranges[n]) for n in names},
         **attrs,
     }
-    return _point_dataset(variables, len(points), ds_attrs)
-
-
-_POINT_ATTRS = {"long_name": "point", "comment": "index of the point along the traced branches"}
-
-
-def _point_dataset(variables: dict[str, xr.Variable], n: int, attrs: dict[str, Any]) -> xr.Dataset:
-    """The Dataset of ``variables`` (all along ``point``, length ``n``) with the index
-    coordinate ``point = 0..n-1`` and ``attrs``, by xarray's public constructor.
-
-    The coordinate is handed over with its index already built (:class:`xarray.Coordinates`
-    with a :class:`xarray.indexes.PandasIndex`), so that the constructor does not infer one;
-    the dataset is identical to the one from a plain coordinate variable (tests/test_neutral.py). The constructor's merge and alignment of the
-    variables, which are aligned by construction, cost ~0.3 ms of a ~3 ms call
-    (docs/continuation.md); no public path skips them.
-    """
-    positions = np.arange(n)
-    index = PandasIndex(pd.Index(positions), "point")
-    coords = xr.Coordinates(
-        index.create_variables({"point": xr.Variable(("point",), positions, _POINT_ATTRS)}), indexes={"point": index}
-    )
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return xr.Dataset(variables, coords={"point": ("point", np.arange(len(points)), _POINT_ATTRS)}, attrs=ds_attrs)
 
 
 # ------------------------------------------------------------------------------------------
@@ -739,16 +699,15 @@ def neutral_curve(
             )
         guesses = found.points
         if not guesses:
+            undecided = found.inside - found.decided
+            left_out = (
+                f" ({undecided} points inside the domain have a mode within rounding of neutral and were left out)"
+            )
             note = (
                 f"no neutral curve crosses the ranges: the number of growing modes is the same at all "
                 f"{found.decided} points of the {grid[0]} x {grid[1]} start grid where every sign is decided"
-                + (
-                    f" ({found.inside - found.decided} points inside the domain have a mode within rounding "
-                    "of neutral and were left out)"
-                    if found.decided < found.inside
-                    else ""
-                )
-                + "; a closed curve inside one grid cell is not found this way: pass start= or a finer grid"
+                f"{left_out if undecided else ''}; a closed curve inside one grid cell is not found this way: "
+                "pass start= or a finer grid"
             )
     else:
         guesses = []
@@ -815,18 +774,13 @@ def neutral_curve(
         )
     attrs = {
         PRODUCT_ATTR: "neutral_curve",
-        "x": x,
-        "y": y,
-        "form": prob.cond.form,
         "deflated_zero_roots": prob.cond.deflate,
-        f"{x}_range": list(ranges[x]),
-        f"{y}_range": list(ranges[y]),
         "title": f"neutral curves of the {m.name} model in the ({x}, {y}) plane",
     }
     if note is not None:
         attrs["note"] = note
         warnings.warn(note, UserWarning, stacklevel=2)
-    return _assemble(m, (x, y), fixed, prob, branches, attrs)
+    return _assemble(m, (x, y), fixed, prob, branches, ranges, attrs)
 
 
 def _pair(r: tuple[float, float]) -> str:
@@ -891,7 +845,6 @@ def fold_curve(
     if not isinstance(fixed, Mapping) or z not in fixed:
         raise ParameterTypeError(f"fixed must give the start value of z = {z!r}")
     full = fixed_parameters(m, (x, y), fixed)
-    z0 = full[z]
     trace = dict(step=step, max_step=max_step, max_angle=max_angle, max_points=max_points)
     plane = neutral_curve(m, x, y, fixed=full, x_range=x_range, y_range=y_range, edge_margin=edge_margin, **trace)
     rest = {k: v for k, v in full.items() if k != z}
@@ -902,27 +855,10 @@ def fold_curve(
     folds = plane.where(plane.detail == f"fold in {fold_in}", drop=True)
     branches: list[Branch] = []
     for k in range(folds.sizes["point"]):
-        u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(z0)])
+        u = np.array([float(folds[x][k]), float(folds[y][k]), float(folds.frequency[k]), float(full[z])])
         if any(_on_branch(u / scale, b.points / scale) for b in branches):
             continue
         branches.append(trace_both(prob, u, options))
-    # reorder columns (x, y, w, z) -> names (x, y, z) with w at column 2
-    return _assemble(
-        m,
-        (x, y, z),
-        rest,
-        prob,
-        branches,
-        {
-            PRODUCT_ATTR: "fold_curve",
-            "x": x,
-            "y": y,
-            "z": z,
-            "fold_in": fold_in,
-            "form": prob.cond.form,
-            f"{x}_range": list(ranges[x]),
-            f"{y}_range": list(ranges[y]),
-            f"{z}_range": list(ranges[z]),
-            "title": f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model as {z} varies",
-        },
-    )
+    title = f"folds in {fold_in} of the ({x}, {y}) neutral curves of the {m.name} model as {z} varies"
+    attrs = {PRODUCT_ATTR: "fold_curve", "fold_in": fold_in, "title": title}
+    return _assemble(m, (x, y, z), rest, prob, branches, ranges, attrs)

@@ -76,12 +76,13 @@ For a model with both formulas and the crossing form, :func:`crossing_kernels` c
 evaluation (numba; closures over the model's formulas, cached on disk), which the compiled
 continuation step (:mod:`stability.linear.neutral_compiled`) and the batched checks use.
 
-The modes other than the neutral one (:func:`other_roots`) come from one source for every
-engine, :func:`_other_roots_into`: the neutral root divided out by composite synthetic
-division and the quotient solved by the stable quadratic formula
-(:func:`stability.linear.roots.divide_root`, :func:`~stability.linear.roots.quadratic_roots`),
-run in Python floats (one point), compiled (the continuation step) and compiled over a batch
-(:meth:`NeutralCondition.other_modes_many`).
+The modes other than the neutral one come from one source for every engine,
+:func:`_other_roots_into`: the neutral root divided out by composite synthetic division and the
+quotient solved by the stable quadratic formula (:func:`stability.linear.roots.divide_root`,
+:func:`~stability.linear.roots.quadratic_roots`), run in Python floats (one point,
+:func:`_other_roots_list`), compiled (the continuation step) and over a batch of coefficients
+(:meth:`NeutralCondition.other_modes_many`, compiled or interpreted by the rule of
+:mod:`stability.execution`).
 """
 
 from __future__ import annotations
@@ -99,16 +100,14 @@ from stability.jit import active as jit_active
 from .. import execution
 from ..errors import InputError
 from ..models import LinearModel, get_model
-from ..parameters import PARAMETERS, check_choice
-from .growth import axis_products
+from ..parameters import PARAMETERS
+from .growth import axis_products, conservative_phases
 from .roots import axis_norms, divide_root, horner_scheme, quadratic_roots
 
 __all__ = [
     "CrossingKernels",
     "NeutralCondition",
-    "conservative_phase",
     "crossing_kernels",
-    "other_roots",
 ]
 
 _STENCIL = np.array([-2.0, -1.0, 1.0, 2.0])
@@ -118,23 +117,6 @@ _IPOW = (1.0 + 0j, 1j, -1.0 + 0j, -1j)
 #: numba options: IEEE arithmetic (no fastmath: no reassociation or contraction, so the
 #: compiled twins do the same floating-point operations as the scalar Python code)
 _JIT = dict(OPTIONS, cache=True)
-
-
-def conservative_phase(c: np.ndarray) -> int | None:
-    """Common phase of ``c_k i^k`` (0: all real, 1: all imaginary), or None if there is none.
-
-    Parameters
-    ----------
-    c : numpy.ndarray of complex, shape (..., n+1)
-        Coefficients, highest power first.
-    """
-    d = axis_products(c)
-    # exact products with 1, i, -1, -i: an exact zero imaginary (real) part is structure
-    if np.all(d.imag == 0):
-        return 0
-    if np.all(d.real == 0):
-        return 1
-    return None
 
 
 # ------------------------------------------------------------------------------------------
@@ -166,7 +148,15 @@ def _other_roots_into(c, ncoef, w, multiplicity, out):
 
 
 def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> list[complex]:
-    """:func:`other_roots` as a list (Python numbers; ``numpy.roots`` beyond degree 2)."""
+    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one), as a list
+    of Python numbers (``numpy.roots`` beyond degree 2).
+
+    The division is composite (:func:`stability.linear.roots.divide_root`), so a root much
+    smaller than ``i w`` keeps its relative accuracy, and an exact zero root
+    (``c0 = -mu alpha_v q fr_inv = 0`` at ``fr_inv = 0`` or ``q = 0``) comes out exactly zero:
+    ``Re s = 0``, which brackets no sign change of the double-crossing test (removing it instead
+    made that test jump at ``c0 = 0`` from ~0 to the next mode's growth rate, and the jump was
+    reported as a double crossing)."""
     work = [complex(x) for x in c]
     out = [0j, 0j]
     m = _other_roots_into(work, len(work), float(w), multiplicity, out)
@@ -175,18 +165,6 @@ def _other_roots_list(c: Sequence[complex], w: float, multiplicity: int = 1) -> 
     if m <= 2:
         return out[:m]
     return [complex(r) for r in np.roots(work[: m + 1])]
-
-
-def other_roots(c: Sequence[complex], w: float, multiplicity: int = 1) -> np.ndarray:
-    """Roots of ``p(s) / (s - i w)^multiplicity`` (the modes other than the neutral one).
-
-    The division is composite (:func:`stability.linear.roots.divide_root`), so a root much
-    smaller than ``i w`` keeps its relative accuracy, and an exact zero root
-    (``c0 = -mu alpha_v q fr_inv = 0`` at ``fr_inv = 0`` or ``q = 0``) comes out exactly zero:
-    ``Re s = 0``, which brackets no sign change of the double-crossing test (removing it instead
-    made that test jump at ``c0 = 0`` from ~0 to the next mode's growth rate, and the jump was
-    reported as a double crossing)."""
-    return np.array(_other_roots_list(c, w, multiplicity), dtype=complex)
 
 
 def _other_roots_many(c, ncoef, w, multiplicity, out):
@@ -221,8 +199,7 @@ class NeutralCondition:
     form : {"crossing", "collision"}, optional
         Force the form (default: decided from the samples, see the module docstring).
     compiled : bool, optional
-        Evaluate :meth:`residuals` and :meth:`other_modes_many` (many points at once) by their
-        compiled twins where they exist (a model with ``point_coefficients`` and
+        Evaluate :meth:`residuals` (many points at once) by its compiled twin where it exists (a model with ``point_coefficients`` and
         ``point_derivatives``, crossing form); False keeps numpy and the interpreter. None
         (default): the rule of :mod:`stability.execution` (``TIPPE_KERNEL``; by default only if
         this process has compiled them already, :func:`stability.execution.use_compiled`).
@@ -259,10 +236,10 @@ class NeutralCondition:
         while self.deflate < n - 1 and np.all(c[..., n - self.deflate] == 0):
             self.deflate += 1
         c = c[..., : n + 1 - self.deflate]
-        self.phase = conservative_phase(c)  # the common phase of all samples (None if none)
+        phases = np.unique(conservative_phases(c))  # the common phase of all samples (None if none)
+        self.phase = int(phases[0]) if len(phases) == 1 and phases[0] >= 0 else None
         if form is None:
             form = "collision" if self.phase is not None else "crossing"
-        check_choice("form", form, ("crossing", "collision"))
         if form == "collision" and self.phase is None:
             raise InputError(
                 f"model {self.model.name!r} with {self.fixed} is not conservative; "
@@ -277,11 +254,11 @@ class NeutralCondition:
         self.kernels: CrossingKernels | None = None
         #: (point, free_index, ncoef): the arguments of the compiled twins, or None
         self._compiled: tuple[np.ndarray, np.ndarray, int] | None = None
+        # the five linear parameters (the formulas' and the constraints' arguments), free ones
+        # at 0, and 0.0 for those the model does not take
+        self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
+        self._free_index = [PARAMETERS.index(name) for name in self.free]
         if self._analytic:
-            # the five linear parameters (the formulas' arguments), free ones at 0, and 0.0 for
-            # those the model does not take
-            self._point = [self.fixed.get(name, 0.0) for name in PARAMETERS]
-            self._free_index = [PARAMETERS.index(name) for name in self.free]
             if compiled is None and self.form == "crossing":  # in memory (numba active) or forced
                 degree = int(self.model.n_modes)
                 kernels = crossing_kernels(self._formula, self._derivative, degree) if jit_active() else None
@@ -482,13 +459,11 @@ class NeutralCondition:
 
         The neutral root(s) ``i w`` are divided out and the quotient solved by the same source
         as the one-point path (:func:`_other_roots_into`, composite division, the stable
-        quadratic formula), compiled over the batch; LAPACK on the companion matrices beyond
-        degree 2.
+        quadratic formula), compiled over the batch or :func:`_other_roots_list` row by row
+        (``numpy.roots`` beyond degree 2).
         """
         values = np.asarray(values, dtype=float).reshape(-1, len(self.free))
         w = np.asarray(w, dtype=float).reshape(-1)
-        if self._compiled is not None:
-            return self.kernels.other_modes_many(*self._compiled, values, w)
         c = np.ascontiguousarray(self.coefficients(values), dtype=np.complex128)
         multiplicity = 1 if self.form == "crossing" else 2
         m = c.shape[1] - 1 - multiplicity
@@ -498,20 +473,9 @@ class NeutralCondition:
             out = np.empty((len(w), m), dtype=np.complex128)
             cached(_other_roots_many)(c, c.shape[1], np.ascontiguousarray(w), multiplicity, out)
             return out
-        # interpreted: the same source on Python numbers, row by row (the roots, or beyond degree
-        # 2 the quotient)
-        rows = []
-        for i in range(len(w)):
-            work, roots = c[i].tolist(), [0j, 0j]
-            _other_roots_into(work, len(work), float(w[i]), multiplicity, roots)
-            rows.append(roots[:m] if m <= 2 else work[: m + 1])
-        if m <= 2:
-            return np.array(rows, dtype=np.complex128).reshape(len(w), m)
-        quotients = np.array(rows, dtype=complex).reshape(len(w), m + 1)
-        comp = np.zeros((len(w), m, m), dtype=complex)
-        comp[:, 0, :] = -quotients[:, 1:] / quotients[:, :1]
-        comp[:, np.arange(1, m), np.arange(m - 1)] = 1.0
-        return np.linalg.eigvals(comp)
+        # interpreted: the one-point source on Python numbers, row by row
+        rows = [_other_roots_list(c[i].tolist(), w[i], multiplicity) for i in range(len(w))]
+        return np.array(rows, dtype=np.complex128).reshape(len(w), m)
 
     def other_modes_list(self, values: Sequence[float], w: float) -> list[complex]:
         """The modes other than the neutral one(s) at ``i w`` (deflated structural zeros
@@ -537,18 +501,16 @@ class CrossingKernels(NamedTuple):
 
     residual_into: Callable[..., None]
     other_growth_of: Callable[..., float]
-    residual: Callable[..., None]
     residual_and_jacobian: Callable[..., tuple[np.ndarray, np.ndarray]]
     other_growth: Callable[..., float]
     residuals: Callable[..., np.ndarray]
-    other_modes_many: Callable[..., np.ndarray]
 
 
 @functools.cache
 def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tuple], n: int) -> CrossingKernels:
     """Compiled twins of :meth:`NeutralCondition.residual_and_jacobian`,
-    :meth:`~NeutralCondition.residuals`, :func:`other_roots` and
-    :meth:`~NeutralCondition.other_modes_many` (crossing form) for the formulas ``formula`` and
+    :meth:`~NeutralCondition.residuals` and the largest growth rate of the other modes
+    (:func:`_other_roots_list`) (crossing form) for the formulas ``formula`` and
     ``derivative`` of a model of degree ``n`` (its ``point_coefficients`` and
     ``point_derivatives``): the same floating-point operations as the scalar Python path, so the
     same bits. Closures over the formulas, compiled on first use and cached on disk (numba keys
@@ -627,10 +589,6 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
         return g
 
     @njit(**_JIT)
-    def residual(point, free_index, ncoef, u, jacobian, F, J):
-        residual_into(point, free_index, ncoef, u, jacobian, F, J)
-
-    @njit(**_JIT)
     def residual_and_jacobian(point, free_index, ncoef, u, jacobian):
         F = np.empty(2)
         J = np.empty((2, u.shape[0]))
@@ -657,22 +615,4 @@ def crossing_kernels(formula: Callable[..., tuple], derivative: Callable[..., tu
             out[i, 1] = F[1]
         return out
 
-    @njit(**_JIT)
-    def other_modes_many(point, free_index, ncoef, values, w):
-        m, k = values.shape
-        out = np.zeros((m, max(ncoef - 2, 0)), dtype=np.complex128)
-        p = point.copy()
-        c = np.empty(n + 1, dtype=np.complex128)
-        roots = np.empty(2, dtype=np.complex128)
-        for i in range(m):
-            for j in range(k):
-                p[free_index[j]] = values[i, j]
-            fill(p, c)
-            q = _other_roots_into(c, ncoef, w[i], 1, roots)
-            for j in range(q):
-                out[i, j] = roots[j]
-        return out
-
-    return CrossingKernels(
-        residual_into, other_growth_of, residual, residual_and_jacobian, other_growth, residuals, other_modes_many
-    )
+    return CrossingKernels(residual_into, other_growth_of, residual_and_jacobian, other_growth, residuals)

@@ -102,20 +102,15 @@ class Spectrum:
 
 def model_parameters(model: LinearModel, given: dict[str, Any]) -> dict[str, Any]:
     """Select the parameters a model takes, refusing missing or foreign ones."""
-    out = {}
     for name, value in given.items():
-        if name in model.parameters:
-            if value is None:
-                raise ParameterTypeError(f"{name} is required for model {model.name!r}")
-            out[name] = value
-        elif value is not None:
+        if name not in model.parameters and value is not None:
             raise ParameterTypeError(
                 f"model {model.name!r} takes no parameter {name} (it takes {', '.join(model.parameters)})"
             )
     for name in model.parameters:
-        if name not in out:
+        if given.get(name) is None:
             raise ParameterTypeError(f"{name} is required for model {model.name!r}")
-    return out
+    return {k: v for k, v in given.items() if k in model.parameters}
 
 
 def parameter_name(model: LinearModel, name: Any, what: str) -> str:
@@ -313,9 +308,7 @@ def spectrum(
         else:
             e, b, x = lapack_eigenvalues(m, sub)
         order = mode_order(e)
-        e = np.take_along_axis(e, order, -1)
-        b = np.take_along_axis(b, order, -1)
-        x = np.take_along_axis(x, order, -1)
+        e, b, x = (np.take_along_axis(a, order, -1) for a in (e, b, x))
         nt, st = _classify(e, b, x)
         ev[inside], bound[inside], neutral[inside], stab[inside] = e, b, nt, st
     return Spectrum(m, p, ev, bound, neutral, stab, inside)
