@@ -30,8 +30,8 @@ Storage (the operations, hence the numbers, are the same in both worlds): arrays
 ``A[i, j]`` (:func:`_lu_solve_array`: numba would make a view object for every row ``A[i]``),
 except the Python path's 3 x 3 systems, its most frequent, which the unrolled :func:`_lu_solve3`
 solves on nested lists (indexing a list is several times faster than indexing an array from
-Python; the 2 x 2 and 4 x 4 systems of the Python path cost about 3 us more on arrays, 0.3 % of
-a steady branch traced in Python). Two things differ by design between the worlds:
+Python), its 2 x 2 ones too, bordered by the identity (:func:`bordered_solve`); its 4 x 4 ones
+(a fold curve's) cost about 3 us more on arrays. Two things differ by design between the worlds:
 :func:`norm` (Python: one BLAS dot product; compiled: a loop, not bit-identical to BLAS, so a
 problem's compiled step and the engine's Python path agree to rounding, not bit for bit); and
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
@@ -213,11 +213,21 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     constraint's gradient). ``J`` has shape (n, n+1), ``c`` (n+1,), ``f`` (n,); ``det`` is
     ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK.
+
+    From Python a 2 x 2 system ``G x = b`` is solved as the 3 x 3 system ``[G 0; 0 1] [x; y] =
+    [b; 0]`` by the unrolled :func:`_lu_solve3`, with the same numbers as the 2 x 2 elimination:
+    the zero entries never win a pivot (``0 > |a|`` is false, also for NaN), their multipliers
+    ``0 / a_kk`` are zero and skip the row, and ``a_k2 y = 0``, ``y = 0 / 1``, ``det`` times
+    ``1`` are exact; faster than the loop on lists, and checked bit for bit against the 2 x 2
+    codings in tests/test_continuation_engine.py.
     """
-    if J.shape[0] == 2:  # nested lists: Python indexes them faster than arrays (module docstring)
+    m = J.shape[0] + 1
+    if m <= 3:  # nested lists: Python indexes them faster than arrays (module docstring)
         A, x = J.tolist() + [c.tolist()], f.tolist() + [r]
+        if m == 2:  # bordered by the identity: the numbers of the 2 x 2 elimination (docstring)
+            A, x = [A[0] + [0.0], A[1] + [0.0], [0.0, 0.0, 1.0]], x + [0.0]
         ok, d = _lu_solve3(A, x)
-        return ok, np.array(x), d
+        return ok, np.array(x[:m]), d
     G, y = np.vstack([J, c]), np.append(f, r)
     if y.size > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
         try:

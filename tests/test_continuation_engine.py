@@ -323,10 +323,12 @@ def test_array_elimination_is_the_loop(m):
     agree bit for bit (the same operations in the same order), on ties, zero multipliers, zeros
     of either sign and singular matrices: the float loop in Python on lists against the array
     coding in Python and compiled (``solve_dense``, the nonlinear runs' 6 x 6 solve, and the
-    compiled ``lu_solve`` inside ``bordered_solve``); complex systems (a complex-step Jacobian) both
+    compiled ``lu_solve`` inside ``bordered_solve``), and the Python ``bordered_solve`` up to
+    PYTHON_LU_MAX (a 2 x 2 system bordered by the identity and solved unrolled); complex systems (a complex-step Jacobian) both
     codings compiled, where the same complex arithmetic runs in both."""
     from numba import njit
 
+    from continuation import linalg
     from continuation.compiled import solve_dense
     from continuation.linalg import _lu_solve_array
 
@@ -348,9 +350,12 @@ def test_array_elimination_is_the_loop(m):
         ok3, x3, d3 = _solve_det(G, b, compiled=True)
         x4 = solve_dense(G.copy(), b.copy())
         assert (ok2, _bits(d2)) == (ok1, _bits(d1)) and (ok3, _bits(d3)) == (ok1, _bits(d1))
+        python = [_solve_det(G, b)] if m <= linalg.PYTHON_LU_MAX else []  # m = 2: bordered by the identity
+        for ok5, _, d5 in python:
+            assert (ok5, _bits(d5)) == (ok1, _bits(d1))
         n_singular += not ok1
         if ok1:
-            for x in (x2, x3, x4):
+            for x in (x2, x3, x4, *(x5 for _, x5, _ in python)):
                 assert np.array_equal(_bits(x), _bits(x1))
         else:
             assert np.isnan(x4).all()
