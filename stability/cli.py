@@ -61,8 +61,9 @@ KEYWORD_FLAGS: dict[str, str] = {
 }
 
 _KEYWORD_VALUE = re.compile(r"\b(" + "|".join(KEYWORD_FLAGS) + r")=[^\s,;)]+")
-#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``
-_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|and [\w-]+ must) )"
+#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``,
+#: ``q is varied`` (the traced or searched one)
+_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|is varied|and [\w-]+ must) )"
 _AS_BOUND = r"((?:<=|<|>=|>) )({kw})(?![\w(])"
 #: the neutral curve's library phrase for a parameter that must be held fixed
 _FIXED_MUST_GIVE = re.compile(r"\bfixed must give (\w+)")
