@@ -35,8 +35,8 @@ whose compiled storage or summation differs); the engine's Python path never imp
 
 from __future__ import annotations
 
-import numba
 import numpy as np
+from numba import njit
 from numba.extending import overload, register_jitable
 
 from . import corrector, interpolation, linalg
@@ -44,7 +44,6 @@ from . import corrector, interpolation, linalg
 __all__ = ["newton", "norm", "predict", "solve_dense", "step", "tangent_det"]
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
-njit = numba.njit
 
 
 # the building blocks of continuation.linalg, continuation.interpolation and continuation.corrector,
