@@ -27,7 +27,7 @@ building block compiled, not a copy of it:
 
 The ``njit`` ones are ``numba.njit(cache=True)``: compiled once per machine and cached in
 ``__pycache__``. Importing this module imports numba and registers the engine's building blocks
-with it, through numba's public API only (:func:`register`: ``numba.extending.register_jitable``
+with it, through numba's public API only (``numba.extending.register_jitable``
 for the functions of :mod:`continuation.linalg`, :mod:`continuation.interpolation` and
 :mod:`continuation.corrector` that run in both worlds, ``numba.extending.overload`` for those
 whose compiled storage or summation differs); the engine's Python path never imports it.
@@ -35,8 +35,8 @@ whose compiled storage or summation differs); the engine's Python path never imp
 
 from __future__ import annotations
 
-import numba
 import numpy as np
+from numba import njit
 from numba.extending import overload, register_jitable
 
 from . import corrector, interpolation, linalg
@@ -44,28 +44,21 @@ from . import corrector, interpolation, linalg
 __all__ = ["newton", "norm", "predict", "solve_dense", "step", "tangent_det"]
 
 _JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
-njit = numba.njit
 
 
-def register() -> None:
-    """Register the building blocks of :mod:`continuation.linalg`, :mod:`continuation.interpolation`
-    and :mod:`continuation.corrector` with numba (run once, when this module is imported)."""
-    for fn in (linalg._lu_solve_loop, linalg._lu_solve_array, linalg._lu_solve3, linalg.tangent_det):
-        register_jitable(fn)
-    for fn in (interpolation.hermite_eval, interpolation.predict, corrector.newton, corrector.step):
-        register_jitable(fn)
-    options = {k: _JIT[k] for k in ("fastmath", "nogil", "error_model")}
-    for fn, impl in (
-        (linalg.lu_solve, linalg._lu_solve_compiled),
-        (linalg.bordered_solve, linalg._bordered_solve_compiled),
-        (linalg.norm, linalg._norm_compiled),
-        (linalg.dot, linalg._dot_compiled),
-        (linalg.least_squares, linalg._least_squares_compiled),
-    ):
-        overload(fn, jit_options=options)(impl)
-
-
-register()
+# the building blocks of continuation.linalg, continuation.interpolation and continuation.corrector,
+# registered with numba once, when this module is imported
+for fn in (linalg.lu_solve, linalg._lu_solve_array, linalg._lu_solve3, linalg.tangent_det):
+    register_jitable(fn)
+for fn in (interpolation.hermite_eval, interpolation.predict, corrector.newton, corrector.step):
+    register_jitable(fn)
+for fn, impl in (
+    (linalg.bordered_solve, linalg._bordered_solve_compiled),
+    (linalg.norm, linalg._norm_compiled),
+    (linalg.dot, linalg._dot_compiled),
+    (linalg.least_squares, linalg._least_squares_compiled),
+):
+    overload(fn, jit_options={k: _JIT[k] for k in ("fastmath", "nogil", "error_model")})(impl)
 
 #: the corrector of a step, and the corrector with the tangent (:mod:`continuation.corrector`)
 newton, step = corrector.newton, corrector.step

@@ -451,12 +451,10 @@ class _Tracer:
         k = 1
         while k < len(known) - 1 and known[k][0] < h:
             k += 1
+        # hb > ha: known starts at h = 0, ends at the step's h > 0 and gains points strictly between
         (ha, va, ta), (hb, vb, tb) = known[k - 1], known[k]
-        if hb > ha:
-            guess = hermite(va, ta, vb, tb, (h - ha) / (hb - ha))
-            guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
-        else:
-            guess = v + h * t
+        guess = hermite(va, ta, vb, tb, (h - ha) / (hb - ha))
+        guess = guess + (h - float(t @ (guess - v))) * t  # onto the plane exactly
         r = self._correct(guess, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)
         if not r.ok:
             r = self._correct(v + h * t, h, self.o.max_iter + 4, 4 * abs(h) + 1e-12)

@@ -5,7 +5,7 @@ The engine's bordered systems are ``(n+1) x (n+1)`` with small ``n`` (3 x 3 for 
 Each building block here is written once and runs in both worlds: plain Python functions, which
 :mod:`continuation.compiled` registers with numba's public ``numba.extending.register_jitable``
 (compiled into the caller when called from ``@njit`` code), or, where the two worlds need a
-different storage, a Python function with an implementation for compiled code
+different storage or summation, a Python function with an implementation for compiled code
 (``_*_compiled``, registered there with ``numba.extending.overload``), both calling the one
 algorithm. This module never imports numba: the registrations are made when
 :mod:`continuation.compiled` is imported, i.e. when compiled code is first wanted, so the
@@ -26,10 +26,12 @@ dividing by it. Generic in the dtype: called from compiled code with complex arr
 compiled for complex128 (a complex-step Jacobian; the pivot choice uses ``abs`` and does not break
 analyticity).
 
-Storage in each world, for speed (the operations, hence the numbers, are the same):
-Python works on nested lists (indexing a list is several times faster than indexing an array
-from Python), compiled code on the arrays, indexed ``A[i, j]`` (:func:`_lu_solve_array`: numba
-would make a view object for every row ``A[i]``). Two things differ by design between the worlds:
+Storage (the operations, hence the numbers, are the same in both worlds): arrays indexed
+``A[i, j]`` (:func:`_lu_solve_array`: numba would make a view object for every row ``A[i]``),
+except the Python path's 3 x 3 systems, its most frequent, which the unrolled :func:`_lu_solve3`
+solves on nested lists (indexing a list is several times faster than indexing an array from
+Python), its 2 x 2 ones too, bordered by the identity (:func:`bordered_solve`); its 4 x 4 ones
+(a fold curve's) cost about 3 us more on arrays. Two things differ by design between the worlds:
 :func:`norm` (Python: one BLAS dot product; compiled: a loop, not bit-identical to BLAS, so a
 problem's compiled step and the engine's Python path agree to rounding, not bit for bit); and
 systems larger than :data:`PYTHON_LU_MAX` from Python, which go to LAPACK (an interpreted
@@ -71,8 +73,8 @@ def lu_solve(A, x):
 
     Parameters
     ----------
-    A : rows of a square matrix, size m x m
-        Nested lists (Python) or a 2-D array (compiled); overwritten with the elimination.
+    A : 2-D array (or, for m = 3, nested lists), size m x m
+        Overwritten with the elimination.
     x : vector of size m
         Right-hand side; overwritten with the solution ``y``.
 
@@ -87,64 +89,19 @@ def lu_solve(A, x):
     Notes
     -----
     For m = 3 the same steps run unrolled (:func:`_lu_solve3`; 3 x 3 is the engine's most
-    frequent system, and the loop :func:`_lu_solve_loop` costs the Python path about three
+    frequent system, and the loop :func:`_lu_solve_array` costs the Python path about three
     times as much, docs/continuation.md); the two agree bit for bit
     (tests/test_continuation_engine.py).
     """
     if len(x) == 3:
         return _lu_solve3(A, x)
-    return _lu_solve_loop(A, x)
-
-
-def _lu_solve_loop(A, x):
-    """:func:`lu_solve` for any size, in loops."""
-    m = len(x)
-    det = 1.0
-    for k in range(m):
-        # pivot: the first largest |a_ik|, i >= k
-        p = k
-        big = abs(A[k][k])
-        for i in range(k + 1, m):
-            if abs(A[i][k]) > big:
-                p = i
-                big = abs(A[i][k])
-        if big == 0.0 or big != big:
-            return False, big
-        Ak = A[k]
-        if p != k:  # exchange rows k and p (columns < k are no longer read)
-            Ap = A[p]
-            for j in range(k, m):
-                tmp = Ak[j]
-                Ak[j] = Ap[j]
-                Ap[j] = tmp
-            tmp = x[k]
-            x[k] = x[p]
-            x[p] = tmp
-            det = -det
-        piv = Ak[k]
-        det *= piv
-        for i in range(k + 1, m):
-            Ai = A[i]
-            f = Ai[k] / piv
-            if f != 0.0:
-                for j in range(k + 1, m):
-                    Ai[j] -= f * Ak[j]
-                x[i] -= f * x[k]
-    for k in range(m - 1, -1, -1):
-        Ak = A[k]
-        acc = x[k]
-        for j in range(k + 1, m):
-            acc -= Ak[j] * x[j]
-        x[k] = acc / Ak[k]
-    return True, det
+    return _lu_solve_array(A, x)
 
 
 def _lu_solve_array(A, x):
-    """:func:`lu_solve` on a 2-D array, for compiled code: the operations of
-    :func:`_lu_solve_loop` in the same order (the same numbers: tests/test_continuation_engine.py),
-    its entries read as ``A[i, j]``. numba makes a reference-counted view object for every row
-    ``A[i]`` that the loop's nested-list indexing would take, which made a 6 x 6 solve 2.4x
-    slower (docs/performance.md, "The 6 x 6 solve of the nonlinear runs")."""
+    """:func:`lu_solve` for any size, in loops, on a 2-D array indexed ``A[i, j]`` (Python, and
+    compiled code, where a row ``A[i]`` would be a reference-counted view object: 2.4x slower
+    for a 6 x 6 solve, docs/performance.md, "The 6 x 6 solve of the nonlinear runs")."""
     m = len(x)
     det = 1.0
     for k in range(m):
@@ -181,20 +138,8 @@ def _lu_solve_array(A, x):
     return True, det
 
 
-def _lu_solve_compiled(A, x):
-    """The compiled face of :func:`lu_solve` (arrays): :func:`_lu_solve3` for m = 3, otherwise
-    :func:`_lu_solve_array`."""
-
-    def impl(A, x):
-        if len(x) == 3:
-            return _lu_solve3(A, x)
-        return _lu_solve_array(A, x)
-
-    return impl
-
-
 def _lu_solve3(A, x):
-    """:func:`lu_solve` for m = 3: the operations of :func:`_lu_solve_loop` in the same order,
+    """:func:`lu_solve` for m = 3: the operations of :func:`_lu_solve_array` in the same order,
     unrolled (``A`` is read, not written)."""
     a00, a01, a02 = A[0]
     a10, a11, a12 = A[1]
@@ -268,16 +213,29 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     constraint's gradient). ``J`` has shape (n, n+1), ``c`` (n+1,), ``f`` (n,); ``det`` is
     ``det [J; c^T]``; ``ok`` False at a zero or NaN pivot. From Python, a system larger than
     :data:`PYTHON_LU_MAX` goes to LAPACK.
+
+    From Python a 2 x 2 system ``G x = b`` is solved as the 3 x 3 system ``[G 0; 0 1] [x; y] =
+    [b; 0]`` by the unrolled :func:`_lu_solve3`, with the same numbers as the 2 x 2 elimination:
+    the zero entries never win a pivot (``0 > |a|`` is false, also for NaN), their multipliers
+    ``0 / a_kk`` are zero and skip the row, and ``a_k2 y = 0``, ``y = 0 / 1``, ``det`` times
+    ``1`` are exact; faster than the loop on lists, and checked bit for bit against the 2 x 2
+    codings in tests/test_continuation_engine.py.
     """
-    A, x = J.tolist() + [c.tolist()], f.tolist() + [r]  # nested lists (module docstring)
-    if len(x) > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
-        G, b = np.array(A), np.array(x)
+    m = J.shape[0] + 1
+    if m <= 3:  # nested lists: Python indexes them faster than arrays (module docstring)
+        A, x = J.tolist() + [c.tolist()], f.tolist() + [r]
+        if m == 2:  # bordered by the identity: the numbers of the 2 x 2 elimination (docstring)
+            A, x = [A[0] + [0.0], A[1] + [0.0], [0.0, 0.0, 1.0]], x + [0.0]
+        ok, d = _lu_solve3(A, x)
+        return ok, np.array(x[:m]), d
+    G, y = np.vstack([J, c]), np.append(f, r)
+    if y.size > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
         try:
-            return True, np.linalg.solve(G, b), float(np.linalg.det(G))
+            return True, np.linalg.solve(G, y), float(np.linalg.det(G))
         except np.linalg.LinAlgError:
-            return False, b, 0.0
-    ok, d = lu_solve(A, x)
-    return ok, np.array(x), d
+            return False, y, 0.0
+    ok, d = _lu_solve_array(G, y)
+    return ok, y, d
 
 
 def _bordered_solve_compiled(J, c, f, r):

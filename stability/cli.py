@@ -61,8 +61,9 @@ KEYWORD_FLAGS: dict[str, str] = {
 }
 
 _KEYWORD_VALUE = re.compile(r"\b(" + "|".join(KEYWORD_FLAGS) + r")=[^\s,;)]+")
-#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``
-_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|and [\w-]+ must) )"
+#: a parameter named as a value or a bound: ``alpha_v = 2``, ``0 <= alpha_v``, ``alpha_v must ...``,
+#: ``q is varied`` (the traced or searched one)
+_AS_VALUE = r"(?<![\w-])()({kw})(?= (?:=|<=|<|>=|>|must|is varied|and [\w-]+ must) )"
 _AS_BOUND = r"((?:<=|<|>=|>) )({kw})(?![\w(])"
 #: the neutral curve's library phrase for a parameter that must be held fixed
 _FIXED_MUST_GIVE = re.compile(r"\bfixed must give (\w+)")
@@ -138,6 +139,7 @@ class _Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+        self.commands: dict[str, _Parser] = {}  # the parser of each subcommand (build_parser)
 
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {_one_line(message)} (see {self.prog} --help)\n")
@@ -146,21 +148,17 @@ class _Parser(argparse.ArgumentParser):
         """As argparse's, but arguments left over are reported by the subcommand that got them."""
         ns, extras = self.parse_known_args(args, namespace)
         if extras:
-            (self._subcommand(getattr(ns, "command", None)) or self).unrecognized(extras)
+            self.commands.get(getattr(ns, "command", ""), self).unrecognized(extras)
         return ns
 
     def parse_known_args(self, args=None, namespace=None):
         """A subcommand checks its options first: a mistyped one is reported before a missing
         required one (``tippe final --alpha_v 0.5``: did you mean --alpha-v)."""
-        if self._subparsers is None and args is not None:
+        if not self.commands and args is not None:
             unknown = [a for a in _option_tokens(args) if not self._known_option(a)]
             if unknown:
                 self.unrecognized(unknown)
         return super().parse_known_args(args, namespace)
-
-    def _subcommand(self, command: str | None) -> _Parser | None:
-        actions = [a for a in self._actions if isinstance(a, argparse._SubParsersAction)]
-        return next((a.choices[command] for a in actions if command in a.choices), None)
 
     def options(self) -> list[str]:
         """Every option string of the parser."""
@@ -214,7 +212,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser, required=True)
     for name in COMMANDS:
         command = importlib.import_module(f"stability.commands.{name}")
-        p = sub.add_parser(name, help=command.HELP, description=command.DESCRIPTION)
+        parser.commands[name] = p = sub.add_parser(name, help=command.HELP, description=command.DESCRIPTION)
         command.arguments(p)
         p.set_defaults(func=command.run)
     return parser
@@ -298,7 +296,7 @@ def _main(argv: Sequence[str] | None, interrupts) -> int:
         args = parser.parse_args(args_list)
         prog = f"tippe {args.command}"
         interrupts.run.label = prog
-        flags = set(parser._subcommand(args.command).options())
+        flags = set(parser.commands[args.command].options())
         interrupts.checkpoint()  # a signal during start-up
         with warnings.catch_warnings():
             _model_name_warnings_as_lines(prog)

@@ -221,6 +221,22 @@ def test_keyword_flag_table():
     assert render_message("workers = 0 is outside the allowed range") == "workers = 0 is outside the allowed range"
 
 
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["threshold", "q", "--q", "0.1", "--fr-inv", "0.3", "--sigma", "1", "--alpha-v", "0.5"],
+        ["neutral", "--x", "q", "--y", "sigma", "--q", "0.1", "--fr-inv", "0", "--alpha-v", "0.5"],
+    ],
+)
+def test_a_searched_or_traced_parameter_given_a_value(argv, capsys):
+    """The value of the parameter that is searched (threshold) or traced (neutral) is refused by
+    the library (the parameter cannot be varied and fixed at once); the one error line names its
+    flag, exit status 2 (bad input)."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--q is varied and cannot also be given a value" in err
+
+
 #: library messages that still name a flag, with the reason
 _FLAGS_ALLOWED = {
     "--scheduler-file": "the option of dask's own command (`dask scheduler --scheduler-file`), not of tippe",

@@ -217,6 +217,50 @@ def _random_systems(rng, m, count):
         yield G, b
 
 
+def _lu_solve_loop(A, x):
+    """The elimination of ``continuation.linalg.lu_solve`` coded on nested lists (rows ``A[k]``):
+    the tests' second coding of it, the reference of the unrolled and the array codings."""
+    m = len(x)
+    det = 1.0
+    for k in range(m):
+        # pivot: the first largest |a_ik|, i >= k
+        p = k
+        big = abs(A[k][k])
+        for i in range(k + 1, m):
+            if abs(A[i][k]) > big:
+                p = i
+                big = abs(A[i][k])
+        if big == 0.0 or big != big:
+            return False, big
+        Ak = A[k]
+        if p != k:  # exchange rows k and p (columns < k are no longer read)
+            Ap = A[p]
+            for j in range(k, m):
+                tmp = Ak[j]
+                Ak[j] = Ap[j]
+                Ap[j] = tmp
+            tmp = x[k]
+            x[k] = x[p]
+            x[p] = tmp
+            det = -det
+        piv = Ak[k]
+        det *= piv
+        for i in range(k + 1, m):
+            Ai = A[i]
+            f = Ai[k] / piv
+            if f != 0.0:
+                for j in range(k + 1, m):
+                    Ai[j] -= f * Ak[j]
+                x[i] -= f * x[k]
+    for k in range(m - 1, -1, -1):
+        Ak = A[k]
+        acc = x[k]
+        for j in range(k + 1, m):
+            acc -= Ak[j] * x[j]
+        x[k] = acc / Ak[k]
+    return True, det
+
+
 @functools.cache
 def _compiled_bordered_solve():
     from numba import njit
@@ -236,20 +280,22 @@ def _solve_det(G, b, compiled=False):
 
 def test_unrolled_3x3_elimination_is_the_loop():
     """continuation.linalg solves 3 x 3 systems (the engine's most frequent) unrolled, for the
-    Python path's speed. Reference: the loop version of the same elimination
-    (``_lu_solve_loop``), a second coding of it. They must agree bit for bit (the same
+    Python path's speed. Reference: the loop version of the same elimination on nested lists
+    (``_lu_solve_loop``, in this file), a second coding of it. They must agree bit for bit (the same
     operations in the same order), on ties in the pivot column, zero multipliers, zeros of
     either sign and singular matrices too; in Python and compiled."""
     from numba import njit
 
     import continuation.compiled  # noqa: F401  (registers the building blocks with numba)
-    from continuation.linalg import _lu_solve3, _lu_solve_loop
+    from continuation.linalg import _lu_solve3
+
+    loop_compiled = njit(_lu_solve_loop)
 
     @njit
     def both(G, b):
         A1, x1, A2, x2 = G.copy(), b.copy(), G.copy(), b.copy()
         ok1, d1 = _lu_solve3(A1, x1)
-        ok2, d2 = _lu_solve_loop(A2, x2)
+        ok2, d2 = loop_compiled(A2, x2)
         return ok1, d1, x1, ok2, d2, x2
 
     rng = np.random.default_rng(5)
@@ -273,21 +319,25 @@ def test_unrolled_3x3_elimination_is_the_loop():
 def test_array_elimination_is_the_loop(m):
     """Compiled code solves on 2-D arrays indexed ``A[i, j]`` (``_lu_solve_array``: numba makes
     a reference-counted view for every row ``A[i]`` the nested-list coding would take). Reference:
-    the nested-list loop ``_lu_solve_loop``, a second coding of the same elimination. They must
+    the nested-list loop ``_lu_solve_loop`` (in this file), a second coding of the same elimination. They must
     agree bit for bit (the same operations in the same order), on ties, zero multipliers, zeros
     of either sign and singular matrices: the float loop in Python on lists against the array
     coding in Python and compiled (``solve_dense``, the nonlinear runs' 6 x 6 solve, and the
-    compiled ``lu_solve`` inside ``bordered_solve``); complex systems (a complex-step Jacobian) both
+    compiled ``lu_solve`` inside ``bordered_solve``), and the Python ``bordered_solve`` up to
+    PYTHON_LU_MAX (a 2 x 2 system bordered by the identity and solved unrolled); complex systems (a complex-step Jacobian) both
     codings compiled, where the same complex arithmetic runs in both."""
     from numba import njit
 
+    from continuation import linalg
     from continuation.compiled import solve_dense
-    from continuation.linalg import _lu_solve_array, _lu_solve_loop
+    from continuation.linalg import _lu_solve_array
+
+    loop_compiled = njit(_lu_solve_loop)
 
     @njit
     def loop(G, b):
         x = b.copy()
-        ok, d = _lu_solve_loop(G.copy(), x)
+        ok, d = loop_compiled(G.copy(), x)
         return ok, d, x
 
     rng = np.random.default_rng(11)
@@ -300,9 +350,12 @@ def test_array_elimination_is_the_loop(m):
         ok3, x3, d3 = _solve_det(G, b, compiled=True)
         x4 = solve_dense(G.copy(), b.copy())
         assert (ok2, _bits(d2)) == (ok1, _bits(d1)) and (ok3, _bits(d3)) == (ok1, _bits(d1))
+        python = [_solve_det(G, b)] if m <= linalg.PYTHON_LU_MAX else []  # m = 2: bordered by the identity
+        for ok5, _, d5 in python:
+            assert (ok5, _bits(d5)) == (ok1, _bits(d1))
         n_singular += not ok1
         if ok1:
-            for x in (x2, x3, x4):
+            for x in (x2, x3, x4, *(x5 for _, x5, _ in python)):
                 assert np.array_equal(_bits(x), _bits(x1))
         else:
             assert np.isnan(x4).all()

@@ -343,14 +343,12 @@ def apply_top(
             value = parse_values(spin, name="--spin")
             if not args._top_grid and not isinstance(value, float):
                 raise InputError(f"--spin = {spin!r} must be one number here")
-            alpha_v = args.alpha_v if "alpha_v" in names else None
-            alpha_v = parse_values(alpha_v, name="--alpha-v") if isinstance(alpha_v, str) else alpha_v
+            alpha_v = parameter_values(args, [n for n in names if n == "alpha_v"]).get("alpha_v")
             nd = top.nondimensional(value, args.unit or "rad/s", alpha_v=alpha_v)
         elif spin is not None:
             raise InputError(f"--spin {spin} is not used here (no spin-dependent parameter is fixed)")
-        for k in names:
-            if k in nd:
-                setattr(args, k, nd[k])
+        for k in nd.keys() & names:
+            setattr(args, k, nd[k])
     missing = [flag_of(n) for n in required if getattr(args, n) is None]
     if missing:
         raise InputError(

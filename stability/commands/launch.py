@@ -28,7 +28,7 @@ def arguments(p: argparse.ArgumentParser) -> None:
         g, ("--tilt", 1.0, "DEG", "initial tilt of the axis (default 1)"), ("--alpha-v", None, "VALUE", alpha_v)
     )
     g.add_argument("--model", choices=["sliding"], default="sliding", help="nonlinear model (sliding)")
-    g.add_argument("-o", "--output", metavar="FILE.nc", help="also write the answer as a netCDF dataset")
+    _args.add_output_flags(g, "also write the answer as a netCDF dataset")
     g.add_argument(
         "--plot",
         metavar="FILE.png",
@@ -41,15 +41,12 @@ def run(args: argparse.Namespace) -> int:
     from ..launches.result import launch
 
     top = _args.required_top(args, "tippe launch")
+    out = _args.output_path(args)
     res = launch(**_args.keywords(launch, args, top=top))
     print(res)
     if args.plot:
         _plot(top, res, args)
-    if args.output:
-        from ..grids.netcdf import write_dataset
-
-        write_dataset(res.to_dataset(), args.output)
-        print(f"written: {args.output}")
+    _args.write_output(res.to_dataset, out, args)
     return 0
 
 

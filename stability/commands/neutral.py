@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..errors import InputError
 from ..models import get_model
 from ..parameters import DEFAULT_MU, PARAMETERS
 from . import _args
@@ -39,15 +38,9 @@ def run(args: argparse.Namespace) -> int:
     traced = (args.x, args.y)
     names = [n for n in PARAMETERS if n in model.parameters]
     _args.apply_top(args, names, spin_needed="fr_inv" not in traced, skip=traced)
-    given = {name: getattr(args, name) for name in model.parameters if getattr(args, name) is not None}
-    clash = [name for name in given if name in traced]
-    if clash:
-        raise InputError(f"{_args.flag_of(clash[0])} is traced (--x/--y) and cannot also be fixed")
-    for name in PARAMETERS:
-        if name not in model.parameters and getattr(args, name) is not None:
-            raise InputError(f"model {model.name!r} takes no parameter {name} ({_args.flag_of(name)})")
+    fixed = {name: getattr(args, name) for name in PARAMETERS if getattr(args, name) is not None}
     ranges = {f"{a}_range": _args.lo_hi(getattr(args, f"{a}_range"), f"--{a}-range") for a in "xy"}
-    ds = neutral_curve(model, args.x, args.y, fixed={n: v for n, v in given.items() if n not in traced}, **ranges)
+    ds = neutral_curve(model, args.x, args.y, fixed=fixed, **ranges)
     n = ds.sizes["point"]
     special = ds.where(ds.kind != "regular", drop=True) if n else ds
     print(
@@ -58,7 +51,6 @@ def run(args: argparse.Namespace) -> int:
         columns = (special[v].values for v in ("branch", "kind", args.x, args.y, "frequency", "detail"))
         rows = ((int(b), str(k), x, y, f, d) for b, k, x, y, f, d in zip(*columns))
         header = ("branch", "kind", args.x, args.y, "frequency", "detail")
-        for line in _args.table("{:>6}  {:<16} {:>18.12g} {:>18.12g} {:>18.12g}  {}", header, rows):
-            print(line)
+        print(*_args.table("{:>6}  {:<16} {:>18.12g} {:>18.12g} {:>18.12g}  {}", header, rows), sep="\n")
     _args.write_output(ds, out, args)
     return 0

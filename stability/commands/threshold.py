@@ -45,20 +45,18 @@ def arguments(p: argparse.ArgumentParser) -> None:
 
 def _refuse_unused(args: argparse.Namespace) -> None:
     """Options that the chosen PARAM does not use are errors, not silently ignored."""
-    if args.param == "spin":
-        given = [n for n in ("q", "fr_inv", "sigma", "mu", "bracket") if getattr(args, n) is not None]
-        unused = [_args.flag_of(n) for n in given] + ["--all"] * args.all
-        if unused:
-            raise InputError(
-                f"{', '.join(unused)}: not used by 'tippe threshold spin' (the top's q, sigma and "
-                "mu come from --preset or its SI data; the spin rate is what is searched)"
-            )
-        return
+    spin = args.param == "spin"
     top = (*_args.TOP_FLAGS, "g", "mu_k", "preset", "top", "mu_v", "orientation")
-    unused = [_args.flag_of(n) for n in top if getattr(args, n) is not None]
+    values = {n: getattr(args, n) for n in (("q", "fr_inv", "sigma", "mu", "bracket", "all") if spin else top)}
+    unused = ", ".join(_args.flag_of(n) for n, v in values.items() if v is not None and v is not False)
+    if unused and spin:
+        raise InputError(
+            f"{unused}: not used by 'tippe threshold spin' (the top's q, sigma and "
+            "mu come from --preset or its SI data; the spin rate is what is searched)"
+        )
     if unused:
         raise InputError(
-            f"{', '.join(unused)}: only used with PARAM = spin (a real top); "
+            f"{unused}: only used with PARAM = spin (a real top); "
             f"'tippe threshold {args.param}' takes the nondimensional parameters"
         )
 
@@ -71,22 +69,17 @@ def run(args: argparse.Namespace) -> int:
     if args.param == "spin":
         return _spin(args, critical_spin)
     model = get_model(args.model)
-    fixed = {n: getattr(args, n) for n in PARAMETERS if getattr(args, n) is not None and n != args.param}
-    if getattr(args, args.param) is not None:
-        raise InputError(f"{_args.flag_of(args.param)} is the parameter searched; do not give its value")
+    fixed = {n: getattr(args, n) for n in PARAMETERS if getattr(args, n) is not None}
     bracket = _args.lo_hi(args.bracket, "--bracket")
-    if not args.all:
-        t = _one_threshold(args.param, model, bracket, 257, fixed)
-        print(f"{args.param} = {t.value:.16g}" + _interval(args.param, t))
-        return 0
-    found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
+    if args.all:
+        found = threshold_crossings(args.param, model=model, bracket=bracket, **fixed)
+    else:
+        found = [_one_threshold(args.param, model, bracket, 257, fixed)]
     if not found:
         print(f"no threshold in {args.param}")
     for t in found:
-        print(
-            f"{args.param} = {t.value:.16g}  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})"
-            + _interval(args.param, t)
-        )
+        more = f"  (unstable {t.unstable_side}; neutral frequency {t.frequency:.12g})" if args.all else ""
+        print(f"{args.param} = {t.value:.16g}{more}" + _interval(args.param, t))
     return 0
 
 

@@ -50,7 +50,6 @@ def arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``tippe validate``."""
-    from ..grids.netcdf import write_dataset
     from ..nonlinear.validation import validate
 
     names = _COORDS if args.model == "sliding" else ("q", "fr_inv", "sigma", "mu")
@@ -58,6 +57,5 @@ def run(args: argparse.Namespace) -> int:
     out = _args.output_path(args)
     ds = validate(args.model, amplitude=args.amplitude, **_args.parameter_values(args, _COORDS))
     print(format_points(ds))
-    if out is not None:
-        write_dataset(ds, out, overwrite=args.overwrite)
+    _args.write_output(ds, out, args)
     return 0

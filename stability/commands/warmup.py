@@ -124,8 +124,7 @@ def run(args: argparse.Namespace) -> int:
 
     todo = steps()
     if args.list:
-        for what, _, _ in todo:
-            print(what)
+        print(*(what for what, _, _ in todo), sep="\n")
         return 0
     start = time.perf_counter()
     os.environ[execution.ENVIRONMENT] = "compiled"  # this process only: every step runs compiled
