@@ -56,10 +56,8 @@ from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
-from .linearisation import state_modes
 from .products import check_scales, product_attrs, sliding_parameters, state_variables, variable
-from .states import state_integrals
-from .verdicts import flag_of
+from .states import state_values
 
 #: branches of at least this many points (``~pi / max_step``) run the compiled step by default;
 #: fewer run the engine's Python path on the interpreted residual (stability.execution's rule;
@@ -314,6 +312,7 @@ def steady_branch(
         theta0 = prob.degenerate_tilt()
         if theta0 is None:
             return _empty(
+                prob,
                 attrs,
                 "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
                 "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)",
@@ -334,7 +333,7 @@ def steady_branch(
         if lam_b is None:
             lam_b = prob.branch_point(start := "inverted")
         if lam_b is None:
-            return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
+            return _empty(prob, attrs, "the tilted family reaches neither vertical state (it does not exist here)")
         theta_b, t0 = (0.0, 1.0) if start == "upright" else (math.pi, -1.0)
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
         if jmax is not None and not jmax > j_b:
@@ -389,53 +388,37 @@ def steady_branch(
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
-def _empty(attrs: dict[str, Any], note: str) -> xr.Dataset:
-    attrs = dict(attrs, note=note)
-    return points_dataset(None, np.zeros((0, 2)), [], [], attrs)
+def _empty(prob: SteadyBranchProblem, attrs: dict[str, Any], note: str) -> xr.Dataset:
+    return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
 
 
 def points_dataset(
-    prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str], attrs: dict[str, Any]
+    prob: SteadyBranchProblem, pts: np.ndarray, kinds: list[str], details: list[str], attrs: dict[str, Any]
 ) -> xr.Dataset:
     """Spectra, flags and the Dataset of points ``(theta, log lam)`` of the family (traced, or
     solved otherwise, e.g. by the benchmark's baseline), with their kinds and details."""
-    n = len(pts)
     theta, lam = pts[:, 0], np.exp(pts[:, 1])
-    c = np.cos(theta)
+    q, sigma = prob.params["q"], prob.params["sigma"]
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
-    growth, bound = np.full(n, np.nan), np.full(n, np.nan)
-    n_neutral, jac, flags = (np.zeros(n, dtype=np.int8) for _ in range(3))
-    J, E, axial = np.zeros(n), np.zeros(n), np.zeros(n)
-    if n:
-        pr = prob.params
-        q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-        c = np.where(vertical, np.sign(c), c)
-        y = family.state_vector(theta, lam, q)
-        for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
-            y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
-        spins = family.omega_vertical(c, lam, q)
-        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, pr)
-        J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-        axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
-        for i in range(n):
-            kind = ("upright" if c[i] > 0 else "inverted") if vertical[i] else "tilted"
-            t, s = family.energy_test(kind, float(c[i]), float(J[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-            flags[i] = flag_of(kind, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(jac[i]))
-        for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
-            if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
-                kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
-    j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
-    values = dict(tilt=np.degrees(theta), precession_rate=lam, axial_spin=axial, energy=E, jellett=J)
-    values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
-    values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
+    c = np.where(vertical, np.sign(np.cos(theta)), np.cos(theta))
+    states = [("upright" if c[i] > 0 else "inverted") if vertical[i] else "tilted" for i in range(len(pts))]
+    # a branch point is the vertical state of spin omega . K = lam (1 + q c)
+    _, _, values = state_values(states, theta, lam, family.omega_vertical(c, lam, q), prob.p, prob.params)
+    for i in range(1, len(pts)):  # a change of flag that is no fold or branch point (never expected)
+        if values["stability"][i] != values["stability"][i - 1] and kinds[i] == kinds[i - 1] == "regular":
+            kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
+    values.update(tilt=np.degrees(theta), precession_rate=lam)
     note = "at a branch point: spin / (1 + q cos(tilt))"
     kind_attrs = {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"}
     equivalent = "spin of the upright state with the same J, J / (sigma (1 + q))"
+    j_upright = family.upright_jellett(q=q, sigma=sigma)
     data = {
         **state_variables("point", values, "branch points", precession_rate=note),
-        "upright_equivalent_spin": variable("point", J / j_upright, equivalent, "Omega", short="upright-equiv. spin"),
+        "upright_equivalent_spin": variable(
+            "point", values["jellett"] / j_upright, equivalent, "Omega", short="upright-equiv. spin"
+        ),
         "kind": ("point", np.array(kinds, dtype=str), kind_attrs),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     index = {"long_name": "point", "comment": "index along the branch"}
-    return xr.Dataset(data, coords={"point": ("point", np.arange(n), index)}, attrs=attrs)
+    return xr.Dataset(data, coords={"point": ("point", np.arange(len(pts)), index)}, attrs=attrs)

@@ -143,35 +143,15 @@ def _residual_into(p, q, code, n_full, weight, u, jacobian, F, J):
 
 
 @njit(**_JIT)
-def step(
-    p,
-    q,
-    sigma,
-    mu,
-    code,
-    n_full,
-    degenerate,
-    weight,
-    jmax,
-    jmin,
-    guess,
-    t_plane,
-    anchor,
-    h,
-    scale,
-    tol,
-    max_iter,
-    max_move,
-):
+def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, *corrector):
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
     constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
-    r = corrector_step(
-        _residual_into, (p, q, code, n_full, weight), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
-    )
+    r = corrector_step(_residual_into, (p, q, code, n_full, weight), *corrector)
     tests = np.empty(1)
     if not r[0]:
         return (*r, np.empty(0), tests)
+    scale = corrector[4]  # (guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
     u = r[4] * scale
     jel, jt, jl = jellett(u[0], u[1], q, sigma, mu)
     g = constraint_values(u[0], jel, jmax, jmin, degenerate)

@@ -45,7 +45,7 @@ from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, c
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
-from .states import level_modes, point_integrals
+from .states import level_spins, point_integrals, state_values
 from .verdicts import flag_of
 
 __all__ = ["Candidate", "FinalState", "SettleRun", "candidates", "chunk_length", "final_state", "predict", "settle"]
@@ -508,8 +508,9 @@ def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: fl
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    states = [c.kind for c in sel], [math.radians(c.tilt) for c in sel], [c.precession_rate for c in sel]
-    g = float(np.max(level_modes(*states, jel, pack(**params), params)[3][1]))
+    kinds, theta, lam = [c.kind for c in sel], [math.radians(c.tilt) for c in sel], [c.precession_rate for c in sel]
+    _, _, values = state_values(kinds, theta, lam, level_spins(kinds, jel, params), pack(**params), params)
+    g = float(np.max(values["growth_rate"]))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
 
