@@ -311,12 +311,11 @@ def steady_branch(
     if prob.degenerate:
         theta0 = prob.degenerate_tilt()
         if theta0 is None:
-            return _empty(
-                prob,
-                attrs,
+            note = (
                 "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
-                "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)",
+                "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)"
             )
+            return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
         j_unit = abs(prob.jellett(np.array([theta0, 0.0]))[0])  # J is linear in lam: J(lam = 1)
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
@@ -333,7 +332,8 @@ def steady_branch(
         if lam_b is None:
             lam_b = prob.branch_point(start := "inverted")
         if lam_b is None:
-            return _empty(prob, attrs, "the tilted family reaches neither vertical state (it does not exist here)")
+            note = "the tilted family reaches neither vertical state (it does not exist here)"
+            return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
         theta_b, t0 = (0.0, 1.0) if start == "upright" else (math.pi, -1.0)
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
         if jmax is not None and not jmax > j_b:
@@ -386,10 +386,6 @@ def steady_branch(
     attrs.update({n: sum(getattr(b, n) for b in branches) for n in ("n_newton", "n_residual", "n_jacobian")})
     attrs["degenerate"] = int(prob.degenerate)
     return points_dataset(prob, pts, kinds, details, attrs)
-
-
-def _empty(prob: SteadyBranchProblem, attrs: dict[str, Any], note: str) -> xr.Dataset:
-    return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
 
 
 def points_dataset(

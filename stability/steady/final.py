@@ -45,7 +45,7 @@ from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, c
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
-from .states import level_spins, point_integrals, state_values
+from .states import level_spins, state_integrals, state_values
 from .verdicts import flag_of
 
 __all__ = ["Candidate", "FinalState", "SettleRun", "candidates", "chunk_length", "final_state", "predict", "settle"]
@@ -294,27 +294,6 @@ def predict(
     return None, reason, cands
 
 
-def start_note(
-    cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float, gravity: float
-) -> str:
-    """``"; the start is itself ..."`` if the initial state is one of the level's steady states,
-    else ``""``.
-
-    ``E >= U_J(c)`` for every state of axis height ``c`` on the level ``J``, with equality
-    exactly at the steady state of that ``c`` (S5-S7): a start whose energy equals the
-    candidate's at its own tilt (within :data:`ENERGY_REL_TOL` of the terms) is that steady
-    state, where the top stays forever; the prediction is then where any perturbation of it
-    leads (an unstable start) or the start itself."""
-    tol = ENERGY_REL_TOL * (abs(initial_energy) + jellett * jellett + gravity)
-    for c in cands:
-        if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
-            note = f"; the start is itself a steady state (the {c.kind} one, {FLAG_NAMES[c.stability]})"
-            if c.stability == UNSTABLE:
-                return note + ", where the top stays forever: the end given is where any perturbation of it leads"
-            return note + ": the top stays there"
-    return ""
-
-
 def final_state(
     model: str = "sliding",
     *,
@@ -425,15 +404,27 @@ def final_state(
         )
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    # one query: interpreted unless compiled code is in memory (stability.execution.pick)
-    J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
+    # one state: interpreted unless compiled code is in memory (stability.execution.pick)
+    (J0,), (E0,) = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, **params)
-    reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
+    # E >= U_J(c) on the level, with equality exactly at the steady state of that c (S5-S7): a start
+    # whose energy is its candidate's at its own tilt is that steady state, where the top stays
+    tol = ENERGY_REL_TOL * (abs(E0) + J0 * J0 + mu * fr_inv)
+    for c in cands:
+        if abs(c.tilt - tilt0) <= 1e-6 and abs(c.energy - E0) <= tol:
+            reason += f"; the start is itself a steady state (the {c.kind} one, {FLAG_NAMES[c.stability]})"
+            stays = ", where the top stays forever: the end given is where any perturbation of it leads"
+            reason += stays if c.stability == UNSTABLE else ": the top stays there"
+            break
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
-    n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
+    # (the sliding model's vertical equation, one 6 x 6 solve: interpreted unless in memory)
+    n0, state = math.nan, np.zeros((1, 10))
+    if fr_inv > 0.0:
+        state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
+        n0 = float(pick(get_nonlinear_model("sliding").contact_forces, 1)(state, pack(**params))[0, 2])
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
         why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
         lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost", method="jellett")
@@ -490,16 +481,6 @@ def final_state(
         how = "settled" if run.settled else moving
         what = f"{how} after t = {run.t_end:g} ({run.chunks} chunks, {run.seconds:.2g} s)"
     return FinalState(**outcome, reason=f"{reason}; a run decided: {what}", **common)
-
-
-def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
-    """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
-    equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve (interpreted
-    unless compiled code is in memory: :func:`stability.execution.pick`)."""
-    state = np.zeros((1, 10))
-    state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
-    forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
-    return float(forces(state, pack(**params))[0, 2])
 
 
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
