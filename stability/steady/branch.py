@@ -109,8 +109,9 @@ class SteadyBranchProblem:
         self.params, self.p, self.q = dict(params), p, params["q"]
         self.code, self.n_full = CODES[m.name], len(m.state)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
-        #: the scale of lam^2 on the family, mu fr_inv |q| (the residual is relative to it)
-        self.weight = kernels.residual_weight(params["q"], params["fr_inv"], params["mu"], self.degenerate)
+        #: the scale of lam^2 on the family, mu fr_inv |q| (lam^2 P(c) = mu fr_inv q, S3; 0 if degenerate):
+        #: what branch_compiled.residual_and_jacobian divides by
+        self.weight = 0.0 if self.degenerate else params["mu"] * params["fr_inv"] * abs(params["q"])
         self.jellett_max, self.jellett_min = math.inf, 0.0  # the cuts of J, set by steady_branch
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None

@@ -37,7 +37,6 @@ __all__ = [
     "divided",
     "jellett",
     "residual_and_jacobian",
-    "residual_weight",
     "step",
 ]
 
@@ -72,7 +71,7 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
     """``R = divided / (lam^2 + weight)`` and ``dR/d(theta, ell)``, ``ell = log lam``.
 
     ``weight`` is the size of the gravity terms in units of ``lam^2``: ``mu fr_inv |q|``
-    (:func:`residual_weight`; ``0`` for degenerate parameters). The divided component is
+    (:attr:`stability.steady.branch.SteadyBranchProblem.weight`; ``0`` for degenerate parameters). The divided component is
     ``A(theta) lam^2 + weight b(theta)`` (quadratic in the rates on the no-slip manifold, the
     normal force's moment ``~ mu fr_inv q``), so ``R = (A lam_hat^2 + b) / (lam_hat^2 + 1)`` with
     ``lam_hat^2 = lam^2 / weight``: ``O(1)`` terms at every scale of ``mu fr_inv |q|`` (the
@@ -102,12 +101,6 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
         )
     sc = lam * lam + weight
     return r / sc, r_t / sc, lam * (r_l / sc - r * 2.0 * lam / (sc * sc))
-
-
-def residual_weight(q, fr_inv, mu, degenerate):
-    """``mu fr_inv |q|`` (``0`` if ``degenerate``): the scale of ``lam^2`` on the family
-    (``lam^2 P(c) = mu fr_inv q``, S3) that :func:`residual_and_jacobian` divides by."""
-    return 0.0 if degenerate else mu * fr_inv * abs(q)
 
 
 @njit(**_JIT)

@@ -45,7 +45,7 @@ from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, c
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
-from .states import level_spins, state_integrals, state_values
+from .states import level_spins, point_integrals, state_values
 from .verdicts import flag_of
 
 __all__ = ["Candidate", "FinalState", "SettleRun", "candidates", "chunk_length", "final_state", "predict", "settle"]
@@ -404,8 +404,8 @@ def final_state(
         )
     if stick_tilt is not None:
         stick_tilt = check_interval("stick_tilt", stick_tilt, 0.0, 180.0)
-    # one state: interpreted unless compiled code is in memory (stability.execution.pick)
-    (J0,), (E0,) = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    # one query: interpreted unless compiled code is in memory (stability.execution.pick)
+    J0, E0 = pick(point_integrals, 1)(np.asarray(y, dtype=np.float64), q, sigma, fr_inv, mu)
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, **params)
@@ -421,10 +421,10 @@ def final_state(
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
     # (the sliding model's vertical equation, one 6 x 6 solve: interpreted unless in memory)
-    n0, state = math.nan, np.zeros((1, 10))
+    n0, start = math.nan, np.zeros((1, 10))
     if fr_inv > 0.0:
-        state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
-        n0 = float(pick(get_nonlinear_model("sliding").contact_forces, 1)(state, pack(**params))[0, 2])
+        start[0, :8] = np.asarray(y, dtype=np.float64)[:8]
+        n0 = float(pick(get_nonlinear_model("sliding").contact_forces, 1)(start, pack(**params))[0, 2])
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
         why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
         lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost", method="jellett")

@@ -38,7 +38,7 @@ from .products import (
 )
 from .verdicts import flag_of
 
-__all__ = ["level_spins", "state_integrals", "state_values", "steady_states"]
+__all__ = ["level_spins", "point_integrals", "state_integrals", "state_values", "steady_states"]
 
 
 @register_jitable
@@ -60,6 +60,14 @@ def _integrals(y, q, sigma, fr_inv, mu):
             y[i, 0], y[i, 1], y[i, 2], y[i, 3], y[i, 4], y[i, 5], y[i, 6], y[i, 7], q, sigma, fr_inv, mu
         )
     return jel, energy
+
+
+@njit(cache=True)
+def point_integrals(y, q, sigma, fr_inv, mu):
+    """``(J, E)`` of one state ``y = (omega, k, V0_h, ...)`` (1-D float array, the first 8
+    entries used; floats ``q, sigma, fr_inv, mu``): :func:`state_integrals` of one state,
+    without its array handling (what :func:`stability.final_state` calls)."""
+    return _integrals_of(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], q, sigma, fr_inv, mu)
 
 
 def state_integrals(
