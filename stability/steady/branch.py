@@ -116,16 +116,8 @@ class SteadyBranchProblem:
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
         #: the compiled step's arguments that stay (the cuts of J are set after construction)
-        self._step_head = (
-            p,
-            self.q,
-            params["sigma"],
-            params["mu"],
-            self.code,
-            self.n_full,
-            self.degenerate,
-            self.weight,
-        )
+        sigma, mu = params["sigma"], params["mu"]
+        self._step_head = (p, self.q, sigma, mu, self.code, self.n_full, self.degenerate, self.weight)
 
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:

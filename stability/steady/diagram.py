@@ -190,11 +190,8 @@ def bifurcation_diagram(
         branch.attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
         beyond = "the state's tilt is at or beyond the stick's: a state the toy cannot have"
         branch["beyond_stick"] = ("point", (branch.tilt.values >= stick_tilt).astype(np.int8), {"long_name": beyond})
-        runs_ds["reaches_stick"] = (
-            "run",
-            np.isfinite(arr[:, 7]).astype(np.int8),
-            {"long_name": "the run reaches the stick"},
-        )
+        reaches = {"long_name": "the run reaches the stick"}
+        runs_ds["reaches_stick"] = ("run", np.isfinite(arr[:, 7]).astype(np.int8), reaches)
         when = {"long_name": "time at which the run reaches the stick", "units": "1/Omega of the launch spin"}
         runs_ds["stick_time"] = ("run", arr[:, 7], when)
     for ds in (vertical, runs_ds):
