@@ -108,6 +108,8 @@ class SteadyBranchProblem:
         self.kernels = kernels if compiled else python(kernels)
         self.params, self.p, self.q = dict(params), p, params["q"]
         self.code, self.n_full = CODES[m.name], len(m.state)
+        #: the residual's model arguments (:mod:`stability.steady.branch_compiled`)
+        self.model = (p, self.q, self.code, self.n_full)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
         #: the scale of lam^2 on the family, mu fr_inv |q| (lam^2 P(c) = mu fr_inv q, S3; 0 if degenerate):
         #: what branch_compiled.residual_and_jacobian divides by
@@ -122,13 +124,11 @@ class SteadyBranchProblem:
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
         """``(F . e_2) / sin(theta)`` (unscaled), at ``theta = 0`` the limit."""
-        return self.kernels.divided(float(theta), float(lam), self.p, self.q, self.code, self.n_full)[0]
+        return self.kernels.divided(float(theta), float(lam), *self.model)[0]
 
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
-        r, rt, rl = self.kernels.residual_and_jacobian(
-            float(u[0]), float(u[1]), self.p, self.q, self.code, self.n_full, self.weight
-        )
+        r, rt, rl = self.kernels.residual_and_jacobian(float(u[0]), float(u[1]), *self.model, self.weight)
         return np.array([r]), np.array([[rt, rl]])
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -186,9 +186,7 @@ class SteadyBranchProblem:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
-            _, _, rl = self.kernels.residual_and_jacobian(
-                theta, math.log(lam), self.p, self.q, self.code, self.n_full, w
-            )
+            _, _, rl = self.kernels.residual_and_jacobian(theta, math.log(lam), *self.model, w)
             r = self.divided_residual(theta, lam)
             step = r / (rl / lam * (lam * lam + w))
             lam -= step

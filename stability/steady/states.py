@@ -98,9 +98,7 @@ def state_values(
     for i in np.nonzero(vertical)[0]:
         y[i] = family.vertical_state(kinds[i], spins[i])
     cosines = np.array([family.ORIENTATIONS.get(k, math.nan) for k in kinds])
-    ev, growth, bound, n_neutral, jac = state_modes(
-        y, np.where(vertical, 0.0, lam), vertical, cosines, spins, p, params
-    )
+    ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, cosines, spins, p, params)  # lam: tilted only
     jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
     if tests is None:  # the energy criterion at each state's own J
         c = np.cos(theta)
