@@ -176,10 +176,9 @@ def bifurcation_diagram(
         "settled": ("the run settled (tilt moved < 1e-3 deg per chunk)", None, np.int8),
         "paper_run": ("the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)", None, np.int8),
     }
-    attrs_of = {name: {"long_name": long} | ({"units": u} if u else {}) for name, (long, u, _) in columns.items()}
     data = {
-        name: ("run", arr[:, i].astype(dt or float), attrs_of[name])
-        for i, (name, (_, _, dt)) in enumerate(columns.items())
+        name: ("run", arr[:, i].astype(dt or float), {"long_name": long} | ({"units": u} if u else {}))
+        for i, (name, (long, u, dt)) in enumerate(columns.items())
     }
     runs_ds = xr.Dataset(data, coords={"run": ("run", np.arange(len(rows)))})
     place = dict(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)

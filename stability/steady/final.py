@@ -503,17 +503,16 @@ def settle(
     t_max: float,
     settle_tolerance: float,
     rtol: float,
-    samples: int = 20,
     stick_tilt: float | None = None,
 ) -> tuple[float, float, SettleRun]:
     """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
     tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
-    ``t_max`` (or a failed integration: then unsettled, tilt NaN), or an event (contact lost, the
+    ``t_max`` (or a failed integration: then unsettled, tilt NaN; 20 samples a chunk), or an event (contact lost, the
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
     n, t0, j0, event, settled = 0, time.perf_counter(), None, "none", False
     state = dict(omega=y0[0:3], k=y0[3:6], velocity=y0[6:8])
-    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=samples, rtol=rtol, stick_tilt=stick_tilt)
+    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=20, rtol=rtol, stick_tilt=stick_tilt)
     for t, length, ds in chunks:
         n, t = n + 1, t + length
         j0 = float(ds.h_cg[0]) if j0 is None else j0
