@@ -234,11 +234,8 @@ def contact_loss_boundary(
 
     def axis(dim: Any, name: str, v: np.ndarray, long_name: str) -> tuple:
         si = name == "spin"
-        return (
-            dim,
-            from_rad_per_s(v, unit) if si else v,
-            {"long_name": long_name, "units": unit if si else QUANTITIES[name]},
-        )
+        attrs = {"long_name": long_name, "units": unit if si else QUANTITIES[name]}
+        return dim, (from_rad_per_s(v, unit) if si else v), attrs
 
     held = {k: (from_rad_per_s(v, unit) if k == "spin" else v) for k, v in launch.items() if k not in (x, y)}
     attrs = product_header(PRODUCT, "where a launch loses its contact: the smallest normal force of the run")

@@ -123,11 +123,8 @@ def flip_time_map(
         "flip_periods": (dims, periods, {"long_name": f"spin periods {crosses}", "units": "1"}),
     }
     if estimate:
-        data["flip_time_efold"] = (
-            dims,
-            t_est,
-            {"long_name": "projected e-folding estimate of the flip time", "units": "s"},
-        )
+        efold = {"long_name": "projected e-folding estimate of the flip time", "units": "s"}
+        data["flip_time_efold"] = (dims, t_est, efold)
     units = {"rad/s": "rad s-1", "rev/s": "s-1", "Hz": "Hz", "rpm": "min-1"}[unit]
     coords = {
         "spin": ("spin", spins, {"long_name": "launch spin", "units": units, "spin_unit": unit}),

@@ -40,6 +40,8 @@ MODELS = ("sliding",)
 DEFAULT_ALPHA_V = 0.5
 #: tolerance of a launch run after its crossing (the settle time and the smallest normal force)
 TAIL_RTOL = 1e-8
+#: the settle time is when the tilt stays within this many degrees of its end
+BAND = 1.0
 
 
 def launch_state(tilt: float) -> dict[str, list[float]]:
@@ -82,19 +84,11 @@ class FlipRun:
     crossing_time : float or None
         First time the tilt reaches ``crossing`` degrees (units of ``1/Omega``), None if never.
     settle_time : float or None
-        Time after which the tilt stays within ``band`` degrees of ``end_tilt``; None if the
-        run did not settle before ``t_max``.
-    end_tilt : float
-        Tilt at the end of the run, degrees.
-    settled : bool
-        The tilt moved by less than ``settle_tolerance`` over the last chunk.
-    t_end : float
-        Time integrated.
+        Time after which the tilt stays within :data:`BAND` degrees of ``end_tilt``; None if
+        the run did not settle before ``t_max``.
     min_normal_force : float
         Smallest normal force along the run (units ``A0 Omega^2 / R``; equilibrium value
         ``mu fr_inv``).
-    max_tilt : float
-        Largest tilt along the run, degrees.
     reason : str
         Why ``crossing_time`` or ``settle_time`` is None ("" when both are found).
     attrs : dict
@@ -104,11 +98,7 @@ class FlipRun:
 
     crossing_time: float | None
     settle_time: float | None
-    end_tilt: float
-    settled: bool
-    t_end: float
     min_normal_force: float
-    max_tilt: float
     reason: str
     attrs: dict
 
@@ -120,10 +110,6 @@ def run_launch(
     crossing: float = 90.0,
     stop_at_crossing: bool = False,
     t_max: float = 2e5,
-    chunk: float = 500.0,
-    dt: float = 0.25,
-    band: float = 1.0,
-    settle_tolerance: float = 1e-3,
     end_tilt: float | None = None,
     rtol: float = 1e-10,
     start: dict[str, Any] | None = None,
@@ -132,10 +118,10 @@ def run_launch(
     """Integrate the launch state (module docstring) of a sliding top with the nondimensional
     ``params`` (``q, fr_inv, sigma, mu, alpha_v`` [, ``alpha_k``]) and locate its events.
 
-    The run goes in chunks of ``chunk`` time units (output every ``dt``) until the tilt has
-    moved by less than ``settle_tolerance`` degrees over a chunk, or ``t_max``, or (with
-    ``stop_at_crossing``) the crossing, or (with ``end_tilt``) a whole chunk within half
-    ``band`` of ``end_tilt``; after the crossing at ``rtol`` no tighter than :data:`TAIL_RTOL`.
+    The run goes in chunks of 500 time units (output every 0.25) until the tilt has moved by
+    less than 1e-3 degree over a chunk, or ``t_max``, or (with ``stop_at_crossing``) the
+    crossing, or (with ``end_tilt``) a whole chunk within half :data:`BAND` of ``end_tilt``;
+    after the crossing at ``rtol`` no tighter than :data:`TAIL_RTOL`.
     ``end_tilt`` (the predicted end, e.g. from
     :func:`stability.final_state`) sets the band of the settle time; without it, the run's last
     tilt does. ``start`` (``omega``, ``k``, ``velocity`` as :func:`stability.simulate` takes
@@ -168,7 +154,9 @@ def run_launch(
 
     # after the crossing, the tail (settle time, normal force) at rtol 1e-8 at most: its
     # numbers are read to the 1-degree band and the output step, not to 1e-10
-    steps = dict(chunk=chunk, t_max=t_max, samples=lambda length: max(2, math.ceil(length / dt)), stick_tilt=stick_tilt)
+    steps = dict(
+        chunk=500.0, t_max=t_max, samples=lambda length: max(2, math.ceil(length / 0.25)), stick_tilt=stick_tilt
+    )
     tolerance = dict(rtol=lambda: rtol if crossed is None else max(rtol, TAIL_RTOL))
     for t, length, ds in run_in_chunks(state, params, **steps, **tolerance):
         attrs, pol, ts = dict(ds.attrs), ds.polar_angle.values, ds.time.values
@@ -195,8 +183,8 @@ def run_launch(
         if stop_at_crossing and crossed is not None:
             break
         # settled: the tilt moved less than settle_tolerance, or a whole chunk within half the band of the predicted end
-        settled = float(np.max(pol) - np.min(pol)) < settle_tolerance or (
-            end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * band
+        settled = float(np.max(pol) - np.min(pol)) < 1e-3 or (
+            end_tilt is not None and float(np.max(np.abs(pol - end_tilt))) < 0.5 * BAND
         )
         if settled:
             break
@@ -207,19 +195,19 @@ def run_launch(
         largest = f"largest tilt {float(np.max(pp)):.4g} degrees in {t:.6g} time units"
         reasons.append(f"the axis never reaches {crossing:g} degrees ({largest})")
     settle_t: float | None = None
-    out = np.nonzero(np.abs(pp - end) > band)[0]
+    out = np.nonzero(np.abs(pp - end) > BAND)[0]
     if settled and out.size == 0:
         settle_t = 0.0
     elif settled and out[-1] + 1 < tt.size:  # linear interpolation of |tilt - end| = band between two outputs
         i = int(out[-1])
-        a, b = abs(pp[i] - end) - band, abs(pp[i + 1] - end) - band
+        a, b = abs(pp[i] - end) - BAND, abs(pp[i + 1] - end) - BAND
         settle_t = float(tt[i] + a / (a - b) * (tt[i + 1] - tt[i]))
     elif settled:
         reasons.append("the tilt is not yet within the band at the end of the run")
     elif not stop_at_crossing and not event_note:
         periods = f"{t_max / (2 * math.pi):.6g} spin periods"
         reasons.append(f"the tilt did not settle within t_max = {t_max:g} time units ({periods})")
-    return FlipRun(crossed, settle_t, float(pp[-1]), settled, t, n_min, float(np.max(pp)), "; ".join(reasons), attrs)
+    return FlipRun(crossed, settle_t, n_min, "; ".join(reasons), attrs)
 
 
 def flip_time(

@@ -252,8 +252,10 @@ def launch(
     if settle is None:
         reasons["settle_time"] = f"the end is not decided: {fs.reason}" if fs.kind == "unsettled" else run.reason
     ev, a = str(run.attrs.get("event", "none")), run.attrs
-    on_stick = stick_spin = stick_critical = None
+    event: dict[str, Any] = {}  # the event's fields of Launch (none: their defaults)
     after = f"{a.get('event_tilt', math.nan):.4g} degrees after {a.get('event_time', math.nan) / w:.3g} s"
+    if ev != "none":
+        event = dict(event=ev, event_time=float(a["event_time"]) / w, event_tilt=float(a["event_tilt"]))
     if ev == "stick_contact":
         # a top that reaches its stick spinning faster than the critical spin of the top on its stick
         # (stability.critical_spin of Top.on_stick, upright) spins on, else falls back; the spin about
@@ -261,6 +263,7 @@ def launch(
         stick_spin = abs(a["event_spin"]) * w
         stick_critical = float(critical_spin(top.on_stick(), "sliding", "upright", alpha_v=nd["alpha_v"]).spin)
         on_stick = "spins" if stick_spin > stick_critical else "falls_back"
+        event.update(on_stick=on_stick, stick_spin=stick_spin, stick_critical_spin=stick_critical)
         how = "spins on its stick" if on_stick == "spins" else "falls back"
         side = "above" if on_stick == "spins" else "below"
         reasons["end"] = (
@@ -287,11 +290,6 @@ def launch(
         min_normal_force_nd=run.min_normal_force,
         parameters={k: params[k] for k in ("q", "mu", "sigma", "fr_inv", "alpha_v", "alpha_k") if k in params},
         alpha_v_source=source,
-        event=ev,
-        event_time=float(a["event_time"]) / w if ev != "none" else None,
-        event_tilt=float(a["event_tilt"]) if ev != "none" else None,
-        on_stick=on_stick,
-        stick_spin=stick_spin,
-        stick_critical_spin=stick_critical,
         reasons=reasons,
+        **event,
     )

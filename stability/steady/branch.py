@@ -56,10 +56,8 @@ from ..nonlinear.kernels import CODES
 from ..parameters import DEFAULT_MU, check_flag, check_interval, check_positive
 from . import branch_compiled as kernels
 from . import family
-from .linearisation import state_modes
 from .products import check_scales, product_attrs, sliding_parameters, state_variables, variable
-from .states import state_integrals
-from .verdicts import flag_of
+from .states import state_values
 
 #: branches of at least this many points (``~pi / max_step``) run the compiled step by default;
 #: fewer run the engine's Python path on the interpreted residual (stability.execution's rule;
@@ -110,34 +108,27 @@ class SteadyBranchProblem:
         self.kernels = kernels if compiled else python(kernels)
         self.params, self.p, self.q = dict(params), p, params["q"]
         self.code, self.n_full = CODES[m.name], len(m.state)
+        #: the residual's model arguments (:mod:`stability.steady.branch_compiled`)
+        self.model = (p, self.q, self.code, self.n_full)
         self.degenerate = params["fr_inv"] == 0.0 or params["q"] == 0.0
-        #: the scale of lam^2 on the family, mu fr_inv |q| (the residual is relative to it)
-        self.weight = kernels.residual_weight(params["q"], params["fr_inv"], params["mu"], self.degenerate)
+        #: the scale of lam^2 on the family, mu fr_inv |q| (lam^2 P(c) = mu fr_inv q, S3; 0 if degenerate):
+        #: what branch_compiled.residual_and_jacobian divides by
+        self.weight = 0.0 if self.degenerate else params["mu"] * params["fr_inv"] * abs(params["q"])
         self.jellett_max, self.jellett_min = math.inf, 0.0  # the cuts of J, set by steady_branch
         self.constraint_names = ("upright", "inverted", "jellett_max") + (("jellett_min",) if self.degenerate else ())
         self._last: tuple[tuple[float, float], tuple[float, np.ndarray]] | None = None
         #: the compiled step's arguments that stay (the cuts of J are set after construction)
-        self._step_head = (
-            p,
-            self.q,
-            params["sigma"],
-            params["mu"],
-            self.code,
-            self.n_full,
-            self.degenerate,
-            self.weight,
-        )
+        sigma, mu = params["sigma"], params["mu"]
+        self._step_head = (p, self.q, sigma, mu, self.code, self.n_full, self.degenerate, self.weight)
 
     # --- the residual -------------------------------------------------------------------
     def divided_residual(self, theta: float, lam: float) -> float:
         """``(F . e_2) / sin(theta)`` (unscaled), at ``theta = 0`` the limit."""
-        return self.kernels.divided(float(theta), float(lam), self.p, self.q, self.code, self.n_full)[0]
+        return self.kernels.divided(float(theta), float(lam), *self.model)[0]
 
     def residual_and_jacobian(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``R`` (1,) and ``dR/d(theta, log lam)`` (1, 2)."""
-        r, rt, rl = self.kernels.residual_and_jacobian(
-            float(u[0]), float(u[1]), self.p, self.q, self.code, self.n_full, self.weight
-        )
+        r, rt, rl = self.kernels.residual_and_jacobian(float(u[0]), float(u[1]), *self.model, self.weight)
         return np.array([r]), np.array([[rt, rl]])
 
     def residual(self, u: np.ndarray) -> np.ndarray:
@@ -195,9 +186,7 @@ class SteadyBranchProblem:
             return None
         lam = math.sqrt(-b / a)
         for _ in range(20):
-            _, _, rl = self.kernels.residual_and_jacobian(
-                theta, math.log(lam), self.p, self.q, self.code, self.n_full, w
-            )
+            _, _, rl = self.kernels.residual_and_jacobian(theta, math.log(lam), *self.model, w)
             r = self.divided_residual(theta, lam)
             step = r / (rl / lam * (lam * lam + w))
             lam -= step
@@ -313,11 +302,11 @@ def steady_branch(
     if prob.degenerate:
         theta0 = prob.degenerate_tilt()
         if theta0 is None:
-            return _empty(
-                attrs,
+            note = (
                 "no tilted steady state: with fr_inv = 0 or q = 0 the family is one tilt at every "
-                "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)",
+                "J, and here there is none (or every tilt is steady: q = 0, sigma = 1 - mu q^2)"
             )
+            return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
         j_unit = abs(prob.jellett(np.array([theta0, 0.0]))[0])  # J is linear in lam: J(lam = 1)
         jmax = 10.0 * abs(family.upright_jellett(q=q, sigma=sigma)) if jmax is None else jmax
         prob.jellett_max, prob.jellett_min = jmax, jmax / 1000.0
@@ -334,7 +323,8 @@ def steady_branch(
         if lam_b is None:
             lam_b = prob.branch_point(start := "inverted")
         if lam_b is None:
-            return _empty(attrs, "the tilted family reaches neither vertical state (it does not exist here)")
+            note = "the tilted family reaches neither vertical state (it does not exist here)"
+            return points_dataset(prob, np.zeros((0, 2)), [], [], dict(attrs, note=note))
         theta_b, t0 = (0.0, 1.0) if start == "upright" else (math.pi, -1.0)
         j_b = abs(prob.jellett(np.array([theta_b, math.log(lam_b)]))[0])
         if jmax is not None and not jmax > j_b:
@@ -389,53 +379,33 @@ def steady_branch(
     return points_dataset(prob, pts, kinds, details, attrs)
 
 
-def _empty(attrs: dict[str, Any], note: str) -> xr.Dataset:
-    attrs = dict(attrs, note=note)
-    return points_dataset(None, np.zeros((0, 2)), [], [], attrs)
-
-
 def points_dataset(
-    prob: SteadyBranchProblem | None, pts: np.ndarray, kinds: list[str], details: list[str], attrs: dict[str, Any]
+    prob: SteadyBranchProblem, pts: np.ndarray, kinds: list[str], details: list[str], attrs: dict[str, Any]
 ) -> xr.Dataset:
     """Spectra, flags and the Dataset of points ``(theta, log lam)`` of the family (traced, or
     solved otherwise, e.g. by the benchmark's baseline), with their kinds and details."""
-    n = len(pts)
     theta, lam = pts[:, 0], np.exp(pts[:, 1])
-    c = np.cos(theta)
+    q, sigma = prob.params["q"], prob.params["sigma"]
     vertical = np.array([k == "branch_point" and d.endswith("spin") for k, d in zip(kinds, details)], dtype=bool)
-    growth, bound = np.full(n, np.nan), np.full(n, np.nan)
-    n_neutral, jac, flags = (np.zeros(n, dtype=np.int8) for _ in range(3))
-    J, E, axial = np.zeros(n), np.zeros(n), np.zeros(n)
-    if n:
-        pr = prob.params
-        q, sigma, fr_inv, alpha_v, mu = (pr[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
-        c = np.where(vertical, np.sign(c), c)
-        y = family.state_vector(theta, lam, q)
-        for i in np.nonzero(vertical)[0]:  # the branch point is the vertical state of spin omega . K = lam (1 + q c)
-            y[i] = family.vertical_state("upright" if c[i] > 0 else "inverted", family.omega_vertical(c[i], lam[i], q))
-        spins = family.omega_vertical(c, lam, q)
-        ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, c, spins, prob.p, pr)
-        J, E = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-        axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
-        for i in range(n):
-            kind = ("upright" if c[i] > 0 else "inverted") if vertical[i] else "tilted"
-            t, s = family.energy_test(kind, float(c[i]), float(J[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
-            flags[i] = flag_of(kind, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(jac[i]))
-        for i in range(1, n):  # a change of flag that is no fold or branch point (never expected)
-            if flags[i] != flags[i - 1] and kinds[i] == "regular" and kinds[i - 1] == "regular":
-                kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
-    j_upright = family.upright_jellett(q=attrs.get("q", 0.0), sigma=attrs.get("sigma", 1.0))
-    values = dict(tilt=np.degrees(theta), precession_rate=lam, axial_spin=axial, energy=E, jellett=J)
-    values.update(growth_rate=growth, growth_rate_bound=bound, n_neutral=np.asarray(n_neutral, dtype=np.int8))
-    values.update(stability=flags, stability_jacobian=np.asarray(jac, dtype=np.int8))
+    c = np.where(vertical, np.sign(np.cos(theta)), np.cos(theta))
+    states = [("upright" if c[i] > 0 else "inverted") if vertical[i] else "tilted" for i in range(len(pts))]
+    # a branch point is the vertical state of spin omega . K = lam (1 + q c)
+    _, _, values = state_values(states, theta, lam, family.omega_vertical(c, lam, q), prob.p, prob.params)
+    for i in range(1, len(pts)):  # a change of flag that is no fold or branch point (never expected)
+        if values["stability"][i] != values["stability"][i - 1] and kinds[i] == kinds[i - 1] == "regular":
+            kinds[i], details[i] = "stability_change", "the flag changes away from a fold or branch point"
+    values.update(tilt=np.degrees(theta), precession_rate=lam)
     note = "at a branch point: spin / (1 + q cos(tilt))"
     kind_attrs = {"long_name": "kind of point", "comment": "branch_point, fold, stability_change, end, or regular"}
     equivalent = "spin of the upright state with the same J, J / (sigma (1 + q))"
+    j_upright = family.upright_jellett(q=q, sigma=sigma)
     data = {
         **state_variables("point", values, "branch points", precession_rate=note),
-        "upright_equivalent_spin": variable("point", J / j_upright, equivalent, "Omega", short="upright-equiv. spin"),
+        "upright_equivalent_spin": variable(
+            "point", values["jellett"] / j_upright, equivalent, "Omega", short="upright-equiv. spin"
+        ),
         "kind": ("point", np.array(kinds, dtype=str), kind_attrs),
         "detail": ("point", np.array(details, dtype=str), {"long_name": "what the special point is"}),
     }
     index = {"long_name": "point", "comment": "index along the branch"}
-    return xr.Dataset(data, coords={"point": ("point", np.arange(n), index)}, attrs=attrs)
+    return xr.Dataset(data, coords={"point": ("point", np.arange(len(pts)), index)}, attrs=attrs)

@@ -37,7 +37,6 @@ __all__ = [
     "divided",
     "jellett",
     "residual_and_jacobian",
-    "residual_weight",
     "step",
 ]
 
@@ -72,7 +71,7 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
     """``R = divided / (lam^2 + weight)`` and ``dR/d(theta, ell)``, ``ell = log lam``.
 
     ``weight`` is the size of the gravity terms in units of ``lam^2``: ``mu fr_inv |q|``
-    (:func:`residual_weight`; ``0`` for degenerate parameters). The divided component is
+    (:attr:`stability.steady.branch.SteadyBranchProblem.weight`; ``0`` for degenerate parameters). The divided component is
     ``A(theta) lam^2 + weight b(theta)`` (quadratic in the rates on the no-slip manifold, the
     normal force's moment ``~ mu fr_inv q``), so ``R = (A lam_hat^2 + b) / (lam_hat^2 + 1)`` with
     ``lam_hat^2 = lam^2 / weight``: ``O(1)`` terms at every scale of ``mu fr_inv |q|`` (the
@@ -102,12 +101,6 @@ def residual_and_jacobian(theta, ell, p, q, code, n_full, weight):
         )
     sc = lam * lam + weight
     return r / sc, r_t / sc, lam * (r_l / sc - r * 2.0 * lam / (sc * sc))
-
-
-def residual_weight(q, fr_inv, mu, degenerate):
-    """``mu fr_inv |q|`` (``0`` if ``degenerate``): the scale of ``lam^2`` on the family
-    (``lam^2 P(c) = mu fr_inv q``, S3) that :func:`residual_and_jacobian` divides by."""
-    return 0.0 if degenerate else mu * fr_inv * abs(q)
 
 
 @njit(**_JIT)
@@ -143,35 +136,15 @@ def _residual_into(p, q, code, n_full, weight, u, jacobian, F, J):
 
 
 @njit(**_JIT)
-def step(
-    p,
-    q,
-    sigma,
-    mu,
-    code,
-    n_full,
-    degenerate,
-    weight,
-    jmax,
-    jmin,
-    guess,
-    t_plane,
-    anchor,
-    h,
-    scale,
-    tol,
-    max_iter,
-    max_move,
-):
+def step(p, q, sigma, mu, code, n_full, degenerate, weight, jmax, jmin, *corrector):
     """The engine's ``compiled_step`` (:mod:`continuation.problem`) for the steady branch:
     ``(ok, iterations, n_rj, n_r, v, J, tangent_ok, t, det, g, tests)``, with ``g`` the
     constraints and ``tests = [d(log |J|)/ds]`` at ``u = v * scale`` (unit tangent in ``u``)."""
-    r = corrector_step(
-        _residual_into, (p, q, code, n_full, weight), guess, t_plane, anchor, h, scale, tol, max_iter, max_move
-    )
+    r = corrector_step(_residual_into, (p, q, code, n_full, weight), *corrector)
     tests = np.empty(1)
     if not r[0]:
         return (*r, np.empty(0), tests)
+    scale = corrector[4]  # (guess, t_plane, anchor, h, scale, tol, max_iter, max_move)
     u = r[4] * scale
     jel, jt, jl = jellett(u[0], u[1], q, sigma, mu)
     g = constraint_values(u[0], jel, jmax, jmin, degenerate)

@@ -130,10 +130,9 @@ def coulomb_end(
         f"(hybrid run to t = {run['t_end']:.6g})"
     )
     jel = float(j[-1])
-    common = dict(
-        method="simulation", jellett=float(j[0]), initial_energy=float(ds.energy[0]), precession_rate=math.nan
-    )
-    common.update(axial_spin=run["axial_spin"], state=None, parameters=dict(params, alpha_k=float(a["alpha_k"])))
+    # (no steady state: precession_rate NaN and state None, FinalState's defaults)
+    common = dict(method="simulation", jellett=float(j[0]), initial_energy=float(ds.energy[0]))
+    common.update(axial_spin=run["axial_spin"], parameters=dict(params, alpha_k=float(a["alpha_k"])))
     common.update(initial_tilt=float(ds.polar_angle[0]), contact="lost" if run["event"] == "contact_lost" else "held")
     if run["event"] != "none" or not sticks:  # no rolling end: the run's last sample
         kind, end, event = "unsettled", f"still slipping at t_max = {t_max:g}", {}

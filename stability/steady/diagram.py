@@ -176,10 +176,9 @@ def bifurcation_diagram(
         "settled": ("the run settled (tilt moved < 1e-3 deg per chunk)", None, np.int8),
         "paper_run": ("the paper's Fr^-1 = 0.3 run of Sec. 3(ii) (printed initial state, clockwise)", None, np.int8),
     }
-    attrs_of = {name: {"long_name": long} | ({"units": u} if u else {}) for name, (long, u, _) in columns.items()}
     data = {
-        name: ("run", arr[:, i].astype(dt or float), attrs_of[name])
-        for i, (name, (_, _, dt)) in enumerate(columns.items())
+        name: ("run", arr[:, i].astype(dt or float), {"long_name": long} | ({"units": u} if u else {}))
+        for i, (name, (long, u, dt)) in enumerate(columns.items())
     }
     runs_ds = xr.Dataset(data, coords={"run": ("run", np.arange(len(rows)))})
     place = dict(spin_unit=unit, reference_spin=ref, radius_m=top.radius, mass_kg=top.mass)
@@ -190,11 +189,8 @@ def bifurcation_diagram(
         branch.attrs.update(stick_tilt=stick_tilt, stick_part=stick_part)
         beyond = "the state's tilt is at or beyond the stick's: a state the toy cannot have"
         branch["beyond_stick"] = ("point", (branch.tilt.values >= stick_tilt).astype(np.int8), {"long_name": beyond})
-        runs_ds["reaches_stick"] = (
-            "run",
-            np.isfinite(arr[:, 7]).astype(np.int8),
-            {"long_name": "the run reaches the stick"},
-        )
+        reaches = {"long_name": "the run reaches the stick"}
+        runs_ds["reaches_stick"] = ("run", np.isfinite(arr[:, 7]).astype(np.int8), reaches)
         when = {"long_name": "time at which the run reaches the stick", "units": "1/Omega of the launch spin"}
         runs_ds["stick_time"] = ("run", arr[:, 7], when)
     for ds in (vertical, runs_ds):

@@ -45,7 +45,7 @@ from ..parameters import DEFAULT_MU, as_parameter, check_flag, check_interval, c
 from ..products import FLAG_NAMES, STABLE, UNSTABLE
 from . import family
 from .products import DEGREE, check_scales, flag_attrs, potential_curve, product_attrs, sliding_parameters, var_attrs
-from .states import level_modes, point_integrals
+from .states import level_spins, point_integrals, state_values
 from .verdicts import flag_of
 
 __all__ = ["Candidate", "FinalState", "SettleRun", "candidates", "chunk_length", "final_state", "predict", "settle"]
@@ -294,27 +294,6 @@ def predict(
     return None, reason, cands
 
 
-def start_note(
-    cands: tuple[Candidate, ...], initial_energy: float, initial_tilt: float, jellett: float, gravity: float
-) -> str:
-    """``"; the start is itself ..."`` if the initial state is one of the level's steady states,
-    else ``""``.
-
-    ``E >= U_J(c)`` for every state of axis height ``c`` on the level ``J``, with equality
-    exactly at the steady state of that ``c`` (S5-S7): a start whose energy equals the
-    candidate's at its own tilt (within :data:`ENERGY_REL_TOL` of the terms) is that steady
-    state, where the top stays forever; the prediction is then where any perturbation of it
-    leads (an unstable start) or the start itself."""
-    tol = ENERGY_REL_TOL * (abs(initial_energy) + jellett * jellett + gravity)
-    for c in cands:
-        if abs(c.tilt - initial_tilt) <= 1e-6 and abs(c.energy - initial_energy) <= tol:
-            note = f"; the start is itself a steady state (the {c.kind} one, {FLAG_NAMES[c.stability]})"
-            if c.stability == UNSTABLE:
-                return note + ", where the top stays forever: the end given is where any perturbation of it leads"
-            return note + ": the top stays there"
-    return ""
-
-
 def final_state(
     model: str = "sliding",
     *,
@@ -430,10 +409,22 @@ def final_state(
     check_scales(params, J0)
     tilt0 = math.degrees(math.acos(min(1.0, max(-1.0, float(y[5])))))
     end, reason, cands = predict(J0, E0, **params)
-    reason += start_note(cands, E0, tilt0, J0, mu * fr_inv)
+    # E >= U_J(c) on the level, with equality exactly at the steady state of that c (S5-S7): a start
+    # whose energy is its candidate's at its own tilt is that steady state, where the top stays
+    tol = ENERGY_REL_TOL * (abs(E0) + J0 * J0 + mu * fr_inv)
+    for c in cands:
+        if abs(c.tilt - tilt0) <= 1e-6 and abs(c.energy - E0) <= tol:
+            reason += f"; the start is itself a steady state (the {c.kind} one, {FLAG_NAMES[c.stability]})"
+            stays = ", where the top stays forever: the end given is where any perturbation of it leads"
+            reason += stays if c.stability == UNSTABLE else ": the top stays there"
+            break
     common = dict(jellett=J0, initial_energy=E0, candidates=cands, parameters=params, initial_tilt=tilt0)
     # fr_inv = 0 (no gravity): N = 0 at equilibrium, its sign says nothing (simulate does not watch it)
-    n0 = initial_normal_force(y, params) if fr_inv > 0.0 else math.nan
+    # (the sliding model's vertical equation, one 6 x 6 solve: interpreted unless in memory)
+    n0, start = math.nan, np.zeros((1, 10))
+    if fr_inv > 0.0:
+        start[0, :8] = np.asarray(y, dtype=np.float64)[:8]
+        n0 = float(pick(get_nonlinear_model("sliding").contact_forces, 1)(start, pack(**params))[0, 2])
     if n0 <= 0.0:  # the sphere leaves the floor at once: no end state of the model
         why = f"but the normal force is N = {n0:.6g} <= 0 at the start: the sphere leaves the floor at once"
         lost = dict(kind="contact_lost", event="contact_lost", event_time=0.0, contact="lost", method="jellett")
@@ -492,24 +483,15 @@ def final_state(
     return FinalState(**outcome, reason=f"{reason}; a run decided: {what}", **common)
 
 
-def initial_normal_force(y: np.ndarray, params: dict[str, float]) -> float:
-    """The normal force at the state ``y`` (omega, k, V0_h): the sliding model's own vertical
-    equation (:func:`stability.nonlinear.sliding.contact_forces`), one 6 x 6 solve (interpreted
-    unless compiled code is in memory: :func:`stability.execution.pick`)."""
-    state = np.zeros((1, 10))
-    state[0, :8] = np.asarray(y, dtype=np.float64)[:8]
-    forces = pick(get_nonlinear_model("sliding").contact_forces, 1)  # one state: interpreted unless in memory
-    return float(forces(state, pack(**params))[0, 2])
-
-
 def chunk_length(cands: tuple[Candidate, ...], params: dict[str, float], jel: float) -> float:
     """About ``8 / |g|``, ``g`` the slowest decay rate of the reachable candidates that are not
     unstable (0.01 degree after the transit), within ``[500, 5e4]``; 2000 if none decays."""
     sel = [c for c in cands if c.reachable and c.stability != UNSTABLE]
     if not sel:
         return 2000.0
-    states = [c.kind for c in sel], [math.radians(c.tilt) for c in sel], [c.precession_rate for c in sel]
-    g = float(np.max(level_modes(*states, jel, pack(**params), params)[3][1]))
+    kinds, theta, lam = [c.kind for c in sel], [math.radians(c.tilt) for c in sel], [c.precession_rate for c in sel]
+    _, _, values = state_values(kinds, theta, lam, level_spins(kinds, jel, params), pack(**params), params)
+    g = float(np.max(values["growth_rate"]))
     return float(np.clip(8.0 / abs(g), 500.0, 5e4)) if g < 0 else 2000.0
 
 
@@ -521,17 +503,16 @@ def settle(
     t_max: float,
     settle_tolerance: float,
     rtol: float,
-    samples: int = 20,
     stick_tilt: float | None = None,
 ) -> tuple[float, float, SettleRun]:
     """Integrate :func:`stability.simulate` in chunks of ``chunk`` time units from ``y0`` until the
     tilt moves by less than ``settle_tolerance`` degrees over a chunk and ``|V_c| < 1e-6``, or
-    ``t_max`` (or a failed integration: then unsettled, tilt NaN), or an event (contact lost, the
+    ``t_max`` (or a failed integration: then unsettled, tilt NaN; 20 samples a chunk), or an event (contact lost, the
     stick at ``stick_tilt`` degrees reached). Returns the end tilt (degrees), the end energy and
     the :class:`SettleRun`."""
     n, t0, j0, event, settled = 0, time.perf_counter(), None, "none", False
     state = dict(omega=y0[0:3], k=y0[3:6], velocity=y0[6:8])
-    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=samples, rtol=rtol, stick_tilt=stick_tilt)
+    chunks = run_in_chunks(state, params, chunk=chunk, t_max=t_max, samples=20, rtol=rtol, stick_tilt=stick_tilt)
     for t, length, ds in chunks:
         n, t = n + 1, t + length
         j0 = float(ds.h_cg[0]) if j0 is None else j0

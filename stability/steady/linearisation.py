@@ -272,10 +272,6 @@ def state_modes(
         s = sp.eigenvalues * n
         pair = np.concatenate([s, np.conj(s)])  # the real state space carries each mode with conj(s)
         ev[i] = pair[np.argsort(-pair.real, kind="stable")]
-        bound[i], n_neutral[i], verdict[i] = (
-            float(sp.error_bound[0]) * n,
-            2 * int(np.sum(sp.neutral)),
-            int(sp.stability),
-        )
-        growth[i] = ev[i, 0].real
+        bound[i], growth[i] = float(sp.error_bound[0]) * n, ev[i, 0].real
+        n_neutral[i], verdict[i] = 2 * int(np.sum(sp.neutral)), int(sp.stability)
     return ev, growth, bound, n_neutral, verdict

@@ -109,10 +109,8 @@ def check_scales(params: dict[str, float], jellett: float | None = None, *, jell
     why = f"q = {q:.6g}, {gravity}; the scale of the precession rate squared on the tilted family; {below}"
     checks.append(("mu fr_inv |q|", mu * fr_inv * abs(q), "q" if abs(q) < 1e-3 else "fr_inv", why))
     if jellett is not None:
-        j, vertical = (
-            jellett_name,
-            f"{jellett_name} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states",
-        )
+        j = jellett_name
+        vertical = f"{j} = {jellett:.6g}, sigma = {sigma:.6g}; the spin of the vertical states"
         checks += [(f"|{j}|", abs(jellett), j, ""), (f"|{j}| / sigma", abs(jellett) / sigma, j, vertical)]
     for label, value, name, why in checks:
         if value != 0.0 and not lo <= value <= hi:

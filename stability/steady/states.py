@@ -38,7 +38,7 @@ from .products import (
 )
 from .verdicts import flag_of
 
-__all__ = ["level_modes", "point_integrals", "state_integrals", "steady_states"]
+__all__ = ["level_spins", "point_integrals", "state_integrals", "state_values", "steady_states"]
 
 
 @register_jitable
@@ -81,22 +81,45 @@ def state_integrals(
     return pick(_integrals, y.shape[0])(y, float(q), float(sigma), float(fr_inv), float(mu))
 
 
-def level_modes(
-    kinds: list[str], theta: Any, lam: Any, jellett: float, p: np.ndarray, params: dict[str, float]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple]:
-    """The states ``(omega, k, V0_h)`` of steady states of the level ``J`` given by kind, tilt
-    (radians) and precession rate (of the tilted ones; a vertical one spins at
-    :func:`~stability.steady.family.vertical_spin`), their spins (NaN: tilted), which are
-    vertical, and their modes (:func:`~stability.steady.linearisation.state_modes`)."""
-    q, sigma = params["q"], params["sigma"]
-    vertical = np.array([k != "tilted" for k in kinds])
-    spins = np.array(
-        [family.vertical_spin(k, jellett, q=q, sigma=sigma) if v else math.nan for k, v in zip(kinds, vertical)]
-    )
-    rows = zip(kinds, vertical, spins, theta, lam)
-    y = np.array([family.vertical_state(k, n) if v else family.state_vector(t, la, q) for k, v, n, t, la in rows])
+def state_values(
+    kinds: list[str], theta: Any, lam: Any, spins: Any, p: np.ndarray, params: dict[str, float], tests: Any = None
+) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """The states ``(omega, k, V0_h)`` of steady states given by kind (``"upright"``,
+    ``"inverted"``, ``"tilted"``), tilt (radians), precession rate (of the tilted ones) and spin
+    (of the vertical ones), their eigenvalues (:func:`~stability.steady.linearisation.state_modes`)
+    and the values of :data:`~stability.steady.products.STATE_VARIABLES` but the tilt and the
+    precession rate, with the flags (:func:`~stability.steady.verdicts.flag_of`; the energy
+    criterion ``tests = (tests, scales)`` if given, else :func:`~stability.steady.family.energy_test`
+    at each state's own ``J``): what :func:`steady_states` and
+    :func:`stability.steady_branch` report."""
+    q, sigma, fr_inv, alpha_v, mu = (params[k] for k in ("q", "sigma", "fr_inv", "alpha_v", "mu"))
+    vertical = np.array([k != "tilted" for k in kinds], dtype=bool)
+    y = family.state_vector(theta, lam, q)
+    for i in np.nonzero(vertical)[0]:
+        y[i] = family.vertical_state(kinds[i], spins[i])
     cosines = np.array([family.ORIENTATIONS.get(k, math.nan) for k in kinds])
-    return y, spins, vertical, state_modes(y, np.where(vertical, 0.0, lam), vertical, cosines, spins, p, params)
+    ev, growth, bound, n_neutral, jac = state_modes(y, lam, vertical, cosines, spins, p, params)  # lam: tilted only
+    jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    if tests is None:  # the energy criterion at each state's own J
+        c = np.cos(theta)
+        rows = [
+            family.energy_test(k, float(c[i]), float(jel[i]), q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+            for i, k in enumerate(kinds)
+        ]
+        tests = np.reshape(rows, (-1, 2)).T
+    verdicts = zip(kinds, *tests, jac)
+    flags = [flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v)) for k, t, s, v in verdicts]
+    axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
+    values = dict(axial_spin=axial, energy=energy, jellett=jel, growth_rate=growth, growth_rate_bound=bound)
+    values.update(n_neutral=n_neutral.astype(np.int8), stability=np.array(flags, dtype=np.int8), stability_jacobian=jac)
+    return y, ev, values
+
+
+def level_spins(kinds: list[str], jellett: float, params: dict[str, float]) -> np.ndarray:
+    """The spins of the vertical states among ``kinds`` on the level ``J``
+    (:func:`~stability.steady.family.vertical_spin`; NaN for the tilted ones)."""
+    q, sigma = params["q"], params["sigma"]
+    return np.array([math.nan if k == "tilted" else family.vertical_spin(k, jellett, q=q, sigma=sigma) for k in kinds])
 
 
 def steady_states(
@@ -160,17 +183,12 @@ def steady_states(
     kinds = ["upright"] + ["tilted"] * (n - 2) + ["inverted"]
     cosines, tests, scales, lam = table[:, 0], table[:, 2], table[:, 3], table[:, 4]
     theta = [math.acos(c) for c in cosines]
-    y, spin, vertical, (ev, growth, bound, n_neutral, jac) = level_modes(kinds, theta, lam, J, p, params)
-    verdicts = zip(kinds, tests, scales, jac)
-    flags = [flag_of(k, t, s, q=q, fr_inv=fr_inv, alpha_v=alpha_v, jacobian_verdict=int(v)) for k, t, s, v in verdicts]
-    jel, energy = state_integrals(y, q=q, sigma=sigma, fr_inv=fr_inv, mu=mu)
+    spin = level_spins(kinds, J, params)
+    y, ev, values = state_values(kinds, theta, lam, spin, p, params, (tests, scales))
+    vertical = np.array([k != "tilted" for k in kinds])
     with np.errstate(divide="ignore", invalid="ignore"):
         point = family.equivalent_point(cosines, spin, q=q, fr_inv=fr_inv, alpha_v=alpha_v)
-    tilt = np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0)))
-    axial = np.einsum("ij,ij->i", y[:, 0:3], y[:, 3:6])
-    values = dict(tilt=tilt, precession_rate=lam, axial_spin=axial, energy=energy, jellett=jel, growth_rate=growth)
-    values.update(growth_rate_bound=bound, n_neutral=n_neutral.astype(np.int8), stability_jacobian=jac)
-    values["stability"] = np.array(flags, dtype=np.int8)
+    values.update(tilt=np.degrees(np.arccos(np.clip(cosines, -1.0, 1.0))), precession_rate=lam)
     kind = "upright, inverted or tilted"
     test = "energy criterion: -U_J'(1) (upright), U_J'(-1) (inverted), U_J'' (tilted); > 0 at a minimum"
     note = "NaN for the vertical states; units of the spin rate Omega (simulate's time unit 1/Omega)"
