@@ -22,7 +22,7 @@ The bounds are one table, :data:`DOMAIN` (one row per bound: the parameter a vio
 reported for, the parameters involved, strict or not, the text, how a message explains it),
 whose sides are computed by :func:`domain_sides` (plain arithmetic registered with numba's
 ``register_jitable``: Python floats, numpy arrays, compiled kernels). From it derive the test
-of a point (:func:`bound_holds`; :func:`check_domain` and :func:`domain_mask` on arrays, the
+of a point (:func:`bound_holds`; :func:`check_domain` on arrays (its ``mask=True``), the
 spectral kernel compiled, :func:`inside_domain`), the signed margins ``upper - lower``
 (``>= 0`` inside) that the neutral curves' continuation uses as constraints, and the messages.
 
@@ -91,7 +91,6 @@ __all__ = [
     "check_range",
     "domain_applies",
     "domain_clearly_inside",
-    "domain_mask",
     "domain_range",
     "domain_sides",
     "domain_sides_quick",
@@ -453,7 +452,7 @@ def _expansion_value(e: tuple[float, ...]) -> Any:
 
 #: The physical domain, one row per bound, in the order a violation is reported. Row ``k``
 #: compares the sides ``domain_sides(...)[2 k]`` (lower) and ``[2 k + 1]`` (upper): the test of
-#: a point (:func:`bound_holds`: numpy arrays in :func:`check_domain` and :func:`domain_mask`,
+#: a point (:func:`bound_holds`: numpy arrays in :func:`check_domain` (also with ``mask=True``),
 #: compiled in the spectral kernel), the signed margins ``upper - lower`` (``>= 0`` inside) that
 #: the neutral curves' continuation uses as constraints, and the messages all come from here.
 DOMAIN: tuple[Bound, ...] = (
@@ -701,22 +700,6 @@ def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple[Any, ...]) -> 
     return msg
 
 
-def domain_mask(**params: Any) -> np.ndarray:
-    """Boolean mask of the points inside the physical domain (broadcast shape).
-
-    Parameters
-    ----------
-    **params
-        Any of q, fr_inv, sigma, alpha_v, alpha_k, mu (converted with :func:`as_parameter`).
-
-    Returns
-    -------
-    numpy.ndarray of bool
-        True where every bound holds.
-    """
-    return check_domain(mask=True, **params)[1]
-
-
 @register_jitable
 def outside_range(x: Any, lo: Any, hi: Any) -> Any:
     """Whether ``x`` (a float, an array, or a number in compiled code) lies outside the range
@@ -725,13 +708,6 @@ def outside_range(x: Any, lo: Any, hi: Any) -> Any:
     that it works elementwise."""
     m = abs(x)
     return (m > hi) | (m != m) | ((m < lo) & (x > 0))
-
-
-def outside_computable(name: str, value: Any) -> Any:
-    """Where ``value`` (a float or an array) lies outside ``name``'s :data:`COMPUTABLE_RANGE`
-    (:func:`outside_range`)."""
-    lo, hi = COMPUTABLE_RANGE[name]
-    return outside_range(value, lo, hi)
 
 
 def computable_range_text(name: str) -> str:
@@ -746,7 +722,7 @@ def _check_computable(p: Mapping[str, np.ndarray]) -> None:
         if name not in COMPUTABLE_RANGE:
             continue
         lo, hi = COMPUTABLE_RANGE[name]
-        bad = outside_computable(name, v)
+        bad = outside_range(v, lo, hi)
         if bad.any():
             val = float(v[bad].flat[0])
             v_text, edge = fmt_against(val, math.copysign(hi, val) if abs(val) > hi else lo)
@@ -888,7 +864,7 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
         if type(v) is int and not -(2**53) <= v <= 2**53:
             return None
         x = float(v)
-        if outside_computable(k, x):  # NaN too
+        if outside_range(x, *COMPUTABLE_RANGE[k]):  # NaN too
             return None
         vals[k] = x
     if not vals:
