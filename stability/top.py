@@ -57,13 +57,9 @@ OUNCE = 0.028349523125
 INCH = 0.0254
 
 #: the SI data of a top (the constructor's required fields, in order) and their units
-SI_UNITS: dict[str, str] = {
-    "mass": "kg",
-    "radius": "m",
-    "com_offset": "m",
-    "inertia_transverse": "kg m^2",
-    "inertia_axial": "kg m^2",
-}
+SI_UNITS: dict[str, str] = dict(
+    mass="kg", radius="m", com_offset="m", inertia_transverse="kg m^2", inertia_axial="kg m^2"
+)
 
 #: rad/s per unit of spin rate: the one table of spin units ("Hz" is rev/s)
 SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi, "Hz": 2.0 * math.pi}
