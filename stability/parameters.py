@@ -209,7 +209,7 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
             f"{name} = {_show(value)} is not a rectangular array; {name} must be a real number or an array of reals"
         ) from None
     if arr.dtype.kind == "O":
-        arr = _integers_as_floats(name, value, arr)
+        arr = _integers_as_floats(name, arr)
     if arr.dtype.kind not in "iuf":
         what = "holds complex numbers" if arr.dtype.kind == "c" else f"has dtype {arr.dtype}"
         raise ParameterTypeError(f"{name} = {_show(value)} {what}; {name} must be a real number or an array of reals")
@@ -245,10 +245,11 @@ def _integer_text(v: int) -> str:
     return f"{'-' if v < 0 else ''}1e+{digits - 1} (an integer of {digits} digits)"
 
 
-def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
+def _integers_as_floats(name: str, arr: np.ndarray) -> np.ndarray:
     """An object array of Python integers (numpy's dtype for integers beyond int64, also mixed
-    with floats) as floats;
-    a :class:`DomainError` naming the first integer too large for a double. Other object arrays
+    with floats) as floats (numpy's cast: ``float()`` of each);
+    a :class:`DomainError` naming the first integer too large for a double (``float()`` rounds
+    ``|v| >= 2**1024 - 2**970`` up to ``2**1024``: an overflow). Other object arrays
     are returned unchanged (their dtype is refused by the caller)."""
     items = arr.reshape(-1)
     if (
@@ -257,18 +258,14 @@ def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
         or not any(isinstance(v, numbers.Integral) for v in items)
     ):
         return arr
-    out = np.empty(arr.shape, dtype=np.float64)
-    flat = out.reshape(-1)
-    for i, v in enumerate(items):
-        try:
-            flat[i] = float(v)
-        except OverflowError:
-            raise DomainError(
-                f"{name} = {_integer_text(int(v))} is outside the computable range: "
-                f"{computable_range_text(name)} "
-                "(it does not even fit a double)"
-            ) from None
-    return out
+    try:
+        return arr.astype(np.float64)
+    except OverflowError:
+        v = next(int(v) for v in items if isinstance(v, numbers.Integral) and abs(int(v)) >= 2**1024 - 2**970)
+        raise DomainError(
+            f"{name} = {_integer_text(v)} is outside the computable range: {computable_range_text(name)} "
+            "(it does not even fit a double)"
+        ) from None
 
 
 def fmt_against(value: float, bound: float) -> tuple[str, str]:
@@ -659,17 +656,10 @@ _ABSENT = {"q": 0.0, "fr_inv": 0.0, "sigma": 1.0, "alpha_v": 0.0, "mu": 1.0, "al
 
 def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
     """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p`` (arrays of
-    one shape; a single point is evaluated in Python floats, the same operations, faster than
-    numpy on 0-d arrays)."""
+    one shape; a single point of plain numbers inside the domain never comes here:
+    :func:`_plain_point_inside`)."""
     applies = domain_applies(p)
-    if all(np.ndim(v) == 0 for v in p.values()):
-        sides = domain_sides(*[float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS])
-        return [
-            (b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict)))
-            for k, b in enumerate(DOMAIN)
-            if applies[k]
-        ]
-    # arrays: in blocks, so that the few dozen temporaries of the exact margins stay small
+    # in blocks, so that the few dozen temporaries of the exact margins stay small
     shape = np.broadcast_shapes(*(np.shape(v) for v in p.values()))
     flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in p.items()}
     n = int(np.prod(shape, dtype=np.int64))
