@@ -251,7 +251,6 @@ def plot_bifurcation(
     xs = branch[x].values
     tilt = branch.tilt.values
     flags = branch.stability.values
-    marginal = flags == 1
     labelled: set[str] = set()
 
     def draw(pieces) -> None:  # stable solid, unstable dashed; each label once
@@ -260,7 +259,7 @@ def plot_bifurcation(
             ax.plot(px, py, **(STABLE_STYLE if stable else UNSTABLE_STYLE), label=None if label in labelled else label)
             labelled.add(label)
 
-    draw(_pieces(xs, tilt, flags == 0, marginal))
+    draw(_pieces(xs, tilt, flags == 0, flags == 1))
     if vertical is not None:
         vx = vertical[x].values
         for name, level in (("stability_upright", 0.0), ("stability_inverted", 180.0)):
