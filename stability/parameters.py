@@ -473,7 +473,7 @@ DOMAIN: tuple[Bound, ...] = (
 DOMAIN_STRICT: tuple[bool, ...] = tuple(b.strict for b in DOMAIN)
 
 #: the arguments of :func:`domain_sides`, in order
-DOMAIN_ARGUMENTS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu", "alpha_k")
+DOMAIN_ARGUMENTS: tuple[str, ...] = (*PARAMETERS, "alpha_k")
 
 
 @register_jitable
