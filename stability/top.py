@@ -156,9 +156,9 @@ def _positive(name: str, value: Any, shown: str = "", note: str = "") -> np.ndar
 
 
 def _spin(spin: Any, unit: str) -> np.ndarray:
-    """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
-    factor = _unit(unit)
-    return _positive("spin", spin, f" {unit}") * factor
+    """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit; the unit
+    checked first)."""
+    return _unit(unit) * _positive("spin", spin, f" {unit}")
 
 
 def _number(out: np.ndarray) -> np.ndarray | float:
@@ -218,12 +218,12 @@ class Top:
             v = getattr(self, name)
             if v is not None:
                 object.__setattr__(self, name, check_positive(name, v, strict=False))
-        # the nondimensional set must be representable and lie in the physical domain
-        with np.errstate(all="ignore"):
-            try:
-                nd: dict[str, Any] = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
-            except (OverflowError, ZeroDivisionError):
-                nd = {"q": math.nan}
+        # the nondimensional set must be representable and lie in the physical domain (Python
+        # floats, checked above: an overflow raises or gives inf, never a numpy warning)
+        try:
+            nd: dict[str, Any] = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
+        except (OverflowError, ZeroDivisionError):
+            nd = {"q": math.nan}
         if not all(math.isfinite(v) for v in nd.values()):
             raise DomainError(
                 f"the nondimensional parameters of this top are not finite numbers ({self._si_text()}); "
