@@ -27,9 +27,8 @@ The import package is ``stability`` (distribution name ``tippe-stability``). Pub
 
 This module only re-exports, lazily (PEP 562): ``import stability`` imports none of numpy,
 numba, scipy, xarray or matplotlib; each name is imported from the module that defines it on
-first use (:data:`_EXPORTS`), and handing out a function that returns datasets registers the
-accessor ``ds.tippe`` (so does ``import stability.plotting.accessor``, for code that imports
-such functions from their modules). Subpackages (``stability.plotting`` ...) are reachable as
+first use (:data:`_EXPORTS`); the accessor ``ds.tippe`` is registered as soon as xarray is
+imported (:func:`_register_accessor`), whichever module imports it. Subpackages (``stability.plotting`` ...) are reachable as
 attributes too. Where each name lives, and which way imports go, is in docs/architecture.md.
 """
 
@@ -74,24 +73,11 @@ _EXPORTS: dict[str, str] = {
 __all__ = sorted(_EXPORTS)  # noqa: PLE0605 - the names of _EXPORTS (one list of the public names)
 
 
-#: the public functions that return datasets: handing one out registers ``ds.tippe``
-#: (:mod:`stability.plotting.accessor`; tests/test_cold_start.py checks the list against the
-#: docstrings)
-_DATASETS = frozenset(
-    str.split(
-        "atlas open_atlas simulate stick_slip validate coulomb_growth steady_states final_state class_atlas "
-        "neutral_curve fold_curve steady_branch bifurcation_diagram contact_loss_boundary"
-    )
-)
-
-
 def __getattr__(name: str) -> Any:
     """A public name, imported from its module on first use; or a subpackage."""
     if name in _EXPORTS:
         value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
         globals()[name] = value
-        if name in _DATASETS:
-            importlib.import_module(".plotting.accessor", __name__)
         return value
     if not name.startswith("__"):
         try:

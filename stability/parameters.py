@@ -22,7 +22,7 @@ The bounds are one table, :data:`DOMAIN` (one row per bound: the parameter a vio
 reported for, the parameters involved, strict or not, the text, how a message explains it),
 whose sides are computed by :func:`domain_sides` (plain arithmetic registered with numba's
 ``register_jitable``: Python floats, numpy arrays, compiled kernels). From it derive the test
-of a point (:func:`bound_holds`; :func:`check_domain` and :func:`domain_mask` on arrays, the
+of a point (:func:`bound_holds`; :func:`check_domain` on arrays (its ``mask=True``), the
 spectral kernel compiled, :func:`inside_domain`), the signed margins ``upper - lower``
 (``>= 0`` inside) that the neutral curves' continuation uses as constraints, and the messages.
 
@@ -91,7 +91,6 @@ __all__ = [
     "check_range",
     "domain_applies",
     "domain_clearly_inside",
-    "domain_mask",
     "domain_range",
     "domain_sides",
     "domain_sides_quick",
@@ -210,7 +209,7 @@ def as_parameter(name: str, value: Any) -> np.ndarray:
             f"{name} = {_show(value)} is not a rectangular array; {name} must be a real number or an array of reals"
         ) from None
     if arr.dtype.kind == "O":
-        arr = _integers_as_floats(name, value, arr)
+        arr = _integers_as_floats(name, arr)
     if arr.dtype.kind not in "iuf":
         what = "holds complex numbers" if arr.dtype.kind == "c" else f"has dtype {arr.dtype}"
         raise ParameterTypeError(f"{name} = {_show(value)} {what}; {name} must be a real number or an array of reals")
@@ -246,10 +245,11 @@ def _integer_text(v: int) -> str:
     return f"{'-' if v < 0 else ''}1e+{digits - 1} (an integer of {digits} digits)"
 
 
-def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
+def _integers_as_floats(name: str, arr: np.ndarray) -> np.ndarray:
     """An object array of Python integers (numpy's dtype for integers beyond int64, also mixed
-    with floats) as floats;
-    a :class:`DomainError` naming the first integer too large for a double. Other object arrays
+    with floats) as floats (numpy's cast: ``float()`` of each);
+    a :class:`DomainError` naming the first integer too large for a double (``float()`` rounds
+    ``|v| >= 2**1024 - 2**970`` up to ``2**1024``: an overflow). Other object arrays
     are returned unchanged (their dtype is refused by the caller)."""
     items = arr.reshape(-1)
     if (
@@ -258,18 +258,14 @@ def _integers_as_floats(name: str, value: Any, arr: np.ndarray) -> np.ndarray:
         or not any(isinstance(v, numbers.Integral) for v in items)
     ):
         return arr
-    out = np.empty(arr.shape, dtype=np.float64)
-    flat = out.reshape(-1)
-    for i, v in enumerate(items):
-        try:
-            flat[i] = float(v)
-        except OverflowError:
-            raise DomainError(
-                f"{name} = {_integer_text(int(v))} is outside the computable range: "
-                f"{computable_range_text(name)} "
-                "(it does not even fit a double)"
-            ) from None
-    return out
+    try:
+        return arr.astype(np.float64)
+    except OverflowError:
+        v = next(int(v) for v in items if isinstance(v, numbers.Integral) and abs(int(v)) >= 2**1024 - 2**970)
+        raise DomainError(
+            f"{name} = {_integer_text(v)} is outside the computable range: {computable_range_text(name)} "
+            "(it does not even fit a double)"
+        ) from None
 
 
 def fmt_against(value: float, bound: float) -> tuple[str, str]:
@@ -453,7 +449,7 @@ def _expansion_value(e: tuple[float, ...]) -> Any:
 
 #: The physical domain, one row per bound, in the order a violation is reported. Row ``k``
 #: compares the sides ``domain_sides(...)[2 k]`` (lower) and ``[2 k + 1]`` (upper): the test of
-#: a point (:func:`bound_holds`: numpy arrays in :func:`check_domain` and :func:`domain_mask`,
+#: a point (:func:`bound_holds`: numpy arrays in :func:`check_domain` (also with ``mask=True``),
 #: compiled in the spectral kernel), the signed margins ``upper - lower`` (``>= 0`` inside) that
 #: the neutral curves' continuation uses as constraints, and the messages all come from here.
 DOMAIN: tuple[Bound, ...] = (
@@ -477,7 +473,7 @@ DOMAIN: tuple[Bound, ...] = (
 DOMAIN_STRICT: tuple[bool, ...] = tuple(b.strict for b in DOMAIN)
 
 #: the arguments of :func:`domain_sides`, in order
-DOMAIN_ARGUMENTS: tuple[str, ...] = ("q", "fr_inv", "sigma", "alpha_v", "mu", "alpha_k")
+DOMAIN_ARGUMENTS: tuple[str, ...] = (*PARAMETERS, "alpha_k")
 
 
 @register_jitable
@@ -660,17 +656,10 @@ _ABSENT = {"q": 0.0, "fr_inv": 0.0, "sigma": 1.0, "alpha_v": 0.0, "mu": 1.0, "al
 
 def _violations(p: Mapping[str, np.ndarray]) -> list[tuple[Bound, np.ndarray]]:
     """(bound, violating mask) for every bound of :data:`DOMAIN` that applies to ``p`` (arrays of
-    one shape; a single point is evaluated in Python floats, the same operations, faster than
-    numpy on 0-d arrays)."""
+    one shape; a single point of plain numbers inside the domain never comes here:
+    :func:`_plain_point_inside`)."""
     applies = domain_applies(p)
-    if all(np.ndim(v) == 0 for v in p.values()):
-        sides = domain_sides(*[float(p[k]) if k in p else _ABSENT[k] for k in DOMAIN_ARGUMENTS])
-        return [
-            (b, np.logical_not(bound_holds(sides[2 * k], sides[2 * k + 1], b.strict)))
-            for k, b in enumerate(DOMAIN)
-            if applies[k]
-        ]
-    # arrays: in blocks, so that the few dozen temporaries of the exact margins stay small
+    # in blocks, so that the few dozen temporaries of the exact margins stay small
     shape = np.broadcast_shapes(*(np.shape(v) for v in p.values()))
     flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in p.items()}
     n = int(np.prod(shape, dtype=np.int64))
@@ -701,22 +690,6 @@ def _describe(b: Bound, p: Mapping[str, np.ndarray], where: tuple[Any, ...]) -> 
     return msg
 
 
-def domain_mask(**params: Any) -> np.ndarray:
-    """Boolean mask of the points inside the physical domain (broadcast shape).
-
-    Parameters
-    ----------
-    **params
-        Any of q, fr_inv, sigma, alpha_v, alpha_k, mu (converted with :func:`as_parameter`).
-
-    Returns
-    -------
-    numpy.ndarray of bool
-        True where every bound holds.
-    """
-    return check_domain(mask=True, **params)[1]
-
-
 @register_jitable
 def outside_range(x: Any, lo: Any, hi: Any) -> Any:
     """Whether ``x`` (a float, an array, or a number in compiled code) lies outside the range
@@ -725,13 +698,6 @@ def outside_range(x: Any, lo: Any, hi: Any) -> Any:
     that it works elementwise."""
     m = abs(x)
     return (m > hi) | (m != m) | ((m < lo) & (x > 0))
-
-
-def outside_computable(name: str, value: Any) -> Any:
-    """Where ``value`` (a float or an array) lies outside ``name``'s :data:`COMPUTABLE_RANGE`
-    (:func:`outside_range`)."""
-    lo, hi = COMPUTABLE_RANGE[name]
-    return outside_range(value, lo, hi)
 
 
 def computable_range_text(name: str) -> str:
@@ -746,7 +712,7 @@ def _check_computable(p: Mapping[str, np.ndarray]) -> None:
         if name not in COMPUTABLE_RANGE:
             continue
         lo, hi = COMPUTABLE_RANGE[name]
-        bad = outside_computable(name, v)
+        bad = outside_range(v, lo, hi)
         if bad.any():
             val = float(v[bad].flat[0])
             v_text, edge = fmt_against(val, math.copysign(hi, val) if abs(val) > hi else lo)
@@ -888,7 +854,7 @@ def _plain_point_inside(params: Mapping[str, Any]) -> dict[str, np.ndarray] | No
         if type(v) is int and not -(2**53) <= v <= 2**53:
             return None
         x = float(v)
-        if outside_computable(k, x):  # NaN too
+        if outside_range(x, *COMPUTABLE_RANGE[k]):  # NaN too
             return None
         vals[k] = x
     if not vals:

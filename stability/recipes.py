@@ -94,7 +94,7 @@ from .grids.ranges import parse_values
 from .models import MODELS, get_model
 from .parameters import PARAMETERS, parameter_attrs
 from .products import PRODUCT_ATTR
-from .top import PRESETS, SPIN_UNITS, Top
+from .top import PRESETS, SI_UNITS, SPIN_UNITS, Top
 
 __all__ = ["KINDS", "Recipe", "check_outputs", "compute", "find_recipes", "load_recipe", "output_paths"]
 
@@ -482,11 +482,8 @@ def _atlas(recipe: Recipe, model: str) -> xr.Dataset:
     attributes and its spin (in the recipe's unit) on it (:func:`spin_coordinate`)."""
     ds = atlas(MODELS[model], mask_unphysical=recipe.mask_unphysical, **_grid_for(model, recipe.grid))
     if (t := recipe.top) is not None:
-        si = zip(
-            ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial", "g"),
-            ("_kg", "_m", "_m", *["_kg_m2"] * 2, ""),
-        )
-        ds.attrs.update({name + unit: getattr(t, name) for name, unit in si})
+        si = {f"{k}_{u.replace(' ', '_').replace('^', '')}": getattr(t, k) for k, u in SI_UNITS.items()}
+        ds.attrs.update(si, g=t.g)
         ds = ds if recipe.spin is None else spin_coordinate(ds, recipe.spin, recipe.unit)
     ds.attrs["recipe"] = recipe.path.name
     return ds

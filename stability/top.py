@@ -42,6 +42,7 @@ __all__ = [
     "OUNCE",
     "PLAUSIBLE",
     "PRESETS",
+    "SI_UNITS",
     "SPIN_UNITS",
     "ImplausibleTopWarning",
     "Top",
@@ -54,6 +55,11 @@ __all__ = [
 #: avoirdupois ounce and inch in SI
 OUNCE = 0.028349523125
 INCH = 0.0254
+
+#: the SI data of a top (the constructor's required fields, in order) and their units
+SI_UNITS: dict[str, str] = dict(
+    mass="kg", radius="m", com_offset="m", inertia_transverse="kg m^2", inertia_axial="kg m^2"
+)
 
 #: rad/s per unit of spin rate: the one table of spin units ("Hz" is rev/s)
 SPIN_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 2.0 * math.pi / 60.0, "rev/s": 2.0 * math.pi, "Hz": 2.0 * math.pi}
@@ -150,9 +156,9 @@ def _positive(name: str, value: Any, shown: str = "", note: str = "") -> np.ndar
 
 
 def _spin(spin: Any, unit: str) -> np.ndarray:
-    """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit)."""
-    factor = _unit(unit)
-    return _positive("spin", spin, f" {unit}") * factor
+    """Spin rates in rad/s, each > 0 (the message gives the value in the caller's unit; the unit
+    checked first)."""
+    return _unit(unit) * _positive("spin", spin, f" {unit}")
 
 
 def _number(out: np.ndarray) -> np.ndarray | float:
@@ -212,18 +218,16 @@ class Top:
             v = getattr(self, name)
             if v is not None:
                 object.__setattr__(self, name, check_positive(name, v, strict=False))
-        # the nondimensional set must be representable and lie in the physical domain
-        with np.errstate(all="ignore"):
-            try:
-                nd: dict[str, Any] = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
-            except (OverflowError, ZeroDivisionError):
-                nd = {"q": math.nan}
+        # the nondimensional set must be representable and lie in the physical domain (Python
+        # floats, checked above: an overflow raises or gives inf, never a numpy warning)
+        try:
+            nd: dict[str, Any] = {"q": self.q, "sigma": self.sigma, "mu": self.mu}
+        except (OverflowError, ZeroDivisionError):
+            nd = {"q": math.nan}
         if not all(math.isfinite(v) for v in nd.values()):
             raise DomainError(
-                f"the nondimensional parameters of this top are not finite numbers "
-                f"(mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = "
-                f"{self.com_offset:g} m, inertias {self.inertia_transverse:g}, "
-                f"{self.inertia_axial:g} kg m^2); give SI values of a real top"
+                f"the nondimensional parameters of this top are not finite numbers ({self._si_text()}); "
+                "give SI values of a real top"
             )
         check_domain(**nd)
         if self.stick is not None:
@@ -245,11 +249,7 @@ class Top:
                 (refuse if (v < r_lo or v > r_hi) else warn).append(text)
         if not refuse and not warn:
             return
-        data = (
-            f"mass = {self.mass:g} kg, radius = {self.radius:g} m, com_offset = {self.com_offset:g} m, "
-            f"inertia_transverse = {self.inertia_transverse:g} kg m^2, inertia_axial = {self.inertia_axial:g} "
-            f"kg m^2 give q = {self.q:.3g}, mu = {self.mu:.3g}, sigma = {self.sigma:.3g}"
-        )
+        data = f"{self._si_text()} give q = {self.q:.3g}, mu = {self.mu:.3g}, sigma = {self.sigma:.3g}"
         ranges = (
             "real tippe tops: mass 5-30 g, radius 10-30 mm, mu 2-4, sigma 0.6-1.4, |q| 0.05-0.4; SI units throughout"
         )
@@ -263,6 +263,10 @@ class Top:
             ImplausibleTopWarning,
             stacklevel=4,
         )
+
+    def _si_text(self) -> str:
+        """The top's SI data as a message shows them (``mass = 0.015 kg, radius = ...``)."""
+        return ", ".join(f"{name} = {getattr(self, name):g} {unit}" for name, unit in SI_UNITS.items())
 
     # -- spin-independent nondimensional parameters (eq. 3) --------------------------------
     @property
@@ -344,10 +348,7 @@ class Top:
                 )
             out["alpha_v"] = self.alpha_v(spin, unit)
         elif alpha_v is not None:
-            a = as_parameter("alpha_v", alpha_v)
-            if np.any(a < 0):
-                raise DomainError(f"alpha_v = {alpha_v!r} is outside the physical domain: alpha_v >= 0")
-            out["alpha_v"] = _number(a)
+            out["alpha_v"] = _number(check_domain(maskable=False, alpha_v=alpha_v)[0]["alpha_v"])
         if self.mu_k is not None:
             out["alpha_k"] = self.alpha_k(spin, unit)
         if model is not None:
@@ -405,7 +406,7 @@ class Top:
 
         if not isinstance(data, Mapping):
             raise InputError(f"{source} must be a table of SI values, not {type(data).__name__}")
-        required = ("mass", "radius", "com_offset", "inertia_transverse", "inertia_axial")
+        required = tuple(SI_UNITS)
         optional = ("g", "mu_k", "mu_v")
         unknown = sorted(set(data) - {*required, *optional, "preset"})
         if unknown:

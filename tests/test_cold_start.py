@@ -378,23 +378,6 @@ def test_a_first_call_compiles_nothing(call, absent):
     assert out.stderr == ""
 
 
-def test_dataset_functions_register_the_accessor():
-    """The facade registers ``ds.tippe`` when it hands out a function that returns datasets:
-    the list (stability._DATASETS) holds every public function whose docstring returns an
-    xarray.Dataset, and final_state (whose FinalState has to_dataset())."""
-    import inspect
-    import re
-
-    returns = set()
-    for name in stability.__all__:
-        obj = getattr(stability, name)
-        if inspect.isfunction(obj):
-            m = re.search(r"Returns\n-------\n(.*)", inspect.getdoc(obj) or "")
-            if m and "xarray.Dataset" in m.group(1):
-                returns.add(name)
-    assert returns | {"final_state"} == set(stability._DATASETS)
-
-
 def test_warmup_covers_every_loop_and_lists_its_steps(capsys):
     """``tippe warmup`` compiles every loop a request can choose to compile: its steps name the
     twins of the sliding model's kernel (fused and masked, serial and parallel), of the

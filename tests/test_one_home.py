@@ -47,7 +47,7 @@ from stability.linear.roots import divide_root, horner, horner_scheme, quadratic
 from stability.models import LinearModel
 from stability.models.inertia import inertia_g, transverse_inertia_g, two_product
 from stability.models.sliding import coefficient_parts, derivative_parts
-from stability.parameters import DOMAIN, domain_applies, domain_mask, domain_sides, inside_domain
+from stability.parameters import DOMAIN, check_domain, domain_applies, domain_sides, inside_domain
 
 # numba code of one's own that calls the package's formulas: register them first (the package
 # installs no hook into numba; stability/jit.py)
@@ -164,13 +164,13 @@ def test_two_product_exact_in_every_engine():
 def test_domain_table_same_decision_in_every_engine():
     """Engine agreement: the domain table's test of a point from Python floats
     (domain_sides/inside_domain, what a pure-Python kernel would run), numpy arrays
-    (domain_mask, check_domain's path) and the compiled kernel (its fused test,
+    (check_domain's path, mask=True) and the compiled kernel (its fused test,
     kernel.sliding_domain) on and within 12 ulps of every bound, the slack of sigma <= 2 A_G
     included. (check_domain against the kernel on 20,000 random points and NaN/inf:
     test_kernel.)"""
     p = _finite_bound_points()
     code = kernel.sliding_domain(*(p[k] for k in NAMES))
-    mask = domain_mask(**p)
+    mask = check_domain(mask=True, **p)[1]
     applies = domain_applies(NAMES)
     assert (code == 0).any() and (code == 1).any() and not (code == 2).any()
     for j in range(p["q"].size):
@@ -182,7 +182,7 @@ def test_domain_table_states_the_documented_domain():
     """Independent reference: the inequalities of docs/conventions.md typed in here
     (1 - mu q^2 > 0, 0 < sigma <= 2 (1 - mu q^2), mu > 0, fr_inv >= 0, alpha_v >= 0), evaluated
     in exact rational arithmetic (fractions) on 2,000 random points of a box four times wider
-    than the domain, against the table's test (domain_mask). Points within 1e-12 of a bound
+    than the domain, against the table's test (check_domain, mask=True). Points within 1e-12 of a bound
     are left out (the table has an 8-ulp slack on sigma <= 2 A_G). Also: every row names the
     parameter its message reports, and check_domain's message for a point violating only that
     row quotes the row's text."""
@@ -200,7 +200,7 @@ def test_domain_table_states_the_documented_domain():
         "alpha_v": rng.uniform(-0.5, 5.0, n),
         "mu": rng.uniform(-1.0, 6.0, n),
     }
-    mask = domain_mask(**p)
+    mask = check_domain(mask=True, **p)[1]
     checked = 0
     for j in range(n):
         q, f, s, a, m = (Fraction(float(p[k][j])) for k in NAMES)

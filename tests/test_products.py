@@ -205,7 +205,7 @@ def test_friction_cases_has_a_product_and_no_figure():
 def test_registry_and_documentation_agree():
     """Every product in docs/datasets.md is made by this test (or is friction_cases), every
     registered figure is documented and importable from stability.plotting, and a new entry
-    is one line (a callable works as well as a "module:function" string)."""
+    is one line (a callable works as well as the name of a function of stability.plotting)."""
     documented = _documented()
     # launch has no figure yet; its attribute is checked in tests/test_launch.py
     assert set(documented) == set(MAKERS) | {"friction_cases", "launch"}

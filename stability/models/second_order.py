@@ -63,23 +63,19 @@ class SecondOrderTop(LinearModel):
         d = self.derived(**params)
         return np.broadcast_arrays(np.asarray(d[self.gyroscopic], float), np.asarray(d["kappa"], float))
 
-    # the model's own parameters by name (LinearModel states any keywords: the registry passes them)
-    def matrices(  # type: ignore[override]
-        self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8), batched."""
-        gamma, kappa = self._gamma_kappa(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    def matrices(self, **params: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``M = 1`` and ``A = [[0, 1], [kappa, i gamma]]`` (state form of eq. 8), batched; the
+        parameters those of :meth:`derived`."""
+        gamma, kappa = self._gamma_kappa(**params)
         A = np.zeros(kappa.shape + (2, 2), dtype=complex)
         A[..., 0, 1] = 1.0
         A[..., 1, 0] = kappa
         A[..., 1, 1] = 1j * gamma
         return np.broadcast_to(np.eye(2, dtype=complex), A.shape).copy(), A
 
-    def coefficients(  # type: ignore[override]
-        self, *, q: np.ndarray, fr_inv: np.ndarray, sigma: np.ndarray, mu: np.ndarray
-    ) -> np.ndarray:
-        """``s^2 - i gamma s - kappa``, highest power first."""
-        gamma, kappa = self._gamma_kappa(q=q, fr_inv=fr_inv, sigma=sigma, mu=mu)
+    def coefficients(self, **params: np.ndarray) -> np.ndarray:
+        """``s^2 - i gamma s - kappa``, highest power first (the parameters of :meth:`derived`)."""
+        gamma, kappa = self._gamma_kappa(**params)
         c = np.empty(kappa.shape + (3,), dtype=complex)
         c[..., 0] = 1.0
         c[..., 1] = -1j * gamma

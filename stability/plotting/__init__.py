@@ -42,14 +42,12 @@ from typing import Any
 #: module of this package -> the public names it defines
 _MODULES: dict[str, str] = {
     "figures": "plot_atlas atlas_figure",
-    "launch_plots": "plot_flip_time plot_flip_estimates",
+    "launch_plots": "plot_flip_time plot_flip_estimates plot_critical_spin",
     "atlas_plots": "plot_growth_rate save_figure style",
     "maps": "plot_stability_map plot_neutral_curve plot_fold_curve growth_norm",
     "scene_plots": "plot_run",
-    "contact_plots": "plot_contact_loss_map plot_contact_run plot_flight_run",
-    "stickslip_plots": "plot_stick_slip",
+    "contact_plots": "plot_contact_loss_map plot_contact_run plot_flight_run plot_stick_slip",
     "validation_plots": "plot_validation plot_coulomb_growth",
-    "spin_plots": "plot_critical_spin",
     "steady_plots": "plot_steady_states plot_final_state plot_bifurcation plot_class_map plot_settle "
     "plot_settle_approach",
     "recipe_figures": "recipe_figure",

@@ -31,22 +31,23 @@ from ..products import PRODUCT_ATTR
 
 __all__ = ["PLOTS", "TippeAccessor", "plotting_function"]
 
-#: product -> its plotting function, as ``"module:function"`` (imported on first use) or a
-#: callable ``f(ds, **kw) -> (Figure, Axes)``. A new product's figure is one entry here.
+#: product -> its plotting function, as the name of a function of :mod:`stability.plotting`
+#: (imported on first use) or a callable ``f(ds, **kw) -> (Figure, Axes)``. A new product's
+#: figure is one entry here.
 PLOTS: dict[str, str | Callable[..., Any]] = {
-    "atlas": "stability.plotting.figures:plot_atlas",
-    "flip_time_map": "stability.plotting.launch_plots:plot_flip_time",
-    "contact_loss_map": "stability.plotting.contact_plots:plot_contact_loss_map",
-    "neutral_curve": "stability.plotting.maps:plot_neutral_curve",
-    "fold_curve": "stability.plotting.maps:plot_fold_curve",
-    "nonlinear_run": "stability.plotting.scene_plots:plot_run",
-    "validation": "stability.plotting.validation_plots:plot_validation",
-    "coulomb_growth": "stability.plotting.validation_plots:plot_coulomb_growth",
-    "critical_spin": "stability.plotting.spin_plots:plot_critical_spin",
-    "steady_states": "stability.plotting.steady_plots:plot_steady_states",
-    "steady_branch": "stability.plotting.steady_plots:plot_bifurcation",
-    "final_state": "stability.plotting.steady_plots:plot_final_state",
-    "top_classes": "stability.plotting.steady_plots:plot_class_map",
+    "atlas": "plot_atlas",
+    "flip_time_map": "plot_flip_time",
+    "contact_loss_map": "plot_contact_loss_map",
+    "neutral_curve": "plot_neutral_curve",
+    "fold_curve": "plot_fold_curve",
+    "nonlinear_run": "plot_run",
+    "validation": "plot_validation",
+    "coulomb_growth": "plot_coulomb_growth",
+    "critical_spin": "plot_critical_spin",
+    "steady_states": "plot_steady_states",
+    "steady_branch": "plot_bifurcation",
+    "final_state": "plot_final_state",
+    "top_classes": "plot_class_map",
 }
 
 
@@ -64,10 +65,7 @@ def plotting_function(product: str) -> Callable[..., Any]:
             f"{PRODUCT_ATTR} = {product!r}: no figure is registered for this product "
             f"(products with a figure: {', '.join(sorted(PLOTS))})"
         )
-    if callable(entry):
-        return entry
-    module, _, name = entry.partition(":")
-    return getattr(importlib.import_module(module), name)
+    return entry if callable(entry) else getattr(importlib.import_module("stability.plotting"), entry)
 
 
 @xr.register_dataset_accessor("tippe")

@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..files import atomic_output
 from ..grids.netcdf import require_atlas
 from ..linear.modes import principal_mode
-from ..parameters import SYMBOLS, check_choice
+from ..parameters import PARAMETERS, SYMBOLS, check_choice
 from ._layout import axes_or_new
 
 __all__ = ["STYLE_FILE", "plot_growth_rate", "save_figure", "style"]
@@ -97,11 +97,7 @@ def plot_growth_rate(
     if quantity == "growth_rate":
         ax.axhline(0.0, color="0.3", linewidth=0.8, linestyle="-", zorder=0)
     ax.set(xlabel=SYMBOLS.get(x, x), ylabel=QUANTITIES[quantity])
-    fixed = [
-        f"{SYMBOLS.get(k, k)} = {float(ds[k]):g}"
-        for k in ("q", "fr_inv", "sigma", "alpha_v", "mu")
-        if k in ds.coords and ds[k].ndim == 0
-    ]
+    fixed = [f"{SYMBOLS.get(k, k)} = {float(ds[k]):g}" for k in PARAMETERS if k in ds.coords and ds[k].ndim == 0]
     ax.set_title(
         f"{ds.attrs.get('model', '')} model, eq. {ds.attrs.get('model_equations', '')}: " + ", ".join(fixed), fontsize=9
     )

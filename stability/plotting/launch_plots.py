@@ -1,4 +1,5 @@
-"""Flip times of a real top: the map of launches, and the error of the cheap estimates."""
+"""Figures of a real top: its critical spin rates, the flip times of its launches, and the error of
+the cheap flip-time estimates."""
 
 from __future__ import annotations
 
@@ -9,9 +10,10 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from ..parameters import SYMBOLS
 from ._layout import axes_or_new
 
-__all__ = ["plot_flip_estimates", "plot_flip_time"]
+__all__ = ["plot_critical_spin", "plot_flip_estimates", "plot_flip_time"]
 
 
 def plot_flip_time(
@@ -66,4 +68,36 @@ def plot_flip_estimates(records: Sequence[dict[str, Any]], *, ax: Axes | None = 
         ax.scatter([r["seconds"] for r in rs], [max(r["rel_error"], 1e-16) for r in rs], s=12, label=method)
     ax.set(xscale="log", yscale="log", xlabel="seconds per launch", ylabel="relative error of the flip time")
     ax.legend(fontsize=8)
+    return fig, ax
+
+
+def plot_critical_spin(ds: xr.Dataset, *, ax: Axes | None = None) -> tuple[Figure, Axes]:
+    """Upright and inverted critical spin rates (rpm) against the dataset's one dimension.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`stability.recipes.critical_spin_dataset`.
+    ax : matplotlib.axes.Axes, optional
+
+    Returns
+    -------
+    (Figure, Axes)
+    """
+    fig, ax = axes_or_new(ax)
+    (x,) = ds["critical_spin_upright"].dims
+    for o, marker, label in (
+        ("upright", "o", "upright: unstable above"),
+        ("inverted", "s", "inverted (q -> -q): stable above"),
+    ):
+        ax.plot(ds[x].values, ds[f"critical_spin_{o}"].values, marker=marker, markersize=3, label=label)
+    ax.set_xlabel(SYMBOLS.get(x, x) + ("  (upright offset; inverted: -q)" if x == "q" else ""))
+    ax.set_ylabel("critical spin rate (rpm)")
+    fixed = ", ".join(f"{SYMBOLS.get(k, k)} = {ds.attrs[k]:.3g}" for k in ("q", "sigma", "mu") if k != x)
+    ax.set_title(
+        f"{ds.attrs.get('preset', '')} top, R = {1e3 * ds.attrs['radius_m']:.2f} mm, {fixed}, "
+        f"{ds.attrs.get('model', '')} model",
+        fontsize=9,
+    )
+    ax.legend()
     return fig, ax

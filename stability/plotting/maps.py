@@ -103,9 +103,8 @@ def plot_stability_map(
     ax.set_title(f"{ds.attrs.get('model', '')}, eq. {ds.attrs.get('model_equations', '')}", fontsize=9)
     if colorbar:
         cb = fig.colorbar(mesh, ax=ax, extend="both")
-        lo, hi = norm.vmin, norm.vmax
-        cb.set_ticks([lo, lo / 2, 0.0, hi / 2, hi])
-        cb.set_ticklabels([f"{v:.2g}" for v in (lo, lo / 2, 0.0, hi / 2, hi)])
+        ticks = [norm.vmin, norm.vmin / 2, 0.0, norm.vmax / 2, norm.vmax]
+        cb.set_ticks(ticks, labels=[f"{v:.2g}" for v in ticks])
         cb.set_label("leading growth rate Re $s$ / $\\Omega$")
     return fig, ax
 

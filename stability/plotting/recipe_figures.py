@@ -14,8 +14,8 @@ from ..recipes import Recipe
 from . import scene_plots
 from ._layout import panels_or_new
 from .figures import _quantity_panels
+from .launch_plots import plot_critical_spin
 from .maps import growth_norm, plot_stability_map
-from .spin_plots import plot_critical_spin
 from .steady_plots import plot_bifurcation, plot_class_map, plot_settle, plot_settle_approach
 
 __all__ = ["recipe_figure"]

@@ -70,19 +70,12 @@ def _parameters_text(attrs: dict, names: tuple[str, ...] = ("q", "sigma", "fr_in
     return ", ".join(f"{SYMBOLS.get(name, name)} = {float(attrs[name]):g}" for name in names if name in attrs)
 
 
-def _level(
-    ax: Axes,
-    tilt_grid: np.ndarray,
-    potential: np.ndarray,
-    tilts: np.ndarray,
-    energies: np.ndarray,
-    flags: np.ndarray,
-    kinds: np.ndarray,
-    tilt_range: tuple[float, float] | None,
-) -> None:
-    """The curve ``U_J(tilt)`` and every steady state on it, marked by its flag and labelled by kind."""
+def _level(ax: Axes, ds: xr.Dataset, prefix: str, tilt_range: tuple[float, float] | None) -> None:
+    """The curve ``U_J(tilt)`` of ``ds`` and every steady state on it (its variables ``prefix +``
+    ``tilt``, ``energy``, ``stability``, ``kind``), marked by its flag and labelled by kind."""
+    tilt_grid, potential = ds.tilt_grid.values, ds.effective_potential.values
     ax.plot(tilt_grid, potential, color="k", linewidth=1.2, label=r"effective potential $U_J$(tilt)")
-    for tilt, energy, flag, kind in zip(tilts, energies, flags, kinds):
+    for tilt, energy, flag, kind in zip(*(ds[prefix + v].values for v in ("tilt", "energy", "stability", "kind"))):
         flag, kind = int(flag), str(kind)
         where = f"{kind} {tilt:.4g} deg" if kind == "tilted" else kind
         style = dict(markersize=9, markeredgewidth=1.5, fillstyle=FILL_STYLES[flag], color=FLAG_COLOURS[flag])
@@ -130,8 +123,7 @@ def plot_steady_states(
     (Figure, Axes)
     """
     fig, ax = axes_or_new(ax, figsize=FIGSIZE, layout="constrained")
-    states = (ds[v].values for v in ("tilt", "energy", "stability", "kind"))
-    _level(ax, ds.tilt_grid.values, ds.effective_potential.values, *states, tilt_range)
+    _level(ax, ds, "", tilt_range)
     ax.set_title(
         f"steady states on the Jellett level J = {float(ds.attrs['jellett']):.6g}: {_parameters_text(ds.attrs)}",
         fontsize=9,
@@ -171,7 +163,7 @@ def plot_final_state(
     reachable = dict(where=u <= e0, interpolate=True, facecolor="C2", alpha=0.15, linewidth=0.0)
     ax.fill_between(grid, u, e0, **reachable, label=r"$U_J \leq E_0$: reachable")
     ax.axhline(e0, color="C2", linestyle="--", linewidth=1.0, label=f"initial energy E0 = {e0:.8g}")
-    _level(ax, grid, u, *(ds["candidate_" + v].values for v in ("tilt", "energy", "stability", "kind")), tilt_range)
+    _level(ax, ds, "candidate_", tilt_range)
     start = float(ds.initial_tilt)
     ax.plot([start], [e0], "x", markersize=8, color="C2", label=f"initial state, tilt {start:.4g} deg")
     tilt, kind, method = float(ds.tilt), str(ds.attrs["kind"]), str(ds.attrs["method"])
@@ -259,7 +251,6 @@ def plot_bifurcation(
     xs = branch[x].values
     tilt = branch.tilt.values
     flags = branch.stability.values
-    marginal = flags == 1
     labelled: set[str] = set()
 
     def draw(pieces) -> None:  # stable solid, unstable dashed; each label once
@@ -268,7 +259,7 @@ def plot_bifurcation(
             ax.plot(px, py, **(STABLE_STYLE if stable else UNSTABLE_STYLE), label=None if label in labelled else label)
             labelled.add(label)
 
-    draw(_pieces(xs, tilt, flags == 0, marginal))
+    draw(_pieces(xs, tilt, flags == 0, flags == 1))
     if vertical is not None:
         vx = vertical[x].values
         for name, level in (("stability_upright", 0.0), ("stability_inverted", 180.0)):
@@ -321,7 +312,6 @@ def _mark_launch(ax: Axes, launch: object, x: str, units: str, q: float) -> None
     """
     import math
 
-    from ..errors import InputError
     from ..top import SPIN_UNITS
 
     if x != "spin" or units not in SPIN_UNITS:

@@ -16,7 +16,6 @@ from ._layout import PERIODS_LABEL, axes_or_new, panels_or_new, periods
 __all__ = ["plot_coulomb_growth", "plot_validation"]
 
 _VALIDATION = ("predicted_growth_rate", "jacobian_growth_rate", "measured_growth_rate")
-_COULOMB = ("tilt", "slip_speed")
 
 
 def _require(ds: object, names: Sequence[str], made_by: str) -> xr.Dataset:
@@ -79,7 +78,7 @@ def plot_coulomb_growth(ds: xr.Dataset, *, axes: Sequence[Axes] | None = None) -
     -------
     (Figure, list of 2 Axes)
     """
-    _require(ds, _COULOMB, "stability.coulomb_growth")
+    _require(ds, ("tilt", "slip_speed"), "stability.coulomb_growth")
     fig, (ax1, ax2) = panels_or_new(axes, 2, (6.4, 6.0), sharex=True)
     t = periods(ds)
     ax1.plot(t, ds["tilt"].values)
