@@ -686,10 +686,8 @@ def _block_start(w, rare, count):
     points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
     for j in range(count):
         inv = 1.0 / w[_C3R, j]
-        c0 = complex(w[_C0R, j], w[_C0I, j])
-        a3, P3, Q2, disc = _depressed(
-            _scale(complex(w[_C2R, j], w[_C2I, j]), inv), _scale(complex(w[_C1R, j], w[_C1I, j]), inv), _scale(c0, inv)
-        )
+        c0 = _pair(w, _C0R, j)
+        a3, P3, Q2, disc = _depressed(_scale(_pair(w, _C2R, j), inv), _scale(_pair(w, _C1R, j), inv), _scale(c0, inv))
         s = _mod2(disc)
         x = _larger(Q2, csqrt_nonzero(disc, math.sqrt(s)))
         r2 = _mod2(x)
@@ -706,8 +704,8 @@ def _block_roots(w, rare, count):
     for j in range(count):
         u = _untwist(w[_RW, j], w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j])
         n2 = _mod2(u)
-        v = -complex(w[_P3R, j], w[_P3I, j]) * u.conjugate() * (1.0 / n2)
-        r0, r1, r2 = _three_roots(u, v, complex(w[_A3R, j], w[_A3I, j]))
+        v = -_pair(w, _P3R, j) * u.conjugate() * (1.0 / n2)
+        r0, r1, r2 = _three_roots(u, v, _pair(w, _A3R, j))
         finite = _finite(r0) & _finite(r1) & _finite(r2)
         rare[j] = rare[j] | (not _plain(n2)) | _separated(r0, r1, r2)[0] | (not finite)
         _store_roots(w, j, r0, r1, r2)
@@ -747,20 +745,22 @@ def _block_bounds(w, rare, count):
 
 
 @register_jitable
+def _pair(w, k, j):
+    """The complex number in rows ``k`` (real part) and ``k + 1`` (imaginary) of column ``j``
+    of a block's scratch ``w``."""
+    return complex(w[k, j], w[k + 1, j])
+
+
+@register_jitable
 def _block_coefficients(w, j):
     """The coefficients of point ``j`` of a block (complex, highest power first)."""
-    return (
-        complex(w[_C3R, j], w[_C3I, j]),
-        complex(w[_C2R, j], w[_C2I, j]),
-        complex(w[_C1R, j], w[_C1I, j]),
-        complex(w[_C0R, j], w[_C0I, j]),
-    )
+    return _pair(w, _C3R, j), _pair(w, _C2R, j), _pair(w, _C1R, j), _pair(w, _C0R, j)
 
 
 @register_jitable
 def _block_roots_of(w, j):
     """The roots of point ``j`` of a block."""
-    return complex(w[_R0R, j], w[_R0I, j]), complex(w[_R1R, j], w[_R1I, j]), complex(w[_R2R, j], w[_R2I, j])
+    return _pair(w, _R0R, j), _pair(w, _R1R, j), _pair(w, _R2R, j)
 
 
 @register_jitable
