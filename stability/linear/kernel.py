@@ -584,27 +584,12 @@ def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
     ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
-    c = _complex_parts(parts)
-    if len(c) == 4:
-        return _solve(c[0], c[1], c[2], c[3], 3, polish)
-    if len(c) == 3:
-        return _solve(c[0], c[1], c[2], 0j, 2, polish)
-    return _solve_linear(c[0], c[1])
-
-
-@register_jitable
-def _complex_parts(parts):
-    """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
+    c3, c2 = complex(parts[0], parts[1]), complex(parts[2], parts[3])
     if len(parts) == 8:
-        return (
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-        )
+        return _solve(c3, c2, complex(parts[4], parts[5]), complex(parts[6], parts[7]), 3, polish)
     if len(parts) == 6:
-        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
-    return complex(parts[0], parts[1]), complex(parts[2], parts[3])
+        return _solve(c3, c2, complex(parts[4], parts[5]), 0j, 2, polish)
+    return _solve_linear(c3, c2)
 
 
 #: what a model's loop holds for a point it does not solve (:func:`_solve`'s layout)
