@@ -926,7 +926,7 @@ def _run(
 def _spectrum(
     model: str | LinearModel,
     params: Mapping[str, Any],
-    inside: np.ndarray | None,
+    inside: np.ndarray | bool | None,
     polish: int,
     parallel: bool | None,
     engine: str | None,
@@ -946,10 +946,11 @@ def _spectrum(
     values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
     shape = np.broadcast_shapes(*(np.shape(v) for v in values))
     flat = [a for v in values for a in _strided(v, shape)]
+    codes: tuple[np.ndarray, ...] = ()
     if inside is None:  # the domain limits, and the codes out
         loop, given, codes = kernels.checked, _computable_limits(), (np.empty(math.prod(shape), dtype=np.int8),)
     else:
-        loop, given, codes = kernels.masked, _flat(inside, shape), ()
+        loop, given = kernels.masked, _flat(inside, shape)
     return _run(loop, shape, kernels.n, [*flat, given, int(polish)], parallel, engine, *codes), codes
 
 
@@ -1026,7 +1027,7 @@ def _computable_limits() -> tuple[float, ...]:
     return tuple(lim.tolist())
 
 
-def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
+def _strided(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
     """A 1-D float64 array and the stride to read it with: the data itself (stride 1) when it
     already has the full shape and is C-contiguous, its one value (stride 0) for a single
     value, else a broadcast copy."""
