@@ -189,6 +189,15 @@ def _scale(z, t):
 
 
 @register_jitable
+def _cbrt(w):
+    """A cube root of ``w`` (:func:`_cardano`)."""
+    r = modulus(w)
+    if not 0.0 < r < math.inf:
+        return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
+    return _untwist(cbrt(r), *_turn(w, r))
+
+
+@register_jitable
 def _turn(w, r):
     """The cube root of ``w`` (modulus ``r``, ``0 < r < inf``; :func:`_cardano`) but for the cube root of ``r``:
     ``(zr, zi, tr, ti)`` with ``cbrt(w) = cbrt(r) (zr + i zi) (tr + i ti)`` (no branch on data)."""
@@ -251,10 +260,7 @@ def _cardano(c3, c2, c1, c0):
         a, b, c = c2 * inv, c1 * inv, c0 * inv
     a3, P3, Q2, disc = _depressed(a, b, c)
     w = _larger(Q2, csqrt(disc))
-    r = modulus(w)
-    u = w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
-    if 0.0 < r < math.inf:
-        u = _untwist(cbrt(r), *_turn(w, r))
+    u = _cbrt(w)
     n2 = _mod2(u)
     if 1e-290 < n2 < 1e290:
         v = -P3 * u.conjugate() * (1.0 / n2)
@@ -451,10 +457,10 @@ def _exchange(ra, rb, ea, eb, xa, xb):
 
 
 @register_jitable
-def _mode(r, e, x, scale):
+def _mode(r, e, x, floor):
     """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
     whether it grows (module docstring, step 6)."""
-    tol = roots.neutral_tolerance(e, scale)
+    tol = 4.0 * e + floor  # roots.neutral_tolerance, with its floor 16 u max|s| formed once per point
     nt = (x & (r.real == 0)) | (abs(r.real) <= tol)
     return nt, (r.real > tol) & (not nt)
 
@@ -479,17 +485,17 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
         scale2 = max(scale2, _mod2(r1))
     if n == 3:
         scale2 = max(scale2, _mod2(r2))
-    scale = math.sqrt(scale2)
+    floor = 16.0 * roots.UNIT_ROUNDOFF * math.sqrt(scale2)
     # every decision first, then the writes, then the flag by arithmetic (no branch on data)
-    nt0, grows = _mode(r0, e0, x0, scale)
+    nt0, grows = _mode(r0, e0, x0, floor)
     anyneutral = nt0
     nt1 = nt2 = False
     if n >= 2:
-        nt1, g1 = _mode(r1, e1, x1, scale)
+        nt1, g1 = _mode(r1, e1, x1, floor)
         anyneutral = anyneutral | nt1
         grows = grows | g1
     if n == 3:
-        nt2, g2 = _mode(r2, e2, x2, scale)
+        nt2, g2 = _mode(r2, e2, x2, floor)
         anyneutral = anyneutral | nt2
         grows = grows | g2
     ev[i][0] = r0
@@ -505,6 +511,14 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
         neutral[i][2] = nt2
     # _UNSTABLE if any mode grows, else _MARGINAL if any is neutral, else _STABLE
     return max(_UNSTABLE * int(grows), _MARGINAL * int(anyneutral))
+
+
+@register_jitable
+def _mark_outside(n, ev, bd, neutral):
+    for j in range(n):
+        ev[j] = complex(math.nan, math.nan)
+        bd[j] = math.nan
+        neutral[j] = False
 
 
 # --- the domain test, compiled from the domain table of stability.parameters ------------------
@@ -605,10 +619,7 @@ def _finish(n, ok, sol, ev, bd, neutral, stab, i):
     if ok:
         stab[i] = _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i)
     else:
-        for j in range(n):
-            ev[i][j] = complex(math.nan, math.nan)
-            bd[i][j] = math.nan
-            neutral[i][j] = False
+        _mark_outside(n, ev[i], bd[i], neutral[i])
         stab[i] = _OUTSIDE
 
 
@@ -671,8 +682,10 @@ def _block_start(w, rare, count):
     points of a block; ``rare[j]`` where point ``j`` leaves the generic case."""
     for j in range(count):
         inv = 1.0 / w[_C3R, j]
-        c0 = _pair(w, _C0R, j)
-        a3, P3, Q2, disc = _depressed(_scale(_pair(w, _C2R, j), inv), _scale(_pair(w, _C1R, j), inv), _scale(c0, inv))
+        c0 = complex(w[_C0R, j], w[_C0I, j])
+        a3, P3, Q2, disc = _depressed(
+            _scale(complex(w[_C2R, j], w[_C2I, j]), inv), _scale(complex(w[_C1R, j], w[_C1I, j]), inv), _scale(c0, inv)
+        )
         s = _mod2(disc)
         x = _larger(Q2, csqrt_nonzero(disc, math.sqrt(s)))
         r2 = _mod2(x)
@@ -683,14 +696,21 @@ def _block_start(w, rare, count):
 
 
 @register_jitable
+def _block_cbrt(w, count):
+    """The cube roots of the moduli (:func:`stability.linear.roots.cbrt`), a scalar loop."""
+    for j in range(count):
+        w[_RW, j] = cbrt(w[_RW, j])
+
+
+@register_jitable
 def _block_roots(w, rare, count):
     """The rest of :func:`_cardano` for the points of a block, and the tests of :func:`_cubic`
     before its sweeps (scales not widely separated, roots finite: else ``rare``)."""
     for j in range(count):
         u = _untwist(w[_RW, j], w[_ZR, j], w[_ZI, j], w[_TR, j], w[_TI, j])
         n2 = _mod2(u)
-        v = -_pair(w, _P3R, j) * u.conjugate() * (1.0 / n2)
-        r0, r1, r2 = _three_roots(u, v, _pair(w, _A3R, j))
+        v = -complex(w[_P3R, j], w[_P3I, j]) * u.conjugate() * (1.0 / n2)
+        r0, r1, r2 = _three_roots(u, v, complex(w[_A3R, j], w[_A3I, j]))
         finite = _finite(r0) & _finite(r1) & _finite(r2)
         rare[j] = rare[j] | (not _plain(n2)) | _separated(r0, r1, r2)[0] | (not finite)
         _store_roots(w, j, r0, r1, r2)
@@ -730,22 +750,20 @@ def _block_bounds(w, rare, count):
 
 
 @register_jitable
-def _pair(w, k, j):
-    """The complex number in rows ``k`` (real part) and ``k + 1`` (imaginary) of column ``j``
-    of a block's scratch ``w``."""
-    return complex(w[k, j], w[k + 1, j])
-
-
-@register_jitable
 def _block_coefficients(w, j):
     """The coefficients of point ``j`` of a block (complex, highest power first)."""
-    return _pair(w, _C3R, j), _pair(w, _C2R, j), _pair(w, _C1R, j), _pair(w, _C0R, j)
+    return (
+        complex(w[_C3R, j], w[_C3I, j]),
+        complex(w[_C2R, j], w[_C2I, j]),
+        complex(w[_C1R, j], w[_C1I, j]),
+        complex(w[_C0R, j], w[_C0I, j]),
+    )
 
 
 @register_jitable
 def _block_roots_of(w, j):
     """The roots of point ``j`` of a block."""
-    return _pair(w, _R0R, j), _pair(w, _R1R, j), _pair(w, _R2R, j)
+    return complex(w[_R0R, j], w[_R0I, j]), complex(w[_R1R, j], w[_R1I, j]), complex(w[_R2R, j], w[_R2I, j])
 
 
 @register_jitable
@@ -757,12 +775,10 @@ def _store_roots(w, j, r0, r1, r2):
 
 @register_jitable
 def _block_solve(w, rare, count, polish):
-    """The generic cubics of a block: :func:`_block_start`, the cube roots of the moduli
-    (:func:`stability.linear.roots.cbrt`, a scalar loop: a call), :func:`_block_roots`,
-    :func:`_block_sweep` (when ``polish > 0``), :func:`_block_bounds`."""
+    """The generic cubics of a block: :func:`_block_start`, :func:`_block_cbrt`,
+    :func:`_block_roots`, :func:`_block_sweep` (when ``polish > 0``), :func:`_block_bounds`."""
     _block_start(w, rare, count)
-    for j in range(count):
-        w[_RW, j] = cbrt(w[_RW, j])
+    _block_cbrt(w, count)
     _block_roots(w, rare, count)
     if polish > 0:
         _block_sweep(w, rare, count, polish > 1)
@@ -896,9 +912,12 @@ def accepts(model: LinearModel) -> bool:
 
 
 def _flat(x: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """A mask as a C-contiguous 1-D bool array that owns its data (a view would make numba warn
-    about its write flag)."""
-    return np.array(np.broadcast_to(x, shape), dtype=np.bool_, order="C").reshape(-1)
+    """A mask as a C-contiguous 1-D bool array that owns its data (views from
+    ``numpy.broadcast_arrays`` are copied: numba would otherwise warn about their write flag)."""
+    y = np.asarray(x, dtype=np.bool_)
+    if y.shape == shape and y.flags.c_contiguous and y.base is None:
+        return y.reshape(-1)
+    return np.array(np.broadcast_to(y, shape), dtype=np.bool_, order="C").reshape(-1)
 
 
 def _run(
@@ -946,11 +965,9 @@ def _spectrum(
     values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
     shape = np.broadcast_shapes(*(np.shape(v) for v in values))
     flat = [a for v in values for a in _strided(v, shape)]
-    codes: tuple[np.ndarray, ...] = ()
-    if inside is None:  # the domain limits, and the codes out
-        loop, given, codes = kernels.checked, _computable_limits(), (np.empty(math.prod(shape), dtype=np.int8),)
-    else:
-        loop, given = kernels.masked, _flat(inside, shape)
+    # checked: the domain limits in, the codes out; masked: the mask in
+    codes = (np.empty(math.prod(shape), dtype=np.int8),) if inside is None else ()
+    loop, given = (kernels.checked, _computable_limits()) if inside is None else (kernels.masked, _flat(inside, shape))
     return _run(loop, shape, kernels.n, [*flat, given, int(polish)], parallel, engine, *codes), codes
 
 
@@ -1022,9 +1039,8 @@ def _computable_limits() -> tuple[float, ...]:
     none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
     from .. import parameters
 
-    lim = np.array([float(x) for k in PARAMETERS for x in parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf))])
-    lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
-    return tuple(lim.tolist())
+    ranges = [parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf)) for k in PARAMETERS]
+    return tuple(x for lo, hi in ranges for x in (float(lo), float(min(hi, np.finfo(np.float64).max))))
 
 
 def _strided(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
