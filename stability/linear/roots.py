@@ -295,7 +295,7 @@ def run_loop(
 def quadratic_roots_many(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
     ``exact`` (m, 2); lists (interpreted) or arrays (compiled by :func:`stability.jit.cached`;
-    :func:`_quadratic` chooses by :func:`stability.execution.use_compiled`)."""
+    :func:`_roots_no_trailing_zero` chooses by :func:`stability.execution.use_compiled`)."""
     for i in range(len(a)):
         r1, r2, ex = quadratic_roots(a[i], b[i], k[i])
         roots[i][0] = r1
