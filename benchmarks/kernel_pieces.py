@@ -11,9 +11,9 @@ line before, from the kernel's own building blocks (:mod:`stability.linear.kerne
 * ``+ Weierstrass sweeps``: ``_cubic`` with ``polish=3`` (one sweep passes its test);
 * ``+ error bounds``: :func:`~stability.linear.kernel._solve` (structural zeros, bounds);
 * ``+ sort and decision``: :func:`~stability.linear.kernel._decide` writing the outputs, the whole
-  loop of :func:`stability.linear.kernel.sliding_spectrum` without the mask test, one point per
+  loop of :func:`stability.linear.kernel.model_spectrum` without the mask test, one point per
   iteration;
-* ``in blocks (the kernel)``: :func:`stability.linear.kernel.sliding_spectrum` itself (serial,
+* ``in blocks (the kernel)``: :func:`stability.linear.kernel.model_spectrum` itself (serial,
   compiled: the same work in blocks of points, structure of arrays, the loops packed into SIMD
   arithmetic, :func:`~stability.linear.kernel._block_solve`, plus the mask test and the
   driver's allocations); not a piece, so its difference to the line above is the gain of the
@@ -50,7 +50,7 @@ def main(argv: list[str] | None = None) -> None:
     jit.activate()
     import numba
 
-    from stability.linear.kernel import _cardano, _cubic, _decide, _solve, sliding_spectrum
+    from stability.linear.kernel import _cardano, _cubic, _decide, _solve, model_spectrum
     from stability.models.sliding import coefficient_parts as formula
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -118,7 +118,9 @@ def main(argv: list[str] | None = None) -> None:
         "+ Weierstrass sweeps": lambda: cubic(*args, ev, 3),
         "+ error bounds": lambda: solve(*args, ev, bd),
         "+ sort and decision": lambda: whole(*args, ev, bd, nt, st),
-        "in blocks (the kernel)": lambda: sliding_spectrum(*args, parallel=False, engine="compiled"),
+        "in blocks (the kernel)": lambda: model_spectrum(
+            "sliding", p, np.ones(n, bool), parallel=False, engine="compiled"
+        ),
     }
     best = dict.fromkeys(lines, np.inf)
     for f in lines.values():

@@ -36,9 +36,8 @@ def main() -> None:
     mu = rng.uniform(0.5, 6.0, 1000)
     q = rng.uniform(-0.9, 0.9, 1000) / np.sqrt(mu)
     sigma = (1.0 - mu * q * q) * rng.uniform(0.1, 1.9, 1000)
-    kernel.checked_sliding_spectrum(
-        q, rng.uniform(0, 3, 1000), sigma, np.full(1000, 0.3), mu, parallel=False, engine="compiled"
-    )
+    p = dict(q=q, fr_inv=rng.uniform(0, 3, 1000), sigma=sigma, alpha_v=np.full(1000, 0.3), mu=mu)
+    kernel.checked_model_spectrum("sliding", p, parallel=False, engine="compiled")
     loop = cached(kernel._model_kernels(get_model("sliding")).checked)
     asm = loop.inspect_asm(loop.signatures[0])
     counts: collections.Counter = collections.Counter()

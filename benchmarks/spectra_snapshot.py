@@ -61,10 +61,10 @@ def snapshot(points: int) -> dict[str, np.ndarray]:
         sp = stability.spectrum("sliding", **p, mask_unphysical=mask)
         for field in ("eigenvalues", "error_bound", "neutral", "stability", "inside"):
             out[f"{name}/{field}"] = np.asarray(getattr(sp, field))
-    from stability.linear.kernel import checked_sliding_spectrum
+    from stability.linear.kernel import checked_model_spectrum
 
     small = domain_sample(2000, seed=7)
-    sp = checked_sliding_spectrum(**small, engine="python").spectrum
+    sp = checked_model_spectrum("sliding", small, engine="python").spectrum
     for field, v in zip(("eigenvalues", "error_bound", "neutral", "stability"), sp):
         out[f"python/{field}"] = np.asarray(v)
     return out

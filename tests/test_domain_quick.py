@@ -17,7 +17,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from stability.linear.kernel import checked_sliding_spectrum, sliding_domain
+from stability.linear.kernel import checked_model_spectrum, model_domain
 from stability.parameters import (
     COMPUTABLE_MAX,
     domain_applies,
@@ -93,7 +93,9 @@ def test_compiled_kernel_domain_test_is_exact_on_the_bounds():
     """The compiled loop (the quick decision compiled into it) agrees with fractions."""
     q, sigma, mu = (np.array(c) for c in zip(*CASES))
     n = len(q)
-    code = sliding_domain(q, np.full(n, 0.1), sigma, np.full(n, 0.5), mu, engine="compiled")
+    code = model_domain(
+        "sliding", dict(q=q, fr_inv=np.full(n, 0.1), sigma=sigma, alpha_v=np.full(n, 0.5), mu=mu), engine="compiled"
+    )
     want = np.array([exact_inside(*c) for c in CASES])
     np.testing.assert_array_equal(code == 0, want)
 
@@ -118,7 +120,9 @@ def test_plain_comparison_band_and_far_points():
         assert inside_domain(domain_sides_quick(q, 0.1, sigma, 0.5, mu, 0.0), APPLIES) == want, (q, sigma, mu)
     q, sigma, mu = (np.array(c) for c in zip(*pts))
     n = len(q)
-    code = sliding_domain(q, np.full(n, 0.1), sigma, np.full(n, 0.5), mu, engine="compiled")
+    code = model_domain(
+        "sliding", dict(q=q, fr_inv=np.full(n, 0.1), sigma=sigma, alpha_v=np.full(n, 0.5), mu=mu), engine="compiled"
+    )
     np.testing.assert_array_equal(code == 0, [exact_inside(*c) for c in pts])
 
 
@@ -207,7 +211,9 @@ def test_fused_loop_codes_are_exact_near_every_bound(parallel):
     pts = [pts[k] for k in rng.permutation(len(pts))]
     want = np.array([exact_code(*p) for p in pts])
     arrays = [np.array(c) for c in zip(*pts)]
-    got = checked_sliding_spectrum(*arrays, engine="compiled", parallel=parallel)
+    got = checked_model_spectrum(
+        "sliding", dict(zip(("q", "fr_inv", "sigma", "alpha_v", "mu"), arrays)), engine="compiled", parallel=parallel
+    )
     np.testing.assert_array_equal(got.inside, want == 0)
     assert got.n_not_finite == int(np.sum(want == 2))
     assert got.n_outside == int(np.sum(want != 0))

@@ -29,6 +29,7 @@ import pytest
 from conftest import mp_sliding_eigenvalues, random_domain_points
 
 import stability
+from stability.jit import cached
 from stability.linear import kernel
 from stability.linear.spectra import MARGINAL, STABLE, UNSTABLE
 
@@ -186,7 +187,8 @@ def test_sliding_coefficients_bitwise():
     """The kernel forms eq. (11)'s coefficients itself: they must be the model's, bit for bit."""
     p = random_domain_points(500, seed=24)
     ref = stability.get_model("sliding").coefficients(**p)
-    ours = np.array([kernel.sliding_coefficients(*(p[k][j] for k in NAMES)) for j in range(500)])
+    formula = cached(stability.get_model("sliding").point_coefficients)  # compiled as in the kernel
+    ours = np.array([formula(*(p[k][j] for k in NAMES)) for j in range(500)]).view(np.complex128)
     assert np.array_equal(ours, ref)
 
 
@@ -207,8 +209,8 @@ def test_masked_points_and_polish_none():
     sp = stability.spectrum("sliding", q=np.array([0.1, 0.9]), fr_inv=0.3, sigma=1.0, alpha_v=0.5, mask_unphysical=True)
     assert sp.stability[1] == -1 and np.isnan(sp.eigenvalues[1]).all()
     p = random_domain_points(200, seed=26)
-    raw = kernel.sliding_spectrum(*(p[k] for k in NAMES), polish=0)
-    fine = kernel.sliding_spectrum(*(p[k] for k in NAMES))
+    raw = kernel.model_spectrum("sliding", p, polish=0)
+    fine = kernel.model_spectrum("sliding", p)
     rel = np.abs(raw[0] - fine[0]) / np.abs(fine[0]).max(axis=-1, keepdims=True)
     assert rel.max() < 1e-6
 
@@ -279,7 +281,7 @@ def test_fused_domain_test_agrees_with_check_domain():
     edge = _bound_points()
     m = edge["q"].size
     p = {k: np.concatenate([edge[k], box[k]]) for k in NAMES}
-    code = kernel.sliding_domain(*(p[k] for k in NAMES))
+    code = kernel.model_domain("sliding", p)
     refused = np.zeros(code.size, dtype=bool)
     for j in range(m):  # the random box holds no refused values: check the edge points one by one
         try:
@@ -319,7 +321,7 @@ def test_fused_path_equals_general_path():
     sigma = np.linspace(0.1, 2.0, 7).reshape(1, 1, -1)
     sp = stability.spectrum("sliding", q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=0.5, mu=2.28, mask_unphysical=True)
     p, inside = check_domain(mask=True, q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=0.5, mu=2.28)
-    ref = kernel.sliding_spectrum(p["q"], p["fr_inv"], p["sigma"], p["alpha_v"], p["mu"], inside)
+    ref = kernel.model_spectrum("sliding", p, inside)
     assert sp.eigenvalues.shape == (41, 3, 7, 3) and not inside.all() and inside.any()
     assert np.array_equal(sp.inside, inside)
     for ours, theirs in zip((sp.eigenvalues, sp.error_bound, sp.neutral, sp.stability), ref):

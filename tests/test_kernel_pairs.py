@@ -60,10 +60,10 @@ def _check(p: dict[str, np.ndarray], inside: np.ndarray, ev: np.ndarray, bd: np.
 def test_pairs_with_outside_and_structural_neighbours(n, engine):
     """The fused path (domain test in the loop) and the masked path, odd and even counts."""
     p, inside = _mixed(n)
-    checked = kernel.checked_sliding_spectrum(*(p[k] for k in NAMES), engine=engine, parallel=False)
+    checked = kernel.checked_model_spectrum("sliding", p, engine=engine, parallel=False)
     np.testing.assert_array_equal(checked.inside, inside)
     _check(p, inside, *checked.spectrum[:2], checked.spectrum.stability)
-    masked = kernel.sliding_spectrum(*(p[k] for k in NAMES), inside=inside, engine=engine, parallel=False)
+    masked = kernel.model_spectrum("sliding", p, inside, engine=engine, parallel=False)
     _check(p, inside, masked.eigenvalues, masked.error_bound, masked.stability)
 
 
@@ -102,12 +102,11 @@ def test_blocks_give_the_point_by_point_bits(polish):
     bit, on both model loops (fused domain test, and masked); no sweep, one sweep with no second
     allowed, and the default."""
     p, inside = _blocks_sample()
-    args = [p[k] for k in NAMES]
-    ref = kernel.checked_sliding_spectrum(*args, engine="python", polish=polish)
+    ref = kernel.checked_model_spectrum("sliding", p, engine="python", polish=polish)
     np.testing.assert_array_equal(ref.inside, inside)
     for parallel in (False, True):
-        got = kernel.checked_sliding_spectrum(*args, engine="compiled", parallel=parallel, polish=polish)
-        masked = kernel.sliding_spectrum(*args, inside=inside, engine="compiled", parallel=parallel, polish=polish)
+        got = kernel.checked_model_spectrum("sliding", p, engine="compiled", parallel=parallel, polish=polish)
+        masked = kernel.model_spectrum("sliding", p, inside, engine="compiled", parallel=parallel, polish=polish)
         for out in (got.spectrum, masked):
             for a, b in zip(ref.spectrum, out):
                 assert a.shape == b.shape and a.tobytes() == b.tobytes()
@@ -116,7 +115,7 @@ def test_blocks_give_the_point_by_point_bits(polish):
 def test_blocks_rare_points_against_mpmath():
     """The points that leave the generic cubic, and their neighbours, against mpmath."""
     p, inside = _blocks_sample()
-    sp = kernel.checked_sliding_spectrum(*(p[k] for k in NAMES), engine="compiled", parallel=False).spectrum
+    sp = kernel.checked_model_spectrum("sliding", p, engine="compiled", parallel=False).spectrum
     pick = np.unique(np.r_[0:12, 3:200:19, 5:200:11, 7:200:13, 9:200:17, len(inside) - 5 : len(inside)])
     sub = {k: p[k][pick] for k in NAMES}
     _check(sub, inside[pick], sp.eigenvalues[pick], sp.error_bound[pick], sp.stability[pick])

@@ -86,7 +86,7 @@ def _compiled_derivative_parts(q, fr_inv, sigma, alpha_v, mu, k):
 def test_sliding_formulas_same_bits_in_every_engine():
     """Engine agreement (not accuracy: see test_spectra_reference, test_neutral's stencil test):
     eq. (11)'s coefficients from Python floats, from numpy arrays (Sliding.coefficients) and
-    compiled (the spectral kernel's own, kernel.sliding_coefficients), and their derivatives by
+    compiled (the formula as the spectral kernel compiles it, stability.jit.cached), and their derivatives by
     each parameter from Python floats, numpy arrays and a compiled call, on random points and
     the points around every domain bound: identical bits (every value, both signs of zero
     compared as equal)."""
@@ -98,7 +98,7 @@ def test_sliding_formulas_same_bits_in_every_engine():
         point = tuple(float(p[k][j]) for k in NAMES)
         py = coefficient_parts(*point)
         py_c = [complex(py[2 * i], py[2 * i + 1]) for i in range(4)]
-        assert py_c == list(kernel.sliding_coefficients(*point)) == arrays[j].tolist(), point
+        assert py == cached(coefficient_parts)(*point) and py_c == arrays[j].tolist(), point
         assert all(float(np.broadcast_to(a, (n,))[j]) == b for a, b in zip(parts_np, py))
         for k in range(5):
             d = derivative_parts(*point, k)
@@ -165,11 +165,11 @@ def test_domain_table_same_decision_in_every_engine():
     """Engine agreement: the domain table's test of a point from Python floats
     (domain_sides/inside_domain, what a pure-Python kernel would run), numpy arrays
     (check_domain's path, mask=True) and the compiled kernel (its fused test,
-    kernel.sliding_domain) on and within 12 ulps of every bound, the slack of sigma <= 2 A_G
+    kernel.model_domain) on and within 12 ulps of every bound, the slack of sigma <= 2 A_G
     included. (check_domain against the kernel on 20,000 random points and NaN/inf:
     test_kernel.)"""
     p = _finite_bound_points()
-    code = kernel.sliding_domain(*(p[k] for k in NAMES))
+    code = kernel.model_domain("sliding", p)
     mask = check_domain(mask=True, **p)[1]
     applies = domain_applies(NAMES)
     assert (code == 0).any() and (code == 1).any() and not (code == 2).any()
@@ -442,7 +442,7 @@ from stability.linear import kernel, neutral_compiled
 from stability.linear.neutrality import NeutralCondition
 ks = kernel._model_kernels(stability.get_model("sliding"))
 cond = NeutralCondition("sliding", ("q", "sigma"), dict(fr_inv=0.0, alpha_v=0.5, mu=2.28), compiled=True)
-funcs = [*(cached(f, p) for f in (ks.checked, ks.masked, ks.domain) for p in (False, True)), cached(ks.coefficients),
+funcs = [*(cached(f, p) for f in (ks.checked, ks.masked) for p in (False, True)),
          *cond.kernels[2:], neutral_compiled.step_kernel(cond.kernels)]
 for d in funcs:
     f = d.py_func
@@ -462,7 +462,7 @@ def test_compiled_closures_have_the_same_cache_key_in_every_process():
         subprocess.run([sys.executable, "-c", _CACHE_KEYS], capture_output=True, text=True, check=True).stdout
         for _ in range(2)
     ]
-    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 11
+    assert runs[0] == runs[1] and len(runs[0].splitlines()) == 8
 
 
 # --- models added through the registry only ----------------------------------------------------

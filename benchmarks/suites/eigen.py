@@ -8,7 +8,7 @@ paired with the nearest computed one). Methods: ``scipy.linalg.eig(A, M)`` point
 ``numpy.linalg.eigvals(numpy.linalg.solve(M, A))`` on the whole batch (baseline), the
 package's paths ``spectrum(method=...)`` for ``"lapack"``, ``"polynomial"`` and ``"kernel"``
 (the default: domain check, error bounds and stability decision included), and the bare
-kernel (:func:`stability.linear.kernel.sliding_spectrum`, no domain check) with and without
+kernel (:func:`stability.linear.kernel.model_spectrum`, no domain check) with and without
 polishing. The baselines start from prebuilt ``M`` and ``A`` (their construction is not
 timed); the package's paths start from the parameters.
 
@@ -128,7 +128,6 @@ def eigen_work_precision(
     big = domain_sample(points, seed)
     small = domain_sample(reference_points, seed + 1)
     ref = eigen_reference(small)
-    args = [big[k] for k in _NAMES]
     M, A = model.matrices(**big)
     Ms, As = model.matrices(**small)
     results = []
@@ -144,8 +143,8 @@ def eigen_work_precision(
         "scipy loop": lambda: loop(M, A, n_loop),
         "batched LAPACK": lambda: np.linalg.eigvals(np.linalg.solve(M, A)),
         "spectrum(kernel)": lambda: spectrum("sliding", method="kernel", **big),
-        "kernel alone": lambda: kernel.sliding_spectrum(*args, polish=3),
-        "kernel alone, no polishing": lambda: kernel.sliding_spectrum(*args, polish=0),
+        "kernel alone": lambda: kernel.model_spectrum("sliding", big, polish=3),
+        "kernel alone, no polishing": lambda: kernel.model_spectrum("sliding", big, polish=0),
     }
     best, _ = best_times(group, repeat, warmup="first", keep=False)
     M = A = group = None  # free the baselines' matrices before the cross-checks
@@ -164,8 +163,8 @@ def eigen_work_precision(
             f"spectrum({m})": spectrum("sliding", method=m, **small).eigenvalues
             for m in ("lapack", "polynomial", "kernel")
         },
-        "kernel alone": kernel.sliding_spectrum(*(small[k] for k in _NAMES), polish=3)[0],
-        "kernel alone, no polishing": kernel.sliding_spectrum(*(small[k] for k in _NAMES), polish=0)[0],
+        "kernel alone": kernel.model_spectrum("sliding", small, polish=3)[0],
+        "kernel alone, no polishing": kernel.model_spectrum("sliding", small, polish=0)[0],
     }
     notes = {
         "scipy loop": "scipy.linalg.eig(A, M) per point",
@@ -203,7 +202,7 @@ def eigen_work_precision(
                     err,
                     n,
                     component=True,
-                    note="stability.linear.kernel.sliding_spectrum, from the parameters, no domain check",
+                    note="stability.linear.kernel.model_spectrum, from the parameters, no domain check",
                 )
             )
     return results

@@ -35,7 +35,7 @@ thousand points). The two give the same bits (tests/test_kernel.py). Per point:
    cancellation-free formula; one Newton step.
 4. *Cubics.* Cardano's formula in complex arithmetic gives three estimates (a real leading
    coefficient divided out in real arithmetic; the cube root without trigonometric functions,
-   :func:`_cbrt`: a polynomial start and one Halley step, a few ulp). Where the scales
+   :func:`_cardano`: a polynomial start and one Halley step, a few ulp). Where the scales
    are widely separated (smallest estimate below 1e-4 x the largest), Cardano's small roots
    carry an absolute error ``~u |largest|``: the largest root (which Cardano gets to full
    relative accuracy) is Newton-polished and divided out by backward deflation
@@ -89,9 +89,9 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from stability.jit import OPTIONS, cached, overload, register_jitable
+from stability.jit import OPTIONS, overload, register_jitable
 
-from ..errors import InputError, ParameterTypeError
+from ..errors import InputError
 from ..models import LinearModel, get_model
 from ..parameters import PARAMETERS, domain_applies, domain_clearly_inside, domain_sides_quick, inside_domain
 from . import roots
@@ -104,14 +104,9 @@ __all__ = [
     "KernelSpectrum",
     "accepts",
     "checked_model_spectrum",
-    "checked_sliding_spectrum",
     "coefficient_spectrum",
-    "model_coefficients",
     "model_domain",
     "model_spectrum",
-    "sliding_coefficients",
-    "sliding_domain",
-    "sliding_spectrum",
 ]
 
 #: highest polynomial degree the kernel solves
@@ -125,7 +120,6 @@ SERIAL_BELOW = roots.SERIAL_BELOW
 #: serially, numba's ``prange`` in a parallel compilation (:func:`stability.jit.cached`)
 prange = range
 
-_U = 2.0**-53
 _STABLE, _MARGINAL, _UNSTABLE, _OUTSIDE = 0, 1, 2, -1
 _INSIDE, _OUTSIDE_DOMAIN, _NOT_FINITE = 0, 1, 2  # codes of _domain_code
 _UNDECIDED = 3  # a point _domain_clear leaves to _domain_code
@@ -134,7 +128,7 @@ _OMEGA2 = complex(-0.5, -math.sqrt(3.0) / 2.0)
 _CBRT_I = complex(math.sqrt(3.0) / 2.0, 0.5)  # exp(i pi / 6), a cube root of i
 _THIRD = 1.0 / 3.0
 #: sin(asin(s) / 3) ~ s (_CB0 + _CB1 s^2 + _CB2 s^4 + _CB3 s^6) for |s| <= 1/sqrt(2) (least
-#: squares in Chebyshev form; largest error 1.1e-5, removed by the Halley step of _cbrt)
+#: squares in Chebyshev form; largest error 1.1e-5, removed by the Halley step of _turn)
 _CB0, _CB1 = 0.3333211994662179, 0.05011247842998644
 _CB2, _CB3 = 0.015346168881758358, 0.030366777474809238
 
@@ -196,16 +190,7 @@ def _scale(z, t):
 
 @register_jitable
 def _cbrt(w):
-    """A cube root of ``w`` (not always the principal one: Cardano's formula takes any), to a
-    few ulp, without trigonometric functions.
-
-    ``w`` is turned by an exact quarter or half turn into ``W`` with ``|arg W| <= pi/4``; the
-    direction of ``W^(1/3)``, ``exp(i asin(s) / 3)`` with ``s = Im W / |W|``, is taken from an
-    odd polynomial in ``s`` (relative error 1.1e-5) and corrected by one Halley step on
-    ``z^3 = W / |W|`` (cubic convergence: ~1e-15); the modulus is ``cbrt(|W|)``, and the turn
-    is undone by a cube root of it (``+-1``, ``exp(+-i pi/6)``). ``cbrt(|w|) exp(i atan2(Im w,
-    Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one thread); this
-    takes ~35."""
+    """A cube root of ``w`` (:func:`_cardano`)."""
     r = modulus(w)
     if not 0.0 < r < math.inf:
         return w if r != 0 else 0j  # 0; or not finite (Cardano overflowed: caught by the caller)
@@ -214,7 +199,7 @@ def _cbrt(w):
 
 @register_jitable
 def _turn(w, r):
-    """:func:`_cbrt` of ``w`` (modulus ``r``, ``0 < r < inf``) but for the cube root of ``r``:
+    """The cube root of ``w`` (modulus ``r``, ``0 < r < inf``; :func:`_cardano`) but for the cube root of ``r``:
     ``(zr, zi, tr, ti)`` with ``cbrt(w) = cbrt(r) (zr + i zi) (tr + i ti)`` (no branch on data)."""
     x, y = w.real, w.imag
     # the turn by selects, not branches (arg w is random over a grid): w = sx W (|x| >= |y|),
@@ -256,7 +241,17 @@ def _untwist(m, zr, zi, tr, ti):
 @register_jitable
 def _cardano(c3, c2, c1, c0):
     """Cardano's three roots of a cubic, in complex arithmetic (a real leading coefficient, as
-    the sliding model's, is divided out in real arithmetic)."""
+    the sliding model's, is divided out in real arithmetic).
+
+    The cube root ``u`` of ``w`` (not always the principal one: Cardano's formula takes any) is
+    taken to a few ulp without trigonometric functions: ``w`` is turned by an exact quarter or
+    half turn into ``W`` with ``|arg W| <= pi/4``; the direction of ``W^(1/3)``,
+    ``exp(i asin(s) / 3)`` with ``s = Im W / |W|``, is taken from an odd polynomial in ``s``
+    (relative error 1.1e-5) and corrected by one Halley step on ``z^3 = W / |W|`` (cubic
+    convergence: ~1e-15); the modulus is ``cbrt(|W|)``, and the turn is undone by a cube root
+    of it (``+-1``, ``exp(+-i pi/6)``) (:func:`_turn`, :func:`_untwist`). ``cbrt(|w|) exp(i
+    atan2(Im w, Re w) / 3)`` (atan2, cos, sin) took ~50 of Cardano's ~100 ns per point (one
+    thread); this takes ~35."""
     if c3.imag == 0:
         inv = 1.0 / c3.real
         a, b, c = _scale(c2, inv), _scale(c1, inv), _scale(c0, inv)
@@ -363,7 +358,7 @@ def _bound(c3, c2, c1, c0, deg, r):
     """Absolute error bound of a root ``r`` (stability.linear.roots, module docstring)."""
     a = modulus(r)
     scale = ((modulus(c3) * a + modulus(c2)) * a + modulus(c1)) * a + modulus(c0)
-    dp = (deg + 4) * _U * scale
+    dp = (deg + 4) * roots.UNIT_ROUNDOFF * scale
     _, d1, d2 = horner_scheme((c3, c2, c1, c0), r)
     m1 = modulus(d1)
     m2 = modulus(d2)
@@ -387,7 +382,7 @@ def _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, a):
     """``dp``, ``|p'(r)|^2``, ``|p''(r)|^2`` of :func:`_bound_fast` (``a = |r|``) and whether
     the bound is ``sqrt(2 dp / |p''|)`` (the smaller: ``4 |p'|^4 < dp^2 |p''|^2``) rather than
     ``dp / |p'|``."""
-    dp = (deg + 4) * _U * (((m3 * a + m2) * a + m1) * a + m0)
+    dp = (deg + 4) * roots.UNIT_ROUNDOFF * (((m3 * a + m2) * a + m1) * a + m0)
     # p' and p'' directly (Horner's scheme would form p as well)
     t = _scale(c3, 3.0) * r + _scale(c2, 2.0)
     d1 = t * r + c1
@@ -395,12 +390,6 @@ def _bound_terms(c3, c2, c1, m3, m2, m1, m0, deg, r, a):
     n1 = _mod2(d1)
     n2 = _mod2(d2)
     return dp, n1, n2, (4.0 * n1 * n1 < dp * dp * n2) | (n1 == 0)
-
-
-@register_jitable
-def _before(a, b):
-    """Mode ``a`` sorts before ``b``: larger real part, then larger imaginary part."""
-    return a.real > b.real or (a.real == b.real and a.imag > b.imag)
 
 
 @register_jitable
@@ -459,8 +448,8 @@ def _swap(s, a, b):
 @register_jitable
 def _exchange(ra, rb, ea, eb, xa, xb):
     """A compare-exchange of :func:`_decide`: modes ``a`` and ``b`` (root, bound, flag) swapped
-    where ``b`` sorts before ``a`` (:func:`_before`; selects)."""
-    s = _before(rb, ra)
+    where ``b`` sorts before ``a``: a larger real part, then a larger imaginary part (selects)."""
+    s = rb.real > ra.real or (rb.real == ra.real and rb.imag > ra.imag)
     ra, rb = _swap(s, ra, rb)
     ea, eb = _swap(s, ea, eb)
     xa, xb = _swap(s, xa, xb)
@@ -471,7 +460,7 @@ def _exchange(ra, rb, ea, eb, xa, xb):
 def _mode(r, e, x, floor):
     """Whether the mode ``r`` (bound ``e``, exactly-zero-real flag ``x``) is neutral, and
     whether it grows (module docstring, step 6)."""
-    tol = 4.0 * e + floor
+    tol = 4.0 * e + floor  # roots.neutral_tolerance, with its floor 16 u max|s| formed once per point
     nt = (x & (r.real == 0)) | (abs(r.real) <= tol)
     return nt, (r.real > tol) & (not nt)
 
@@ -496,7 +485,7 @@ def _decide(n, r0, r1, r2, e0, e1, e2, x0, x1, x2, ev, bd, neutral, i):
         scale2 = max(scale2, _mod2(r1))
     if n == 3:
         scale2 = max(scale2, _mod2(r2))
-    floor = 16.0 * _U * math.sqrt(scale2)
+    floor = 16.0 * roots.UNIT_ROUNDOFF * math.sqrt(scale2)
     # every decision first, then the writes, then the flag by arithmetic (no branch on data)
     nt0, grows = _mode(r0, e0, x0, floor)
     anyneutral = nt0
@@ -609,27 +598,12 @@ def _solve_parts(parts, polish):
     """:func:`_solve` (:func:`_solve_linear` for degree 1) on the coefficients of a model's
     ``point_coefficients``: ``(re, im)`` pairs, highest power first, degree
     ``len(parts) / 2 - 1`` from 1 to 3 (numba prunes the other branches at compile time)."""
-    c = _complex_parts(parts)
-    if len(c) == 4:
-        return _solve(c[0], c[1], c[2], c[3], 3, polish)
-    if len(c) == 3:
-        return _solve(c[0], c[1], c[2], 0j, 2, polish)
-    return _solve_linear(c[0], c[1])
-
-
-@register_jitable
-def _complex_parts(parts):
-    """The coefficients of :func:`_solve_parts`'s ``parts`` as complex numbers."""
+    c3, c2 = complex(parts[0], parts[1]), complex(parts[2], parts[3])
     if len(parts) == 8:
-        return (
-            complex(parts[0], parts[1]),
-            complex(parts[2], parts[3]),
-            complex(parts[4], parts[5]),
-            complex(parts[6], parts[7]),
-        )
+        return _solve(c3, c2, complex(parts[4], parts[5]), complex(parts[6], parts[7]), 3, polish)
     if len(parts) == 6:
-        return complex(parts[0], parts[1]), complex(parts[2], parts[3]), complex(parts[4], parts[5])
-    return complex(parts[0], parts[1]), complex(parts[2], parts[3])
+        return _solve(c3, c2, complex(parts[4], parts[5]), 0j, 2, polish)
+    return _solve_linear(c3, c2)
 
 
 #: what a model's loop holds for a point it does not solve (:func:`_solve`'s layout)
@@ -828,8 +802,6 @@ class _Kernels(NamedTuple):
 
     checked: Callable[..., None]
     masked: Callable[..., None]
-    domain: Callable[..., None]
-    coefficients: Callable[..., tuple]
     n: int
 
 
@@ -917,15 +889,7 @@ def _compile(formula: Callable[..., tuple], n: int, applies: tuple[bool, ...]) -
                         sol = _solve_parts(parts, polish)
                     _finish(n, ok, sol, ev, bd, neutral, stab, i)
 
-    def domain(q, fr_inv, sigma, alpha_v, mu, lim, code):
-        """The code of :func:`_domain_code` per point."""
-        for i in prange(len(code)):
-            code[i] = _domain_code(q[i], fr_inv[i], sigma[i], alpha_v[i], mu[i], lim, applies)
-
-    def point_coefficients(q, fr_inv, sigma, alpha_v, mu):
-        return _complex_parts(formula(q, fr_inv, sigma, alpha_v, mu))
-
-    return _Kernels(checked, masked, domain, point_coefficients, n)
+    return _Kernels(checked, masked, n)
 
 
 def _model_kernels(model: LinearModel) -> _Kernels | None:
@@ -944,80 +908,67 @@ def accepts(model: LinearModel) -> bool:
     return _model_kernels(model) is not None
 
 
-def _require_kernels(model: LinearModel) -> _Kernels:
-    kernels = _model_kernels(model)
-    if kernels is None:
-        raise InputError(
-            f"model {model.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
-            "(stability.models.base); use coefficient_spectrum on its coefficients"
-        )
-    return kernels
-
-
 # --- drivers ----------------------------------------------------------------------------------
 
 
-def _outputs(npts: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    return (
+def _flat(x: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """A mask as a C-contiguous 1-D bool array that owns its data (views from
+    ``numpy.broadcast_arrays`` are copied: numba would otherwise warn about their write flag)."""
+    y = np.asarray(x, dtype=np.bool_)
+    if y.shape == shape and y.flags.c_contiguous and y.base is None:
+        return y.reshape(-1)
+    return np.array(np.broadcast_to(y, shape), dtype=np.bool_, order="C").reshape(-1)
+
+
+def _run(
+    loop: Callable[..., None],
+    shape: tuple[int, ...],
+    n: int,
+    inputs: list[Any],
+    parallel: bool | None,
+    engine: str | None,
+    *extra: np.ndarray,
+) -> KernelSpectrum:
+    """``loop`` (:func:`stability.linear.roots.run_loop`) over the points of ``shape`` into new
+    outputs for ``n`` modes (and the ``extra`` ones), in the request's shape."""
+    npts = math.prod(shape)
+    out = (
         np.empty((npts, n), dtype=np.complex128),
         np.empty((npts, n)),
         np.empty((npts, n), dtype=np.bool_),
         np.empty(npts, dtype=np.int8),
     )
-
-
-def _shaped(ev: np.ndarray, bd: np.ndarray, nt: np.ndarray, st: np.ndarray, shape: tuple[int, ...]) -> KernelSpectrum:
-    """The outputs of :func:`_outputs` in the request's ``shape`` (``shape + (n,)`` for the modes)."""
-    n = ev.shape[-1]
-    return KernelSpectrum(
-        ev.reshape(shape + (n,)), bd.reshape(shape + (n,)), nt.reshape(shape + (n,)), st.reshape(shape)
-    )
-
-
-def _flat(x: np.ndarray, shape: tuple[int, ...], dtype: type = np.float64) -> np.ndarray:
-    """A C-contiguous 1-D array that owns its data (views from ``numpy.broadcast_arrays`` are
-    copied: numba would otherwise warn about their write flag)."""
-    y = np.asarray(x, dtype=dtype)
-    if y.shape == shape and y.flags.c_contiguous and y.base is None:
-        return y.reshape(-1)
-    return np.array(np.broadcast_to(y, shape), dtype=dtype, order="C").reshape(-1)
-
-
-def _points(model: str | LinearModel, params: Mapping[str, Any]) -> tuple[_Kernels, list[Any], tuple[int, ...], int]:
-    """The loops of ``model``, its five linear parameters in :data:`stability.parameters.PARAMETERS`
-    order (the arguments of ``point_coefficients``; ``0.0`` for those the model does not take),
-    their broadcast shape and its number of points."""
-    m = get_model(model)
-    kernels = _require_kernels(m)
-    missing = [n for n in m.parameters if n not in params]
-    if missing:
-        raise ParameterTypeError(f"model {m.name!r} needs {', '.join(missing)}")
-    values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    return kernels, values, shape, math.prod(shape)
+    roots.run_loop(loop, npts, parallel, engine, inputs, out + extra)
+    return KernelSpectrum(*(a.reshape(shape + a.shape[1:]) for a in out))
 
 
 def _spectrum(
     model: str | LinearModel,
     params: Mapping[str, Any],
-    inside: np.ndarray | None,
+    inside: np.ndarray | bool | None,
     polish: int,
     parallel: bool | None,
     engine: str | None,
-) -> tuple[KernelSpectrum, np.ndarray | None]:
+) -> tuple[KernelSpectrum, tuple[np.ndarray, ...]]:
     """A model loop of :func:`_compile`: ``checked`` (the domain tested in the same pass) if
     ``inside`` is None, else ``masked`` (the points ``inside`` only); the spectrum and the
-    domain codes (None for ``masked``)."""
-    kernels, values, shape, npts = _points(model, params)
-    ev, bd, nt, st = _outputs(npts, kernels.n)
+    domain codes (flat; none for ``masked``). The loops take the model's five linear parameters
+    in :data:`stability.parameters.PARAMETERS` order (the arguments of ``point_coefficients``;
+    ``0.0`` for those the model does not take), each a 1-D array and its stride (:func:`_strided`)."""
+    m = get_model(model)
+    kernels = _model_kernels(m)
+    if kernels is None:
+        raise InputError(
+            f"model {m.name!r} offers no point_coefficients of degree <= {MAX_DEGREE} "
+            "(stability.models.base); use coefficient_spectrum on its coefficients"
+        )
+    values = [params[n] if n in m.parameters else 0.0 for n in PARAMETERS]
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
     flat = [a for v in values for a in _strided(v, shape)]
-    if inside is None:  # the domain limits, and the codes out
-        loop, given, where = kernels.checked, _computable_limits(), np.empty(npts, dtype=np.int8)
-    else:
-        loop, given, where = kernels.masked, _flat(inside, shape, np.bool_), None
-    outputs = (ev, bd, nt, st) if where is None else (ev, bd, nt, st, where)
-    roots.run_loop(loop, npts, parallel, engine, [*flat, given, int(polish)], outputs)
-    return _shaped(ev, bd, nt, st, shape), where
+    # checked: the domain limits in, the codes out; masked: the mask in
+    codes = (np.empty(math.prod(shape), dtype=np.int8),) if inside is None else ()
+    loop, given = (kernels.checked, _computable_limits()) if inside is None else (kernels.masked, _flat(inside, shape))
+    return _run(loop, shape, kernels.n, [*flat, given, int(polish)], parallel, engine, *codes), codes
 
 
 def model_spectrum(
@@ -1056,25 +1007,7 @@ def model_spectrum(
     KernelSpectrum
         Shapes ``broadcast + (n_modes,)`` (and ``broadcast`` for the flag).
     """
-    return _spectrum(model, params, inside, polish, parallel, engine)[0]
-
-
-def sliding_spectrum(
-    q: np.ndarray,
-    fr_inv: np.ndarray,
-    sigma: np.ndarray,
-    alpha_v: np.ndarray,
-    mu: np.ndarray,
-    inside: np.ndarray | None = None,
-    *,
-    polish: int = 3,
-    parallel: bool | None = None,
-    engine: str | None = None,
-) -> KernelSpectrum:
-    """:func:`model_spectrum` of the sliding model (eq. 11), parameters by position (the bare
-    kernel of the benchmarks)."""
-    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
-    return model_spectrum("sliding", sliding, inside, polish=polish, parallel=parallel, engine=engine)
+    return _spectrum(model, params, True if inside is None else inside, polish, parallel, engine)[0]
 
 
 class CheckedSpectrum(NamedTuple):
@@ -1106,12 +1039,11 @@ def _computable_limits() -> tuple[float, ...]:
     none (an upper bound is always finite: :func:`_refused` refuses NaN and inf by it)."""
     from .. import parameters
 
-    lim = np.array([float(x) for k in PARAMETERS for x in parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf))])
-    lim[1::2] = np.minimum(lim[1::2], np.finfo(np.float64).max)  # |x| <= hi then also means finite
-    return tuple(lim.tolist())
+    ranges = [parameters.COMPUTABLE_RANGE.get(k, (0.0, math.inf)) for k in PARAMETERS]
+    return tuple(x for lo, hi in ranges for x in (float(lo), float(min(hi, np.finfo(np.float64).max))))
 
 
-def _strided(x: np.ndarray, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
+def _strided(x: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, int]:
     """A 1-D float64 array and the stride to read it with: the data itself (stride 1) when it
     already has the full shape and is C-contiguous, its one value (stride 0) for a single
     value, else a broadcast copy."""
@@ -1166,32 +1098,17 @@ def checked_model_spectrum(
     ValueError
         If the shapes do not broadcast together.
     """
-    spec, where = _spectrum(model, params, None, polish, parallel, engine)
+    spec, (where,) = _spectrum(model, params, None, polish, parallel, engine)
     inside = where == _INSIDE
     n_out = where.size - int(np.count_nonzero(inside))
     n_bad = int(np.count_nonzero(where == _NOT_FINITE)) if n_out else 0
-    return CheckedSpectrum(spec, inside.reshape(spec.stability.shape), int(n_out), int(n_bad))
-
-
-def checked_sliding_spectrum(
-    q: np.ndarray,
-    fr_inv: np.ndarray,
-    sigma: np.ndarray,
-    alpha_v: np.ndarray,
-    mu: np.ndarray,
-    *,
-    polish: int = 3,
-    parallel: bool | None = None,
-    engine: str | None = None,
-) -> CheckedSpectrum:
-    """:func:`checked_model_spectrum` of the sliding model (eq. 11), parameters by position."""
-    sliding = dict(zip(PARAMETERS, (q, fr_inv, sigma, alpha_v, mu)))
-    return checked_model_spectrum("sliding", sliding, polish=polish, parallel=parallel, engine=engine)
+    return CheckedSpectrum(spec, inside.reshape(spec.stability.shape), n_out, n_bad)
 
 
 def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine: str | None = None) -> np.ndarray:
-    """The kernel's domain test alone (for tests): 0 inside, 1 outside the physical domain, 2 a
-    parameter not finite or outside the computable range (refused even when masked).
+    """The codes of the fused loop's domain test (for tests): 0 inside, 1 outside the physical
+    domain, 2 a parameter not finite or outside the computable range (refused even when masked).
+    The loop of :func:`checked_model_spectrum`, without polishing.
 
     Parameters
     ----------
@@ -1206,41 +1123,8 @@ def model_domain(model: str | LinearModel, params: Mapping[str, Any], *, engine:
     -------
     numpy.ndarray of int8, broadcast shape
     """
-    kernels, values, shape, npts = _points(model, params)
-    code = np.empty(npts, dtype=np.int8)
-    roots.run_loop(
-        kernels.domain, npts, None, engine, [*(_flat(v, shape) for v in values), _computable_limits()], (code,)
-    )
-    return code.reshape(shape)
-
-
-def sliding_domain(
-    q: np.ndarray,
-    fr_inv: np.ndarray,
-    sigma: np.ndarray,
-    alpha_v: np.ndarray,
-    mu: np.ndarray,
-    *,
-    engine: str | None = None,
-) -> np.ndarray:
-    """:func:`model_domain` of the sliding model, parameters by position."""
-    return model_domain("sliding", dict(q=q, fr_inv=fr_inv, sigma=sigma, alpha_v=alpha_v, mu=mu), engine=engine)
-
-
-def model_coefficients(
-    model: str | LinearModel, q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float
-) -> tuple[complex, ...]:
-    """The coefficients at one point as the compiled kernel forms them (highest power first):
-    the numba execution of the model's ``point_coefficients`` (tests compare it, bit for bit,
-    with the model's numpy :meth:`~stability.models.base.LinearModel.coefficients`)."""
-    return cached(_require_kernels(get_model(model)).coefficients)(
-        float(q), float(fr_inv), float(sigma), float(alpha_v), float(mu)
-    )
-
-
-def sliding_coefficients(q: float, fr_inv: float, sigma: float, alpha_v: float, mu: float) -> tuple[complex, ...]:
-    """``mu det(s M - A)`` of eq. (11) at one point as the kernel forms it (:func:`model_coefficients`)."""
-    return model_coefficients("sliding", q, fr_inv, sigma, alpha_v, mu)
+    spec, (where,) = _spectrum(model, params, None, 0, None, engine)
+    return where.reshape(spec.stability.shape)
 
 
 def coefficient_spectrum(
@@ -1277,8 +1161,5 @@ def coefficient_spectrum(
         raise InputError("leading coefficient is zero (singular mass matrix)")
     shape = c.shape[:-1]
     flat = np.ascontiguousarray(c.reshape(-1, n + 1))
-    ins = np.ones(flat.shape[0], dtype=np.bool_) if inside is None else _flat(inside, shape, np.bool_)
-    npts = flat.shape[0]
-    ev, bd, nt, st = _outputs(npts, n)
-    roots.run_loop(_coefficient_loop, npts, parallel, engine, [flat, n, ins, int(polish)], (ev, bd, nt, st))
-    return _shaped(ev, bd, nt, st, shape)
+    ins = _flat(True if inside is None else inside, shape)
+    return _run(_coefficient_loop, shape, n, [flat, n, ins, int(polish)], parallel, engine)

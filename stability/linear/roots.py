@@ -295,7 +295,7 @@ def run_loop(
 def quadratic_roots_many(a, b, k, roots, exact):
     """:func:`quadratic_roots` over a batch (1-D complex ``a, b, k``) into ``roots`` (m, 2) and
     ``exact`` (m, 2); lists (interpreted) or arrays (compiled by :func:`stability.jit.cached`;
-    :func:`_quadratic` chooses by :func:`stability.execution.use_compiled`)."""
+    :func:`_roots_no_trailing_zero` chooses by :func:`stability.execution.use_compiled`)."""
     for i in range(len(a)):
         r1, r2, ex = quadratic_roots(a[i], b[i], k[i])
         roots[i][0] = r1
@@ -349,13 +349,17 @@ def axis_norms(c, ncoef):
     n = ncoef - 1
     for k in range(ncoef):
         ck = c[k]
-        if (n - k) % 2 == 0:
-            na = na + abs(ck.real)
-            nb = nb + abs(ck.imag)
-        else:
-            na = na + abs(ck.imag)
-            nb = nb + abs(ck.real)
+        a, b = (ck.real, ck.imag) if (n - k) % 2 == 0 else (ck.imag, ck.real)
+        na = na + abs(a)
+        nb = nb + abs(b)
     return na, nb
+
+
+@register_jitable
+def _horner_step(p, d1, d2, d3, ck, x):
+    """One step of Horner's scheme with three derivatives at ``x``: the value and the first
+    three derivatives after the next coefficient ``ck`` (each from the previous ones)."""
+    return p * x + ck, d1 * x + p, d2 * x + 2.0 * d1, d3 * x + 3.0 * d2
 
 
 @register_jitable
@@ -368,34 +372,25 @@ def _axis_horner(c, ncoef, w):
     aw = abs(w)
     for k in range(ncoef):
         ck = c[k]
-        m = (n - k) % 4
-        if m == 0:
-            ak = ck.real
-            bk = ck.imag
-        elif m == 1:
-            ak = -ck.imag
-            bk = ck.real
-        elif m == 2:
-            ak = -ck.real
-            bk = -ck.imag
-        else:
-            ak = ck.imag
-            bk = -ck.real
-        dddA = dddA * w + 3.0 * ddA
-        ddA = ddA * w + 2.0 * dA
-        dA = dA * w + A
-        A = A * w + ak
-        dddB = dddB * w + 3.0 * ddB
-        ddB = ddB * w + 2.0 * dB
-        dB = dB * w + B
-        B = B * w + bk
-        sdda = sdda * aw + 2.0 * sda
-        sda = sda * aw + sa
-        sa = sa * aw + abs(ak)
-        sddb = sddb * aw + 2.0 * sdb
-        sdb = sdb * aw + sb
-        sb = sb * aw + abs(bk)
+        # a_k + i b_k = c_k i^(n-k): parts swapped (times i) for odd n - k, negated (times -1)
+        # for n - k = 2, 3 mod 4
+        ak, bk = (ck.real, ck.imag) if (n - k) % 2 == 0 else (-ck.imag, ck.real)
+        if (n - k) % 4 >= 2:
+            ak, bk = -ak, -bk
+        A, dA, ddA, dddA = _horner_step(A, dA, ddA, dddA, ak, w)
+        B, dB, ddB, dddB = _horner_step(B, dB, ddB, dddB, bk, w)
+        sa, sda, sdda, _ = _horner_step(sa, sda, sdda, 0.0, abs(ak), aw)
+        sb, sdb, sddb, _ = _horner_step(sb, sdb, sddb, 0.0, abs(bk), aw)
     return A, dA, ddA, dddA, B, dB, ddB, dddB, sa, sda, sdda, sb, sdb, sddb
+
+
+@register_jitable
+def _quotient_error(x1, e1, y1, f1, x2, e2, y2, f2, den, value, rel):
+    """The error bound of ``value = (x1 y1 +- x2 y2) / den`` (:func:`axis_growth`): the errors
+    ``e``, ``f`` of the factors ``x``, ``y`` carried through the products, ``3 u`` of their
+    rounding and sum, and ``rel`` relative to the quotient (that of ``den`` and its own)."""
+    products = 3.0 * UNIT_ROUNDOFF * (abs(x1 * y1) + abs(x2 * y2))
+    return (e1 * abs(y1) + abs(x1) * f1 + e2 * abs(y2) + abs(x2) * f2 + products) / den + abs(value) * rel
 
 
 @register_jitable
@@ -434,21 +429,13 @@ def axis_growth(c, ncoef, w):
     # Newton's step delta = g + i h from i w (p'(i w) = B' - i A')
     g = (B * dA - A * dB) / den
     h = -(A * dA + B * dB) / den
-    eg = (
-        eB * abs(dA) + abs(B) * edA + eA * abs(dB) + abs(A) * edB + 3.0 * u * (abs(B * dA) + abs(A * dB))
-    ) / den + abs(g) * (eden + u)
-    eh = (
-        eA * abs(dA) + abs(A) * edA + eB * abs(dB) + abs(B) * edB + 3.0 * u * (abs(A * dA) + abs(B * dB))
-    ) / den + abs(h) * (eden + u)
+    eg = _quotient_error(B, eB, dA, edA, A, eA, dB, edB, den, g, eden + u)
+    eh = _quotient_error(A, eA, dA, edA, B, eB, dB, edB, den, h, eden + u)
     # c2 = p''/(2 p') = cr + i ci, with p''(i w) = -(A'' + i B'')
     cr = -(ddA * dB - ddB * dA) / (2.0 * den)
     ci = -(ddA * dA + ddB * dB) / (2.0 * den)
-    ecr = (
-        eddA * abs(dB) + abs(ddA) * edB + eddB * abs(dA) + abs(ddB) * edA + 3.0 * u * (abs(ddA * dB) + abs(ddB * dA))
-    ) / (2.0 * den) + abs(cr) * (eden + u)
-    eci = (
-        eddA * abs(dA) + abs(ddA) * edA + eddB * abs(dB) + abs(ddB) * edB + 3.0 * u * (abs(ddA * dA) + abs(ddB * dB))
-    ) / (2.0 * den) + abs(ci) * (eden + u)
+    ecr = _quotient_error(ddA, eddA, dB, edB, ddB, eddB, dA, edA, 2.0 * den, cr, eden + u)
+    eci = _quotient_error(ddA, eddA, dA, edA, ddB, eddB, dB, edB, 2.0 * den, ci, eden + u)
     step = math.sqrt(g * g + h * h) + eg + eh
     c2 = math.sqrt(cr * cr + ci * ci)
     if c2 * step > 0.25:
@@ -502,8 +489,11 @@ def horner(c: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return horner_scheme(np.moveaxis(np.asarray(c), -1, 0), s)
 
 
-def _bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """Absolute error bound of roots ``r`` of ``c`` (see module docstring)."""
+def root_bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The error bound of the module docstring for roots ``r`` (..., m) of the polynomials ``c``
+    (..., n+1): ``min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))``, ``dp = (n + 4) u sum_k |c_k| |r|^k``."""
+    c = np.asarray(c, dtype=complex)[..., None, :]
+    r = np.asarray(r, dtype=complex)
     deg = c.shape[-1] - 1
     # sum_k |c_k| |r|^k: the scale of rounding errors in p(r)
     dp_scale = (deg + 4) * UNIT_ROUNDOFF * horner_scheme(np.moveaxis(np.abs(c), -1, 0), np.abs(r), 0)[0]
@@ -512,13 +502,6 @@ def _bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
         first = np.where(np.abs(d1) > 0, dp_scale / np.abs(d1), np.inf)
         second = np.where(np.abs(d2) > 0, np.sqrt(2.0 * dp_scale / np.abs(d2)), np.inf)
     return np.minimum(first, second)
-
-
-def root_bound(c: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """The error bound of the module docstring for roots ``r`` (..., m) of the polynomials ``c``
-    (..., n+1): ``min(dp / |p'(r)|, sqrt(2 dp / |p''(r)|))``, ``dp = (n + 4) u sum_k |c_k| |r|^k``."""
-    c = np.asarray(c, dtype=complex)
-    return _bound(c[..., None, :], np.asarray(r, dtype=complex))
 
 
 def inclusion_radius(c: np.ndarray, r: np.ndarray) -> np.ndarray:
@@ -571,34 +554,25 @@ def _newton_polish(c: np.ndarray, r: np.ndarray, iterations: int = 3) -> np.ndar
     return r
 
 
-def _quadratic(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Roots of ``a s^2 + b s + c`` for a batch (..., 3) (:func:`quadratic_roots` compiled over
-    the batch); returns roots and exact_real mask."""
-    flat = np.asarray(c, dtype=complex).reshape(-1, 3)
-    m = flat.shape[0]
-    roots = np.empty((m, 2), dtype=complex)
-    exact = np.empty((m, 2), dtype=bool)
-    run_loop(quadratic_roots_many, m, False, None, [np.ascontiguousarray(flat[:, k]) for k in range(3)], (roots, exact))
-    shape = c.shape[:-1] + (2,)
-    return roots.reshape(shape), exact.reshape(shape)
-
-
 def _roots_no_trailing_zero(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Roots of polynomials (..., m+1) whose constant term may be anything; m >= 1."""
+    """Roots of polynomials (k, m+1) whose constant term may be anything, m >= 1, and the
+    exact-real mask: the quadratic formula (:func:`quadratic_roots` over the batch, compiled or
+    interpreted), polished by a Newton step; higher degrees by the companion matrix, polished."""
     m = c.shape[-1] - 1
+    exact = np.zeros((len(c), m), dtype=bool)
     if m == 1:
-        return (-c[..., 1] / c[..., 0])[..., None], np.zeros(c.shape[:-1] + (1,), dtype=bool)
+        return (-c[:, 1] / c[:, 0])[:, None], exact
     if m == 2:
-        r, exact = _quadratic(c)
-        r = np.where(exact, r, _newton_polish(c, r, iterations=1))
-        return r, exact
-    comp = np.zeros(c.shape[:-1] + (m, m), dtype=complex)
-    comp[..., 0, :] = -c[..., 1:] / c[..., :1]
+        r = np.empty((len(c), 2), dtype=complex)
+        run_loop(
+            quadratic_roots_many, len(c), False, None, [np.ascontiguousarray(c[:, k]) for k in range(3)], (r, exact)
+        )
+        return np.where(exact, r, _newton_polish(c, r, iterations=1)), exact
+    comp = np.zeros((len(c), m, m), dtype=complex)
+    comp[:, 0, :] = -c[:, 1:] / c[:, :1]
     idx = np.arange(m - 1)
-    comp[..., idx + 1, idx] = 1.0
-    r = np.linalg.eigvals(comp)
-    r = _newton_polish(c, r)
-    return r, np.zeros(r.shape, dtype=bool)
+    comp[:, idx + 1, idx] = 1.0
+    return _newton_polish(c, np.linalg.eigvals(comp)), exact
 
 
 def polynomial_roots(c: np.ndarray) -> PolynomialRoots:
@@ -623,20 +597,18 @@ def polynomial_roots(c: np.ndarray) -> PolynomialRoots:
     flat = c.reshape(-1, n + 1)
     roots = np.zeros((flat.shape[0], n), dtype=complex)
     bound = np.zeros((flat.shape[0], n))
-    exact = np.zeros((flat.shape[0], n), dtype=bool)
+    exact = np.ones((flat.shape[0], n), dtype=bool)  # structural zero roots stay 0, bound 0, exact
     # number of exactly zero trailing coefficients (structural zero roots), at most n
     nz = np.cumprod(flat[:, :0:-1] == 0, axis=1).sum(axis=1)
     for z in np.unique(nz):
         sel = nz == z
         m = n - z
-        if z:
-            exact[sel, m:] = True  # roots[sel, m:] stay 0 with bound 0
         if m == 0:
             continue
         cm = flat[sel, : m + 1]
         r, ex = _roots_no_trailing_zero(cm)
         roots[sel, :m] = r
         exact[sel, :m] = ex
-        bound[sel, :m] = _bound(cm[:, None, :], r)
+        bound[sel, :m] = root_bound(cm, r)
     shape = c.shape[:-1] + (n,)
     return PolynomialRoots(roots.reshape(shape), bound.reshape(shape), exact.reshape(shape))
