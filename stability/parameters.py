@@ -248,8 +248,8 @@ def _integer_text(v: int) -> str:
 def _integers_as_floats(name: str, arr: np.ndarray) -> np.ndarray:
     """An object array of Python integers (numpy's dtype for integers beyond int64, also mixed
     with floats) as floats (numpy's cast: ``float()`` of each);
-    a :class:`DomainError` naming the first integer too large for a double (``float()`` rounds
-    ``|v| >= 2**1024 - 2**970`` up to ``2**1024``: an overflow). Other object arrays
+    a :class:`DomainError` naming the first item too large for a double (an integer, or a
+    ``Fraction`` among them: ``float()`` overflows). Other object arrays
     are returned unchanged (their dtype is refused by the caller)."""
     items = arr.reshape(-1)
     if (
@@ -261,11 +261,15 @@ def _integers_as_floats(name: str, arr: np.ndarray) -> np.ndarray:
     try:
         return arr.astype(np.float64)
     except OverflowError:
-        v = next(int(v) for v in items if isinstance(v, numbers.Integral) and abs(int(v)) >= 2**1024 - 2**970)
-        raise DomainError(
-            f"{name} = {_integer_text(v)} is outside the computable range: {computable_range_text(name)} "
-            "(it does not even fit a double)"
-        ) from None
+        for v in items:  # the first item float() refuses (an integer, or a Fraction beside them)
+            try:
+                float(v)
+            except OverflowError:
+                raise DomainError(
+                    f"{name} = {_integer_text(int(v))} is outside the computable range: "
+                    f"{computable_range_text(name)} (it does not even fit a double)"
+                ) from None
+        raise
 
 
 def fmt_against(value: float, bound: float) -> tuple[str, str]:

@@ -25,8 +25,9 @@ P = dict(fr_inv=0.3, alpha_v=0.5)
 
 def test_integer_overflow_names_the_parameter():
     """q = 10**400 does not fit a double: a DomainError naming q, its size and the computable
-    range (was: OverflowError from numpy), alone or in a list with floats."""
-    for q in (10**400, [0.1, 10**400], -(10**400)):
+    range (was: OverflowError from numpy), alone or in a list with floats, and a Fraction that
+    overflows beside integers (its integer part named the same way)."""
+    for q in (10**400, [0.1, 10**400], -(10**400), [Fraction(10**400), 1], [Fraction(-(10**401), 10), 0]):
         with pytest.raises(
             DomainError,
             match=r"^q = -?1e\+400 \(an integer of 401 digits\) is outside the "

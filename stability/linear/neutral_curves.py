@@ -564,10 +564,13 @@ def _assemble(
         "equations": model.equations,
         **{k: float(v) for k, v in fixed.items()},
         "fixed": ", ".join(sorted(fixed)),
+        PRODUCT_ATTR: attrs[PRODUCT_ATTR],
         **dict(zip("xyz", names)),
+        **{k: attrs[k] for k in ("fold_in",) if k in attrs},
         "form": prob.cond.form,
+        **{k: attrs[k] for k in ("deflated_zero_roots",) if k in attrs},
         **{f"{n}_range": list(ranges[n]) for n in names},
-        **attrs,
+        **attrs,  # the rest (title, note) last; a key placed above keeps its place
     }
     return xr.Dataset(variables, coords={"point": ("point", np.arange(len(points)), _POINT_ATTRS)}, attrs=ds_attrs)
 

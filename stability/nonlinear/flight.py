@@ -315,6 +315,13 @@ class HybridRun(Solution):
     contact: np.ndarray = field(default_factory=lambda: np.empty(0, np.int8))
     takeoffs: list = field(default_factory=list)
     landings: list = field(default_factory=list)
+    #: where and why a flight's status stopped the run (a graze's time, the flights' limit)
+    detail: str = ""
+
+    @property
+    def message(self) -> str:
+        """Text of the status code, with where the run stopped for a flight's status."""
+        return self.detail or super().message
 
 
 def floor_centre(model: str, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -349,7 +356,7 @@ def run_with_flights(
     takeoffs: list = []
     landings: list = []
     nfev = naccept = nreject = 0
-    event, event_time = "none", float("nan")
+    event, event_time, detail = "none", float("nan"), ""
     y, seg = np.asarray(y0, float), np.asarray(t_eval, float)
     while True:
         sol = integrate(model, y, seg, p, watch_contact=True, **kw)
@@ -366,6 +373,7 @@ def run_with_flights(
             break
         if len(takeoffs) >= MAX_FLIGHTS:
             status = TOO_MANY_FLIGHTS
+            detail = f"more than {MAX_FLIGHTS} flights: the top bounces ever more often (stopped there)"
             break
         t0 = sol.event_time
         takeoffs.append(t0)
@@ -375,6 +383,10 @@ def run_with_flights(
         tau = landing_time(f)
         if tau == 0.0:  # N = 0 but no rise: the floor model cannot go on (N <= 0) and no flight starts
             status = GRAZE  # at t0, the last take-off
+            detail = (
+                f"at t = {t0:.9g} the normal force reached zero but the sphere does not rise (a graze): "
+                "neither the floor model nor the flight holds there (stopped)"
+            )
             break
         t_land = t0 + tau
         inside = t_eval[(t_eval > t0) & ((t_eval < t_land) | (t_land >= t_eval[-1]))]
@@ -391,4 +403,4 @@ def run_with_flights(
         seg = np.concatenate([[t_land], t_eval[t_eval > t_land]])
     t, y = np.concatenate(ts), np.vstack(ys)
     work = (nfev, naccept, nreject, status, sol.method, event_time, event)
-    return HybridRun(t, y, *work, np.vstack(vs), np.vstack(xs), np.concatenate(cs), takeoffs, landings)
+    return HybridRun(t, y, *work, np.vstack(vs), np.vstack(xs), np.concatenate(cs), takeoffs, landings, detail)
