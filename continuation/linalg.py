@@ -222,19 +222,21 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
     codings in tests/test_continuation_engine.py.
     """
     m = J.shape[0] + 1
-    if m <= 3:  # nested lists: Python indexes them faster than arrays (module docstring)
+    if 2 <= m <= 3:  # nested lists: Python indexes them faster than arrays (module docstring)
         A, x = J.tolist() + [c.tolist()], f.tolist() + [r]
         if m == 2:  # bordered by the identity: the numbers of the 2 x 2 elimination (docstring)
             A, x = [A[0] + [0.0], A[1] + [0.0], [0.0, 0.0, 1.0]], x + [0.0]
         ok, d = _lu_solve3(A, x)
         return ok, np.array(x[:m]), d
-    G, y = np.vstack([J, c]), np.append(f, r)
+    dtype = np.result_type(J, c, f, r, np.float64)  # never the caller's int or float32
+    G, y = np.vstack([J, c]).astype(dtype), np.append(f, r).astype(dtype)
     if y.size > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
         try:
             return True, np.linalg.solve(G, y), float(np.linalg.det(G))
         except np.linalg.LinAlgError:
             return False, y, 0.0
-    ok, d = _lu_solve_array(G, y)
+    with np.errstate(all="ignore"):  # numpy scalars warn where Python floats overflow silently
+        ok, d = _lu_solve_array(G, y)
     return ok, y, d
 
 

@@ -179,12 +179,14 @@ def check_free_space(path: str | os.PathLike, nbytes: float) -> None:
 def temporary_name(target: Path, directory: bool = False) -> str:
     """Create an empty, unique temporary file (or directory) next to ``target``; return its name.
     It gets the mode a new file (directory) gets under the process's umask, which the kernel
-    applies (``os.umask`` is never called: it is process-wide). Created exclusively, with 64
-    random bits in the name: a clash with one of the n temporaries in the directory (a chance of
-    n / 2**64) raises ``FileExistsError``, never replaces a file."""
-    name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(8)}-{target.name}")
-    os.mkdir(name) if directory else open(name, "x").close()
-    return name
+    applies (``os.umask`` is never called: it is process-wide). Created exclusively: a name
+    taken meanwhile is never replaced, another is drawn. (32 random bits keep the name 24
+    characters longer than the target's only: a long output name still fits.)"""
+    while True:
+        name = os.path.join(target.parent, f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}-{target.name}")
+        with contextlib.suppress(FileExistsError):  # pragma: no cover - 2**32 names
+            os.mkdir(name) if directory else open(name, "x").close()
+            return name
 
 
 @contextlib.contextmanager
@@ -237,22 +239,26 @@ def atomic_output(
             raise
         checkpoint()  # the last interruption point: after a signal nothing is committed
         tmp.state = "committing"
-        if overwrite:
-            _refuse_existing(p, True)  # again at the commit: only a regular file is replaced
-            os.replace(tmp.path, p)
-        else:
-            try:
-                os.link(tmp.path, p)  # fails atomically if the name exists: exactly one winner
-            except FileExistsError:
-                taken = f"output file {str(p)!r} was created by another process while this run was computing"
-                raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
-            except OSError as exc:
-                if exc.errno not in _NO_LINKS:
-                    raise
-                why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
-                msg = f"cannot write {str(p)!r}: the file system holding it {why} (nothing was written)"
-                raise OutputWriteError(msg, exc.errno, str(p)) from None
-            os.unlink(tmp.path)
+        try:
+            if overwrite:
+                _refuse_existing(p, True)  # again at the commit: only a regular file is replaced
+                os.replace(tmp.path, p)
+            else:
+                try:
+                    os.link(tmp.path, p)  # fails atomically if the name exists: exactly one winner
+                except FileExistsError:
+                    taken = f"output file {str(p)!r} was created by another process while this run was computing"
+                    raise FileExistsError(f"{taken}; nothing was written (pass overwrite=True to replace it)") from None
+                except OSError as exc:
+                    if exc.errno not in _NO_LINKS:
+                        raise
+                    why = "has no hard links, which the commit that never replaces a file needs; pass overwrite=True"
+                    msg = f"cannot write {str(p)!r}: the file system holding it {why} (nothing was written)"
+                    raise OutputWriteError(msg, exc.errno, str(p)) from None
+                os.unlink(tmp.path)
+        except BaseException:
+            tmp.state = "writing"  # nothing committed: the emergency exit must not report it written
+            raise
         tmp.done(committed=True)
     finally:
         if tmp.state != "committed":

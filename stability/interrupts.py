@@ -88,12 +88,12 @@ def _take(mode: str, signals: tuple[int, ...]) -> bool:
 
 
 def _restore() -> None:
-    """Put the previous handlers back; clear the flag. Cannot fail: the handlers were taken in
-    the main thread (:func:`_take`), where they are given back (the handler, the end of
-    :func:`deferred` and :func:`uninstall` run there), and a handler that Python did not set
-    (None) becomes the default one."""
+    """Put the previous handlers back; clear the flag. (Outside the main thread, e.g. the
+    command line run from a thread while its handlers are held, a handler cannot be set: the
+    flag is cleared all the same.)"""
     for s, h in _state.previous.items():
-        signal.signal(s, h if h is not None else signal.SIG_DFL)
+        with contextlib.suppress(ValueError, OSError, TypeError):
+            signal.signal(s, h if h is not None else signal.SIG_DFL)
     _state.previous, _state.mode, _state.pending = {}, None, None
 
 

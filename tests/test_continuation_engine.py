@@ -406,6 +406,38 @@ def test_small_solves_against_lapack(m):
     assert linalg.bordered_det(S[:-1], S[-1]) == 0.0
 
 
+@pytest.mark.parametrize("m", [1, 2, 3, 4])
+def test_bordered_solve_of_integer_and_extreme_input(m):
+    """The Python face of bordered_solve at every size it eliminates itself: an integer or
+    float32 system is solved in float64 (reference: numpy.linalg.solve of the float64 system,
+    to the backward-error bound of test_small_solves_against_lapack), a 1 x 1 one too, and
+    entries near the overflow threshold give the numbers of the tests' own coding on Python
+    floats (_lu_solve_loop: IEEE's inf, silently), with no RuntimeWarning (one would become an
+    error under -W error)."""
+    import warnings
+
+    from continuation import linalg
+
+    G = np.array([[2, 1, 0, 0], [1, 3, 1, 0], [0, 1, 4, 1], [0, 0, 1, 5]])[:m, :m] + np.eye(m, dtype=int)
+    b = np.arange(1, m + 1)
+    ref = np.linalg.solve(G.astype(float), b.astype(float))
+    eps = np.finfo(float).eps
+    for dtype in (int, np.float32):
+        ok, x, d = linalg.bordered_solve(G[:-1].astype(dtype), G[-1].astype(dtype), b[:-1].astype(dtype), float(b[-1]))
+        assert ok and x.dtype == np.float64
+        assert np.linalg.norm(G @ x - b) <= 8 * m * eps * np.linalg.norm(G, 2) * np.linalg.norm(ref)
+        assert abs(d - np.linalg.det(G.astype(float))) <= 1e-13 * abs(np.linalg.det(G.astype(float)))
+    if m >= 2:
+        H = 1e200 * np.eye(m)  # the product of the pivots, det = 1e200^m, overflows
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            ok, x, d = linalg.bordered_solve(H[:-1], H[-1], np.ones(m - 1), 1.0)
+        y = [1.0] * m
+        ok_ref, d_ref = _lu_solve_loop(H.tolist(), y)
+        assert ok and ok_ref and _bits(d) == _bits(d_ref) and np.isinf(d)
+        assert np.array_equal(_bits(x), _bits(y)) and (x == 1e-200).all()
+
+
 def test_bordered_tangent_and_branch_point_test():
     """continuation.linalg.tangent_det against its definition: ``J t = 0`` (to rounding, ``m
     eps ||J||``), ``|t| = 1``, ``t . t_ref > 0``, and ``det [J; t^T]`` against LAPACK's

@@ -302,3 +302,14 @@ def test_outputs_get_the_umask_without_setting_it(tmp_path, monkeypatch):
     mode = lambda p: stat.S_IMODE(os.stat(p).st_mode)  # noqa: E731
     assert mode(tmp_path / "a.txt") == mode(tmp_path / "reference") == 0o640
     assert mode(store) == mode(tmp_path / "reference-dir") == 0o750
+
+
+def test_a_long_output_name_fits_its_temporary(tmp_path):
+    """The temporary file of a write is the output's name plus 20 characters (the hidden prefix
+    and 8 random hex digits: stability.files.temporary_name); an output name that leaves room
+    for them under the file system's limit on a name (os.pathconf NAME_MAX, 255 on Linux) is
+    written, and no temporary is left."""
+    limit = os.pathconf(tmp_path, "PC_NAME_MAX")
+    name = "a" * (limit - 20 - 3) + ".nc"
+    path = stability.write_dataset(xr.Dataset({"x": ("i", np.arange(3.0))}), tmp_path / name)
+    assert path.name == name and sorted(p.name for p in tmp_path.iterdir()) == [name]

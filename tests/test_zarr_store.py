@@ -172,6 +172,19 @@ def test_cli_zarr_and_refusals(tmp_path, capsys, reference):
         stability.open_atlas(tmp_path / "d.zarr")
 
 
+def test_an_unreadable_store_without_zarr_is_refused_naming_it(tmp_path, monkeypatch):
+    """Without zarr (the optional cluster extra) a directory named like a store is still an
+    AtlasFileError naming it (the search for its damaged chunk needs zarr and is skipped), not
+    the ImportError of the search."""
+    import sys
+
+    (tmp_path / "e.zarr").mkdir()
+    (tmp_path / "e.zarr" / "zarr.json").write_text("junk")
+    monkeypatch.setitem(sys.modules, "zarr", None)
+    with pytest.raises(AtlasFileError, match=r"atlas store .*e\.zarr' is not a readable Zarr store: it cannot be read"):
+        stability.open_atlas(tmp_path / "e.zarr")
+
+
 def _hidden(directory) -> list[str]:
     return sorted(p.name for p in directory.iterdir() if p.name.startswith(TEMPORARY_PREFIX))
 
