@@ -229,7 +229,7 @@ def bordered_solve(J: np.ndarray, c: np.ndarray, f: np.ndarray, r: float) -> tup
         ok, d = _lu_solve3(A, x)
         return ok, np.array(x[:m]), d
     dtype = np.result_type(J, c, f, r, np.float64)  # never the caller's int or float32
-    G, y = np.vstack([J, c]).astype(dtype), np.append(f, r).astype(dtype)
+    G, y = np.vstack([J, c], dtype=dtype), np.append(f, r).astype(dtype, copy=False)  # new arrays, once
     if y.size > PYTHON_LU_MAX:  # LAPACK (ok False if it reports a singular matrix)
         try:
             return True, np.linalg.solve(G, y), float(np.linalg.det(G))
